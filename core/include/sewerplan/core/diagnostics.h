@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: MIT
+// Diagnostics: the problems found while reading or validating input, each naming where it is.
+//
+// Loaders and validators append to a Diagnostics list instead of stopping at the first problem,
+// so that a user fixes a file in one pass. `where` is a file and line ("ais.sewer:12") or a file
+// and JSON path ("map.json:$.pipes[3].length_m"); the message names the object ("pipe P5: ...").
+// Errors make the load fail; warnings are reported and the load goes on with a documented
+// fallback.
+//
+//   Diagnostics diagnostics;
+//   auto map = read_map(path, diagnostics);
+//   for (const Diagnostic& d : diagnostics.all()) std::cerr << d << '\n';
+#pragma once
+
+#include <cstddef>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace sewerplan {
+
+enum class Severity { kWarning, kError };
+
+struct Diagnostic {
+  Severity severity;
+  std::string where;
+  std::string message;
+  friend bool operator==(const Diagnostic&, const Diagnostic&) = default;
+};
+
+// "where: error: message"
+std::ostream& operator<<(std::ostream& os, const Diagnostic& diagnostic);
+
+class Diagnostics {
+ public:
+  // At most this many diagnostics are kept; later ones are only counted (a broken generated file
+  // could otherwise produce millions of lines).
+  static constexpr std::size_t kMaxKept = 200;
+
+  void error(std::string where, std::string message);
+  void warning(std::string where, std::string message);
+
+  const std::vector<Diagnostic>& all() const { return kept_; }
+  std::size_t error_count() const { return errors_; }
+  std::size_t warning_count() const { return warnings_; }
+  bool has_errors() const { return errors_ > 0; }
+  // Diagnostics dropped after kMaxKept.
+  std::size_t dropped() const { return errors_ + warnings_ - kept_.size(); }
+
+  // All kept errors, one "where: error: message" line each, plus a count of dropped ones.
+  std::string error_summary() const;
+
+ private:
+  void add(Severity severity, std::string where, std::string message);
+  std::vector<Diagnostic> kept_;
+  std::size_t errors_ = 0;
+  std::size_t warnings_ = 0;
+};
+
+}  // namespace sewerplan

@@ -1,0 +1,110 @@
+// SPDX-License-Identifier: MIT
+// MapBuilder: turns named records, as a file states them, into a validated SewerMap.
+//
+// Every map format (native JSON, the ASCII database, SWMM, ISYBAU, the generator) reads its input
+// into records that refer to each other by name, and hands them to one MapBuilder. build() resolves
+// the names and checks the whole network, so every format gets the same validation:
+//   errors   - empty or duplicate names (per object kind), names with white space, non-finite
+//              numbers, non-positive lengths and diameters, a pipe end naming an unknown manhole,
+//              a slot naming an unknown pipe, a slot in a manhole that is not one of its pipe's
+//              ends, a pipe end with no slot for it, two slots for one pipe end, a pipe joining a
+//              manhole to itself, an inspection point off its pipe;
+//   warnings - manholes without pipes, a network in several disconnected parts.
+// Each diagnostic names the object, and the place in the file through the Locator the reader
+// supplies (a line, or a JSON path).
+//
+//   MapBuilder builder("ais-testbed");
+//   builder.add_manhole({.name = "M2", .diameter_m = 1.0, .slots = {{.pipe = "P12"}, ...}});
+//   builder.add_pipe({.name = "P12", .from = "M1", .to = "M2", .length_m = 5, .diameter_m = 0.6});
+//   Diagnostics diagnostics;
+//   Result<SewerMap> map = std::move(builder).build(diagnostics);
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "sewerplan/core/diagnostics.h"
+#include "sewerplan/core/result.h"
+#include "sewerplan/core/sewer_map.h"
+
+namespace sewerplan {
+
+struct SlotRecord {
+  std::string pipe;
+  double azimuth_deg = 0;
+  double invert_z_m = 0;
+  std::uint32_t line = 0;  // where the record stands in its file (0: not line-based)
+};
+
+struct ManholeRecord {
+  std::string name;
+  Position position;
+  double diameter_m = 0;
+  bool exit = false;
+  std::optional<char> variant;
+  std::vector<SlotRecord> slots;
+  std::uint32_t line = 0;
+};
+
+struct PipeRecord {
+  std::string name;
+  std::optional<std::string> from;  // empty: a blind end
+  std::optional<std::string> to;
+  double length_m = 0;
+  double diameter_m = 0;
+  PipeShape shape = PipeShape::kCircular;
+  std::optional<double> height_m;  // defaults to diameter_m
+  std::optional<float> blockage_risk;
+  std::uint32_t line = 0;
+};
+
+struct PointRecord {
+  std::string name;
+  std::string pipe;
+  double offset_m = 0;
+  std::uint32_t line = 0;
+};
+
+// What a diagnostic is about, for the Locator to turn into a place in the file.
+struct RecordRef {
+  enum class Kind { kMap, kManhole, kSlot, kPipe, kPoint };
+  Kind kind = Kind::kMap;
+  std::uint32_t index = 0;       // record index within its kind, in the order added
+  std::uint32_t slot_index = 0;  // with kSlot: the slot within manhole `index`
+  std::uint32_t line = 0;        // the record's line, if the reader set one
+};
+
+// Turns a record and a field name ("length_m", or empty for the whole record) into the `where` of
+// a diagnostic. The default names the file and, if known, the line.
+using Locator = std::function<std::string(const RecordRef& record, std::string_view field)>;
+
+// "file:line", or "file" when line is 0.
+Locator line_locator(std::string file);
+
+class MapBuilder {
+ public:
+  explicit MapBuilder(std::string map_name, Locator locator = line_locator("<map>"));
+
+  void add_manhole(ManholeRecord record);
+  void add_pipe(PipeRecord record);
+  void add_point(PointRecord record);
+  void reserve(std::size_t manholes, std::size_t pipes);
+
+  // Validates and builds. On error, every problem found is in `diagnostics` and the Error's
+  // message lists them. Warnings are added to `diagnostics` either way.
+  Result<SewerMap> build(Diagnostics& diagnostics) &&;
+
+ private:
+  class Validation;
+  std::string name_;
+  Locator locator_;
+  std::vector<ManholeRecord> manholes_;
+  std::vector<PipeRecord> pipes_;
+  std::vector<PointRecord> points_;
+};
+
+}  // namespace sewerplan

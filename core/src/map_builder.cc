@@ -1,0 +1,338 @@
+// SPDX-License-Identifier: MIT
+#include "sewerplan/core/map_builder.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+
+#include "sewerplan/core/map_queries.h"
+
+namespace sewerplan {
+namespace {
+
+using Kind = RecordRef::Kind;
+
+std::string format_number(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
+
+bool is_valid_name(std::string_view name) {
+  if (name.empty()) return false;
+  return std::none_of(name.begin(), name.end(), [](char c) {
+    auto u = static_cast<unsigned char>(c);
+    return u <= 0x20 || u == 0x7f;
+  });
+}
+
+// Indices of `records` sorted by name; reports empty, malformed and duplicate names.
+template <class Record>
+std::vector<std::uint32_t> sorted_names(const std::vector<Record>& records, std::string_view kind,
+                                        Kind ref_kind, const Locator& locate,
+                                        Diagnostics& diagnostics) {
+  std::vector<std::uint32_t> order(records.size());
+  std::iota(order.begin(), order.end(), 0U);
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return records[a].name < records[b].name || (records[a].name == records[b].name && a < b);
+  });
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const Record& r = records[order[k]];
+    RecordRef ref{ref_kind, order[k], 0, r.line};
+    if (!is_valid_name(r.name)) {
+      diagnostics.error(locate(ref, "name"), std::string(kind) + " name '" + r.name +
+                                                 "' is empty or contains white space");
+    } else if (k > 0 && records[order[k - 1]].name == r.name) {
+      const Record& first = records[order[k - 1]];
+      RecordRef first_ref{ref_kind, order[k - 1], 0, first.line};
+      diagnostics.error(locate(ref, "name"), "duplicate " + std::string(kind) + " name '" + r.name +
+                                                 "' (first defined at " + locate(first_ref, "") +
+                                                 ")");
+    }
+  }
+  return order;
+}
+
+template <class Record>
+std::optional<std::uint32_t> lookup(const std::vector<std::uint32_t>& sorted,
+                                    const std::vector<Record>& records, std::string_view name) {
+  auto it =
+      std::lower_bound(sorted.begin(), sorted.end(), name,
+                       [&](std::uint32_t i, std::string_view n) { return records[i].name < n; });
+  if (it == sorted.end() || records[*it].name != name) return std::nullopt;
+  return *it;
+}
+
+}  // namespace
+
+Locator line_locator(std::string file) {
+  return [file = std::move(file)](const RecordRef& ref, std::string_view) {
+    return ref.line > 0 ? file + ":" + std::to_string(ref.line) : file;
+  };
+}
+
+MapBuilder::MapBuilder(std::string map_name, Locator locator)
+    : name_(std::move(map_name)), locator_(std::move(locator)) {}
+
+void MapBuilder::add_manhole(ManholeRecord record) { manholes_.push_back(std::move(record)); }
+void MapBuilder::add_pipe(PipeRecord record) { pipes_.push_back(std::move(record)); }
+void MapBuilder::add_point(PointRecord record) { points_.push_back(std::move(record)); }
+
+void MapBuilder::reserve(std::size_t manholes, std::size_t pipes) {
+  manholes_.reserve(manholes);
+  pipes_.reserve(pipes);
+}
+
+// The checks of build(), one function per concern so that each stays readable.
+class MapBuilder::Validation {
+ public:
+  Validation(MapBuilder& b, Diagnostics& d) : b_(b), d_(d) {}
+
+  Result<SewerMap> run() {
+    SewerMap map;
+    map.name_ = std::move(b_.name_);
+    map.manholes_by_name_ = sorted_names(b_.manholes_, "manhole", Kind::kManhole, b_.locator_, d_);
+    map.pipes_by_name_ = sorted_names(b_.pipes_, "pipe", Kind::kPipe, b_.locator_, d_);
+    map.points_by_name_ =
+        sorted_names(b_.points_, "inspection point", Kind::kPoint, b_.locator_, d_);
+    check_numbers();
+    build_pipes(map);
+    build_manholes(map);
+    check_unmatched_pipe_ends(map);
+    build_points(map);
+    if (d_.has_errors()) return Error{ErrorCode::kInvalidMap, d_.error_summary()};
+    warn_about_topology(map);
+    return map;
+  }
+
+ private:
+  std::string at(Kind kind, std::uint32_t index, std::uint32_t line, std::string_view field,
+                 std::uint32_t slot = 0) const {
+    return b_.locator_(RecordRef{kind, index, slot, line}, field);
+  }
+
+  void require_positive(double v, std::string_view what, const std::string& object,
+                        const std::string& where) {
+    if (!std::isfinite(v) || v <= 0) {
+      d_.error(where, object + ": " + std::string(what) +
+                          " must be a positive number of metres, got " + format_number(v));
+    }
+  }
+
+  void require_finite(double v, std::string_view what, const std::string& object,
+                      const std::string& where) {
+    if (!std::isfinite(v)) {
+      d_.error(where, object + ": " + std::string(what) + " must be a finite number, got " +
+                          format_number(v));
+    }
+  }
+
+  void check_numbers() {
+    for (std::uint32_t i = 0; i < b_.manholes_.size(); ++i) {
+      const ManholeRecord& m = b_.manholes_[i];
+      const std::string object = "manhole " + m.name;
+      require_positive(m.diameter_m, "diameter", object,
+                       at(Kind::kManhole, i, m.line, "diameter_m"));
+      require_finite(m.position.x_m, "x", object, at(Kind::kManhole, i, m.line, "x_m"));
+      require_finite(m.position.y_m, "y", object, at(Kind::kManhole, i, m.line, "y_m"));
+      require_finite(m.position.z_m, "z", object, at(Kind::kManhole, i, m.line, "z_m"));
+      if (m.variant && (*m.variant < 'A' || *m.variant > 'Z')) {
+        d_.error(at(Kind::kManhole, i, m.line, "variant"),
+                 object + ": variant must be one capital letter A..Z");
+      }
+      for (std::uint32_t s = 0; s < m.slots.size(); ++s) {
+        const SlotRecord& slot = m.slots[s];
+        const std::string so = object + " slot " + std::to_string(s + 1);
+        require_finite(slot.azimuth_deg, "azimuth", so,
+                       at(Kind::kSlot, i, slot.line, "azimuth_deg", s));
+        require_finite(slot.invert_z_m, "invert", so, at(Kind::kSlot, i, slot.line, "invert_m", s));
+      }
+      if (m.slots.size() > 0xffff) {
+        d_.error(at(Kind::kManhole, i, m.line, "slots"), object + ": more than 65535 slots");
+      }
+    }
+    for (std::uint32_t i = 0; i < b_.pipes_.size(); ++i) {
+      const PipeRecord& p = b_.pipes_[i];
+      const std::string object = "pipe " + p.name;
+      require_positive(p.length_m, "length", object, at(Kind::kPipe, i, p.line, "length_m"));
+      require_positive(p.diameter_m, "diameter", object, at(Kind::kPipe, i, p.line, "diameter_m"));
+      if (p.height_m) {
+        require_positive(*p.height_m, "height", object, at(Kind::kPipe, i, p.line, "height_m"));
+      }
+      if (p.blockage_risk && !(*p.blockage_risk >= 0 && *p.blockage_risk <= 1)) {
+        d_.error(at(Kind::kPipe, i, p.line, "blockage_risk"),
+                 object + ": blockage_risk must be between 0 and 1, got " +
+                     format_number(*p.blockage_risk));
+      }
+    }
+  }
+
+  std::optional<ManholeId> resolve_end(const std::optional<std::string>& name, std::uint32_t pipe,
+                                       std::string_view field, const SewerMap& map) {
+    if (!name) return std::nullopt;
+    const PipeRecord& p = b_.pipes_[pipe];
+    auto m = lookup(map.manholes_by_name_, b_.manholes_, *name);
+    if (!m) {
+      d_.error(at(Kind::kPipe, pipe, p.line, field), "pipe " + p.name + ": " + std::string(field) +
+                                                         " names unknown manhole '" + *name + "'");
+      return std::nullopt;
+    }
+    return ManholeId{*m};
+  }
+
+  void build_pipes(SewerMap& map) {
+    map.pipes_.reserve(b_.pipes_.size());
+    for (std::uint32_t i = 0; i < b_.pipes_.size(); ++i) {
+      PipeRecord& r = b_.pipes_[i];
+      Pipe p;
+      p.ends[0].manhole = resolve_end(r.from, i, "from", map);
+      p.ends[1].manhole = resolve_end(r.to, i, "to", map);
+      if (p.ends[0].manhole && p.ends[0].manhole == p.ends[1].manhole) {
+        d_.error(at(Kind::kPipe, i, r.line, "to"),
+                 "pipe " + r.name + ": joins manhole " + *r.from + " to itself");
+      }
+      p.length_m = r.length_m;
+      p.diameter_m = r.diameter_m;
+      p.shape = r.shape;
+      p.height_m = r.height_m.value_or(r.diameter_m);
+      p.blockage_risk = r.blockage_risk;
+      p.name = std::move(r.name);
+      map.pipes_.push_back(std::move(p));
+    }
+    slot_seen_.assign(2 * map.pipes_.size(), false);
+  }
+
+  void build_manholes(SewerMap& map) {
+    std::size_t total_slots = 0;
+    for (const ManholeRecord& m : b_.manholes_) total_slots += m.slots.size();
+    map.manholes_.reserve(b_.manholes_.size());
+    map.slots_.reserve(total_slots);
+    for (std::uint32_t i = 0; i < b_.manholes_.size(); ++i) {
+      ManholeRecord& r = b_.manholes_[i];
+      Manhole m;
+      m.position = r.position;
+      m.diameter_m = r.diameter_m;
+      m.exit = r.exit;
+      m.variant = r.variant;
+      m.first_slot = static_cast<std::uint32_t>(map.slots_.size());
+      m.slot_count = static_cast<std::uint16_t>(std::min<std::size_t>(r.slots.size(), 0xffff));
+      for (std::uint16_t s = 0; s < m.slot_count; ++s) {
+        map.slots_.push_back(build_slot(map, ManholeId{i}, SlotIndex{s}));
+      }
+      map.manholes_.push_back(std::move(m));
+    }
+    // Names move only now: slot diagnostics above may name any manhole.
+    for (std::size_t i = 0; i < b_.manholes_.size(); ++i) {
+      map.manholes_[i].name = std::move(b_.manholes_[i].name);
+    }
+  }
+
+  Slot build_slot(SewerMap& map, ManholeId manhole, SlotIndex index) {
+    const ManholeRecord& r = b_.manholes_[manhole.index()];
+    const SlotRecord& rs = r.slots[index.index()];
+    Slot slot;
+    slot.azimuth_deg = rs.azimuth_deg;
+    slot.invert_z_m = rs.invert_z_m;
+    const std::string where = at(Kind::kSlot, manhole.value(), rs.line, "pipe", index.value());
+    const std::string object = "manhole " + r.name + " slot " + std::to_string(index.value() + 1);
+    auto pipe = lookup(map.pipes_by_name_, map.pipes_, rs.pipe);
+    if (!pipe) {
+      d_.error(where, object + " names unknown pipe '" + rs.pipe + "'");
+      return slot;
+    }
+    Pipe& p = map.pipes_[*pipe];
+    slot.pipe = PipeId{*pipe};
+    int end = p.ends[0].manhole == manhole ? 0 : p.ends[1].manhole == manhole ? 1 : -1;
+    if (end < 0) {
+      d_.error(where,
+               object + " names pipe " + p.name + ", but " + p.name + " " + describe_ends(p));
+      return slot;
+    }
+    auto e = static_cast<std::size_t>(end);
+    if (slot_seen_[2 * pipe.value() + e]) {
+      d_.error(where, object + " names pipe " + p.name + " a second time");
+      return slot;
+    }
+    slot_seen_[2 * pipe.value() + e] = true;
+    slot.pipe_end = static_cast<std::uint8_t>(end);
+    p.ends[e].slot = index;
+    return slot;
+  }
+
+  std::string describe_ends(const Pipe& p) const {
+    auto name = [&](const PipeEnd& e) {
+      return e.manhole ? "manhole " + b_.manholes_[e.manhole->index()].name
+                       : std::string("a blind end");
+    };
+    return "joins " + name(p.ends[0]) + " and " + name(p.ends[1]);
+  }
+
+  void check_unmatched_pipe_ends(const SewerMap& map) {
+    for (std::uint32_t i = 0; i < map.pipes_.size(); ++i) {
+      const Pipe& p = map.pipes_[i];
+      for (std::size_t e = 0; e < 2; ++e) {
+        if (p.ends[e].manhole && !slot_seen_[2 * i + e]) {
+          const std::string& m = map.manholes_[p.ends[e].manhole->index()].name;
+          d_.error(
+              at(Kind::kPipe, i, b_.pipes_[i].line, e == 0 ? "from" : "to"),
+              "pipe " + p.name + " ends in manhole " + m + ", but " + m + " has no slot for it");
+        }
+      }
+    }
+  }
+
+  void build_points(SewerMap& map) {
+    map.points_.reserve(b_.points_.size());
+    for (std::uint32_t i = 0; i < b_.points_.size(); ++i) {
+      PointRecord& r = b_.points_[i];
+      InspectionPoint point;
+      point.offset_m = r.offset_m;
+      auto pipe = lookup(map.pipes_by_name_, map.pipes_, r.pipe);
+      if (!pipe) {
+        d_.error(at(Kind::kPoint, i, r.line, "pipe"),
+                 "inspection point " + r.name + " names unknown pipe '" + r.pipe + "'");
+      } else {
+        point.pipe = PipeId{*pipe};
+        const double length = map.pipes_[*pipe].length_m;
+        if (!(r.offset_m >= 0 && r.offset_m <= length)) {
+          d_.error(at(Kind::kPoint, i, r.line, "offset_m"),
+                   "inspection point " + r.name + ": offset " + format_number(r.offset_m) +
+                       " m is outside pipe " + r.pipe + " (0 to " + format_number(length) + " m)");
+        }
+      }
+      point.name = std::move(r.name);
+      map.points_.push_back(std::move(point));
+    }
+  }
+
+  void warn_about_topology(const SewerMap& map) {
+    for (ManholeId m : map.manhole_ids()) {
+      if (map.manhole(m).slot_count == 0) {
+        d_.warning(at(Kind::kManhole, m.value(), b_.manholes_[m.index()].line, ""),
+                   "manhole " + map.manhole(m).name + " has no pipes");
+      }
+    }
+    const Components components = connected_components(map);
+    if (components.count > 1) {
+      std::ostringstream msg;
+      msg << "the network falls into " << components.count << " disconnected parts (sizes";
+      std::vector<std::uint32_t> sizes = components.sizes;
+      std::sort(sizes.rbegin(), sizes.rend());
+      for (std::size_t k = 0; k < sizes.size() && k < 5; ++k) msg << ' ' << sizes[k];
+      if (sizes.size() > 5) msg << " ...";
+      msg << " manholes)";
+      d_.warning(at(Kind::kMap, 0, 0, ""), msg.str());
+    }
+  }
+
+  MapBuilder& b_;
+  Diagnostics& d_;
+  std::vector<bool> slot_seen_;  // per pipe end: 2 * pipe + end
+};
+
+Result<SewerMap> MapBuilder::build(Diagnostics& diagnostics) && {
+  return Validation(*this, diagnostics).run();
+}
+
+}  // namespace sewerplan

@@ -1,0 +1,108 @@
+// SPDX-License-Identifier: MIT
+#include "sewerplan/core/map_builder.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "sewerplan/core/map_queries.h"
+
+namespace sewerplan {
+namespace {
+
+using ::testing::HasSubstr;
+
+// M1 -P1- M2 -P2- M3, with M2 a straight-through TYPE_2 manhole and a 0.1 m step into P2.
+MapBuilder three_manholes() {
+  MapBuilder b("line");
+  b.add_manhole({.name = "M1", .diameter_m = 1.0, .exit = true, .slots = {{.pipe = "P1"}}});
+  b.add_manhole({.name = "M2",
+                 .position = {10, 0, 0},
+                 .diameter_m = 1.0,
+                 .slots = {{.pipe = "P1", .azimuth_deg = 180},
+                           {.pipe = "P2", .azimuth_deg = 0, .invert_z_m = 0.1}}});
+  b.add_manhole({.name = "M3",
+                 .position = {20, 0, 0},
+                 .diameter_m = 1.0,
+                 .slots = {{.pipe = "P2", .azimuth_deg = 180}}});
+  b.add_pipe({.name = "P1", .from = "M1", .to = "M2", .length_m = 10, .diameter_m = 0.6});
+  b.add_pipe({.name = "P2", .from = "M2", .to = "M3", .length_m = 10, .diameter_m = 0.6});
+  return b;
+}
+
+TEST(MapBuilder, BuildsAConsistentNetworkWithSlotsAsAdjacency) {
+  Diagnostics d;
+  Result<SewerMap> map = three_manholes().build(d);
+  ASSERT_TRUE(map.has_value()) << map.error();
+  EXPECT_EQ(d.error_count(), 0U);
+  EXPECT_EQ(d.warning_count(), 0U);
+  const ManholeId m2 = *map->find_manhole("M2");
+  ASSERT_EQ(map->slots(m2).size(), 2U);
+  EXPECT_EQ(map->pipe(map->slots(m2)[1].pipe).name, "P2");
+  const PipeId p2 = *map->find_pipe("P2");
+  EXPECT_EQ(map->pipe(p2).ends[0].manhole, m2);
+  EXPECT_EQ(map->pipe(p2).ends[0].slot, SlotIndex{1});
+  EXPECT_EQ(map->pipe(p2).ends[1].manhole, map->find_manhole("M3"));
+  EXPECT_FALSE(map->find_manhole("M9").has_value());
+}
+
+TEST(MapBuilder, PassageGeometryFollowsFromSlots) {
+  Diagnostics d;
+  Result<SewerMap> map = three_manholes().build(d);
+  ASSERT_TRUE(map.has_value());
+  const ManholeId m2 = *map->find_manhole("M2");
+  EXPECT_DOUBLE_EQ(passage_turn_deg(*map, m2, SlotIndex{0}, SlotIndex{1}), 0.0);
+  EXPECT_DOUBLE_EQ(passage_step_m(*map, m2, SlotIndex{0}, SlotIndex{1}), 0.1);
+  EXPECT_DOUBLE_EQ(passage_step_m(*map, m2, SlotIndex{1}, SlotIndex{0}), -0.1);
+}
+
+TEST(MapBuilder, ReportsEveryProblemNamingTheObject) {
+  MapBuilder b = three_manholes();
+  b.add_pipe({.name = "P1", .from = "M1", .to = "M2", .length_m = 5, .diameter_m = 0.6});
+  b.add_pipe({.name = "P7", .from = "M1", .to = "M42", .length_m = -1, .diameter_m = 0.6});
+  b.add_manhole({.name = "M4", .diameter_m = 1.0, .slots = {{.pipe = "P99"}}});
+  Diagnostics d;
+  Result<SewerMap> map = std::move(b).build(d);
+  ASSERT_FALSE(map.has_value());
+  EXPECT_EQ(map.error().code, ErrorCode::kInvalidMap);
+  const std::string& msg = map.error().message;
+  EXPECT_THAT(msg, HasSubstr("duplicate pipe name 'P1'"));
+  EXPECT_THAT(msg, HasSubstr("pipe P7: length must be a positive number of metres, got -1"));
+  EXPECT_THAT(msg, HasSubstr("pipe P7: to names unknown manhole 'M42'"));
+  EXPECT_THAT(msg, HasSubstr("manhole M4 slot 1 names unknown pipe 'P99'"));
+  EXPECT_THAT(msg, HasSubstr("pipe P7 ends in manhole M1, but M1 has no slot for it"));
+}
+
+TEST(MapBuilder, RejectsASlotInAManholeThePipeDoesNotReach) {
+  MapBuilder b = three_manholes();
+  b.add_manhole({.name = "M5", .diameter_m = 1.0, .slots = {{.pipe = "P1"}}});
+  Diagnostics d;
+  Result<SewerMap> map = std::move(b).build(d);
+  ASSERT_FALSE(map.has_value());
+  EXPECT_THAT(map.error().message,
+              HasSubstr("manhole M5 slot 1 names pipe P1, but P1 joins manhole M1 and manhole M2"));
+}
+
+TEST(MapBuilder, WarnsAboutDisconnectedParts) {
+  MapBuilder b = three_manholes();
+  b.add_manhole({.name = "M8", .diameter_m = 1.0, .slots = {{.pipe = "P8"}}});
+  b.add_manhole({.name = "M9", .diameter_m = 1.0, .slots = {{.pipe = "P8"}}});
+  b.add_pipe({.name = "P8", .from = "M8", .to = "M9", .length_m = 5, .diameter_m = 0.4});
+  Diagnostics d;
+  Result<SewerMap> map = std::move(b).build(d);
+  ASSERT_TRUE(map.has_value());
+  ASSERT_EQ(d.warning_count(), 1U);
+  EXPECT_THAT(d.all()[0].message, HasSubstr("2 disconnected parts (sizes 3 2 manholes)"));
+}
+
+TEST(MapBuilder, AcceptsBlindPipeEnds) {
+  MapBuilder b = three_manholes();
+  b.add_manhole({.name = "M6", .diameter_m = 1.0, .slots = {{.pipe = "S1"}}});
+  b.add_pipe({.name = "S1", .from = "M6", .length_m = 2, .diameter_m = 0.3});
+  Diagnostics d;
+  Result<SewerMap> map = std::move(b).build(d);
+  ASSERT_TRUE(map.has_value()) << map.error();
+  EXPECT_FALSE(map->pipe(*map->find_pipe("S1")).ends[1].manhole.has_value());
+}
+
+}  // namespace
+}  // namespace sewerplan
