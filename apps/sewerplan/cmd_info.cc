@@ -1,0 +1,105 @@
+// SPDX-License-Identifier: MIT
+// sewerplan info MAP [--json]
+#include <iomanip>
+#include <ostream>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "sewerplan/core/map_io.h"
+#include "sewerplan/core/map_queries.h"
+
+#include "command.h"
+
+namespace sewerplan::cli {
+namespace {
+
+struct InfoOptions {
+  std::string map;
+  bool json = false;
+};
+
+std::vector<std::string> exit_names(const SewerMap& map) {
+  std::vector<std::string> names;
+  for (const Manhole& m : map.manholes()) {
+    if (m.exit) names.push_back(m.name);
+  }
+  return names;
+}
+
+nlohmann::json info_json(const SewerMap& map, const MapStatistics& s) {
+  nlohmann::json types = nlohmann::json::object();
+  for (auto [type, count] : s.manholes_by_type) types[std::to_string(type)] = count;
+  return {{"name", map.name()},
+          {"manholes", s.manholes},
+          {"pipes", s.pipes},
+          {"inspection_points", s.inspection_points},
+          {"manholes_by_type", types},
+          {"total_length_m", s.total_length_m},
+          {"pipe_diameter_m", {{"min", s.min_pipe_diameter_m}, {"max", s.max_pipe_diameter_m}}},
+          {"manhole_diameter_m",
+           {{"min", s.min_manhole_diameter_m}, {"max", s.max_manhole_diameter_m}}},
+          {"blind_pipe_ends", s.blind_pipe_ends},
+          {"components", s.components},
+          {"bounding_box_m", {{"min", s.min_xy_m}, {"max", s.max_xy_m}}},
+          {"exits", exit_names(map)},
+          {"memory_bytes", map.memory_bytes()}};
+}
+
+void print_info(const SewerMap& map, const MapStatistics& s, std::ostream& out) {
+  out << std::fixed << std::setprecision(2);
+  out << "map            " << map.name() << '\n'
+      << "manholes       " << s.manholes << '\n'
+      << "pipes          " << s.pipes << " (" << s.total_length_m << " m in all)\n"
+      << "by type        ";
+  for (auto [type, count] : s.manholes_by_type) {
+    out << "TYPE_" << type << ": " << count << "  ";
+  }
+  out << '\n'
+      << "pipe diameter  " << s.min_pipe_diameter_m << " to " << s.max_pipe_diameter_m << " m\n"
+      << "manhole diam.  " << s.min_manhole_diameter_m << " to " << s.max_manhole_diameter_m
+      << " m\n"
+      << "extent         (" << s.min_xy_m[0] << ", " << s.min_xy_m[1] << ") to (" << s.max_xy_m[0]
+      << ", " << s.max_xy_m[1] << ") m\n"
+      << "connected      "
+      << (s.components == 1 ? "yes" : "no, " + std::to_string(s.components) + " parts") << '\n'
+      << "points         " << s.inspection_points << '\n'
+      << "blind ends     " << s.blind_pipe_ends << '\n';
+  const std::vector<std::string> exits = exit_names(map);
+  out << "exits          " << exits.size();
+  for (std::size_t i = 0; i < exits.size() && i < 12; ++i)
+    out << (i == 0 ? ": " : ", ") << exits[i];
+  if (exits.size() > 12) out << ", ...";
+  out << '\n';
+}
+
+int run(const InfoOptions& o, Context& c) {
+  Diagnostics diagnostics;
+  Result<SewerMap> map = read_map(o.map, diagnostics);
+  print_diagnostics(diagnostics, c.err);
+  if (!map.has_value()) {
+    if (diagnostics.error_count() == 0) c.err << map.error().message << '\n';
+    return exit_code_for(map.error());
+  }
+  const MapStatistics stats = map_statistics(*map);
+  if (o.json) {
+    c.out << info_json(*map, stats).dump(2) << '\n';
+  } else {
+    print_info(*map, stats, c.out);
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_info_command(CLI::App& app, Context& context) {
+  // Shared with the callback, which CLI11 keeps after this function returns.
+  auto options = std::make_shared<InfoOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "info", "Summarise a map: counts, manhole types, lengths, diameters, exits, connectivity");
+  cmd->add_option("map", options->map, "Map file (.json or .sewer)")->required();
+  cmd->add_flag("--json", options->json, "Print the summary as JSON");
+  cmd->callback([options, &context] { context.exit_code = run(*options, context); });
+}
+
+}  // namespace sewerplan::cli

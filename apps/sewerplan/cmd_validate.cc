@@ -1,0 +1,81 @@
+// SPDX-License-Identifier: MIT
+// sewerplan validate MAP [--mission FILE] [--strict] [--json]
+#include <ostream>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "sewerplan/core/map_io.h"
+#include "sewerplan/core/mission.h"
+
+#include "command.h"
+
+namespace sewerplan::cli {
+namespace {
+
+struct ValidateOptions {
+  std::string map;
+  std::string mission;
+  bool strict = false;
+  bool json = false;
+};
+
+nlohmann::json diagnostics_json(const Diagnostics& diagnostics, Severity severity) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const Diagnostic& d : diagnostics.all()) {
+    if (d.severity == severity) list.push_back({{"where", d.where}, {"message", d.message}});
+  }
+  return list;
+}
+
+int run(const ValidateOptions& o, Context& c) {
+  Diagnostics diagnostics;
+  Result<SewerMap> map = read_map(o.map, diagnostics);
+  std::optional<Error> failure;
+  if (!map.has_value()) {
+    failure = map.error();
+  } else if (!o.mission.empty()) {
+    Result<Mission> mission = read_mission(o.mission, *map, diagnostics);
+    if (!mission.has_value()) failure = mission.error();
+  }
+  const bool valid = !failure && !(o.strict && diagnostics.warning_count() > 0);
+  if (o.json) {
+    nlohmann::json j = {{"valid", valid},
+                        {"errors", diagnostics_json(diagnostics, Severity::kError)},
+                        {"warnings", diagnostics_json(diagnostics, Severity::kWarning)}};
+    if (failure && failure->code == ErrorCode::kIo)
+      j["errors"].push_back({{"where", ""}, {"message", failure->message}});
+    if (map.has_value()) {
+      j["manholes"] = map->manhole_count();
+      j["pipes"] = map->pipe_count();
+    }
+    c.out << j.dump(2) << '\n';
+  } else {
+    print_diagnostics(diagnostics, c.err);
+    if (failure && diagnostics.error_count() == 0) c.err << failure->message << '\n';
+    if (valid) {
+      c.out << o.map << ": valid (" << map->manhole_count() << " manholes, " << map->pipe_count()
+            << " pipes" << (o.mission.empty() ? "" : ", mission " + o.mission + " valid") << ", "
+            << diagnostics.warning_count() << " warnings)\n";
+    }
+  }
+  if (failure) return exit_code_for(*failure);
+  return valid ? kExitOk : kExitInvalidInput;
+}
+
+}  // namespace
+
+void add_validate_command(CLI::App& app, Context& context) {
+  // Shared with the callback, which CLI11 keeps after this function returns.
+  auto options = std::make_shared<ValidateOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "validate",
+      "Check a map (and a mission on it): every problem with its file and line or path");
+  cmd->add_option("map", options->map, "Map file (.json or .sewer)")->required();
+  cmd->add_option("--mission", options->mission, "Also check this mission file against the map");
+  cmd->add_flag("--strict", options->strict, "Treat warnings as errors");
+  cmd->add_flag("--json", options->json, "Print the result as JSON");
+  cmd->callback([options, &context] { context.exit_code = run(*options, context); });
+}
+
+}  // namespace sewerplan::cli

@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: MIT
+// The sewerplan CLI's commands: each registers itself as a CLI11 subcommand.
+//
+// Exit codes are part of the interface that scripts rely on (docs/cli.md):
+//   0 success; 1 invalid input (a file that does not parse or validate, an impossible request);
+//   2 command-line usage error; 3 a file could not be read or written.
+#pragma once
+
+#include <iosfwd>
+#include <string>
+
+#include "sewerplan/core/diagnostics.h"
+#include "sewerplan/core/result.h"
+
+namespace CLI {
+class App;
+}
+
+namespace sewerplan::cli {
+
+enum ExitCode : int {
+  kExitOk = 0,
+  kExitInvalidInput = 1,
+  kExitUsage = 2,
+  kExitIo = 3,
+};
+
+// What a command's callback reports back to main().
+struct Context {
+  std::ostream& out;
+  std::ostream& err;
+  int exit_code = kExitOk;
+};
+
+void add_validate_command(CLI::App& app, Context& context);
+void add_info_command(CLI::App& app, Context& context);
+void add_generate_command(CLI::App& app, Context& context);
+void add_convert_command(CLI::App& app, Context& context);
+
+// Helpers shared by the commands.
+int exit_code_for(const Error& error);
+void print_diagnostics(const Diagnostics& diagnostics, std::ostream& err);
+
+}  // namespace sewerplan::cli

@@ -1,0 +1,104 @@
+// SPDX-License-Identifier: MIT
+// Mission: what an operator asks of the robot on one map.
+//
+// The paper's mission (Adria, Streich and Hertzberg 2004, sections 3.2, 4.3 and 6) names where the
+// robot is put into the sewer, the tasks to do and where it is recovered. Three kinds of task: go
+// to a place, inspect a pipe (an area is a set of pipes, one task each), and take a water sample.
+// The end point of the paper's mission is a go-to task marked `final`: done last, and the mission
+// ends there; without a final task the mission ends at one of its exits (manholes where the robot
+// can be recovered; by default, those marked exit in the map). The robot profile, a battery
+// reserve, and pipes or manhole passages known to be closed complete it.
+//
+// A Mission refers to its map by IDs, so it is read against that map (read_mission_json) and only
+// valid with it. The JSON form is documented in docs/formats/mission-json.md.
+//
+//   Diagnostics diagnostics;
+//   Result<Mission> mission = read_mission_json(text, "paper.json", map, diagnostics);
+//   for (const Task& task : mission->tasks) std::cout << task.name << '\n';
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "sewerplan/core/diagnostics.h"
+#include "sewerplan/core/result.h"
+#include "sewerplan/core/robot_profile.h"
+#include "sewerplan/core/sewer_map.h"
+
+namespace sewerplan {
+
+// A place in a pipe: the whole pipe, a point offset_m from its ends[0], or a named point.
+struct PipeSpot {
+  PipeId pipe{0};
+  std::optional<double> offset_m;
+  std::optional<PointId> point;  // when given by an inspection point's name
+  friend bool operator==(const PipeSpot&, const PipeSpot&) = default;
+};
+
+// Where the robot starts or a task is done: in a manhole, or in a pipe.
+using Place = std::variant<ManholeId, PipeSpot>;
+
+enum class TaskKind { kGoTo, kInspectPipe, kTakeWaterSample };
+
+std::string_view to_string(TaskKind kind);
+
+struct Task {
+  std::string name;
+  TaskKind kind = TaskKind::kGoTo;
+  Place place = ManholeId{0};  // kInspectPipe: the whole pipe
+  bool final = false;          // done last; the mission ends here
+  friend bool operator==(const Task&, const Task&) = default;
+};
+
+// A passage through a manhole that must not be used, in either direction.
+struct ClosedPassage {
+  ManholeId manhole{0};
+  SlotIndex from{0};
+  SlotIndex to{0};
+  friend bool operator==(const ClosedPassage&, const ClosedPassage&) = default;
+};
+
+struct Mission {
+  std::string name;
+  RobotProfile profile;
+  Place start = ManholeId{0};
+  std::vector<Task> tasks;
+  std::vector<ManholeId> exits;
+  // Share of the battery that must be left at the end of the mission, 0..1.
+  double battery_reserve_fraction = 0.2;
+  std::vector<PipeId> closed_pipes;
+  std::vector<ClosedPassage> closed_passages;
+  friend bool operator==(const Mission&, const Mission&) = default;
+
+  // The final task, if the mission has one.
+  const Task* final_task() const;
+};
+
+inline constexpr std::string_view kMissionJsonFormat = "sewerplan-mission";
+inline constexpr int kMissionJsonVersion = 1;
+
+// Reads a mission and resolves its names against `map`. Unknown names, duplicate task names, more
+// than one final task, a mission without any exit or final task, and an invalid profile are errors
+// naming the JSON path.
+Result<Mission> read_mission_json(std::string_view text, const std::string& file_name,
+                                  const SewerMap& map, Diagnostics& diagnostics);
+
+void write_mission_json(const Mission& mission, const SewerMap& map, std::ostream& out);
+
+// A place as people read it: "manhole M3", "pipe P6", "pipe P6 at 2.5 m", "point W1 (pipe P6)".
+std::string describe(const Place& place, const SewerMap& map);
+
+}  // namespace sewerplan
+
+namespace sewerplan {
+
+// Reads a mission file against `map`; an unreadable file is a kIo error naming it.
+Result<Mission> read_mission(const std::filesystem::path& path, const SewerMap& map,
+                             Diagnostics& diagnostics);
+
+}  // namespace sewerplan

@@ -1,0 +1,92 @@
+// SPDX-License-Identifier: MIT
+#include "sewerplan/core/map_io.h"
+
+#include <sstream>
+
+#include "sewerplan/core/map_json.h"
+#include "sewerplan/core/text_file.h"
+
+namespace sewerplan {
+
+std::string_view to_string(MapFormat format) {
+  switch (format) {
+    case MapFormat::kJson:
+      return "json";
+    case MapFormat::kAscii:
+      return "ascii";
+  }
+  return "json";
+}
+
+std::optional<MapFormat> map_format_from_name(std::string_view name) {
+  if (name == "json") return MapFormat::kJson;
+  if (name == "ascii") return MapFormat::kAscii;
+  return std::nullopt;
+}
+
+std::optional<MapFormat> map_format_from_extension(const std::filesystem::path& path) {
+  const std::string ext = path.extension().string();
+  if (ext == ".json") return MapFormat::kJson;
+  if (ext == ".sewer") return MapFormat::kAscii;
+  return std::nullopt;
+}
+
+Result<MapFormat> detect_map_format(const std::filesystem::path& path, std::string_view text) {
+  if (auto f = map_format_from_extension(path)) return *f;
+  std::size_t i = 0;
+  while (i < text.size()) {
+    // Skip white space and '#' comment lines.
+    if (text[i] == ' ' || text[i] == '\t' || text[i] == '\r' || text[i] == '\n') {
+      ++i;
+    } else if (text[i] == '#') {
+      while (i < text.size() && text[i] != '\n') ++i;
+    } else {
+      break;
+    }
+  }
+  const std::string_view rest = text.substr(i);
+  if (rest.starts_with("{")) return MapFormat::kJson;
+  if (rest.starts_with("sewerdb")) return MapFormat::kAscii;
+  return Error{ErrorCode::kUnsupportedFormat,
+               path.string() + ": unknown map format (expected a .json map or a .sewer database)"};
+}
+
+Result<SewerMap> parse_map(std::string_view text, const std::string& file_name, MapFormat format,
+                           Diagnostics& diagnostics) {
+  switch (format) {
+    case MapFormat::kJson:
+      return read_map_json(text, file_name, diagnostics);
+    case MapFormat::kAscii:
+      return Error{ErrorCode::kUnsupportedFormat, file_name + ": ASCII maps are not readable yet"};
+  }
+  return Error{ErrorCode::kUnsupportedFormat, file_name + ": unknown format"};
+}
+
+Result<SewerMap> read_map(const std::filesystem::path& path, Diagnostics& diagnostics) {
+  Result<std::string> text = read_text_file(path);
+  if (!text.has_value()) return text.error();
+  Result<MapFormat> format = detect_map_format(path, *text);
+  if (!format.has_value()) return format.error();
+  return parse_map(*text, path.string(), *format, diagnostics);
+}
+
+Result<void> write_map(const SewerMap& map, const std::filesystem::path& path,
+                       std::optional<MapFormat> format) {
+  if (!format) format = map_format_from_extension(path);
+  if (!format) {
+    return Error{
+        ErrorCode::kUnsupportedFormat,
+        path.string() + ": cannot tell the format from the extension (use .json or .sewer)"};
+  }
+  std::ostringstream out;
+  switch (*format) {
+    case MapFormat::kJson:
+      write_map_json(map, out);
+      break;
+    case MapFormat::kAscii:
+      return Error{ErrorCode::kUnsupportedFormat, "ASCII maps are not writable yet"};
+  }
+  return write_text_file(path, out.str());
+}
+
+}  // namespace sewerplan

@@ -1,0 +1,249 @@
+// SPDX-License-Identifier: MIT
+#include "sewerplan/core/map_json.h"
+
+#include <nlohmann/json.hpp>
+
+#include "sewerplan/core/map_builder.h"
+
+#include "json_fields.h"
+
+namespace sewerplan {
+namespace {
+
+using detail::JsonFields;
+using Need = JsonFields::Need;
+using nlohmann::json;
+
+std::string element_path(std::string_view array, std::size_t i) {
+  return "$." + std::string(array) + "[" + std::to_string(i) + "]";
+}
+
+Locator json_locator(std::string file) {
+  return [file = std::move(file)](const RecordRef& ref, std::string_view field) {
+    std::string w = file + ":";
+    switch (ref.kind) {
+      case RecordRef::Kind::kMap:
+        w += "$";
+        break;
+      case RecordRef::Kind::kManhole:
+        w += element_path("manholes", ref.index);
+        break;
+      case RecordRef::Kind::kSlot:
+        w += element_path("manholes", ref.index) + ".slots[" + std::to_string(ref.slot_index) + "]";
+        break;
+      case RecordRef::Kind::kPipe:
+        w += element_path("pipes", ref.index);
+        break;
+      case RecordRef::Kind::kPoint:
+        w += element_path("inspection_points", ref.index);
+        break;
+    }
+    if (!field.empty()) w += "." + std::string(field);
+    return w;
+  };
+}
+
+std::optional<char> read_variant(JsonFields& f) {
+  auto v = f.string("variant", Need::kOptional);
+  if (!v) return std::nullopt;
+  if (v->size() != 1) {
+    f.diagnostics().error(f.where("variant"),
+                          "variant must be one capital letter, got \"" + *v + "\"");
+    return std::nullopt;
+  }
+  return (*v)[0];
+}
+
+SlotRecord read_slot(const json& j, const std::string& path, std::string_view file, double floor_z,
+                     Diagnostics& d) {
+  JsonFields f(j, path, file, d);
+  SlotRecord slot;
+  slot.pipe = f.string("pipe").value_or("");
+  slot.azimuth_deg = f.number("azimuth_deg").value_or(0);
+  slot.invert_z_m = f.number("invert_m", Need::kOptional).value_or(floor_z);
+  f.warn_unknown({"pipe", "azimuth_deg", "invert_m"});
+  return slot;
+}
+
+ManholeRecord read_manhole(const json& j, std::size_t index, std::string_view file,
+                           Diagnostics& d) {
+  const std::string path = element_path("manholes", index);
+  JsonFields f(j, path, file, d);
+  ManholeRecord m;
+  m.name = f.string("name").value_or("");
+  m.position.x_m = f.number("x_m", Need::kOptional).value_or(0);
+  m.position.y_m = f.number("y_m", Need::kOptional).value_or(0);
+  m.position.z_m = f.number("z_m", Need::kOptional).value_or(0);
+  m.diameter_m = f.number("diameter_m").value_or(0);
+  m.exit = f.boolean("exit", Need::kOptional).value_or(false);
+  m.variant = read_variant(f);
+  if (const json* slots = f.array("slots", Need::kOptional)) {
+    m.slots.reserve(slots->size());
+    for (std::size_t s = 0; s < slots->size(); ++s) {
+      m.slots.push_back(read_slot((*slots)[s], path + ".slots[" + std::to_string(s) + "]", file,
+                                  m.position.z_m, d));
+    }
+  }
+  f.warn_unknown({"name", "x_m", "y_m", "z_m", "diameter_m", "exit", "variant", "slots"});
+  return m;
+}
+
+std::optional<std::string> read_end(JsonFields& f, std::string_view key) {
+  const json* v = f.member(key);
+  if (v == nullptr || v->is_null()) return std::nullopt;  // null: a blind end
+  if (!v->is_string()) {
+    f.diagnostics().error(f.where(key), "expected a manhole name or null, got " + v->dump());
+    return std::nullopt;
+  }
+  return v->get<std::string>();
+}
+
+PipeRecord read_pipe(const json& j, std::size_t index, std::string_view file, Diagnostics& d) {
+  JsonFields f(j, element_path("pipes", index), file, d);
+  PipeRecord p;
+  p.name = f.string("name").value_or("");
+  p.from = read_end(f, "from");
+  p.to = read_end(f, "to");
+  p.length_m = f.number("length_m").value_or(0);
+  p.diameter_m = f.number("diameter_m").value_or(0);
+  if (auto shape = f.string("shape", Need::kOptional)) {
+    if (auto s = pipe_shape_from_string(*shape)) {
+      p.shape = *s;
+    } else {
+      d.error(f.where("shape"), "pipe " + p.name + ": unknown shape \"" + *shape +
+                                    "\" (circular, rectangular, egg or other)");
+    }
+  }
+  p.height_m = f.number("height_m", Need::kOptional);
+  if (auto risk = f.number("blockage_risk", Need::kOptional)) {
+    p.blockage_risk = static_cast<float>(*risk);
+  }
+  f.warn_unknown(
+      {"name", "from", "to", "length_m", "diameter_m", "shape", "height_m", "blockage_risk"});
+  return p;
+}
+
+PointRecord read_point(const json& j, std::size_t index, std::string_view file, Diagnostics& d) {
+  JsonFields f(j, element_path("inspection_points", index), file, d);
+  PointRecord p;
+  p.name = f.string("name").value_or("");
+  p.pipe = f.string("pipe").value_or("");
+  p.offset_m = f.number("offset_m").value_or(0);
+  f.warn_unknown({"name", "pipe", "offset_m"});
+  return p;
+}
+
+void check_header(JsonFields& f) {
+  auto format = f.string("format");
+  if (format && *format != kMapJsonFormat) {
+    f.diagnostics().error(f.where("format"), "expected \"" + std::string(kMapJsonFormat) +
+                                                 "\", got \"" + *format + "\"");
+  }
+  auto version = f.number("version");
+  if (version && *version != kMapJsonVersion) {
+    f.diagnostics().error(f.where("version"),
+                          "unsupported version " + detail::format_double(*version) +
+                              ", this reader knows version " + std::to_string(kMapJsonVersion));
+  }
+}
+
+void write_string(std::ostream& out, const std::string& s) { out << json(s).dump(); }
+
+void write_manhole(std::ostream& out, const SewerMap& map, ManholeId id) {
+  const Manhole& m = map.manhole(id);
+  out << "    {\"name\": ";
+  write_string(out, m.name);
+  out << ", \"x_m\": " << detail::format_double(m.position.x_m)
+      << ", \"y_m\": " << detail::format_double(m.position.y_m)
+      << ", \"z_m\": " << detail::format_double(m.position.z_m)
+      << ", \"diameter_m\": " << detail::format_double(m.diameter_m);
+  if (m.exit) out << ", \"exit\": true";
+  if (m.variant) out << ", \"variant\": \"" << *m.variant << '"';
+  out << ",\n     \"slots\": [";
+  bool first = true;
+  for (const Slot& s : map.slots(id)) {
+    out << (first ? "" : ", ") << "{\"pipe\": ";
+    write_string(out, map.pipe(s.pipe).name);
+    out << ", \"azimuth_deg\": " << detail::format_double(s.azimuth_deg)
+        << ", \"invert_m\": " << detail::format_double(s.invert_z_m) << '}';
+    first = false;
+  }
+  out << "]}";
+}
+
+void write_pipe(std::ostream& out, const SewerMap& map, const Pipe& p) {
+  out << "    {\"name\": ";
+  write_string(out, p.name);
+  for (std::size_t e = 0; e < 2; ++e) {
+    out << (e == 0 ? ", \"from\": " : ", \"to\": ");
+    if (p.ends[e].manhole) {
+      write_string(out, map.manhole(*p.ends[e].manhole).name);
+    } else {
+      out << "null";
+    }
+  }
+  out << ", \"length_m\": " << detail::format_double(p.length_m)
+      << ", \"diameter_m\": " << detail::format_double(p.diameter_m);
+  if (p.shape != PipeShape::kCircular) {
+    out << ", \"shape\": \"" << to_string(p.shape)
+        << "\", \"height_m\": " << detail::format_double(p.height_m);
+  }
+  if (p.blockage_risk) out << ", \"blockage_risk\": " << detail::format_double(*p.blockage_risk);
+  out << '}';
+}
+
+}  // namespace
+
+Result<SewerMap> read_map_json(std::string_view text, const std::string& file_name,
+                               Diagnostics& diagnostics) {
+  std::optional<json> doc = detail::parse_json(text, file_name, diagnostics);
+  if (!doc) return Error{ErrorCode::kParse, diagnostics.error_summary()};
+  JsonFields root(*doc, "$", file_name, diagnostics);
+  check_header(root);
+  MapBuilder builder(root.string("name", Need::kOptional).value_or(""), json_locator(file_name));
+  const json* manholes = root.array("manholes");
+  const json* pipes = root.array("pipes");
+  const json* points = root.array("inspection_points", Need::kOptional);
+  root.warn_unknown({"format", "version", "name", "manholes", "pipes", "inspection_points"});
+  builder.reserve(manholes ? manholes->size() : 0, pipes ? pipes->size() : 0);
+  for (std::size_t i = 0; manholes && i < manholes->size(); ++i) {
+    builder.add_manhole(read_manhole((*manholes)[i], i, file_name, diagnostics));
+  }
+  for (std::size_t i = 0; pipes && i < pipes->size(); ++i) {
+    builder.add_pipe(read_pipe((*pipes)[i], i, file_name, diagnostics));
+  }
+  for (std::size_t i = 0; points && i < points->size(); ++i) {
+    builder.add_point(read_point((*points)[i], i, file_name, diagnostics));
+  }
+  doc.reset();  // free the document tree before building
+  if (diagnostics.has_errors()) return Error{ErrorCode::kParse, diagnostics.error_summary()};
+  return std::move(builder).build(diagnostics);
+}
+
+void write_map_json(const SewerMap& map, std::ostream& out) {
+  out << "{\n  \"format\": \"" << kMapJsonFormat << "\",\n  \"version\": " << kMapJsonVersion
+      << ",\n  \"name\": ";
+  write_string(out, map.name());
+  out << ",\n  \"manholes\": [\n";
+  for (ManholeId m : map.manhole_ids()) {
+    if (m.value() > 0) out << ",\n";
+    write_manhole(out, map, m);
+  }
+  out << "\n  ],\n  \"pipes\": [\n";
+  for (PipeId p : map.pipe_ids()) {
+    if (p.value() > 0) out << ",\n";
+    write_pipe(out, map, map.pipe(p));
+  }
+  out << "\n  ],\n  \"inspection_points\": [";
+  for (PointId p : map.point_ids()) {
+    const InspectionPoint& point = map.point(p);
+    out << (p.value() > 0 ? ",\n" : "\n") << "    {\"name\": ";
+    write_string(out, point.name);
+    out << ", \"pipe\": ";
+    write_string(out, map.pipe(point.pipe).name);
+    out << ", \"offset_m\": " << detail::format_double(point.offset_m) << '}';
+  }
+  out << (map.point_count() > 0 ? "\n  ]\n}\n" : "]\n}\n");
+}
+
+}  // namespace sewerplan

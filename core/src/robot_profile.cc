@@ -1,0 +1,80 @@
+// SPDX-License-Identifier: MIT
+#include "sewerplan/core/robot_profile.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace sewerplan {
+namespace {
+
+RobotProfile makro_1_1() {
+  RobotProfile p;
+  p.name = "makro-1.1";
+  p.speed_mps = 0.30;
+  p.inspection_speed_mps = 0.10;
+  p.battery_wh = 240;  // about 2 h at 120 W (paper, section 1)
+  return p;
+}
+
+RobotProfile makro_plus() {
+  RobotProfile p = makro_1_1();
+  p.name = "makro-plus";
+  p.speed_mps = 0.60;  // "up to twice as fast (maximum of 60cm/sec)" (paper, section 7)
+  p.inspection_speed_mps = 0.20;
+  p.battery_wh = 480;  // "able to give power twice as long"
+  return p;
+}
+
+}  // namespace
+
+std::optional<RobotProfile> builtin_profile(std::string_view name) {
+  if (name == "makro-1.1") return makro_1_1();
+  if (name == "makro-plus") return makro_plus();
+  return std::nullopt;
+}
+
+std::vector<std::string> builtin_profile_names() { return {"makro-1.1", "makro-plus"}; }
+
+std::ostream& operator<<(std::ostream& os, const RobotProfile& p) {
+  return os << p.name << " (" << p.speed_mps << " m/s, pipes " << p.min_pipe_diameter_m << "-"
+            << p.max_pipe_diameter_m << " m, steps <= " << p.max_step_m
+            << " m, turns <= " << p.max_turn_deg << " deg, battery " << p.battery_wh << " Wh)";
+}
+
+Result<void> validate_profile(const RobotProfile& p) {
+  std::ostringstream problems;
+  auto require = [&](bool ok, std::string_view field, double value, std::string_view rule) {
+    if (!ok) problems << "\n  " << field << " = " << value << ": must be " << rule;
+  };
+  auto positive = [&](double v, std::string_view field) {
+    require(std::isfinite(v) && v > 0, field, v, "a positive number");
+  };
+  auto non_negative = [&](double v, std::string_view field) {
+    require(std::isfinite(v) && v >= 0, field, v, "zero or more");
+  };
+  positive(p.length_m, "length_m");
+  require(p.segment_count >= 1, "segment_count", p.segment_count, "at least 1");
+  positive(p.body_width_m, "body_width_m");
+  positive(p.min_pipe_diameter_m, "min_pipe_diameter_m");
+  positive(p.max_pipe_diameter_m, "max_pipe_diameter_m");
+  require(p.min_pipe_diameter_m <= p.max_pipe_diameter_m, "max_pipe_diameter_m",
+          p.max_pipe_diameter_m, "at least min_pipe_diameter_m");
+  non_negative(p.max_step_m, "max_step_m");
+  require(std::isfinite(p.max_turn_deg) && p.max_turn_deg >= 0 && p.max_turn_deg <= 180,
+          "max_turn_deg", p.max_turn_deg, "between 0 and 180");
+  positive(p.speed_mps, "speed_mps");
+  positive(p.inspection_speed_mps, "inspection_speed_mps");
+  non_negative(p.manhole_pass_s, "manhole_pass_s");
+  non_negative(p.turn_s_per_deg, "turn_s_per_deg");
+  non_negative(p.step_s_per_m, "step_s_per_m");
+  non_negative(p.reverse_s, "reverse_s");
+  non_negative(p.sample_s, "sample_s");
+  positive(p.battery_wh, "battery_wh");
+  positive(p.drive_power_w, "drive_power_w");
+  non_negative(p.task_power_w, "task_power_w");
+  const std::string text = problems.str();
+  if (text.empty()) return {};
+  return Error{ErrorCode::kInvalidProfile, "robot profile '" + p.name + "':" + text};
+}
+
+}  // namespace sewerplan

@@ -1,0 +1,188 @@
+// SPDX-License-Identifier: MIT
+#include "sewerplan/core/map_json.h"
+
+#include <sstream>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "sewerplan/core/map_io.h"
+#include "sewerplan/core/map_queries.h"
+#include "sewerplan/core/text_file.h"
+
+#include "support/paths.h"
+
+namespace sewerplan {
+namespace {
+
+using ::testing::HasSubstr;
+
+constexpr std::string_view kSmallMap = R"({
+  "format": "sewerplan-map", "version": 1, "name": "small",
+  "manholes": [
+    {"name": "A", "x_m": 0, "y_m": 0, "z_m": 1.5, "diameter_m": 1, "exit": true,
+     "slots": [{"pipe": "P1", "azimuth_deg": 0}]},
+    {"name": "B", "x_m": 10, "y_m": 0, "z_m": 1.25, "diameter_m": 1.2, "variant": "B",
+     "slots": [{"pipe": "P1", "azimuth_deg": 180, "invert_m": 1.35},
+               {"pipe": "P2", "azimuth_deg": 90},
+               {"pipe": "S", "azimuth_deg": 315.5}]},
+    {"name": "C", "x_m": 10, "y_m": 7.5, "z_m": 1.0, "diameter_m": 1,
+     "slots": [{"pipe": "P2", "azimuth_deg": 270}]}
+  ],
+  "pipes": [
+    {"name": "P1", "from": "A", "to": "B", "length_m": 10, "diameter_m": 0.4, "blockage_risk": 0.25},
+    {"name": "P2", "from": "B", "to": "C", "length_m": 7.5, "diameter_m": 0.5,
+     "shape": "egg", "height_m": 0.75},
+    {"name": "S", "from": "B", "to": null, "length_m": 1.1, "diameter_m": 0.3}
+  ],
+  "inspection_points": [{"name": "W", "pipe": "P2", "offset_m": 2.5}]
+})";
+
+Result<SewerMap> read(std::string_view text, Diagnostics& d) {
+  return read_map_json(text, "t.json", d);
+}
+
+TEST(MapJson, ReadsEveryFieldWithItsUnit) {
+  Diagnostics d;
+  Result<SewerMap> map = read(kSmallMap, d);
+  ASSERT_TRUE(map.has_value()) << map.error();
+  EXPECT_EQ(d.warning_count(), 0U);
+  const ManholeId b = *map->find_manhole("B");
+  EXPECT_EQ(map->manhole(b).variant, 'B');
+  EXPECT_DOUBLE_EQ(map->manhole(b).diameter_m, 1.2);
+  EXPECT_DOUBLE_EQ(map->slot(b, SlotIndex{0}).invert_z_m, 1.35);
+  EXPECT_DOUBLE_EQ(map->slot(b, SlotIndex{1}).invert_z_m, 1.25) << "invert defaults to the floor";
+  EXPECT_DOUBLE_EQ(passage_turn_deg(*map, b, SlotIndex{0}, SlotIndex{1}), 90.0);
+  const Pipe& p2 = map->pipe(*map->find_pipe("P2"));
+  EXPECT_EQ(p2.shape, PipeShape::kEgg);
+  EXPECT_DOUBLE_EQ(p2.height_m, 0.75);
+  EXPECT_EQ(map->pipe(*map->find_pipe("P1")).blockage_risk, 0.25f);
+  EXPECT_FALSE(map->pipe(*map->find_pipe("S")).ends[1].manhole.has_value());
+  EXPECT_DOUBLE_EQ(map->point(*map->find_point("W")).offset_m, 2.5);
+  EXPECT_TRUE(map->manhole(*map->find_manhole("A")).exit);
+}
+
+TEST(MapJson, RoundTripsExactly) {
+  Diagnostics d;
+  Result<SewerMap> map = read(kSmallMap, d);
+  ASSERT_TRUE(map.has_value());
+  std::ostringstream first;
+  write_map_json(*map, first);
+  Result<SewerMap> again = read(first.str(), d);
+  ASSERT_TRUE(again.has_value()) << again.error();
+  EXPECT_EQ(*again, *map);
+  std::ostringstream second;
+  write_map_json(*again, second);
+  EXPECT_EQ(second.str(), first.str());
+}
+
+TEST(MapJson, RoundTripsNumbersThatHaveNoShortDecimalForm) {
+  std::string text(kSmallMap);
+  text.replace(text.find("\"length_m\": 10,"), 15,
+               "\"length_m\": 0.1000000000000000055511151231257827,");
+  Diagnostics d;
+  Result<SewerMap> map = read(text, d);
+  ASSERT_TRUE(map.has_value());
+  std::ostringstream out;
+  write_map_json(*map, out);
+  Result<SewerMap> again = read(out.str(), d);
+  ASSERT_TRUE(again.has_value());
+  EXPECT_EQ(again->pipe(PipeId{0}).length_m, map->pipe(PipeId{0}).length_m);
+}
+
+TEST(MapJson, ReportsSyntaxErrorsWithLineAndColumn) {
+  Diagnostics d;
+  Result<SewerMap> map = read("{\n  \"format\": \"sewerplan-map\",\n  \"version\": 1 2\n}", d);
+  ASSERT_FALSE(map.has_value());
+  EXPECT_EQ(map.error().code, ErrorCode::kParse);
+  EXPECT_THAT(map.error().message, HasSubstr("t.json:3:16: error: JSON syntax error"));
+}
+
+TEST(MapJson, ReportsWrongTypesAndMissingFieldsByJsonPath) {
+  std::string text(kSmallMap);
+  text.replace(text.find("\"length_m\": 7.5"), 15, "\"length_m\": \"7.5\"");
+  text.replace(text.find("\"diameter_m\": 1.2,"), 18, "");
+  Diagnostics d;
+  Result<SewerMap> map = read(text, d);
+  ASSERT_FALSE(map.has_value());
+  EXPECT_THAT(map.error().message,
+              HasSubstr("t.json:$.pipes[1].length_m: error: expected a number, got \"7.5\""));
+  EXPECT_THAT(map.error().message,
+              HasSubstr("t.json:$.manholes[1]: error: missing required field 'diameter_m'"));
+}
+
+TEST(MapJson, ReportsBrokenReferencesByJsonPath) {
+  std::string text(kSmallMap);
+  text.replace(text.find("{\"pipe\": \"P2\", \"azimuth_deg\": 90}"), 33,
+               "{\"pipe\": \"P9\", \"azimuth_deg\": 90}");
+  Diagnostics d;
+  Result<SewerMap> map = read(text, d);
+  ASSERT_FALSE(map.has_value());
+  EXPECT_EQ(map.error().code, ErrorCode::kInvalidMap);
+  EXPECT_THAT(
+      map.error().message,
+      HasSubstr(
+          "t.json:$.manholes[1].slots[1].pipe: error: manhole B slot 2 names unknown pipe 'P9'"));
+  EXPECT_THAT(
+      map.error().message,
+      HasSubstr(
+          "t.json:$.pipes[1].from: error: pipe P2 ends in manhole B, but B has no slot for it"));
+}
+
+TEST(MapJson, WarnsAboutMisspeltFields) {
+  std::string text(kSmallMap);
+  text.replace(text.find("\"blockage_risk\""), 15, "\"blockage_rsik\"");
+  Diagnostics d;
+  Result<SewerMap> map = read(text, d);
+  ASSERT_TRUE(map.has_value());
+  ASSERT_EQ(d.warning_count(), 1U);
+  EXPECT_EQ(d.all()[0].where, "t.json:$.pipes[0].blockage_rsik");
+  EXPECT_THAT(d.all()[0].message, HasSubstr("unknown field 'blockage_rsik' ignored"));
+}
+
+TEST(MapJson, RejectsAnotherFormatOrVersion) {
+  std::string text(kSmallMap);
+  text.replace(text.find("\"version\": 1"), 12, "\"version\": 7");
+  Diagnostics d;
+  Result<SewerMap> map = read(text, d);
+  ASSERT_FALSE(map.has_value());
+  EXPECT_THAT(map.error().message, HasSubstr("unsupported version 7"));
+}
+
+TEST(MapJson, NeverCrashesOnTruncatedInput) {
+  const std::string text(kSmallMap);
+  for (std::size_t n = 0; n < text.size(); n += 7) {
+    Diagnostics d;
+    Result<SewerMap> map = read(text.substr(0, n), d);
+    EXPECT_FALSE(map.has_value()) << "prefix of " << n << " bytes";
+    EXPECT_FALSE(map.error().message.empty());
+  }
+}
+
+TEST(MapIo, ReadsTheAisTestbedByPath) {
+  Diagnostics d;
+  Result<SewerMap> map = read_map(testing::dataset_path("ais-testbed/map.json"), d);
+  ASSERT_TRUE(map.has_value()) << map.error();
+  EXPECT_EQ(map->manhole_count(), 12U);
+  EXPECT_EQ(map->pipe_count(), 14U);
+  EXPECT_EQ(d.warning_count(), 0U);
+}
+
+TEST(MapIo, NamesAMissingFileAndTheReason) {
+  Diagnostics d;
+  Result<SewerMap> map = read_map("no/such/map.json", d);
+  ASSERT_FALSE(map.has_value());
+  EXPECT_EQ(map.error().code, ErrorCode::kIo);
+  EXPECT_THAT(map.error().message, HasSubstr("cannot read no/such/map.json: No such file"));
+}
+
+TEST(MapIo, DetectsTheFormatFromContentWhenTheExtensionIsUnknown) {
+  EXPECT_EQ(*detect_map_format("x.txt", "  {\"format\": 1}"), MapFormat::kJson);
+  EXPECT_EQ(*detect_map_format("x.db", "# comment\nsewerdb 1\n"), MapFormat::kAscii);
+  Result<MapFormat> unknown = detect_map_format("x.db", "hello");
+  ASSERT_FALSE(unknown.has_value());
+  EXPECT_EQ(unknown.error().code, ErrorCode::kUnsupportedFormat);
+}
+
+}  // namespace
+}  // namespace sewerplan

@@ -1,0 +1,154 @@
+// SPDX-License-Identifier: MIT
+#include "sewerplan/core/mission.h"
+
+#include <sstream>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "sewerplan/core/map_io.h"
+
+#include "support/paths.h"
+
+namespace sewerplan {
+namespace {
+
+using ::testing::HasSubstr;
+
+class MissionTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    Diagnostics d;
+    Result<SewerMap> map = read_map(testing::dataset_path("ais-testbed/map.json"), d);
+    ASSERT_TRUE(map.has_value()) << map.error();
+    map_ = std::move(*map);
+  }
+
+  Result<Mission> read(std::string_view text) {
+    diagnostics_ = Diagnostics{};
+    return read_mission_json(text, "m.json", map_, diagnostics_);
+  }
+
+  SewerMap map_;
+  Diagnostics diagnostics_;
+};
+
+TEST_F(MissionTest, ReadsThePapersMission) {
+  Diagnostics d;
+  Result<Mission> m =
+      read_mission(testing::dataset_path("ais-testbed/missions/paper.json"), map_, d);
+  ASSERT_TRUE(m.has_value()) << m.error();
+  EXPECT_EQ(m->profile.name, "makro-1.1");
+  EXPECT_EQ(std::get<PipeSpot>(m->start).pipe, *map_.find_pipe("P12"));
+  ASSERT_EQ(m->tasks.size(), 3U);
+  EXPECT_EQ(m->tasks[0].kind, TaskKind::kTakeWaterSample);
+  EXPECT_EQ(describe(m->tasks[0].place, map_), "point W1 (pipe P6)");
+  EXPECT_EQ(m->tasks[1].kind, TaskKind::kInspectPipe);
+  ASSERT_NE(m->final_task(), nullptr);
+  EXPECT_EQ(describe(m->final_task()->place, map_), "pipe P9");
+  // Exits default to the manholes marked exit in the map.
+  EXPECT_EQ(m->exits.size(), 4U);
+}
+
+TEST_F(MissionTest, RoundTripsThroughJson) {
+  Result<Mission> m = read(R"({"format": "sewerplan-mission", "version": 1,
+    "profile": {"base": "makro-plus", "speed_mps": 0.5}, "start": {"manhole": "M1"},
+    "tasks": [{"type": "inspect_area", "name": "area", "pipes": ["P1", "P5"]},
+              {"type": "go_to", "at": {"pipe": "P6", "offset_m": 1.5}}],
+    "exits": ["M10"], "battery_reserve": 0.3,
+    "closed": {"pipes": ["P2"], "passages": [{"manhole": "M6", "from_slot": 3, "to_slot": 4}]}})");
+  ASSERT_TRUE(m.has_value()) << m.error();
+  ASSERT_EQ(m->tasks.size(), 3U);
+  EXPECT_EQ(m->tasks[0].name, "area/P1");
+  EXPECT_EQ(m->tasks[2].name, "task-2");
+  EXPECT_DOUBLE_EQ(m->profile.speed_mps, 0.5);
+  EXPECT_DOUBLE_EQ(m->profile.battery_wh, 480);
+  ASSERT_EQ(m->closed_passages.size(), 1U);
+  EXPECT_EQ(m->closed_passages[0].from, SlotIndex{2});
+  std::ostringstream out;
+  write_mission_json(*m, map_, out);
+  Result<Mission> again = read(out.str());
+  ASSERT_TRUE(again.has_value()) << again.error() << "\n" << out.str();
+  EXPECT_EQ(*again, *m);
+}
+
+TEST_F(MissionTest, NamesEveryUnknownObjectByJsonPath) {
+  Result<Mission> m = read(R"({"format": "sewerplan-mission", "version": 1,
+    "start": {"pipe": "P99"},
+    "tasks": [{"type": "take_water_sample", "at": {"point": "W7"}},
+              {"type": "inspect_pipe", "pipe": "P4"},
+              {"type": "fly", "at": {"manhole": "M1"}}],
+    "exits": ["M77"]})");
+  ASSERT_FALSE(m.has_value());
+  EXPECT_EQ(m.error().code, ErrorCode::kInvalidMission);
+  const std::string& e = m.error().message;
+  EXPECT_THAT(e, HasSubstr("m.json:$.start.pipe: error: unknown pipe 'P99'"));
+  EXPECT_THAT(e, HasSubstr("m.json:$.tasks[0].at.point: error: unknown inspection point 'W7'"));
+  EXPECT_THAT(e, HasSubstr("m.json:$.tasks[2].type: error: unknown task type \"fly\""));
+  EXPECT_THAT(e, HasSubstr("m.json:$.exits[0].manhole: error: unknown manhole 'M77'"));
+}
+
+TEST_F(MissionTest, RejectsInconsistentMissions) {
+  Result<Mission> m = read(R"({"format": "sewerplan-mission", "version": 1,
+    "start": {"manhole": "M1"}, "exits": [],
+    "tasks": [{"name": "a", "type": "go_to", "at": {"pipe": "P1", "offset_m": 99}},
+              {"name": "a", "type": "take_water_sample", "at": {"manhole": "M2"}}],
+    "battery_reserve": 1.5})");
+  ASSERT_FALSE(m.has_value());
+  const std::string& e = m.error().message;
+  EXPECT_THAT(e, HasSubstr("offset 99 m is outside pipe P1 (0 to 8.485 m)"));
+  EXPECT_THAT(e, HasSubstr("a water sample is taken in a pipe, not in a manhole"));
+  EXPECT_THAT(e, HasSubstr("battery_reserve: error: must be a fraction from 0 to below 1"));
+  EXPECT_THAT(e, HasSubstr("the mission has no exit"));
+}
+
+TEST_F(MissionTest, RejectsAnUnknownOrImpossibleProfile) {
+  Result<Mission> m = read(R"({"format": "sewerplan-mission", "version": 1, "profile": "makro-3",
+    "start": {"manhole": "M1"}, "tasks": []})");
+  ASSERT_FALSE(m.has_value());
+  EXPECT_THAT(m.error().message,
+              HasSubstr("unknown robot profile 'makro-3' (built in: makro-1.1, makro-plus)"));
+  m = read(R"({"format": "sewerplan-mission", "version": 1,
+    "profile": {"speed_mps": -1, "min_pipe_diameter_m": 0.7},
+    "start": {"manhole": "M1"}, "tasks": []})");
+  ASSERT_FALSE(m.has_value());
+  EXPECT_THAT(m.error().message, HasSubstr("speed_mps = -1: must be a positive number"));
+  EXPECT_THAT(m.error().message,
+              HasSubstr("max_pipe_diameter_m = 0.6: must be at least min_pipe_diameter_m"));
+}
+
+TEST(RobotProfile, BuiltInProfilesMatchThePaper) {
+  const RobotProfile makro = *builtin_profile("makro-1.1");
+  const RobotProfile plus = *builtin_profile("makro-plus");
+  EXPECT_DOUBLE_EQ(makro.speed_mps, 0.30);
+  EXPECT_DOUBLE_EQ(plus.speed_mps, 0.60);
+  EXPECT_DOUBLE_EQ(makro.battery_wh / makro.drive_power_w, 2.0) << "about two hours";
+  EXPECT_DOUBLE_EQ(plus.battery_wh / plus.drive_power_w, 4.0) << "twice as long";
+  for (const RobotProfile& p : {makro, plus}) {
+    EXPECT_DOUBLE_EQ(p.min_pipe_diameter_m, 0.30);
+    EXPECT_DOUBLE_EQ(p.max_pipe_diameter_m, 0.60);
+    EXPECT_DOUBLE_EQ(p.max_step_m, 0.30);
+    EXPECT_DOUBLE_EQ(p.max_turn_deg, 90);
+    EXPECT_DOUBLE_EQ(p.length_m, 2.0);
+    EXPECT_EQ(p.segment_count, 6);
+    EXPECT_TRUE(p.symmetric);
+    EXPECT_TRUE(validate_profile(p).has_value());
+  }
+  EXPECT_FALSE(builtin_profile("makro-2").has_value());
+}
+
+TEST(RobotProfile, LoadsAProfileFileOrNamesWhyNot) {
+  Result<RobotProfile> p = load_profile("no-such-profile.json");
+  ASSERT_FALSE(p.has_value());
+  EXPECT_THAT(p.error().message, HasSubstr("'no-such-profile.json' is neither a built-in profile"));
+  Diagnostics d;
+  p = read_profile_json(R"({"base": "makro-plus", "name": "fast", "max_turn_deg": 60})", "p.json",
+                        d);
+  ASSERT_TRUE(p.has_value()) << p.error();
+  EXPECT_EQ(p->name, "fast");
+  EXPECT_DOUBLE_EQ(p->max_turn_deg, 60);
+  EXPECT_DOUBLE_EQ(p->speed_mps, 0.60);
+}
+
+}  // namespace
+}  // namespace sewerplan
