@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# Sets up everything and runs every test, on a fresh Debian 12 machine:
+#   1. installs the Debian packages sewerplan needs (scripts/install-deps.sh, skips what is present);
+#   2. checks the code style (clang-format);
+#   3. builds with warnings as errors and runs the whole suite (unit, CLI, install/consumer, layering);
+#   4. builds with clang, AddressSanitizer and UndefinedBehaviorSanitizer and runs the suite again.
+# Build trees go to build/release and build/asan. Set SEWERPLAN_SKIP_ASAN=1 to skip step 4 locally.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+jobs=$(nproc)
+
+bash scripts/install-deps.sh
+
+echo "== style: clang-format"
+bash scripts/check-format.sh
+
+echo "== release build and tests"
+cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo
+cmake --build build/release -j "$jobs"
+ctest --test-dir build/release --output-on-failure -j "$jobs"
+
+if [ "${SEWERPLAN_SKIP_ASAN:-0}" != 1 ]; then
+  echo "== ASan + UBSan build and tests (clang)"
+  CXX=clang++ cmake -S . -B build/asan -G Ninja -DCMAKE_BUILD_TYPE=Debug \
+    -DSEWERPLAN_SANITIZE=ON -DSEWERPLAN_BUILD_BENCH=OFF
+  cmake --build build/asan -j "$jobs"
+  ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    ctest --test-dir build/asan --output-on-failure -j "$jobs"
+fi
+echo "== all tests passed"

@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# The command-line contract that scripts rely on: exit codes, messages that name the file and the
+# object, and JSON output. Usage: cli_test.sh PATH_TO_SEWERPLAN SOURCE_DIR
+set -uo pipefail
+sp=$1
+src=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+failures=0
+passed=0
+
+# expect CODE PATTERN -- COMMAND...: runs COMMAND, checks its exit code and that PATTERN (grep -E)
+# occurs in its stdout+stderr.
+expect() {
+  local code=$1 pattern=$2
+  shift 3
+  local out
+  out=$("$@" 2>&1)
+  local got=$?
+  if [ "$got" -ne "$code" ] || ! grep -qE -- "$pattern" <<<"$out"; then
+    echo "FAIL: $* -> exit $got (want $code), output:"
+    echo "$out" | head -20
+    echo "(wanted /$pattern/)"
+    failures=$((failures + 1))
+  else
+    passed=$((passed + 1))
+  fi
+}
+
+ais=$src/datasets/ais-testbed/map.json
+mission=$src/datasets/ais-testbed/missions/paper.json
+expect 0 "valid \(12 manholes, 14 pipes" -- "$sp" validate "$ais"
+expect 0 "mission .*paper.json valid" -- "$sp" validate "$ais" --mission "$mission"
+expect 0 '"valid": true' -- "$sp" validate "$ais" --json
+expect 1 'broken.json:\$\.pipes\[1\]\.to: error: pipe P2: to names unknown manhole .C.' -- \
+  "$sp" validate "$src/tests/data/json/broken.json"
+expect 1 'pipe P2: length must be a positive number of metres, got -2' -- \
+  "$sp" validate "$src/tests/data/json/broken.json"
+expect 1 '"valid": false' -- "$sp" validate "$src/tests/data/json/broken.json" --json
+expect 3 'cannot read .*missing.json: No such file' -- "$sp" validate "$tmp/missing.json"
+expect 2 'required' -- "$sp" validate
+expect 2 '' -- "$sp" frobnicate
+expect 0 'TYPE_4: 2' -- "$sp" info "$ais"
+expect 0 '"manholes": 12' -- "$sp" info "$ais" --json
+expect 0 'exits +4: M1, M4, M10, M12' -- "$sp" info "$ais"
+echo '{"format": "sewerplan-mission", "version": 1, "start": {"pipe": "P99"}, "tasks": []}' > "$tmp/m.json"
+expect 1 "m.json:\\\$\\.start\\.pipe: error: unknown pipe 'P99'" -- "$sp" validate "$ais" --mission "$tmp/m.json"
+
+# Conversions round-trip through every format.
+expect 0 'wrote' -- "$sp" convert "$ais" "$tmp/a.sewer"
+expect 0 'wrote' -- "$sp" convert "$tmp/a.sewer" "$tmp/b.json"
+expect 0 'valid \(12 manholes, 14 pipes' -- "$sp" validate "$tmp/b.json"
+if ! cmp -s <("$sp" info "$ais" --json | grep -v '"name"') <("$sp" info "$tmp/b.json" --json | grep -v '"name"'); then
+  echo "FAIL: JSON -> ASCII -> JSON changed the map"; failures=$((failures + 1))
+else
+  passed=$((passed + 1))
+fi
+expect 2 'unknown format' -- "$sp" convert "$ais" "$tmp/x.out" --to xml
+expect 1 'cannot tell the format' -- "$sp" convert "$ais" "$tmp/x.out"
+
+# Generated networks are deterministic and valid.
+expect 0 'wrote' -- "$sp" generate --manholes 500 --seed 3 -o "$tmp/g1.json"
+expect 0 'wrote' -- "$sp" generate --manholes 500 --seed 3 -o "$tmp/g2.json"
+if cmp -s "$tmp/g1.json" "$tmp/g2.json"; then passed=$((passed + 1)); else
+  echo "FAIL: the same seed gave different networks"; failures=$((failures + 1)); fi
+expect 0 'valid \(500 manholes' -- "$sp" validate "$tmp/g1.json"
+expect 2 'manholes' -- "$sp" generate --manholes 3 -o "$tmp/g3.json"
+
+echo "$passed passed, $failures failed"
+[ "$failures" -eq 0 ]

@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# Checks the one-way dependencies between the libraries by their includes:
+#   core <- domain <- search; fusion on core and domain; hal on core; executor on all;
+#   nothing includes executor except apps, tests and bench.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+declare -A allowed=(
+  [core]="core"
+  [domain]="core domain"
+  [search]="core domain search"
+  [fusion]="core domain fusion"
+  [hal]="core hal"
+  [executor]="core domain search fusion hal executor"
+)
+status=0
+for lib in "${!allowed[@]}"; do
+  [ -d "$lib" ] || continue
+  while IFS=: read -r file line include; do
+    used=$(sed -E 's|.*"sewerplan/([a-z]+)/.*|\1|' <<<"$include")
+    if [[ " ${allowed[$lib]} " != *" $used "* ]]; then
+      echo "$file:$line: $lib must not include sewerplan/$used (allowed: ${allowed[$lib]})"
+      status=1
+    fi
+  done < <(grep -rnE '#include "sewerplan/[a-z]+/' "$lib" --include='*.h' --include='*.cc' || true)
+done
+[ $status -eq 0 ] && echo "layering: ok"
+exit $status
