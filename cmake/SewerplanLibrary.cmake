@@ -12,7 +12,10 @@ set(SEWERPLAN_WARNINGS -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wsign-con
     -Wno-missing-field-initializers)
 
 function(sewerplan_apply_options target)
-  target_compile_options(${target} PRIVATE ${SEWERPLAN_WARNINGS})
+  target_compile_options(${target} PRIVATE ${SEWERPLAN_WARNINGS}
+    # The same seed must give the same network and plan with every compiler: no fused multiply-add
+    # (clang fuses by default, GCC in ISO mode does not).
+    -ffp-contract=off)
   if(SEWERPLAN_WERROR)
     target_compile_options(${target} PRIVATE -Werror)
   endif()

@@ -112,59 +112,75 @@ class MapBuilder::Validation {
     return b_.locator_(RecordRef{kind, index, slot, line}, field);
   }
 
-  void require_positive(double v, std::string_view what, const std::string& object,
-                        const std::string& where) {
+  // Where a field of a record is; computed only when a problem is reported, since a valid map of a
+  // million objects would otherwise build millions of location strings for nothing.
+  struct FieldRef {
+    Kind kind;
+    std::uint32_t index;
+    std::uint32_t line;
+    std::string_view field;
+    std::uint32_t slot = 0;
+  };
+
+  std::string at(const FieldRef& f) const { return at(f.kind, f.index, f.line, f.field, f.slot); }
+
+  template <class Object>
+  void require_positive(double v, std::string_view what, const Object& object, const FieldRef& f) {
     if (!std::isfinite(v) || v <= 0) {
-      d_.error(where, object + ": " + std::string(what) +
+      d_.error(at(f), object() + ": " + std::string(what) +
                           " must be a positive number of metres, got " + format_number(v));
     }
   }
 
-  void require_finite(double v, std::string_view what, const std::string& object,
-                      const std::string& where) {
+  template <class Object>
+  void require_finite(double v, std::string_view what, const Object& object, const FieldRef& f) {
     if (!std::isfinite(v)) {
-      d_.error(where, object + ": " + std::string(what) + " must be a finite number, got " +
+      d_.error(at(f), object() + ": " + std::string(what) + " must be a finite number, got " +
                           format_number(v));
     }
   }
 
   void check_numbers() {
-    for (std::uint32_t i = 0; i < b_.manholes_.size(); ++i) {
-      const ManholeRecord& m = b_.manholes_[i];
-      const std::string object = "manhole " + m.name;
-      require_positive(m.diameter_m, "diameter", object,
-                       at(Kind::kManhole, i, m.line, "diameter_m"));
-      require_finite(m.position.x_m, "x", object, at(Kind::kManhole, i, m.line, "x_m"));
-      require_finite(m.position.y_m, "y", object, at(Kind::kManhole, i, m.line, "y_m"));
-      require_finite(m.position.z_m, "z", object, at(Kind::kManhole, i, m.line, "z_m"));
-      if (m.variant && (*m.variant < 'A' || *m.variant > 'Z')) {
-        d_.error(at(Kind::kManhole, i, m.line, "variant"),
-                 object + ": variant must be one capital letter A..Z");
-      }
-      for (std::uint32_t s = 0; s < m.slots.size(); ++s) {
-        const SlotRecord& slot = m.slots[s];
-        const std::string so = object + " slot " + std::to_string(s + 1);
-        require_finite(slot.azimuth_deg, "azimuth", so,
-                       at(Kind::kSlot, i, slot.line, "azimuth_deg", s));
-        require_finite(slot.invert_z_m, "invert", so, at(Kind::kSlot, i, slot.line, "invert_m", s));
-      }
-      if (m.slots.size() > 0xffff) {
-        d_.error(at(Kind::kManhole, i, m.line, "slots"), object + ": more than 65535 slots");
-      }
+    for (std::uint32_t i = 0; i < b_.manholes_.size(); ++i) check_manhole_numbers(i);
+    for (std::uint32_t i = 0; i < b_.pipes_.size(); ++i) check_pipe_numbers(i);
+  }
+
+  void check_manhole_numbers(std::uint32_t i) {
+    const ManholeRecord& m = b_.manholes_[i];
+    auto object = [&] { return "manhole " + m.name; };
+    require_positive(m.diameter_m, "diameter", object, {Kind::kManhole, i, m.line, "diameter_m"});
+    require_finite(m.position.x_m, "x", object, {Kind::kManhole, i, m.line, "x_m"});
+    require_finite(m.position.y_m, "y", object, {Kind::kManhole, i, m.line, "y_m"});
+    require_finite(m.position.z_m, "z", object, {Kind::kManhole, i, m.line, "z_m"});
+    if (m.variant && (*m.variant < 'A' || *m.variant > 'Z')) {
+      d_.error(at(Kind::kManhole, i, m.line, "variant"),
+               object() + ": variant must be one capital letter A..Z");
     }
-    for (std::uint32_t i = 0; i < b_.pipes_.size(); ++i) {
-      const PipeRecord& p = b_.pipes_[i];
-      const std::string object = "pipe " + p.name;
-      require_positive(p.length_m, "length", object, at(Kind::kPipe, i, p.line, "length_m"));
-      require_positive(p.diameter_m, "diameter", object, at(Kind::kPipe, i, p.line, "diameter_m"));
-      if (p.height_m) {
-        require_positive(*p.height_m, "height", object, at(Kind::kPipe, i, p.line, "height_m"));
-      }
-      if (p.blockage_risk && !(*p.blockage_risk >= 0 && *p.blockage_risk <= 1)) {
-        d_.error(at(Kind::kPipe, i, p.line, "blockage_risk"),
-                 object + ": blockage_risk must be between 0 and 1, got " +
-                     format_number(*p.blockage_risk));
-      }
+    for (std::uint32_t s = 0; s < m.slots.size(); ++s) {
+      const SlotRecord& slot = m.slots[s];
+      auto slot_object = [&] { return object() + " slot " + std::to_string(s + 1); };
+      require_finite(slot.azimuth_deg, "azimuth", slot_object,
+                     {Kind::kSlot, i, slot.line, "azimuth_deg", s});
+      require_finite(slot.invert_z_m, "invert", slot_object,
+                     {Kind::kSlot, i, slot.line, "invert_m", s});
+    }
+    if (m.slots.size() > 0xffff) {
+      d_.error(at(Kind::kManhole, i, m.line, "slots"), object() + ": more than 65535 slots");
+    }
+  }
+
+  void check_pipe_numbers(std::uint32_t i) {
+    const PipeRecord& p = b_.pipes_[i];
+    auto object = [&] { return "pipe " + p.name; };
+    require_positive(p.length_m, "length", object, {Kind::kPipe, i, p.line, "length_m"});
+    require_positive(p.diameter_m, "diameter", object, {Kind::kPipe, i, p.line, "diameter_m"});
+    if (p.height_m) {
+      require_positive(*p.height_m, "height", object, {Kind::kPipe, i, p.line, "height_m"});
+    }
+    if (p.blockage_risk && !(*p.blockage_risk >= 0 && *p.blockage_risk <= 1)) {
+      d_.error(at(Kind::kPipe, i, p.line, "blockage_risk"),
+               object() + ": blockage_risk must be between 0 and 1, got " +
+                   format_number(*p.blockage_risk));
     }
   }
 
@@ -234,24 +250,26 @@ class MapBuilder::Validation {
     Slot slot;
     slot.azimuth_deg = rs.azimuth_deg;
     slot.invert_z_m = rs.invert_z_m;
-    const std::string where = at(Kind::kSlot, manhole.value(), rs.line, "pipe", index.value());
-    const std::string object = "manhole " + r.name + " slot " + std::to_string(index.value() + 1);
+    auto where = [&] { return at(Kind::kSlot, manhole.value(), rs.line, "pipe", index.value()); };
+    auto object = [&] {
+      return "manhole " + r.name + " slot " + std::to_string(index.value() + 1);
+    };
     auto pipe = lookup(map.pipes_by_name_, map.pipes_, rs.pipe);
     if (!pipe) {
-      d_.error(where, object + " names unknown pipe '" + rs.pipe + "'");
+      d_.error(where(), object() + " names unknown pipe '" + rs.pipe + "'");
       return slot;
     }
     Pipe& p = map.pipes_[*pipe];
     slot.pipe = PipeId{*pipe};
     int end = p.ends[0].manhole == manhole ? 0 : p.ends[1].manhole == manhole ? 1 : -1;
     if (end < 0) {
-      d_.error(where,
-               object + " names pipe " + p.name + ", but " + p.name + " " + describe_ends(p));
+      d_.error(where(),
+               object() + " names pipe " + p.name + ", but " + p.name + " " + describe_ends(p));
       return slot;
     }
     auto e = static_cast<std::size_t>(end);
     if (slot_seen_[2 * pipe.value() + e]) {
-      d_.error(where, object + " names pipe " + p.name + " a second time");
+      d_.error(where(), object() + " names pipe " + p.name + " a second time");
       return slot;
     }
     slot_seen_[2 * pipe.value() + e] = true;
