@@ -7,7 +7,7 @@ set -euo pipefail
 
 packages=(
   cmake g++ ninja-build git
-  libboost-graph-dev libeigen3-dev libompl-dev nlohmann-json3-dev libpugixml-dev
+  libboost-graph-dev libeigen3-dev libompl-dev nlohmann-json3-dev libsimdjson-dev libpugixml-dev
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev
   clang libclang-rt-14-dev clang-format
 )

@@ -1,7 +1,69 @@
 // SPDX-License-Identifier: MIT
-// sewerplan generate: filled in when the generator lands.
+// sewerplan generate --manholes N [--seed S] [--topology tree|meshed] ... -o FILE
+#include <ostream>
+
+#include <CLI/CLI.hpp>
+
 #include "command.h"
+#include "sewerplan/core/generator.h"
+#include "sewerplan/core/map_io.h"
 
 namespace sewerplan::cli {
-void add_generate_command(CLI::App&, Context&) {}
+namespace {
+
+struct GenerateOptions {
+  GeneratorOptions generator;
+  std::string topology = "tree";
+  std::string out;
+};
+
+int run(GenerateOptions& o, Context& c) {
+  auto topology = topology_from_string(o.topology);
+  if (!topology) {
+    c.err << "--topology: unknown topology '" << o.topology << "' (tree or meshed)\n";
+    return kExitUsage;
+  }
+  o.generator.topology = *topology;
+  Result<SewerMap> map = generate_network(o.generator);
+  if (!map.has_value()) {
+    c.err << map.error().message << '\n';
+    return exit_code_for(map.error());
+  }
+  Result<void> written = write_map(*map, o.out);
+  if (!written.has_value()) {
+    c.err << written.error().message << '\n';
+    return exit_code_for(written.error());
+  }
+  c.out << "wrote " << o.out << " (" << map->manhole_count() << " manholes, " << map->pipe_count()
+        << " pipes, " << to_string(*topology) << ", seed " << o.generator.seed << ")\n";
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_generate_command(CLI::App& app, Context& context) {
+  // Shared with the callback, which CLI11 keeps after this function returns.
+  auto o = std::make_shared<GenerateOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "generate", "Generate a seeded synthetic sewer network (the same arguments give the same map)");
+  cmd->add_option("--manholes,-n", o->generator.manholes, "Number of manholes, 10 to 1000000")
+      ->required();
+  cmd->add_option("--seed,-s", o->generator.seed, "Random seed")->capture_default_str();
+  cmd->add_option("--topology,-t", o->topology, "tree or meshed")->capture_default_str();
+  cmd->add_option("--mesh-fraction", o->generator.mesh_fraction,
+                  "meshed: share of the street lattice's other edges added as loops, 0 to 1")
+      ->capture_default_str();
+  cmd->add_option("--exit-fraction", o->generator.exit_fraction, "Share of manholes that are exits")
+      ->capture_default_str();
+  cmd->add_option("--undrivable-fraction", o->generator.undrivable_pipe_fraction,
+                  "Share of pipes outside 0.30-0.60 m")
+      ->capture_default_str();
+  cmd->add_option("--high-step-fraction", o->generator.high_step_fraction,
+                  "Share of incoming pipe ends more than 0.30 m above the manhole floor")
+      ->capture_default_str();
+  cmd->add_option("--name", o->generator.name, "Map name (default generated-<topology>-<n>-<seed>)");
+  cmd->add_option("--out,-o", o->out, "Output map (.json or .sewer)")->required();
+  cmd->callback([o, &context] { context.exit_code = run(*o, context); });
+}
+
 }  // namespace sewerplan::cli

@@ -3,20 +3,56 @@
 
 #include <algorithm>
 #include <charconv>
-#include <cmath>
+
+#include <nlohmann/json.hpp>
 
 namespace sewerplan::detail {
+namespace {
 
-JsonFields::JsonFields(const nlohmann::json& json, std::string path, std::string_view file,
-                       Diagnostics& diagnostics)
-    : json_(json),
-      path_(std::move(path)),
-      file_(file),
-      diagnostics_(diagnostics),
-      is_object_(json.is_object()) {
-  if (!is_object_) {
-    diagnostics_.error(where(), std::string("expected an object, got ") + json.type_name());
+// simdjson does not say where a syntax error is; nlohmann does. Used only on the error path.
+void report_syntax_error(std::string_view text, std::string_view file, std::string_view fallback,
+                         Diagnostics& diagnostics) {
+  try {
+    [[maybe_unused]] const nlohmann::json parsed = nlohmann::json::parse(text.begin(), text.end());
+  } catch (const nlohmann::json::parse_error& e) {
+    const std::size_t byte = std::min<std::size_t>(e.byte == 0 ? 0 : e.byte - 1, text.size());
+    const auto before = text.substr(0, byte);
+    const auto line = 1 + static_cast<std::size_t>(std::count(before.begin(), before.end(), '\n'));
+    const std::size_t line_start = before.rfind('\n');
+    const std::size_t column = line_start == std::string_view::npos ? byte + 1 : byte - line_start;
+    std::string message = e.what();
+    // "[json.exception.parse_error.101] parse error at line 3, column 16: syntax error ..."
+    if (auto colon = message.find(": ", message.find("parse error")); colon != std::string::npos) {
+      message = message.substr(colon + 2);
+    }
+    diagnostics.error(std::string(file) + ":" + std::to_string(line) + ":" + std::to_string(column),
+                      "JSON syntax error: " + message);
+    return;
+  } catch (const std::exception&) {
+    // Fall through to simdjson's own message.
   }
+  diagnostics.error(std::string(file), "JSON syntax error: " + std::string(fallback));
+}
+
+}  // namespace
+
+std::optional<JsonDocument> JsonDocument::parse(std::string_view text, std::string_view file,
+                                                Diagnostics& diagnostics) {
+  JsonDocument doc;
+  doc.parser_ = std::make_unique<simdjson::dom::parser>();
+  const simdjson::error_code error = doc.parser_->parse(text.data(), text.size()).get(doc.root_);
+  if (error != simdjson::SUCCESS) {
+    report_syntax_error(text, file, simdjson::error_message(error), diagnostics);
+    return std::nullopt;
+  }
+  return doc;
+}
+
+JsonFields::JsonFields(JsonElement json, std::string path, std::string_view file,
+                       Diagnostics& diagnostics)
+    : path_(std::move(path)), file_(file), diagnostics_(diagnostics) {
+  is_object_ = json.get_object().get(object_) == simdjson::SUCCESS;
+  if (!is_object_) diagnostics_.error(where(), "expected an object, got " + describe_json(json));
 }
 
 std::string JsonFields::where(std::string_view key) const {
@@ -31,101 +67,117 @@ std::string JsonFields::where(std::string_view key) const {
 }
 
 bool JsonFields::has(std::string_view key) const {
-  return is_object_ && json_.find(key) != json_.end();
+  JsonElement unused;
+  return is_object_ && object_.at_key(key).get(unused) == simdjson::SUCCESS;
 }
 
-const nlohmann::json* JsonFields::find(std::string_view key, Need need) {
-  if (!is_object_) return nullptr;
-  auto it = json_.find(key);
-  if (it == json_.end()) {
+std::optional<JsonElement> JsonFields::find(std::string_view key, Need need) {
+  if (!is_object_) return std::nullopt;
+  JsonElement value;
+  if (object_.at_key(key).get(value) != simdjson::SUCCESS) {
     if (need == Need::kRequired) {
       diagnostics_.error(where(), "missing required field '" + std::string(key) + "'");
     }
-    return nullptr;
+    return std::nullopt;
   }
-  return &*it;
+  return value;
 }
 
-void JsonFields::wrong_type(std::string_view key, std::string_view expected,
-                            const nlohmann::json& got) {
-  diagnostics_.error(where(key), "expected " + std::string(expected) + ", got " +
-                                     (got.is_primitive() ? got.dump() : got.type_name()));
+void JsonFields::wrong_type(std::string_view key, std::string_view expected, JsonElement got) {
+  diagnostics_.error(where(key),
+                     "expected " + std::string(expected) + ", got " + describe_json(got));
 }
 
 std::optional<double> JsonFields::number(std::string_view key, Need need) {
-  const nlohmann::json* v = find(key, need);
-  if (v == nullptr) return std::nullopt;
-  if (!v->is_number()) {
+  auto v = find(key, need);
+  if (!v) return std::nullopt;
+  double d = 0;
+  if (!v->is_number() || v->get_double().get(d) != simdjson::SUCCESS) {
     wrong_type(key, "a number", *v);
     return std::nullopt;
   }
-  return v->get<double>();
+  return d;
 }
 
 std::optional<std::string> JsonFields::string(std::string_view key, Need need) {
-  const nlohmann::json* v = find(key, need);
-  if (v == nullptr) return std::nullopt;
-  if (!v->is_string()) {
+  auto v = find(key, need);
+  if (!v) return std::nullopt;
+  std::string_view s;
+  if (v->get_string().get(s) != simdjson::SUCCESS) {
     wrong_type(key, "a string", *v);
     return std::nullopt;
   }
-  return v->get<std::string>();
+  return std::string(s);
 }
 
 std::optional<bool> JsonFields::boolean(std::string_view key, Need need) {
-  const nlohmann::json* v = find(key, need);
-  if (v == nullptr) return std::nullopt;
-  if (!v->is_boolean()) {
+  auto v = find(key, need);
+  if (!v) return std::nullopt;
+  bool b = false;
+  if (v->get_bool().get(b) != simdjson::SUCCESS) {
     wrong_type(key, "true or false", *v);
     return std::nullopt;
   }
-  return v->get<bool>();
+  return b;
 }
 
-const nlohmann::json* JsonFields::array(std::string_view key, Need need) {
-  const nlohmann::json* v = find(key, need);
-  if (v == nullptr) return nullptr;
-  if (!v->is_array()) {
+std::optional<JsonArray> JsonFields::array(std::string_view key, Need need) {
+  auto v = find(key, need);
+  if (!v) return std::nullopt;
+  JsonArray a;
+  if (v->get_array().get(a) != simdjson::SUCCESS) {
     wrong_type(key, "an array", *v);
-    return nullptr;
+    return std::nullopt;
   }
-  return v;
+  return a;
 }
 
-const nlohmann::json* JsonFields::member(std::string_view key, Need need) {
+std::optional<JsonElement> JsonFields::member(std::string_view key, Need need) {
   return find(key, need);
 }
 
 void JsonFields::warn_unknown(std::initializer_list<std::string_view> known) {
+  warn_unknown([known](std::string_view key) {
+    return std::find(known.begin(), known.end(), key) != known.end();
+  });
+}
+
+void JsonFields::warn_unknown(const std::function<bool(std::string_view)>& is_known) {
   if (!is_object_) return;
-  for (const auto& [key, value] : json_.items()) {
-    if (std::find(known.begin(), known.end(), key) == known.end()) {
-      diagnostics_.warning(where(key), "unknown field '" + key + "' ignored");
+  for (simdjson::dom::key_value_pair field : object_) {
+    if (!is_known(field.key)) {
+      diagnostics_.warning(where(field.key),
+                           "unknown field '" + std::string(field.key) + "' ignored");
     }
   }
 }
 
-std::optional<nlohmann::json> parse_json(std::string_view text, std::string_view file,
-                                         Diagnostics& diagnostics) {
-  try {
-    return nlohmann::json::parse(text.begin(), text.end());
-  } catch (const nlohmann::json::parse_error& e) {
-    // e.byte is 1-based: the position of the offending character.
-    const std::size_t byte = std::min<std::size_t>(e.byte == 0 ? 0 : e.byte - 1, text.size());
-    const auto before = text.substr(0, byte);
-    const std::size_t line =
-        1 + static_cast<std::size_t>(std::count(before.begin(), before.end(), '\n'));
-    const std::size_t line_start = before.rfind('\n');
-    const std::size_t column = line_start == std::string_view::npos ? byte + 1 : byte - line_start;
-    std::string message = e.what();
-    // nlohmann's message starts with "[json.exception.parse_error.101] parse error at line ...: ".
-    if (auto colon = message.find(": ", message.find("parse error")); colon != std::string::npos) {
-      message = message.substr(colon + 2);
-    }
-    diagnostics.error(std::string(file) + ":" + std::to_string(line) + ":" + std::to_string(column),
-                      "JSON syntax error: " + message);
+std::optional<std::string> string_element(JsonElement element, const std::string& where,
+                                          Diagnostics& diagnostics) {
+  std::string_view s;
+  if (element.get_string().get(s) != simdjson::SUCCESS) {
+    diagnostics.error(where, "expected a name (a string), got " + describe_json(element));
     return std::nullopt;
   }
+  return std::string(s);
+}
+
+std::string describe_json(JsonElement element) {
+  switch (element.type()) {
+    case simdjson::dom::element_type::ARRAY:
+      return "an array";
+    case simdjson::dom::element_type::OBJECT:
+      return "an object";
+    case simdjson::dom::element_type::NULL_VALUE:
+      return "null";
+    case simdjson::dom::element_type::BOOL:
+    case simdjson::dom::element_type::INT64:
+    case simdjson::dom::element_type::UINT64:
+    case simdjson::dom::element_type::DOUBLE:
+    case simdjson::dom::element_type::STRING:
+      return simdjson::minify(element);
+  }
+  return "a value";
 }
 
 std::string format_double(double v) {

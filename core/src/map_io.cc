@@ -3,6 +3,7 @@
 
 #include <sstream>
 
+#include "sewerplan/core/map_ascii.h"
 #include "sewerplan/core/map_json.h"
 #include "sewerplan/core/text_file.h"
 
@@ -57,7 +58,7 @@ Result<SewerMap> parse_map(std::string_view text, const std::string& file_name, 
     case MapFormat::kJson:
       return read_map_json(text, file_name, diagnostics);
     case MapFormat::kAscii:
-      return Error{ErrorCode::kUnsupportedFormat, file_name + ": ASCII maps are not readable yet"};
+      return read_map_ascii(text, file_name, diagnostics);
   }
   return Error{ErrorCode::kUnsupportedFormat, file_name + ": unknown format"};
 }
@@ -84,7 +85,8 @@ Result<void> write_map(const SewerMap& map, const std::filesystem::path& path,
       write_map_json(map, out);
       break;
     case MapFormat::kAscii:
-      return Error{ErrorCode::kUnsupportedFormat, "ASCII maps are not writable yet"};
+      if (Result<void> written = write_map_ascii(map, out); !written.has_value()) return written;
+      break;
   }
   return write_text_file(path, out.str());
 }

@@ -10,6 +10,8 @@
 namespace sewerplan {
 namespace {
 
+using detail::JsonDocument;
+using detail::JsonElement;
 using detail::JsonFields;
 using Need = JsonFields::Need;
 using nlohmann::json;
@@ -54,9 +56,9 @@ std::optional<char> read_variant(JsonFields& f) {
   return (*v)[0];
 }
 
-SlotRecord read_slot(const json& j, const std::string& path, std::string_view file, double floor_z,
+SlotRecord read_slot(JsonElement j, std::string path, std::string_view file, double floor_z,
                      Diagnostics& d) {
-  JsonFields f(j, path, file, d);
+  JsonFields f(j, std::move(path), file, d);
   SlotRecord slot;
   slot.pipe = f.string("pipe").value_or("");
   slot.azimuth_deg = f.number("azimuth_deg").value_or(0);
@@ -65,10 +67,9 @@ SlotRecord read_slot(const json& j, const std::string& path, std::string_view fi
   return slot;
 }
 
-ManholeRecord read_manhole(const json& j, std::size_t index, std::string_view file,
+ManholeRecord read_manhole(JsonElement j, std::size_t index, std::string_view file,
                            Diagnostics& d) {
-  const std::string path = element_path("manholes", index);
-  JsonFields f(j, path, file, d);
+  JsonFields f(j, element_path("manholes", index), file, d);
   ManholeRecord m;
   m.name = f.string("name").value_or("");
   m.position.x_m = f.number("x_m", Need::kOptional).value_or(0);
@@ -77,10 +78,11 @@ ManholeRecord read_manhole(const json& j, std::size_t index, std::string_view fi
   m.diameter_m = f.number("diameter_m").value_or(0);
   m.exit = f.boolean("exit", Need::kOptional).value_or(false);
   m.variant = read_variant(f);
-  if (const json* slots = f.array("slots", Need::kOptional)) {
+  if (auto slots = f.array("slots", Need::kOptional)) {
     m.slots.reserve(slots->size());
-    for (std::size_t s = 0; s < slots->size(); ++s) {
-      m.slots.push_back(read_slot((*slots)[s], path + ".slots[" + std::to_string(s) + "]", file,
+    std::size_t s = 0;
+    for (JsonElement slot : *slots) {
+      m.slots.push_back(read_slot(slot, f.path() + ".slots[" + std::to_string(s++) + "]", file,
                                   m.position.z_m, d));
     }
   }
@@ -89,16 +91,18 @@ ManholeRecord read_manhole(const json& j, std::size_t index, std::string_view fi
 }
 
 std::optional<std::string> read_end(JsonFields& f, std::string_view key) {
-  const json* v = f.member(key);
-  if (v == nullptr || v->is_null()) return std::nullopt;  // null: a blind end
-  if (!v->is_string()) {
-    f.diagnostics().error(f.where(key), "expected a manhole name or null, got " + v->dump());
+  auto v = f.member(key);
+  if (!v || v->is_null()) return std::nullopt;  // null: a blind end
+  std::string_view name;
+  if (v->get_string().get(name) != simdjson::SUCCESS) {
+    f.diagnostics().error(f.where(key),
+                          "expected a manhole name or null, got " + detail::describe_json(*v));
     return std::nullopt;
   }
-  return v->get<std::string>();
+  return std::string(name);
 }
 
-PipeRecord read_pipe(const json& j, std::size_t index, std::string_view file, Diagnostics& d) {
+PipeRecord read_pipe(JsonElement j, std::size_t index, std::string_view file, Diagnostics& d) {
   JsonFields f(j, element_path("pipes", index), file, d);
   PipeRecord p;
   p.name = f.string("name").value_or("");
@@ -123,7 +127,7 @@ PipeRecord read_pipe(const json& j, std::size_t index, std::string_view file, Di
   return p;
 }
 
-PointRecord read_point(const json& j, std::size_t index, std::string_view file, Diagnostics& d) {
+PointRecord read_point(JsonElement j, std::size_t index, std::string_view file, Diagnostics& d) {
   JsonFields f(j, element_path("inspection_points", index), file, d);
   PointRecord p;
   p.name = f.string("name").value_or("");
@@ -196,26 +200,30 @@ void write_pipe(std::ostream& out, const SewerMap& map, const Pipe& p) {
 
 Result<SewerMap> read_map_json(std::string_view text, const std::string& file_name,
                                Diagnostics& diagnostics) {
-  std::optional<json> doc = detail::parse_json(text, file_name, diagnostics);
+  std::optional<JsonDocument> doc = JsonDocument::parse(text, file_name, diagnostics);
   if (!doc) return Error{ErrorCode::kParse, diagnostics.error_summary()};
-  JsonFields root(*doc, "$", file_name, diagnostics);
+  JsonFields root(doc->root(), "$", file_name, diagnostics);
   check_header(root);
   MapBuilder builder(root.string("name", Need::kOptional).value_or(""), json_locator(file_name));
-  const json* manholes = root.array("manholes");
-  const json* pipes = root.array("pipes");
-  const json* points = root.array("inspection_points", Need::kOptional);
+  const auto manholes = root.array("manholes");
+  const auto pipes = root.array("pipes");
+  const auto points = root.array("inspection_points", Need::kOptional);
   root.warn_unknown({"format", "version", "name", "manholes", "pipes", "inspection_points"});
   builder.reserve(manholes ? manholes->size() : 0, pipes ? pipes->size() : 0);
-  for (std::size_t i = 0; manholes && i < manholes->size(); ++i) {
-    builder.add_manhole(read_manhole((*manholes)[i], i, file_name, diagnostics));
+  std::size_t i = 0;
+  if (manholes) {
+    for (JsonElement m : *manholes)
+      builder.add_manhole(read_manhole(m, i++, file_name, diagnostics));
   }
-  for (std::size_t i = 0; pipes && i < pipes->size(); ++i) {
-    builder.add_pipe(read_pipe((*pipes)[i], i, file_name, diagnostics));
+  i = 0;
+  if (pipes) {
+    for (JsonElement p : *pipes) builder.add_pipe(read_pipe(p, i++, file_name, diagnostics));
   }
-  for (std::size_t i = 0; points && i < points->size(); ++i) {
-    builder.add_point(read_point((*points)[i], i, file_name, diagnostics));
+  i = 0;
+  if (points) {
+    for (JsonElement p : *points) builder.add_point(read_point(p, i++, file_name, diagnostics));
   }
-  doc.reset();  // free the document tree before building
+  doc.reset();  // free the parsed document before building
   if (diagnostics.has_errors()) return Error{ErrorCode::kParse, diagnostics.error_summary()};
   return std::move(builder).build(diagnostics);
 }

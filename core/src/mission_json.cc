@@ -2,8 +2,6 @@
 #include <algorithm>
 #include <set>
 
-#include <nlohmann/json.hpp>
-
 #include "sewerplan/core/mission.h"
 #include "sewerplan/core/text_file.h"
 
@@ -13,9 +11,15 @@
 namespace sewerplan {
 namespace {
 
+using detail::JsonArray;
+using detail::JsonDocument;
+using detail::JsonElement;
 using detail::JsonFields;
 using Need = JsonFields::Need;
-using nlohmann::json;
+
+std::string indexed(const std::string& path, std::size_t i) {
+  return path + "[" + std::to_string(i) + "]";
+}
 
 // Resolves names against the map; each failure is reported at the field that named it.
 class MissionReader {
@@ -23,23 +27,42 @@ class MissionReader {
   MissionReader(const SewerMap& map, std::string_view file, Diagnostics& d)
       : map_(map), file_(file), d_(d) {}
 
-  std::optional<ManholeId> manhole(JsonFields& f, std::string_view key, Need need) {
-    auto name = f.string(key, need);
-    if (!name) return std::nullopt;
-    auto id = map_.find_manhole(*name);
-    if (!id) d_.error(f.where(key), "unknown manhole '" + *name + "'");
+  std::optional<ManholeId> manhole_named(const std::string& name, const std::string& where) {
+    auto id = map_.find_manhole(name);
+    if (!id) d_.error(where, "unknown manhole '" + name + "'");
     return id;
   }
 
-  std::optional<PipeId> pipe(JsonFields& f, std::string_view key, Need need) {
-    auto name = f.string(key, need);
-    if (!name) return std::nullopt;
-    auto id = map_.find_pipe(*name);
-    if (!id) d_.error(f.where(key), "unknown pipe '" + *name + "'");
+  std::optional<PipeId> pipe_named(const std::string& name, const std::string& where) {
+    auto id = map_.find_pipe(name);
+    if (!id) d_.error(where, "unknown pipe '" + name + "'");
     return id;
   }
 
-  std::optional<Place> place(const json& j, const std::string& path) {
+  std::optional<ManholeId> manhole(JsonFields& f, std::string_view key) {
+    auto name = f.string(key);
+    return name ? manhole_named(*name, f.where(key)) : std::nullopt;
+  }
+
+  std::optional<PipeId> pipe(JsonFields& f, std::string_view key) {
+    auto name = f.string(key);
+    return name ? pipe_named(*name, f.where(key)) : std::nullopt;
+  }
+
+  // Every element of `array` (at `path`) names a pipe.
+  std::vector<PipeId> pipes(JsonArray array, const std::string& path) {
+    std::vector<PipeId> ids;
+    std::size_t i = 0;
+    for (JsonElement e : array) {
+      const std::string where = file_ + ":" + indexed(path, i++);
+      auto name = detail::string_element(e, where, d_);
+      if (!name) continue;
+      if (auto id = pipe_named(*name, where)) ids.push_back(*id);
+    }
+    return ids;
+  }
+
+  std::optional<Place> place(JsonElement j, const std::string& path) {
     JsonFields f(j, path, file_, d_);
     f.warn_unknown({"manhole", "pipe", "point", "offset_m"});
     const int given = int{f.has("manhole")} + int{f.has("pipe")} + int{f.has("point")};
@@ -47,19 +70,9 @@ class MissionReader {
       d_.error(f.where(), "a place names exactly one of \"manhole\", \"pipe\" or \"point\"");
       return std::nullopt;
     }
-    if (f.has("manhole")) return manhole(f, "manhole", Need::kRequired);
-    if (f.has("point")) {
-      auto name = f.string("point");
-      if (!name) return std::nullopt;
-      auto id = map_.find_point(*name);
-      if (!id) {
-        d_.error(f.where("point"), "unknown inspection point '" + *name + "'");
-        return std::nullopt;
-      }
-      const InspectionPoint& p = map_.point(*id);
-      return PipeSpot{p.pipe, p.offset_m, id};
-    }
-    auto id = pipe(f, "pipe", Need::kRequired);
+    if (f.has("manhole")) return manhole(f, "manhole");
+    if (f.has("point")) return point(f);
+    auto id = pipe(f, "pipe");
     if (!id) return std::nullopt;
     PipeSpot spot{*id, f.number("offset_m", Need::kOptional), std::nullopt};
     const double length = map_.pipe(*id).length_m;
@@ -71,31 +84,50 @@ class MissionReader {
     return spot;
   }
 
-  void tasks(const json& array, std::vector<Task>& out) {
-    for (std::size_t i = 0; i < array.size(); ++i) {
-      task(array[i], "$.tasks[" + std::to_string(i) + "]", i, out);
+  void tasks(JsonArray array, std::vector<Task>& out) {
+    std::size_t i = 0;
+    for (JsonElement t : array) {
+      task(t, indexed("$.tasks", i), i, out);
+      ++i;
     }
   }
 
-  void closed(const json& j, Mission& m) {
+  void closed(JsonElement j, Mission& m) {
     JsonFields f(j, "$.closed", file_, d_);
     f.warn_unknown({"pipes", "passages"});
-    if (const json* pipes = f.array("pipes", Need::kOptional)) {
-      for (std::size_t i = 0; i < pipes->size(); ++i) {
-        json wrapper = {{"pipe", (*pipes)[i]}};
-        JsonFields pf(wrapper, "$.closed.pipes[" + std::to_string(i) + "]", file_, d_);
-        if (auto id = pipe(pf, "pipe", Need::kRequired)) m.closed_pipes.push_back(*id);
-      }
+    if (auto pipes_array = f.array("pipes", Need::kOptional)) {
+      m.closed_pipes = pipes(*pipes_array, "$.closed.pipes");
     }
-    if (const json* passages = f.array("passages", Need::kOptional)) {
-      for (std::size_t i = 0; i < passages->size(); ++i) {
-        passage((*passages)[i], "$.closed.passages[" + std::to_string(i) + "]", m);
-      }
+    if (auto passages = f.array("passages", Need::kOptional)) {
+      std::size_t i = 0;
+      for (JsonElement p : *passages) passage(p, indexed("$.closed.passages", i++), m);
+    }
+  }
+
+  void exits(JsonArray array, Mission& m) {
+    std::size_t i = 0;
+    for (JsonElement e : array) {
+      const std::string where = file_ + ":" + indexed("$.exits", i++);
+      auto name = detail::string_element(e, where, d_);
+      if (!name) continue;
+      if (auto id = manhole_named(*name, where)) m.exits.push_back(*id);
     }
   }
 
  private:
-  void task(const json& j, const std::string& path, std::size_t index, std::vector<Task>& out) {
+  std::optional<Place> point(JsonFields& f) {
+    auto name = f.string("point");
+    if (!name) return std::nullopt;
+    auto id = map_.find_point(*name);
+    if (!id) {
+      d_.error(f.where("point"), "unknown inspection point '" + *name + "'");
+      return std::nullopt;
+    }
+    const InspectionPoint& p = map_.point(*id);
+    return PipeSpot{p.pipe, p.offset_m, id};
+  }
+
+  void task(JsonElement j, const std::string& path, std::size_t index, std::vector<Task>& out) {
     JsonFields f(j, path, file_, d_);
     f.warn_unknown({"name", "type", "at", "pipe", "pipes", "final"});
     const std::string name =
@@ -105,8 +137,8 @@ class MissionReader {
     if (!type) return;
     if (*type == "go_to" || *type == "take_water_sample") {
       const TaskKind kind = *type == "go_to" ? TaskKind::kGoTo : TaskKind::kTakeWaterSample;
-      const json* at = f.member("at");
-      if (at == nullptr) return;
+      auto at = f.member("at");
+      if (!at) return;
       auto where = place(*at, path + ".at");
       if (!where) return;
       if (kind == TaskKind::kTakeWaterSample && std::holds_alternative<ManholeId>(*where)) {
@@ -116,19 +148,16 @@ class MissionReader {
       }
       out.push_back({name, kind, *where, final});
     } else if (*type == "inspect_pipe") {
-      if (auto id = pipe(f, "pipe", Need::kRequired)) {
+      if (auto id = pipe(f, "pipe")) {
         out.push_back({name, TaskKind::kInspectPipe, PipeSpot{*id, {}, {}}, final});
       }
     } else if (*type == "inspect_area") {
       if (final) d_.error(f.where("final"), "task " + name + ": an area cannot be the final task");
-      const json* pipes = f.array("pipes");
-      for (std::size_t k = 0; pipes && k < pipes->size(); ++k) {
-        json wrapper = {{"pipe", (*pipes)[k]}};
-        JsonFields pf(wrapper, path + ".pipes[" + std::to_string(k) + "]", file_, d_);
-        if (auto id = pipe(pf, "pipe", Need::kRequired)) {
-          out.push_back({name + "/" + map_.pipe(*id).name, TaskKind::kInspectPipe,
-                         PipeSpot{*id, {}, {}}, false});
-        }
+      auto array = f.array("pipes");
+      if (!array) return;
+      for (PipeId id : pipes(*array, path + ".pipes")) {
+        out.push_back(
+            {name + "/" + map_.pipe(id).name, TaskKind::kInspectPipe, PipeSpot{id, {}, {}}, false});
       }
     } else {
       d_.error(f.where("type"), "unknown task type \"" + *type +
@@ -136,10 +165,10 @@ class MissionReader {
     }
   }
 
-  void passage(const json& j, const std::string& path, Mission& m) {
+  void passage(JsonElement j, const std::string& path, Mission& m) {
     JsonFields f(j, path, file_, d_);
     f.warn_unknown({"manhole", "from_slot", "to_slot"});
-    auto id = manhole(f, "manhole", Need::kRequired);
+    auto id = manhole(f, "manhole");
     auto from = f.number("from_slot");
     auto to = f.number("to_slot");
     if (!id || !from || !to) return;
@@ -157,11 +186,11 @@ class MissionReader {
   }
 
   const SewerMap& map_;
-  std::string_view file_;
+  std::string file_;
   Diagnostics& d_;
 };
 
-void check_tasks(const Mission& m, const std::string& file, Diagnostics& d) {
+void check_tasks(const Mission& m, const std::string& file, bool exits_unreadable, Diagnostics& d) {
   std::set<std::string> names;
   std::size_t finals = 0;
   for (std::size_t i = 0; i < m.tasks.size(); ++i) {
@@ -171,7 +200,7 @@ void check_tasks(const Mission& m, const std::string& file, Diagnostics& d) {
     finals += m.tasks[i].final ? 1U : 0U;
   }
   if (finals > 1) d.error(file + ":$.tasks", "more than one task is marked final");
-  if (m.exits.empty() && finals == 0) {
+  if (m.exits.empty() && finals == 0 && !exits_unreadable) {
     d.error(
         file + ":$.exits",
         "the mission has no exit: name \"exits\", mark exit manholes in the map, or mark a task "
@@ -200,9 +229,9 @@ std::string_view to_string(TaskKind kind) {
 
 Result<Mission> read_mission_json(std::string_view text, const std::string& file_name,
                                   const SewerMap& map, Diagnostics& diagnostics) {
-  auto doc = detail::parse_json(text, file_name, diagnostics);
+  auto doc = JsonDocument::parse(text, file_name, diagnostics);
   if (!doc) return Error{ErrorCode::kParse, diagnostics.error_summary()};
-  JsonFields root(*doc, "$", file_name, diagnostics);
+  JsonFields root(doc->root(), "$", file_name, diagnostics);
   root.warn_unknown({"format", "version", "name", "profile", "start", "tasks", "exits",
                      "battery_reserve", "closed"});
   if (auto format = root.string("format"); format && *format != kMissionJsonFormat) {
@@ -216,37 +245,36 @@ Result<Mission> read_mission_json(std::string_view text, const std::string& file
   MissionReader reader(map, file_name, diagnostics);
   Mission m;
   m.name = root.string("name", Need::kOptional).value_or("mission");
-  const json default_profile = "makro-1.1";
-  const json* profile = root.member("profile", Need::kOptional);
-  if (auto p = detail::read_profile_value(profile ? *profile : default_profile, "$.profile",
-                                          file_name, diagnostics)) {
-    m.profile = *p;
+  if (auto profile = root.member("profile", Need::kOptional)) {
+    auto p = detail::read_profile_value(*profile, "$.profile", file_name, diagnostics);
+    if (p) m.profile = *p;
+  } else {
+    m.profile = *builtin_profile("makro-1.1");
   }
-  if (const json* start = root.member("start")) {
+  if (auto start = root.member("start")) {
     if (auto p = reader.place(*start, "$.start")) m.start = *p;
   }
-  if (const json* tasks = root.array("tasks")) reader.tasks(*tasks, m.tasks);
-  if (const json* exits = root.array("exits", Need::kOptional)) {
-    for (std::size_t i = 0; i < exits->size(); ++i) {
-      json wrapper = {{"manhole", (*exits)[i]}};
-      JsonFields f(wrapper, "$.exits[" + std::to_string(i) + "]", file_name, diagnostics);
-      if (auto id = reader.manhole(f, "manhole", Need::kRequired)) m.exits.push_back(*id);
-    }
+  if (auto tasks = root.array("tasks")) reader.tasks(*tasks, m.tasks);
+  const std::size_t errors_before_exits = diagnostics.error_count();
+  if (auto exits = root.array("exits", Need::kOptional)) {
+    reader.exits(*exits, m);
   } else {
     for (ManholeId id : map.manhole_ids()) {
       if (map.manhole(id).exit) m.exits.push_back(id);
     }
   }
+  const bool exits_unreadable = diagnostics.error_count() > errors_before_exits;
   m.battery_reserve_fraction = root.number("battery_reserve", Need::kOptional).value_or(0.2);
   if (!(m.battery_reserve_fraction >= 0 && m.battery_reserve_fraction < 1)) {
     diagnostics.error(root.where("battery_reserve"),
                       "must be a fraction from 0 to below 1, got " +
                           detail::format_double(m.battery_reserve_fraction));
   }
-  if (const json* closed = root.member("closed", Need::kOptional)) reader.closed(*closed, m);
-  check_tasks(m, file_name, diagnostics);
-  if (diagnostics.has_errors())
+  if (auto closed = root.member("closed", Need::kOptional)) reader.closed(*closed, m);
+  check_tasks(m, file_name, exits_unreadable, diagnostics);
+  if (diagnostics.has_errors()) {
     return Error{ErrorCode::kInvalidMission, diagnostics.error_summary()};
+  }
   return m;
 }
 

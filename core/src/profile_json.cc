@@ -53,10 +53,13 @@ std::optional<RobotProfile> named_profile(const std::string& name, const std::st
 
 }  // namespace
 
-std::optional<RobotProfile> read_profile_value(const nlohmann::json& value, const std::string& path,
+std::optional<RobotProfile> read_profile_value(JsonElement value, const std::string& path,
                                                std::string_view file, Diagnostics& diagnostics) {
   const std::string where = std::string(file) + ":" + path;
-  if (value.is_string()) return named_profile(value.get<std::string>(), where, diagnostics);
+  std::string_view name;
+  if (value.get_string().get(name) == simdjson::SUCCESS) {
+    return named_profile(std::string(name), where, diagnostics);
+  }
   JsonFields f(value, path, file, diagnostics);
   if (!value.is_object()) return std::nullopt;
   const std::size_t errors_before = diagnostics.error_count();
@@ -72,10 +75,7 @@ std::optional<RobotProfile> read_profile_value(const nlohmann::json& value, cons
     p.segment_count = static_cast<int>(*v);
   }
   p.symmetric = f.boolean("symmetric", JsonFields::Need::kOptional).value_or(p.symmetric);
-  for (const auto& [key, unused] : value.items()) {
-    if (!is_known_key(key))
-      diagnostics.warning(f.where(key), "unknown profile field '" + key + "' ignored");
-  }
+  f.warn_unknown(is_known_key);
   if (diagnostics.error_count() > errors_before) return std::nullopt;
   if (Result<void> valid = validate_profile(p); !valid.has_value()) {
     diagnostics.error(where, valid.error().message);
@@ -99,9 +99,9 @@ namespace sewerplan {
 
 Result<RobotProfile> read_profile_json(std::string_view text, const std::string& file_name,
                                        Diagnostics& diagnostics) {
-  auto doc = detail::parse_json(text, file_name, diagnostics);
+  auto doc = detail::JsonDocument::parse(text, file_name, diagnostics);
   if (!doc) return Error{ErrorCode::kParse, diagnostics.error_summary()};
-  auto profile = detail::read_profile_value(*doc, "$", file_name, diagnostics);
+  auto profile = detail::read_profile_value(doc->root(), "$", file_name, diagnostics);
   if (!profile) return Error{ErrorCode::kInvalidProfile, diagnostics.error_summary()};
   return *profile;
 }

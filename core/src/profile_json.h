@@ -11,10 +11,12 @@
 #include "sewerplan/core/diagnostics.h"
 #include "sewerplan/core/robot_profile.h"
 
+#include "json_fields.h"
+
 namespace sewerplan::detail {
 
 // `value` is a built-in profile's name or an object with optional "base" and field overrides.
-std::optional<RobotProfile> read_profile_value(const nlohmann::json& value, const std::string& path,
+std::optional<RobotProfile> read_profile_value(JsonElement value, const std::string& path,
                                                std::string_view file, Diagnostics& diagnostics);
 
 // The profile as a JSON object with every field.

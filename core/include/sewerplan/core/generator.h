@@ -9,9 +9,8 @@
 // engineer.
 //
 // How it is made:
-//   1. Streets. A lattice of R x C street intersections, about 30% of the manholes (at least 2 x
-//   2),
-//      with every row and column gap drawn from 40-160 m. All streets are axis-aligned, so the turn
+//   1. Streets. A lattice of R x C street intersections, about 30% of the manholes (at least
+//      2 x 2), with every row and column gap drawn from 40-160 m. All streets are axis-aligned, so the turn
 //      between two streets at an intersection is exactly 0 or 90 degrees (MAKRO turns at most 90).
 //      A quarter, as one might first pick, leaves the tree's three-way manholes at about 5%.
 //   2. Topology. kTree: a random spanning tree of the lattice (randomised Kruskal: the edges in a
@@ -26,8 +25,7 @@
 //      rhombus between its two intersections, so that no two pipes cross. Pipes that enter an
 //      intersection stay axis-aligned. Most manholes therefore have two pipes, intersections 1-4.
 //   4. Heights. A smooth ground (a tilted plane plus a gentle wave) less a depth of 2-4 m gives
-//   each
-//      manhole's floor. The outfall is the intersection with the lowest floor; flow runs along
+//      each manhole's floor. The outfall is the intersection with the lowest floor; flow runs along
 //      breadth-first distance from it (ties: from the higher to the lower manhole number), so
 //      Pipe::ends[0] is upstream. A pipe's outgoing (upstream) end lies at its manhole's floor; its
 //      incoming end lies 0-0.20 m above the floor, or with probability high_step_fraction
@@ -47,8 +45,8 @@
 // only ordered containers. Angles come from an arithmetic arctangent and the ground from a
 // polynomial wave instead of the C library's atan2 and sin, whose last bits differ between
 // platforms; only IEEE-754 basic operations and sqrt remain, so the same options give the same map
-// bit for bit wherever those are not contracted into fused multiply-adds (GCC's default in ISO
-// mode; clang needs -ffp-contract=off).
+// bit for bit wherever those are not contracted into fused multiply-adds (the build sets
+// -ffp-contract=off for GCC and clang alike).
 //
 // Cost: O(n log n) time and O(n) memory; a million manholes take a few seconds, most of it in
 // MapBuilder's validation (bench/core/generator_bench.cc).
