@@ -4,9 +4,10 @@
 
 #include <CLI/CLI.hpp>
 
-#include "command.h"
 #include "sewerplan/core/generator.h"
 #include "sewerplan/core/map_io.h"
+
+#include "command.h"
 
 namespace sewerplan::cli {
 namespace {
@@ -45,7 +46,8 @@ void add_generate_command(CLI::App& app, Context& context) {
   // Shared with the callback, which CLI11 keeps after this function returns.
   auto o = std::make_shared<GenerateOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "generate", "Generate a seeded synthetic sewer network (the same arguments give the same map)");
+      "generate",
+      "Generate a seeded synthetic sewer network (the same arguments give the same map)");
   cmd->add_option("--manholes,-n", o->generator.manholes, "Number of manholes, 10 to 1000000")
       ->required();
   cmd->add_option("--seed,-s", o->generator.seed, "Random seed")->capture_default_str();
@@ -61,7 +63,8 @@ void add_generate_command(CLI::App& app, Context& context) {
   cmd->add_option("--high-step-fraction", o->generator.high_step_fraction,
                   "Share of incoming pipe ends more than 0.30 m above the manhole floor")
       ->capture_default_str();
-  cmd->add_option("--name", o->generator.name, "Map name (default generated-<topology>-<n>-<seed>)");
+  cmd->add_option("--name", o->generator.name,
+                  "Map name (default generated-<topology>-<n>-<seed>)");
   cmd->add_option("--out,-o", o->out, "Output map (.json or .sewer)")->required();
   cmd->callback([o, &context] { context.exit_code = run(*o, context); });
 }

@@ -10,9 +10,10 @@
 //
 // How it is made:
 //   1. Streets. A lattice of R x C street intersections, about 30% of the manholes (at least
-//      2 x 2), with every row and column gap drawn from 40-160 m. All streets are axis-aligned, so the turn
-//      between two streets at an intersection is exactly 0 or 90 degrees (MAKRO turns at most 90).
-//      A quarter, as one might first pick, leaves the tree's three-way manholes at about 5%.
+//      2 x 2), with every row and column gap drawn from 40-160 m. All streets are axis-aligned, so
+//      the turn between two streets at an intersection is exactly 0 or 90 degrees (MAKRO turns at
+//      most 90). A quarter, as one might first pick, leaves the tree's three-way manholes at about
+//      5%.
 //   2. Topology. kTree: a random spanning tree of the lattice (randomised Kruskal: the edges in a
 //      shuffled order, kept when they join two parts; Kruskal 1956). It has dead ends, as real
 //      sewers do. kMeshed: the tree plus mesh_fraction of the lattice edges it left out (at least
