@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include <algorithm>
+#include <map>
 #include <set>
 
 #include "sewerplan/core/mission.h"
@@ -200,6 +201,17 @@ void check_tasks(const Mission& m, const std::string& file, bool exits_unreadabl
     finals += m.tasks[i].final ? 1U : 0U;
   }
   if (finals > 1) d.error(file + ":$.tasks", "more than one task is marked final");
+  // One inspection of a pipe covers it; two would be indistinguishable in a plan.
+  std::map<PipeId, std::string> inspected;
+  for (const Task& t : m.tasks) {
+    if (t.kind != TaskKind::kInspectPipe) continue;
+    const PipeId pipe = std::get<PipeSpot>(t.place).pipe;
+    auto [it, added] = inspected.emplace(pipe, t.name);
+    if (!added) {
+      d.error(file + ":$.tasks", "tasks '" + it->second + "' and '" + t.name +
+                                     "' both inspect the same pipe");
+    }
+  }
   if (m.exits.empty() && finals == 0 && !exits_unreadable) {
     d.error(
         file + ":$.exits",
@@ -213,6 +225,18 @@ void check_tasks(const Mission& m, const std::string& file, bool exits_unreadabl
 const Task* Mission::final_task() const {
   auto it = std::find_if(tasks.begin(), tasks.end(), [](const Task& t) { return t.final; });
   return it == tasks.end() ? nullptr : &*it;
+}
+
+std::optional<TaskId> Mission::final_task_id() const {
+  for (TaskId id : task_ids()) {
+    if (tasks[id.index()].final) return id;
+  }
+  return std::nullopt;
+}
+
+const Task& Mission::task(TaskId id) const {
+  SEWER_CHECK(id.index() < tasks.size(), "task id does not belong to this mission");
+  return tasks[id.index()];
 }
 
 std::string_view to_string(TaskKind kind) {

@@ -27,11 +27,9 @@ constexpr std::array kNumberFields{
     NumberField{"manhole_pass_s", &RobotProfile::manhole_pass_s},
     NumberField{"turn_s_per_deg", &RobotProfile::turn_s_per_deg},
     NumberField{"step_s_per_m", &RobotProfile::step_s_per_m},
-    NumberField{"reverse_s", &RobotProfile::reverse_s},
     NumberField{"sample_s", &RobotProfile::sample_s},
     NumberField{"battery_wh", &RobotProfile::battery_wh},
-    NumberField{"drive_power_w", &RobotProfile::drive_power_w},
-    NumberField{"task_power_w", &RobotProfile::task_power_w},
+    NumberField{"power_w", &RobotProfile::power_w},
 };
 
 bool is_known_key(std::string_view key) {

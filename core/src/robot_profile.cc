@@ -67,11 +67,9 @@ Result<void> validate_profile(const RobotProfile& p) {
   non_negative(p.manhole_pass_s, "manhole_pass_s");
   non_negative(p.turn_s_per_deg, "turn_s_per_deg");
   non_negative(p.step_s_per_m, "step_s_per_m");
-  non_negative(p.reverse_s, "reverse_s");
   non_negative(p.sample_s, "sample_s");
   positive(p.battery_wh, "battery_wh");
-  positive(p.drive_power_w, "drive_power_w");
-  non_negative(p.task_power_w, "task_power_w");
+  positive(p.power_w, "power_w");
   const std::string text = problems.str();
   if (text.empty()) return {};
   return Error{ErrorCode::kInvalidProfile, "robot profile '" + p.name + "':" + text};

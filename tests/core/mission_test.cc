@@ -124,8 +124,8 @@ TEST(RobotProfile, BuiltInProfilesMatchThePaper) {
   const RobotProfile plus = *builtin_profile("makro-plus");
   EXPECT_DOUBLE_EQ(makro.speed_mps, 0.30);
   EXPECT_DOUBLE_EQ(plus.speed_mps, 0.60);
-  EXPECT_DOUBLE_EQ(makro.battery_wh / makro.drive_power_w, 2.0) << "about two hours";
-  EXPECT_DOUBLE_EQ(plus.battery_wh / plus.drive_power_w, 4.0) << "twice as long";
+  EXPECT_DOUBLE_EQ(makro.battery_wh / makro.power_w, 2.0) << "about two hours";
+  EXPECT_DOUBLE_EQ(plus.battery_wh / plus.power_w, 4.0) << "twice as long";
   for (const RobotProfile& p : {makro, plus}) {
     EXPECT_DOUBLE_EQ(p.min_pipe_diameter_m, 0.30);
     EXPECT_DOUBLE_EQ(p.max_pipe_diameter_m, 0.60);

@@ -45,6 +45,9 @@ using Place = std::variant<ManholeId, PipeSpot>;
 
 enum class TaskKind { kGoTo, kInspectPipe, kTakeWaterSample };
 
+// A task's position in Mission::tasks.
+using TaskId = StrongId<struct TaskTag>;
+
 std::string_view to_string(TaskKind kind);
 
 struct Task {
@@ -77,6 +80,9 @@ struct Mission {
 
   // The final task, if the mission has one.
   const Task* final_task() const;
+  std::optional<TaskId> final_task_id() const;
+  const Task& task(TaskId id) const;
+  IdRange<TaskId> task_ids() const { return id_range<TaskId>(tasks.size()); }
 };
 
 inline constexpr std::string_view kMissionJsonFormat = "sewerplan-mission";

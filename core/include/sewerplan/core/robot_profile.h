@@ -8,11 +8,13 @@
 // "makro-plus" (0.60 m/s, about 4 h). A mission names one, or gives its own (mission.h), in the
 // JSON form documented in docs/formats/mission-json.md.
 //
-// The limits prune actions in the planner; the times and powers give action costs in seconds and
-// energy in watt-hours: energy = time x power / 3600.
+// The limits prune actions in the planner; the times give action costs in seconds. Energy is the
+// mission's time at the profile's average power: energy_wh = time_s x power_w / 3600. One average
+// power (rather than one for driving and one for standing) keeps energy proportional to time, so
+// the battery becomes an exact bound on a plan's cost.
 //
 //   RobotProfile p = *builtin_profile("makro-plus");
-//   double hours = p.battery_wh / p.drive_power_w;  // endurance while driving
+//   double hours = p.battery_wh / p.power_w;  // endurance
 #pragma once
 
 #include <optional>
@@ -44,12 +46,14 @@ struct RobotProfile {
   double manhole_pass_s = 20;          // passing a manhole straight through
   double turn_s_per_deg = 0.3;         // added per degree of turn in a manhole
   double step_s_per_m = 100;           // added per metre of step, up or down
-  double reverse_s = 3;                // changing the driving direction inside a pipe
   double sample_s = 180;               // taking and analysing a water sample
   // Energy.
   double battery_wh = 240;
-  double drive_power_w = 120;  // while driving and manoeuvring
-  double task_power_w = 60;    // while standing (sampling)
+  double power_w = 120;  // average power while working
+
+  // The energy of `seconds` of work, and the seconds a given energy lasts.
+  double energy_wh(double seconds) const { return seconds * power_w / 3600.0; }
+  double seconds_for(double energy) const { return energy * 3600.0 / power_w; }
 
   friend bool operator==(const RobotProfile&, const RobotProfile&) = default;
 };
