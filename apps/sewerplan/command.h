@@ -3,7 +3,8 @@
 //
 // Exit codes are part of the interface that scripts rely on (docs/cli.md):
 //   0 success; 1 invalid input (a file that does not parse or validate, an impossible request);
-//   2 command-line usage error; 3 a file could not be read or written.
+//   2 command-line usage error; 3 a file could not be read or written; 4 no plan exists;
+//   5 the search stopped at its time or expansion limit (or was cancelled) without a plan.
 #pragma once
 
 #include <iosfwd>
@@ -23,6 +24,8 @@ enum ExitCode : int {
   kExitInvalidInput = 1,
   kExitUsage = 2,
   kExitIo = 3,
+  kExitNoPlan = 4,
+  kExitSearchLimit = 5,
 };
 
 // What a command's callback reports back to main().

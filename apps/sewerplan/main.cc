@@ -14,6 +14,11 @@ int exit_code_for(const Error& error) {
       return kExitIo;
     case ErrorCode::kInvalidArgument:
       return kExitUsage;
+    case ErrorCode::kNoPlan:
+      return kExitNoPlan;
+    case ErrorCode::kSearchLimit:
+    case ErrorCode::kCancelled:
+      return kExitSearchLimit;
     case ErrorCode::kParse:
     case ErrorCode::kInvalidMap:
     case ErrorCode::kInvalidMission:

@@ -19,6 +19,12 @@ std::string_view to_string(ErrorCode code) {
       return "invalid-argument";
     case ErrorCode::kUnsupportedFormat:
       return "unsupported-format";
+    case ErrorCode::kNoPlan:
+      return "no-plan";
+    case ErrorCode::kSearchLimit:
+      return "search-limit";
+    case ErrorCode::kCancelled:
+      return "cancelled";
   }
   return "unknown";
 }

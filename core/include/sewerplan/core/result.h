@@ -35,6 +35,9 @@ enum class ErrorCode {
   kInvalidProfile,     // the robot profile is missing or has impossible values
   kInvalidArgument,    // a caller passed a value outside the documented range
   kUnsupportedFormat,  // the file format is not one sewerplan reads or writes
+  kNoPlan,             // no plan exists: a task, an exit or the battery is out of reach
+  kSearchLimit,        // the search stopped at its time or expansion limit without a plan
+  kCancelled,          // the search was cancelled from another thread
 };
 
 std::string_view to_string(ErrorCode code);

@@ -1,0 +1,89 @@
+// SPDX-License-Identifier: MIT
+// compile_sewer_task: a map, a mission and the robot's progress, as a CompiledTask to search.
+//
+// The sewer domain's primitive actions (docs/domain.md) move the robot one pipe or one manhole at a
+// time; a plan on a city network has hundreds of them. Between two tasks, though, an optimal plan
+// always follows a cheapest route. So the compiler picks the *key positions* where something
+// happens (the start, the ends of task pipes and the spots of tasks in them, the slots of task
+// manholes), finds the cheapest route between every two of them with Dijkstra's algorithm over the
+// primitive moves that the robot's limits and the mission's closures allow, and one backward
+// search gives every key's cheapest way to an exit. The CompiledTask then has:
+//   - a position variable over the keys (and "at an exit" when the mission ends at one);
+//   - a variable per pending task (0 pending, 1 done);
+//   - GO(a, b) actions costing the cheapest route a -> b; one action per task and key it can start
+//     from, with the task's own cost; GO_EXIT(a) to the nearest exit; FINISH(a) for a final go-to;
+//   - the battery less the reserve, less the energy used, as the cost bound.
+// These are macro-operators in the sense of Botea et al. 2005 ("Macro-FF", JAIR 24), built
+// from exact shortest paths, so an optimal plan of the compiled task expands to an optimal
+// primitive plan; expand() turns a compiled plan back into the paper's actions.
+//
+// The compile reports what makes a mission impossible before any search: a task or every exit
+// out of reach (naming the task and the limit, closure or battery that prevents it).
+//
+// The SewerTask refers to the map and the mission: keep both alive while using it.
+//
+//   Result<SewerTask> task = compile_sewer_task(map, mission, initial_progress(mission, map));
+//   if (!task.has_value()) std::cerr << task.error().message;  // kNoPlan, with the reasons
+//   SearchResult r = engine.search(task->task(), stop);
+//   Plan plan = task->expand(r.plan);
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "sewerplan/core/mission.h"
+#include "sewerplan/core/result.h"
+#include "sewerplan/core/sewer_map.h"
+#include "sewerplan/domain/compiled_task.h"
+#include "sewerplan/domain/plan.h"
+#include "sewerplan/domain/robot_state.h"
+
+namespace sewerplan::domain {
+
+namespace detail {
+class PositionGraph;
+}
+
+struct CompileStatistics {
+  std::size_t keys = 0;
+  std::size_t graph_nodes = 0;      // positions of the primitive graph
+  std::size_t settled_nodes = 0;    // Dijkstra work over all searches
+  std::size_t route_searches = 0;
+  std::size_t actions = 0;
+  double time_s = 0;
+};
+
+class SewerTask {
+ public:
+  SewerTask(SewerTask&&) noexcept;
+  SewerTask& operator=(SewerTask&&) noexcept;
+  ~SewerTask();
+
+  const CompiledTask& task() const { return task_; }
+  const CompileStatistics& statistics() const { return statistics_; }
+
+  // The primitive plan of a plan of task(). Precondition: `plan` is a plan of task().
+  Plan expand(std::span<const ActionId> plan) const;
+
+ private:
+  friend class SewerTaskCompiler;
+  SewerTask();
+
+  CompiledTask task_;
+  CompileStatistics statistics_;
+  std::unique_ptr<detail::PositionGraph> graph_;
+  // Per action: its route as graph nodes (CSR), and the task step that ends it, if any.
+  std::vector<std::uint32_t> route_begin_;
+  std::vector<std::uint32_t> route_nodes_;
+  std::vector<std::optional<PlanStep>> task_step_;
+};
+
+// Fails with kNoPlan, listing every reason found, when a pending task or (without a final task)
+// every exit is out of reach of the start, within the robot's limits and the battery.
+Result<SewerTask> compile_sewer_task(const SewerMap& map, const Mission& mission,
+                                     const MissionProgress& progress);
+
+}  // namespace sewerplan::domain

@@ -1,0 +1,125 @@
+// SPDX-License-Identifier: MIT
+// CompiledTask: a planning task in finite-domain form, what the search engines work on.
+//
+// Variables with small finite domains, an initial value for each, a goal (a set of facts
+// var = value), and ground actions with preconditions and effects (facts) and an integer cost in
+// milliseconds, after Helmert's SAS+ representation as used by Fast Downward (Helmert 2006,
+// "The Fast Downward planning system", JAIR 26). A plan must cost at most cost_bound(): the
+// battery, for the sewer domain. The sewer compiler (compile.h) builds one from a map and a
+// mission; the engines in search/ know nothing of sewers, only this class.
+//
+// IDs (VarId, ActionId) are dense from 0 and belong to one task: do not mix them across tasks.
+//
+//   CompiledTask::Builder b;
+//   VarId pos = b.add_variable(3, "position");
+//   ActionId go = b.add_action({{pos, 0}}, {{pos, 2}}, 1500, "go 0->2");
+//   b.set_initial({0});
+//   b.add_goal({pos, 2});
+//   CompiledTask task = std::move(b).build();
+//   std::vector<ActionId> applicable;
+//   task.applicable_actions(task.initial_state(), applicable);  // {go}
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "sewerplan/core/strong_id.h"
+
+namespace sewerplan::domain {
+
+using VarId = StrongId<struct VarTag>;
+using ActionId = StrongId<struct ActionTag>;
+
+// Costs are integer milliseconds: sums are exact and the same on every machine.
+using Cost = std::int64_t;
+inline constexpr Cost kInfiniteCost = std::numeric_limits<Cost>::max() / 4;
+
+// Seconds to milliseconds, rounded to the nearest.
+Cost to_cost(double seconds);
+double to_seconds(Cost cost);
+
+struct Fact {
+  VarId var{0};
+  std::int32_t value = 0;
+  friend bool operator==(const Fact&, const Fact&) = default;
+};
+
+class CompiledTask {
+ public:
+  class Builder;
+
+  std::size_t variable_count() const { return domain_sizes_.size(); }
+  std::int32_t domain_size(VarId var) const { return domain_sizes_[var.index()]; }
+  const std::string& variable_name(VarId var) const { return variable_names_[var.index()]; }
+  std::span<const std::int32_t> initial_state() const { return initial_; }
+  std::span<const Fact> goal() const { return goal_; }
+
+  std::size_t action_count() const { return costs_.size(); }
+  IdRange<ActionId> action_ids() const { return id_range<ActionId>(costs_.size()); }
+  std::span<const Fact> preconditions(ActionId a) const;
+  std::span<const Fact> effects(ActionId a) const;
+  Cost cost(ActionId a) const { return costs_[a.index()]; }
+  const std::string& action_name(ActionId a) const { return names_[a.index()]; }
+
+  // Plans costing more than this are not plans (kInfiniteCost: no bound).
+  Cost cost_bound() const { return cost_bound_; }
+
+  // Total number of facts, and a dense index of each (for heuristics' per-fact arrays).
+  std::size_t fact_count() const { return fact_offsets_.back(); }
+  std::size_t fact_index(Fact f) const {
+    return fact_offsets_[f.var.index()] + static_cast<std::size_t>(f.value);
+  }
+
+  // Replaces `out` with the actions applicable in `state`, in increasing ID order.
+  // Runtime: O(variables + candidate actions), no allocation once `out` has grown.
+  void applicable_actions(std::span<const std::int32_t> state, std::vector<ActionId>& out) const;
+  bool is_applicable(ActionId a, std::span<const std::int32_t> state) const;
+  // Applies `a`'s effects to `state` in place. Precondition: a is applicable.
+  void apply(ActionId a, std::span<std::int32_t> state) const;
+  bool is_goal(std::span<const std::int32_t> state) const;
+
+ private:
+  std::vector<std::int32_t> domain_sizes_;
+  std::vector<std::string> variable_names_;
+  std::vector<std::int32_t> initial_;
+  std::vector<Fact> goal_;
+  // Actions: preconditions and effects flattened (CSR), costs, names.
+  std::vector<std::uint32_t> pre_begin_;
+  std::vector<std::uint32_t> eff_begin_;
+  std::vector<Fact> facts_;
+  std::vector<Cost> costs_;
+  std::vector<std::string> names_;
+  Cost cost_bound_ = kInfiniteCost;
+  // Successor index: actions by their first precondition's fact (CSR over fact_index), and the
+  // actions without preconditions.
+  std::vector<std::size_t> fact_offsets_;
+  std::vector<std::uint32_t> by_fact_begin_;
+  std::vector<ActionId> by_fact_;
+  std::vector<ActionId> unconditional_;
+};
+
+class CompiledTask::Builder {
+ public:
+  VarId add_variable(std::int32_t domain_size, std::string name);
+  ActionId add_action(std::span<const Fact> preconditions, std::span<const Fact> effects, Cost cost,
+                      std::string name);
+  ActionId add_action(std::initializer_list<Fact> preconditions,
+                      std::initializer_list<Fact> effects, Cost cost, std::string name) {
+    return add_action(std::span<const Fact>(preconditions.begin(), preconditions.size()),
+                      std::span<const Fact>(effects.begin(), effects.size()), cost,
+                      std::move(name));
+  }
+  void set_initial(std::vector<std::int32_t> values);
+  void add_goal(Fact fact);
+  void set_cost_bound(Cost bound);
+  // Checks every fact against its variable's domain (SEWER_CHECK: a compiler bug otherwise).
+  CompiledTask build() &&;
+
+ private:
+  CompiledTask task_;
+};
+
+}  // namespace sewerplan::domain

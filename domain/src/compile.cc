@@ -1,0 +1,304 @@
+// SPDX-License-Identifier: MIT
+// The sewer compiler: keys, routes between them, and the compiled task (compile.h).
+#include "sewerplan/domain/compile.h"
+
+#include <algorithm>
+#include <unordered_map>
+
+#include "sewerplan/core/clock.h"
+
+#include "compile_reasons.h"
+#include "graph_search.h"
+#include "position_graph.h"
+
+namespace sewerplan::domain {
+
+using detail::GraphSearch;
+using detail::Node;
+using detail::PositionGraph;
+
+SewerTask::SewerTask() = default;
+SewerTask::SewerTask(SewerTask&&) noexcept = default;
+SewerTask& SewerTask::operator=(SewerTask&&) noexcept = default;
+SewerTask::~SewerTask() = default;
+
+Plan SewerTask::expand(std::span<const ActionId> plan) const {
+  Plan out;
+  for (ActionId a : plan) {
+    for (std::uint32_t i = route_begin_[a.index()]; i + 1 < route_begin_[a.index() + 1]; ++i) {
+      out.steps.push_back(graph_->step(route_nodes_[i], route_nodes_[i + 1]));
+    }
+    if (task_step_[a.index()]) out.steps.push_back(*task_step_[a.index()]);
+  }
+  return out;
+}
+
+class SewerTaskCompiler {
+ public:
+  SewerTaskCompiler(const SewerMap& map, const Mission& mission, const MissionProgress& progress)
+      : map_(map), mission_(mission), progress_(progress) {
+    result_.graph_ = std::make_unique<PositionGraph>(map, mission);
+  }
+
+  Result<SewerTask> run() {
+    SteadyClock clock;
+    const double start_s = clock.now_s();
+    PositionGraph& graph = *result_.graph_;
+    select_tasks();
+    collect_keys(graph);
+    GraphSearch search(graph);
+    route(search);
+    detail::CompileReasons reasons(graph, mission_, progress_, bound_);
+    if (auto why = reasons.explain(keys_, pending_, dist_, exit_dist_, ends_at_exit_);
+        !why.empty()) {
+      return Error{ErrorCode::kNoPlan, "the mission cannot be completed:" + why};
+    }
+    build_task();
+    result_.statistics_.keys = keys_.size();
+    result_.statistics_.graph_nodes = graph.size();
+    result_.statistics_.settled_nodes = search.settled_total();
+    result_.statistics_.actions = result_.task_.action_count();
+    result_.statistics_.time_s = clock.now_s() - start_s;
+    return std::move(result_);
+  }
+
+ private:
+  std::size_t k() const { return keys_.size(); }
+
+  void select_tasks() {
+    for (TaskId t : mission_.task_ids()) {
+      if (!progress_.done[t.index()]) pending_.push_back(t);
+    }
+    const auto final_task = mission_.final_task_id();
+    ends_at_exit_ = !final_task.has_value();
+    const double budget_wh = mission_.profile.battery_wh * (1 - mission_.battery_reserve_fraction) -
+                             progress_.energy_used_wh;
+    bound_ = budget_wh < 0 ? -1 : to_cost(mission_.profile.seconds_for(budget_wh));
+  }
+
+  std::uint32_t add_key(Node n) {
+    auto [it, added] = key_of_.emplace(n, static_cast<std::uint32_t>(keys_.size()));
+    if (added) keys_.push_back(n);
+    return it->second;
+  }
+
+  void collect_keys(PositionGraph& graph) {
+    add_key(graph.node(progress_.position));
+    for (TaskId t : pending_) {
+      const Task& task = mission_.task(t);
+      if (const auto* m = std::get_if<ManholeId>(&task.place)) {
+        for (std::uint16_t s = 0; s < map_.manhole(*m).slot_count; ++s) {
+          add_key(graph.at_slot(*m, SlotIndex{s}));
+        }
+        continue;
+      }
+      const auto& spot = std::get<PipeSpot>(task.place);
+      const Pipe& pipe = map_.pipe(spot.pipe);
+      for (std::size_t e = 0; e < 2; ++e) {
+        if (pipe.ends[e].manhole || task.kind == TaskKind::kInspectPipe) {
+          add_key(graph.pipe_end(spot.pipe, e));
+        }
+      }
+      if (spot.offset_m && task.kind != TaskKind::kInspectPipe) {
+        add_key(graph.spot(spot.pipe, *spot.offset_m));
+      }
+    }
+  }
+
+  void route(GraphSearch& search) {
+    dist_.assign(k() * k(), kInfiniteCost);
+    routes_.assign(k() * k(), {});
+    // From the start first, without a bound, so that unreachable keys can be told from keys
+    // beyond the battery; then only the keys reachable within the bound take part.
+    search.run(std::span<const Node>(keys_.data(), 1), keys_, kInfiniteCost,
+               GraphSearch::Direction::kForward);
+    store_routes(search, 0);
+    std::vector<Node> reachable;
+    for (std::size_t b = 0; b < k(); ++b) {
+      if (dist_[b] <= bound_) reachable.push_back(keys_[b]);
+    }
+    for (std::size_t a = 1; a < k(); ++a) {
+      // A task's spot is reached by the task's action, not by a route: always route from it.
+      const bool spot = result_.graph_->is_extra_spot(keys_[a]);
+      if (!spot && dist_[a] > bound_) continue;
+      search.run(std::span<const Node>(&keys_[a], 1), reachable, spot ? bound_ : bound_ - dist_[a],
+                 GraphSearch::Direction::kForward);
+      store_routes(search, a);
+    }
+    result_.statistics_.route_searches = k();
+    if (ends_at_exit_) route_to_exits(search);
+  }
+
+  void store_routes(GraphSearch& search, std::size_t a) {
+    for (std::size_t b = 0; b < k(); ++b) {
+      dist_[a * k() + b] = search.distance(keys_[b]);
+      if (a != b && dist_[a * k() + b] != kInfiniteCost)
+        search.path(keys_[b], routes_[a * k() + b]);
+    }
+  }
+
+  void route_to_exits(GraphSearch& search) {
+    const PositionGraph& graph = *result_.graph_;
+    std::vector<Node> exits;
+    for (ManholeId e : mission_.exits) {
+      exits.push_back(graph.in_manhole(e));
+      for (std::uint16_t s = 0; s < map_.manhole(e).slot_count; ++s) {
+        exits.push_back(graph.at_slot(e, SlotIndex{s}));
+      }
+    }
+    search.run(exits, keys_, kInfiniteCost, GraphSearch::Direction::kBackward);
+    ++result_.statistics_.route_searches;
+    exit_dist_.assign(k(), kInfiniteCost);
+    exit_routes_.assign(k(), {});
+    for (std::size_t a = 0; a < k(); ++a) {
+      exit_dist_[a] = search.distance(keys_[a]);
+      search.path(keys_[a], exit_routes_[a]);
+    }
+  }
+
+  void build_task();
+  void add_action(std::vector<Fact> pre, std::vector<Fact> eff, Cost cost, std::string name,
+                  std::span<const Node> route, std::optional<PlanStep> step);
+  void add_task_actions(std::size_t index, VarId pos);
+  std::vector<Fact> task_preconditions(std::size_t index, VarId pos, std::uint32_t key) const;
+
+  const SewerMap& map_;
+  const Mission& mission_;
+  const MissionProgress& progress_;
+  SewerTask result_;
+  CompiledTask::Builder builder_;
+  std::vector<TaskId> pending_;
+  std::vector<VarId> task_vars_;
+  bool ends_at_exit_ = true;
+  Cost bound_ = 0;
+  std::vector<Node> keys_;
+  std::unordered_map<Node, std::uint32_t> key_of_;
+  std::vector<Cost> dist_;  // k x k, row = from
+  std::vector<std::vector<Node>> routes_;
+  std::vector<Cost> exit_dist_;
+  std::vector<std::vector<Node>> exit_routes_;
+};
+
+}  // namespace sewerplan::domain
+
+namespace sewerplan::domain {
+
+void SewerTaskCompiler::add_action(std::vector<Fact> pre, std::vector<Fact> eff, Cost cost,
+                                   std::string name, std::span<const Node> route,
+                                   std::optional<PlanStep> step) {
+  builder_.add_action(pre, eff, cost, std::move(name));
+  if (result_.route_begin_.empty()) result_.route_begin_.push_back(0);
+  result_.route_nodes_.insert(result_.route_nodes_.end(), route.begin(), route.end());
+  result_.route_begin_.push_back(static_cast<std::uint32_t>(result_.route_nodes_.size()));
+  result_.task_step_.push_back(std::move(step));
+}
+
+std::vector<Fact> SewerTaskCompiler::task_preconditions(std::size_t index, VarId pos,
+                                                        std::uint32_t key) const {
+  std::vector<Fact> pre{{pos, static_cast<std::int32_t>(key)}, {task_vars_[index], 0}};
+  if (mission_.task(pending_[index]).final) {
+    for (std::size_t j = 0; j < pending_.size(); ++j) {
+      if (j != index) pre.push_back({task_vars_[j], 1});
+    }
+  }
+  return pre;
+}
+
+void SewerTaskCompiler::add_task_actions(std::size_t index, VarId pos) {
+  PositionGraph& graph = *result_.graph_;
+  const TaskId t = pending_[index];
+  const Task& task = mission_.task(t);
+  const VarId var = task_vars_[index];
+  const RobotProfile& profile = mission_.profile;
+  const std::string label = "'" + task.name + "' from key ";
+  for (std::uint32_t y = 0; y < k(); ++y) {
+    if (const auto* m = std::get_if<ManholeId>(&task.place)) {
+      if (manhole_of(graph.position(keys_[y])) != *m) continue;
+      std::optional<PlanStep> step;
+      if (!task.final) step = GoToManhole{*m, t};
+      add_action(task_preconditions(index, pos, y), {{var, 1}}, 0,
+                 (task.final ? "finish " : "go-to ") + label + std::to_string(y), {}, step);
+      continue;
+    }
+    const auto& spot = std::get<PipeSpot>(task.place);
+    if (graph.pipe_of(keys_[y]) != spot.pipe) continue;
+    const double at = graph.offset_of(keys_[y]);
+    const auto pre = task_preconditions(index, pos, y);
+    auto move_to = [&](double x, std::vector<Fact> eff) {
+      if (x != at)
+        eff.push_back({pos, static_cast<std::int32_t>(key_of_.at(graph.spot(spot.pipe, x)))});
+      return eff;
+    };
+    switch (task.kind) {
+      case TaskKind::kTakeWaterSample: {
+        const double x = spot.offset_m.value_or(at);
+        add_action(pre, move_to(x, {{var, 1}}),
+                   to_cost(std::abs(x - at) / profile.speed_mps + profile.sample_s),
+                   "sample " + label + std::to_string(y), {}, TakeWaterSample{spot.pipe, t});
+        break;
+      }
+      case TaskKind::kGoTo: {
+        if (task.final && !spot.offset_m) {
+          add_action(pre, {{var, 1}}, 0, "finish " + label + std::to_string(y), {}, std::nullopt);
+          break;
+        }
+        const double x = spot.offset_m.value_or(at);
+        add_action(pre, move_to(x, {{var, 1}}), to_cost(std::abs(x - at) / profile.speed_mps),
+                   "go-to " + label + std::to_string(y), {}, GoToPoint{spot.pipe, t});
+        break;
+      }
+      case TaskKind::kInspectPipe: {
+        const Pipe& pipe = map_.pipe(spot.pipe);
+        for (std::uint8_t e = 0; e < 2; ++e) {
+          const double start_end = end_offset_m(pipe, 1U - e);
+          const Node finish = graph.pipe_end(spot.pipe, e);
+          std::optional<std::uint8_t> finish_end;
+          if (keys_[y] != graph.pipe_end(spot.pipe, 1U - e)) finish_end = e;
+          add_action(pre, {{var, 1}, {pos, static_cast<std::int32_t>(key_of_.at(finish))}},
+                     to_cost(std::abs(at - start_end) / profile.speed_mps +
+                             pipe.length_m / profile.inspection_speed_mps),
+                     "inspect " + label + std::to_string(y) + " to end " + std::to_string(e), {},
+                     InspectPipe{spot.pipe, t, finish_end});
+        }
+        break;
+      }
+    }
+  }
+}
+
+void SewerTaskCompiler::build_task() {
+  const auto exit_value = static_cast<std::int32_t>(k());
+  const VarId pos =
+      builder_.add_variable(static_cast<std::int32_t>(k()) + (ends_at_exit_ ? 1 : 0), "position");
+  for (TaskId t : pending_) {
+    task_vars_.push_back(builder_.add_variable(2, "task '" + mission_.task(t).name + "'"));
+  }
+  builder_.set_initial(std::vector<std::int32_t>(1 + pending_.size(), 0));
+  for (VarId v : task_vars_) builder_.add_goal({v, 1});
+  if (ends_at_exit_) builder_.add_goal({pos, exit_value});
+  builder_.set_cost_bound(bound_);
+  for (std::uint32_t a = 0; a < k(); ++a) {
+    for (std::uint32_t b = 0; b < k(); ++b) {
+      const Cost d = dist_[a * k() + b];
+      if (a == b || d > bound_) continue;
+      add_action({{pos, static_cast<std::int32_t>(a)}}, {{pos, static_cast<std::int32_t>(b)}}, d,
+                 "go key " + std::to_string(a) + " -> " + std::to_string(b), routes_[a * k() + b],
+                 std::nullopt);
+    }
+  }
+  for (std::size_t i = 0; i < pending_.size(); ++i) add_task_actions(i, pos);
+  for (std::uint32_t a = 0; ends_at_exit_ && a < k(); ++a) {
+    if (exit_dist_[a] > bound_) continue;
+    add_action({{pos, static_cast<std::int32_t>(a)}}, {{pos, exit_value}}, exit_dist_[a],
+               "exit from key " + std::to_string(a), exit_routes_[a], std::nullopt);
+  }
+  result_.task_ = std::move(builder_).build();
+}
+
+Result<SewerTask> compile_sewer_task(const SewerMap& map, const Mission& mission,
+                                     const MissionProgress& progress) {
+  SEWER_CHECK(progress.done.size() == mission.tasks.size(), "progress does not fit the mission");
+  return SewerTaskCompiler(map, mission, progress).run();
+}
+
+}  // namespace sewerplan::domain

@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: MIT
+// CompileReasons: why a mission cannot be done, found from the compile's route searches.
+//
+// Private to domain. Before any search, a pending task whose pipe or manhole no route reaches,
+// within the robot's limits, the mission's closures and the battery, or (for a mission that ends
+// at an exit) from which no exit is reachable, makes the mission impossible. Each reason names the
+// task and what stands in the way.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "position_graph.h"
+
+namespace sewerplan::domain::detail {
+
+class CompileReasons {
+ public:
+  CompileReasons(const PositionGraph& graph, const Mission& mission,
+                 const MissionProgress& progress, Cost bound)
+      : graph_(graph), mission_(mission), progress_(progress), bound_(bound) {}
+
+  // "\n  - reason" per problem; empty when none is known. `dist` is k x k (row 0: from the
+  // start), `exit_dist` per key (empty unless the mission ends at an exit).
+  std::string explain(const std::vector<Node>& keys, const std::vector<TaskId>& pending,
+                      const std::vector<Cost>& dist, const std::vector<Cost>& exit_dist,
+                      bool ends_at_exit) const;
+
+ private:
+  std::string task_reason(const Task& task, const std::vector<Node>& keys,
+                          const std::vector<Cost>& dist, const std::vector<Cost>& exit_dist,
+                          bool ends_at_exit) const;
+  std::string unreachable(const Task& task) const;
+  std::string energy(Cost cost) const;
+  std::string limits() const;
+  bool at_task(const Task& task, Node n) const;
+
+  const PositionGraph& graph_;
+  const Mission& mission_;
+  const MissionProgress& progress_;
+  Cost bound_;
+};
+
+}  // namespace sewerplan::domain::detail

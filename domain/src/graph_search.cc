@@ -1,0 +1,81 @@
+// SPDX-License-Identifier: MIT
+#include "graph_search.h"
+
+#include <algorithm>
+#include <functional>
+
+namespace sewerplan::domain::detail {
+
+namespace {
+constexpr Node kNoParent = 0xffffffffU;
+}
+
+GraphSearch::GraphSearch(const PositionGraph& graph)
+    : graph_(graph),
+      dist_(graph.size(), kInfiniteCost),
+      parent_(graph.size(), kNoParent),
+      settled_(graph.size(), false),
+      is_target_(graph.size(), false) {}
+
+void GraphSearch::run(std::span<const Node> sources, std::span<const Node> targets, Cost bound,
+                      Direction direction) {
+  for (Node n : touched_) {
+    dist_[n] = kInfiniteCost;
+    parent_[n] = kNoParent;
+    settled_[n] = false;
+  }
+  touched_.clear();
+  heap_.clear();
+  direction_ = direction;
+  std::size_t targets_left = 0;
+  for (Node t : targets) {
+    if (!is_target_[t]) ++targets_left;
+    is_target_[t] = true;
+  }
+  const auto later = std::greater<std::pair<Cost, Node>>();
+  for (Node s : sources) {
+    if (dist_[s] == 0) continue;
+    dist_[s] = 0;
+    touched_.push_back(s);
+    heap_.emplace_back(0, s);
+  }
+  std::make_heap(heap_.begin(), heap_.end(), later);
+  auto relax = [&](Node from, Node to, Cost cost) {
+    const Cost d = dist_[from] + cost;
+    if (d < dist_[to] && d <= bound) {
+      if (dist_[to] == kInfiniteCost) touched_.push_back(to);
+      dist_[to] = d;
+      parent_[to] = from;
+      heap_.emplace_back(d, to);
+      std::push_heap(heap_.begin(), heap_.end(), later);
+    }
+  };
+  while (!heap_.empty() && targets_left > 0) {
+    std::pop_heap(heap_.begin(), heap_.end(), later);
+    const auto [d, n] = heap_.back();
+    heap_.pop_back();
+    if (settled_[n] || d != dist_[n]) continue;
+    settled_[n] = true;
+    ++settled_total_;
+    if (is_target_[n]) --targets_left;
+    if (direction == Direction::kForward) {
+      graph_.for_each_successor(n, [&](Node to, Cost c) { relax(n, to, c); });
+    } else {
+      graph_.for_each_predecessor(n, [&](Node from, Cost c) { relax(n, from, c); });
+    }
+  }
+  for (Node t : targets) is_target_[t] = false;
+  // Nodes reached but not settled may have a distance that is not yet the shortest.
+  for (Node n : touched_) {
+    if (!settled_[n]) dist_[n] = kInfiniteCost;
+  }
+}
+
+void GraphSearch::path(Node n, std::vector<Node>& out) const {
+  out.clear();
+  if (dist_[n] == kInfiniteCost) return;
+  for (Node at = n; at != kNoParent; at = parent_[at]) out.push_back(at);
+  if (direction_ == Direction::kForward) std::reverse(out.begin(), out.end());
+}
+
+}  // namespace sewerplan::domain::detail

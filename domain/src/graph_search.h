@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: MIT
+// GraphSearch: Dijkstra's algorithm over a PositionGraph, reused for every key of a compile.
+//
+// Private to domain. Forward from one source, or backward from many (every exit at once, giving
+// each node's distance to its nearest exit). A run stops when every target is settled or the next
+// node costs more than the bound, so on a large map it explores only the region around the
+// mission's keys. The arrays are sized once and reset through the list of touched nodes.
+// Ties are broken by node number, so the paths are the same on every run.
+#pragma once
+
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "position_graph.h"
+
+namespace sewerplan::domain::detail {
+
+class GraphSearch {
+ public:
+  enum class Direction { kForward, kBackward };
+
+  explicit GraphSearch(const PositionGraph& graph);
+
+  void run(std::span<const Node> sources, std::span<const Node> targets, Cost bound,
+           Direction direction);
+  // kInfiniteCost if not reached in the last run.
+  Cost distance(Node n) const { return dist_[n]; }
+  // Forward: the nodes from the source to n. Backward: from n to its nearest source.
+  void path(Node n, std::vector<Node>& out) const;
+  // Nodes settled over all runs (a measure of work).
+  std::size_t settled_total() const { return settled_total_; }
+
+ private:
+  const PositionGraph& graph_;
+  std::vector<Cost> dist_;
+  std::vector<Node> parent_;
+  std::vector<bool> settled_;
+  std::vector<bool> is_target_;
+  std::vector<Node> touched_;
+  std::vector<std::pair<Cost, Node>> heap_;
+  Direction direction_ = Direction::kForward;
+  std::size_t settled_total_ = 0;
+};
+
+}  // namespace sewerplan::domain::detail

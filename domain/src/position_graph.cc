@@ -1,0 +1,156 @@
+// SPDX-License-Identifier: MIT
+#include "position_graph.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "sewerplan/core/check.h"
+#include "sewerplan/core/map_queries.h"
+
+namespace sewerplan::domain::detail {
+namespace {
+
+// Limits are compared with a small tolerance, so that a 90 degree turn computed from azimuths
+// with rounding error still counts as 90.
+constexpr double kLimitTolerance = 1e-9;
+
+ClosedPassage normalised(ClosedPassage c) {
+  if (c.to < c.from) std::swap(c.from, c.to);
+  return c;
+}
+
+bool passage_less(const ClosedPassage& a, const ClosedPassage& b) {
+  return std::tie(a.manhole, a.from, a.to) < std::tie(b.manhole, b.from, b.to);
+}
+
+}  // namespace
+
+PositionGraph::PositionGraph(const SewerMap& map, const Mission& mission)
+    : map_(map),
+      profile_(mission.profile),
+      manholes_(static_cast<Node>(map.manhole_count())),
+      slots_(static_cast<Node>(map.slot_count())),
+      pipes_(static_cast<Node>(map.pipe_count())) {
+  drivable_.resize(map.pipe_count());
+  for (PipeId p : map.pipe_ids()) {
+    const double d = map.pipe(p).diameter_m;
+    drivable_[p.index()] = d >= profile_.min_pipe_diameter_m - kLimitTolerance &&
+                           d <= profile_.max_pipe_diameter_m + kLimitTolerance;
+  }
+  for (PipeId p : mission.closed_pipes) drivable_[p.index()] = false;
+  for (const ClosedPassage& c : mission.closed_passages) closed_passages_.push_back(normalised(c));
+  std::sort(closed_passages_.begin(), closed_passages_.end(), passage_less);
+}
+
+Node PositionGraph::spot(PipeId pipe, double offset_m) {
+  const Pipe& p = map_.pipe(pipe);
+  if (offset_m <= 0) return pipe_end(pipe, 0);
+  if (offset_m >= p.length_m) return pipe_end(pipe, 1);
+  auto it = std::lower_bound(spots_by_pipe_.begin(), spots_by_pipe_.end(), pipe,
+                             [](const auto& entry, PipeId id) { return entry.first < id; });
+  if (it == spots_by_pipe_.end() || it->first != pipe) {
+    it = spots_by_pipe_.insert(it, {pipe, {}});
+  }
+  for (Node n : it->second) {
+    if (offset_of(n) == offset_m) return n;
+  }
+  const Node n = static_cast<Node>(manholes_ + slots_ + 2 * pipes_ + spots_.size());
+  spots_.push_back({pipe, offset_m});
+  it->second.push_back(n);
+  return n;
+}
+
+Node PositionGraph::node(const RobotPosition& position) {
+  if (const auto* m = std::get_if<InManhole>(&position)) return in_manhole(m->manhole);
+  if (const auto* s = std::get_if<AtSlot>(&position)) return at_slot(s->manhole, s->slot);
+  const auto& p = std::get<InPipe>(position);
+  return spot(p.pipe, p.offset_m);
+}
+
+const std::vector<Node>& PositionGraph::extra_spots_in(PipeId pipe) const {
+  static const std::vector<Node> kNone;
+  auto it = std::lower_bound(spots_by_pipe_.begin(), spots_by_pipe_.end(), pipe,
+                             [](const auto& entry, PipeId id) { return entry.first < id; });
+  return it == spots_by_pipe_.end() || it->first != pipe ? kNone : it->second;
+}
+
+ManholeId PositionGraph::manhole_of_slot_node(Node n, SlotIndex* slot) const {
+  const std::uint32_t global = n - manholes_;
+  // The manhole whose slot run contains `global`: the last with first_slot <= global and slots.
+  const auto manholes = map_.manholes();
+  auto it = std::upper_bound(manholes.begin(), manholes.end(), global,
+                             [](std::uint32_t g, const Manhole& m) { return g < m.first_slot; });
+  // Manholes without slots share first_slot with their successor: step back to one that has it.
+  do {
+    --it;
+  } while (it->slot_count == 0 || global >= it->first_slot + it->slot_count);
+  *slot = SlotIndex{static_cast<std::uint16_t>(global - it->first_slot)};
+  return ManholeId{static_cast<std::uint32_t>(it - manholes.begin())};
+}
+
+std::optional<PipeId> PositionGraph::pipe_of(Node n) const {
+  const Node first_end = manholes_ + slots_;
+  const Node first_spot = first_end + 2 * pipes_;
+  if (n < first_end) return std::nullopt;
+  if (n < first_spot) return PipeId{(n - first_end) / 2};
+  return spots_[n - first_spot].pipe;
+}
+
+double PositionGraph::offset_of(Node n) const {
+  const Node first_end = manholes_ + slots_;
+  const Node first_spot = first_end + 2 * pipes_;
+  SEWER_CHECK(n >= first_end, "offset of a node that is not in a pipe");
+  if (n < first_spot) {
+    const PipeId p{(n - first_end) / 2};
+    return (n - first_end) % 2 == 0 ? 0.0 : map_.pipe(p).length_m;
+  }
+  return spots_[n - first_spot].offset_m;
+}
+
+RobotPosition PositionGraph::position(Node n) const {
+  if (n < manholes_) return InManhole{ManholeId{n}};
+  if (n < manholes_ + slots_) {
+    SlotIndex s{0};
+    const ManholeId m = manhole_of_slot_node(n, &s);
+    return AtSlot{m, s};
+  }
+  return InPipe{*pipe_of(n), offset_of(n)};
+}
+
+bool PositionGraph::passage_allowed(ManholeId m, SlotIndex from, SlotIndex to) const {
+  const Slot& target = map_.slot(m, to);
+  if (!drivable_[target.pipe.index()]) return false;
+  if (passage_turn_deg(map_, m, from, to) > profile_.max_turn_deg + kLimitTolerance) return false;
+  if (std::abs(passage_step_m(map_, m, from, to)) > profile_.max_step_m + kLimitTolerance) {
+    return false;
+  }
+  if (closed_passages_.empty()) return true;
+  return !std::binary_search(closed_passages_.begin(), closed_passages_.end(),
+                             normalised({m, from, to}), passage_less);
+}
+
+Cost PositionGraph::passage_cost(ManholeId m, SlotIndex from, SlotIndex to) const {
+  return to_cost(profile_.manhole_pass_s +
+                 passage_turn_deg(map_, m, from, to) * profile_.turn_s_per_deg +
+                 std::abs(passage_step_m(map_, m, from, to)) * profile_.step_s_per_m);
+}
+
+Cost PositionGraph::drive_cost(double distance_m) const {
+  return to_cost(distance_m / profile_.speed_mps);
+}
+
+PlanStep PositionGraph::step(Node from, Node to) const {
+  const RobotPosition a = position(from);
+  const RobotPosition b = position(to);
+  if (const auto* m = std::get_if<InManhole>(&a)) {
+    return EnterPipe{m->manhole, std::get<InPipe>(b).pipe};
+  }
+  if (const auto* s = std::get_if<AtSlot>(&a)) {
+    const PipeId p = std::get<InPipe>(b).pipe;
+    const std::size_t end = *end_in_manhole(map_, p, s->manhole);
+    return DriveManhole{s->manhole, s->slot, map_.pipe(p).ends[end].slot};
+  }
+  return DrivePipeToManhole{std::get<InPipe>(a).pipe, std::get<AtSlot>(b).manhole};
+}
+
+}  // namespace sewerplan::domain::detail

@@ -1,0 +1,160 @@
+// SPDX-License-Identifier: MIT
+// PositionGraph: the robot's primitive moves on a map, as an implicit weighted graph.
+//
+// Private to domain. Nodes are the positions of docs/domain.md, numbered densely:
+//   [0, M)               in manhole m                    (M = manholes)
+//   [M, M + S)           at manhole m, slot s            (S = slots; the map's global slot order)
+//   [M + S, M + S + 2P)  in pipe p at end e: 2p + e      (P = pipes)
+//   [M + S + 2P, ...)    in pipe p at an extra spot      (a task's or the start's offset)
+// Edges are the movement actions (ENTER_PIPE, DRIVE_MANHOLE_..., DRIVE_PIPE_TO_MANHOLE) that the
+// robot's limits and the mission's closures allow, with their costs in milliseconds. Nothing is
+// materialised: successors and predecessors are generated from the map on demand, so a graph over
+// a million manholes costs only the per-pipe drivability flags.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "sewerplan/core/mission.h"
+#include "sewerplan/core/robot_profile.h"
+#include "sewerplan/core/sewer_map.h"
+#include "sewerplan/domain/compiled_task.h"
+#include "sewerplan/domain/plan.h"
+#include "sewerplan/domain/robot_state.h"
+
+namespace sewerplan::domain::detail {
+
+using Node = std::uint32_t;
+
+class PositionGraph {
+ public:
+  struct Spot {
+    PipeId pipe;
+    double offset_m;
+  };
+
+  PositionGraph(const SewerMap& map, const Mission& mission);
+
+  // Adds an extra spot in a pipe (or returns the node of an end, or of an existing spot, there).
+  Node spot(PipeId pipe, double offset_m);
+  Node node(const RobotPosition& position);
+
+  Node in_manhole(ManholeId m) const { return m.value(); }
+  Node at_slot(ManholeId m, SlotIndex s) const {
+    return manholes_ + map_.manhole(m).first_slot + s.value();
+  }
+  Node pipe_end(PipeId p, std::size_t end) const {
+    return manholes_ + slots_ + 2 * p.value() + static_cast<Node>(end);
+  }
+  std::size_t size() const { return manholes_ + slots_ + 2 * pipes_ + spots_.size(); }
+  // Extra spots are entered only by task actions, never by a move.
+  bool is_extra_spot(Node n) const { return n >= manholes_ + slots_ + 2 * pipes_; }
+
+  RobotPosition position(Node n) const;
+  // The pipe a pipe node is in.
+  std::optional<PipeId> pipe_of(Node n) const;
+  double offset_of(Node n) const;  // pipe nodes only
+  const std::vector<Node>& extra_spots_in(PipeId pipe) const;
+
+  bool pipe_drivable(PipeId p) const { return drivable_[p.index()]; }
+  bool passage_allowed(ManholeId m, SlotIndex from, SlotIndex to) const;
+  Cost passage_cost(ManholeId m, SlotIndex from, SlotIndex to) const;
+  Cost drive_cost(double distance_m) const;
+
+  // f(to, cost) for each move out of `from`.
+  template <class F>
+  void for_each_successor(Node from, F&& f) const;
+  // f(from, cost) for each move into `to`.
+  template <class F>
+  void for_each_predecessor(Node to, F&& f) const;
+  // The primitive action of the move from -> to. Precondition: that move exists.
+  PlanStep step(Node from, Node to) const;
+
+  const SewerMap& map() const { return map_; }
+  const RobotProfile& profile() const { return profile_; }
+
+ private:
+  ManholeId manhole_of_slot_node(Node n, SlotIndex* slot) const;
+  template <class F>
+  void drive_out_of_pipe(Node from, PipeId p, double x, F&& f) const;
+
+  const SewerMap& map_;
+  const RobotProfile& profile_;
+  Node manholes_;
+  Node slots_;
+  Node pipes_;
+  std::vector<bool> drivable_;
+  std::vector<ClosedPassage> closed_passages_;  // normalised: from < to, sorted
+  std::vector<Spot> spots_;
+  std::vector<std::pair<PipeId, std::vector<Node>>> spots_by_pipe_;  // sorted by pipe
+};
+
+template <class F>
+void PositionGraph::drive_out_of_pipe(Node, PipeId p, double x, F&& f) const {
+  const Pipe& pipe = map_.pipe(p);
+  for (std::size_t e = 0; e < 2; ++e) {
+    if (!pipe.ends[e].manhole) continue;
+    const double offset = e == 0 ? 0.0 : pipe.length_m;
+    f(at_slot(*pipe.ends[e].manhole, pipe.ends[e].slot),
+      drive_cost(x > offset ? x - offset : offset - x));
+  }
+}
+
+template <class F>
+void PositionGraph::for_each_successor(Node from, F&& f) const {
+  if (from < manholes_) {  // in manhole: ENTER_PIPE
+    const ManholeId m{from};
+    for (const Slot& s : map_.slots(m)) {
+      if (drivable_[s.pipe.index()]) {
+        f(pipe_end(s.pipe, s.pipe_end), to_cost(profile_.manhole_pass_s));
+      }
+    }
+  } else if (from < manholes_ + slots_) {  // at a slot: DRIVE_MANHOLE
+    SlotIndex i{0};
+    const ManholeId m = manhole_of_slot_node(from, &i);
+    const auto slots = map_.slots(m);
+    for (std::uint16_t j = 0; j < slots.size(); ++j) {
+      if (j == i.value() || !passage_allowed(m, i, SlotIndex{j})) continue;
+      f(pipe_end(slots[j].pipe, slots[j].pipe_end), passage_cost(m, i, SlotIndex{j}));
+    }
+  } else {  // in a pipe: DRIVE_PIPE_TO_MANHOLE
+    const PipeId p = *pipe_of(from);
+    drive_out_of_pipe(from, p, offset_of(from), f);
+  }
+}
+
+template <class F>
+void PositionGraph::for_each_predecessor(Node to, F&& f) const {
+  if (to < manholes_) return;     // nothing moves into "in manhole"
+  if (to < manholes_ + slots_) {  // reached by DRIVE_PIPE_TO_MANHOLE from any spot of the pipe
+    SlotIndex s{0};
+    const ManholeId m = manhole_of_slot_node(to, &s);
+    const Slot& slot = map_.slot(m, s);
+    const Pipe& pipe = map_.pipe(slot.pipe);
+    const double target = slot.pipe_end == 0 ? 0.0 : pipe.length_m;
+    for (std::size_t e = 0; e < 2; ++e) {
+      const double x = e == 0 ? 0.0 : pipe.length_m;
+      f(pipe_end(slot.pipe, e), drive_cost(x > target ? x - target : target - x));
+    }
+    for (Node n : extra_spots_in(slot.pipe)) {
+      const double x = offset_of(n);
+      f(n, drive_cost(x > target ? x - target : target - x));
+    }
+    return;
+  }
+  const Node first_spot = manholes_ + slots_ + 2 * pipes_;
+  if (to >= first_spot) return;  // extra spots are reached only by task actions
+  const PipeId p{(to - manholes_ - slots_) / 2};
+  const std::size_t e = (to - manholes_ - slots_) % 2;
+  const PipeEnd& end = map_.pipe(p).ends[e];
+  if (!end.manhole || !drivable_[p.index()]) return;
+  const ManholeId m = *end.manhole;
+  f(in_manhole(m), to_cost(profile_.manhole_pass_s));  // ENTER_PIPE
+  for (std::uint16_t i = 0; i < map_.manhole(m).slot_count; ++i) {
+    if (i == end.slot.value() || !passage_allowed(m, SlotIndex{i}, end.slot)) continue;
+    f(at_slot(m, SlotIndex{i}), passage_cost(m, SlotIndex{i}, end.slot));
+  }
+}
+
+}  // namespace sewerplan::domain::detail

@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: MIT
+// Heuristic: an estimate of the cost from a state to the goal, with preferred (helpful) actions.
+//
+// The heuristics are delete relaxations of the CompiledTask (Bonet and Geffner 2001, "Planning as
+// heuristic search", AIJ 129): h_max (admissible: A* with it finds optimal plans), h_add, and FF's
+// relaxed-plan heuristic (Hoffmann and Nebel 2001, "The FF planning system", JAIR 14), whose
+// helpful actions guide enforced hill-climbing. The blind heuristic (0 at every state) makes A*
+// uniform-cost search, for tests. kDeadEnd marks a state from which the relaxation reaches no
+// goal, so the real task cannot either.
+//
+//   std::unique_ptr<Heuristic> h = make_heuristic(HeuristicKind::kFf, task);
+//   std::vector<ActionId> helpful;
+//   Cost estimate = h->evaluate(task.initial_state(), &helpful);
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "sewerplan/domain/compiled_task.h"
+
+namespace sewerplan::search {
+
+using domain::ActionId;
+using domain::Cost;
+
+enum class HeuristicKind { kFf, kAdd, kMax, kBlind };
+
+std::string_view to_string(HeuristicKind kind);
+std::optional<HeuristicKind> heuristic_from_string(std::string_view name);  // ff, add, max, blind
+
+class Heuristic {
+ public:
+  static constexpr Cost kDeadEnd = -1;
+
+  virtual ~Heuristic() = default;
+  // The estimate for `state` (one value per variable), or kDeadEnd. If `preferred` is given, it
+  // is replaced by the heuristic's preferred actions (none for heuristics without them).
+  virtual Cost evaluate(std::span<const std::int32_t> state, std::vector<ActionId>* preferred) = 0;
+  // Never above the true cost to the goal.
+  virtual bool admissible() const = 0;
+  virtual std::string_view name() const = 0;
+};
+
+// `task` must outlive the heuristic.
+std::unique_ptr<Heuristic> make_heuristic(HeuristicKind kind, const domain::CompiledTask& task);
+
+}  // namespace sewerplan::search

@@ -1,0 +1,76 @@
+// SPDX-License-Identifier: MIT
+// plan_mission: from a map, a mission and the robot's progress to a plan in the paper's actions.
+//
+// The entry point for programs that plan: it compiles the mission (domain/compile.h), runs the
+// chosen search engine on the compiled task under the given limits, expands the result into the
+// primitive plan, and reports what it cost. Algorithms: enforced hill-climbing with FF's heuristic
+// and helpful actions (FF's own strategy: fast, not optimal); greedy best-first search; weighted
+// A*; A* with h_max (optimal); and auto, which picks A* when the task is small enough.
+//
+//   PlannerOptions options{.algorithm = Algorithm::kAstar, .time_limit_s = 1.0};
+//   Result<PlanOutcome> outcome = plan_mission(map, mission, initial_progress(mission, map),
+//                                              options);
+//   if (!outcome.has_value()) std::cerr << outcome.error().message;  // kNoPlan, kSearchLimit, ...
+//   std::cout << format_plan(outcome->plan, map, mission);
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string_view>
+
+#include "sewerplan/core/clock.h"
+#include "sewerplan/core/mission.h"
+#include "sewerplan/core/result.h"
+#include "sewerplan/core/sewer_map.h"
+#include "sewerplan/domain/compile.h"
+#include "sewerplan/domain/plan.h"
+#include "sewerplan/domain/robot_state.h"
+#include "sewerplan/search/heuristic.h"
+#include "sewerplan/search/search_engine.h"
+
+namespace sewerplan::search {
+
+// kAuto: A* with h_max (optimal) when the compiled task has at most 2^20 states (about 14 tasks
+// on a typical mission), enforced hill-climbing otherwise. On the paper's mission A* takes tens of
+// microseconds, and EHC's greedy choices cost 12-16% more time (bench/search/planner_bench.cc).
+enum class Algorithm { kAuto, kEhc, kGbfs, kWeightedAstar, kAstar };
+
+std::string_view to_string(Algorithm algorithm);
+// auto, ehc, gbfs, wastar, astar
+std::optional<Algorithm> algorithm_from_string(std::string_view name);
+
+struct PlannerOptions {
+  Algorithm algorithm = Algorithm::kAuto;
+  // Default: FF for ehc, gbfs and wastar; h_max for astar (admissible, so its plans are optimal).
+  std::optional<HeuristicKind> heuristic;
+  double weight = 2.0;               // wastar
+  double time_limit_s = 0;           // 0: none
+  std::uint64_t max_expansions = 0;  // 0: none
+  const std::atomic<bool>* cancel = nullptr;
+  const Clock* clock = nullptr;  // default: a steady clock
+};
+
+struct PlanOutcome {
+  domain::Plan plan;
+  double cost_s = 0;  // by the compiled task's costs (integer milliseconds per action)
+  double energy_wh = 0;
+  SearchStatistics search;
+  domain::CompileStatistics compile;
+  std::string algorithm;  // engine and heuristic, e.g. "enforced hill-climbing + ff"
+};
+
+// kAuto's choice for `task`; any other algorithm is returned as it is.
+Algorithm resolve(Algorithm algorithm, const domain::CompiledTask& task);
+
+std::unique_ptr<SearchEngine> make_engine(Algorithm algorithm, const domain::CompiledTask& task,
+                                          Heuristic& heuristic, double weight);
+
+// kNoPlan: the mission (or what is left of it) cannot be completed, with the reasons;
+// kSearchLimit / kCancelled: the search stopped first.
+Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
+                                 const domain::MissionProgress& progress,
+                                 const PlannerOptions& options);
+
+}  // namespace sewerplan::search

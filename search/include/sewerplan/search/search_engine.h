@@ -1,0 +1,67 @@
+// SPDX-License-Identifier: MIT
+// SearchEngine: the common face of sewerplan's heuristic search algorithms.
+//
+// An engine searches a domain::CompiledTask for a plan: initialize(), then step() (one expansion)
+// until it returns a final status, then result(). search() runs that loop under a StopCondition,
+// checked at every step, so a time limit or a cancel from another thread is honoured within one
+// expansion. Engines: BestFirstSearch (A*, weighted A*, greedy best-first, by configuration) and
+// EnforcedHillClimbing (FF's). Modelled on Fast Downward's SearchAlgorithm (Helmert 2006).
+//
+//   BestFirstSearch astar(task, heuristic, BestFirstSearch::astar());
+//   SearchResult r = astar.search(StopCondition::after_seconds(clock, 1.0));
+//   if (r.status == SearchStatus::kSolved) use(r.plan);
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <ostream>
+#include <string_view>
+#include <vector>
+
+#include "sewerplan/domain/compiled_task.h"
+#include "sewerplan/search/stop_condition.h"
+
+namespace sewerplan::search {
+
+using domain::ActionId;
+using domain::Cost;
+
+struct SearchStatistics {
+  std::uint64_t expanded = 0;
+  std::uint64_t generated = 0;
+  std::uint64_t evaluated = 0;  // heuristic evaluations
+  std::uint64_t reopened = 0;
+  std::uint64_t dead_ends = 0;  // states the heuristic proved unsolvable, or over the cost bound
+  double time_s = 0;
+  std::size_t peak_memory_bytes = 0;  // states, search data and open list at their largest
+  friend bool operator==(const SearchStatistics&, const SearchStatistics&) = default;
+};
+
+std::ostream& operator<<(std::ostream& os, const SearchStatistics& s);
+
+struct SearchResult {
+  SearchStatus status = SearchStatus::kUnsolvable;
+  std::vector<ActionId> plan;
+  Cost cost = 0;
+  SearchStatistics statistics;
+  friend bool operator==(const SearchResult&, const SearchResult&) = default;
+};
+
+class SearchEngine {
+ public:
+  virtual ~SearchEngine() = default;
+
+  // Runs initialize() and step() until a final status or until `stop` fires; the statistics'
+  // time is measured on `clock`.
+  SearchResult search(const StopCondition& stop, const Clock& clock);
+  SearchResult search(const StopCondition& stop);  // on a SteadyClock
+
+  virtual void initialize() = 0;
+  // One expansion. Returns nullopt while the search goes on, else its final status.
+  virtual std::optional<SearchStatus> step() = 0;
+  virtual SearchResult result() const = 0;
+  virtual const SearchStatistics& statistics() const = 0;
+  virtual std::string_view name() const = 0;
+};
+
+}  // namespace sewerplan::search

@@ -1,0 +1,136 @@
+// SPDX-License-Identifier: MIT
+#include "sewerplan/search/planner.h"
+
+#include <iomanip>
+#include <sstream>
+
+#include "sewerplan/search/best_first_search.h"
+#include "sewerplan/search/enforced_hill_climbing.h"
+
+namespace sewerplan::search {
+
+std::string_view to_string(Algorithm algorithm) {
+  switch (algorithm) {
+    case Algorithm::kAuto:
+      return "auto";
+    case Algorithm::kEhc:
+      return "ehc";
+    case Algorithm::kGbfs:
+      return "gbfs";
+    case Algorithm::kWeightedAstar:
+      return "wastar";
+    case Algorithm::kAstar:
+      return "astar";
+  }
+  return "ehc";
+}
+
+std::optional<Algorithm> algorithm_from_string(std::string_view name) {
+  for (Algorithm a : {Algorithm::kAuto, Algorithm::kEhc, Algorithm::kGbfs,
+                      Algorithm::kWeightedAstar, Algorithm::kAstar}) {
+    if (to_string(a) == name) return a;
+  }
+  return std::nullopt;
+}
+
+Algorithm resolve(Algorithm algorithm, const domain::CompiledTask& task) {
+  if (algorithm != Algorithm::kAuto) return algorithm;
+  double states = 1;
+  for (std::size_t v = 0; v < task.variable_count(); ++v) {
+    states *= task.domain_size(domain::VarId{static_cast<std::uint32_t>(v)});
+  }
+  return states <= static_cast<double>(1 << 20) ? Algorithm::kAstar : Algorithm::kEhc;
+}
+
+std::unique_ptr<SearchEngine> make_engine(Algorithm algorithm, const domain::CompiledTask& task,
+                                          Heuristic& heuristic, double weight) {
+  switch (algorithm) {
+    case Algorithm::kAuto:
+      return make_engine(resolve(algorithm, task), task, heuristic, weight);
+    case Algorithm::kEhc:
+      return std::make_unique<EnforcedHillClimbing>(task, heuristic);
+    case Algorithm::kGbfs:
+      return std::make_unique<BestFirstSearch>(task, heuristic, BestFirstSearch::greedy());
+    case Algorithm::kWeightedAstar:
+      return std::make_unique<BestFirstSearch>(task, heuristic,
+                                               BestFirstSearch::weighted_astar(weight));
+    case Algorithm::kAstar:
+      return std::make_unique<BestFirstSearch>(task, heuristic, BestFirstSearch::astar());
+  }
+  return nullptr;
+}
+
+namespace {
+
+std::string wh(double v) {
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(1) << v << " Wh";
+  return out.str();
+}
+
+Error search_failure(SearchStatus status, const Mission& mission,
+                     const domain::MissionProgress& progress, const domain::CompiledTask& task) {
+  switch (status) {
+    case SearchStatus::kUnsolvable: {
+      const double available = mission.profile.energy_wh(domain::to_seconds(task.cost_bound()));
+      std::size_t pending = 0;
+      for (bool done : progress.done) pending += done ? 0U : 1U;
+      return Error{
+          ErrorCode::kNoPlan,
+          "the mission cannot be completed:\n  - no plan does all " + std::to_string(pending) +
+              " remaining tasks within the battery's " + wh(available) + " (battery " +
+              wh(mission.profile.battery_wh) + " less " +
+              std::to_string(static_cast<int>(mission.battery_reserve_fraction * 100)) +
+              "% reserve" +
+              (progress.energy_used_wh > 0 ? ", less " + wh(progress.energy_used_wh) + " used"
+                                           : std::string()) +
+              "), though each task alone is within reach"};
+    }
+    case SearchStatus::kTimeLimit:
+      return Error{ErrorCode::kSearchLimit, "the search reached its time limit without a plan"};
+    case SearchStatus::kExpansionLimit:
+      return Error{ErrorCode::kSearchLimit,
+                   "the search reached its expansion limit without a plan"};
+    case SearchStatus::kCancelled:
+      return Error{ErrorCode::kCancelled, "the search was cancelled"};
+    case SearchStatus::kSolved:
+      break;
+  }
+  return Error{ErrorCode::kNoPlan, "no plan"};
+}
+
+}  // namespace
+
+Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
+                                 const domain::MissionProgress& progress,
+                                 const PlannerOptions& options) {
+  const SteadyClock steady;
+  const Clock& clock = options.clock != nullptr ? *options.clock : steady;
+  Result<domain::SewerTask> compiled = domain::compile_sewer_task(map, mission, progress);
+  if (!compiled.has_value()) return compiled.error();
+  const domain::CompiledTask& task = compiled->task();
+  const Algorithm algorithm = resolve(options.algorithm, task);
+  const HeuristicKind kind = options.heuristic.value_or(
+      algorithm == Algorithm::kAstar ? HeuristicKind::kMax : HeuristicKind::kFf);
+  std::unique_ptr<Heuristic> heuristic = make_heuristic(kind, task);
+  std::unique_ptr<SearchEngine> engine = make_engine(algorithm, task, *heuristic, options.weight);
+  StopCondition stop = options.time_limit_s > 0
+                           ? StopCondition::after_seconds(clock, options.time_limit_s)
+                           : StopCondition();
+  if (options.max_expansions > 0) stop.with_max_expansions(options.max_expansions);
+  if (options.cancel != nullptr) stop.with_cancel(*options.cancel);
+  SearchResult result = engine->search(stop, clock);
+  if (result.status != SearchStatus::kSolved) {
+    return search_failure(result.status, mission, progress, task);
+  }
+  PlanOutcome outcome;
+  outcome.plan = compiled->expand(result.plan);
+  outcome.cost_s = domain::to_seconds(result.cost);
+  outcome.energy_wh = mission.profile.energy_wh(outcome.cost_s);
+  outcome.search = result.statistics;
+  outcome.compile = compiled->statistics();
+  outcome.algorithm = std::string(engine->name()) + " + " + std::string(heuristic->name());
+  return outcome;
+}
+
+}  // namespace sewerplan::search

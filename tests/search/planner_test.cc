@@ -1,0 +1,190 @@
+// SPDX-License-Identifier: MIT
+// Planning missions end to end: the paper's mission, and missions that cannot be done.
+#include "sewerplan/search/planner.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "sewerplan/core/map_builder.h"
+#include "sewerplan/core/map_io.h"
+#include "support/paths.h"
+
+namespace sewerplan::search {
+namespace {
+
+using domain::DriveManhole;
+using domain::DrivePipeToManhole;
+using domain::InspectPipe;
+using domain::PlanStep;
+using domain::TakeWaterSample;
+using ::testing::HasSubstr;
+
+class AisPlanning : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    Diagnostics d;
+    auto map = read_map(testing::dataset_path("ais-testbed/map.json"), d);
+    ASSERT_TRUE(map.has_value());
+    map_ = std::move(*map);
+    auto mission = read_mission(testing::dataset_path("ais-testbed/missions/paper.json"), map_, d);
+    ASSERT_TRUE(mission.has_value()) << mission.error();
+    mission_ = std::move(*mission);
+  }
+  ManholeId m(const char* name) const { return *map_.find_manhole(name); }
+  PipeId p(const char* name) const { return *map_.find_pipe(name); }
+  Result<PlanOutcome> plan(Algorithm algorithm) const {
+    return plan_mission(map_, mission_, domain::initial_progress(mission_, map_),
+                        {.algorithm = algorithm});
+  }
+  SewerMap map_;
+  Mission mission_;
+};
+
+// The paper's plan (section 6), with one difference: sewerplan's INSPECT_PIPE drives the pipe
+// while scanning it, so it comes before DRIVE_PIPE_TO_MANHOLE P4 M5 rather than after (the
+// paper's FF domain recorded the inspection on arrival at M5). Same 14 actions, same route.
+TEST_F(AisPlanning, OptimalPlanIsThePapersRoute) {
+  Result<PlanOutcome> outcome = plan(Algorithm::kAstar);
+  ASSERT_TRUE(outcome.has_value()) << outcome.error();
+  const std::vector<PlanStep> expected{
+      DrivePipeToManhole{p("P12"), m("M2")},
+      DriveManhole{m("M2"), SlotIndex{0}, SlotIndex{1}},
+      DrivePipeToManhole{p("P1"), m("M3")},
+      DriveManhole{m("M3"), SlotIndex{2}, SlotIndex{0}},
+      DrivePipeToManhole{p("P5"), m("M6")},
+      DriveManhole{m("M6"), SlotIndex{2}, SlotIndex{3}},
+      TakeWaterSample{p("P6"), TaskId{0}},
+      DrivePipeToManhole{p("P6"), m("M6")},
+      DriveManhole{m("M6"), SlotIndex{3}, SlotIndex{1}},
+      InspectPipe{p("P4"), TaskId{1}, std::nullopt},
+      DrivePipeToManhole{p("P4"), m("M5")},
+      DriveManhole{m("M5"), SlotIndex{3}, SlotIndex{0}},
+      DrivePipeToManhole{p("P8"), m("M9")},
+      DriveManhole{m("M9"), SlotIndex{0}, SlotIndex{1}},
+  };
+  EXPECT_EQ(outcome->plan.steps, expected);
+  EXPECT_EQ(outcome->algorithm, "A* + max");
+}
+
+TEST_F(AisPlanning, AutoChoosesTheOptimalSearchForASmallMission) {
+  Result<PlanOutcome> best = plan(Algorithm::kAstar);
+  Result<PlanOutcome> automatic = plan(Algorithm::kAuto);
+  ASSERT_TRUE(best.has_value() && automatic.has_value());
+  EXPECT_EQ(automatic->plan, best->plan);
+}
+
+TEST_F(AisPlanning, EveryAlgorithmFindsAPlanNoCheaperThanTheOptimum) {
+  Result<PlanOutcome> best = plan(Algorithm::kAstar);
+  ASSERT_TRUE(best.has_value());
+  for (Algorithm a : {Algorithm::kEhc, Algorithm::kGbfs, Algorithm::kWeightedAstar}) {
+    Result<PlanOutcome> outcome = plan(a);
+    ASSERT_TRUE(outcome.has_value()) << to_string(a) << ": " << outcome.error();
+    EXPECT_GE(outcome->cost_s, best->cost_s) << to_string(a);
+    EXPECT_FALSE(outcome->plan.steps.empty());
+  }
+}
+
+TEST_F(AisPlanning, NamesATaskInAPipeTheRobotCannotDrive) {
+  mission_.profile.max_pipe_diameter_m = 0.5;  // every AIS pipe is 0.60 m
+  mission_.profile.min_pipe_diameter_m = 0.3;
+  Result<PlanOutcome> outcome = plan(Algorithm::kAuto);
+  ASSERT_FALSE(outcome.has_value());
+  EXPECT_EQ(outcome.error().code, ErrorCode::kNoPlan);
+  EXPECT_THAT(outcome.error().message,
+              HasSubstr("task 'inspect' (inspect_pipe): pipe P4 is 0.60 m, outside makro-1.1's "
+                        "0.30-0.50 m"));
+}
+
+TEST_F(AisPlanning, NamesATaskCutOffByClosures) {
+  // P4 is reached only through M6 and M5; close the passages into it from P5 and P6, and P8 and
+  // P3 at M5, and P13.
+  mission_.closed_pipes = {p("P10"), p("P13"), p("P8"), p("P3")};
+  mission_.closed_passages = {{m("M6"), SlotIndex{2}, SlotIndex{1}},
+                              {m("M6"), SlotIndex{3}, SlotIndex{1}}};
+  Result<PlanOutcome> outcome = plan(Algorithm::kAuto);
+  ASSERT_FALSE(outcome.has_value());
+  EXPECT_THAT(outcome.error().message,
+              HasSubstr("task 'inspect' (inspect_pipe): no route from the start (in pipe P12 at "
+                        "2.8285 m) reaches pipe P4 within makro-1.1's limits"));
+}
+
+TEST_F(AisPlanning, ReportsABatteryTooSmallForOneTask) {
+  mission_.profile.battery_wh = 10;  // 8 Wh usable: 240 s
+  Result<PlanOutcome> outcome = plan(Algorithm::kAuto);
+  ASSERT_FALSE(outcome.has_value());
+  EXPECT_THAT(outcome.error().message, HasSubstr("needs at least"));
+  EXPECT_THAT(outcome.error().message, HasSubstr("but 8.0 Wh are available"));
+}
+
+TEST_F(AisPlanning, ReportsABatteryTooSmallForAllTasksTogether) {
+  // 19.5 Wh is the optimum; each task alone and the way to P9 fit in 18.
+  mission_.profile.battery_wh = 18 / 0.8;
+  Result<PlanOutcome> outcome = plan(Algorithm::kAuto);
+  ASSERT_FALSE(outcome.has_value());
+  EXPECT_EQ(outcome.error().code, ErrorCode::kNoPlan);
+  EXPECT_THAT(outcome.error().message,
+              HasSubstr("no plan does all 3 remaining tasks within the battery's 18.0 Wh"));
+}
+
+// A line A -P1- B -P2- C; exits at A only.
+SewerMap line_map(double p2_diameter_m) {
+  MapBuilder b("line");
+  b.add_manhole({.name = "A", .diameter_m = 1, .exit = true, .slots = {{.pipe = "P1"}}});
+  b.add_manhole({.name = "B",
+                 .position = {10, 0, 0},
+                 .diameter_m = 1,
+                 .slots = {{.pipe = "P1", .azimuth_deg = 180}, {.pipe = "P2"}}});
+  b.add_manhole({.name = "C",
+                 .position = {20, 0, 0},
+                 .diameter_m = 1,
+                 .slots = {{.pipe = "P2", .azimuth_deg = 180}}});
+  b.add_pipe({.name = "P1", .from = "A", .to = "B", .length_m = 10, .diameter_m = 0.4});
+  b.add_pipe({.name = "P2", .from = "B", .to = "C", .length_m = 10, .diameter_m = p2_diameter_m});
+  Diagnostics d;
+  return *std::move(b).build(d);
+}
+
+TEST(Planner, NamesTheExitsWhenNoneCanBeReached) {
+  const SewerMap map = line_map(0.4);
+  Mission mission;
+  mission.profile = *builtin_profile("makro-1.1");
+  mission.start = PipeSpot{*map.find_pipe("P2"), {}, {}};
+  mission.exits = {*map.find_manhole("A")};
+  mission.closed_passages = {{*map.find_manhole("B"), SlotIndex{0}, SlotIndex{1}}};
+  Result<PlanOutcome> outcome =
+      plan_mission(map, mission, domain::initial_progress(mission, map), {});
+  ASSERT_FALSE(outcome.has_value());
+  EXPECT_THAT(outcome.error().message,
+              HasSubstr("no exit (A) can be reached from the start (in pipe P2 at 5 m)"));
+}
+
+TEST(Planner, ReturnsAnEmptyPlanWhenTheRobotIsAlreadyDone) {
+  const SewerMap map = line_map(0.4);
+  Mission mission;
+  mission.start = *map.find_manhole("A");
+  mission.exits = {*map.find_manhole("A")};
+  Result<PlanOutcome> outcome =
+      plan_mission(map, mission, domain::initial_progress(mission, map), {});
+  ASSERT_TRUE(outcome.has_value()) << outcome.error();
+  EXPECT_TRUE(outcome->plan.steps.empty());
+  EXPECT_EQ(outcome->cost_s, 0);
+}
+
+TEST(Planner, EntersAPipeFromAStartInAManhole) {
+  const SewerMap map = line_map(0.4);
+  Mission mission;
+  mission.start = *map.find_manhole("C");
+  mission.exits = {*map.find_manhole("A")};
+  Result<PlanOutcome> outcome =
+      plan_mission(map, mission, domain::initial_progress(mission, map), {});
+  ASSERT_TRUE(outcome.has_value()) << outcome.error();
+  const std::vector<PlanStep> expected{
+      domain::EnterPipe{*map.find_manhole("C"), *map.find_pipe("P2")},
+      DrivePipeToManhole{*map.find_pipe("P2"), *map.find_manhole("B")},
+      DriveManhole{*map.find_manhole("B"), SlotIndex{1}, SlotIndex{0}},
+      DrivePipeToManhole{*map.find_pipe("P1"), *map.find_manhole("A")}};
+  EXPECT_EQ(outcome->plan.steps, expected);
+}
+
+}  // namespace
+}  // namespace sewerplan::search
