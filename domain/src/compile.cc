@@ -105,17 +105,59 @@ class SewerTaskCompiler {
     }
   }
 
+  // Keys a route can end at: not task spots (only task actions enter them), and not pipe ends
+  // that no move enters (the robot's limits forbid every passage into that pipe there). A route
+  // search stops once all its targets are settled, so an unreachable target would make it
+  // explore everything within the bound.
+  std::vector<Node> route_targets() const {
+    std::vector<Node> targets;
+    for (Node n : keys_) {
+      if (can_be_entered(n)) targets.push_back(n);
+    }
+    return targets;
+  }
+
+  // Whether some move ends at n from a position the robot can itself get to: "in manhole" only
+  // as the start, a slot only out of a pipe it can drive (or starts in).
+  bool can_be_entered(Node n) const {
+    const PositionGraph& graph = *result_.graph_;
+    if (graph.is_extra_spot(n)) return false;
+    const Node start = keys_[0];
+    auto reachable_source = [&](Node from) {
+      if (from == start) return true;
+      const RobotPosition p = graph.position(from);
+      if (std::holds_alternative<InManhole>(p)) return false;
+      if (const auto* s = std::get_if<AtSlot>(&p)) {
+        const PipeId pipe = map_.slot(s->manhole, s->slot).pipe;
+        return graph.pipe_drivable(pipe) || graph.pipe_of(start) == pipe;
+      }
+      const PipeId pipe = std::get<InPipe>(p).pipe;
+      return graph.pipe_drivable(pipe) || graph.pipe_of(start) == pipe;
+    };
+    bool entered = false;
+    graph.for_each_predecessor(
+        n, [&](Node from, Cost) { entered = entered || reachable_source(from); });
+    return entered;
+  }
+
   void route(GraphSearch& search) {
     dist_.assign(k() * k(), kInfiniteCost);
     routes_.assign(k() * k(), {});
-    // From the start first, without a bound, so that unreachable keys can be told from keys
-    // beyond the battery; then only the keys reachable within the bound take part.
-    search.run(std::span<const Node>(keys_.data(), 1), keys_, kInfiniteCost,
+    const std::vector<Node> targets = route_targets();
+    // From the start first: only the keys it reaches within the bound take part after.
+    search.run(std::span<const Node>(keys_.data(), 1), targets, bound_,
                GraphSearch::Direction::kForward);
     store_routes(search, 0);
+    if (needs_unbounded_diagnosis()) {
+      // Some task is out of reach within the battery: find out whether it is out of reach at all,
+      // so that the reason given is the right one.
+      search.run(std::span<const Node>(keys_.data(), 1), targets, kInfiniteCost,
+                 GraphSearch::Direction::kForward);
+      store_routes(search, 0);
+    }
     std::vector<Node> reachable;
-    for (std::size_t b = 0; b < k(); ++b) {
-      if (dist_[b] <= bound_) reachable.push_back(keys_[b]);
+    for (Node n : targets) {
+      if (dist_[key_of_.at(n)] <= bound_) reachable.push_back(n);
     }
     for (std::size_t a = 1; a < k(); ++a) {
       // A task's spot is reached by the task's action, not by a route: always route from it.
@@ -126,7 +168,25 @@ class SewerTaskCompiler {
       store_routes(search, a);
     }
     result_.statistics_.route_searches = k();
-    if (ends_at_exit_) route_to_exits(search);
+    if (ends_at_exit_) route_to_exits(search, targets);
+  }
+
+  // Whether some pending task has no key the start reaches within the bound (row 0 of dist_).
+  bool needs_unbounded_diagnosis() const {
+    const PositionGraph& graph = *result_.graph_;
+    for (TaskId t : pending_) {
+      const Task& task = mission_.task(t);
+      bool reached = false;
+      for (std::size_t e = 0; e < k() && !reached; ++e) {
+        const bool at_task =
+            std::holds_alternative<ManholeId>(task.place)
+                ? manhole_of(graph.position(keys_[e])) == std::get<ManholeId>(task.place)
+                : graph.pipe_of(keys_[e]) == std::get<PipeSpot>(task.place).pipe;
+        reached = at_task && dist_[e] <= bound_;
+      }
+      if (!reached) return true;
+    }
+    return false;
   }
 
   void store_routes(GraphSearch& search, std::size_t a) {
@@ -137,22 +197,31 @@ class SewerTaskCompiler {
     }
   }
 
-  void route_to_exits(GraphSearch& search) {
+  // Each key's cheapest way to its nearest exit: a forward search that stops at the first exit
+  // it settles. (One backward search from all exits would grow a ball around every exit of the
+  // city; with exits every few manholes the forward balls are small.)
+  void route_to_exits(GraphSearch& search, const std::vector<Node>& targets) {
     const PositionGraph& graph = *result_.graph_;
-    std::vector<Node> exits;
+    std::vector<bool> exit_node(graph.size(), false);
     for (ManholeId e : mission_.exits) {
-      exits.push_back(graph.in_manhole(e));
+      exit_node[graph.in_manhole(e)] = true;
       for (std::uint16_t s = 0; s < map_.manhole(e).slot_count; ++s) {
-        exits.push_back(graph.at_slot(e, SlotIndex{s}));
+        exit_node[graph.at_slot(e, SlotIndex{s})] = true;
       }
     }
-    search.run(exits, keys_, kInfiniteCost, GraphSearch::Direction::kBackward);
-    ++result_.statistics_.route_searches;
     exit_dist_.assign(k(), kInfiniteCost);
     exit_routes_.assign(k(), {});
     for (std::size_t a = 0; a < k(); ++a) {
-      exit_dist_[a] = search.distance(keys_[a]);
-      search.path(keys_[a], exit_routes_[a]);
+      const Node n = keys_[a];
+      const bool in_reach =
+          a == 0 || graph.is_extra_spot(n) ||
+          (std::find(targets.begin(), targets.end(), n) != targets.end() && dist_[a] <= bound_);
+      if (!in_reach) continue;
+      const std::optional<Node> exit = search.run_to_nearest(n, exit_node, bound_);
+      ++result_.statistics_.route_searches;
+      if (!exit) continue;
+      exit_dist_[a] = search.distance(*exit);
+      search.path(*exit, exit_routes_[a]);
     }
   }
 

@@ -17,8 +17,7 @@ GraphSearch::GraphSearch(const PositionGraph& graph)
       settled_(graph.size(), false),
       is_target_(graph.size(), false) {}
 
-void GraphSearch::run(std::span<const Node> sources, std::span<const Node> targets, Cost bound,
-                      Direction direction) {
+void GraphSearch::reset() {
   for (Node n : touched_) {
     dist_[n] = kInfiniteCost;
     parent_[n] = kNoParent;
@@ -26,19 +25,12 @@ void GraphSearch::run(std::span<const Node> sources, std::span<const Node> targe
   }
   touched_.clear();
   heap_.clear();
+}
+
+template <class Done>
+std::optional<Node> GraphSearch::settle(Cost bound, Direction direction, Done&& done) {
   direction_ = direction;
-  std::size_t targets_left = 0;
-  for (Node t : targets) {
-    if (!is_target_[t]) ++targets_left;
-    is_target_[t] = true;
-  }
   const auto later = std::greater<std::pair<Cost, Node>>();
-  for (Node s : sources) {
-    if (dist_[s] == 0) continue;
-    dist_[s] = 0;
-    touched_.push_back(s);
-    heap_.emplace_back(0, s);
-  }
   std::make_heap(heap_.begin(), heap_.end(), later);
   auto relax = [&](Node from, Node to, Cost cost) {
     const Cost d = dist_[from] + cost;
@@ -50,25 +42,60 @@ void GraphSearch::run(std::span<const Node> sources, std::span<const Node> targe
       std::push_heap(heap_.begin(), heap_.end(), later);
     }
   };
-  while (!heap_.empty() && targets_left > 0) {
+  std::optional<Node> stopped_at;
+  while (!heap_.empty()) {
     std::pop_heap(heap_.begin(), heap_.end(), later);
     const auto [d, n] = heap_.back();
     heap_.pop_back();
     if (settled_[n] || d != dist_[n]) continue;
     settled_[n] = true;
     ++settled_total_;
-    if (is_target_[n]) --targets_left;
+    if (done(n)) {
+      stopped_at = n;
+      break;
+    }
     if (direction == Direction::kForward) {
       graph_.for_each_successor(n, [&](Node to, Cost c) { relax(n, to, c); });
     } else {
       graph_.for_each_predecessor(n, [&](Node from, Cost c) { relax(n, from, c); });
     }
   }
-  for (Node t : targets) is_target_[t] = false;
   // Nodes reached but not settled may have a distance that is not yet the shortest.
   for (Node n : touched_) {
     if (!settled_[n]) dist_[n] = kInfiniteCost;
   }
+  return stopped_at;
+}
+
+void GraphSearch::run(std::span<const Node> sources, std::span<const Node> targets, Cost bound,
+                      Direction direction) {
+  reset();
+  std::size_t targets_left = 0;
+  for (Node t : targets) {
+    if (!is_target_[t]) ++targets_left;
+    is_target_[t] = true;
+  }
+  for (Node s : sources) {
+    if (dist_[s] == 0) continue;
+    dist_[s] = 0;
+    touched_.push_back(s);
+    heap_.emplace_back(0, s);
+  }
+  if (targets_left > 0) {
+    settle(bound, direction, [&](Node n) { return is_target_[n] && --targets_left == 0; });
+  } else {
+    heap_.clear();
+  }
+  for (Node t : targets) is_target_[t] = false;
+}
+
+std::optional<Node> GraphSearch::run_to_nearest(Node source, const std::vector<bool>& goal,
+                                                Cost bound) {
+  reset();
+  dist_[source] = 0;
+  touched_.push_back(source);
+  heap_.emplace_back(0, source);
+  return settle(bound, Direction::kForward, [&](Node n) { return goal[n]; });
 }
 
 void GraphSearch::path(Node n, std::vector<Node>& out) const {

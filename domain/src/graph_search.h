@@ -8,6 +8,7 @@
 // Ties are broken by node number, so the paths are the same on every run.
 #pragma once
 
+#include <optional>
 #include <span>
 #include <utility>
 #include <vector>
@@ -24,6 +25,9 @@ class GraphSearch {
 
   void run(std::span<const Node> sources, std::span<const Node> targets, Cost bound,
            Direction direction);
+  // Forward from `source` until the first node with goal[node] is settled; returns it, if any
+  // is reached within the bound.
+  std::optional<Node> run_to_nearest(Node source, const std::vector<bool>& goal, Cost bound);
   // kInfiniteCost if not reached in the last run.
   Cost distance(Node n) const { return dist_[n]; }
   // Forward: the nodes from the source to n. Backward: from n to its nearest source.
@@ -41,6 +45,12 @@ class GraphSearch {
   std::vector<std::pair<Cost, Node>> heap_;
   Direction direction_ = Direction::kForward;
   std::size_t settled_total_ = 0;
+
+  void reset();
+  // Settles the heap's nodes until done(node) says stop or the heap runs dry; returns the node
+  // that stopped it.
+  template <class Done>
+  std::optional<Node> settle(Cost bound, Direction direction, Done&& done);
 };
 
 }  // namespace sewerplan::domain::detail

@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: MIT
+// Compiling a mission into a search task, by network size and number of tasks.
+// Baseline: one full Dijkstra over the primitive graph from the start (what every key would cost
+// without the early stop once all keys are settled).
+#include <benchmark/benchmark.h>
+
+#include <map>
+
+#include "sewerplan/core/generator.h"
+#include "sewerplan/domain/compile.h"
+#include "sewerplan/domain/mission_generator.h"
+
+namespace sewerplan::domain {
+namespace {
+
+struct Instance {
+  SewerMap map;
+  Mission mission;
+};
+
+const Instance& generated(std::size_t manholes, std::size_t tasks) {
+  static std::map<std::pair<std::size_t, std::size_t>, Instance> cache;
+  auto key = std::make_pair(manholes, tasks);
+  auto it = cache.find(key);
+  if (it == cache.end()) {
+    Instance i;
+    i.map = *generate_network({.manholes = manholes, .seed = 1, .topology = Topology::kMeshed});
+    i.mission = *generate_mission(i.map, {.tasks = tasks, .seed = 1});
+    it = cache.emplace(key, std::move(i)).first;
+  }
+  return it->second;
+}
+
+void BM_CompileSewerTask(benchmark::State& state) {
+  const Instance& i = generated(static_cast<std::size_t>(state.range(0)),
+                                static_cast<std::size_t>(state.range(1)));
+  const MissionProgress progress = initial_progress(i.mission, i.map);
+  CompileStatistics stats;
+  for (auto _ : state) {
+    auto task = compile_sewer_task(i.map, i.mission, progress);
+    if (!task.has_value()) {
+      state.SkipWithError(task.error().message.c_str());
+      return;
+    }
+    stats = task->statistics();
+  }
+  state.counters["keys"] = static_cast<double>(stats.keys);
+  state.counters["settled"] = static_cast<double>(stats.settled_nodes);
+  state.counters["graph_nodes"] = static_cast<double>(stats.graph_nodes);
+  state.counters["actions"] = static_cast<double>(stats.actions);
+}
+BENCHMARK(BM_CompileSewerTask)
+    ->ArgNames({"manholes", "tasks"})
+    ->Args({1000, 3})
+    ->Args({10000, 10})
+    ->Args({100000, 3})
+    ->Args({100000, 20})
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace sewerplan::domain

@@ -1,0 +1,137 @@
+// SPDX-License-Identifier: MIT
+// Planning speed: first plan on the paper's mission and on generated networks, heuristic
+// evaluation rate, and the search's memory per state.
+//
+// Issue #3's figures: first plan on the AIS test environment (goal: under 100 microseconds) and
+// on 100,000 manholes with 20 tasks (goal: under 50 ms), both compile and search, map loading
+// excluded; heuristic evaluations per second; bytes per stored state. Baselines: uniform-cost
+// search (A* with the blind heuristic) for planning, the blind heuristic for evaluation.
+#include <benchmark/benchmark.h>
+
+#include <map>
+#include <tuple>
+
+#include "sewerplan/core/generator.h"
+#include "sewerplan/core/map_io.h"
+#include "sewerplan/domain/compile.h"
+#include "sewerplan/domain/mission_generator.h"
+#include "sewerplan/search/best_first_search.h"
+#include "sewerplan/search/planner.h"
+
+namespace sewerplan::search {
+namespace {
+
+struct Instance {
+  SewerMap map;
+  Mission mission;
+};
+
+const Instance& ais() {
+  static const Instance instance = [] {
+    Diagnostics d;
+    const std::string dir = std::string(SEWERPLAN_SOURCE_DIR) + "/datasets/ais-testbed/";
+    Instance i;
+    i.map = *read_map(dir + "map.json", d);
+    i.mission = *read_mission(dir + "missions/paper.json", i.map, d);
+    return i;
+  }();
+  return instance;
+}
+
+const Instance& generated(std::size_t manholes, std::size_t tasks) {
+  static std::map<std::pair<std::size_t, std::size_t>, Instance> cache;
+  auto key = std::make_pair(manholes, tasks);
+  auto it = cache.find(key);
+  if (it == cache.end()) {
+    Instance i;
+    i.map = *generate_network({.manholes = manholes, .seed = 1, .topology = Topology::kMeshed});
+    i.mission = *domain::generate_mission(i.map, {.tasks = tasks, .seed = 1});
+    it = cache.emplace(key, std::move(i)).first;
+  }
+  return it->second;
+}
+
+void plan_once(benchmark::State& state, const Instance& instance, Algorithm algorithm,
+               std::optional<HeuristicKind> heuristic = std::nullopt) {
+  const auto progress = domain::initial_progress(instance.mission, instance.map);
+  PlanOutcome last;
+  for (auto _ : state) {
+    auto outcome = plan_mission(instance.map, instance.mission, progress,
+                                {.algorithm = algorithm, .heuristic = heuristic});
+    if (!outcome.has_value()) {
+      state.SkipWithError(outcome.error().message.c_str());
+      return;
+    }
+    last = std::move(*outcome);
+  }
+  state.counters["cost_s"] = last.cost_s;
+  state.counters["steps"] = static_cast<double>(last.plan.steps.size());
+  state.counters["expanded"] = static_cast<double>(last.search.expanded);
+  state.counters["keys"] = static_cast<double>(last.compile.keys);
+  state.counters["compile_us"] = last.compile.time_s * 1e6;
+}
+
+void BM_PlanAisAuto(benchmark::State& state) { plan_once(state, ais(), Algorithm::kAuto); }
+void BM_PlanAisEhc(benchmark::State& state) { plan_once(state, ais(), Algorithm::kEhc); }
+void BM_PlanAisUniformCost(benchmark::State& state) {
+  plan_once(state, ais(), Algorithm::kAstar, HeuristicKind::kBlind);
+}
+BENCHMARK(BM_PlanAisAuto)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PlanAisEhc)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PlanAisUniformCost)->Unit(benchmark::kMicrosecond);
+
+void BM_PlanGenerated(benchmark::State& state) {
+  const Instance& instance = generated(static_cast<std::size_t>(state.range(0)),
+                                       static_cast<std::size_t>(state.range(1)));
+  plan_once(state, instance, static_cast<Algorithm>(state.range(2)));
+}
+BENCHMARK(BM_PlanGenerated)
+    ->ArgNames({"manholes", "tasks", "algorithm"})
+    ->Args({1000, 3, static_cast<int>(Algorithm::kAuto)})
+    ->Args({10000, 10, static_cast<int>(Algorithm::kAuto)})
+    ->Args({100000, 20, static_cast<int>(Algorithm::kAuto)})
+    ->Args({100000, 20, static_cast<int>(Algorithm::kEhc)})
+    ->Args({100000, 20, static_cast<int>(Algorithm::kGbfs)})
+    ->Args({100000, 10, static_cast<int>(Algorithm::kAstar)})
+    ->Unit(benchmark::kMillisecond);
+
+void evaluate(benchmark::State& state, HeuristicKind kind) {
+  const Instance& instance = generated(100000, 20);
+  auto compiled = domain::compile_sewer_task(instance.map, instance.mission,
+                                             domain::initial_progress(instance.mission, instance.map));
+  auto h = make_heuristic(kind, compiled->task());
+  std::vector<ActionId> preferred;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(h->evaluate(compiled->task().initial_state(), &preferred));
+  }
+  state.counters["evaluations_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["facts"] = static_cast<double>(compiled->task().fact_count());
+  state.counters["actions"] = static_cast<double>(compiled->task().action_count());
+}
+void BM_FfHeuristicEvaluate(benchmark::State& state) { evaluate(state, HeuristicKind::kFf); }
+void BM_MaxHeuristicEvaluate(benchmark::State& state) { evaluate(state, HeuristicKind::kMax); }
+void BM_BlindHeuristicEvaluate(benchmark::State& state) { evaluate(state, HeuristicKind::kBlind); }
+BENCHMARK(BM_FfHeuristicEvaluate);
+BENCHMARK(BM_MaxHeuristicEvaluate);
+BENCHMARK(BM_BlindHeuristicEvaluate);
+
+// Memory per stored state: an A* run that stores many states (10 tasks, blind heuristic).
+void BM_AstarBytesPerState(benchmark::State& state) {
+  const Instance& instance = generated(10000, 10);
+  auto compiled = domain::compile_sewer_task(instance.map, instance.mission,
+                                             domain::initial_progress(instance.mission, instance.map));
+  SearchResult last;
+  for (auto _ : state) {
+    auto h = make_heuristic(HeuristicKind::kBlind, compiled->task());
+    BestFirstSearch astar(compiled->task(), *h, BestFirstSearch::astar());
+    last = astar.search(StopCondition());
+  }
+  state.counters["states"] = static_cast<double>(last.statistics.generated);
+  state.counters["bytes_per_state"] = static_cast<double>(last.statistics.peak_memory_bytes) /
+                                      static_cast<double>(last.statistics.generated);
+}
+BENCHMARK(BM_AstarBytesPerState)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace sewerplan::search
