@@ -34,8 +34,7 @@ MissionProgress initial_progress(const Mission& mission, const SewerMap& map) {
     progress.position = InManhole{*m};
   } else {
     const auto& spot = std::get<PipeSpot>(mission.start);
-    progress.position =
-        InPipe{spot.pipe, spot.offset_m.value_or(map.pipe(spot.pipe).length_m / 2)};
+    progress.position = InPipe{spot.pipe, spot.offset_m.value_or(map.pipe(spot.pipe).length_m / 2)};
   }
   return progress;
 }
