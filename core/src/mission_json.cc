@@ -208,8 +208,8 @@ void check_tasks(const Mission& m, const std::string& file, bool exits_unreadabl
     const PipeId pipe = std::get<PipeSpot>(t.place).pipe;
     auto [it, added] = inspected.emplace(pipe, t.name);
     if (!added) {
-      d.error(file + ":$.tasks", "tasks '" + it->second + "' and '" + t.name +
-                                     "' both inspect the same pipe");
+      d.error(file + ":$.tasks",
+              "tasks '" + it->second + "' and '" + t.name + "' both inspect the same pipe");
     }
   }
   if (m.exits.empty() && finals == 0 && !exits_unreadable) {

@@ -67,5 +67,28 @@ if cmp -s "$tmp/g1.json" "$tmp/g2.json"; then passed=$((passed + 1)); else
 expect 0 'valid \(500 manholes' -- "$sp" validate "$tmp/g1.json"
 expect 2 'manholes' -- "$sp" generate --manholes 3 -o "$tmp/g3.json"
 
+# Plans: the paper's (invalid at step 11), its correction, FF and Fast Downward forms, bad lines.
+plans=$src/datasets/ais-testbed/plans
+check=("$sp" check --map "$ais" --mission "$mission")
+expect 0 '^valid: 14 steps, 585\.4 s, 19\.5 Wh$' -- "${check[@]}" "$plans/paper-corrected.plan"
+expect 1 '^invalid: step 11 \(INSPECT_PIPE P4\): the robot is at M5 slot 4 \(P4\), not in pipe P4$' -- \
+  "${check[@]}" "$plans/paper-section-6.plan"
+head -n 9 "$plans/paper-corrected.plan" > "$tmp/short.plan"
+expect 1 "invalid: goal not reached: task 'inspect' \(inspect_pipe\) is not done" -- \
+  "${check[@]}" "$tmp/short.plan"
+printf 'DRIVE_PIPE_TO_MANHOLE P12 M2\nDRIVE_PIPE_TO_MANHOLE P99 M2\n' > "$tmp/bad.plan"
+expect 1 "bad.plan:2: error: unknown pipe 'P99'" -- "${check[@]}" "$tmp/bad.plan"
+expect 1 '"valid": false' -- "${check[@]}" "$tmp/bad.plan" --json
+sed 's/.*/(\L&)/' "$plans/paper-corrected.plan" > "$tmp/fd.plan"
+echo '; cost = 585 (general cost)' >> "$tmp/fd.plan"
+expect 0 '^valid: 14 steps' -- "${check[@]}" "$tmp/fd.plan"
+awk '{ printf "%s%5d: %s\n", (NR == 1 ? "step " : "     "), NR - 1, $0 }' \
+  "$plans/paper-corrected.plan" > "$tmp/ff.plan"
+expect 0 '^valid: 14 steps' -- "${check[@]}" "$tmp/ff.plan"
+expect 0 '"action": "INSPECT_PIPE P4"' -- "${check[@]}" "$plans/paper-corrected.plan" --json
+expect 1 '"failed_step": 11' -- "${check[@]}" "$plans/paper-section-6.plan" --json
+expect 3 'cannot read .*missing.plan' -- "${check[@]}" "$tmp/missing.plan"
+expect 2 'mission' -- "$sp" check --map "$ais" "$plans/paper-corrected.plan"
+
 echo "$passed passed, $failures failed"
 [ "$failures" -eq 0 ]

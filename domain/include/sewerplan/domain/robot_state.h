@@ -50,7 +50,7 @@ double end_offset_m(const Pipe& pipe, std::size_t end);
 
 struct MissionProgress {
   RobotPosition position;
-  std::vector<bool> done;    // per task, indexed by TaskId
+  std::vector<bool> done;  // per task, indexed by TaskId
   double energy_used_wh = 0;
   friend bool operator==(const MissionProgress&, const MissionProgress&) = default;
 };

@@ -1,0 +1,76 @@
+// SPDX-License-Identifier: MIT
+// sewerplan check --map MAP --mission MISSION PLAN [--json]
+#include <ostream>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "sewerplan/core/map_io.h"
+#include "sewerplan/core/mission.h"
+#include "sewerplan/core/text_file.h"
+#include "sewerplan/domain/plan_json.h"
+#include "sewerplan/domain/plan_text.h"
+#include "sewerplan/domain/validator.h"
+
+#include "command.h"
+
+namespace sewerplan::cli {
+namespace {
+
+struct CheckOptions {
+  std::string map;
+  std::string mission;
+  std::string plan;
+  bool json = false;
+};
+
+// Reports a failure to load an input and returns its exit code.
+int failed(const Error& error, const Diagnostics& diagnostics, bool json, Context& c) {
+  print_diagnostics(diagnostics, c.err);
+  if (diagnostics.error_count() == 0) c.err << error.message << '\n';
+  if (json) {
+    nlohmann::ordered_json j = {{"format", domain::kPlanJsonFormat},
+                                {"version", domain::kPlanJsonVersion},
+                                {"valid", false},
+                                {"error", error.message}};
+    c.out << j.dump(2) << '\n';
+  }
+  return exit_code_for(error);
+}
+
+int run(const CheckOptions& o, Context& c) {
+  Diagnostics diagnostics;
+  Result<SewerMap> map = read_map(o.map, diagnostics);
+  if (!map.has_value()) return failed(map.error(), diagnostics, o.json, c);
+  Result<Mission> mission = read_mission(o.mission, *map, diagnostics);
+  if (!mission.has_value()) return failed(mission.error(), diagnostics, o.json, c);
+  Result<std::string> text = read_text_file(o.plan);
+  if (!text.has_value()) return failed(text.error(), diagnostics, o.json, c);
+  Diagnostics plan_diagnostics;
+  Result<domain::Plan> plan = domain::parse_plan(*text, o.plan, *map, *mission, plan_diagnostics);
+  if (!plan.has_value()) return failed(plan.error(), plan_diagnostics, o.json, c);
+  const domain::ValidationReport report = domain::validate_plan(*plan, *map, *mission);
+  if (o.json) {
+    domain::write_plan_json(*plan, report, *map, *mission, c.out);
+  } else {
+    c.out << report << '\n';
+  }
+  return report.valid ? kExitOk : kExitInvalidInput;
+}
+
+}  // namespace
+
+void add_check_command(CLI::App& app, Context& context) {
+  // Shared with the callback, which CLI11 keeps after this function returns.
+  auto options = std::make_shared<CheckOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "check",
+      "Validate a plan (the paper's text, or FF's or Fast Downward's output) on a map and mission");
+  cmd->add_option("--map", options->map, "Map file (.json or .sewer)")->required();
+  cmd->add_option("--mission", options->mission, "Mission file (.json)")->required();
+  cmd->add_option("plan", options->plan, "Plan file, one action a line")->required();
+  cmd->add_flag("--json", options->json, "Print the plan, its costs and the verdict as JSON");
+  cmd->callback([options, &context] { context.exit_code = run(*options, context); });
+}
+
+}  // namespace sewerplan::cli
