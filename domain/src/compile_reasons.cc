@@ -89,6 +89,14 @@ std::string CompileReasons::explain(const std::vector<Node>& keys,
     return "\n  - the battery is spent: " + fixed(progress_.energy_used_wh, 1) +
            " Wh used, and the reserve must stay";
   }
+  if (const auto* in = std::get_if<InPipe>(&progress_.position);
+      in && !graph_.pipe_fits(in->pipe)) {
+    const Pipe& pipe = graph_.map().pipe(in->pipe);
+    const RobotProfile& p = mission_.profile;
+    return "\n  - the robot starts in pipe " + pipe.name + ", which " + p.name +
+           " cannot drive: " + fixed(pipe.diameter_m, 2) + " m, outside its " +
+           fixed(p.min_pipe_diameter_m, 2) + "-" + fixed(p.max_pipe_diameter_m, 2) + " m";
+  }
   for (TaskId t : pending) {
     const Task& task = mission_.task(t);
     const std::string why = task_reason(task, keys, dist, exit_dist, ends_at_exit);

@@ -251,9 +251,9 @@ Result<double> PlanReplay::offset_in(PipeId pipe) const {
     return invalid("the robot is " + describe(progress_.position, *map_) + ", not in pipe " +
                    map_->pipe(pipe).name);
   }
-  // Only a start can put the robot in a pipe it may not drive: DRIVE_MANHOLE and ENTER_PIPE
-  // check the pipe they drive into.
-  if (auto problem = undrivable(pipe)) {
+  // Only a start can put the robot in a pipe it does not fit: DRIVE_MANHOLE and ENTER_PIPE
+  // check the pipe they drive into. A closure forbids entering a pipe, not leaving it.
+  if (auto problem = does_not_fit(pipe)) {
     return invalid("the robot starts in pipe " + map_->pipe(pipe).name + ", which " +
                    robot_name(*mission_) + " cannot drive: " + *problem);
   }
@@ -310,7 +310,7 @@ std::optional<std::string> PlanReplay::passage_problem(ManholeId m, SlotIndex fr
   return std::nullopt;
 }
 
-std::optional<std::string> PlanReplay::undrivable(PipeId id) const {
+std::optional<std::string> PlanReplay::does_not_fit(PipeId id) const {
   const Pipe& pipe = map_->pipe(id);
   const RobotProfile& profile = mission_->profile;
   if (!(pipe.diameter_m >= profile.min_pipe_diameter_m &&
@@ -319,6 +319,12 @@ std::optional<std::string> PlanReplay::undrivable(PipeId id) const {
            robot_name(*mission_) + "'s " + fixed(profile.min_pipe_diameter_m, 2) + "-" +
            fixed(profile.max_pipe_diameter_m, 2) + " m";
   }
+  return std::nullopt;
+}
+
+std::optional<std::string> PlanReplay::undrivable(PipeId id) const {
+  if (auto problem = does_not_fit(id)) return problem;
+  const Pipe& pipe = map_->pipe(id);
   const auto& closed = mission_->closed_pipes;
   if (std::find(closed.begin(), closed.end(), id) != closed.end()) {
     return "pipe " + pipe.name + " is closed";

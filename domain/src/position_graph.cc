@@ -31,12 +31,13 @@ PositionGraph::PositionGraph(const SewerMap& map, const Mission& mission)
       manholes_(static_cast<Node>(map.manhole_count())),
       slots_(static_cast<Node>(map.slot_count())),
       pipes_(static_cast<Node>(map.pipe_count())) {
-  drivable_.resize(map.pipe_count());
+  fits_.resize(map.pipe_count());
   for (PipeId p : map.pipe_ids()) {
+    // Diameters are data, compared exactly, as the validator does.
     const double d = map.pipe(p).diameter_m;
-    drivable_[p.index()] = d >= profile_.min_pipe_diameter_m - kLimitTolerance &&
-                           d <= profile_.max_pipe_diameter_m + kLimitTolerance;
+    fits_[p.index()] = d >= profile_.min_pipe_diameter_m && d <= profile_.max_pipe_diameter_m;
   }
+  drivable_ = fits_;
   for (PipeId p : mission.closed_pipes) drivable_[p.index()] = false;
   for (const ClosedPassage& c : mission.closed_passages) closed_passages_.push_back(normalised(c));
   std::sort(closed_passages_.begin(), closed_passages_.end(), passage_less);

@@ -57,7 +57,10 @@ class PositionGraph {
   double offset_of(Node n) const;  // pipe nodes only
   const std::vector<Node>& extra_spots_in(PipeId pipe) const;
 
+  // The robot can enter p: it fits p's diameter and the mission does not close p.
   bool pipe_drivable(PipeId p) const { return drivable_[p.index()]; }
+  // The robot fits p's diameter: it can move in p if it is there (a closed pipe can be left).
+  bool pipe_fits(PipeId p) const { return fits_[p.index()]; }
   bool passage_allowed(ManholeId m, SlotIndex from, SlotIndex to) const;
   Cost passage_cost(ManholeId m, SlotIndex from, SlotIndex to) const;
   Cost drive_cost(double distance_m) const;
@@ -84,6 +87,7 @@ class PositionGraph {
   Node manholes_;
   Node slots_;
   Node pipes_;
+  std::vector<bool> fits_;
   std::vector<bool> drivable_;
   std::vector<ClosedPassage> closed_passages_;  // normalised: from < to, sorted
   std::vector<Spot> spots_;
@@ -92,6 +96,7 @@ class PositionGraph {
 
 template <class F>
 void PositionGraph::drive_out_of_pipe(Node, PipeId p, double x, F&& f) const {
+  if (!fits_[p.index()]) return;
   const Pipe& pipe = map_.pipe(p);
   for (std::size_t e = 0; e < 2; ++e) {
     if (!pipe.ends[e].manhole) continue;
@@ -131,6 +136,7 @@ void PositionGraph::for_each_predecessor(Node to, F&& f) const {
     SlotIndex s{0};
     const ManholeId m = manhole_of_slot_node(to, &s);
     const Slot& slot = map_.slot(m, s);
+    if (!fits_[slot.pipe.index()]) return;
     const Pipe& pipe = map_.pipe(slot.pipe);
     const double target = slot.pipe_end == 0 ? 0.0 : pipe.length_m;
     for (std::size_t e = 0; e < 2; ++e) {

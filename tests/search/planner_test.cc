@@ -84,15 +84,14 @@ TEST_F(AisPlanning, EveryAlgorithmFindsAPlanNoCheaperThanTheOptimum) {
   }
 }
 
-TEST_F(AisPlanning, NamesATaskInAPipeTheRobotCannotDrive) {
+TEST_F(AisPlanning, NamesAStartInAPipeTheRobotCannotDrive) {
   mission_.profile.max_pipe_diameter_m = 0.5;  // every AIS pipe is 0.60 m
-  mission_.profile.min_pipe_diameter_m = 0.3;
   Result<PlanOutcome> outcome = plan(Algorithm::kAuto);
   ASSERT_FALSE(outcome.has_value());
   EXPECT_EQ(outcome.error().code, ErrorCode::kNoPlan);
   EXPECT_THAT(outcome.error().message,
-              HasSubstr("task 'inspect' (inspect_pipe): pipe P4 is 0.60 m, outside makro-1.1's "
-                        "0.30-0.50 m"));
+              HasSubstr("the robot starts in pipe P12, which makro-1.1 cannot drive: 0.60 m, "
+                        "outside its 0.30-0.50 m"));
 }
 
 TEST_F(AisPlanning, NamesATaskCutOffByClosures) {
@@ -142,6 +141,34 @@ SewerMap line_map(double p2_diameter_m) {
   b.add_pipe({.name = "P2", .from = "B", .to = "C", .length_m = 10, .diameter_m = p2_diameter_m});
   Diagnostics d;
   return *std::move(b).build(d);
+}
+
+TEST(Planner, NamesATaskInAPipeTheRobotCannotDrive) {
+  const SewerMap map = line_map(0.8);
+  Mission mission;
+  mission.profile = *builtin_profile("makro-1.1");
+  mission.start = PipeSpot{*map.find_pipe("P1"), {}, {}};
+  mission.exits = {*map.find_manhole("A")};
+  mission.tasks = {{"look", TaskKind::kInspectPipe, PipeSpot{*map.find_pipe("P2"), {}, {}}, false}};
+  Result<PlanOutcome> outcome =
+      plan_mission(map, mission, domain::initial_progress(mission, map), {});
+  ASSERT_FALSE(outcome.has_value());
+  EXPECT_EQ(outcome.error().code, ErrorCode::kNoPlan);
+  EXPECT_THAT(outcome.error().message,
+              HasSubstr("task 'look' (inspect_pipe): pipe P2 is 0.80 m, outside makro-1.1's "
+                        "0.30-0.60 m"));
+}
+
+TEST(Planner, LeavesAClosedPipeItStartsIn) {
+  const SewerMap map = line_map(0.4);
+  Mission mission;
+  mission.start = PipeSpot{*map.find_pipe("P2"), {}, {}};
+  mission.exits = {*map.find_manhole("A")};
+  mission.closed_pipes = {*map.find_pipe("P2")};
+  Result<PlanOutcome> outcome =
+      plan_mission(map, mission, domain::initial_progress(mission, map), {});
+  ASSERT_TRUE(outcome.has_value()) << outcome.error();
+  EXPECT_EQ(outcome->plan.steps.size(), 3U);
 }
 
 TEST(Planner, NamesTheExitsWhenNoneCanBeReached) {

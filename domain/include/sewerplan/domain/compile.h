@@ -49,8 +49,8 @@ class PositionGraph;
 
 struct CompileStatistics {
   std::size_t keys = 0;
-  std::size_t graph_nodes = 0;      // positions of the primitive graph
-  std::size_t settled_nodes = 0;    // Dijkstra work over all searches
+  std::size_t graph_nodes = 0;    // positions of the primitive graph
+  std::size_t settled_nodes = 0;  // Dijkstra work over all searches
   std::size_t route_searches = 0;
   std::size_t actions = 0;
   double time_s = 0;

@@ -88,6 +88,8 @@ class PlanReplay {
   Result<const Task*> pending_task(TaskId task, TaskKind kind, bool at_place,
                                    const std::string& place) const;
   std::optional<std::string> passage_problem(ManholeId m, SlotIndex from, SlotIndex to) const;
+  // Why the robot cannot be in `pipe` at all (its diameter), or cannot enter it (also closed).
+  std::optional<std::string> does_not_fit(PipeId pipe) const;
   std::optional<std::string> undrivable(PipeId pipe) const;
   Error invalid(std::string message) const;
 
