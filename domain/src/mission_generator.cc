@@ -46,11 +46,11 @@ Task make_task(const SewerMap& map, PipeId pipe, std::size_t index, Rng& rng) {
   Task t;
   const double draw = rng.uniform01();
   const Pipe& p = map.pipe(pipe);
-  if (draw < 0.5) {
+  if (draw < 0.25) {
     t.kind = TaskKind::kInspectPipe;
     t.name = "inspect-" + p.name;
     t.place = PipeSpot{pipe, {}, {}};
-  } else if (draw < 0.8) {
+  } else if (draw < 0.55) {
     t.kind = TaskKind::kTakeWaterSample;
     t.name = "sample-" + p.name;
     t.place = PipeSpot{pipe, p.length_m / 2, {}};
@@ -84,8 +84,10 @@ Result<Mission> generate_mission(const SewerMap& map, const MissionOptions& opti
   std::vector<ManholeId> order = mission.exits;
   for (std::size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[rng.below(i)]);
   for (std::size_t attempt = 0; attempt < order.size() && attempt < 20; ++attempt) {
-    std::vector<PipeId> pipes = reachable_pipes(graph, order[attempt], options.radius_pipes);
-    const std::size_t keep = std::max(pipes.size() / 2, std::min(pipes.size(), options.tasks));
+    const std::size_t nearest = std::min(options.radius_pipes, 2 * options.tasks + 10);
+    std::vector<PipeId> pipes = reachable_pipes(graph, order[attempt], 2 * nearest);
+    const std::size_t keep =
+        std::min(std::max(pipes.size() / 2, std::min(pipes.size(), options.tasks)), nearest);
     pipes.erase(pipes.begin() + static_cast<std::ptrdiff_t>(keep), pipes.end());
     if (pipes.size() < options.tasks) continue;
     for (std::size_t i = 0; i < options.tasks; ++i) {  // partial Fisher-Yates

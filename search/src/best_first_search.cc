@@ -18,8 +18,12 @@ bool later(const auto& a, const auto& b) {
 }  // namespace
 
 BestFirstSearch::BestFirstSearch(const domain::CompiledTask& task, Heuristic& heuristic,
-                                 Ordering ordering)
-    : task_(task), heuristic_(heuristic), ordering_(ordering), registry_(task) {}
+                                 Ordering ordering, Cost cost_bound)
+    : task_(task),
+      heuristic_(heuristic),
+      ordering_(ordering),
+      bound_(std::min(cost_bound, task.cost_bound())),
+      registry_(task) {}
 
 std::string_view BestFirstSearch::name() const {
   if (ordering_.g_weight == 0) return "greedy best-first search";
@@ -79,7 +83,7 @@ std::optional<SearchStatus> BestFirstSearch::step() {
   task_.applicable_actions(values_, applicable_);
   for (ActionId a : applicable_) {
     const Cost succ_g = g + task_.cost(a);
-    if (succ_g > task_.cost_bound()) {
+    if (succ_g > bound_) {
       ++result_.statistics.dead_ends;
       continue;
     }
@@ -97,14 +101,14 @@ std::optional<SearchStatus> BestFirstSearch::step() {
         continue;
       }
       info_[id.index()] = {succ_g, h, entry.state, a, Status::kNew};
-      if (admissible && succ_g + h > task_.cost_bound()) continue;
+      if (admissible && succ_g + h > bound_) continue;
       open(id, info_[id.index()]);
       continue;
     }
     NodeInfo& succ = info_[id.index()];
     if (succ.status == Status::kDeadEnd || succ_g >= succ.g) continue;
     if (succ.status == Status::kClosed) ++result_.statistics.reopened;
-    if (admissible && succ_g + succ.h > task_.cost_bound()) continue;
+    if (admissible && succ_g + succ.h > bound_) continue;
     open(id, {succ_g, succ.h, entry.state, a, Status::kNew});
   }
   update_memory();

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "sewerplan/search/planner.h"
 
+#include <algorithm>
 #include <iomanip>
 #include <sstream>
 
@@ -39,7 +40,7 @@ Algorithm resolve(Algorithm algorithm, const domain::CompiledTask& task) {
   for (std::size_t v = 0; v < task.variable_count(); ++v) {
     states *= task.domain_size(domain::VarId{static_cast<std::uint32_t>(v)});
   }
-  return states <= static_cast<double>(1 << 20) ? Algorithm::kAstar : Algorithm::kEhc;
+  return states <= static_cast<double>(1 << 20) ? Algorithm::kAstar : Algorithm::kWeightedAstar;
 }
 
 std::unique_ptr<SearchEngine> make_engine(Algorithm algorithm, const domain::CompiledTask& task,
@@ -99,6 +100,46 @@ Error search_failure(SearchStatus status, const Mission& mission,
   return Error{ErrorCode::kNoPlan, "no plan"};
 }
 
+void add(SearchStatistics& total, const SearchStatistics& more) {
+  total.expanded += more.expanded;
+  total.generated += more.generated;
+  total.evaluated += more.evaluated;
+  total.reopened += more.reopened;
+  total.dead_ends += more.dead_ends;
+  total.time_s += more.time_s;
+  total.peak_memory_bytes = std::max(total.peak_memory_bytes, more.peak_memory_bytes);
+}
+
+// Anytime improvement: each search may only return plans cheaper than the best so far. One that
+// exhausts its bounded space proves no cheaper plan exists.
+void improve(const domain::CompiledTask& task, const StopCondition& stop, const Clock& clock,
+             std::uint64_t budget, SearchResult& best, PlanOutcome& outcome) {
+  SearchStatistics total = best.statistics;
+  for (double weight : {3.0, 2.0, 1.5, 1.0}) {
+    if (budget == 0 || best.cost == 0) break;
+    const bool last = weight == 1.0;
+    auto h = make_heuristic(last ? HeuristicKind::kMax : HeuristicKind::kFf, task);
+    BestFirstSearch search(task, *h, BestFirstSearch::weighted_astar(weight), best.cost - 1);
+    StopCondition limited = stop;
+    limited.with_max_expansions(budget);
+    SearchResult r = search.search(limited, clock);
+    add(total, r.statistics);
+    budget -= std::min(budget, r.statistics.expanded);
+    if (r.status == SearchStatus::kSolved) {
+      best.plan = std::move(r.plan);
+      best.cost = r.cost;
+      ++outcome.improvements;
+      outcome.optimal = last;
+    } else if (r.status == SearchStatus::kUnsolvable) {
+      outcome.optimal = true;  // nothing cheaper within the bound
+      break;
+    } else {
+      break;  // a limit, or cancelled: keep the best plan so far
+    }
+  }
+  best.statistics = total;
+}
+
 }  // namespace
 
 Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
@@ -109,6 +150,13 @@ Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
   Result<domain::SewerTask> compiled = domain::compile_sewer_task(map, mission, progress);
   if (!compiled.has_value()) return compiled.error();
   const domain::CompiledTask& task = compiled->task();
+  // An admissible estimate already beyond the battery proves there is no plan, whatever the
+  // algorithm: without this, greedy searches would exhaust the bounded state space to find out.
+  if (auto lower =
+          make_heuristic(HeuristicKind::kMax, task)->evaluate(task.initial_state(), nullptr);
+      lower == Heuristic::kDeadEnd || lower > task.cost_bound()) {
+    return search_failure(SearchStatus::kUnsolvable, mission, progress, task);
+  }
   const Algorithm algorithm = resolve(options.algorithm, task);
   const HeuristicKind kind = options.heuristic.value_or(
       algorithm == Algorithm::kAstar ? HeuristicKind::kMax : HeuristicKind::kFf);
@@ -124,12 +172,17 @@ Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
     return search_failure(result.status, mission, progress, task);
   }
   PlanOutcome outcome;
+  outcome.optimal = algorithm == Algorithm::kAstar && heuristic->admissible();
+  if (!outcome.optimal && options.improvement_expansions > 0) {
+    improve(task, stop, clock, options.improvement_expansions, result, outcome);
+  }
   outcome.plan = compiled->expand(result.plan);
   outcome.cost_s = domain::to_seconds(result.cost);
   outcome.energy_wh = mission.profile.energy_wh(outcome.cost_s);
   outcome.search = result.statistics;
   outcome.compile = compiled->statistics();
   outcome.algorithm = std::string(engine->name()) + " + " + std::string(heuristic->name());
+  if (outcome.improvements > 0) outcome.algorithm += ", improved by weighted A*";
   return outcome;
 }
 

@@ -41,16 +41,24 @@ bool RelaxedExploration::explore(std::span<const std::int32_t> state, Combine co
   const domain::CompiledTask& task = relaxed_.task();
   fact_cost_.assign(relaxed_.fact_count(), kInfiniteCost);
   supporter_.assign(relaxed_.fact_count(), kNoSupporter);
+  settled_.assign(relaxed_.fact_count(), false);
   op_cost_.resize(ops.size());
   unsatisfied_.resize(ops.size());
   heap_.clear();
   const auto later = std::greater<std::pair<Cost, std::uint32_t>>();
+  // At equal cost the later supporter wins while the fact is unsettled: its preconditions cost
+  // more, so it extends a chain rather than starting afresh from the state. With macro actions
+  // over exact shortest routes, a key on the way to another then supports it, and FF's relaxed
+  // plan becomes a tree of routes instead of a star of them from the current position
+  // (bench/search/planner_bench.cc: EHC's plans on 20 tasks got 25-40% cheaper).
   auto reach = [&](std::uint32_t f, Cost c, std::uint32_t op) {
     if (c < fact_cost_[f]) {
       fact_cost_[f] = c;
       supporter_[f] = op;
       heap_.emplace_back(c, f);
       std::push_heap(heap_.begin(), heap_.end(), later);
+    } else if (c == fact_cost_[f] && !settled_[f] && op != kNoSupporter) {
+      supporter_[f] = op;
     }
   };
   for (std::uint32_t o = 0; o < ops.size(); ++o) {
@@ -68,7 +76,8 @@ bool RelaxedExploration::explore(std::span<const std::int32_t> state, Combine co
     std::pop_heap(heap_.begin(), heap_.end(), later);
     const auto [c, f] = heap_.back();
     heap_.pop_back();
-    if (c != fact_cost_[f]) continue;
+    if (c != fact_cost_[f] || settled_[f]) continue;
+    settled_[f] = true;
     for (std::uint32_t g : relaxed_.goal_facts()) goals_left -= g == f ? 1 : 0;
     for (std::uint32_t o : relaxed_.consumers(f)) {
       op_cost_[o] =

@@ -70,6 +70,7 @@ class RelaxedExploration {
   const RelaxedTask& relaxed_;
   std::vector<Cost> fact_cost_;
   std::vector<std::uint32_t> supporter_;
+  std::vector<bool> settled_;
   std::vector<Cost> op_cost_;
   std::vector<std::uint32_t> unsatisfied_;
   std::vector<std::pair<Cost, std::uint32_t>> heap_;

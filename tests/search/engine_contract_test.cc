@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The contract every search engine keeps, run against each engine and heuristic pairing.
-#include <gtest/gtest.h>
-
 #include <atomic>
+
+#include <gtest/gtest.h>
 
 #include "sewerplan/search/best_first_search.h"
 #include "sewerplan/search/enforced_hill_climbing.h"
@@ -143,7 +143,8 @@ TEST(Heuristics, EstimateTheCollectTaskAsTheRelaxationSays) {
   EXPECT_EQ(ff->evaluate(task.initial_state(), &preferred), 7);
   ASSERT_EQ(preferred.size(), 1U);
   EXPECT_EQ(task.action_name(preferred[0]), "0->2") << "the helpful action";
-  EXPECT_EQ(make_heuristic(HeuristicKind::kBlind, task)->evaluate(task.initial_state(), nullptr), 0);
+  EXPECT_EQ(make_heuristic(HeuristicKind::kBlind, task)->evaluate(task.initial_state(), nullptr),
+            0);
 }
 
 TEST(Heuristics, ReportADeadEndWhenTheRelaxationCannotReachTheGoal) {

@@ -7,6 +7,7 @@
 
 #include "sewerplan/core/map_builder.h"
 #include "sewerplan/core/map_io.h"
+
 #include "support/paths.h"
 
 namespace sewerplan::search {

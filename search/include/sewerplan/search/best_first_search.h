@@ -33,8 +33,10 @@ class BestFirstSearch final : public SearchEngine {
   static Ordering weighted_astar(double weight) { return {1, weight}; }
   static Ordering greedy() { return {0, 1}; }
 
-  // `task` and `heuristic` must outlive the search.
-  BestFirstSearch(const domain::CompiledTask& task, Heuristic& heuristic, Ordering ordering);
+  // `task` and `heuristic` must outlive the search. `cost_bound` tightens the task's own bound
+  // (plans must cost at most the smaller), for anytime search that only wants cheaper plans.
+  BestFirstSearch(const domain::CompiledTask& task, Heuristic& heuristic, Ordering ordering,
+                  Cost cost_bound = domain::kInfiniteCost);
 
   void initialize() override;
   std::optional<SearchStatus> step() override;
@@ -67,6 +69,7 @@ class BestFirstSearch final : public SearchEngine {
   const domain::CompiledTask& task_;
   Heuristic& heuristic_;
   Ordering ordering_;
+  Cost bound_;
   domain::StateRegistry registry_;
   std::vector<NodeInfo> info_;
   std::vector<Entry> heap_;

@@ -50,6 +50,12 @@ struct PlannerOptions {
   std::uint64_t max_expansions = 0;  // 0: none
   const std::atomic<bool>* cancel = nullptr;
   const Clock* clock = nullptr;  // default: a steady clock
+  // After a first plan from a non-optimal algorithm, weighted A* with weights 3, 2, 1.5 and then
+  // A* with h_max look for cheaper plans (each bounded by the best so far), as LAMA's anytime
+  // search does (Richter and Westphal 2010), within this many expansions in all: an expansion
+  // budget rather than a time budget, so that the plan does not depend on the machine's speed.
+  // 0: keep the first plan.
+  std::uint64_t improvement_expansions = 10'000;
 };
 
 struct PlanOutcome {
@@ -59,6 +65,10 @@ struct PlanOutcome {
   SearchStatistics search;
   domain::CompileStatistics compile;
   std::string algorithm;  // engine and heuristic, e.g. "enforced hill-climbing + ff"
+  // The plan is proven optimal (by A* with an admissible heuristic, or by an improvement search
+  // that exhausted every cheaper plan).
+  bool optimal = false;
+  std::size_t improvements = 0;  // cheaper plans found after the first
 };
 
 // kAuto's choice for `task`; any other algorithm is returned as it is.
