@@ -1,11 +1,15 @@
 // SPDX-License-Identifier: MIT
 // sewerplan generate --manholes N [--seed S] [--topology tree|meshed] ... -o FILE
 #include <ostream>
+#include <sstream>
 
 #include <CLI/CLI.hpp>
 
 #include "sewerplan/core/generator.h"
 #include "sewerplan/core/map_io.h"
+#include "sewerplan/core/mission.h"
+#include "sewerplan/core/text_file.h"
+#include "sewerplan/domain/mission_generator.h"
 
 #include "command.h"
 
@@ -16,7 +20,29 @@ struct GenerateOptions {
   GeneratorOptions generator;
   std::string topology = "tree";
   std::string out;
+  std::size_t mission_tasks = 0;
+  std::string mission_out;
+  std::string profile = "makro-plus";
 };
+
+// A seeded mission on the generated map (domain/mission_generator.h), written as JSON.
+int write_mission(const SewerMap& map, const GenerateOptions& o, Context& c) {
+  Result<Mission> mission = domain::generate_mission(
+      map, {.tasks = o.mission_tasks, .seed = o.generator.seed, .profile = o.profile});
+  if (!mission.has_value()) {
+    c.err << mission.error().message << '\n';
+    return exit_code_for(mission.error());
+  }
+  std::ostringstream text;
+  write_mission_json(*mission, map, text);
+  if (Result<void> written = write_text_file(o.mission_out, text.str()); !written.has_value()) {
+    c.err << written.error().message << '\n';
+    return exit_code_for(written.error());
+  }
+  c.out << "wrote " << o.mission_out << " (" << o.mission_tasks << " tasks for " << o.profile
+        << ")\n";
+  return kExitOk;
+}
 
 int run(GenerateOptions& o, Context& c) {
   auto topology = topology_from_string(o.topology);
@@ -37,6 +63,13 @@ int run(GenerateOptions& o, Context& c) {
   }
   c.out << "wrote " << o.out << " (" << map->manhole_count() << " manholes, " << map->pipe_count()
         << " pipes, " << to_string(*topology) << ", seed " << o.generator.seed << ")\n";
+  if (o.mission_tasks > 0 || !o.mission_out.empty()) {
+    if (o.mission_out.empty() || o.mission_tasks == 0) {
+      c.err << "--mission-tasks and --mission-out go together\n";
+      return kExitUsage;
+    }
+    return write_mission(*map, o, c);
+  }
   return kExitOk;
 }
 
@@ -66,6 +99,10 @@ void add_generate_command(CLI::App& app, Context& context) {
   cmd->add_option("--name", o->generator.name,
                   "Map name (default generated-<topology>-<n>-<seed>)");
   cmd->add_option("--out,-o", o->out, "Output map (.json or .sewer)")->required();
+  cmd->add_option("--mission-tasks", o->mission_tasks,
+                  "Also write a seeded mission with this many tasks near an exit");
+  cmd->add_option("--mission-out", o->mission_out, "Where to write that mission (.json)");
+  cmd->add_option("--profile", o->profile, "The mission's robot profile")->capture_default_str();
   cmd->callback([o, &context] { context.exit_code = run(*o, context); });
 }
 

@@ -40,6 +40,7 @@ void add_info_command(CLI::App& app, Context& context);
 void add_generate_command(CLI::App& app, Context& context);
 void add_convert_command(CLI::App& app, Context& context);
 void add_check_command(CLI::App& app, Context& context);
+void add_plan_command(CLI::App& app, Context& context);
 
 // Helpers shared by the commands.
 int exit_code_for(const Error& error);

@@ -46,6 +46,7 @@ int main(int argc, char** argv) {
   add_info_command(app, context);
   add_generate_command(app, context);
   add_convert_command(app, context);
+  add_plan_command(app, context);
   add_check_command(app, context);
   try {
     app.parse(argc, argv);

@@ -90,5 +90,30 @@ expect 1 '"failed_step": 11' -- "${check[@]}" "$plans/paper-section-6.plan" --js
 expect 3 'cannot read .*missing.plan' -- "${check[@]}" "$tmp/missing.plan"
 expect 2 'mission' -- "$sp" check --map "$ais" "$plans/paper-corrected.plan"
 
+# Planning: the paper's mission gives the paper's route; plans round-trip through check.
+plans=$src/datasets/ais-testbed/plans
+if "$sp" plan --map "$ais" --mission "$mission" -q > "$tmp/plan.txt" && cmp -s "$tmp/plan.txt" "$plans/paper-corrected.plan"; then
+  passed=$((passed + 1))
+else
+  echo "FAIL: sewerplan plan on the paper's mission differs from $plans/paper-corrected.plan"
+  diff "$tmp/plan.txt" "$plans/paper-corrected.plan" | head; failures=$((failures + 1))
+fi
+expect 0 'plan: 14 steps, 585.4 s, 19.51 Wh \(optimal\)' -- "$sp" plan --map "$ais" --mission "$mission" -o "$tmp/p.plan"
+expect 0 'valid: 14 steps' -- "$sp" check --map "$ais" --mission "$mission" "$tmp/p.plan"
+for a in ehc gbfs wastar astar; do
+  "$sp" plan --map "$ais" --mission "$mission" -a "$a" -q -o "$tmp/$a.plan" > /dev/null 2>&1
+  expect 0 'valid' -- "$sp" check --map "$ais" --mission "$mission" "$tmp/$a.plan"
+done
+expect 0 '"cost_s"' -- "$sp" plan --map "$ais" --mission "$mission" --json
+cat > "$tmp/cut.json" <<'JSON'
+{"format": "sewerplan-mission", "version": 1, "start": {"pipe": "P12"},
+ "tasks": [{"name": "far", "type": "inspect_pipe", "pipe": "P4"}],
+ "closed": {"pipes": ["P10", "P13", "P8", "P3"],
+            "passages": [{"manhole": "M6", "from_slot": 3, "to_slot": 2},
+                         {"manhole": "M6", "from_slot": 4, "to_slot": 2}]}}
+JSON
+expect 4 "task 'far' \(inspect_pipe\): no route from the start" -- "$sp" plan --map "$ais" --mission "$tmp/cut.json"
+expect 2 'unknown' -- "$sp" plan --map "$ais" --mission "$mission" -a dijkstra
+
 echo "$passed passed, $failures failed"
 [ "$failures" -eq 0 ]
