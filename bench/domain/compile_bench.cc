@@ -2,9 +2,9 @@
 // Compiling a mission into a search task, by network size and number of tasks.
 // Baseline: one full Dijkstra over the primitive graph from the start (what every key would cost
 // without the early stop once all keys are settled).
-#include <benchmark/benchmark.h>
-
 #include <map>
+
+#include <benchmark/benchmark.h>
 
 #include "sewerplan/core/generator.h"
 #include "sewerplan/domain/compile.h"
@@ -32,8 +32,8 @@ const Instance& generated(std::size_t manholes, std::size_t tasks) {
 }
 
 void BM_CompileSewerTask(benchmark::State& state) {
-  const Instance& i = generated(static_cast<std::size_t>(state.range(0)),
-                                static_cast<std::size_t>(state.range(1)));
+  const Instance& i =
+      generated(static_cast<std::size_t>(state.range(0)), static_cast<std::size_t>(state.range(1)));
   const MissionProgress progress = initial_progress(i.mission, i.map);
   CompileStatistics stats;
   for (auto _ : state) {

@@ -6,10 +6,10 @@
 // on 100,000 manholes with 20 tasks (goal: under 50 ms), both compile and search, map loading
 // excluded; heuristic evaluations per second; bytes per stored state. Baselines: uniform-cost
 // search (A* with the blind heuristic) for planning, the blind heuristic for evaluation.
-#include <benchmark/benchmark.h>
-
 #include <map>
 #include <tuple>
+
+#include <benchmark/benchmark.h>
 
 #include "sewerplan/core/generator.h"
 #include "sewerplan/core/map_io.h"
@@ -81,8 +81,8 @@ BENCHMARK(BM_PlanAisEhc)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PlanAisUniformCost)->Unit(benchmark::kMicrosecond);
 
 void BM_PlanGenerated(benchmark::State& state) {
-  const Instance& instance = generated(static_cast<std::size_t>(state.range(0)),
-                                       static_cast<std::size_t>(state.range(1)));
+  const Instance& instance =
+      generated(static_cast<std::size_t>(state.range(0)), static_cast<std::size_t>(state.range(1)));
   plan_once(state, instance, static_cast<Algorithm>(state.range(2)));
 }
 BENCHMARK(BM_PlanGenerated)
@@ -97,8 +97,8 @@ BENCHMARK(BM_PlanGenerated)
 
 void evaluate(benchmark::State& state, HeuristicKind kind) {
   const Instance& instance = generated(100000, 20);
-  auto compiled = domain::compile_sewer_task(instance.map, instance.mission,
-                                             domain::initial_progress(instance.mission, instance.map));
+  auto compiled = domain::compile_sewer_task(
+      instance.map, instance.mission, domain::initial_progress(instance.mission, instance.map));
   auto h = make_heuristic(kind, compiled->task());
   std::vector<ActionId> preferred;
   for (auto _ : state) {
@@ -119,8 +119,8 @@ BENCHMARK(BM_BlindHeuristicEvaluate);
 // Memory per stored state: an A* run that stores many states (10 tasks, blind heuristic).
 void BM_AstarBytesPerState(benchmark::State& state) {
   const Instance& instance = generated(10000, 10);
-  auto compiled = domain::compile_sewer_task(instance.map, instance.mission,
-                                             domain::initial_progress(instance.mission, instance.map));
+  auto compiled = domain::compile_sewer_task(
+      instance.map, instance.mission, domain::initial_progress(instance.mission, instance.map));
   SearchResult last;
   for (auto _ : state) {
     auto h = make_heuristic(HeuristicKind::kBlind, compiled->task());

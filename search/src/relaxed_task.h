@@ -22,9 +22,9 @@ using domain::ActionId;
 using domain::Cost;
 
 struct UnaryOperator {
-  std::uint32_t pre_begin;   // into RelaxedTask::preconditions_
+  std::uint32_t pre_begin;  // into RelaxedTask::preconditions_
   std::uint32_t pre_count;
-  std::uint32_t effect;      // fact index
+  std::uint32_t effect;  // fact index
   ActionId action;
   Cost cost;
 };
@@ -40,8 +40,8 @@ class RelaxedTask {
   }
   // Operators having fact f as a precondition (CSR).
   std::span<const std::uint32_t> consumers(std::uint32_t f) const {
-    return std::span<const std::uint32_t>(consumers_).subspan(consumer_begin_[f],
-                                                              consumer_begin_[f + 1] - consumer_begin_[f]);
+    return std::span<const std::uint32_t>(consumers_)
+        .subspan(consumer_begin_[f], consumer_begin_[f + 1] - consumer_begin_[f]);
   }
   const std::vector<std::uint32_t>& goal_facts() const { return goal_facts_; }
 
