@@ -121,13 +121,10 @@ SearchResult EnforcedHillClimbing::result() const {
 const SearchStatistics& EnforcedHillClimbing::statistics() const {
   combined_ = result_.statistics;
   if (fallback_) {
-    const SearchStatistics& f = fallback_->statistics();
-    combined_.expanded += f.expanded;
-    combined_.generated += f.generated;
-    combined_.evaluated += f.evaluated;
-    combined_.reopened += f.reopened;
-    combined_.dead_ends += f.dead_ends;
-    combined_.peak_memory_bytes = std::max(combined_.peak_memory_bytes, f.peak_memory_bytes);
+    // The fallback's time is counted by search() around the whole run, not here.
+    SearchStatistics fallback = fallback_->statistics();
+    fallback.time_s = 0;
+    accumulate(combined_, fallback);
   }
   return combined_;
 }

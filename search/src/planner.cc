@@ -100,16 +100,6 @@ Error search_failure(SearchStatus status, const Mission& mission,
   return Error{ErrorCode::kNoPlan, "no plan"};
 }
 
-void add(SearchStatistics& total, const SearchStatistics& more) {
-  total.expanded += more.expanded;
-  total.generated += more.generated;
-  total.evaluated += more.evaluated;
-  total.reopened += more.reopened;
-  total.dead_ends += more.dead_ends;
-  total.time_s += more.time_s;
-  total.peak_memory_bytes = std::max(total.peak_memory_bytes, more.peak_memory_bytes);
-}
-
 // Anytime improvement: each search may only return plans cheaper than the best so far. One that
 // exhausts its bounded space proves no cheaper plan exists.
 void improve(const domain::CompiledTask& task, const StopCondition& stop, const Clock& clock,
@@ -123,7 +113,7 @@ void improve(const domain::CompiledTask& task, const StopCondition& stop, const 
     StopCondition limited = stop;
     limited.with_max_expansions(budget);
     SearchResult r = search.search(limited, clock);
-    add(total, r.statistics);
+    accumulate(total, r.statistics);
     budget -= std::min(budget, r.statistics.expanded);
     if (r.status == SearchStatus::kSolved) {
       best.plan = std::move(r.plan);

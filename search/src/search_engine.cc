@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "sewerplan/search/search_engine.h"
 
+#include <algorithm>
+
 namespace sewerplan::search {
 
 std::string_view to_string(SearchStatus status) {
@@ -23,6 +25,16 @@ std::ostream& operator<<(std::ostream& os, const SearchStatistics& s) {
   return os << s.expanded << " expanded, " << s.generated << " generated, " << s.evaluated
             << " evaluated, " << s.reopened << " reopened, " << s.dead_ends << " dead ends, "
             << s.time_s << " s, peak " << s.peak_memory_bytes << " bytes";
+}
+
+void accumulate(SearchStatistics& total, const SearchStatistics& more) {
+  total.expanded += more.expanded;
+  total.generated += more.generated;
+  total.evaluated += more.evaluated;
+  total.reopened += more.reopened;
+  total.dead_ends += more.dead_ends;
+  total.time_s += more.time_s;
+  total.peak_memory_bytes = std::max(total.peak_memory_bytes, more.peak_memory_bytes);
 }
 
 StopCondition StopCondition::after_seconds(const Clock& clock, double seconds) {

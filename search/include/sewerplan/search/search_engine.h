@@ -39,6 +39,10 @@ struct SearchStatistics {
 
 std::ostream& operator<<(std::ostream& os, const SearchStatistics& s);
 
+// Adds `more` to `total` (counts and times summed, peak memory the larger), for searches that run
+// several engines one after another.
+void accumulate(SearchStatistics& total, const SearchStatistics& more);
+
 struct SearchResult {
   SearchStatus status = SearchStatus::kUnsolvable;
   std::vector<ActionId> plan;
