@@ -128,6 +128,7 @@ void BestFirstSearch::update_memory() {
   const std::size_t bytes = registry_.memory_bytes() + info_.capacity() * sizeof(NodeInfo) +
                             heap_.capacity() * sizeof(Entry);
   result_.statistics.peak_memory_bytes = std::max(result_.statistics.peak_memory_bytes, bytes);
+  result_.statistics.stored = registry_.size();
 }
 
 }  // namespace sewerplan::search

@@ -73,6 +73,7 @@ std::optional<SearchStatus> EnforcedHillClimbing::step() {
   const StateId s = queue_.front();
   queue_.pop_front();
   ++result_.statistics.expanded;
+  result_.statistics.stored = registry_.size();
   result_.statistics.peak_memory_bytes =
       std::max(result_.statistics.peak_memory_bytes, registry_.memory_bytes() +
                                                          visits_.capacity() * sizeof(Visit) +

@@ -33,6 +33,7 @@ void accumulate(SearchStatistics& total, const SearchStatistics& more) {
   total.evaluated += more.evaluated;
   total.reopened += more.reopened;
   total.dead_ends += more.dead_ends;
+  total.stored += more.stored;
   total.time_s += more.time_s;
   total.peak_memory_bytes = std::max(total.peak_memory_bytes, more.peak_memory_bytes);
 }

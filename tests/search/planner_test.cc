@@ -7,6 +7,7 @@
 
 #include "sewerplan/core/map_builder.h"
 #include "sewerplan/core/map_io.h"
+#include "sewerplan/domain/validator.h"
 
 #include "support/paths.h"
 
@@ -19,6 +20,20 @@ using domain::InspectPipe;
 using domain::PlanStep;
 using domain::TakeWaterSample;
 using ::testing::HasSubstr;
+
+// Every plan a test gets is replayed by the independent validator.
+Result<PlanOutcome> validated(const SewerMap& map, const Mission& mission,
+                              const PlannerOptions& options = {}) {
+  Result<PlanOutcome> outcome =
+      plan_mission(map, mission, domain::initial_progress(mission, map), options);
+  if (outcome.has_value()) {
+    const domain::ValidationReport report = domain::validate_plan(outcome->plan, map, mission);
+    EXPECT_TRUE(report.valid) << report;
+    EXPECT_NEAR(report.total_cost_s, outcome->cost_s,
+                0.0005 * static_cast<double>(outcome->plan.steps.size()) + 1e-9);
+  }
+  return outcome;
+}
 
 class AisPlanning : public ::testing::Test {
  protected:
@@ -34,8 +49,7 @@ class AisPlanning : public ::testing::Test {
   ManholeId m(const char* name) const { return *map_.find_manhole(name); }
   PipeId p(const char* name) const { return *map_.find_pipe(name); }
   Result<PlanOutcome> plan(Algorithm algorithm) const {
-    return plan_mission(map_, mission_, domain::initial_progress(mission_, map_),
-                        {.algorithm = algorithm});
+    return validated(map_, mission_, {.algorithm = algorithm});
   }
   SewerMap map_;
   Mission mission_;
@@ -151,8 +165,7 @@ TEST(Planner, NamesATaskInAPipeTheRobotCannotDrive) {
   mission.start = PipeSpot{*map.find_pipe("P1"), {}, {}};
   mission.exits = {*map.find_manhole("A")};
   mission.tasks = {{"look", TaskKind::kInspectPipe, PipeSpot{*map.find_pipe("P2"), {}, {}}, false}};
-  Result<PlanOutcome> outcome =
-      plan_mission(map, mission, domain::initial_progress(mission, map), {});
+  Result<PlanOutcome> outcome = validated(map, mission);
   ASSERT_FALSE(outcome.has_value());
   EXPECT_EQ(outcome.error().code, ErrorCode::kNoPlan);
   EXPECT_THAT(outcome.error().message,
@@ -166,8 +179,7 @@ TEST(Planner, LeavesAClosedPipeItStartsIn) {
   mission.start = PipeSpot{*map.find_pipe("P2"), {}, {}};
   mission.exits = {*map.find_manhole("A")};
   mission.closed_pipes = {*map.find_pipe("P2")};
-  Result<PlanOutcome> outcome =
-      plan_mission(map, mission, domain::initial_progress(mission, map), {});
+  Result<PlanOutcome> outcome = validated(map, mission);
   ASSERT_TRUE(outcome.has_value()) << outcome.error();
   EXPECT_EQ(outcome->plan.steps.size(), 3U);
 }
@@ -179,8 +191,7 @@ TEST(Planner, NamesTheExitsWhenNoneCanBeReached) {
   mission.start = PipeSpot{*map.find_pipe("P2"), {}, {}};
   mission.exits = {*map.find_manhole("A")};
   mission.closed_passages = {{*map.find_manhole("B"), SlotIndex{0}, SlotIndex{1}}};
-  Result<PlanOutcome> outcome =
-      plan_mission(map, mission, domain::initial_progress(mission, map), {});
+  Result<PlanOutcome> outcome = validated(map, mission);
   ASSERT_FALSE(outcome.has_value());
   EXPECT_THAT(outcome.error().message,
               HasSubstr("no exit (A) can be reached from the start (in pipe P2 at 5 m)"));
@@ -191,8 +202,7 @@ TEST(Planner, ReturnsAnEmptyPlanWhenTheRobotIsAlreadyDone) {
   Mission mission;
   mission.start = *map.find_manhole("A");
   mission.exits = {*map.find_manhole("A")};
-  Result<PlanOutcome> outcome =
-      plan_mission(map, mission, domain::initial_progress(mission, map), {});
+  Result<PlanOutcome> outcome = validated(map, mission);
   ASSERT_TRUE(outcome.has_value()) << outcome.error();
   EXPECT_TRUE(outcome->plan.steps.empty());
   EXPECT_EQ(outcome->cost_s, 0);
@@ -203,8 +213,7 @@ TEST(Planner, EntersAPipeFromAStartInAManhole) {
   Mission mission;
   mission.start = *map.find_manhole("C");
   mission.exits = {*map.find_manhole("A")};
-  Result<PlanOutcome> outcome =
-      plan_mission(map, mission, domain::initial_progress(mission, map), {});
+  Result<PlanOutcome> outcome = validated(map, mission);
   ASSERT_TRUE(outcome.has_value()) << outcome.error();
   const std::vector<PlanStep> expected{
       domain::EnterPipe{*map.find_manhole("C"), *map.find_pipe("P2")},

@@ -32,6 +32,7 @@ struct SearchStatistics {
   std::uint64_t evaluated = 0;  // heuristic evaluations
   std::uint64_t reopened = 0;
   std::uint64_t dead_ends = 0;  // states the heuristic proved unsolvable, or over the cost bound
+  std::uint64_t stored = 0;     // distinct states held in the state registry
   double time_s = 0;
   std::size_t peak_memory_bytes = 0;  // states, search data and open list at their largest
   friend bool operator==(const SearchStatistics&, const SearchStatistics&) = default;
