@@ -45,7 +45,9 @@ std::optional<Node> GraphSearch::settle(Cost bound, Direction direction, Done&& 
   std::optional<Node> stopped_at;
   while (!heap_.empty()) {
     std::pop_heap(heap_.begin(), heap_.end(), later);
-    const auto [d, n] = heap_.back();
+    // Not a structured binding: clang 14 cannot capture one in the lambdas below.
+    const Cost d = heap_.back().first;
+    const Node n = heap_.back().second;
     heap_.pop_back();
     if (settled_[n] || d != dist_[n]) continue;
     settled_[n] = true;
