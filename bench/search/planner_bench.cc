@@ -83,19 +83,24 @@ BENCHMARK(BM_PlanAisAuto)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PlanAisEhc)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PlanAisUniformCost)->Unit(benchmark::kMicrosecond);
 
+// Arguments: manholes, tasks, algorithm (Algorithm's value: 0 auto, 1 ehc, 2 gbfs, 3 wastar,
+// 4 astar), improvement expansions (0: the first plan only).
 void BM_PlanGenerated(benchmark::State& state) {
   const Instance& instance =
       generated(static_cast<std::size_t>(state.range(0)), static_cast<std::size_t>(state.range(1)));
-  plan_once(state, instance, static_cast<Algorithm>(state.range(2)));
+  plan_once(state, instance, static_cast<Algorithm>(state.range(2)), std::nullopt,
+            static_cast<std::uint64_t>(state.range(3)));
 }
 BENCHMARK(BM_PlanGenerated)
-    ->ArgNames({"manholes", "tasks", "algorithm"})
-    ->Args({1000, 3, static_cast<int>(Algorithm::kAuto)})
-    ->Args({10000, 10, static_cast<int>(Algorithm::kAuto)})
-    ->Args({100000, 20, static_cast<int>(Algorithm::kAuto)})
-    ->Args({100000, 20, static_cast<int>(Algorithm::kEhc)})
-    ->Args({100000, 20, static_cast<int>(Algorithm::kGbfs)})
-    ->Args({100000, 10, static_cast<int>(Algorithm::kAstar)})
+    ->ArgNames({"manholes", "tasks", "algorithm", "improve"})
+    ->Args({1000, 3, 0, 10000})
+    ->Args({10000, 10, 0, 10000})
+    ->Args({100000, 3, 0, 10000})
+    ->Args({100000, 10, 0, 10000})
+    ->Args({100000, 20, 0, 0})
+    ->Args({100000, 20, 0, 10000})
+    ->Args({100000, 20, 1, 0})
+    ->Args({100000, 20, 2, 0})
     ->Unit(benchmark::kMillisecond);
 
 void evaluate(benchmark::State& state, HeuristicKind kind) {
