@@ -10,30 +10,17 @@
 #include "sewerplan/domain/compile.h"
 #include "sewerplan/domain/mission_generator.h"
 
+#include "support/instances.h"
+
 namespace sewerplan::domain {
 namespace {
 
-struct Instance {
-  SewerMap map;
-  Mission mission;
-};
-
-const Instance& generated(std::size_t manholes, std::size_t tasks) {
-  static std::map<std::pair<std::size_t, std::size_t>, Instance> cache;
-  auto key = std::make_pair(manholes, tasks);
-  auto it = cache.find(key);
-  if (it == cache.end()) {
-    Instance i;
-    i.map = *generate_network({.manholes = manholes, .seed = 1, .topology = Topology::kMeshed});
-    i.mission = *generate_mission(i.map, {.tasks = tasks, .seed = 1});
-    it = cache.emplace(key, std::move(i)).first;
-  }
-  return it->second;
-}
+using bench::generated_instance;
+using bench::Instance;
 
 void BM_CompileSewerTask(benchmark::State& state) {
-  const Instance& i =
-      generated(static_cast<std::size_t>(state.range(0)), static_cast<std::size_t>(state.range(1)));
+  const Instance& i = generated_instance(static_cast<std::size_t>(state.range(0)),
+                                         static_cast<std::size_t>(state.range(1)));
   const MissionProgress progress = initial_progress(i.mission, i.map);
   CompileStatistics stats;
   for (auto _ : state) {

@@ -19,38 +19,14 @@
 #include "sewerplan/search/best_first_search.h"
 #include "sewerplan/search/planner.h"
 
+#include "support/instances.h"
+
 namespace sewerplan::search {
 namespace {
 
-struct Instance {
-  SewerMap map;
-  Mission mission;
-};
-
-const Instance& ais() {
-  static const Instance instance = [] {
-    Diagnostics d;
-    const std::string dir = std::string(SEWERPLAN_SOURCE_DIR) + "/datasets/ais-testbed/";
-    Instance i;
-    i.map = *read_map(dir + "map.json", d);
-    i.mission = *read_mission(dir + "missions/paper.json", i.map, d);
-    return i;
-  }();
-  return instance;
-}
-
-const Instance& generated(std::size_t manholes, std::size_t tasks) {
-  static std::map<std::pair<std::size_t, std::size_t>, Instance> cache;
-  auto key = std::make_pair(manholes, tasks);
-  auto it = cache.find(key);
-  if (it == cache.end()) {
-    Instance i;
-    i.map = *generate_network({.manholes = manholes, .seed = 1, .topology = Topology::kMeshed});
-    i.mission = *domain::generate_mission(i.map, {.tasks = tasks, .seed = 1});
-    it = cache.emplace(key, std::move(i)).first;
-  }
-  return it->second;
-}
+using bench::ais_instance;
+using bench::generated_instance;
+using bench::Instance;
 
 void plan_once(benchmark::State& state, const Instance& instance, Algorithm algorithm,
                std::optional<HeuristicKind> heuristic = std::nullopt,
@@ -74,10 +50,10 @@ void plan_once(benchmark::State& state, const Instance& instance, Algorithm algo
   state.counters["compile_us"] = last.compile.time_s * 1e6;
 }
 
-void BM_PlanAisAuto(benchmark::State& state) { plan_once(state, ais(), Algorithm::kAuto); }
-void BM_PlanAisEhc(benchmark::State& state) { plan_once(state, ais(), Algorithm::kEhc); }
+void BM_PlanAisAuto(benchmark::State& state) { plan_once(state, ais_instance(), Algorithm::kAuto); }
+void BM_PlanAisEhc(benchmark::State& state) { plan_once(state, ais_instance(), Algorithm::kEhc); }
 void BM_PlanAisUniformCost(benchmark::State& state) {
-  plan_once(state, ais(), Algorithm::kAstar, HeuristicKind::kBlind);
+  plan_once(state, ais_instance(), Algorithm::kAstar, HeuristicKind::kBlind);
 }
 BENCHMARK(BM_PlanAisAuto)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PlanAisEhc)->Unit(benchmark::kMicrosecond);
@@ -86,8 +62,8 @@ BENCHMARK(BM_PlanAisUniformCost)->Unit(benchmark::kMicrosecond);
 // Arguments: manholes, tasks, algorithm (Algorithm's value: 0 auto, 1 ehc, 2 gbfs, 3 wastar,
 // 4 astar), improvement expansions (0: the first plan only).
 void BM_PlanGenerated(benchmark::State& state) {
-  const Instance& instance =
-      generated(static_cast<std::size_t>(state.range(0)), static_cast<std::size_t>(state.range(1)));
+  const Instance& instance = generated_instance(static_cast<std::size_t>(state.range(0)),
+                                                static_cast<std::size_t>(state.range(1)));
   plan_once(state, instance, static_cast<Algorithm>(state.range(2)), std::nullopt,
             static_cast<std::uint64_t>(state.range(3)));
 }
@@ -104,7 +80,7 @@ BENCHMARK(BM_PlanGenerated)
     ->Unit(benchmark::kMillisecond);
 
 void evaluate(benchmark::State& state, HeuristicKind kind) {
-  const Instance& instance = generated(100000, 20);
+  const Instance& instance = generated_instance(100000, 20);
   auto compiled = domain::compile_sewer_task(
       instance.map, instance.mission, domain::initial_progress(instance.mission, instance.map));
   auto h = make_heuristic(kind, compiled->task());
@@ -126,7 +102,7 @@ BENCHMARK(BM_BlindHeuristicEvaluate);
 
 // Memory per stored state: an A* run that stores many states (10 tasks, blind heuristic).
 void BM_AstarBytesPerState(benchmark::State& state) {
-  const Instance& instance = generated(10000, 10);
+  const Instance& instance = generated_instance(10000, 10);
   auto compiled = domain::compile_sewer_task(
       instance.map, instance.mission, domain::initial_progress(instance.mission, instance.map));
   SearchResult last;
