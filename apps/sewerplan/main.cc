@@ -48,6 +48,8 @@ int main(int argc, char** argv) {
   add_convert_command(app, context);
   add_plan_command(app, context);
   add_check_command(app, context);
+  add_export_pddl_command(app, context);
+  add_import_plan_command(app, context);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
