@@ -79,6 +79,18 @@ BENCHMARK(BM_PlanGenerated)
     ->Args({100000, 20, 2, 0})
     ->Unit(benchmark::kMillisecond);
 
+// Every algorithm on every size: the first plan only, 10 tasks (A* only where its exhaustive
+// search is affordable).
+void BM_PlanPerAlgorithm(benchmark::State& state) {
+  const Instance& instance = generated_instance(static_cast<std::size_t>(state.range(0)), 10);
+  plan_once(state, instance, static_cast<Algorithm>(state.range(1)), std::nullopt, 0);
+}
+BENCHMARK(BM_PlanPerAlgorithm)
+    ->ArgNames({"manholes", "algorithm"})
+    ->ArgsProduct({{1000, 10000, 100000}, {0, 1, 2, 3}})
+    ->Args({1000, 4})
+    ->Unit(benchmark::kMillisecond);
+
 void evaluate(benchmark::State& state, HeuristicKind kind) {
   const Instance& instance = generated_instance(100000, 20);
   auto compiled = domain::compile_sewer_task(

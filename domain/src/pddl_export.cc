@@ -100,6 +100,15 @@ class Exporter {
       pending_.push_back(t);
     }
     for (const Manhole& m : map.manholes()) max_slots_ = std::max<int>(max_slots_, m.slot_count);
+    // The bookkeeping actions' preconditions name the other tasks' done facts, so their objects
+    // are constants of the domain.
+    const bool bookkeeping = !mission.final_task() || (gated_final() && others_done() != "");
+    for (TaskId t : pending_) {
+      const Task& task = mission.task(t);
+      if (!bookkeeping || task.final) continue;
+      constants_.insert(place_name(task));
+      if (task_mode(kind_of(task))) constants_.insert(names_.task(t));
+    }
   }
 
   PddlFiles run() {
@@ -162,6 +171,11 @@ class Exporter {
     for (const std::string& t : types) out << "\n          " << t;
     if (!types.empty()) out << " - manhole";
     out << ")\n";
+    if (!constants_.empty()) {
+      out << "  (:constants";  // the objects the bookkeeping actions name
+      write_typed_objects(out, true);
+      out << ")\n";
+    }
     write_predicates(out);
     if (options_.action_costs) {
       out << "  (:functions (total-cost) - number (drive-cost ?p - pipe) - number\n"
@@ -295,25 +309,7 @@ class Exporter {
         << mission_.profile.name << "'\n";
     write_renames(out);
     out << "(define (problem mission)\n  (:domain sewer)\n  (:objects";
-    std::map<std::string, std::vector<ManholeId>> by_type;
-    for (ManholeId m : map_.manhole_ids()) by_type[manhole_type(map_.manhole(m))].push_back(m);
-    for (const auto& entry : by_type) {
-      write_object_list(out, entry.second.size(),
-                        [&](std::size_t i) { return names_.manhole(entry.second[i]); });
-      out << " - " << entry.first;
-    }
-    write_object_list(out, map_.pipe_count(), [&](std::size_t i) {
-      return names_.pipe(PipeId{static_cast<std::uint32_t>(i)});
-    });
-    out << " - pipe";
-    if (!task_mode_.empty()) {
-      std::vector<TaskId> tasks;
-      for (TaskId t : pending_) {
-        if (task_mode(kind_of(mission_.task(t)))) tasks.push_back(t);
-      }
-      write_object_list(out, tasks.size(), [&](std::size_t i) { return names_.task(tasks[i]); });
-      out << " - task";
-    }
+    write_typed_objects(out, false);
     out << ")\n  (:init\n";
     write_position(out);
     write_static_facts(out);
@@ -338,9 +334,23 @@ class Exporter {
     for (TaskId t : mission_.task_ids()) note("task", names_.task(t), mission_.task(t).name);
   }
 
-  template <class Name>
-  static void write_object_list(std::ostream& out, std::size_t count, Name&& name) {
-    for (std::size_t i = 0; i < count; ++i) out << (i % 12 == 0 ? "\n    " : " ") << name(i);
+  // The objects, by type: the domain's constants (`constants`) or the problem's other objects.
+  void write_typed_objects(std::ostream& out, bool constants) const {
+    std::map<std::string, std::vector<std::string>> by_type;
+    auto add = [&](const std::string& name, const std::string& type) {
+      if ((constants_.count(name) != 0) == constants) by_type[type].push_back(name);
+    };
+    for (ManholeId m : map_.manhole_ids()) add(names_.manhole(m), manhole_type(map_.manhole(m)));
+    for (PipeId p : map_.pipe_ids()) add(names_.pipe(p), "pipe");
+    for (TaskId t : pending_) {
+      if (task_mode(kind_of(mission_.task(t)))) add(names_.task(t), "task");
+    }
+    for (const auto& [type, names] : by_type) {
+      for (std::size_t i = 0; i < names.size(); ++i) {
+        out << (i % 12 == 0 ? "\n    " : " ") << names[i];
+      }
+      out << " - " << type;
+    }
   }
 
   void write_position(std::ostream& out) const {
@@ -447,7 +457,8 @@ class Exporter {
   std::vector<TaskId> pending_;  // tasks to do, in mission order (not a final one reached by
                                  // being there)
   std::map<Kind, std::set<std::string>> places_;  // per kind, the places of its tasks
-  std::set<Kind> task_mode_;  // kinds with two tasks at one place: actions name the task
+  std::set<Kind> task_mode_;         // kinds with two tasks at one place: actions name the task
+  std::set<std::string> constants_;  // objects the domain names (PDDL names)
   int max_slots_ = 0;
 };
 

@@ -115,5 +115,21 @@ JSON
 expect 4 "task 'far' \(inspect_pipe\): no route from the start" -- "$sp" plan --map "$ais" --mission "$tmp/cut.json"
 expect 2 'unknown' -- "$sp" plan --map "$ais" --mission "$mission" -a dijkstra
 
+# PDDL round trip: export, then read back what FF and Fast Downward print for it.
+expect 0 'wrote .*domain.pddl and .*problem.pddl' -- "$sp" export-pddl --map "$ais" --mission "$mission" --out "$tmp/pddl"
+expect 0 '\(:action DRIVE_MANHOLE_TYPE_4_FROM_3_TO_4' -- cat "$tmp/pddl/domain.pddl"
+expect 0 'with action costs' -- "$sp" export-pddl --map "$ais" --mission "$mission" --out "$tmp/pddl-costs" --action-costs
+expect 0 'total-cost' -- cat "$tmp/pddl-costs/problem.pddl"
+tr '[:upper:]' '[:lower:]' < "$src/datasets/ais-testbed/plans/paper-corrected.plan" | grep -v '^[;#]' |
+  sed -E 's/^(.+)$/(\1)/' > "$tmp/sas_plan"
+echo '; cost = 585383 (general cost)' >> "$tmp/sas_plan"
+expect 0 'valid: 14 steps, 585.4 s' -- "$sp" import-plan --format fd --map "$ais" --mission "$mission" "$tmp/sas_plan"
+expect 0 'DRIVE_PIPE_TO_MANHOLE P12 M2' -- "$sp" import-plan --format fd --map "$ais" --mission "$mission" "$tmp/sas_plan"
+printf 'ff: found legal plan as follows\n\nstep    0: DRIVE_PIPE_TO_MANHOLE P12 M2\n        1: DRIVE_PIPE_TO_MANHOLE P99 M2\n' > "$tmp/ff.out"
+expect 1 "ff.out:4: error: unknown object 'P99'" -- "$sp" import-plan --format ff --map "$ais" --mission "$mission" "$tmp/ff.out"
+printf '(drive_pipe_to_manhole p12 m2)\n' > "$tmp/short_plan"
+expect 1 'invalid: goal not reached' -- "$sp" import-plan --format fd --map "$ais" --mission "$mission" "$tmp/short_plan"
+expect 2 "unknown planner output 'lpg'" -- "$sp" import-plan --format lpg --map "$ais" --mission "$mission" "$tmp/short_plan"
+
 echo "$passed passed, $failures failed"
 [ "$failures" -eq 0 ]
