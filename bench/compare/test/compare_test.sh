@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# bench/compare's handling of external planners, with stand-ins for FF and Fast Downward: a plan
+# printed as FF prints it (valid on the AIS instance, invalid on a generated one), a planner that
+# runs past the time limit, and one that crashes. Usage: compare_test.sh PATH_TO_SEWERPLAN_COMPARE
+# SOURCE_DIR
+set -uo pipefail
+compare=$1
+src=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+failures=0
+
+check() {  # check PATTERN FILE WHAT
+  if ! grep -qE -- "$1" "$2"; then
+    echo "FAIL: $3: /$1/ not in $2:"
+    cat "$2"
+    failures=$((failures + 1))
+  fi
+}
+
+# FF stand-in: the paper's corrected plan, in FF's output format.
+{
+  echo '#!/bin/sh'
+  echo 'echo "ff: parsing domain file"; echo; echo "ff: found legal plan as follows"; echo'
+  n=0
+  while read -r line; do
+    case "$line" in ''|'#'*|';'*) continue ;; esac
+    echo "echo '        $n: $line'"
+    n=$((n + 1))
+  done < "$src/datasets/ais-testbed/plans/paper-corrected.plan"
+} > "$tmp/ff"
+printf '#!/bin/sh\nsleep 30\n' > "$tmp/slow"
+printf '#!/bin/sh\nkill -SEGV $$\n' > "$tmp/crash"
+chmod +x "$tmp/ff" "$tmp/slow" "$tmp/crash"
+
+"$compare" --ff "$tmp/ff" --fd "$tmp/slow" --sizes 10 --tasks 3 --seeds 1 --time-limit 2 \
+  --out "$tmp/out" 2> "$tmp/progress"
+csv=$tmp/out/results.csv
+check '^ais-testbed-paper,12,3,sewerplan,solved,[0-9.e-]+,[0-9.e-]+,585\.378' "$csv" "sewerplan on AIS"
+check '^ais-testbed-paper,12,3,ff,solved,.*,585\.378[0-9]*,14,' "$csv" "FF's plan read back and costed"
+check '^ais-testbed-paper,12,3,fd lama-first,timeout,' "$csv" "a planner past the limit"
+check '^g10-t3-s1,10,3,ff,(invalid plan|unreadable plan),' "$csv" "a wrong plan is not counted as solved"
+check '\[1/2\] ais-testbed-paper: sewerplan solved' "$tmp/progress" "a progress line"
+check '^\| ais-testbed-paper \| 12 \| 3 \| solved' "$tmp/out/results.md" "the Markdown table"
+
+"$compare" --ff "$tmp/crash" --no-datasets --sizes 10 --tasks 3 --seeds 1 --time-limit 5 \
+  --out "$tmp/out2" 2> /dev/null
+check '^g10-t3-s1,10,3,ff,crashed,.*signal 11' "$tmp/out2/results.csv" "a crash"
+
+[ "$failures" -eq 0 ] && echo "compare: all checks passed"
+[ "$failures" -eq 0 ]
