@@ -1,0 +1,70 @@
+// SPDX-License-Identifier: MIT
+// Robot: the interface between the action controller and a robot, simulated or real.
+//
+// The executor (executor/) sends one job (core/job.h) at a time and waits for its report: done,
+// or failed with an error the robot classifies as the paper does (section 4.7): BLOCKAGE (the path
+// is blocked), DANGER (going on could damage the robot) or MALFUNCTION (a software or hardware
+// fault). A report says how far the job got, so that the controller knows where the robot is. The
+// robot behind this interface may be the seeded simulator (sim_robot.h) or the CAN bus; the
+// executor cannot tell them apart.
+//
+//   JobReport r = robot.execute(DriveForward{.speed_mps = 0.3, .distance_m = 12});
+//   if (!r.ok() && r.error->kind == RobotErrorKind::kMalfunction) robot.reboot();
+#pragma once
+
+#include <optional>
+#include <ostream>
+#include <string>
+#include <string_view>
+
+#include "sewerplan/core/job.h"
+#include "sewerplan/core/result.h"
+
+namespace sewerplan::hal {
+
+enum class RobotErrorKind { kBlockage, kDanger, kMalfunction };
+
+// "blockage", "danger", "malfunction".
+std::string_view to_string(RobotErrorKind kind);
+
+struct RobotError {
+  RobotErrorKind kind = RobotErrorKind::kMalfunction;
+  std::string reason;  // "obstacle 0.20 m ahead", "motor 3 over current", ...
+  friend bool operator==(const RobotError&, const RobotError&) = default;
+};
+
+struct JobReport {
+  std::optional<RobotError> error;  // empty: the job was done
+  double progress_m = 0;            // distance driven by this job (drives and scans)
+  double duration_s = 0;            // time the job took
+  double energy_wh = 0;             // energy it used
+  bool ok() const { return !error.has_value(); }
+  friend bool operator==(const JobReport&, const JobReport&) = default;
+};
+
+// What the robot knows of itself.
+struct RobotStatus {
+  double battery_wh = 0;  // left
+  double odometry_m = 0;  // distance driven since start
+  double elapsed_s = 0;   // mission time since start
+  bool head_lifted = false;
+  bool beacon_on = false;
+  friend bool operator==(const RobotStatus&, const RobotStatus&) = default;
+};
+
+class Robot {
+ public:
+  virtual ~Robot() = default;
+
+  // Runs `job` to its end or to the first error; never throws.
+  virtual JobReport execute(const Job& job) = 0;
+  virtual RobotStatus status() const = 0;
+  // Restarts the robot's control software; the error, if the fault was permanent.
+  virtual Result<void> reboot() = 0;
+  // Switches on the locator beacon, so that the robot can be found and recovered.
+  virtual void activate_beacon() = 0;
+};
+
+std::ostream& operator<<(std::ostream& os, const RobotError& error);
+
+}  // namespace sewerplan::hal
