@@ -95,7 +95,7 @@ class MissionReader {
 
   void closed(JsonElement j, Mission& m) {
     JsonFields f(j, "$.closed", file_, d_);
-    f.warn_unknown({"pipes", "passages"});
+    f.warn_unknown({"pipes", "passages", "blockages"});
     if (auto pipes_array = f.array("pipes", Need::kOptional)) {
       m.closed_pipes = pipes(*pipes_array, "$.closed.pipes");
     }
@@ -103,6 +103,31 @@ class MissionReader {
       std::size_t i = 0;
       for (JsonElement p : *passages) passage(p, indexed("$.closed.passages", i++), m);
     }
+    if (auto blockages = f.array("blockages", Need::kOptional)) {
+      std::size_t i = 0;
+      for (JsonElement b : *blockages) blockage(b, indexed("$.closed.blockages", i++), m);
+    }
+  }
+
+  void blockage(JsonElement j, const std::string& path, Mission& m) {
+    JsonFields f(j, path, file_, d_);
+    f.warn_unknown({"pipe", "offset_m"});
+    auto name = f.string("pipe");
+    auto offset = f.number("offset_m");
+    if (!name || !offset) return;
+    const auto id = map_.find_pipe(*name);
+    if (!id) {
+      d_.error(f.where("pipe"), "unknown pipe '" + *name + "'");
+      return;
+    }
+    const double length = map_.pipe(*id).length_m;
+    if (!(*offset >= 0 && *offset <= length)) {
+      d_.error(f.where("offset_m"), "pipe " + *name + " is " + detail::format_double(length) +
+                                        " m long, got an offset of " +
+                                        detail::format_double(*offset) + " m");
+      return;
+    }
+    m.blockages.push_back({*id, *offset});
   }
 
   void exits(JsonArray array, Mission& m) {

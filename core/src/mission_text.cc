@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Writing missions (JSON) and describing places for people.
+#include <algorithm>
+
 #include <nlohmann/json.hpp>
 
 #include "sewerplan/core/mission.h"
@@ -48,8 +50,12 @@ void write_mission_json(const Mission& m, const SewerMap& map, std::ostream& out
   j["exits"] = json::array();
   for (ManholeId e : m.exits) j["exits"].push_back(map.manhole(e).name);
   j["battery_reserve"] = m.battery_reserve_fraction;
-  if (!m.closed_pipes.empty() || !m.closed_passages.empty()) {
+  if (!m.closed_pipes.empty() || !m.closed_passages.empty() || !m.blockages.empty()) {
     json closed = {{"pipes", json::array()}, {"passages", json::array()}};
+    if (!m.blockages.empty()) closed["blockages"] = json::array();
+    for (const Blockage& b : m.blockages) {
+      closed["blockages"].push_back({{"pipe", map.pipe(b.pipe).name}, {"offset_m", b.offset_m}});
+    }
     for (PipeId p : m.closed_pipes) closed["pipes"].push_back(map.pipe(p).name);
     for (const ClosedPassage& c : m.closed_passages) {
       closed["passages"].push_back({{"manhole", map.manhole(c.manhole).name},
@@ -68,6 +74,15 @@ std::string describe(const Place& place, const SewerMap& map) {
   if (spot.point) return "point " + map.point(*spot.point).name + " (" + pipe + ")";
   if (spot.offset_m) return pipe + " at " + detail::format_double(*spot.offset_m) + " m";
   return pipe;
+}
+
+std::optional<Blockage> blockage_between(const Mission& mission, PipeId pipe, double a, double b) {
+  const double lo = std::min(a, b);
+  const double hi = std::max(a, b);
+  for (const Blockage& blockage : mission.blockages) {
+    if (blockage.pipe == pipe && blockage.offset_m > lo && blockage.offset_m < hi) return blockage;
+  }
+  return std::nullopt;
 }
 
 }  // namespace sewerplan

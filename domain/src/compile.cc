@@ -3,6 +3,8 @@
 #include "sewerplan/domain/compile.h"
 
 #include <algorithm>
+#include <iomanip>
+#include <sstream>
 #include <unordered_map>
 
 #include "sewerplan/core/clock.h"
@@ -35,8 +37,9 @@ Plan SewerTask::expand(std::span<const ActionId> plan) const {
 
 class SewerTaskCompiler {
  public:
-  SewerTaskCompiler(const SewerMap& map, const Mission& mission, const MissionProgress& progress)
-      : map_(map), mission_(mission), progress_(progress) {
+  SewerTaskCompiler(const SewerMap& map, const Mission& mission, const MissionProgress& progress,
+                    const CompileOptions& options)
+      : map_(map), mission_(mission), progress_(progress), options_(options) {
     result_.graph_ = std::make_unique<PositionGraph>(map, mission);
   }
 
@@ -49,8 +52,12 @@ class SewerTaskCompiler {
     GraphSearch search(graph);
     route(search);
     detail::CompileReasons reasons(graph, mission_, progress_, bound_);
-    if (auto why = reasons.explain(keys_, pending_, dist_, exit_dist_, ends_at_exit_);
-        !why.empty()) {
+    if (options_.select_goals) {
+      if (auto why = select_goals(reasons); !why.empty()) {
+        return Error{ErrorCode::kNoPlan, "the mission cannot be ended:" + why};
+      }
+    } else if (auto why = reasons.explain(keys_, pending_, dist_, exit_dist_, ends_at_exit_);
+               !why.empty()) {
       return Error{ErrorCode::kNoPlan, "the mission cannot be completed:" + why};
     }
     build_task();
@@ -64,6 +71,26 @@ class SewerTaskCompiler {
 
  private:
   std::size_t k() const { return keys_.size(); }
+
+  // Leaves out the pending tasks known to be impossible; what remains impossible is returned.
+  std::string select_goals(const detail::CompileReasons& reasons) {
+    std::string why = reasons.fatal(exit_dist_, ends_at_exit_);
+    if (!why.empty()) return why;
+    std::vector<TaskId> kept;
+    for (TaskId t : pending_) {
+      const Task& task = mission_.task(t);
+      std::string reason = reasons.task_reason(task, keys_, dist_, exit_dist_, ends_at_exit_);
+      if (reason.empty()) {
+        kept.push_back(t);
+      } else if (task.final) {
+        why += "\n  - the final task '" + task.name + "': " + reason;
+      } else {
+        result_.dropped_.push_back({t, std::move(reason)});
+      }
+    }
+    pending_ = std::move(kept);
+    return why;
+  }
 
   void select_tasks() {
     for (TaskId t : mission_.task_ids()) {
@@ -225,6 +252,21 @@ class SewerTaskCompiler {
     }
   }
 
+  // What blocks a task in a pipe, for the reason given when it is dropped.
+  std::string blocked_reason(const Task& task) const {
+    if (const auto* spot = std::get_if<PipeSpot>(&task.place)) {
+      for (const Blockage& b : mission_.blockages) {
+        if (b.pipe == spot->pipe) {
+          std::ostringstream out;
+          out << "pipe " << map_.pipe(b.pipe).name << " is blocked at " << std::fixed
+              << std::setprecision(2) << b.offset_m << " m";
+          return out.str();
+        }
+      }
+    }
+    return "the robot's limits and the mission's closures";
+  }
+
   void build_task();
   void add_action(std::vector<Fact> pre, std::vector<Fact> eff, Cost cost, std::string name,
                   std::span<const Node> route, std::optional<PlanStep> step);
@@ -234,6 +276,8 @@ class SewerTaskCompiler {
   const SewerMap& map_;
   const Mission& mission_;
   const MissionProgress& progress_;
+  const CompileOptions& options_;
+  std::vector<std::size_t> undoable_;  // pending tasks without an action (goal selection)
   SewerTask result_;
   CompiledTask::Builder builder_;
   std::vector<TaskId> pending_;
@@ -293,6 +337,7 @@ void SewerTaskCompiler::add_task_actions(std::size_t index, VarId pos) {
     if (graph.pipe_of(keys_[y]) != spot.pipe) continue;
     const double at = graph.offset_of(keys_[y]);
     const auto pre = task_preconditions(index, pos, y);
+    auto blocked = [&](double x) { return graph.blocked_between(spot.pipe, at, x); };
     auto move_to = [&](double x, std::vector<Fact> eff) {
       if (x != at)
         eff.push_back({pos, static_cast<std::int32_t>(key_of_.at(graph.spot(spot.pipe, x)))});
@@ -301,6 +346,7 @@ void SewerTaskCompiler::add_task_actions(std::size_t index, VarId pos) {
     switch (task.kind) {
       case TaskKind::kTakeWaterSample: {
         const double x = spot.offset_m.value_or(at);
+        if (blocked(x)) break;
         add_action(pre, move_to(x, {{var, 1}}),
                    to_cost(std::abs(x - at) / profile.speed_mps + profile.sample_s),
                    "sample " + label + std::to_string(y), {}, TakeWaterSample{spot.pipe, t});
@@ -312,12 +358,14 @@ void SewerTaskCompiler::add_task_actions(std::size_t index, VarId pos) {
           break;
         }
         const double x = spot.offset_m.value_or(at);
+        if (blocked(x)) break;
         add_action(pre, move_to(x, {{var, 1}}), to_cost(std::abs(x - at) / profile.speed_mps),
                    "go-to " + label + std::to_string(y), {}, GoToPoint{spot.pipe, t});
         break;
       }
       case TaskKind::kInspectPipe: {
         const Pipe& pipe = map_.pipe(spot.pipe);
+        if (!graph.fully_open(spot.pipe)) break;
         for (std::uint8_t e = 0; e < 2; ++e) {
           const double start_end = end_offset_m(pipe, 1U - e);
           const Node finish = graph.pipe_end(spot.pipe, e);
@@ -355,7 +403,33 @@ void SewerTaskCompiler::build_task() {
                  std::nullopt);
     }
   }
-  for (std::size_t i = 0; i < pending_.size(); ++i) add_task_actions(i, pos);
+  for (std::size_t i = 0; i < pending_.size(); ++i) {
+    const std::size_t before = result_.task_step_.size();
+    add_task_actions(i, pos);
+    // With goal selection, a task that no action can do (a blockage in the way) is dropped with
+    // that reason rather than forgone as if for the battery.
+    if (options_.select_goals && result_.task_step_.size() == before) {
+      undoable_.push_back(i);
+    }
+  }
+  if (options_.select_goals) {
+    // Forgoing a task costs more than any plan within the bound (CompiledTask::penalty_unit()).
+    const Cost penalty = 2 * (bound_ + 1);
+    builder_.set_penalty_unit(penalty);
+    for (std::size_t i = 0; i < pending_.size(); ++i) {
+      const Task& task = mission_.task(pending_[i]);
+      if (task.final) continue;
+      if (std::find(undoable_.begin(), undoable_.end(), i) != undoable_.end()) {
+        result_.dropped_.push_back(
+            {pending_[i],
+             "no position the robot can reach lets it do the task: " + blocked_reason(task)});
+      }
+      result_.forgo_actions_.emplace_back(
+          ActionId{static_cast<std::uint32_t>(result_.task_step_.size())}, pending_[i]);
+      add_action({{task_vars_[i], 0}}, {{task_vars_[i], 1}}, penalty, "forgo '" + task.name + "'",
+                 {}, std::nullopt);
+    }
+  }
   for (std::uint32_t a = 0; ends_at_exit_ && a < k(); ++a) {
     if (exit_dist_[a] > bound_) continue;
     add_action({{pos, static_cast<std::int32_t>(a)}}, {{pos, exit_value}}, exit_dist_[a],
@@ -365,9 +439,25 @@ void SewerTaskCompiler::build_task() {
 }
 
 Result<SewerTask> compile_sewer_task(const SewerMap& map, const Mission& mission,
-                                     const MissionProgress& progress) {
+                                     const MissionProgress& progress,
+                                     const CompileOptions& options) {
   SEWER_CHECK(progress.done.size() == mission.tasks.size(), "progress does not fit the mission");
-  return SewerTaskCompiler(map, mission, progress).run();
+  return SewerTaskCompiler(map, mission, progress, options).run();
+}
+
+std::vector<TaskId> SewerTask::forgone(std::span<const ActionId> plan) const {
+  std::vector<TaskId> tasks;
+  for (ActionId a : plan) {
+    auto it = std::lower_bound(forgo_actions_.begin(), forgo_actions_.end(), a,
+                               [](const auto& entry, ActionId id) { return entry.first < id; });
+    if (it == forgo_actions_.end() || it->first != a) continue;
+    // Tasks dropped already (no action does them) are forgone with the reason given then.
+    const bool dropped = std::any_of(dropped_.begin(), dropped_.end(),
+                                     [&](const DroppedTask& d) { return d.task == it->second; });
+    if (!dropped) tasks.push_back(it->second);
+  }
+  std::sort(tasks.begin(), tasks.end());
+  return tasks;
 }
 
 }  // namespace sewerplan::domain

@@ -44,6 +44,12 @@ std::string CompileReasons::unreachable(const Task& task) const {
         mission_.closed_pipes.end()) {
       return "pipe " + pipe.name + " is closed";
     }
+    for (const Blockage& b : mission_.blockages) {
+      if (b.pipe == spot->pipe &&
+          (task.kind == TaskKind::kInspectPipe || !graph_.pipe_drivable(spot->pipe))) {
+        return "pipe " + pipe.name + " is blocked at " + fixed(b.offset_m, 2) + " m";
+      }
+    }
     if (!graph_.pipe_drivable(spot->pipe)) {
       return "pipe " + pipe.name + " is " + fixed(pipe.diameter_m, 2) + " m, outside " + p.name +
              "'s " + fixed(p.min_pipe_diameter_m, 2) + "-" + fixed(p.max_pipe_diameter_m, 2) + " m";
@@ -80,11 +86,7 @@ std::string CompileReasons::task_reason(const Task& task, const std::vector<Node
   return {};
 }
 
-std::string CompileReasons::explain(const std::vector<Node>& keys,
-                                    const std::vector<TaskId>& pending,
-                                    const std::vector<Cost>& dist,
-                                    const std::vector<Cost>& exit_dist, bool ends_at_exit) const {
-  std::string out;
+std::string CompileReasons::fatal(const std::vector<Cost>& exit_dist, bool ends_at_exit) const {
   if (bound_ < 0) {
     return "\n  - the battery is spent: " + fixed(progress_.energy_used_wh, 1) +
            " Wh used, and the reserve must stay";
@@ -97,6 +99,34 @@ std::string CompileReasons::explain(const std::vector<Node>& keys,
            " cannot drive: " + fixed(pipe.diameter_m, 2) + " m, outside its " +
            fixed(p.min_pipe_diameter_m, 2) + "-" + fixed(p.max_pipe_diameter_m, 2) + " m";
   }
+  if (!ends_at_exit) return {};
+  const SewerMap& map = graph_.map();
+  std::string names;
+  for (std::size_t i = 0; i < mission_.exits.size() && i < 8; ++i) {
+    names += (i == 0 ? "" : ", ") + map.manhole(mission_.exits[i]).name;
+  }
+  if (mission_.exits.size() > 8) names += ", ...";
+  if (exit_dist[0] == kInfiniteCost) {
+    return "\n  - no exit (" + names + ") can be reached from the start (" +
+           describe(progress_.position, map) + ") within " + limits();
+  }
+  if (exit_dist[0] > bound_) {
+    return "\n  - reaching the nearest exit needs at least " + energy(exit_dist[0]) + ", but " +
+           energy(bound_) + " are available";
+  }
+  return {};
+}
+
+std::string CompileReasons::explain(const std::vector<Node>& keys,
+                                    const std::vector<TaskId>& pending,
+                                    const std::vector<Cost>& dist,
+                                    const std::vector<Cost>& exit_dist, bool ends_at_exit) const {
+  // The battery and the start make everything else moot; an unreachable exit is listed last.
+  if (bound_ < 0 || std::holds_alternative<InPipe>(progress_.position)) {
+    const std::string why = fatal(exit_dist, false);
+    if (!why.empty()) return why;
+  }
+  std::string out;
   for (TaskId t : pending) {
     const Task& task = mission_.task(t);
     const std::string why = task_reason(task, keys, dist, exit_dist, ends_at_exit);
@@ -104,22 +134,7 @@ std::string CompileReasons::explain(const std::vector<Node>& keys,
       out += "\n  - task '" + task.name + "' (" + std::string(to_string(task.kind)) + "): " + why;
     }
   }
-  if (ends_at_exit) {
-    const SewerMap& map = graph_.map();
-    std::string names;
-    for (std::size_t i = 0; i < mission_.exits.size() && i < 8; ++i) {
-      names += (i == 0 ? "" : ", ") + map.manhole(mission_.exits[i]).name;
-    }
-    if (mission_.exits.size() > 8) names += ", ...";
-    if (exit_dist[0] == kInfiniteCost) {
-      out += "\n  - no exit (" + names + ") can be reached from the start (" +
-             describe(progress_.position, map) + ") within " + limits();
-    } else if (exit_dist[0] > bound_) {
-      out += "\n  - reaching the nearest exit needs at least " + energy(exit_dist[0]) + ", but " +
-             energy(bound_) + " are available";
-    }
-  }
-  return out;
+  return out + fatal(exit_dist, ends_at_exit);
 }
 
 }  // namespace sewerplan::domain::detail

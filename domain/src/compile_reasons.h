@@ -26,10 +26,15 @@ class CompileReasons {
                       const std::vector<Cost>& dist, const std::vector<Cost>& exit_dist,
                       bool ends_at_exit) const;
 
- private:
+  // The reasons that no choice of tasks can help: the battery spent, a start the robot cannot
+  // move from, no exit in reach (for a mission that ends at one). Same form as explain().
+  std::string fatal(const std::vector<Cost>& exit_dist, bool ends_at_exit) const;
+  // Why `task` cannot be done (and the mission still ended); empty if nothing is known against it.
   std::string task_reason(const Task& task, const std::vector<Node>& keys,
                           const std::vector<Cost>& dist, const std::vector<Cost>& exit_dist,
                           bool ends_at_exit) const;
+
+ private:
   std::string unreachable(const Task& task) const;
   std::string energy(Cost cost) const;
   std::string limits() const;

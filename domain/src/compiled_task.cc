@@ -79,10 +79,14 @@ void CompiledTask::Builder::add_goal(Fact fact) { task_.goal_.push_back(fact); }
 
 void CompiledTask::Builder::set_cost_bound(Cost bound) { task_.cost_bound_ = bound; }
 
+void CompiledTask::Builder::set_penalty_unit(Cost unit) { task_.penalty_unit_ = unit; }
+
 CompiledTask CompiledTask::Builder::build() && {
   CompiledTask& t = task_;
   if (t.pre_begin_.empty()) t.pre_begin_.push_back(0);
   SEWER_CHECK(t.initial_.size() == t.domain_sizes_.size(), "one initial value per variable");
+  SEWER_CHECK(t.penalty_unit_ == 0 || t.penalty_unit_ / 2 > t.cost_bound_,
+              "the penalty unit must exceed twice the cost bound");
   auto valid = [&](const Fact& f) {
     return f.var.index() < t.domain_sizes_.size() && f.value >= 0 &&
            f.value < t.domain_sizes_[f.var.index()];

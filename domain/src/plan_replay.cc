@@ -118,6 +118,7 @@ Result<PlanReplay::Transition> PlanReplay::drive_pipe_to_manhole(
   if (!end) {
     return invalid(map_->manhole(s.manhole).name + " is not at an end of pipe " + pipe.name);
   }
+  if (auto blocked = blocked_between(s.pipe, *x, end_offset_m(pipe, *end))) return *blocked;
   const double distance = std::abs(*x - end_offset_m(pipe, *end));
   return Transition{distance / mission_->profile.speed_mps, AtSlot{s.manhole, pipe.ends[*end].slot},
                     std::nullopt};
@@ -180,6 +181,7 @@ Result<PlanReplay::Transition> PlanReplay::take_water_sample(const TakeWaterSamp
       pending_task(s.task, TaskKind::kTakeWaterSample, here, "pipe " + map_->pipe(s.pipe).name);
   if (!task.has_value()) return task.error();
   const double y = detail::task_offset_m(**task, *map_).value_or(*x);
+  if (auto blocked = blocked_between(s.pipe, *x, y)) return *blocked;
   return Transition{std::abs(*x - y) / mission_->profile.speed_mps + mission_->profile.sample_s,
                     InPipe{s.pipe, y}, s.task};
 }
@@ -193,6 +195,7 @@ Result<PlanReplay::Transition> PlanReplay::go_to_point(const GoToPoint& s) const
       pending_task(s.task, TaskKind::kGoTo, here, "pipe " + map_->pipe(s.pipe).name);
   if (!task.has_value()) return task.error();
   const double y = detail::task_offset_m(**task, *map_).value_or(*x);
+  if (auto blocked = blocked_between(s.pipe, *x, y)) return *blocked;
   return Transition{std::abs(*x - y) / mission_->profile.speed_mps, InPipe{s.pipe, y}, s.task};
 }
 
@@ -222,6 +225,9 @@ Result<PlanReplay::Transition> PlanReplay::inspect_pipe(const InspectPipe& s) co
                    " must name the manhole where the inspection finishes");
   }
   const double start_offset = end_offset_m(pipe, 1 - finish);
+  // The inspection drives the whole pipe, from its start end (reached first) to the other.
+  if (auto blocked = blocked_between(s.pipe, *x, start_offset)) return *blocked;
+  if (auto blocked = blocked_between(s.pipe, -1, pipe.length_m + 1)) return *blocked;
   const RobotProfile& profile = mission_->profile;
   return Transition{std::abs(*x - start_offset) / profile.speed_mps +
                         pipe.length_m / profile.inspection_speed_mps,
@@ -241,6 +247,13 @@ Result<PlanReplay::Transition> PlanReplay::go_to_manhole(const GoToManhole& s) c
   Result<const Task*> task = pending_task(s.task, TaskKind::kGoTo, here, "manhole " + name);
   if (!task.has_value()) return task.error();
   return Transition{0.0, progress_.position, s.task};
+}
+
+std::optional<Error> PlanReplay::blocked_between(PipeId pipe, double from, double to) const {
+  const auto blockage = sewerplan::blockage_between(*mission_, pipe, from, to);
+  if (!blockage) return std::nullopt;
+  return Error{ErrorCode::kInvalidArgument, "pipe " + map_->pipe(pipe).name + " is blocked at " +
+                                                detail::fixed(blockage->offset_m, 2) + " m"};
 }
 
 Result<double> PlanReplay::offset_in(PipeId pipe) const {

@@ -27,7 +27,9 @@ bool passage_less(const ClosedPassage& a, const ClosedPassage& b) {
 
 PositionGraph::PositionGraph(const SewerMap& map, const Mission& mission)
     : map_(map),
+      mission_(mission),
       profile_(mission.profile),
+      has_blockages_(!mission.blockages.empty()),
       manholes_(static_cast<Node>(map.manhole_count())),
       slots_(static_cast<Node>(map.slot_count())),
       pipes_(static_cast<Node>(map.pipe_count())) {

@@ -62,6 +62,12 @@ class PositionGraph {
   // The robot fits p's diameter: it can move in p if it is there (a closed pipe can be left).
   bool pipe_fits(PipeId p) const { return fits_[p.index()]; }
   bool passage_allowed(ManholeId m, SlotIndex from, SlotIndex to) const;
+  // Whether a blockage of the mission lies strictly between offsets a and b of pipe p.
+  bool blocked_between(PipeId p, double a, double b) const {
+    return has_blockages_ && blockage_between(mission_, p, a, b).has_value();
+  }
+  // Whether the whole of p can be driven (an inspection): no blockage anywhere in it.
+  bool fully_open(PipeId p) const { return !blocked_between(p, -1.0, map_.pipe(p).length_m + 1.0); }
   Cost passage_cost(ManholeId m, SlotIndex from, SlotIndex to) const;
   Cost drive_cost(double distance_m) const;
 
@@ -83,7 +89,9 @@ class PositionGraph {
   void drive_out_of_pipe(Node from, PipeId p, double x, F&& f) const;
 
   const SewerMap& map_;
+  const Mission& mission_;
   const RobotProfile& profile_;
+  bool has_blockages_ = false;
   Node manholes_;
   Node slots_;
   Node pipes_;
@@ -101,6 +109,7 @@ void PositionGraph::drive_out_of_pipe(Node, PipeId p, double x, F&& f) const {
   for (std::size_t e = 0; e < 2; ++e) {
     if (!pipe.ends[e].manhole) continue;
     const double offset = e == 0 ? 0.0 : pipe.length_m;
+    if (blocked_between(p, x, offset)) continue;
     f(at_slot(*pipe.ends[e].manhole, pipe.ends[e].slot),
       drive_cost(x > offset ? x - offset : offset - x));
   }
@@ -141,10 +150,12 @@ void PositionGraph::for_each_predecessor(Node to, F&& f) const {
     const double target = slot.pipe_end == 0 ? 0.0 : pipe.length_m;
     for (std::size_t e = 0; e < 2; ++e) {
       const double x = e == 0 ? 0.0 : pipe.length_m;
+      if (blocked_between(slot.pipe, x, target)) continue;
       f(pipe_end(slot.pipe, e), drive_cost(x > target ? x - target : target - x));
     }
     for (Node n : extra_spots_in(slot.pipe)) {
       const double x = offset_of(n);
+      if (blocked_between(slot.pipe, x, target)) continue;
       f(n, drive_cost(x > target ? x - target : target - x));
     }
     return;

@@ -22,7 +22,7 @@ BestFirstSearch::BestFirstSearch(const domain::CompiledTask& task, Heuristic& he
     : task_(task),
       heuristic_(heuristic),
       ordering_(ordering),
-      bound_(std::min(cost_bound, task.cost_bound())),
+      bound_(task.penalty_unit() > 0 ? cost_bound : std::min(cost_bound, task.cost_bound())),
       registry_(task) {}
 
 std::string_view BestFirstSearch::name() const {
@@ -83,7 +83,7 @@ std::optional<SearchStatus> BestFirstSearch::step() {
   task_.applicable_actions(values_, applicable_);
   for (ActionId a : applicable_) {
     const Cost succ_g = g + task_.cost(a);
-    if (succ_g > bound_) {
+    if (succ_g > bound_ || task_.exceeds_bound(succ_g)) {
       ++result_.statistics.dead_ends;
       continue;
     }

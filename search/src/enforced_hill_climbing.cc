@@ -84,7 +84,7 @@ std::optional<SearchStatus> EnforcedHillClimbing::step() {
   const Cost g = visits_[s.index()].g;
   for (ActionId a : candidates) {
     const Cost succ_g = g + task_.cost(a);
-    if (current_g_ + succ_g > task_.cost_bound()) {
+    if (task_.exceeds_bound(current_g_ + succ_g)) {
       ++result_.statistics.dead_ends;
       continue;
     }

@@ -137,14 +137,16 @@ Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
                                  const PlannerOptions& options) {
   const SteadyClock steady;
   const Clock& clock = options.clock != nullptr ? *options.clock : steady;
-  Result<domain::SewerTask> compiled = domain::compile_sewer_task(map, mission, progress);
+  Result<domain::SewerTask> compiled =
+      domain::compile_sewer_task(map, mission, progress, {.select_goals = options.select_goals});
   if (!compiled.has_value()) return compiled.error();
   const domain::CompiledTask& task = compiled->task();
   // An admissible estimate already beyond the battery proves there is no plan, whatever the
   // algorithm: without this, greedy searches would exhaust the bounded state space to find out.
+  // (With goal selection, forgoing tasks is always possible, and the estimate includes penalties.)
   if (auto lower =
           make_heuristic(HeuristicKind::kMax, task)->evaluate(task.initial_state(), nullptr);
-      lower == Heuristic::kDeadEnd || lower > task.cost_bound()) {
+      lower == Heuristic::kDeadEnd || (task.penalty_unit() == 0 && lower > task.cost_bound())) {
     return search_failure(SearchStatus::kUnsolvable, mission, progress, task);
   }
   const Algorithm algorithm = resolve(options.algorithm, task);
@@ -167,7 +169,13 @@ Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
     improve(task, stop, clock, options.improvement_expansions, result, outcome);
   }
   outcome.plan = compiled->expand(result.plan);
-  outcome.cost_s = domain::to_seconds(result.cost);
+  outcome.cost_s = domain::to_seconds(task.real_cost(result.cost));
+  outcome.dropped = compiled->dropped();
+  for (TaskId t : compiled->forgone(result.plan)) {
+    outcome.dropped.push_back({t, "not enough battery to do it as well and still end the mission"});
+  }
+  std::sort(outcome.dropped.begin(), outcome.dropped.end(),
+            [](const auto& a, const auto& b) { return a.task < b.task; });
   outcome.energy_wh = mission.profile.energy_wh(outcome.cost_s);
   outcome.search = result.statistics;
   outcome.compile = compiled->statistics();

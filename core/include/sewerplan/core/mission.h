@@ -66,6 +66,14 @@ struct ClosedPassage {
   friend bool operator==(const ClosedPassage&, const ClosedPassage&) = default;
 };
 
+// A place in a pipe that the robot cannot pass, such as an obstacle it met there: the robot may
+// still enter the pipe from either end and drive up to it, but not across it.
+struct Blockage {
+  PipeId pipe{0};
+  double offset_m = 0;  // from the pipe's ends[0]
+  friend bool operator==(const Blockage&, const Blockage&) = default;
+};
+
 struct Mission {
   std::string name;
   RobotProfile profile;
@@ -76,6 +84,7 @@ struct Mission {
   double battery_reserve_fraction = 0.2;
   std::vector<PipeId> closed_pipes;
   std::vector<ClosedPassage> closed_passages;
+  std::vector<Blockage> blockages;
   friend bool operator==(const Mission&, const Mission&) = default;
 
   // The final task, if the mission has one.
@@ -95,6 +104,10 @@ Result<Mission> read_mission_json(std::string_view text, const std::string& file
                                   const SewerMap& map, Diagnostics& diagnostics);
 
 void write_mission_json(const Mission& mission, const SewerMap& map, std::ostream& out);
+
+// The first of the mission's blockages strictly between offsets a and b of `pipe` (either order),
+// which a robot driving from a to b cannot pass. Runtime: O(blockages).
+std::optional<Blockage> blockage_between(const Mission& mission, PipeId pipe, double a, double b);
 
 // A place as people read it: "manhole M3", "pipe P6", "pipe P6 at 2.5 m", "point W1 (pipe P6)".
 std::string describe(const Place& place, const SewerMap& map);

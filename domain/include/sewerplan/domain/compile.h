@@ -32,6 +32,7 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "sewerplan/core/mission.h"
@@ -56,6 +57,23 @@ struct CompileStatistics {
   double time_s = 0;
 };
 
+// A task that goal selection left out, and why.
+struct DroppedTask {
+  TaskId task{0};
+  std::string reason;
+  friend bool operator==(const DroppedTask&, const DroppedTask&) = default;
+};
+
+struct CompileOptions {
+  // Goal selection (the paper, section 4.7: "tick off the highest possible number of goals"):
+  // instead of failing, leave out the tasks that cannot be reached (dropped()), and let the
+  // search forgo others at a penalty (CompiledTask::penalty_unit()), so that an optimal plan does
+  // as many tasks as the battery allows and still ends the mission. What stays impossible: a
+  // battery already spent, a start the robot cannot move from, no exit within reach (or the
+  // final task out of reach).
+  bool select_goals = false;
+};
+
 class SewerTask {
  public:
   SewerTask(SewerTask&&) noexcept;
@@ -68,6 +86,11 @@ class SewerTask {
   // The primitive plan of a plan of task(). Precondition: `plan` is a plan of task().
   Plan expand(std::span<const ActionId> plan) const;
 
+  // With goal selection: the tasks left out before the search, with the reason.
+  const std::vector<DroppedTask>& dropped() const { return dropped_; }
+  // With goal selection: the tasks that `plan` forgoes, in mission order (not those dropped()).
+  std::vector<TaskId> forgone(std::span<const ActionId> plan) const;
+
  private:
   friend class SewerTaskCompiler;
   SewerTask();
@@ -79,11 +102,15 @@ class SewerTask {
   std::vector<std::uint32_t> route_begin_;
   std::vector<std::uint32_t> route_nodes_;
   std::vector<std::optional<PlanStep>> task_step_;
+  std::vector<DroppedTask> dropped_;
+  std::vector<std::pair<ActionId, TaskId>> forgo_actions_;  // sorted by action
 };
 
 // Fails with kNoPlan, listing every reason found, when a pending task or (without a final task)
-// every exit is out of reach of the start, within the robot's limits and the battery.
+// every exit is out of reach of the start, within the robot's limits and the battery (with goal
+// selection, only for the reasons CompileOptions names).
 Result<SewerTask> compile_sewer_task(const SewerMap& map, const Mission& mission,
-                                     const MissionProgress& progress);
+                                     const MissionProgress& progress,
+                                     const CompileOptions& options = {});
 
 }  // namespace sewerplan::domain

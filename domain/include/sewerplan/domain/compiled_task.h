@@ -66,6 +66,14 @@ class CompiledTask {
 
   // Plans costing more than this are not plans (kInfiniteCost: no bound).
   Cost cost_bound() const { return cost_bound_; }
+  // Goal selection (compile.h) makes goals optional: forgoing one costs a penalty of
+  // penalty_unit() (0: no optional goals), more than any plan within the bound can cost. A cost
+  // is then (goals forgone) x penalty_unit() + the real cost, optimal plans forgo as few goals as
+  // possible, and the bound applies to the real cost only. The unit is more than twice the bound,
+  // so that one action past the bound cannot wrap into the next multiple.
+  Cost penalty_unit() const { return penalty_unit_; }
+  Cost real_cost(Cost cost) const { return penalty_unit_ > 0 ? cost % penalty_unit_ : cost; }
+  bool exceeds_bound(Cost cost) const { return real_cost(cost) > cost_bound_; }
 
   // Total number of facts, and a dense index of each (for heuristics' per-fact arrays).
   std::size_t fact_count() const { return fact_offsets_.back(); }
@@ -93,6 +101,7 @@ class CompiledTask {
   std::vector<Cost> costs_;
   std::vector<std::string> names_;
   Cost cost_bound_ = kInfiniteCost;
+  Cost penalty_unit_ = 0;
   // Successor index: actions by their first precondition's fact (CSR over fact_index), and the
   // actions without preconditions.
   std::vector<std::size_t> fact_offsets_;
@@ -115,6 +124,8 @@ class CompiledTask::Builder {
   void set_initial(std::vector<std::int32_t> values);
   void add_goal(Fact fact);
   void set_cost_bound(Cost bound);
+  // Precondition: more than twice the cost bound (see penalty_unit()).
+  void set_penalty_unit(Cost unit);
   // Checks every fact against its variable's domain (SEWER_CHECK: a compiler bug otherwise).
   CompiledTask build() &&;
 

@@ -83,6 +83,8 @@ class PlanReplay {
   Result<Transition> go_to_manhole(const GoToManhole& s) const;
   // The robot's offset in `pipe`, if it is in it and may drive there.
   Result<double> offset_in(PipeId pipe) const;
+  // "pipe P5 is blocked at 12.30 m" if a blockage lies between the two offsets.
+  std::optional<Error> blocked_between(PipeId pipe, double from, double to) const;
   // `task`, if it is a pending task of `kind` that may be done now; `place` names the action's
   // pipe or manhole, and `at_place` says whether the task is there.
   Result<const Task*> pending_task(TaskId task, TaskKind kind, bool at_place,

@@ -56,6 +56,10 @@ struct PlannerOptions {
   // budget rather than a time budget, so that the plan does not depend on the machine's speed.
   // 0: keep the first plan.
   std::uint64_t improvement_expansions = 10'000;
+  // Goal selection (domain/compile.h, CompileOptions::select_goals): do as many tasks as can be
+  // done and still end the mission, rather than fail when not all can. The plan's dropped tasks
+  // say which were left out, and why.
+  bool select_goals = false;
 };
 
 struct PlanOutcome {
@@ -69,6 +73,8 @@ struct PlanOutcome {
   // that exhausted every cheaper plan).
   bool optimal = false;
   std::size_t improvements = 0;  // cheaper plans found after the first
+  // With goal selection: the tasks left out, in mission order, with the reason.
+  std::vector<domain::DroppedTask> dropped;
 };
 
 // kAuto's choice for `task`; any other algorithm is returned as it is.
