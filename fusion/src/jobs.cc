@@ -1,0 +1,83 @@
+// SPDX-License-Identifier: MIT
+#include "sewerplan/fusion/jobs.h"
+
+#include <type_traits>
+
+namespace sewerplan::fusion {
+namespace {
+
+// A drive along the pipe; nothing for a distance of 0.
+void add_drive(std::vector<Job>& jobs, const PipeDrive& drive) {
+  if (drive.distance_m == 0) return;
+  switch (drive.direction) {
+    case Direction::kForward:
+      jobs.emplace_back(DriveForward{.speed_mps = drive.speed_mps, .distance_m = drive.distance_m});
+      return;
+    case Direction::kBackward:
+      jobs.emplace_back(
+          DriveBackward{.speed_mps = drive.speed_mps, .distance_m = drive.distance_m});
+      return;
+  }
+}
+
+}  // namespace
+
+std::vector<Job> expand(const RobotAction& action, const RobotProfile& /*profile*/) {
+  std::vector<Job> jobs;
+  std::visit(
+      [&jobs](const auto& a) {
+        using T = std::decay_t<decltype(a)>;
+        if constexpr (std::is_same_v<T, DriveToManhole>) {
+          add_drive(jobs, {a.direction, a.distance_m, a.speed_mps});
+        } else if constexpr (std::is_same_v<T, PassManhole>) {
+          jobs.emplace_back(TurnInManhole{.from_slot = a.from_slot.value(),
+                                          .to_slot = a.to_slot.value(),
+                                          .turn_deg = a.turn_deg,
+                                          .step_m = a.step_m,
+                                          .manhole_diameter_m = a.manhole_diameter_m,
+                                          .duration_s = a.duration_s});
+        } else if constexpr (std::is_same_v<T, EnterPipe>) {
+          jobs.emplace_back(
+              EnterPipeFromManhole{.slot = a.slot.value(), .duration_s = a.duration_s});
+        } else if constexpr (std::is_same_v<T, TakeWaterSample>) {
+          add_drive(jobs, a.drive);
+          jobs.emplace_back(Stop{});
+          jobs.emplace_back(TakeSample{.duration_s = a.sample_s});
+        } else if constexpr (std::is_same_v<T, InspectPipe>) {
+          add_drive(jobs, a.approach);
+          switch (a.scan_direction) {
+            case Direction::kForward:
+              jobs.emplace_back(Scan{.speed_mps = a.speed_mps, .distance_m = a.length_m});
+              break;
+            case Direction::kBackward:
+              // TODO(#5): core/job.h's Scan drives forward only. A forward Scan here would drive
+              // the robot out of the pipe; this drive has the scan's motion, not its scanning.
+              jobs.emplace_back(DriveBackward{.speed_mps = a.speed_mps, .distance_m = a.length_m});
+              break;
+          }
+        } else if constexpr (std::is_same_v<T, GoToPoint>) {
+          add_drive(jobs, a.drive);
+        } else {
+          static_assert(std::is_same_v<T, GoToManhole>);
+        }
+      },
+      action);
+  return jobs;
+}
+
+std::ostream& operator<<(std::ostream& os, const PlannedJob& job) {
+  return os << "action " << job.action_index << " job " << job.job_index << ": " << job.job;
+}
+
+std::vector<PlannedJob> expand_plan(const FusedPlan& plan, const RobotProfile& profile) {
+  std::vector<PlannedJob> all;
+  for (std::size_t a = 0; a < plan.actions.size(); ++a) {
+    std::vector<Job> jobs = expand(plan.actions[a], profile);
+    for (std::size_t j = 0; j < jobs.size(); ++j) {
+      all.push_back(PlannedJob{.action_index = a, .job_index = j, .job = std::move(jobs[j])});
+    }
+  }
+  return all;
+}
+
+}  // namespace sewerplan::fusion
