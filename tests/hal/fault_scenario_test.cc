@@ -6,8 +6,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "sewerplan/core/map_io.h"
-
+#include "support/ais_testbed.h"
 #include "support/paths.h"
 #include "support/small_map.h"
 
@@ -18,12 +17,7 @@ using ::testing::HasSubstr;
 
 class FaultScenarioTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    Diagnostics d;
-    Result<SewerMap> map = read_map(testing::dataset_path("ais-testbed/map.json"), d);
-    ASSERT_TRUE(map.has_value()) << map.error();
-    map_ = std::move(*map);
-  }
+  void SetUp() override { map_ = testing::load_ais_testbed().map; }
 
   Result<FaultScenario> read(std::string_view text) {
     diagnostics_ = Diagnostics{};

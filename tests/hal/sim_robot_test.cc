@@ -4,8 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "sewerplan/core/map_io.h"
-
+#include "support/ais_testbed.h"
 #include "support/paths.h"
 #include "support/small_map.h"
 
@@ -323,22 +322,21 @@ TEST_F(SimRobotTest, TheSameScenarioAndJobsGiveTheSameReports) {
 }
 
 TEST(SimRobotAisTest, MeetsTheObstacleOfBlockedP5OnThePapersRoute) {
+  const SewerMap map = testing::load_ais_testbed().map;
   Diagnostics d;
-  Result<SewerMap> map = read_map(testing::dataset_path("ais-testbed/map.json"), d);
-  ASSERT_TRUE(map.has_value()) << map.error();
   Result<FaultScenario> faults =
-      read_faults(testing::dataset_path("ais-testbed/faults/blocked-p5.json"), *map, d);
+      read_faults(testing::dataset_path("ais-testbed/faults/blocked-p5.json"), map, d);
   ASSERT_TRUE(faults.has_value()) << faults.error();
   // DRIVE_MANHOLE_TYPE_3_TYPE_B_FROM_3_TO_1 M3 P5 P2 P1, then DRIVE_PIPE_TO_MANHOLE P5 M6.
-  SimRobot r(*map, *builtin_profile("makro-1.1"),
-             AtSlot{*map->find_manhole("M3"), SlotIndex{2}, Facing::kIntoManhole}, *faults);
+  SimRobot r(map, *builtin_profile("makro-1.1"),
+             AtSlot{*map.find_manhole("M3"), SlotIndex{2}, Facing::kIntoManhole}, *faults);
   EXPECT_TRUE(r.execute(TurnInManhole{.from_slot = 2, .to_slot = 0, .duration_s = 26}).ok());
   JobReport report = r.execute(DriveForward{.speed_mps = 0.3, .distance_m = 10});
   ASSERT_FALSE(report.ok());
   EXPECT_EQ(report.error->kind, RobotErrorKind::kBlockage);
   EXPECT_EQ(report.error->reason, "obstacle in P5 at 4.00 m");
   EXPECT_DOUBLE_EQ(report.progress_m, 3.95);
-  EXPECT_EQ(describe(r.pose(), *map), "in P5 at 3.95 m towards M6");
+  EXPECT_EQ(describe(r.pose(), map), "in P5 at 3.95 m towards M6");
 }
 
 }  // namespace
