@@ -1,0 +1,150 @@
+// SPDX-License-Identifier: MIT
+// SimRobot: a simulated robot in a ground-truth sewer with hidden faults, behind hal::Robot.
+//
+// The executor drives a SimRobot exactly as it would drive MAKRO over the CAN bus: one job
+// (core/job.h) at a time, each answered by a JobReport. The simulator knows the truth the planner
+// does not: the map, the robot profile (speeds, power, battery), where the robot really is (a
+// SimPose), and a FaultScenario (fault_scenario.h) of obstacles, dangers and malfunctions. It
+// moves the robot along pipes and through manholes, stops it in front of obstacles and dangers,
+// drains the battery and counts odometry and time. The model, its constants and its choices
+// (what a drive past a pipe end does, how long a head movement takes, ...) are in
+// docs/simulation.md.
+//
+// Deterministic: no wall clock and no randomness; time is simulated, advanced by each job's
+// duration (and, when one is given, on a ManualClock shared with the executor). The same map,
+// profile, start, scenario and jobs give the same reports.
+//
+//   SimRobot robot(map, *builtin_profile("makro-1.1"), InPipe{p12, 3.0, Heading::kTowardsEnd0},
+//                  *read_faults("blocked-p5.json", map, diagnostics));
+//   JobReport r = robot.execute(DriveForward{.speed_mps = 0.3, .distance_m = 20});
+//   // r.error: blockage "obstacle in P5 at 4.00 m", r.progress_m: how far it got
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "sewerplan/core/clock.h"
+#include "sewerplan/core/robot_profile.h"
+#include "sewerplan/core/sewer_map.h"
+#include "sewerplan/hal/fault_scenario.h"
+#include "sewerplan/hal/robot.h"
+
+namespace sewerplan::hal {
+
+// Lowered into a manhole, at no pipe mouth (a mission's start).
+struct InManhole {
+  ManholeId manhole{0};
+  friend bool operator==(const InManhole&, const InManhole&) = default;
+};
+
+// Which way the robot faces at a pipe mouth.
+enum class Facing : std::uint8_t {
+  kIntoManhole,  // it drove out of the pipe forward: DriveBackward goes back into the pipe
+  kIntoPipe,     // it backed out of the pipe: DriveForward goes back into the pipe
+};
+
+// In a manhole at the mouth of a slot's pipe.
+struct AtSlot {
+  ManholeId manhole{0};
+  SlotIndex slot{0};
+  Facing facing = Facing::kIntoManhole;
+  friend bool operator==(const AtSlot&, const AtSlot&) = default;
+};
+
+// Which end of its pipe the robot's front points to; DriveForward moves that way.
+enum class Heading : std::uint8_t { kTowardsEnd0, kTowardsEnd1 };
+
+// In a pipe, offset_m from its ends[0].
+struct InPipe {
+  PipeId pipe{0};
+  double offset_m = 0;
+  Heading heading = Heading::kTowardsEnd1;
+  friend bool operator==(const InPipe&, const InPipe&) = default;
+};
+
+using SimPose = std::variant<InManhole, AtSlot, InPipe>;
+
+// "in manhole #2", "at manhole #5 slot 3 facing the manhole", "in pipe #4 at 2.50 m towards end 1"
+// (slots numbered from 1, as in the paper).
+std::ostream& operator<<(std::ostream& os, const SimPose& pose);
+// The same with the map's names: "at M6 slot 3 (P5) facing the manhole".
+std::string describe(const SimPose& pose, const SewerMap& map);
+
+// The constants of the model (docs/simulation.md).
+struct SimOptions {
+  double clearance_m = 0.05;  // the robot stops this far before an obstacle or a danger spot
+  double lift_reach_m = 0.5;  // a lifted head clears a transient_lift obstacle this close
+  double head_move_s = 3;     // LiftHead and LowerHead
+  double reboot_s = 30;       // reboot() takes this long and its energy
+  // Advanced by every job's and reboot's duration, so that an executor sharing it sees simulated
+  // time. Optional, non-owning; must outlive the robot.
+  ManualClock* clock = nullptr;
+};
+
+class SimRobot final : public Robot {
+ public:
+  // Preconditions (checked): `start` and the scenario's IDs belong to `map`; the profile is
+  // valid. `map` must outlive the robot.
+  SimRobot(const SewerMap& map, RobotProfile profile, SimPose start, FaultScenario faults = {},
+           SimOptions options = {});
+
+  JobReport execute(const Job& job) override;
+  RobotStatus status() const override { return status_; }
+  Result<void> reboot() override;
+  void activate_beacon() override { status_.beacon_on = true; }
+
+  // Ground truth, for tests and the simulator's log; the executor must not look.
+  const SimPose& pose() const { return pose_; }
+  // The obstacles not yet cleared.
+  std::vector<Obstacle> remaining_obstacles() const;
+  std::size_t jobs_executed() const { return jobs_executed_; }
+
+ private:
+  struct Fault {
+    MalfunctionKind kind;
+    std::string reason;
+  };
+  // A job cut short after_s seconds in: by an empty battery, or by a timed malfunction.
+  struct Interrupt {
+    double after_s = 0;
+    std::optional<std::size_t> malfunction;  // empty: the battery
+  };
+  struct Move;
+
+  JobReport run(const Job& job);
+  JobReport drive(double speed_mps, double distance_m, int direction, bool push);
+  Move plan_move(const InPipe& from, double distance_m, int sign, bool push) const;
+  JobReport drive_in_pipe(const InPipe& from, double speed_mps, double distance_m, int direction,
+                          bool push);
+  JobReport turn(const TurnInManhole& job);
+  JobReport enter(const EnterPipeFromManhole& job);
+  JobReport set_head(bool lifted);
+  // A job that keeps the robot where it is for duration_s, unless interrupted.
+  JobReport stand(double duration_s);
+  std::optional<Interrupt> interrupt_within(double duration_s) const;
+  JobReport interrupt(const Interrupt& stop, JobReport report);
+  void strike(std::size_t malfunction, const std::string& when);
+  static JobReport failure(RobotErrorKind kind, std::string reason);
+  static JobReport invalid(const std::string& what);
+  // Charges the report's time and energy and adds its progress to the status.
+  JobReport finish(JobReport report);
+
+  const SewerMap& map_;
+  RobotProfile profile_;
+  SimPose pose_;
+  FaultScenario faults_;
+  std::vector<bool> obstacle_cleared_;
+  std::vector<bool> malfunction_struck_;
+  SimOptions options_;
+  RobotStatus status_;
+  std::optional<Fault> fault_;
+  bool battery_empty_ = false;
+  std::size_t jobs_executed_ = 0;
+};
+
+}  // namespace sewerplan::hal

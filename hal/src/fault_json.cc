@@ -1,0 +1,321 @@
+// SPDX-License-Identifier: MIT
+// The fault file format (docs/simulation.md), read and written with nlohmann::json: fault files
+// are small, so its document tree is fast enough, and hal must not use core's private reader.
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "sewerplan/core/text_file.h"
+#include "sewerplan/hal/fault_scenario.h"
+
+namespace sewerplan::hal {
+namespace {
+
+using json = nlohmann::ordered_json;
+
+std::string number_text(double value) { return json(value).dump(); }
+
+// Reads the members of one JSON object, reporting problems at "file:$.path.key".
+class Fields {
+ public:
+  Fields(const json& object, std::string path, const std::string& file, Diagnostics& diagnostics)
+      : object_(object), path_(std::move(path)), file_(file), diagnostics_(diagnostics) {
+    if (!object_.is_object()) error("", "expected an object, got " + type_of(object_));
+  }
+
+  std::string where(std::string_view key = {}) const {
+    return file_ + ":" + path_ + (key.empty() ? "" : "." + std::string(key));
+  }
+  void error(std::string_view key, std::string message) {
+    diagnostics_.error(where(key), std::move(message));
+  }
+  bool has(std::string_view key) const {
+    return object_.is_object() && object_.contains(std::string(key));
+  }
+
+  const json* member(std::string_view key, bool required = true) {
+    if (!object_.is_object()) return nullptr;
+    auto it = object_.find(std::string(key));
+    if (it == object_.end()) {
+      if (required) error(key, "missing");
+      return nullptr;
+    }
+    return &*it;
+  }
+  std::optional<double> number(std::string_view key, bool required = true) {
+    const json* value = member(key, required);
+    if (value == nullptr) return std::nullopt;
+    if (!value->is_number()) return wrong_type<double>(key, "a number", *value);
+    return value->get<double>();
+  }
+  // A whole number from `min`.
+  std::optional<std::uint32_t> count(std::string_view key, std::uint32_t min) {
+    std::optional<double> value = number(key);
+    if (!value) return std::nullopt;
+    if (!(*value >= min && *value <= 65535.0 * 65536.0 && std::floor(*value) == *value)) {
+      error(key,
+            "expected a whole number from " + std::to_string(min) + ", got " + number_text(*value));
+      return std::nullopt;
+    }
+    return static_cast<std::uint32_t>(*value);
+  }
+  std::optional<std::string> string(std::string_view key, bool required = true) {
+    const json* value = member(key, required);
+    if (value == nullptr) return std::nullopt;
+    if (!value->is_string()) return wrong_type<std::string>(key, "a string", *value);
+    return value->get<std::string>();
+  }
+  const json* array(std::string_view key) {
+    const json* value = member(key, false);
+    if (value == nullptr) return nullptr;
+    if (!value->is_array()) {
+      error(key, "expected an array, got " + type_of(*value));
+      return nullptr;
+    }
+    return value;
+  }
+  void warn_unknown(std::initializer_list<std::string_view> known) {
+    if (!object_.is_object()) return;
+    for (const auto& item : object_.items()) {
+      if (std::find(known.begin(), known.end(), item.key()) == known.end()) {
+        diagnostics_.warning(where(item.key()), "unknown field, ignored");
+      }
+    }
+  }
+
+ private:
+  static std::string type_of(const json& value) { return value.type_name(); }
+  template <class T>
+  std::optional<T> wrong_type(std::string_view key, std::string_view expected, const json& got) {
+    error(key, "expected " + std::string(expected) + ", got " + type_of(got));
+    return std::nullopt;
+  }
+
+  const json& object_;
+  std::string path_;
+  const std::string& file_;
+  Diagnostics& diagnostics_;
+};
+
+class FaultReader {
+ public:
+  FaultReader(const SewerMap& map, const std::string& file, Diagnostics& diagnostics)
+      : map_(map), file_(file), diagnostics_(diagnostics) {}
+
+  // Each list's items, with their path, to `read`.
+  template <class F>
+  void each(Fields& root, std::string_view key, F read) {
+    const json* items = root.array(key);
+    if (items == nullptr) return;
+    for (std::size_t i = 0; i < items->size(); ++i) {
+      Fields f((*items)[i], "$." + std::string(key) + "[" + std::to_string(i) + "]", file_,
+               diagnostics_);
+      read(f);
+    }
+  }
+
+  // A pipe by name and an offset inside it.
+  std::optional<std::pair<PipeId, double>> pipe_spot(Fields& f) {
+    std::optional<std::string> name = f.string("pipe");
+    std::optional<double> offset_m = f.number("offset_m");
+    if (!name) return std::nullopt;
+    std::optional<PipeId> pipe = map_.find_pipe(*name);
+    if (!pipe) {
+      f.error("pipe", "unknown pipe \"" + *name + "\" in map " + map_.name());
+      return std::nullopt;
+    }
+    if (!offset_m) return std::nullopt;
+    const double length_m = map_.pipe(*pipe).length_m;
+    if (!(*offset_m >= 0 && *offset_m <= length_m)) {
+      f.error("offset_m", "pipe " + *name + ": offset " + number_text(*offset_m) +
+                              " m is outside the pipe (0 to " + number_text(length_m) + " m)");
+      return std::nullopt;
+    }
+    return std::pair{*pipe, *offset_m};
+  }
+
+  void obstacle(Fields& f, FaultScenario& out) {
+    f.warn_unknown({"pipe", "offset_m", "kind"});
+    auto spot = pipe_spot(f);
+    std::optional<ObstacleKind> kind;
+    if (auto name = f.string("kind")) {
+      kind = obstacle_kind_from_string(*name);
+      if (!kind) {
+        f.error("kind", "unknown obstacle kind \"" + *name +
+                            "\" (transient_lift, transient_push or permanent)");
+      }
+    }
+    if (spot && kind) out.obstacles.push_back({spot->first, spot->second, *kind});
+  }
+
+  void danger(Fields& f, FaultScenario& out) {
+    if (f.has("pipe") || !f.has("manhole")) {
+      f.warn_unknown({"pipe", "offset_m"});
+      if (auto spot = pipe_spot(f)) out.danger_spots.push_back({spot->first, spot->second});
+      return;
+    }
+    f.warn_unknown({"manhole", "from_slot", "to_slot"});
+    std::optional<std::string> name = f.string("manhole");
+    std::optional<std::uint32_t> from = f.count("from_slot", 1);
+    std::optional<std::uint32_t> to = f.count("to_slot", 1);
+    if (!name) return;
+    std::optional<ManholeId> manhole = map_.find_manhole(*name);
+    if (!manhole) {
+      f.error("manhole", "unknown manhole \"" + *name + "\" in map " + map_.name());
+      return;
+    }
+    const std::uint16_t slots = map_.manhole(*manhole).slot_count;
+    bool ok = from && to;
+    for (auto [key, slot] : {std::pair{"from_slot", from}, std::pair{"to_slot", to}}) {
+      if (slot && *slot > slots) {
+        f.error(key, "manhole " + *name + " has " + std::to_string(slots) + " slots, not " +
+                         std::to_string(*slot));
+        ok = false;
+      }
+    }
+    if (ok && *from == *to) {
+      f.error("to_slot", "manhole " + *name + ": a passage joins two different slots");
+      ok = false;
+    }
+    if (!ok) return;
+    out.dangerous_passages.push_back({*manhole, SlotIndex{static_cast<std::uint16_t>(*from - 1)},
+                                      SlotIndex{static_cast<std::uint16_t>(*to - 1)}});
+  }
+
+  void malfunction(Fields& f, FaultScenario& out) {
+    f.warn_unknown({"at_job", "at_time_s", "kind"});
+    std::optional<MalfunctionKind> kind;
+    if (auto name = f.string("kind")) {
+      kind = malfunction_kind_from_string(*name);
+      if (!kind)
+        f.error("kind", "unknown malfunction kind \"" + *name + "\" (transient or permanent)");
+    }
+    std::optional<std::variant<AtJob, AtTime>> when;
+    if (f.has("at_job") == f.has("at_time_s")) {
+      f.error("", "give exactly one of at_job and at_time_s");
+    } else if (f.has("at_job")) {
+      if (auto index = f.count("at_job", 0)) when = AtJob{*index};
+    } else if (auto time_s = f.number("at_time_s")) {
+      if (std::isfinite(*time_s) && *time_s >= 0) {
+        when = AtTime{*time_s};
+      } else {
+        f.error("at_time_s", "expected a time >= 0 s, got " + number_text(*time_s));
+      }
+    }
+    if (kind && when) out.malfunctions.push_back({*when, *kind});
+  }
+
+ private:
+  const SewerMap& map_;
+  const std::string& file_;
+  Diagnostics& diagnostics_;
+};
+
+// "file:line:column: JSON syntax error: ..." from nlohmann's byte position.
+void report_syntax_error(std::string_view text, const std::string& file,
+                         const nlohmann::json::parse_error& e, Diagnostics& diagnostics) {
+  const std::size_t byte = std::min<std::size_t>(e.byte == 0 ? 0 : e.byte - 1, text.size());
+  const std::string_view before = text.substr(0, byte);
+  const auto line = 1 + static_cast<std::size_t>(std::count(before.begin(), before.end(), '\n'));
+  const std::size_t line_start = before.rfind('\n');
+  const std::size_t column = line_start == std::string_view::npos ? byte + 1 : byte - line_start;
+  std::string message = e.what();
+  if (auto colon = message.find(": ", message.find("parse error")); colon != std::string::npos) {
+    message = message.substr(colon + 2);
+  }
+  diagnostics.error(file + ":" + std::to_string(line) + ":" + std::to_string(column),
+                    "JSON syntax error: " + message);
+}
+
+}  // namespace
+
+Result<FaultScenario> read_faults_json(std::string_view text, const std::string& file_name,
+                                       const SewerMap& map, Diagnostics& diagnostics) {
+  json doc;
+  try {
+    doc = json::parse(text.begin(), text.end());
+  } catch (const nlohmann::json::parse_error& e) {
+    report_syntax_error(text, file_name, e, diagnostics);
+    return Error{ErrorCode::kParse, diagnostics.error_summary()};
+  }
+  Fields root(doc, "$", file_name, diagnostics);
+  const std::size_t errors_before = diagnostics.error_count();
+  if (auto format = root.string("format"); format && *format != kFaultsJsonFormat) {
+    root.error("format",
+               "expected \"" + std::string(kFaultsJsonFormat) + "\", got \"" + *format + "\"");
+  }
+  if (auto version = root.number("version"); version && *version != kFaultsJsonVersion) {
+    root.error("version", "unsupported version " + number_text(*version));
+  }
+  if (diagnostics.error_count() > errors_before) {
+    return Error{ErrorCode::kParse, diagnostics.error_summary()};
+  }
+  root.warn_unknown({"format", "version", "obstacles", "danger", "malfunctions", "battery_wh"});
+  FaultReader reader(map, file_name, diagnostics);
+  FaultScenario scenario;
+  reader.each(root, "obstacles", [&](Fields& f) { reader.obstacle(f, scenario); });
+  reader.each(root, "danger", [&](Fields& f) { reader.danger(f, scenario); });
+  reader.each(root, "malfunctions", [&](Fields& f) { reader.malfunction(f, scenario); });
+  if (auto battery_wh = root.number("battery_wh", false)) {
+    if (std::isfinite(*battery_wh) && *battery_wh >= 0) {
+      scenario.battery_wh = *battery_wh;
+    } else {
+      root.error("battery_wh", "expected an energy >= 0 Wh, got " + number_text(*battery_wh));
+    }
+  }
+  if (diagnostics.has_errors()) {
+    return Error{ErrorCode::kInvalidArgument, diagnostics.error_summary()};
+  }
+  return scenario;
+}
+
+Result<FaultScenario> read_faults(const std::filesystem::path& path, const SewerMap& map,
+                                  Diagnostics& diagnostics) {
+  Result<std::string> text = read_text_file(path);
+  if (!text.has_value()) return text.error();
+  return read_faults_json(*text, path.string(), map, diagnostics);
+}
+
+void write_faults_json(const FaultScenario& scenario, const SewerMap& map, std::ostream& out) {
+  json j;
+  j["format"] = std::string(kFaultsJsonFormat);
+  j["version"] = kFaultsJsonVersion;
+  j["obstacles"] = json::array();
+  for (const Obstacle& o : scenario.obstacles) {
+    j["obstacles"].push_back({{"pipe", map.pipe(o.pipe).name},
+                              {"offset_m", o.offset_m},
+                              {"kind", std::string(to_string(o.kind))}});
+  }
+  j["danger"] = json::array();
+  for (const DangerSpot& d : scenario.danger_spots) {
+    j["danger"].push_back({{"pipe", map.pipe(d.pipe).name}, {"offset_m", d.offset_m}});
+  }
+  for (const DangerousPassage& p : scenario.dangerous_passages) {
+    j["danger"].push_back({{"manhole", map.manhole(p.manhole).name},
+                           {"from_slot", to_paper_number(p.from_slot)},
+                           {"to_slot", to_paper_number(p.to_slot)}});
+  }
+  j["malfunctions"] = json::array();
+  for (const Malfunction& m : scenario.malfunctions) {
+    json item;
+    if (const auto* at_job = std::get_if<AtJob>(&m.when)) {
+      item["at_job"] = at_job->index;
+    } else {
+      item["at_time_s"] = std::get<AtTime>(m.when).time_s;
+    }
+    item["kind"] = std::string(to_string(m.kind));
+    j["malfunctions"].push_back(std::move(item));
+  }
+  if (scenario.battery_wh) j["battery_wh"] = *scenario.battery_wh;
+  out << j.dump(2) << '\n';
+}
+
+std::string faults_json(const FaultScenario& scenario, const SewerMap& map) {
+  std::ostringstream out;
+  write_faults_json(scenario, map, out);
+  return out.str();
+}
+
+}  // namespace sewerplan::hal

@@ -1,0 +1,431 @@
+// SPDX-License-Identifier: MIT
+#include "sewerplan/hal/sim_robot.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+#include <utility>
+
+#include "sewerplan/core/check.h"
+#include "sewerplan/core/map_queries.h"
+
+namespace sewerplan::hal {
+namespace {
+
+// A drive that ends this close to a pipe end has reached it (fusion's distances carry rounding).
+constexpr double kLengthTolerance_m = 1e-6;
+
+template <class... F>
+struct Overloaded : F... {
+  using F::operator()...;
+};
+template <class... F>
+Overloaded(F...) -> Overloaded<F...>;
+
+std::string metres(double value_m) {
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(2) << value_m << " m";
+  return os.str();
+}
+
+std::string seconds(double value_s) {
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(1) << value_s << " s";
+  return os.str();
+}
+
+std::string slot_text(SlotIndex slot) { return "slot " + std::to_string(to_paper_number(slot)); }
+
+bool valid_number(double value) { return std::isfinite(value) && value >= 0; }
+
+// The pipe end a robot at a manhole's slot is at: the pipe and the end's offset.
+InPipe pipe_end_pose(const SewerMap& map, ManholeId manhole, SlotIndex slot, bool heading_in) {
+  const Slot& s = map.slot(manhole, slot);
+  const double offset_m = s.pipe_end == 0 ? 0.0 : map.pipe(s.pipe).length_m;
+  // Heading into the pipe points at the other end; heading out points at this one.
+  const bool towards_end1 = (s.pipe_end == 0) == heading_in;
+  return InPipe{s.pipe, offset_m, towards_end1 ? Heading::kTowardsEnd1 : Heading::kTowardsEnd0};
+}
+
+}  // namespace
+
+// Where a drive stops and why.
+struct SimRobot::Move {
+  enum class Why { kDone, kPipeEnd, kObstacle, kDanger };
+  double distance_m = 0;
+  Why why = Why::kDone;
+  double fault_offset_m = 0;  // the obstacle's or danger spot's offset
+};
+
+std::ostream& operator<<(std::ostream& os, const SimPose& pose) {
+  const auto flags = os.flags();
+  const auto precision = os.precision();
+  std::visit(Overloaded{
+                 [&](const InManhole& p) { os << "in manhole " << p.manhole; },
+                 [&](const AtSlot& p) {
+                   os << "at manhole " << p.manhole << ' ' << slot_text(p.slot) << " facing the "
+                      << (p.facing == Facing::kIntoManhole ? "manhole" : "pipe");
+                 },
+                 [&](const InPipe& p) {
+                   os << "in pipe " << p.pipe << " at " << std::fixed << std::setprecision(2)
+                      << p.offset_m << " m towards end "
+                      << (p.heading == Heading::kTowardsEnd0 ? 0 : 1);
+                 },
+             },
+             pose);
+  os.flags(flags);
+  os.precision(precision);
+  return os;
+}
+
+std::string describe(const SimPose& pose, const SewerMap& map) {
+  return std::visit(
+      Overloaded{
+          [&](const InManhole& p) { return "in manhole " + map.manhole(p.manhole).name; },
+          [&](const AtSlot& p) {
+            return "at " + map.manhole(p.manhole).name + ' ' + slot_text(p.slot) + " (" +
+                   map.pipe(map.slot(p.manhole, p.slot).pipe).name + ") facing the " +
+                   (p.facing == Facing::kIntoManhole ? "manhole" : "pipe");
+          },
+          [&](const InPipe& p) {
+            const Pipe& pipe = map.pipe(p.pipe);
+            const PipeEnd& end = pipe.ends[p.heading == Heading::kTowardsEnd0 ? 0 : 1];
+            return "in " + pipe.name + " at " + metres(p.offset_m) + " towards " +
+                   (end.manhole ? map.manhole(*end.manhole).name : std::string("its blind end"));
+          },
+      },
+      pose);
+}
+
+SimRobot::SimRobot(const SewerMap& map, RobotProfile profile, SimPose start, FaultScenario faults,
+                   SimOptions options)
+    : map_(map),
+      profile_(std::move(profile)),
+      pose_(start),
+      faults_(std::move(faults)),
+      obstacle_cleared_(faults_.obstacles.size(), false),
+      malfunction_struck_(faults_.malfunctions.size(), false),
+      options_(options) {
+  SEWER_CHECK(validate_profile(profile_).has_value(), "SimRobot: invalid robot profile");
+  SEWER_CHECK(validate_faults(faults_, map_).has_value(), "SimRobot: invalid fault scenario");
+  std::visit(Overloaded{
+                 [&](const InManhole& p) {
+                   SEWER_CHECK(p.manhole.index() < map_.manhole_count(), "start: bad manhole");
+                 },
+                 [&](const AtSlot& p) {
+                   SEWER_CHECK(p.manhole.index() < map_.manhole_count() &&
+                                   p.slot.value() < map_.manhole(p.manhole).slot_count,
+                               "start: bad manhole or slot");
+                 },
+                 [&](const InPipe& p) {
+                   SEWER_CHECK(p.pipe.index() < map_.pipe_count() && p.offset_m >= 0 &&
+                                   p.offset_m <= map_.pipe(p.pipe).length_m,
+                               "start: bad pipe or offset");
+                 },
+             },
+             pose_);
+  status_.battery_wh = faults_.battery_wh.value_or(profile_.battery_wh);
+}
+
+std::vector<Obstacle> SimRobot::remaining_obstacles() const {
+  std::vector<Obstacle> left;
+  for (std::size_t i = 0; i < faults_.obstacles.size(); ++i) {
+    if (!obstacle_cleared_[i]) left.push_back(faults_.obstacles[i]);
+  }
+  return left;
+}
+
+JobReport SimRobot::execute(const Job& job) {
+  const std::size_t index = jobs_executed_++;
+  for (std::size_t i = 0; i < faults_.malfunctions.size(); ++i) {
+    if (malfunction_struck_[i]) continue;
+    const Malfunction& m = faults_.malfunctions[i];
+    const auto* at_job = std::get_if<AtJob>(&m.when);
+    const auto* at_time = std::get_if<AtTime>(&m.when);
+    if (at_job != nullptr && at_job->index == index) {
+      strike(i, "at job " + std::to_string(index));
+    } else if (at_time != nullptr && at_time->time_s <= status_.elapsed_s) {
+      strike(i, "at " + seconds(at_time->time_s));
+    }
+  }
+  if (fault_) return finish(failure(RobotErrorKind::kMalfunction, fault_->reason));
+  if (status_.battery_wh <= 0) {
+    return finish(failure(RobotErrorKind::kMalfunction, "battery empty"));
+  }
+  return finish(run(job));
+}
+
+Result<void> SimRobot::reboot() {
+  if (fault_ && fault_->kind == MalfunctionKind::kPermanent) {
+    // core's ErrorCode has no robot fault yet; kIo: the robot's software cannot be restarted.
+    return Error{ErrorCode::kIo, "reboot failed: " + fault_->reason};
+  }
+  fault_.reset();
+  const double duration_s =
+      std::min(options_.reboot_s, profile_.seconds_for(std::max(0.0, status_.battery_wh)));
+  JobReport report;
+  report.duration_s = duration_s;
+  static_cast<void>(finish(std::move(report)));
+  return {};
+}
+
+JobReport SimRobot::run(const Job& job) {
+  return std::visit(
+      Overloaded{
+          [&](const DriveForward& j) { return drive(j.speed_mps, j.distance_m, +1, false); },
+          [&](const DriveBackward& j) { return drive(j.speed_mps, j.distance_m, -1, false); },
+          [&](const Push& j) { return drive(j.speed_mps, j.distance_m, +1, true); },
+          [&](const Scan& j) { return drive(j.speed_mps, j.distance_m, +1, false); },
+          [&](const TurnInManhole& j) { return turn(j); },
+          [&](const EnterPipeFromManhole& j) { return enter(j); },
+          [&](const LiftHead&) { return set_head(true); },
+          [&](const LowerHead&) { return set_head(false); },
+          [&](const TakeSample& j) {
+            if (!valid_number(j.duration_s)) return invalid("the duration must be >= 0");
+            return stand(j.duration_s);
+          },
+          [&](const Stop&) { return JobReport{}; },
+      },
+      job);
+}
+
+JobReport SimRobot::drive(double speed_mps, double distance_m, int direction, bool push) {
+  if (!(std::isfinite(speed_mps) && speed_mps > 0)) return invalid("the speed must be > 0");
+  if (!valid_number(distance_m)) return invalid("the distance must be >= 0");
+  if (distance_m == 0) return JobReport{};
+  if (const auto* in = std::get_if<InManhole>(&pose_)) {
+    return failure(RobotErrorKind::kMalfunction, "cannot drive in manhole " +
+                                                     map_.manhole(in->manhole).name +
+                                                     " at no pipe mouth: enter a pipe first");
+  }
+  if (const auto* at = std::get_if<AtSlot>(&pose_)) {
+    // The way into the pipe is behind the robot when it faces the manhole.
+    const int into_pipe = at->facing == Facing::kIntoManhole ? -1 : +1;
+    if (direction != into_pipe) {
+      return failure(RobotErrorKind::kMalfunction,
+                     std::string("cannot drive ") + (direction > 0 ? "forward" : "backward") +
+                         " into manhole " + map_.manhole(at->manhole).name + " from the mouth of " +
+                         slot_text(at->slot) + ": turn through it");
+    }
+    const bool front_into_pipe = at->facing == Facing::kIntoPipe;
+    return drive_in_pipe(pipe_end_pose(map_, at->manhole, at->slot, front_into_pipe), speed_mps,
+                         distance_m, direction, push);
+  }
+  return drive_in_pipe(std::get<InPipe>(pose_), speed_mps, distance_m, direction, push);
+}
+
+SimRobot::Move SimRobot::plan_move(const InPipe& from, double distance_m, int sign,
+                                   bool push) const {
+  const Pipe& pipe = map_.pipe(from.pipe);
+  const double to_end_m = sign > 0 ? pipe.length_m - from.offset_m : from.offset_m;
+  Move move;
+  if (distance_m <= to_end_m + kLengthTolerance_m) {
+    move.distance_m = std::min(distance_m, to_end_m);
+  } else {
+    move.distance_m = to_end_m;
+    move.why = Move::Why::kPipeEnd;
+  }
+  if (move.distance_m >= to_end_m - kLengthTolerance_m) move.why = Move::Why::kPipeEnd;
+  // The robot stops clearance_m before the nearest obstacle or danger spot ahead; a stop where
+  // the drive ends anyway does not fail it.
+  const auto consider = [&](PipeId pipe_id, double offset_m, Move::Why why) {
+    if (pipe_id != from.pipe) return;
+    const double ahead_m = (offset_m - from.offset_m) * sign;
+    if (ahead_m <= 0) return;
+    double stop_m = ahead_m - options_.clearance_m;
+    if (stop_m < kLengthTolerance_m) stop_m = 0;  // already there (a blockage before)
+    if (stop_m < move.distance_m - kLengthTolerance_m) move = Move{stop_m, why, offset_m};
+  };
+  for (std::size_t i = 0; i < faults_.obstacles.size(); ++i) {
+    const Obstacle& o = faults_.obstacles[i];
+    if (obstacle_cleared_[i] || (push && o.kind == ObstacleKind::kTransientPush)) continue;
+    consider(o.pipe, o.offset_m, Move::Why::kObstacle);
+  }
+  for (const DangerSpot& d : faults_.danger_spots) consider(d.pipe, d.offset_m, Move::Why::kDanger);
+  return move;
+}
+
+JobReport SimRobot::drive_in_pipe(const InPipe& from, double speed_mps, double distance_m,
+                                  int direction, bool push) {
+  const Pipe& pipe = map_.pipe(from.pipe);
+  const int sign = (from.heading == Heading::kTowardsEnd1 ? 1 : -1) * direction;
+  Move move = plan_move(from, distance_m, sign, push);
+  JobReport report;
+  std::optional<Interrupt> stop = interrupt_within(move.distance_m / speed_mps);
+  report.progress_m = stop ? std::min(move.distance_m, stop->after_s * speed_mps) : move.distance_m;
+  report.duration_s = stop ? stop->after_s : move.distance_m / speed_mps;
+  if (push) {
+    // A push moves every transient_push obstacle it reaches out of the way.
+    for (std::size_t i = 0; i < faults_.obstacles.size(); ++i) {
+      const Obstacle& o = faults_.obstacles[i];
+      if (o.pipe != from.pipe || o.kind != ObstacleKind::kTransientPush) continue;
+      const double ahead_m = (o.offset_m - from.offset_m) * sign;
+      if (ahead_m > 0 && ahead_m - options_.clearance_m <= report.progress_m) {
+        obstacle_cleared_[i] = true;
+      }
+    }
+  }
+  const double offset_m = std::clamp(from.offset_m + sign * report.progress_m, 0.0, pipe.length_m);
+  pose_ = InPipe{from.pipe, offset_m, from.heading};
+  if (stop) return interrupt(*stop, std::move(report));
+  switch (move.why) {
+    case Move::Why::kDone:
+      return report;
+    case Move::Why::kPipeEnd: {
+      const PipeEnd& end = pipe.ends[sign > 0 ? 1 : 0];
+      if (end.manhole) {
+        pose_ = AtSlot{*end.manhole, end.slot,
+                       direction > 0 ? Facing::kIntoManhole : Facing::kIntoPipe};
+        return report;
+      }
+      pose_ = InPipe{from.pipe, sign > 0 ? pipe.length_m : 0.0, from.heading};
+      if (distance_m <= report.progress_m + kLengthTolerance_m) return report;
+      report.error = RobotError{RobotErrorKind::kBlockage,
+                                "blind end of " + pipe.name + " at " + metres(offset_m)};
+      return report;
+    }
+    case Move::Why::kObstacle:
+      report.error = RobotError{RobotErrorKind::kBlockage,
+                                "obstacle in " + pipe.name + " at " + metres(move.fault_offset_m)};
+      return report;
+    case Move::Why::kDanger:
+      report.error = RobotError{RobotErrorKind::kDanger,
+                                "danger in " + pipe.name + " at " + metres(move.fault_offset_m)};
+      return report;
+  }
+  return report;
+}
+
+JobReport SimRobot::turn(const TurnInManhole& job) {
+  const auto* at = std::get_if<AtSlot>(&pose_);
+  if (at == nullptr || at->slot.value() != job.from_slot) {
+    return failure(RobotErrorKind::kMalfunction, "not at " + slot_text(SlotIndex{job.from_slot}) +
+                                                     " of a manhole (" + describe(pose_, map_) +
+                                                     ")");
+  }
+  const Manhole& manhole = map_.manhole(at->manhole);
+  if (job.to_slot >= manhole.slot_count || job.to_slot == job.from_slot) {
+    return invalid(manhole.name + " has no passage from " + slot_text(SlotIndex{job.from_slot}) +
+                   " to " + slot_text(SlotIndex{job.to_slot}));
+  }
+  if (!valid_number(job.duration_s)) return invalid("the duration must be >= 0");
+  const SlotIndex to{job.to_slot};
+  for (const DangerousPassage& d : faults_.dangerous_passages) {
+    const bool same = d.from_slot == at->slot && d.to_slot == to;
+    const bool reverse = d.from_slot == to && d.to_slot == at->slot;
+    if (d.manhole == at->manhole && (same || reverse)) {
+      return failure(RobotErrorKind::kDanger, "dangerous passage in " + manhole.name + " from " +
+                                                  slot_text(at->slot) + " to " + slot_text(to));
+    }
+  }
+  JobReport report = stand(job.duration_s);
+  if (report.ok()) pose_ = pipe_end_pose(map_, at->manhole, to, true);
+  return report;
+}
+
+JobReport SimRobot::enter(const EnterPipeFromManhole& job) {
+  const auto* in = std::get_if<InManhole>(&pose_);
+  if (in == nullptr) {
+    return failure(RobotErrorKind::kMalfunction,
+                   "not lowered into a manhole (" + describe(pose_, map_) + ")");
+  }
+  const Manhole& manhole = map_.manhole(in->manhole);
+  if (job.slot >= manhole.slot_count) {
+    return invalid(manhole.name + " has no " + slot_text(SlotIndex{job.slot}));
+  }
+  if (!valid_number(job.duration_s)) return invalid("the duration must be >= 0");
+  const ManholeId m = in->manhole;
+  JobReport report = stand(job.duration_s);
+  if (report.ok()) pose_ = pipe_end_pose(map_, m, SlotIndex{job.slot}, true);
+  return report;
+}
+
+JobReport SimRobot::set_head(bool lifted) {
+  JobReport report = stand(options_.head_move_s);
+  if (!report.ok()) return report;
+  status_.head_lifted = lifted;
+  if (!lifted) return report;
+  // A lifted head frees a transient_lift obstacle within reach, at a pipe mouth too.
+  std::optional<InPipe> where;
+  if (const auto* p = std::get_if<InPipe>(&pose_)) where = *p;
+  if (const auto* at = std::get_if<AtSlot>(&pose_)) {
+    where = pipe_end_pose(map_, at->manhole, at->slot, true);
+  }
+  if (!where) return report;
+  for (std::size_t i = 0; i < faults_.obstacles.size(); ++i) {
+    const Obstacle& o = faults_.obstacles[i];
+    if (o.pipe == where->pipe && o.kind == ObstacleKind::kTransientLift &&
+        std::abs(o.offset_m - where->offset_m) <= options_.lift_reach_m + kLengthTolerance_m) {
+      obstacle_cleared_[i] = true;
+    }
+  }
+  return report;
+}
+
+JobReport SimRobot::stand(double duration_s) {
+  JobReport report;
+  if (std::optional<Interrupt> stop = interrupt_within(duration_s)) {
+    report.duration_s = stop->after_s;
+    return interrupt(*stop, std::move(report));
+  }
+  report.duration_s = duration_s;
+  return report;
+}
+
+std::optional<SimRobot::Interrupt> SimRobot::interrupt_within(double duration_s) const {
+  std::optional<Interrupt> first;
+  const double battery_s = profile_.seconds_for(status_.battery_wh);
+  if (battery_s < duration_s) first = Interrupt{battery_s, std::nullopt};
+  for (std::size_t i = 0; i < faults_.malfunctions.size(); ++i) {
+    const auto* at_time = std::get_if<AtTime>(&faults_.malfunctions[i].when);
+    if (malfunction_struck_[i] || at_time == nullptr) continue;
+    const double after_s = std::max(0.0, at_time->time_s - status_.elapsed_s);
+    if (after_s < duration_s && (!first || after_s < first->after_s)) {
+      first = Interrupt{after_s, i};
+    }
+  }
+  return first;
+}
+
+JobReport SimRobot::interrupt(const Interrupt& stop, JobReport report) {
+  if (!stop.malfunction) {
+    battery_empty_ = true;
+    report.error = RobotError{RobotErrorKind::kMalfunction, "battery empty"};
+    return report;
+  }
+  const auto& at = std::get<AtTime>(faults_.malfunctions[*stop.malfunction].when);
+  strike(*stop.malfunction, "at " + seconds(at.time_s));
+  report.error = RobotError{RobotErrorKind::kMalfunction, fault_->reason};
+  return report;
+}
+
+void SimRobot::strike(std::size_t malfunction, const std::string& when) {
+  malfunction_struck_[malfunction] = true;
+  const MalfunctionKind kind = faults_.malfunctions[malfunction].kind;
+  // A permanent fault is not softened by a later transient one.
+  if (fault_ && fault_->kind == MalfunctionKind::kPermanent) return;
+  fault_ = Fault{kind, std::string(to_string(kind)) + " malfunction " + when};
+}
+
+JobReport SimRobot::failure(RobotErrorKind kind, std::string reason) {
+  JobReport report;
+  report.error = RobotError{kind, std::move(reason)};
+  return report;
+}
+
+JobReport SimRobot::invalid(const std::string& what) {
+  return failure(RobotErrorKind::kMalfunction, "invalid job: " + what);
+}
+
+JobReport SimRobot::finish(JobReport report) {
+  report.energy_wh = profile_.energy_wh(report.duration_s);
+  status_.battery_wh = std::max(0.0, status_.battery_wh - report.energy_wh);
+  if (battery_empty_) status_.battery_wh = 0;
+  status_.elapsed_s += report.duration_s;
+  status_.odometry_m += report.progress_m;
+  if (options_.clock != nullptr) options_.clock->advance(report.duration_s);
+  return report;
+}
+
+}  // namespace sewerplan::hal
