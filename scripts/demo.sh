@@ -2,8 +2,10 @@
 # SPDX-License-Identifier: MIT
 # Sets up everything, builds sewerplan, and shows it on the paper's test environment (Fraunhofer AIS,
 # Adria et al. 2004, section 6): the map, the paper's mission planned natively (the paper's plan,
-# in its format) and checked by the independent validator, the paper-style ASCII database, and a
-# generated 100,000-manhole city with a 20-task mission.
+# in its format) and checked by the independent validator, the paper-style ASCII database, a
+# generated 100,000-manhole city with a 20-task mission, and last the paper's mission run on the
+# simulated robot with an obstacle the head lift clears and one in the pipe it inspects: the
+# recovery phases, the replan and the new route.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
@@ -33,3 +35,7 @@ $sp info "$out/city.json"
 echo; echo "\$ sewerplan plan --map $out/city.json --mission $out/city-mission.json -o $out/city.plan"
 $sp plan --map "$out/city.json" --mission "$out/city-mission.json" -o "$out/city.plan"
 $sp check --map "$out/city.json" --mission "$out/city-mission.json" "$out/city.plan"
+echo; echo "\$ sewerplan simulate --map datasets/ais-testbed/map.json --mission datasets/ais-testbed/missions/paper.json --faults datasets/ais-testbed/faults/demo.json --log $out/events.jsonl"
+$sp simulate --map datasets/ais-testbed/map.json --mission datasets/ais-testbed/missions/paper.json \
+  --faults datasets/ais-testbed/faults/demo.json --log "$out/events.jsonl"
+echo "(event log: $out/events.jsonl)"

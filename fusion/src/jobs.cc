@@ -45,16 +45,9 @@ std::vector<Job> expand(const RobotAction& action, const RobotProfile& /*profile
           jobs.emplace_back(TakeSample{.duration_s = a.sample_s});
         } else if constexpr (std::is_same_v<T, InspectPipe>) {
           add_drive(jobs, a.approach);
-          switch (a.scan_direction) {
-            case Direction::kForward:
-              jobs.emplace_back(Scan{.speed_mps = a.speed_mps, .distance_m = a.length_m});
-              break;
-            case Direction::kBackward:
-              // TODO(#5): core/job.h's Scan drives forward only. A forward Scan here would drive
-              // the robot out of the pipe; this drive has the scan's motion, not its scanning.
-              jobs.emplace_back(DriveBackward{.speed_mps = a.speed_mps, .distance_m = a.length_m});
-              break;
-          }
+          jobs.emplace_back(Scan{.speed_mps = a.speed_mps,
+                                 .distance_m = a.length_m,
+                                 .backward = a.scan_direction == Direction::kBackward});
         } else if constexpr (std::is_same_v<T, GoToPoint>) {
           add_drive(jobs, a.drive);
         } else {

@@ -176,7 +176,9 @@ JobReport SimRobot::run(const Job& job) {
           [&](const DriveForward& j) { return drive(j.speed_mps, j.distance_m, +1, false); },
           [&](const DriveBackward& j) { return drive(j.speed_mps, j.distance_m, -1, false); },
           [&](const Push& j) { return drive(j.speed_mps, j.distance_m, +1, true); },
-          [&](const Scan& j) { return drive(j.speed_mps, j.distance_m, +1, false); },
+          [&](const Scan& j) {
+            return drive(j.speed_mps, j.distance_m, j.backward ? -1 : +1, false);
+          },
           [&](const TurnInManhole& j) { return turn(j); },
           [&](const EnterPipeFromManhole& j) { return enter(j); },
           [&](const LiftHead&) { return set_head(true); },
@@ -298,6 +300,19 @@ JobReport SimRobot::drive_in_pipe(const InPipe& from, double speed_mps, double d
 }
 
 JobReport SimRobot::turn(const TurnInManhole& job) {
+  // In a pipe right at its end in a manhole is at that mouth: a plan may leave a pipe it only just
+  // entered with a drive of 0 m, which fusion sends as no job at all.
+  if (const auto* in = std::get_if<InPipe>(&pose_)) {
+    const Pipe& pipe = map_.pipe(in->pipe);
+    for (std::size_t e = 0; e < 2; ++e) {
+      const double end = e == 0 ? 0.0 : pipe.length_m;
+      if (pipe.ends[e].manhole && std::abs(in->offset_m - end) <= 1e-6 &&
+          pipe.ends[e].slot.value() == job.from_slot) {
+        pose_ = AtSlot{*pipe.ends[e].manhole, pipe.ends[e].slot};
+        break;
+      }
+    }
+  }
   const auto* at = std::get_if<AtSlot>(&pose_);
   if (at == nullptr || at->slot.value() != job.from_slot) {
     return failure(RobotErrorKind::kMalfunction, "not at " + slot_text(SlotIndex{job.from_slot}) +

@@ -70,14 +70,14 @@ TEST(ExpandTest, AnInspectionApproachesThenScansTheWholePipe) {
                               Scan{.speed_mps = 0.1, .distance_m = 8}}));
 }
 
-TEST(ExpandTest, ABackwardScanIsABackwardDriveAtInspectionSpeed) {
+TEST(ExpandTest, AnInspectionThatFinishesWhereTheRobotCameInScansBackward) {
   const InspectPipe inspect{.length_m = 8,
                             .speed_mps = 0.1,
                             .scan_direction = Direction::kBackward,
                             .approach = {Direction::kForward, 2, 0.3}};
   EXPECT_EQ(expand(inspect, profile()),
             (std::vector<Job>{DriveForward{.speed_mps = 0.3, .distance_m = 2},
-                              DriveBackward{.speed_mps = 0.1, .distance_m = 8}}));
+                              Scan{.speed_mps = 0.1, .distance_m = 8, .backward = true}}));
 }
 
 TEST(ExpandTest, GoingToAPointDrivesAndGoingToAManholeDoesNothing) {

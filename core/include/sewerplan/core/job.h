@@ -85,10 +85,12 @@ struct TakeSample {
   friend bool operator==(const TakeSample&, const TakeSample&) = default;
 };
 
-// Drive forward while scanning the pipe wall.
+// Drive while scanning the pipe wall: forward, or backward (an inspection that finishes at the end
+// the robot came in by).
 struct Scan {
   double speed_mps = 0;
   double distance_m = 0;
+  bool backward = false;
   friend bool operator==(const Scan&, const Scan&) = default;
 };
 

@@ -8,9 +8,8 @@
 //   PassManhole     -> TurnInManhole (slots, turn, step, manhole diameter, duration)
 //   EnterPipe       -> EnterPipeFromManhole (slot, duration)
 //   TakeWaterSample -> [drive to the spot], Stop, TakeSample (sample time)
-//   InspectPipe     -> [drive to the start end], Scan (inspection speed, length); a backward
-//                      scan: DriveBackward at inspection speed instead (core/job.h has no
-//                      backward Scan yet, TODO(#5); the executor can tell by scan_direction)
+//   InspectPipe     -> [drive to the start end], Scan (inspection speed, length, backward when
+//                      the inspection finishes at the end the robot came in by)
 //   GoToPoint       -> [drive to the point]
 //   GoToManhole     -> nothing (the robot is there)
 // A drive of distance 0 is left out, so an action may expand to no job at all.

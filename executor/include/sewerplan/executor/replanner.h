@@ -1,0 +1,116 @@
+// SPDX-License-Identifier: MIT
+// Replanner: the planning system that robot software embeds (the paper's sections 4.5 to 4.7).
+//
+// It holds the map, the mission and what the robot has reported, and answers with a fused plan
+// (fusion/fuse.h: actions with every parameter resolved) or with the decision to call for
+// recovery. When the robot meets trouble that its own recovery could not clear, the Replanner
+// changes its world model: a blocked pipe cannot be passed at the obstacle (so it is disconnected
+// between its manholes, but the robot can back out), a dangerous spot likewise, a dangerous
+// passage is closed. Then it replans from where the robot really is, with goal selection: the
+// most tasks that can still be done with the battery left, and still reaching an exit. If the
+// mission's end point (its final task) is cut off, the mission ends at the nearest reachable exit
+// instead; if no exit can be reached, the answer is to activate the locator beacon. Tasks done
+// stay done; tasks dropped stay dropped, each with its reason.
+//
+//   Replanner replanner(map, mission);
+//   PlanResponse r = replanner.plan();
+//   // ... execute r.fused; on progress:  replanner.update(progress, heading_end);
+//   // ... on a blockage recovery could not clear:
+//   r = replanner.report_failure({.kind = Failure::Kind::kBlockage, .pipe = p5, .offset_m = 4.0});
+//   if (r.decision == PlanResponse::Decision::kCallForRecovery) robot.activate_beacon();
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sewerplan/core/clock.h"
+#include "sewerplan/core/mission.h"
+#include "sewerplan/core/sewer_map.h"
+#include "sewerplan/domain/compile.h"
+#include "sewerplan/domain/plan.h"
+#include "sewerplan/domain/robot_state.h"
+#include "sewerplan/fusion/fuse.h"
+#include "sewerplan/search/planner.h"
+
+namespace sewerplan::executor {
+
+// What the robot met that its own recovery could not clear.
+struct Failure {
+  enum class Kind {
+    kBlockage,          // an obstacle in `pipe` at `offset_m`
+    kDangerInPipe,      // a spot in `pipe` at `offset_m` the robot must not drive onto
+    kDangerousPassage,  // passing `manhole` from slot `from` to slot `to`
+    kStuck,             // the robot cannot move any more (a permanent malfunction)
+  };
+  Kind kind = Kind::kBlockage;
+  PipeId pipe{0};
+  double offset_m = 0;
+  ManholeId manhole{0};
+  SlotIndex from{0};
+  SlotIndex to{0};
+  std::string detail;  // the robot's own words
+};
+
+std::string_view to_string(Failure::Kind kind);
+
+struct PlanResponse {
+  enum class Decision {
+    kFollowPlan,       // carry out `fused` (empty when the mission is already ended)
+    kCallForRecovery,  // no exit can be reached: activate the beacon and wait
+  };
+  Decision decision = Decision::kFollowPlan;
+  domain::Plan plan;
+  fusion::FusedPlan fused;
+  std::vector<TaskId> goals;                       // the tasks the plan does
+  std::vector<domain::DroppedTask> newly_dropped;  // left out by this planning
+  std::string end;     // where the plan ends: "exit M4", "pipe P9 (final task 'end')"
+  std::string reason;  // why this plan was made ("start", "blockage in P5 at 4.00 m"), or why
+                       // there is none
+  double planning_time_s = 0;
+  double cost_s = 0;
+  double energy_wh = 0;
+};
+
+struct ReplannerOptions {
+  search::PlannerOptions planner;  // goal selection is always on
+  // Used to time the planning (default: a steady clock).
+  const Clock* clock = nullptr;
+};
+
+class Replanner {
+ public:
+  Replanner(const SewerMap& map, Mission mission, ReplannerOptions options = {});
+
+  // A plan from progress() (at first: the mission's start).
+  PlanResponse plan(const std::string& reason = "start");
+
+  // Where the robot is, what it has done and the energy it has used; `heading_end` is the end of
+  // its pipe its front points to (0 or 1) when it is in a pipe.
+  void update(const domain::MissionProgress& progress, std::uint8_t heading_end);
+
+  // Changes the world model for `failure` and plans again from progress().
+  PlanResponse report_failure(const Failure& failure);
+
+  // The mission as the Replanner now sees it: with the blockages and closures learnt, and
+  // without its final task once the end point was cut off.
+  const Mission& mission() const { return mission_; }
+  const domain::MissionProgress& progress() const { return progress_; }
+  const std::vector<domain::DroppedTask>& dropped() const { return dropped_; }
+  std::uint8_t heading_end() const { return heading_end_; }
+
+ private:
+  Result<search::PlanOutcome> plan_from_here();
+  PlanResponse respond(search::PlanOutcome outcome, const std::string& reason, double seconds);
+
+  const SewerMap& map_;
+  Mission mission_;
+  ReplannerOptions options_;
+  SteadyClock steady_;
+  domain::MissionProgress progress_;
+  std::uint8_t heading_end_ = 1;
+  std::vector<domain::DroppedTask> dropped_;
+};
+
+}  // namespace sewerplan::executor

@@ -1,0 +1,441 @@
+// SPDX-License-Identifier: MIT
+// The action controller: plans, actions, jobs, recovery and replanning (executor.h).
+#include "sewerplan/executor/executor.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <optional>
+#include <sstream>
+
+#include "sewerplan/domain/plan_text.h"
+#include "sewerplan/domain/validator.h"
+#include "sewerplan/fusion/jobs.h"
+#include "sewerplan/fusion/robot_action.h"
+
+#include "dead_reckoning.h"
+
+namespace sewerplan::executor {
+namespace {
+
+// Where an obstacle or danger is taken to be: just ahead of where the robot stopped, so that the
+// robot's own position stays on its side of the blockage.
+constexpr double kAhead_m = 0.05;
+
+template <class... F>
+struct Overloaded : F... {
+  using F::operator()...;
+};
+template <class... F>
+Overloaded(F...) -> Overloaded<F...>;
+
+std::string job_text(const Job& job) {
+  std::ostringstream out;
+  out << job;
+  return out.str();
+}
+
+// The rest of a drive after `done_m`, or nothing for a job that is not a drive.
+std::optional<Job> rest_of(const Job& job, double done_m) {
+  return std::visit(
+      Overloaded{[&](const DriveForward& j) -> std::optional<Job> {
+                   return DriveForward{j.speed_mps, std::max(0.0, j.distance_m - done_m)};
+                 },
+                 [&](const DriveBackward& j) -> std::optional<Job> {
+                   return DriveBackward{j.speed_mps, std::max(0.0, j.distance_m - done_m)};
+                 },
+                 [&](const Push& j) -> std::optional<Job> {
+                   return Push{j.speed_mps, std::max(0.0, j.distance_m - done_m)};
+                 },
+                 [&](const Scan& j) -> std::optional<Job> {
+                   return Scan{j.speed_mps, std::max(0.0, j.distance_m - done_m), j.backward};
+                 },
+                 [](const auto&) -> std::optional<Job> { return std::nullopt; }},
+      job);
+}
+
+// The same drive, `extra_m` longer (after backing up that far).
+Job lengthened(const Job& job, double extra_m) {
+  return std::visit(
+      [&](auto j) -> Job {
+        if constexpr (requires { j.distance_m; }) j.distance_m += extra_m;
+        return j;
+      },
+      job);
+}
+
+// A drive of `distance_m` the other way, at the job's speed.
+Job back_off(const Job& job, double distance_m) {
+  return std::visit(Overloaded{[&](const DriveBackward& j) -> Job {
+                                 return DriveForward{j.speed_mps, distance_m};
+                               },
+                               [&](const Scan& j) -> Job {
+                                 if (j.backward) return DriveForward{j.speed_mps, distance_m};
+                                 return DriveBackward{j.speed_mps, distance_m};
+                               },
+                               [&](const auto& j) -> Job {
+                                 if constexpr (requires { j.speed_mps; }) {
+                                   return DriveBackward{j.speed_mps, distance_m};
+                                 }
+                                 return DriveBackward{0.1, distance_m};
+                               }},
+                    job);
+}
+
+std::string action_text(const fusion::RobotAction& action) {
+  std::ostringstream out;
+  out << action;
+  return out.str();
+}
+
+std::vector<std::string> task_names(const Mission& mission, const std::vector<TaskId>& tasks) {
+  std::vector<std::string> names;
+  for (TaskId t : tasks) names.push_back(mission.task(t).name);
+  return names;
+}
+
+}  // namespace
+
+std::ostream& operator<<(std::ostream& os, const MissionReport& r) {
+  os << std::fixed << std::setprecision(1);
+  os << (r.outcome == MissionReport::Outcome::kEnded ? "mission ended at " : "beacon on: ") << r.end
+     << '\n';
+  os << "tasks done: " << r.tasks_done.size();
+  for (std::size_t i = 0; i < r.tasks_done.size(); ++i) {
+    os << (i == 0 ? " (" : ", ") << r.tasks_done[i] << (i + 1 == r.tasks_done.size() ? ")" : "");
+  }
+  os << "\ntasks dropped: " << r.dropped.size() << '\n';
+  for (const auto& [task, reason] : r.dropped) os << "  - " << task << ": " << reason << '\n';
+  os << "time " << r.time_s << " s, energy " << r.energy_wh << " Wh, " << r.jobs << " jobs, "
+     << r.recoveries << " errors cleared by recovery, " << r.replans << " replans";
+  if (!r.planning_times_s.empty()) {
+    os << std::setprecision(3) << " (planning";
+    for (double t : r.planning_times_s) os << ' ' << t * 1000 << " ms";
+    os << ')';
+  }
+  os << "\nbattery reserve " << (r.battery_reserve_kept ? "kept" : "NOT kept") << '\n';
+  return os;
+}
+
+Executor::Executor(const SewerMap& map, Replanner& replanner, hal::Robot& robot,
+                   ExecutorOptions options, EventLog& log)
+    : map_(map), replanner_(replanner), robot_(robot), options_(options), log_(log) {}
+
+class Executor::Run {
+ public:
+  explicit Run(Executor& e)
+      : map_(e.map_),
+        replanner_(e.replanner_),
+        robot_(e.robot_),
+        options_(e.options_),
+        log_(e.log_),
+        tracker_(e.map_, e.replanner_.progress().position, e.replanner_.heading_end()) {}
+
+  MissionReport go() {
+    PlanResponse response = replanner_.plan("start");
+    log_plan("plan", response);
+    for (;;) {
+      if (response.decision == PlanResponse::Decision::kCallForRecovery) {
+        return finish(MissionReport::Outcome::kBeacon, response.reason);
+      }
+      if (auto invalid = check(response)) {
+        return finish(MissionReport::Outcome::kBeacon, "the plan is not valid: " + *invalid);
+      }
+      std::optional<Replan> replan = execute(response);
+      if (!replan) return finish(MissionReport::Outcome::kEnded, response.end);
+      if (report_.replans >= options_.max_replans) {
+        return finish(MissionReport::Outcome::kBeacon,
+                      "gave up after " + std::to_string(report_.replans) + " replans");
+      }
+      ++report_.replans;
+      response = replan->failure ? replanner_.report_failure(*replan->failure)
+                                 : replanner_.plan(replan->reason);
+      log_plan("replan", response);
+    }
+  }
+
+ private:
+  struct Replan {
+    std::optional<Failure> failure;
+    std::string reason;
+  };
+
+  double now() const { return robot_.status().elapsed_s; }
+  const Mission& mission() const { return replanner_.mission(); }
+
+  // The progress planning starts from: the dropped tasks count as done.
+  domain::MissionProgress planning_start() const {
+    domain::MissionProgress start = replanner_.progress();
+    for (const auto& d : replanner_.dropped()) start.done[d.task.index()] = true;
+    return start;
+  }
+
+  std::optional<std::string> check(const PlanResponse& response) const {
+    const auto report = domain::validate_plan(response.plan, map_, mission(), planning_start());
+    if (report.valid) return std::nullopt;
+    return report.error;
+  }
+
+  void log_plan(const char* type, const PlanResponse& r) {
+    std::vector<std::string> dropped;
+    for (const auto& d : r.newly_dropped) {
+      dropped.push_back(mission().task(d.task).name);
+      log_.add(now(), "task_dropped",
+               {{"task", mission().task(d.task).name}, {"reason", d.reason}});
+    }
+    report_.planning_times_s.push_back(r.planning_time_s);
+    log_.add(now(), type,
+             {{"reason", r.reason},
+              {"planning_ms", r.planning_time_s * 1000},
+              {"decision", std::string(r.decision == PlanResponse::Decision::kFollowPlan
+                                           ? "follow"
+                                           : "call for recovery")},
+              {"goals", task_names(mission(), r.goals)},
+              {"dropped", dropped},
+              {"end", r.end},
+              {"steps", static_cast<std::int64_t>(r.plan.steps.size())},
+              {"cost_s", r.cost_s}});
+  }
+
+  // Runs the plan; empty when it was carried out to its end.
+  std::optional<Replan> execute(const PlanResponse& response) {
+    domain::PlanReplay replay(map_, mission(), planning_start());
+    const auto& actions = response.fused.actions;
+    for (std::size_t i = 0; i < actions.size(); ++i) {
+      if (auto low = battery_low(actions, i)) return Replan{std::nullopt, *low};
+      const fusion::RobotAction& action = actions[i];
+      log_.add(now(), "action",
+               {{"step", domain::format_step(response.plan.steps[fusion::plan_step(action)], map_,
+                                             mission())},
+                {"kind", std::string(fusion::action_kind(action))},
+                {"duration_s", fusion::duration_s(action)},
+                {"parameters", action_text(action)}});
+      for (const Job& job : fusion::expand(action, mission().profile)) {
+        if (auto failure = run_job(job, action)) {
+          sync_progress(replay.progress());
+          return Replan{failure, ""};
+        }
+      }
+      const domain::PlanStep& step = response.plan.steps[fusion::plan_step(action)];
+      const std::vector<bool> before = replay.done();
+      if (!replay.apply(step).has_value()) {
+        return Replan{Failure{.kind = Failure::Kind::kStuck, .detail = "plan and robot disagree"},
+                      ""};
+      }
+      for (TaskId t : mission().task_ids()) {
+        if (!before[t.index()] && replay.done()[t.index()]) {
+          report_.tasks_done.push_back(mission().task(t).name);
+          log_.add(now(), "task_done", {{"task", mission().task(t).name}});
+        }
+      }
+      tracker_.set_position(replay.position());
+      sync_progress(replay.progress());
+    }
+    return std::nullopt;
+  }
+
+  // A replan reason when the plan left needs more energy than the battery has above the reserve.
+  std::optional<std::string> battery_low(const std::vector<fusion::RobotAction>& actions,
+                                         std::size_t from) const {
+    if (from == 0) return std::nullopt;  // a fresh plan fits what the robot reported
+    double seconds = 0;
+    for (std::size_t i = from; i < actions.size(); ++i) seconds += fusion::duration_s(actions[i]);
+    const RobotProfile& p = mission().profile;
+    const double needed = p.energy_wh(seconds);
+    const double available =
+        robot_.status().battery_wh - p.battery_wh * mission().battery_reserve_fraction;
+    if (needed <= available + 1e-9) return std::nullopt;
+    std::ostringstream out;
+    out << std::fixed << std::setprecision(1) << "battery low: the plan left needs " << needed
+        << " Wh, " << available << " Wh are left above the reserve";
+    return out.str();
+  }
+
+  void sync_progress(domain::MissionProgress progress) {
+    for (const auto& d : replanner_.dropped()) {
+      // Dropped is not done.
+      if (std::find(report_.tasks_done.begin(), report_.tasks_done.end(),
+                    mission().task(d.task).name) == report_.tasks_done.end()) {
+        progress.done[d.task.index()] = false;
+      }
+    }
+    progress.position = tracker_.position();
+    progress.energy_used_wh = mission().profile.battery_wh - robot_.status().battery_wh;
+    replanner_.update(progress, tracker_.heading_end());
+  }
+
+  hal::JobReport execute_job(const Job& job) {
+    const hal::JobReport r = robot_.execute(job);
+    ++report_.jobs;
+    tracker_.advance(job, r);
+    std::vector<std::pair<std::string, EventValue>> fields{
+        {"job", job_text(job)}, {"progress_m", r.progress_m}, {"ok", r.ok()}};
+    log_.add(now(), "job", std::move(fields));
+    if (!r.ok()) {
+      log_.add(now(), "error",
+               {{"kind", std::string(hal::to_string(r.error->kind))},
+                {"reason", r.error->reason},
+                {"where", tracker_.describe()}});
+    }
+    return r;
+  }
+
+  void log_recovery(const std::string& phase, bool ok) {
+    log_.add(now(), "recovery", {{"phase", phase}, {"ok", ok}});
+  }
+
+  // Runs one job with staged recovery; a failure for the Replanner when recovery fails.
+  std::optional<Failure> run_job(const Job& job, const fusion::RobotAction& action) {
+    Job current = job;
+    int reboots = 0;
+    for (;;) {
+      hal::JobReport r = execute_job(current);
+      if (r.ok()) return std::nullopt;
+      const hal::RobotErrorKind kind = r.error->kind;
+      if (kind == hal::RobotErrorKind::kMalfunction) {
+        if (reboots >= options_.recovery.max_reboots) {
+          return Failure{.kind = Failure::Kind::kStuck, .detail = r.error->reason};
+        }
+        ++reboots;
+        const Result<void> rebooted = robot_.reboot();
+        log_recovery("reboot", rebooted.has_value());
+        if (!rebooted.has_value()) {
+          return Failure{
+              .kind = Failure::Kind::kStuck,
+              .detail = r.error->reason + "; reboot failed: " + rebooted.error().message};
+        }
+        ++report_.recoveries;
+        if (auto rest = rest_of(current, r.progress_m)) current = *rest;
+        continue;
+      }
+      if (kind == hal::RobotErrorKind::kDanger) return danger(current, action, r);
+      auto rest = rest_of(current, r.progress_m);
+      if (!rest) return danger(current, action, r);  // blocked in a manhole: as a danger
+      if (auto cleared = clear_blockage(*rest)) {
+        if (*cleared) {
+          ++report_.recoveries;
+          return std::nullopt;
+        }
+        return Failure{.kind = Failure::Kind::kStuck, .detail = "recovery left the robot stuck"};
+      }
+      return blocked_here(Failure::Kind::kBlockage, current, r.error->reason);
+    }
+  }
+
+  // The blockage phases. true: cleared and the drive finished; false: another error on the way;
+  // empty: the obstacle stays.
+  std::optional<bool> clear_blockage(Job rest) {
+    const RecoveryConfig& c = options_.recovery;
+    auto retry = [&](const Job& job, const std::string& phase) -> std::optional<bool> {
+      const hal::JobReport r = execute_job(job);
+      log_recovery(phase, r.ok());
+      if (r.ok()) return true;
+      if (r.error->kind != hal::RobotErrorKind::kBlockage) return false;
+      if (auto left = rest_of(job, r.progress_m)) rest = *left;
+      return std::nullopt;
+    };
+    for (int i = 0; i < c.backup_retries; ++i) {
+      const hal::JobReport back = execute_job(back_off(rest, c.backup_m));
+      if (!back.ok()) return false;
+      if (auto done = retry(lengthened(rest, back.progress_m), "1: back up and retry")) {
+        return done;
+      }
+    }
+    for (int i = 0; i < c.lift_retries; ++i) {
+      if (!execute_job(LiftHead{}).ok() || !execute_job(LowerHead{}).ok()) return false;
+      if (auto done = retry(rest, "2: lift the head and retry")) return done;
+    }
+    for (int i = 0; c.push_allowed && i < c.push_retries; ++i) {
+      double speed = 0.1;
+      if (const auto* d = std::get_if<DriveForward>(&rest)) speed = d->speed_mps;
+      if (const auto* s = std::get_if<Scan>(&rest); s && !s->backward) speed = s->speed_mps;
+      if (std::holds_alternative<DriveBackward>(rest) ||
+          (std::holds_alternative<Scan>(rest) && std::get<Scan>(rest).backward)) {
+        break;  // the robot pushes with its head only
+      }
+      const hal::JobReport push =
+          execute_job(Push{speed, std::visit(
+                                      [](const auto& j) {
+                                        if constexpr (requires { j.distance_m; })
+                                          return j.distance_m;
+                                        return 0.0;
+                                      },
+                                      rest)});
+      log_recovery("3: push", push.ok());
+      if (push.ok()) return true;
+      if (push.error->kind != hal::RobotErrorKind::kBlockage) return false;
+    }
+    return std::nullopt;
+  }
+
+  // DANGER: back off to the last safe position, and report the spot or the passage.
+  std::optional<Failure> danger(const Job& job, const fusion::RobotAction& action,
+                                const hal::JobReport& r) {
+    if (const auto* pass = std::get_if<fusion::PassManhole>(&action);
+        pass && std::holds_alternative<TurnInManhole>(job)) {
+      return Failure{.kind = Failure::Kind::kDangerousPassage,
+                     .manhole = pass->manhole,
+                     .from = pass->from_slot,
+                     .to = pass->to_slot,
+                     .detail = r.error->reason};
+    }
+    if (!rest_of(job, 0)) {
+      return Failure{.kind = Failure::Kind::kStuck, .detail = r.error->reason};
+    }
+    std::optional<Failure> failure =
+        blocked_here(Failure::Kind::kDangerInPipe, job, r.error->reason);
+    const hal::JobReport back = execute_job(back_off(job, options_.recovery.danger_backoff_m));
+    log_recovery("back off to safety", back.ok());
+    return failure;
+  }
+
+  // A blockage or danger just ahead of the robot in its pipe.
+  Failure blocked_here(Failure::Kind kind, const Job& job, const std::string& reason) const {
+    const auto* in = std::get_if<domain::InPipe>(&tracker_.position());
+    if (in == nullptr) return Failure{.kind = Failure::Kind::kStuck, .detail = reason};
+    const double length = map_.pipe(in->pipe).length_m;
+    const double ahead = in->offset_m + tracker_.direction_of(job) * kAhead_m;
+    return Failure{.kind = kind,
+                   .pipe = in->pipe,
+                   .offset_m = std::clamp(ahead, 0.0, length),
+                   .detail = reason};
+  }
+
+  MissionReport finish(MissionReport::Outcome outcome, const std::string& end) {
+    if (outcome == MissionReport::Outcome::kBeacon) {
+      robot_.activate_beacon();
+      log_.add(now(), "beacon", {{"reason", end}});
+    }
+    const hal::RobotStatus status = robot_.status();
+    const RobotProfile& p = mission().profile;
+    report_.outcome = outcome;
+    report_.end = end;
+    for (const auto& d : replanner_.dropped()) {
+      report_.dropped.emplace_back(mission().task(d.task).name, d.reason);
+    }
+    report_.time_s = status.elapsed_s;
+    report_.energy_wh = p.battery_wh - status.battery_wh;
+    report_.battery_reserve_kept =
+        status.battery_wh + 1e-9 >= p.battery_wh * mission().battery_reserve_fraction;
+    log_.add(
+        now(), "mission_end",
+        {{"outcome", std::string(outcome == MissionReport::Outcome::kEnded ? "ended" : "beacon")},
+         {"end", end},
+         {"tasks_done", report_.tasks_done},
+         {"energy_wh", report_.energy_wh},
+         {"replans", static_cast<std::int64_t>(report_.replans)}});
+    return report_;
+  }
+
+  const SewerMap& map_;
+  Replanner& replanner_;
+  hal::Robot& robot_;
+  const ExecutorOptions& options_;
+  EventLog& log_;
+  detail::DeadReckoning tracker_;
+  MissionReport report_;
+};
+
+MissionReport Executor::run() { return Run(*this).go(); }
+
+}  // namespace sewerplan::executor

@@ -1,0 +1,180 @@
+// SPDX-License-Identifier: MIT
+#include "sewerplan/executor/replanner.h"
+
+#include <algorithm>
+#include <iomanip>
+#include <sstream>
+
+#include "sewerplan/domain/validator.h"
+
+namespace sewerplan::executor {
+namespace {
+
+std::string metres(double v) {
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(2) << v << " m";
+  return out.str();
+}
+
+// A planner's message on one line: "the mission cannot be ended:\n  - a\n  - b" -> "a; b".
+std::string one_line(const std::string& message) {
+  std::string out;
+  std::size_t pos = message.find("\n  - ");
+  if (pos == std::string::npos) return message;
+  while (pos != std::string::npos) {
+    const std::size_t next = message.find("\n  - ", pos + 5);
+    out += (out.empty() ? "" : "; ") + message.substr(pos + 5, next == std::string::npos
+                                                                  ? std::string::npos
+                                                                  : next - pos - 5);
+    pos = next;
+  }
+  return out;
+}
+
+bool has_task(const std::vector<domain::DroppedTask>& list, TaskId t) {
+  return std::any_of(list.begin(), list.end(),
+                     [&](const domain::DroppedTask& d) { return d.task == t; });
+}
+
+}  // namespace
+
+std::string_view to_string(Failure::Kind kind) {
+  switch (kind) {
+    case Failure::Kind::kBlockage:
+      return "blockage";
+    case Failure::Kind::kDangerInPipe:
+      return "danger";
+    case Failure::Kind::kDangerousPassage:
+      return "dangerous passage";
+    case Failure::Kind::kStuck:
+      return "stuck";
+  }
+  return "stuck";
+}
+
+Replanner::Replanner(const SewerMap& map, Mission mission, ReplannerOptions options)
+    : map_(map),
+      mission_(std::move(mission)),
+      options_(options),
+      progress_(domain::initial_progress(mission_, map)) {
+  options_.planner.select_goals = true;
+}
+
+void Replanner::update(const domain::MissionProgress& progress, std::uint8_t heading_end) {
+  progress_ = progress;
+  heading_end_ = heading_end;
+}
+
+Result<search::PlanOutcome> Replanner::plan_from_here() {
+  for (;;) {
+    domain::MissionProgress start = progress_;
+    for (const auto& d : dropped_) start.done[d.task.index()] = true;
+    auto outcome = search::plan_mission(map_, mission_, start, options_.planner);
+    if (outcome.has_value() || outcome.error().code != ErrorCode::kNoPlan) return outcome;
+    // The end point cut off: end at the nearest reachable exit instead.
+    if (auto final_task = mission_.final_task_id();
+        final_task && !start.done[final_task->index()]) {
+      dropped_.push_back({*final_task, "the mission's end point cannot be reached any more: " +
+                                           one_line(outcome.error().message)});
+      mission_.tasks[final_task->index()].final = false;
+      if (mission_.exits.empty()) {
+        for (ManholeId m : map_.manhole_ids()) {
+          if (map_.manhole(m).exit) mission_.exits.push_back(m);
+        }
+      }
+      continue;
+    }
+    // The mission's exits cut off: any manhole the map marks as an exit will do.
+    std::vector<ManholeId> all_exits;
+    for (ManholeId m : map_.manhole_ids()) {
+      if (map_.manhole(m).exit) all_exits.push_back(m);
+    }
+    if (all_exits.size() > mission_.exits.size()) {
+      mission_.exits = std::move(all_exits);
+      continue;
+    }
+    return outcome;
+  }
+}
+
+PlanResponse Replanner::plan(const std::string& reason) {
+  const Clock& clock = options_.clock != nullptr ? *options_.clock : steady_;
+  const double start_s = clock.now_s();
+  const std::size_t dropped_before = dropped_.size();
+  Result<search::PlanOutcome> outcome = plan_from_here();
+  const double seconds = clock.now_s() - start_s;
+  if (!outcome.has_value()) {
+    PlanResponse r;
+    r.decision = PlanResponse::Decision::kCallForRecovery;
+    r.reason = reason + "; no way to end the mission: " + one_line(outcome.error().message);
+    r.planning_time_s = seconds;
+    r.newly_dropped.assign(dropped_.begin() + static_cast<std::ptrdiff_t>(dropped_before),
+                           dropped_.end());
+    return r;
+  }
+  PlanResponse r = respond(std::move(*outcome), reason, seconds);
+  r.newly_dropped.assign(dropped_.begin() + static_cast<std::ptrdiff_t>(dropped_before),
+                         dropped_.end());
+  return r;
+}
+
+PlanResponse Replanner::respond(search::PlanOutcome outcome, const std::string& reason,
+                                double seconds) {
+  PlanResponse r;
+  r.reason = reason;
+  r.planning_time_s = seconds;
+  r.cost_s = outcome.cost_s;
+  r.energy_wh = outcome.energy_wh;
+  for (auto& d : outcome.dropped) {
+    if (!has_task(dropped_, d.task)) dropped_.push_back(d);
+  }
+  domain::MissionProgress start = progress_;
+  for (const auto& d : dropped_) start.done[d.task.index()] = true;
+  for (TaskId t : mission_.task_ids()) {
+    if (!start.done[t.index()]) r.goals.push_back(t);
+  }
+  Result<fusion::FusedPlan> fused =
+      fusion::fuse(outcome.plan, map_, mission_, start, {.start_heading_end = heading_end_});
+  if (!fused.has_value()) {
+    r.decision = PlanResponse::Decision::kCallForRecovery;
+    r.reason = reason + "; the plan cannot be carried out: " + fused.error().message;
+    return r;
+  }
+  r.fused = std::move(*fused);
+  r.plan = std::move(outcome.plan);
+  if (const Task* final_task = mission_.final_task()) {
+    r.end = describe(final_task->place, map_) + " (final task '" + final_task->name + "')";
+  } else {
+    domain::PlanReplay replay(map_, mission_, start);
+    for (const auto& step : r.plan.steps) (void)replay.apply(step);
+    const auto m = domain::manhole_of(replay.position());
+    r.end = m ? "exit " + map_.manhole(*m).name : "exit";
+  }
+  return r;
+}
+
+PlanResponse Replanner::report_failure(const Failure& failure) {
+  std::string reason(to_string(failure.kind));
+  switch (failure.kind) {
+    case Failure::Kind::kBlockage:
+    case Failure::Kind::kDangerInPipe:
+      mission_.blockages.push_back({failure.pipe, failure.offset_m});
+      reason += " in " + map_.pipe(failure.pipe).name + " at " + metres(failure.offset_m);
+      break;
+    case Failure::Kind::kDangerousPassage:
+      mission_.closed_passages.push_back({failure.manhole, failure.from, failure.to});
+      reason += " at " + map_.manhole(failure.manhole).name + " from slot " +
+                std::to_string(to_paper_number(failure.from)) + " to " +
+                std::to_string(to_paper_number(failure.to));
+      break;
+    case Failure::Kind::kStuck: {
+      PlanResponse r;
+      r.decision = PlanResponse::Decision::kCallForRecovery;
+      r.reason = "the robot cannot move: " + failure.detail;
+      return r;
+    }
+  }
+  return plan(reason);
+}
+
+}  // namespace sewerplan::executor

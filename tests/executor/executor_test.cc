@@ -1,0 +1,218 @@
+// SPDX-License-Identifier: MIT
+// The action controller on the simulated robot: the acceptance cases of the execute-and-replan
+// issue, on the paper's test environment (datasets/ais-testbed). In that network MAKRO cannot turn
+// from P3 into P4 at M5 (94 degrees), so P4 and P5 are the only ways between the two halves.
+#include "sewerplan/executor/executor.h"
+
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "sewerplan/domain/validator.h"
+#include "sewerplan/hal/fault_scenario.h"
+#include "sewerplan/hal/sim_robot.h"
+
+#include "support/ais_testbed.h"
+
+namespace sewerplan::executor {
+namespace {
+
+using MissionOutcome = MissionReport::Outcome;
+
+struct SimRun {
+  MissionReport report;
+  std::vector<Event> events;
+  std::string json_lines;
+};
+
+hal::FaultScenario faults(const SewerMap& map, const std::string& json) {
+  Diagnostics d;
+  auto f = hal::read_faults_json(json, "test.json", map, d);
+  EXPECT_TRUE(f.has_value()) << d.error_summary();
+  return f.has_value() ? *f : hal::FaultScenario{};
+}
+
+SimRun simulate(const SewerMap& map, const Mission& mission, const hal::FaultScenario& scenario,
+                ExecutorOptions options = {}) {
+  ManualClock clock;  // planning times of 0: runs compare equal
+  Replanner replanner(map, mission, {.clock = &clock});
+  const auto& start = std::get<domain::InPipe>(replanner.progress().position);
+  hal::SimRobot robot(map, mission.profile,
+                      hal::InPipe{start.pipe, start.offset_m, hal::Heading::kTowardsEnd1},
+                      scenario);
+  std::ostringstream json;
+  EventLog log(&json);
+  SimRun run;
+  run.report = Executor(map, replanner, robot, options, log).run();
+  run.events = log.events();
+  run.json_lines = json.str();
+  EXPECT_EQ(robot.status().beacon_on, run.report.outcome == MissionOutcome::kBeacon);
+  return run;
+}
+
+std::size_t count(const SimRun& run, std::string_view type) {
+  std::size_t n = 0;
+  for (const Event& e : run.events) n += e.type == type ? 1U : 0U;
+  return n;
+}
+
+bool dropped(const SimRun& run, const std::string& task, std::string_view reason_part) {
+  for (const auto& [name, reason] : run.report.dropped) {
+    if (name == task && reason.find(reason_part) != std::string::npos) return true;
+  }
+  return false;
+}
+
+TEST(Executor, WithoutFaultsThePapersMissionIsDoneAsPlanned) {
+  const auto ais = testing::load_ais_testbed();
+  const SimRun run = simulate(ais.map, ais.mission, {});
+  EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded);
+  EXPECT_EQ(run.report.tasks_done, (std::vector<std::string>{"sample", "inspect"}));
+  EXPECT_EQ(run.report.replans, 0U);
+  EXPECT_NEAR(run.report.time_s, 585.4, 0.05);  // the plan's cost, to the robot's clock
+  EXPECT_TRUE(run.report.battery_reserve_kept);
+}
+
+TEST(Executor, ABlockedPipeOnTheRouteIsDrivenAroundAndEveryTaskDone) {
+  auto ais = testing::load_ais_testbed();
+  ais.mission.tasks.erase(ais.mission.tasks.begin() + 1);  // no inspection of P4: P4 is a way
+  const SimRun run =
+      simulate(ais.map, ais.mission, faults(ais.map, R"({"format": "sewerplan-faults", "version": 1,
+                          "obstacles": [{"pipe": "P4", "offset_m": 5.0, "kind": "permanent"}]})"));
+  EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded);
+  EXPECT_EQ(run.report.tasks_done, (std::vector<std::string>{"sample"}));
+  EXPECT_TRUE(run.report.dropped.empty());
+  EXPECT_EQ(run.report.replans, 1U);
+  EXPECT_NE(run.report.end.find("pipe P9"), std::string::npos) << run.report.end;
+  // Recovery tried its phases before the replan: two back-ups, one head lift; no push.
+  EXPECT_EQ(count(run, "recovery"), 3U);
+  EXPECT_EQ(run.json_lines.find("3: push"), std::string::npos);
+}
+
+TEST(Executor, ABlockageThatCutsATaskOffDropsItAndDoesTheRest) {
+  const auto ais = testing::load_ais_testbed();
+  Diagnostics d;
+  const auto scenario = hal::read_faults(
+      std::string(SEWERPLAN_SOURCE_DIR) + "/datasets/ais-testbed/faults/demo.json", ais.map, d);
+  ASSERT_TRUE(scenario.has_value()) << d.error_summary();
+  const SimRun run = simulate(ais.map, ais.mission, *scenario);
+  EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded);
+  EXPECT_EQ(run.report.tasks_done, (std::vector<std::string>{"sample"}));
+  EXPECT_TRUE(dropped(run, "inspect", "pipe P4 is blocked at 5.00 m"));
+  EXPECT_NE(run.report.end.find("pipe P9"), std::string::npos) << run.report.end;
+  // The transient obstacle in P1 was cleared by lifting the head, without a replan.
+  EXPECT_EQ(run.report.replans, 1U);
+  EXPECT_NE(run.json_lines.find(R"("phase":"2: lift the head and retry","ok":true)"),
+            std::string::npos);
+}
+
+TEST(Executor, WhenThePlannedEndIsCutOffTheNearestReachableExitIsTaken) {
+  const auto ais = testing::load_ais_testbed();
+  Diagnostics d;
+  const auto scenario = hal::read_faults(
+      std::string(SEWERPLAN_SOURCE_DIR) + "/datasets/ais-testbed/faults/blocked-p5.json", ais.map,
+      d);
+  ASSERT_TRUE(scenario.has_value()) << d.error_summary();
+  const SimRun run = simulate(ais.map, ais.mission, *scenario);
+  EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded);
+  EXPECT_EQ(run.report.end, "exit M4");  // back through M3: M4 is the nearest exit
+  EXPECT_TRUE(dropped(run, "end", "end point cannot be reached"));
+  EXPECT_TRUE(dropped(run, "sample", "no route"));
+}
+
+TEST(Executor, AStuckRobotSwitchesItsBeaconOn) {
+  const auto ais = testing::load_ais_testbed();
+  const SimRun run =
+      simulate(ais.map, ais.mission, faults(ais.map, R"({"format": "sewerplan-faults", "version": 1,
+                                  "malfunctions": [{"at_job": 3, "kind": "permanent"}]})"));
+  EXPECT_EQ(run.report.outcome, MissionOutcome::kBeacon);
+  EXPECT_NE(run.report.end.find("cannot move"), std::string::npos) << run.report.end;
+  EXPECT_EQ(count(run, "beacon"), 1U);
+}
+
+TEST(Executor, ATransientMalfunctionIsRebootedAndTheMissionGoesOn) {
+  const auto ais = testing::load_ais_testbed();
+  const SimRun run =
+      simulate(ais.map, ais.mission, faults(ais.map, R"({"format": "sewerplan-faults", "version": 1,
+                                  "malfunctions": [{"at_job": 3, "kind": "transient"}]})"));
+  EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded);
+  EXPECT_EQ(run.report.tasks_done, (std::vector<std::string>{"sample", "inspect"}));
+  EXPECT_EQ(run.report.replans, 0U);
+  EXPECT_EQ(run.report.recoveries, 1U);
+  EXPECT_NE(run.json_lines.find(R"("phase":"reboot","ok":true)"), std::string::npos);
+}
+
+TEST(Executor, ATransientObstacleIsClearedWithoutAReplan) {
+  const auto ais = testing::load_ais_testbed();
+  for (const char* kind : {"transient_lift", "transient_push"}) {
+    ExecutorOptions options;
+    options.recovery.push_allowed = std::string(kind) == "transient_push";
+    const SimRun run =
+        simulate(ais.map, ais.mission,
+                 faults(ais.map, std::string(R"({"format": "sewerplan-faults", "version": 1,
+                    "obstacles": [{"pipe": "P1", "offset_m": 3.0, "kind": ")") +
+                                     kind + "\"}]}"),
+                 options);
+    EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded) << kind;
+    EXPECT_EQ(run.report.replans, 0U) << kind;
+    EXPECT_EQ(run.report.tasks_done.size(), 2U) << kind;
+    EXPECT_EQ(run.report.recoveries, 1U) << kind;
+  }
+}
+
+TEST(Executor, ABatteryRunningLowSendsTheRobotToAnExitInsteadOfTheNextTask) {
+  const auto ais = testing::load_ais_testbed();
+  // makro-1.1 has 240 Wh and keeps 20% (48 Wh); this battery has 60 Wh: 12 Wh to use, and the
+  // whole mission needs 19.5 Wh.
+  const SimRun run =
+      simulate(ais.map, ais.mission, faults(ais.map, R"({"format": "sewerplan-faults", "version": 1,
+                                               "battery_wh": 60})"));
+  EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded);
+  EXPECT_GE(run.report.replans, 1U);
+  EXPECT_NE(run.json_lines.find("battery low"), std::string::npos);
+  EXPECT_LT(run.report.tasks_done.size(), 2U);
+  EXPECT_TRUE(run.report.battery_reserve_kept) << run.report;
+}
+
+TEST(Executor, ADangerousPassageIsClosedAndAvoided) {
+  const auto ais = testing::load_ais_testbed();
+  // M6 from P5 (slot 3) into P6 (slot 4): the way to the sample.
+  const SimRun run =
+      simulate(ais.map, ais.mission, faults(ais.map, R"({"format": "sewerplan-faults", "version": 1,
+                                  "danger": [{"manhole": "M6", "from_slot": 3, "to_slot": 4}]})"));
+  EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded);
+  EXPECT_GE(run.report.replans, 1U);
+  EXPECT_NE(run.json_lines.find(R"("kind":"danger")"), std::string::npos);
+}
+
+TEST(Executor, TheSameFaultsGiveTheSameRun) {
+  const auto ais = testing::load_ais_testbed();
+  auto scenario = hal::random_faults(
+      ais.map, {.seed = 7, .obstacle_rate_per_km = 40, .malfunction_rate_per_hour = 2});
+  ASSERT_TRUE(scenario.has_value());
+  const SimRun a = simulate(ais.map, ais.mission, *scenario);
+  const SimRun b = simulate(ais.map, ais.mission, *scenario);
+  EXPECT_EQ(a.json_lines, b.json_lines);
+  EXPECT_FALSE(a.json_lines.empty());
+}
+
+// Every plan the executor follows passed the validator (it checks each one before running it): no
+// run ends with an invalid plan, over many random fault scenarios.
+TEST(Executor, RandomFaultsNeverCrashHangOrBreakTheReserve) {
+  const auto ais = testing::load_ais_testbed();
+  for (std::uint64_t seed = 1; seed <= 40; ++seed) {
+    auto scenario = hal::random_faults(ais.map, {.seed = seed,
+                                                 .obstacle_rate_per_km = 60,
+                                                 .transient_share = 0.5,
+                                                 .danger_rate_per_km = 10,
+                                                 .dangerous_passage_share = 0.05,
+                                                 .malfunction_rate_per_hour = 3});
+    ASSERT_TRUE(scenario.has_value());
+    const SimRun run = simulate(ais.map, ais.mission, *scenario);
+    EXPECT_EQ(run.report.end.find("not valid"), std::string::npos) << seed << ": " << run.report;
+    EXPECT_TRUE(run.report.battery_reserve_kept) << seed << ": " << run.report;
+  }
+}
+
+}  // namespace
+}  // namespace sewerplan::executor
