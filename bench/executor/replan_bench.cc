@@ -1,0 +1,88 @@
+// SPDX-License-Identifier: MIT
+// Replanning after a blockage: the time from report_failure to the new fused plan (world-model
+// change, goal selection, search, fusion), on the paper's test environment and on generated
+// networks. The robot is put where its first plan has it drive into a pipe after `steps_in` steps,
+// half-way along that pipe, and an obstacle is reported just ahead.
+#include <benchmark/benchmark.h>
+
+#include "sewerplan/domain/validator.h"
+#include "sewerplan/executor/replanner.h"
+
+#include "support/instances.h"
+
+namespace sewerplan::bench {
+namespace {
+
+struct Blocked {
+  domain::MissionProgress progress;
+  std::uint8_t heading_end = 1;
+  executor::Failure failure;
+};
+
+// The first pipe the plan drives through after `steps_in` steps, half-way, blocked ahead.
+std::optional<Blocked> blockage_on_route(const Instance& instance,
+                                         const executor::PlanResponse& plan, std::size_t steps_in) {
+  domain::PlanReplay replay(instance.map, instance.mission,
+                            domain::initial_progress(instance.mission, instance.map));
+  for (std::size_t i = 0; i < plan.plan.steps.size(); ++i) {
+    const auto& step = plan.plan.steps[i];
+    if (!replay.apply(step).has_value()) return std::nullopt;
+    const auto* in = std::get_if<domain::InPipe>(&replay.position());
+    if (i < steps_in || in == nullptr || !std::holds_alternative<domain::DriveManhole>(step)) {
+      continue;
+    }
+    const Pipe& pipe = instance.map.pipe(in->pipe);
+    const bool forward = in->offset_m == 0;
+    Blocked b{replay.progress(), static_cast<std::uint8_t>(forward ? 1 : 0), {}};
+    const double mid = pipe.length_m / 2;
+    b.progress.position = domain::InPipe{in->pipe, mid};
+    b.failure = {.kind = executor::Failure::Kind::kBlockage,
+                 .pipe = in->pipe,
+                 .offset_m = mid + (forward ? 0.05 : -0.05)};
+    return b;
+  }
+  return std::nullopt;
+}
+
+void replan_after_blockage(benchmark::State& state, const Instance& instance) {
+  executor::Replanner first(instance.map, instance.mission);
+  const executor::PlanResponse plan = first.plan();
+  const auto blocked = blockage_on_route(instance, plan, plan.plan.steps.size() / 3);
+  if (!blocked) {
+    state.SkipWithError("no pipe on the route to block");
+    return;
+  }
+  std::size_t dropped = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    executor::Replanner replanner(instance.map, instance.mission);
+    replanner.update(blocked->progress, blocked->heading_end);
+    state.ResumeTiming();
+    executor::PlanResponse r = replanner.report_failure(blocked->failure);
+    dropped = r.newly_dropped.size();
+    benchmark::DoNotOptimize(r);
+  }
+  state.counters["dropped"] = static_cast<double>(dropped);
+  state.counters["steps"] = static_cast<double>(plan.plan.steps.size());
+}
+
+void BM_ReplanAfterBlockageAis(benchmark::State& state) {
+  replan_after_blockage(state, ais_instance());
+}
+BENCHMARK(BM_ReplanAfterBlockageAis)->Unit(benchmark::kMicrosecond);
+
+// Arguments: manholes, tasks.
+void BM_ReplanAfterBlockageGenerated(benchmark::State& state) {
+  replan_after_blockage(state, generated_instance(static_cast<std::size_t>(state.range(0)),
+                                                  static_cast<std::size_t>(state.range(1))));
+}
+BENCHMARK(BM_ReplanAfterBlockageGenerated)
+    ->ArgNames({"manholes", "tasks"})
+    ->Args({1000, 5})
+    ->Args({100000, 5})
+    ->Args({100000, 10})
+    ->Args({100000, 20})
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace sewerplan::bench
