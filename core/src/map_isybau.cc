@@ -6,7 +6,6 @@
 #include <cmath>
 #include <filesystem>
 #include <optional>
-#include <sstream>
 #include <unordered_set>
 #include <vector>
 
@@ -303,12 +302,10 @@ void IsybauReader::drop_connection_point_ends() {
 void IsybauReader::report_fallbacks() {
   const Fallbacks& f = fallbacks_;
   auto warn = [&](std::size_t n, const std::string& what) {
-    if (n > 0) d_.warning(file_, std::to_string(n) + " " + what);
+    detail::warn_counted(d_, file_, n, what);
   };
-  std::ostringstream diameter;
-  diameter << options_.manhole_diameter_m;
-  warn(f.default_diameter,
-       "manholes: shaft size not read, diameter " + diameter.str() + " m assumed");
+  const std::string diameter = detail::metres_text(options_.manhole_diameter_m);
+  warn(f.default_diameter, "manholes: shaft size not read, diameter " + diameter + " assumed");
   warn(f.without_xy, "nodes have no point geometry: placed at x = y = 0");
   warn(f.without_z,
        "nodes have neither an SMP point nor a cover height and Schachttiefe: floor "

@@ -3,12 +3,10 @@
 #include "sewerplan/core/map_swmm.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <numbers>
 #include <optional>
-#include <sstream>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -25,16 +23,9 @@ using detail::ImportLink;
 using detail::ImportNode;
 using detail::parse_swmm_number;
 using detail::SwmmRow;
+using detail::to_upper;
 
 constexpr double kMetresPerFoot = 0.3048;
-
-std::string upper(std::string_view s) {
-  std::string out(s);
-  std::transform(out.begin(), out.end(), out.begin(), [](char c) {
-    return static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  });
-  return out;
-}
 
 // Counts of rows handled by a documented fallback, reported as one warning each.
 struct Fallbacks {
@@ -125,8 +116,8 @@ void SwmmReader::read_options() {
   std::uint32_t flow_line = 0;
   for (const SwmmRow& row : s_.rows("OPTIONS")) {
     if (row.fields.size() < 2) continue;
-    const std::string key = upper(row.fields[0]);
-    const std::string value = upper(row.fields[1]);
+    const std::string key = to_upper(row.fields[0]);
+    const std::string value = to_upper(row.fields[1]);
     if (key == "FLOW_UNITS") {
       if (flow_units && *flow_units != value) {
         d_.error(at(row), "mixed units: FLOW_UNITS " + value + " here, but " + *flow_units +
@@ -160,8 +151,8 @@ void SwmmReader::read_options() {
 
 void SwmmReader::read_map_units() {
   for (const SwmmRow& row : s_.rows("MAP")) {
-    if (row.fields.size() < 2 || upper(row.fields[0]) != "UNITS") continue;
-    const std::string value = upper(row.fields[1]);
+    if (row.fields.size() < 2 || to_upper(row.fields[0]) != "UNITS") continue;
+    const std::string value = to_upper(row.fields[1]);
     if (value == "FEET") {
       coordinate_scale_ = kMetresPerFoot;
     } else if (value == "METERS") {
@@ -200,7 +191,7 @@ void SwmmReader::read_nodes(std::string_view section, bool exit) {
 // CONICAL, PYRAMIDAL: the smaller axis). None for TABULAR curves or a zero area.
 std::optional<double> SwmmReader::storage_diameter(const SwmmRow& row) const {
   if (row.fields.size() < 7) return std::nullopt;
-  const std::string shape = upper(row.fields[4]);
+  const std::string shape = to_upper(row.fields[4]);
   const std::optional<double> a = parse_swmm_number(row.fields[5]);
   const std::optional<double> b = parse_swmm_number(row.fields[6]);
   if (!a || !b) return std::nullopt;
@@ -337,12 +328,10 @@ void SwmmReader::count_other_links() {
 void SwmmReader::report_fallbacks() {
   const Fallbacks& f = fallbacks_;
   auto warn = [&](std::size_t n, const std::string& what) {
-    if (n > 0) d_.warning(file_, std::to_string(n) + " " + what);
+    detail::warn_counted(d_, file_, n, what);
   };
-  std::ostringstream diameter;
-  diameter << options_.manhole_diameter_m;
-  warn(f.default_diameter,
-       "nodes have no size in SWMM: manhole diameter " + diameter.str() + " m assumed");
+  const std::string diameter = detail::metres_text(options_.manhole_diameter_m);
+  warn(f.default_diameter, "nodes have no size in SWMM: manhole diameter " + diameter + " assumed");
   warn(f.other_links, "pumps, orifices, weirs or outlets are not drivable: left out");
   warn(f.undimensioned,
        "conduits with an IRREGULAR, CUSTOM or STREET cross-section (no dimensions): left out");

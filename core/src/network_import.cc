@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <sstream>
 #include <string_view>
 #include <unordered_map>
 #include <utility>
@@ -38,6 +39,17 @@ std::optional<std::array<double, 2>> next_point(const ImportLink& link, std::siz
 }
 
 }  // namespace
+
+void warn_counted(Diagnostics& diagnostics, const std::string& where, std::size_t count,
+                  const std::string& what) {
+  if (count > 0) diagnostics.warning(where, std::to_string(count) + " " + what);
+}
+
+std::string metres_text(double metres) {
+  std::ostringstream out;
+  out << metres << " m";
+  return out.str();
+}
 
 double azimuth_deg(double x0, double y0, double x1, double y1) {
   const double deg = std::atan2(y1 - y0, x1 - x0) * 180.0 / std::numbers::pi;

@@ -64,6 +64,14 @@ struct NetworkImport {
 // The direction, in degrees counter-clockwise from +x in (-180, 180], from (x0, y0) to (x1, y1).
 double azimuth_deg(double x0, double y0, double x1, double y1);
 
+// Reports a fallback applied `count` times as one warning at `where`: "<count> <what>"; nothing if
+// `count` is 0.
+void warn_counted(Diagnostics& diagnostics, const std::string& where, std::size_t count,
+                  const std::string& what);
+
+// "1 m", "0.8 m": a length in a message, in its shortest form.
+std::string metres_text(double metres);
+
 // Builds the map: one manhole per node, one pipe per link, slots in link order. `where` names the
 // file for the warning about fallback azimuths.
 Result<SewerMap> assemble_network(NetworkImport network, std::string map_name, Locator locator,

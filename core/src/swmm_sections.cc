@@ -42,14 +42,6 @@ void split_fields(std::string_view line, std::vector<std::string_view>& fields) 
   }
 }
 
-std::string upper(std::string_view s) {
-  std::string out(s);
-  std::transform(out.begin(), out.end(), out.begin(), [](char c) {
-    return static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  });
-  return out;
-}
-
 }  // namespace
 
 std::span<const SwmmRow> SwmmSections::rows(std::string_view name) const {
@@ -84,7 +76,7 @@ SwmmSections split_swmm_sections(std::string_view text, const std::string& file_
         skipping = true;
         continue;
       }
-      const std::string name = upper(fields[0].substr(1, close - 1));
+      const std::string name = to_upper(fields[0].substr(1, close - 1));
       skipping =
           std::find(kKnownSections.begin(), kKnownSections.end(), name) == kKnownSections.end();
       if (skipping) {
@@ -108,6 +100,14 @@ SwmmSections split_swmm_sections(std::string_view text, const std::string& file_
     current->rows.push_back({lines.line_number(), fields});
   }
   return result;
+}
+
+std::string to_upper(std::string_view s) {
+  std::string out(s);
+  std::transform(out.begin(), out.end(), out.begin(), [](char c) {
+    return static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  });
+  return out;
 }
 
 std::optional<double> parse_swmm_number(std::string_view field) {

@@ -49,6 +49,9 @@ class SwmmSections {
 SwmmSections split_swmm_sections(std::string_view text, const std::string& file_name,
                                  Diagnostics& diagnostics);
 
+// `s` in ASCII upper case: SWMM's keywords and section names are case-insensitive.
+std::string to_upper(std::string_view s);
+
 // Reads a decimal number as SWMM writes them ("12", "-0.5", "+3", "1e-3", ".5"); nullopt if the
 // field is not a finite number.
 std::optional<double> parse_swmm_number(std::string_view field);

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <optional>
 
 #include "swmm_sections.h"
@@ -54,10 +53,7 @@ Error bad(std::string message) { return Error{ErrorCode::kParse, std::move(messa
 
 Result<PipeProfile> swmm_profile(std::span<const std::string_view> fields, double metres_per_unit) {
   if (fields.size() < 3) return bad("expected at least: link, shape, Geom1");
-  std::string name(fields[1]);
-  std::transform(name.begin(), name.end(), name.begin(), [](char c) {
-    return static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  });
+  const std::string name = to_upper(fields[1]);
   const auto spec = std::find_if(kShapes.begin(), kShapes.end(),
                                  [&](const ShapeSpec& s) { return s.name == name; });
   if (spec == kShapes.end()) return bad("unknown cross-section shape '" + name + "'");

@@ -12,30 +12,17 @@
 #include "sewerplan/core/map_queries.h"
 #include "sewerplan/core/text_file.h"
 
+#include "support/map_checks.h"
 #include "support/paths.h"
 
 namespace sewerplan {
 namespace {
 
+using testing::has_warning;
 using ::testing::HasSubstr;
+using testing::slot_of;
 
 double deg(double dx, double dy) { return std::atan2(dy, dx) * 180 / std::numbers::pi; }
-
-const Slot& slot_of(const SewerMap& map, ManholeId m, std::string_view pipe) {
-  for (const Slot& s : map.slots(m)) {
-    if (map.pipe(s.pipe).name == pipe) return s;
-  }
-  ADD_FAILURE() << "no slot for " << pipe;
-  static const Slot kNone;
-  return kNone;
-}
-
-bool has_warning(const Diagnostics& d, std::string_view text) {
-  for (const Diagnostic& x : d.all()) {
-    if (x.severity == Severity::kWarning && x.message.find(text) != std::string::npos) return true;
-  }
-  return false;
-}
 
 class MapIsybauDialects : public ::testing::TestWithParam<std::string> {};
 

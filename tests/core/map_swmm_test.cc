@@ -11,12 +11,15 @@
 #include "sewerplan/core/map_io.h"
 #include "sewerplan/core/map_queries.h"
 
+#include "support/map_checks.h"
 #include "support/paths.h"
 
 namespace sewerplan {
 namespace {
 
+using testing::has_warning;
 using ::testing::HasSubstr;
+using testing::slot_of;
 
 constexpr double kFt = 0.3048;
 
@@ -26,22 +29,6 @@ SewerMap load(const std::string& name, Diagnostics& d) {
   Result<SewerMap> map = read_map(sewerplan::testing::dataset_path("swmm/" + name), d);
   EXPECT_TRUE(map.has_value()) << (map.has_value() ? "" : map.error().message);
   return map.has_value() ? std::move(map).value() : SewerMap{};
-}
-
-const Slot& slot_of(const SewerMap& map, ManholeId m, std::string_view pipe) {
-  for (const Slot& s : map.slots(m)) {
-    if (map.pipe(s.pipe).name == pipe) return s;
-  }
-  ADD_FAILURE() << "no slot for " << pipe;
-  static const Slot kNone;
-  return kNone;
-}
-
-bool has_warning(const Diagnostics& d, std::string_view text) {
-  for (const Diagnostic& x : d.all()) {
-    if (x.severity == Severity::kWarning && x.message.find(text) != std::string::npos) return true;
-  }
-  return false;
 }
 
 TEST(MapSwmm, ReadsEpaExample1InMetres) {
