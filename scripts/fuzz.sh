@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-20}
 jobs=${SEWERPLAN_JOBS:-$(nproc)}
 
-# A build tree configured with SEWERPLAN_FUZZ=ON (test.sh's build/asan is) is reused; otherwise
+# A build tree configured with SEWERPLAN_FUZZ=ON may be reused (SEWERPLAN_FUZZ_BUILD); otherwise
 # build/fuzz is configured for fuzzing alone.
 build=${SEWERPLAN_FUZZ_BUILD:-build/fuzz}
 if ! grep -qs '^SEWERPLAN_FUZZ:BOOL=ON' "$build/CMakeCache.txt"; then
