@@ -4,8 +4,10 @@
 #   1. installs the Debian packages sewerplan needs (scripts/install-deps.sh, skips what is present);
 #   2. checks the code style (clang-format);
 #   3. builds with warnings as errors and runs the whole suite (unit, CLI, install/consumer, layering);
-#   4. builds with clang, AddressSanitizer and UndefinedBehaviorSanitizer and runs the suite again.
-# Build trees go to build/release and build/asan. Set SEWERPLAN_SKIP_ASAN=1 to skip step 4 locally.
+#   4. builds with clang, AddressSanitizer and UndefinedBehaviorSanitizer and runs the suite again;
+#   5. fuzzes every parser for a short time (scripts/fuzz.sh, 15 s per target).
+# Build trees go to build/release, build/asan and build/fuzz. Set SEWERPLAN_SKIP_ASAN=1 to skip
+# step 4 locally, SEWERPLAN_SKIP_FUZZ=1 to skip step 5 (SEWERPLAN_FUZZ_SECONDS sets its time).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc)
@@ -27,5 +29,11 @@ if [ "${SEWERPLAN_SKIP_ASAN:-0}" != 1 ]; then
   cmake --build build/asan -j "$jobs"
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir build/asan --output-on-failure -j "$jobs"
+fi
+if [ "${SEWERPLAN_SKIP_FUZZ:-0}" != 1 ]; then
+  echo "== libFuzzer on every parser (clang)"
+  # Its own tree (build/fuzz, core and domain only): coverage instrumentation would slow the ASan
+  # suite's planner tests, some of which run against a time limit.
+  bash scripts/fuzz.sh "${SEWERPLAN_FUZZ_SECONDS:-15}"
 fi
 echo "== all tests passed"

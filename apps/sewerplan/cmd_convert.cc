@@ -25,6 +25,10 @@ int run(const ConvertOptions& o, Context& c) {
       c.err << "--to: unknown format '" << o.to << "' (json or ascii)\n";
       return kExitUsage;
     }
+    if (!is_writable(*format)) {
+      c.err << "--to: sewerplan reads " << o.to << " but does not write it (json or ascii)\n";
+      return kExitUsage;
+    }
   }
   Diagnostics diagnostics;
   Result<SewerMap> map = read_map(o.in, diagnostics);
@@ -50,10 +54,12 @@ void add_convert_command(CLI::App& app, Context& context) {
   auto options = std::make_shared<ConvertOptions>();
   CLI::App* cmd =
       app.add_subcommand("convert", "Convert a map between the formats sewerplan reads");
-  cmd->add_option("in", options->in, "Map to read (.json or .sewer)")->required();
+  cmd->add_option("in", options->in, "Map to read (.json, .sewer, SWMM .inp, ISYBAU .xml)")
+      ->required();
   cmd->add_option("out", options->out, "Map to write; the extension gives the format")->required();
   cmd->add_option("--to", options->to,
-                  "Output format when the extension does not tell: json, ascii");
+                  "Output format when the extension does not tell: json, ascii (swmm and isybau "
+                  "are read only)");
   cmd->callback([options, &context] { context.exit_code = run(*options, context); });
 }
 

@@ -1,21 +1,28 @@
 // SPDX-License-Identifier: MIT
-// sewerplan info MAP [--json]
+// sewerplan info MAP [--profile PROFILE [--start MANHOLE]] [--json]
 #include <iomanip>
+#include <optional>
 #include <ostream>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "sewerplan/core/map_io.h"
 #include "sewerplan/core/map_queries.h"
+#include "sewerplan/core/robot_profile.h"
+#include "sewerplan/domain/driveability.h"
 
 #include "command.h"
+#include "driveability_output.h"
 
 namespace sewerplan::cli {
 namespace {
 
 struct InfoOptions {
   std::string map;
+  std::string profile;
+  std::vector<std::string> starts;
   bool json = false;
 };
 
@@ -82,10 +89,37 @@ int run(const InfoOptions& o, Context& c) {
     return exit_code_for(map.error());
   }
   const MapStatistics stats = map_statistics(*map);
+  std::optional<RobotProfile> profile;
+  std::vector<ManholeId> starts;
+  if (!o.profile.empty()) {
+    Result<RobotProfile> loaded = load_profile(o.profile);
+    if (!loaded.has_value()) {
+      c.err << "--profile: " << loaded.error().message << '\n';
+      return exit_code_for(loaded.error());
+    }
+    profile = *loaded;
+    for (const std::string& name : o.starts) {
+      const std::optional<ManholeId> m = map->find_manhole(name);
+      if (!m) {
+        c.err << "--start: no manhole '" << name << "' in " << o.map << '\n';
+        return kExitInvalidInput;
+      }
+      starts.push_back(*m);
+    }
+    if (o.starts.empty()) starts = domain::default_starts(*map);
+  } else if (!o.starts.empty()) {
+    c.err << "--start needs --profile\n";
+    return kExitUsage;
+  }
+  std::optional<domain::DriveabilityReport> report;
+  if (profile) report = domain::analyse_driveability(*map, *profile, starts);
   if (o.json) {
-    c.out << info_json(*map, stats).dump(2) << '\n';
+    nlohmann::json j = info_json(*map, stats);
+    if (report) j["driveability"] = driveability_json(*report, *map, *profile);
+    c.out << j.dump(2) << '\n';
   } else {
     print_info(*map, stats, c.out);
+    if (report) print_driveability(*report, *map, *profile, c.out);
   }
   return kExitOk;
 }
@@ -96,8 +130,17 @@ void add_info_command(CLI::App& app, Context& context) {
   // Shared with the callback, which CLI11 keeps after this function returns.
   auto options = std::make_shared<InfoOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "info", "Summarise a map: counts, manhole types, lengths, diameters, exits, connectivity");
-  cmd->add_option("map", options->map, "Map file (.json or .sewer)")->required();
+      "info",
+      "Summarise a map: counts, manhole types, lengths, diameters, exits, connectivity; with "
+      "--profile, what a robot can drive");
+  cmd->add_option("map", options->map, "Map file (.json, .sewer, SWMM .inp, ISYBAU .xml)")
+      ->required();
+  cmd->add_option("--profile", options->profile,
+                  "Also report what this robot can drive: a built-in profile (makro-1.1, "
+                  "makro-plus) or a profile JSON file");
+  cmd->add_option("--start", options->starts,
+                  "With --profile: reachability from this manhole (repeatable; default: the "
+                  "map's exits, or the largest connected part if it has none)");
   cmd->add_flag("--json", options->json, "Print the summary as JSON");
   cmd->callback([options, &context] { context.exit_code = run(*options, context); });
 }

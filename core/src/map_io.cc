@@ -4,10 +4,37 @@
 #include <sstream>
 
 #include "sewerplan/core/map_ascii.h"
+#include "sewerplan/core/map_isybau.h"
 #include "sewerplan/core/map_json.h"
+#include "sewerplan/core/map_swmm.h"
 #include "sewerplan/core/text_file.h"
 
 namespace sewerplan {
+namespace {
+
+// A SWMM file opens with a "[SECTION]" line, after ';' comments.
+bool looks_like_swmm(std::string_view text) {
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const char c = text[i];
+    if (c == ' ' || c == '\t' || c == '\r' || c == '\n') {
+      ++i;
+    } else if (c == ';') {
+      while (i < text.size() && text[i] != '\n') ++i;
+    } else {
+      return c == '[';
+    }
+  }
+  return false;
+}
+
+Error read_only(MapFormat format, const std::filesystem::path& path) {
+  return Error{ErrorCode::kUnsupportedFormat,
+               path.string() + ": sewerplan reads " + std::string(to_string(format)) +
+                   " files but does not write them (write .json or .sewer)"};
+}
+
+}  // namespace
 
 std::string_view to_string(MapFormat format) {
   switch (format) {
@@ -15,6 +42,10 @@ std::string_view to_string(MapFormat format) {
       return "json";
     case MapFormat::kAscii:
       return "ascii";
+    case MapFormat::kSwmm:
+      return "swmm";
+    case MapFormat::kIsybau:
+      return "isybau";
   }
   return "json";
 }
@@ -22,6 +53,8 @@ std::string_view to_string(MapFormat format) {
 std::optional<MapFormat> map_format_from_name(std::string_view name) {
   if (name == "json") return MapFormat::kJson;
   if (name == "ascii") return MapFormat::kAscii;
+  if (name == "swmm") return MapFormat::kSwmm;
+  if (name == "isybau") return MapFormat::kIsybau;
   return std::nullopt;
 }
 
@@ -29,6 +62,8 @@ std::optional<MapFormat> map_format_from_extension(const std::filesystem::path& 
   const std::string ext = path.extension().string();
   if (ext == ".json") return MapFormat::kJson;
   if (ext == ".sewer") return MapFormat::kAscii;
+  if (ext == ".inp" || ext == ".INP") return MapFormat::kSwmm;
+  if (ext == ".xml" || ext == ".XML") return MapFormat::kIsybau;
   return std::nullopt;
 }
 
@@ -48,8 +83,13 @@ Result<MapFormat> detect_map_format(const std::filesystem::path& path, std::stri
   const std::string_view rest = text.substr(i);
   if (rest.starts_with("{")) return MapFormat::kJson;
   if (rest.starts_with("sewerdb")) return MapFormat::kAscii;
-  return Error{ErrorCode::kUnsupportedFormat,
-               path.string() + ": unknown map format (expected a .json map or a .sewer database)"};
+  if (looks_like_swmm(rest)) return MapFormat::kSwmm;
+  if (rest.starts_with("<")) return MapFormat::kIsybau;
+  return Error{
+      ErrorCode::kUnsupportedFormat,
+      path.string() +
+          ": unknown map format (expected a .json map, a .sewer database, a SWMM .inp or an "
+          "ISYBAU .xml file)"};
 }
 
 Result<SewerMap> parse_map(std::string_view text, const std::string& file_name, MapFormat format,
@@ -59,6 +99,10 @@ Result<SewerMap> parse_map(std::string_view text, const std::string& file_name, 
       return read_map_json(text, file_name, diagnostics);
     case MapFormat::kAscii:
       return read_map_ascii(text, file_name, diagnostics);
+    case MapFormat::kSwmm:
+      return read_map_swmm(text, file_name, diagnostics);
+    case MapFormat::kIsybau:
+      return read_map_isybau(text, file_name, diagnostics);
   }
   return Error{ErrorCode::kUnsupportedFormat, file_name + ": unknown format"};
 }
@@ -87,6 +131,9 @@ Result<void> write_map(const SewerMap& map, const std::filesystem::path& path,
     case MapFormat::kAscii:
       if (Result<void> written = write_map_ascii(map, out); !written.has_value()) return written;
       break;
+    case MapFormat::kSwmm:
+    case MapFormat::kIsybau:
+      return read_only(*format, path);
   }
   return write_text_file(path, out.str());
 }

@@ -130,6 +130,24 @@ class MissionReader {
     m.blockages.push_back({*id, *offset});
   }
 
+  // "exits": an array of manhole names, "map" (the manholes marked exit in the map; also the
+  // default) or "all" (every manhole with a pipe: imported networks rarely say which are usable).
+  void exit_choice(std::optional<JsonElement> exits, Mission& m) {
+    std::string_view choice = "map";
+    if (exits && exits->is_array()) return this->exits(exits->get_array().value_unsafe(), m);
+    if (exits && (!exits->is_string() || (exits->get_string().value_unsafe() != "map" &&
+                                          exits->get_string().value_unsafe() != "all"))) {
+      d_.error(file_ + ":$.exits", "expected an array of manhole names, \"map\" or \"all\", got " +
+                                       detail::describe_json(*exits));
+      return;
+    }
+    if (exits) choice = exits->get_string().value_unsafe();
+    for (ManholeId id : map_.manhole_ids()) {
+      const Manhole& manhole = map_.manhole(id);
+      if (choice == "all" ? manhole.slot_count > 0 : manhole.exit) m.exits.push_back(id);
+    }
+  }
+
   void exits(JsonArray array, Mission& m) {
     std::size_t i = 0;
     for (JsonElement e : array) {
@@ -305,13 +323,7 @@ Result<Mission> read_mission_json(std::string_view text, const std::string& file
   }
   if (auto tasks = root.array("tasks")) reader.tasks(*tasks, m.tasks);
   const std::size_t errors_before_exits = diagnostics.error_count();
-  if (auto exits = root.array("exits", Need::kOptional)) {
-    reader.exits(*exits, m);
-  } else {
-    for (ManholeId id : map.manhole_ids()) {
-      if (map.manhole(id).exit) m.exits.push_back(id);
-    }
-  }
+  reader.exit_choice(root.member("exits", Need::kOptional), m);
   const bool exits_unreadable = diagnostics.error_count() > errors_before_exits;
   m.battery_reserve_fraction = root.number("battery_reserve", Need::kOptional).value_or(0.2);
   if (!(m.battery_reserve_fraction >= 0 && m.battery_reserve_fraction < 1)) {

@@ -59,6 +59,27 @@ fi
 expect 2 'unknown format' -- "$sp" convert "$ais" "$tmp/x.out" --to xml
 expect 1 'cannot tell the format' -- "$sp" convert "$ais" "$tmp/x.out"
 
+# Imported sewer databases: SWMM and ISYBAU, converted to the native formats, never written.
+swmm="$src/datasets/swmm/epa-example1.inp"
+isybau="$src/datasets/isybau/street-2013.xml"
+expect 0 'wrote .*\(14 manholes, 13 pipes\)' -- "$sp" convert "$swmm" "$tmp/ex1.json"
+expect 0 'valid \(14 manholes, 13 pipes' -- "$sp" validate "$tmp/ex1.json"
+expect 0 'wrote .*\(4 manholes, 4 pipes\)' -- "$sp" convert "$isybau" "$tmp/street.sewer"
+expect 1 'does not write them' -- "$sp" convert "$ais" "$tmp/ais.inp"
+expect 2 'does not write it' -- "$sp" convert "$ais" "$tmp/ais.out" --to isybau
+expect 1 'net.inp:1: error: data before the first \[SECTION\]' -- \
+  bash -c "printf 'x\n[JUNCTIONS]\n' > '$tmp/net.inp'; '$sp' validate '$tmp/net.inp'"
+# Driveability for a robot profile.
+echo '{"base": "makro-plus", "name": "low-steps", "max_step_m": 0.2}' > "$tmp/low-steps.json"
+expect 0 'too narrow +1 pipes: S4' -- "$sp" info --profile makro-plus "$isybau"
+expect 0 'S2 2<->3 \(S3, S2\): turn 116.57 deg > 90.00 step 0.35 m > 0.30' -- \
+  "$sp" info --profile makro-plus "$isybau"
+expect 0 'reachable +3 of 4 manholes, 2 of 4 pipes .* from 1 start: S4' -- \
+  "$sp" info --profile "$tmp/low-steps.json" --start S4 "$isybau"
+expect 0 '"too_wide": \[' -- "$sp" info --profile makro-plus --json "$swmm"
+expect 1 "--start: no manhole 'M99'" -- "$sp" info --profile makro-plus --start M99 "$isybau"
+expect 2 'needs --profile' -- "$sp" info --start S1 "$isybau"
+
 # Generated networks are deterministic and valid.
 expect 0 'wrote' -- "$sp" generate --manholes 500 --seed 3 -o "$tmp/g1.json"
 expect 0 'wrote' -- "$sp" generate --manholes 500 --seed 3 -o "$tmp/g2.json"

@@ -104,6 +104,33 @@ TEST_F(MissionTest, RejectsInconsistentMissions) {
   EXPECT_THAT(e, HasSubstr("the mission has no exit"));
 }
 
+// "exits": "map" (the default) takes the map's 4 exit manholes, "all" every manhole with a pipe
+// (all 12 of the test bed), anything else is an error at $.exits.
+TEST_F(MissionTest, ChoosesExitsFromTheMapAllManholesOrANamedList) {
+  auto with_exits = [&](std::string_view exits) {
+    return read(std::string(R"({"format": "sewerplan-mission", "version": 1,
+      "start": {"manhole": "M1"}, "tasks": [])") +
+                (exits.empty() ? "" : ", \"exits\": " + std::string(exits)) + "}");
+  };
+  Result<Mission> by_default = with_exits("");
+  ASSERT_TRUE(by_default.has_value()) << by_default.error();
+  EXPECT_EQ(by_default->exits.size(), 4U);
+  Result<Mission> from_map = with_exits(R"("map")");
+  ASSERT_TRUE(from_map.has_value());
+  EXPECT_EQ(from_map->exits, by_default->exits);
+  Result<Mission> all = with_exits(R"("all")");
+  ASSERT_TRUE(all.has_value());
+  EXPECT_EQ(all->exits.size(), 12U);
+  Result<Mission> named = with_exits(R"(["M3"])");
+  ASSERT_TRUE(named.has_value());
+  EXPECT_EQ(named->exits, std::vector<ManholeId>{*map_.find_manhole("M3")});
+  Result<Mission> bad = with_exits(R"("outfalls")");
+  ASSERT_FALSE(bad.has_value());
+  EXPECT_THAT(bad.error().message,
+              HasSubstr("m.json:$.exits: error: expected an array of manhole names, \"map\" or "
+                        "\"all\", got \"outfalls\""));
+}
+
 TEST_F(MissionTest, RejectsAnUnknownOrImpossibleProfile) {
   Result<Mission> m = read(R"({"format": "sewerplan-mission", "version": 1, "profile": "makro-3",
     "start": {"manhole": "M1"}, "tasks": []})");

@@ -2,8 +2,10 @@
 // Reading and writing maps in any format sewerplan knows, chosen by file name or content.
 //
 // Formats: the native JSON map (map_json.h, ".json") and the paper's ASCII database
-// (map_ascii.h, ".sewer"). A file with another extension is recognised by its content: '{' opens
-// a JSON map, a "sewerdb" line an ASCII database.
+// (map_ascii.h, ".sewer"), read and written; EPA SWMM input files (map_swmm.h, ".inp") and
+// ISYBAU XML (map_isybau.h, ".xml"), read only. A file with another extension is recognised by its
+// content: '{' opens a JSON map, a "sewerdb" line an ASCII database, a "[SECTION]" line a SWMM
+// file, '<' an ISYBAU file.
 //
 //   Diagnostics diagnostics;
 //   Result<SewerMap> map = read_map("datasets/ais-testbed/map.json", diagnostics);
@@ -21,12 +23,17 @@
 
 namespace sewerplan {
 
-enum class MapFormat { kJson, kAscii };
+enum class MapFormat { kJson, kAscii, kSwmm, kIsybau };
+
+// The formats write_map writes: kJson and kAscii. The others are read only.
+constexpr bool is_writable(MapFormat format) {
+  return format == MapFormat::kJson || format == MapFormat::kAscii;
+}
 
 std::string_view to_string(MapFormat format);
-// "json" or "ascii".
+// "json", "ascii", "swmm" or "isybau".
 std::optional<MapFormat> map_format_from_name(std::string_view name);
-// From the extension (".json", ".sewer"), if it names a format.
+// From the extension (".json", ".sewer", ".inp", ".xml"), if it names a format.
 std::optional<MapFormat> map_format_from_extension(const std::filesystem::path& path);
 
 // From the extension, else from the content; an error names the file if neither tells.
@@ -37,7 +44,8 @@ Result<SewerMap> parse_map(std::string_view text, const std::string& file_name, 
 
 Result<SewerMap> read_map(const std::filesystem::path& path, Diagnostics& diagnostics);
 
-// Without a format, the extension decides (an unknown extension is an error).
+// Without a format, the extension decides (an unknown extension is an error). A read-only format
+// is a kUnsupportedFormat error, and nothing is written.
 Result<void> write_map(const SewerMap& map, const std::filesystem::path& path,
                        std::optional<MapFormat> format = std::nullopt);
 

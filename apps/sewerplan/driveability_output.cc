@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: MIT
+#include "driveability_output.h"
+
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace sewerplan::cli {
+namespace {
+
+constexpr std::size_t kListed = 8;  // names shown per line of the text report
+
+template <class Id, class NameOf>
+void print_names(const std::vector<Id>& ids, NameOf name_of, std::ostream& out) {
+  for (std::size_t i = 0; i < ids.size() && i < kListed; ++i) {
+    out << (i == 0 ? ": " : ", ") << name_of(ids[i]);
+  }
+  if (ids.size() > kListed) out << ", ...";
+  out << '\n';
+}
+
+std::string describe(const domain::PassageLimit& p, const SewerMap& map,
+                     const RobotProfile& profile) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(2) << map.manhole(p.manhole).name << " "
+    << to_paper_number(p.from) << "<->" << to_paper_number(p.to) << " ("
+    << map.pipe(map.slot(p.manhole, p.from).pipe).name << ", "
+    << map.pipe(map.slot(p.manhole, p.to).pipe).name << "):";
+  if (p.turn_exceeded) s << " turn " << p.turn_deg << " deg > " << profile.max_turn_deg;
+  if (p.step_exceeded) s << " step " << std::abs(p.step_m) << " m > " << profile.max_step_m;
+  return s.str();
+}
+
+}  // namespace
+
+void print_driveability(const domain::DriveabilityReport& r, const SewerMap& map,
+                        const RobotProfile& profile, std::ostream& out) {
+  auto pipe_name = [&](PipeId p) { return map.pipe(p).name; };
+  auto manhole_name = [&](ManholeId m) { return map.manhole(m).name; };
+  out << std::fixed << std::setprecision(2) << "profile        " << profile.name << " (pipes "
+      << profile.min_pipe_diameter_m << " to " << profile.max_pipe_diameter_m << " m, steps up to "
+      << profile.max_step_m << " m, turns up to " << profile.max_turn_deg << " deg)\n";
+  out << "too narrow     " << r.too_narrow.size() << " pipes";
+  print_names(r.too_narrow, pipe_name, out);
+  out << "too wide       " << r.too_wide.size() << " pipes";
+  print_names(r.too_wide, pipe_name, out);
+  out << "passages       " << r.passages.size() << " of " << r.passages_checked
+      << " beyond the turn or step limit\n";
+  for (std::size_t i = 0; i < r.passages.size() && i < kListed; ++i) {
+    out << "               " << describe(r.passages[i], map, profile) << '\n';
+  }
+  if (r.passages.size() > kListed) out << "               ...\n";
+  double total_m = 0;
+  for (const Pipe& p : map.pipes()) total_m += p.length_m;
+  out << "reachable      " << r.reachable_manholes.size() << " of " << map.manhole_count()
+      << " manholes, " << r.reachable_pipes.size() << " of " << map.pipe_count() << " pipes ("
+      << r.reachable_length_m << " of " << total_m << " m) from " << r.starts.size()
+      << (r.starts.size() == 1 ? " start" : " starts");
+  print_names(r.starts, manhole_name, out);
+}
+
+nlohmann::json driveability_json(const domain::DriveabilityReport& r, const SewerMap& map,
+                                 const RobotProfile& profile) {
+  auto pipe_names = [&](const std::vector<PipeId>& ids) {
+    nlohmann::json list = nlohmann::json::array();
+    for (PipeId p : ids) list.push_back(map.pipe(p).name);
+    return list;
+  };
+  auto manhole_names = [&](const std::vector<ManholeId>& ids) {
+    nlohmann::json list = nlohmann::json::array();
+    for (ManholeId m : ids) list.push_back(map.manhole(m).name);
+    return list;
+  };
+  nlohmann::json passages = nlohmann::json::array();
+  for (const domain::PassageLimit& p : r.passages) {
+    passages.push_back({{"manhole", map.manhole(p.manhole).name},
+                        {"from_slot", to_paper_number(p.from)},
+                        {"to_slot", to_paper_number(p.to)},
+                        {"from_pipe", map.pipe(map.slot(p.manhole, p.from).pipe).name},
+                        {"to_pipe", map.pipe(map.slot(p.manhole, p.to).pipe).name},
+                        {"turn_deg", p.turn_deg},
+                        {"step_m", p.step_m},
+                        {"turn_exceeded", p.turn_exceeded},
+                        {"step_exceeded", p.step_exceeded}});
+  }
+  return {{"profile", profile.name},
+          {"too_narrow", pipe_names(r.too_narrow)},
+          {"too_wide", pipe_names(r.too_wide)},
+          {"passages_checked", r.passages_checked},
+          {"passages", passages},
+          {"starts", manhole_names(r.starts)},
+          {"reachable",
+           {{"manholes", manhole_names(r.reachable_manholes)},
+            {"pipes", pipe_names(r.reachable_pipes)},
+            {"length_m", r.reachable_length_m}}}};
+}
+
+}  // namespace sewerplan::cli

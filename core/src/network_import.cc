@@ -1,0 +1,132 @@
+// SPDX-License-Identifier: MIT
+#include "network_import.h"
+
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <sstream>
+#include <string_view>
+#include <unordered_map>
+#include <utility>
+
+namespace sewerplan::detail {
+namespace {
+
+// Points closer than this to the node give no direction.
+constexpr double kSamePointM = 1e-9;
+
+struct PendingSlot {
+  std::uint32_t node;
+  std::size_t slot;  // index in that manhole's slot records
+};
+
+// The first point along the link, leaving the node at `end`, that is not the node itself.
+std::optional<std::array<double, 2>> next_point(const ImportLink& link, std::size_t end,
+                                                const ImportNode& node, const ImportNode* far) {
+  auto differs = [&](const std::array<double, 2>& p) {
+    return std::hypot(p[0] - node.position.x_m, p[1] - node.position.y_m) > kSamePointM;
+  };
+  const std::size_t n = link.vertices.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::array<double, 2>& p = link.vertices[end == 0 ? k : n - 1 - k];
+    if (differs(p)) return p;
+  }
+  if (far != nullptr && far->has_xy) {
+    const std::array<double, 2> p{far->position.x_m, far->position.y_m};
+    if (differs(p)) return p;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+void warn_counted(Diagnostics& diagnostics, const std::string& where, std::size_t count,
+                  const std::string& what) {
+  if (count > 0) diagnostics.warning(where, std::to_string(count) + " " + what);
+}
+
+std::string metres_text(double metres) {
+  std::ostringstream out;
+  out << metres << " m";
+  return out.str();
+}
+
+double azimuth_deg(double x0, double y0, double x1, double y1) {
+  const double deg = std::atan2(y1 - y0, x1 - x0) * 180.0 / std::numbers::pi;
+  return deg == -180.0 ? 180.0 : deg;
+}
+
+Result<SewerMap> assemble_network(NetworkImport network, std::string map_name, Locator locator,
+                                  const std::string& where, Diagnostics& diagnostics) {
+  std::unordered_map<std::string_view, std::uint32_t> node_index;
+  node_index.reserve(network.nodes.size());
+  for (std::uint32_t i = 0; i < network.nodes.size(); ++i) {
+    node_index.emplace(network.nodes[i].name,
+                       i);  // a duplicate keeps the first; MapBuilder says so
+  }
+  std::vector<std::vector<SlotRecord>> slots(network.nodes.size());
+  std::vector<PendingSlot> pending;
+  auto find = [&](const std::optional<std::string>& name) -> const ImportNode* {
+    if (!name) return nullptr;
+    auto it = node_index.find(*name);
+    return it == node_index.end() ? nullptr : &network.nodes[it->second];
+  };
+  for (const ImportLink& link : network.links) {
+    for (std::size_t end = 0; end < 2; ++end) {
+      const std::optional<std::string>& name = end == 0 ? link.from : link.to;
+      if (!name) continue;  // a blind end
+      auto it = node_index.find(*name);
+      if (it == node_index.end()) continue;  // MapBuilder reports the unknown manhole
+      const ImportNode& node = network.nodes[it->second];
+      SlotRecord slot{.pipe = link.name,
+                      .invert_z_m = end == 0 ? link.from_invert_z_m : link.to_invert_z_m,
+                      .line = link.line};
+      const std::optional<std::array<double, 2>> p =
+          node.has_xy ? next_point(link, end, node, find(end == 0 ? link.to : link.from))
+                      : std::nullopt;
+      if (p) {
+        slot.azimuth_deg = azimuth_deg(node.position.x_m, node.position.y_m, (*p)[0], (*p)[1]);
+      } else {
+        pending.push_back({it->second, slots[it->second].size()});
+      }
+      slots[it->second].push_back(std::move(slot));
+    }
+  }
+  // Fallback: spread each manhole's slots of unknown direction evenly around it.
+  std::vector<std::uint32_t> unknown(network.nodes.size(), 0);
+  for (const PendingSlot& s : pending) ++unknown[s.node];
+  std::vector<std::uint32_t> placed(network.nodes.size(), 0);
+  for (const PendingSlot& s : pending) {
+    slots[s.node][s.slot].azimuth_deg = 360.0 * placed[s.node]++ / unknown[s.node];
+  }
+  if (!pending.empty()) {
+    diagnostics.warning(where,
+                        std::to_string(pending.size()) +
+                            " pipe ends have no known direction (a node without "
+                            "coordinates); their azimuths are spread evenly in each manhole");
+  }
+  MapBuilder builder(std::move(map_name), std::move(locator));
+  builder.reserve(network.nodes.size(), network.links.size());
+  for (std::size_t i = 0; i < network.nodes.size(); ++i) {
+    ImportNode& n = network.nodes[i];
+    builder.add_manhole({.name = std::move(n.name),
+                         .position = n.position,
+                         .diameter_m = n.diameter_m,
+                         .exit = n.exit,
+                         .slots = std::move(slots[i]),
+                         .line = n.line});
+  }
+  for (ImportLink& l : network.links) {
+    builder.add_pipe({.name = std::move(l.name),
+                      .from = std::move(l.from),
+                      .to = std::move(l.to),
+                      .length_m = l.length_m,
+                      .diameter_m = l.diameter_m,
+                      .shape = l.shape,
+                      .height_m = l.height_m,
+                      .line = l.line});
+  }
+  return std::move(builder).build(diagnostics);
+}
+
+}  // namespace sewerplan::detail

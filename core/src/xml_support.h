@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: MIT
+// Namespace-blind reading of XML elements with pugixml, and their paths for diagnostics. Private
+// to core/src (pugixml is a private dependency of core: no pugixml type appears in a public
+// header).
+//
+//   pugi::xml_node length = xml::child(kante, "Laenge");
+//   std::string where = xml::path(length);  //
+//   "/Identifikation/.../AbwassertechnischeAnlage[4]/Kante/Laenge"
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include <pugixml.hpp>
+
+namespace sewerplan::xml {
+
+// An element's name without its namespace prefix ("Laenge" for "isy:Laenge").
+std::string_view local_name(pugi::xml_node node);
+
+// The first child element whose local name is `name`; an empty node if none.
+pugi::xml_node child(pugi::xml_node node, std::string_view name);
+
+// The element at the end of `names`, child by child; empty if any is missing.
+pugi::xml_node descend(pugi::xml_node node, std::initializer_list<std::string_view> names);
+
+// The element's text without surrounding white space.
+std::string_view text(pugi::xml_node node);
+
+// The element's path from the root, with local names and, where a parent has several children of
+// that name, a 1-based index: "/Identifikation/Datenkollektive/.../AbwassertechnischeAnlage[3]".
+// Runtime: O(depth x siblings); meant for error messages.
+std::string path(pugi::xml_node node);
+
+// The line of byte `offset` in `text`, from 1.
+std::uint32_t line_of_offset(std::string_view text, std::ptrdiff_t offset);
+
+}  // namespace sewerplan::xml

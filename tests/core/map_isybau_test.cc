@@ -1,0 +1,161 @@
+// SPDX-License-Identifier: MIT
+#include "sewerplan/core/map_isybau.h"
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "sewerplan/core/map_io.h"
+#include "sewerplan/core/map_queries.h"
+#include "sewerplan/core/text_file.h"
+
+#include "support/map_checks.h"
+#include "support/paths.h"
+
+namespace sewerplan {
+namespace {
+
+using testing::has_warning;
+using ::testing::HasSubstr;
+using testing::slot_of;
+
+double deg(double dx, double dy) { return std::atan2(dy, dx) * 180 / std::numbers::pi; }
+
+class MapIsybauDialects : public ::testing::TestWithParam<std::string> {};
+
+// The values of datasets/isybau/README.md, the same in every dialect.
+TEST_P(MapIsybauDialects, ReadsTheStreetNetwork) {
+  Diagnostics d;
+  Result<SewerMap> map = read_map(testing::dataset_path("isybau/" + GetParam()), d);
+  ASSERT_TRUE(map.has_value()) << map.error().message;
+  EXPECT_EQ(d.error_count(), 0U);
+  // S1, S2, S3 (Schacht) and S4 (Bauwerk); A1, an Anschlusspunkt, is no manhole.
+  EXPECT_EQ(map->manhole_count(), 4U);
+  // Haltungen S1, S3, S2, S4; the Leitung L1 is left out.
+  EXPECT_EQ(map->pipe_count(), 4U);
+  // Pipes bear their upstream manhole's name: kinds apart, both resolve.
+  const Pipe& s1 = map->pipe(*map->find_pipe("S1"));
+  EXPECT_EQ(map->manhole(*s1.ends[0].manhole).name, "S1");
+  EXPECT_DOUBLE_EQ(s1.length_m, 30.0);
+  EXPECT_DOUBLE_EQ(s1.diameter_m, 0.3);  // Profilbreite 300 mm
+  const Pipe& s3 = map->pipe(*map->find_pipe("S3"));
+  EXPECT_EQ(s3.shape, PipeShape::kEgg);
+  EXPECT_DOUBLE_EQ(s3.diameter_m, 0.4);  // 400 x 600 mm
+  EXPECT_DOUBLE_EQ(s3.height_m, 0.6);
+  EXPECT_DOUBLE_EQ(s3.length_m, 44.72);
+  // Floors: S1 cover 50.00 - Schachttiefe 2.50; S2 from its SMP point.
+  EXPECT_DOUBLE_EQ(map->manhole(*map->find_manhole("S1")).position.z_m, 50.00 - 2.50);
+  const ManholeId s2 = *map->find_manhole("S2");
+  EXPECT_DOUBLE_EQ(map->manhole(s2).position.z_m, 47.20);
+  EXPECT_DOUBLE_EQ(map->manhole(s2).position.x_m, 30.0);
+  EXPECT_TRUE(map->manhole(s2).exit);
+  EXPECT_FALSE(map->manhole(*map->find_manhole("S4")).exit);  // a Bauwerk
+  // S2's slots in file order: pipe S1's end, pipe S3's end, pipe S2's start.
+  ASSERT_EQ(map->manhole(s2).slot_count, 3);
+  EXPECT_DOUBLE_EQ(slot_of(*map, s2, "S1").invert_z_m, 47.25);
+  EXPECT_DOUBLE_EQ(slot_of(*map, s2, "S3").invert_z_m, 47.55);
+  EXPECT_DOUBLE_EQ(slot_of(*map, s2, "S2").invert_z_m, 47.20);
+  EXPECT_DOUBLE_EQ(slot_of(*map, s2, "S1").azimuth_deg, 180);
+  EXPECT_DOUBLE_EQ(slot_of(*map, s2, "S2").azimuth_deg, 0);
+  // Pipe S3 runs S3 (30, 40) -> (40, 20) -> S2 (30, 0): it leaves S2 towards (40, 20), 63.4 deg,
+  // and S3 towards the same vertex, -63.4 deg.
+  EXPECT_NEAR(slot_of(*map, s2, "S3").azimuth_deg, deg(10, 20), 1e-9);
+  EXPECT_NEAR(slot_of(*map, *map->find_manhole("S3"), "S3").azimuth_deg, deg(10, -20), 1e-9);
+  // Through S2 from S3 into S2: a 116.6 degree turn (180 - 63.4) and a 0.35 m step down.
+  EXPECT_NEAR(passage_turn_deg(*map, s2, SlotIndex{1}, SlotIndex{2}), 180 - deg(10, 20), 1e-9);
+  EXPECT_NEAR(passage_step_m(*map, s2, SlotIndex{1}, SlotIndex{2}), 47.20 - 47.55, 1e-9);
+  // Pipe S4 ends at the Anschlusspunkt A1: a blind end.
+  EXPECT_FALSE(map->pipe(*map->find_pipe("S4")).ends[1].manhole.has_value());
+  EXPECT_TRUE(has_warning(d, "1 laterals or channels"));
+  EXPECT_TRUE(has_warning(d, "1 connection points"));
+  EXPECT_TRUE(has_warning(d, "4 manholes: shaft size not read, diameter 1 m assumed"));
+}
+
+INSTANTIATE_TEST_SUITE_P(AllVersions, MapIsybauDialects,
+                         ::testing::Values("street-2006.xml", "street-2013.xml",
+                                           "street-2017.xml"));
+
+std::string fixture() {
+  Result<std::string> text = read_text_file(testing::dataset_path("isybau/street-2017.xml"));
+  EXPECT_TRUE(text.has_value());
+  return text.has_value() ? *text : std::string();
+}
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const std::size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return at == std::string::npos ? text : text.replace(at, from.size(), to);
+}
+
+std::string error_text(const std::string& text) {
+  Diagnostics d;
+  Result<SewerMap> map = read_map_isybau(text, "net.xml", d);
+  EXPECT_FALSE(map.has_value());
+  return map.has_value() ? "" : map.error().message;
+}
+
+constexpr std::string_view kObjects =
+    "net.xml:/Identifikation/Datenkollektive/Stammdatenkollektiv/AbwassertechnischeAnlage";
+
+TEST(MapIsybau, ReportsTruncatedXmlWithItsLine) {
+  const std::string text = fixture();
+  const std::string cut = text.substr(0, text.find("<Laenge>30.00"));
+  EXPECT_THAT(error_text(cut), HasSubstr("XML is not well-formed"));
+  EXPECT_THAT(error_text(cut), HasSubstr("net.xml:"));
+  EXPECT_THAT(error_text("<Identifikation><Version>2017</Version"),
+              HasSubstr("net.xml:1: error: XML is not well-formed"));
+}
+
+TEST(MapIsybau, NamesTheElementOfABadField) {
+  EXPECT_THAT(error_text(replaced(fixture(), "<Laenge>30.00", "<Laenge>30,00")),
+              HasSubstr(std::string(kObjects) +
+                        "[6]/Kante/Laenge: error: pipe S1: Laenge is not a number: '30,00'"));
+  EXPECT_THAT(
+      error_text(replaced(fixture(), "<Profilbreite>300</Profilbreite>", "")),
+      HasSubstr(std::string(kObjects) + "[6]/Kante/Profil: error: pipe S1: no Profilbreite"));
+  EXPECT_THAT(error_text(replaced(fixture(), "<KnotenTyp>0", "<KnotenTyp>7")),
+              HasSubstr("node S1: KnotenTyp must be 0 (Schacht)"));
+}
+
+TEST(MapIsybau, ReportsBrokenReferencesAndDuplicatesAtTheirObjects) {
+  EXPECT_THAT(error_text(replaced(fixture(), "<KnotenAblauf>S2", "<KnotenAblauf>S9")),
+              HasSubstr(std::string(kObjects) + "[6]: error: pipe S1"));
+  // Two nodes called S1 (the second was S3).
+  EXPECT_THAT(error_text(replaced(fixture(), "<Objektbezeichnung>S3", "<Objektbezeichnung>S1")),
+              HasSubstr("duplicate manhole name 'S1'"));
+}
+
+TEST(MapIsybau, RejectsOtherXml) {
+  EXPECT_THAT(error_text("<?xml version=\"1.0\"?><kml><Document/></kml>"),
+              HasSubstr("not an ISYBAU file: the root element is <kml>"));
+}
+
+TEST(MapIsybau, WarnsAboutAnUnknownVersion) {
+  Diagnostics d;
+  Result<SewerMap> map =
+      read_map_isybau(replaced(fixture(), "<Version>2017-07", "<Version>2031"), "net.xml", d);
+  ASSERT_TRUE(map.has_value()) << map.error().message;
+  EXPECT_THAT(d.all().front().message, HasSubstr("unknown ISYBAU version '2031'"));
+}
+
+TEST(MapIsybau, ConvertsToTheNativeFormatsAndIsNotWritten) {
+  Diagnostics d;
+  Result<SewerMap> map = read_map(testing::dataset_path("isybau/street-2017.xml"), d);
+  ASSERT_TRUE(map.has_value());
+  const auto dir = std::filesystem::temp_directory_path();
+  ASSERT_TRUE(write_map(*map, dir / "sewerplan-isybau-test.sewer").has_value());
+  Diagnostics d2;
+  Result<SewerMap> back = read_map(dir / "sewerplan-isybau-test.sewer", d2);
+  ASSERT_TRUE(back.has_value());
+  EXPECT_EQ(*back, *map);
+  std::filesystem::remove(dir / "sewerplan-isybau-test.sewer");
+  const Result<void> xml = write_map(*map, dir / "sewerplan-isybau-test.xml");
+  ASSERT_FALSE(xml.has_value());
+  EXPECT_EQ(xml.error().code, ErrorCode::kUnsupportedFormat);
+}
+
+}  // namespace
+}  // namespace sewerplan
