@@ -23,9 +23,8 @@ std::string one_line(const std::string& message) {
   if (pos == std::string::npos) return message;
   while (pos != std::string::npos) {
     const std::size_t next = message.find("\n  - ", pos + 5);
-    out += (out.empty() ? "" : "; ") + message.substr(pos + 5, next == std::string::npos
-                                                                  ? std::string::npos
-                                                                  : next - pos - 5);
+    out += (out.empty() ? "" : "; ") +
+           message.substr(pos + 5, next == std::string::npos ? std::string::npos : next - pos - 5);
     pos = next;
   }
   return out;

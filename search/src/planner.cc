@@ -7,6 +7,7 @@
 
 #include "sewerplan/search/best_first_search.h"
 #include "sewerplan/search/enforced_hill_climbing.h"
+#include "sewerplan/search/tour_search.h"
 
 namespace sewerplan::search {
 
@@ -40,7 +41,7 @@ Algorithm resolve(Algorithm algorithm, const domain::CompiledTask& task) {
   for (std::size_t v = 0; v < task.variable_count(); ++v) {
     states *= task.domain_size(domain::VarId{static_cast<std::uint32_t>(v)});
   }
-  return states <= static_cast<double>(1 << 20) ? Algorithm::kAstar : Algorithm::kWeightedAstar;
+  return states <= static_cast<double>(1 << 12) ? Algorithm::kAstar : Algorithm::kWeightedAstar;
 }
 
 std::unique_ptr<SearchEngine> make_engine(Algorithm algorithm, const domain::CompiledTask& task,
@@ -159,12 +160,17 @@ Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
                            : StopCondition();
   if (options.max_expansions > 0) stop.with_max_expansions(options.max_expansions);
   if (options.cancel != nullptr) stop.with_cancel(*options.cancel);
-  SearchResult result = engine->search(stop, clock);
+  // kAuto beyond exhaustive A*: the tour search's first plan, where the task has its shape.
+  std::optional<SearchResult> tour;
+  if (options.algorithm == Algorithm::kAuto && algorithm != Algorithm::kAstar) {
+    tour = tour_search(task);
+  }
+  SearchResult result = tour ? std::move(*tour) : engine->search(stop, clock);
   if (result.status != SearchStatus::kSolved) {
     return search_failure(result.status, mission, progress, task);
   }
   PlanOutcome outcome;
-  outcome.optimal = algorithm == Algorithm::kAstar && heuristic->admissible();
+  outcome.optimal = !tour && algorithm == Algorithm::kAstar && heuristic->admissible();
   if (!outcome.optimal && options.improvement_expansions > 0) {
     improve(task, stop, clock, options.improvement_expansions, result, outcome);
   }
@@ -179,7 +185,8 @@ Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
   outcome.energy_wh = mission.profile.energy_wh(outcome.cost_s);
   outcome.search = result.statistics;
   outcome.compile = compiled->statistics();
-  outcome.algorithm = std::string(engine->name()) + " + " + std::string(heuristic->name());
+  outcome.algorithm = tour ? std::string("tour search")
+                           : std::string(engine->name()) + " + " + std::string(heuristic->name());
   if (outcome.improvements > 0) outcome.algorithm += ", improved by weighted A*";
   return outcome;
 }

@@ -36,8 +36,8 @@ struct MissionReport {
     kBeacon,  // no way out: the beacon is on
   };
   Outcome outcome = Outcome::kEnded;
-  std::string end;                           // "exit M4", or why the beacon is on
-  std::vector<std::string> tasks_done;       // in the order done
+  std::string end;                                           // "exit M4", or why the beacon is on
+  std::vector<std::string> tasks_done;                       // in the order done
   std::vector<std::pair<std::string, std::string>> dropped;  // task name, reason
   double time_s = 0;
   double energy_wh = 0;

@@ -74,7 +74,10 @@ struct PlanResponse {
 };
 
 struct ReplannerOptions {
-  search::PlannerOptions planner;  // goal selection is always on
+  // Goal selection is always on. The robot waits while it replans, so by default there is no
+  // improvement search after the first plan (for a task beyond exhaustive A*, the tour search's
+  // plan: bench/executor/replan_bench.cc); give it expansions to trade time for cost.
+  search::PlannerOptions planner{.improvement_expansions = 0};
   // Used to time the planning (default: a steady clock).
   const Clock* clock = nullptr;
 };

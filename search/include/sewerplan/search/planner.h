@@ -32,9 +32,11 @@
 
 namespace sewerplan::search {
 
-// kAuto: A* with h_max (optimal) when the compiled task has at most 2^20 states (about 14 tasks
-// on a typical mission), enforced hill-climbing otherwise. On the paper's mission A* takes tens of
-// microseconds, and EHC's greedy choices cost 12-16% more time (bench/search/planner_bench.cc).
+// kAuto: A* with h_max (optimal) when the compiled task has at most 2^12 states (a handful of
+// tasks); otherwise the tour search's plan (tour_search.h: ordering the tasks by insertion and
+// local search, in milliseconds), or weighted A* with FF where a task is not of its shape; then
+// the improvement phase (PlannerOptions::improvement_expansions). On the paper's mission A* takes
+// tens of microseconds (bench/search/planner_bench.cc).
 enum class Algorithm { kAuto, kEhc, kGbfs, kWeightedAstar, kAstar };
 
 std::string_view to_string(Algorithm algorithm);

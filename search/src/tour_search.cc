@@ -1,0 +1,357 @@
+// SPDX-License-Identifier: MIT
+// Tour search (tour_search.h): the task's shape, the dynamic programme over an order of goals,
+// cheapest insertion, local search, and goals left out for the bound.
+#include "sewerplan/search/tour_search.h"
+
+#include <algorithm>
+#include <limits>
+#include <unordered_map>
+
+#include "sewerplan/core/clock.h"
+
+namespace sewerplan::search {
+namespace {
+
+using domain::CompiledTask;
+using domain::Fact;
+using domain::kInfiniteCost;
+using domain::VarId;
+
+constexpr std::int32_t kStays = -1;
+
+struct Option {
+  std::int32_t at = 0;  // the position the action needs
+  std::int32_t to = 0;  // where it leaves the robot (kStays: where it was)
+  Cost cost = 0;
+  ActionId action{0};
+};
+
+struct Goal {
+  std::vector<Option> options;
+  std::optional<ActionId> forgo;
+  Cost forgo_cost = 0;
+  bool last = false;  // needs every other goal done first
+};
+
+// The task read as places, moves and goals; empty if it is not of that shape.
+struct Shape {
+  std::int32_t places = 0;
+  std::int32_t start = 0;
+  std::optional<std::int32_t> end;  // a position the goal asks for
+  std::unordered_map<std::int64_t, std::pair<Cost, ActionId>> moves;
+  std::vector<Goal> goals;  // goal i is variable i + 1
+
+  Cost move_cost(std::int32_t a, std::int32_t b) const {
+    if (a == b) return 0;
+    auto it = moves.find(static_cast<std::int64_t>(a) * places + b);
+    return it == moves.end() ? kInfiniteCost : it->second.first;
+  }
+};
+
+std::optional<Shape> read_shape(const CompiledTask& task) {
+  if (task.variable_count() < 1) return std::nullopt;
+  Shape s;
+  const VarId pos{0};
+  s.places = task.domain_size(pos);
+  s.start = task.initial_state()[0];
+  const std::size_t goals = task.variable_count() - 1;
+  s.goals.resize(goals);
+  for (std::size_t v = 1; v < task.variable_count(); ++v) {
+    if (task.domain_size(VarId{static_cast<std::uint32_t>(v)}) != 2) return std::nullopt;
+    if (task.initial_state()[v] != 0) return std::nullopt;
+  }
+  std::vector<bool> goal_var(task.variable_count(), false);
+  for (const Fact& g : task.goal()) {
+    if (g.var == pos) {
+      s.end = g.value;
+    } else if (g.value == 1) {
+      goal_var[g.var.index()] = true;
+    } else {
+      return std::nullopt;
+    }
+  }
+  for (std::size_t v = 1; v < goal_var.size(); ++v) {
+    if (!goal_var[v]) return std::nullopt;
+  }
+  for (ActionId a : task.action_ids()) {
+    const auto pre = task.preconditions(a);
+    const auto eff = task.effects(a);
+    std::optional<std::int32_t> at, to;
+    std::optional<std::size_t> goal;
+    std::size_t others = 0;
+    for (const Fact& f : pre) {
+      if (f.var == pos) {
+        at = f.value;
+      } else if (f.value == 0) {
+        if (goal) return std::nullopt;
+        goal = f.var.index() - 1;
+      } else {
+        ++others;
+      }
+    }
+    bool sets_goal = false;
+    for (const Fact& f : eff) {
+      if (f.var == pos) {
+        to = f.value;
+      } else if (goal && f.var.index() - 1 == *goal && f.value == 1) {
+        sets_goal = true;
+      } else {
+        return std::nullopt;
+      }
+    }
+    if (!goal) {  // a move
+      if (!at || !to || others != 0 || eff.size() != 1) return std::nullopt;
+      auto key = static_cast<std::int64_t>(*at) * s.places + *to;
+      auto [it, added] = s.moves.try_emplace(key, task.cost(a), a);
+      if (!added && task.cost(a) < it->second.first) it->second = {task.cost(a), a};
+      continue;
+    }
+    if (!sets_goal) return std::nullopt;
+    Goal& g = s.goals[*goal];
+    if (others != 0 && others + 1 != goals) return std::nullopt;  // all others, or none
+    if (others != 0) g.last = true;
+    if (!at) {  // a forgo action
+      if (to || others != 0) return std::nullopt;
+      g.forgo = a;
+      g.forgo_cost = task.cost(a);
+      continue;
+    }
+    g.options.push_back({*at, to.value_or(kStays), task.cost(a), a});
+  }
+  return s;
+}
+
+// The best choices for one order of goals, by dynamic programming over positions.
+class Evaluator {
+ public:
+  explicit Evaluator(const Shape& shape) : s_(shape) {}
+
+  // The real cost of doing `order` (goal indices) from the start, and ending as the goal asks;
+  // kInfiniteCost if impossible. With `plan`, also the actions.
+  Cost cost(const std::vector<std::size_t>& order, std::vector<ActionId>* plan = nullptr) {
+    layers_.assign(1, {{s_.start, {0, -1, -1}}});
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      const Goal& g = s_.goals[order[k]];
+      std::vector<std::pair<std::int32_t, Entry>> next;
+      const auto& prev = layers_.back();
+      for (std::size_t o = 0; o < g.options.size(); ++o) {
+        const Option& opt = g.options[o];
+        for (std::size_t p = 0; p < prev.size(); ++p) {
+          const Cost d = s_.move_cost(prev[p].first, opt.at);
+          if (d >= kInfiniteCost || prev[p].second.cost >= kInfiniteCost) continue;
+          const Cost c = prev[p].second.cost + d + opt.cost;
+          const std::int32_t where = opt.to == kStays ? opt.at : opt.to;
+          auto it = std::find_if(next.begin(), next.end(),
+                                 [&](const auto& e) { return e.first == where; });
+          const Entry e{c, static_cast<std::int32_t>(p), static_cast<std::int32_t>(o)};
+          if (it == next.end()) {
+            next.emplace_back(where, e);
+          } else if (c < it->second.cost) {
+            it->second = e;
+          }
+        }
+      }
+      if (next.empty()) return kInfiniteCost;
+      layers_.push_back(std::move(next));
+    }
+    Cost best = kInfiniteCost;
+    std::int32_t best_p = -1;
+    const auto& last = layers_.back();
+    for (std::size_t p = 0; p < last.size(); ++p) {
+      const Cost tail = s_.end ? s_.move_cost(last[p].first, *s_.end) : 0;
+      if (tail >= kInfiniteCost) continue;
+      if (last[p].second.cost + tail < best) {
+        best = last[p].second.cost + tail;
+        best_p = static_cast<std::int32_t>(p);
+      }
+    }
+    if (plan != nullptr && best_p >= 0) reconstruct(order, best_p, *plan);
+    return best;
+  }
+
+ private:
+  struct Entry {
+    Cost cost;
+    std::int32_t from;    // index in the previous layer
+    std::int32_t option;  // of the goal
+  };
+
+  void add_move(std::int32_t a, std::int32_t b, std::vector<ActionId>& plan) const {
+    if (a != b) plan.push_back(s_.moves.at(static_cast<std::int64_t>(a) * s_.places + b).second);
+  }
+
+  void reconstruct(const std::vector<std::size_t>& order, std::int32_t p,
+                   std::vector<ActionId>& plan) const {
+    std::vector<const Option*> chosen(order.size());
+    std::vector<std::int32_t> before(order.size());
+    const std::int32_t final_place = layers_.back()[static_cast<std::size_t>(p)].first;
+    for (std::size_t k = order.size(); k > 0; --k) {
+      const Entry& e = layers_[k][static_cast<std::size_t>(p)].second;
+      chosen[k - 1] = &s_.goals[order[k - 1]].options[static_cast<std::size_t>(e.option)];
+      p = e.from;
+      before[k - 1] = layers_[k - 1][static_cast<std::size_t>(p)].first;
+    }
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      add_move(before[k], chosen[k]->at, plan);
+      plan.push_back(chosen[k]->action);
+    }
+    if (s_.end) add_move(final_place, *s_.end, plan);
+  }
+
+  const Shape& s_;
+  std::vector<std::vector<std::pair<std::int32_t, Entry>>> layers_;
+};
+
+class Tour {
+ public:
+  explicit Tour(const Shape& shape) : s_(shape), eval_(shape) {}
+
+  // An order of the goals in `goals` (the last-goal, if any, at the end).
+  std::vector<std::size_t> build(const std::vector<std::size_t>& goals) {
+    std::vector<std::size_t> order;
+    std::optional<std::size_t> last;
+    std::vector<std::size_t> todo;
+    for (std::size_t g : goals) {
+      if (s_.goals[g].last) {
+        last = g;
+      } else {
+        todo.push_back(g);
+      }
+    }
+    while (!todo.empty()) {  // cheapest insertion
+      Cost best = kInfiniteCost;
+      std::size_t best_goal = 0, best_at = 0;
+      for (std::size_t i = 0; i < todo.size(); ++i) {
+        for (std::size_t at = 0; at <= order.size(); ++at) {
+          std::vector<std::size_t> trial = order;
+          trial.insert(trial.begin() + static_cast<std::ptrdiff_t>(at), todo[i]);
+          if (last) trial.push_back(*last);
+          const Cost c = eval_.cost(trial);
+          if (c < best) {
+            best = c;
+            best_goal = i;
+            best_at = at;
+          }
+        }
+      }
+      if (best >= kInfiniteCost) return {};
+      order.insert(order.begin() + static_cast<std::ptrdiff_t>(best_at), todo[best_goal]);
+      todo.erase(todo.begin() + static_cast<std::ptrdiff_t>(best_goal));
+    }
+    improve(order, last);
+    if (last) order.push_back(*last);
+    return order;
+  }
+
+  Cost cost(const std::vector<std::size_t>& order) { return eval_.cost(order); }
+  Cost cost(const std::vector<std::size_t>& order, std::vector<ActionId>& plan) {
+    return eval_.cost(order, &plan);
+  }
+
+ private:
+  Cost with_last(std::vector<std::size_t> order, std::optional<std::size_t> last) {
+    if (last) order.push_back(*last);
+    return eval_.cost(order);
+  }
+
+  // Or-opt (move one goal) and 2-opt (reverse a stretch) until neither helps, at most 50 rounds.
+  void improve(std::vector<std::size_t>& order, std::optional<std::size_t> last) {
+    Cost best = with_last(order, last);
+    for (int round = 0; round < 50; ++round) {
+      bool better = false;
+      for (std::size_t i = 0; i < order.size(); ++i) {
+        for (std::size_t j = 0; j < order.size(); ++j) {
+          if (i == j) continue;
+          std::vector<std::size_t> trial = order;
+          const std::size_t g = trial[i];
+          trial.erase(trial.begin() + static_cast<std::ptrdiff_t>(i));
+          trial.insert(trial.begin() + static_cast<std::ptrdiff_t>(j), g);
+          const Cost c = with_last(trial, last);
+          if (c < best) {
+            best = c;
+            order = std::move(trial);
+            better = true;
+          }
+        }
+      }
+      for (std::size_t i = 0; i + 1 < order.size(); ++i) {
+        for (std::size_t j = i + 2; j <= order.size(); ++j) {
+          std::vector<std::size_t> trial = order;
+          std::reverse(trial.begin() + static_cast<std::ptrdiff_t>(i),
+                       trial.begin() + static_cast<std::ptrdiff_t>(j));
+          const Cost c = with_last(trial, last);
+          if (c < best) {
+            best = c;
+            order = std::move(trial);
+            better = true;
+          }
+        }
+      }
+      if (!better) break;
+    }
+  }
+
+  const Shape& s_;
+  Evaluator eval_;
+};
+
+}  // namespace
+
+std::optional<SearchResult> tour_search(const CompiledTask& task) {
+  const SteadyClock clock;
+  const double start_s = clock.now_s();
+  std::optional<Shape> shape = read_shape(task);
+  if (!shape) return std::nullopt;
+  std::vector<std::size_t> goals(shape->goals.size());
+  for (std::size_t i = 0; i < goals.size(); ++i) goals[i] = i;
+  Tour tour(*shape);
+  std::vector<std::size_t> order = tour.build(goals);
+  std::vector<std::size_t> forgone;
+  // Over the bound (or no order at all): leave out, one at a time, the goal whose absence saves
+  // the most, where goals can be forgone.
+  auto fits = [&](const std::vector<std::size_t>& o) {
+    const Cost c = tour.cost(o);
+    return c < kInfiniteCost && c <= task.cost_bound();
+  };
+  while (order.empty() || !fits(order)) {
+    std::optional<std::size_t> drop;
+    Cost best = kInfiniteCost;
+    std::vector<std::size_t> best_order;
+    for (std::size_t g : goals) {
+      if (!shape->goals[g].forgo) continue;
+      std::vector<std::size_t> rest;
+      for (std::size_t h : goals) {
+        if (h != g) rest.push_back(h);
+      }
+      std::vector<std::size_t> o = tour.build(rest);
+      const Cost c = o.empty() && !rest.empty() ? kInfiniteCost : tour.cost(o);
+      if (c < best) {
+        best = c;
+        drop = g;
+        best_order = std::move(o);
+      }
+    }
+    if (!drop) return std::nullopt;
+    goals.erase(std::find(goals.begin(), goals.end(), *drop));
+    forgone.push_back(*drop);
+    order = std::move(best_order);
+    if (goals.empty()) break;
+  }
+  if (!fits(order)) return std::nullopt;
+  SearchResult result;
+  for (std::size_t g : forgone) result.plan.push_back(*shape->goals[g].forgo);
+  tour.cost(order, result.plan);
+  // Check the plan on the task itself.
+  std::vector<std::int32_t> state(task.initial_state().begin(), task.initial_state().end());
+  for (ActionId a : result.plan) {
+    if (!task.is_applicable(a, state)) return std::nullopt;
+    task.apply(a, state);
+    result.cost += task.cost(a);
+  }
+  if (!task.is_goal(state) || task.exceeds_bound(result.cost)) return std::nullopt;
+  result.status = SearchStatus::kSolved;
+  result.statistics.time_s = clock.now_s() - start_s;
+  return result;
+}
+
+}  // namespace sewerplan::search
