@@ -25,7 +25,7 @@ ctest --test-dir build/release --output-on-failure -j "$jobs"
 if [ "${SEWERPLAN_SKIP_ASAN:-0}" != 1 ]; then
   echo "== ASan + UBSan build and tests (clang)"
   CXX=clang++ cmake -S . -B build/asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
-    -DSEWERPLAN_SANITIZE=ON -DSEWERPLAN_BUILD_BENCH=OFF
+    -DSEWERPLAN_SANITIZE=ON -DSEWERPLAN_BUILD_BENCH=OFF -DSEWERPLAN_FUZZ=OFF
   cmake --build build/asan -j "$jobs"
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir build/asan --output-on-failure -j "$jobs"
