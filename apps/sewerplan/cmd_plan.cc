@@ -27,6 +27,7 @@ struct PlanOptions {
   double weight = 2.0;
   double time_limit_s = 60;
   std::uint64_t improvement_expansions = 10'000;
+  bool select_goals = false;
   std::string out;
   bool json = false;
   bool quiet = false;
@@ -60,6 +61,7 @@ int run(const PlanOptions& o, Context& c) {
   options.weight = o.weight;
   options.time_limit_s = o.time_limit_s;
   options.improvement_expansions = o.improvement_expansions;
+  options.select_goals = o.select_goals;
   Diagnostics diagnostics;
   Result<SewerMap> map = read_map(o.map, diagnostics);
   std::optional<Result<Mission>> mission;
@@ -73,13 +75,15 @@ int run(const PlanOptions& o, Context& c) {
     return exit_code_for(*load_error);
   }
   const Mission& m = **mission;
-  Result<search::PlanOutcome> outcome =
-      search::plan_mission(*map, m, domain::initial_progress(m, *map), options);
+  domain::MissionProgress start = domain::initial_progress(m, *map);
+  Result<search::PlanOutcome> outcome = search::plan_mission(*map, m, start, options);
   if (!outcome.has_value()) {
     c.err << outcome.error().message << '\n';
     return exit_code_for(outcome.error());
   }
-  const domain::ValidationReport report = domain::validate_plan(outcome->plan, *map, m);
+  // Tasks left out by goal selection are not required of the plan.
+  for (const auto& d : outcome->dropped) start.done[d.task.index()] = true;
+  const domain::ValidationReport report = domain::validate_plan(outcome->plan, *map, m, start);
   if (!report.valid) {  // a planner bug: say so rather than hand out a wrong plan
     c.err << "internal error: the plan found does not validate: " << report << '\n';
     return kExitNoPlan;
@@ -95,7 +99,12 @@ int run(const PlanOptions& o, Context& c) {
   } else {
     c.out << text;
   }
-  if (!o.quiet) print_summary(*outcome, report, c.err);
+  if (!o.quiet) {
+    print_summary(*outcome, report, c.err);
+    for (const auto& d : outcome->dropped) {
+      c.err << "dropped task '" << m.task(d.task).name << "': " << d.reason << '\n';
+    }
+  }
   return kExitOk;
 }
 
@@ -121,6 +130,8 @@ void add_plan_command(CLI::App& app, Context& context) {
       ->capture_default_str();
   cmd->add_option("--out,-o", o->out, "Write the plan text to this file");
   cmd->add_flag("--json", o->json, "Print the plan with each action's cost as JSON");
+  cmd->add_flag("--select-goals", o->select_goals,
+                "Do as many tasks as can be done and still end the mission, rather than fail");
   cmd->add_flag("--quiet,-q", o->quiet, "No summary on standard error");
   cmd->callback([o, &context] { context.exit_code = run(*o, context); });
 }

@@ -16,14 +16,14 @@ Result<RecoveryConfig> read_recovery_json(std::string_view text, const std::stri
     auto count = [&](int& field) -> std::optional<Error> {
       if (!value.is_number_integer() || value.get<long long>() < 0 ||
           value.get<long long>() > 1000) {
-        return Error{ErrorCode::kInvalidArgument, where + " must be a count from 0 to 1000"};
+        return Error{ErrorCode::kParse, where + " must be a count from 0 to 1000"};
       }
       field = value.get<int>();
       return std::nullopt;
     };
     auto distance = [&](double& field) -> std::optional<Error> {
       if (!value.is_number() || value.get<double>() < 0 || value.get<double>() > 10) {
-        return Error{ErrorCode::kInvalidArgument, where + " must be metres from 0 to 10"};
+        return Error{ErrorCode::kParse, where + " must be metres from 0 to 10"};
       }
       field = value.get<double>();
       return std::nullopt;
@@ -43,12 +43,12 @@ Result<RecoveryConfig> read_recovery_json(std::string_view text, const std::stri
       error = count(c.max_reboots);
     } else if (key == "push_allowed") {
       if (!value.is_boolean()) {
-        error = Error{ErrorCode::kInvalidArgument, where + " must be true or false"};
+        error = Error{ErrorCode::kParse, where + " must be true or false"};
       } else {
         c.push_allowed = value.get<bool>();
       }
     } else {
-      error = Error{ErrorCode::kInvalidArgument, where + " is not a recovery setting"};
+      error = Error{ErrorCode::kParse, where + " is not a recovery setting"};
     }
     if (error) return *error;
   }

@@ -135,6 +135,18 @@ cat > "$tmp/cut.json" <<'JSON'
 JSON
 expect 4 "task 'far' \(inspect_pipe\): no route from the start" -- "$sp" plan --map "$ais" --mission "$tmp/cut.json"
 expect 2 'unknown' -- "$sp" plan --map "$ais" --mission "$mission" -a dijkstra
+expect 0 "dropped task 'far': no route" -- "$sp" plan --map "$ais" --mission "$tmp/cut.json" --select-goals
+
+# simulate: the paper's mission with an obstacle the head lift clears and one in the inspected pipe.
+expect 0 'mission ended at pipe P9' -- "$sp" simulate --map "$ais" --mission "$mission" --faults "$src/datasets/ais-testbed/faults/demo.json" --log "$tmp/events.jsonl" -q
+expect 0 '"type":"replan","reason":"blockage in P4 at 5.00 m"' -- cat "$tmp/events.jsonl"
+expect 0 'phase=2: lift the head and retry ok=yes' -- "$sp" simulate --map "$ais" --mission "$mission" --faults "$src/datasets/ais-testbed/faults/demo.json"
+expect 1 'cut.json' -- "$sp" simulate --map "$ais" --mission "$mission" --faults "$tmp/cut.json"
+echo '{"format": "sewerplan-faults", "version": 1, "malfunctions": [{"at_job": 2, "kind": "permanent"}]}' > "$tmp/stuck.json"
+expect 4 'beacon on: the robot cannot move' -- "$sp" simulate --map "$ais" --mission "$mission" --faults "$tmp/stuck.json" -q
+echo '{"max_reboots": -1}' > "$tmp/recovery.json"
+expect 1 'recovery.json: "max_reboots" must be a count' -- "$sp" simulate --map "$ais" --mission "$mission" --recovery "$tmp/recovery.json" -q
+expect 2 'random-faults' -- "$sp" simulate --map "$ais" --mission "$mission" --faults "$tmp/stuck.json" --random-faults 3
 
 # PDDL round trip: export, then read back what FF and Fast Downward print for it.
 expect 0 'wrote .*domain.pddl and .*problem.pddl' -- "$sp" export-pddl --map "$ais" --mission "$mission" --out "$tmp/pddl"
