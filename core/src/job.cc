@@ -3,17 +3,9 @@
 
 #include <iomanip>
 
+#include "sewerplan/core/overloaded.h"
+
 namespace sewerplan {
-namespace {
-
-template <class... F>
-struct Overloaded : F... {
-  using F::operator()...;
-};
-template <class... F>
-Overloaded(F...) -> Overloaded<F...>;
-
-}  // namespace
 
 std::string_view job_kind(const Job& job) {
   return std::visit(Overloaded{

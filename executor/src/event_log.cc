@@ -8,15 +8,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "sewerplan/core/overloaded.h"
+
 namespace sewerplan::executor {
 namespace {
-
-template <class... F>
-struct Overloaded : F... {
-  using F::operator()...;
-};
-template <class... F>
-Overloaded(F...) -> Overloaded<F...>;
 
 std::string readable_value(const EventValue& value) {
   return std::visit(Overloaded{[](const std::string& s) { return s; },

@@ -8,6 +8,7 @@
 #include <optional>
 #include <sstream>
 
+#include "sewerplan/core/overloaded.h"
 #include "sewerplan/domain/plan_text.h"
 #include "sewerplan/domain/validator.h"
 #include "sewerplan/fusion/jobs.h"
@@ -21,13 +22,6 @@ namespace {
 // Where an obstacle or danger is taken to be: just ahead of where the robot stopped, so that the
 // robot's own position stays on its side of the blockage.
 constexpr double kAhead_m = 0.05;
-
-template <class... F>
-struct Overloaded : F... {
-  using F::operator()...;
-};
-template <class... F>
-Overloaded(F...) -> Overloaded<F...>;
 
 std::string job_text(const Job& job) {
   std::ostringstream out;

@@ -9,19 +9,13 @@
 
 #include "sewerplan/core/check.h"
 #include "sewerplan/core/map_queries.h"
+#include "sewerplan/core/overloaded.h"
 
 namespace sewerplan::hal {
 namespace {
 
 // A drive that ends this close to a pipe end has reached it (fusion's distances carry rounding).
 constexpr double kLengthTolerance_m = 1e-6;
-
-template <class... F>
-struct Overloaded : F... {
-  using F::operator()...;
-};
-template <class... F>
-Overloaded(F...) -> Overloaded<F...>;
 
 std::string metres(double value_m) {
   std::ostringstream os;
