@@ -11,7 +11,10 @@ Result<RecoveryConfig> read_recovery_json(std::string_view text, const std::stri
     return Error{ErrorCode::kParse, file_name + ": not a JSON object"};
   }
   RecoveryConfig c;
-  for (const auto& [key, value] : j.items()) {
+  for (const auto& item : j.items()) {
+    // Not a structured binding: clang 14 cannot capture one in the lambdas below.
+    const std::string& key = item.key();
+    const nlohmann::json& value = item.value();
     const std::string where = file_name + ": \"" + key + "\"";
     auto count = [&](int& field) -> std::optional<Error> {
       if (!value.is_number_integer() || value.get<long long>() < 0 ||
