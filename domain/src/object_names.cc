@@ -80,6 +80,12 @@ std::string shortest(double v) {
   return std::string(buffer, end);
 }
 
+std::string paper_type(const Manhole& m) {
+  std::string text = "TYPE_" + std::to_string(m.slot_count);
+  if (m.variant) text += std::string("_TYPE_") + *m.variant;
+  return text;
+}
+
 char ascii_upper(char c) { return c >= 'a' && c <= 'z' ? static_cast<char>(c - 'a' + 'A') : c; }
 
 std::string ascii_upper(std::string_view s) {

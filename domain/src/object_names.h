@@ -42,6 +42,9 @@ std::string fixed(double v, int decimals);
 // The shortest text that reads back as `v`: 2.5 -> "2.5".
 std::string shortest(double v);
 
+// A manhole's type as the paper's action names write it: "TYPE_4", "TYPE_3_TYPE_B".
+std::string paper_type(const Manhole& m);
+
 char ascii_upper(char c);
 std::string ascii_upper(std::string_view s);
 bool equals_ignoring_case(std::string_view a, std::string_view b);

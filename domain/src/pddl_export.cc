@@ -32,13 +32,6 @@ std::string manhole_type(const Manhole& m) {
   return type;
 }
 
-// The paper's name part for a type: "TYPE_3_TYPE_B".
-std::string action_type(const Manhole& m) {
-  std::string type = "TYPE_" + std::to_string(m.slot_count);
-  if (m.variant) type += std::string("_TYPE_") + *m.variant;
-  return type;
-}
-
 enum class Kind { kSample, kInspection, kPoint, kManhole };
 
 struct KindSpec {
@@ -244,7 +237,7 @@ class Exporter {
 
   void write_drive_manhole(std::ostream& out, const Manhole& m, const std::string& type, int i,
                            int j) const {
-    out << "  (:action DRIVE_MANHOLE_" << action_type(m) << "_FROM_" << i << "_TO_" << j
+    out << "  (:action DRIVE_MANHOLE_" << detail::paper_type(m) << "_FROM_" << i << "_TO_" << j
         << "\n    :parameters (?m - " << type;
     for (int k = 1; k <= m.slot_count; ++k) out << " ?p" << k;
     out << " - pipe)\n    :precondition (and";

@@ -17,12 +17,6 @@ using detail::ascii_upper;
 using detail::NameIndex;
 using detail::quote_token;
 
-std::string type_text(const Manhole& m) {
-  std::string text = "TYPE_" + std::to_string(m.slot_count);
-  if (m.variant) text += std::string("_TYPE_") + *m.variant;
-  return text;
-}
-
 class PlanParser {
  public:
   PlanParser(const SewerMap& map, const Mission& mission, const std::string& file,
@@ -154,7 +148,7 @@ class PlanParser {
     if (name->type != m.slot_count || name->variant != m.variant) {
       std::string said = "TYPE_" + std::to_string(name->type);
       if (name->variant) said += std::string("_TYPE_") + *name->variant;
-      error(m.name + " is " + type_text(m) + ", not " + said);
+      error(m.name + " is " + detail::paper_type(m) + ", not " + said);
       return std::nullopt;
     }
     for (std::uint32_t slot : {name->from, name->to}) {

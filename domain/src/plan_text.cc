@@ -28,10 +28,9 @@ std::string drive_manhole_text(const DriveManhole& s, const SewerMap& map) {
            std::to_string(to_paper_number(s.to)) + " " + name_of(map, s.manhole);
   }
   const Manhole& m = map.manhole(s.manhole);
-  text += std::to_string(m.slot_count);
-  if (m.variant) text += std::string("_TYPE_") + *m.variant;
-  text += "_FROM_" + std::to_string(to_paper_number(s.from)) + "_TO_" +
-          std::to_string(to_paper_number(s.to)) + " " + m.name;
+  text = "DRIVE_MANHOLE_" + detail::paper_type(m) + "_FROM_" +
+         std::to_string(to_paper_number(s.from)) + "_TO_" + std::to_string(to_paper_number(s.to)) +
+         " " + m.name;
   for (const Slot& slot : map.slots(s.manhole)) text += " " + map.pipe(slot.pipe).name;
   return text;
 }

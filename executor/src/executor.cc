@@ -82,6 +82,17 @@ std::string action_text(const fusion::RobotAction& action) {
   return out.str();
 }
 
+// A push over the rest of a forward drive; none for a backward one (the robot pushes with its
+// head).
+std::optional<Job> push_for(const Job& job) {
+  if (const auto* d = std::get_if<DriveForward>(&job)) return Push{d->speed_mps, d->distance_m};
+  if (const auto* p = std::get_if<Push>(&job)) return *p;
+  if (const auto* s = std::get_if<Scan>(&job); s && !s->backward) {
+    return Push{s->speed_mps, s->distance_m};
+  }
+  return std::nullopt;
+}
+
 std::vector<std::string> task_names(const Mission& mission, const std::vector<TaskId>& tasks) {
   std::vector<std::string> names;
   for (TaskId t : tasks) names.push_back(mission.task(t).name);
@@ -123,7 +134,8 @@ class Executor::Run {
         robot_(e.robot_),
         options_(e.options_),
         log_(e.log_),
-        tracker_(e.map_, e.replanner_.progress().position, e.replanner_.heading_end()) {}
+        tracker_(e.map_, e.replanner_.progress().position, e.replanner_.heading_end()),
+        done_(e.replanner_.progress().done) {}
 
   MissionReport go() {
     PlanResponse response = replanner_.plan("start");
@@ -219,6 +231,7 @@ class Executor::Run {
       for (TaskId t : mission().task_ids()) {
         if (!before[t.index()] && replay.done()[t.index()]) {
           report_.tasks_done.push_back(mission().task(t).name);
+          done_[t.index()] = true;
           log_.add(now(), "task_done", {{"task", mission().task(t).name}});
         }
       }
@@ -245,14 +258,9 @@ class Executor::Run {
     return out.str();
   }
 
+  // The replay counts dropped tasks as done; the Replanner hears what the robot has really done.
   void sync_progress(domain::MissionProgress progress) {
-    for (const auto& d : replanner_.dropped()) {
-      // Dropped is not done.
-      if (std::find(report_.tasks_done.begin(), report_.tasks_done.end(),
-                    mission().task(d.task).name) == report_.tasks_done.end()) {
-        progress.done[d.task.index()] = false;
-      }
-    }
+    progress.done = done_;
     progress.position = tracker_.position();
     progress.energy_used_wh = mission().profile.battery_wh - robot_.status().battery_wh;
     replanner_.update(progress, tracker_.heading_end());
@@ -340,21 +348,9 @@ class Executor::Run {
       if (auto done = retry(rest, "2: lift the head and retry")) return done;
     }
     for (int i = 0; c.push_allowed && i < c.push_retries; ++i) {
-      double speed = 0.1;
-      if (const auto* d = std::get_if<DriveForward>(&rest)) speed = d->speed_mps;
-      if (const auto* s = std::get_if<Scan>(&rest); s && !s->backward) speed = s->speed_mps;
-      if (std::holds_alternative<DriveBackward>(rest) ||
-          (std::holds_alternative<Scan>(rest) && std::get<Scan>(rest).backward)) {
-        break;  // the robot pushes with its head only
-      }
-      const hal::JobReport push =
-          execute_job(Push{speed, std::visit(
-                                      [](const auto& j) {
-                                        if constexpr (requires { j.distance_m; })
-                                          return j.distance_m;
-                                        return 0.0;
-                                      },
-                                      rest)});
+      const std::optional<Job> push_job = push_for(rest);
+      if (!push_job) break;  // the robot pushes with its head only
+      const hal::JobReport push = execute_job(*push_job);
       log_recovery("3: push", push.ok());
       if (push.ok()) return true;
       if (push.error->kind != hal::RobotErrorKind::kBlockage) return false;
@@ -427,6 +423,7 @@ class Executor::Run {
   const ExecutorOptions& options_;
   EventLog& log_;
   detail::DeadReckoning tracker_;
+  std::vector<bool> done_;  // per task: done by the robot (or before the start)
   MissionReport report_;
 };
 

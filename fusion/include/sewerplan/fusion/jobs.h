@@ -29,8 +29,9 @@
 
 namespace sewerplan::fusion {
 
-// The action's jobs, in order. The profile is for the body's manoeuvres: TODO(#5) plans
-// TurnInManhole's waypoints for its length and width (OMPL); today the waypoints are empty.
+// The action's jobs, in order. The profile is for the body's manoeuvres: the motion planning of
+// issue #8 (OMPL) is to fill TurnInManhole's waypoints for its length and width; until then they
+// are empty and the controller turns with its own manoeuvre (core/job.h).
 // Runtime: O(1).
 std::vector<Job> expand(const RobotAction& action, const RobotProfile& profile);
 
