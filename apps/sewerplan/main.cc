@@ -11,6 +11,8 @@ namespace sewerplan::cli {
 int exit_code_for(const Error& error) {
   switch (error.code) {
     case ErrorCode::kIo:
+    case ErrorCode::kCanTimeout:
+    case ErrorCode::kBusError:
       return kExitIo;
     case ErrorCode::kInvalidArgument:
       return kExitUsage;
