@@ -16,8 +16,9 @@ namespace {
 using ::testing::HasSubstr;
 
 TEST(Candump, LinesAreTheCanUtilsFormat) {
-  EXPECT_EQ(candump_line({1700000000.123456, "can0", *make_can_frame(0x123, false, {0xde, 0xad}), 0}),
-            "(1700000000.123456) can0 123#DEAD");
+  EXPECT_EQ(
+      candump_line({1700000000.123456, "can0", *make_can_frame(0x123, false, {0xde, 0xad}), 0}),
+      "(1700000000.123456) can0 123#DEAD");
   EXPECT_EQ(candump_line({0.5, "vcan1", *make_can_frame(0x1f334455, true, {}), 0}),
             "(0000000000.500000) vcan1 1F334455#");
   EXPECT_EQ(candump_line({2, "can0", *make_remote_frame(0x7ff, false, 3), 0}),
@@ -74,13 +75,13 @@ TEST(Candump, TheRecorderWritesBothDirections) {
   ASSERT_TRUE(b->send(*make_can_frame(0x200, false, {2})).has_value());
   clock.advance(0.5);
   ASSERT_TRUE(recording.receive(1.0)->has_value());
-  EXPECT_EQ(out.str(),
-            "(1700000000.000000) can0 100#01\n(1700000000.500000) can0 200#02\n");
+  EXPECT_EQ(out.str(), "(1700000000.000000) can0 100#01\n(1700000000.500000) can0 200#02\n");
 }
 
 TEST(Candump, TheReplayServesTheNodeAndChecksTheController) {
   std::vector<CandumpRecord> records;
-  for (const CanFrame& f : encode(Request{RequestKind::kStatus, 1})) records.push_back({0, "can0", f, 1});
+  for (const CanFrame& f : encode(Request{RequestKind::kStatus, 1}))
+    records.push_back({0, "can0", f, 1});
   for (const CanFrame& f : encode(Heartbeat{false, NodeState::kIdle, 0, 0})) {
     records.push_back({0, "can0", f, 2});
   }
