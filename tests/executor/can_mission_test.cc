@@ -55,13 +55,18 @@ CanRun in_process(const testing::AisTestbed& ais, const hal::FaultScenario& faul
   return run_on(ais.map, ais.mission, robot, clock);
 }
 
+// Short timeouts for runs with bus faults, so that they do not make the tests slow.
 hal::CanRobotOptions fast() {
   return {.ack_timeout_s = 0.15, .link_timeout_s = 0.3, .heartbeat_s = 0.05};
 }
+// Long ones for clean runs, which never wait for a timeout: a loaded machine cannot make them retry
+// (a retry would not be in an in-process run's log, and the replay answers without delay).
+hal::CanRobotOptions patient() { return {.ack_timeout_s = 5, .link_timeout_s = 10}; }
 
 // Over SLCAN through a pty; `candump` gets the bus traffic when given.
 CanRun over_can(const testing::AisTestbed& ais, const hal::FaultScenario& faults,
                 const std::string& bus_faults = "", std::ostream* candump = nullptr) {
+  const hal::CanRobotOptions options = bus_faults.empty() ? patient() : fast();
   ManualClock clock;
   Replanner probe(ais.map, ais.mission, {.clock = &clock});
   Result<hal::BusFaults> parsed = hal::parse_bus_faults(bus_faults);
@@ -73,7 +78,7 @@ CanRun over_can(const testing::AisTestbed& ais, const hal::FaultScenario& faults
   std::optional<hal::RecordingCanBus> recording;
   if (candump != nullptr) recording.emplace(node.controller_bus(), *candump, wall);
   hal::CanBus& bus = recording ? static_cast<hal::CanBus&>(*recording) : node.controller_bus();
-  hal::CanRobot robot(bus, fast());
+  hal::CanRobot robot(bus, options);
   const Result<void> up = robot.connect();
   EXPECT_TRUE(up.has_value()) << up.error().message;
   CanRun run = run_on(ais.map, ais.mission, robot, clock);
