@@ -157,6 +157,15 @@ TEST_F(SlcanPty, AClosedLineIsABusError) {
   EXPECT_THAT(in.error().message, HasSubstr("closed"));
 }
 
+TEST_F(SlcanPty, AnAdapterThatStopsReadingStallsAWriteInsteadOfHangingIt) {
+  const CanFrame f = *make_can_frame(0x1fffffff, true, {1, 2, 3, 4, 5, 6, 7, 8});
+  Result<void> sent;
+  for (int i = 0; i < 1000000 && sent.has_value(); ++i) sent = host_->send(f);
+  ASSERT_FALSE(sent.has_value());
+  EXPECT_EQ(sent.error().code, ErrorCode::kBusError);
+  EXPECT_THAT(sent.error().message, HasSubstr("write stalled"));
+}
+
 TEST(SlcanBus, AMissingTtyIsNamed) {
   Result<std::unique_ptr<SlcanBus>> bus = SlcanBus::open("/dev/no-such-tty", {});
   ASSERT_FALSE(bus.has_value());

@@ -74,7 +74,12 @@ Result<Pty> open_pty() {
 // --- SlcanLine ---------------------------------------------------------------------------------
 
 SlcanLine::SlcanLine(FileDescriptor fd, std::string name, const Clock* clock)
-    : fd_(std::move(fd)), name_(std::move(name)), clock_(clock != nullptr ? clock : &steady_) {}
+    : fd_(std::move(fd)), name_(std::move(name)), clock_(clock != nullptr ? clock : &steady_) {
+  // Non-blocking, so that a peer that stops reading stalls a write for at most a second instead
+  // of for ever.
+  const int flags = ::fcntl(fd_.get(), F_GETFL);
+  if (flags >= 0) static_cast<void>(::fcntl(fd_.get(), F_SETFL, flags | O_NONBLOCK));
+}
 
 Result<void> SlcanLine::write(std::string_view bytes) {
   while (!bytes.empty()) {

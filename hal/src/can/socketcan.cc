@@ -32,7 +32,7 @@ Result<std::unique_ptr<SocketCanBus>> SocketCanBus::open(const std::string& inte
     return Error{ErrorCode::kInvalidArgument, name + ": an interface name has 1 to " +
                                                   std::to_string(IFNAMSIZ - 1) + " characters"};
   }
-  FileDescriptor s(::socket(PF_CAN, SOCK_RAW | SOCK_CLOEXEC, CAN_RAW));
+  FileDescriptor s(::socket(PF_CAN, SOCK_RAW | SOCK_CLOEXEC | SOCK_NONBLOCK, CAN_RAW));
   if (!s.valid()) {
     const int error = errno;
     if (error == EAFNOSUPPORT || error == EPROTONOSUPPORT) {
@@ -71,7 +71,9 @@ Result<void> SocketCanBus::send(const CanFrame& frame) {
   for (;;) {
     const ssize_t n = ::write(socket_.get(), &raw, sizeof(raw));
     if (n < 0 && errno == EINTR) continue;
-    if (n < 0 && errno == ENOBUFS) return socket_error(name(), "transmit queue full", errno);
+    if (n < 0 && (errno == ENOBUFS || errno == EAGAIN)) {
+      return socket_error(name(), "transmit queue full", errno);
+    }
     if (n != static_cast<ssize_t>(sizeof(raw))) return socket_error(name(), "write failed", errno);
     return {};
   }
@@ -88,6 +90,7 @@ Result<std::optional<CanFrame>> SocketCanBus::receive(double timeout_s) {
   if (ready == 0) return std::optional<CanFrame>();
   can_frame raw{};
   const ssize_t n = ::read(socket_.get(), &raw, sizeof(raw));
+  if (n < 0 && (errno == EAGAIN || errno == EINTR)) return std::optional<CanFrame>();
   if (n != static_cast<ssize_t>(sizeof(raw))) return socket_error(name(), "read failed", errno);
   if ((raw.can_id & CAN_ERR_FLAG) != 0) {
     const bool bus_off = (raw.can_id & CAN_ERR_BUSOFF) != 0;
