@@ -4,6 +4,8 @@
 // clear reason that a reboot over the bus clears.
 #include "sewerplan/hal/can/can_robot.h"
 
+#include <limits>
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -198,11 +200,43 @@ TEST_P(CanRobotTest, AnEmergencyStopLatchesUntilAReboot) {
   EXPECT_TRUE(robot.execute(jobs_[0]).ok());
 }
 
+TEST_P(CanRobotTest, AFloodOfGarbageIsAMalfunctionThatSaysSo) {
+  auto n = node(faults("garbage=5,6,7,8"));
+  CanRobotOptions options = fast();
+  options.max_bad_input = 2;
+  CanRobot robot(n->controller_bus(), options);
+  ASSERT_TRUE(robot.connect().has_value());
+  const JobReport r = robot.execute(jobs_[0]);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error->kind, RobotErrorKind::kMalfunction);
+  EXPECT_THAT(r.error->reason, HasSubstr("3 bad inputs, the last: "));
+  EXPECT_THAT(r.error->reason, ::testing::AnyOf(HasSubstr("garbled line"), HasSubstr("garbage")));
+}
+
 INSTANTIATE_TEST_SUITE_P(Transports, CanRobotTest,
                          ::testing::Values(Transport::kSlcanPty, Transport::kMemory),
                          [](const auto& param_info) {
                            return param_info.param == Transport::kSlcanPty ? "SlcanPty" : "Memory";
                          });
+
+// A node that answers with a result the decoder refuses (NaN progress), and then nothing.
+TEST(CanRobot, AMalformedResultIsNamedInTheMalfunction) {
+  auto [controller, node] = make_memory_can_pair();
+  JobReport bad;
+  bad.progress_m = std::numeric_limits<double>::quiet_NaN();
+  for (const Message& m :
+       {Message(JobAck{1, AckCode::kAccepted, 0}), Message(JobResult{1, bad, {}})}) {
+    for (const CanFrame& f : encode(m)) ASSERT_TRUE(node->send(f).has_value());
+  }
+  CanRobot robot(*controller, {.ack_timeout_s = 0.05, .link_timeout_s = 0.05, .heartbeat_s = 0.05});
+  const JobReport r = robot.execute(LiftHead{});
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error->kind, RobotErrorKind::kMalfunction);
+  EXPECT_THAT(r.error->reason, HasSubstr("CAN link: no result of job 1"));
+  EXPECT_THAT(r.error->reason,
+              HasSubstr("malformed result 1: progress_m is not a finite number >= 0"));
+  EXPECT_EQ(robot.stats().bad_input, 1U);
+}
 
 TEST(BusFaults, TheSpecificationIsReadAndNamedWhenWrong) {
   Result<BusFaults> f =

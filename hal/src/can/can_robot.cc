@@ -79,8 +79,11 @@ std::optional<Message> CanRobot::await(double timeout_s,
       }
       ++stats_.bad_input;
       problem = in.error().message;
+      last_bad_input_ = problem;
       if (++bad > options_.max_bad_input) {
+        // A line this noisy is broken: no retry.
         problem = std::to_string(bad) + " bad inputs, the last: " + problem;
+        bus_failed = true;
         return std::nullopt;
       }
       continue;
@@ -98,8 +101,11 @@ std::optional<Message> CanRobot::await(double timeout_s,
     if (const auto* bad_message = std::get_if<Malformed>(&*decoded)) {
       ++stats_.bad_input;
       problem = "malformed " + bad_message->reason;
+      last_bad_input_ = problem;
       if (++bad > options_.max_bad_input) {
+        // A line this noisy is broken: no retry.
         problem = std::to_string(bad) + " bad inputs, the last: " + problem;
+        bus_failed = true;
         return std::nullopt;
       }
       continue;
@@ -145,7 +151,12 @@ JobReport CanRobot::link_failure(const std::string& what, double progress_m) {
   static_cast<void>(send(EmergencyStop{StopReason::kProtocolError}));
   JobReport report;
   report.progress_m = progress_m;
-  report.error = RobotError{RobotErrorKind::kMalfunction, "CAN link: " + what};
+  std::string reason = "CAN link: " + what;
+  // A timeout after dropped input: the input may say more than the timeout.
+  if (!last_bad_input_.empty() && what.find(last_bad_input_) == std::string::npos) {
+    reason += "; dropped before: " + last_bad_input_;
+  }
+  report.error = RobotError{RobotErrorKind::kMalfunction, std::move(reason)};
   return report;
 }
 
@@ -178,6 +189,7 @@ JobReport CanRobot::execute(const Job& job) {
   }
   const std::uint8_t seq = next_seq();
   const std::string name = "job " + std::to_string(seq);
+  last_bad_input_.clear();
   std::string problem;
   std::optional<JobResult> result;
   bool accepted = false;

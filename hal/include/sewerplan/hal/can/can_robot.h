@@ -71,7 +71,8 @@ class CanRobot final : public Robot {
  private:
   enum class Verdict { kTake, kAlive, kIgnore };
   // Waits for a message that `judge` takes; kAlive answers restart the window of `timeout_s`.
-  // Empty with `problem` set when the window passes, the bus fails or bad input piles up.
+  // Empty with `problem` set when the window passes, and with `bus_failed` set too when the bus
+  // fails or bad input piles up beyond max_bad_input (no retry helps then).
   std::optional<Message> await(double timeout_s,
                                const std::function<Verdict(const Message&)>& judge,
                                std::string& problem, bool& bus_failed);
@@ -93,6 +94,7 @@ class CanRobot final : public Robot {
   CanLinkStats stats_;
   std::uint8_t seq_ = 0;
   std::uint8_t heartbeat_counter_ = 0;
+  std::string last_bad_input_;  // in the current job, for its failure's reason
   double last_heartbeat_s_ = -1e300;
 };
 
