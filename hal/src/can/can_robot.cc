@@ -226,7 +226,6 @@ JobReport CanRobot::execute(const Job& job) {
         problem = "the node could not read " + name;
         break;
       case AckCode::kRefused: {
-        ++stats_.emergency_stops;
         JobReport report;
         report.error = RobotError{RobotErrorKind::kMalfunction,
                                   "the node refused " + name + ": stopped until a reboot"};
