@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // sewerplan simulate --map MAP --mission MISSION [--faults FILE | --random-faults SEED[,RATE]]
 //                    [--recovery FILE] [--allow-push] [--log FILE] [--quiet]
+//                    [--can slcan:TTY|socketcan:IFACE | --replay CANDUMP.log] [--can-log FILE]
 #include <fstream>
 #include <iostream>
 #include <ostream>
@@ -14,7 +15,9 @@
 #include "sewerplan/hal/fault_scenario.h"
 #include "sewerplan/hal/sim_robot.h"
 
+#include "can_link.h"
 #include "command.h"
+#include "sim_setup.h"
 
 namespace sewerplan::cli {
 namespace {
@@ -28,37 +31,8 @@ struct SimulateOptions {
   bool allow_push = false;
   std::string log;
   bool quiet = false;
+  CanLinkOptions can;  // the robot over a CAN bus (docs/can.md)
 };
-
-// The simulated robot starts where the mission puts it; in a pipe it faces the pipe's ends[1],
-// as fusion assumes (fusion/fuse.h).
-hal::SimPose start_pose(const domain::RobotPosition& p) {
-  if (const auto* in = std::get_if<domain::InManhole>(&p)) return hal::InManhole{in->manhole};
-  if (const auto* at = std::get_if<domain::AtSlot>(&p)) return hal::AtSlot{at->manhole, at->slot};
-  const auto& pipe = std::get<domain::InPipe>(p);
-  return hal::InPipe{pipe.pipe, pipe.offset_m, hal::Heading::kTowardsEnd1};
-}
-
-Result<hal::FaultScenario> faults_for(const SimulateOptions& o, const SewerMap& map,
-                                      Diagnostics& diagnostics) {
-  if (!o.faults.empty()) return hal::read_faults(o.faults, map, diagnostics);
-  if (o.random_faults.empty()) return hal::FaultScenario{};
-  // SEED[,RATE]: RATE obstacles per km of drivable pipe (default 20), a quarter as many danger
-  // spots, and one malfunction per 2 hours.
-  const auto comma = o.random_faults.find(',');
-  hal::RandomFaultOptions r;
-  try {
-    r.seed = std::stoull(o.random_faults.substr(0, comma));
-    r.obstacle_rate_per_km =
-        comma == std::string::npos ? 20.0 : std::stod(o.random_faults.substr(comma + 1));
-  } catch (const std::exception&) {
-    return Error{ErrorCode::kInvalidArgument,
-                 "--random-faults: expected SEED[,RATE], got '" + o.random_faults + "'"};
-  }
-  r.danger_rate_per_km = r.obstacle_rate_per_km / 4;
-  r.malfunction_rate_per_hour = 0.5;
-  return hal::random_faults(map, r);
-}
 
 int run(const SimulateOptions& o, Context& c) {
   Diagnostics diagnostics;
@@ -66,7 +40,7 @@ int run(const SimulateOptions& o, Context& c) {
   Result<Mission> mission =
       map.has_value() ? read_mission(o.mission, *map, diagnostics) : Result<Mission>(map.error());
   Result<hal::FaultScenario> faults = mission.has_value()
-                                          ? faults_for(o, *map, diagnostics)
+                                          ? faults_for(o.faults, o.random_faults, *map, diagnostics)
                                           : Result<hal::FaultScenario>(mission.error());
   print_diagnostics(diagnostics, c.err);
   if (!faults.has_value()) {
@@ -96,10 +70,21 @@ int run(const SimulateOptions& o, Context& c) {
   }
   executor::EventLog log(o.log.empty() ? nullptr : &log_file, o.quiet ? nullptr : &c.out);
   executor::Replanner replanner(*map, *mission);
-  hal::SimRobot robot(*map, mission->profile, start_pose(replanner.progress().position), *faults);
+  std::unique_ptr<CanLink> can;
+  if (!o.can.bus.empty() || !o.can.replay.empty()) {
+    Result<std::unique_ptr<CanLink>> link = CanLink::open(o.can);
+    if (!link.has_value()) {
+      c.err << link.error().message << '\n';
+      return exit_code_for(link.error());
+    }
+    can = std::move(*link);
+  }
+  hal::SimRobot sim(*map, mission->profile, start_pose(replanner.progress().position), *faults);
+  hal::Robot& robot = can ? static_cast<hal::Robot&>(can->robot()) : sim;
   const executor::MissionReport report =
       executor::Executor(*map, replanner, robot, options, log).run();
   c.out << '\n' << report;
+  if (can) can->write_summary(c.err);
   return report.outcome == executor::MissionReport::Outcome::kEnded ? kExitOk : kExitNoPlan;
 }
 
@@ -115,14 +100,23 @@ void add_simulate_command(CLI::App& app, Context& context) {
   cmd->add_option("--mission", options->mission, "Mission file (.json)")->required();
   auto* faults =
       cmd->add_option("--faults", options->faults, "Fault scenario (docs/simulation.md)");
-  cmd->add_option("--random-faults", options->random_faults,
-                  "Random faults: SEED[,RATE] (RATE obstacles per km, default 20)")
-      ->excludes(faults);
+  auto* random = cmd->add_option("--random-faults", options->random_faults,
+                                 "Random faults: SEED[,RATE] (RATE obstacles per km, default 20)");
+  random->excludes(faults);
   cmd->add_option("--recovery", options->recovery, "Recovery settings (JSON, docs/executor.md)");
   cmd->add_flag("--allow-push", options->allow_push,
                 "Allow recovery phase 3, pushing an obstacle (off for real sewers)");
   cmd->add_option("--log", options->log, "Write the event log as JSON lines");
   cmd->add_flag("-q,--quiet", options->quiet, "Only the final report");
+  auto* can =
+      cmd->add_option("--can", options->can.bus,
+                      "Run on a robot over CAN: slcan:TTY or socketcan:IFACE (docs/can.md)");
+  auto* replay = cmd->add_option("--replay", options->can.replay,
+                                 "Run on the replay of a candump log of an earlier --can run")
+                     ->excludes(can);
+  cmd->add_option("--can-log", options->can.log, "Record the CAN traffic as a candump log");
+  faults->excludes(can)->excludes(replay);
+  random->excludes(can)->excludes(replay);
   cmd->callback([options, &context] { context.exit_code = run(*options, context); });
 }
 

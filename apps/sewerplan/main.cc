@@ -11,6 +11,8 @@ namespace sewerplan::cli {
 int exit_code_for(const Error& error) {
   switch (error.code) {
     case ErrorCode::kIo:
+    case ErrorCode::kCanTimeout:
+    case ErrorCode::kBusError:
       return kExitIo;
     case ErrorCode::kInvalidArgument:
       return kExitUsage;
@@ -51,6 +53,7 @@ int main(int argc, char** argv) {
   add_export_pddl_command(app, context);
   add_import_plan_command(app, context);
   add_simulate_command(app, context);
+  add_sim_node_command(app, context);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -25,6 +25,10 @@ std::string_view to_string(ErrorCode code) {
       return "search-limit";
     case ErrorCode::kCancelled:
       return "cancelled";
+    case ErrorCode::kCanTimeout:
+      return "can-timeout";
+    case ErrorCode::kBusError:
+      return "bus-error";
   }
   return "unknown";
 }

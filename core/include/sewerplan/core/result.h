@@ -38,6 +38,8 @@ enum class ErrorCode {
   kNoPlan,             // no plan exists: a task, an exit or the battery is out of reach
   kSearchLimit,        // the search stopped at its time or expansion limit without a plan
   kCancelled,          // the search was cancelled from another thread
+  kCanTimeout,         // a CAN peer did not answer within its deadline (hal/can/)
+  kBusError,           // a CAN bus or adapter failed: bus-off, no CAN support, a broken link
 };
 
 std::string_view to_string(ErrorCode code);

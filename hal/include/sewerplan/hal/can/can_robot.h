@@ -1,0 +1,101 @@
+// SPDX-License-Identifier: MIT
+// CanRobot: the robot behind hal::Robot (robot.h) reached over a CAN bus with the job protocol
+// (job_protocol.h, docs/can-protocol.md), so that the executor runs the same jobs on the
+// simulated robot or on a real one.
+//
+// execute() sends the job, waits for its acknowledgement (a timeout and a bounded number of
+// attempts), follows progress, and returns the node's report: progress, duration and energy are
+// the node's, so a run over the bus is as deterministic as the node behind it. Wall time, from
+// the injected Clock, is used only for timeouts. Anything that goes wrong on the bus - no answer,
+// a lost link, bus-off, garbled or malformed frames beyond what a retry repairs - ends the job as
+// a MALFUNCTION whose reason says what happened, after an emergency stop; nothing waits without a
+// deadline and nothing throws. reboot() recovers the bus and asks the node to restart, which the
+// executor does after a malfunction; activate_beacon() asks the node to switch the beacon on.
+//
+//   Result<std::unique_ptr<SlcanBus>> bus = SlcanBus::open("/dev/ttyUSB0", {});
+//   CanRobot robot(**bus, {});
+//   if (Result<void> up = robot.connect(); !up.has_value()) ...  // no node answers
+//   JobReport r = robot.execute(DriveForward{.speed_mps = 0.3, .distance_m = 12});
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "sewerplan/core/clock.h"
+#include "sewerplan/hal/can/can_bus.h"
+#include "sewerplan/hal/can/job_protocol.h"
+#include "sewerplan/hal/robot.h"
+
+namespace sewerplan::hal {
+
+struct CanRobotOptions {
+  double ack_timeout_s = 0.5;      // for an acknowledgement, a status or a reboot result
+  double link_timeout_s = 2.0;     // the longest silence from the node while a job runs
+  double job_timeout_s = 3600.0;   // the longest job
+  int attempts = 3;                // sends of a message before giving up (>= 1)
+  double heartbeat_s = 0.5;        // the controller's heartbeat period while it waits
+  std::size_t max_bad_input = 16;  // garbled or malformed frames tolerated in one exchange
+  const Clock* clock = nullptr;    // for timeouts; empty: a SteadyClock
+};
+
+// What the link has seen, for the report and for tests.
+struct CanLinkStats {
+  std::size_t retries = 0;          // messages sent again after a timeout or a rejection
+  std::size_t timeouts = 0;         // waits that ended without an answer
+  std::size_t bad_input = 0;        // garbled lines and malformed messages dropped
+  std::size_t stale_messages = 0;   // answers to an older exchange, ignored
+  std::size_t bus_errors = 0;       // errors reported by the bus (bus-off, BEL, closed line)
+  std::size_t emergency_stops = 0;  // sent after a failed exchange
+  std::size_t link_failures = 0;    // jobs ended as a malfunction by the link
+};
+
+class CanRobot final : public Robot {
+ public:
+  // `bus` must outlive the robot.
+  explicit CanRobot(CanBus& bus, CanRobotOptions options = {});
+
+  // Asks the node for its status; an error (kCanTimeout, kBusError) when it does not answer.
+  Result<void> connect();
+
+  JobReport execute(const Job& job) override;
+  // The status that came with the node's last answer.
+  RobotStatus status() const override { return status_; }
+  Result<void> reboot() override;
+  void activate_beacon() override;
+
+  const CanLinkStats& stats() const { return stats_; }
+
+ private:
+  enum class Verdict { kTake, kAlive, kIgnore };
+  // Waits for a message that `judge` takes; kAlive answers restart the window of `timeout_s`.
+  // Empty with `problem` set when the window passes, and with `bus_failed` set too when the bus
+  // fails or bad input piles up beyond max_bad_input (no retry helps then).
+  std::optional<Message> await(double timeout_s,
+                               const std::function<Verdict(const Message&)>& judge,
+                               std::string& problem, bool& bus_failed);
+  Result<void> send(const Message& message);
+  // Sends `request` until `judge` takes an answer, at most options_.attempts times.
+  std::optional<Message> exchange(const Message& request, double timeout_s,
+                                  const std::function<Verdict(const Message&)>& judge,
+                                  std::string& problem);
+  JobReport link_failure(const std::string& what, double progress_m);
+  void heartbeat_if_due();
+  std::uint8_t next_seq() { return ++seq_; }
+
+  CanBus& bus_;
+  CanRobotOptions options_;
+  SteadyClock steady_;
+  const Clock* clock_;
+  MessageDecoder decoder_;
+  RobotStatus status_;
+  CanLinkStats stats_;
+  std::uint8_t seq_ = 0;
+  std::uint8_t heartbeat_counter_ = 0;
+  std::string last_bad_input_;  // in the current job, for its failure's reason
+  double last_heartbeat_s_ = -1e300;
+};
+
+}  // namespace sewerplan::hal

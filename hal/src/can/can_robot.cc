@@ -1,0 +1,316 @@
+// SPDX-License-Identifier: MIT
+#include "sewerplan/hal/can/can_robot.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "sewerplan/core/check.h"
+
+namespace sewerplan::hal {
+namespace {
+
+// A peer that floods the bus cannot keep a wait going for ever.
+constexpr std::size_t kMaxFramesPerWait = 100000;
+
+std::string seconds_text(double s) {
+  std::ostringstream os;
+  os << s << " s";
+  return os.str();
+}
+
+}  // namespace
+
+CanRobot::CanRobot(CanBus& bus, CanRobotOptions options)
+    : bus_(bus), options_(options), clock_(options.clock != nullptr ? options.clock : &steady_) {
+  SEWER_CHECK(options_.attempts >= 1, "CanRobot: attempts must be >= 1");
+  SEWER_CHECK(options_.ack_timeout_s > 0 && options_.link_timeout_s > 0 &&
+                  options_.job_timeout_s > 0 && options_.heartbeat_s > 0,
+              "CanRobot: timeouts must be > 0");
+}
+
+Result<void> CanRobot::send(const Message& message) {
+  for (const CanFrame& frame : encode(message)) {
+    if (Result<void> sent = bus_.send(frame); !sent.has_value()) {
+      ++stats_.bus_errors;
+      return sent;
+    }
+  }
+  return {};
+}
+
+void CanRobot::heartbeat_if_due() {
+  const double now_s = clock_->now_s();
+  if (now_s - last_heartbeat_s_ < options_.heartbeat_s) return;
+  last_heartbeat_s_ = now_s;
+  static_cast<void>(send(Heartbeat{false, NodeState::kIdle, heartbeat_counter_++, seq_}));
+}
+
+std::optional<Message> CanRobot::await(double timeout_s,
+                                       const std::function<Verdict(const Message&)>& judge,
+                                       std::string& problem, bool& bus_failed) {
+  const double start_s = clock_->now_s();
+  double window_start_s = start_s;
+  double waited_s = 0;  // wall time spent in empty receives: bounds the wait under any Clock
+  std::size_t bad = 0;
+  std::size_t frames = 0;
+  for (;;) {
+    const double now_s = clock_->now_s();
+    if (now_s - start_s >= options_.job_timeout_s) {
+      problem = "no end within the job timeout of " + seconds_text(options_.job_timeout_s);
+      ++stats_.timeouts;
+      return std::nullopt;
+    }
+    const double left_s = std::min(timeout_s - (now_s - window_start_s), timeout_s - waited_s);
+    if (left_s <= 0) {
+      problem = "no answer within " + seconds_text(timeout_s);
+      ++stats_.timeouts;
+      return std::nullopt;
+    }
+    heartbeat_if_due();
+    const double slice_s = std::min(left_s, options_.heartbeat_s);
+    Result<std::optional<CanFrame>> in = bus_.receive(slice_s);
+    if (!in.has_value()) {
+      if (in.error().code == ErrorCode::kBusError) {
+        ++stats_.bus_errors;
+        bus_failed = true;
+        problem = in.error().message;
+        return std::nullopt;
+      }
+      ++stats_.bad_input;
+      problem = in.error().message;
+      last_bad_input_ = problem;
+      if (++bad > options_.max_bad_input) {
+        // A line this noisy is broken: no retry.
+        problem = std::to_string(bad) + " bad inputs, the last: " + problem;
+        bus_failed = true;
+        return std::nullopt;
+      }
+      continue;
+    }
+    if (!in->has_value()) {
+      waited_s += slice_s;
+      continue;
+    }
+    if (++frames > kMaxFramesPerWait) {
+      problem = "flooded with " + std::to_string(frames) + " frames without an answer";
+      return std::nullopt;
+    }
+    std::optional<Decoded> decoded = decoder_.push(**in);
+    if (!decoded) continue;
+    if (const auto* bad_message = std::get_if<Malformed>(&*decoded)) {
+      ++stats_.bad_input;
+      problem = "malformed " + bad_message->reason;
+      last_bad_input_ = problem;
+      if (++bad > options_.max_bad_input) {
+        // A line this noisy is broken: no retry.
+        problem = std::to_string(bad) + " bad inputs, the last: " + problem;
+        bus_failed = true;
+        return std::nullopt;
+      }
+      continue;
+    }
+    Message& message = std::get<Message>(*decoded);
+    if (!sent_by_node(message_type(message))) continue;  // another controller's, or an echo
+    switch (judge(message)) {
+      case Verdict::kTake:
+        return std::move(message);
+      case Verdict::kAlive:
+        window_start_s = clock_->now_s();
+        waited_s = 0;
+        break;
+      case Verdict::kIgnore:
+        if (!std::holds_alternative<Heartbeat>(message)) ++stats_.stale_messages;
+        break;
+    }
+  }
+}
+
+std::optional<Message> CanRobot::exchange(const Message& request, double timeout_s,
+                                          const std::function<Verdict(const Message&)>& judge,
+                                          std::string& problem) {
+  for (int attempt = 0; attempt < options_.attempts; ++attempt) {
+    if (attempt > 0) ++stats_.retries;
+    if (Result<void> sent = send(request); !sent.has_value()) {
+      problem = sent.error().message;
+      return std::nullopt;
+    }
+    bool bus_failed = false;
+    if (std::optional<Message> answer = await(timeout_s, judge, problem, bus_failed)) {
+      return answer;
+    }
+    if (bus_failed) return std::nullopt;
+  }
+  problem += " (" + std::to_string(options_.attempts) + " attempts)";
+  return std::nullopt;
+}
+
+JobReport CanRobot::link_failure(const std::string& what, double progress_m) {
+  ++stats_.link_failures;
+  ++stats_.emergency_stops;
+  static_cast<void>(send(EmergencyStop{StopReason::kProtocolError}));
+  JobReport report;
+  report.progress_m = progress_m;
+  std::string reason = "CAN link: " + what;
+  // A timeout after dropped input: the input may say more than the timeout.
+  if (!last_bad_input_.empty() && what.find(last_bad_input_) == std::string::npos) {
+    reason += "; dropped before: " + last_bad_input_;
+  }
+  report.error = RobotError{RobotErrorKind::kMalfunction, std::move(reason)};
+  return report;
+}
+
+Result<void> CanRobot::connect() {
+  const std::uint8_t seq = next_seq();
+  std::string problem;
+  std::optional<Message> answer = exchange(
+      Request{RequestKind::kStatus, seq}, options_.ack_timeout_s,
+      [seq](const Message& m) {
+        const auto* s = std::get_if<StatusReply>(&m);
+        return s != nullptr && s->seq == seq ? Verdict::kTake : Verdict::kIgnore;
+      },
+      problem);
+  if (!answer) {
+    return Error{ErrorCode::kCanTimeout, bus_.name() + ": no node answered: " + problem};
+  }
+  status_ = std::get<StatusReply>(*answer).status;
+  return {};
+}
+
+JobReport CanRobot::execute(const Job& job) {
+  if (const auto* turn = std::get_if<TurnInManhole>(&job);
+      turn != nullptr && turn->waypoints.size() > (kMaxDataFrames - 5) / 4) {
+    JobReport report;
+    report.error = RobotError{RobotErrorKind::kMalfunction,
+                              "invalid job: " + std::to_string(turn->waypoints.size()) +
+                                  " waypoints, the CAN protocol carries at most " +
+                                  std::to_string((kMaxDataFrames - 5) / 4)};
+    return report;
+  }
+  const std::uint8_t seq = next_seq();
+  const std::string name = "job " + std::to_string(seq);
+  last_bad_input_.clear();
+  std::string problem;
+  std::optional<JobResult> result;
+  bool accepted = false;
+  for (int attempt = 0; attempt < options_.attempts && !accepted && !result; ++attempt) {
+    if (attempt > 0) ++stats_.retries;
+    if (Result<void> sent = send(JobCommand{seq, job}); !sent.has_value()) {
+      return link_failure("cannot send " + name + ": " + sent.error().message, 0);
+    }
+    bool bus_failed = false;
+    std::optional<Message> answer = await(
+        options_.ack_timeout_s,
+        [seq](const Message& m) {
+          const auto* ack = std::get_if<JobAck>(&m);
+          const auto* r = std::get_if<JobResult>(&m);
+          const bool ours = (ack != nullptr && ack->seq == seq) || (r != nullptr && r->seq == seq);
+          return ours ? Verdict::kTake : Verdict::kIgnore;
+        },
+        problem, bus_failed);
+    if (bus_failed) return link_failure(problem, 0);
+    if (!answer) continue;
+    if (auto* r = std::get_if<JobResult>(&*answer)) {
+      result = std::move(*r);  // the acknowledgement was lost, the result was not
+      break;
+    }
+    const JobAck& ack = std::get<JobAck>(*answer);
+    switch (ack.code) {
+      case AckCode::kAccepted:
+        accepted = true;
+        break;
+      case AckCode::kIncomplete:
+        problem = "the node missed frame " + std::to_string(ack.detail) + " of " + name;
+        break;
+      case AckCode::kCorrupt:
+        problem = "the node could not read " + name;
+        break;
+      case AckCode::kRefused: {
+        JobReport report;
+        report.error = RobotError{RobotErrorKind::kMalfunction,
+                                  "the node refused " + name + ": stopped until a reboot"};
+        return report;
+      }
+    }
+  }
+  if (!accepted && !result) {
+    return link_failure("no acknowledgement of " + name + ": " + problem + " (" +
+                            std::to_string(options_.attempts) + " attempts)",
+                        0);
+  }
+  double progress_m = 0;
+  for (int attempt = 0; attempt < options_.attempts && !result; ++attempt) {
+    if (attempt > 0) {
+      ++stats_.retries;
+      if (Result<void> sent = send(Request{RequestKind::kResult, seq}); !sent.has_value()) {
+        return link_failure("cannot ask for the result of " + name + ": " + sent.error().message,
+                            progress_m);
+      }
+    }
+    bool bus_failed = false;
+    std::optional<Message> answer = await(
+        options_.link_timeout_s,
+        [seq, &progress_m](const Message& m) {
+          if (const auto* r = std::get_if<JobResult>(&m); r != nullptr && r->seq == seq) {
+            return Verdict::kTake;
+          }
+          if (const auto* p = std::get_if<JobProgress>(&m); p != nullptr && p->seq == seq) {
+            progress_m = p->progress_m;
+            return Verdict::kAlive;
+          }
+          if (const auto* h = std::get_if<Heartbeat>(&m);
+              h != nullptr && h->state == NodeState::kBusy) {
+            return Verdict::kAlive;
+          }
+          return Verdict::kIgnore;
+        },
+        problem, bus_failed);
+    if (bus_failed) return link_failure(problem, progress_m);
+    if (answer) result = std::move(std::get<JobResult>(*answer));
+  }
+  if (!result) {
+    return link_failure("no result of " + name + ": " + problem + " (" +
+                            std::to_string(options_.attempts) + " attempts)",
+                        progress_m);
+  }
+  status_ = result->status;
+  return result->report;
+}
+
+Result<void> CanRobot::reboot() {
+  if (Result<void> recovered = bus_.recover(); !recovered.has_value()) {
+    return Error{ErrorCode::kBusError, "reboot failed: " + recovered.error().message};
+  }
+  const std::uint8_t seq = next_seq();
+  std::string problem;
+  std::optional<Message> answer = exchange(
+      Request{RequestKind::kReboot, seq}, options_.link_timeout_s,
+      [seq](const Message& m) {
+        const auto* r = std::get_if<RebootResult>(&m);
+        return r != nullptr && r->seq == seq ? Verdict::kTake : Verdict::kIgnore;
+      },
+      problem);
+  if (!answer) {
+    return Error{ErrorCode::kCanTimeout, "reboot failed: no answer over CAN: " + problem};
+  }
+  const RebootResult& r = std::get<RebootResult>(*answer);
+  status_ = r.status;
+  // The node's words, as the simulated robot's: "reboot failed: ...".
+  if (r.failure) return Error{ErrorCode::kIo, *r.failure};
+  return {};
+}
+
+void CanRobot::activate_beacon() {
+  const std::uint8_t seq = next_seq();
+  std::string problem;
+  std::optional<Message> answer = exchange(
+      Request{RequestKind::kBeacon, seq}, options_.ack_timeout_s,
+      [seq](const Message& m) {
+        const auto* s = std::get_if<StatusReply>(&m);
+        return s != nullptr && s->seq == seq ? Verdict::kTake : Verdict::kIgnore;
+      },
+      problem);
+  if (answer) status_ = std::get<StatusReply>(*answer).status;
+}
+
+}  // namespace sewerplan::hal

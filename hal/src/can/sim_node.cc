@@ -1,0 +1,178 @@
+// SPDX-License-Identifier: MIT
+#include "sewerplan/hal/can/sim_node.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <thread>
+
+#include "sewerplan/core/overloaded.h"
+
+namespace sewerplan::hal {
+namespace {
+
+// What goes on the line for a garbage fault: a truncated frame, a line with a bad digit and noise.
+constexpr std::string_view kGarbage = "t12\rT0220Z0008DEADBEEFXY\r\x01\xff\xfe\r";
+
+bool contains(const std::vector<std::uint64_t>& list, std::uint64_t value) {
+  return std::find(list.begin(), list.end(), value) != list.end();
+}
+
+}  // namespace
+
+SimNode::SimNode(CanBus& bus, SimRobot& robot, SimNodeOptions options, FaultableLine* line)
+    : bus_(bus),
+      robot_(robot),
+      options_(std::move(options)),
+      line_(line),
+      clock_(options_.clock != nullptr ? options_.clock : &steady_),
+      rng_(options_.faults.seed) {}
+
+Result<void> SimNode::serve(const std::atomic<bool>& stop) {
+  while (!stop.load()) {
+    if (Result<void> r = poll(0.05); !r.has_value()) return r;
+  }
+  return {};
+}
+
+Result<void> SimNode::poll(double timeout_s) {
+  heartbeat_if_due();
+  Result<std::optional<CanFrame>> in = bus_.receive(timeout_s);
+  if (!in.has_value()) {
+    // Garbage is dropped; a closed line ends the service.
+    if (in.error().code == ErrorCode::kBusError) return in.error();
+    ++stats_.malformed;
+    return {};
+  }
+  if (!in->has_value()) return {};
+  std::optional<Decoded> decoded = decoder_.push(**in);
+  if (!decoded) return {};
+  std::visit(Overloaded{
+                 [&](const Message& m) { handle(m); },
+                 [&](const Malformed& m) { handle_malformed(m); },
+             },
+             *decoded);
+  return {};
+}
+
+void SimNode::heartbeat_if_due() {
+  if (options_.heartbeat_s <= 0) return;
+  const double now_s = clock_->now_s();
+  if (now_s - last_heartbeat_s_ < options_.heartbeat_s) return;
+  last_heartbeat_s_ = now_s;
+  const NodeState state = estop_latched_ ? NodeState::kStopped : NodeState::kIdle;
+  const std::uint8_t last = last_job_ ? last_job_->seq : 0;
+  for (const CanFrame& f : encode(Heartbeat{true, state, heartbeat_counter_++, last})) {
+    static_cast<void>(bus_.send(f));
+  }
+}
+
+void SimNode::send(const Message& message) {
+  const BusFaults& faults = options_.faults;
+  for (const CanFrame& frame : encode(message)) {
+    const std::uint64_t index = frames_sent_++;
+    if (line_ != nullptr && contains(faults.garbage_before, index)) {
+      line_->write_garbage(kGarbage);
+      ++stats_.garbage_written;
+    }
+    const bool drop_by_rate = faults.drop_rate > 0 && rng_.bernoulli(faults.drop_rate);
+    if (contains(faults.drop_frames, index) || drop_by_rate) {
+      ++stats_.frames_dropped;
+      continue;
+    }
+    static_cast<void>(bus_.send(frame));
+  }
+}
+
+void SimNode::handle(const Message& message) {
+  if (!std::holds_alternative<Heartbeat>(message) && sent_by_node(message_type(message))) return;
+  if (std::holds_alternative<Heartbeat>(message)) return;  // the controller is alive
+  const std::uint64_t request = stats_.requests++;
+  const BusFaults& faults = options_.faults;
+  if (faults.silence && request >= faults.silence->from_request &&
+      request < faults.silence->from_request + faults.silence->requests) {
+    ++stats_.ignored;
+    return;
+  }
+  if (faults.bus_off_at && *faults.bus_off_at == request) {
+    ++stats_.ignored;
+    if (line_ != nullptr) line_->enter_bus_off();
+    return;
+  }
+  std::visit(Overloaded{
+                 [&](const JobCommand& m) { handle_job(m); },
+                 [&](const Request& m) { handle_request(m); },
+                 [&](const EmergencyStop&) {
+                   ++stats_.emergency_stops;
+                   estop_latched_ = true;
+                   send(EmergencyStopAck{});
+                 },
+                 [](const auto&) {},
+             },
+             message);
+}
+
+void SimNode::handle_job(const JobCommand& command) {
+  if (last_job_ && *last_job_ == command) {
+    ++stats_.repeats;
+    for (const Message& m : last_job_answer_) send(m);
+    return;
+  }
+  if (estop_latched_) {
+    send(JobAck{command.seq, AckCode::kRefused, 0});
+    return;
+  }
+  const BusFaults& faults = options_.faults;
+  if (faults.late_ack && faults.late_ack->job == stats_.jobs_run) {
+    std::this_thread::sleep_for(std::chrono::duration<double>(faults.late_ack->delay_s));
+  }
+  ++stats_.jobs_run;
+  const JobReport report = robot_.execute(command.job);
+  last_job_ = command;
+  last_job_answer_ = {JobAck{command.seq, AckCode::kAccepted, 0},
+                      JobProgress{command.seq, report.progress_m},
+                      JobResult{command.seq, report, robot_.status()}};
+  for (const Message& m : last_job_answer_) send(m);
+}
+
+void SimNode::handle_request(const Request& request) {
+  switch (request.kind) {
+    case RequestKind::kStatus:
+      send(StatusReply{request.seq, robot_.status()});
+      return;
+    case RequestKind::kResult:
+      if (last_job_ && last_job_->seq == request.seq) {
+        ++stats_.repeats;
+        send(last_job_answer_.back());
+      }
+      return;
+    case RequestKind::kReboot: {
+      if (last_reboot_ && last_reboot_->seq == request.seq) {
+        ++stats_.repeats;
+        send(*last_reboot_);
+        return;
+      }
+      const Result<void> rebooted = robot_.reboot();
+      if (rebooted.has_value()) estop_latched_ = false;
+      last_reboot_ = RebootResult{
+          request.seq,
+          rebooted.has_value() ? std::nullopt : std::optional(rebooted.error().message),
+          robot_.status()};
+      send(*last_reboot_);
+      return;
+    }
+    case RequestKind::kBeacon:
+      robot_.activate_beacon();
+      send(StatusReply{request.seq, robot_.status()});
+      return;
+  }
+}
+
+void SimNode::handle_malformed(const Malformed& malformed) {
+  ++stats_.malformed;
+  if (malformed.type != MessageType::kJob) return;
+  const bool missing = malformed.reason.find("missing") != std::string::npos;
+  send(JobAck{malformed.seq, missing ? AckCode::kIncomplete : AckCode::kCorrupt, 0});
+}
+
+}  // namespace sewerplan::hal

@@ -1,0 +1,119 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# The CAN commands end to end (docs/can.md): `sim-node --pty` serves the simulated robot over
+# SLCAN, `simulate --can slcan:PTY` runs the paper's mission through it with the report and event
+# log of the in-process run, `--can-log` records a candump log and `--replay` plays it back; and
+# the errors name the bus or the file. Usage: can_cli_test.sh PATH_TO_SEWERPLAN SOURCE_DIR
+set -uo pipefail
+sp=$1
+src=$2
+tmp=$(mktemp -d)
+node_pid=""
+cleanup() {
+  if [ -n "$node_pid" ]; then kill "$node_pid" 2>/dev/null; wait "$node_pid" 2>/dev/null; fi
+  rm -rf "$tmp"
+}
+trap cleanup EXIT
+failures=0
+passed=0
+
+expect() {
+  local code=$1 pattern=$2
+  shift 3
+  local out
+  out=$("$@" 2>&1)
+  local got=$?
+  if [ "$got" -ne "$code" ] || ! grep -qE -- "$pattern" <<<"$out"; then
+    echo "FAIL: $* -> exit $got (want $code), output:"
+    echo "$out" | head -20
+    echo "(wanted /$pattern/)"
+    failures=$((failures + 1))
+  else
+    passed=$((passed + 1))
+  fi
+}
+
+same() {  # same WHAT FILE_A FILE_B
+  if cmp -s "$2" "$3"; then
+    passed=$((passed + 1))
+  else
+    echo "FAIL: $1 differ:"
+    diff "$2" "$3" | head -10
+    failures=$((failures + 1))
+  fi
+}
+
+# Starts a node with extra options; sets node_pid and pty.
+start_node() {
+  "$sp" sim-node --pty --map "$ais" --mission "$mission" "$@" > "$tmp/node.out" 2> "$tmp/node.err" &
+  node_pid=$!
+  pty=""
+  for _ in $(seq 1 100); do
+    pty=$(head -1 "$tmp/node.out" 2>/dev/null)
+    [ -n "$pty" ] && break
+    sleep 0.05
+  done
+  if [ -z "$pty" ]; then
+    echo "FAIL: sim-node printed no pty"; cat "$tmp/node.err"; failures=$((failures + 1))
+  fi
+}
+
+stop_node() {
+  kill "$node_pid" 2>/dev/null
+  wait "$node_pid" 2>/dev/null
+  node_pid=""
+}
+
+# Planning times are wall-clock: not compared.
+strip_planning() { sed -E 's/"planning_ms":[0-9.e+-]+//g; s/\(planning [^)]*\)//' "$1"; }
+
+ais=$src/datasets/ais-testbed/map.json
+mission=$src/datasets/ais-testbed/missions/paper.json
+demo=$src/datasets/ais-testbed/faults/demo.json
+
+# In process, then over the bus, then from the bus's candump log.
+"$sp" simulate --map "$ais" --mission "$mission" --faults "$demo" --log "$tmp/local.jsonl" -q > "$tmp/local.out"
+start_node --faults "$demo"
+# (One mission per node: the node's robot stays where the mission left it.)
+"$sp" simulate --map "$ais" --mission "$mission" --can "slcan:$pty" --can-log "$tmp/run.log" \
+  --log "$tmp/can.jsonl" -q > "$tmp/can.out" 2> "$tmp/can.err"
+stop_node
+expect 0 'mission ended at pipe P9' -- cat "$tmp/can.out"
+expect 0 "CAN link slcan:$pty: 0 retries, 0 timeouts" -- cat "$tmp/can.err"
+expect 0 'sim-node: 33 requests, 32 jobs run' -- cat "$tmp/node.err"
+"$sp" simulate --map "$ais" --mission "$mission" --replay "$tmp/run.log" --log "$tmp/replay.jsonl" -q > "$tmp/replay.out" 2> /dev/null
+strip_planning "$tmp/local.jsonl" > "$tmp/a"; strip_planning "$tmp/can.jsonl" > "$tmp/b"
+same "event logs in process and over SLCAN" "$tmp/a" "$tmp/b"
+strip_planning "$tmp/replay.jsonl" > "$tmp/c"
+same "event logs over SLCAN and replayed" "$tmp/b" "$tmp/c"
+strip_planning "$tmp/local.out" > "$tmp/a"; strip_planning "$tmp/can.out" > "$tmp/b"
+strip_planning "$tmp/replay.out" > "$tmp/c"
+same "reports in process and over SLCAN" "$tmp/a" "$tmp/b"
+same "reports in process and replayed" "$tmp/a" "$tmp/c"
+expect 0 '^\([0-9]{10}\.[0-9]{6}\) can0 [0-9A-F]{8}#[0-9A-F]*$' -- head -1 "$tmp/run.log"
+
+# A node that falls silent for three requests: a malfunction, a reboot over the bus, and on.
+start_node --bus-faults 'silence=5+3'
+expect 0 'reason=CAN link: no acknowledgement of job' -- "$sp" simulate --map "$ais" \
+  --mission "$mission" --can "slcan:$pty"
+stop_node
+
+# Errors name what is wrong.
+expect 2 "--can: expected slcan:TTY or socketcan:INTERFACE, got 'can0'" -- \
+  "$sp" simulate --map "$ais" --mission "$mission" --can can0
+expect 3 'slcan:/dev/no-such-tty: cannot open' -- \
+  "$sp" simulate --map "$ais" --mission "$mission" --can slcan:/dev/no-such-tty
+expect 3 'socketcan:nosuchcan0: (this kernel has no CAN support|no such network interface)' -- \
+  "$sp" simulate --map "$ais" --mission "$mission" --can socketcan:nosuchcan0
+expect 3 'missing.log: cannot read the candump log' -- \
+  "$sp" simulate --map "$ais" --mission "$mission" --replay "$tmp/missing.log"
+printf '(1.000000) can0 123#00\n(2.000000) can0 123#0\n' > "$tmp/bad.log"
+expect 1 'bad.log:2: expected 0 to 8 data bytes' -- \
+  "$sp" simulate --map "$ais" --mission "$mission" --replay "$tmp/bad.log"
+expect 2 'excludes' -- "$sp" simulate --map "$ais" --mission "$mission" --faults "$demo" --can slcan:/dev/null
+expect 2 "--bus-faults: 'fire=1': unknown fault" -- \
+  "$sp" sim-node --pty --map "$ais" --mission "$mission" --bus-faults fire=1
+expect 2 'pty' -- "$sp" sim-node --map "$ais" --mission "$mission"
+
+echo "$passed passed, $failures failed"
+[ "$failures" -eq 0 ]

@@ -1,0 +1,205 @@
+// SPDX-License-Identifier: MIT
+// The job protocol's frames (docs/can-protocol.md): every message survives encode and decode bit
+// for bit, and malformed input is named, never trusted.
+#include <cmath>
+#include <limits>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "sewerplan/hal/can/job_protocol.h"
+
+namespace sewerplan::hal {
+namespace {
+
+using ::testing::HasSubstr;
+
+// Feeds all frames; the one message they make, or a test failure.
+Decoded decode_all(const std::vector<CanFrame>& frames) {
+  MessageDecoder decoder;
+  std::optional<Decoded> out;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    std::optional<Decoded> d = decoder.push(frames[i]);
+    if (d) {
+      EXPECT_EQ(i + 1, frames.size()) << "a message before the last frame";
+      out = std::move(d);
+    }
+  }
+  if (!out) {
+    ADD_FAILURE() << "no message";
+    return Malformed{};
+  }
+  return *out;
+}
+
+Message round_trip(const Message& m) {
+  const Decoded d = decode_all(encode(m));
+  if (const auto* bad = std::get_if<Malformed>(&d)) {
+    ADD_FAILURE() << bad->reason;
+    return m;
+  }
+  return std::get<Message>(d);
+}
+
+std::string malformed_reason(const std::vector<CanFrame>& frames) {
+  const Decoded d = decode_all(frames);
+  const auto* bad = std::get_if<Malformed>(&d);
+  return bad != nullptr ? bad->reason : std::string("decoded");
+}
+
+TEST(JobProtocol, EveryJobKindRoundTripsBitForBit) {
+  const std::vector<Job> jobs{
+      DriveForward{0.3, 12.345678901234567},
+      DriveBackward{0.25, 1e-9},
+      Push{0.1, 0.5},
+      TurnInManhole{2, 3, -94.5, -0.1, 1.0, 20.25, {}},
+      TurnInManhole{0,
+                    65535,
+                    45,
+                    0.05,
+                    1.2,
+                    7,
+                    {{0.1, 0.2, 0.0, 90}, {-0.3, 0.4, 0.05, 180.5}, {0, 0, 0, 0}}},
+      EnterPipeFromManhole{4, 12.5},
+      LiftHead{},
+      LowerHead{},
+      TakeSample{60},
+      Scan{0.2, 40.75, true},
+      Scan{0.2, 40.75, false},
+      Stop{},
+  };
+  for (const Job& job : jobs) {
+    const Message m = JobCommand{200, job};
+    EXPECT_EQ(round_trip(m), m) << job;
+  }
+}
+
+TEST(JobProtocol, ATurnCarriesAThousandWaypointsAsASequenceOfFrames) {
+  TurnInManhole t{1, 2, 30, 0, 1, 10, {}};
+  for (int i = 0; i < 1000; ++i) t.waypoints.push_back({i * 0.001, -i * 0.002, 0.01, i * 0.36});
+  const std::vector<CanFrame> frames = encode(JobCommand{9, t});
+  EXPECT_EQ(frames.size(), 1U + 4U + 4000U + 1U);  // header, 4 numbers, waypoints, end
+  EXPECT_EQ(round_trip(JobCommand{9, t}), Message(JobCommand{9, t}));
+}
+
+TEST(JobProtocol, ReportsStatusAndRebootsRoundTrip) {
+  const RobotStatus status{123.456, 789.01, 3600.5, true, false};
+  JobReport failed;
+  failed.error = RobotError{RobotErrorKind::kBlockage, "obstacle in P5 at 4.00 m"};
+  failed.progress_m = 3.95;
+  failed.duration_s = 13.166666666666666;
+  failed.energy_wh = 0.7315;
+  const std::vector<Message> messages{
+      JobResult{1, JobReport{std::nullopt, 10, 33.3, 1.5}, status},
+      JobResult{2, failed, status},
+      JobResult{3, {RobotError{RobotErrorKind::kDanger, "danger in P7 at 1.00 m"}, 0, 0, 0}, {}},
+      JobResult{4, {RobotError{RobotErrorKind::kMalfunction, std::string(300, 'x')}, 0, 0, 0}, {}},
+      StatusReply{5, status},
+      RebootResult{6, std::nullopt, status},
+      RebootResult{7, "reboot failed: permanent malfunction at job 3", status},
+      JobAck{8, AckCode::kIncomplete, 513},
+      JobProgress{9, 2.5},
+      Request{RequestKind::kReboot, 10},
+      Request{RequestKind::kBeacon, 11},
+      Request{RequestKind::kResult, 12},
+      Request{RequestKind::kStatus, 13},
+      EmergencyStop{StopReason::kLinkLost},
+      EmergencyStopAck{},
+      Heartbeat{true, NodeState::kStopped, 255, 17},
+      Heartbeat{false, NodeState::kIdle, 1, 0},
+  };
+  for (const Message& m : messages) EXPECT_EQ(round_trip(m), m) << m;
+}
+
+TEST(JobProtocol, IdentifiersAreExtendedAndOrderedByPriority) {
+  const std::vector<CanFrame> stop = encode(EmergencyStop{});
+  const std::vector<CanFrame> job = encode(JobCommand{1, Stop{}});
+  ASSERT_EQ(stop.size(), 1U);
+  EXPECT_TRUE(stop[0].extended);
+  EXPECT_EQ(stop[0].id, 0x00100000U);
+  EXPECT_EQ(job.front().id, 0x01001000U);  // type 0x010, seq 1, index 0
+  EXPECT_EQ(job.back().id, 0x01001FFFU);   // the end frame
+  EXPECT_LT(stop[0].id, job.front().id);   // an emergency stop wins arbitration
+}
+
+TEST(JobProtocol, NumbersAreLittleEndianBinary64) {
+  const std::vector<CanFrame> frames = encode(JobProgress{1, 1.0});
+  ASSERT_EQ(frames.size(), 1U);
+  const std::array<std::uint8_t, 8> one{0, 0, 0, 0, 0, 0, 0xf0, 0x3f};
+  EXPECT_EQ(frames[0].data, one);
+}
+
+TEST(JobProtocol, AMissingFrameIsNamed) {
+  std::vector<CanFrame> frames = encode(JobCommand{5, DriveForward{0.3, 2}});
+  frames.erase(frames.begin() + 1);
+  EXPECT_THAT(malformed_reason(frames), HasSubstr("job 5: frame 1 of 3 missing"));
+}
+
+TEST(JobProtocol, ACorruptedByteFailsTheCrc) {
+  std::vector<CanFrame> frames = encode(JobCommand{5, DriveForward{0.3, 2}});
+  frames[2].data[3] ^= 0x10U;
+  EXPECT_THAT(malformed_reason(frames), HasSubstr("CRC mismatch"));
+}
+
+TEST(JobProtocol, WrongLengthsKindsAndCountsAreMalformed) {
+  // Unknown job kind, with a correct CRC: the content is checked too.
+  std::vector<CanFrame> header{encode(JobCommand{1, Stop{}})[0]};
+  header[0].data[0] = 42;
+  EXPECT_THAT(std::get<Malformed>(decode_message(MessageType::kJob, 1, header)).reason,
+              HasSubstr("unknown job kind 42"));
+  // A drive without its distance.
+  std::vector<CanFrame> drive = encode(JobCommand{1, DriveForward{1, 2}});
+  drive.resize(2);
+  EXPECT_THAT(std::get<Malformed>(decode_message(MessageType::kJob, 1, drive)).reason,
+              HasSubstr("frame 2 missing"));
+  // A progress of 7 bytes, a NaN progress, an unknown outcome.
+  CanFrame progress = encode(JobProgress{3, 1})[0];
+  progress.dlc = 7;
+  EXPECT_THAT(std::get<Malformed>(decode_message(MessageType::kProgress, 3, {progress})).reason,
+              HasSubstr("has 7 bytes, expected 8"));
+  EXPECT_THAT(std::get<Malformed>(
+                  decode_all(encode(JobProgress{3, std::numeric_limits<double>::quiet_NaN()})))
+                  .reason,
+              HasSubstr("not a finite number"));
+  std::vector<CanFrame> result = encode(JobResult{4, {}, {}});
+  result.pop_back();
+  result[0].data[0] = 9;
+  EXPECT_THAT(std::get<Malformed>(decode_message(MessageType::kResult, 4, result)).reason,
+              HasSubstr("unknown outcome 9"));
+}
+
+TEST(JobProtocol, AnEndFrameAloneOrForAnotherSequenceIsMalformed) {
+  std::vector<CanFrame> a = encode(JobCommand{1, LiftHead{}});
+  std::vector<CanFrame> b = encode(JobCommand{2, LiftHead{}});
+  MessageDecoder decoder;
+  EXPECT_FALSE(decoder.push(a[0]));
+  const std::optional<Decoded> d = decoder.push(b[1]);  // end of 2 after data of 1
+  ASSERT_TRUE(d);
+  EXPECT_THAT(std::get<Malformed>(*d).reason, HasSubstr("end frame without data frames"));
+}
+
+TEST(JobProtocol, ForeignFramesAreCountedAndIgnored) {
+  MessageDecoder decoder;
+  EXPECT_FALSE(decoder.push(*make_can_frame(0x123, false, {1, 2, 3})));
+  EXPECT_FALSE(decoder.push(*make_can_frame(0x1fffffff, true, {})));
+  EXPECT_FALSE(decoder.push(*make_remote_frame(0x01001000, true, 8)));
+  EXPECT_EQ(decoder.foreign_frames(), 3U);
+}
+
+TEST(JobProtocol, ARetransmittedMessageDecodesAgain) {
+  const std::vector<CanFrame> frames = encode(JobResult{7, {}, {}});
+  MessageDecoder decoder;
+  int complete = 0;
+  for (int copy = 0; copy < 2; ++copy) {
+    for (const CanFrame& f : frames) complete += decoder.push(f) ? 1 : 0;
+  }
+  EXPECT_EQ(complete, 2);
+}
+
+TEST(JobProtocol, Crc32IsTheZlibOne) {
+  const std::string text = "123456789";
+  EXPECT_EQ(crc32(std::vector<std::uint8_t>(text.begin(), text.end())), 0xCBF43926U);
+}
+
+}  // namespace
+}  // namespace sewerplan::hal
