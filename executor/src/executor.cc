@@ -154,6 +154,7 @@ class Executor::Run {
                       "gave up after " + std::to_string(report_.replans) + " replans");
       }
       ++report_.replans;
+      if (replan->failure) log_failure(*replan->failure);
       response = replan->failure ? replanner_.report_failure(*replan->failure)
                                  : replanner_.plan(replan->reason);
       log_plan("replan", response);
@@ -201,6 +202,22 @@ class Executor::Run {
               {"end", r.end},
               {"steps", static_cast<std::int64_t>(r.plan.steps.size())},
               {"cost_s", r.cost_s}});
+  }
+
+  // What the Replanner is told: a blocked pipe, a closed passage, or a robot that cannot move.
+  void log_failure(const Failure& f) {
+    std::vector<std::pair<std::string, EventValue>> fields{
+        {"kind", std::string(to_string(f.kind))}};
+    if (f.kind == Failure::Kind::kBlockage || f.kind == Failure::Kind::kDangerInPipe) {
+      fields.emplace_back("pipe", map_.pipe(f.pipe).name);
+      fields.emplace_back("offset_m", f.offset_m);
+    } else if (f.kind == Failure::Kind::kDangerousPassage) {
+      fields.emplace_back("manhole", map_.manhole(f.manhole).name);
+      fields.emplace_back("from_slot", static_cast<std::int64_t>(to_paper_number(f.from)));
+      fields.emplace_back("to_slot", static_cast<std::int64_t>(to_paper_number(f.to)));
+    }
+    fields.emplace_back("detail", f.detail);
+    log_.add(now(), "failure", std::move(fields));
   }
 
   // Runs the plan; empty when it was carried out to its end.
@@ -363,6 +380,7 @@ class Executor::Run {
                                 const hal::JobReport& r) {
     if (const auto* pass = std::get_if<fusion::PassManhole>(&action);
         pass && std::holds_alternative<TurnInManhole>(job)) {
+      back_out_of_manhole();
       return Failure{.kind = Failure::Kind::kDangerousPassage,
                      .manhole = pass->manhole,
                      .from = pass->from_slot,
@@ -377,6 +395,20 @@ class Executor::Run {
     const hal::JobReport back = execute_job(back_off(job, options_.recovery.danger_backoff_m));
     log_recovery("back off to safety", back.ok());
     return failure;
+  }
+
+  // After a dangerous passage, back into the pipe the robot came by: at the pipe's mouth the plan
+  // model only lets it pass the manhole (and a U-turn exceeds every turn limit), so with the
+  // passage closed it could be trapped at the mouth; in the pipe it can drive back the way it
+  // came.
+  void back_out_of_manhole() {
+    const auto* at = std::get_if<domain::AtSlot>(&tracker_.position());
+    if (at == nullptr) return;
+    const double length = map_.pipe(map_.slot(at->manhole, at->slot).pipe).length_m;
+    const double distance = std::min(options_.recovery.danger_backoff_m, length / 2);
+    if (distance <= 0) return;
+    const hal::JobReport back = execute_job(DriveBackward{mission().profile.speed_mps, distance});
+    log_recovery("back out of the manhole", back.ok());
   }
 
   // A blockage or danger just ahead of the robot in its pipe.

@@ -185,6 +185,23 @@ TEST(Executor, ADangerousPassageIsClosedAndAvoided) {
   EXPECT_NE(run.json_lines.find(R"("kind":"danger")"), std::string::npos);
 }
 
+// Found by a fault campaign (docs/campaign.md, AIS, seed 1, run 0): the only passage on from the
+// mouth of P10 in M8 is dangerous. Backing out into P10 lets the robot drive back to an exit; left
+// at the mouth, it could only call for recovery.
+TEST(Executor, ARobotBacksOutOfAManholeWithADangerousPassage) {
+  const auto ais = testing::load_ais_testbed();
+  const SimRun run =
+      simulate(ais.map, ais.mission, faults(ais.map, R"({"format": "sewerplan-faults", "version": 1,
+          "obstacles": [{"pipe": "P4", "offset_m": 0.63, "kind": "permanent"}],
+          "danger": [{"manhole": "M8", "from_slot": 1, "to_slot": 2}]})"));
+  EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded) << run.report;
+  EXPECT_EQ(run.report.end.rfind("exit ", 0), 0U) << run.report;
+  EXPECT_NE(run.json_lines.find("back out of the manhole"), std::string::npos);
+  EXPECT_NE(run.json_lines.find(R"("type":"failure","kind":"dangerous passage","manhole":"M8")"),
+            std::string::npos)
+      << run.json_lines;
+}
+
 TEST(Executor, TheSameFaultsGiveTheSameRun) {
   const auto ais = testing::load_ais_testbed();
   auto scenario = hal::random_faults(
