@@ -404,10 +404,16 @@ class Executor::Run {
   void back_out_of_manhole() {
     const auto* at = std::get_if<domain::AtSlot>(&tracker_.position());
     if (at == nullptr) return;
-    const double length = map_.pipe(map_.slot(at->manhole, at->slot).pipe).length_m;
-    const double distance = std::min(options_.recovery.danger_backoff_m, length / 2);
+    const Slot& slot = map_.slot(at->manhole, at->slot);
+    const double distance =
+        std::min(options_.recovery.danger_backoff_m, map_.pipe(slot.pipe).length_m / 2);
     if (distance <= 0) return;
-    const hal::JobReport back = execute_job(DriveBackward{mission().profile.speed_mps, distance});
+    // Facing the manhole, the pipe is behind the robot; facing the pipe, ahead.
+    const double speed = mission().profile.speed_mps;
+    const Job back_job = tracker_.heading_end() == slot.pipe_end
+                             ? Job{DriveBackward{speed, distance}}
+                             : Job{DriveForward{speed, distance}};
+    const hal::JobReport back = execute_job(back_job);
     log_recovery("back out of the manhole", back.ok());
   }
 

@@ -202,6 +202,21 @@ TEST(Executor, ARobotBacksOutOfAManholeWithADangerousPassage) {
       << run.json_lines;
 }
 
+// Found by a fault campaign (AIS, seed 3, run 26): after backing out of M6 the robot passes into
+// P10 and turns back at its mouth with its front towards P10; the second dangerous passage must
+// send it forward into P10, and the simulated robot must keep that facing at the mouth.
+TEST(Executor, ARobotFacingThePipeBacksOutForward) {
+  const auto ais = testing::load_ais_testbed();
+  const SimRun run =
+      simulate(ais.map, ais.mission, faults(ais.map, R"({"format": "sewerplan-faults", "version": 1,
+          "danger": [{"manhole": "M6", "from_slot": 1, "to_slot": 4},
+                     {"manhole": "M6", "from_slot": 3, "to_slot": 4}]})"));
+  EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded) << run.report << run.json_lines;
+  EXPECT_EQ(run.json_lines.find("malfunction"), std::string::npos) << run.json_lines;
+  EXPECT_NE(run.json_lines.find("DriveForward(0.30 m/s, 0.30 m)"), std::string::npos)
+      << run.json_lines;
+}
+
 TEST(Executor, TheSameFaultsGiveTheSameRun) {
   const auto ais = testing::load_ais_testbed();
   auto scenario = hal::random_faults(
