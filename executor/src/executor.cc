@@ -20,8 +20,11 @@ namespace sewerplan::executor {
 namespace {
 
 // Where an obstacle or danger is taken to be: just ahead of where the robot stopped, so that the
-// robot's own position stays on its side of the blockage.
-constexpr double kAhead_m = 0.05;
+// robot's own position stays on its side of the blockage. No more than a millimetre: the robot
+// stops short of what it meets, and a task between where it stopped and the thing itself cannot
+// be reached from this side (a fault campaign found the robot replanning the same unreachable
+// sample a hundred times when the margin was 5 cm).
+constexpr double kAhead_m = 0.001;
 
 std::string job_text(const Job& job) {
   std::ostringstream out;
@@ -307,8 +310,8 @@ class Executor::Run {
   std::optional<Failure> run_job(const Job& job, const fusion::RobotAction& action) {
     Job current = job;
     int reboots = 0;
+    hal::JobReport r = execute_job(current);
     for (;;) {
-      hal::JobReport r = execute_job(current);
       if (r.ok()) return std::nullopt;
       const hal::RobotErrorKind kind = r.error->kind;
       if (kind == hal::RobotErrorKind::kMalfunction) {
@@ -325,54 +328,82 @@ class Executor::Run {
         }
         ++report_.recoveries;
         if (auto rest = rest_of(current, r.progress_m)) current = *rest;
+        r = execute_job(current);
         continue;
       }
       if (kind == hal::RobotErrorKind::kDanger) return danger(current, action, r);
       auto rest = rest_of(current, r.progress_m);
       if (!rest) return danger(current, action, r);  // blocked in a manhole: as a danger
-      if (auto cleared = clear_blockage(*rest)) {
-        if (*cleared) {
+      Cleared cleared = clear_blockage(*rest);
+      switch (cleared.how) {
+        case Cleared::How::kDone:
           ++report_.recoveries;
           return std::nullopt;
-        }
-        return Failure{.kind = Failure::Kind::kStuck, .detail = "recovery left the robot stuck"};
+        case Cleared::How::kOtherError:
+          // The obstacle is gone, and the drive met something else on the way (a danger spot
+          // beyond it, a malfunction): handled as the drive's own error.
+          ++report_.recoveries;
+          current = cleared.job;
+          r = cleared.report;
+          continue;
+        case Cleared::How::kStuck:
+          return Failure{.kind = Failure::Kind::kStuck, .detail = "recovery left the robot stuck"};
+        case Cleared::How::kStays:
+          break;
       }
       return blocked_here(Failure::Kind::kBlockage, current, r.error->reason);
     }
   }
 
-  // The blockage phases. true: cleared and the drive finished; false: another error on the way;
-  // empty: the obstacle stays.
-  std::optional<bool> clear_blockage(Job rest) {
+  // What the blockage phases came to.
+  struct Cleared {
+    enum class How {
+      kDone,        // cleared, and the drive finished
+      kStays,       // the obstacle stays
+      kOtherError,  // cleared, and the drive (job) met another error (report) further on
+      kStuck,       // backing up or moving the head failed
+    };
+    How how = How::kStays;
+    Job job{};
+    hal::JobReport report;
+  };
+
+  Cleared clear_blockage(Job rest) {
     const RecoveryConfig& c = options_.recovery;
-    auto retry = [&](const Job& job, const std::string& phase) -> std::optional<bool> {
-      const hal::JobReport r = execute_job(job);
+    auto retry = [&](const Job& job, const std::string& phase) -> std::optional<Cleared> {
+      hal::JobReport r = execute_job(job);
       log_recovery(phase, r.ok());
-      if (r.ok()) return true;
-      if (r.error->kind != hal::RobotErrorKind::kBlockage) return false;
+      if (r.ok()) return Cleared{Cleared::How::kDone, job, r};
+      if (r.error->kind != hal::RobotErrorKind::kBlockage) {
+        return Cleared{Cleared::How::kOtherError, job, std::move(r)};
+      }
       if (auto left = rest_of(job, r.progress_m)) rest = *left;
       return std::nullopt;
     };
     for (int i = 0; i < c.backup_retries; ++i) {
       const hal::JobReport back = execute_job(back_off(rest, c.backup_m));
-      if (!back.ok()) return false;
+      if (!back.ok()) return Cleared{Cleared::How::kStuck};
       if (auto done = retry(lengthened(rest, back.progress_m), "1: back up and retry")) {
-        return done;
+        return *done;
       }
     }
     for (int i = 0; i < c.lift_retries; ++i) {
-      if (!execute_job(LiftHead{}).ok() || !execute_job(LowerHead{}).ok()) return false;
-      if (auto done = retry(rest, "2: lift the head and retry")) return done;
+      if (!execute_job(LiftHead{}).ok() || !execute_job(LowerHead{}).ok()) {
+        return Cleared{Cleared::How::kStuck};
+      }
+      if (auto done = retry(rest, "2: lift the head and retry")) return *done;
     }
     for (int i = 0; c.push_allowed && i < c.push_retries; ++i) {
       const std::optional<Job> push_job = push_for(rest);
       if (!push_job) break;  // the robot pushes with its head only
-      const hal::JobReport push = execute_job(*push_job);
+      hal::JobReport push = execute_job(*push_job);
       log_recovery("3: push", push.ok());
-      if (push.ok()) return true;
-      if (push.error->kind != hal::RobotErrorKind::kBlockage) return false;
+      if (push.ok()) return Cleared{Cleared::How::kDone};
+      if (push.error->kind != hal::RobotErrorKind::kBlockage) {
+        return Cleared{Cleared::How::kOtherError, *push_job, std::move(push)};
+      }
     }
-    return std::nullopt;
+    return Cleared{Cleared::How::kStays};
   }
 
   // DANGER: back off to the last safe position, and report the spot or the passage.

@@ -139,7 +139,7 @@ expect 0 "dropped task 'far': no route" -- "$sp" plan --map "$ais" --mission "$t
 
 # simulate: the paper's mission with an obstacle the head lift clears and one in the inspected pipe.
 expect 0 'mission ended at pipe P9' -- "$sp" simulate --map "$ais" --mission "$mission" --faults "$src/datasets/ais-testbed/faults/demo.json" --log "$tmp/events.jsonl" -q
-expect 0 '"type":"replan","reason":"blockage in P4 at 5.00 m"' -- cat "$tmp/events.jsonl"
+expect 0 '"type":"replan","reason":"blockage in P4 at 4.95 m"' -- cat "$tmp/events.jsonl"
 expect 0 'phase=2: lift the head and retry ok=yes' -- "$sp" simulate --map "$ais" --mission "$mission" --faults "$src/datasets/ais-testbed/faults/demo.json"
 expect 1 'cut.json' -- "$sp" simulate --map "$ais" --mission "$mission" --faults "$tmp/cut.json"
 echo '{"format": "sewerplan-faults", "version": 1, "malfunctions": [{"at_job": 2, "kind": "permanent"}]}' > "$tmp/stuck.json"

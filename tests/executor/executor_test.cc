@@ -98,7 +98,7 @@ TEST(Executor, ABlockageThatCutsATaskOffDropsItAndDoesTheRest) {
   const SimRun run = simulate(ais.map, ais.mission, *scenario);
   EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded);
   EXPECT_EQ(run.report.tasks_done, (std::vector<std::string>{"sample"}));
-  EXPECT_TRUE(dropped(run, "inspect", "pipe P4 is blocked at 5.00 m"));
+  EXPECT_TRUE(dropped(run, "inspect", "pipe P4 is blocked at 4.95 m"));
   EXPECT_NE(run.report.end.find("pipe P9"), std::string::npos) << run.report.end;
   // The transient obstacle in P1 was cleared by lifting the head, without a replan.
   EXPECT_EQ(run.report.replans, 1U);
@@ -215,6 +215,19 @@ TEST(Executor, ARobotFacingThePipeBacksOutForward) {
   EXPECT_EQ(run.json_lines.find("malfunction"), std::string::npos) << run.json_lines;
   EXPECT_NE(run.json_lines.find("DriveForward(0.30 m/s, 0.30 m)"), std::string::npos)
       << run.json_lines;
+}
+
+// Found by a fault campaign (AIS, seed 1, run 186): a danger spot 2.4 cm beyond the sample point
+// W1 (P6 at 3.00 m). The robot stops short of it, before W1, so the sample cannot be taken from
+// this side; taking the danger to be where the robot stopped lets the Replanner see that, rather
+// than send the robot to W1 again and again.
+TEST(Executor, ATaskJustShortOfADangerIsNotTriedForever) {
+  const auto ais = testing::load_ais_testbed();
+  const SimRun run =
+      simulate(ais.map, ais.mission, faults(ais.map, R"({"format": "sewerplan-faults", "version": 1,
+          "danger": [{"pipe": "P6", "offset_m": 3.024}]})"));
+  EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded) << run.report;
+  EXPECT_LE(run.report.replans, 3U) << run.report;
 }
 
 TEST(Executor, TheSameFaultsGiveTheSameRun) {
