@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <iomanip>
 #include <sstream>
 
@@ -250,9 +251,14 @@ void write_summary_svg(const Summary& s, std::ostream& out) {
       << "\" viewBox=\"0 0 " << kWidth << ' ' << kHeight
       << "\" font-family=\"sans-serif\" font-size=\"12\">\n";
   out << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  out << "<text x=\"" << kWidth / 2 << "\" y=\"24\" text-anchor=\"middle\" font-size=\"16\">"
-      << xml_escape("Fault campaign: " + s.spec.mission_name + " on " + s.spec.map_name + ", " +
-                    std::to_string(s.completed) + " runs")
+  const auto file = [](const std::string& path) {
+    return std::filesystem::path(path).filename().string();
+  };
+  out << "<text id=\"title\" x=\"" << kWidth / 2
+      << "\" y=\"24\" text-anchor=\"middle\" font-size=\"15\">"
+      << xml_escape("Fault campaign: " + file(s.spec.mission_name) + " on " +
+                    file(s.spec.map_name) + ", " + std::to_string(s.completed) + " runs, seed " +
+                    std::to_string(s.spec.seed))
       << "</text>\n";
   out << "<text x=\"" << kLeft << "\" y=\"" << kTop - 12
       << "\">Runs by tasks done as a share of the oracle's</text>\n";
