@@ -33,16 +33,22 @@ void figures(const std::vector<const RunResult*>& runs, const Execution RunResul
   double tasks = 0;
   double vs = 0;
   double replans = 0;
+  std::size_t compared = 0;
   for (const RunResult* r : runs) {
     const Execution& e = r->*policy;
-    const double s = share(e.tasks, r->oracle_tasks);
     tasks += static_cast<double>(e.tasks);
-    vs += s;
-    if (s < f.vs_oracle_worst) {
-      f.vs_oracle_worst = s;
-      f.worst_run = r->index;
+    // Compared with the oracle where it can end the mission: elsewhere it does nothing, while a
+    // robot may do tasks before it finds itself cut off.
+    if (r->oracle_can_end) {
+      const double s = share(e.tasks, r->oracle_tasks);
+      ++compared;
+      vs += s;
+      if (s < f.vs_oracle_worst) {
+        f.vs_oracle_worst = s;
+        f.worst_run = r->index;
+      }
+      ++f.vs_oracle_histogram[std::min<std::size_t>(10, static_cast<std::size_t>(s * 10 + 1e-9))];
     }
-    ++f.vs_oracle_histogram[std::min<std::size_t>(10, static_cast<std::size_t>(s * 10 + 1e-9))];
     ++f.outcomes[static_cast<std::size_t>(e.outcome)];
     if (r->could_reach_exit && e.outcome != Outcome::kExit && e.outcome != Outcome::kEndPoint) {
       ++f.missed_exits;
@@ -54,7 +60,7 @@ void figures(const std::vector<const RunResult*>& runs, const Execution RunResul
   }
   const double n = std::max<double>(1, static_cast<double>(runs.size()));
   f.tasks_mean = tasks / n;
-  f.vs_oracle_mean = runs.empty() ? 0 : vs / n;
+  f.vs_oracle_mean = compared == 0 ? 0 : vs / static_cast<double>(compared);
   f.replans_mean = replans / n;
   std::sort(planning_ms.begin(), planning_ms.end());
   f.planning_p50_ms = percentile(planning_ms, 0.50);
@@ -140,7 +146,7 @@ Summary summarize(const CampaignSpec& spec, const std::vector<RunRecord>& record
     runs.push_back(&x);
     oracle += static_cast<double>(x.oracle_tasks);
     if (x.could_reach_exit) ++s.could_reach_exit;
-    if (x.ours.tasks > x.oracle_tasks) ++s.oracle_below_ours;
+    if (x.oracle_can_end && x.ours.tasks > x.oracle_tasks) ++s.oracle_below_ours;
     if (x.ours.tasks > x.baseline.tasks) {
       ++s.better_than_baseline;
     } else if (x.ours.tasks == x.baseline.tasks) {

@@ -355,6 +355,27 @@ class Executor::Run {
     }
   }
 
+  // A job of the recovery phases, rebooting through transient malfunctions (at most max_reboots
+  // times); its report's progress is the whole distance driven.
+  hal::JobReport recovery_job(const Job& job) {
+    Job current = job;
+    hal::JobReport r = execute_job(current);
+    double progress_m = r.progress_m;
+    for (int reboots = 0; !r.ok() && r.error->kind == hal::RobotErrorKind::kMalfunction &&
+                          reboots < options_.recovery.max_reboots;
+         ++reboots) {
+      const Result<void> rebooted = robot_.reboot();
+      log_recovery("reboot", rebooted.has_value());
+      if (!rebooted.has_value()) break;
+      ++report_.recoveries;
+      if (auto rest = rest_of(current, r.progress_m)) current = *rest;
+      r = execute_job(current);
+      progress_m += r.progress_m;
+    }
+    r.progress_m = progress_m;
+    return r;
+  }
+
   // What the blockage phases came to.
   struct Cleared {
     enum class How {
@@ -370,28 +391,35 @@ class Executor::Run {
 
   Cleared clear_blockage(Job rest) {
     const RecoveryConfig& c = options_.recovery;
-    auto retry = [&](const Job& job, const std::string& phase) -> std::optional<Cleared> {
+    // `back_m`: how far the retry drives back to where the robot met the obstacle. Blocked again
+    // further on, it met another obstacle: that one gets recovery of its own.
+    auto retry = [&](const Job& job, const std::string& phase,
+                     double back_m) -> std::optional<Cleared> {
       hal::JobReport r = execute_job(job);
       log_recovery(phase, r.ok());
       if (r.ok()) return Cleared{Cleared::How::kDone, job, r};
-      if (r.error->kind != hal::RobotErrorKind::kBlockage) {
+      if (r.error->kind != hal::RobotErrorKind::kBlockage || r.progress_m > back_m + 0.01) {
         return Cleared{Cleared::How::kOtherError, job, std::move(r)};
       }
       if (auto left = rest_of(job, r.progress_m)) rest = *left;
       return std::nullopt;
     };
     for (int i = 0; i < c.backup_retries; ++i) {
-      const hal::JobReport back = execute_job(back_off(rest, c.backup_m));
-      if (!back.ok()) return Cleared{Cleared::How::kStuck};
-      if (auto done = retry(lengthened(rest, back.progress_m), "1: back up and retry")) {
+      const hal::JobReport back = recovery_job(back_off(rest, c.backup_m));
+      if (!back.ok()) {
+        if (back.error->kind == hal::RobotErrorKind::kMalfunction) return {Cleared::How::kStuck};
+        break;  // no room to back up: on to the head
+      }
+      if (auto done =
+              retry(lengthened(rest, back.progress_m), "1: back up and retry", back.progress_m)) {
         return *done;
       }
     }
     for (int i = 0; i < c.lift_retries; ++i) {
-      if (!execute_job(LiftHead{}).ok() || !execute_job(LowerHead{}).ok()) {
+      if (!recovery_job(LiftHead{}).ok() || !recovery_job(LowerHead{}).ok()) {
         return Cleared{Cleared::How::kStuck};
       }
-      if (auto done = retry(rest, "2: lift the head and retry")) return *done;
+      if (auto done = retry(rest, "2: lift the head and retry", 0)) return *done;
     }
     for (int i = 0; c.push_allowed && i < c.push_retries; ++i) {
       const std::optional<Job> push_job = push_for(rest);

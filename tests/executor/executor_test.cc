@@ -230,6 +230,40 @@ TEST(Executor, ATaskJustShortOfADangerIsNotTriedForever) {
   EXPECT_LE(run.report.replans, 3U) << run.report;
 }
 
+// Found by a fault campaign (AIS, seed 2, hard rates, run 125): recovery cleared one obstacle and
+// the retried drive met a second one further on, which was taken to be the first one staying.
+// Each obstacle gets recovery of its own.
+TEST(Executor, ASecondObstacleBehindAClearedOneGetsItsOwnRecovery) {
+  const auto ais = testing::load_ais_testbed();
+  const SimRun run =
+      simulate(ais.map, ais.mission, faults(ais.map, R"({"format": "sewerplan-faults", "version": 1,
+          "obstacles": [{"pipe": "P1", "offset_m": 3.0, "kind": "transient_lift"},
+                        {"pipe": "P1", "offset_m": 6.0, "kind": "transient_lift"}]})"));
+  EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded) << run.report;
+  EXPECT_EQ(run.report.replans, 0U) << run.report;
+  EXPECT_EQ(run.report.tasks_done.size(), 2U) << run.report;
+  EXPECT_EQ(run.report.recoveries, 2U) << run.report;
+}
+
+// Found by a fault campaign (AIS, seed 2, hard rates, run 253): a transient malfunction while
+// lifting the head left the robot "stuck". A reboot clears it, and recovery goes on.
+TEST(Executor, ATransientMalfunctionDuringRecoveryIsRebootedThrough) {
+  const auto ais = testing::load_ais_testbed();
+  // Job 7 is the head lift of phase 2 (jobs: drive, pass, drive into the obstacle, two backups
+  // and retries).
+  const SimRun run =
+      simulate(ais.map, ais.mission, faults(ais.map, R"({"format": "sewerplan-faults", "version": 1,
+          "obstacles": [{"pipe": "P1", "offset_m": 3.0, "kind": "transient_lift"}],
+          "malfunctions": [{"at_job": 7, "kind": "transient"}]})"));
+  EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded) << run.report;
+  EXPECT_EQ(run.report.replans, 0U) << run.report;
+  EXPECT_NE(run.json_lines.find(R"("job":"LiftHead","progress_m":0.0,"ok":false)"),
+            std::string::npos)
+      << run.json_lines;
+  EXPECT_NE(run.json_lines.find(R"("phase":"2: lift the head and retry","ok":true)"),
+            std::string::npos);
+}
+
 TEST(Executor, TheSameFaultsGiveTheSameRun) {
   const auto ais = testing::load_ais_testbed();
   auto scenario = hal::random_faults(

@@ -2,10 +2,11 @@
 // Summary: the figures of a fault campaign, and how they are written (JSON, Markdown, SVG chart).
 //
 // Tasks are compared per run as a share of the oracle's (run.h; a run whose oracle does no task
-// counts as 1), then averaged; the worst run is named. Ours is compared with the baseline run by
-// run (better, equal, worse). Outcomes are counted as the robot's true pose shows them; a run that
-// could reach an exit but did not is a "missed exit". Planning times are measured, so only they
-// (and wall times) differ between two machines.
+// counts as 1), then averaged over the runs in which the oracle can end the mission (elsewhere no
+// policy can, and the oracle does nothing); the worst run is named. Ours is compared with the
+// baseline run by run (better, equal, worse). Outcomes are counted as the robot's true pose shows
+// them; a run that could reach an exit but did not is a "missed exit". Planning times are measured,
+// so only they (and wall times) differ between two machines.
 //
 //   Summary s = summarize(spec, records);
 //   write_summary_markdown(s, std::cout);
@@ -52,7 +53,7 @@ struct Summary {
   std::size_t completed = 0;  // with a result
   std::size_t could_reach_exit = 0;
   double oracle_tasks_mean = 0;
-  std::size_t oracle_below_ours = 0;  // runs where ours did more than the oracle's plan
+  std::size_t oracle_below_ours = 0;  // runs the oracle can end where ours did more than it
   PolicyFigures ours;
   PolicyFigures baseline;
   std::size_t better_than_baseline = 0;  // runs, by tasks done
