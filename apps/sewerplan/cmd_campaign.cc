@@ -65,6 +65,9 @@ class ProgressPrinter {
     line << p.done << '/' << p.total << " runs, " << p.failed << " crashed or hung, "
          << clock_text(p.elapsed_s) << " elapsed, " << clock_text(eta) << " left";
     if (tty_) {
+      // At most ten redraws a second.
+      if (p.done != p.total && p.elapsed_s - last_s_ < 0.1) return;
+      last_s_ = p.elapsed_s;
       constexpr std::size_t kWidth = 30;
       const std::size_t filled = p.total == 0 ? kWidth : kWidth * p.done / p.total;
       err_ << "\r[" << std::string(filled, '#') << std::string(kWidth - filled, '.') << "] "
