@@ -188,7 +188,9 @@ std::vector<RunRecord> run_campaign(const SewerMap& map, const Mission& mission,
       if (options.progress) options.progress(progress);
     }
   };
-  const std::size_t jobs = std::max<std::size_t>(1, std::min(options.jobs, indices.size()));
+  // Unguarded runs share this process, one at a time.
+  const std::size_t jobs =
+      options.guard ? std::max<std::size_t>(1, std::min(options.jobs, indices.size())) : 1;
   std::vector<std::thread> threads;
   for (std::size_t j = 1; j < jobs; ++j) threads.emplace_back(work);
   work();

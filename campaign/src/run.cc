@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <charconv>
 #include <chrono>
-#include <sstream>
 
 #include "sewerplan/core/clock.h"
 #include "sewerplan/domain/robot_state.h"
@@ -154,12 +153,21 @@ Result<FaultRates> parse_fault_rates(std::string_view text) {
   return r;
 }
 
+namespace {
+
+// The shortest text that reads back as the same double, so that a reproduce command is exact.
+std::string exact(double v) {
+  char buffer[32];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, v);
+  return ec == std::errc{} ? std::string(buffer, end) : std::to_string(v);
+}
+
+}  // namespace
+
 std::string format_fault_rates(const FaultRates& r) {
-  std::ostringstream out;
-  out << "obstacles=" << r.obstacles_per_km << ",danger=" << r.danger_per_km
-      << ",passages=" << r.passage_share << ",malfunctions=" << r.malfunctions_per_hour
-      << ",permanent=" << r.permanent_share << ",transient=" << r.transient_share;
-  return out.str();
+  return "obstacles=" + exact(r.obstacles_per_km) + ",danger=" + exact(r.danger_per_km) +
+         ",passages=" + exact(r.passage_share) + ",malfunctions=" + exact(r.malfunctions_per_hour) +
+         ",permanent=" + exact(r.permanent_share) + ",transient=" + exact(r.transient_share);
 }
 
 std::uint64_t run_seed(std::uint64_t campaign_seed, std::size_t index) {

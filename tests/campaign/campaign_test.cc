@@ -235,9 +235,9 @@ TEST(Campaign, RecordsReadBackAndBadLinesNameFileLineAndField) {
 }
 
 TEST(Campaign, FaultRatesAndShardsParseOrSayWhatIsWrong) {
-  Result<FaultRates> r = parse_fault_rates("obstacles=40,permanent=0.5");
+  Result<FaultRates> r = parse_fault_rates("obstacles=40.123456789012,permanent=0.5");
   ASSERT_TRUE(r.has_value());
-  EXPECT_EQ(r->obstacles_per_km, 40);
+  EXPECT_EQ(r->obstacles_per_km, 40.123456789012);
   EXPECT_EQ(r->permanent_share, 0.5);
   EXPECT_EQ(r->danger_per_km, FaultRates{}.danger_per_km);
   Result<FaultRates> back = parse_fault_rates(format_fault_rates(*r));

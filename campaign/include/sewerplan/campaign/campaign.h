@@ -37,8 +37,8 @@ enum class InjectedFault { kCrash, kHang };
 
 struct CampaignOptions {
   std::size_t jobs = 1;
-  double timeout_s = 60;            // per run; a child still running then is a hang
-  bool guard = true;                // false: run in this process (a crash takes the campaign down)
+  double timeout_s = 60;  // per run; a child still running then is a hang
+  bool guard = true;      // false: in this process, one run at a time (a crash takes it down)
   std::optional<std::size_t> only;  // run just this index (it need not be in the shard)
   std::function<void(const Progress&)> progress;  // called from one thread at a time
   std::map<std::size_t, InjectedFault> inject;
