@@ -26,12 +26,13 @@ struct RenderOptions {
   std::string faults;
   std::string title;
   double width_px = 1000;
+  bool focus = false;
   std::string out;
 };
 
 int run(const RenderOptions& o, Context& c) {
-  if ((!o.plan.empty() || !o.log.empty()) && o.mission.empty()) {
-    c.err << "render: --plan and --log need --mission (they name its tasks)\n";
+  if ((!o.plan.empty() || !o.log.empty() || o.focus) && o.mission.empty()) {
+    c.err << "render: --plan, --log and --focus need --mission\n";
     return kExitUsage;
   }
   if (!(o.width_px >= 200 && o.width_px <= 20000)) {
@@ -82,7 +83,8 @@ int run(const RenderOptions& o, Context& c) {
                                   .trace = trace ? &*trace : nullptr,
                                   .faults = faults ? &*faults : nullptr,
                                   .title = o.title,
-                                  .width_px = o.width_px};
+                                  .width_px = o.width_px,
+                                  .focus = o.focus};
   std::ofstream out(o.out, std::ios::binary);
   out << render::render_map_svg(input);
   out.close();
@@ -109,6 +111,8 @@ void add_render_command(CLI::App& app, Context& context) {
   cmd->add_option("--faults", options->faults, "Fault scenario: the hidden faults");
   cmd->add_option("--title", options->title, "Title (default: map and mission names)");
   cmd->add_option("--width", options->width_px, "Width in pixels")->capture_default_str();
+  cmd->add_flag("--focus", options->focus,
+                "Only the mission's area (start, tasks, routes), not the whole network");
   cmd->add_option("-o,--out", options->out, "SVG file to write")->required();
   cmd->callback([options, &context] { context.exit_code = run(*options, context); });
 }

@@ -47,31 +47,43 @@ constexpr double kTitleHeight = 36;
 constexpr double kLegendHeight = 150;
 
 // World (metres, y up) to picture (pixels, y down), to scale.
+struct Box {
+  double min_x = 0;
+  double max_x = 1;
+  double min_y = 0;
+  double max_y = 1;
+};
+
+Box map_box(const SewerMap& map) {
+  Box b;
+  bool first = true;
+  for (const Manhole& m : map.manholes()) {
+    if (first) {
+      b = {m.position.x_m, m.position.x_m, m.position.y_m, m.position.y_m};
+      first = false;
+    }
+    b.min_x = std::min(b.min_x, m.position.x_m);
+    b.max_x = std::max(b.max_x, m.position.x_m);
+    b.min_y = std::min(b.min_y, m.position.y_m);
+    b.max_y = std::max(b.max_y, m.position.y_m);
+  }
+  return b;
+}
+
 class Projection {
  public:
-  Projection(const SewerMap& map, double width_px) {
-    double min_x = 0, max_x = 1, min_y = 0, max_y = 1;
-    bool first = true;
-    for (const Manhole& m : map.manholes()) {
-      if (first) {
-        min_x = max_x = m.position.x_m;
-        min_y = max_y = m.position.y_m;
-        first = false;
-      }
-      min_x = std::min(min_x, m.position.x_m);
-      max_x = std::max(max_x, m.position.x_m);
-      min_y = std::min(min_y, m.position.y_m);
-      max_y = std::max(max_y, m.position.y_m);
-    }
-    const double span = std::max({max_x - min_x, max_y - min_y, 1.0});
-    min_x -= span * 0.03;
-    max_x += span * 0.03;
-    min_y -= span * 0.03;
-    max_y += span * 0.03;
-    min_x_ = min_x;
-    max_y_ = max_y;
-    const double w = std::max(max_x - min_x, 1.0);
-    const double h = std::max(max_y - min_y, 1.0);
+  // `box` in metres, widened by 3 % of its larger side (at least `min_margin_m`) on each side.
+  Projection(Box box, double width_px, double min_margin_m = 0) {
+    const double span = std::max({box.max_x - box.min_x, box.max_y - box.min_y, 1.0});
+    const double margin = std::max(span * 0.03, min_margin_m);
+    box.min_x -= margin;
+    box.max_x += margin;
+    box.min_y -= margin;
+    box.max_y += margin;
+    min_x_ = box.min_x;
+    max_y_ = box.max_y;
+    const double w = std::max(box.max_x - box.min_x, 1.0);
+    const double h = std::max(box.max_y - box.min_y, 1.0);
     scale_ = (width_px - 2 * kMargin) / w;
     // Very tall networks: at most twice as high as wide.
     scale_ = std::min(scale_, 2 * (width_px - 2 * kMargin) / h);
@@ -79,6 +91,10 @@ class Projection {
   }
   Point operator()(double x, double y) const {
     return {kMargin + (x - min_x_) * scale_, kTitleHeight + (max_y_ - y) * scale_};
+  }
+  // Back to metres.
+  Point world(const Point& px) const {
+    return {min_x_ + (px.x - kMargin) / scale_, max_y_ - (px.y - kTitleHeight) / scale_};
   }
   double scale() const { return scale_; }
   double map_height_px() const { return map_height_px_; }
@@ -92,7 +108,9 @@ class Projection {
 
 class Drawing {
  public:
-  Drawing(const RenderInput& in) : in_(in), map_(*in.map), p_(map_, in.width_px) {}
+  Drawing(const RenderInput& in) : in_(in), map_(*in.map), p_(map_box(map_), in.width_px) {
+    if (in_.focus) focus();
+  }
 
   std::string draw() {
     const double height = kTitleHeight + p_.map_height_px() + kLegendHeight;
@@ -107,16 +125,22 @@ class Drawing {
     }
     out_ << "<text id=\"title\" x=\"" << f1(in_.width_px / 2)
          << "\" y=\"24\" text-anchor=\"middle\" font-size=\"16\">" << escape(title) << "</text>\n";
+    // Everything on the map is clipped to its area (a focused picture cuts the network off).
+    out_ << "<clipPath id=\"map-area\"><rect x=\"0\" y=\"" << f1(kTitleHeight) << "\" width=\""
+         << f1(in_.width_px) << "\" height=\"" << f1(p_.map_height_px()) << "\"/></clipPath>\n"
+         << "<g id=\"map\" clip-path=\"url(#map-area)\">\n";
     pipes();
     if (in_.mission != nullptr) tasks();
     if (in_.trace != nullptr) {
       route("driven", in_.trace->driven, "#2ca02c", 7, "", 0.55);
     }
     if (in_.plan != nullptr) route("planned", in_.plan->steps, "#1f4fd8", 2.5, "8 5", 1);
+    // The start under the manholes: a mission often starts next to the exit it ends at.
+    if (in_.mission != nullptr) start();
     manholes();
     if (in_.faults != nullptr) faults();
     if (in_.trace != nullptr) blocked();
-    if (in_.mission != nullptr) start();
+    out_ << "</g>\n";
     scale_bar();
     legend();
     out_ << "</svg>\n";
@@ -124,6 +148,43 @@ class Drawing {
   }
 
  private:
+  // The picture around the mission: its start and tasks, the routes, the pipes found blocked.
+  void focus() {
+    if (in_.mission == nullptr) return;
+    std::vector<Point> points{place_point(in_.mission->start)};
+    for (const Task& t : in_.mission->tasks) {
+      if (t.kind == TaskKind::kInspectPipe) {
+        const auto ends = pipe_ends(std::get<PipeSpot>(t.place).pipe);
+        points.insert(points.end(), ends.begin(), ends.end());
+      } else {
+        points.push_back(place_point(t.place));
+      }
+    }
+    for (const auto* steps : {in_.plan != nullptr ? &in_.plan->steps : nullptr,
+                              in_.trace != nullptr ? &in_.trace->driven : nullptr}) {
+      if (steps == nullptr) continue;
+      const std::vector<Point> route = route_points(*steps);
+      points.insert(points.end(), route.begin(), route.end());
+    }
+    if (in_.trace != nullptr) {
+      for (const Blockage& b : in_.trace->blocked) points.push_back(pipe_point(b.pipe, b.offset_m));
+    }
+    Box box;
+    bool first = true;
+    for (const Point& px : points) {
+      const Point w = p_.world(px);
+      if (first) {
+        box = {w.x, w.x, w.y, w.y};
+        first = false;
+      }
+      box.min_x = std::min(box.min_x, w.x);
+      box.max_x = std::max(box.max_x, w.x);
+      box.min_y = std::min(box.min_y, w.y);
+      box.max_y = std::max(box.max_y, w.y);
+    }
+    p_ = Projection(box, in_.width_px, 10);
+  }
+
   Point manhole_point(ManholeId m) const {
     const Position& pos = map_.manhole(m).position;
     return p_(pos.x_m, pos.y_m);

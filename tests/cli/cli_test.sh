@@ -189,7 +189,7 @@ expect 0 '<polyline id="driven"' -- cat "$tmp/demo.svg"
 expect 0 'class="blocked"' -- cat "$tmp/demo.svg"
 echo 'not json' > "$tmp/bad.jsonl"
 expect 1 'bad.jsonl:1: error: not a JSON object' -- "$sp" render --map "$ais" --mission "$mission" --log "$tmp/bad.jsonl" -o "$tmp/bad.svg"
-expect 2 'need --mission' -- "$sp" render --map "$ais" --log "$tmp/events.jsonl" -o "$tmp/x.svg"
+expect 2 "need --mission" -- "$sp" render --map "$ais" --log "$tmp/events.jsonl" -o "$tmp/x.svg"
 
 echo "$passed passed, $failures failed"
 [ "$failures" -eq 0 ]

@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 #include <pugixml.hpp>
 
+#include "sewerplan/core/generator.h"
 #include "sewerplan/core/text_file.h"
+#include "sewerplan/domain/mission_generator.h"
 #include "sewerplan/domain/plan_text.h"
 #include "sewerplan/render/svg_map.h"
 
@@ -62,14 +64,14 @@ TEST(Render, TheNetworkPlanAndLogAreDrawnWithALegend) {
   p.text = render_map_svg(input);
   const pugi::xml_parse_result parsed = p.doc.load_string(p.text.c_str());
   ASSERT_TRUE(parsed) << parsed.description() << "\n" << p.text;
-  EXPECT_EQ(count(p.doc, "/svg/g[@id='pipes']/line[@class='pipe']"), ais.map.pipe_count());
+  EXPECT_EQ(count(p.doc, "//g[@id='pipes']/line[@class='pipe']"), ais.map.pipe_count());
   std::size_t exits = 0;
   for (const Manhole& m : ais.map.manholes()) exits += m.exit ? 1 : 0;
-  EXPECT_EQ(count(p.doc, "/svg/g[@id='manholes']/rect[@class='exit']"), exits);
-  EXPECT_EQ(count(p.doc, "/svg/g[@id='manholes']/circle[@class='manhole']"),
+  EXPECT_EQ(count(p.doc, "//g[@id='manholes']/rect[@class='exit']"), exits);
+  EXPECT_EQ(count(p.doc, "//g[@id='manholes']/circle[@class='manhole']"),
             ais.map.manhole_count() - exits);
-  EXPECT_EQ(count(p.doc, "/svg/g[@id='tasks']/*"), ais.mission.tasks.size());
-  EXPECT_EQ(count(p.doc, "/svg/g[@id='tasks']/path[@class='task sample']"), 1U);
+  EXPECT_EQ(count(p.doc, "//g[@id='tasks']/*"), ais.mission.tasks.size());
+  EXPECT_EQ(count(p.doc, "//g[@id='tasks']/path[@class='task sample']"), 1U);
   // The sample was done: drawn green.
   EXPECT_STREQ(p.doc.select_node("//path[@class='task sample']").node().attribute("fill").value(),
                "#2ca02c");
@@ -109,6 +111,27 @@ TEST(Render, TheMapAloneAndHiddenFaults) {
   EXPECT_FALSE(doc.select_node("//g[@id='tasks']"));
   EXPECT_FALSE(doc.select_node("//polyline"));
   EXPECT_STREQ(doc.select_node("//text[@id='title']").node().child_value(), "A & B");
+}
+
+// Focused on a mission in a large network: the picture's scale follows the mission's area.
+TEST(Render, FocusShowsTheMissionsArea) {
+  Result<SewerMap> map = generate_network({.manholes = 400, .seed = 3});
+  ASSERT_TRUE(map.has_value());
+  Result<Mission> mission = domain::generate_mission(*map, {.tasks = 3, .seed = 3});
+  ASSERT_TRUE(mission.has_value());
+  const std::string whole = render_map_svg({.map = &*map, .mission = &*mission});
+  const std::string focused = render_map_svg({.map = &*map, .mission = &*mission, .focus = true});
+  pugi::xml_document a;
+  pugi::xml_document b;
+  ASSERT_TRUE(a.load_string(whole.c_str()));
+  ASSERT_TRUE(b.load_string(focused.c_str()));
+  // The scale bar stands for fewer metres in the focused picture.
+  auto metres = [](const pugi::xml_document& doc) {
+    return std::stod(doc.select_node("//g[@id='scale']/text").node().child_value());
+  };
+  EXPECT_LT(metres(b), metres(a));
+  EXPECT_TRUE(b.select_node("//clipPath[@id='map-area']"));
+  EXPECT_EQ(count(b, "//g[@id='map']/g[@id='pipes']/line"), map->pipe_count());
 }
 
 TEST(Render, ABadEventLogNamesFileAndLine) {

@@ -30,6 +30,9 @@ struct RenderInput {
   const hal::FaultScenario* faults = nullptr;
   std::string title;  // default: the map's (and mission's) name
   double width_px = 1000;
+  // Show only the area of the mission (start, tasks, routes, pipes found blocked), with 10 m
+  // around it at least; the rest of the network is cut off at the picture's edge.
+  bool focus = false;
 };
 
 std::string render_map_svg(const RenderInput& input);
