@@ -177,8 +177,8 @@ expect 0 'Verdict: clean' -- "$sp" campaign merge "$tmp/shard0" "$tmp/shard1" "$
 expect 0 '' -- bash -c "diff <(sed 's/,\"measured\".*//' \"$tmp/camp/runs.jsonl\") <(sed 's/,\"measured\".*//' \"$tmp/merged/runs.jsonl\")"
 expect 1 'shard\(s\) 1 of 3 missing' -- "$sp" campaign merge "$tmp/shard0" "$tmp/shard2" -o "$tmp/merged2"
 expect 1 'shard 2/3 given twice' -- "$sp" campaign merge "$tmp/shard0" "$tmp/shard1" "$tmp/shard2" "$tmp/shard2" -o "$tmp/merged3"
-expect 6 'run 3 \(seed [0-9]+\): crash.*--only 3' -- env SEWERPLAN_CAMPAIGN_INJECT=crash:3,hang:4 "$sp" campaign --map "$ais" --mission "$mission" --runs 6 --timeout 1 --jobs 2
-expect 6 'run 4 \(seed [0-9]+\): hang' -- env SEWERPLAN_CAMPAIGN_INJECT=hang:4 "$sp" campaign --map "$ais" --mission "$mission" --runs 6 --timeout 1
+expect 6 'run 3 \(seed [0-9]+\): crash.*--only 3' -- env SEWERPLAN_CAMPAIGN_INJECT=crash:3,hang:4 "$sp" campaign --map "$ais" --mission "$mission" --runs 6 --timeout 5 --jobs 2
+expect 6 'run 4 \(seed [0-9]+\): hang' -- env SEWERPLAN_CAMPAIGN_INJECT=hang:4 "$sp" campaign --map "$ais" --mission "$mission" --runs 6 --timeout 5
 expect 2 "fault-rates: 'rain=1': unknown rate" -- "$sp" campaign --map "$ais" --mission "$mission" --fault-rates rain=1
 expect 2 "shard: expected I/N" -- "$sp" campaign --map "$ais" --mission "$mission" --shard 3/3
 expect 2 'map and --mission are required' -- "$sp" campaign --runs 3
