@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: MIT
 # Checks the one-way dependencies between the libraries by their includes:
 #   core <- domain <- search; fusion on core and domain; hal on core; executor on all;
-#   nothing includes executor except apps, tests and bench.
+#   campaign on all (with executor); render on core, domain and hal;
+#   nothing includes executor or campaign except apps, tests and bench (and campaign itself).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 declare -A allowed=(
@@ -12,6 +13,8 @@ declare -A allowed=(
   [fusion]="core domain fusion"
   [hal]="core hal"
   [executor]="core domain search fusion hal executor"
+  [campaign]="core domain search fusion hal executor campaign"
+  [render]="core domain hal render"
 )
 status=0
 for lib in "${!allowed[@]}"; do

@@ -4,7 +4,8 @@
 // Exit codes are part of the interface that scripts rely on (docs/cli.md):
 //   0 success; 1 invalid input (a file that does not parse or validate, an impossible request);
 //   2 command-line usage error; 3 a file could not be read or written; 4 no plan exists;
-//   5 the search stopped at its time or expansion limit (or was cancelled) without a plan.
+//   5 the search stopped at its time or expansion limit (or was cancelled) without a plan;
+//   6 a campaign was not clean (a crash, hang, missed exit, stranded robot or reserve violation).
 #pragma once
 
 #include <iosfwd>
@@ -26,6 +27,7 @@ enum ExitCode : int {
   kExitIo = 3,
   kExitNoPlan = 4,
   kExitSearchLimit = 5,
+  kExitCampaignNotClean = 6,
 };
 
 // What a command's callback reports back to main().
@@ -45,6 +47,8 @@ void add_export_pddl_command(CLI::App& app, Context& context);
 void add_import_plan_command(CLI::App& app, Context& context);
 void add_simulate_command(CLI::App& app, Context& context);
 void add_sim_node_command(CLI::App& app, Context& context);
+void add_campaign_command(CLI::App& app, Context& context);
+void add_render_command(CLI::App& app, Context& context);
 
 // Helpers shared by the commands.
 int exit_code_for(const Error& error);

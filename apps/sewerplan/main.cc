@@ -54,6 +54,8 @@ int main(int argc, char** argv) {
   add_import_plan_command(app, context);
   add_simulate_command(app, context);
   add_sim_node_command(app, context);
+  add_campaign_command(app, context);
+  add_render_command(app, context);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -20,8 +20,11 @@ namespace sewerplan::executor {
 namespace {
 
 // Where an obstacle or danger is taken to be: just ahead of where the robot stopped, so that the
-// robot's own position stays on its side of the blockage.
-constexpr double kAhead_m = 0.05;
+// robot's own position stays on its side of the blockage. No more than a millimetre: the robot
+// stops short of what it meets, and a task between where it stopped and the thing itself cannot
+// be reached from this side (a fault campaign found the robot replanning the same unreachable
+// sample a hundred times when the margin was 5 cm).
+constexpr double kAhead_m = 0.001;
 
 std::string job_text(const Job& job) {
   std::ostringstream out;
@@ -154,6 +157,7 @@ class Executor::Run {
                       "gave up after " + std::to_string(report_.replans) + " replans");
       }
       ++report_.replans;
+      if (replan->failure) log_failure(*replan->failure);
       response = replan->failure ? replanner_.report_failure(*replan->failure)
                                  : replanner_.plan(replan->reason);
       log_plan("replan", response);
@@ -201,6 +205,22 @@ class Executor::Run {
               {"end", r.end},
               {"steps", static_cast<std::int64_t>(r.plan.steps.size())},
               {"cost_s", r.cost_s}});
+  }
+
+  // What the Replanner is told: a blocked pipe, a closed passage, or a robot that cannot move.
+  void log_failure(const Failure& f) {
+    std::vector<std::pair<std::string, EventValue>> fields{
+        {"kind", std::string(to_string(f.kind))}};
+    if (f.kind == Failure::Kind::kBlockage || f.kind == Failure::Kind::kDangerInPipe) {
+      fields.emplace_back("pipe", map_.pipe(f.pipe).name);
+      fields.emplace_back("offset_m", f.offset_m);
+    } else if (f.kind == Failure::Kind::kDangerousPassage) {
+      fields.emplace_back("manhole", map_.manhole(f.manhole).name);
+      fields.emplace_back("from_slot", static_cast<std::int64_t>(to_paper_number(f.from)));
+      fields.emplace_back("to_slot", static_cast<std::int64_t>(to_paper_number(f.to)));
+    }
+    fields.emplace_back("detail", f.detail);
+    log_.add(now(), "failure", std::move(fields));
   }
 
   // Runs the plan; empty when it was carried out to its end.
@@ -290,8 +310,8 @@ class Executor::Run {
   std::optional<Failure> run_job(const Job& job, const fusion::RobotAction& action) {
     Job current = job;
     int reboots = 0;
+    hal::JobReport r = execute_job(current);
     for (;;) {
-      hal::JobReport r = execute_job(current);
       if (r.ok()) return std::nullopt;
       const hal::RobotErrorKind kind = r.error->kind;
       if (kind == hal::RobotErrorKind::kMalfunction) {
@@ -308,54 +328,110 @@ class Executor::Run {
         }
         ++report_.recoveries;
         if (auto rest = rest_of(current, r.progress_m)) current = *rest;
+        r = execute_job(current);
         continue;
       }
       if (kind == hal::RobotErrorKind::kDanger) return danger(current, action, r);
       auto rest = rest_of(current, r.progress_m);
       if (!rest) return danger(current, action, r);  // blocked in a manhole: as a danger
-      if (auto cleared = clear_blockage(*rest)) {
-        if (*cleared) {
+      Cleared cleared = clear_blockage(*rest);
+      switch (cleared.how) {
+        case Cleared::How::kDone:
           ++report_.recoveries;
           return std::nullopt;
-        }
-        return Failure{.kind = Failure::Kind::kStuck, .detail = "recovery left the robot stuck"};
+        case Cleared::How::kOtherError:
+          // The obstacle is gone, and the drive met something else on the way (a danger spot
+          // beyond it, a malfunction): handled as the drive's own error.
+          ++report_.recoveries;
+          current = cleared.job;
+          r = cleared.report;
+          continue;
+        case Cleared::How::kStuck:
+          return Failure{.kind = Failure::Kind::kStuck, .detail = "recovery left the robot stuck"};
+        case Cleared::How::kStays:
+          break;
       }
       return blocked_here(Failure::Kind::kBlockage, current, r.error->reason);
     }
   }
 
-  // The blockage phases. true: cleared and the drive finished; false: another error on the way;
-  // empty: the obstacle stays.
-  std::optional<bool> clear_blockage(Job rest) {
+  // A job of the recovery phases, rebooting through transient malfunctions (at most max_reboots
+  // times); its report's progress is the whole distance driven.
+  hal::JobReport recovery_job(const Job& job) {
+    Job current = job;
+    hal::JobReport r = execute_job(current);
+    double progress_m = r.progress_m;
+    for (int reboots = 0; !r.ok() && r.error->kind == hal::RobotErrorKind::kMalfunction &&
+                          reboots < options_.recovery.max_reboots;
+         ++reboots) {
+      const Result<void> rebooted = robot_.reboot();
+      log_recovery("reboot", rebooted.has_value());
+      if (!rebooted.has_value()) break;
+      ++report_.recoveries;
+      if (auto rest = rest_of(current, r.progress_m)) current = *rest;
+      r = execute_job(current);
+      progress_m += r.progress_m;
+    }
+    r.progress_m = progress_m;
+    return r;
+  }
+
+  // What the blockage phases came to.
+  struct Cleared {
+    enum class How {
+      kDone,        // cleared, and the drive finished
+      kStays,       // the obstacle stays
+      kOtherError,  // cleared, and the drive (job) met another error (report) further on
+      kStuck,       // backing up or moving the head failed
+    };
+    How how = How::kStays;
+    Job job{};
+    hal::JobReport report;
+  };
+
+  Cleared clear_blockage(Job rest) {
     const RecoveryConfig& c = options_.recovery;
-    auto retry = [&](const Job& job, const std::string& phase) -> std::optional<bool> {
-      const hal::JobReport r = execute_job(job);
+    // `back_m`: how far the retry drives back to where the robot met the obstacle. Blocked again
+    // further on, it met another obstacle: that one gets recovery of its own.
+    auto retry = [&](const Job& job, const std::string& phase,
+                     double back_m) -> std::optional<Cleared> {
+      hal::JobReport r = execute_job(job);
       log_recovery(phase, r.ok());
-      if (r.ok()) return true;
-      if (r.error->kind != hal::RobotErrorKind::kBlockage) return false;
+      if (r.ok()) return Cleared{Cleared::How::kDone, job, r};
+      if (r.error->kind != hal::RobotErrorKind::kBlockage || r.progress_m > back_m + 0.01) {
+        return Cleared{Cleared::How::kOtherError, job, std::move(r)};
+      }
       if (auto left = rest_of(job, r.progress_m)) rest = *left;
       return std::nullopt;
     };
     for (int i = 0; i < c.backup_retries; ++i) {
-      const hal::JobReport back = execute_job(back_off(rest, c.backup_m));
-      if (!back.ok()) return false;
-      if (auto done = retry(lengthened(rest, back.progress_m), "1: back up and retry")) {
-        return done;
+      const hal::JobReport back = recovery_job(back_off(rest, c.backup_m));
+      if (!back.ok()) {
+        if (back.error->kind == hal::RobotErrorKind::kMalfunction) return {Cleared::How::kStuck};
+        break;  // no room to back up: on to the head
+      }
+      if (auto done =
+              retry(lengthened(rest, back.progress_m), "1: back up and retry", back.progress_m)) {
+        return *done;
       }
     }
     for (int i = 0; i < c.lift_retries; ++i) {
-      if (!execute_job(LiftHead{}).ok() || !execute_job(LowerHead{}).ok()) return false;
-      if (auto done = retry(rest, "2: lift the head and retry")) return done;
+      if (!recovery_job(LiftHead{}).ok() || !recovery_job(LowerHead{}).ok()) {
+        return Cleared{Cleared::How::kStuck};
+      }
+      if (auto done = retry(rest, "2: lift the head and retry", 0)) return *done;
     }
     for (int i = 0; c.push_allowed && i < c.push_retries; ++i) {
       const std::optional<Job> push_job = push_for(rest);
       if (!push_job) break;  // the robot pushes with its head only
-      const hal::JobReport push = execute_job(*push_job);
+      hal::JobReport push = execute_job(*push_job);
       log_recovery("3: push", push.ok());
-      if (push.ok()) return true;
-      if (push.error->kind != hal::RobotErrorKind::kBlockage) return false;
+      if (push.ok()) return Cleared{Cleared::How::kDone};
+      if (push.error->kind != hal::RobotErrorKind::kBlockage) {
+        return Cleared{Cleared::How::kOtherError, *push_job, std::move(push)};
+      }
     }
-    return std::nullopt;
+    return Cleared{Cleared::How::kStays};
   }
 
   // DANGER: back off to the last safe position, and report the spot or the passage.
@@ -363,6 +439,7 @@ class Executor::Run {
                                 const hal::JobReport& r) {
     if (const auto* pass = std::get_if<fusion::PassManhole>(&action);
         pass && std::holds_alternative<TurnInManhole>(job)) {
+      back_out_of_manhole();
       return Failure{.kind = Failure::Kind::kDangerousPassage,
                      .manhole = pass->manhole,
                      .from = pass->from_slot,
@@ -377,6 +454,26 @@ class Executor::Run {
     const hal::JobReport back = execute_job(back_off(job, options_.recovery.danger_backoff_m));
     log_recovery("back off to safety", back.ok());
     return failure;
+  }
+
+  // After a dangerous passage, back into the pipe the robot came by: at the pipe's mouth the plan
+  // model only lets it pass the manhole (and a U-turn exceeds every turn limit), so with the
+  // passage closed it could be trapped at the mouth; in the pipe it can drive back the way it
+  // came.
+  void back_out_of_manhole() {
+    const auto* at = std::get_if<domain::AtSlot>(&tracker_.position());
+    if (at == nullptr) return;
+    const Slot& slot = map_.slot(at->manhole, at->slot);
+    const double distance =
+        std::min(options_.recovery.danger_backoff_m, map_.pipe(slot.pipe).length_m / 2);
+    if (distance <= 0) return;
+    // Facing the manhole, the pipe is behind the robot; facing the pipe, ahead.
+    const double speed = mission().profile.speed_mps;
+    const Job back_job = tracker_.heading_end() == slot.pipe_end
+                             ? Job{DriveBackward{speed, distance}}
+                             : Job{DriveForward{speed, distance}};
+    const hal::JobReport back = execute_job(back_job);
+    log_recovery("back out of the manhole", back.ok());
   }
 
   // A blockage or danger just ahead of the robot in its pipe.

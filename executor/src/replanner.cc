@@ -64,7 +64,35 @@ void Replanner::update(const domain::MissionProgress& progress, std::uint8_t hea
   heading_end_ = heading_end;
 }
 
+Result<search::PlanOutcome> Replanner::baseline_from_here() {
+  domain::MissionProgress start = progress_;
+  for (const auto& d : dropped_) start.done[d.task.index()] = true;
+  search::PlannerOptions same_goals = options_.planner;
+  same_goals.select_goals = false;
+  auto outcome = search::plan_mission(map_, mission_, start, same_goals);
+  if (outcome.has_value() || outcome.error().code != ErrorCode::kNoPlan) return outcome;
+  // The goal list cannot be done any more: straight to the nearest exit.
+  const std::string why =
+      "the baseline's goal list cannot be done: " + one_line(outcome.error().message);
+  for (TaskId t : mission_.task_ids()) {
+    if (start.done[t.index()]) continue;
+    dropped_.push_back({t, why});
+    start.done[t.index()] = true;
+    mission_.tasks[t.index()].final = false;
+  }
+  mission_.exits.clear();
+  for (ManholeId m : map_.manhole_ids()) {
+    if (map_.manhole(m).exit) mission_.exits.push_back(m);
+  }
+  return search::plan_mission(map_, mission_, start, same_goals);
+}
+
 Result<search::PlanOutcome> Replanner::plan_from_here() {
+  const bool first = !planned_;
+  planned_ = true;
+  if (options_.goals == ReplannerOptions::Goals::kPaperBaseline && !first) {
+    return baseline_from_here();
+  }
   for (;;) {
     domain::MissionProgress start = progress_;
     for (const auto& d : dropped_) start.done[d.task.index()] = true;

@@ -239,6 +239,10 @@ Result<FaultScenario> read_faults_json(std::string_view text, const std::string&
   } catch (const nlohmann::json::parse_error& e) {
     report_syntax_error(text, file_name, e, diagnostics);
     return Error{ErrorCode::kParse, diagnostics.error_summary()};
+  } catch (const nlohmann::json::exception& e) {
+    // A number too large for any type (found by fuzz/faults_json_fuzz.cc).
+    diagnostics.error(file_name, std::string("JSON error: ") + e.what());
+    return Error{ErrorCode::kParse, diagnostics.error_summary()};
   }
   Fields root(doc, "$", file_name, diagnostics);
   const std::size_t errors_before = diagnostics.error_count();

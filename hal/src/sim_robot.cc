@@ -302,7 +302,10 @@ JobReport SimRobot::turn(const TurnInManhole& job) {
       const double end = e == 0 ? 0.0 : pipe.length_m;
       if (pipe.ends[e].manhole && std::abs(in->offset_m - end) <= 1e-6 &&
           pipe.ends[e].slot.value() == job.from_slot) {
-        pose_ = AtSlot{*pipe.ends[e].manhole, pipe.ends[e].slot};
+        // It keeps the way it faces: to back out again it must know which way the pipe is.
+        const bool front_to_this_end = (in->heading == Heading::kTowardsEnd1) == (e == 1);
+        pose_ = AtSlot{*pipe.ends[e].manhole, pipe.ends[e].slot,
+                       front_to_this_end ? Facing::kIntoManhole : Facing::kIntoPipe};
         break;
       }
     }

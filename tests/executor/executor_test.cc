@@ -98,7 +98,7 @@ TEST(Executor, ABlockageThatCutsATaskOffDropsItAndDoesTheRest) {
   const SimRun run = simulate(ais.map, ais.mission, *scenario);
   EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded);
   EXPECT_EQ(run.report.tasks_done, (std::vector<std::string>{"sample"}));
-  EXPECT_TRUE(dropped(run, "inspect", "pipe P4 is blocked at 5.00 m"));
+  EXPECT_TRUE(dropped(run, "inspect", "pipe P4 is blocked at 4.95 m"));
   EXPECT_NE(run.report.end.find("pipe P9"), std::string::npos) << run.report.end;
   // The transient obstacle in P1 was cleared by lifting the head, without a replan.
   EXPECT_EQ(run.report.replans, 1U);
@@ -183,6 +183,85 @@ TEST(Executor, ADangerousPassageIsClosedAndAvoided) {
   EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded);
   EXPECT_GE(run.report.replans, 1U);
   EXPECT_NE(run.json_lines.find(R"("kind":"danger")"), std::string::npos);
+}
+
+// Found by a fault campaign (docs/campaign.md, AIS, seed 1, run 0): the only passage on from the
+// mouth of P10 in M8 is dangerous. Backing out into P10 lets the robot drive back to an exit; left
+// at the mouth, it could only call for recovery.
+TEST(Executor, ARobotBacksOutOfAManholeWithADangerousPassage) {
+  const auto ais = testing::load_ais_testbed();
+  const SimRun run =
+      simulate(ais.map, ais.mission, faults(ais.map, R"({"format": "sewerplan-faults", "version": 1,
+          "obstacles": [{"pipe": "P4", "offset_m": 0.63, "kind": "permanent"}],
+          "danger": [{"manhole": "M8", "from_slot": 1, "to_slot": 2}]})"));
+  EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded) << run.report;
+  EXPECT_EQ(run.report.end.rfind("exit ", 0), 0U) << run.report;
+  EXPECT_NE(run.json_lines.find("back out of the manhole"), std::string::npos);
+  EXPECT_NE(run.json_lines.find(R"("type":"failure","kind":"dangerous passage","manhole":"M8")"),
+            std::string::npos)
+      << run.json_lines;
+}
+
+// Found by a fault campaign (AIS, seed 3, run 26): after backing out of M6 the robot passes into
+// P10 and turns back at its mouth with its front towards P10; the second dangerous passage must
+// send it forward into P10, and the simulated robot must keep that facing at the mouth.
+TEST(Executor, ARobotFacingThePipeBacksOutForward) {
+  const auto ais = testing::load_ais_testbed();
+  const SimRun run =
+      simulate(ais.map, ais.mission, faults(ais.map, R"({"format": "sewerplan-faults", "version": 1,
+          "danger": [{"manhole": "M6", "from_slot": 1, "to_slot": 4},
+                     {"manhole": "M6", "from_slot": 3, "to_slot": 4}]})"));
+  EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded) << run.report << run.json_lines;
+  EXPECT_EQ(run.json_lines.find("malfunction"), std::string::npos) << run.json_lines;
+  EXPECT_NE(run.json_lines.find("DriveForward(0.30 m/s, 0.30 m)"), std::string::npos)
+      << run.json_lines;
+}
+
+// Found by a fault campaign (AIS, seed 1, run 186): a danger spot 2.4 cm beyond the sample point
+// W1 (P6 at 3.00 m). The robot stops short of it, before W1, so the sample cannot be taken from
+// this side; taking the danger to be where the robot stopped lets the Replanner see that, rather
+// than send the robot to W1 again and again.
+TEST(Executor, ATaskJustShortOfADangerIsNotTriedForever) {
+  const auto ais = testing::load_ais_testbed();
+  const SimRun run =
+      simulate(ais.map, ais.mission, faults(ais.map, R"({"format": "sewerplan-faults", "version": 1,
+          "danger": [{"pipe": "P6", "offset_m": 3.024}]})"));
+  EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded) << run.report;
+  EXPECT_LE(run.report.replans, 3U) << run.report;
+}
+
+// Found by a fault campaign (AIS, seed 2, hard rates, run 125): recovery cleared one obstacle and
+// the retried drive met a second one further on, which was taken to be the first one staying.
+// Each obstacle gets recovery of its own.
+TEST(Executor, ASecondObstacleBehindAClearedOneGetsItsOwnRecovery) {
+  const auto ais = testing::load_ais_testbed();
+  const SimRun run =
+      simulate(ais.map, ais.mission, faults(ais.map, R"({"format": "sewerplan-faults", "version": 1,
+          "obstacles": [{"pipe": "P1", "offset_m": 3.0, "kind": "transient_lift"},
+                        {"pipe": "P1", "offset_m": 6.0, "kind": "transient_lift"}]})"));
+  EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded) << run.report;
+  EXPECT_EQ(run.report.replans, 0U) << run.report;
+  EXPECT_EQ(run.report.tasks_done.size(), 2U) << run.report;
+  EXPECT_EQ(run.report.recoveries, 2U) << run.report;
+}
+
+// Found by a fault campaign (AIS, seed 2, hard rates, run 253): a transient malfunction while
+// lifting the head left the robot "stuck". A reboot clears it, and recovery goes on.
+TEST(Executor, ATransientMalfunctionDuringRecoveryIsRebootedThrough) {
+  const auto ais = testing::load_ais_testbed();
+  // Job 7 is the head lift of phase 2 (jobs: drive, pass, drive into the obstacle, two backups
+  // and retries).
+  const SimRun run =
+      simulate(ais.map, ais.mission, faults(ais.map, R"({"format": "sewerplan-faults", "version": 1,
+          "obstacles": [{"pipe": "P1", "offset_m": 3.0, "kind": "transient_lift"}],
+          "malfunctions": [{"at_job": 7, "kind": "transient"}]})"));
+  EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded) << run.report;
+  EXPECT_EQ(run.report.replans, 0U) << run.report;
+  EXPECT_NE(run.json_lines.find(R"("job":"LiftHead","progress_m":0.0,"ok":false)"),
+            std::string::npos)
+      << run.json_lines;
+  EXPECT_NE(run.json_lines.find(R"("phase":"2: lift the head and retry","ok":true)"),
+            std::string::npos);
 }
 
 TEST(Executor, TheSameFaultsGiveTheSameRun) {

@@ -156,6 +156,16 @@ TEST_F(FaultScenarioTest, BadJsonIsAParseErrorWithItsLine) {
   EXPECT_THAT(f.error().message, HasSubstr("JSON syntax error"));
 }
 
+// Found by fuzz/faults_json_fuzz.cc: a number too large for any type threw out of the reader.
+TEST_F(FaultScenarioTest, AHugeNumberIsAParseErrorNotAnException) {
+  Result<FaultScenario> f =
+      read("{\"format\": \"sewerplan-faults\", \"version\": 1" + std::string(400, '4') + "}");
+  ASSERT_FALSE(f.has_value());
+  EXPECT_EQ(f.error().code, ErrorCode::kParse);
+  EXPECT_THAT(f.error().message, HasSubstr("f.json"));
+  EXPECT_THAT(f.error().message, HasSubstr("number overflow"));
+}
+
 TEST_F(FaultScenarioTest, AnotherFormatIsAParseError) {
   Result<FaultScenario> f = read(R"({"format": "sewerplan-map", "version": 1})");
   ASSERT_FALSE(f.has_value());

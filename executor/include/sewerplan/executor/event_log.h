@@ -4,8 +4,9 @@
 // Every event has the mission time `t_s` (the robot's clock) and a `type`: "plan" and "replan"
 // (reason, planning time, goals, dropped tasks, end), "action", "job", "error" (blockage, danger,
 // malfunction, with the robot's reason), "recovery" (the phase tried and its result),
-// "task_done", "task_dropped" (with the reason), "beacon", "mission_end". Fields are plain values,
-// so a log can be replayed and compared.
+// "failure" (what the Replanner is told: kind, and the pipe and offset_m or the manhole and paper
+// slot numbers), "task_done", "task_dropped" (with the reason), "beacon", "mission_end". Fields are
+// plain values, so a log can be replayed and compared.
 //
 //   std::ofstream file("events.jsonl");
 //   EventLog log(&file, &std::cout);

@@ -80,6 +80,13 @@ struct ReplannerOptions {
   search::PlannerOptions planner{.improvement_expansions = 0};
   // Used to time the planning (default: a steady clock).
   const Clock* clock = nullptr;
+  // What a failure does to the goals. kReselect (the default, the paper's section 4.7): plan again
+  // with goal selection. kPaperBaseline, the paper-era behaviour that fault campaigns compare
+  // against (docs/campaign.md): the first plan selects its goals as kReselect does; after a failure
+  // (or a low battery) the same goal list is planned again without goal selection, and if that
+  // fails, every task left is dropped and the robot goes to the nearest exit of the map.
+  enum class Goals { kReselect, kPaperBaseline };
+  Goals goals = Goals::kReselect;
 };
 
 class Replanner {
@@ -105,6 +112,7 @@ class Replanner {
 
  private:
   Result<search::PlanOutcome> plan_from_here();
+  Result<search::PlanOutcome> baseline_from_here();
   PlanResponse respond(search::PlanOutcome outcome, const std::string& reason, double seconds);
 
   const SewerMap& map_;
@@ -114,6 +122,7 @@ class Replanner {
   domain::MissionProgress progress_;
   std::uint8_t heading_end_ = 1;
   std::vector<domain::DroppedTask> dropped_;
+  bool planned_ = false;  // a first plan was made
 };
 
 }  // namespace sewerplan::executor

@@ -1,0 +1,250 @@
+// SPDX-License-Identifier: MIT
+// sewerplan campaign --map MAP --mission MISSION [--runs N] [--seed S] [--fault-rates R]
+//                    [--jobs J] [--shard I/N] [--only RUN] [--out DIR] [--timeout S] [-q]
+// sewerplan campaign merge DIR... -o OUT
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <thread>
+
+#include <CLI/CLI.hpp>
+
+#include "sewerplan/campaign/campaign.h"
+#include "sewerplan/campaign/merge.h"
+#include "sewerplan/campaign/summary.h"
+#include "sewerplan/core/map_io.h"
+#include "sewerplan/core/text_file.h"
+
+#include "command.h"
+#include <unistd.h>
+
+namespace sewerplan::cli {
+namespace {
+
+struct CampaignCliOptions {
+  std::string map;
+  std::string mission;
+  std::size_t runs = 100;
+  std::uint64_t seed = 1;
+  std::string fault_rates;
+  std::size_t jobs = 1;
+  std::string shard = "0/1";
+  std::optional<std::size_t> only;
+  std::string out;
+  double timeout_s = 60;
+  bool allow_push = false;
+  bool quiet = false;
+  bool no_guard = false;
+  std::string faults_out;
+  // merge
+  std::vector<std::string> merge_dirs;
+  std::string merge_out;
+};
+
+std::string clock_text(double seconds) {
+  const auto s = static_cast<long long>(std::max(0.0, seconds) + 0.5);
+  std::ostringstream out;
+  out << s / 60 << ':' << std::setw(2) << std::setfill('0') << s % 60;
+  return out.str();
+}
+
+// A progress bar on a terminal, a line every 10 % (and at most every 10 s) otherwise.
+class ProgressPrinter {
+ public:
+  explicit ProgressPrinter(std::ostream& err) : err_(err), tty_(::isatty(STDERR_FILENO) != 0) {}
+
+  void operator()(const campaign::Progress& p) {
+    const double eta = p.done == 0 ? 0
+                                   : p.elapsed_s / static_cast<double>(p.done) *
+                                         static_cast<double>(p.total - p.done);
+    std::ostringstream line;
+    line << p.done << '/' << p.total << " runs, " << p.failed << " crashed or hung, "
+         << clock_text(p.elapsed_s) << " elapsed, " << clock_text(eta) << " left";
+    if (tty_) {
+      // At most ten redraws a second.
+      if (p.done != p.total && p.elapsed_s - last_s_ < 0.1) return;
+      last_s_ = p.elapsed_s;
+      constexpr std::size_t kWidth = 30;
+      const std::size_t filled = p.total == 0 ? kWidth : kWidth * p.done / p.total;
+      err_ << "\r[" << std::string(filled, '#') << std::string(kWidth - filled, '.') << "] "
+           << line.str() << (p.done == p.total ? "\n" : "") << std::flush;
+      return;
+    }
+    const std::size_t decile = p.total == 0 ? 10 : 10 * p.done / p.total;
+    if (decile > last_decile_ || p.elapsed_s - last_s_ >= 10 || p.done == p.total) {
+      last_decile_ = decile;
+      last_s_ = p.elapsed_s;
+      err_ << "campaign: " << line.str() << '\n';
+    }
+  }
+
+ private:
+  std::ostream& err_;
+  bool tty_;
+  std::size_t last_decile_ = 0;
+  double last_s_ = 0;
+};
+
+int merge(const CampaignCliOptions& o, Context& c) {
+  std::vector<std::filesystem::path> dirs(o.merge_dirs.begin(), o.merge_dirs.end());
+  Result<campaign::MergedCampaign> merged = campaign::merge_shards(dirs);
+  if (!merged.has_value()) {
+    c.err << merged.error().message << '\n';
+    return exit_code_for(merged.error()) == kExitUsage ? kExitInvalidInput
+                                                       : exit_code_for(merged.error());
+  }
+  if (auto w = campaign::write_campaign_dir(o.merge_out, merged->spec, merged->records);
+      !w.has_value()) {
+    c.err << w.error().message << '\n';
+    return kExitIo;
+  }
+  const campaign::Summary s = campaign::summarize(merged->spec, merged->records);
+  campaign::write_summary_markdown(s, c.out);
+  c.out << "\nwrote " << o.merge_out
+        << "/{campaign.json,runs.jsonl,summary.json,summary.md,summary.svg}\n";
+  return s.clean() ? kExitOk : kExitCampaignNotClean;
+}
+
+int run(const CampaignCliOptions& o, Context& c) {
+  if (o.map.empty() || o.mission.empty()) {
+    c.err << "campaign: --map and --mission are required (or: campaign merge DIR... -o OUT)\n";
+    return kExitUsage;
+  }
+  Result<campaign::FaultRates> rates = campaign::parse_fault_rates(o.fault_rates);
+  Result<std::pair<std::size_t, std::size_t>> shard = campaign::parse_shard(o.shard);
+  const char* inject_env = std::getenv("SEWERPLAN_CAMPAIGN_INJECT");
+  auto inject = campaign::parse_injections(inject_env != nullptr ? inject_env : "");
+  for (const Error* e :
+       {rates.has_value() ? nullptr : &rates.error(), shard.has_value() ? nullptr : &shard.error(),
+        inject.has_value() ? nullptr : &inject.error()}) {
+    if (e != nullptr) {
+      c.err << e->message << '\n';
+      return kExitUsage;
+    }
+  }
+  if (o.runs == 0 || (o.only && *o.only >= o.runs)) {
+    c.err << "campaign: --runs must be at least 1 and --only below it\n";
+    return kExitUsage;
+  }
+  Result<std::string> map_text = read_text_file(o.map);
+  Result<std::string> mission_text = read_text_file(o.mission);
+  Diagnostics diagnostics;
+  Result<SewerMap> map =
+      map_text.has_value() ? read_map(o.map, diagnostics) : Result<SewerMap>(map_text.error());
+  Result<Mission> mission = !map.has_value() ? Result<Mission>(map.error())
+                            : !mission_text.has_value()
+                                ? Result<Mission>(mission_text.error())
+                                : read_mission(o.mission, *map, diagnostics);
+  print_diagnostics(diagnostics, c.err);
+  if (!mission.has_value()) {
+    if (diagnostics.error_count() == 0) c.err << mission.error().message << '\n';
+    return exit_code_for(mission.error());
+  }
+  campaign::CampaignSpec spec;
+  spec.map_name = o.map;
+  spec.mission_name = o.mission;
+  spec.map_fingerprint = campaign::fingerprint(*map_text);
+  spec.mission_fingerprint = campaign::fingerprint(*mission_text);
+  spec.seed = o.seed;
+  spec.runs = o.runs;
+  spec.rates = *rates;
+  spec.push_allowed = o.allow_push;
+  spec.shard_index = shard->first;
+  spec.shard_count = shard->second;
+
+  campaign::CampaignOptions options;
+  options.jobs = std::max<std::size_t>(1, o.jobs);
+  options.timeout_s = o.timeout_s;
+  options.guard = !o.no_guard;
+  options.only = o.only;
+  options.inject = *inject;
+  ProgressPrinter printer(c.err);
+  if (!o.quiet && !o.only) options.progress = [&](const campaign::Progress& p) { printer(p); };
+  const std::vector<campaign::RunRecord> records =
+      campaign::run_campaign(*map, *mission, spec, options);
+
+  if (o.only && !o.faults_out.empty()) {
+    const campaign::RunSettings settings{
+        .rates = spec.rates, .campaign_seed = spec.seed, .push_allowed = spec.push_allowed};
+    Result<hal::FaultScenario> faults = campaign::run_faults(*map, *mission, settings, *o.only);
+    std::ofstream out(o.faults_out);
+    if (faults.has_value()) hal::write_faults_json(*faults, *map, out);
+    out.close();
+    if (!faults.has_value() || !out) {
+      c.err << o.faults_out << ": cannot write the run's faults\n";
+      return kExitIo;
+    }
+  }
+  if (o.only) {
+    const campaign::RunRecord& r = records.front();
+    c.out << campaign::run_json_line(r) << '\n';
+    if (r.status != campaign::RunRecord::Status::kOk) {
+      c.err << "run " << r.index << " (seed " << r.seed << "): " << campaign::to_string(r.status)
+            << ", " << r.detail << '\n';
+      return kExitCampaignNotClean;
+    }
+    return kExitOk;
+  }
+  if (!o.out.empty()) {
+    if (auto w = campaign::write_campaign_dir(o.out, spec, records); !w.has_value()) {
+      c.err << w.error().message << '\n';
+      return kExitIo;
+    }
+  }
+  const campaign::Summary s = campaign::summarize(spec, records);
+  if (!o.quiet) {
+    campaign::write_summary_markdown(s, c.out);
+    if (!o.out.empty()) {
+      c.out << "\nwrote " << o.out
+            << "/{campaign.json,runs.jsonl,summary.json,summary.md,summary.svg}\n";
+    }
+  }
+  return s.clean() ? kExitOk : kExitCampaignNotClean;
+}
+
+}  // namespace
+
+void add_campaign_command(CLI::App& app, Context& context) {
+  auto options = std::make_shared<CampaignCliOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "campaign",
+      "Run many seeded simulated missions with random faults, against an oracle and the "
+      "paper-era baseline (docs/campaign.md)");
+  cmd->add_option("--map", options->map, "Map file");
+  cmd->add_option("--mission", options->mission, "Mission file (.json)");
+  cmd->add_option("--runs", options->runs, "Number of runs")->capture_default_str();
+  cmd->add_option("--seed", options->seed, "Campaign seed")->capture_default_str();
+  cmd->add_option("--fault-rates", options->fault_rates,
+                  "NAME=VALUE,...: obstacles=20 (per km), danger=5 (per km), passages=0.01 "
+                  "(share), malfunctions=0.5 (per hour), permanent=0.1, transient=0.5 (shares)");
+  cmd->add_option("-j,--jobs", options->jobs, "Runs in parallel")->capture_default_str();
+  cmd->add_option("--shard", options->shard, "I/N: only the runs with index % N == I")
+      ->capture_default_str();
+  cmd->add_option("--only", options->only, "Run just this run (from 0) and print its JSON line");
+  cmd->add_option("-o,--out", options->out,
+                  "Directory for campaign.json, runs.jsonl and summary.{json,md,svg}");
+  cmd->add_option("--timeout", options->timeout_s, "Seconds before a run counts as hung")
+      ->capture_default_str();
+  cmd->add_flag("--allow-push", options->allow_push, "Allow recovery phase 3, pushing");
+  cmd->add_flag("--no-guard", options->no_guard,
+                "Run in this process, not in guarded children (for a debugger)");
+  cmd->add_option("--faults-out", options->faults_out,
+                  "With --only: write the run's hidden faults (for simulate --faults, render)");
+  cmd->add_flag("-q,--quiet", options->quiet, "No progress and no summary on the terminal");
+  CLI::App* merge_cmd =
+      cmd->add_subcommand("merge", "Merge the output directories of a sharded campaign");
+  merge_cmd->add_option("dirs", options->merge_dirs, "Shard directories")->required();
+  merge_cmd->add_option("-o,--out", options->merge_out, "Output directory")->required();
+  cmd->require_subcommand(0, 1);
+  merge_cmd->callback([options, &context] { context.exit_code = merge(*options, context); });
+  cmd->callback([options, merge_cmd, &context] {
+    if (merge_cmd->parsed()) return;
+    context.exit_code = run(*options, context);
+  });
+}
+
+}  // namespace sewerplan::cli

@@ -1,0 +1,120 @@
+// SPDX-License-Identifier: MIT
+// sewerplan render --map MAP [--mission MISSION] [--plan PLAN] [--log EVENTS] [--faults FAULTS]
+//                  [--title T] [--width PX] -o FILE.svg
+#include <fstream>
+#include <ostream>
+
+#include <CLI/CLI.hpp>
+
+#include "sewerplan/core/map_io.h"
+#include "sewerplan/core/mission.h"
+#include "sewerplan/core/text_file.h"
+#include "sewerplan/domain/plan_text.h"
+#include "sewerplan/hal/fault_scenario.h"
+#include "sewerplan/render/svg_map.h"
+
+#include "command.h"
+
+namespace sewerplan::cli {
+namespace {
+
+struct RenderOptions {
+  std::string map;
+  std::string mission;
+  std::string plan;
+  std::string log;
+  std::string faults;
+  std::string title;
+  double width_px = 1000;
+  bool focus = false;
+  std::string out;
+};
+
+int run(const RenderOptions& o, Context& c) {
+  if ((!o.plan.empty() || !o.log.empty() || o.focus) && o.mission.empty()) {
+    c.err << "render: --plan, --log and --focus need --mission\n";
+    return kExitUsage;
+  }
+  if (!(o.width_px >= 200 && o.width_px <= 20000)) {
+    c.err << "render: --width must be 200 to 20000 pixels\n";
+    return kExitUsage;
+  }
+  Diagnostics diagnostics;
+  auto fail = [&](const Error& e) {
+    print_diagnostics(diagnostics, c.err);
+    if (diagnostics.error_count() == 0) c.err << e.message << '\n';
+    return exit_code_for(e);
+  };
+  Result<SewerMap> map = read_map(o.map, diagnostics);
+  if (!map.has_value()) return fail(map.error());
+  std::optional<Mission> mission;
+  if (!o.mission.empty()) {
+    Result<Mission> m = read_mission(o.mission, *map, diagnostics);
+    if (!m.has_value()) return fail(m.error());
+    mission = std::move(*m);
+  }
+  std::optional<domain::Plan> plan;
+  if (!o.plan.empty()) {
+    Result<std::string> text = read_text_file(o.plan);
+    if (!text.has_value()) return fail(text.error());
+    Result<domain::Plan> p = domain::parse_plan(*text, o.plan, *map, *mission, diagnostics);
+    if (!p.has_value()) return fail(p.error());
+    plan = std::move(*p);
+  }
+  std::optional<render::EventTrace> trace;
+  if (!o.log.empty()) {
+    Result<std::string> text = read_text_file(o.log);
+    if (!text.has_value()) return fail(text.error());
+    Result<render::EventTrace> t =
+        render::read_event_trace(*text, o.log, *map, *mission, diagnostics);
+    if (!t.has_value()) return fail(t.error());
+    trace = std::move(*t);
+  }
+  std::optional<hal::FaultScenario> faults;
+  if (!o.faults.empty()) {
+    Result<hal::FaultScenario> f = hal::read_faults(o.faults, *map, diagnostics);
+    if (!f.has_value()) return fail(f.error());
+    faults = std::move(*f);
+  }
+  print_diagnostics(diagnostics, c.err);
+  const render::RenderInput input{.map = &*map,
+                                  .mission = mission ? &*mission : nullptr,
+                                  .plan = plan ? &*plan : nullptr,
+                                  .trace = trace ? &*trace : nullptr,
+                                  .faults = faults ? &*faults : nullptr,
+                                  .title = o.title,
+                                  .width_px = o.width_px,
+                                  .focus = o.focus};
+  std::ofstream out(o.out, std::ios::binary);
+  out << render::render_map_svg(input);
+  out.close();
+  if (!out) {
+    c.err << o.out << ": cannot write\n";
+    return kExitIo;
+  }
+  c.out << "wrote " << o.out << '\n';
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_render_command(CLI::App& app, Context& context) {
+  auto options = std::make_shared<RenderOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "render",
+      "Draw the network to scale as SVG, with a mission, a plan, faults and a driven route");
+  cmd->add_option("--map", options->map, "Map file")->required();
+  cmd->add_option("--mission", options->mission, "Mission file (.json): start and tasks");
+  cmd->add_option("--plan", options->plan, "Plan text: the planned route");
+  cmd->add_option("--log", options->log,
+                  "Event log (simulate --log): route driven, blocked pipes, tasks done");
+  cmd->add_option("--faults", options->faults, "Fault scenario: the hidden faults");
+  cmd->add_option("--title", options->title, "Title (default: map and mission names)");
+  cmd->add_option("--width", options->width_px, "Width in pixels")->capture_default_str();
+  cmd->add_flag("--focus", options->focus,
+                "Only the mission's area (start, tasks, routes), not the whole network");
+  cmd->add_option("-o,--out", options->out, "SVG file to write")->required();
+  cmd->callback([options, &context] { context.exit_code = run(*options, context); });
+}
+
+}  // namespace sewerplan::cli

@@ -1,0 +1,55 @@
+// SPDX-License-Identifier: MIT
+// run_campaign: many seeded runs (run.h) in parallel, each guarded in a child process.
+//
+// Worker threads take runs in index order; each run is computed in a forked child that writes its
+// record as one JSON line to a pipe. A child killed by a signal is a crash, one still running at
+// the time limit is killed (SIGKILL) and is a hang; either is recorded with its seed and the
+// campaign goes on. A progress callback sees every finished run. The records come back in index
+// order, so the output does not depend on the number of threads.
+//
+//   CampaignOptions options{.jobs = 2, .timeout_s = 60};
+//   std::vector<RunRecord> records = run_campaign(map, mission, spec, options);
+//   Summary s = summarize(spec, records);  // summary.h
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <map>
+#include <optional>
+#include <vector>
+
+#include "sewerplan/campaign/record.h"
+#include "sewerplan/campaign/run.h"
+#include "sewerplan/core/mission.h"
+#include "sewerplan/core/sewer_map.h"
+
+namespace sewerplan::campaign {
+
+struct Progress {
+  std::size_t done = 0;
+  std::size_t total = 0;
+  std::size_t failed = 0;  // crashes and hangs so far
+  double elapsed_s = 0;
+};
+
+// For tests of the guard only: make a run's child crash (SIGSEGV) or hang.
+enum class InjectedFault { kCrash, kHang };
+
+struct CampaignOptions {
+  std::size_t jobs = 1;
+  double timeout_s = 60;  // per run; a child still running then is a hang
+  bool guard = true;      // false: in this process, one run at a time (a crash takes it down)
+  std::optional<std::size_t> only;  // run just this index (it need not be in the shard)
+  std::function<void(const Progress&)> progress;  // called from one thread at a time
+  std::map<std::size_t, InjectedFault> inject;
+};
+
+// The runs of `spec`'s shard (or options.only), in index order.
+std::vector<RunRecord> run_campaign(const SewerMap& map, const Mission& mission,
+                                    const CampaignSpec& spec, const CampaignOptions& options);
+
+// Parses SEWERPLAN_CAMPAIGN_INJECT ("crash:3,hang:5"), the test hook behind
+// CampaignOptions::inject; empty or unset: none.
+Result<std::map<std::size_t, InjectedFault>> parse_injections(std::string_view text);
+
+}  // namespace sewerplan::campaign

@@ -1,0 +1,122 @@
+// SPDX-License-Identifier: MIT
+// One run of a fault campaign: a seeded simulated mission with random hidden faults, carried out
+// three ways on the same faults.
+//
+// A run is fixed by the map, the mission, the fault rates, the campaign's seed and the run's index:
+// run_seed() derives its own seed, random_faults() (hal/fault_scenario.h) draws the faults from it,
+// and then
+//   - ours: the Executor with the default Replanner (goal re-selection after every failure), as
+//     `sewerplan simulate` runs it;
+//   - the baseline: the same Executor with the paper-era Replanner policy
+//     (ReplannerOptions::Goals::kPaperBaseline: after a failure, the same goal list without goal
+//     selection, else the nearest exit);
+//   - the oracle: one plan, with goal selection, from a mission that knows in advance every
+//   obstacle
+//     no recovery can clear (permanent ones, and push-only ones when pushing is not allowed), every
+//     danger spot and every dangerous passage. It is counted, not driven: it has the whole battery,
+//     no malfunction and no detour, so its task count bounds what any policy could do on the same
+//     faults (exactly so where the planner is optimal, docs/campaign.md); and when it finds no way
+//     to end the mission, no policy could have reached an exit.
+// Everything in a RunResult but `measured` is the same on every machine for the same inputs.
+//
+//   RunResult r = *run_one(map, mission, {.rates = {}, .campaign_seed = 7}, 12);
+//   std::cout << run_json_line(r) << '\n';
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "sewerplan/core/mission.h"
+#include "sewerplan/core/result.h"
+#include "sewerplan/core/sewer_map.h"
+#include "sewerplan/hal/fault_scenario.h"
+
+namespace sewerplan::campaign {
+
+// The fault rates of a campaign, as `--fault-rates` writes them:
+// "obstacles=20,danger=5,passages=0.01,malfunctions=0.5,permanent=0.1,transient=0.5".
+struct FaultRates {
+  double obstacles_per_km = 20;  // obstacles per km of drivable pipe
+  double danger_per_km = 5;      // danger spots per km of drivable pipe
+  double passage_share = 0.01;   // share of passages between drivable pipes that are dangerous
+  double malfunctions_per_hour = 0.5;
+  double permanent_share = 0.1;  // of malfunctions
+  double transient_share = 0.5;  // of obstacles (half cleared by lifting the head, half by pushing)
+  friend bool operator==(const FaultRates&, const FaultRates&) = default;
+};
+
+// Reads "name=value,..." (any subset, the others keep their defaults). An error names the bad item.
+Result<FaultRates> parse_fault_rates(std::string_view text);
+std::string format_fault_rates(const FaultRates& rates);
+
+struct RunSettings {
+  FaultRates rates;
+  std::uint64_t campaign_seed = 0;
+  bool push_allowed = false;  // recovery phase 3 (executor/recovery.h)
+};
+
+// The run's own seed: splitmix64 of the campaign seed and the index.
+std::uint64_t run_seed(std::uint64_t campaign_seed, std::size_t index);
+
+// The hidden faults of run `index`.
+Result<hal::FaultScenario> run_faults(const SewerMap& map, const Mission& mission,
+                                      const RunSettings& settings, std::size_t index);
+
+// How a mission ended, checked on the simulated robot's true pose.
+enum class Outcome {
+  kExit,      // in or at an exit manhole
+  kEndPoint,  // at the mission's own end point (its final task, done)
+  kBeacon,    // the robot called for recovery: beacon on
+  kStranded,  // neither at an exit or the end point nor with the beacon on
+};
+std::string_view to_string(Outcome outcome);
+std::optional<Outcome> outcome_from_string(std::string_view name);
+
+struct Execution {
+  std::size_t tasks = 0;  // tasks done
+  Outcome outcome = Outcome::kExit;
+  std::string end;  // the executor's words: "exit M4", or why the beacon is on
+  bool reserve_kept = true;
+  std::size_t replans = 0;
+  double time_s = 0;  // mission time and energy, simulated (deterministic)
+  double energy_wh = 0;
+  bool disabled = false;                 // a permanent malfunction struck
+  std::vector<double> planning_times_s;  // measured
+  friend bool operator==(const Execution&, const Execution&) = default;
+};
+
+struct FaultCounts {
+  std::size_t obstacles = 0;
+  std::size_t permanent_obstacles = 0;
+  std::size_t danger_spots = 0;
+  std::size_t dangerous_passages = 0;
+  std::size_t malfunctions = 0;
+  std::size_t permanent_malfunctions = 0;
+  friend bool operator==(const FaultCounts&, const FaultCounts&) = default;
+};
+
+struct RunResult {
+  std::size_t index = 0;
+  std::uint64_t seed = 0;
+  std::size_t tasks = 0;  // in the mission
+  FaultCounts faults;
+  std::size_t oracle_tasks = 0;
+  bool oracle_can_end = false;  // the oracle found a way to end the mission
+  // The oracle can end the mission and no permanent malfunction stopped our robot: a run in which
+  // the robot must end at an exit or the end point.
+  bool could_reach_exit = false;
+  Execution ours;
+  Execution baseline;
+  double wall_s = 0;  // measured
+  friend bool operator==(const RunResult&, const RunResult&) = default;
+};
+
+// Runs the three executions of run `index`. Errors: the faults cannot be drawn (bad rates).
+Result<RunResult> run_one(const SewerMap& map, const Mission& mission, const RunSettings& settings,
+                          std::size_t index);
+
+}  // namespace sewerplan::campaign

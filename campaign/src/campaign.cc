@@ -1,0 +1,226 @@
+// SPDX-License-Identifier: MIT
+// The guarded, parallel campaign runner (campaign.h).
+#include "sewerplan/campaign/campaign.h"
+
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace sewerplan::campaign {
+namespace {
+
+using SteadyTime = std::chrono::steady_clock;
+
+double seconds_since(SteadyTime::time_point start) {
+  return std::chrono::duration<double>(SteadyTime::now() - start).count();
+}
+
+RunRecord compute(const SewerMap& map, const Mission& mission, const RunSettings& settings,
+                  std::size_t index) {
+  RunRecord record;
+  record.index = index;
+  record.seed = run_seed(settings.campaign_seed, index);
+  Result<RunResult> r = run_one(map, mission, settings, index);
+  if (!r.has_value()) {
+    // Only bad rates fail, and those are checked before a campaign starts.
+    record.status = RunRecord::Status::kCrash;
+    record.detail = "error: " + r.error().message;
+    return record;
+  }
+  record.wall_s = r->wall_s;
+  record.result = std::move(*r);
+  return record;
+}
+
+void inject(const CampaignOptions& options, std::size_t index) {
+  const auto it = options.inject.find(index);
+  if (it == options.inject.end()) return;
+  if (it->second == InjectedFault::kCrash) {
+    ::raise(SIGSEGV);
+  } else {
+    for (;;) ::pause();
+  }
+}
+
+std::string signal_text(int sig) {
+  const char* name = ::strsignal(sig);
+  return "signal " + std::to_string(sig) + (name != nullptr ? std::string(" (") + name + ")" : "");
+}
+
+// Runs one run in a forked child; the child writes its record as a line to a pipe.
+RunRecord guarded(const SewerMap& map, const Mission& mission, const RunSettings& settings,
+                  const CampaignOptions& options, std::size_t index) {
+  const auto start = SteadyTime::now();
+  RunRecord failed;
+  failed.index = index;
+  failed.seed = run_seed(settings.campaign_seed, index);
+  int fds[2];
+  if (::pipe2(fds, O_CLOEXEC) != 0) {
+    failed.status = RunRecord::Status::kCrash;
+    failed.detail = std::string("cannot create a pipe: ") + std::strerror(errno);
+    return failed;
+  }
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    ::close(fds[0]);
+    ::close(fds[1]);
+    failed.status = RunRecord::Status::kCrash;
+    failed.detail = std::string("cannot fork: ") + std::strerror(errno);
+    return failed;
+  }
+  if (pid == 0) {
+    ::close(fds[0]);
+    inject(options, index);
+    const std::string line = run_json_line(compute(map, mission, settings, index)) + "\n";
+    std::size_t written = 0;
+    while (written < line.size()) {
+      const ssize_t n = ::write(fds[1], line.data() + written, line.size() - written);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) ::_exit(3);
+      written += static_cast<std::size_t>(n);
+    }
+    ::_exit(0);
+  }
+  ::close(fds[1]);
+  // Other workers' children may hold this pipe's write end too (fork copies every descriptor), so
+  // the end of the line, or the child's exit, says when the record is complete, not end of file.
+  std::string text;
+  int status = 0;
+  bool exited = false;
+  bool hung = false;
+  for (;;) {
+    pollfd p{fds[0], POLLIN, 0};
+    const int ready = ::poll(&p, 1, 20);
+    if (ready > 0) {
+      char buffer[4096];
+      const ssize_t n = ::read(fds[0], buffer, sizeof buffer);
+      if (n > 0) text.append(buffer, static_cast<std::size_t>(n));
+    }
+    if (!exited && ::waitpid(pid, &status, WNOHANG) == pid) exited = true;
+    const bool complete = !text.empty() && text.back() == '\n';
+    if (complete && !exited) {
+      ::waitpid(pid, &status, 0);
+      exited = true;
+    }
+    if (exited) {
+      // Whatever the child wrote before it exited is in the pipe now.
+      ::fcntl(fds[0], F_SETFL, O_NONBLOCK);
+      char buffer[4096];
+      for (ssize_t n; (n = ::read(fds[0], buffer, sizeof buffer)) > 0;) {
+        text.append(buffer, static_cast<std::size_t>(n));
+      }
+      break;
+    }
+    if (seconds_since(start) > options.timeout_s) {
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, &status, 0);
+      hung = true;
+      break;
+    }
+  }
+  ::close(fds[0]);
+  failed.wall_s = seconds_since(start);
+  if (hung) {
+    failed.status = RunRecord::Status::kHang;
+    failed.detail = "still running after " + std::to_string(options.timeout_s) + " s; killed";
+    return failed;
+  }
+  if (WIFSIGNALED(status)) {
+    failed.status = RunRecord::Status::kCrash;
+    failed.detail = signal_text(WTERMSIG(status));
+    return failed;
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || text.empty() || text.back() != '\n') {
+    failed.status = RunRecord::Status::kCrash;
+    failed.detail =
+        "exited with status " + std::to_string(WEXITSTATUS(status)) + " without a result";
+    return failed;
+  }
+  text.pop_back();
+  Result<RunRecord> record = parse_run_line(text, "child of run " + std::to_string(index), 1);
+  if (!record.has_value()) {
+    failed.status = RunRecord::Status::kCrash;
+    failed.detail = "unreadable result: " + record.error().message;
+    return failed;
+  }
+  return *record;
+}
+
+}  // namespace
+
+std::vector<RunRecord> run_campaign(const SewerMap& map, const Mission& mission,
+                                    const CampaignSpec& spec, const CampaignOptions& options) {
+  const RunSettings settings{
+      .rates = spec.rates, .campaign_seed = spec.seed, .push_allowed = spec.push_allowed};
+  std::vector<std::size_t> indices;
+  if (options.only) {
+    indices.push_back(*options.only);
+  } else {
+    for (std::size_t i = 0; i < spec.runs; ++i) {
+      if (spec.in_shard(i)) indices.push_back(i);
+    }
+  }
+  std::vector<RunRecord> records(indices.size());
+  std::atomic<std::size_t> next{0};
+  std::mutex progress_mutex;
+  Progress progress{.total = indices.size()};
+  const auto start = SteadyTime::now();
+  auto work = [&] {
+    for (std::size_t k; (k = next++) < indices.size();) {
+      RunRecord r = options.guard ? guarded(map, mission, settings, options, indices[k])
+                                  : compute(map, mission, settings, indices[k]);
+      const bool failed = r.status != RunRecord::Status::kOk;
+      records[k] = std::move(r);
+      const std::lock_guard lock(progress_mutex);
+      ++progress.done;
+      if (failed) ++progress.failed;
+      progress.elapsed_s = seconds_since(start);
+      if (options.progress) options.progress(progress);
+    }
+  };
+  // Unguarded runs share this process, one at a time.
+  const std::size_t jobs =
+      options.guard ? std::max<std::size_t>(1, std::min(options.jobs, indices.size())) : 1;
+  std::vector<std::thread> threads;
+  for (std::size_t j = 1; j < jobs; ++j) threads.emplace_back(work);
+  work();
+  for (std::thread& t : threads) t.join();
+  return records;
+}
+
+Result<std::map<std::size_t, InjectedFault>> parse_injections(std::string_view text) {
+  std::map<std::size_t, InjectedFault> out;
+  while (!text.empty()) {
+    const std::size_t comma = text.find(',');
+    const std::string item(text.substr(0, comma));
+    text = comma == std::string_view::npos ? std::string_view{} : text.substr(comma + 1);
+    const std::size_t colon = item.find(':');
+    const std::string kind = item.substr(0, colon);
+    std::size_t run = 0;
+    bool ok = colon != std::string::npos && (kind == "crash" || kind == "hang");
+    if (ok) {
+      const std::string number = item.substr(colon + 1);
+      ok = !number.empty() && number.find_first_not_of("0123456789") == std::string::npos &&
+           number.size() < 10;
+      if (ok) run = std::stoul(number);
+    }
+    if (!ok) {
+      return Error{ErrorCode::kInvalidArgument,
+                   "SEWERPLAN_CAMPAIGN_INJECT: expected crash:RUN or hang:RUN, got '" + item + "'"};
+    }
+    out[run] = kind == "crash" ? InjectedFault::kCrash : InjectedFault::kHang;
+  }
+  return out;
+}
+
+}  // namespace sewerplan::campaign

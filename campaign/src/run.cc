@@ -1,0 +1,249 @@
+// SPDX-License-Identifier: MIT
+// One campaign run: faults, the oracle, ours and the baseline (run.h).
+#include "sewerplan/campaign/run.h"
+
+#include <algorithm>
+#include <charconv>
+#include <chrono>
+
+#include "sewerplan/core/clock.h"
+#include "sewerplan/domain/robot_state.h"
+#include "sewerplan/executor/executor.h"
+#include "sewerplan/executor/replanner.h"
+#include "sewerplan/hal/sim_robot.h"
+
+namespace sewerplan::campaign {
+namespace {
+
+std::uint64_t splitmix64(std::uint64_t x) {
+  x += 0x9E3779B97F4A7C15ULL;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
+  return x ^ (x >> 31);
+}
+
+// The simulated robot starts where the mission puts it; in a pipe it faces the pipe's ends[1], as
+// fusion assumes (fusion/fuse.h).
+hal::SimPose start_pose(const domain::RobotPosition& p) {
+  if (const auto* in = std::get_if<domain::InManhole>(&p)) return hal::InManhole{in->manhole};
+  if (const auto* at = std::get_if<domain::AtSlot>(&p)) return hal::AtSlot{at->manhole, at->slot};
+  const auto& pipe = std::get<domain::InPipe>(p);
+  return hal::InPipe{pipe.pipe, pipe.offset_m, hal::Heading::kTowardsEnd1};
+}
+
+std::optional<ManholeId> manhole_of(const hal::SimPose& pose) {
+  if (const auto* in = std::get_if<hal::InManhole>(&pose)) return in->manhole;
+  if (const auto* at = std::get_if<hal::AtSlot>(&pose)) return at->manhole;
+  return std::nullopt;
+}
+
+// Whether a permanent malfunction struck the robot during its mission.
+bool disabled(const hal::FaultScenario& faults, const hal::SimRobot& robot) {
+  return std::any_of(faults.malfunctions.begin(), faults.malfunctions.end(),
+                     [&](const hal::Malfunction& m) {
+                       if (m.kind != hal::MalfunctionKind::kPermanent) return false;
+                       if (const auto* job = std::get_if<hal::AtJob>(&m.when)) {
+                         return job->index < robot.jobs_executed();
+                       }
+                       return std::get<hal::AtTime>(m.when).time_s <= robot.status().elapsed_s;
+                     });
+}
+
+// The mission as the oracle knows it: every fault no recovery clears, in advance.
+Mission clairvoyant(const Mission& mission, const hal::FaultScenario& faults, bool push_allowed) {
+  Mission known = mission;
+  for (const hal::Obstacle& o : faults.obstacles) {
+    const bool stays = o.kind == hal::ObstacleKind::kPermanent ||
+                       (o.kind == hal::ObstacleKind::kTransientPush && !push_allowed);
+    if (stays) known.blockages.push_back({o.pipe, o.offset_m});
+  }
+  for (const hal::DangerSpot& d : faults.danger_spots)
+    known.blockages.push_back({d.pipe, d.offset_m});
+  for (const hal::DangerousPassage& p : faults.dangerous_passages) {
+    known.closed_passages.push_back({p.manhole, p.from_slot, p.to_slot});
+  }
+  return known;
+}
+
+Execution execute(const SewerMap& map, const Mission& mission, const hal::FaultScenario& faults,
+                  const RunSettings& settings, executor::ReplannerOptions::Goals goals) {
+  executor::Replanner replanner(map, mission, {.goals = goals});
+  hal::SimRobot robot(map, mission.profile, start_pose(replanner.progress().position), faults);
+  executor::ExecutorOptions options;
+  options.recovery.push_allowed = settings.push_allowed;
+  executor::EventLog log;
+  const executor::MissionReport report =
+      executor::Executor(map, replanner, robot, options, log).run();
+  Execution e;
+  e.tasks = report.tasks_done.size();
+  e.end = report.end;
+  e.reserve_kept = report.battery_reserve_kept;
+  e.replans = report.replans;
+  e.time_s = report.time_s;
+  e.energy_wh = report.energy_wh;
+  e.disabled = disabled(faults, robot);
+  e.planning_times_s = report.planning_times_s;
+  const std::optional<ManholeId> m = manhole_of(robot.pose());
+  // A final task that is a place (go to a pipe or a manhole) is done by ending there: the executor
+  // validated the plan and carried it out to its end, and the Replanner had not dropped it.
+  const Task* final_task = replanner.mission().final_task();
+  const bool ended = report.outcome == executor::MissionReport::Outcome::kEnded;
+  if (ended && final_task != nullptr &&
+      std::find(report.tasks_done.begin(), report.tasks_done.end(), final_task->name) ==
+          report.tasks_done.end()) {
+    ++e.tasks;
+  }
+  if (m && map.manhole(*m).exit) {
+    e.outcome = Outcome::kExit;
+  } else if (ended && final_task != nullptr) {
+    e.outcome = Outcome::kEndPoint;
+  } else if (robot.status().beacon_on) {
+    e.outcome = Outcome::kBeacon;
+  } else {
+    e.outcome = Outcome::kStranded;
+  }
+  return e;
+}
+
+}  // namespace
+
+Result<FaultRates> parse_fault_rates(std::string_view text) {
+  FaultRates r;
+  while (!text.empty()) {
+    const std::size_t comma = text.find(',');
+    const std::string_view item = text.substr(0, comma);
+    text = comma == std::string_view::npos ? std::string_view{} : text.substr(comma + 1);
+    const std::size_t eq = item.find('=');
+    auto bad = [&](const std::string& why) {
+      return Error{ErrorCode::kInvalidArgument,
+                   "--fault-rates: '" + std::string(item) + "': " + why +
+                       " (expected obstacles=, danger=, passages=, malfunctions=, permanent=, "
+                       "transient=)"};
+    };
+    if (eq == std::string_view::npos) return bad("no '='");
+    const std::string_view name = item.substr(0, eq);
+    const std::string value(item.substr(eq + 1));
+    double v = 0;
+    try {
+      std::size_t used = 0;
+      v = std::stod(value, &used);
+      if (used != value.size()) return bad("not a number");
+    } catch (const std::exception&) {
+      return bad("not a number");
+    }
+    if (!(v >= 0) || v > 1e6) return bad("must be a number from 0");
+    const bool share = name == "passages" || name == "permanent" || name == "transient";
+    if (share && v > 1) return bad("a share must be at most 1");
+    if (name == "obstacles") {
+      r.obstacles_per_km = v;
+    } else if (name == "danger") {
+      r.danger_per_km = v;
+    } else if (name == "passages") {
+      r.passage_share = v;
+    } else if (name == "malfunctions") {
+      r.malfunctions_per_hour = v;
+    } else if (name == "permanent") {
+      r.permanent_share = v;
+    } else if (name == "transient") {
+      r.transient_share = v;
+    } else {
+      return bad("unknown rate");
+    }
+  }
+  return r;
+}
+
+namespace {
+
+// The shortest text that reads back as the same double, so that a reproduce command is exact.
+std::string exact(double v) {
+  char buffer[32];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, v);
+  return ec == std::errc{} ? std::string(buffer, end) : std::to_string(v);
+}
+
+}  // namespace
+
+std::string format_fault_rates(const FaultRates& r) {
+  return "obstacles=" + exact(r.obstacles_per_km) + ",danger=" + exact(r.danger_per_km) +
+         ",passages=" + exact(r.passage_share) + ",malfunctions=" + exact(r.malfunctions_per_hour) +
+         ",permanent=" + exact(r.permanent_share) + ",transient=" + exact(r.transient_share);
+}
+
+std::uint64_t run_seed(std::uint64_t campaign_seed, std::size_t index) {
+  return splitmix64(splitmix64(campaign_seed) ^ (0xD1B54A32D192ED03ULL * (index + 1)));
+}
+
+std::string_view to_string(Outcome outcome) {
+  switch (outcome) {
+    case Outcome::kExit:
+      return "exit";
+    case Outcome::kEndPoint:
+      return "end_point";
+    case Outcome::kBeacon:
+      return "beacon";
+    case Outcome::kStranded:
+      return "stranded";
+  }
+  return "stranded";
+}
+
+std::optional<Outcome> outcome_from_string(std::string_view name) {
+  for (Outcome o : {Outcome::kExit, Outcome::kEndPoint, Outcome::kBeacon, Outcome::kStranded}) {
+    if (to_string(o) == name) return o;
+  }
+  return std::nullopt;
+}
+
+Result<hal::FaultScenario> run_faults(const SewerMap& map, const Mission& mission,
+                                      const RunSettings& settings, std::size_t index) {
+  const FaultRates& r = settings.rates;
+  hal::RandomFaultOptions o;
+  o.seed = run_seed(settings.campaign_seed, index);
+  o.obstacle_rate_per_km = r.obstacles_per_km;
+  o.transient_share = r.transient_share;
+  o.danger_rate_per_km = r.danger_per_km;
+  o.dangerous_passage_share = r.passage_share;
+  o.malfunction_rate_per_hour = r.malfunctions_per_hour;
+  o.permanent_malfunction_share = r.permanent_share;
+  o.min_pipe_diameter_m = mission.profile.min_pipe_diameter_m;
+  o.max_pipe_diameter_m = mission.profile.max_pipe_diameter_m;
+  return hal::random_faults(map, o);
+}
+
+Result<RunResult> run_one(const SewerMap& map, const Mission& mission, const RunSettings& settings,
+                          std::size_t index) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  Result<hal::FaultScenario> faults = run_faults(map, mission, settings, index);
+  if (!faults.has_value()) return faults.error();
+  RunResult r;
+  r.index = index;
+  r.seed = run_seed(settings.campaign_seed, index);
+  r.tasks = mission.tasks.size();
+  for (const hal::Obstacle& o : faults->obstacles) {
+    ++r.faults.obstacles;
+    if (o.kind == hal::ObstacleKind::kPermanent) ++r.faults.permanent_obstacles;
+  }
+  r.faults.danger_spots = faults->danger_spots.size();
+  r.faults.dangerous_passages = faults->dangerous_passages.size();
+  for (const hal::Malfunction& m : faults->malfunctions) {
+    ++r.faults.malfunctions;
+    if (m.kind == hal::MalfunctionKind::kPermanent) ++r.faults.permanent_malfunctions;
+  }
+
+  ManualClock no_time;
+  executor::Replanner oracle(map, clairvoyant(mission, *faults, settings.push_allowed),
+                             {.clock = &no_time});
+  const executor::PlanResponse plan = oracle.plan("oracle");
+  r.oracle_can_end = plan.decision == executor::PlanResponse::Decision::kFollowPlan;
+  r.oracle_tasks = r.oracle_can_end ? plan.goals.size() : 0;
+
+  r.ours = execute(map, mission, *faults, settings, executor::ReplannerOptions::Goals::kReselect);
+  r.baseline =
+      execute(map, mission, *faults, settings, executor::ReplannerOptions::Goals::kPaperBaseline);
+  r.could_reach_exit = r.oracle_can_end && !r.ours.disabled;
+  r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  return r;
+}
+
+}  // namespace sewerplan::campaign

@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: MIT
+// EventTrace: what a picture needs from an executed mission's event log (JSON lines, as
+// `sewerplan simulate --log` writes them; docs/executor.md).
+//
+// The route driven is the plan steps of the "action" events, in order (the last one may have been
+// cut short by a failure); blocked pipes and closed passages come from the "failure" events; done
+// tasks from "task_done"; the outcome from "mission_end" or "beacon". Events of other types are
+// skipped, so logs from newer versions still read. A line that is not a JSON object, a step that
+// does not parse, or a name not in the map is an error naming the file and line.
+//
+//   Diagnostics diagnostics;
+//   Result<EventTrace> trace = read_event_trace(text, "events.jsonl", map, mission, diagnostics);
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "sewerplan/core/diagnostics.h"
+#include "sewerplan/core/mission.h"
+#include "sewerplan/core/result.h"
+#include "sewerplan/core/sewer_map.h"
+#include "sewerplan/domain/plan.h"
+
+namespace sewerplan::render {
+
+struct EventTrace {
+  std::vector<domain::PlanStep> driven;
+  std::vector<Blockage> blocked;  // pipes found blocked or dangerous
+  std::vector<ClosedPassage> closed;
+  std::vector<std::string> tasks_done;
+  std::string outcome;  // "ended at exit M4", "beacon: ...", or empty when the log stops early
+  std::size_t replans = 0;
+};
+
+Result<EventTrace> read_event_trace(std::string_view text, const std::string& file_name,
+                                    const SewerMap& map, const Mission& mission,
+                                    Diagnostics& diagnostics);
+
+}  // namespace sewerplan::render

@@ -1,0 +1,292 @@
+// SPDX-License-Identifier: MIT
+#include "sewerplan/campaign/campaign.h"
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "sewerplan/campaign/merge.h"
+#include "sewerplan/campaign/summary.h"
+
+#include "support/ais_testbed.h"
+
+namespace sewerplan::campaign {
+namespace {
+
+namespace fs = std::filesystem;
+
+CampaignSpec ais_spec(std::size_t runs, std::uint64_t seed = 1) {
+  CampaignSpec spec;
+  spec.map_name = "datasets/ais-testbed/map.json";
+  spec.mission_name = "datasets/ais-testbed/missions/paper.json";
+  spec.map_fingerprint = "0000000000000001";
+  spec.mission_fingerprint = "0000000000000002";
+  spec.seed = seed;
+  spec.runs = runs;
+  return spec;
+}
+
+// The deterministic part of a record's line: all but the trailing "measured" object.
+std::string fixed_part(const RunRecord& r) {
+  const std::string line = run_json_line(r);
+  return line.substr(0, line.find(",\"measured\":"));
+}
+
+std::vector<std::string> fixed_parts(const std::vector<RunRecord>& records) {
+  std::vector<std::string> out;
+  for (const RunRecord& r : records) out.push_back(fixed_part(r));
+  return out;
+}
+
+fs::path temp_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("sewerplan-campaign-test-" + name);
+  fs::remove_all(dir);
+  return dir;
+}
+
+TEST(Campaign, TheSameSeedGivesTheSameRunsWithAnyNumberOfJobs) {
+  const auto ais = testing::load_ais_testbed();
+  const CampaignSpec spec = ais_spec(12);
+  const auto one = run_campaign(ais.map, ais.mission, spec, {.jobs = 1});
+  const auto two = run_campaign(ais.map, ais.mission, spec, {.jobs = 2});
+  ASSERT_EQ(one.size(), 12U);
+  EXPECT_EQ(fixed_parts(one), fixed_parts(two));
+  for (std::size_t i = 0; i < one.size(); ++i) {
+    EXPECT_EQ(one[i].index, i);
+    EXPECT_EQ(one[i].status, RunRecord::Status::kOk) << one[i].detail;
+  }
+  // Another seed, other faults.
+  const auto other = run_campaign(ais.map, ais.mission, ais_spec(12, 2), {.jobs = 1});
+  EXPECT_NE(fixed_parts(one), fixed_parts(other));
+}
+
+TEST(Campaign, OneRunAloneEqualsItsLineInTheCampaign) {
+  const auto ais = testing::load_ais_testbed();
+  const CampaignSpec spec = ais_spec(8);
+  const auto all = run_campaign(ais.map, ais.mission, spec, {});
+  for (std::size_t k : {0U, 5U, 7U}) {
+    const auto alone = run_campaign(ais.map, ais.mission, spec, {.only = k});
+    ASSERT_EQ(alone.size(), 1U);
+    EXPECT_EQ(fixed_part(alone.front()), fixed_part(all[k]));
+    // Unguarded, in this process: the same.
+    const auto in_process = run_campaign(ais.map, ais.mission, spec, {.guard = false, .only = k});
+    EXPECT_EQ(fixed_part(in_process.front()), fixed_part(all[k]));
+  }
+}
+
+// The oracle knows every fault that stays in advance and plans optimally on the AIS mission (A*),
+// so no policy does more tasks; and wherever it can end the mission, our robot ends it too.
+TEST(Campaign, TheOracleBoundsOursAndEveryRunThatCanEndEnds) {
+  const auto ais = testing::load_ais_testbed();
+  CampaignSpec spec = ais_spec(60, 3);
+  spec.rates.obstacles_per_km = 40;
+  spec.rates.passage_share = 0.05;
+  const auto records = run_campaign(ais.map, ais.mission, spec, {.jobs = 2});
+  std::size_t could = 0;
+  for (const RunRecord& r : records) {
+    ASSERT_TRUE(r.result) << r.index << ": " << r.detail;
+    const RunResult& x = *r.result;
+    if (x.oracle_can_end) {
+      EXPECT_LE(x.ours.tasks, x.oracle_tasks) << run_json_line(r);
+      EXPECT_LE(x.baseline.tasks, x.oracle_tasks) << run_json_line(r);
+    }
+    EXPECT_TRUE(x.ours.reserve_kept) << run_json_line(r);
+    EXPECT_NE(x.ours.outcome, Outcome::kStranded) << run_json_line(r);
+    if (x.could_reach_exit) {
+      ++could;
+      EXPECT_TRUE(x.ours.outcome == Outcome::kExit || x.ours.outcome == Outcome::kEndPoint)
+          << run_json_line(r);
+    }
+  }
+  EXPECT_GT(could, 30U);
+  const Summary s = summarize(spec, records);
+  EXPECT_EQ(s.oracle_below_ours, 0U);
+  EXPECT_GE(s.ours.vs_oracle_mean, s.baseline.vs_oracle_mean);
+  EXPECT_TRUE(s.clean());
+}
+
+TEST(Campaign, ShardsMergeIntoTheWholeCampaign) {
+  const auto ais = testing::load_ais_testbed();
+  const CampaignSpec whole = ais_spec(10);
+  const auto all = run_campaign(ais.map, ais.mission, whole, {});
+  std::vector<fs::path> dirs;
+  for (std::size_t i = 0; i < 3; ++i) {
+    CampaignSpec shard = whole;
+    shard.shard_index = i;
+    shard.shard_count = 3;
+    const auto part = run_campaign(ais.map, ais.mission, shard, {});
+    for (const RunRecord& r : part) EXPECT_EQ(r.index % 3, i);
+    dirs.push_back(temp_dir("shard-" + std::to_string(i)));
+    ASSERT_TRUE(write_campaign_dir(dirs.back(), shard, part).has_value());
+  }
+  // In any order.
+  Result<MergedCampaign> merged = merge_shards({dirs[2], dirs[0], dirs[1]});
+  ASSERT_TRUE(merged.has_value()) << merged.error().message;
+  EXPECT_EQ(fixed_parts(merged->records), fixed_parts(all));
+  EXPECT_EQ(merged->spec.shard_count, 1U);
+  // Its summary equals the unsharded one in everything not measured.
+  std::ostringstream a;
+  std::ostringstream b;
+  write_summary_markdown(summarize(whole, all), a);
+  write_summary_markdown(summarize(merged->spec, merged->records), b);
+  auto cut = [](const std::string& s) {
+    std::string out;
+    std::istringstream in(s);
+    for (std::string line; std::getline(in, line);) {
+      if (line.find("measured") == std::string::npos) out += line + "\n";
+    }
+    return out;
+  };
+  EXPECT_EQ(cut(a.str()), cut(b.str()));
+
+  // Rejected: a shard twice, a shard missing, another campaign, a lost line.
+  Result<MergedCampaign> twice = merge_shards({dirs[0], dirs[1], dirs[1], dirs[2]});
+  ASSERT_FALSE(twice.has_value());
+  EXPECT_NE(twice.error().message.find("shard 1/3 given twice"), std::string::npos)
+      << twice.error().message;
+  Result<MergedCampaign> missing = merge_shards({dirs[0], dirs[2]});
+  ASSERT_FALSE(missing.has_value());
+  EXPECT_NE(missing.error().message.find("shard(s) 1 of 3 missing"), std::string::npos)
+      << missing.error().message;
+
+  CampaignSpec other = whole;
+  other.seed = 99;
+  other.shard_count = 3;
+  other.shard_index = 1;
+  const fs::path foreign = temp_dir("foreign");
+  ASSERT_TRUE(write_campaign_dir(foreign, other, run_campaign(ais.map, ais.mission, other, {}))
+                  .has_value());
+  Result<MergedCampaign> mixed = merge_shards({dirs[0], foreign, dirs[2]});
+  ASSERT_FALSE(mixed.has_value());
+  EXPECT_NE(mixed.error().message.find("the seed differs"), std::string::npos)
+      << mixed.error().message;
+
+  {
+    // Drop the last line of shard 2.
+    std::ifstream in(dirs[2] / "runs.jsonl");
+    std::string first;
+    std::getline(in, first);
+    in.close();
+    std::ofstream(dirs[2] / "runs.jsonl") << first << '\n';
+  }
+  Result<MergedCampaign> lost = merge_shards({dirs[0], dirs[1], dirs[2]});
+  ASSERT_FALSE(lost.has_value());
+  EXPECT_NE(lost.error().message.find("2 run(s) missing: 5, 8"), std::string::npos)
+      << lost.error().message;
+  {
+    // A line of another shard.
+    std::ofstream(dirs[2] / "runs.jsonl") << run_json_line(all[1]) << '\n';
+  }
+  Result<MergedCampaign> stray = merge_shards({dirs[0], dirs[1], dirs[2]});
+  ASSERT_FALSE(stray.has_value());
+  EXPECT_NE(stray.error().message.find("runs.jsonl:1: run 1 does not belong to shard 2/3"),
+            std::string::npos)
+      << stray.error().message;
+}
+
+TEST(Campaign, ACrashOrAHangIsCaughtCountedAndReproducible) {
+  const auto ais = testing::load_ais_testbed();
+  const CampaignSpec spec = ais_spec(6);
+  // A limit well above a run's time even in a loaded sanitizer build, so only the hang hits it.
+  CampaignOptions options{.jobs = 2, .timeout_s = 10};
+  options.inject = {{2, InjectedFault::kCrash}, {4, InjectedFault::kHang}};
+  const auto records = run_campaign(ais.map, ais.mission, spec, options);
+  ASSERT_EQ(records.size(), 6U);
+  EXPECT_EQ(records[2].status, RunRecord::Status::kCrash);
+  EXPECT_EQ(records[4].status, RunRecord::Status::kHang);
+  EXPECT_FALSE(records[2].result);
+  EXPECT_EQ(records[2].seed, run_seed(1, 2));
+  for (std::size_t i : {0U, 1U, 3U, 5U}) EXPECT_EQ(records[i].status, RunRecord::Status::kOk);
+  const Summary s = summarize(spec, records);
+  EXPECT_FALSE(s.clean());
+  ASSERT_EQ(s.failed.size(), 2U);
+  EXPECT_EQ(s.failed[0].run, 2U);
+  EXPECT_EQ(s.failed[0].status, "crash");
+  EXPECT_NE(s.failed[0].command.find("--seed 1 "), std::string::npos);
+  EXPECT_NE(s.failed[0].command.find("--only 2"), std::string::npos);
+  EXPECT_EQ(s.failed[1].status, "hang");
+  EXPECT_EQ(s.completed, 4U);
+  // A failed run's line reads back.
+  Result<RunRecord> back = parse_run_line(run_json_line(records[4]), "runs.jsonl", 5);
+  ASSERT_TRUE(back.has_value());
+  EXPECT_EQ(back->status, RunRecord::Status::kHang);
+  EXPECT_EQ(back->seed, records[4].seed);
+}
+
+TEST(Campaign, RecordsReadBackAndBadLinesNameFileLineAndField) {
+  const auto ais = testing::load_ais_testbed();
+  const auto records = run_campaign(ais.map, ais.mission, ais_spec(3), {});
+  for (const RunRecord& r : records) {
+    Result<RunRecord> back = parse_run_line(run_json_line(r), "runs.jsonl", r.index + 1);
+    ASSERT_TRUE(back.has_value()) << back.error().message;
+    EXPECT_EQ(run_json_line(*back), run_json_line(r));
+  }
+  Result<RunRecord> bad = parse_run_line("{\"run\": 1}", "runs.jsonl", 7);
+  ASSERT_FALSE(bad.has_value());
+  EXPECT_EQ(bad.error().message, "runs.jsonl:7: $.seed: missing");
+  bad = parse_run_line("[1", "runs.jsonl", 2);
+  ASSERT_FALSE(bad.has_value());
+  EXPECT_EQ(bad.error().message, "runs.jsonl:2: not a JSON object");
+  bad = parse_run_line(R"({"run": -1, "seed": "1"})", "r", 1);
+  ASSERT_FALSE(bad.has_value());
+  EXPECT_EQ(bad.error().message, "r:1: $.run: wrong type");
+}
+
+TEST(Campaign, FaultRatesAndShardsParseOrSayWhatIsWrong) {
+  Result<FaultRates> r = parse_fault_rates("obstacles=40.123456789012,permanent=0.5");
+  ASSERT_TRUE(r.has_value());
+  EXPECT_EQ(r->obstacles_per_km, 40.123456789012);
+  EXPECT_EQ(r->permanent_share, 0.5);
+  EXPECT_EQ(r->danger_per_km, FaultRates{}.danger_per_km);
+  Result<FaultRates> back = parse_fault_rates(format_fault_rates(*r));
+  ASSERT_TRUE(back.has_value());
+  EXPECT_EQ(*back, *r);
+  for (const char* bad : {"obstacles", "obstacles=x", "permanent=2", "rain=1", "danger=-1"}) {
+    Result<FaultRates> e = parse_fault_rates(bad);
+    ASSERT_FALSE(e.has_value()) << bad;
+    EXPECT_NE(e.error().message.find(std::string("'") + bad + "'"), std::string::npos)
+        << e.error().message;
+  }
+  Result<std::pair<std::size_t, std::size_t>> shard = parse_shard("2/5");
+  ASSERT_TRUE(shard.has_value());
+  EXPECT_EQ(shard->first, 2U);
+  EXPECT_EQ(shard->second, 5U);
+  for (const char* bad : {"5/5", "1", "a/2", "1/0", "-1/2"})
+    EXPECT_FALSE(parse_shard(bad).has_value()) << bad;
+  Result<std::map<std::size_t, InjectedFault>> inject = parse_injections("crash:3,hang:5");
+  ASSERT_TRUE(inject.has_value());
+  EXPECT_EQ(inject->at(3), InjectedFault::kCrash);
+  EXPECT_FALSE(parse_injections("boom:1").has_value());
+}
+
+TEST(Campaign, TheSummaryIsWrittenAsJsonMarkdownAndSvg) {
+  const auto ais = testing::load_ais_testbed();
+  const CampaignSpec spec = ais_spec(5);
+  const fs::path dir = temp_dir("summary");
+  ASSERT_TRUE(
+      write_campaign_dir(dir, spec, run_campaign(ais.map, ais.mission, spec, {})).has_value());
+  for (const char* f :
+       {"campaign.json", "runs.jsonl", "summary.json", "summary.md", "summary.svg"}) {
+    EXPECT_TRUE(fs::exists(dir / f)) << f;
+  }
+  std::ifstream in(dir / "summary.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j.at("runs"), 5);
+  EXPECT_EQ(j.at("crashes"), 0);
+  EXPECT_TRUE(j.at("ours").contains("tasks_vs_oracle_mean"));
+  EXPECT_TRUE(j.at("ours").at("outcomes").contains("stranded"));
+  std::ifstream svg(dir / "summary.svg");
+  const std::string text((std::istreambuf_iterator<char>(svg)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("<g id=\"histogram\">"), std::string::npos);
+  EXPECT_NE(text.find("<g id=\"outcomes\">"), std::string::npos);
+  Result<MergedCampaign> read = read_campaign_dir(dir);
+  ASSERT_TRUE(read.has_value()) << read.error().message;
+  EXPECT_EQ(read->spec, spec);
+  EXPECT_EQ(read->records.size(), 5U);
+}
+
+}  // namespace
+}  // namespace sewerplan::campaign
