@@ -60,8 +60,8 @@ std::string indexed(const std::string& path, std::size_t i) {
 std::optional<Waypoint> read_waypoint(JsonElement e, const std::string& where, Diagnostics& d) {
   JsonArray array;
   if (e.get_array().get(array) != simdjson::SUCCESS || array.size() != 4) {
-    d.error(where, "expected a waypoint [x_m, y_m, z_m, heading_deg], got " +
-                       detail::describe_json(e));
+    d.error(where,
+            "expected a waypoint [x_m, y_m, z_m, heading_deg], got " + detail::describe_json(e));
     return std::nullopt;
   }
   double v[4];
@@ -92,8 +92,8 @@ std::optional<PassageMotion> read_passage(JsonElement e, const std::string& path
                                           const std::string& file, const SewerMap& map,
                                           Diagnostics& d) {
   JsonFields f(e, path, file, d);
-  f.warn_unknown({"manhole", "from_slot", "to_slot", "feasible", "duration_s", "waypoints",
-                  "reason"});
+  f.warn_unknown(
+      {"manhole", "from_slot", "to_slot", "feasible", "duration_s", "waypoints", "reason"});
   const auto name = f.string("manhole");
   const auto feasible = f.boolean("feasible");
   if (!name || !feasible) return std::nullopt;
@@ -116,8 +116,8 @@ std::optional<PassageMotion> read_passage(JsonElement e, const std::string& path
     const auto duration = f.number("duration_s");
     if (!duration) return std::nullopt;
     if (!(std::isfinite(*duration) && *duration >= 0)) {
-      d.error(f.where("duration_s"), "must be a finite number >= 0, got " +
-                                         detail::format_double(*duration));
+      d.error(f.where("duration_s"),
+              "must be a finite number >= 0, got " + detail::format_double(*duration));
       return std::nullopt;
     }
     p.duration_s = *duration;
@@ -177,10 +177,10 @@ std::string map_geometry_fingerprint(const SewerMap& map) {
 
 std::string profile_geometry_fingerprint(const RobotProfile& p) {
   Fingerprint f;
-  for (double v : {p.length_m, static_cast<double>(p.segment_count), p.body_width_m,
-                   p.min_pipe_diameter_m, p.max_pipe_diameter_m, p.joint_yaw_max_deg,
-                   p.joint_pitch_max_deg, p.manoeuvre_speed_mps, p.turn_s_per_deg,
-                   p.step_s_per_m}) {
+  for (double v :
+       {p.length_m, static_cast<double>(p.segment_count), p.body_width_m, p.min_pipe_diameter_m,
+        p.max_pipe_diameter_m, p.joint_yaw_max_deg, p.joint_pitch_max_deg, p.manoeuvre_speed_mps,
+        p.turn_s_per_deg, p.step_s_per_m}) {
     f.add(v);
   }
   return f.hex();
@@ -195,8 +195,7 @@ Result<PassageMotionTable> read_passage_motion_json(std::string_view text,
   root.warn_unknown({"format", "version", "map", "map_fingerprint", "profile",
                      "profile_fingerprint", "passages"});
   if (auto format = root.string("format"); format && *format != kPassageMotionJsonFormat) {
-    diagnostics.error(root.where("format"), "expected \"" +
-                                                std::string(kPassageMotionJsonFormat) +
+    diagnostics.error(root.where("format"), "expected \"" + std::string(kPassageMotionJsonFormat) +
                                                 "\", got \"" + *format + "\"");
   }
   if (auto version = root.number("version"); version && *version != kPassageMotionJsonVersion) {

@@ -62,9 +62,9 @@ Result<void> validate_profile(const RobotProfile& p) {
   non_negative(p.max_step_m, "max_step_m");
   require(std::isfinite(p.max_turn_deg) && p.max_turn_deg >= 0 && p.max_turn_deg <= 180,
           "max_turn_deg", p.max_turn_deg, "between 0 and 180");
-  require(std::isfinite(p.joint_yaw_max_deg) && p.joint_yaw_max_deg > 0 &&
-              p.joint_yaw_max_deg <= 90,
-          "joint_yaw_max_deg", p.joint_yaw_max_deg, "above 0 and at most 90");
+  require(
+      std::isfinite(p.joint_yaw_max_deg) && p.joint_yaw_max_deg > 0 && p.joint_yaw_max_deg <= 90,
+      "joint_yaw_max_deg", p.joint_yaw_max_deg, "above 0 and at most 90");
   require(std::isfinite(p.joint_pitch_max_deg) && p.joint_pitch_max_deg >= 0 &&
               p.joint_pitch_max_deg <= 90,
           "joint_pitch_max_deg", p.joint_pitch_max_deg, "between 0 and 90");

@@ -143,9 +143,8 @@ Result<PlanReplay::Transition> PlanReplay::drive_manhole(const DriveManhole& s) 
                    describe(AtSlot{s.manhole, s.from}, *map_));
   }
   if (auto problem = passage_problem(s.manhole, s.from, s.to)) return invalid(*problem);
-  const PassageVerdict verdict = judge_passage(*map_, mission_->profile,
-                                               mission_->passage_motion.get(), s.manhole, s.from,
-                                               s.to);
+  const PassageVerdict verdict = judge_passage(
+      *map_, mission_->profile, mission_->passage_motion.get(), s.manhole, s.from, s.to);
   const Slot& into = map_->slot(s.manhole, s.to);
   return Transition{verdict.duration_s,
                     InPipe{into.pipe, end_offset_m(map_->pipe(into.pipe), into.pipe_end)},

@@ -33,9 +33,14 @@ struct HeadPathProblem {
   Pose2 goal;
   double turn_radius_m = 0.4;  // the paths' smallest radius of curvature
   double clearance_m = 0.1;    // the head's disk that must lie in the free space
+  double pipe_reach_m = 0.5;   // how far into the pipes the head may go
 };
 
 bool head_path_available();
+
+// OMPL's sanityChecks() of the space plan_head_path sets up (with its seeded sampler); the
+// exception's message if one fails.
+Result<void> head_space_sanity(const HeadPathProblem& problem, const TurnPlannerOptions& options);
 
 // kUnsupportedFormat without OMPL; an OMPL failure other than "no solution" (an invalid start or
 // goal, which the caller checks first) is kInvalidArgument.

@@ -6,6 +6,10 @@ namespace sewerplan::fusion::detail {
 
 bool head_path_available() { return false; }
 
+Result<void> head_space_sanity(const HeadPathProblem&, const TurnPlannerOptions&) {
+  return Error{ErrorCode::kUnsupportedFormat, "this build of sewerplan has no OMPL"};
+}
+
 Result<HeadPath> plan_head_path(const HeadPathProblem&, const TurnPlannerOptions&) {
   return Error{ErrorCode::kUnsupportedFormat,
                "this build of sewerplan has no OMPL (built with SEWERPLAN_WITH_OMPL=OFF): it "

@@ -75,7 +75,9 @@ PassageGeometry quantised(const PassageGeometry& g) {
 }
 
 PassageKey passage_key(const PassageGeometry& g) {
-  auto i = [](double v, double scale) { return static_cast<std::int64_t>(std::llround(v * scale)); };
+  auto i = [](double v, double scale) {
+    return static_cast<std::int64_t>(std::llround(v * scale));
+  };
   return PassageKey{i(g.manhole_diameter_m, 1000), i(g.turn_deg, 10), i(g.from_diameter_m, 1000),
                     i(g.to_diameter_m, 1000), i(g.step_m, 1000)};
 }

@@ -24,6 +24,7 @@ constexpr double kDriveOverStep_m = 0.05;
 constexpr double kChainStep_m = 0.02;
 constexpr double kYawTolerance_deg = 0.5;
 constexpr double kWaypointSpacing_m = 0.1;
+constexpr double kPipeReach_m = 0.5;
 
 std::string metres(double v) {
   std::ostringstream out;
@@ -130,6 +131,14 @@ std::optional<std::string> chain_problem(const Polyline& path, const PassageGeom
   return std::nullopt;
 }
 
+// The arc length where the path first comes within radius r of the axis (the from-mouth).
+double first_arc_inside(const Polyline& path, double r) {
+  for (std::size_t i = 0; i < path.poses.size(); ++i) {
+    if (std::hypot(path.poses[i].x_m, path.poses[i].y_m) <= r + 1e-9) return path.arc[i];
+  }
+  return path.length();
+}
+
 TurnPlan infeasible(std::string reason, std::uint32_t iterations = 0) {
   TurnPlan p;
   p.reason = std::move(reason);
@@ -148,6 +157,13 @@ ManholeTurnPlanner::ManholeTurnPlanner(RobotBody body, const RobotProfile& profi
       turn_s_per_deg_(profile.turn_s_per_deg),
       step_s_per_m_(profile.step_s_per_m),
       options_(options) {}
+
+Result<void> ManholeTurnPlanner::check_state_space(const PassageGeometry& geometry) const {
+  return detail::head_space_sanity({.geometry = quantised(geometry),
+                                    .turn_radius_m = body_.min_turn_radius_m(),
+                                    .clearance_m = body_.width_m / 2 + body_.bend_margin_m()},
+                                   options_);
+}
 
 Result<TurnPlan> ManholeTurnPlanner::plan(const PassageGeometry& geometry) const {
   const PassageGeometry g = quantised(geometry);
@@ -173,19 +189,23 @@ Result<TurnPlan> ManholeTurnPlanner::plan(const PassageGeometry& geometry) const
         << " that two lifted segments reach (joint pitch <= " << body_.pitch_max_deg << " deg)";
     return infeasible(out.str());
   }
-  // The straight run before the higher mouth: the lifted segment's horizontal reach.
-  const double run =
-      h > kDriveOverStep_m ? body_.segment_length_m * std::cos(std::asin(std::min(
-                                                           1.0, h / body_.segment_length_m)))
-                           : 0.0;
+  // The straight run before the higher mouth: the horizontal reach of the lifted segment, raised
+  // as steeply as its joint allows (then the head clears any step up to max_climb_m()).
+  const double run = h > kDriveOverStep_m
+                         ? body_.segment_length_m * std::cos(body_.pitch_max_deg * kDegToRad)
+                         : 0.0;
   const double run_from = g.step_m < 0 ? run : 0.0;
   const double run_to = g.step_m > 0 ? run : 0.0;
   const double r = g.manhole_diameter_m / 2;
   const double alpha = g.turn_deg * kDegToRad;
   const double cx = std::cos(alpha);
   const double cy = std::sin(alpha);
-  const Pose2 start{-r + run_from, 0, 0};
-  const Pose2 goal{(r - run_to) * cx, (r - run_to) * cy, alpha};
+  // Where no step is climbed, the planned part begins (ends) kPipeReach_m inside the pipe, so the
+  // head may move sideways in the pipe before the mouth (after it).
+  const double start_x = run_from > 0 ? -r + run_from : -r - kPipeReach_m;
+  const double goal_d = run_to > 0 ? r - run_to : r + kPipeReach_m;
+  const Pose2 start{start_x, 0, 0};
+  const Pose2 goal{goal_d * cx, goal_d * cy, alpha};
   const double clearance = w / 2 + body_.bend_margin_m();
 
   // The body must fit where it cannot bend: the straight runs at both mouths.
@@ -200,33 +220,35 @@ Result<TurnPlan> ManholeTurnPlanner::plan(const PassageGeometry& geometry) const
                         "): the body needs " + metres(2 * clearance));
     }
   }
-  Result<detail::HeadPath> head = detail::plan_head_path(
-      {.geometry = g,
-       .start = start,
-       .goal = goal,
-       .turn_radius_m = body_.min_turn_radius_m(),
-       .clearance_m = clearance},
-      options_);
+  Result<detail::HeadPath> head =
+      detail::plan_head_path({.geometry = g,
+                              .start = start,
+                              .goal = goal,
+                              .turn_radius_m = body_.min_turn_radius_m(),
+                              .clearance_m = clearance,
+                              .pipe_reach_m = kPipeReach_m},
+                             options_);
   if (!head.has_value()) return head.error();
   if (!head->found) {
     std::ostringstream out;
     out << "no collision-free motion found in " << options_.max_iterations << " iterations (turn "
-        << g.turn_deg << " deg in a " << metres(g.manhole_diameter_m) << " manhole, radius >= "
-        << metres(body_.min_turn_radius_m()) << ")";
+        << g.turn_deg << " deg in a " << metres(g.manhole_diameter_m)
+        << " manhole, radius >= " << metres(body_.min_turn_radius_m()) << ")";
     return infeasible(out.str(), head->iterations);
   }
 
   // The whole path: the body behind the head in the from-pipe, the planned part, the to-pipe.
   const double body_length = body_.length_m();
   Polyline path;
-  path.add_line_to(-r - body_length, 0, 0);
-  path.add_line_to(-r, 0, 0);
-  const double mouth_s = path.length();
+  path.add_line_to(std::min(start.x_m, -r) - body_length, 0, 0);
+  if (run_from > 0) path.add_line_to(-r, 0, 0);
   path.add_line_to(start.x_m, start.y_m, 0);
   for (std::size_t i = 1; i < head->poses.size(); ++i) path.add(head->poses[i]);
   const double goal_s = path.length();
-  path.add_line_to(r * cx, r * cy, alpha);
+  if (run_to > 0) path.add_line_to(r * cx, r * cy, alpha);
   path.add_line_to((r + body_length) * cx, (r + body_length) * cy, alpha);
+  // Where the manoeuvre begins: the head at the from-pipe's mouth.
+  const double mouth_s = first_arc_inside(path, r);
   if (auto problem = chain_problem(path, g, body_, mouth_s)) {
     return infeasible("the planned path fails the body check: " + *problem, head->iterations);
   }

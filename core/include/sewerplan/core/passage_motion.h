@@ -44,7 +44,7 @@ struct PassageMotion {
   SlotIndex from{0};
   SlotIndex to{0};
   bool feasible = false;
-  double duration_s = 0;           // meaningful when feasible
+  double duration_s = 0;            // meaningful when feasible
   std::vector<Waypoint> waypoints;  // the head's path, manhole frame (job.h); empty if infeasible
   std::string reason;               // why not, when infeasible
   friend bool operator==(const PassageMotion&, const PassageMotion&) = default;

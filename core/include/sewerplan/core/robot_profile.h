@@ -53,9 +53,9 @@ struct RobotProfile {
   // The head's speed along a planned manoeuvre in a manhole (docs/motion.md): 3 m (a 1 m manhole
   // and the 2 m body) at 0.15 m/s take the 20 s of manhole_pass_s.
   double manoeuvre_speed_mps = 0.15;
-  double turn_s_per_deg = 0.3;         // added per degree of turn in a manhole
-  double step_s_per_m = 100;           // added per metre of step, up or down
-  double sample_s = 180;               // taking and analysing a water sample
+  double turn_s_per_deg = 0.3;  // added per degree of turn in a manhole
+  double step_s_per_m = 100;    // added per metre of step, up or down
+  double sample_s = 180;        // taking and analysing a water sample
   // Energy.
   double battery_wh = 240;
   double power_w = 120;  // average power while working

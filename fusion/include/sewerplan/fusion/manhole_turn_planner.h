@@ -6,11 +6,11 @@
 // least RobotBody::min_turn_radius_m() bends no joint more than its yaw limit, and every segment,
 // a chord of the path, stays within RobotBody::bend_margin_m() of it. So the planner plans the
 // head's pose (x, y, heading) in OMPL's Dubins space (Dubins 1957, "On curves of minimal length
-// with a constraint on average curvature..."; forward-only, curvature-bounded paths) with RRT-Connect
-// (Kuffner and LaValle 2000), from the from-pipe's mouth to the to-pipe's, and a state is valid if
-// the head's disk of half the body's width plus that margin lies in the passage's free space
-// (manhole_geometry.h). A step is climbed by lifting two segments (the paper, section 2.2): the
-// step must be within RobotBody::max_climb_m(), and the path must run straight along the pipe's
+// with a constraint on average curvature..."; forward-only, curvature-bounded paths) with
+// RRT-Connect (Kuffner and LaValle 2000), from the from-pipe's mouth to the to-pipe's, and a state
+// is valid if the head's disk of half the body's width plus that margin lies in the passage's free
+// space (manhole_geometry.h). A step is climbed by lifting two segments (the paper, section 2.2):
+// the step must be within RobotBody::max_climb_m(), and the path must run straight along the pipe's
 // axis for the lifted segment's horizontal reach before the higher mouth. The planned path is then
 // checked by moving the whole chain along it, segment by segment: every chord inside the free
 // space, every joint within its yaw limit.
@@ -42,7 +42,7 @@ bool motion_planning_available();
 
 struct TurnPlannerOptions {
   std::uint32_t seed = 1;
-  std::uint32_t max_iterations = 1500;  // RRT-Connect iterations before giving up
+  std::uint32_t max_iterations = 2000;  // RRT-Connect iterations before giving up
 };
 
 // The result for one passage geometry, in its canonical frame (manhole_geometry.h): the head's
@@ -70,6 +70,10 @@ class ManholeTurnPlanner {
   Result<TurnPlan> plan(const PassageGeometry& geometry) const;
 
   const RobotBody& body() const { return body_; }
+
+  // Runs OMPL's sanityChecks() on the state space plan() would use for `geometry` (the Dubins
+  // space with the seeded sampler): a failed check's message as kInvalidArgument.
+  Result<void> check_state_space(const PassageGeometry& geometry) const;
 
  private:
   RobotBody body_;
