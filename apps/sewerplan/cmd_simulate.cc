@@ -15,6 +15,7 @@
 #include "sewerplan/hal/sim_robot.h"
 
 #include "command.h"
+#include "motion_options.h"
 
 namespace sewerplan::cli {
 namespace {
@@ -28,6 +29,7 @@ struct SimulateOptions {
   bool allow_push = false;
   std::string log;
   bool quiet = false;
+  MotionOptions motion;
 };
 
 // The simulated robot starts where the mission puts it; in a pipe it faces the pipe's ends[1],
@@ -72,6 +74,9 @@ int run(const SimulateOptions& o, Context& c) {
   if (!faults.has_value()) {
     if (diagnostics.error_count() == 0) c.err << faults.error().message << '\n';
     return exit_code_for(faults.error());
+  }
+  if (int code = attach_motion(o.motion, o.map, *map, *mission, c.err); code != kExitOk) {
+    return code;
   }
   executor::ExecutorOptions options;
   if (!o.recovery.empty()) {
@@ -123,6 +128,7 @@ void add_simulate_command(CLI::App& app, Context& context) {
                 "Allow recovery phase 3, pushing an obstacle (off for real sewers)");
   cmd->add_option("--log", options->log, "Write the event log as JSON lines");
   cmd->add_flag("-q,--quiet", options->quiet, "Only the final report");
+  add_motion_options(*cmd, options->motion);
   cmd->callback([options, &context] { context.exit_code = run(*options, context); });
 }
 

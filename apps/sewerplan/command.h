@@ -44,6 +44,7 @@ void add_plan_command(CLI::App& app, Context& context);
 void add_export_pddl_command(CLI::App& app, Context& context);
 void add_import_plan_command(CLI::App& app, Context& context);
 void add_simulate_command(CLI::App& app, Context& context);
+void add_motion_command(CLI::App& app, Context& context);
 
 // Helpers shared by the commands.
 int exit_code_for(const Error& error);

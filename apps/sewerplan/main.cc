@@ -51,6 +51,7 @@ int main(int argc, char** argv) {
   add_export_pddl_command(app, context);
   add_import_plan_command(app, context);
   add_simulate_command(app, context);
+  add_motion_command(app, context);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
