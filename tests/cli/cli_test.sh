@@ -168,7 +168,8 @@ expect 2 "unknown planner output 'lpg'" -- "$sp" import-plan --format lpg --map 
 # says so; --no-motion and a stale table. A build without OMPL says it cannot plan them.
 mkdir -p "$tmp/motion"
 cp "$ais" "$tmp/motion/map.json"
-if "$sp" motion precompute "$tmp/motion/map.json" -q 2>&1 | grep -q 'has no OMPL'; then
+motion_out=$("$sp" motion precompute "$tmp/motion/map.json" -q 2>&1)
+if grep -q 'has no OMPL' <<<"$motion_out"; then
   expect 1 'this build of sewerplan has no OMPL' -- "$sp" motion precompute "$tmp/motion/map.json"
 else
   expect 0 'motion: 50 passages, [0-9]+ geometries, [0-9]+ feasible; motion rejects' -- \
