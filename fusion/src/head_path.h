@@ -31,9 +31,10 @@ struct HeadPathProblem {
   PassageGeometry geometry;
   Pose2 start;
   Pose2 goal;
-  double turn_radius_m = 0.4;  // the paths' smallest radius of curvature
-  double clearance_m = 0.1;    // the head's disk that must lie in the free space
-  double pipe_reach_m = 0.5;   // how far into the pipes the head may go
+  double turn_radius_m = 0.4;     // the paths' smallest radius of curvature
+  double clearance_m = 0.1;       // the head's disk that must lie in the manhole
+  double pipe_clearance_m = 0.1;  // ... and in the pipes
+  double pipe_reach_m = 0.5;      // how far into the pipes the head may go
 };
 
 bool head_path_available();

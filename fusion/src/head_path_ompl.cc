@@ -143,14 +143,17 @@ Result<HeadPath> plan_head_path(const HeadPathProblem& problem, const TurnPlanne
                                                              : ompl::msg::LOG_ERROR);
   const PassageGeometry g = problem.geometry;
   const double clearance = problem.clearance_m;
+  const double pipe_clearance = problem.pipe_clearance_m;
   auto space = head_space(problem, options);
   const std::uint32_t seed = options.seed;
 
   auto si = std::make_shared<ob::SpaceInformation>(space);
-  si->setStateValidityChecker([g, clearance, raw = si.get()](const ob::State* state) {
-    const auto* s = state->as<ob::SE2StateSpace::StateType>();
-    return raw->satisfiesBounds(state) && in_free_space(g, s->getX(), s->getY(), clearance);
-  });
+  si->setStateValidityChecker(
+      [g, clearance, pipe_clearance, raw = si.get()](const ob::State* state) {
+        const auto* s = state->as<ob::SE2StateSpace::StateType>();
+        return raw->satisfiesBounds(state) &&
+               in_free_space(g, s->getX(), s->getY(), clearance, pipe_clearance);
+      });
   si->setMotionValidator(std::make_shared<ob::DubinsMotionValidator>(si.get()));
   si->setStateValidityCheckingResolution(kCheckResolution_m / space->getMaximumExtent());
   si->setup();

@@ -83,10 +83,15 @@ PassageKey passage_key(const PassageGeometry& g) {
 }
 
 bool in_free_space(const PassageGeometry& g, double x_m, double y_m, double clearance_m) {
+  return in_free_space(g, x_m, y_m, clearance_m, clearance_m);
+}
+
+bool in_free_space(const PassageGeometry& g, double x_m, double y_m, double clearance_m,
+                   double pipe_clearance_m) {
   const double r = g.manhole_diameter_m / 2 - clearance_m;
   if (r >= 0 && x_m * x_m + y_m * y_m <= r * r) return true;
-  if (in_strip(x_m, y_m, 180.0, g.from_diameter_m / 2 - clearance_m)) return true;
-  return in_strip(x_m, y_m, g.turn_deg, g.to_diameter_m / 2 - clearance_m);
+  if (in_strip(x_m, y_m, 180.0, g.from_diameter_m / 2 - pipe_clearance_m)) return true;
+  return in_strip(x_m, y_m, g.turn_deg, g.to_diameter_m / 2 - pipe_clearance_m);
 }
 
 }  // namespace sewerplan::fusion

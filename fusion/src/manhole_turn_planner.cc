@@ -7,6 +7,7 @@
 #include <cmath>
 #include <iomanip>
 #include <numbers>
+#include <optional>
 #include <sstream>
 
 #include "head_path.h"
@@ -206,56 +207,72 @@ Result<TurnPlan> ManholeTurnPlanner::plan(const PassageGeometry& geometry) const
   const double goal_d = run_to > 0 ? r - run_to : r + kPipeReach_m;
   const Pose2 start{start_x, 0, 0};
   const Pose2 goal{goal_d * cx, goal_d * cy, alpha};
+  // Room to bend in the manhole; in a pipe the head mostly runs straight, and the chain check
+  // below verifies the body wherever it does bend.
   const double clearance = w / 2 + body_.bend_margin_m();
+  const double pipe_clearance = w / 2;
 
   // The body must fit where it cannot bend: the straight runs at both mouths.
   for (double t = 0; t <= 1.0; t += 0.05) {
-    if (!in_free_space(g, -r + t * run_from, 0, clearance)) {
+    if (!in_free_space(g, -r + t * run_from, 0, clearance, pipe_clearance)) {
       return infeasible("no room to bend leaving the from-pipe (" + metres(g.from_diameter_m) +
                         "): the body needs " + metres(2 * clearance));
     }
     const double d = r - run_to * t;
-    if (!in_free_space(g, d * cx, d * cy, clearance)) {
+    if (!in_free_space(g, d * cx, d * cy, clearance, pipe_clearance)) {
       return infeasible("no room to bend entering the to-pipe (" + metres(g.to_diameter_m) +
                         "): the body needs " + metres(2 * clearance));
     }
   }
-  Result<detail::HeadPath> head =
-      detail::plan_head_path({.geometry = g,
-                              .start = start,
-                              .goal = goal,
-                              .turn_radius_m = body_.min_turn_radius_m(),
-                              .clearance_m = clearance,
-                              .pipe_reach_m = kPipeReach_m},
-                             options_);
-  if (!head.has_value()) return head.error();
-  if (!head->found) {
-    std::ostringstream out;
-    out << "no collision-free motion found in " << options_.max_iterations << " iterations (turn "
-        << g.turn_deg << " deg in a " << metres(g.manhole_diameter_m)
-        << " manhole, radius >= " << metres(body_.min_turn_radius_m()) << ")";
-    return infeasible(out.str(), head->iterations);
-  }
-
-  // The whole path: the body behind the head in the from-pipe, the planned part, the to-pipe.
+  // First with the pipes' room relaxed; if the body then touches a wall, once more with the
+  // manhole's room to bend everywhere (a stricter space: no need if the first found nothing).
   const double body_length = body_.length_m();
   Polyline path;
-  path.add_line_to(std::min(start.x_m, -r) - body_length, 0, 0);
-  if (run_from > 0) path.add_line_to(-r, 0, 0);
-  path.add_line_to(start.x_m, start.y_m, 0);
-  for (std::size_t i = 1; i < head->poses.size(); ++i) path.add(head->poses[i]);
-  const double goal_s = path.length();
-  if (run_to > 0) path.add_line_to(r * cx, r * cy, alpha);
-  path.add_line_to((r + body_length) * cx, (r + body_length) * cy, alpha);
-  // Where the manoeuvre begins: the head at the from-pipe's mouth.
-  const double mouth_s = first_arc_inside(path, r);
-  if (auto problem = chain_problem(path, g, body_, mouth_s)) {
-    return infeasible("the planned path fails the body check: " + *problem, head->iterations);
+  double goal_s = 0;
+  double mouth_s = 0;
+  std::uint32_t iterations = 0;
+  std::optional<std::string> problem;
+  for (double pipe_room : {pipe_clearance, clearance}) {
+    Result<detail::HeadPath> head =
+        detail::plan_head_path({.geometry = g,
+                                .start = start,
+                                .goal = goal,
+                                .turn_radius_m = body_.min_turn_radius_m(),
+                                .clearance_m = clearance,
+                                .pipe_clearance_m = pipe_room,
+                                .pipe_reach_m = kPipeReach_m},
+                               options_);
+    if (!head.has_value()) return head.error();
+    iterations += head->iterations;
+    if (!head->found) {
+      if (problem) break;  // keep the body check's reason
+      std::ostringstream out;
+      out << "no collision-free motion found in " << options_.max_iterations << " iterations (turn "
+          << g.turn_deg << " deg in a " << metres(g.manhole_diameter_m)
+          << " manhole, radius >= " << metres(body_.min_turn_radius_m()) << ")";
+      return infeasible(out.str(), iterations);
+    }
+    // The whole path: the body behind the head in the from-pipe, the planned part, the to-pipe.
+    path = Polyline{};
+    path.add_line_to(std::min(start.x_m, -r) - body_length, 0, 0);
+    if (run_from > 0) path.add_line_to(-r, 0, 0);
+    path.add_line_to(start.x_m, start.y_m, 0);
+    for (std::size_t i = 1; i < head->poses.size(); ++i) path.add(head->poses[i]);
+    goal_s = path.length();
+    if (run_to > 0) path.add_line_to(r * cx, r * cy, alpha);
+    path.add_line_to((r + body_length) * cx, (r + body_length) * cy, alpha);
+    // Where the manoeuvre begins: the head at the from-pipe's mouth.
+    mouth_s = first_arc_inside(path, r);
+    problem = chain_problem(path, g, body_, mouth_s);
+    if (!problem) break;
+  }
+  if (problem) {
+    return infeasible("the planned path fails the body check: " + *problem, iterations);
   }
 
   TurnPlan plan;
   plan.feasible = true;
-  plan.iterations = head->iterations;
+  plan.iterations = iterations;
   plan.path_length_m = path.length() - mouth_s;
   for (std::size_t i = 1; i < path.poses.size(); ++i) {
     plan.heading_change_deg +=

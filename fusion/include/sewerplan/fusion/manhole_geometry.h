@@ -77,5 +77,9 @@ PassageKey passage_key(const PassageGeometry& g);
 
 // Whether a disk of radius clearance_m around (x, y) lies in the passage's free space.
 bool in_free_space(const PassageGeometry& g, double x_m, double y_m, double clearance_m);
+// The same with another clearance in the pipes (the planner's head needs room to bend only in the
+// manhole; the chain check then verifies the body everywhere).
+bool in_free_space(const PassageGeometry& g, double x_m, double y_m, double clearance_m,
+                   double pipe_clearance_m);
 
 }  // namespace sewerplan::fusion
