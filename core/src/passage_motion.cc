@@ -231,13 +231,14 @@ Result<PassageMotionTable> read_passage_motion_json(std::string_view text,
 
 void write_passage_motion_json(const PassageMotionTable& table, const SewerMap& map,
                                std::ostream& out) {
-  nlohmann::ordered_json j;
-  j["format"] = kPassageMotionJsonFormat;
-  j["version"] = kPassageMotionJsonVersion;
-  j["map"] = map.name();
-  j["map_fingerprint"] = table.map_fingerprint();
-  j["profile_fingerprint"] = table.profile_fingerprint();
-  nlohmann::ordered_json passages = nlohmann::ordered_json::array();
+  // One passage a line: tables of city networks hold hundreds of thousands of waypoints.
+  out << "{\"format\": " << nlohmann::json(kPassageMotionJsonFormat).dump()
+      << ", \"version\": " << kPassageMotionJsonVersion
+      << ",\n \"map\": " << nlohmann::json(map.name()).dump()
+      << ",\n \"map_fingerprint\": " << nlohmann::json(table.map_fingerprint()).dump()
+      << ",\n \"profile_fingerprint\": " << nlohmann::json(table.profile_fingerprint()).dump()
+      << ",\n \"passages\": [";
+  bool first = true;
   for (const PassageMotion& p : table.entries()) {
     nlohmann::ordered_json e;
     e["manhole"] = map.manhole(p.manhole).name;
@@ -254,10 +255,10 @@ void write_passage_motion_json(const PassageMotionTable& table, const SewerMap& 
     } else {
       e["reason"] = p.reason;
     }
-    passages.push_back(std::move(e));
+    out << (first ? "\n  " : ",\n  ") << e.dump();
+    first = false;
   }
-  j["passages"] = std::move(passages);
-  out << j.dump(1) << '\n';
+  out << "]}\n";
 }
 
 Result<PassageMotionTable> load_passage_motion(const std::filesystem::path& path,

@@ -35,7 +35,8 @@ std::string metres(double v) {
 
 double wrapped(double a) { return std::remainder(a, 2 * std::numbers::pi); }
 
-double rounded(double v, double unit) { return std::round(v / unit) * unit; }
+// Rounded to 1 / scale, dividing by the exact scale so that 0.495 prints as 0.495.
+double rounded(double v, double scale) { return std::round(v * scale) / scale; }
 
 // A polyline of head poses with its cumulative arc length.
 struct Polyline {
@@ -278,8 +279,9 @@ Result<TurnPlan> ManholeTurnPlanner::plan(const PassageGeometry& geometry) const
     plan.heading_change_deg +=
         std::abs(wrapped(path.poses[i].heading_rad - path.poses[i - 1].heading_rad)) / kDegToRad;
   }
-  plan.duration_s = plan.path_length_m / speed_mps_ + plan.heading_change_deg * turn_s_per_deg_ +
-                    h * step_s_per_m_;
+  plan.duration_s = rounded(plan.path_length_m / speed_mps_ +
+                                plan.heading_change_deg * turn_s_per_deg_ + h * step_s_per_m_,
+                            1e3);
   // Heights above the floor (the lower invert): down the first run, up the last.
   auto z_at = [&](double s) {
     if (g.step_m < 0) {
@@ -295,8 +297,8 @@ Result<TurnPlan> ManholeTurnPlanner::plan(const PassageGeometry& geometry) const
     const bool last = s >= path.length() - 1e-9;
     if (last) s = path.length();
     const auto [x, y] = path.at(s);
-    plan.waypoints.push_back(Waypoint{rounded(x, 1e-4), rounded(y, 1e-4), rounded(z_at(s), 1e-4),
-                                      rounded(path.heading_at(s) / kDegToRad, 1e-2)});
+    plan.waypoints.push_back(Waypoint{rounded(x, 1e4), rounded(y, 1e4), rounded(z_at(s), 1e4),
+                                      rounded(path.heading_at(s) / kDegToRad, 1e2)});
     if (last) break;
   }
   return plan;

@@ -11,8 +11,8 @@ namespace sewerplan::fusion {
 namespace {
 
 constexpr double kDegToRad = std::numbers::pi / 180.0;
-
-double rounded(double v, double unit) { return std::round(v / unit) * unit; }
+// Rounded to 1 / scale, dividing by the exact scale so that 0.495 prints as 0.495.
+double rounded(double v, double scale) { return std::round(v * scale) / scale; }
 
 bool fits(const RobotProfile& p, double diameter_m) {
   return diameter_m >= p.min_pipe_diameter_m && diameter_m <= p.max_pipe_diameter_m;
@@ -53,9 +53,9 @@ std::vector<Waypoint> to_manhole_frame(const TurnPlan& plan, const SewerMap& map
   for (const Waypoint& w : plan.waypoints) {
     const double y = mirrored ? -w.y_m : w.y_m;
     const double heading = mirrored ? -w.heading_deg : w.heading_deg;
-    out.push_back(Waypoint{rounded(c * w.x_m - s * y, 1e-4), rounded(s * w.x_m + c * y, 1e-4),
-                           rounded(w.z_m + floor_z, 1e-4),
-                           rounded(normalize_deg(heading + rotation_deg), 1e-2)});
+    out.push_back(Waypoint{rounded(c * w.x_m - s * y, 1e4), rounded(s * w.x_m + c * y, 1e4),
+                           rounded(w.z_m + floor_z, 1e4),
+                           rounded(normalize_deg(heading + rotation_deg), 1e2)});
   }
   return out;
 }
