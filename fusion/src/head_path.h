@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
 // plan_head_path: the OMPL adapter of manhole_turn_planner.h, private to fusion.
 //
-// The head's pose in a passage's canonical frame is planned in OMPL's Dubins space with
-// RRT-Connect; head_path_ompl.cc is the only file that includes OMPL, and head_path_none.cc
-// replaces it in a build without OMPL. Our types in, our types out.
+// The head's pose in a passage's canonical frame is planned in OMPL's Dubins space with RRT;
+// head_path_ompl.cc is the only file that includes OMPL, and head_path_none.cc replaces it in a
+// build without OMPL. Our types in, our types out.
 #pragma once
 
 #include <cstdint>

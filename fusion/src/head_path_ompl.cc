@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// plan_head_path with OMPL: the head's pose in the Dubins space, RRT-Connect, a seeded sampler.
+// plan_head_path with OMPL: the head's pose in the Dubins space, RRT, a seeded sampler.
 // The only file of sewerplan that includes OMPL (STYLE.md, fusion/).
 #include <cmath>
 #include <cstdlib>

@@ -6,20 +6,22 @@
 // least RobotBody::min_turn_radius_m() bends no joint more than its yaw limit, and every segment,
 // a chord of the path, stays within RobotBody::bend_margin_m() of it. So the planner plans the
 // head's pose (x, y, heading) in OMPL's Dubins space (Dubins 1957, "On curves of minimal length
-// with a constraint on average curvature..."; forward-only, curvature-bounded paths) with
-// RRT-Connect (Kuffner and LaValle 2000), from the from-pipe's mouth to the to-pipe's, and a state
-// is valid if the head's disk of half the body's width plus that margin lies in the passage's free
-// space (manhole_geometry.h). A step is climbed by lifting two segments (the paper, section 2.2):
-// the step must be within RobotBody::max_climb_m(), and the path must run straight along the pipe's
-// axis for the lifted segment's horizontal reach before the higher mouth. The planned path is then
-// checked by moving the whole chain along it, segment by segment: every chord inside the free
-// space, every joint within its yaw limit.
+// with a constraint on average curvature..."; forward-only, curvature-bounded paths) with RRT
+// (LaValle 1998) and a goal bias, from 0.5 m inside the from-pipe to 0.5 m inside the to-pipe. A
+// state is valid if the head's disk of half the body's width plus that margin lies in the manhole
+// (half the width in a pipe) of the passage's free space (manhole_geometry.h). A step is climbed
+// by lifting two segments (the paper, section 2.2): the step must be within
+// RobotBody::max_climb_m(), and the path must run straight along the pipe's axis for the lifted
+// segment's horizontal reach before the higher mouth. The planned path is then checked by moving
+// the whole chain along it: every segment inside the free space, every joint within its yaw limit;
+// if that fails, the head is planned once more with the manhole's margin in the pipes too.
 //
-// Deterministic: the sampler has its own RNG seeded with `seed`, the nearest-neighbour structure is
-// linear, the planner stops after a fixed number of iterations (not a time), and the path is
-// shortened greedily rather than by random shortcuts. The same geometry and seed give the same
-// bits. OMPL stays in manhole_turn_planner.cc; a build without OMPL (SEWERPLAN_WITH_OMPL=OFF) has
-// this header, and plan() then fails with kUnsupportedFormat ("this build has no OMPL").
+// Deterministic: the sampler and RRT's goal bias have their own RNGs seeded with `seed`, the
+// nearest-neighbour structure is linear, the planner stops after a fixed number of iterations (not
+// a time), and the path is shortened greedily rather than by random shortcuts. The same geometry
+// and seed give the same bits. OMPL stays in head_path_ompl.cc; a build without OMPL
+// (SEWERPLAN_WITH_OMPL=OFF) has this header, and plan() then fails with kUnsupportedFormat ("this
+// build has no OMPL").
 //
 //   ManholeTurnPlanner planner(robot_body(profile), profile);
 //   Result<TurnPlan> plan = planner.plan(passage_geometry(map, m, from, to));
@@ -42,7 +44,7 @@ bool motion_planning_available();
 
 struct TurnPlannerOptions {
   std::uint32_t seed = 1;
-  std::uint32_t max_iterations = 2000;  // RRT-Connect iterations before giving up
+  std::uint32_t max_iterations = 2000;  // RRT iterations before giving up
 };
 
 // The result for one passage geometry, in its canonical frame (manhole_geometry.h): the head's
