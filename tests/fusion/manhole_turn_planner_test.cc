@@ -136,5 +136,14 @@ TEST_F(ManholeTurnPlannerTest, TheHeadSpacePassesOmplsSanityChecks) {
   EXPECT_TRUE(ok.has_value()) << ok.error();
 }
 
+TEST(ManholeTurnPlannerWithoutOmpl, SaysThisBuildHasNoOmpl) {
+  if (motion_planning_available()) GTEST_SKIP() << "built with OMPL";
+  const RobotProfile profile = *builtin_profile("makro-1.1");
+  Result<TurnPlan> p = ManholeTurnPlanner(robot_body(profile), profile).plan(right_angle());
+  ASSERT_FALSE(p.has_value());
+  EXPECT_EQ(p.error().code, ErrorCode::kUnsupportedFormat);
+  EXPECT_NE(p.error().message.find("no OMPL"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace sewerplan::fusion

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <memory>
+#include <sstream>
 
 #include <gtest/gtest.h>
 
@@ -109,6 +110,11 @@ TEST_F(PassagePrecomputeTest, FusionAttachesTheWaypointsToThePassageAndItsJob) {
   const std::vector<Job> jobs = expand(fused->actions[2], profile_);
   ASSERT_EQ(jobs.size(), 1U);
   EXPECT_EQ(std::get<TurnInManhole>(jobs[0]).waypoints, motion->waypoints);
+  std::ostringstream text;
+  text << jobs[0];
+  EXPECT_NE(text.str().find(std::to_string(motion->waypoints.size()) + " waypoints"),
+            std::string::npos)
+      << text.str();
 
   // Without the table: the rules' duration and no waypoints.
   mission.passage_motion.reset();
