@@ -141,6 +141,47 @@ double first_arc_inside(const Polyline& path, double r) {
   return path.length();
 }
 
+// The arc length where the path last leaves radius r of the axis (the to-mouth).
+double last_arc_inside(const Polyline& path, double r) {
+  for (std::size_t i = path.poses.size(); i-- > 0;) {
+    if (std::hypot(path.poses[i].x_m, path.poses[i].y_m) <= r + 1e-9) return path.arc[i];
+  }
+  return 0;
+}
+
+// A feasible plan's length, turning and waypoints (from the from-mouth at arc mouth_s to the end):
+// z above the floor (the lower invert), down over the first run below the from-mouth, up over the
+// last run before the to-mouth (at arc to_mouth_s), at the mouth itself for a step driven over.
+TurnPlan described(const Polyline& path, double mouth_s, double to_mouth_s,
+                   const PassageGeometry& g, double run_from, double run_to) {
+  TurnPlan plan;
+  plan.feasible = true;
+  plan.path_length_m = path.length() - mouth_s;
+  // All the turning, also where the head moves sideways in the from-pipe before the mouth.
+  for (std::size_t i = 1; i < path.poses.size(); ++i) {
+    plan.heading_change_deg +=
+        std::abs(wrapped(path.poses[i].heading_rad - path.poses[i - 1].heading_rad)) / kDegToRad;
+  }
+  const double h = std::abs(g.step_m);
+  auto share = [](double s, double from, double run) {
+    return run > 0 ? std::clamp((s - from) / run, 0.0, 1.0) : (s > from ? 1.0 : 0.0);
+  };
+  auto z_at = [&](double s) {
+    if (g.step_m < 0) return h * (1 - share(s, mouth_s, run_from));
+    if (g.step_m > 0) return h * share(s, to_mouth_s - run_to, run_to);
+    return 0.0;
+  };
+  for (double s = mouth_s;; s += kWaypointSpacing_m) {
+    const bool last = s >= path.length() - 1e-9;
+    if (last) s = path.length();
+    const auto [x, y] = path.at(s);
+    plan.waypoints.push_back(Waypoint{rounded(x, 1e4), rounded(y, 1e4), rounded(z_at(s), 1e4),
+                                      rounded(path.heading_at(s) / kDegToRad, 1e2)});
+    if (last) break;
+  }
+  return plan;
+}
+
 TurnPlan infeasible(std::string reason, std::uint32_t iterations = 0) {
   TurnPlan p;
   p.reason = std::move(reason);
@@ -229,7 +270,6 @@ Result<TurnPlan> ManholeTurnPlanner::plan(const PassageGeometry& geometry) const
   // manhole's room to bend everywhere (a stricter space: no need if the first found nothing).
   const double body_length = body_.length_m();
   Polyline path;
-  double goal_s = 0;
   double mouth_s = 0;
   std::uint32_t iterations = 0;
   std::optional<std::string> problem;
@@ -259,7 +299,6 @@ Result<TurnPlan> ManholeTurnPlanner::plan(const PassageGeometry& geometry) const
     if (run_from > 0) path.add_line_to(-r, 0, 0);
     path.add_line_to(start.x_m, start.y_m, 0);
     for (std::size_t i = 1; i < head->poses.size(); ++i) path.add(head->poses[i]);
-    goal_s = path.length();
     if (run_to > 0) path.add_line_to(r * cx, r * cy, alpha);
     path.add_line_to((r + body_length) * cx, (r + body_length) * cy, alpha);
     // Where the manoeuvre begins: the head at the from-pipe's mouth.
@@ -271,36 +310,11 @@ Result<TurnPlan> ManholeTurnPlanner::plan(const PassageGeometry& geometry) const
     return infeasible("the planned path fails the body check: " + *problem, iterations);
   }
 
-  TurnPlan plan;
-  plan.feasible = true;
+  TurnPlan plan = described(path, mouth_s, last_arc_inside(path, r), g, run_from, run_to);
   plan.iterations = iterations;
-  plan.path_length_m = path.length() - mouth_s;
-  for (std::size_t i = 1; i < path.poses.size(); ++i) {
-    plan.heading_change_deg +=
-        std::abs(wrapped(path.poses[i].heading_rad - path.poses[i - 1].heading_rad)) / kDegToRad;
-  }
   plan.duration_s = rounded(plan.path_length_m / speed_mps_ +
                                 plan.heading_change_deg * turn_s_per_deg_ + h * step_s_per_m_,
                             1e3);
-  // Heights above the floor (the lower invert): down the first run, up the last.
-  auto z_at = [&](double s) {
-    if (g.step_m < 0) {
-      const double t = run_from > 0 ? std::clamp((s - mouth_s) / run_from, 0.0, 1.0) : 1.0;
-      return h * (1 - t);
-    }
-    if (g.step_m > 0) {
-      return run_to > 0 ? h * std::clamp((s - goal_s) / run_to, 0.0, 1.0) : (s > goal_s ? h : 0);
-    }
-    return 0.0;
-  };
-  for (double s = mouth_s;; s += kWaypointSpacing_m) {
-    const bool last = s >= path.length() - 1e-9;
-    if (last) s = path.length();
-    const auto [x, y] = path.at(s);
-    plan.waypoints.push_back(Waypoint{rounded(x, 1e4), rounded(y, 1e4), rounded(z_at(s), 1e4),
-                                      rounded(path.heading_at(s) / kDegToRad, 1e2)});
-    if (last) break;
-  }
   return plan;
 }
 
