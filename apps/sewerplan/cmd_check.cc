@@ -13,6 +13,7 @@
 #include "sewerplan/domain/validator.h"
 
 #include "command.h"
+#include "motion_options.h"
 
 namespace sewerplan::cli {
 namespace {
@@ -22,6 +23,7 @@ struct CheckOptions {
   std::string mission;
   std::string plan;
   bool json = false;
+  MotionOptions motion;
 };
 
 // Reports a failure to load an input and returns its exit code.
@@ -44,6 +46,9 @@ int run(const CheckOptions& o, Context& c) {
   if (!map.has_value()) return failed(map.error(), diagnostics, o.json, c);
   Result<Mission> mission = read_mission(o.mission, *map, diagnostics);
   if (!mission.has_value()) return failed(mission.error(), diagnostics, o.json, c);
+  if (int code = attach_motion(o.motion, o.map, *map, *mission, c.err); code != kExitOk) {
+    return code;
+  }
   Result<std::string> text = read_text_file(o.plan);
   if (!text.has_value()) return failed(text.error(), diagnostics, o.json, c);
   Diagnostics plan_diagnostics;
@@ -70,6 +75,7 @@ void add_check_command(CLI::App& app, Context& context) {
   cmd->add_option("--mission", options->mission, "Mission file (.json)")->required();
   cmd->add_option("plan", options->plan, "Plan file, one action a line")->required();
   cmd->add_flag("--json", options->json, "Print the plan, its costs and the verdict as JSON");
+  add_motion_options(*cmd, options->motion);
   cmd->callback([options, &context] { context.exit_code = run(*options, context); });
 }
 

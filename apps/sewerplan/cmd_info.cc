@@ -15,6 +15,7 @@
 
 #include "command.h"
 #include "driveability_output.h"
+#include "motion_options.h"
 
 namespace sewerplan::cli {
 namespace {
@@ -24,6 +25,7 @@ struct InfoOptions {
   std::string profile;
   std::vector<std::string> starts;
   bool json = false;
+  MotionOptions motion;
 };
 
 std::vector<std::string> exit_names(const SewerMap& map) {
@@ -112,7 +114,14 @@ int run(const InfoOptions& o, Context& c) {
     return kExitUsage;
   }
   std::optional<domain::DriveabilityReport> report;
-  if (profile) report = domain::analyse_driveability(*map, *profile, starts);
+  if (profile) {
+    Mission with_motion;  // only to carry the motion table, as plan does
+    with_motion.profile = *profile;
+    if (int code = attach_motion(o.motion, o.map, *map, with_motion, c.err); code != kExitOk) {
+      return code;
+    }
+    report = domain::analyse_driveability(*map, *profile, starts, with_motion.passage_motion.get());
+  }
   if (o.json) {
     nlohmann::json j = info_json(*map, stats);
     if (report) j["driveability"] = driveability_json(*report, *map, *profile);
@@ -135,6 +144,7 @@ void add_info_command(CLI::App& app, Context& context) {
       "--profile, what a robot can drive");
   cmd->add_option("map", options->map, "Map file (.json, .sewer, SWMM .inp, ISYBAU .xml)")
       ->required();
+  add_motion_options(*cmd, options->motion);
   cmd->add_option("--profile", options->profile,
                   "Also report what this robot can drive: a built-in profile (makro-1.1, "
                   "makro-plus) or a profile JSON file");

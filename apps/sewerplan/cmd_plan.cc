@@ -15,6 +15,7 @@
 #include "sewerplan/search/planner.h"
 
 #include "command.h"
+#include "motion_options.h"
 
 namespace sewerplan::cli {
 namespace {
@@ -31,6 +32,7 @@ struct PlanOptions {
   std::string out;
   bool json = false;
   bool quiet = false;
+  MotionOptions motion;
 };
 
 void print_summary(const search::PlanOutcome& o, const domain::ValidationReport& report,
@@ -73,6 +75,9 @@ int run(const PlanOptions& o, Context& c) {
   if (load_error != nullptr) {
     if (diagnostics.error_count() == 0) c.err << load_error->message << '\n';
     return exit_code_for(*load_error);
+  }
+  if (int code = attach_motion(o.motion, o.map, *map, **mission, c.err); code != kExitOk) {
+    return code;
   }
   const Mission& m = **mission;
   domain::MissionProgress start = domain::initial_progress(m, *map);
@@ -133,6 +138,7 @@ void add_plan_command(CLI::App& app, Context& context) {
   cmd->add_flag("--select-goals", o->select_goals,
                 "Do as many tasks as can be done and still end the mission, rather than fail");
   cmd->add_flag("--quiet,-q", o->quiet, "No summary on standard error");
+  add_motion_options(*cmd, o->motion);
   cmd->callback([o, &context] { context.exit_code = run(*o, context); });
 }
 

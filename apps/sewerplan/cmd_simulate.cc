@@ -17,6 +17,7 @@
 
 #include "can_link.h"
 #include "command.h"
+#include "motion_options.h"
 #include "sim_setup.h"
 
 namespace sewerplan::cli {
@@ -32,6 +33,7 @@ struct SimulateOptions {
   std::string log;
   bool quiet = false;
   CanLinkOptions can;  // the robot over a CAN bus (docs/can.md)
+  MotionOptions motion;
 };
 
 int run(const SimulateOptions& o, Context& c) {
@@ -46,6 +48,9 @@ int run(const SimulateOptions& o, Context& c) {
   if (!faults.has_value()) {
     if (diagnostics.error_count() == 0) c.err << faults.error().message << '\n';
     return exit_code_for(faults.error());
+  }
+  if (int code = attach_motion(o.motion, o.map, *map, *mission, c.err); code != kExitOk) {
+    return code;
   }
   executor::ExecutorOptions options;
   if (!o.recovery.empty()) {
@@ -117,6 +122,7 @@ void add_simulate_command(CLI::App& app, Context& context) {
   cmd->add_option("--can-log", options->can.log, "Record the CAN traffic as a candump log");
   faults->excludes(can)->excludes(replay);
   random->excludes(can)->excludes(replay);
+  add_motion_options(*cmd, options->motion);
   cmd->callback([options, &context] { context.exit_code = run(*options, context); });
 }
 

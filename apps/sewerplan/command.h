@@ -49,6 +49,7 @@ void add_simulate_command(CLI::App& app, Context& context);
 void add_sim_node_command(CLI::App& app, Context& context);
 void add_campaign_command(CLI::App& app, Context& context);
 void add_render_command(CLI::App& app, Context& context);
+void add_motion_command(CLI::App& app, Context& context);
 
 // Helpers shared by the commands.
 int exit_code_for(const Error& error);

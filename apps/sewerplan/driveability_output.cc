@@ -30,6 +30,7 @@ std::string describe(const domain::PassageLimit& p, const SewerMap& map,
     << map.pipe(map.slot(p.manhole, p.to).pipe).name << "):";
   if (p.turn_exceeded) s << " turn " << p.turn_deg << " deg > " << profile.max_turn_deg;
   if (p.step_exceeded) s << " step " << std::abs(p.step_m) << " m > " << profile.max_step_m;
+  if (!p.motion_reason.empty()) s << " no motion: " << p.motion_reason;
   return s.str();
 }
 
@@ -84,6 +85,7 @@ nlohmann::json driveability_json(const domain::DriveabilityReport& r, const Sewe
                         {"step_m", p.step_m},
                         {"turn_exceeded", p.turn_exceeded},
                         {"step_exceeded", p.step_exceeded}});
+    if (!p.motion_reason.empty()) passages.back()["motion_reason"] = p.motion_reason;
   }
   return {{"profile", profile.name},
           {"too_narrow", pipe_names(r.too_narrow)},

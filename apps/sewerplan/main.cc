@@ -56,6 +56,7 @@ int main(int argc, char** argv) {
   add_sim_node_command(app, context);
   add_campaign_command(app, context);
   add_render_command(app, context);
+  add_motion_command(app, context);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

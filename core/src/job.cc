@@ -39,7 +39,9 @@ std::ostream& operator<<(std::ostream& os, const Job& job) {
           [&](const TurnInManhole& j) {
             os << "TurnInManhole(slot " << j.from_slot + 1 << " -> " << j.to_slot + 1 << ", "
                << std::setprecision(1) << j.turn_deg << " deg, step " << std::setprecision(2)
-               << j.step_m << " m)";
+               << j.step_m << " m";
+            if (!j.waypoints.empty()) os << ", " << j.waypoints.size() << " waypoints";
+            os << ")";
           },
           [&](const EnterPipeFromManhole& j) { os << "EnterPipe(slot " << j.slot + 1 << ")"; },
           [&](const LiftHead&) { os << "LiftHead"; },

@@ -62,9 +62,16 @@ Result<void> validate_profile(const RobotProfile& p) {
   non_negative(p.max_step_m, "max_step_m");
   require(std::isfinite(p.max_turn_deg) && p.max_turn_deg >= 0 && p.max_turn_deg <= 180,
           "max_turn_deg", p.max_turn_deg, "between 0 and 180");
+  require(
+      std::isfinite(p.joint_yaw_max_deg) && p.joint_yaw_max_deg > 0 && p.joint_yaw_max_deg <= 90,
+      "joint_yaw_max_deg", p.joint_yaw_max_deg, "above 0 and at most 90");
+  require(std::isfinite(p.joint_pitch_max_deg) && p.joint_pitch_max_deg >= 0 &&
+              p.joint_pitch_max_deg <= 90,
+          "joint_pitch_max_deg", p.joint_pitch_max_deg, "between 0 and 90");
   positive(p.speed_mps, "speed_mps");
   positive(p.inspection_speed_mps, "inspection_speed_mps");
   non_negative(p.manhole_pass_s, "manhole_pass_s");
+  positive(p.manoeuvre_speed_mps, "manoeuvre_speed_mps");
   non_negative(p.turn_s_per_deg, "turn_s_per_deg");
   non_negative(p.step_s_per_m, "step_s_per_m");
   non_negative(p.sample_s, "sample_s");

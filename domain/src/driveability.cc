@@ -16,7 +16,8 @@ namespace {
 constexpr double kLimitTolerance = 1e-9;
 
 void check_passages(const SewerMap& map, const RobotProfile& profile,
-                    const detail::PositionGraph& graph, DriveabilityReport& report) {
+                    const PassageMotionTable* motion, const detail::PositionGraph& graph,
+                    DriveabilityReport& report) {
   for (ManholeId m : map.manhole_ids()) {
     const auto slots = map.slots(m);
     for (std::uint16_t i = 0; i < slots.size(); ++i) {
@@ -26,6 +27,19 @@ void check_passages(const SewerMap& map, const RobotProfile& profile,
         ++report.passages_checked;
         const SlotIndex from{i};
         const SlotIndex to{j};
+        if (motion != nullptr) {
+          const PassageMotion* ways[] = {motion->find(m, from, to), motion->find(m, to, from)};
+          if (ways[0] != nullptr || ways[1] != nullptr) {
+            for (const PassageMotion* way : ways) {
+              if (way == nullptr || way->feasible) continue;
+              report.passages.push_back({m, from, to, passage_turn_deg(map, m, from, to),
+                                         passage_step_m(map, m, from, to), false, false,
+                                         way->reason.empty() ? "no motion" : way->reason});
+              break;
+            }
+            continue;
+          }
+        }
         const double turn = passage_turn_deg(map, m, from, to);
         const double step = passage_step_m(map, m, from, to);
         const bool turn_exceeded = turn > profile.max_turn_deg + kLimitTolerance;
@@ -89,9 +103,13 @@ std::vector<ManholeId> default_starts(const SewerMap& map) {
 }
 
 DriveabilityReport analyse_driveability(const SewerMap& map, const RobotProfile& profile,
-                                        std::span<const ManholeId> starts) {
+                                        std::span<const ManholeId> starts,
+                                        const PassageMotionTable* motion) {
   Mission mission;  // no closures: the network and the robot only
   mission.profile = profile;
+  // The caller's table, not owned (the aliasing constructor with no owner).
+  mission.passage_motion = std::shared_ptr<const PassageMotionTable>(
+      std::shared_ptr<const PassageMotionTable>(), motion);
   detail::PositionGraph graph(map, mission);
   DriveabilityReport report;
   for (PipeId p : map.pipe_ids()) {
@@ -99,7 +117,7 @@ DriveabilityReport analyse_driveability(const SewerMap& map, const RobotProfile&
     if (d < profile.min_pipe_diameter_m) report.too_narrow.push_back(p);
     if (d > profile.max_pipe_diameter_m) report.too_wide.push_back(p);
   }
-  check_passages(map, profile, graph, report);
+  check_passages(map, profile, motion, graph, report);
   report.starts.assign(starts.begin(), starts.end());
   find_reachable(map, graph, report);
   return report;

@@ -143,13 +143,12 @@ Result<PlanReplay::Transition> PlanReplay::drive_manhole(const DriveManhole& s) 
                    describe(AtSlot{s.manhole, s.from}, *map_));
   }
   if (auto problem = passage_problem(s.manhole, s.from, s.to)) return invalid(*problem);
-  const RobotProfile& profile = mission_->profile;
-  const double turn = passage_turn_deg(*map_, s.manhole, s.from, s.to);
-  const double step = std::abs(passage_step_m(*map_, s.manhole, s.from, s.to));
+  const PassageVerdict verdict = judge_passage(
+      *map_, mission_->profile, mission_->passage_motion.get(), s.manhole, s.from, s.to);
   const Slot& into = map_->slot(s.manhole, s.to);
-  return Transition{
-      profile.manhole_pass_s + turn * profile.turn_s_per_deg + step * profile.step_s_per_m,
-      InPipe{into.pipe, end_offset_m(map_->pipe(into.pipe), into.pipe_end)}, std::nullopt};
+  return Transition{verdict.duration_s,
+                    InPipe{into.pipe, end_offset_m(map_->pipe(into.pipe), into.pipe_end)},
+                    std::nullopt};
 }
 
 Result<PlanReplay::Transition> PlanReplay::enter_pipe(const EnterPipe& s) const {
@@ -310,12 +309,19 @@ std::optional<std::string> PlanReplay::passage_problem(ManholeId m, SlotIndex fr
     }
   }
   const RobotProfile& profile = mission_->profile;
-  const double turn = passage_turn_deg(*map_, m, from, to);
+  const PassageVerdict verdict =
+      judge_passage(*map_, profile, mission_->passage_motion.get(), m, from, to);
+  if (verdict.by_motion) {
+    if (verdict.allowed) return std::nullopt;
+    return passage + ": the motion planner found no motion for " + robot_name(*mission_) + " (" +
+           verdict.motion->reason + ")";
+  }
+  const double turn = verdict.turn_deg;
   if (!(turn <= profile.max_turn_deg + kLimitTolerance)) {
     return passage + ": turn of " + fixed(turn, 1) + " deg exceeds " + robot_name(*mission_) +
            "'s " + shortest(profile.max_turn_deg) + " deg";
   }
-  const double step = passage_step_m(*map_, m, from, to);
+  const double step = verdict.step_m;
   if (!(std::abs(step) <= profile.max_step_m + kLimitTolerance)) {
     return passage + ": step of " + fixed(step, 2) + " m exceeds " + robot_name(*mission_) + "'s " +
            fixed(profile.max_step_m, 2) + " m";

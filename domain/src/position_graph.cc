@@ -10,10 +10,6 @@
 namespace sewerplan::domain::detail {
 namespace {
 
-// Limits are compared with a small tolerance, so that a 90 degree turn computed from azimuths
-// with rounding error still counts as 90.
-constexpr double kLimitTolerance = 1e-9;
-
 ClosedPassage normalised(ClosedPassage c) {
   if (c.to < c.from) std::swap(c.from, c.to);
   return c;
@@ -29,6 +25,7 @@ PositionGraph::PositionGraph(const SewerMap& map, const Mission& mission)
     : map_(map),
       mission_(mission),
       profile_(mission.profile),
+      motion_(mission.passage_motion.get()),
       has_blockages_(!mission.blockages.empty()),
       manholes_(static_cast<Node>(map.manhole_count())),
       slots_(static_cast<Node>(map.slot_count())),
@@ -123,19 +120,14 @@ RobotPosition PositionGraph::position(Node n) const {
 bool PositionGraph::passage_allowed(ManholeId m, SlotIndex from, SlotIndex to) const {
   const Slot& target = map_.slot(m, to);
   if (!drivable_[target.pipe.index()]) return false;
-  if (passage_turn_deg(map_, m, from, to) > profile_.max_turn_deg + kLimitTolerance) return false;
-  if (std::abs(passage_step_m(map_, m, from, to)) > profile_.max_step_m + kLimitTolerance) {
-    return false;
-  }
+  if (!judge_passage(map_, profile_, motion_, m, from, to).allowed) return false;
   if (closed_passages_.empty()) return true;
   return !std::binary_search(closed_passages_.begin(), closed_passages_.end(),
                              normalised({m, from, to}), passage_less);
 }
 
 Cost PositionGraph::passage_cost(ManholeId m, SlotIndex from, SlotIndex to) const {
-  return to_cost(profile_.manhole_pass_s +
-                 passage_turn_deg(map_, m, from, to) * profile_.turn_s_per_deg +
-                 std::abs(passage_step_m(map_, m, from, to)) * profile_.step_s_per_m);
+  return to_cost(judge_passage(map_, profile_, motion_, m, from, to).duration_s);
 }
 
 Cost PositionGraph::drive_cost(double distance_m) const {

@@ -91,6 +91,7 @@ class PositionGraph {
   const SewerMap& map_;
   const Mission& mission_;
   const RobotProfile& profile_;
+  const PassageMotionTable* motion_;  // the mission's, or nullptr
   bool has_blockages_ = false;
   Node manholes_;
   Node slots_;

@@ -48,6 +48,13 @@ void add_parameters(json& j, const RobotAction& action, const SewerMap& map,
           j["turn_deg"] = a.turn_deg;
           j["step_m"] = a.step_m;
           j["manhole_diameter_m"] = a.manhole_diameter_m;
+          if (!a.waypoints.empty()) {
+            nlohmann::ordered_json points = nlohmann::ordered_json::array();
+            for (const Waypoint& w : a.waypoints) {
+              points.push_back({w.x_m, w.y_m, w.z_m, w.heading_deg});
+            }
+            j["waypoints"] = std::move(points);
+          }
         } else if constexpr (std::is_same_v<T, EnterPipe>) {
           j["manhole"] = map.manhole(a.manhole).name;
           j["slot"] = to_paper_number(a.slot);

@@ -109,8 +109,8 @@ class Fuser {
       }
     }
     if (auto bad = pipe_problem(into.pipe)) return *bad;
-    const double turn = passage_turn_deg(map_, s.manhole, s.from, s.to);
-    const double step = passage_step_m(map_, s.manhole, s.from, s.to);
+    const PassageVerdict verdict =
+        judge_passage(map_, profile_, mission_.passage_motion.get(), s.manhole, s.from, s.to);
     heading_end_ = static_cast<std::uint8_t>(1 - into.pipe_end);
     return RobotAction{PassManhole{.plan_step = index,
                                    .manhole = s.manhole,
@@ -118,12 +118,13 @@ class Fuser {
                                    .to_slot = s.to,
                                    .from_pipe = from.pipe,
                                    .to_pipe = into.pipe,
-                                   .turn_deg = turn,
-                                   .step_m = step,
+                                   .turn_deg = verdict.turn_deg,
+                                   .step_m = verdict.step_m,
                                    .manhole_diameter_m = map_.manhole(s.manhole).diameter_m,
-                                   .duration_s = profile_.manhole_pass_s +
-                                                 turn * profile_.turn_s_per_deg +
-                                                 std::abs(step) * profile_.step_s_per_m}};
+                                   .duration_s = verdict.duration_s,
+                                   .waypoints = verdict.motion != nullptr
+                                                    ? verdict.motion->waypoints
+                                                    : std::vector<Waypoint>{}}};
   }
 
   Result<RobotAction> resolve(std::size_t index, const domain::EnterPipe& s,

@@ -35,7 +35,8 @@ std::vector<Job> expand(const RobotAction& action, const RobotProfile& /*profile
                                           .turn_deg = a.turn_deg,
                                           .step_m = a.step_m,
                                           .manhole_diameter_m = a.manhole_diameter_m,
-                                          .duration_s = a.duration_s});
+                                          .duration_s = a.duration_s,
+                                          .waypoints = a.waypoints});
         } else if constexpr (std::is_same_v<T, EnterPipe>) {
           jobs.emplace_back(
               EnterPipeFromManhole{.slot = a.slot.value(), .duration_s = a.duration_s});

@@ -190,6 +190,34 @@ expect 0 'class="blocked"' -- cat "$tmp/demo.svg"
 echo 'not json' > "$tmp/bad.jsonl"
 expect 1 'bad.jsonl:1: error: not a JSON object' -- "$sp" render --map "$ais" --mission "$mission" --log "$tmp/bad.jsonl" -o "$tmp/bad.svg"
 expect 2 "need --mission" -- "$sp" render --map "$ais" --log "$tmp/events.jsonl" -o "$tmp/x.svg"
+# Manhole motions (docs/motion.md): precompute beside a copy of the map; plan uses the table and
+# says so; --no-motion and a stale table. A build without OMPL says it cannot plan them.
+mkdir -p "$tmp/motion"
+cp "$ais" "$tmp/motion/map.json"
+motion_out=$("$sp" motion precompute "$tmp/motion/map.json" -q 2>&1)
+if grep -q 'has no OMPL' <<<"$motion_out"; then
+  expect 1 'this build of sewerplan has no OMPL' -- "$sp" motion precompute "$tmp/motion/map.json"
+else
+  expect 0 'motion: 50 passages, [0-9]+ geometries, [0-9]+ feasible; motion rejects' -- \
+    "$sp" motion precompute "$tmp/motion/map.json" --seed 3
+  expect 0 'wrote .*/motion/map.motion.json' -- "$sp" motion precompute "$tmp/motion/map.json" -q
+  expect 0 'motion: using 50 planned manhole passages from .*map.motion.json' -- \
+    "$sp" plan --map "$tmp/motion/map.json" --mission "$mission"
+  expect 0 'plan: 14 steps, 585.4 s' -- \
+    "$sp" plan --map "$tmp/motion/map.json" --mission "$mission" --no-motion
+  "$sp" plan --map "$tmp/motion/map.json" --mission "$mission" -q -o "$tmp/motion/plan.txt" 2>/dev/null
+  expect 0 'valid: 14 steps' -- \
+    "$sp" check --map "$tmp/motion/map.json" --mission "$mission" "$tmp/motion/plan.txt"
+  echo '{"base": "makro-1.1", "name": "long", "length_m": 2.4}' > "$tmp/motion/long.json"
+  "$sp" motion precompute "$tmp/motion/map.json" -q --profile "$tmp/motion/long.json" \
+    -o "$tmp/motion/long.motion.json" >/dev/null
+  expect 0 'motion: using 50' -- \
+    "$sp" simulate --map "$tmp/motion/map.json" --mission "$mission" -q
+  expect 1 'stale motion table: it was made for another robot geometry' -- \
+    "$sp" plan --map "$tmp/motion/map.json" --mission "$mission" --motion "$tmp/motion/long.motion.json"
+  expect 3 'cannot read' -- \
+    "$sp" plan --map "$tmp/motion/map.json" --mission "$mission" --motion "$tmp/motion/none.json"
+fi
 
 echo "$passed passed, $failures failed"
 [ "$failures" -eq 0 ]

@@ -110,3 +110,42 @@ TEST(Driveability, StartsFromTheLargestPartWithoutExits) {
 
 }  // namespace
 }  // namespace sewerplan::domain
+
+namespace sewerplan::domain {
+namespace {
+
+// With a motion table (core/passage_motion.h), its verdicts replace the turn and step limits for
+// the passages it has, in either direction; the others keep the rules.
+TEST(DriveabilityMotion, TheMotionTableDecidesThePassagesItHas) {
+  const SewerMap map = load("ais-testbed/map.json");
+  const RobotProfile profile = *builtin_profile("makro-1.1");
+  const ManholeId m4 = *map.find_manhole("M4");  // slots 1 and 2: a 116 degree turn
+  const ManholeId m7 = *map.find_manhole("M7");  // slots 1 and 2: a 127 degree turn
+  const PassageMotionTable table(
+      map_geometry_fingerprint(map), profile_geometry_fingerprint(profile),
+      {PassageMotion{.manhole = m4, .from = SlotIndex{0}, .to = SlotIndex{1}, .feasible = true},
+       PassageMotion{.manhole = m4, .from = SlotIndex{1}, .to = SlotIndex{0}, .feasible = true},
+       PassageMotion{.manhole = m7,
+                     .from = SlotIndex{1},
+                     .to = SlotIndex{0},
+                     .feasible = false,
+                     .reason = "too tight"}});
+  const auto starts = default_starts(map);
+  const DriveabilityReport rules = analyse_driveability(map, profile, starts);
+  const DriveabilityReport motion = analyse_driveability(map, profile, starts, &table);
+  auto listed = [](const DriveabilityReport& r, ManholeId m) {
+    for (const PassageLimit& p : r.passages) {
+      if (p.manhole == m) return &p;
+    }
+    return static_cast<const PassageLimit*>(nullptr);
+  };
+  ASSERT_NE(listed(rules, m4), nullptr);
+  EXPECT_EQ(listed(motion, m4), nullptr);  // the planner found motions both ways
+  ASSERT_NE(listed(motion, m7), nullptr);
+  EXPECT_EQ(listed(motion, m7)->motion_reason, "too tight");
+  EXPECT_FALSE(listed(motion, m7)->turn_exceeded);
+  EXPECT_EQ(motion.passages.size(), rules.passages.size() - 1);
+}
+
+}  // namespace
+}  // namespace sewerplan::domain

@@ -105,7 +105,8 @@ using Job = std::variant<DriveForward, DriveBackward, Push, TurnInManhole, Enter
 // "lower_head", "take_sample", "scan", "stop".
 std::string_view job_kind(const Job& job);
 
-// "DriveForward(0.30 m/s, 12.50 m)", "TurnInManhole(slot 3 -> 4, 45.0 deg, step -0.10 m)", ...
+// "DriveForward(0.30 m/s, 12.50 m)", "TurnInManhole(slot 3 -> 4, 45.0 deg, step -0.10 m)" (with
+// ", 31 waypoints" when it has a planned motion), ...
 std::ostream& operator<<(std::ostream& os, const Job& job);
 
 }  // namespace sewerplan

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -26,6 +27,7 @@
 #include <vector>
 
 #include "sewerplan/core/diagnostics.h"
+#include "sewerplan/core/passage_motion.h"
 #include "sewerplan/core/result.h"
 #include "sewerplan/core/robot_profile.h"
 #include "sewerplan/core/sewer_map.h"
@@ -85,6 +87,11 @@ struct Mission {
   std::vector<PipeId> closed_pipes;
   std::vector<ClosedPassage> closed_passages;
   std::vector<Blockage> blockages;
+  // Planned manhole passages (passage_motion.h), when the map has a motion table: they decide
+  // which passages are allowed and what they cost, instead of the turn and step rules. Not part
+  // of the mission's file; the CLI attaches the table kept beside the map. Shared, because it is
+  // immutable and every copy of a mission (the executor's, each replan's) uses the same one.
+  std::shared_ptr<const PassageMotionTable> passage_motion;
   friend bool operator==(const Mission&, const Mission&) = default;
 
   // The final task, if the mission has one.

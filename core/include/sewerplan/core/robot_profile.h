@@ -40,13 +40,22 @@ struct RobotProfile {
   double max_pipe_diameter_m = 0.60;
   double max_step_m = 0.30;  // up or down, between two pipe inverts in a manhole
   double max_turn_deg = 90;  // deviation from straight through a manhole
+  // Joints, for motion planning in manholes (docs/motion.md): the largest bend of one joint
+  // sideways (yaw) and up or down (pitch). The paper gives no figures; 45 degrees of yaw lets the
+  // 0.33 m segments follow a 0.43 m radius, and 70 degrees of pitch lets the two lifted segments
+  // reach 0.33 m x sin 70 = 0.31 m, the paper's 0.30 m step.
+  double joint_yaw_max_deg = 45;
+  double joint_pitch_max_deg = 70;
   // Motion and task times.
   double speed_mps = 0.30;             // driving in a pipe
   double inspection_speed_mps = 0.10;  // driving while scanning a pipe
   double manhole_pass_s = 20;          // passing a manhole straight through
-  double turn_s_per_deg = 0.3;         // added per degree of turn in a manhole
-  double step_s_per_m = 100;           // added per metre of step, up or down
-  double sample_s = 180;               // taking and analysing a water sample
+  // The head's speed along a planned manoeuvre in a manhole (docs/motion.md): 3 m (a 1 m manhole
+  // and the 2 m body) at 0.15 m/s take the 20 s of manhole_pass_s.
+  double manoeuvre_speed_mps = 0.15;
+  double turn_s_per_deg = 0.3;  // added per degree of turn in a manhole
+  double step_s_per_m = 100;    // added per metre of step, up or down
+  double sample_s = 180;        // taking and analysing a water sample
   // Energy.
   double battery_wh = 240;
   double power_w = 120;  // average power while working

@@ -6,9 +6,12 @@
 // the same rules, through the same position graph, as the planner and the validator:
 //   - pipes outside the profile's diameter range [min_pipe_diameter_m, max_pipe_diameter_m]
 //     (compared exactly);
-//   - passages through a manhole between two pipes the robot fits whose turn exceeds max_turn_deg
-//     or whose step (in absolute value) exceeds max_step_m (with 1e-9 tolerance); a passage and its
-//     reverse have the same turn and the same absolute step, so each pair of slots is listed once;
+//   - passages through a manhole between two pipes the robot fits that the motion table (when one
+//     is given: core/passage_motion.h, docs/motion.md) rejects in either direction, with the
+//     planner's reason; without a table, or for passages it lacks, those whose turn exceeds
+//     max_turn_deg or whose step (in absolute value) exceeds max_step_m (with 1e-9 tolerance); a
+//     passage and its reverse have the same turn and the same absolute step, so each pair of slots
+//     is listed once;
 //   - the part of the network the robot reaches when lowered into any of the start manholes:
 //     the manholes it can stand in and the pipes it can drive.
 // Mission closures are not applied: this is about the network and the robot.
@@ -22,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "sewerplan/core/passage_motion.h"
 #include "sewerplan/core/robot_profile.h"
 #include "sewerplan/core/sewer_map.h"
 
@@ -36,6 +40,7 @@ struct PassageLimit {
   double step_m = 0;  // climbing from `from` into `to`
   bool turn_exceeded = false;
   bool step_exceeded = false;
+  std::string motion_reason;  // rejected by the motion table: why (then no limit is exceeded)
   friend bool operator==(const PassageLimit&, const PassageLimit&) = default;
 };
 
@@ -59,6 +64,7 @@ std::vector<ManholeId> default_starts(const SewerMap& map);
 // Precondition: every start belongs to `map`. Runtime: O(manholes + sum over manholes of the
 // square of their slot count + pipes).
 DriveabilityReport analyse_driveability(const SewerMap& map, const RobotProfile& profile,
-                                        std::span<const ManholeId> starts);
+                                        std::span<const ManholeId> starts,
+                                        const PassageMotionTable* motion = nullptr);
 
 }  // namespace sewerplan::domain

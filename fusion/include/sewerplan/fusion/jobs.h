@@ -29,10 +29,9 @@
 
 namespace sewerplan::fusion {
 
-// The action's jobs, in order. The profile is for the body's manoeuvres: the motion planning of
-// issue #8 (OMPL) is to fill TurnInManhole's waypoints for its length and width; until then they
-// are empty and the controller turns with its own manoeuvre (core/job.h).
-// Runtime: O(1).
+// The action's jobs, in order. A PassManhole's waypoints (the motion planned for the passage,
+// docs/motion.md) go into its TurnInManhole; without a motion table they are empty and the
+// controller turns with its own manoeuvre (core/job.h). Runtime: O(waypoints).
 std::vector<Job> expand(const RobotAction& action, const RobotProfile& profile);
 
 // One job of a fused plan, with where it comes from.

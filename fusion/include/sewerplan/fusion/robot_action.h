@@ -29,6 +29,7 @@
 #include <variant>
 #include <vector>
 
+#include "sewerplan/core/job.h"
 #include "sewerplan/core/mission.h"
 #include "sewerplan/core/sewer_map.h"
 
@@ -80,6 +81,9 @@ struct PassManhole {
   double step_m = 0;
   double manhole_diameter_m = 0;
   double duration_s = 0;
+  // The motion planned for the passage (core/passage_motion.h, docs/motion.md), when the mission
+  // has a motion table: the head's path in the manhole's frame. Empty otherwise.
+  std::vector<Waypoint> waypoints;
   friend bool operator==(const PassManhole&, const PassManhole&) = default;
 };
 

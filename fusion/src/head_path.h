@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: MIT
+// plan_head_path: the OMPL adapter of manhole_turn_planner.h, private to fusion.
+//
+// The head's pose in a passage's canonical frame is planned in OMPL's Dubins space with RRT;
+// head_path_ompl.cc is the only file that includes OMPL, and head_path_none.cc replaces it in a
+// build without OMPL. Our types in, our types out.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "sewerplan/core/result.h"
+#include "sewerplan/fusion/manhole_geometry.h"
+#include "sewerplan/fusion/manhole_turn_planner.h"
+
+namespace sewerplan::fusion::detail {
+
+struct Pose2 {
+  double x_m = 0;
+  double y_m = 0;
+  double heading_rad = 0;
+};
+
+struct HeadPath {
+  bool found = false;
+  std::vector<Pose2> poses;  // start to goal, densely (at most 0.01 m apart)
+  std::uint32_t iterations = 0;
+};
+
+struct HeadPathProblem {
+  PassageGeometry geometry;
+  Pose2 start;
+  Pose2 goal;
+  double turn_radius_m = 0.4;     // the paths' smallest radius of curvature
+  double clearance_m = 0.1;       // the head's disk that must lie in the manhole
+  double pipe_clearance_m = 0.1;  // ... and in the pipes
+  double pipe_reach_m = 0.5;      // how far into the pipes the head may go
+};
+
+bool head_path_available();
+
+// OMPL's sanityChecks() of the space plan_head_path sets up (with its seeded sampler); the
+// exception's message if one fails.
+Result<void> head_space_sanity(const HeadPathProblem& problem, const TurnPlannerOptions& options);
+
+// kUnsupportedFormat without OMPL; an OMPL failure other than "no solution" (an invalid start or
+// goal, which the caller checks first) is kInvalidArgument.
+Result<HeadPath> plan_head_path(const HeadPathProblem& problem, const TurnPlannerOptions& options);
+
+}  // namespace sewerplan::fusion::detail

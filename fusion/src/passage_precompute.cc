@@ -1,0 +1,120 @@
+// SPDX-License-Identifier: MIT
+#include "sewerplan/fusion/passage_precompute.h"
+
+#include <cmath>
+#include <iomanip>
+#include <numbers>
+
+#include "sewerplan/core/map_queries.h"
+
+namespace sewerplan::fusion {
+namespace {
+
+constexpr double kDegToRad = std::numbers::pi / 180.0;
+// Rounded to 1 / scale, dividing by the exact scale so that 0.495 prints as 0.495.
+double rounded(double v, double scale) { return std::round(v * scale) / scale; }
+
+bool fits(const RobotProfile& p, double diameter_m) {
+  return diameter_m >= p.min_pipe_diameter_m && diameter_m <= p.max_pipe_diameter_m;
+}
+
+}  // namespace
+
+Result<const TurnPlan*> PassageMotionCache::plan(const PassageGeometry& geometry) {
+  const PassageKey key = passage_key(geometry);
+  if (auto it = plans_.find(key); it != plans_.end()) {
+    ++hits_;
+    return &it->second;
+  }
+  Result<TurnPlan> plan = planner_.plan(geometry);
+  if (!plan.has_value()) return plan.error();
+  return &plans_.emplace(key, std::move(*plan)).first->second;
+}
+
+std::ostream& operator<<(std::ostream& os, const PrecomputeStatistics& s) {
+  return os << s.passages << " passages, " << s.distinct_geometries << " geometries, " << s.feasible
+            << " feasible; motion rejects " << s.rejected_by_motion_rules_allow
+            << " the rules allow, allows " << s.allowed_by_motion_rules_reject << " they reject; "
+            << std::fixed << std::setprecision(2) << s.time_s << " s";
+}
+
+std::vector<Waypoint> to_manhole_frame(const TurnPlan& plan, const SewerMap& map, ManholeId m,
+                                       SlotIndex from, SlotIndex to) {
+  bool mirrored = false;
+  (void)passage_geometry(map, m, from, to, &mirrored);
+  const Slot& a = map.slot(m, from);
+  const Slot& b = map.slot(m, to);
+  const double rotation_deg = a.azimuth_deg - 180.0;
+  const double c = std::cos(rotation_deg * kDegToRad);
+  const double s = std::sin(rotation_deg * kDegToRad);
+  const double floor_z = std::min(a.invert_z_m, b.invert_z_m) - map.manhole(m).position.z_m;
+  std::vector<Waypoint> out;
+  out.reserve(plan.waypoints.size());
+  for (const Waypoint& w : plan.waypoints) {
+    const double y = mirrored ? -w.y_m : w.y_m;
+    const double heading = mirrored ? -w.heading_deg : w.heading_deg;
+    out.push_back(Waypoint{rounded(c * w.x_m - s * y, 1e4), rounded(s * w.x_m + c * y, 1e4),
+                           rounded(w.z_m + floor_z, 1e4),
+                           rounded(normalize_deg(heading + rotation_deg), 1e2)});
+  }
+  return out;
+}
+
+Result<PrecomputeResult> precompute_passage_motion(const SewerMap& map, const RobotProfile& profile,
+                                                   const PrecomputeOptions& options,
+                                                   const Clock& clock) {
+  if (Result<void> valid = validate_profile(profile); !valid.has_value()) return valid.error();
+  if (!motion_planning_available()) {
+    return Error{ErrorCode::kUnsupportedFormat,
+                 "this build of sewerplan has no OMPL (built with SEWERPLAN_WITH_OMPL=OFF): it "
+                 "cannot plan manhole motions"};
+  }
+  const double start_s = clock.now_s();
+  PassageMotionCache cache(ManholeTurnPlanner(robot_body(profile), profile, options.planner));
+  PrecomputeStatistics stats;
+  std::vector<PassageMotion> entries;
+  for (ManholeId m : map.manhole_ids()) {
+    const auto slots = map.slots(m);
+    for (std::uint16_t i = 0; i < slots.size(); ++i) {
+      if (!fits(profile, map.pipe(slots[i].pipe).diameter_m)) continue;
+      for (std::uint16_t j = 0; j < slots.size(); ++j) {
+        if (i == j || !fits(profile, map.pipe(slots[j].pipe).diameter_m)) continue;
+        const SlotIndex from{i};
+        const SlotIndex to{j};
+        const PassageGeometry g = passage_geometry(map, m, from, to);
+        Result<const TurnPlan*> plan = cache.plan(g);
+        if (!plan.has_value()) {
+          return Error{plan.error().code == ErrorCode::kInvalidArgument ? ErrorCode::kInvalidMap
+                                                                        : plan.error().code,
+                       "manhole " + map.manhole(m).name + " slot " +
+                           std::to_string(to_paper_number(from)) + " -> " +
+                           std::to_string(to_paper_number(to)) + ": " + plan.error().message};
+        }
+        const TurnPlan& p = **plan;
+        PassageMotion entry{.manhole = m, .from = from, .to = to, .feasible = p.feasible};
+        if (p.feasible) {
+          entry.duration_s = p.duration_s;
+          entry.waypoints = to_manhole_frame(p, map, m, from, to);
+        } else {
+          entry.reason = p.reason;
+        }
+        const bool rules = judge_passage(map, profile, nullptr, m, from, to).allowed;
+        ++stats.passages;
+        stats.feasible += p.feasible ? 1U : 0U;
+        stats.rules_allow += rules ? 1U : 0U;
+        stats.rejected_by_motion_rules_allow += rules && !p.feasible ? 1U : 0U;
+        stats.allowed_by_motion_rules_reject += !rules && p.feasible ? 1U : 0U;
+        entries.push_back(std::move(entry));
+      }
+    }
+    if (options.progress) options.progress(m.index() + 1, map.manhole_count());
+  }
+  stats.distinct_geometries = cache.size();
+  stats.time_s = clock.now_s() - start_s;
+  return PrecomputeResult{
+      PassageMotionTable(map_geometry_fingerprint(map), profile_geometry_fingerprint(profile),
+                         std::move(entries)),
+      stats};
+}
+
+}  // namespace sewerplan::fusion
