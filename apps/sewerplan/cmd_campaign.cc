@@ -20,6 +20,7 @@
 #include "sewerplan/core/text_file.h"
 
 #include "command.h"
+#include "motion_options.h"
 #include <unistd.h>
 
 namespace sewerplan::cli {
@@ -40,6 +41,7 @@ struct CampaignCliOptions {
   bool quiet = false;
   bool no_guard = false;
   std::string faults_out;
+  MotionOptions motion;
   // merge
   std::vector<std::string> merge_dirs;
   std::string merge_out;
@@ -144,11 +146,23 @@ int run(const CampaignCliOptions& o, Context& c) {
     if (diagnostics.error_count() == 0) c.err << mission.error().message << '\n';
     return exit_code_for(mission.error());
   }
+  std::string motion_path;
+  if (int code = attach_motion(o.motion, o.map, *map, *mission, c.err, &motion_path);
+      code != kExitOk) {
+    return code;
+  }
   campaign::CampaignSpec spec;
   spec.map_name = o.map;
   spec.mission_name = o.mission;
   spec.map_fingerprint = campaign::fingerprint(*map_text);
-  spec.mission_fingerprint = campaign::fingerprint(*mission_text);
+  // A planned-motion table changes every plan, so it belongs to the mission's identity: shards
+  // made with and without it (or with different tables) must not merge.
+  Result<std::string> motion_text =
+      motion_path.empty() ? Result<std::string>(std::string()) : read_text_file(motion_path);
+  spec.mission_fingerprint = campaign::fingerprint(
+      motion_path.empty()
+          ? *mission_text
+          : *mission_text + "\nmotion:" + (motion_text.has_value() ? *motion_text : std::string()));
   spec.seed = o.seed;
   spec.runs = o.runs;
   spec.rates = *rates;
@@ -235,6 +249,7 @@ void add_campaign_command(CLI::App& app, Context& context) {
   cmd->add_option("--faults-out", options->faults_out,
                   "With --only: write the run's hidden faults (for simulate --faults, render)");
   cmd->add_flag("-q,--quiet", options->quiet, "No progress and no summary on the terminal");
+  add_motion_options(*cmd, options->motion);
   CLI::App* merge_cmd =
       cmd->add_subcommand("merge", "Merge the output directories of a sharded campaign");
   merge_cmd->add_option("dirs", options->merge_dirs, "Shard directories")->required();

@@ -21,7 +21,8 @@ void add_motion_options(CLI::App& cmd, MotionOptions& options) {
 }
 
 int attach_motion(const MotionOptions& options, const std::string& map_path, const SewerMap& map,
-                  Mission& mission, std::ostream& err) {
+                  Mission& mission, std::ostream& err, std::string* used_path) {
+  if (used_path != nullptr) used_path->clear();
   if (options.none) return kExitOk;
   std::filesystem::path path = options.path;
   if (path.empty()) {
@@ -39,6 +40,7 @@ int attach_motion(const MotionOptions& options, const std::string& map_path, con
   err << "motion: using " << table->size() << " planned manhole passages from " << path.string()
       << " (" << infeasible << " infeasible)\n";
   mission.passage_motion = std::make_shared<const PassageMotionTable>(std::move(*table));
+  if (used_path != nullptr) *used_path = path.string();
   return kExitOk;
 }
 

@@ -26,7 +26,8 @@ struct MotionOptions {
 void add_motion_options(CLI::App& cmd, MotionOptions& options);
 
 // Attaches the table to the mission. Returns kExitOk, or the exit code after printing the error.
+// `used_path`, when given, receives the table's path (empty when none is used).
 int attach_motion(const MotionOptions& options, const std::string& map_path, const SewerMap& map,
-                  Mission& mission, std::ostream& err);
+                  Mission& mission, std::ostream& err, std::string* used_path = nullptr);
 
 }  // namespace sewerplan::cli

@@ -68,7 +68,7 @@ Result<MergedCampaign> merge_shards(const std::vector<std::filesystem::path>& di
       if (s.map_fingerprint != first.map_fingerprint)
         what = "the map differs";
       else if (s.mission_fingerprint != first.mission_fingerprint)
-        what = "the mission differs";
+        what = "the mission differs (or its motion table)";
       else if (s.seed != first.seed)
         what = "the seed differs";
       else if (s.runs != first.runs)

@@ -213,6 +213,15 @@ else
     -o "$tmp/motion/long.motion.json" >/dev/null
   expect 0 'motion: using 50' -- \
     "$sp" simulate --map "$tmp/motion/map.json" --mission "$mission" -q
+  expect 0 'motion: using 50' -- \
+    "$sp" campaign --map "$tmp/motion/map.json" --mission "$mission" --runs 4 -q
+  # A campaign made with the table is another campaign than one without it: shards do not merge.
+  "$sp" campaign --map "$tmp/motion/map.json" --mission "$mission" --runs 4 --shard 0/2 -q \
+    -o "$tmp/motion/s0" 2>/dev/null
+  "$sp" campaign --map "$tmp/motion/map.json" --mission "$mission" --runs 4 --shard 1/2 -q \
+    --no-motion -o "$tmp/motion/s1" 2>/dev/null
+  expect 1 'the mission differs' -- \
+    "$sp" campaign merge "$tmp/motion/s0" "$tmp/motion/s1" -o "$tmp/motion/merged"
   expect 1 'stale motion table: it was made for another robot geometry' -- \
     "$sp" plan --map "$tmp/motion/map.json" --mission "$mission" --motion "$tmp/motion/long.motion.json"
   expect 3 'cannot read' -- \
