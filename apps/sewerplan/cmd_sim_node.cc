@@ -39,18 +39,13 @@ static_assert(std::atomic<bool>::is_always_lock_free, "set from a signal handler
 extern "C" void stop_serving(int /*signal*/) { g_stop.store(true); }
 
 int run(const SimNodeCliOptions& o, Context& c) {
-  Diagnostics diagnostics;
-  Result<SewerMap> map = read_map(o.map, diagnostics);
-  Result<Mission> mission =
-      map.has_value() ? read_mission(o.mission, *map, diagnostics) : Result<Mission>(map.error());
-  Result<hal::FaultScenario> faults = mission.has_value()
-                                          ? faults_for(o.faults, o.random_faults, *map, diagnostics)
-                                          : Result<hal::FaultScenario>(mission.error());
-  print_diagnostics(diagnostics, c.err);
-  if (!faults.has_value()) {
-    if (diagnostics.error_count() == 0) c.err << faults.error().message << '\n';
-    return exit_code_for(faults.error());
-  }
+  int exit_code = kExitOk;
+  std::optional<SimWorld> world =
+      load_sim_world(o.map, o.mission, o.faults, o.random_faults, c.err, exit_code);
+  if (!world) return exit_code;
+  const SewerMap& map = world->map;
+  const Mission& mission = world->mission;
+  const hal::FaultScenario& faults = world->faults;
   Result<hal::BusFaults> bus_faults = hal::parse_bus_faults(o.bus_faults);
   if (!bus_faults.has_value()) {
     c.err << bus_faults.error().message << '\n';
@@ -62,8 +57,8 @@ int run(const SimNodeCliOptions& o, Context& c) {
     return kExitIo;
   }
   // Where the simulate command's robot would start: the mission's start, through the Replanner.
-  const executor::Replanner replanner(*map, *mission);
-  hal::SimRobot robot(*map, mission->profile, start_pose(replanner.progress().position), *faults);
+  const executor::Replanner replanner(map, mission);
+  hal::SimRobot robot(map, mission.profile, start_pose(replanner.progress().position), faults);
   hal::SlcanDeviceBus line(std::move(pty->master), pty->slave_path);
   hal::SimNode node(line, robot, {.faults = *bus_faults}, &line);
   c.out << pty->slave_path << '\n'

@@ -37,19 +37,14 @@ struct SimulateOptions {
 };
 
 int run(const SimulateOptions& o, Context& c) {
-  Diagnostics diagnostics;
-  Result<SewerMap> map = read_map(o.map, diagnostics);
-  Result<Mission> mission =
-      map.has_value() ? read_mission(o.mission, *map, diagnostics) : Result<Mission>(map.error());
-  Result<hal::FaultScenario> faults = mission.has_value()
-                                          ? faults_for(o.faults, o.random_faults, *map, diagnostics)
-                                          : Result<hal::FaultScenario>(mission.error());
-  print_diagnostics(diagnostics, c.err);
-  if (!faults.has_value()) {
-    if (diagnostics.error_count() == 0) c.err << faults.error().message << '\n';
-    return exit_code_for(faults.error());
-  }
-  if (int code = attach_motion(o.motion, o.map, *map, *mission, c.err); code != kExitOk) {
+  int exit_code = kExitOk;
+  std::optional<SimWorld> world =
+      load_sim_world(o.map, o.mission, o.faults, o.random_faults, c.err, exit_code);
+  if (!world) return exit_code;
+  const SewerMap& map = world->map;
+  Mission& mission = world->mission;
+  const hal::FaultScenario& faults = world->faults;
+  if (int code = attach_motion(o.motion, o.map, map, mission, c.err); code != kExitOk) {
     return code;
   }
   executor::ExecutorOptions options;
@@ -74,7 +69,7 @@ int run(const SimulateOptions& o, Context& c) {
     }
   }
   executor::EventLog log(o.log.empty() ? nullptr : &log_file, o.quiet ? nullptr : &c.out);
-  executor::Replanner replanner(*map, *mission);
+  executor::Replanner replanner(map, mission);
   std::unique_ptr<CanLink> can;
   if (!o.can.bus.empty() || !o.can.replay.empty()) {
     Result<std::unique_ptr<CanLink>> link = CanLink::open(o.can);
@@ -84,10 +79,10 @@ int run(const SimulateOptions& o, Context& c) {
     }
     can = std::move(*link);
   }
-  hal::SimRobot sim(*map, mission->profile, start_pose(replanner.progress().position), *faults);
+  hal::SimRobot sim(map, mission.profile, start_pose(replanner.progress().position), faults);
   hal::Robot& robot = can ? static_cast<hal::Robot&>(can->robot()) : sim;
   const executor::MissionReport report =
-      executor::Executor(*map, replanner, robot, options, log).run();
+      executor::Executor(map, replanner, robot, options, log).run();
   c.out << '\n' << report;
   if (can) can->write_summary(c.err);
   return report.outcome == executor::MissionReport::Outcome::kEnded ? kExitOk : kExitNoPlan;

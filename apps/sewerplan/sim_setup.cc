@@ -3,6 +3,11 @@
 
 #include <exception>
 #include <string>
+#include <utility>
+
+#include "sewerplan/core/map_io.h"
+
+#include "command.h"
 
 namespace sewerplan::cli {
 
@@ -33,6 +38,26 @@ Result<hal::FaultScenario> faults_for(const std::string& faults_file,
   r.danger_rate_per_km = r.obstacle_rate_per_km / 4;
   r.malfunction_rate_per_hour = 0.5;
   return hal::random_faults(map, r);
+}
+
+std::optional<SimWorld> load_sim_world(const std::string& map_path, const std::string& mission_path,
+                                       const std::string& faults_file,
+                                       const std::string& random_faults, std::ostream& err,
+                                       int& exit_code) {
+  Diagnostics diagnostics;
+  Result<SewerMap> map = read_map(map_path, diagnostics);
+  Result<Mission> mission = map.has_value() ? read_mission(mission_path, *map, diagnostics)
+                                            : Result<Mission>(map.error());
+  Result<hal::FaultScenario> faults =
+      mission.has_value() ? faults_for(faults_file, random_faults, *map, diagnostics)
+                          : Result<hal::FaultScenario>(mission.error());
+  print_diagnostics(diagnostics, err);
+  if (!faults.has_value()) {
+    if (diagnostics.error_count() == 0) err << faults.error().message << '\n';
+    exit_code = exit_code_for(faults.error());
+    return std::nullopt;
+  }
+  return SimWorld{std::move(*map), std::move(*mission), std::move(*faults)};
 }
 
 }  // namespace sewerplan::cli

@@ -3,9 +3,12 @@
 // it meets (--faults FILE or --random-faults SEED[,RATE]).
 #pragma once
 
+#include <optional>
+#include <ostream>
 #include <string>
 
 #include "sewerplan/core/diagnostics.h"
+#include "sewerplan/core/mission.h"
 #include "sewerplan/core/result.h"
 #include "sewerplan/core/sewer_map.h"
 #include "sewerplan/domain/robot_state.h"
@@ -22,5 +25,18 @@ hal::SimPose start_pose(const domain::RobotPosition& p);
 Result<hal::FaultScenario> faults_for(const std::string& faults_file,
                                       const std::string& random_faults, const SewerMap& map,
                                       Diagnostics& diagnostics);
+
+// The map, the mission and the hidden faults of a simulated run, read together.
+struct SimWorld {
+  SewerMap map;
+  Mission mission;
+  hal::FaultScenario faults;
+};
+
+// Reads them, printing every problem to `err`; empty with `exit_code` set when one is wrong.
+std::optional<SimWorld> load_sim_world(const std::string& map_path, const std::string& mission_path,
+                                       const std::string& faults_file,
+                                       const std::string& random_faults, std::ostream& err,
+                                       int& exit_code);
 
 }  // namespace sewerplan::cli

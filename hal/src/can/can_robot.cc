@@ -160,20 +160,28 @@ JobReport CanRobot::link_failure(const std::string& what, double progress_m) {
   return report;
 }
 
-Result<void> CanRobot::connect() {
+template <class Reply>
+std::optional<Reply> CanRobot::ask(RequestKind kind, double timeout_s, std::string& problem) {
   const std::uint8_t seq = next_seq();
-  std::string problem;
   std::optional<Message> answer = exchange(
-      Request{RequestKind::kStatus, seq}, options_.ack_timeout_s,
+      Request{kind, seq}, timeout_s,
       [seq](const Message& m) {
-        const auto* s = std::get_if<StatusReply>(&m);
-        return s != nullptr && s->seq == seq ? Verdict::kTake : Verdict::kIgnore;
+        const auto* r = std::get_if<Reply>(&m);
+        return r != nullptr && r->seq == seq ? Verdict::kTake : Verdict::kIgnore;
       },
       problem);
+  if (!answer) return std::nullopt;
+  return std::get<Reply>(*answer);
+}
+
+Result<void> CanRobot::connect() {
+  std::string problem;
+  std::optional<StatusReply> answer =
+      ask<StatusReply>(RequestKind::kStatus, options_.ack_timeout_s, problem);
   if (!answer) {
     return Error{ErrorCode::kCanTimeout, bus_.name() + ": no node answered: " + problem};
   }
-  status_ = std::get<StatusReply>(*answer).status;
+  status_ = answer->status;
   return {};
 }
 
@@ -281,19 +289,13 @@ Result<void> CanRobot::reboot() {
   if (Result<void> recovered = bus_.recover(); !recovered.has_value()) {
     return Error{ErrorCode::kBusError, "reboot failed: " + recovered.error().message};
   }
-  const std::uint8_t seq = next_seq();
   std::string problem;
-  std::optional<Message> answer = exchange(
-      Request{RequestKind::kReboot, seq}, options_.link_timeout_s,
-      [seq](const Message& m) {
-        const auto* r = std::get_if<RebootResult>(&m);
-        return r != nullptr && r->seq == seq ? Verdict::kTake : Verdict::kIgnore;
-      },
-      problem);
+  std::optional<RebootResult> answer =
+      ask<RebootResult>(RequestKind::kReboot, options_.link_timeout_s, problem);
   if (!answer) {
     return Error{ErrorCode::kCanTimeout, "reboot failed: no answer over CAN: " + problem};
   }
-  const RebootResult& r = std::get<RebootResult>(*answer);
+  const RebootResult& r = *answer;
   status_ = r.status;
   // The node's words, as the simulated robot's: "reboot failed: ...".
   if (r.failure) return Error{ErrorCode::kIo, *r.failure};
@@ -301,16 +303,10 @@ Result<void> CanRobot::reboot() {
 }
 
 void CanRobot::activate_beacon() {
-  const std::uint8_t seq = next_seq();
   std::string problem;
-  std::optional<Message> answer = exchange(
-      Request{RequestKind::kBeacon, seq}, options_.ack_timeout_s,
-      [seq](const Message& m) {
-        const auto* s = std::get_if<StatusReply>(&m);
-        return s != nullptr && s->seq == seq ? Verdict::kTake : Verdict::kIgnore;
-      },
-      problem);
-  if (answer) status_ = std::get<StatusReply>(*answer).status;
+  std::optional<StatusReply> answer =
+      ask<StatusReply>(RequestKind::kBeacon, options_.ack_timeout_s, problem);
+  if (answer) status_ = answer->status;
 }
 
 }  // namespace sewerplan::hal

@@ -81,6 +81,9 @@ class CanRobot final : public Robot {
   std::optional<Message> exchange(const Message& request, double timeout_s,
                                   const std::function<Verdict(const Message&)>& judge,
                                   std::string& problem);
+  // Sends a request of `kind` with a new sequence number and takes the first `Reply` to it.
+  template <class Reply>
+  std::optional<Reply> ask(RequestKind kind, double timeout_s, std::string& problem);
   JobReport link_failure(const std::string& what, double progress_m);
   void heartbeat_if_due();
   std::uint8_t next_seq() { return ++seq_; }
