@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "sewerplan/core/diagnostics.h"
 
+#include <algorithm>
 #include <sstream>
 
 namespace sewerplan {
@@ -36,6 +37,23 @@ std::string Diagnostics::error_summary() const {
   }
   if (dropped() > 0) out << "\n(" << dropped() << " more problems not shown)";
   return out.str();
+}
+
+void report_json_syntax_error(std::string_view text, std::string_view file, std::size_t byte,
+                              std::string_view what, Diagnostics& diagnostics) {
+  const std::size_t offset = std::min<std::size_t>(byte == 0 ? 0 : byte - 1, text.size());
+  const std::string_view before = text.substr(0, offset);
+  const auto line = 1 + static_cast<std::size_t>(std::count(before.begin(), before.end(), '\n'));
+  const std::size_t line_start = before.rfind('\n');
+  const std::size_t column =
+      line_start == std::string_view::npos ? offset + 1 : offset - line_start;
+  std::string message(what);
+  // "[json.exception.parse_error.101] parse error at line 3, column 16: syntax error ..."
+  if (auto colon = message.find(": ", message.find("parse error")); colon != std::string::npos) {
+    message = message.substr(colon + 2);
+  }
+  diagnostics.error(std::string(file) + ":" + std::to_string(line) + ":" + std::to_string(column),
+                    "JSON syntax error: " + message);
 }
 
 }  // namespace sewerplan

@@ -15,18 +15,7 @@ void report_syntax_error(std::string_view text, std::string_view file, std::stri
   try {
     [[maybe_unused]] const nlohmann::json parsed = nlohmann::json::parse(text.begin(), text.end());
   } catch (const nlohmann::json::parse_error& e) {
-    const std::size_t byte = std::min<std::size_t>(e.byte == 0 ? 0 : e.byte - 1, text.size());
-    const auto before = text.substr(0, byte);
-    const auto line = 1 + static_cast<std::size_t>(std::count(before.begin(), before.end(), '\n'));
-    const std::size_t line_start = before.rfind('\n');
-    const std::size_t column = line_start == std::string_view::npos ? byte + 1 : byte - line_start;
-    std::string message = e.what();
-    // "[json.exception.parse_error.101] parse error at line 3, column 16: syntax error ..."
-    if (auto colon = message.find(": ", message.find("parse error")); colon != std::string::npos) {
-      message = message.substr(colon + 2);
-    }
-    diagnostics.error(std::string(file) + ":" + std::to_string(line) + ":" + std::to_string(column),
-                      "JSON syntax error: " + message);
+    report_json_syntax_error(text, file, e.byte, e.what(), diagnostics);
     return;
   } catch (const std::exception&) {
     // Fall through to simdjson's own message.

@@ -89,4 +89,9 @@ std::string describe_json(JsonElement element);
 // Shortest text that reads back as exactly `v` (std::to_chars).
 std::string format_double(double v);
 
+// "path[i]": the JSON path of an array's element, for diagnostics.
+inline std::string indexed(const std::string& path, std::size_t i) {
+  return path + "[" + std::to_string(i) + "]";
+}
+
 }  // namespace sewerplan::detail

@@ -12,15 +12,12 @@
 namespace sewerplan {
 namespace {
 
+using detail::indexed;
 using detail::JsonArray;
 using detail::JsonDocument;
 using detail::JsonElement;
 using detail::JsonFields;
 using Need = JsonFields::Need;
-
-std::string indexed(const std::string& path, std::size_t i) {
-  return path + "[" + std::to_string(i) + "]";
-}
 
 // Resolves names against the map; each failure is reported at the field that named it.
 class MissionReader {

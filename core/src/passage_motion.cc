@@ -19,6 +19,7 @@
 namespace sewerplan {
 namespace {
 
+using detail::indexed;
 using detail::JsonArray;
 using detail::JsonDocument;
 using detail::JsonElement;
@@ -52,10 +53,6 @@ class Fingerprint {
  private:
   std::uint64_t hash_ = 14695981039346656037ULL;
 };
-
-std::string indexed(const std::string& path, std::size_t i) {
-  return path + "[" + std::to_string(i) + "]";
-}
 
 std::optional<Waypoint> read_waypoint(JsonElement e, const std::string& where, Diagnostics& d) {
   JsonArray array;

@@ -213,22 +213,6 @@ class FaultReader {
   Diagnostics& diagnostics_;
 };
 
-// "file:line:column: JSON syntax error: ..." from nlohmann's byte position.
-void report_syntax_error(std::string_view text, const std::string& file,
-                         const nlohmann::json::parse_error& e, Diagnostics& diagnostics) {
-  const std::size_t byte = std::min<std::size_t>(e.byte == 0 ? 0 : e.byte - 1, text.size());
-  const std::string_view before = text.substr(0, byte);
-  const auto line = 1 + static_cast<std::size_t>(std::count(before.begin(), before.end(), '\n'));
-  const std::size_t line_start = before.rfind('\n');
-  const std::size_t column = line_start == std::string_view::npos ? byte + 1 : byte - line_start;
-  std::string message = e.what();
-  if (auto colon = message.find(": ", message.find("parse error")); colon != std::string::npos) {
-    message = message.substr(colon + 2);
-  }
-  diagnostics.error(file + ":" + std::to_string(line) + ":" + std::to_string(column),
-                    "JSON syntax error: " + message);
-}
-
 }  // namespace
 
 Result<FaultScenario> read_faults_json(std::string_view text, const std::string& file_name,
@@ -237,7 +221,7 @@ Result<FaultScenario> read_faults_json(std::string_view text, const std::string&
   try {
     doc = json::parse(text.begin(), text.end());
   } catch (const nlohmann::json::parse_error& e) {
-    report_syntax_error(text, file_name, e, diagnostics);
+    report_json_syntax_error(text, file_name, e.byte, e.what(), diagnostics);
     return Error{ErrorCode::kParse, diagnostics.error_summary()};
   } catch (const nlohmann::json::exception& e) {
     // A number too large for any type (found by fuzz/faults_json_fuzz.cc).

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <string>
+#include <utility>
 
 #include "sewerplan/core/check.h"
 
@@ -54,6 +56,17 @@ std::optional<Message> CanRobot::await(double timeout_s,
   double waited_s = 0;  // wall time spent in empty receives: bounds the wait under any Clock
   std::size_t bad = 0;
   std::size_t frames = 0;
+  // Counts one garbled line or malformed message; false once there are more than a retry can
+  // repair: a line this noisy is broken.
+  const auto tolerate_bad_input = [&](std::string what) {
+    ++stats_.bad_input;
+    last_bad_input_ = what;
+    problem = std::move(what);
+    if (++bad <= options_.max_bad_input) return true;
+    problem = std::to_string(bad) + " bad inputs, the last: " + problem;
+    bus_failed = true;
+    return false;
+  };
   for (;;) {
     const double now_s = clock_->now_s();
     if (now_s - start_s >= options_.job_timeout_s) {
@@ -77,15 +90,7 @@ std::optional<Message> CanRobot::await(double timeout_s,
         problem = in.error().message;
         return std::nullopt;
       }
-      ++stats_.bad_input;
-      problem = in.error().message;
-      last_bad_input_ = problem;
-      if (++bad > options_.max_bad_input) {
-        // A line this noisy is broken: no retry.
-        problem = std::to_string(bad) + " bad inputs, the last: " + problem;
-        bus_failed = true;
-        return std::nullopt;
-      }
+      if (!tolerate_bad_input(in.error().message)) return std::nullopt;
       continue;
     }
     if (!in->has_value()) {
@@ -99,15 +104,7 @@ std::optional<Message> CanRobot::await(double timeout_s,
     std::optional<Decoded> decoded = decoder_.push(**in);
     if (!decoded) continue;
     if (const auto* bad_message = std::get_if<Malformed>(&*decoded)) {
-      ++stats_.bad_input;
-      problem = "malformed " + bad_message->reason;
-      last_bad_input_ = problem;
-      if (++bad > options_.max_bad_input) {
-        // A line this noisy is broken: no retry.
-        problem = std::to_string(bad) + " bad inputs, the last: " + problem;
-        bus_failed = true;
-        return std::nullopt;
-      }
+      if (!tolerate_bad_input("malformed " + bad_message->reason)) return std::nullopt;
       continue;
     }
     Message& message = std::get<Message>(*decoded);

@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <ostream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace sewerplan {
@@ -56,5 +57,11 @@ class Diagnostics {
   std::size_t errors_ = 0;
   std::size_t warnings_ = 0;
 };
+
+// Reports a JSON syntax error at "file:line:column", worked out from the byte offset (1-based,
+// as nlohmann's parse_error::byte) into `text`; `what` is the parser's message, of which the part
+// after "parse error ...: " is kept. Shared by every JSON reader so that all point the same way.
+void report_json_syntax_error(std::string_view text, std::string_view file, std::size_t byte,
+                              std::string_view what, Diagnostics& diagnostics);
 
 }  // namespace sewerplan
