@@ -189,6 +189,36 @@ TurnPlan infeasible(std::string reason, std::uint32_t iterations = 0) {
   return p;
 }
 
+// Positive diameters, a finite turn and step.
+Result<void> check_numbers(const PassageGeometry& g) {
+  for (double v : {g.manhole_diameter_m, g.from_diameter_m, g.to_diameter_m}) {
+    if (!(std::isfinite(v) && v > 0)) {
+      return Error{ErrorCode::kInvalidArgument, "passage geometry: diameters must be positive"};
+    }
+  }
+  if (!std::isfinite(g.step_m) || !std::isfinite(g.turn_deg)) {
+    return Error{ErrorCode::kInvalidArgument, "passage geometry: turn and step must be finite"};
+  }
+  return {};
+}
+
+// The whole path of the head: the body's length behind it in the from-pipe, the straight run
+// before a step, the planned part (`head`, which begins at `start`), the run after a step, and
+// the body's length into the to-pipe at azimuth `alpha`.
+Polyline whole_path(const Pose2& start, const std::vector<Pose2>& head, double r, double run_from,
+                    double run_to, double alpha, double body_length) {
+  const double cx = std::cos(alpha);
+  const double cy = std::sin(alpha);
+  Polyline path;
+  path.add_line_to(std::min(start.x_m, -r) - body_length, 0, 0);
+  if (run_from > 0) path.add_line_to(-r, 0, 0);
+  path.add_line_to(start.x_m, start.y_m, 0);
+  for (std::size_t i = 1; i < head.size(); ++i) path.add(head[i]);
+  if (run_to > 0) path.add_line_to(r * cx, r * cy, alpha);
+  path.add_line_to((r + body_length) * cx, (r + body_length) * cy, alpha);
+  return path;
+}
+
 }  // namespace
 
 bool motion_planning_available() { return detail::head_path_available(); }
@@ -210,14 +240,7 @@ Result<void> ManholeTurnPlanner::check_state_space(const PassageGeometry& geomet
 
 Result<TurnPlan> ManholeTurnPlanner::plan(const PassageGeometry& geometry) const {
   const PassageGeometry g = quantised(geometry);
-  for (double v : {g.manhole_diameter_m, g.from_diameter_m, g.to_diameter_m}) {
-    if (!(std::isfinite(v) && v > 0)) {
-      return Error{ErrorCode::kInvalidArgument, "passage geometry: diameters must be positive"};
-    }
-  }
-  if (!std::isfinite(g.step_m) || !std::isfinite(g.turn_deg)) {
-    return Error{ErrorCode::kInvalidArgument, "passage geometry: turn and step must be finite"};
-  }
+  if (Result<void> ok = check_numbers(g); !ok.has_value()) return ok.error();
   if (!motion_planning_available()) return detail::plan_head_path({}, options_).error();
   const double w = body_.width_m;
   if (g.from_diameter_m < w || g.to_diameter_m < w) {
@@ -293,14 +316,7 @@ Result<TurnPlan> ManholeTurnPlanner::plan(const PassageGeometry& geometry) const
           << " manhole, radius >= " << metres(body_.min_turn_radius_m()) << ")";
       return infeasible(out.str(), iterations);
     }
-    // The whole path: the body behind the head in the from-pipe, the planned part, the to-pipe.
-    path = Polyline{};
-    path.add_line_to(std::min(start.x_m, -r) - body_length, 0, 0);
-    if (run_from > 0) path.add_line_to(-r, 0, 0);
-    path.add_line_to(start.x_m, start.y_m, 0);
-    for (std::size_t i = 1; i < head->poses.size(); ++i) path.add(head->poses[i]);
-    if (run_to > 0) path.add_line_to(r * cx, r * cy, alpha);
-    path.add_line_to((r + body_length) * cx, (r + body_length) * cy, alpha);
+    path = whole_path(start, head->poses, r, run_from, run_to, alpha, body_length);
     // Where the manoeuvre begins: the head at the from-pipe's mouth.
     mouth_s = first_arc_inside(path, r);
     problem = chain_problem(path, g, body_, mouth_s);
