@@ -51,8 +51,8 @@ int main(int argc, char** argv) {
     }
     if (!replay.apply(step).has_value()) return 1;
   }
-  if (plan.decision == executor::PlanResponse::Decision::kCallForRecovery) {
-    std::cout << "call for recovery: " << plan.reason << '\n';
+  if (!executor::has_plan(plan.decision)) {
+    std::cout << executor::to_string(plan.decision) << ": " << plan.reason << '\n';
     return 0;
   }
   std::cout << "\nafter \"" << plan.reason << "\", new plan (ends at " << plan.end << "):\n"

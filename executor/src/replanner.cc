@@ -51,6 +51,41 @@ std::string_view to_string(Failure::Kind kind) {
   return "stuck";
 }
 
+std::string_view to_string(PlanResponse::Decision decision) {
+  switch (decision) {
+    case PlanResponse::Decision::kFollowPlan:
+      return "follow-plan";
+    case PlanResponse::Decision::kDegraded:
+      return "degraded";
+    case PlanResponse::Decision::kCallForRecovery:
+      return "call-for-recovery";
+    case PlanResponse::Decision::kStuck:
+      return "stuck";
+    case PlanResponse::Decision::kInvalidReport:
+      return "invalid-report";
+  }
+  return "invalid-report";
+}
+
+std::optional<PlanResponse::Decision> parse_decision(std::string_view name) {
+  for (auto d : {PlanResponse::Decision::kFollowPlan, PlanResponse::Decision::kDegraded,
+                 PlanResponse::Decision::kCallForRecovery, PlanResponse::Decision::kStuck,
+                 PlanResponse::Decision::kInvalidReport}) {
+    if (to_string(d) == name) return d;
+  }
+  return std::nullopt;
+}
+
+bool has_plan(PlanResponse::Decision decision) {
+  return decision == PlanResponse::Decision::kFollowPlan ||
+         decision == PlanResponse::Decision::kDegraded;
+}
+
+bool calls_beacon(PlanResponse::Decision decision) {
+  return decision == PlanResponse::Decision::kCallForRecovery ||
+         decision == PlanResponse::Decision::kStuck;
+}
+
 Replanner::Replanner(const SewerMap& map, Mission mission, ReplannerOptions options)
     : map_(map),
       mission_(std::move(mission)),
@@ -142,6 +177,9 @@ PlanResponse Replanner::plan(const std::string& reason) {
   PlanResponse r = respond(std::move(*outcome), reason, seconds);
   r.newly_dropped.assign(dropped_.begin() + static_cast<std::ptrdiff_t>(dropped_before),
                          dropped_.end());
+  if (r.decision == PlanResponse::Decision::kFollowPlan && !r.newly_dropped.empty()) {
+    r.decision = PlanResponse::Decision::kDegraded;
+  }
   return r;
 }
 
@@ -169,6 +207,7 @@ PlanResponse Replanner::respond(search::PlanOutcome outcome, const std::string& 
   }
   r.fused = std::move(*fused);
   r.plan = std::move(outcome.plan);
+
   if (const Task* final_task = mission_.final_task()) {
     r.end = describe(final_task->place, map_) + " (final task '" + final_task->name + "')";
   } else {
@@ -196,7 +235,7 @@ PlanResponse Replanner::report_failure(const Failure& failure) {
       break;
     case Failure::Kind::kStuck: {
       PlanResponse r;
-      r.decision = PlanResponse::Decision::kCallForRecovery;
+      r.decision = PlanResponse::Decision::kStuck;
       r.reason = "the robot cannot move: " + failure.detail;
       return r;
     }

@@ -17,7 +17,7 @@
 //   // ... execute r.fused; on progress:  replanner.update(progress, heading_end);
 //   // ... on a blockage recovery could not clear:
 //   r = replanner.report_failure({.kind = Failure::Kind::kBlockage, .pipe = p5, .offset_m = 4.0});
-//   if (r.decision == PlanResponse::Decision::kCallForRecovery) robot.activate_beacon();
+//   if (calls_beacon(r.decision)) robot.activate_beacon();
 #pragma once
 
 #include <cstdint>
@@ -56,9 +56,17 @@ struct Failure {
 std::string_view to_string(Failure::Kind kind);
 
 struct PlanResponse {
+  // What the caller does with the answer; switch on it. The names (to_string, parse_decision)
+  // are stable: the event log and every CLI --json output carry them.
   enum class Decision {
-    kFollowPlan,       // carry out `fused` (empty when the mission is already ended)
-    kCallForRecovery,  // no exit can be reached: activate the beacon and wait
+    kFollowPlan,       // "follow-plan": carry out `fused` (empty when the mission is already ended)
+    kDegraded,         // "degraded": carry out `fused`; it does less than asked (tasks dropped,
+                       // the end point given up, or the time ran out and it heads for an exit)
+    kCallForRecovery,  // "call-for-recovery": a search proved that no exit can be reached:
+                       // activate the beacon and wait
+    kStuck,            // "stuck": the robot cannot move: activate the beacon and wait
+    kInvalidReport,    // "invalid-report": the report was rejected (`reason` says why) and the
+                       // world model is unchanged; the robot's last plan stands
   };
   Decision decision = Decision::kFollowPlan;
   domain::Plan plan;
@@ -72,6 +80,15 @@ struct PlanResponse {
   double cost_s = 0;
   double energy_wh = 0;
 };
+
+// The stable name of a decision ("follow-plan", "degraded", "call-for-recovery", "stuck",
+// "invalid-report") and back; parse_decision is empty for any other text.
+std::string_view to_string(PlanResponse::Decision decision);
+std::optional<PlanResponse::Decision> parse_decision(std::string_view name);
+// kFollowPlan and kDegraded: there is a plan to carry out.
+bool has_plan(PlanResponse::Decision decision);
+// kCallForRecovery and kStuck: the robot switches its locator beacon on.
+bool calls_beacon(PlanResponse::Decision decision);
 
 struct ReplannerOptions {
   // Goal selection is always on. The robot waits while it replans, so by default there is no
