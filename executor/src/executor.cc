@@ -281,7 +281,8 @@ class Executor::Run {
     progress.done = done_;
     progress.position = tracker_.position();
     progress.energy_used_wh = mission().profile.battery_wh - robot_.status().battery_wh;
-    replanner_.update(progress, tracker_.heading_end());
+    // The tracker's places are on the map; a report the Replanner rejects keeps its last one.
+    (void)replanner_.update(progress, tracker_.heading_end());
   }
 
   hal::JobReport execute_job(const Job& job) {

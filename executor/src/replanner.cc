@@ -2,6 +2,7 @@
 #include "sewerplan/executor/replanner.h"
 
 #include <algorithm>
+#include <cmath>
 #include <iomanip>
 #include <sstream>
 
@@ -94,9 +95,96 @@ Replanner::Replanner(const SewerMap& map, Mission mission, ReplannerOptions opti
   options_.planner.select_goals = true;
 }
 
-void Replanner::update(const domain::MissionProgress& progress, std::uint8_t heading_end) {
+Result<void> check_failure(const Failure& failure, const SewerMap& map) {
+  const auto invalid = [](std::string what) -> Result<void> {
+    return Error{ErrorCode::kInvalidArgument, "invalid failure report: " + std::move(what)};
+  };
+  switch (failure.kind) {
+    case Failure::Kind::kBlockage:
+    case Failure::Kind::kDangerInPipe: {
+      if (failure.pipe.index() >= map.pipe_count()) {
+        return invalid("unknown pipe #" + std::to_string(failure.pipe.index()));
+      }
+      const Pipe& pipe = map.pipe(failure.pipe);
+      if (!std::isfinite(failure.offset_m) || failure.offset_m < 0 ||
+          failure.offset_m > pipe.length_m) {
+        std::ostringstream out;
+        out << "offset " << failure.offset_m << " m is outside pipe " << pipe.name << " (0 to "
+            << pipe.length_m << " m)";
+        return invalid(out.str());
+      }
+      return {};
+    }
+    case Failure::Kind::kDangerousPassage: {
+      if (failure.manhole.index() >= map.manhole_count()) {
+        return invalid("unknown manhole #" + std::to_string(failure.manhole.index()));
+      }
+      const std::size_t slots = map.slots(failure.manhole).size();
+      const std::string& name = map.manhole(failure.manhole).name;
+      if (failure.from.index() >= slots || failure.to.index() >= slots) {
+        return invalid("manhole " + name + " has " + std::to_string(slots) + " slots, not slot " +
+                       std::to_string(to_paper_number(failure.from.index() >= slots ? failure.from
+                                                                                    : failure.to)));
+      }
+      if (failure.from == failure.to) {
+        return invalid("a passage of manhole " + name + " from slot " +
+                       std::to_string(to_paper_number(failure.from)) + " to itself");
+      }
+      return {};
+    }
+    case Failure::Kind::kStuck:
+      return {};
+  }
+  return invalid("unknown kind");
+}
+
+Result<void> check_progress(const domain::MissionProgress& progress, std::uint8_t heading_end,
+                            const SewerMap& map, const Mission& mission) {
+  const auto invalid = [](std::string what) -> Result<void> {
+    return Error{ErrorCode::kInvalidArgument, "invalid progress report: " + std::move(what)};
+  };
+  if (progress.done.size() != mission.tasks.size()) {
+    return invalid(std::to_string(progress.done.size()) + " done flags for " +
+                   std::to_string(mission.tasks.size()) + " tasks");
+  }
+  if (!std::isfinite(progress.energy_used_wh) || progress.energy_used_wh < 0) {
+    return invalid("energy used " + std::to_string(progress.energy_used_wh) + " Wh");
+  }
+  if (heading_end > 1) return invalid("heading end " + std::to_string(heading_end));
+  const auto known_manhole = [&](ManholeId m) { return m.index() < map.manhole_count(); };
+  if (const auto* in = std::get_if<domain::InManhole>(&progress.position)) {
+    if (!known_manhole(in->manhole)) {
+      return invalid("unknown manhole #" + std::to_string(in->manhole.index()));
+    }
+  } else if (const auto* at = std::get_if<domain::AtSlot>(&progress.position)) {
+    if (!known_manhole(at->manhole)) {
+      return invalid("unknown manhole #" + std::to_string(at->manhole.index()));
+    }
+    if (at->slot.index() >= map.slots(at->manhole).size()) {
+      return invalid("manhole " + map.manhole(at->manhole).name + " has no slot " +
+                     std::to_string(to_paper_number(at->slot)));
+    }
+  } else {
+    const auto& p = std::get<domain::InPipe>(progress.position);
+    if (p.pipe.index() >= map.pipe_count()) {
+      return invalid("unknown pipe #" + std::to_string(p.pipe.index()));
+    }
+    const Pipe& pipe = map.pipe(p.pipe);
+    if (!std::isfinite(p.offset_m) || p.offset_m < 0 || p.offset_m > pipe.length_m) {
+      std::ostringstream out;
+      out << "offset " << p.offset_m << " m is outside pipe " << pipe.name << " (0 to "
+          << pipe.length_m << " m)";
+      return invalid(out.str());
+    }
+  }
+  return {};
+}
+
+Result<void> Replanner::update(const domain::MissionProgress& progress, std::uint8_t heading_end) {
+  if (auto ok = check_progress(progress, heading_end, map_, mission_); !ok.has_value()) return ok;
   progress_ = progress;
   heading_end_ = heading_end;
+  return {};
 }
 
 Result<search::PlanOutcome> Replanner::baseline_from_here() {
@@ -220,6 +308,12 @@ PlanResponse Replanner::respond(search::PlanOutcome outcome, const std::string& 
 }
 
 PlanResponse Replanner::report_failure(const Failure& failure) {
+  if (auto ok = check_failure(failure, map_); !ok.has_value()) {
+    PlanResponse r;
+    r.decision = PlanResponse::Decision::kInvalidReport;
+    r.reason = ok.error().message;
+    return r;
+  }
   std::string reason(to_string(failure.kind));
   switch (failure.kind) {
     case Failure::Kind::kBlockage:

@@ -3,6 +3,8 @@
 // environment (datasets/ais-testbed).
 #include "sewerplan/executor/replanner.h"
 
+#include <limits>
+
 #include <gtest/gtest.h>
 
 #include "support/ais_testbed.h"
@@ -60,13 +62,14 @@ TEST(ReplannerDecision, ABlockageThatCostsATaskIsDegraded) {
   const auto ais = testing::load_ais_testbed();
   Replanner replanner(ais.map, ais.mission);
   (void)replanner.plan();
-  // Both ways into P4 blocked: the inspection cannot be done any more.
+  // P4 blocked in its middle: it cannot be inspected any more.
   const PipeId p4 = pipe_named(ais.map, "P4");
-  (void)replanner.report_failure({.kind = Failure::Kind::kBlockage, .pipe = p4, .offset_m = 0.5});
   const PlanResponse r = replanner.report_failure(
-      {.kind = Failure::Kind::kBlockage, .pipe = p4, .offset_m = ais.map.pipe(p4).length_m - 0.5});
+      {.kind = Failure::Kind::kBlockage, .pipe = p4, .offset_m = ais.map.pipe(p4).length_m / 2});
+  ASSERT_EQ(r.newly_dropped.size(), 1U) << r.reason;
   EXPECT_EQ(r.decision, Decision::kDegraded) << r.reason;
-  EXPECT_TRUE(has_plan(r.decision));
+  // Nothing more is lost on the next replan: following the plan again.
+  EXPECT_EQ(replanner.plan("again").decision, Decision::kFollowPlan);
 }
 
 TEST(ReplannerDecision, ARobotThatCannotMoveIsStuck) {
@@ -78,5 +81,76 @@ TEST(ReplannerDecision, ARobotThatCannotMoveIsStuck) {
   EXPECT_NE(r.reason.find("motor 3 dead"), std::string::npos);
 }
 
+// Issue 14: a failure report with an unknown pipe aborted the whole process, even in a release
+// build. Each bad report is now answered, naming what is wrong, and changes nothing.
+TEST(ReplannerIssue14, BadFailureReportsAreAnsweredAsInvalidAndChangeNothing) {
+  const auto ais = testing::load_ais_testbed();
+  const PipeId p4 = pipe_named(ais.map, "P4");
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  const std::vector<std::pair<Failure, std::string_view>> bad{
+      {{.kind = Failure::Kind::kBlockage, .pipe = PipeId{9999}}, "unknown pipe #9999"},
+      {{.kind = Failure::Kind::kDangerInPipe, .pipe = p4, .offset_m = -0.1}, "outside pipe P4"},
+      {{.kind = Failure::Kind::kBlockage, .pipe = p4, .offset_m = 1e6}, "outside pipe P4"},
+      {{.kind = Failure::Kind::kBlockage, .pipe = p4, .offset_m = nan}, "outside pipe P4"},
+      {{.kind = Failure::Kind::kBlockage, .pipe = p4, .offset_m = inf}, "outside pipe P4"},
+      {{.kind = Failure::Kind::kDangerousPassage, .manhole = ManholeId{4242}},
+       "unknown manhole #4242"},
+      {{.kind = Failure::Kind::kDangerousPassage,
+        .manhole = ManholeId{0},
+        .from = SlotIndex{0},
+        .to = SlotIndex{77}},
+       "not slot 78"},
+      {{.kind = Failure::Kind::kDangerousPassage,
+        .manhole = ManholeId{0},
+        .from = SlotIndex{0},
+        .to = SlotIndex{0}},
+       "to itself"},
+  };
+  Replanner replanner(ais.map, ais.mission);
+  const PlanResponse first = replanner.plan();
+  for (const auto& [failure, message] : bad) {
+    EXPECT_FALSE(check_failure(failure, ais.map).has_value()) << message;
+    const PlanResponse r = replanner.report_failure(failure);
+    EXPECT_EQ(r.decision, Decision::kInvalidReport) << message;
+    EXPECT_NE(r.reason.find(message), std::string::npos) << r.reason;
+  }
+  EXPECT_EQ(replanner.mission().blockages, ais.mission.blockages);
+  EXPECT_EQ(replanner.mission().closed_passages, ais.mission.closed_passages);
+  EXPECT_EQ(replanner.plan().plan.steps, first.plan.steps);
+}
+
+TEST(ReplannerIssue14, BadProgressReportsAreErrorsAndKeepTheLastProgress) {
+  const auto ais = testing::load_ais_testbed();
+  Replanner replanner(ais.map, ais.mission);
+  const domain::MissionProgress before = replanner.progress();
+  const PipeId p4 = pipe_named(ais.map, "P4");
+  auto with = [&](domain::RobotPosition position) {
+    domain::MissionProgress p = before;
+    p.position = position;
+    return p;
+  };
+  domain::MissionProgress short_done = before;
+  short_done.done.pop_back();
+  domain::MissionProgress nan_energy = before;
+  nan_energy.energy_used_wh = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<std::pair<domain::MissionProgress, std::string_view>> bad{
+      {with(domain::InPipe{PipeId{123}, 0}), "unknown pipe #123"},
+      {with(domain::InPipe{p4, -1}), "outside pipe P4"},
+      {with(domain::InPipe{p4, std::numeric_limits<double>::infinity()}), "outside pipe P4"},
+      {with(domain::AtSlot{ManholeId{0}, SlotIndex{50}}), "no slot 51"},
+      {with(domain::InManhole{ManholeId{500}}), "unknown manhole #500"},
+      {short_done, "2 done flags for 3 tasks"},
+      {nan_energy, "energy used"},
+  };
+  for (const auto& [progress, message] : bad) {
+    const Result<void> r = replanner.update(progress, 1);
+    ASSERT_FALSE(r.has_value()) << message;
+    EXPECT_NE(r.error().message.find(message), std::string::npos) << r.error().message;
+  }
+  EXPECT_FALSE(replanner.update(before, 2).has_value());
+  EXPECT_EQ(replanner.progress(), before);
+  EXPECT_TRUE(replanner.update(with(domain::InPipe{p4, 1.0}), 0).has_value());
+}
 }  // namespace
 }  // namespace sewerplan::executor

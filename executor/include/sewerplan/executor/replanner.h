@@ -81,6 +81,14 @@ struct PlanResponse {
   double energy_wh = 0;
 };
 
+// Whether a failure report can be applied to `map`: known pipe, manhole and slots, a finite offset
+// within the pipe, two different slots of a dangerous passage. The error names what is wrong.
+Result<void> check_failure(const Failure& failure, const SewerMap& map);
+// Whether a progress report fits `map` and `mission`: a known place (a finite offset within its
+// pipe), one done flag per task, a finite energy of at least 0, a heading end of 0 or 1.
+Result<void> check_progress(const domain::MissionProgress& progress, std::uint8_t heading_end,
+                            const SewerMap& map, const Mission& mission);
+
 // The stable name of a decision ("follow-plan", "degraded", "call-for-recovery", "stuck",
 // "invalid-report") and back; parse_decision is empty for any other text.
 std::string_view to_string(PlanResponse::Decision decision);
@@ -114,10 +122,12 @@ class Replanner {
   PlanResponse plan(const std::string& reason = "start");
 
   // Where the robot is, what it has done and the energy it has used; `heading_end` is the end of
-  // its pipe its front points to (0 or 1) when it is in a pipe.
-  void update(const domain::MissionProgress& progress, std::uint8_t heading_end);
+  // its pipe its front points to (0 or 1) when it is in a pipe. A report that check_progress
+  // rejects is an error, and the progress stays as it was.
+  Result<void> update(const domain::MissionProgress& progress, std::uint8_t heading_end);
 
-  // Changes the world model for `failure` and plans again from progress().
+  // Changes the world model for `failure` and plans again from progress(). A report that
+  // check_failure rejects changes nothing: the answer is kInvalidReport, its reason the error.
   PlanResponse report_failure(const Failure& failure);
 
   // The mission as the Replanner now sees it: with the blockages and closures learnt, and
