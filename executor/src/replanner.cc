@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 #include "sewerplan/domain/validator.h"
@@ -187,10 +188,32 @@ Result<void> Replanner::update(const domain::MissionProgress& progress, std::uin
   return {};
 }
 
-Result<search::PlanOutcome> Replanner::baseline_from_here() {
+const Clock& Replanner::clock() const {
+  return options_.clock != nullptr ? *options_.clock : steady_;
+}
+
+std::vector<ManholeId> Replanner::map_exits() const {
+  std::vector<ManholeId> exits;
+  for (ManholeId m : map_.manhole_ids()) {
+    if (map_.manhole(m).exit) exits.push_back(m);
+  }
+  return exits;
+}
+
+search::PlannerOptions Replanner::bounded(double deadline_s) const {
+  search::PlannerOptions options = options_.planner;
+  options.clock = &clock();
+  if (std::isfinite(deadline_s)) {
+    // At least a little: a limit of 0 means none to the planner.
+    options.time_limit_s = std::max(deadline_s - clock().now_s(), 1e-12);
+  }
+  return options;
+}
+
+Result<search::PlanOutcome> Replanner::baseline_from_here(double deadline_s) {
   domain::MissionProgress start = progress_;
   for (const auto& d : dropped_) start.done[d.task.index()] = true;
-  search::PlannerOptions same_goals = options_.planner;
+  search::PlannerOptions same_goals = bounded(deadline_s);
   same_goals.select_goals = false;
   auto outcome = search::plan_mission(map_, mission_, start, same_goals);
   if (outcome.has_value() || outcome.error().code != ErrorCode::kNoPlan) return outcome;
@@ -203,23 +226,20 @@ Result<search::PlanOutcome> Replanner::baseline_from_here() {
     start.done[t.index()] = true;
     mission_.tasks[t.index()].final = false;
   }
-  mission_.exits.clear();
-  for (ManholeId m : map_.manhole_ids()) {
-    if (map_.manhole(m).exit) mission_.exits.push_back(m);
-  }
-  return search::plan_mission(map_, mission_, start, same_goals);
+  mission_.exits = map_exits();
+  return search::plan_mission(map_, mission_, start, bounded(deadline_s));
 }
 
-Result<search::PlanOutcome> Replanner::plan_from_here() {
+Result<search::PlanOutcome> Replanner::plan_from_here(double deadline_s) {
   const bool first = !planned_;
   planned_ = true;
   if (options_.goals == ReplannerOptions::Goals::kPaperBaseline && !first) {
-    return baseline_from_here();
+    return baseline_from_here(deadline_s);
   }
   for (;;) {
     domain::MissionProgress start = progress_;
     for (const auto& d : dropped_) start.done[d.task.index()] = true;
-    auto outcome = search::plan_mission(map_, mission_, start, options_.planner);
+    auto outcome = search::plan_mission(map_, mission_, start, bounded(deadline_s));
     if (outcome.has_value() || outcome.error().code != ErrorCode::kNoPlan) return outcome;
     // The end point cut off: end at the nearest reachable exit instead.
     if (auto final_task = mission_.final_task_id();
@@ -227,18 +247,11 @@ Result<search::PlanOutcome> Replanner::plan_from_here() {
       dropped_.push_back({*final_task, "the mission's end point cannot be reached any more: " +
                                            one_line(outcome.error().message)});
       mission_.tasks[final_task->index()].final = false;
-      if (mission_.exits.empty()) {
-        for (ManholeId m : map_.manhole_ids()) {
-          if (map_.manhole(m).exit) mission_.exits.push_back(m);
-        }
-      }
+      if (mission_.exits.empty()) mission_.exits = map_exits();
       continue;
     }
     // The mission's exits cut off: any manhole the map marks as an exit will do.
-    std::vector<ManholeId> all_exits;
-    for (ManholeId m : map_.manhole_ids()) {
-      if (map_.manhole(m).exit) all_exits.push_back(m);
-    }
+    std::vector<ManholeId> all_exits = map_exits();
     if (all_exits.size() > mission_.exits.size()) {
       mission_.exits = std::move(all_exits);
       continue;
@@ -247,14 +260,55 @@ Result<search::PlanOutcome> Replanner::plan_from_here() {
   }
 }
 
+Result<search::PlanOutcome> Replanner::exit_from_here(const std::string& why) {
+  Mission to_exit = mission_;
+  for (Task& t : to_exit.tasks) t.final = false;
+  if (to_exit.exits.empty()) to_exit.exits = map_exits();
+  domain::MissionProgress start = progress_;
+  std::fill(start.done.begin(), start.done.end(), true);
+  // No time limit and no cancel: this is the answer when the time ran out.
+  const search::PlannerOptions options{
+      .algorithm = search::Algorithm::kAstar, .clock = &clock(), .improvement_expansions = 0};
+  auto outcome = search::plan_mission(map_, to_exit, start, options);
+  if (!outcome.has_value() && outcome.error().code == ErrorCode::kNoPlan) {
+    std::vector<ManholeId> all_exits = map_exits();
+    if (all_exits.size() > to_exit.exits.size()) {
+      to_exit.exits = std::move(all_exits);
+      outcome = search::plan_mission(map_, to_exit, start, options);
+    }
+  }
+  if (!outcome.has_value()) return outcome;
+  domain::MissionProgress now = progress_;
+  for (const auto& d : dropped_) now.done[d.task.index()] = true;
+  for (TaskId t : mission_.task_ids()) {
+    if (!now.done[t.index()]) dropped_.push_back({t, why});
+  }
+  mission_ = std::move(to_exit);
+  return outcome;
+}
+
 PlanResponse Replanner::plan(const std::string& reason) {
-  const Clock& clock = options_.clock != nullptr ? *options_.clock : steady_;
-  const double start_s = clock.now_s();
+  const double start_s = clock().now_s();
+  const double deadline_s = options_.planner.time_limit_s > 0
+                                ? start_s + options_.planner.time_limit_s
+                                : std::numeric_limits<double>::infinity();
   const std::size_t dropped_before = dropped_.size();
-  Result<search::PlanOutcome> outcome = plan_from_here();
-  const double seconds = clock.now_s() - start_s;
+  Result<search::PlanOutcome> outcome = plan_from_here(deadline_s);
+  bool cut_short = false;
+  if (!outcome.has_value() && outcome.error().code != ErrorCode::kNoPlan) {
+    // A limit, a cancel or a planner error proves nothing: the safe answer, the nearest exit.
+    const ErrorCode code = outcome.error().code;
+    const std::string why = code == ErrorCode::kSearchLimit ? "the planner's time ran out"
+                            : code == ErrorCode::kCancelled
+                                ? "the replan was cancelled"
+                                : "the planner failed: " + one_line(outcome.error().message);
+    outcome = exit_from_here(why);
+    cut_short = true;
+  }
+  const double seconds = clock().now_s() - start_s;
   if (!outcome.has_value()) {
     PlanResponse r;
+    // kNoPlan: the search proved that no exit can be reached.
     r.decision = PlanResponse::Decision::kCallForRecovery;
     r.reason = reason + "; no way to end the mission: " + one_line(outcome.error().message);
     r.planning_time_s = seconds;
@@ -265,7 +319,8 @@ PlanResponse Replanner::plan(const std::string& reason) {
   PlanResponse r = respond(std::move(*outcome), reason, seconds);
   r.newly_dropped.assign(dropped_.begin() + static_cast<std::ptrdiff_t>(dropped_before),
                          dropped_.end());
-  if (r.decision == PlanResponse::Decision::kFollowPlan && !r.newly_dropped.empty()) {
+  if (r.decision == PlanResponse::Decision::kFollowPlan &&
+      (cut_short || !r.newly_dropped.empty())) {
     r.decision = PlanResponse::Decision::kDegraded;
   }
   return r;

@@ -3,9 +3,14 @@
 // environment (datasets/ais-testbed).
 #include "sewerplan/executor/replanner.h"
 
+#include <atomic>
 #include <limits>
 
 #include <gtest/gtest.h>
+
+#include "sewerplan/core/generator.h"
+#include "sewerplan/domain/mission_generator.h"
+#include "sewerplan/domain/validator.h"
 
 #include "support/ais_testbed.h"
 
@@ -151,6 +156,70 @@ TEST(ReplannerIssue14, BadProgressReportsAreErrorsAndKeepTheLastProgress) {
   EXPECT_FALSE(replanner.update(before, 2).has_value());
   EXPECT_EQ(replanner.progress(), before);
   EXPECT_TRUE(replanner.update(with(domain::InPipe{p4, 1.0}), 0).has_value());
+}
+
+// A clock that moves on by a second each time it is read: any time limit is over at the first
+// look, deterministically.
+class TickingClock final : public Clock {
+ public:
+  double now_s() const override { return now_s_ += 1.0; }
+
+ private:
+  mutable double now_s_ = 0;
+};
+
+// Issue 14: a replan that reached its time limit was answered with the beacon. The acceptance
+// case (a 1 microsecond limit on a generated network) answers degraded, heading to an exit along
+// a valid route; the 100,000-manhole case is bench/executor/deadline_bench.cc.
+TEST(ReplannerIssue14, AReplanOutOfTimeHeadsForTheNearestExitInsteadOfCallingTheBeacon) {
+  auto map = generate_network({.manholes = 2000, .seed = 7, .topology = Topology::kMeshed});
+  ASSERT_TRUE(map.has_value()) << map.error();
+  auto mission = domain::generate_mission(*map, {.tasks = 8, .seed = 3});
+  ASSERT_TRUE(mission.has_value()) << mission.error();
+  TickingClock clock;
+  // Greedy best-first search: an engine that asks its stop condition at every expansion.
+  Replanner replanner(*map, *mission,
+                      {.planner = {.algorithm = search::Algorithm::kGbfs,
+                                   .time_limit_s = 1e-6,
+                                   .improvement_expansions = 0},
+                       .clock = &clock});
+  const PlanResponse r = replanner.plan();
+  ASSERT_EQ(r.decision, Decision::kDegraded) << r.reason;
+  EXPECT_EQ(r.end.rfind("exit ", 0), 0U) << r.end;
+  EXPECT_EQ(r.newly_dropped.size(), mission->tasks.size());
+  EXPECT_NE(r.newly_dropped.front().reason.find("time ran out"), std::string::npos);
+  domain::MissionProgress start = replanner.progress();
+  for (const auto& d : replanner.dropped()) start.done[d.task.index()] = true;
+  const auto report = domain::validate_plan(r.plan, *map, replanner.mission(), start);
+  EXPECT_TRUE(report.valid) << report.error;
+  // Without a limit the same mission does tasks.
+  Replanner unlimited(*map, *mission);
+  EXPECT_TRUE(has_plan(unlimited.plan().decision));
+}
+
+TEST(ReplannerIssue14, AReplanThatIsCancelledHeadsForAnExitInsteadOfCallingTheBeacon) {
+  const auto ais = testing::load_ais_testbed();
+  std::atomic<bool> cancel{true};
+  Replanner replanner(ais.map, ais.mission,
+                      {.planner = {.cancel = &cancel, .improvement_expansions = 0}});
+  const PlanResponse r = replanner.plan();
+  ASSERT_EQ(r.decision, Decision::kDegraded) << r.reason;
+  EXPECT_EQ(r.end.rfind("exit ", 0), 0U) << r.end;
+  EXPECT_NE(r.newly_dropped.front().reason.find("cancelled"), std::string::npos);
+}
+
+TEST(ReplannerIssue14, OnlyAProofThatNoExitCanBeReachedCallsTheBeacon) {
+  const auto ais = testing::load_ais_testbed();
+  Replanner replanner(ais.map, ais.mission);
+  (void)replanner.plan();
+  // The robot starts in P12: both ends of it blocked.
+  const PipeId p12 = pipe_named(ais.map, "P12");
+  const double x = std::get<domain::InPipe>(replanner.progress().position).offset_m;
+  (void)replanner.report_failure(
+      {.kind = Failure::Kind::kBlockage, .pipe = p12, .offset_m = x + 0.5});
+  const PlanResponse r = replanner.report_failure(
+      {.kind = Failure::Kind::kBlockage, .pipe = p12, .offset_m = x - 0.5});
+  EXPECT_EQ(r.decision, Decision::kCallForRecovery) << r.reason;
 }
 }  // namespace
 }  // namespace sewerplan::executor

@@ -9,8 +9,10 @@
 // passage is closed. Then it replans from where the robot really is, with goal selection: the
 // most tasks that can still be done with the battery left, and still reaching an exit. If the
 // mission's end point (its final task) is cut off, the mission ends at the nearest reachable exit
-// instead; if no exit can be reached, the answer is to activate the locator beacon. Tasks done
-// stay done; tasks dropped stay dropped, each with its reason.
+// instead. The answer is anytime: when the time limit or a cancel stops the search first, it is the
+// safe one, the nearest reachable exit (kDegraded). The beacon (kCallForRecovery) is only the
+// answer when a search proved that no exit can be reached, or the robot cannot move (kStuck); a
+// limit never calls it. Tasks done stay done; tasks dropped stay dropped, each with its reason.
 //
 //   Replanner replanner(map, mission);
 //   PlanResponse r = replanner.plan();
@@ -102,6 +104,10 @@ struct ReplannerOptions {
   // Goal selection is always on. The robot waits while it replans, so by default there is no
   // improvement search after the first plan (for a task beyond exhaustive A*, the tour search's
   // plan: bench/executor/replan_bench.cc); give it expansions to trade time for cost.
+  // `planner.time_limit_s` (0: none) is the deadline of each plan() and report_failure() as a
+  // whole, and `planner.cancel` cuts it short: either way the answer is the safe one (the nearest
+  // reachable exit, kDegraded), found by one search that neither bounds: it may overshoot the
+  // deadline by that search (bench/executor/deadline_bench.cc).
   search::PlannerOptions planner{.improvement_expansions = 0};
   // Used to time the planning (default: a steady clock).
   const Clock* clock = nullptr;
@@ -138,8 +144,15 @@ class Replanner {
   std::uint8_t heading_end() const { return heading_end_; }
 
  private:
-  Result<search::PlanOutcome> plan_from_here();
-  Result<search::PlanOutcome> baseline_from_here();
+  const Clock& clock() const;
+  std::vector<ManholeId> map_exits() const;
+  // The planner's options, with a time limit to `deadline_s` (infinite: none).
+  search::PlannerOptions bounded(double deadline_s) const;
+  Result<search::PlanOutcome> plan_from_here(double deadline_s);
+  Result<search::PlanOutcome> baseline_from_here(double deadline_s);
+  // The safe answer: the nearest exit the robot can reach, every task left dropped for `why`.
+  // One optimal search over the robot's places, without a time limit or a cancel.
+  Result<search::PlanOutcome> exit_from_here(const std::string& why);
   PlanResponse respond(search::PlanOutcome outcome, const std::string& reason, double seconds);
 
   const SewerMap& map_;
