@@ -323,6 +323,7 @@ PlanResponse Replanner::plan(const std::string& reason) {
       (cut_short || !r.newly_dropped.empty())) {
     r.decision = PlanResponse::Decision::kDegraded;
   }
+  if (has_plan(r.decision)) last_steps_ = r.plan.steps;
   return r;
 }
 
@@ -369,6 +370,8 @@ PlanResponse Replanner::report_failure(const Failure& failure) {
     r.reason = ok.error().message;
     return r;
   }
+  const std::vector<domain::PlanStep> failed_steps = std::move(last_steps_);
+  last_steps_.clear();
   std::string reason(to_string(failure.kind));
   switch (failure.kind) {
     case Failure::Kind::kBlockage:
@@ -389,7 +392,42 @@ PlanResponse Replanner::report_failure(const Failure& failure) {
       return r;
     }
   }
-  return plan(reason);
+  PlanResponse r = plan(reason);
+  // The plan that just failed, again: the robot would meet the same trouble at the same place
+  // (a task a hair beyond where it stops for a danger). Drop the task it was heading for.
+  while (has_plan(r.decision) && !failed_steps.empty() && r.plan.steps == failed_steps) {
+    const std::optional<TaskId> target = first_task_of(r.plan);
+    if (!target) break;
+    const std::size_t dropped_before = dropped_.size();
+    dropped_.push_back({*target, "the robot cannot get there: the plan after " + reason +
+                                     " was the plan that had just failed"});
+    if (mission_.tasks[target->index()].final) {
+      mission_.tasks[target->index()].final = false;
+      if (mission_.exits.empty()) mission_.exits = map_exits();
+    }
+    std::vector<domain::DroppedTask> dropped_so_far = std::move(r.newly_dropped);
+    dropped_so_far.push_back(dropped_[dropped_before]);
+    r = plan(reason);
+    dropped_so_far.insert(dropped_so_far.end(), r.newly_dropped.begin(), r.newly_dropped.end());
+    r.newly_dropped = std::move(dropped_so_far);
+    if (r.decision == PlanResponse::Decision::kFollowPlan) {
+      r.decision = PlanResponse::Decision::kDegraded;
+    }
+  }
+  return r;
+}
+
+std::optional<TaskId> Replanner::first_task_of(const domain::Plan& plan) const {
+  domain::MissionProgress start = progress_;
+  for (const auto& d : dropped_) start.done[d.task.index()] = true;
+  domain::PlanReplay replay(map_, mission_, start);
+  for (const auto& step : plan.steps) {
+    if (!replay.apply(step).has_value()) return std::nullopt;
+    for (TaskId t : mission_.task_ids()) {
+      if (!start.done[t.index()] && replay.done()[t.index()]) return t;
+    }
+  }
+  return std::nullopt;
 }
 
 }  // namespace sewerplan::executor

@@ -134,6 +134,8 @@ class Replanner {
 
   // Changes the world model for `failure` and plans again from progress(). A report that
   // check_failure rejects changes nothing: the answer is kInvalidReport, its reason the error.
+  // A new plan identical to the one that just failed would fail the same way: the task it heads
+  // for first is dropped instead (the robot cannot get there), and the answer is kDegraded.
   PlanResponse report_failure(const Failure& failure);
 
   // The mission as the Replanner now sees it: with the blockages and closures learnt, and
@@ -153,6 +155,8 @@ class Replanner {
   // The safe answer: the nearest exit the robot can reach, every task left dropped for `why`.
   // One optimal search over the robot's places, without a time limit or a cancel.
   Result<search::PlanOutcome> exit_from_here(const std::string& why);
+  // The first task `plan` does from progress(), if any.
+  std::optional<TaskId> first_task_of(const domain::Plan& plan) const;
   PlanResponse respond(search::PlanOutcome outcome, const std::string& reason, double seconds);
 
   const SewerMap& map_;
@@ -163,6 +167,8 @@ class Replanner {
   std::uint8_t heading_end_ = 1;
   std::vector<domain::DroppedTask> dropped_;
   bool planned_ = false;  // a first plan was made
+  // The steps of the last plan answered: after a failure, the plan that failed.
+  std::vector<domain::PlanStep> last_steps_;
 };
 
 }  // namespace sewerplan::executor
