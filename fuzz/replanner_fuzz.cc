@@ -43,8 +43,8 @@ Failure some_failure(FuzzedDataProvider& in, const sewerplan::SewerMap& map) {
   f.pipe = some_id<sewerplan::PipeId>(in, map.pipe_count());
   f.offset_m = offset(in, length_of(map, f.pipe));
   f.manhole = some_id<sewerplan::ManholeId>(in, map.manhole_count());
-  f.from = sewerplan::SlotIndex{in.ConsumeIntegralInRange<std::uint32_t>(0, 5)};
-  f.to = sewerplan::SlotIndex{in.ConsumeIntegralInRange<std::uint32_t>(0, 5)};
+  f.from = sewerplan::SlotIndex{in.ConsumeIntegralInRange<std::uint16_t>(0, 5)};
+  f.to = sewerplan::SlotIndex{in.ConsumeIntegralInRange<std::uint16_t>(0, 5)};
   f.detail = "fuzz";
   return f;
 }
@@ -61,7 +61,7 @@ sewerplan::domain::MissionProgress some_progress(FuzzedDataProvider& in,
     case 1:
       p.position =
           domain::AtSlot{some_id<sewerplan::ManholeId>(in, map.manhole_count()),
-                         sewerplan::SlotIndex{in.ConsumeIntegralInRange<std::uint32_t>(0, 5)}};
+                         sewerplan::SlotIndex{in.ConsumeIntegralInRange<std::uint16_t>(0, 5)}};
       break;
     default: {
       const auto pipe = some_id<sewerplan::PipeId>(in, map.pipe_count());

@@ -178,6 +178,52 @@ Result<void> check_progress(const domain::MissionProgress& progress, std::uint8_
       return invalid(out.str());
     }
   }
+  // The final task is done only where it ends the mission: the validator's goal must hold here.
+  if (const auto final_task = mission.final_task_id();
+      final_task && progress.done[final_task->index()]) {
+    domain::MissionProgress all_done = progress;
+    std::fill(all_done.done.begin(), all_done.done.end(), true);
+    const auto report = domain::validate_plan({}, map, mission, all_done);
+    if (!report.valid) {
+      return invalid("the final task '" + mission.task(*final_task).name +
+                     "' is done, but the robot is " + domain::describe(progress.position, map));
+    }
+  }
+  return {};
+}
+
+Result<void> Replanner::learn(const Learnt& learnt) {
+  for (const Blockage& b : learnt.blockages) {
+    if (auto ok = check_failure(
+            {.kind = Failure::Kind::kBlockage, .pipe = b.pipe, .offset_m = b.offset_m}, map_);
+        !ok.has_value()) {
+      return ok;
+    }
+  }
+  for (const Blockage& b : learnt.danger_spots) {
+    if (auto ok = check_failure(
+            {.kind = Failure::Kind::kDangerInPipe, .pipe = b.pipe, .offset_m = b.offset_m}, map_);
+        !ok.has_value()) {
+      return ok;
+    }
+  }
+  for (const ClosedPassage& p : learnt.closed_passages) {
+    if (auto ok = check_failure({.kind = Failure::Kind::kDangerousPassage,
+                                 .manhole = p.manhole,
+                                 .from = p.from,
+                                 .to = p.to},
+                                map_);
+        !ok.has_value()) {
+      return ok;
+    }
+  }
+  mission_ = with_learnt(std::move(mission_), learnt);
+  const auto append = [](auto& to, const auto& from) {
+    to.insert(to.end(), from.begin(), from.end());
+  };
+  append(learnt_.blockages, learnt.blockages);
+  append(learnt_.danger_spots, learnt.danger_spots);
+  append(learnt_.closed_passages, learnt.closed_passages);
   return {};
 }
 
@@ -376,10 +422,13 @@ PlanResponse Replanner::report_failure(const Failure& failure) {
   switch (failure.kind) {
     case Failure::Kind::kBlockage:
     case Failure::Kind::kDangerInPipe:
+      (failure.kind == Failure::Kind::kBlockage ? learnt_.blockages : learnt_.danger_spots)
+          .push_back({failure.pipe, failure.offset_m});
       mission_.blockages.push_back({failure.pipe, failure.offset_m});
       reason += " in " + map_.pipe(failure.pipe).name + " at " + metres(failure.offset_m);
       break;
     case Failure::Kind::kDangerousPassage:
+      learnt_.closed_passages.push_back({failure.manhole, failure.from, failure.to});
       mission_.closed_passages.push_back({failure.manhole, failure.from, failure.to});
       reason += " at " + map_.manhole(failure.manhole).name + " from slot " +
                 std::to_string(to_paper_number(failure.from)) + " to " +

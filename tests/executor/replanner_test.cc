@@ -137,6 +137,8 @@ TEST(ReplannerIssue14, BadProgressReportsAreErrorsAndKeepTheLastProgress) {
   };
   domain::MissionProgress short_done = before;
   short_done.done.pop_back();
+  domain::MissionProgress final_done_elsewhere = before;
+  final_done_elsewhere.done.back() = true;  // 'end' is in P9; the robot starts in P12
   domain::MissionProgress nan_energy = before;
   nan_energy.energy_used_wh = std::numeric_limits<double>::quiet_NaN();
   const std::vector<std::pair<domain::MissionProgress, std::string_view>> bad{
@@ -147,6 +149,7 @@ TEST(ReplannerIssue14, BadProgressReportsAreErrorsAndKeepTheLastProgress) {
       {with(domain::InManhole{ManholeId{500}}), "unknown manhole #500"},
       {short_done, "2 done flags for 3 tasks"},
       {nan_energy, "energy used"},
+      {final_done_elsewhere, "the final task 'end' is done, but the robot is in pipe P12"},
   };
   for (const auto& [progress, message] : bad) {
     const Result<void> r = replanner.update(progress, 1);

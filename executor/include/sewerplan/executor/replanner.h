@@ -33,6 +33,7 @@
 #include "sewerplan/domain/compile.h"
 #include "sewerplan/domain/plan.h"
 #include "sewerplan/domain/robot_state.h"
+#include "sewerplan/executor/learnt.h"
 #include "sewerplan/fusion/fuse.h"
 #include "sewerplan/search/planner.h"
 
@@ -138,8 +139,14 @@ class Replanner {
   // for first is dropped instead (the robot cannot get there), and the answer is kDegraded.
   PlanResponse report_failure(const Failure& failure);
 
-  // The mission as the Replanner now sees it: with the blockages and closures learnt, and
-  // without its final task once the end point was cut off.
+  // Adds what an earlier mission learnt (learnt.h) to the world model, for the next plan; an
+  // entry that check_failure would reject is an error, and nothing is added.
+  Result<void> learn(const Learnt& learnt);
+  // What this Replanner has learnt: learn()'s and every failure reported since.
+  const Learnt& learnt() const { return learnt_; }
+
+  // The mission as the Replanner now sees it: the operator's with what was learnt
+  // (with_learnt), and without its final task once the end point was cut off.
   const Mission& mission() const { return mission_; }
   const domain::MissionProgress& progress() const { return progress_; }
   const std::vector<domain::DroppedTask>& dropped() const { return dropped_; }
@@ -166,6 +173,7 @@ class Replanner {
   domain::MissionProgress progress_;
   std::uint8_t heading_end_ = 1;
   std::vector<domain::DroppedTask> dropped_;
+  Learnt learnt_;
   bool planned_ = false;  // a first plan was made
   // The steps of the last plan answered: after a failure, the plan that failed.
   std::vector<domain::PlanStep> last_steps_;
