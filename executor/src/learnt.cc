@@ -161,9 +161,7 @@ Result<Learnt> read_learnt_json(std::string_view text, const std::string& file_n
   reader.each(root, "danger", learnt.danger_spots, in_pipe);
   reader.each(root, "closed_passages", learnt.closed_passages,
               [&](const json& j, const std::string& path) { return reader.passage(j, path); });
-  if (diagnostics.has_errors()) {
-    return Error{ErrorCode::kInvalidArgument, diagnostics.error_summary()};
-  }
+  if (diagnostics.has_errors()) return Error{ErrorCode::kParse, diagnostics.error_summary()};
   return learnt;
 }
 
