@@ -192,6 +192,19 @@ Result<void> check_progress(const domain::MissionProgress& progress, std::uint8_
   return {};
 }
 
+Result<PlanResponse> Replanner::plan_cancellable(const std::optional<Failure>& failure,
+                                                 const std::string& reason,
+                                                 const std::atomic<bool>& cancel) {
+  background_cancel_ = &cancel;
+  cancelled_ = false;
+  PlanResponse r = failure ? report_failure(*failure) : plan(reason);
+  const bool cancelled = cancelled_;
+  background_cancel_ = nullptr;
+  cancelled_ = false;
+  if (cancelled) return Error{ErrorCode::kCancelled, "the replan was cancelled"};
+  return r;
+}
+
 Result<void> Replanner::learn(const Learnt& learnt) {
   for (const Blockage& b : learnt.blockages) {
     if (auto ok = check_failure(
@@ -249,6 +262,7 @@ std::vector<ManholeId> Replanner::map_exits() const {
 search::PlannerOptions Replanner::bounded(double deadline_s) const {
   search::PlannerOptions options = options_.planner;
   options.clock = &clock();
+  if (background_cancel_ != nullptr) options.cancel = background_cancel_;
   if (std::isfinite(deadline_s)) {
     // At least a little: a limit of 0 means none to the planner.
     options.time_limit_s = std::max(deadline_s - clock().now_s(), 1e-12);
@@ -341,6 +355,10 @@ PlanResponse Replanner::plan(const std::string& reason) {
   const std::size_t dropped_before = dropped_.size();
   Result<search::PlanOutcome> outcome = plan_from_here(deadline_s);
   bool cut_short = false;
+  if (!outcome.has_value() && background_cancel_ != nullptr && background_cancel_->load()) {
+    cancelled_ = true;  // plan_cancellable answers kCancelled: no fallback
+    return PlanResponse{.decision = PlanResponse::Decision::kDegraded, .reason = "cancelled"};
+  }
   if (!outcome.has_value() && outcome.error().code != ErrorCode::kNoPlan) {
     // A limit, a cancel or a planner error proves nothing: the safe answer, the nearest exit.
     const ErrorCode code = outcome.error().code;
@@ -444,7 +462,8 @@ PlanResponse Replanner::report_failure(const Failure& failure) {
   PlanResponse r = plan(reason);
   // The plan that just failed, again: the robot would meet the same trouble at the same place
   // (a task a hair beyond where it stops for a danger). Drop the task it was heading for.
-  while (has_plan(r.decision) && !failed_steps.empty() && r.plan.steps == failed_steps) {
+  while (!cancelled_ && has_plan(r.decision) && !failed_steps.empty() &&
+         r.plan.steps == failed_steps) {
     const std::optional<TaskId> target = first_task_of(r.plan);
     if (!target) break;
     const std::size_t dropped_before = dropped_.size();

@@ -22,6 +22,7 @@
 //   if (calls_beacon(r.decision)) robot.activate_beacon();
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -149,6 +150,12 @@ class Replanner {
   // (with_learnt), and without its final task once the end point was cut off.
   const Mission& mission() const { return mission_; }
   const domain::MissionProgress& progress() const { return progress_; }
+
+  // report_failure(*failure), or plan(reason) without one, cancelled by `cancel` (from any
+  // thread): then kCancelled, without the safe fallback, and the world model keeps what the
+  // report taught. What BackgroundReplan (background_replan.h) runs on its thread.
+  Result<PlanResponse> plan_cancellable(const std::optional<Failure>& failure,
+                                        const std::string& reason, const std::atomic<bool>& cancel);
   const std::vector<domain::DroppedTask>& dropped() const { return dropped_; }
   std::uint8_t heading_end() const { return heading_end_; }
 
@@ -174,6 +181,9 @@ class Replanner {
   std::uint8_t heading_end_ = 1;
   std::vector<domain::DroppedTask> dropped_;
   Learnt learnt_;
+  // During plan_cancellable: its cancel flag, and whether it stopped the replan.
+  const std::atomic<bool>* background_cancel_ = nullptr;
+  bool cancelled_ = false;
   bool planned_ = false;  // a first plan was made
   // The steps of the last plan answered: after a failure, the plan that failed.
   std::vector<domain::PlanStep> last_steps_;
