@@ -24,8 +24,7 @@ void BackgroundReplan::cancel() { thread_.request_stop(); }
 
 bool BackgroundReplan::ready() const {
   // After get() the future is empty: the answer was there.
-  return !answer_.valid() ||
-         answer_.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+  return !answer_.valid() || answer_.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
 }
 
 Result<PlanResponse> BackgroundReplan::get() { return answer_.get(); }

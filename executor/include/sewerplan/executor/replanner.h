@@ -20,6 +20,11 @@
 //   // ... on a blockage recovery could not clear:
 //   r = replanner.report_failure({.kind = Failure::Kind::kBlockage, .pipe = p5, .offset_m = 4.0});
 //   if (calls_beacon(r.decision)) robot.activate_beacon();
+//
+// Thread safety: A Replanner is not thread-safe: one thread at a time (BackgroundReplan,
+// background_replan.h, lends it to a thread of its own); the SewerMap it holds may be shared with
+// other readers. The free functions share nothing. Cancel from another thread through
+// ReplannerOptions::planner.cancel or BackgroundReplan::cancel().
 #pragma once
 
 #include <atomic>
