@@ -5,9 +5,8 @@
 #   2. checks the code style (clang-format);
 #   3. builds with warnings as errors and runs the whole suite (unit, CLI, install/consumer, layering);
 #   4. builds with clang, AddressSanitizer and UndefinedBehaviorSanitizer and runs the suite again;
-#   5. builds the concurrent tests with ThreadSanitizer and runs them (scripts/tsan.sh);
-#   6. fuzzes every parser for a short time (scripts/fuzz.sh, 15 s per target).
-# Build trees go to build/release, build/asan, build/tsan and build/fuzz. Set SEWERPLAN_SKIP_ASAN=1 to skip
+#   5. fuzzes every parser for a short time (scripts/fuzz.sh, 15 s per target).
+# Build trees go to build/release, build/asan and build/fuzz. Set SEWERPLAN_SKIP_ASAN=1 to skip
 # step 4 locally, SEWERPLAN_SKIP_FUZZ=1 to skip step 5 (SEWERPLAN_FUZZ_SECONDS sets its time).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -31,8 +30,6 @@ if [ "${SEWERPLAN_SKIP_ASAN:-0}" != 1 ]; then
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir build/asan --output-on-failure -j "$jobs"
 fi
-echo "== ThreadSanitizer: the concurrent tests"
-bash scripts/tsan.sh
 if [ "${SEWERPLAN_SKIP_FUZZ:-0}" != 1 ]; then
   echo "== libFuzzer on every parser (clang)"
   # Its own tree (build/fuzz, core and domain only): coverage instrumentation would slow the ASan

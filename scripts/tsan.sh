@@ -3,7 +3,8 @@
 # Builds the concurrent tests with ThreadSanitizer (gcc) in build/tsan and runs them: the
 # BackgroundReplan tests (a replan on its own thread, cancelled from another; tests/executor/
 # background_replan_test.cc). Only their test binary and the libraries under it are built, without
-# OMPL, so that it adds a few minutes to scripts/test.sh. Fails on the first data race.
+# OMPL, so that it can join scripts/test.sh (not yet: its build time on CI is to be measured).
+# Fails on the first data race.
 #   bash scripts/tsan.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
