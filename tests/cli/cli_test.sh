@@ -147,6 +147,12 @@ expect 4 'beacon on: the robot cannot move' -- "$sp" simulate --map "$ais" --mis
 echo '{"max_reboots": -1}' > "$tmp/recovery.json"
 expect 1 'recovery.json: "max_reboots" must be a count' -- "$sp" simulate --map "$ais" --mission "$mission" --recovery "$tmp/recovery.json" -q
 expect 2 'random-faults' -- "$sp" simulate --map "$ais" --mission "$mission" --faults "$tmp/stuck.json" --random-faults 3
+# --learnt: the blockage the first mission met is known to the second, which plans around it.
+expect 0 'mission ended' -- "$sp" simulate --map "$ais" --mission "$mission" --faults "$src/datasets/ais-testbed/faults/blocked-p5.json" --learnt "$tmp/learnt.json" -q
+expect 0 '"pipe": "P5"' -- cat "$tmp/learnt.json"
+expect 0 ', 0 replans' -- "$sp" simulate --map "$ais" --mission "$mission" --faults "$src/datasets/ais-testbed/faults/blocked-p5.json" --learnt "$tmp/learnt.json" -q
+echo '{"format": "sewerplan-learnt", "version": 1, "blockages": [{"pipe": "PX", "offset_m": 1}]}' > "$tmp/bad-learnt.json"
+expect 1 'bad-learnt.json:\$\.blockages\[0\]\.pipe: error: unknown pipe "PX"' -- "$sp" simulate --map "$ais" --mission "$mission" --learnt "$tmp/bad-learnt.json" -q
 
 # PDDL round trip: export, then read back what FF and Fast Downward print for it.
 expect 0 'wrote .*domain.pddl and .*problem.pddl' -- "$sp" export-pddl --map "$ais" --mission "$mission" --out "$tmp/pddl"

@@ -11,6 +11,8 @@
 //   std::ofstream file("events.jsonl");
 //   EventLog log(&file, &std::cout);
 //   log.add(12.5, "error", {{"kind", "blockage"}, {"reason", "obstacle in P5 at 4.00 m"}});
+//
+// Thread safety: An EventLog is not thread-safe: the executor's thread writes it.
 #pragma once
 
 #include <cstdint>

@@ -14,6 +14,9 @@
 //   Replanner replanner(map, mission);
 //   EventLog log(&events_file, &std::cout);
 //   MissionReport report = Executor(map, replanner, robot, {}, log).run();
+//
+// Thread safety: An Executor is not thread-safe: run() on one thread; the Replanner, Robot and
+// EventLog it holds are used by that thread only while it runs.
 #pragma once
 
 #include <cstddef>

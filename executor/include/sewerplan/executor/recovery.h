@@ -11,6 +11,8 @@
 //   RecoveryConfig config;              // the defaults: no push
 //   config.push_allowed = true;         // a test bed where pushing is safe
 //   Result<RecoveryConfig> c = read_recovery_json(text, "recovery.json");
+//
+// Thread safety: RecoveryConfig is a plain value; read_recovery_json shares nothing.
 #pragma once
 
 #include <string>

@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# Builds the concurrent tests with ThreadSanitizer (gcc) in build/tsan and runs them: the
+# BackgroundReplan tests (a replan on its own thread, cancelled from another; tests/executor/
+# background_replan_test.cc). Only their test binary and the libraries under it are built, without
+# OMPL, so that it can join scripts/test.sh (not yet: its build time on CI is to be measured).
+# Fails on the first data race.
+#   bash scripts/tsan.sh
+set -euo pipefail
+cd "$(dirname "$0")/.."
+jobs=${SEWERPLAN_JOBS:-$(nproc)}
+build=build/tsan
+mkdir -p build
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_FLAGS="-fsanitize=thread" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" \
+  -DSEWERPLAN_BUILD_BENCH=OFF -DSEWERPLAN_WITH_OMPL=OFF -DSEWERPLAN_FUZZ=OFF \
+  > build/tsan.configure.log
+cmake --build "$build" -j "$jobs" --target sewerplan_executor_tests
+TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 \
+  "$build/tests/sewerplan_executor_tests" --gtest_filter='BackgroundReplan.*' --gtest_repeat=20 \
+  --gtest_brief=1
+echo "== ThreadSanitizer: no data race in the concurrent tests"
