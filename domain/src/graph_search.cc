@@ -69,8 +69,9 @@ std::optional<Node> GraphSearch::settle(Cost bound, Direction direction, Done&& 
   return stopped_at;
 }
 
-void GraphSearch::run(std::span<const Node> sources, std::span<const Node> targets, Cost bound,
-                      Direction direction) {
+std::optional<Node> GraphSearch::run(std::span<const Node> sources, std::span<const Node> targets,
+                                     Cost bound, Direction direction,
+                                     const std::vector<bool>* goal) {
   reset();
   std::size_t targets_left = 0;
   for (Node t : targets) {
@@ -83,12 +84,18 @@ void GraphSearch::run(std::span<const Node> sources, std::span<const Node> targe
     touched_.push_back(s);
     heap_.emplace_back(0, s);
   }
-  if (targets_left > 0) {
-    settle(bound, direction, [&](Node n) { return is_target_[n] && --targets_left == 0; });
+  std::optional<Node> found;
+  if (targets_left > 0 || goal != nullptr) {
+    settle(bound, direction, [&](Node n) {
+      if (is_target_[n]) --targets_left;
+      if (goal != nullptr && !found && (*goal)[n]) found = n;
+      return targets_left == 0 && (goal == nullptr || found);
+    });
   } else {
     heap_.clear();
   }
   for (Node t : targets) is_target_[t] = false;
+  return found;
 }
 
 std::optional<Node> GraphSearch::run_to_nearest(Node source, const std::vector<bool>& goal,

@@ -23,8 +23,12 @@ class GraphSearch {
 
   explicit GraphSearch(const PositionGraph& graph);
 
-  void run(std::span<const Node> sources, std::span<const Node> targets, Cost bound,
-           Direction direction);
+  // With `goal`, the search also goes on until it has settled one node with goal[node], and
+  // returns the first (the nearest), if one is within the bound: one search gives a key's routes
+  // to the other keys and to its nearest exit (issue 16: a search per key and purpose was the
+  // compile's cost).
+  std::optional<Node> run(std::span<const Node> sources, std::span<const Node> targets, Cost bound,
+                          Direction direction, const std::vector<bool>* goal = nullptr);
   // Forward from `source` until the first node with goal[node] is settled; returns it, if any
   // is reached within the bound.
   std::optional<Node> run_to_nearest(Node source, const std::vector<bool>& goal, Cost bound);
