@@ -26,6 +26,9 @@
 //   if (!task.has_value()) std::cerr << task.error().message;  // kNoPlan, with the reasons
 //   SearchResult r = engine.search(task->task(), stop);
 //   Plan plan = task->expand(r.plan);
+//
+// Thread-safety: compile_sewer_task() is reentrant (it only reads the map and mission). A SewerTask
+// is immutable once built: its const methods may be called from any number of threads.
 #pragma once
 
 #include <cstddef>
