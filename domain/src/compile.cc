@@ -50,7 +50,15 @@ class SewerTaskCompiler {
     select_tasks();
     collect_keys(graph);
     GraphSearch search(graph);
+    if (options_.cancel != nullptr || options_.clock != nullptr) {
+      search.set_interrupt([this] { return stop_reason().has_value(); });
+    }
     route(search);
+    if (search.interrupted()) {
+      return stop_reason() == ErrorCode::kCancelled
+                 ? Error{ErrorCode::kCancelled, "the compile was cancelled"}
+                 : Error{ErrorCode::kSearchLimit, "the compile reached the time limit"};
+    }
     detail::CompileReasons reasons(graph, mission_, progress_, bound_);
     if (options_.select_goals) {
       if (auto why = select_goals(reasons); !why.empty()) {
@@ -71,6 +79,16 @@ class SewerTaskCompiler {
 
  private:
   std::size_t k() const { return keys_.size(); }
+
+  std::optional<ErrorCode> stop_reason() const {
+    if (options_.cancel != nullptr && options_.cancel->load(std::memory_order_relaxed)) {
+      return ErrorCode::kCancelled;
+    }
+    if (options_.clock != nullptr && options_.clock->now_s() >= options_.deadline_s) {
+      return ErrorCode::kSearchLimit;
+    }
+    return std::nullopt;
+  }
 
   // Leaves out the pending tasks known to be impossible; what remains impossible is returned.
   std::string select_goals(const detail::CompileReasons& reasons) {
@@ -193,7 +211,7 @@ class SewerTaskCompiler {
     for (Node n : targets) {
       if (dist_[key_of_.at(n)] <= bound_) reachable.push_back(n);
     }
-    for (std::size_t a = 1; a < k(); ++a) {
+    for (std::size_t a = 1; a < k() && !search.interrupted(); ++a) {
       // A task's spot is reached by the task's action, not by a route: always route from it.
       const bool spot = result_.graph_->is_extra_spot(keys_[a]);
       if (!spot && dist_[a] > bound_) continue;
@@ -203,7 +221,7 @@ class SewerTaskCompiler {
       store_routes(search, a, found);
     }
     result_.statistics_.route_searches = k();
-    if (ends_at_exit_) route_to_exits(search, targets);
+    if (ends_at_exit_ && !search.interrupted()) route_to_exits(search, targets);
   }
 
   void mark_exits() {

@@ -43,7 +43,7 @@ std::optional<Node> GraphSearch::settle(Cost bound, Direction direction, Done&& 
     }
   };
   std::optional<Node> stopped_at;
-  while (!heap_.empty()) {
+  while (!heap_.empty() && !interrupted_) {
     std::pop_heap(heap_.begin(), heap_.end(), later);
     // Not a structured binding: clang 14 cannot capture one in the lambdas below.
     const Cost d = heap_.back().first;
@@ -52,6 +52,10 @@ std::optional<Node> GraphSearch::settle(Cost bound, Direction direction, Done&& 
     if (settled_[n] || d != dist_[n]) continue;
     settled_[n] = true;
     ++settled_total_;
+    if ((settled_total_ & 1023U) == 0 && interrupt_ && interrupt_()) {
+      interrupted_ = true;
+      break;
+    }
     if (done(n)) {
       stopped_at = n;
       break;

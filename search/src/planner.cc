@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 #include "sewerplan/search/best_first_search.h"
@@ -177,8 +178,14 @@ Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
                                  const PlannerOptions& options) {
   const SteadyClock steady;
   const Clock& clock = options.clock != nullptr ? *options.clock : steady;
-  Result<domain::SewerTask> compiled =
-      domain::compile_sewer_task(map, mission, progress, {.select_goals = options.select_goals});
+  const double started_s = clock.now_s();
+  Result<domain::SewerTask> compiled = domain::compile_sewer_task(
+      map, mission, progress,
+      {.select_goals = options.select_goals,
+       .cancel = options.cancel,
+       .clock = options.time_limit_s > 0 ? &clock : nullptr,
+       .deadline_s = options.time_limit_s > 0 ? started_s + options.time_limit_s
+                                              : std::numeric_limits<double>::infinity()});
   if (!compiled.has_value()) return compiled.error();
   const domain::CompiledTask& task = compiled->task();
   // An admissible estimate already beyond the battery proves there is no plan, whatever the
@@ -195,9 +202,11 @@ Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
       options.heuristic.value_or(optimal_search ? HeuristicKind::kMax : HeuristicKind::kFf);
   std::unique_ptr<Heuristic> heuristic = make_heuristic(kind, task);
   std::unique_ptr<SearchEngine> engine = make_engine(algorithm, task, *heuristic, options.weight);
-  StopCondition stop = options.time_limit_s > 0
-                           ? StopCondition::after_seconds(clock, options.time_limit_s)
-                           : StopCondition();
+  // The time limit bounds the compile and the search together.
+  StopCondition stop =
+      options.time_limit_s > 0
+          ? StopCondition::after_seconds(clock, options.time_limit_s - (clock.now_s() - started_s))
+          : StopCondition();
   if (options.max_expansions > 0) stop.with_max_expansions(options.max_expansions);
   if (options.cancel != nullptr) stop.with_cancel(*options.cancel);
   // kAuto beyond exhaustive A*: the tour search's first plan, where the task has its shape.

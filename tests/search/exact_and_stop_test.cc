@@ -125,6 +125,25 @@ TEST(TourSearchStop, ReturnsCancelledWhenTheFlagIsSet) {
   EXPECT_EQ(outcome.error().code, ErrorCode::kCancelled);
 }
 
+// Issue 14: the compile's route searches honour the cancel flag and the injected clock.
+TEST(CompileStop, StopsAtTheDeadlineOrTheCancel) {
+  auto g = generated(1000, 10, 1, domain::MissionSpread::kUniform);
+  ASSERT_TRUE(g);
+  const auto progress = domain::initial_progress(g->mission, g->map);
+  ManualClock clock;
+  auto late =
+      domain::compile_sewer_task(g->map, g->mission, progress, {.clock = &clock, .deadline_s = 0});
+  ASSERT_FALSE(late.has_value());
+  EXPECT_EQ(late.error().code, ErrorCode::kSearchLimit);
+  std::atomic<bool> cancel{true};
+  auto cancelled = domain::compile_sewer_task(g->map, g->mission, progress, {.cancel = &cancel});
+  ASSERT_FALSE(cancelled.has_value());
+  EXPECT_EQ(cancelled.error().code, ErrorCode::kCancelled);
+  EXPECT_TRUE(
+      domain::compile_sewer_task(g->map, g->mission, progress, {.clock = &clock, .deadline_s = 1})
+          .has_value());
+}
+
 // Issue 14: without goal selection, a mission whose tasks do not fit the battery together (each
 // does alone) was searched until the time limit; now it is answered at once. The expansion limit
 // stands in for the time limit: before the fix the answer was kSearchLimit.

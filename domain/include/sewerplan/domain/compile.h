@@ -31,13 +31,16 @@
 // is immutable once built: its const methods may be called from any number of threads.
 #pragma once
 
+#include <atomic>
 #include <cstddef>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "sewerplan/core/clock.h"
 #include "sewerplan/core/mission.h"
 #include "sewerplan/core/result.h"
 #include "sewerplan/core/sewer_map.h"
@@ -75,6 +78,12 @@ struct CompileOptions {
   // battery already spent, a start the robot cannot move from, no exit within reach (or the
   // final task out of reach).
   bool select_goals = false;
+  // Cancellation and deadline (issue 14), checked every 1,024 nodes the route searches settle:
+  // the compile then fails with kCancelled or kSearchLimit. `cancel` may be set from any thread;
+  // the deadline is on `clock` (seconds, as Clock::now_s()).
+  const std::atomic<bool>* cancel = nullptr;
+  const Clock* clock = nullptr;
+  double deadline_s = std::numeric_limits<double>::infinity();
 };
 
 class SewerTask {
