@@ -28,12 +28,7 @@ struct GenerateOptions {
 
 // A seeded mission on the generated map (domain/mission_generator.h), written as JSON.
 int write_mission(const SewerMap& map, const GenerateOptions& o, Context& c) {
-  const auto spread = domain::mission_spread_from_string(o.spread);
-  if (!spread) {
-    c.err << "--mission-spread: unknown spread '" << o.spread
-          << "' (uniform, clustered or near-exit)\n";
-    return kExitUsage;
-  }
+  const auto spread = domain::mission_spread_from_string(o.spread);  // checked in run()
   Result<Mission> mission = domain::generate_mission(map, {.tasks = o.mission_tasks,
                                                            .seed = o.generator.seed,
                                                            .profile = o.profile,
@@ -60,6 +55,11 @@ int run(GenerateOptions& o, Context& c) {
     return kExitUsage;
   }
   o.generator.topology = *topology;
+  if (!domain::mission_spread_from_string(o.spread)) {
+    c.err << "--mission-spread: unknown spread '" << o.spread
+          << "' (uniform, clustered or near-exit)\n";
+    return kExitUsage;
+  }
   Result<SewerMap> map = generate_network(o.generator);
   if (!map.has_value()) {
     c.err << map.error().message << '\n';
