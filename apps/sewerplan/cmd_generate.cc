@@ -23,12 +23,16 @@ struct GenerateOptions {
   std::size_t mission_tasks = 0;
   std::string mission_out;
   std::string profile = "makro-plus";
+  std::string spread = "uniform";
 };
 
 // A seeded mission on the generated map (domain/mission_generator.h), written as JSON.
 int write_mission(const SewerMap& map, const GenerateOptions& o, Context& c) {
-  Result<Mission> mission = domain::generate_mission(
-      map, {.tasks = o.mission_tasks, .seed = o.generator.seed, .profile = o.profile});
+  const auto spread = domain::mission_spread_from_string(o.spread);  // checked in run()
+  Result<Mission> mission = domain::generate_mission(map, {.tasks = o.mission_tasks,
+                                                           .seed = o.generator.seed,
+                                                           .profile = o.profile,
+                                                           .spread = *spread});
   if (!mission.has_value()) {
     c.err << mission.error().message << '\n';
     return exit_code_for(mission.error());
@@ -51,6 +55,11 @@ int run(GenerateOptions& o, Context& c) {
     return kExitUsage;
   }
   o.generator.topology = *topology;
+  if (!domain::mission_spread_from_string(o.spread)) {
+    c.err << "--mission-spread: unknown spread '" << o.spread
+          << "' (uniform, clustered or near-exit)\n";
+    return kExitUsage;
+  }
   Result<SewerMap> map = generate_network(o.generator);
   if (!map.has_value()) {
     c.err << map.error().message << '\n';
@@ -100,7 +109,11 @@ void add_generate_command(CLI::App& app, Context& context) {
                   "Map name (default generated-<topology>-<n>-<seed>)");
   cmd->add_option("--out,-o", o->out, "Output map (.json or .sewer)")->required();
   cmd->add_option("--mission-tasks", o->mission_tasks,
-                  "Also write a seeded mission with this many tasks near an exit");
+                  "Also write a seeded mission with this many tasks");
+  cmd->add_option("--mission-spread", o->spread,
+                  "Where its tasks lie: uniform (all over the robot's range), clustered (around "
+                  "a random place in it) or near-exit (near the start)")
+      ->capture_default_str();
   cmd->add_option("--mission-out", o->mission_out, "Where to write that mission (.json)");
   cmd->add_option("--profile", o->profile, "The mission's robot profile")->capture_default_str();
   cmd->callback([o, &context] { context.exit_code = run(*o, context); });

@@ -49,7 +49,8 @@ int run(const PlanOptions& o, Context& c) {
   search::PlannerOptions options;
   auto algorithm = search::algorithm_from_string(o.algorithm);
   if (!algorithm) {
-    c.err << "--algorithm: unknown '" << o.algorithm << "' (auto, ehc, gbfs, wastar, astar)\n";
+    c.err << "--algorithm: unknown '" << o.algorithm
+          << "' (auto, ehc, gbfs, wastar, astar, exact)\n";
     return kExitUsage;
   }
   options.algorithm = *algorithm;
@@ -123,8 +124,8 @@ void add_plan_command(CLI::App& app, Context& context) {
   cmd->add_option("--map", o->map, "Map file (.json or .sewer)")->required();
   cmd->add_option("--mission", o->mission, "Mission file (.json)")->required();
   cmd->add_option("--algorithm,-a", o->algorithm,
-                  "auto (optimal A* for small missions, weighted A* otherwise), ehc, gbfs, "
-                  "wastar, astar")
+                  "auto (optimal A* for small missions, the tour search otherwise), ehc, gbfs, "
+                  "wastar, astar, exact (the proven optimum, up to 20 tasks)")
       ->capture_default_str();
   cmd->add_option("--heuristic", o->heuristic, "ff, add, max or blind (default: per algorithm)");
   cmd->add_option("--weight", o->weight, "Weight of weighted A*")->capture_default_str();

@@ -40,6 +40,7 @@ struct Options {
   double time_limit_s = 300;
   std::size_t memory_limit_mb = 8192;
   std::string out = "compare-results";
+  std::string spread = "uniform";  // where generated missions' tasks lie (mission_generator.h)
 };
 
 std::optional<Instance> load_instance(Instance instance, std::string& error) {
@@ -63,7 +64,8 @@ std::optional<Instance> load_instance(Instance instance, std::string& error) {
 
 // Writes a generated instance's files; a mission seed that gives no mission is reported.
 std::optional<Instance> generated(std::size_t manholes, std::size_t tasks, std::uint64_t seed,
-                                  const fs::path& root, std::string& error) {
+                                  domain::MissionSpread spread, const fs::path& root,
+                                  std::string& error) {
   Instance instance{.name = "g" + std::to_string(manholes) + "-t" + std::to_string(tasks) + "-s" +
                             std::to_string(seed),
                     .seed = std::to_string(seed)};
@@ -80,8 +82,8 @@ std::optional<Instance> generated(std::size_t manholes, std::size_t tasks, std::
   // or proves none exists eight times.
   std::optional<Mission> mission;
   for (std::uint64_t attempt = 0; attempt < 8 && !mission; ++attempt) {
-    Result<Mission> candidate =
-        domain::generate_mission(*map, {.tasks = tasks, .seed = seed + 1000 * attempt});
+    Result<Mission> candidate = domain::generate_mission(
+        *map, {.tasks = tasks, .seed = seed + 1000 * attempt, .spread = spread});
     if (!candidate.has_value()) {
       error = candidate.error().message;
       return std::nullopt;
@@ -185,7 +187,9 @@ int run(const Options& options) {
     for (std::size_t tasks : options.tasks) {
       for (std::uint64_t seed : options.seeds) {
         std::string error;
-        auto instance = generated(manholes, tasks, seed, root / "instances", error);
+        auto instance =
+            generated(manholes, tasks, seed, *domain::mission_spread_from_string(options.spread),
+                      root / "instances", error);
         solve(std::move(instance),
               "g" + std::to_string(manholes) + "-t" + std::to_string(tasks) + "-s" +
                   std::to_string(seed),
@@ -221,6 +225,10 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--tasks", options.tasks, "Tasks per generated mission")
       ->delimiter(',')
+      ->capture_default_str();
+  app.add_option("--mission-spread", options.spread,
+                 "Where generated missions' tasks lie: uniform, clustered or near-exit")
+      ->check(CLI::IsMember({"uniform", "clustered", "near-exit"}))
       ->capture_default_str();
   app.add_option("--seeds", options.seeds, "Seeds of network and mission")
       ->delimiter(',')

@@ -30,13 +30,16 @@ using bench::Instance;
 
 void plan_once(benchmark::State& state, const Instance& instance, Algorithm algorithm,
                std::optional<HeuristicKind> heuristic = std::nullopt,
-               std::uint64_t improvement = PlannerOptions{}.improvement_expansions) {
+               std::uint64_t improvement = PlannerOptions{}.improvement_expansions,
+               bool adaptive = true) {
   const auto progress = domain::initial_progress(instance.mission, instance.map);
   PlanOutcome last;
   for (auto _ : state) {
-    auto outcome = plan_mission(
-        instance.map, instance.mission, progress,
-        {.algorithm = algorithm, .heuristic = heuristic, .improvement_expansions = improvement});
+    auto outcome = plan_mission(instance.map, instance.mission, progress,
+                                {.algorithm = algorithm,
+                                 .heuristic = heuristic,
+                                 .improvement_expansions = improvement,
+                                 .adaptive_improvement = adaptive});
     if (!outcome.has_value()) {
       state.SkipWithError(outcome.error().message.c_str());
       return;
@@ -77,6 +80,23 @@ BENCHMARK(BM_PlanGenerated)
     ->Args({100000, 20, 0, 10000})
     ->Args({100000, 20, 1, 0})
     ->Args({100000, 20, 2, 0})
+    ->Unit(benchmark::kMillisecond);
+
+// Issue 16's quality check: the same near-exit instances with the fixed budget of 10,000
+// expansions that was the default before (no adaptive budget, no exact tour search): the default
+// planner's cost_s must not exceed this one's.
+void BM_PlanGeneratedFixedBudget(benchmark::State& state) {
+  const Instance& instance = generated_instance(static_cast<std::size_t>(state.range(0)),
+                                                static_cast<std::size_t>(state.range(1)));
+  plan_once(state, instance, Algorithm::kAuto, std::nullopt, 10'000, false);
+}
+BENCHMARK(BM_PlanGeneratedFixedBudget)
+    ->ArgNames({"manholes", "tasks"})
+    ->Args({1000, 3})
+    ->Args({10000, 10})
+    ->Args({100000, 3})
+    ->Args({100000, 10})
+    ->Args({100000, 20})
     ->Unit(benchmark::kMillisecond);
 
 // Every algorithm on every size: the first plan only, 10 tasks (A* only where its exhaustive

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <tuple>
 #include <utility>
 
 #include "sewerplan/core/generator.h"
@@ -42,6 +43,22 @@ inline const Instance& generated_instance(std::size_t manholes, std::size_t task
     Instance i;
     i.map = *generate_network({.manholes = manholes, .seed = 1, .topology = Topology::kMeshed});
     i.mission = *domain::generate_mission(i.map, {.tasks = tasks, .seed = 1});
+    it = cache.emplace(key, std::move(i)).first;
+  }
+  return it->second;
+}
+
+// A meshed network of `manholes` (seed 1) with a `tasks`-task mission (seed 1) of the given
+// spread: the planning benchmarks' default is uniform (issue 16).
+inline const Instance& spread_instance(std::size_t manholes, std::size_t tasks,
+                                       domain::MissionSpread spread) {
+  static std::map<std::tuple<std::size_t, std::size_t, domain::MissionSpread>, Instance> cache;
+  const auto key = std::make_tuple(manholes, tasks, spread);
+  auto it = cache.find(key);
+  if (it == cache.end()) {
+    Instance i;
+    i.map = *generate_network({.manholes = manholes, .seed = 1, .topology = Topology::kMeshed});
+    i.mission = *domain::generate_mission(i.map, {.tasks = tasks, .seed = 1, .spread = spread});
     it = cache.emplace(key, std::move(i)).first;
   }
   return it->second;

@@ -50,7 +50,15 @@ class SewerTaskCompiler {
     select_tasks();
     collect_keys(graph);
     GraphSearch search(graph);
+    if (options_.cancel != nullptr || options_.clock != nullptr) {
+      search.set_interrupt([this] { return stop_reason().has_value(); });
+    }
     route(search);
+    if (search.interrupted()) {
+      return stop_reason() == ErrorCode::kCancelled
+                 ? Error{ErrorCode::kCancelled, "the compile was cancelled"}
+                 : Error{ErrorCode::kSearchLimit, "the compile reached the time limit"};
+    }
     detail::CompileReasons reasons(graph, mission_, progress_, bound_);
     if (options_.select_goals) {
       if (auto why = select_goals(reasons); !why.empty()) {
@@ -71,6 +79,16 @@ class SewerTaskCompiler {
 
  private:
   std::size_t k() const { return keys_.size(); }
+
+  std::optional<ErrorCode> stop_reason() const {
+    if (options_.cancel != nullptr && options_.cancel->load(std::memory_order_relaxed)) {
+      return ErrorCode::kCancelled;
+    }
+    if (options_.clock != nullptr && options_.clock->now_s() >= options_.deadline_s) {
+      return ErrorCode::kSearchLimit;
+    }
+    return std::nullopt;
+  }
 
   // Leaves out the pending tasks known to be impossible; what remains impossible is returned.
   std::string select_goals(const detail::CompileReasons& reasons) {
@@ -170,32 +188,51 @@ class SewerTaskCompiler {
   void route(GraphSearch& search) {
     dist_.assign(k() * k(), kInfiniteCost);
     routes_.assign(k() * k(), {});
+    exit_dist_.assign(k(), kInfiniteCost);
+    exit_routes_.assign(k(), {});
     const std::vector<Node> targets = route_targets();
+    const std::vector<bool>* exits = nullptr;
+    if (ends_at_exit_) {
+      mark_exits();
+      exits = &exit_node_;
+    }
     // From the start first: only the keys it reaches within the bound take part after.
-    search.run(std::span<const Node>(keys_.data(), 1), targets, bound_,
-               GraphSearch::Direction::kForward);
-    store_routes(search, 0);
+    auto found = search.run(std::span<const Node>(keys_.data(), 1), targets, bound_,
+                            GraphSearch::Direction::kForward, exits);
+    store_routes(search, 0, found);
     if (needs_unbounded_diagnosis()) {
       // Some task is out of reach within the battery: find out whether it is out of reach at all,
       // so that the reason given is the right one.
       search.run(std::span<const Node>(keys_.data(), 1), targets, kInfiniteCost,
                  GraphSearch::Direction::kForward);
-      store_routes(search, 0);
+      store_routes(search, 0, std::nullopt);
     }
     std::vector<Node> reachable;
     for (Node n : targets) {
       if (dist_[key_of_.at(n)] <= bound_) reachable.push_back(n);
     }
-    for (std::size_t a = 1; a < k(); ++a) {
+    for (std::size_t a = 1; a < k() && !search.interrupted(); ++a) {
       // A task's spot is reached by the task's action, not by a route: always route from it.
       const bool spot = result_.graph_->is_extra_spot(keys_[a]);
       if (!spot && dist_[a] > bound_) continue;
-      search.run(std::span<const Node>(&keys_[a], 1), reachable, spot ? bound_ : bound_ - dist_[a],
-                 GraphSearch::Direction::kForward);
-      store_routes(search, a);
+      found =
+          search.run(std::span<const Node>(&keys_[a], 1), reachable,
+                     spot ? bound_ : bound_ - dist_[a], GraphSearch::Direction::kForward, exits);
+      store_routes(search, a, found);
     }
     result_.statistics_.route_searches = k();
-    if (ends_at_exit_) route_to_exits(search, targets);
+    if (ends_at_exit_ && !search.interrupted()) route_to_exits(search, targets);
+  }
+
+  void mark_exits() {
+    const PositionGraph& graph = *result_.graph_;
+    exit_node_.assign(graph.size(), false);
+    for (ManholeId e : mission_.exits) {
+      exit_node_[graph.in_manhole(e)] = true;
+      for (std::uint16_t s = 0; s < map_.manhole(e).slot_count; ++s) {
+        exit_node_[graph.at_slot(e, SlotIndex{s})] = true;
+      }
+    }
   }
 
   // Whether some pending task has no key the start reaches within the bound (row 0 of dist_).
@@ -216,35 +253,34 @@ class SewerTaskCompiler {
     return false;
   }
 
-  void store_routes(GraphSearch& search, std::size_t a) {
+  // The routes of the last search, from key a; `exit`: the nearest exit it settled.
+  void store_routes(GraphSearch& search, std::size_t a, std::optional<Node> exit) {
     for (std::size_t b = 0; b < k(); ++b) {
       dist_[a * k() + b] = search.distance(keys_[b]);
       if (a != b && dist_[a * k() + b] != kInfiniteCost)
         search.path(keys_[b], routes_[a * k() + b]);
     }
+    if (exit) {
+      exit_dist_[a] = search.distance(*exit);
+      search.path(*exit, exit_routes_[a]);
+    }
   }
 
-  // Each key's cheapest way to its nearest exit: a forward search that stops at the first exit
-  // it settles. (One backward search from all exits would grow a ball around every exit of the
-  // city; with exits every few manholes the forward balls are small.)
+  // Each key's cheapest way to its nearest exit, where the key's own search (bounded by what is
+  // left of the battery after reaching the key) did not settle one: a forward search that stops
+  // at the first exit it settles, within the whole battery, so that the reasons given for an
+  // impossible mission name the right energy. (One backward search from all exits would grow a
+  // ball around every exit of the city; with exits every few manholes the forward balls are
+  // small.)
   void route_to_exits(GraphSearch& search, const std::vector<Node>& targets) {
     const PositionGraph& graph = *result_.graph_;
-    std::vector<bool> exit_node(graph.size(), false);
-    for (ManholeId e : mission_.exits) {
-      exit_node[graph.in_manhole(e)] = true;
-      for (std::uint16_t s = 0; s < map_.manhole(e).slot_count; ++s) {
-        exit_node[graph.at_slot(e, SlotIndex{s})] = true;
-      }
-    }
-    exit_dist_.assign(k(), kInfiniteCost);
-    exit_routes_.assign(k(), {});
     for (std::size_t a = 0; a < k(); ++a) {
       const Node n = keys_[a];
       const bool in_reach =
           a == 0 || graph.is_extra_spot(n) ||
           (std::find(targets.begin(), targets.end(), n) != targets.end() && dist_[a] <= bound_);
-      if (!in_reach) continue;
-      const std::optional<Node> exit = search.run_to_nearest(n, exit_node, bound_);
+      if (!in_reach || exit_dist_[a] != kInfiniteCost) continue;
+      const std::optional<Node> exit = search.run_to_nearest(n, exit_node_, bound_);
       ++result_.statistics_.route_searches;
       if (!exit) continue;
       exit_dist_[a] = search.distance(*exit);
@@ -289,6 +325,7 @@ class SewerTaskCompiler {
   std::vector<Cost> dist_;  // k x k, row = from
   std::vector<std::vector<Node>> routes_;
   std::vector<Cost> exit_dist_;
+  std::vector<bool> exit_node_;
   std::vector<std::vector<Node>> exit_routes_;
 };
 

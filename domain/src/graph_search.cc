@@ -43,7 +43,7 @@ std::optional<Node> GraphSearch::settle(Cost bound, Direction direction, Done&& 
     }
   };
   std::optional<Node> stopped_at;
-  while (!heap_.empty()) {
+  while (!heap_.empty() && !interrupted_) {
     std::pop_heap(heap_.begin(), heap_.end(), later);
     // Not a structured binding: clang 14 cannot capture one in the lambdas below.
     const Cost d = heap_.back().first;
@@ -52,6 +52,10 @@ std::optional<Node> GraphSearch::settle(Cost bound, Direction direction, Done&& 
     if (settled_[n] || d != dist_[n]) continue;
     settled_[n] = true;
     ++settled_total_;
+    if ((settled_total_ & 1023U) == 0 && interrupt_ && interrupt_()) {
+      interrupted_ = true;
+      break;
+    }
     if (done(n)) {
       stopped_at = n;
       break;
@@ -69,8 +73,9 @@ std::optional<Node> GraphSearch::settle(Cost bound, Direction direction, Done&& 
   return stopped_at;
 }
 
-void GraphSearch::run(std::span<const Node> sources, std::span<const Node> targets, Cost bound,
-                      Direction direction) {
+std::optional<Node> GraphSearch::run(std::span<const Node> sources, std::span<const Node> targets,
+                                     Cost bound, Direction direction,
+                                     const std::vector<bool>* goal) {
   reset();
   std::size_t targets_left = 0;
   for (Node t : targets) {
@@ -83,12 +88,18 @@ void GraphSearch::run(std::span<const Node> sources, std::span<const Node> targe
     touched_.push_back(s);
     heap_.emplace_back(0, s);
   }
-  if (targets_left > 0) {
-    settle(bound, direction, [&](Node n) { return is_target_[n] && --targets_left == 0; });
+  std::optional<Node> found;
+  if (targets_left > 0 || goal != nullptr) {
+    settle(bound, direction, [&](Node n) {
+      if (is_target_[n]) --targets_left;
+      if (goal != nullptr && !found && (*goal)[n]) found = n;
+      return targets_left == 0 && (goal == nullptr || found);
+    });
   } else {
     heap_.clear();
   }
   for (Node t : targets) is_target_[t] = false;
+  return found;
 }
 
 std::optional<Node> GraphSearch::run_to_nearest(Node source, const std::vector<bool>& goal,

@@ -8,6 +8,7 @@
 // Ties are broken by node number, so the paths are the same on every run.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <span>
 #include <utility>
@@ -23,8 +24,12 @@ class GraphSearch {
 
   explicit GraphSearch(const PositionGraph& graph);
 
-  void run(std::span<const Node> sources, std::span<const Node> targets, Cost bound,
-           Direction direction);
+  // With `goal`, the search also goes on until it has settled one node with goal[node], and
+  // returns the first (the nearest), if one is within the bound: one search gives a key's routes
+  // to the other keys and to its nearest exit (issue 16: a search per key and purpose was the
+  // compile's cost).
+  std::optional<Node> run(std::span<const Node> sources, std::span<const Node> targets, Cost bound,
+                          Direction direction, const std::vector<bool>* goal = nullptr);
   // Forward from `source` until the first node with goal[node] is settled; returns it, if any
   // is reached within the bound.
   std::optional<Node> run_to_nearest(Node source, const std::vector<bool>& goal, Cost bound);
@@ -32,6 +37,9 @@ class GraphSearch {
   Cost distance(Node n) const { return dist_[n]; }
   // Forward: the nodes from the source to n. Backward: from n to its nearest source.
   void path(Node n, std::vector<Node>& out) const;
+  // Asked every 1,024 settled nodes; when it says stop, the run ends there and interrupted() holds.
+  void set_interrupt(std::function<bool()> interrupt) { interrupt_ = std::move(interrupt); }
+  bool interrupted() const { return interrupted_; }
   // Nodes settled over all runs (a measure of work).
   std::size_t settled_total() const { return settled_total_; }
 
@@ -45,6 +53,8 @@ class GraphSearch {
   std::vector<std::pair<Cost, Node>> heap_;
   Direction direction_ = Direction::kForward;
   std::size_t settled_total_ = 0;
+  std::function<bool()> interrupt_;
+  bool interrupted_ = false;
 
   void reset();
   // Settles the heap's nodes until done(node) says stop or the heap runs dry; returns the node

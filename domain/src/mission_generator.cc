@@ -15,9 +15,9 @@ using detail::GraphSearch;
 using detail::Node;
 using detail::PositionGraph;
 
-// Pipes reachable from inside manhole `start`, nearest first (by the cost of entering them).
-std::vector<PipeId> reachable_pipes(const PositionGraph& graph, ManholeId start,
-                                    std::size_t limit) {
+// Each drivable pipe's cost from inside manhole `source` (the nearer of its ends), kInfiniteCost
+// where out of reach.
+std::vector<Cost> pipe_costs(const PositionGraph& graph, ManholeId source) {
   const SewerMap& map = graph.map();
   GraphSearch search(graph);
   std::vector<Node> targets;
@@ -25,21 +25,64 @@ std::vector<PipeId> reachable_pipes(const PositionGraph& graph, ManholeId start,
   for (PipeId p : map.pipe_ids()) {
     for (std::size_t e = 0; e < 2; ++e) targets.push_back(graph.pipe_end(p, e));
   }
-  const Node source = graph.in_manhole(start);
-  search.run(std::span<const Node>(&source, 1), targets, kInfiniteCost,
+  const Node from = graph.in_manhole(source);
+  search.run(std::span<const Node>(&from, 1), targets, kInfiniteCost,
              GraphSearch::Direction::kForward);
-  std::vector<std::pair<Cost, PipeId>> found;
+  std::vector<Cost> costs(map.pipe_count(), kInfiniteCost);
   for (PipeId p : map.pipe_ids()) {
-    const Cost d =
+    if (!graph.pipe_drivable(p)) continue;
+    costs[p.index()] =
         std::min(search.distance(graph.pipe_end(p, 0)), search.distance(graph.pipe_end(p, 1)));
-    if (d != kInfiniteCost && graph.pipe_drivable(p)) found.emplace_back(d, p);
   }
-  std::sort(found.begin(), found.end());
-  if (found.size() > limit)
-    found.erase(found.begin() + static_cast<std::ptrdiff_t>(limit), found.end());
+  return costs;
+}
+
+// The pipes with a cost, nearest first, at most `limit`.
+std::vector<PipeId> nearest(const std::vector<Cost>& costs, std::size_t limit) {
+  std::vector<std::pair<Cost, PipeId>> found;
+  for (std::size_t p = 0; p < costs.size(); ++p) {
+    if (costs[p] != kInfiniteCost)
+      found.emplace_back(costs[p], PipeId{static_cast<std::uint32_t>(p)});
+  }
+  const std::size_t keep = std::min(limit, found.size());
+  std::partial_sort(found.begin(), found.begin() + static_cast<std::ptrdiff_t>(keep), found.end());
   std::vector<PipeId> pipes;
-  for (const auto& f : found) pipes.push_back(f.second);
+  for (std::size_t i = 0; i < keep; ++i) pipes.push_back(found[i].second);
   return pipes;
+}
+
+// The pipes a mission of this spread draws its tasks from, starting at `start`.
+std::vector<PipeId> candidate_pipes(const PositionGraph& graph, ManholeId start,
+                                    const MissionOptions& options, Cost range, Rng& rng) {
+  const std::vector<Cost> from_start = pipe_costs(graph, start);
+  const std::size_t local = std::min(options.radius_pipes, 2 * options.tasks + 10);
+  std::vector<PipeId> in_range;
+  for (std::size_t p = 0; p < from_start.size(); ++p) {
+    if (from_start[p] <= range) in_range.push_back(PipeId{static_cast<std::uint32_t>(p)});
+  }
+  switch (options.spread) {
+    case MissionSpread::kUniform:
+      return in_range;
+    case MissionSpread::kClustered: {
+      if (in_range.empty()) return {};
+      const Pipe& centre = graph.map().pipe(in_range[rng.below(in_range.size())]);
+      const ManholeId m =
+          centre.ends[0].manhole ? *centre.ends[0].manhole : *centre.ends[1].manhole;
+      std::vector<Cost> around = pipe_costs(graph, m);
+      for (std::size_t p = 0; p < around.size(); ++p) {
+        if (from_start[p] > range) around[p] = kInfiniteCost;
+      }
+      return nearest(around, local);
+    }
+    case MissionSpread::kNearExit: {
+      std::vector<PipeId> pipes = nearest(from_start, 2 * local);
+      const std::size_t keep =
+          std::min(std::max(pipes.size() / 2, std::min(pipes.size(), options.tasks)), local);
+      pipes.erase(pipes.begin() + static_cast<std::ptrdiff_t>(keep), pipes.end());
+      return pipes;
+    }
+  }
+  return {};
 }
 
 Task make_task(const SewerMap& map, PipeId pipe, std::size_t index, Rng& rng) {
@@ -65,6 +108,26 @@ Task make_task(const SewerMap& map, PipeId pipe, std::size_t index, Rng& rng) {
 
 }  // namespace
 
+std::string_view to_string(MissionSpread spread) {
+  switch (spread) {
+    case MissionSpread::kUniform:
+      return "uniform";
+    case MissionSpread::kClustered:
+      return "clustered";
+    case MissionSpread::kNearExit:
+      return "near-exit";
+  }
+  return "uniform";
+}
+
+std::optional<MissionSpread> mission_spread_from_string(std::string_view name) {
+  for (MissionSpread s :
+       {MissionSpread::kUniform, MissionSpread::kClustered, MissionSpread::kNearExit}) {
+    if (to_string(s) == name) return s;
+  }
+  return std::nullopt;
+}
+
 Result<Mission> generate_mission(const SewerMap& map, const MissionOptions& options) {
   Mission mission;
   auto profile = builtin_profile(options.profile);
@@ -83,20 +146,23 @@ Result<Mission> generate_mission(const SewerMap& map, const MissionOptions& opti
   // Try exits in a seeded order until one reaches enough pipes.
   std::vector<ManholeId> order = mission.exits;
   for (std::size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[rng.below(i)]);
+  // Uniform and clustered tasks lie where the robot can drive to and back on half its usable
+  // battery, so that each task alone fits it.
+  const double usable_wh = mission.profile.battery_wh * (1 - options.battery_reserve);
+  const Cost range = to_cost(mission.profile.seconds_for(usable_wh) / 4);
   for (std::size_t attempt = 0; attempt < order.size() && attempt < 20; ++attempt) {
-    const std::size_t nearest = std::min(options.radius_pipes, 2 * options.tasks + 10);
-    std::vector<PipeId> pipes = reachable_pipes(graph, order[attempt], 2 * nearest);
-    const std::size_t keep =
-        std::min(std::max(pipes.size() / 2, std::min(pipes.size(), options.tasks)), nearest);
-    pipes.erase(pipes.begin() + static_cast<std::ptrdiff_t>(keep), pipes.end());
+    std::vector<PipeId> pipes = candidate_pipes(graph, order[attempt], options, range, rng);
     if (pipes.size() < options.tasks) continue;
     for (std::size_t i = 0; i < options.tasks; ++i) {  // partial Fisher-Yates
       std::swap(pipes[i], pipes[i + rng.below(pipes.size() - i)]);
       mission.tasks.push_back(make_task(map, pipes[i], i, rng));
     }
     mission.start = order[attempt];
-    mission.name = "generated-" + std::to_string(options.tasks) + "-tasks-seed-" +
-                   std::to_string(options.seed);
+    mission.name = "generated-" + std::to_string(options.tasks) + "-tasks-" +
+                   (options.spread == MissionSpread::kNearExit
+                        ? std::string()
+                        : std::string(to_string(options.spread)) + "-") +
+                   "seed-" + std::to_string(options.seed);
     return mission;
   }
   return Error{ErrorCode::kInvalidArgument, "no exit of map " + map.name() + " reaches " +

@@ -5,6 +5,7 @@
 // line of sas_plan), their object names mapped back through PddlNames, the bookkeeping actions
 // dropped, and the result given to parse_plan with the line numbers of the file, so that every
 // message names the line the planner wrote.
+#include <algorithm>
 #include <optional>
 
 #include "sewerplan/domain/pddl.h"
@@ -40,6 +41,12 @@ std::optional<std::string_view> ff_step(std::string_view line) {
   return trim(rest.substr(digits + 1));
 }
 
+// What FF prints when the goal holds already: the empty plan is its plan.
+bool ff_reports_empty_plan(std::string_view line) {
+  return line.find("simplified to TRUE") != std::string_view::npos ||
+         line.find("empty plan") != std::string_view::npos;
+}
+
 // What FF prints when it finds no plan.
 bool ff_reports_failure(std::string_view line) {
   return line.find("problem proven unsolvable") != std::string_view::npos ||
@@ -58,6 +65,7 @@ class Importer {
     std::string out;
     std::size_t number = 0;
     bool ff_plan_started = false;
+    bool ff_empty_plan = false;
     while (!text.empty()) {
       const std::size_t eol = text.find('\n');
       const std::string_view line = text.substr(0, eol);
@@ -71,12 +79,21 @@ class Importer {
         // FF's log has no numbered lines before the plan; after it, the first line that is
         // not a step ends the plan.
         if (step) ff_plan_started = true;
+        if (ff_reports_empty_plan(line)) ff_empty_plan = true;
         if (step && !ff_plan_ended_) out += translate_action(*step, number);
         if (!step && ff_plan_started && !trim(line).empty()) ff_plan_ended_ = true;
       } else {
         out += translate_sas_line(line, number);
       }
       out += '\n';
+    }
+    if (format_ == PddlPlanFormat::kFf && !failure_ && !ff_plan_started && !ff_empty_plan) {
+      // An empty file, or FF's log cut off before a plan (a crash, a timeout): not a plan that
+      // misses the goal.
+      failure_ = Failure{std::max<std::size_t>(number, 1),
+                         "the file holds no FF plan: no 'step' lines and no word that the empty "
+                         "plan solves the task (an empty file, or FF stopped before it found a "
+                         "plan)"};
     }
     if (failure_) error(failure_->line, failure_->message);
     if (diagnostics_.error_count() > errors_before_) return std::nullopt;

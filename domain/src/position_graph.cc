@@ -40,6 +40,20 @@ PositionGraph::PositionGraph(const SewerMap& map, const Mission& mission)
   for (PipeId p : mission.closed_pipes) drivable_[p.index()] = false;
   for (const ClosedPassage& c : mission.closed_passages) closed_passages_.push_back(normalised(c));
   std::sort(closed_passages_.begin(), closed_passages_.end(), passage_less);
+  manhole_of_slot_.resize(slots_);
+  passage_begin_.resize(manholes_ + 1);
+  std::size_t passages = 0;
+  for (ManholeId m : map.manhole_ids()) {
+    const Manhole& manhole = map.manhole(m);
+    for (std::uint16_t s = 0; s < manhole.slot_count; ++s) {
+      manhole_of_slot_[manhole.first_slot + s] = m.value();
+    }
+    passage_begin_[m.index()] = passages;
+    passages += std::size_t{manhole.slot_count} * manhole.slot_count;
+  }
+  passage_begin_[manholes_] = passages;
+  passages_.resize(passages);
+  judged_.assign(manholes_, false);
 }
 
 Node PositionGraph::spot(PipeId pipe, double offset_m) {
@@ -74,20 +88,6 @@ const std::vector<Node>& PositionGraph::extra_spots_in(PipeId pipe) const {
   return it == spots_by_pipe_.end() || it->first != pipe ? kNone : it->second;
 }
 
-ManholeId PositionGraph::manhole_of_slot_node(Node n, SlotIndex* slot) const {
-  const std::uint32_t global = n - manholes_;
-  // The manhole whose slot run contains `global`: the last with first_slot <= global and slots.
-  const auto manholes = map_.manholes();
-  auto it = std::upper_bound(manholes.begin(), manholes.end(), global,
-                             [](std::uint32_t g, const Manhole& m) { return g < m.first_slot; });
-  // Manholes without slots share first_slot with their successor: step back to one that has it.
-  do {
-    --it;
-  } while (it->slot_count == 0 || global >= it->first_slot + it->slot_count);
-  *slot = SlotIndex{static_cast<std::uint16_t>(global - it->first_slot)};
-  return ManholeId{static_cast<std::uint32_t>(it - manholes.begin())};
-}
-
 std::optional<PipeId> PositionGraph::pipe_of(Node n) const {
   const Node first_end = manholes_ + slots_;
   const Node first_spot = first_end + 2 * pipes_;
@@ -117,17 +117,34 @@ RobotPosition PositionGraph::position(Node n) const {
   return InPipe{*pipe_of(n), offset_of(n)};
 }
 
-bool PositionGraph::passage_allowed(ManholeId m, SlotIndex from, SlotIndex to) const {
+bool PositionGraph::judge_passage_uncached(ManholeId m, SlotIndex from, SlotIndex to,
+                                           Cost* cost) const {
   const Slot& target = map_.slot(m, to);
   if (!drivable_[target.pipe.index()]) return false;
-  if (!judge_passage(map_, profile_, motion_, m, from, to).allowed) return false;
-  if (closed_passages_.empty()) return true;
-  return !std::binary_search(closed_passages_.begin(), closed_passages_.end(),
-                             normalised({m, from, to}), passage_less);
+  const PassageVerdict verdict = judge_passage(map_, profile_, motion_, m, from, to);
+  if (!verdict.allowed) return false;
+  if (!closed_passages_.empty() &&
+      std::binary_search(closed_passages_.begin(), closed_passages_.end(),
+                         normalised({m, from, to}), passage_less)) {
+    return false;
+  }
+  *cost = to_cost(verdict.duration_s);
+  return true;
 }
 
-Cost PositionGraph::passage_cost(ManholeId m, SlotIndex from, SlotIndex to) const {
-  return to_cost(judge_passage(map_, profile_, motion_, m, from, to).duration_s);
+void PositionGraph::judge_manhole(ManholeId m) const {
+  const std::uint16_t count = map_.manhole(m).slot_count;
+  const std::size_t begin = passage_begin_[m.index()];
+  for (std::uint16_t i = 0; i < count; ++i) {
+    for (std::uint16_t j = 0; j < count; ++j) {
+      Cost cost = kInfiniteCost;
+      if (i == j || !judge_passage_uncached(m, SlotIndex{i}, SlotIndex{j}, &cost)) {
+        cost = kInfiniteCost;
+      }
+      passages_[begin + std::size_t{i} * count + j] = cost;
+    }
+  }
+  judged_[m.index()] = true;
 }
 
 Cost PositionGraph::drive_cost(double distance_m) const {

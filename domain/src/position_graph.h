@@ -9,7 +9,13 @@
 // Edges are the movement actions (ENTER_PIPE, DRIVE_MANHOLE_..., DRIVE_PIPE_TO_MANHOLE) that the
 // robot's limits and the mission's closures allow, with their costs in milliseconds. Nothing is
 // materialised: successors and predecessors are generated from the map on demand, so a graph over
-// a million manholes costs only the per-pipe drivability flags.
+// a million manholes costs only the per-pipe drivability flags, a slot-to-manhole index and a
+// cache of the passages judged so far (each manhole's on its first visit: judging a passage takes
+// trigonometry, and a Dijkstra over a city asks for the same passages again from every key:
+// issue 16, bench/domain/compile_bench.cc).
+//
+// Not thread-safe: the passage cache fills as searches visit manholes, so one graph serves one
+// thread.
 #pragma once
 
 #include <cstdint>
@@ -61,14 +67,19 @@ class PositionGraph {
   bool pipe_drivable(PipeId p) const { return drivable_[p.index()]; }
   // The robot fits p's diameter: it can move in p if it is there (a closed pipe can be left).
   bool pipe_fits(PipeId p) const { return fits_[p.index()]; }
-  bool passage_allowed(ManholeId m, SlotIndex from, SlotIndex to) const;
+  bool passage_allowed(ManholeId m, SlotIndex from, SlotIndex to) const {
+    return passage(m, from, to) != kInfiniteCost;
+  }
   // Whether a blockage of the mission lies strictly between offsets a and b of pipe p.
   bool blocked_between(PipeId p, double a, double b) const {
     return has_blockages_ && blockage_between(mission_, p, a, b).has_value();
   }
   // Whether the whole of p can be driven (an inspection): no blockage anywhere in it.
   bool fully_open(PipeId p) const { return !blocked_between(p, -1.0, map_.pipe(p).length_m + 1.0); }
-  Cost passage_cost(ManholeId m, SlotIndex from, SlotIndex to) const;
+  // Precondition: the passage is allowed.
+  Cost passage_cost(ManholeId m, SlotIndex from, SlotIndex to) const {
+    return passage(m, from, to);
+  }
   Cost drive_cost(double distance_m) const;
 
   // f(to, cost) for each move out of `from`.
@@ -84,7 +95,20 @@ class PositionGraph {
   const RobotProfile& profile() const { return profile_; }
 
  private:
-  ManholeId manhole_of_slot_node(Node n, SlotIndex* slot) const;
+  ManholeId manhole_of_slot_node(Node n, SlotIndex* slot) const {
+    const std::uint32_t global = n - manholes_;
+    const ManholeId m{manhole_of_slot_[global]};
+    *slot = SlotIndex{static_cast<std::uint16_t>(global - map_.manhole(m).first_slot)};
+    return m;
+  }
+  // The passage's cost, kInfiniteCost where not allowed (from the cache, judged on first use).
+  Cost passage(ManholeId m, SlotIndex from, SlotIndex to) const {
+    const std::uint16_t count = map_.manhole(m).slot_count;
+    if (!judged_[m.index()]) judge_manhole(m);
+    return passages_[passage_begin_[m.index()] + std::size_t{from.value()} * count + to.value()];
+  }
+  bool judge_passage_uncached(ManholeId m, SlotIndex from, SlotIndex to, Cost* cost) const;
+  void judge_manhole(ManholeId m) const;
   template <class F>
   void drive_out_of_pipe(Node from, PipeId p, double x, F&& f) const;
 
@@ -99,6 +123,10 @@ class PositionGraph {
   std::vector<bool> fits_;
   std::vector<bool> drivable_;
   std::vector<ClosedPassage> closed_passages_;  // normalised: from < to, sorted
+  std::vector<std::uint32_t> manhole_of_slot_;  // by global slot index
+  std::vector<std::size_t> passage_begin_;      // by manhole: its slot_count^2 passages
+  mutable std::vector<Cost> passages_;
+  mutable std::vector<bool> judged_;
   std::vector<Spot> spots_;
   std::vector<std::pair<PipeId, std::vector<Node>>> spots_by_pipe_;  // sorted by pipe
 };

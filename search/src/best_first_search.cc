@@ -82,6 +82,7 @@ std::optional<SearchStatus> BestFirstSearch::step() {
   const bool admissible = heuristic_.admissible();
   task_.applicable_actions(values_, applicable_);
   for (ActionId a : applicable_) {
+    if (interrupted()) return std::nullopt;  // search() reports the stop
     const Cost succ_g = g + task_.cost(a);
     if (succ_g > bound_ || task_.exceeds_bound(succ_g)) {
       ++result_.statistics.dead_ends;

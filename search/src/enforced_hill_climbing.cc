@@ -67,6 +67,7 @@ std::optional<SearchStatus> EnforcedHillClimbing::step() {
   }
   if (queue_.empty()) {  // enforced hill-climbing failed: FF falls back to best-first search
     fallback_ = std::make_unique<BestFirstSearch>(task_, heuristic_, BestFirstSearch::greedy());
+    fallback_->watch(watched());
     fallback_->initialize();
     return std::nullopt;
   }
@@ -83,6 +84,7 @@ std::optional<SearchStatus> EnforcedHillClimbing::step() {
   if (candidates.empty()) task_.applicable_actions(values_, candidates);
   const Cost g = visits_[s.index()].g;
   for (ActionId a : candidates) {
+    if (interrupted()) return std::nullopt;  // search() reports the stop
     const Cost succ_g = g + task_.cost(a);
     if (task_.exceeds_bound(current_g_ + succ_g)) {
       ++result_.statistics.dead_ends;

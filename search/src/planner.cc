@@ -2,7 +2,9 @@
 #include "sewerplan/search/planner.h"
 
 #include <algorithm>
+#include <cmath>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 #include "sewerplan/search/best_first_search.h"
@@ -23,13 +25,15 @@ std::string_view to_string(Algorithm algorithm) {
       return "wastar";
     case Algorithm::kAstar:
       return "astar";
+    case Algorithm::kExact:
+      return "exact";
   }
   return "ehc";
 }
 
 std::optional<Algorithm> algorithm_from_string(std::string_view name) {
   for (Algorithm a : {Algorithm::kAuto, Algorithm::kEhc, Algorithm::kGbfs,
-                      Algorithm::kWeightedAstar, Algorithm::kAstar}) {
+                      Algorithm::kWeightedAstar, Algorithm::kAstar, Algorithm::kExact}) {
     if (to_string(a) == name) return a;
   }
   return std::nullopt;
@@ -57,6 +61,7 @@ std::unique_ptr<SearchEngine> make_engine(Algorithm algorithm, const domain::Com
       return std::make_unique<BestFirstSearch>(task, heuristic,
                                                BestFirstSearch::weighted_astar(weight));
     case Algorithm::kAstar:
+    case Algorithm::kExact:  // where the exact tour search does not apply
       return std::make_unique<BestFirstSearch>(task, heuristic, BestFirstSearch::astar());
   }
   return nullptr;
@@ -101,6 +106,41 @@ Error search_failure(SearchStatus status, const Mission& mission,
   return Error{ErrorCode::kNoPlan, "no plan"};
 }
 
+Error battery_exceeded(const Mission& mission, const domain::CompiledTask& task, Cost cheapest) {
+  const auto energy = [&](Cost c) { return wh(mission.profile.energy_wh(domain::to_seconds(c))); };
+  return Error{ErrorCode::kSearchLimit,
+               "no plan found that does all " + std::to_string(task.variable_count() - 1) +
+                   " remaining tasks within the battery's " + energy(task.cost_bound()) +
+                   ": the cheapest order of them the tour search found needs " + energy(cheapest) +
+                   " (not a proof that none fits; with --select-goals the plan does as many "
+                   "tasks as fit)"};
+}
+
+// Work units: one Dijkstra node settled, or one fact or action visited by a heuristic evaluation.
+double improvement_work(const domain::CompileStatistics& compile) {
+  return 4.0 * static_cast<double>(compile.settled_nodes) + 200'000.0;
+}
+
+std::uint64_t improvement_budget(const PlannerOptions& options, const domain::CompiledTask& task,
+                                 const domain::CompileStatistics& compile) {
+  if (!options.adaptive_improvement || options.improvement_expansions == 0) {
+    return options.improvement_expansions;
+  }
+  const double per_expansion = (static_cast<double>(compile.keys) + 1.0) *
+                               static_cast<double>(task.action_count() + task.fact_count());
+  const double expansions = std::max(16.0, improvement_work(compile) / per_expansion);
+  return std::min(options.improvement_expansions, static_cast<std::uint64_t>(expansions));
+}
+
+// Whether the exact tour search fits the improvement's work: 2^K subsets x about 3K leave places
+// x K goals x 3 options each.
+bool exact_fits(const domain::CompiledTask& task, const domain::CompileStatistics& compile) {
+  const std::size_t k = task.variable_count() - 1;
+  if (k > kMaxExactGoals) return false;
+  const double work = std::ldexp(1.0, static_cast<int>(k)) * 9.0 * static_cast<double>(k * k);
+  return work <= improvement_work(compile);
+}
+
 // Anytime improvement: each search may only return plans cheaper than the best so far. One that
 // exhausts its bounded space proves no cheaper plan exists.
 void improve(const domain::CompiledTask& task, const StopCondition& stop, const Clock& clock,
@@ -138,8 +178,14 @@ Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
                                  const PlannerOptions& options) {
   const SteadyClock steady;
   const Clock& clock = options.clock != nullptr ? *options.clock : steady;
-  Result<domain::SewerTask> compiled =
-      domain::compile_sewer_task(map, mission, progress, {.select_goals = options.select_goals});
+  const double started_s = clock.now_s();
+  Result<domain::SewerTask> compiled = domain::compile_sewer_task(
+      map, mission, progress,
+      {.select_goals = options.select_goals,
+       .cancel = options.cancel,
+       .clock = options.time_limit_s > 0 ? &clock : nullptr,
+       .deadline_s = options.time_limit_s > 0 ? started_s + options.time_limit_s
+                                              : std::numeric_limits<double>::infinity()});
   if (!compiled.has_value()) return compiled.error();
   const domain::CompiledTask& task = compiled->task();
   // An admissible estimate already beyond the battery proves there is no plan, whatever the
@@ -151,28 +197,66 @@ Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
     return search_failure(SearchStatus::kUnsolvable, mission, progress, task);
   }
   const Algorithm algorithm = resolve(options.algorithm, task);
-  const HeuristicKind kind = options.heuristic.value_or(
-      algorithm == Algorithm::kAstar ? HeuristicKind::kMax : HeuristicKind::kFf);
+  const bool optimal_search = algorithm == Algorithm::kAstar || algorithm == Algorithm::kExact;
+  const HeuristicKind kind =
+      options.heuristic.value_or(optimal_search ? HeuristicKind::kMax : HeuristicKind::kFf);
   std::unique_ptr<Heuristic> heuristic = make_heuristic(kind, task);
   std::unique_ptr<SearchEngine> engine = make_engine(algorithm, task, *heuristic, options.weight);
-  StopCondition stop = options.time_limit_s > 0
-                           ? StopCondition::after_seconds(clock, options.time_limit_s)
-                           : StopCondition();
+  // The time limit bounds the compile and the search together.
+  StopCondition stop =
+      options.time_limit_s > 0
+          ? StopCondition::after_seconds(clock, options.time_limit_s - (clock.now_s() - started_s))
+          : StopCondition();
   if (options.max_expansions > 0) stop.with_max_expansions(options.max_expansions);
   if (options.cancel != nullptr) stop.with_cancel(*options.cancel);
   // kAuto beyond exhaustive A*: the tour search's first plan, where the task has its shape.
   std::optional<SearchResult> tour;
-  if (options.algorithm == Algorithm::kAuto && algorithm != Algorithm::kAstar) {
-    tour = tour_search(task);
+  bool exact = false;
+  if (algorithm == Algorithm::kExact) {
+    tour = exact_tour_search(task, stop, &clock);
+    exact = tour.has_value();
+    if (tour && tour->status != SearchStatus::kSolved) {
+      return search_failure(tour->status, mission, progress, task);
+    }
+  } else if (options.algorithm == Algorithm::kAuto && algorithm != Algorithm::kAstar) {
+    TourReport report;
+    tour = tour_search(task, stop, &clock, &report);
+    if (report.stopped) return search_failure(*report.stopped, mission, progress, task);
+    if (!tour && report.has_shape && task.penalty_unit() == 0 &&
+        report.cheapest_order != domain::kInfiniteCost &&
+        report.cheapest_order > task.cost_bound()) {
+      // Issue 14: a mission that does not fit the battery sent the fallback search through the
+      // whole state space until the time limit. Prove it where the exact search can; else say
+      // so at once (not a proof: exit 5, not 4).
+      tour = exact_tour_search(task, stop, &clock);
+      exact = tour.has_value();
+      if (!tour) return battery_exceeded(mission, task, report.cheapest_order);
+      if (tour->status != SearchStatus::kSolved) {
+        return search_failure(tour->status, mission, progress, task);
+      }
+    }
   }
   SearchResult result = tour ? std::move(*tour) : engine->search(stop, clock);
   if (result.status != SearchStatus::kSolved) {
     return search_failure(result.status, mission, progress, task);
   }
   PlanOutcome outcome;
-  outcome.optimal = !tour && algorithm == Algorithm::kAstar && heuristic->admissible();
+  outcome.optimal = exact || (!tour && optimal_search && heuristic->admissible());
+  bool exact_improved = false;
+  if (!outcome.optimal && tour && options.improvement_expansions > 0 &&
+      options.adaptive_improvement && exact_fits(task, compiled->statistics())) {
+    std::optional<SearchResult> best = exact_tour_search(task, stop, &clock);
+    if (best && best->status == SearchStatus::kSolved) {
+      if (best->cost < result.cost) ++outcome.improvements;
+      best->statistics.time_s += result.statistics.time_s;
+      result = std::move(*best);
+      outcome.optimal = true;
+      exact_improved = true;
+    }
+  }
   if (!outcome.optimal && options.improvement_expansions > 0) {
-    improve(task, stop, clock, options.improvement_expansions, result, outcome);
+    improve(task, stop, clock, improvement_budget(options, task, compiled->statistics()), result,
+            outcome);
   }
   outcome.plan = compiled->expand(result.plan);
   outcome.cost_s = domain::to_seconds(task.real_cost(result.cost));
@@ -185,9 +269,15 @@ Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
   outcome.energy_wh = mission.profile.energy_wh(outcome.cost_s);
   outcome.search = result.statistics;
   outcome.compile = compiled->statistics();
-  outcome.algorithm = tour ? std::string("tour search")
-                           : std::string(engine->name()) + " + " + std::string(heuristic->name());
-  if (outcome.improvements > 0) outcome.algorithm += ", improved by weighted A*";
+  outcome.algorithm = exact  ? std::string("exact tour search")
+                      : tour ? std::string("tour search")
+                             : std::string(engine->name()) + " + " + std::string(heuristic->name());
+  if (outcome.improvements > 0) {
+    outcome.algorithm +=
+        exact_improved ? ", improved by the exact tour search" : ", improved by weighted A*";
+  } else if (exact_improved) {
+    outcome.algorithm += ", proven optimal by the exact tour search";
+  }
   return outcome;
 }
 

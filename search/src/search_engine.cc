@@ -63,14 +63,23 @@ std::optional<SearchStatus> StopCondition::check(std::uint64_t expansions) const
   return std::nullopt;
 }
 
+std::optional<SearchStatus> StopCondition::interrupted() const {
+  if (cancel_ != nullptr && cancel_->load(std::memory_order_relaxed))
+    return SearchStatus::kCancelled;
+  if (clock_ != nullptr && clock_->now_s() >= deadline_s_) return SearchStatus::kTimeLimit;
+  return std::nullopt;
+}
+
 SearchResult SearchEngine::search(const StopCondition& stop, const Clock& clock) {
   const double start_s = clock.now_s();
+  watch(&stop);
   initialize();
   std::optional<SearchStatus> stopped;
   while (!step()) {
     stopped = stop.check(statistics().expanded);
     if (stopped) break;
   }
+  watch(nullptr);
   SearchResult r = result();
   if (stopped) {
     r.status = *stopped;

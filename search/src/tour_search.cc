@@ -9,117 +9,20 @@
 
 #include "sewerplan/core/clock.h"
 
+#include "tour_shape.h"
+
 namespace sewerplan::search {
 namespace {
 
+using detail::Goal;
+using detail::kStays;
+using detail::Option;
+using detail::read_shape;
+using detail::Shape;
 using domain::CompiledTask;
 using domain::Fact;
 using domain::kInfiniteCost;
 using domain::VarId;
-
-constexpr std::int32_t kStays = -1;
-
-struct Option {
-  std::int32_t at = 0;  // the position the action needs
-  std::int32_t to = 0;  // where it leaves the robot (kStays: where it was)
-  Cost cost = 0;
-  ActionId action{0};
-};
-
-struct Goal {
-  std::vector<Option> options;
-  std::optional<ActionId> forgo;
-  Cost forgo_cost = 0;
-  bool last = false;  // needs every other goal done first
-};
-
-// The task read as places, moves and goals; empty if it is not of that shape.
-struct Shape {
-  std::int32_t places = 0;
-  std::int32_t start = 0;
-  std::optional<std::int32_t> end;  // a position the goal asks for
-  std::unordered_map<std::int64_t, std::pair<Cost, ActionId>> moves;
-  std::vector<Goal> goals;  // goal i is variable i + 1
-
-  Cost move_cost(std::int32_t a, std::int32_t b) const {
-    if (a == b) return 0;
-    auto it = moves.find(static_cast<std::int64_t>(a) * places + b);
-    return it == moves.end() ? kInfiniteCost : it->second.first;
-  }
-};
-
-std::optional<Shape> read_shape(const CompiledTask& task) {
-  if (task.variable_count() < 1) return std::nullopt;
-  Shape s;
-  const VarId pos{0};
-  s.places = task.domain_size(pos);
-  s.start = task.initial_state()[0];
-  const std::size_t goals = task.variable_count() - 1;
-  s.goals.resize(goals);
-  for (std::size_t v = 1; v < task.variable_count(); ++v) {
-    if (task.domain_size(VarId{static_cast<std::uint32_t>(v)}) != 2) return std::nullopt;
-    if (task.initial_state()[v] != 0) return std::nullopt;
-  }
-  std::vector<bool> goal_var(task.variable_count(), false);
-  for (const Fact& g : task.goal()) {
-    if (g.var == pos) {
-      s.end = g.value;
-    } else if (g.value == 1) {
-      goal_var[g.var.index()] = true;
-    } else {
-      return std::nullopt;
-    }
-  }
-  for (std::size_t v = 1; v < goal_var.size(); ++v) {
-    if (!goal_var[v]) return std::nullopt;
-  }
-  for (ActionId a : task.action_ids()) {
-    const auto pre = task.preconditions(a);
-    const auto eff = task.effects(a);
-    std::optional<std::int32_t> at, to;
-    std::optional<std::size_t> goal;
-    std::size_t others = 0;
-    for (const Fact& f : pre) {
-      if (f.var == pos) {
-        at = f.value;
-      } else if (f.value == 0) {
-        if (goal) return std::nullopt;
-        goal = f.var.index() - 1;
-      } else {
-        ++others;
-      }
-    }
-    bool sets_goal = false;
-    for (const Fact& f : eff) {
-      if (f.var == pos) {
-        to = f.value;
-      } else if (goal && f.var.index() - 1 == *goal && f.value == 1) {
-        sets_goal = true;
-      } else {
-        return std::nullopt;
-      }
-    }
-    if (!goal) {  // a move
-      if (!at || !to || others != 0 || eff.size() != 1) return std::nullopt;
-      auto key = static_cast<std::int64_t>(*at) * s.places + *to;
-      auto [it, added] = s.moves.try_emplace(key, task.cost(a), a);
-      if (!added && task.cost(a) < it->second.first) it->second = {task.cost(a), a};
-      continue;
-    }
-    if (!sets_goal) return std::nullopt;
-    Goal& g = s.goals[*goal];
-    if (others != 0 && others + 1 != goals) return std::nullopt;  // all others, or none
-    if (others != 0) g.last = true;
-    if (!at) {  // a forgo action
-      if (to || others != 0) return std::nullopt;
-      g.forgo = a;
-      g.forgo_cost = task.cost(a);
-      continue;
-    }
-    g.options.push_back({*at, to.value_or(kStays), task.cost(a), a});
-  }
-  return s;
-}
 
 // The best choices for one order of goals, by dynamic programming over positions.
 class Evaluator {
@@ -204,7 +107,10 @@ class Evaluator {
 
 class Tour {
  public:
-  explicit Tour(const Shape& shape) : s_(shape), eval_(shape) {}
+  Tour(const Shape& shape, const StopCondition& stop) : s_(shape), eval_(shape), stop_(stop) {}
+
+  // The reason the stop condition gave, once it fired; then build() returns nothing more.
+  std::optional<SearchStatus> stopped() const { return stopped_; }
 
   // An order of the goals in `goals` (the last-goal, if any, at the end).
   std::vector<std::size_t> build(const std::vector<std::size_t>& goals) {
@@ -222,6 +128,7 @@ class Tour {
       Cost best = kInfiniteCost;
       std::size_t best_goal = 0, best_at = 0;
       for (std::size_t i = 0; i < todo.size(); ++i) {
+        if (check_stop()) return {};
         for (std::size_t at = 0; at <= order.size(); ++at) {
           std::vector<std::size_t> trial = order;
           trial.insert(trial.begin() + static_cast<std::ptrdiff_t>(at), todo[i]);
@@ -239,11 +146,48 @@ class Tour {
       todo.erase(todo.begin() + static_cast<std::ptrdiff_t>(best_goal));
     }
     improve(order, last);
+    if (stopped_) return {};
     if (last) order.push_back(*last);
     return order;
   }
 
   Cost cost(const std::vector<std::size_t>& order) { return eval_.cost(order); }
+
+  // `order` with goal g at its cheapest place (before the last-goal, if any); empty if none.
+  std::vector<std::size_t> insert(const std::vector<std::size_t>& order, std::size_t g) {
+    const bool has_last = !order.empty() && s_.goals[order.back()].last;
+    const std::size_t places = order.size() - (has_last ? 1 : 0);
+    Cost best = kInfiniteCost;
+    std::vector<std::size_t> best_order;
+    for (std::size_t at = 0; at <= places; ++at) {
+      std::vector<std::size_t> trial = order;
+      trial.insert(trial.begin() + static_cast<std::ptrdiff_t>(at), g);
+      const Cost c = eval_.cost(trial);
+      if (c < best) {
+        best = c;
+        best_order = std::move(trial);
+      }
+    }
+    return best_order;
+  }
+
+  // `order` improved by local search (the last-goal, if any, kept at the end).
+  std::vector<std::size_t> polish(std::vector<std::size_t> order) {
+    std::optional<std::size_t> last;
+    if (!order.empty() && s_.goals[order.back()].last) {
+      last = order.back();
+      order.pop_back();
+    }
+    improve(order, last);
+    if (last) order.push_back(*last);
+    return order;
+  }
+
+  // Checked once per row of trial orders (a few dozen evaluations, microseconds).
+  bool check_stop() {
+    if (!stopped_) stopped_ = stop_.interrupted();
+    return stopped_.has_value();
+  }
   Cost cost(const std::vector<std::size_t>& order, std::vector<ActionId>& plan) {
     return eval_.cost(order, &plan);
   }
@@ -260,6 +204,7 @@ class Tour {
     for (int round = 0; round < 50; ++round) {
       bool better = false;
       for (std::size_t i = 0; i < order.size(); ++i) {
+        if (check_stop()) return;
         for (std::size_t j = 0; j < order.size(); ++j) {
           if (i == j) continue;
           std::vector<std::size_t> trial = order;
@@ -275,6 +220,7 @@ class Tour {
         }
       }
       for (std::size_t i = 0; i + 1 < order.size(); ++i) {
+        if (check_stop()) return;
         for (std::size_t j = i + 2; j <= order.size(); ++j) {
           std::vector<std::size_t> trial = order;
           std::reverse(trial.begin() + static_cast<std::ptrdiff_t>(i),
@@ -293,19 +239,32 @@ class Tour {
 
   const Shape& s_;
   Evaluator eval_;
+  const StopCondition& stop_;
+  std::optional<SearchStatus> stopped_;
 };
 
 }  // namespace
 
-std::optional<SearchResult> tour_search(const CompiledTask& task) {
-  const SteadyClock clock;
-  const double start_s = clock.now_s();
+std::optional<SearchResult> tour_search(const CompiledTask& task, const StopCondition& stop,
+                                        const Clock* clock, TourReport* report) {
+  const SteadyClock steady;
+  const Clock& time = clock != nullptr ? *clock : steady;
+  TourReport unused;
+  TourReport& out = report != nullptr ? *report : unused;
+  out = {};
+  const double start_s = time.now_s();
   std::optional<Shape> shape = read_shape(task);
   if (!shape) return std::nullopt;
+  out.has_shape = true;
   std::vector<std::size_t> goals(shape->goals.size());
   for (std::size_t i = 0; i < goals.size(); ++i) goals[i] = i;
-  Tour tour(*shape);
+  Tour tour(*shape, stop);
   std::vector<std::size_t> order = tour.build(goals);
+  if (tour.stopped()) {
+    out.stopped = tour.stopped();
+    return std::nullopt;
+  }
+  if (!order.empty() || goals.empty()) out.cheapest_order = tour.cost(order);
   std::vector<std::size_t> forgone;
   // Over the bound (or no order at all): leave out, one at a time, the goal whose absence saves
   // the most, where goals can be forgone.
@@ -313,17 +272,28 @@ std::optional<SearchResult> tour_search(const CompiledTask& task) {
     const Cost c = tour.cost(o);
     return c < kInfiniteCost && c <= task.cost_bound();
   };
+  // Up to kRebuildGoals goals, each candidate's tour is rebuilt without it; beyond, the candidate
+  // is cut from the current tour, which is polished once the dropping is over (issue 16: a
+  // rebuild per candidate and drop made 50 uniform tasks take minutes).
+  constexpr std::size_t kRebuildGoals = 12;
+  bool cut = false;
   while (order.empty() || !fits(order)) {
     std::optional<std::size_t> drop;
     Cost best = kInfiniteCost;
     std::vector<std::size_t> best_order;
+    const bool rebuild = order.empty() || goals.size() <= kRebuildGoals;
     for (std::size_t g : goals) {
       if (!shape->goals[g].forgo) continue;
       std::vector<std::size_t> rest;
-      for (std::size_t h : goals) {
+      for (std::size_t h : rebuild ? goals : order) {
         if (h != g) rest.push_back(h);
       }
-      std::vector<std::size_t> o = tour.build(rest);
+      std::vector<std::size_t> o = rebuild ? tour.build(rest) : rest;
+      if (!rebuild && tour.check_stop()) break;
+      if (tour.stopped()) {
+        out.stopped = tour.stopped();
+        return std::nullopt;
+      }
       const Cost c = o.empty() && !rest.empty() ? kInfiniteCost : tour.cost(o);
       if (c < best) {
         best = c;
@@ -331,11 +301,45 @@ std::optional<SearchResult> tour_search(const CompiledTask& task) {
         best_order = std::move(o);
       }
     }
+    if (tour.stopped()) {
+      out.stopped = tour.stopped();
+      return std::nullopt;
+    }
     if (!drop) return std::nullopt;
+    cut = cut || !rebuild;
     goals.erase(std::find(goals.begin(), goals.end(), *drop));
     forgone.push_back(*drop);
     order = std::move(best_order);
     if (goals.empty()) break;
+  }
+  if (cut) {
+    order = tour.polish(std::move(order));
+    // Cutting can leave room: put back, cheapest first, each forgone goal that still fits.
+    for (bool added = true; added && !forgone.empty();) {
+      added = false;
+      Cost best = kInfiniteCost;
+      std::size_t best_goal = 0;
+      std::vector<std::size_t> best_order;
+      for (std::size_t i = 0; i < forgone.size(); ++i) {
+        if (tour.check_stop()) break;
+        std::vector<std::size_t> trial = tour.insert(order, forgone[i]);
+        const Cost c = trial.empty() ? kInfiniteCost : tour.cost(trial);
+        if (c <= task.cost_bound() && c < best) {
+          best = c;
+          best_goal = i;
+          best_order = std::move(trial);
+        }
+      }
+      if (best < kInfiniteCost) {
+        order = std::move(best_order);
+        forgone.erase(forgone.begin() + static_cast<std::ptrdiff_t>(best_goal));
+        added = true;
+      }
+    }
+    if (tour.stopped()) {
+      out.stopped = tour.stopped();
+      return std::nullopt;
+    }
   }
   if (!fits(order)) return std::nullopt;
   SearchResult result;
@@ -350,7 +354,7 @@ std::optional<SearchResult> tour_search(const CompiledTask& task) {
   }
   if (!task.is_goal(state) || task.exceeds_bound(result.cost)) return std::nullopt;
   result.status = SearchStatus::kSolved;
-  result.statistics.time_s = clock.now_s() - start_s;
+  result.statistics.time_s = time.now_s() - start_s;
   return result;
 }
 

@@ -87,6 +87,13 @@ if cmp -s "$tmp/g1.json" "$tmp/g2.json"; then passed=$((passed + 1)); else
   echo "FAIL: the same seed gave different networks"; failures=$((failures + 1)); fi
 expect 0 'valid \(500 manholes' -- "$sp" validate "$tmp/g1.json"
 expect 2 'manholes' -- "$sp" generate --manholes 3 -o "$tmp/g3.json"
+for spread in uniform clustered near-exit; do  # issue 16: missions of every shape
+  expect 0 '5 tasks' -- "$sp" generate --manholes 500 --seed 3 -o "$tmp/g4.json" --mission-tasks 5 \
+    --mission-out "$tmp/m-$spread.json" --mission-spread "$spread"
+done
+expect 2 'unknown spread' -- "$sp" generate --manholes 500 -o "$tmp/g4.json" --mission-tasks 5 \
+  --mission-out "$tmp/m-x.json" --mission-spread everywhere
+expect 0 'exact tour search' -- "$sp" plan --select-goals -a exact --map "$tmp/g4.json" --mission "$tmp/m-uniform.json"
 
 # Plans: the paper's (invalid at step 11), its correction, FF and Fast Downward forms, bad lines.
 plans=$src/datasets/ais-testbed/plans
@@ -169,6 +176,8 @@ expect 1 "ff.out:4: error: unknown object 'P99'" -- "$sp" import-plan --format f
 printf '(drive_pipe_to_manhole p12 m2)\n' > "$tmp/short_plan"
 expect 1 'invalid: goal not reached' -- "$sp" import-plan --format fd --map "$ais" --mission "$mission" "$tmp/short_plan"
 expect 2 "unknown planner output 'lpg'" -- "$sp" import-plan --format lpg --map "$ais" --mission "$mission" "$tmp/short_plan"
+: > "$tmp/empty_ff.out"  # issue 16: an empty FF output is not an empty plan
+expect 1 'holds no FF plan' -- "$sp" import-plan --format ff --map "$ais" --mission "$mission" "$tmp/empty_ff.out"
 
 # campaign: runs, the guard, --only, shards and merge (docs/campaign.md).
 expect 0 'Verdict: clean' -- "$sp" campaign --map "$ais" --mission "$mission" --runs 12 --seed 5 --jobs 2 -o "$tmp/camp"

@@ -239,5 +239,18 @@ TEST(PddlImport, FfsNoPlanVerdictIsTheError) {
   EXPECT_TRUE(contains(diagnostics.error_summary(), "FF found no plan"));
 }
 
+// Issue 16: an empty or cut-off FF output was read as an empty plan ("goal not reached").
+TEST(PddlImport, EmptyOrCrashedFfOutputHoldsNoPlanIssue16) {
+  const AisTestbed ais = load_ais_testbed();
+  for (const char* text : {"", "ff: parsing domain file\nSegmentation fault\n"}) {
+    Diagnostics diagnostics;
+    auto plan =
+        import_pddl_plan(text, "ff.out", PddlPlanFormat::kFf, ais.map, ais.mission, diagnostics);
+    ASSERT_FALSE(plan.has_value()) << text;
+    EXPECT_TRUE(contains(diagnostics.error_summary(), "holds no FF plan"))
+        << diagnostics.error_summary();
+  }
+}
+
 }  // namespace
 }  // namespace sewerplan::domain

@@ -113,6 +113,40 @@ TEST_P(SearchEngineContract, StopsAtTheTimeLimitOfTheInjectedClock) {
             SearchStatus::kTimeLimit);
 }
 
+// A heuristic that sets the cancel flag on its n-th evaluation (a cancel arriving from another
+// thread in the middle of an expansion).
+class CancellingHeuristic final : public Heuristic {
+ public:
+  CancellingHeuristic(std::unique_ptr<Heuristic> inner, std::atomic<bool>& cancel, int at)
+      : inner_(std::move(inner)), cancel_(cancel), at_(at) {}
+  Cost evaluate(std::span<const std::int32_t> state, std::vector<ActionId>* preferred) override {
+    if (++evaluations_ == at_) cancel_ = true;
+    return inner_->evaluate(state, preferred);
+  }
+  bool admissible() const override { return inner_->admissible(); }
+  std::string_view name() const override { return inner_->name(); }
+  int evaluations() const { return evaluations_; }
+
+ private:
+  std::unique_ptr<Heuristic> inner_;
+  std::atomic<bool>& cancel_;
+  int at_;
+  int evaluations_ = 0;
+};
+
+// Issue 14: the initial state of collect_task() has two successors; a cancel during the first
+// one's evaluation stops the search before the second is evaluated.
+TEST_P(SearchEngineContract, StopsWithinAnExpansionWhenCancelledBetweenEvaluations) {
+  const CompiledTask task = collect_task();
+  std::atomic<bool> cancel{false};
+  CancellingHeuristic h(make_heuristic(GetParam().heuristic, task), cancel, 2);
+  auto engine = make_engine(GetParam().algorithm, task, h, 2.0);
+  StopCondition stop;
+  stop.with_cancel(cancel);
+  EXPECT_EQ(engine->search(stop).status, SearchStatus::kCancelled);
+  EXPECT_EQ(h.evaluations(), 2);
+}
+
 TEST_P(SearchEngineContract, IsDeterministic) {
   const CompiledTask task = collect_task();
   SearchResult a = run(task);

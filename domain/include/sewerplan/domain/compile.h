@@ -26,15 +26,21 @@
 //   if (!task.has_value()) std::cerr << task.error().message;  // kNoPlan, with the reasons
 //   SearchResult r = engine.search(task->task(), stop);
 //   Plan plan = task->expand(r.plan);
+//
+// Thread-safety: compile_sewer_task() is reentrant (it only reads the map and mission). A SewerTask
+// is immutable once built: its const methods may be called from any number of threads.
 #pragma once
 
+#include <atomic>
 #include <cstddef>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "sewerplan/core/clock.h"
 #include "sewerplan/core/mission.h"
 #include "sewerplan/core/result.h"
 #include "sewerplan/core/sewer_map.h"
@@ -72,6 +78,12 @@ struct CompileOptions {
   // battery already spent, a start the robot cannot move from, no exit within reach (or the
   // final task out of reach).
   bool select_goals = false;
+  // Cancellation and deadline (issue 14), checked every 1,024 nodes the route searches settle:
+  // the compile then fails with kCancelled or kSearchLimit. `cancel` may be set from any thread;
+  // the deadline is on `clock` (seconds, as Clock::now_s()).
+  const std::atomic<bool>* cancel = nullptr;
+  const Clock* clock = nullptr;
+  double deadline_s = std::numeric_limits<double>::infinity();
 };
 
 class SewerTask {

@@ -18,6 +18,9 @@
 //   CompiledTask task = std::move(b).build();
 //   std::vector<ActionId> applicable;
 //   task.applicable_actions(task.initial_state(), applicable);  // {go}
+//
+// Thread-safety: a CompiledTask is immutable once built, and its const methods are safe from any
+// number of threads; a Builder belongs to one thread.
 #pragma once
 
 #include <cstdint>

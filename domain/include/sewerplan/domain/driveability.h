@@ -19,6 +19,8 @@
 //   DriveabilityReport r = analyse_driveability(map, *builtin_profile("makro-plus"), starts);
 //   std::cout << r.too_narrow.size() << " pipes too narrow, " << r.reachable_pipes.size()
 //             << " of " << map.pipe_count() << " pipes reachable\n";
+//
+// Thread-safety: free functions over values they only read; reentrant.
 #pragma once
 
 #include <span>

@@ -26,6 +26,8 @@
 //   // ... fast-downward.py --alias lama-first domain.pddl problem.pddl -> sas_plan
 //   Result<Plan> plan = import_pddl_plan(sas_plan_text, "sas_plan", PddlPlanFormat::kFastDownward,
 //                                        map, mission, diagnostics);
+//
+// Thread-safety: free functions over values they only read; reentrant.
 #pragma once
 
 #include <cstdint>

@@ -10,6 +10,8 @@
 //
 // What each action means, costs and needs is docs/domain.md. A PlanStep refers to the map and the
 // mission by ID, so a plan is only meaningful with them.
+//
+// Thread-safety: plain value types.
 #pragma once
 
 #include <cstdint>

@@ -13,6 +13,8 @@
 //
 //   ValidationReport report = validate_plan(plan, map, mission);
 //   write_plan_json(plan, report, map, mission, std::cout);
+//
+// Thread-safety: free functions over values they only read; reentrant.
 #pragma once
 
 #include <ostream>

@@ -19,6 +19,8 @@
 //   Diagnostics diagnostics;
 //   Result<Plan> plan = parse_plan(text, "paper.plan", map, mission, diagnostics);
 //   if (plan.has_value()) out << format_plan(*plan, map, mission);
+//
+// Thread-safety: free functions over values they only read; reentrant.
 #pragma once
 
 #include <string>

@@ -9,6 +9,8 @@
 //
 //   MissionProgress progress = initial_progress(mission, map);
 //   std::cout << describe(progress.position, map);  // "in pipe P12 at 2.83 m"
+//
+// Thread-safety: plain value types and free functions; reentrant.
 #pragma once
 
 #include <string>

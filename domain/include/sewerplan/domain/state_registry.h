@@ -15,6 +15,9 @@
 //   auto [id, inserted] = registry.insert(task.initial_state());
 //   std::vector<std::int32_t> values;
 //   registry.unpack(id, values);
+//
+// Thread-safety: a StateRegistry belongs to one thread (insert() grows it; even lookups are not
+// safe while another thread inserts).
 #pragma once
 
 #include <cstdint>

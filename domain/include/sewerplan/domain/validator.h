@@ -17,6 +17,8 @@
 //
 // Numbers: costs in seconds, energy in Wh. Turns and steps are compared with a 1e-9 tolerance, the
 // battery with 1e-9 Wh; nothing else is rounded, so the same plan always gives the same cost bits.
+//
+// Thread-safety: free functions over values they only read; reentrant.
 #pragma once
 
 #include <cstddef>

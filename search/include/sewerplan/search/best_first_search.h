@@ -12,6 +12,10 @@
 //   auto h = make_heuristic(HeuristicKind::kMax, task);
 //   BestFirstSearch astar(task, *h, BestFirstSearch::astar());
 //   SearchResult r = astar.search(StopCondition());
+//
+// Thread-safety: a BestFirstSearch (and the Heuristic it uses) belongs to one thread; cancel it
+// from another through the StopCondition's atomic flag. Distinct engines over one task may run
+// concurrently (the task is only read).
 #pragma once
 
 #include <cstdint>

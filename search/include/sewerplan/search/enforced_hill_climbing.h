@@ -11,6 +11,8 @@
 //   auto h = make_heuristic(HeuristicKind::kFf, task);
 //   EnforcedHillClimbing ehc(task, *h);
 //   SearchResult r = ehc.search(StopCondition::after_seconds(clock, 1.0));
+//
+// Thread-safety: as BestFirstSearch: one thread per engine, cancelled through the StopCondition.
 #pragma once
 
 #include <deque>

@@ -11,6 +11,9 @@
 //   std::unique_ptr<Heuristic> h = make_heuristic(HeuristicKind::kFf, task);
 //   std::vector<ActionId> helpful;
 //   Cost estimate = h->evaluate(task.initial_state(), &helpful);
+//
+// Thread-safety: a Heuristic keeps buffers between evaluate() calls, so one object serves one
+// thread; distinct objects over one (read-only) CompiledTask may run concurrently.
 #pragma once
 
 #include <memory>

@@ -4,12 +4,16 @@
 // An engine searches a domain::CompiledTask for a plan: initialize(), then step() (one expansion)
 // until it returns a final status, then result(). search() runs that loop under a StopCondition,
 // checked at every step, so a time limit or a cancel from another thread is honoured within one
-// expansion. Engines: BestFirstSearch (A*, weighted A*, greedy best-first, by configuration) and
-// EnforcedHillClimbing (FF's). Modelled on Fast Downward's SearchAlgorithm (Helmert 2006).
+// expansion (and, inside an expansion, between heuristic evaluations). Engines: BestFirstSearch
+// (A*, weighted A*, greedy best-first, by configuration) and EnforcedHillClimbing (FF's). Modelled
+// on Fast Downward's SearchAlgorithm (Helmert 2006).
 //
 //   BestFirstSearch astar(task, heuristic, BestFirstSearch::astar());
 //   SearchResult r = astar.search(StopCondition::after_seconds(clock, 1.0));
 //   if (r.status == SearchStatus::kSolved) use(r.plan);
+//
+// Thread-safety: an engine belongs to one thread; search() may be stopped from another through
+// the StopCondition's cancel flag. SearchResult and SearchStatistics are plain values.
 #pragma once
 
 #include <cstdint>
@@ -67,6 +71,18 @@ class SearchEngine {
   virtual SearchResult result() const = 0;
   virtual const SearchStatistics& statistics() const = 0;
   virtual std::string_view name() const = 0;
+
+  // The stop condition that step() also checks between heuristic evaluations (search() sets it
+  // for its run; nullptr: none). An interrupted step() returns nullopt, and search() then reports
+  // the stop.
+  void watch(const StopCondition* stop) { watched_ = stop; }
+
+ protected:
+  bool interrupted() const { return watched_ != nullptr && watched_->interrupted().has_value(); }
+  const StopCondition* watched() const { return watched_; }
+
+ private:
+  const StopCondition* watched_ = nullptr;
 };
 
 }  // namespace sewerplan::search

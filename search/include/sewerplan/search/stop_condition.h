@@ -5,6 +5,9 @@
 // at every expansion. Time comes from an injected Clock (clock.h); the cancel flag may be set from
 // any thread.
 //
+// Thread-safety: a StopCondition is an immutable value once composed; check() may be called from
+// any number of threads at once (it reads the atomic cancel flag and the clock).
+//
 //   std::atomic<bool> cancel{false};
 //   StopCondition stop = StopCondition::after_seconds(clock, 0.5)
 //                            .with_max_expansions(1'000'000).with_cancel(cancel);
@@ -43,6 +46,10 @@ class StopCondition {
 
   // The reason to stop now, if any.
   std::optional<SearchStatus> check(std::uint64_t expansions) const;
+  // The cancel flag or the time limit, without the expansion limit: for work inside one
+  // expansion (a heuristic evaluation per successor), so that a cancel is honoured within one
+  // evaluation rather than one expansion.
+  std::optional<SearchStatus> interrupted() const;
 
  private:
   const Clock* clock_ = nullptr;

@@ -13,7 +13,14 @@
 // in milliseconds where a best-first search over goal subsets takes seconds. It proves nothing:
 // the planner uses its plan as a first plan, and improves on it by search when asked to.
 //
-//   if (auto r = tour_search(task)) plan = r->plan;  // empty: not of this shape, or no tour found
+// It honours the stop condition (time limit, cancel, injected clock) at every order it evaluates,
+// so a cancel from another thread stops it within one evaluation (microseconds:
+// bench/search/cancel_bench.cc). Thread-safety: a free function without shared state; concurrent
+// calls on one task are safe (the task is only read).
+//
+//   TourReport report;
+//   if (auto r = tour_search(task, stop, clock, &report)) plan = r->plan;
+//   // empty: not of this shape (!report.has_shape), stopped (report.stopped), or no tour found
 #pragma once
 
 #include <optional>
@@ -27,6 +34,31 @@ namespace sewerplan::search {
 // bound calls for it and the task has them), checked by replaying it on the task. Empty when the
 // task is not of the shape above, or no order found fits the bound. Runtime: O(goals^3 x
 // places-per-goal^2) for the insertion, and as much per round of improvement (at most 50 rounds).
-std::optional<SearchResult> tour_search(const domain::CompiledTask& task);
+// What a tour search found out besides its plan.
+struct TourReport {
+  bool has_shape = false;
+  // The real cost of the cheapest order of all goals found (kInfiniteCost: none), also when it
+  // does not fit the bound.
+  Cost cheapest_order = domain::kInfiniteCost;
+  std::optional<SearchStatus> stopped;  // the stop condition fired: no plan
+};
+
+std::optional<SearchResult> tour_search(const domain::CompiledTask& task,
+                                        const StopCondition& stop = {},
+                                        const Clock* clock = nullptr, TourReport* report = nullptr);
+
+// The exact tour search: the optimal plan of a task of the shape above, by dynamic programming
+// over subsets of goals (Held and Karp 1962), with the bound (the battery) and optional goals
+// (goal selection: the most goals that fit, then the cheapest). kSolved: the plan is optimal;
+// kUnsolvable: proven that no plan fits the bound; kTimeLimit / kCancelled: stopped (checked
+// every 256 subsets). Empty when the task is not of the shape, has more than kMaxExactGoals
+// goals, or the table would take more than `max_bytes` (2^goals x leave places x 12 bytes:
+// 20 goals of 2 leave places take 500 MB). bench/search/exact_bench.cc has its speed and the
+// default planner's gap to it.
+inline constexpr std::size_t kMaxExactGoals = 20;
+std::optional<SearchResult> exact_tour_search(const domain::CompiledTask& task,
+                                              const StopCondition& stop = {},
+                                              const Clock* clock = nullptr,
+                                              std::size_t max_bytes = std::size_t{600} << 20U);
 
 }  // namespace sewerplan::search

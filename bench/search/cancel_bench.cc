@@ -1,0 +1,101 @@
+// SPDX-License-Identifier: MIT
+// Issue 14: a cancel from another thread stops every algorithm within 1 ms.
+//
+// Each iteration starts the search on a thread of its own, lets it run for 20 ms, sets the cancel
+// flag and measures how long the search takes to return (`latency_us`: mean, `max_latency_us`:
+// the worst iteration). The task: a 50-task uniform mission on 10,000 manholes, large enough that
+// no algorithm finishes within the 20 ms (an iteration where it did is not counted).
+// Argument: 0 EHC, 1 GBFS, 2 weighted A*, 3 A* (h_max), 4 the tour search, 5 plan_mission (the
+// whole planner: compile, tour search, improvement).
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <thread>
+
+#include <benchmark/benchmark.h>
+
+#include "sewerplan/domain/compile.h"
+#include "sewerplan/domain/mission_generator.h"
+#include "sewerplan/search/best_first_search.h"
+#include "sewerplan/search/enforced_hill_climbing.h"
+#include "sewerplan/search/planner.h"
+#include "sewerplan/search/tour_search.h"
+
+#include "support/instances.h"
+
+namespace sewerplan::search {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+void BM_CancelLatency(benchmark::State& state) {
+  const bench::Instance& instance =
+      bench::spread_instance(10000, 50, domain::MissionSpread::kUniform);
+  const auto progress = domain::initial_progress(instance.mission, instance.map);
+  auto compiled =
+      domain::compile_sewer_task(instance.map, instance.mission, progress, {.select_goals = true});
+  if (!compiled.has_value()) {
+    state.SkipWithError(compiled.error().message.c_str());
+    return;
+  }
+  const domain::CompiledTask& task = compiled->task();
+  const int which = static_cast<int>(state.range(0));
+  double total_us = 0, max_us = 0;
+  std::size_t counted = 0;
+  for (auto _ : state) {
+    std::atomic<bool> cancel{false};
+    std::atomic<bool> finished{false};
+    Clock::time_point returned;
+    std::thread worker([&] {
+      StopCondition stop;
+      stop.with_cancel(cancel);
+      auto h = make_heuristic(which == 3 ? HeuristicKind::kMax : HeuristicKind::kFf, task);
+      switch (which) {
+        case 0:
+          EnforcedHillClimbing(task, *h).search(stop);
+          break;
+        case 1:
+          BestFirstSearch(task, *h, BestFirstSearch::greedy()).search(stop);
+          break;
+        case 2:
+          BestFirstSearch(task, *h, BestFirstSearch::weighted_astar(2)).search(stop);
+          break;
+        case 3:
+          BestFirstSearch(task, *h, BestFirstSearch::astar()).search(stop);
+          break;
+        case 4:
+          tour_search(task, stop);
+          break;
+        default:
+          (void)plan_mission(instance.map, instance.mission, progress,
+                             {.cancel = &cancel, .select_goals = true});
+          break;
+      }
+      returned = Clock::now();
+      finished = true;
+    });
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    const bool was_running = !finished;
+    const auto cancelled = Clock::now();
+    cancel = true;
+    worker.join();
+    if (was_running) {
+      const double us = std::chrono::duration<double, std::micro>(returned - cancelled).count();
+      total_us += us;
+      max_us = std::max(max_us, us);
+      ++counted;
+    }
+  }
+  state.counters["latency_us"] = counted > 0 ? total_us / static_cast<double>(counted) : 0;
+  state.counters["max_latency_us"] = max_us;
+  state.counters["cancelled_runs"] = static_cast<double>(counted);
+}
+BENCHMARK(BM_CancelLatency)
+    ->ArgName("algorithm")
+    ->DenseRange(0, 5)
+    ->Iterations(10)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace sewerplan::search

@@ -1,0 +1,244 @@
+// SPDX-License-Identifier: MIT
+// The exact tour search (tour_search.h): dynamic programming over subsets of goals, after Held and
+// Karp (1962, "A dynamic programming approach to sequencing problems", J. SIAM 10(1)).
+//
+// best[S][e]: the cheapest way from the start to do exactly the goals in S, the last of them
+// leaving the robot at its e-th leave place (each goal's few leave places are flattened into one
+// index). Each entry extends by every goal not in S and every action that does it; an entry
+// beyond the bound is dropped (costs are not negative). The optimum is then the best S (all
+// goals, or with optional goals the most that fit and then the cheapest) closed by the move to
+// the end position. Memory: 2^K x (leave places) x 12 bytes; time: that x K x options.
+#include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <limits>
+
+#include "sewerplan/search/tour_search.h"
+
+#include "tour_shape.h"
+
+namespace sewerplan::search {
+namespace {
+
+using detail::kStays;
+using detail::Shape;
+using domain::kInfiniteCost;
+
+constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+
+class SubsetProgramme {
+ public:
+  SubsetProgramme(const Shape& shape, Cost bound) : s_(shape), bound_(bound) {
+    const std::size_t k = s_.goals.size();
+    leave_begin_.push_back(0);
+    for (std::size_t g = 0; g < k; ++g) {
+      for (const detail::Option& o : s_.goals[g].options) {
+        const std::int32_t at = leave(o);
+        const auto first = leave_place_.begin() + leave_begin_[g];
+        if (std::find(first, leave_place_.end(), at) == leave_place_.end()) {
+          leave_place_.push_back(at);
+          leave_goal_.push_back(static_cast<std::uint32_t>(g));
+        }
+      }
+      leave_begin_.push_back(static_cast<std::uint32_t>(leave_place_.size()));
+    }
+    width_ = leave_place_.size();
+    for (std::size_t g = 0; g < k; ++g) {
+      if (s_.goals[g].last) last_mask_ |= 1U << g;
+    }
+    const auto places = static_cast<std::size_t>(s_.places);
+    moves_.assign(places * places, kInfiniteCost);
+    for (std::size_t a = 0; a < places; ++a) {
+      for (std::size_t b = 0; b < places; ++b) {
+        moves_[a * places + b] =
+            s_.move_cost(static_cast<std::int32_t>(a), static_cast<std::int32_t>(b));
+      }
+    }
+  }
+
+  static std::size_t memory_bytes(const Shape& shape) {
+    std::size_t leaves = 0;
+    for (const auto& g : shape.goals) leaves += g.options.size();
+    return (std::size_t{1} << shape.goals.size()) * leaves * (sizeof(Cost) + sizeof(std::uint32_t));
+  }
+
+  // Fills the table; returns the stop condition's reason if it fired.
+  std::optional<SearchStatus> run(const StopCondition& stop, std::uint64_t* entries) {
+    const std::size_t k = s_.goals.size();
+    const std::size_t subsets = std::size_t{1} << k;
+    cost_.assign(subsets * width_, kInfiniteCost);
+    parent_.assign(subsets * width_, kNone);
+    extend(0, s_.start, kNone, 0);
+    for (std::uint32_t set = 1; set < subsets; ++set) {
+      if ((set & 0xffU) == 1) {
+        if (auto why = stop.interrupted()) return why;
+      }
+      for (std::size_t e = 0; e < width_; ++e) {
+        const Cost c = cost_[set * width_ + e];
+        if (c >= kInfiniteCost) continue;
+        ++*entries;
+        extend(set, leave_place_[e], static_cast<std::uint32_t>(e), c);
+      }
+    }
+    return std::nullopt;
+  }
+
+  // The cost of ending after exactly the goals in `set` (kInfiniteCost: impossible), and the
+  // leave index it ends from (kNone: the start, for the empty set).
+  std::pair<Cost, std::uint32_t> close(std::uint32_t set) const {
+    auto tail = [&](std::int32_t at) {
+      return s_.end ? moves_[static_cast<std::size_t>(at) * static_cast<std::size_t>(s_.places) +
+                             static_cast<std::size_t>(*s_.end)]
+                    : Cost{0};
+    };
+    if (set == 0) return {tail(s_.start), kNone};
+    Cost best = kInfiniteCost;
+    std::uint32_t from = kNone;
+    for (std::size_t e = 0; e < width_; ++e) {
+      const Cost c = cost_[set * width_ + e];
+      const Cost t = tail(leave_place_[e]);
+      if (c >= kInfiniteCost || t >= kInfiniteCost || c + t > bound_) continue;
+      if (c + t < best) {
+        best = c + t;
+        from = static_cast<std::uint32_t>(e);
+      }
+    }
+    return {best, from};
+  }
+
+  // The actions of the best way to do `set`, ending from leave index `e`.
+  void plan(std::uint32_t set, std::uint32_t e, std::vector<ActionId>& out) const {
+    std::vector<ActionId> reversed;
+    std::int32_t after = s_.end.value_or(e == kNone ? s_.start : leave_place_[e]);
+    while (e != kNone) {
+      const std::uint32_t packed = parent_[set * width_ + e];
+      const std::uint32_t g = leave_goal_[e];
+      const detail::Option& o = s_.goals[g].options[packed & 0xffU];
+      const std::uint32_t prev = packed >> 8U;
+      const std::int32_t place = leave(o);
+      add_move(place, after, reversed);
+      reversed.push_back(o.action);
+      after = o.at;
+      set &= ~(1U << g);
+      e = prev == (kNone >> 8U) ? kNone : prev;
+    }
+    add_move(s_.start, after, reversed);
+    out.insert(out.end(), reversed.rbegin(), reversed.rend());
+  }
+
+ private:
+  static std::int32_t leave(const detail::Option& o) { return o.to == kStays ? o.at : o.to; }
+
+  void add_move(std::int32_t a, std::int32_t b, std::vector<ActionId>& reversed) const {
+    if (a != b) {
+      reversed.push_back(s_.moves.at(static_cast<std::int64_t>(a) * s_.places + b).second);
+    }
+  }
+
+  // A goal that needs all others first ends the plan: nothing follows it (the others are done
+  // or forgone, and forgo actions come first).
+  void extend(std::uint32_t set, std::int32_t at, std::uint32_t e, Cost c) {
+    if ((set & last_mask_) != 0) return;
+    const auto places = static_cast<std::size_t>(s_.places);
+    for (std::size_t g = 0; g < s_.goals.size(); ++g) {
+      const std::uint32_t bit = 1U << g;
+      if ((set & bit) != 0) continue;
+      const detail::Goal& goal = s_.goals[g];
+      const std::uint32_t next = set | bit;
+      for (std::size_t o = 0; o < goal.options.size(); ++o) {
+        const detail::Option& opt = goal.options[o];
+        const Cost d =
+            moves_[static_cast<std::size_t>(at) * places + static_cast<std::size_t>(opt.at)];
+        if (d >= kInfiniteCost) continue;
+        const Cost nc = c + d + opt.cost;
+        if (nc > bound_) continue;
+        const std::int32_t place = leave(opt);
+        std::uint32_t slot = leave_begin_[g];
+        while (leave_place_[slot] != place) ++slot;
+        const std::size_t index = next * width_ + slot;
+        if (nc < cost_[index]) {
+          cost_[index] = nc;
+          parent_[index] = ((e == kNone ? (kNone >> 8U) : e) << 8U) | static_cast<std::uint32_t>(o);
+        }
+      }
+    }
+  }
+
+  const Shape& s_;
+  Cost bound_;
+  std::vector<std::uint32_t> leave_begin_;  // by goal, into leave_place_
+  std::vector<std::int32_t> leave_place_;   // flattened leave places
+  std::vector<std::uint32_t> leave_goal_;   // the goal of each
+  std::size_t width_ = 0;
+  std::uint32_t last_mask_ = 0;
+  std::vector<Cost> moves_;            // places x places
+  std::vector<Cost> cost_;             // subsets x width_
+  std::vector<std::uint32_t> parent_;  // (previous leave index << 8) | option
+};
+
+}  // namespace
+
+std::optional<SearchResult> exact_tour_search(const domain::CompiledTask& task,
+                                              const StopCondition& stop, const Clock* clock,
+                                              std::size_t max_bytes) {
+  const SteadyClock steady;
+  const Clock& time = clock != nullptr ? *clock : steady;
+  const double start_s = time.now_s();
+  std::optional<Shape> shape = detail::read_shape(task);
+  if (!shape || shape->goals.size() > kMaxExactGoals) return std::nullopt;
+  for (const auto& g : shape->goals) {
+    if (g.options.size() > 0xff) return std::nullopt;
+  }
+  if (SubsetProgramme::memory_bytes(*shape) > max_bytes) return std::nullopt;
+  const Cost bound =
+      task.cost_bound() >= domain::kInfiniteCost ? domain::kInfiniteCost / 2 : task.cost_bound();
+  SubsetProgramme programme(*shape, bound);
+  SearchResult result;
+  if (auto why = programme.run(stop, &result.statistics.expanded)) {
+    result.status = *why;
+    result.statistics.time_s = time.now_s() - start_s;
+    return result;
+  }
+  // The best subset: every goal that cannot be forgone, then the most goals, then the cheapest.
+  const std::size_t k = shape->goals.size();
+  std::uint32_t required = 0;
+  for (std::size_t g = 0; g < k; ++g) {
+    if (!shape->goals[g].forgo) required |= 1U << g;
+  }
+  std::optional<std::uint32_t> best_set;
+  Cost best_total = kInfiniteCost;
+  int best_count = -1;
+  std::uint32_t best_from = 0;
+  for (std::uint32_t set = 0; set < (std::uint32_t{1} << k); ++set) {
+    if ((set & required) != required) continue;
+    const auto [c, from] = programme.close(set);
+    if (c >= kInfiniteCost) continue;
+    const int count = std::popcount(set);
+    if (count > best_count || (count == best_count && c < best_total)) {
+      best_set = set;
+      best_total = c;
+      best_count = count;
+      best_from = from;
+    }
+  }
+  result.statistics.time_s = time.now_s() - start_s;
+  if (!best_set) {
+    result.status = SearchStatus::kUnsolvable;  // proven: no subset fits the bound
+    return result;
+  }
+  for (std::size_t g = 0; g < k; ++g) {
+    if ((*best_set & (1U << g)) == 0) result.plan.push_back(*shape->goals[g].forgo);
+  }
+  programme.plan(*best_set, best_from, result.plan);
+  std::vector<std::int32_t> state(task.initial_state().begin(), task.initial_state().end());
+  for (ActionId a : result.plan) {
+    if (!task.is_applicable(a, state)) return std::nullopt;  // not of the shape after all
+    task.apply(a, state);
+    result.cost += task.cost(a);
+  }
+  if (!task.is_goal(state) || task.exceeds_bound(result.cost)) return std::nullopt;
+  result.status = SearchStatus::kSolved;
+  return result;
+}
+
+}  // namespace sewerplan::search

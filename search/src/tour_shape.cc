@@ -1,0 +1,82 @@
+// SPDX-License-Identifier: MIT
+#include "tour_shape.h"
+
+namespace sewerplan::search::detail {
+
+using domain::Fact;
+using domain::VarId;
+
+std::optional<Shape> read_shape(const CompiledTask& task) {
+  if (task.variable_count() < 1) return std::nullopt;
+  Shape s;
+  const VarId pos{0};
+  s.places = task.domain_size(pos);
+  s.start = task.initial_state()[0];
+  const std::size_t goals = task.variable_count() - 1;
+  s.goals.resize(goals);
+  for (std::size_t v = 1; v < task.variable_count(); ++v) {
+    if (task.domain_size(VarId{static_cast<std::uint32_t>(v)}) != 2) return std::nullopt;
+    if (task.initial_state()[v] != 0) return std::nullopt;
+  }
+  std::vector<bool> goal_var(task.variable_count(), false);
+  for (const Fact& g : task.goal()) {
+    if (g.var == pos) {
+      s.end = g.value;
+    } else if (g.value == 1) {
+      goal_var[g.var.index()] = true;
+    } else {
+      return std::nullopt;
+    }
+  }
+  for (std::size_t v = 1; v < goal_var.size(); ++v) {
+    if (!goal_var[v]) return std::nullopt;
+  }
+  for (ActionId a : task.action_ids()) {
+    const auto pre = task.preconditions(a);
+    const auto eff = task.effects(a);
+    std::optional<std::int32_t> at, to;
+    std::optional<std::size_t> goal;
+    std::size_t others = 0;
+    for (const Fact& f : pre) {
+      if (f.var == pos) {
+        at = f.value;
+      } else if (f.value == 0) {
+        if (goal) return std::nullopt;
+        goal = f.var.index() - 1;
+      } else {
+        ++others;
+      }
+    }
+    bool sets_goal = false;
+    for (const Fact& f : eff) {
+      if (f.var == pos) {
+        to = f.value;
+      } else if (goal && f.var.index() - 1 == *goal && f.value == 1) {
+        sets_goal = true;
+      } else {
+        return std::nullopt;
+      }
+    }
+    if (!goal) {  // a move
+      if (!at || !to || others != 0 || eff.size() != 1) return std::nullopt;
+      auto key = static_cast<std::int64_t>(*at) * s.places + *to;
+      auto [it, added] = s.moves.try_emplace(key, task.cost(a), a);
+      if (!added && task.cost(a) < it->second.first) it->second = {task.cost(a), a};
+      continue;
+    }
+    if (!sets_goal) return std::nullopt;
+    Goal& g = s.goals[*goal];
+    if (others != 0 && others + 1 != goals) return std::nullopt;  // all others, or none
+    if (others != 0) g.last = true;
+    if (!at) {  // a forgo action
+      if (to || others != 0) return std::nullopt;
+      g.forgo = a;
+      g.forgo_cost = task.cost(a);
+      continue;
+    }
+    g.options.push_back({*at, to.value_or(kStays), task.cost(a), a});
+  }
+  return s;
+}
+
+}  // namespace sewerplan::search::detail

@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: MIT
+// The shape of a tour task (tour_search.h): one mover over places, goals done by actions at places.
+// Private to search: read by the tour search and by the exact search over goal subsets.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "sewerplan/domain/compiled_task.h"
+
+namespace sewerplan::search::detail {
+
+using domain::ActionId;
+using domain::CompiledTask;
+using domain::Cost;
+using domain::kInfiniteCost;
+
+constexpr std::int32_t kStays = -1;
+
+struct Option {
+  std::int32_t at = 0;  // the position the action needs
+  std::int32_t to = 0;  // where it leaves the robot (kStays: where it was)
+  Cost cost = 0;
+  ActionId action{0};
+};
+
+struct Goal {
+  std::vector<Option> options;
+  std::optional<ActionId> forgo;
+  Cost forgo_cost = 0;
+  bool last = false;  // needs every other goal done first
+};
+
+struct Shape {
+  std::int32_t places = 0;
+  std::int32_t start = 0;
+  std::optional<std::int32_t> end;  // a position the goal asks for
+  std::unordered_map<std::int64_t, std::pair<Cost, ActionId>> moves;
+  std::vector<Goal> goals;  // goal i is variable i + 1
+
+  Cost move_cost(std::int32_t a, std::int32_t b) const {
+    if (a == b) return 0;
+    auto it = moves.find(static_cast<std::int64_t>(a) * places + b);
+    return it == moves.end() ? kInfiniteCost : it->second.first;
+  }
+};
+
+// The task read as places, moves and goals; empty if it is not of that shape.
+std::optional<Shape> read_shape(const CompiledTask& task);
+
+}  // namespace sewerplan::search::detail

@@ -1,0 +1,169 @@
+// SPDX-License-Identifier: MIT
+// The exact tour search (the proven optimum, with the battery and goal selection), and the stop
+// condition in the tour search, the exact search and the planner (issues 14 and 16).
+#include <atomic>
+
+#include <gtest/gtest.h>
+
+#include "sewerplan/core/generator.h"
+#include "sewerplan/domain/compile.h"
+#include "sewerplan/domain/mission_generator.h"
+#include "sewerplan/domain/validator.h"
+#include "sewerplan/search/planner.h"
+#include "sewerplan/search/tour_search.h"
+
+#include "support/ais_testbed.h"
+
+namespace sewerplan::search {
+namespace {
+
+struct Generated {
+  SewerMap map;
+  Mission mission;
+};
+
+std::optional<Generated> generated(std::size_t manholes, std::size_t tasks, std::uint64_t seed,
+                                   domain::MissionSpread spread) {
+  auto map = generate_network({.manholes = manholes, .seed = seed, .topology = Topology::kMeshed});
+  if (!map.has_value()) return std::nullopt;
+  auto mission = domain::generate_mission(*map, {.tasks = tasks, .seed = seed, .spread = spread});
+  if (!mission.has_value()) return std::nullopt;
+  return Generated{std::move(*map), std::move(*mission)};
+}
+
+TEST(ExactTourSearch, FindsThePapersOptimalPlan) {
+  const auto ais = testing::load_ais_testbed();
+  auto outcome = plan_mission(ais.map, ais.mission, domain::initial_progress(ais.mission, ais.map),
+                              {.algorithm = Algorithm::kExact});
+  ASSERT_TRUE(outcome.has_value()) << outcome.error();
+  EXPECT_TRUE(outcome->optimal);
+  EXPECT_NEAR(outcome->cost_s, 585.38, 0.01);
+}
+
+// On missions small enough for A* to prove the optimum, the exact search's plan is valid and
+// costs exactly the optimum.
+TEST(ExactTourSearch, EqualsAStarsProvenOptimum) {
+  int compared = 0;
+  for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+    auto g = generated(300, 6, seed, domain::MissionSpread::kUniform);
+    if (!g) continue;
+    const auto progress = domain::initial_progress(g->mission, g->map);
+    auto astar = plan_mission(g->map, g->mission, progress, {.algorithm = Algorithm::kAstar});
+    auto exact = plan_mission(g->map, g->mission, progress, {.algorithm = Algorithm::kExact});
+    ASSERT_EQ(astar.has_value(), exact.has_value()) << "seed " << seed;
+    if (!astar.has_value()) continue;
+    EXPECT_EQ(exact->algorithm, "exact tour search");
+    EXPECT_TRUE(exact->optimal);
+    EXPECT_NEAR(exact->cost_s, astar->cost_s, 1e-9) << "seed " << seed;
+    const auto report = domain::validate_plan(exact->plan, g->map, g->mission);
+    EXPECT_TRUE(report.valid) << report.error;
+    ++compared;
+  }
+  EXPECT_GE(compared, 4);
+}
+
+// With goal selection and a battery too small for every task: as many tasks as A* does, at the
+// same cost.
+TEST(ExactTourSearch, SelectsAsManyGoalsAsAStarWithinTheBattery) {
+  int compared = 0;
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    auto g = generated(300, 6, seed, domain::MissionSpread::kUniform);
+    if (!g) continue;
+    g->mission.profile.battery_wh /= 4;
+    const auto progress = domain::initial_progress(g->mission, g->map);
+    auto astar = plan_mission(g->map, g->mission, progress,
+                              {.algorithm = Algorithm::kAstar, .select_goals = true});
+    auto exact = plan_mission(g->map, g->mission, progress,
+                              {.algorithm = Algorithm::kExact, .select_goals = true});
+    ASSERT_EQ(astar.has_value(), exact.has_value()) << "seed " << seed;
+    if (!astar.has_value()) continue;
+    EXPECT_EQ(exact->dropped.size(), astar->dropped.size()) << "seed " << seed;
+    EXPECT_NEAR(exact->cost_s, astar->cost_s, 1e-9) << "seed " << seed;
+    ++compared;
+  }
+  EXPECT_GE(compared, 3);
+}
+
+domain::SewerTask compiled_task(const Generated& g, bool select_goals) {
+  auto compiled = domain::compile_sewer_task(
+      g.map, g.mission, domain::initial_progress(g.mission, g.map), {.select_goals = select_goals});
+  EXPECT_TRUE(compiled.has_value());
+  return std::move(*compiled);
+}
+
+TEST(TourSearchStop, StopsAtTheTimeLimitOfTheInjectedClock) {
+  auto g = generated(1000, 10, 1, domain::MissionSpread::kUniform);
+  ASSERT_TRUE(g);
+  const domain::SewerTask task = compiled_task(*g, false);
+  ManualClock clock;
+  TourReport report;
+  EXPECT_FALSE(tour_search(task.task(), StopCondition::after_seconds(clock, 0), &clock, &report)
+                   .has_value());
+  EXPECT_EQ(report.stopped, SearchStatus::kTimeLimit);
+  auto exact = exact_tour_search(task.task(), StopCondition::after_seconds(clock, 0), &clock);
+  ASSERT_TRUE(exact.has_value());
+  EXPECT_EQ(exact->status, SearchStatus::kTimeLimit);
+}
+
+TEST(TourSearchStop, ReturnsCancelledWhenTheFlagIsSet) {
+  auto g = generated(1000, 10, 1, domain::MissionSpread::kUniform);
+  ASSERT_TRUE(g);
+  const domain::SewerTask task = compiled_task(*g, true);
+  std::atomic<bool> cancel{true};
+  StopCondition stop;
+  stop.with_cancel(cancel);
+  TourReport report;
+  EXPECT_FALSE(tour_search(task.task(), stop, nullptr, &report).has_value());
+  EXPECT_EQ(report.stopped, SearchStatus::kCancelled);
+  auto exact = exact_tour_search(task.task(), stop);
+  ASSERT_TRUE(exact.has_value());
+  EXPECT_EQ(exact->status, SearchStatus::kCancelled);
+  // And the whole planner, with goal selection: cancelled, not a plan and not "no plan".
+  auto outcome = plan_mission(g->map, g->mission, domain::initial_progress(g->mission, g->map),
+                              {.cancel = &cancel, .select_goals = true});
+  ASSERT_FALSE(outcome.has_value());
+  EXPECT_EQ(outcome.error().code, ErrorCode::kCancelled);
+}
+
+// Issue 14: the compile's route searches honour the cancel flag and the injected clock.
+TEST(CompileStop, StopsAtTheDeadlineOrTheCancel) {
+  auto g = generated(1000, 10, 1, domain::MissionSpread::kUniform);
+  ASSERT_TRUE(g);
+  const auto progress = domain::initial_progress(g->mission, g->map);
+  ManualClock clock;
+  auto late =
+      domain::compile_sewer_task(g->map, g->mission, progress, {.clock = &clock, .deadline_s = 0});
+  ASSERT_FALSE(late.has_value());
+  EXPECT_EQ(late.error().code, ErrorCode::kSearchLimit);
+  std::atomic<bool> cancel{true};
+  auto cancelled = domain::compile_sewer_task(g->map, g->mission, progress, {.cancel = &cancel});
+  ASSERT_FALSE(cancelled.has_value());
+  EXPECT_EQ(cancelled.error().code, ErrorCode::kCancelled);
+  EXPECT_TRUE(
+      domain::compile_sewer_task(g->map, g->mission, progress, {.clock = &clock, .deadline_s = 1})
+          .has_value());
+}
+
+// Issue 14: without goal selection, a mission whose tasks do not fit the battery together (each
+// does alone) was searched until the time limit; now it is answered at once. The expansion limit
+// stands in for the time limit: before the fix the answer was kSearchLimit.
+TEST(Planner, AMissionThatCannotFitTheBatteryIsNoPlanIssue14) {
+  int checked = 0;
+  for (std::uint64_t seed = 1; seed <= 12 && checked < 2; ++seed) {
+    auto g = generated(1000, 12, seed, domain::MissionSpread::kUniform);
+    if (!g) continue;
+    const auto progress = domain::initial_progress(g->mission, g->map);
+    g->mission.profile.battery_wh /= 3;
+    // Each task alone within reach (else the compile says which one is not).
+    if (!domain::compile_sewer_task(g->map, g->mission, progress).has_value()) continue;
+    auto outcome = plan_mission(g->map, g->mission, progress, {.max_expansions = 2000});
+    if (outcome.has_value()) continue;  // all tasks fit after all
+    EXPECT_EQ(outcome.error().code, ErrorCode::kNoPlan) << outcome.error();
+    EXPECT_NE(outcome.error().message.find("battery"), std::string::npos) << outcome.error();
+    ++checked;
+  }
+  EXPECT_GE(checked, 1);
+}
+
+}  // namespace
+}  // namespace sewerplan::search
