@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "condition_isybau.h"
 
+#include <algorithm>
 #include <optional>
 #include <string_view>
 #include <unordered_map>
@@ -16,13 +17,24 @@ namespace sewerplan::detail {
 
 using XmlNode = pugi::xml_node;
 
+// Iterative, in document order: a file nested a million levels deep must not exhaust the stack.
 void collect(XmlNode node, std::string_view name, std::vector<XmlNode>& out) {
-  for (XmlNode c = node.first_child(); c; c = c.next_sibling()) {
-    if (c.type() != pugi::node_element) continue;
-    if (xml::local_name(c) == name) {
-      out.push_back(c);
+  std::vector<XmlNode> stack;
+  auto push_children = [&](XmlNode n) {
+    const std::size_t from = stack.size();
+    for (XmlNode c = n.first_child(); c; c = c.next_sibling()) {
+      if (c.type() == pugi::node_element) stack.push_back(c);
+    }
+    std::reverse(stack.begin() + static_cast<std::ptrdiff_t>(from), stack.end());
+  };
+  push_children(node);
+  while (!stack.empty()) {
+    const XmlNode n = stack.back();
+    stack.pop_back();
+    if (xml::local_name(n) == name) {
+      out.push_back(n);
     } else {
-      collect(c, name, out);
+      push_children(n);
     }
   }
 }

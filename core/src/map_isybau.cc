@@ -70,15 +70,12 @@ std::vector<XmlNode> objects_of(XmlNode root, std::vector<XmlNode>* inspected = 
   return objects;
 }
 
-// The first element named `name` below `node`, at any depth (ISYBAU versions nest the length
-// elements differently). Runtime: O(size of the subtree).
+// The first element named `name` below `node`, at any depth, in document order (ISYBAU versions
+// nest the length elements differently). Runtime: O(size of the subtree).
 XmlNode find_below(XmlNode node, std::string_view name) {
-  for (XmlNode c = node.first_child(); c; c = c.next_sibling()) {
-    if (c.type() != pugi::node_element) continue;
-    if (xml::local_name(c) == name) return c;
-    if (XmlNode found = find_below(c, name)) return found;
-  }
-  return {};
+  std::vector<XmlNode> found;
+  detail::collect(node, name, found);
+  return found.empty() ? XmlNode() : found.front();
 }
 
 class IsybauReader {
