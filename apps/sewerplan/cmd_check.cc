@@ -35,7 +35,7 @@ int failed(const Error& error, const Diagnostics& diagnostics, bool json, Contex
                                 {"version", domain::kPlanJsonVersion},
                                 {"valid", false},
                                 {"error", error.message}};
-    c.out << j.dump(2) << '\n';
+    c.out << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
   }
   return exit_code_for(error);
 }

@@ -7,6 +7,7 @@
 #include "sewerplan/core/map_io.h"
 
 #include "command.h"
+#include "condition_options.h"
 
 namespace sewerplan::cli {
 namespace {
@@ -15,6 +16,7 @@ struct ConvertOptions {
   std::string in;
   std::string out;
   std::string to;
+  std::string condition;
 };
 
 int run(const ConvertOptions& o, Context& c) {
@@ -31,7 +33,7 @@ int run(const ConvertOptions& o, Context& c) {
     }
   }
   Diagnostics diagnostics;
-  Result<SewerMap> map = read_map(o.in, diagnostics);
+  Result<SewerMap> map = read_map_with_condition(o.in, o.condition, diagnostics);
   print_diagnostics(diagnostics, c.err);
   if (!map.has_value()) {
     if (diagnostics.error_count() == 0) c.err << map.error().message << '\n';
@@ -60,6 +62,7 @@ void add_convert_command(CLI::App& app, Context& context) {
   cmd->add_option("--to", options->to,
                   "Output format when the extension does not tell: json, ascii (swmm and isybau "
                   "are read only)");
+  add_condition_option(*cmd, options->condition);
   cmd->callback([options, &context] { context.exit_code = run(*options, context); });
 }
 

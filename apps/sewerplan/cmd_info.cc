@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // sewerplan info MAP [--profile PROFILE [--start MANHOLE]] [--json]
 #include <iomanip>
+#include <map>
 #include <optional>
 #include <ostream>
 #include <vector>
@@ -8,12 +9,14 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "sewerplan/core/condition_risk.h"
 #include "sewerplan/core/map_io.h"
 #include "sewerplan/core/map_queries.h"
 #include "sewerplan/core/robot_profile.h"
 #include "sewerplan/domain/driveability.h"
 
 #include "command.h"
+#include "condition_options.h"
 #include "driveability_output.h"
 #include "motion_options.h"
 
@@ -26,7 +29,51 @@ struct InfoOptions {
   std::vector<std::string> starts;
   bool json = false;
   MotionOptions motion;
+  std::string condition;
 };
+
+std::map<std::string, std::size_t> findings_by_code(const SewerMap& map) {
+  std::map<std::string, std::size_t> counts;
+  for (const Finding& f : map.findings()) ++counts[f.code];
+  return counts;
+}
+
+// The findings that close a place for this robot, as the planner sees them.
+std::vector<FindingRisk> closing(const SewerMap& map, const RobotProfile& profile) {
+  std::vector<FindingRisk> risks = assess_findings(map, profile, default_risk_table());
+  std::erase_if(risks, [](const FindingRisk& r) { return r.effect != RiskEffect::kImpassable; });
+  return risks;
+}
+
+nlohmann::json closing_json(const SewerMap& map, const RobotProfile& profile) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const FindingRisk& r : closing(map, profile)) {
+    const Finding& f = map.findings()[r.finding];
+    list.push_back({{"pipe", map.pipe(f.pipe).name},
+                    {"offset_m", f.offset_m},
+                    {"code", f.code},
+                    {"reason", r.reason}});
+  }
+  return list;
+}
+
+void print_findings(const SewerMap& map, const RobotProfile* profile, std::ostream& out) {
+  if (map.finding_count() == 0) return;
+  out << "findings       " << map.finding_count();
+  bool first = true;
+  for (const auto& [code, count] : findings_by_code(map)) {
+    out << (first ? ": " : ", ") << code << " " << count;
+    first = false;
+  }
+  out << '\n';
+  if (profile == nullptr) return;
+  const std::vector<FindingRisk> closed = closing(map, *profile);
+  out << "closed by findings " << closed.size() << '\n';
+  for (const FindingRisk& r : closed) {
+    const Finding& f = map.findings()[r.finding];
+    out << "  pipe " << map.pipe(f.pipe).name << " at " << f.offset_m << " m: " << r.reason << '\n';
+  }
+}
 
 std::vector<std::string> exit_names(const SewerMap& map) {
   std::vector<std::string> names;
@@ -52,6 +99,8 @@ nlohmann::json info_json(const SewerMap& map, const MapStatistics& s) {
           {"components", s.components},
           {"bounding_box_m", {{"min", s.min_xy_m}, {"max", s.max_xy_m}}},
           {"exits", exit_names(map)},
+          {"findings", map.finding_count()},
+          {"findings_by_code", findings_by_code(map)},
           {"memory_bytes", map.memory_bytes()}};
 }
 
@@ -84,7 +133,7 @@ void print_info(const SewerMap& map, const MapStatistics& s, std::ostream& out) 
 
 int run(const InfoOptions& o, Context& c) {
   Diagnostics diagnostics;
-  Result<SewerMap> map = read_map(o.map, diagnostics);
+  Result<SewerMap> map = read_map_with_condition(o.map, o.condition, diagnostics);
   print_diagnostics(diagnostics, c.err);
   if (!map.has_value()) {
     if (diagnostics.error_count() == 0) c.err << map.error().message << '\n';
@@ -124,10 +173,14 @@ int run(const InfoOptions& o, Context& c) {
   }
   if (o.json) {
     nlohmann::json j = info_json(*map, stats);
-    if (report) j["driveability"] = driveability_json(*report, *map, *profile);
-    c.out << j.dump(2) << '\n';
+    if (report) {
+      j["driveability"] = driveability_json(*report, *map, *profile);
+      j["driveability"]["closed_by_findings"] = closing_json(*map, *profile);
+    }
+    c.out << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
   } else {
     print_info(*map, stats, c.out);
+    print_findings(*map, profile ? &*profile : nullptr, c.out);
     if (report) print_driveability(*report, *map, *profile, c.out);
   }
   return kExitOk;
@@ -152,6 +205,7 @@ void add_info_command(CLI::App& app, Context& context) {
                   "With --profile: reachability from this manhole (repeatable; default: the "
                   "map's exits, or the largest connected part if it has none)");
   cmd->add_flag("--json", options->json, "Print the summary as JSON");
+  add_condition_option(*cmd, options->condition);
   cmd->callback([options, &context] { context.exit_code = run(*options, context); });
 }
 

@@ -15,6 +15,7 @@
 #include "sewerplan/search/planner.h"
 
 #include "command.h"
+#include "condition_options.h"
 #include "motion_options.h"
 
 namespace sewerplan::cli {
@@ -33,6 +34,8 @@ struct PlanOptions {
   bool json = false;
   bool quiet = false;
   MotionOptions motion;
+  std::string condition;
+  std::string risk = "impassable";
 };
 
 void print_summary(const search::PlanOutcome& o, const domain::ValidationReport& report,
@@ -66,9 +69,18 @@ int run(const PlanOptions& o, Context& c) {
   options.improvement_expansions = o.improvement_expansions;
   options.select_goals = o.select_goals;
   Diagnostics diagnostics;
-  Result<SewerMap> map = read_map(o.map, diagnostics);
+  Result<SewerMap> map = read_map_with_condition(o.map, o.condition, diagnostics);
   std::optional<Result<Mission>> mission;
   if (map.has_value()) mission = read_mission(o.mission, *map, diagnostics);
+  if (mission && mission->has_value()) {
+    const RiskMode mode = o.risk == "ignore"  ? RiskMode::kIgnore
+                          : o.risk == "avoid" ? RiskMode::kAvoid
+                                              : RiskMode::kImpassable;
+    if (const std::size_t closed = close_findings(*map, **mission, mode); closed > 0) {
+      c.err << "risk: " << closed << " places closed by inspection findings ("
+            << (mode == RiskMode::kAvoid ? "every risk avoided" : "impassable ones") << ")\n";
+    }
+  }
   print_diagnostics(diagnostics, c.err);
   const Error* load_error = !map.has_value()        ? &map.error()
                             : !mission->has_value() ? &mission->error()
@@ -140,6 +152,13 @@ void add_plan_command(CLI::App& app, Context& context) {
                 "Do as many tasks as can be done and still end the mission, rather than fail");
   cmd->add_flag("--quiet,-q", o->quiet, "No summary on standard error");
   add_motion_options(*cmd, o->motion);
+  add_condition_option(*cmd, o->condition);
+  cmd->add_option("--risk", o->risk,
+                  "What the inspection findings close (docs/formats/isybau.md, risk table): "
+                  "impassable (the default: what no robot of the profile passes), avoid (every "
+                  "place with a risk), ignore (nothing)")
+      ->check(CLI::IsMember({"ignore", "impassable", "avoid"}))
+      ->capture_default_str();
   cmd->callback([o, &context] { context.exit_code = run(*o, context); });
 }
 

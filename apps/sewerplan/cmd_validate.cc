@@ -9,6 +9,7 @@
 #include "sewerplan/core/mission.h"
 
 #include "command.h"
+#include "condition_options.h"
 
 namespace sewerplan::cli {
 namespace {
@@ -18,6 +19,7 @@ struct ValidateOptions {
   std::string mission;
   bool strict = false;
   bool json = false;
+  std::string condition;
 };
 
 nlohmann::json diagnostics_json(const Diagnostics& diagnostics, Severity severity) {
@@ -30,7 +32,7 @@ nlohmann::json diagnostics_json(const Diagnostics& diagnostics, Severity severit
 
 int run(const ValidateOptions& o, Context& c) {
   Diagnostics diagnostics;
-  Result<SewerMap> map = read_map(o.map, diagnostics);
+  Result<SewerMap> map = read_map_with_condition(o.map, o.condition, diagnostics);
   std::optional<Error> failure;
   if (!map.has_value()) {
     failure = map.error();
@@ -49,7 +51,7 @@ int run(const ValidateOptions& o, Context& c) {
       j["manholes"] = map->manhole_count();
       j["pipes"] = map->pipe_count();
     }
-    c.out << j.dump(2) << '\n';
+    c.out << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
   } else {
     print_diagnostics(diagnostics, c.err);
     if (failure && diagnostics.error_count() == 0) c.err << failure->message << '\n';
@@ -75,6 +77,7 @@ void add_validate_command(CLI::App& app, Context& context) {
   cmd->add_option("--mission", options->mission, "Also check this mission file against the map");
   cmd->add_flag("--strict", options->strict, "Treat warnings as errors");
   cmd->add_flag("--json", options->json, "Print the result as JSON");
+  add_condition_option(*cmd, options->condition);
   cmd->callback([options, &context] { context.exit_code = run(*options, context); });
 }
 

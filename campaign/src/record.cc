@@ -143,7 +143,7 @@ std::string run_json_line(const RunRecord& record) {
     measured["baseline_planning_ms"] = planning_json(r->baseline);
   }
   j["measured"] = measured;
-  return j.dump();
+  return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 Result<RunRecord> parse_run_line(std::string_view line, const std::string& file_name,
@@ -234,7 +234,7 @@ std::string campaign_json(const CampaignSpec& s) {
            {"permanent", s.rates.permanent_share},  {"transient", s.rates.transient_share}};
   j["push_allowed"] = s.push_allowed;
   j["shard"] = Json{{"index", s.shard_index}, {"count", s.shard_count}};
-  return j.dump(2) + "\n";
+  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 Result<CampaignSpec> parse_campaign_json(std::string_view text, const std::string& file_name) {

@@ -192,7 +192,7 @@ void write_summary_json(const Summary& s, std::ostream& out) {
                               {"worse", s.worse_than_baseline}}},
          {"clean", s.clean()},
          {"measured", Json{{"wall_s_total", s.wall_s}}}};
-  out << j.dump(2) << '\n';
+  out << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
 }
 
 void write_summary_markdown(const Summary& s, std::ostream& out) {

@@ -31,7 +31,10 @@ constexpr std::array kManholeKeys{KeySpec{.key = "x"},
                                   KeySpec{.key = "z"},
                                   KeySpec{.key = "diameter", .required = true},
                                   KeySpec{.key = "exit", .flag = true},
-                                  KeySpec{.key = "variant"}};
+                                  KeySpec{.key = "variant"},
+                                  KeySpec{.key = "shaft_length"},
+                                  KeySpec{.key = "shaft_width"},
+                                  KeySpec{.key = "depth"}};
 constexpr std::array kSlotKeys{KeySpec{.key = "azimuth", .required = true},
                                KeySpec{.key = "invert"}};
 constexpr std::array kPipeKeys{KeySpec{.key = "from", .required = true},
@@ -44,7 +47,7 @@ constexpr std::array kPipeKeys{KeySpec{.key = "from", .required = true},
 constexpr std::array kPointKeys{KeySpec{.key = "pipe", .required = true},
                                 KeySpec{.key = "offset", .required = true}};
 
-constexpr std::size_t kMaxKeys = 8;
+constexpr std::size_t kMaxKeys = 10;
 static_assert(kPipeKeys.size() <= kMaxKeys && kManholeKeys.size() <= kMaxKeys);
 
 // The keys given on one line. A key is `seen` once mentioned, even if its value was rejected, so
@@ -240,6 +243,9 @@ void AsciiReader::read_manhole(std::span<const std::string_view> tokens) {
                      number_or(fields, "z", 0.0)};
   record.diameter_m = number_or(fields, "diameter", 0.0);
   record.exit = fields.value("exit").has_value();
+  if (fields.value("shaft_length")) record.shaft_length_m = number_or(fields, "shaft_length", 0.0);
+  if (fields.value("shaft_width")) record.shaft_width_m = number_or(fields, "shaft_width", 0.0);
+  if (fields.value("depth")) record.depth_m = number_or(fields, "depth", 0.0);
   if (const std::optional<std::string_view> variant = fields.value("variant")) {
     if (variant->size() == 1 && (*variant)[0] >= 'A' && (*variant)[0] <= 'Z') {
       record.variant = (*variant)[0];

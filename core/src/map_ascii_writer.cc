@@ -57,6 +57,9 @@ void append_manhole(std::string& out, const SewerMap& map, ManholeId id) {
     out += " variant=";
     out += *m.variant;
   }
+  if (m.shaft_length_m) append_key(out, "shaft_length", *m.shaft_length_m);
+  if (m.shaft_width_m) append_key(out, "shaft_width", *m.shaft_width_m);
+  if (m.depth_m) append_key(out, "depth", *m.depth_m);
   out += '\n';
   for (const Slot& slot : map.slots(id)) {
     out += "  slot ";
@@ -121,6 +124,11 @@ std::string canonical_text(const SewerMap& map) {
 Result<void> write_map_ascii(const SewerMap& map, std::ostream& out) {
   if (std::string problems = name_problems(map); !problems.empty()) {
     return Error{ErrorCode::kInvalidArgument, std::move(problems)};
+  }
+  if (map.finding_count() > 0) {
+    return Error{ErrorCode::kUnsupportedFormat,
+                 "the ASCII sewer database holds no inspection findings, and this map has " +
+                     std::to_string(map.finding_count()) + ": write .json to keep them"};
   }
   const std::string text = canonical_text(map);
   out.write(text.data(), static_cast<std::streamsize>(text.size()));

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "sewerplan/core/map_queries.h"
+#include "sewerplan/core/text_file.h"
 
 namespace sewerplan {
 namespace {
@@ -19,8 +20,10 @@ std::string format_number(double v) {
   return out.str();
 }
 
+// No white space or control characters, and valid UTF-8: every name may end up in JSON output
+// (readers convert Latin-1 input to UTF-8 first: text_file.h).
 bool is_valid_name(std::string_view name) {
-  if (name.empty()) return false;
+  if (name.empty() || !is_valid_utf8(name)) return false;
   return std::none_of(name.begin(), name.end(), [](char c) {
     auto u = static_cast<unsigned char>(c);
     return u <= 0x20 || u == 0x7f;
@@ -41,8 +44,9 @@ std::vector<std::uint32_t> sorted_names(const std::vector<Record>& records, std:
     const Record& r = records[order[k]];
     RecordRef ref{ref_kind, order[k], 0, r.line};
     if (!is_valid_name(r.name)) {
-      diagnostics.error(locate(ref, "name"), std::string(kind) + " name '" + r.name +
-                                                 "' is empty or contains white space");
+      diagnostics.error(locate(ref, "name"),
+                        std::string(kind) + " name '" + to_utf8_lossy(r.name) +
+                            "' is empty, contains white space or is not valid UTF-8");
     } else if (k > 0 && records[order[k - 1]].name == r.name) {
       const Record& first = records[order[k - 1]];
       RecordRef first_ref{ref_kind, order[k - 1], 0, first.line};
@@ -73,11 +77,54 @@ Locator line_locator(std::string file) {
 }
 
 MapBuilder::MapBuilder(std::string map_name, Locator locator)
-    : name_(std::move(map_name)), locator_(std::move(locator)) {}
+    : name_(to_utf8_lossy(map_name)), locator_(std::move(locator)) {}
 
 void MapBuilder::add_manhole(ManholeRecord record) { manholes_.push_back(std::move(record)); }
 void MapBuilder::add_pipe(PipeRecord record) { pipes_.push_back(std::move(record)); }
 void MapBuilder::add_point(PointRecord record) { points_.push_back(std::move(record)); }
+void MapBuilder::add_finding(FindingRecord record) { findings_.push_back(std::move(record)); }
+
+SewerMap MapBuilder::add_findings(SewerMap map, std::vector<FindingRecord> findings,
+                                  const Locator& locator, Diagnostics& diagnostics) {
+  std::size_t unknown = 0;
+  std::string first_unknown;
+  for (std::uint32_t i = 0; i < findings.size(); ++i) {
+    FindingRecord& r = findings[i];
+    const std::optional<PipeId> pipe = map.find_pipe(r.pipe);
+    if (!pipe) {
+      if (unknown++ == 0) first_unknown = r.pipe;
+      continue;
+    }
+    const double length = map.pipe(*pipe).length_m;
+    double offset = r.against_flow ? length - r.station_m : r.station_m;
+    if (!(offset >= 0 && offset <= length)) {
+      const double clamped = std::clamp(std::isfinite(offset) ? offset : 0.0, 0.0, length);
+      diagnostics.warning(locator(RecordRef{Kind::kFinding, i, 0, r.line}, "station"),
+                          "finding " + r.code + " in pipe " + r.pipe + ": station " +
+                              format_number(r.station_m) + " m lies off the pipe (0 to " +
+                              format_number(length) + " m): placed at " + format_number(clamped) +
+                              " m");
+      offset = clamped;
+    }
+    map.findings_.push_back({.pipe = *pipe,
+                             .code = std::move(r.code),
+                             .characterisation = std::move(r.characterisation),
+                             .offset_m = offset,
+                             .quantity1 = r.quantity1,
+                             .quantity2 = r.quantity2});
+  }
+  if (unknown > 0) {
+    diagnostics.warning(locator(RecordRef{}, ""),
+                        std::to_string(unknown) +
+                            " findings name no pipe of the map (the first: '" +
+                            to_utf8_lossy(first_unknown) + "'): left out");
+  }
+  std::stable_sort(map.findings_.begin(), map.findings_.end(),
+                   [](const Finding& a, const Finding& b) {
+                     return a.pipe < b.pipe || (a.pipe == b.pipe && a.offset_m < b.offset_m);
+                   });
+  return map;
+}
 
 void MapBuilder::reserve(std::size_t manholes, std::size_t pipes) {
   manholes_.reserve(manholes);
@@ -103,7 +150,8 @@ class MapBuilder::Validation {
     build_points(map);
     if (d_.has_errors()) return Error{ErrorCode::kInvalidMap, d_.error_summary()};
     warn_about_topology(map);
-    return map;
+    if (b_.findings_.empty()) return map;
+    return MapBuilder::add_findings(std::move(map), std::move(b_.findings_), b_.locator_, d_);
   }
 
  private:
@@ -163,6 +211,11 @@ class MapBuilder::Validation {
                      {Kind::kSlot, i, slot.line, "azimuth_deg", s});
       require_finite(slot.invert_z_m, "invert", slot_object,
                      {Kind::kSlot, i, slot.line, "invert_m", s});
+    }
+    for (auto [v, field] :
+         {std::pair{m.shaft_length_m, "shaft_length_m"},
+          std::pair{m.shaft_width_m, "shaft_width_m"}, std::pair{m.depth_m, "depth_m"}}) {
+      if (v) require_positive(*v, field, object, {Kind::kManhole, i, m.line, field});
     }
     if (m.slots.size() > 0xffff) {
       d_.error(at(Kind::kManhole, i, m.line, "slots"), object() + ": more than 65535 slots");
@@ -231,6 +284,9 @@ class MapBuilder::Validation {
       m.diameter_m = r.diameter_m;
       m.exit = r.exit;
       m.variant = r.variant;
+      m.shaft_length_m = r.shaft_length_m;
+      m.shaft_width_m = r.shaft_width_m;
+      m.depth_m = r.depth_m;
       m.first_slot = static_cast<std::uint32_t>(map.slots_.size());
       m.slot_count = static_cast<std::uint16_t>(std::min<std::size_t>(r.slots.size(), 0xffff));
       for (std::uint16_t s = 0; s < m.slot_count; ++s) {

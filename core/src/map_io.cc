@@ -68,6 +68,14 @@ std::optional<MapFormat> map_format_from_extension(const std::filesystem::path& 
 }
 
 Result<MapFormat> detect_map_format(const std::filesystem::path& path, std::string_view text) {
+  const std::string ext = path.extension().string();
+  if (ext == ".xtf" || ext == ".XTF" || ext == ".itf" || ext == ".ITF" ||
+      text.starts_with("SCNT")) {
+    return Error{ErrorCode::kUnsupportedFormat,
+                 path.string() +
+                     ": an INTERLIS transfer file (SIA405 Abwasser, VSA-KEK): sewerplan reads "
+                     "ISYBAU XML, not INTERLIS; export the network as ISYBAU XML"};
+  }
   if (auto f = map_format_from_extension(path)) return *f;
   std::size_t i = 0;
   while (i < text.size()) {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <optional>
+#include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "sewerplan/core/map_builder.h"
 
 #include "ascii_syntax.h"
+#include "condition_isybau.h"
 #include "network_import.h"
 #include "xml_support.h"
 
@@ -28,6 +30,14 @@ constexpr double kMetresPerMillimetre = 1e-3;
 
 struct Fallbacks {
   std::size_t default_diameter = 0;
+  std::size_t shaft_from_unterteil = 0;
+  std::size_t size_from_height = 0;    // a profile given by its height only
+  std::size_t size_from_one_side = 0;  // a non-circular profile given by one dimension
+  std::size_t without_size = 0;        // no Profilbreite or Profilhoehe: left out
+  std::size_t length_from_other = 0;   // DMPLaenge, Rohrlaenge
+  std::size_t length_from_line = 0;    // the line's, or the nodes' distance
+  std::size_t without_length = 0;      // left out
+  std::size_t invert_from_node = 0;
   std::size_t without_xy = 0;
   std::size_t without_z = 0;
   std::size_t connection_points = 0;
@@ -35,8 +45,9 @@ struct Fallbacks {
   std::size_t other_objects = 0;  // neither node nor edge
 };
 
-// Every AbwassertechnischeAnlage of the document, in document order.
-std::vector<XmlNode> objects_of(XmlNode root) {
+// Every AbwassertechnischeAnlage of the document, in document order, and every
+// InspizierteAbwassertechnischeAnlage (Zustandsdaten) into `inspected`.
+std::vector<XmlNode> objects_of(XmlNode root, std::vector<XmlNode>* inspected = nullptr) {
   std::vector<XmlNode> objects;
   std::vector<XmlNode> stack{root};
   while (!stack.empty()) {
@@ -44,6 +55,10 @@ std::vector<XmlNode> objects_of(XmlNode root) {
     stack.pop_back();
     if (xml::local_name(n) == "AbwassertechnischeAnlage") {
       objects.push_back(n);
+      continue;
+    }
+    if (xml::local_name(n) == "InspizierteAbwassertechnischeAnlage") {
+      if (inspected != nullptr) inspected->push_back(n);
       continue;
     }
     std::vector<XmlNode> children;
@@ -55,6 +70,14 @@ std::vector<XmlNode> objects_of(XmlNode root) {
   return objects;
 }
 
+// The first element named `name` below `node`, at any depth, in document order (ISYBAU versions
+// nest the length elements differently). Runtime: O(size of the subtree).
+XmlNode find_below(XmlNode node, std::string_view name) {
+  std::vector<XmlNode> found;
+  detail::collect(node, name, found);
+  return found.empty() ? XmlNode() : found.front();
+}
+
 class IsybauReader {
  public:
   IsybauReader(const std::string& file, const IsybauImportOptions& o, Diagnostics& d)
@@ -62,8 +85,14 @@ class IsybauReader {
 
   Result<SewerMap> run(XmlNode root) {
     const std::size_t errors_before = d_.error_count();
-    check_root(root);
-    for (XmlNode object : objects_of(root)) read_object(object);
+    if (!check_root(root)) return Error{ErrorCode::kParse, d_.error_summary()};
+    std::vector<XmlNode> inspected;
+    const std::vector<XmlNode> objects = objects_of(root, &inspected);
+    for (XmlNode object : objects) read_object(object);
+    detail::read_condition_records(inspected, file_, d_, net_.findings, finding_elements_);
+    if (d_.error_count() > errors_before) return Error{ErrorCode::kParse, d_.error_summary()};
+    resolve_pending_edges();
+    check_not_empty(inspected.size(), objects.size());
     if (d_.error_count() > errors_before) return Error{ErrorCode::kParse, d_.error_summary()};
     drop_connection_point_ends();
     report_fallbacks();
@@ -72,7 +101,10 @@ class IsybauReader {
     Locator locate = [this](const RecordRef& ref, std::string_view) {
       if (ref.line == 0) return file_;
       const bool manhole = ref.kind == RecordRef::Kind::kManhole;
-      const std::vector<XmlNode>& elements = manhole ? node_elements_ : link_elements_;
+      const bool finding = ref.kind == RecordRef::Kind::kFinding;
+      const std::vector<XmlNode>& elements = manhole   ? node_elements_
+                                             : finding ? finding_elements_
+                                                       : link_elements_;
       return ref.line <= elements.size() ? file_ + ":" + xml::path(elements[ref.line - 1]) : file_;
     };
     return detail::assemble_network(std::move(net_), std::filesystem::path(file_).stem().string(),
@@ -82,17 +114,17 @@ class IsybauReader {
  private:
   std::string at(XmlNode n) const { return file_ + ":" + xml::path(n); }
 
-  // The number in element `name` of `parent`; an error naming the element if it is missing
-  // (when required) or not a number.
+  // The number in element `name` of `parent`; an error naming the element if it is missing or
+  // empty (when required) or not a number. Real exports write empty optional elements.
   std::optional<double> number(XmlNode parent, std::string_view name, const std::string& object,
                                bool required = true) {
     const XmlNode n = xml::child(parent, name);
-    if (!n) {
+    const std::string_view t = xml::text(n);
+    if (t.empty()) {
       if (required) d_.error(at(parent), object + ": no " + std::string(name));
       return std::nullopt;
     }
     double v = 0;
-    const std::string_view t = xml::text(n);
     if (ascii_syntax::parse_number(t, v) != ascii_syntax::NumberError::kNone) {
       d_.error(at(n),
                object + ": " + std::string(name) + " is not a number: " + ascii_syntax::quoted(t));
@@ -111,15 +143,27 @@ class IsybauReader {
     return std::string(t);
   }
 
-  void check_root(XmlNode root);
+  bool check_root(XmlNode root);
   void read_object(XmlNode object);
   void read_node(XmlNode object, XmlNode knoten, const std::string& name);
+  void read_shaft(XmlNode knoten, ImportNode& node);
   void read_node_geometry(XmlNode object, XmlNode knoten, ImportNode& node);
   void read_edge(XmlNode object, XmlNode kante, const std::string& name);
   bool read_profile(XmlNode kante, ImportLink& link);
+  static std::optional<double> line_length(const ImportLink& link, const ImportNode* from,
+                                           const ImportNode* to);
   void read_edge_geometry(XmlNode object, ImportLink& link);
   void drop_connection_point_ends();
+  void resolve_pending_edges();
+  void check_not_empty(std::size_t inspected, std::size_t objects);
   void report_fallbacks();
+
+  // What a Haltung left open, settled once every node is read.
+  struct PendingEdge {
+    std::optional<double> from_z;
+    std::optional<double> to_z;
+    std::optional<double> length;
+  };
 
   const std::string& file_;
   const IsybauImportOptions& options_;
@@ -127,24 +171,29 @@ class IsybauReader {
   detail::NetworkImport net_;
   std::vector<XmlNode> node_elements_;
   std::vector<XmlNode> link_elements_;
+  std::vector<PendingEdge> pending_edges_;  // one per link
+  std::vector<XmlNode> finding_elements_;   // one per finding
   std::unordered_set<std::string> connection_points_;
   Fallbacks fallbacks_;
 };
 
-void IsybauReader::check_root(XmlNode root) {
-  if (xml::local_name(root) != "Identifikation") {
-    d_.error(at(root), "not an ISYBAU file: the root element is <" +
-                           std::string(xml::local_name(root)) + ">, not <Identifikation>");
-    return;
+bool IsybauReader::check_root(XmlNode root) {
+  const std::string_view name = xml::local_name(root);
+  if (name != "Identifikation") {
+    d_.error(at(root), std::string(xml::foreign_sewer_format(root).value_or(
+                           "not an ISYBAU file: the root element is <" + std::string(name) +
+                           ">, not <Identifikation>")));
+    return false;
   }
   const std::string_view version = xml::text(xml::child(root, "Version"));
   for (std::string_view known : {"2006", "2013", "2017"}) {
-    if (version.starts_with(known)) return;
+    if (version.starts_with(known)) return true;
     const std::string_view ns = root.attribute("xmlns").value();
-    if (version.empty() && ns.find(known) != std::string_view::npos) return;
+    if (version.empty() && ns.find(known) != std::string_view::npos) return true;
   }
   d_.warning(at(root), "unknown ISYBAU version " + ascii_syntax::quoted(version) +
                            " (2006, 2013 or 2017): read as 2017");
+  return true;
 }
 
 void IsybauReader::read_object(XmlNode object) {
@@ -182,10 +231,31 @@ void IsybauReader::read_node(XmlNode object, XmlNode knoten, const std::string& 
                   .diameter_m = options_.manhole_diameter_m,
                   .exit = type == "0",  // a manhole has a cover; a structure may not
                   .line = static_cast<std::uint32_t>(node_elements_.size() + 1)};
-  ++fallbacks_.default_diameter;
+  read_shaft(knoten, node);
   read_node_geometry(object, knoten, node);
   node_elements_.push_back(object);
   net_.nodes.push_back(std::move(node));
+}
+
+// The shaft's floor plan from Schacht/Unterteil (Laenge, Breite in millimetres: a round shaft
+// gives its diameter as Laenge), and its depth (Schachttiefe, metres).
+void IsybauReader::read_shaft(XmlNode knoten, ImportNode& node) {
+  const std::string what = "node " + node.name;
+  const XmlNode schacht = xml::child(knoten, "Schacht");
+  node.depth_m = number(schacht, "Schachttiefe", what, false);
+  const XmlNode unterteil = xml::child(schacht, "Unterteil");
+  const std::optional<double> length = number(unterteil, "Laenge", what, false);
+  const std::optional<double> width = number(unterteil, "Breite", what, false);
+  if (!length) {
+    ++fallbacks_.default_diameter;
+    return;
+  }
+  ++fallbacks_.shaft_from_unterteil;
+  node.diameter_m = std::min(*length, width.value_or(*length)) * kMetresPerMillimetre;
+  if (width && *width != *length) {
+    node.shaft_length_m = *length * kMetresPerMillimetre;
+    node.shaft_width_m = *width * kMetresPerMillimetre;
+  }
 }
 
 // Position from the node's first Punkt; the floor's height from its SMP point (Sohle), else its
@@ -215,8 +285,9 @@ void IsybauReader::read_node_geometry(XmlNode object, XmlNode knoten, ImportNode
   node.position.y_m = y.value_or(0);
   const std::optional<double> depth =
       number(xml::child(knoten, "Schacht"), "Schachttiefe", what, false);
-  if (floor) {
-    node.position.z_m = number(floor, "Punkthoehe", what).value_or(0);
+  if (const std::optional<double> bottom =
+          floor ? number(floor, "Punkthoehe", what, false) : std::nullopt) {
+    node.position.z_m = *bottom;
   } else if (const std::optional<double> top =
                  number(cover ? cover : first, "Punkthoehe", what, false);
              top && depth) {
@@ -233,38 +304,58 @@ void IsybauReader::read_edge(XmlNode object, XmlNode kante, const std::string& n
   }
   const std::string what = "pipe " + name;
   ImportLink link{.name = name, .line = static_cast<std::uint32_t>(link_elements_.size() + 1)};
+  const std::size_t errors_before = d_.error_count();
   link.from = this->name(kante, "KnotenZulauf", what);
   link.to = this->name(kante, "KnotenAblauf", what);
-  const std::optional<double> from_z = number(kante, "SohlhoeheZulauf", what);
-  const std::optional<double> to_z = number(kante, "SohlhoeheAblauf", what);
-  const std::optional<double> length = number(kante, "Laenge", what);
-  if (!read_profile(kante, link) || !link.from || !link.to || !from_z || !to_z || !length) return;
-  link.from_invert_z_m = *from_z;
-  link.to_invert_z_m = *to_z;
-  link.length_m = *length;
+  PendingEdge pending{.from_z = number(kante, "SohlhoeheZulauf", what, false),
+                      .to_z = number(kante, "SohlhoeheAblauf", what, false),
+                      .length = number(kante, "Laenge", what, false)};
+  for (std::string_view other : {"Rohrlaenge", "DMPLaenge"}) {
+    if (pending.length) break;
+    if (const XmlNode n = find_below(kante, other)) {
+      pending.length = number(n.parent(), other, what, false);
+      if (pending.length) ++fallbacks_.length_from_other;
+    }
+  }
+  const bool sized = read_profile(kante, link);
+  if (d_.error_count() > errors_before) return;
+  if (!sized) {
+    ++fallbacks_.without_size;
+    return;
+  }
   read_edge_geometry(object, link);
   link_elements_.push_back(object);
   net_.links.push_back(std::move(link));
+  pending_edges_.push_back(pending);
 }
 
-// Profilart 0 Kreis (circular), 1 Ei (egg), 3 Rechteck (rectangular), others kOther; Profilbreite
-// and Profilhoehe in millimetres (the height defaults to the width).
+// Profilart 0 Kreis (circular), 1 and 6 Ei (egg), 3 and 5 Rechteck (rectangular), others kOther;
+// Profilbreite and Profilhoehe in millimetres, both optional in the schema: a circle given by one
+// of them, an egg by one (the standard 2:3), another shape by one (taken for both). False if the
+// profile gives no size at all (the pipe is left out).
 bool IsybauReader::read_profile(XmlNode kante, ImportLink& link) {
   const std::string what = "pipe " + link.name;
   const XmlNode profil = xml::child(kante, "Profil");
-  if (!profil) {
-    d_.error(at(kante), what + ": no Profil");
-    return false;
-  }
   const std::string_view kind = xml::text(xml::child(profil, "Profilart"));
-  link.shape = kind.empty() || kind == "0" ? PipeShape::kCircular
-               : kind == "1"               ? PipeShape::kEgg
-               : kind == "3"               ? PipeShape::kRectangular
-                                           : PipeShape::kOther;
-  const std::optional<double> width = number(profil, "Profilbreite", what);
-  const std::optional<double> height = number(profil, "Profilhoehe", what, false);
-  if (!width) return false;
-  link.height_m = height.value_or(*width) * kMetresPerMillimetre;
+  link.shape = kind.empty() || kind == "0"  ? PipeShape::kCircular
+               : kind == "1" || kind == "6" ? PipeShape::kEgg
+               : kind == "3" || kind == "5" ? PipeShape::kRectangular
+                                            : PipeShape::kOther;
+  std::optional<double> width = number(profil, "Profilbreite", what, false);
+  std::optional<double> height = number(profil, "Profilhoehe", what, false);
+  if (!width && !height) return false;
+  if (!width || !height) {
+    const double given = width ? *width : *height;
+    const bool egg = link.shape == PipeShape::kEgg;
+    if (link.shape == PipeShape::kCircular) {
+      if (!width) ++fallbacks_.size_from_height;
+    } else {
+      ++fallbacks_.size_from_one_side;
+    }
+    if (!width) width = egg ? given * 2 / 3 : given;
+    if (!height) height = egg ? given * 3 / 2 : given;
+  }
+  link.height_m = *height * kMetresPerMillimetre;
   link.diameter_m = std::min(*width * kMetresPerMillimetre, link.height_m);
   return true;
 }
@@ -292,6 +383,82 @@ void IsybauReader::read_edge_geometry(XmlNode object, ImportLink& link) {
   }
 }
 
+// Inverts from the nodes' floors, lengths from the line (or the nodes' distance); a Haltung with
+// no length at all is left out.
+void IsybauReader::resolve_pending_edges() {
+  std::unordered_map<std::string_view, const ImportNode*> nodes;
+  for (const ImportNode& n : net_.nodes) nodes.emplace(n.name, &n);
+  auto node = [&](const std::optional<std::string>& name) -> const ImportNode* {
+    if (!name) return nullptr;
+    auto it = nodes.find(*name);
+    return it == nodes.end() ? nullptr : it->second;
+  };
+  std::vector<ImportLink> kept;
+  std::vector<XmlNode> kept_elements;
+  for (std::size_t i = 0; i < net_.links.size(); ++i) {
+    ImportLink& link = net_.links[i];
+    const PendingEdge& pending = pending_edges_[i];
+    const ImportNode* from = node(link.from);
+    const ImportNode* to = node(link.to);
+    std::optional<double> length = pending.length;
+    if (!length) length = line_length(link, from, to);
+    if (!length) {
+      ++fallbacks_.without_length;
+      continue;
+    }
+    if (!pending.length) ++fallbacks_.length_from_line;
+    link.length_m = *length;
+    auto invert = [&](const std::optional<double>& given, const ImportNode* at,
+                      const ImportNode* other) {
+      if (given) return *given;
+      ++fallbacks_.invert_from_node;
+      return at != nullptr ? at->position.z_m : other != nullptr ? other->position.z_m : 0.0;
+    };
+    link.from_invert_z_m = invert(pending.from_z, from, to);
+    link.to_invert_z_m = invert(pending.to_z, to, from);
+    link.line = static_cast<std::uint32_t>(kept.size() + 1);
+    kept.push_back(std::move(link));
+    kept_elements.push_back(link_elements_[i]);
+  }
+  net_.links = std::move(kept);
+  link_elements_ = std::move(kept_elements);
+}
+
+// The length of the pipe's line, from node to node: its vertices, with the nodes' positions at
+// either end where known. None with fewer than two points.
+std::optional<double> IsybauReader::line_length(const ImportLink& link, const ImportNode* from,
+                                                const ImportNode* to) {
+  std::vector<std::array<double, 2>> points;
+  if (from != nullptr && from->has_xy) points.push_back({from->position.x_m, from->position.y_m});
+  points.insert(points.end(), link.vertices.begin(), link.vertices.end());
+  if (to != nullptr && to->has_xy) points.push_back({to->position.x_m, to->position.y_m});
+  double length = 0;
+  for (std::size_t k = 1; k < points.size(); ++k) {
+    length += std::hypot(points[k][0] - points[k - 1][0], points[k][1] - points[k - 1][1]);
+  }
+  if (!(length > 0)) return std::nullopt;
+  return length;
+}
+
+// A file without a single Haltung holds no sewer: an error that says what the file holds instead.
+void IsybauReader::check_not_empty(std::size_t inspected, std::size_t objects) {
+  if (!net_.links.empty()) return;
+  const std::size_t left_out = fallbacks_.without_size + fallbacks_.without_length;
+  std::string why;
+  if (objects == 0 && inspected > 0) {
+    why = "a Zustandsdaten file (" + std::to_string(inspected) +
+          " inspected objects) without Stammdaten: no network to read; give it with "
+          "--condition beside the map it belongs to";
+  } else if (objects == 0) {
+    why = "no AbwassertechnischeAnlage at all";
+  } else {
+    why = std::to_string(net_.nodes.size()) + " manholes or structures, " +
+          std::to_string(fallbacks_.other_edges) + " laterals or channels, " +
+          std::to_string(left_out) + " Haltungen without a size or length, but no Haltung to drive";
+  }
+  d_.error(file_, "no sewer network in this file: " + why);
+}
+
 void IsybauReader::drop_connection_point_ends() {
   for (ImportLink& link : net_.links) {
     if (link.from && connection_points_.contains(*link.from)) link.from.reset();
@@ -305,7 +472,20 @@ void IsybauReader::report_fallbacks() {
     detail::warn_counted(d_, file_, n, what);
   };
   const std::string diameter = detail::metres_text(options_.manhole_diameter_m);
-  warn(f.default_diameter, "manholes: shaft size not read, diameter " + diameter + " assumed");
+  warn(f.default_diameter,
+       "manholes have no shaft size (Schacht/Unterteil Laenge): diameter " + diameter + " assumed");
+  warn(f.size_from_height, "circular profiles are given by their height only (Profilhoehe)");
+  warn(f.size_from_one_side,
+       "non-circular profiles are given by one dimension only: an egg's other one from the "
+       "standard 2:3, another shape's taken equal");
+  warn(f.without_size, "Haltungen have no profile size (Profilbreite, Profilhoehe): left out");
+  warn(f.length_from_other, "Haltungen have no Laenge: their Rohrlaenge or DMPLaenge is used");
+  warn(f.length_from_line,
+       "Haltungen have no Laenge, Rohrlaenge or DMPLaenge: the length of their line (or of the "
+       "straight line between their nodes) is used");
+  warn(f.without_length, "Haltungen have no length and no line to measure: left out");
+  warn(f.invert_from_node,
+       "pipe ends have no invert (SohlhoeheZulauf, SohlhoeheAblauf): the node's floor is used");
   warn(f.without_xy, "nodes have no point geometry: placed at x = y = 0");
   warn(f.without_z,
        "nodes have neither an SMP point nor a cover height and Schachttiefe: floor "
@@ -324,12 +504,8 @@ Result<SewerMap> read_map_isybau(std::string_view text, const std::string& file_
     return Error{ErrorCode::kInvalidArgument, "ISYBAU import: manhole diameter must be positive"};
   }
   pugi::xml_document doc;
-  const pugi::xml_parse_result parsed = doc.load_buffer(text.data(), text.size());
-  if (!parsed) {
-    diagnostics.error(file_name + ":" + std::to_string(xml::line_of_offset(text, parsed.offset)),
-                      std::string("XML is not well-formed: ") + parsed.description());
+  if (!xml::load_utf8(doc, text, file_name, diagnostics))
     return Error{ErrorCode::kParse, diagnostics.error_summary()};
-  }
   return IsybauReader(file_name, options, diagnostics).run(doc.document_element());
 }
 

@@ -39,6 +39,9 @@ Locator json_locator(std::string file) {
       case RecordRef::Kind::kPoint:
         w += element_path("inspection_points", ref.index);
         break;
+      case RecordRef::Kind::kFinding:
+        w += element_path("findings", ref.index);
+        break;
     }
     if (!field.empty()) w += "." + std::string(field);
     return w;
@@ -78,6 +81,13 @@ ManholeRecord read_manhole(JsonElement j, std::size_t index, std::string_view fi
   m.diameter_m = f.number("diameter_m").value_or(0);
   m.exit = f.boolean("exit", Need::kOptional).value_or(false);
   m.variant = read_variant(f);
+  m.shaft_length_m = f.number("shaft_length_m", Need::kOptional);
+  m.shaft_width_m = f.number("shaft_width_m", Need::kOptional);
+  m.depth_m = f.number("depth_m", Need::kOptional);
+  if (m.shaft_length_m.has_value() != m.shaft_width_m.has_value()) {
+    d.error(f.where(m.shaft_length_m ? "shaft_width_m" : "shaft_length_m"),
+            "manhole " + m.name + ": shaft_length_m and shaft_width_m come together");
+  }
   if (auto slots = f.array("slots", Need::kOptional)) {
     m.slots.reserve(slots->size());
     std::size_t s = 0;
@@ -86,7 +96,8 @@ ManholeRecord read_manhole(JsonElement j, std::size_t index, std::string_view fi
                                   m.position.z_m, d));
     }
   }
-  f.warn_unknown({"name", "x_m", "y_m", "z_m", "diameter_m", "exit", "variant", "slots"});
+  f.warn_unknown({"name", "x_m", "y_m", "z_m", "diameter_m", "exit", "variant", "shaft_length_m",
+                  "shaft_width_m", "depth_m", "slots"});
   return m;
 }
 
@@ -137,6 +148,21 @@ PointRecord read_point(JsonElement j, std::size_t index, std::string_view file, 
   return p;
 }
 
+FindingRecord read_finding(JsonElement j, std::size_t index, std::string_view file,
+                           Diagnostics& d) {
+  JsonFields f(j, element_path("findings", index), file, d);
+  FindingRecord r;
+  r.pipe = f.string("pipe").value_or("");
+  r.code = f.string("code").value_or("");
+  r.characterisation = f.string("characterisation", Need::kOptional).value_or("");
+  r.station_m = f.number("offset_m").value_or(0);
+  r.quantity1 = f.number("quantity1", Need::kOptional);
+  r.quantity2 = f.number("quantity2", Need::kOptional);
+  r.line = static_cast<std::uint32_t>(index + 1);
+  f.warn_unknown({"pipe", "code", "characterisation", "offset_m", "quantity1", "quantity2"});
+  return r;
+}
+
 void check_header(JsonFields& f) {
   auto format = f.string("format");
   if (format && *format != kMapJsonFormat) {
@@ -151,7 +177,14 @@ void check_header(JsonFields& f) {
   }
 }
 
-void write_string(std::ostream& out, const std::string& s) { out << json(s).dump(); }
+// Names are valid UTF-8 (MapBuilder checks); replace keeps a bad one from throwing all the same.
+void write_string(std::ostream& out, const std::string& s) {
+  out << json(s).dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
+void write_optional(std::ostream& out, std::string_view key, const std::optional<double>& v) {
+  if (v) out << ", \"" << key << "\": " << detail::format_double(*v);
+}
 
 void write_manhole(std::ostream& out, const SewerMap& map, ManholeId id) {
   const Manhole& m = map.manhole(id);
@@ -163,6 +196,9 @@ void write_manhole(std::ostream& out, const SewerMap& map, ManholeId id) {
       << ", \"diameter_m\": " << detail::format_double(m.diameter_m);
   if (m.exit) out << ", \"exit\": true";
   if (m.variant) out << ", \"variant\": \"" << *m.variant << '"';
+  write_optional(out, "shaft_length_m", m.shaft_length_m);
+  write_optional(out, "shaft_width_m", m.shaft_width_m);
+  write_optional(out, "depth_m", m.depth_m);
   out << ",\n     \"slots\": [";
   bool first = true;
   for (const Slot& s : map.slots(id)) {
@@ -208,7 +244,9 @@ Result<SewerMap> read_map_json(std::string_view text, const std::string& file_na
   const auto manholes = root.array("manholes");
   const auto pipes = root.array("pipes");
   const auto points = root.array("inspection_points", Need::kOptional);
-  root.warn_unknown({"format", "version", "name", "manholes", "pipes", "inspection_points"});
+  const auto findings = root.array("findings", Need::kOptional);
+  root.warn_unknown(
+      {"format", "version", "name", "manholes", "pipes", "inspection_points", "findings"});
   builder.reserve(manholes ? manholes->size() : 0, pipes ? pipes->size() : 0);
   std::size_t i = 0;
   if (manholes) {
@@ -222,6 +260,12 @@ Result<SewerMap> read_map_json(std::string_view text, const std::string& file_na
   i = 0;
   if (points) {
     for (JsonElement p : *points) builder.add_point(read_point(p, i++, file_name, diagnostics));
+  }
+  i = 0;
+  if (findings) {
+    for (JsonElement f : *findings) {
+      builder.add_finding(read_finding(f, i++, file_name, diagnostics));
+    }
   }
   doc.reset();  // free the parsed document before building
   if (diagnostics.has_errors()) return Error{ErrorCode::kParse, diagnostics.error_summary()};
@@ -251,7 +295,28 @@ void write_map_json(const SewerMap& map, std::ostream& out) {
     write_string(out, map.pipe(point.pipe).name);
     out << ", \"offset_m\": " << detail::format_double(point.offset_m) << '}';
   }
-  out << (map.point_count() > 0 ? "\n  ]\n}\n" : "]\n}\n");
+  out << (map.point_count() > 0 ? "\n  ]" : "]");
+  if (map.finding_count() > 0) {
+    out << ",\n  \"findings\": [";
+    bool first = true;
+    for (const Finding& f : map.findings()) {
+      out << (first ? "\n" : ",\n") << "    {\"pipe\": ";
+      write_string(out, map.pipe(f.pipe).name);
+      out << ", \"code\": ";
+      write_string(out, f.code);
+      if (!f.characterisation.empty()) {
+        out << ", \"characterisation\": ";
+        write_string(out, f.characterisation);
+      }
+      out << ", \"offset_m\": " << detail::format_double(f.offset_m);
+      write_optional(out, "quantity1", f.quantity1);
+      write_optional(out, "quantity2", f.quantity2);
+      out << '}';
+      first = false;
+    }
+    out << "\n  ]";
+  }
+  out << "\n}\n";
 }
 
 }  // namespace sewerplan

@@ -11,6 +11,7 @@
 #include <unordered_set>
 
 #include "sewerplan/core/map_builder.h"
+#include "sewerplan/core/text_file.h"
 
 #include "network_import.h"
 #include "swmm_sections.h"
@@ -32,6 +33,7 @@ struct Fallbacks {
   std::size_t default_diameter = 0;
   std::size_t other_links = 0;
   std::size_t undimensioned = 0;
+  std::size_t no_clear_size = 0;
   std::size_t multi_barrel = 0;
   std::size_t without_xy = 0;
   std::size_t stray_geometry = 0;
@@ -56,6 +58,11 @@ class SwmmReader {
     read_conduits();
     read_vertices();
     count_other_links();
+    if (net_.links.empty() && d_.error_count() == errors_before) {
+      d_.error(file_, std::to_string(net_.nodes.size()) +
+                          " nodes but no conduit a robot could drive ([CONDUITS] with a "
+                          "dimensioned cross-section): not a sewer network");
+    }
     if (d_.error_count() > errors_before) return Error{ErrorCode::kParse, d_.error_summary()};
     report_fallbacks();
     return detail::assemble_network(std::move(net_), std::filesystem::path(file_).stem().string(),
@@ -253,6 +260,10 @@ void SwmmReader::read_xsections() {
       }
       continue;
     }
+    if (p->no_clear_size) {
+      ++fallbacks_.no_clear_size;
+      continue;
+    }
     profile_of_.emplace(row.fields[0], *p);
   }
 }
@@ -334,7 +345,11 @@ void SwmmReader::report_fallbacks() {
   warn(f.default_diameter, "nodes have no size in SWMM: manhole diameter " + diameter + " assumed");
   warn(f.other_links, "pumps, orifices, weirs or outlets are not drivable: left out");
   warn(f.undimensioned,
-       "conduits with an IRREGULAR, CUSTOM or STREET cross-section (no dimensions): left out");
+       "conduits with an IRREGULAR, CUSTOM, STREET or DUMMY cross-section (no dimensions): left "
+       "out");
+  warn(f.no_clear_size,
+       "conduits have a cross-section of no clear size (a V-shaped channel of bottom width 0, or "
+       "a zero Geom): no robot fits, left out");
   warn(f.multi_barrel, "conduits have several barrels: each imported as one pipe");
   warn(f.without_xy, "nodes have no [COORDINATES]: placed at x = y = 0");
   warn(f.stray_geometry, "[COORDINATES] rows name no node: ignored");
@@ -347,7 +362,12 @@ Result<SewerMap> read_map_swmm(std::string_view text, const std::string& file_na
   if (!std::isfinite(options.manhole_diameter_m) || options.manhole_diameter_m <= 0) {
     return Error{ErrorCode::kInvalidArgument, "SWMM import: manhole diameter must be positive"};
   }
-  const detail::SwmmSections sections = detail::split_swmm_sections(text, file_name, diagnostics);
+  TextConversion conversion = TextConversion::kNone;
+  const std::string utf8 = text_to_utf8(text, "", conversion);
+  if (conversion != TextConversion::kNone) {
+    diagnostics.warning(file_name, "not UTF-8: read as Windows-1252 (Latin-1)");
+  }
+  const detail::SwmmSections sections = detail::split_swmm_sections(utf8, file_name, diagnostics);
   if (!sections.header_line("JUNCTIONS") && !sections.header_line("OUTFALLS") &&
       !sections.header_line("STORAGE") && !sections.header_line("DIVIDERS") &&
       !diagnostics.has_errors()) {

@@ -64,7 +64,7 @@ void write_mission_json(const Mission& m, const SewerMap& map, std::ostream& out
     }
     j["closed"] = closed;
   }
-  out << j.dump(2) << '\n';
+  out << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
 }
 
 std::string describe(const Place& place, const SewerMap& map) {

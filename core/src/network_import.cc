@@ -8,11 +8,12 @@
 #include <string_view>
 #include <unordered_map>
 #include <utility>
+#include <vector>
 
 namespace sewerplan::detail {
 namespace {
 
-// Points closer than this to the node give no direction.
+// Points closer than this to the node give no direction at all.
 constexpr double kSamePointM = 1e-9;
 
 struct PendingSlot {
@@ -20,21 +21,36 @@ struct PendingSlot {
   std::size_t slot;  // index in that manhole's slot records
 };
 
-// The first point along the link, leaving the node at `end`, that is not the node itself.
-std::optional<std::array<double, 2>> next_point(const ImportLink& link, std::size_t end,
-                                                const ImportNode& node, const ImportNode* far) {
-  auto differs = [&](const std::array<double, 2>& p) {
-    return std::hypot(p[0] - node.position.x_m, p[1] - node.position.y_m) > kSamePointM;
-  };
+struct Direction {
+  std::array<double, 2> point;
+  bool skipped_inside = false;  // points inside the manhole were passed over to find it
+};
+
+// The first point along the link, leaving the node at `end`, outside the manhole's shaft (farther
+// than its radius from the node's position): a pipe's line often ends at the manhole's floor
+// point, a few centimetres off the cover point that gives the node's position (ISYBAU 2013), and
+// the few centimetres between them say nothing about the pipe's direction. The far node counts as
+// the last point. If every point lies inside the shaft, the farthest distinct one.
+std::optional<Direction> next_point(const ImportLink& link, std::size_t end, const ImportNode& node,
+                                    const ImportNode* far) {
+  std::vector<std::array<double, 2>> along;
   const std::size_t n = link.vertices.size();
-  for (std::size_t k = 0; k < n; ++k) {
-    const std::array<double, 2>& p = link.vertices[end == 0 ? k : n - 1 - k];
-    if (differs(p)) return p;
+  for (std::size_t k = 0; k < n; ++k) along.push_back(link.vertices[end == 0 ? k : n - 1 - k]);
+  if (far != nullptr && far->has_xy) along.push_back({far->position.x_m, far->position.y_m});
+  const double radius = node.diameter_m / 2;
+  bool skipped = false;
+  std::optional<std::array<double, 2>> farthest;
+  double farthest_m = kSamePointM;
+  for (const std::array<double, 2>& p : along) {
+    const double d = std::hypot(p[0] - node.position.x_m, p[1] - node.position.y_m);
+    if (d > radius) return Direction{p, skipped};
+    if (d > kSamePointM) skipped = true;
+    if (d > farthest_m) {
+      farthest_m = d;
+      farthest = p;
+    }
   }
-  if (far != nullptr && far->has_xy) {
-    const std::array<double, 2> p{far->position.x_m, far->position.y_m};
-    if (differs(p)) return p;
-  }
+  if (farthest) return Direction{*farthest, skipped};
   return std::nullopt;
 }
 
@@ -66,6 +82,7 @@ Result<SewerMap> assemble_network(NetworkImport network, std::string map_name, L
   }
   std::vector<std::vector<SlotRecord>> slots(network.nodes.size());
   std::vector<PendingSlot> pending;
+  std::size_t inside = 0;  // pipe ends whose line begins inside the manhole
   auto find = [&](const std::optional<std::string>& name) -> const ImportNode* {
     if (!name) return nullptr;
     auto it = node_index.find(*name);
@@ -81,11 +98,13 @@ Result<SewerMap> assemble_network(NetworkImport network, std::string map_name, L
       SlotRecord slot{.pipe = link.name,
                       .invert_z_m = end == 0 ? link.from_invert_z_m : link.to_invert_z_m,
                       .line = link.line};
-      const std::optional<std::array<double, 2>> p =
+      const std::optional<Direction> p =
           node.has_xy ? next_point(link, end, node, find(end == 0 ? link.to : link.from))
                       : std::nullopt;
       if (p) {
-        slot.azimuth_deg = azimuth_deg(node.position.x_m, node.position.y_m, (*p)[0], (*p)[1]);
+        slot.azimuth_deg =
+            azimuth_deg(node.position.x_m, node.position.y_m, p->point[0], p->point[1]);
+        if (p->skipped_inside) ++inside;
       } else {
         pending.push_back({it->second, slots[it->second].size()});
       }
@@ -105,6 +124,10 @@ Result<SewerMap> assemble_network(NetworkImport network, std::string map_name, L
                             " pipe ends have no known direction (a node without "
                             "coordinates); their azimuths are spread evenly in each manhole");
   }
+  warn_counted(diagnostics, where, inside,
+               "pipe ends begin inside their manhole (their line ends at a point within the "
+               "shaft, such as the floor point, a few centimetres from the node's position): "
+               "their direction is taken from the pipe's next point outside the shaft");
   MapBuilder builder(std::move(map_name), std::move(locator));
   builder.reserve(network.nodes.size(), network.links.size());
   for (std::size_t i = 0; i < network.nodes.size(); ++i) {
@@ -113,6 +136,9 @@ Result<SewerMap> assemble_network(NetworkImport network, std::string map_name, L
                          .position = n.position,
                          .diameter_m = n.diameter_m,
                          .exit = n.exit,
+                         .shaft_length_m = n.shaft_length_m,
+                         .shaft_width_m = n.shaft_width_m,
+                         .depth_m = n.depth_m,
                          .slots = std::move(slots[i]),
                          .line = n.line});
   }
@@ -126,6 +152,7 @@ Result<SewerMap> assemble_network(NetworkImport network, std::string map_name, L
                       .height_m = l.height_m,
                       .line = l.line});
   }
+  for (FindingRecord& f : network.findings) builder.add_finding(std::move(f));
   return std::move(builder).build(diagnostics);
 }
 

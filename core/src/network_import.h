@@ -7,8 +7,10 @@
 // needs slots: for each manhole, one per pipe end, with the azimuth at which the pipe leaves the
 // manhole. An importer fills ImportNode and ImportLink records and calls assemble_network(), which
 // computes each slot's azimuth from the direction of the pipe's first segment leaving the node
-// (through the vertices, skipping points that coincide with the node) and hands everything to
-// MapBuilder, so the result is validated like any other map.
+// (through the vertices, skipping points inside the manhole's shaft, within its radius of the
+// node's position: a line ending at the floor point, centimetres off the cover point, gives no
+// direction; counted in a warning) and hands everything to MapBuilder, so the result is
+// validated like any other map.
 //
 // A slot whose direction cannot be known (the node or the far end has no position) gets a fallback
 // azimuth: the manhole's such slots are spread evenly around it (0, 360/k, ...). Each one is
@@ -39,6 +41,9 @@ struct ImportNode {
   bool has_xy = false;    // the file gave x and y
   double diameter_m = 0;  // > 0
   bool exit = false;
+  std::optional<double> shaft_length_m;  // a rectangular shaft
+  std::optional<double> shaft_width_m;
+  std::optional<double> depth_m;
   std::uint32_t line = 0;  // for the Locator
 };
 
@@ -59,6 +64,7 @@ struct ImportLink {
 struct NetworkImport {
   std::vector<ImportNode> nodes;
   std::vector<ImportLink> links;
+  std::vector<FindingRecord> findings;  // inspection findings, by pipe name
 };
 
 // The direction, in degrees counter-clockwise from +x in (-180, 180], from (x0, y0) to (x1, y1).

@@ -230,8 +230,8 @@ void write_passage_motion_json(const PassageMotionTable& table, const SewerMap& 
                                std::ostream& out) {
   // One passage a line: tables of city networks hold hundreds of thousands of waypoints.
   out << "{\"format\": " << nlohmann::json(kPassageMotionJsonFormat).dump()
-      << ", \"version\": " << kPassageMotionJsonVersion
-      << ",\n \"map\": " << nlohmann::json(map.name()).dump()
+      << ", \"version\": " << kPassageMotionJsonVersion << ",\n \"map\": "
+      << nlohmann::json(map.name()).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)
       << ",\n \"map_fingerprint\": " << nlohmann::json(table.map_fingerprint()).dump()
       << ",\n \"profile_fingerprint\": " << nlohmann::json(table.profile_fingerprint()).dump()
       << ",\n \"passages\": [";
@@ -252,7 +252,8 @@ void write_passage_motion_json(const PassageMotionTable& table, const SewerMap& 
     } else {
       e["reason"] = p.reason;
     }
-    out << (first ? "\n  " : ",\n  ") << e.dump();
+    out << (first ? "\n  " : ",\n  ")
+        << e.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
     first = false;
   }
   out << "]}\n";

@@ -73,6 +73,14 @@ const Slot& SewerMap::slot(ManholeId id, SlotIndex slot) const {
   return slots_[m.first_slot + slot.value()];
 }
 
+std::span<const Finding> SewerMap::findings(PipeId pipe) const {
+  const auto first = std::lower_bound(findings_.begin(), findings_.end(), pipe,
+                                      [](const Finding& f, PipeId p) { return f.pipe < p; });
+  const auto last = std::upper_bound(first, findings_.end(), pipe,
+                                     [](PipeId p, const Finding& f) { return p < f.pipe; });
+  return {first, last};
+}
+
 std::optional<ManholeId> SewerMap::find_manhole(std::string_view name) const {
   auto i = find_by_name(manholes_by_name_, manholes_, name);
   return i ? std::optional(ManholeId{*i}) : std::nullopt;
@@ -91,18 +99,20 @@ std::optional<PointId> SewerMap::find_point(std::string_view name) const {
 std::size_t SewerMap::memory_bytes() const {
   std::size_t bytes = sizeof(*this) + heap_bytes(name_);
   bytes += manholes_.capacity() * sizeof(Manhole) + slots_.capacity() * sizeof(Slot) +
-           pipes_.capacity() * sizeof(Pipe) + points_.capacity() * sizeof(InspectionPoint);
+           pipes_.capacity() * sizeof(Pipe) + points_.capacity() * sizeof(InspectionPoint) +
+           findings_.capacity() * sizeof(Finding);
   bytes += (manholes_by_name_.capacity() + pipes_by_name_.capacity() + points_by_name_.capacity()) *
            sizeof(std::uint32_t);
   for (const Manhole& m : manholes_) bytes += heap_bytes(m.name);
   for (const Pipe& p : pipes_) bytes += heap_bytes(p.name);
   for (const InspectionPoint& p : points_) bytes += heap_bytes(p.name);
+  for (const Finding& f : findings_) bytes += heap_bytes(f.code) + heap_bytes(f.characterisation);
   return bytes;
 }
 
 bool operator==(const SewerMap& a, const SewerMap& b) {
   return a.name_ == b.name_ && a.manholes_ == b.manholes_ && a.slots_ == b.slots_ &&
-         a.pipes_ == b.pipes_ && a.points_ == b.points_;
+         a.pipes_ == b.pipes_ && a.points_ == b.points_ && a.findings_ == b.findings_;
 }
 
 }  // namespace sewerplan

@@ -45,6 +45,7 @@ constexpr auto kShapes = std::to_array<ShapeSpec>({
     {"IRREGULAR", PipeShape::kOther, Width::kNone},
     {"CUSTOM", PipeShape::kOther, Width::kNone},
     {"STREET", PipeShape::kOther, Width::kNone},
+    {"DUMMY", PipeShape::kOther, Width::kNone},
 });
 
 Error bad(std::string message) { return Error{ErrorCode::kParse, std::move(message)}; }
@@ -94,6 +95,8 @@ Result<PipeProfile> swmm_profile(std::span<const std::string_view> fields, doubl
       break;
   }
   p.diameter_m = std::min(width, p.height_m);
+  if (p.diameter_m < 0) return bad("negative size: " + std::to_string(p.diameter_m) + " m");
+  p.no_clear_size = !(p.diameter_m > 0);  // also NaN
   if (fields.size() > 6) {
     const std::optional<double> barrels = parse_swmm_number(fields[6]);
     if (!barrels || *barrels < 1 || *barrels > 100 || *barrels != static_cast<int>(*barrels)) {

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "sewerplan/core/text_file.h"
 
+#include <cctype>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -49,6 +50,85 @@ Result<void> write_text_file(const std::filesystem::path& path, std::string_view
     return Error{ErrorCode::kIo, "cannot write " + path.string() + ": " + ec.message()};
   }
   return {};
+}
+
+bool is_valid_utf8(std::string_view text) {
+  std::size_t i = 0;
+  const std::size_t n = text.size();
+  auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+  auto continuation = [&](std::size_t k) { return k < n && (byte(k) & 0xC0) == 0x80; };
+  while (i < n) {
+    const unsigned char c = byte(i);
+    if (c < 0x80) {
+      ++i;
+    } else if (c >= 0xC2 && c <= 0xDF) {
+      if (!continuation(i + 1)) return false;
+      i += 2;
+    } else if (c >= 0xE0 && c <= 0xEF) {
+      if (!continuation(i + 1) || !continuation(i + 2)) return false;
+      const unsigned char c1 = byte(i + 1);
+      if ((c == 0xE0 && c1 < 0xA0) || (c == 0xED && c1 >= 0xA0))
+        return false;  // overlong, surrogate
+      i += 3;
+    } else if (c >= 0xF0 && c <= 0xF4) {
+      if (!continuation(i + 1) || !continuation(i + 2) || !continuation(i + 3)) return false;
+      const unsigned char c1 = byte(i + 1);
+      if ((c == 0xF0 && c1 < 0x90) || (c == 0xF4 && c1 >= 0x90))
+        return false;  // overlong, > U+10FFFF
+      i += 4;
+    } else {
+      return false;
+    }
+  }
+  return true;
+}
+
+std::string windows1252_to_utf8(std::string_view text) {
+  // 0x80..0x9F in Windows-1252; 0xFFFD where it assigns nothing.
+  static constexpr char32_t kC1[32] = {
+      0x20AC, 0xFFFD, 0x201A, 0x0192, 0x201E, 0x2026, 0x2020, 0x2021, 0x02C6, 0x2030, 0x0160,
+      0x2039, 0x0152, 0xFFFD, 0x017D, 0xFFFD, 0xFFFD, 0x2018, 0x2019, 0x201C, 0x201D, 0x2022,
+      0x2013, 0x2014, 0x02DC, 0x2122, 0x0161, 0x203A, 0x0153, 0xFFFD, 0x017E, 0x0178};
+  std::string out;
+  out.reserve(text.size() + text.size() / 8);
+  for (const char ch : text) {
+    const auto c = static_cast<unsigned char>(ch);
+    const char32_t u = c < 0x80 ? c : c < 0xA0 ? kC1[c - 0x80] : c;
+    if (u < 0x80) {
+      out += static_cast<char>(u);
+    } else if (u < 0x800) {
+      out += static_cast<char>(0xC0 | (u >> 6));
+      out += static_cast<char>(0x80 | (u & 0x3F));
+    } else {
+      out += static_cast<char>(0xE0 | (u >> 12));
+      out += static_cast<char>(0x80 | ((u >> 6) & 0x3F));
+      out += static_cast<char>(0x80 | (u & 0x3F));
+    }
+  }
+  return out;
+}
+
+std::string to_utf8_lossy(std::string_view text) {
+  return is_valid_utf8(text) ? std::string(text) : windows1252_to_utf8(text);
+}
+
+std::string text_to_utf8(std::string_view text, std::string_view declared_encoding,
+                         TextConversion& conversion) {
+  std::string declared(declared_encoding);
+  for (char& c : declared) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  for (std::string_view latin1 : {"iso-8859-1", "iso8859-1", "latin1", "latin-1", "l1",
+                                  "iso-8859-15", "windows-1252", "cp1252"}) {
+    if (declared == latin1) {
+      conversion = TextConversion::kDeclaredLatin1;
+      return windows1252_to_utf8(text);
+    }
+  }
+  if (is_valid_utf8(text)) {
+    conversion = TextConversion::kNone;
+    return std::string(text);
+  }
+  conversion = TextConversion::kUndeclaredLatin1;
+  return windows1252_to_utf8(text);
 }
 
 }  // namespace sewerplan

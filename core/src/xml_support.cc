@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <vector>
 
+#include "sewerplan/core/text_file.h"
+
 namespace sewerplan::xml {
 
 std::string_view local_name(pugi::xml_node node) {
@@ -60,6 +62,56 @@ std::uint32_t line_of_offset(std::string_view text, std::ptrdiff_t offset) {
       std::min(text.size(), static_cast<std::size_t>(std::max<std::ptrdiff_t>(offset, 0)));
   return static_cast<std::uint32_t>(
       1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(end), '\n'));
+}
+
+std::string_view declared_encoding(std::string_view text) {
+  if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
+  if (!text.starts_with("<?xml")) return {};
+  const std::string_view declaration = text.substr(0, text.find("?>"));
+  const std::size_t at = declaration.find("encoding");
+  if (at == std::string_view::npos) return {};
+  std::string_view rest = declaration.substr(at + 8);
+  while (!rest.empty() && (rest.front() == ' ' || rest.front() == '=')) rest.remove_prefix(1);
+  if (rest.empty() || (rest.front() != '"' && rest.front() != '\'')) return {};
+  const char quote = rest.front();
+  rest.remove_prefix(1);
+  return rest.substr(0, rest.find(quote));
+}
+
+bool load_utf8(pugi::xml_document& doc, std::string_view text, const std::string& file_name,
+               Diagnostics& diagnostics) {
+  const bool utf16 = text.starts_with("\xFF\xFE") || text.starts_with("\xFE\xFF");
+  TextConversion conversion = TextConversion::kNone;
+  const std::string utf8 =
+      utf16 ? std::string(text) : text_to_utf8(text, declared_encoding(text), conversion);
+  if (conversion == TextConversion::kUndeclaredLatin1) {
+    diagnostics.warning(file_name,
+                        "not UTF-8, and no encoding declared: read as Windows-1252 (Latin-1)");
+  }
+  const pugi::xml_parse_result parsed =
+      doc.load_buffer(utf8.data(), utf8.size(), pugi::parse_default,
+                      utf16 ? pugi::encoding_auto : pugi::encoding_utf8);
+  if (!parsed) {
+    diagnostics.error(file_name + ":" + std::to_string(line_of_offset(utf8, parsed.offset)),
+                      std::string("XML is not well-formed: ") + parsed.description());
+    return false;
+  }
+  return true;
+}
+
+std::optional<std::string> foreign_sewer_format(pugi::xml_node root) {
+  const std::string_view name = local_name(root);
+  if (name == "DATA" || name == "M150" || name == "M145") {
+    return "a DWA-M 150 file (root <" + std::string(name) +
+           ">, the DWA's exchange format): sewerplan reads ISYBAU XML, not DWA-M 150; export the "
+           "network as ISYBAU XML";
+  }
+  if (name == "TRANSFER") {
+    return std::string(
+        "an INTERLIS transfer file (root <TRANSFER>: SIA405 Abwasser or VSA-KEK): sewerplan "
+        "reads ISYBAU XML, not INTERLIS; export the network as ISYBAU XML");
+  }
+  return std::nullopt;
 }
 
 }  // namespace sewerplan::xml

@@ -15,6 +15,8 @@
 
 #include <pugixml.hpp>
 
+#include "sewerplan/core/diagnostics.h"
+
 namespace sewerplan::xml {
 
 // An element's name without its namespace prefix ("Laenge" for "isy:Laenge").
@@ -36,5 +38,20 @@ std::string path(pugi::xml_node node);
 
 // The line of byte `offset` in `text`, from 1.
 std::uint32_t line_of_offset(std::string_view text, std::ptrdiff_t offset);
+
+// The encoding named by the XML declaration at the start of `text` ("ISO-8859-1"); empty if none.
+std::string_view declared_encoding(std::string_view text);
+
+// Parses `text` into `doc` in UTF-8. Text in Latin-1 or Windows-1252 (declared so, or undeclared
+// and not valid UTF-8: then a warning) is converted first, so names keep their letters and an
+// error's line is the line in the file. XML that is not well-formed is an error at its line:
+// false.
+bool load_utf8(pugi::xml_document& doc, std::string_view text, const std::string& file_name,
+               Diagnostics& diagnostics);
+
+// For a root element of another sewer exchange format, a message naming it: DWA-M 150 (root
+// <DATA>, the DWA's format) or an INTERLIS transfer file (root <TRANSFER>: SIA405 Abwasser,
+// VSA-KEK).
+std::optional<std::string> foreign_sewer_format(pugi::xml_node root);
 
 }  // namespace sewerplan::xml

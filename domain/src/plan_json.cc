@@ -76,7 +76,7 @@ void write_plan_json(const Plan& plan, const ValidationReport& report, const Sew
     if (i < report.step_costs_s.size()) s["cost_s"] = report.step_costs_s[i];
     j["steps"].push_back(std::move(s));
   }
-  out << j.dump(2) << '\n';
+  out << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
 }
 
 }  // namespace sewerplan::domain

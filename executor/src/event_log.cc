@@ -42,7 +42,7 @@ std::string EventLog::to_json(const Event& event) {
   for (const auto& [key, value] : event.fields) {
     std::visit([&, &k = key](const auto& v) { j[k] = v; }, value);
   }
-  return j.dump();
+  return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 void EventLog::add(double t_s, std::string type,

@@ -97,7 +97,7 @@ std::string write_action_json(const RobotAction& action, const SewerMap& map,
   j["plan_step"] = plan_step(action) + 1;
   add_parameters(j, action, map, mission);
   j["duration_s"] = duration_s(action);
-  return j.dump();
+  return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 }  // namespace sewerplan::fusion

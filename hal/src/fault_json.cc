@@ -297,7 +297,7 @@ void write_faults_json(const FaultScenario& scenario, const SewerMap& map, std::
     j["malfunctions"].push_back(std::move(item));
   }
   if (scenario.battery_wh) j["battery_wh"] = *scenario.battery_wh;
-  out << j.dump(2) << '\n';
+  out << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
 }
 
 std::string faults_json(const FaultScenario& scenario, const SewerMap& map) {

@@ -61,7 +61,7 @@ expect 1 'cannot tell the format' -- "$sp" convert "$ais" "$tmp/x.out"
 
 # Imported sewer databases: SWMM and ISYBAU, converted to the native formats, never written.
 swmm="$src/datasets/swmm/epa-example1.inp"
-isybau="$src/datasets/isybau/street-2013.xml"
+isybau="$src/datasets/isybau/street-2017.xml"
 expect 0 'wrote .*\(14 manholes, 13 pipes\)' -- "$sp" convert "$swmm" "$tmp/ex1.json"
 expect 0 'valid \(14 manholes, 13 pipes' -- "$sp" validate "$tmp/ex1.json"
 expect 0 'wrote .*\(4 manholes, 4 pipes\)' -- "$sp" convert "$isybau" "$tmp/street.sewer"
@@ -79,6 +79,45 @@ expect 0 'reachable +3 of 4 manholes, 2 of 4 pipes .* from 1 start: S4' -- \
 expect 0 '"too_wide": \[' -- "$sp" info --profile makro-plus --json "$swmm"
 expect 1 "--start: no manhole 'M99'" -- "$sp" info --profile makro-plus --start M99 "$isybau"
 expect 2 'needs --profile' -- "$sp" info --start S1 "$isybau"
+
+# Issue 15: real exports. 2013 floor points, optional elements, Latin-1 names, findings.
+isy=$src/datasets/isybau
+expect 0 'pipe ends begin inside their manhole' -- "$sp" validate "$isy/street-2013.xml"
+expect 0 'S2 2<->3 \(S3, S2\): turn 116.9. deg' -- "$sp" info --profile makro-plus "$isy/street-2013.xml"
+expect 0 'valid \(4 manholes, 4 pipes' -- "$sp" validate "$isy/street-optional.xml"
+expect 0 'wrote .*\(4 manholes, 4 pipes\)' -- "$sp" convert "$isy/street-latin1.xml" "$tmp/latin1.json"
+if grep -q '"name": "Süd3"' "$tmp/latin1.json"; then passed=$((passed + 1)); else
+  echo "FAIL: the Latin-1 name Süd3 did not reach the JSON map"; failures=$((failures + 1)); fi
+expect 0 '"manholes": 4' -- "$sp" info --json "$isy/street-latin1.xml"
+expect 0 '"valid": true' -- "$sp" validate --json "$isy/street-latin1.xml"
+printf 'sewerdb 1\nmanhole M\xfc x=0 y=0 z=0 diameter=1\n' > "$tmp/latin1.sewer"
+expect 1 '"valid": false' -- "$sp" validate --json "$tmp/latin1.sewer"
+expect 1 'not valid UTF-8' -- "$sp" validate "$tmp/latin1.sewer"
+expect 1 'a Zustandsdaten file \(6 inspected objects\) without Stammdaten' -- \
+  "$sp" validate "$isy/street-zustand.xml"
+expect 1 'no conduit a robot could drive' -- \
+  bash -c "printf '[JUNCTIONS]\nJ1 1 1\n' > '$tmp/j.inp'; '$sp' validate --strict '$tmp/j.inp'"
+expect 1 'a DWA-M 150 file' -- bash -c "echo '<DATA><KG/></DATA>' > '$tmp/m150.xml'; '$sp' validate '$tmp/m150.xml'"
+expect 1 'an INTERLIS transfer file' -- bash -c "echo '<TRANSFER/>' > '$tmp/t.xtf'; '$sp' validate '$tmp/t.xtf'"
+expect 0 'findings +7: BAA 1, BAC 1, BAJ 1, BBA 1, BBB 1, BCD 1, BCE 1' -- \
+  "$sp" info "$isybau" --condition "$isy/street-zustand.xml"
+expect 0 'pipe S2 at 18.00 m: BAC collapse' -- \
+  "$sp" info --profile makro-plus "$isybau" --condition "$isy/street-zustand.xml"
+expect 0 '"closed_by_findings": \[' -- \
+  "$sp" info --profile makro-plus --json "$isybau" --condition "$isy/street-zustand.xml"
+expect 0 'wrote' -- "$sp" convert "$isybau" "$tmp/cond.json" --condition "$isy/street-zustand.xml"
+expect 0 '"findings": 7' -- "$sp" info --json "$tmp/cond.json"
+expect 1 'holds no inspection findings' -- "$sp" convert "$tmp/cond.json" "$tmp/cond.sewer"
+# Planning with findings: the roots in pipe S1 may block; --risk avoid closes them, ignore does not.
+echo '{"format": "sewerplan-mission", "version": 1, "profile": "makro-plus", "start": {"manhole": "S1"},
+  "tasks": [{"name": "roots", "type": "inspect_pipe", "pipe": "S1"}]}' > "$tmp/street-mission.json"
+expect 0 'INSPECT' -- "$sp" plan --map "$isybau" --mission "$tmp/street-mission.json" \
+  --condition "$isy/street-zustand.xml"
+expect 0 'risk: 5 places closed by inspection findings \(every risk avoided\)' -- \
+  "$sp" plan --map "$isybau" --mission "$tmp/street-mission.json" --condition \
+  "$isy/street-zustand.xml" --risk avoid --select-goals
+expect 4 '' -- "$sp" plan --map "$isybau" --mission "$tmp/street-mission.json" \
+  --condition "$isy/street-zustand.xml" --risk avoid
 
 # Generated networks are deterministic and valid.
 expect 0 'wrote' -- "$sp" generate --manholes 500 --seed 3 -o "$tmp/g1.json"

@@ -256,7 +256,51 @@ TEST(MapSwmm, LeavesOutConduitsWithoutDimensions) {
   Result<SewerMap> map = parse(replaced(kSmall, "C3  CIRCULAR     0.5", "C3 IRREGULAR tr1"), d);
   ASSERT_TRUE(map.has_value()) << map.error().message;
   EXPECT_EQ(map->pipe_count(), 2U);
-  EXPECT_TRUE(has_warning(d, "1 conduits with an IRREGULAR, CUSTOM or STREET cross-section"));
+  EXPECT_TRUE(has_warning(d, "1 conduits with an IRREGULAR, CUSTOM, STREET or DUMMY"));
+}
+
+// Issue 15: a V-shaped trapezoidal channel (bottom width 0) and a DUMMY link are valid SWMM and
+// no place for a robot: left out with a warning, not the whole file rejected.
+TEST(MapSwmm, Issue15LeavesOutVChannelsAndDummyLinks) {
+  Diagnostics d;
+  Result<SewerMap> map =
+      parse(replaced(replaced(kSmall, "C3  CIRCULAR     0.5", "C3  TRAPEZOIDAL  1.0  0  1  1"),
+                     "C2  RECT_CLOSED  0.6  0.4  0  0  2", "C2  DUMMY  0  0  0  0"),
+            d);
+  ASSERT_TRUE(map.has_value()) << map.error().message;
+  EXPECT_EQ(map->pipe_count(), 1U);
+  EXPECT_TRUE(has_warning(d, "1 conduits have a cross-section of no clear size"));
+  EXPECT_TRUE(has_warning(d, "1 conduits with an IRREGULAR, CUSTOM, STREET or DUMMY"));
+  // Every shape with a zero width alike; a negative one is an error.
+  Diagnostics d2;
+  Result<SewerMap> open =
+      parse(replaced(kSmall, "C3  CIRCULAR     0.5", "C3  RECT_OPEN  0.5  0"), d2);
+  ASSERT_TRUE(open.has_value());
+  EXPECT_TRUE(has_warning(d2, "1 conduits have a cross-section of no clear size"));
+  EXPECT_THAT(error_text(replaced(kSmall, "C3  CIRCULAR     0.5", "C3  RECT_OPEN  0.5  -1")),
+              HasSubstr("link C3: negative size"));
+}
+
+// Issue 15: a network of nodes without a drivable conduit is an error that says so.
+TEST(MapSwmm, Issue15NodesWithoutConduitsAreAnError) {
+  EXPECT_THAT(error_text("[JUNCTIONS]\nJ1 10 2\nJ2 9 2\n[COORDINATES]\nJ1 0 0\nJ2 1 1\n"),
+              HasSubstr("net.inp: error: 2 nodes but no conduit a robot could drive"));
+}
+
+// Issue 15: Windows-1252 names are read, in UTF-8, with a warning.
+TEST(MapSwmm, Issue15ReadsWindows1252Names) {
+  Diagnostics d;
+  const std::string latin1 =
+      "C\xe4"
+      "3";  // "Ca3" with an a-umlaut, in Windows-1252
+  Result<SewerMap> map = parse(replaced(replaced(kSmall, "C3  S  B", latin1 + "  S  B"),
+                                        "C3  CIRCULAR", latin1 + "  CIRCULAR"),
+                               d);
+  ASSERT_TRUE(map.has_value()) << (map.has_value() ? "" : map.error().message);
+  EXPECT_TRUE(map->find_pipe("C\u00e4"
+                             "3")
+                  .has_value());
+  EXPECT_TRUE(has_warning(d, "not UTF-8: read as Windows-1252"));
 }
 
 TEST(MapSwmm, IsNotWrittenButDetectedByContent) {

@@ -9,7 +9,8 @@
 //              a slot naming an unknown pipe, a slot in a manhole that is not one of its pipe's
 //              ends, a pipe end with no slot for it, two slots for one pipe end, a pipe joining a
 //              manhole to itself, an inspection point off its pipe;
-//   warnings - manholes without pipes, a network in several disconnected parts.
+//   warnings - manholes without pipes, a network in several disconnected parts, findings naming
+//              no pipe or lying off their pipe (left out, or clamped onto it).
 // Each diagnostic names the object, and the place in the file through the Locator the reader
 // supplies (a line, or a JSON path).
 //
@@ -46,6 +47,9 @@ struct ManholeRecord {
   double diameter_m = 0;
   bool exit = false;
   std::optional<char> variant;
+  std::optional<double> shaft_length_m;  // with shaft_width_m: a rectangular shaft
+  std::optional<double> shaft_width_m;
+  std::optional<double> depth_m;
   std::vector<SlotRecord> slots;
   std::uint32_t line = 0;
 };
@@ -69,9 +73,23 @@ struct PointRecord {
   std::uint32_t line = 0;
 };
 
+// An inspection finding as a file states it: the pipe by name, and the position as measured by
+// the inspection, `station_m` from the end it started at (ends[1] when `against_flow`, so the
+// offset from ends[0] is the pipe's length less the station).
+struct FindingRecord {
+  std::string pipe;
+  std::string code;
+  std::string characterisation;
+  double station_m = 0;
+  bool against_flow = false;
+  std::optional<double> quantity1;
+  std::optional<double> quantity2;
+  std::uint32_t line = 0;
+};
+
 // What a diagnostic is about, for the Locator to turn into a place in the file.
 struct RecordRef {
-  enum class Kind { kMap, kManhole, kSlot, kPipe, kPoint };
+  enum class Kind { kMap, kManhole, kSlot, kPipe, kPoint, kFinding };
   Kind kind = Kind::kMap;
   std::uint32_t index = 0;       // record index within its kind, in the order added
   std::uint32_t slot_index = 0;  // with kSlot: the slot within manhole `index`
@@ -92,11 +110,17 @@ class MapBuilder {
   void add_manhole(ManholeRecord record);
   void add_pipe(PipeRecord record);
   void add_point(PointRecord record);
+  void add_finding(FindingRecord record);
   void reserve(std::size_t manholes, std::size_t pipes);
 
   // Validates and builds. On error, every problem found is in `diagnostics` and the Error's
   // message lists them. Warnings are added to `diagnostics` either way.
   Result<SewerMap> build(Diagnostics& diagnostics) &&;
+
+  // `map` with `findings` added (a condition file joined to a map read before): a finding naming
+  // no pipe of the map is left out with a warning, as is one off its pipe (clamped onto it).
+  static SewerMap add_findings(SewerMap map, std::vector<FindingRecord> findings,
+                               const Locator& locator, Diagnostics& diagnostics);
 
  private:
   class Validation;
@@ -105,6 +129,7 @@ class MapBuilder {
   std::vector<ManholeRecord> manholes_;
   std::vector<PipeRecord> pipes_;
   std::vector<PointRecord> points_;
+  std::vector<FindingRecord> findings_;
 };
 
 }  // namespace sewerplan

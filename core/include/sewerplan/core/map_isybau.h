@@ -8,8 +8,12 @@
 // lateral, 2 Rinne = a channel). read_map_isybau turns each manhole and structure into a manhole
 // and each Haltung into a pipe: KnotenZulauf / KnotenAblauf name its upstream and downstream node,
 // SohlhoeheZulauf / SohlhoeheAblauf its end inverts (so the steps in each manhole), Laenge its
-// length, Profil its size (millimetres in the file); the nodes' point geometry (Rechtswert,
-// Hochwert, Punkthoehe) gives positions and, with the pipes' own geometry, each slot's azimuth.
+// length, Profil its size (millimetres in the file), Schacht/Unterteil a manhole's size; the
+// nodes' point geometry (Rechtswert, Hochwert, Punkthoehe) gives positions and, with the pipes'
+// own geometry (skipping points inside the shaft, such as 2013's floor points), each slot's
+// azimuth. The elements the schema makes optional fall back with warnings; Zustandsdaten
+// (inspection findings) in the same file are read into the map (condition.h). Latin-1 and
+// Windows-1252 files are converted to UTF-8 first.
 //
 // Versions 2006, 2013 and 2017 are read alike: elements are matched by their local name, so each
 // version's namespace is accepted, and both ways of storing a pipe's line (2006: a Polygon of
@@ -34,8 +38,8 @@
 namespace sewerplan {
 
 struct IsybauImportOptions {
-  // The diameter of manholes, in metres (> 0): the importer does not read ISYBAU's shaft
-  // dimensions.
+  // The diameter of manholes whose shaft size (Schacht/Unterteil) the file does not give, in
+  // metres (> 0).
   double manhole_diameter_m = 1.0;
 };
 

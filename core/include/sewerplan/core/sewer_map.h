@@ -72,6 +72,11 @@ struct Manhole {
   std::uint16_t slot_count = 0;  // the manhole's type
   bool exit = false;             // the robot can be lowered in and recovered here
   std::optional<char> variant;   // geometric variant of the type, 'A'..'Z' (the paper's TYPE_B)
+  // A rectangular shaft's floor plan (ISYBAU Unterteil length and width), when the file gives
+  // one; diameter_m is then its shorter side, the room the robot has to turn. Empty: round.
+  std::optional<double> shaft_length_m;
+  std::optional<double> shaft_width_m;
+  std::optional<double> depth_m;  // cover to floor, when the file gives it
   friend bool operator==(const Manhole&, const Manhole&) = default;
 };
 
@@ -101,6 +106,21 @@ struct Pipe {
   friend bool operator==(const Pipe&, const Pipe&) = default;
 };
 
+// One finding of a pipe's last inspection, in the codes of DIN EN 13508-2 (ISYBAU Zustandsdaten):
+// the main code ("BAC" collapse, "BBA" roots, ...), its characterisations, its quantifications
+// (their meaning depends on the code: a share of the cross-section lost in percent, a
+// displacement in millimetres, ...) and where it is. What a finding means for a robot is not
+// decided here: condition_risk.h does that, with a table.
+struct Finding {
+  PipeId pipe{0};
+  std::string code;              // three letters, e.g. "BAC"
+  std::string characterisation;  // Charakterisierung 1 and 2, e.g. "AB"; may be empty
+  double offset_m = 0;           // from the pipe's ends[0], whichever way it was inspected
+  std::optional<double> quantity1;
+  std::optional<double> quantity2;
+  friend bool operator==(const Finding&, const Finding&) = default;
+};
+
 // A named place in a pipe, offset_m from the pipe's ends[0] towards ends[1].
 struct InspectionPoint {
   std::string name;
@@ -119,6 +139,7 @@ class SewerMap {
   std::size_t pipe_count() const { return pipes_.size(); }
   std::size_t point_count() const { return points_.size(); }
   std::size_t slot_count() const { return slots_.size(); }
+  std::size_t finding_count() const { return findings_.size(); }
 
   IdRange<ManholeId> manhole_ids() const { return id_range<ManholeId>(manholes_.size()); }
   IdRange<PipeId> pipe_ids() const { return id_range<PipeId>(pipes_.size()); }
@@ -134,6 +155,10 @@ class SewerMap {
   std::span<const Manhole> manholes() const { return manholes_; }
   std::span<const Pipe> pipes() const { return pipes_; }
   std::span<const InspectionPoint> points() const { return points_; }
+  // Inspection findings, sorted by pipe, then offset. findings(pipe): those of one pipe.
+  // Runtime: O(log findings).
+  std::span<const Finding> findings() const { return findings_; }
+  std::span<const Finding> findings(PipeId pipe) const;
 
   // Look-up by name. Runtime: O(log n).
   std::optional<ManholeId> find_manhole(std::string_view name) const;
@@ -153,6 +178,7 @@ class SewerMap {
   std::vector<Slot> slots_;
   std::vector<Pipe> pipes_;
   std::vector<InspectionPoint> points_;
+  std::vector<Finding> findings_;
   // Indices sorted by name, for find_*.
   std::vector<std::uint32_t> manholes_by_name_;
   std::vector<std::uint32_t> pipes_by_name_;

@@ -1,0 +1,137 @@
+// SPDX-License-Identifier: MIT
+#include "sewerplan/core/condition_risk.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace sewerplan {
+namespace {
+
+const RiskRule* match(const RiskTable& table, const Finding& f) {
+  for (const RiskRule& r : table.rules) {
+    if (f.code.starts_with(r.code) && f.characterisation.starts_with(r.characterisation)) {
+      return &r;
+    }
+  }
+  return nullptr;
+}
+
+std::string metres(double v) {
+  std::ostringstream out;
+  out.precision(3);
+  out << v << " m";
+  return out.str();
+}
+
+}  // namespace
+
+std::string_view to_string(RiskEffect effect) {
+  switch (effect) {
+    case RiskEffect::kNone:
+      return "none";
+    case RiskEffect::kDanger:
+      return "danger";
+    case RiskEffect::kBlockage:
+      return "blockage";
+    case RiskEffect::kImpassable:
+      return "impassable";
+  }
+  return "none";
+}
+
+RiskTable default_risk_table() {
+  using E = RiskEffect;
+  return {.rules = {
+              {.code = "BAC", .effect = E::kImpassable, .meaning = "collapse"},
+              {.code = "BAA",
+               .effect = E::kDanger,
+               .cross_section_percent = true,
+               .meaning = "deformation"},
+              {.code = "BBA",
+               .effect = E::kBlockage,
+               .cross_section_percent = true,
+               .probability = 0.2,
+               .probability_per_percent = 0.01,
+               .meaning = "roots"},
+              {.code = "BBB",
+               .effect = E::kBlockage,
+               .cross_section_percent = true,
+               .probability = 0.05,
+               .probability_per_percent = 0.005,
+               .meaning = "attached deposits"},
+              {.code = "BBC",
+               .effect = E::kBlockage,
+               .cross_section_percent = true,
+               .probability = 0.1,
+               .probability_per_percent = 0.01,
+               .meaning = "settled deposits"},
+              {.code = "BBE",
+               .effect = E::kBlockage,
+               .cross_section_percent = true,
+               .probability = 0.3,
+               .probability_per_percent = 0.01,
+               .meaning = "obstacle"},
+              {.code = "BAG",
+               .effect = E::kDanger,
+               .cross_section_percent = true,
+               .meaning = "intruding connection"},
+              {.code = "BAJ", .effect = E::kDanger, .meaning = "displaced joint"},
+              {.code = "BAH", .effect = E::kDanger, .meaning = "defective connection"},
+              {.code = "BAI", .effect = E::kDanger, .meaning = "intruding sealing material"},
+          }};
+}
+
+std::vector<FindingRisk> assess_findings(const SewerMap& map, const RobotProfile& profile,
+                                         const RiskTable& table) {
+  std::vector<FindingRisk> risks;
+  const std::span<const Finding> findings = map.findings();
+  risks.reserve(findings.size());
+  for (std::size_t i = 0; i < findings.size(); ++i) {
+    const Finding& f = findings[i];
+    FindingRisk risk{.finding = i};
+    const RiskRule* rule = match(table, f);
+    if (rule == nullptr) {
+      risks.push_back(std::move(risk));
+      continue;
+    }
+    risk.effect = rule->effect;
+    risk.reason = f.code + " " + rule->meaning;
+    const double q = f.quantity1.value_or(0);
+    if (rule->cross_section_percent && f.quantity1) {
+      const double left = map.pipe(f.pipe).diameter_m * (1 - std::clamp(q, 0.0, 100.0) / 100);
+      if (left < profile.body_width_m) {
+        risk.effect = RiskEffect::kImpassable;
+        risk.reason +=
+            " leaves " + metres(left) + ", less than the robot's " + metres(profile.body_width_m);
+      }
+    }
+    switch (risk.effect) {
+      case RiskEffect::kImpassable:
+        risk.blockage_probability = 1;
+        break;
+      case RiskEffect::kBlockage:
+        risk.blockage_probability =
+            std::clamp(rule->probability + rule->probability_per_percent * q, 0.0, 1.0);
+        break;
+      case RiskEffect::kNone:
+      case RiskEffect::kDanger:
+        break;
+    }
+    risks.push_back(std::move(risk));
+  }
+  return risks;
+}
+
+std::vector<Blockage> impassable_blockages(const SewerMap& map,
+                                           const std::vector<FindingRisk>& risks) {
+  std::vector<Blockage> out;
+  for (const FindingRisk& r : risks) {
+    if (r.effect != RiskEffect::kImpassable) continue;
+    const Finding& f = map.findings()[r.finding];
+    out.push_back({.pipe = f.pipe, .offset_m = f.offset_m});
+  }
+  return out;
+}
+
+}  // namespace sewerplan

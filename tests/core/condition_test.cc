@@ -1,0 +1,170 @@
+// SPDX-License-Identifier: MIT
+#include "sewerplan/core/condition.h"
+
+#include <sstream>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "sewerplan/core/condition_risk.h"
+#include "sewerplan/core/map_io.h"
+#include "sewerplan/core/map_isybau.h"
+#include "sewerplan/core/map_json.h"
+#include "sewerplan/core/text_file.h"
+
+#include "support/map_checks.h"
+#include "support/paths.h"
+
+namespace sewerplan {
+namespace {
+
+using testing::has_warning;
+using ::testing::HasSubstr;
+
+SewerMap street(Diagnostics& d) {
+  Result<SewerMap> map = read_map(testing::dataset_path("isybau/street-2017.xml"), d);
+  EXPECT_TRUE(map.has_value());
+  return map.has_value() ? std::move(*map) : SewerMap{};
+}
+
+std::string zustand() {
+  Result<std::string> text = read_text_file(testing::dataset_path("isybau/street-zustand.xml"));
+  EXPECT_TRUE(text.has_value());
+  return text.has_value() ? *text : std::string();
+}
+
+std::size_t occurrences(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+const Finding* find(const SewerMap& map, std::string_view pipe, std::string_view code) {
+  for (const Finding& f : map.findings(*map.find_pipe(pipe))) {
+    if (f.code == code) return &f;
+  }
+  return nullptr;
+}
+
+// Every finding of the latest inspection of each Haltung, on its pipe, at its offset from the
+// upstream end: counted from the file's text, not by the reader.
+TEST(Condition, JoinsEveryFindingToItsPipeAtItsPosition) {
+  Diagnostics d;
+  Result<SewerMap> map =
+      read_condition(street(d), testing::dataset_path("isybau/street-zustand.xml"), d);
+  ASSERT_TRUE(map.has_value()) << map.error().message;
+  // Every RZustand of the file, less those of the superseded inspection of S1 (1), of manhole
+  // S2 (1) and of X9, no pipe of the map (1): datasets/isybau/README.md.
+  const std::size_t records = occurrences(zustand(), "<RZustand>");
+  ASSERT_EQ(records, 10U);
+  EXPECT_EQ(map->finding_count(), records - 3);
+  EXPECT_EQ(map->findings(*map->find_pipe("S1")).size(), 4U);
+  EXPECT_EQ(map->findings(*map->find_pipe("S3")).size(), 2U);
+  EXPECT_EQ(map->findings(*map->find_pipe("S2")).size(), 1U);
+  // With the flow: the station is the offset.
+  const Finding* roots = find(*map, "S1", "BBA");
+  ASSERT_NE(roots, nullptr);
+  EXPECT_DOUBLE_EQ(roots->offset_m, 7.5);
+  EXPECT_EQ(roots->characterisation, "B");
+  EXPECT_EQ(roots->quantity1, 10.0);
+  // Against the flow (from S2): the offset from S3 is the length less the station.
+  const Finding* deformation = find(*map, "S3", "BAA");
+  ASSERT_NE(deformation, nullptr);
+  EXPECT_NEAR(deformation->offset_m, 44.72 - 4.72, 1e-9);
+  EXPECT_NEAR(find(*map, "S3", "BBB")->offset_m, 44.72 - 20.0, 1e-9);
+  EXPECT_DOUBLE_EQ(find(*map, "S2", "BAC")->offset_m, 18.0);
+  EXPECT_EQ(find(*map, "S1", "BBC"), nullptr);  // the 2015 inspection is superseded
+  EXPECT_TRUE(has_warning(d, "1 findings name no pipe of the map (the first: 'X9')"));
+  EXPECT_TRUE(has_warning(d, "1 inspected objects are laterals or manholes"));
+  EXPECT_TRUE(has_warning(d, "1 earlier inspections of an object are superseded"));
+}
+
+// Inline Zustandsdaten, in the map's own file, give the same findings as a second file.
+TEST(Condition, ReadsZustandsdatenInTheMapsOwnFile) {
+  Result<std::string> stamm = read_text_file(testing::dataset_path("isybau/street-2017.xml"));
+  ASSERT_TRUE(stamm.has_value());
+  const std::string z = zustand();
+  const std::size_t from = z.find("    <Zustandsdatenkollektiv>");
+  const std::size_t to = z.find("  </Datenkollektive>");
+  std::string both = *stamm;
+  both.insert(both.find("  </Datenkollektive>"), z.substr(from, to - from));
+  Diagnostics d1;
+  Result<SewerMap> inline_map = read_map_isybau(both, "street-2017.xml", d1);
+  ASSERT_TRUE(inline_map.has_value()) << inline_map.error().message;
+  Diagnostics d2;
+  Result<SewerMap> joined = read_condition_isybau(street(d2), z, "z.xml", d2);
+  ASSERT_TRUE(joined.has_value());
+  EXPECT_EQ(*inline_map, *joined);
+}
+
+TEST(Condition, FindingsSurviveTheJsonFormat) {
+  Diagnostics d;
+  Result<SewerMap> map = read_condition_isybau(street(d), zustand(), "z.xml", d);
+  ASSERT_TRUE(map.has_value());
+  std::ostringstream out;
+  write_map_json(*map, out);
+  Diagnostics d2;
+  Result<SewerMap> back = read_map_json(out.str(), "back.json", d2);
+  ASSERT_TRUE(back.has_value()) << back.error().message;
+  EXPECT_EQ(*back, *map);
+}
+
+std::string condition_error(const std::string& text) {
+  Diagnostics d;
+  SewerMap map = street(d);
+  Result<SewerMap> joined = read_condition_isybau(std::move(map), text, "z.xml", d);
+  EXPECT_FALSE(joined.has_value());
+  return joined.has_value() ? "" : joined.error().message;
+}
+
+TEST(Condition, RefusesFilesWithoutFindingsAndOtherFormats) {
+  EXPECT_THAT(condition_error("<Identifikation><Version>2017</Version></Identifikation>"),
+              HasSubstr("no Zustandsdaten in this file"));
+  EXPECT_THAT(condition_error("<DATA><HI/></DATA>"), HasSubstr("a DWA-M 150 file"));
+  std::string bad = zustand();
+  bad.replace(bad.find("<Station>7.50"), 13, "<Station>7,50");
+  EXPECT_THAT(condition_error(bad), HasSubstr("RZustand[2]/Station: error: inspection of S1: "
+                                              "Station is not a number: '7,50'"));
+}
+
+TEST(Condition, RefusesAnUnknownInspectionDirection) {
+  std::string bad = zustand();
+  bad.replace(bad.find("<Inspektionsrichtung>O"), 22, "<Inspektionsrichtung>X");
+  EXPECT_THAT(condition_error(bad), HasSubstr("Inspektionsrichtung must be O"));
+}
+
+// The default table, for MAKRO (body width 0.22 m): a collapse and a deformation leaving 0.2 m
+// of a 0.4 m pipe close their places; roots leaving 0.27 m may block; a displaced joint is a
+// danger; the inspection's start and end markers mean nothing.
+TEST(ConditionRisk, DefaultTableClosesCollapsesAndNarrowDeformations) {
+  Diagnostics d;
+  Result<SewerMap> map = read_condition_isybau(street(d), zustand(), "z.xml", d);
+  ASSERT_TRUE(map.has_value());
+  RobotProfile profile = *builtin_profile("makro-plus");
+  profile.body_width_m = 0.22;
+  const std::vector<FindingRisk> risks = assess_findings(*map, profile, default_risk_table());
+  ASSERT_EQ(risks.size(), map->finding_count());
+  auto risk_of = [&](std::string_view pipe, std::string_view code) {
+    const Finding* f = find(*map, pipe, code);
+    return risks[static_cast<std::size_t>(f - map->findings().data())];
+  };
+  EXPECT_EQ(risk_of("S2", "BAC").effect, RiskEffect::kImpassable);
+  EXPECT_EQ(risk_of("S3", "BAA").effect, RiskEffect::kImpassable);
+  EXPECT_THAT(risk_of("S3", "BAA").reason, HasSubstr("BAA deformation leaves 0.2 m"));
+  EXPECT_EQ(risk_of("S1", "BBA").effect, RiskEffect::kBlockage);
+  EXPECT_NEAR(risk_of("S1", "BBA").blockage_probability, 0.2 + 0.01 * 10, 1e-12);
+  EXPECT_EQ(risk_of("S1", "BAJ").effect, RiskEffect::kDanger);
+  EXPECT_EQ(risk_of("S1", "BCD").effect, RiskEffect::kNone);
+  const std::vector<Blockage> closed = impassable_blockages(*map, risks);
+  ASSERT_EQ(closed.size(), 2U);
+  // A slimmer robot passes the deformation: only the collapse closes.
+  profile.body_width_m = 0.15;
+  EXPECT_EQ(impassable_blockages(*map, assess_findings(*map, profile, default_risk_table())).size(),
+            1U);
+  // The table is data: an empty one closes nothing.
+  EXPECT_TRUE(impassable_blockages(*map, assess_findings(*map, profile, RiskTable{})).empty());
+}
+
+}  // namespace
+}  // namespace sewerplan
