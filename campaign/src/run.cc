@@ -198,7 +198,7 @@ std::optional<Outcome> outcome_from_string(std::string_view name) {
 Result<hal::FaultScenario> run_faults(const SewerMap& map, const Mission& mission,
                                       const RunSettings& settings, std::size_t index) {
   const FaultRates& r = settings.rates;
-  hal::RandomFaultOptions o;
+  hal::RandomFaultOptions o = hal::random_fault_options(mission.profile);
   o.seed = run_seed(settings.campaign_seed, index);
   o.obstacle_rate_per_km = r.obstacles_per_km;
   o.transient_share = r.transient_share;
@@ -206,8 +206,6 @@ Result<hal::FaultScenario> run_faults(const SewerMap& map, const Mission& missio
   o.dangerous_passage_share = r.passage_share;
   o.malfunction_rate_per_hour = r.malfunctions_per_hour;
   o.permanent_malfunction_share = r.permanent_share;
-  o.min_pipe_diameter_m = mission.profile.min_pipe_diameter_m;
-  o.max_pipe_diameter_m = mission.profile.max_pipe_diameter_m;
   return hal::random_faults(map, o);
 }
 
