@@ -16,6 +16,32 @@ namespace {
 // sample a hundred times when the margin was 5 cm).
 constexpr double kAhead_m = 0.001;
 
+// How many reboots one job may take. A reboot that lets the robot work again (the job after it
+// runs for a while before the next malfunction, or to its end) shows the fault was transient, so
+// the budget bounds reboots in a row that did not help: `max_reboots` of them, and at most
+// kRebootsPerJob in all, against a robot that fails after every short stretch. (It was
+// `max_reboots` per job in all: one cluster of transient faults used it up and ended a mission
+// with tasks left and a full battery.)
+class RebootBudget {
+ public:
+  static constexpr int kRebootsPerJob = 20;
+  explicit RebootBudget(const RecoveryConfig& config) : max_in_a_row_(config.max_reboots) {}
+
+  // True when `failed`, a malfunction, may be rebooted through; counts the reboot.
+  bool take(const hal::JobReport& failed) {
+    if (total_ > 0 && (failed.duration_s > 0 || failed.progress_m > 0)) in_a_row_ = 0;
+    if (in_a_row_ >= max_in_a_row_ || total_ >= kRebootsPerJob) return false;
+    ++in_a_row_;
+    ++total_;
+    return true;
+  }
+
+ private:
+  int max_in_a_row_;
+  int in_a_row_ = 0;
+  int total_ = 0;
+};
+
 }  // namespace
 
 // What the blockage stages came to.
@@ -33,21 +59,21 @@ struct StagedRecovery::Cleared {
 
 std::optional<Failure> StagedRecovery::run_job(const Job& job, const fusion::RobotAction& action) {
   Job current = job;
-  int reboots = 0;
+  RebootBudget reboots(config_);
   hal::JobReport r = host_.execute_job(current);
   for (;;) {
     if (r.ok()) return std::nullopt;
     const hal::RobotErrorKind kind = r.error->kind;
     if (kind == hal::RobotErrorKind::kMalfunction) {
-      if (reboots >= config_.max_reboots) {
+      if (!reboots.take(r)) {
         return Failure{.kind = Failure::Kind::kStuck, .detail = r.error->reason};
       }
-      ++reboots;
       const Result<void> rebooted = host_.reboot();
       host_.log_recovery(logged_name(RecoveryPhase::kReboot), rebooted.has_value());
       if (!rebooted.has_value()) {
+        // The robot's words say "reboot failed: why" (hal/robot.h).
         return Failure{.kind = Failure::Kind::kStuck,
-                       .detail = r.error->reason + "; reboot failed: " + rebooted.error().message};
+                       .detail = r.error->reason + "; " + rebooted.error().message};
       }
       ++cleared_;
       if (auto rest = rest_of(current, r.progress_m)) current = *rest;
@@ -84,9 +110,8 @@ hal::JobReport StagedRecovery::recovery_job(const Job& job) {
   Job current = job;
   hal::JobReport r = host_.execute_job(current);
   double progress_m = r.progress_m;
-  for (int reboots = 0; !r.ok() && r.error->kind == hal::RobotErrorKind::kMalfunction &&
-                        reboots < config_.max_reboots;
-       ++reboots) {
+  RebootBudget reboots(config_);
+  while (!r.ok() && r.error->kind == hal::RobotErrorKind::kMalfunction && reboots.take(r)) {
     const Result<void> rebooted = host_.reboot();
     host_.log_recovery(logged_name(RecoveryPhase::kReboot), rebooted.has_value());
     if (!rebooted.has_value()) break;

@@ -136,6 +136,14 @@ JSON
 expect 4 "task 'far' \(inspect_pipe\): no route from the start" -- "$sp" plan --map "$ais" --mission "$tmp/cut.json"
 expect 2 'unknown' -- "$sp" plan --map "$ais" --mission "$mission" -a dijkstra
 expect 0 "dropped task 'far': no route" -- "$sp" plan --map "$ais" --mission "$tmp/cut.json" --select-goals
+# check reads what plan --select-goals wrote, against the same mission (it said: task not done).
+"$sp" plan --map "$ais" --mission "$tmp/cut.json" --select-goals -q -o "$tmp/selected.plan" > /dev/null 2>&1
+expect 0 "left out: task 'far'" -- "$sp" check --map "$ais" --mission "$tmp/cut.json" --select-goals "$tmp/selected.plan"
+expect 1 "task 'far' .* is not done" -- "$sp" check --map "$ais" --mission "$tmp/cut.json" "$tmp/selected.plan"
+# A pipe of 1e16 m passed validate and stopped plan on an internal check (exit 134).
+sed 's/"length_m": 8.485/"length_m": 1e16/' "$ais" > "$tmp/huge.json"
+expect 1 'length must be at most 100000 m, got 1e\+16' -- "$sp" validate "$tmp/huge.json"
+expect 1 'length must be at most' -- "$sp" plan --map "$tmp/huge.json" --mission "$mission"
 
 # simulate: the paper's mission with an obstacle the head lift clears and one in the inspected pipe.
 expect 0 'mission ended at pipe P9' -- "$sp" simulate --map "$ais" --mission "$mission" --faults "$src/datasets/ais-testbed/faults/demo.json" --log "$tmp/events.jsonl" -q
@@ -147,6 +155,11 @@ expect 4 'beacon on: the robot cannot move' -- "$sp" simulate --map "$ais" --mis
 echo '{"max_reboots": -1}' > "$tmp/recovery.json"
 expect 1 'recovery.json: "max_reboots" must be a count' -- "$sp" simulate --map "$ais" --mission "$mission" --recovery "$tmp/recovery.json" -q
 expect 2 'random-faults' -- "$sp" simulate --map "$ais" --mission "$mission" --faults "$tmp/stuck.json" --random-faults 3
+# A fault file with a bad value is invalid input (1), as the docs say, not a usage error.
+echo '{"format": "sewerplan-faults", "version": 1, "obstacles": [{"pipe": "P99", "offset_m": 1}]}' > "$tmp/bad-faults.json"
+expect 1 'P99' -- "$sp" simulate --map "$ais" --mission "$mission" --faults "$tmp/bad-faults.json" -q
+# Unbounded drawing (47 s and 6 GB): a rate beyond the limit is refused at once.
+expect 2 'obstacle_rate_per_km must be at most 1000' -- "$sp" simulate --map "$ais" --mission "$mission" --random-faults 1,1e9 -q
 
 # PDDL round trip: export, then read back what FF and Fast Downward print for it.
 expect 0 'wrote .*domain.pddl and .*problem.pddl' -- "$sp" export-pddl --map "$ais" --mission "$mission" --out "$tmp/pddl"
