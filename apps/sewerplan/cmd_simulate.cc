@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // sewerplan simulate --map MAP --mission MISSION [--faults FILE | --random-faults SEED[,RATE]]
-//                    [--recovery FILE] [--allow-push] [--log FILE] [--quiet]
+//                    [--recovery FILE] [--allow-push] [--log FILE] [--learnt FILE] [--quiet]
 //                    [--can slcan:TTY|socketcan:IFACE | --replay CANDUMP.log] [--can-log FILE]
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <ostream>
@@ -31,6 +32,7 @@ struct SimulateOptions {
   std::string recovery;
   bool allow_push = false;
   std::string log;
+  std::string learnt;  // what the robot learnt: read if it exists, written at the end
   bool quiet = false;
   CanLinkOptions can;  // the robot over a CAN bus (docs/can.md)
   MotionOptions motion;
@@ -70,6 +72,16 @@ int run(const SimulateOptions& o, Context& c) {
   }
   executor::EventLog log(o.log.empty() ? nullptr : &log_file, o.quiet ? nullptr : &c.out);
   executor::Replanner replanner(map, mission);
+  if (!o.learnt.empty() && std::filesystem::exists(o.learnt)) {
+    Diagnostics d;
+    Result<executor::Learnt> learnt = executor::read_learnt(o.learnt, map, d);
+    Result<void> learn =
+        learnt.has_value() ? replanner.learn(*learnt) : Result<void>(learnt.error());
+    if (!learn.has_value()) {
+      c.err << learn.error().message << '\n';
+      return exit_code_for(learn.error());
+    }
+  }
   std::unique_ptr<CanLink> can;
   if (!o.can.bus.empty() || !o.can.replay.empty()) {
     Result<std::unique_ptr<CanLink>> link = CanLink::open(o.can);
@@ -85,6 +97,13 @@ int run(const SimulateOptions& o, Context& c) {
       executor::Executor(map, replanner, robot, options, log).run();
   c.out << '\n' << report;
   if (can) can->write_summary(c.err);
+  if (!o.learnt.empty()) {
+    if (auto written = write_text_file(o.learnt, executor::learnt_json(replanner.learnt(), map));
+        !written.has_value()) {
+      c.err << written.error().message << '\n';
+      return kExitIo;
+    }
+  }
   return report.outcome == executor::MissionReport::Outcome::kEnded ? kExitOk : kExitNoPlan;
 }
 
@@ -107,6 +126,8 @@ void add_simulate_command(CLI::App& app, Context& context) {
   cmd->add_flag("--allow-push", options->allow_push,
                 "Allow recovery phase 3, pushing an obstacle (off for real sewers)");
   cmd->add_option("--log", options->log, "Write the event log as JSON lines");
+  cmd->add_option("--learnt", options->learnt,
+                  "What the robot learnt (JSON): read if it exists, written at the end");
   cmd->add_flag("-q,--quiet", options->quiet, "Only the final report");
   auto* can =
       cmd->add_option("--can", options->can.bus,

@@ -56,7 +56,7 @@ void replan_after_blockage(benchmark::State& state, const Instance& instance) {
   for (auto _ : state) {
     state.PauseTiming();
     executor::Replanner replanner(instance.map, instance.mission);
-    replanner.update(blocked->progress, blocked->heading_end);
+    (void)replanner.update(blocked->progress, blocked->heading_end);
     state.ResumeTiming();
     executor::PlanResponse r = replanner.report_failure(blocked->failure);
     dropped = r.newly_dropped.size();

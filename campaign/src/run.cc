@@ -233,7 +233,7 @@ Result<RunResult> run_one(const SewerMap& map, const Mission& mission, const Run
   executor::Replanner oracle(map, clairvoyant(mission, *faults, settings.push_allowed),
                              {.clock = &no_time});
   const executor::PlanResponse plan = oracle.plan("oracle");
-  r.oracle_can_end = plan.decision == executor::PlanResponse::Decision::kFollowPlan;
+  r.oracle_can_end = executor::has_plan(plan.decision);
   r.oracle_tasks = r.oracle_can_end ? plan.goals.size() : 0;
 
   r.ours = execute(map, mission, *faults, settings, executor::ReplannerOptions::Goals::kReselect);

@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
       const double x = std::get<domain::InPipe>(progress.position).offset_m;
       const double towards = x < pipe.length_m / 2 ? 1.0 : -1.0;
       progress.position = domain::InPipe{inspect->pipe, x + towards * 2.0};
-      replanner.update(progress, towards > 0 ? 1 : 0);
+      (void)replanner.update(progress, towards > 0 ? 1 : 0);
       // ... and what its recovery could not clear.
       plan = replanner.report_failure({.kind = executor::Failure::Kind::kBlockage,
                                        .pipe = inspect->pipe,
@@ -51,8 +51,8 @@ int main(int argc, char** argv) {
     }
     if (!replay.apply(step).has_value()) return 1;
   }
-  if (plan.decision == executor::PlanResponse::Decision::kCallForRecovery) {
-    std::cout << "call for recovery: " << plan.reason << '\n';
+  if (!executor::has_plan(plan.decision)) {
+    std::cout << executor::to_string(plan.decision) << ": " << plan.reason << '\n';
     return 0;
   }
   std::cout << "\nafter \"" << plan.reason << "\", new plan (ends at " << plan.end << "):\n"

@@ -79,7 +79,7 @@ class Executor::Run {
     PlanResponse response = replanner_.plan("start");
     log_plan("plan", response);
     for (;;) {
-      if (response.decision == PlanResponse::Decision::kCallForRecovery) {
+      if (!has_plan(response.decision)) {
         return finish(MissionReport::Outcome::kBeacon, response.reason);
       }
       if (auto invalid = check(response)) {
@@ -132,9 +132,7 @@ class Executor::Run {
     log_.add(now(), type,
              {{"reason", r.reason},
               {"planning_ms", r.planning_time_s * 1000},
-              {"decision", std::string(r.decision == PlanResponse::Decision::kFollowPlan
-                                           ? "follow"
-                                           : "call for recovery")},
+              {"decision", std::string(to_string(r.decision))},
               {"goals", task_names(mission(), r.goals)},
               {"dropped", dropped},
               {"end", r.end},
@@ -218,7 +216,8 @@ class Executor::Run {
     progress.done = done_;
     progress.position = tracker_.position();
     progress.energy_used_wh = mission().profile.battery_wh - robot_.status().battery_wh;
-    replanner_.update(progress, tracker_.heading_end());
+    // The tracker's places are on the map; a report the Replanner rejects keeps its last one.
+    (void)replanner_.update(progress, tracker_.heading_end());
   }
 
   hal::JobReport execute_job(const Job& job) {

@@ -2,7 +2,9 @@
 #include "sewerplan/executor/replanner.h"
 
 #include <algorithm>
+#include <cmath>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 #include "sewerplan/domain/validator.h"
@@ -51,6 +53,41 @@ std::string_view to_string(Failure::Kind kind) {
   return "stuck";
 }
 
+std::string_view to_string(PlanResponse::Decision decision) {
+  switch (decision) {
+    case PlanResponse::Decision::kFollowPlan:
+      return "follow-plan";
+    case PlanResponse::Decision::kDegraded:
+      return "degraded";
+    case PlanResponse::Decision::kCallForRecovery:
+      return "call-for-recovery";
+    case PlanResponse::Decision::kStuck:
+      return "stuck";
+    case PlanResponse::Decision::kInvalidReport:
+      return "invalid-report";
+  }
+  return "invalid-report";
+}
+
+std::optional<PlanResponse::Decision> parse_decision(std::string_view name) {
+  for (auto d : {PlanResponse::Decision::kFollowPlan, PlanResponse::Decision::kDegraded,
+                 PlanResponse::Decision::kCallForRecovery, PlanResponse::Decision::kStuck,
+                 PlanResponse::Decision::kInvalidReport}) {
+    if (to_string(d) == name) return d;
+  }
+  return std::nullopt;
+}
+
+bool has_plan(PlanResponse::Decision decision) {
+  return decision == PlanResponse::Decision::kFollowPlan ||
+         decision == PlanResponse::Decision::kDegraded;
+}
+
+bool calls_beacon(PlanResponse::Decision decision) {
+  return decision == PlanResponse::Decision::kCallForRecovery ||
+         decision == PlanResponse::Decision::kStuck;
+}
+
 Replanner::Replanner(const SewerMap& map, Mission mission, ReplannerOptions options)
     : map_(map),
       mission_(std::move(mission)),
@@ -59,15 +96,170 @@ Replanner::Replanner(const SewerMap& map, Mission mission, ReplannerOptions opti
   options_.planner.select_goals = true;
 }
 
-void Replanner::update(const domain::MissionProgress& progress, std::uint8_t heading_end) {
-  progress_ = progress;
-  heading_end_ = heading_end;
+Result<void> check_failure(const Failure& failure, const SewerMap& map) {
+  const auto invalid = [](std::string what) -> Result<void> {
+    return Error{ErrorCode::kInvalidArgument, "invalid failure report: " + std::move(what)};
+  };
+  switch (failure.kind) {
+    case Failure::Kind::kBlockage:
+    case Failure::Kind::kDangerInPipe: {
+      if (failure.pipe.index() >= map.pipe_count()) {
+        return invalid("unknown pipe #" + std::to_string(failure.pipe.index()));
+      }
+      const Pipe& pipe = map.pipe(failure.pipe);
+      if (!std::isfinite(failure.offset_m) || failure.offset_m < 0 ||
+          failure.offset_m > pipe.length_m) {
+        std::ostringstream out;
+        out << "offset " << failure.offset_m << " m is outside pipe " << pipe.name << " (0 to "
+            << pipe.length_m << " m)";
+        return invalid(out.str());
+      }
+      return {};
+    }
+    case Failure::Kind::kDangerousPassage: {
+      if (failure.manhole.index() >= map.manhole_count()) {
+        return invalid("unknown manhole #" + std::to_string(failure.manhole.index()));
+      }
+      const std::size_t slots = map.slots(failure.manhole).size();
+      const std::string& name = map.manhole(failure.manhole).name;
+      if (failure.from.index() >= slots || failure.to.index() >= slots) {
+        return invalid("manhole " + name + " has " + std::to_string(slots) + " slots, not slot " +
+                       std::to_string(to_paper_number(failure.from.index() >= slots ? failure.from
+                                                                                    : failure.to)));
+      }
+      if (failure.from == failure.to) {
+        return invalid("a passage of manhole " + name + " from slot " +
+                       std::to_string(to_paper_number(failure.from)) + " to itself");
+      }
+      return {};
+    }
+    case Failure::Kind::kStuck:
+      return {};
+  }
+  return invalid("unknown kind");
 }
 
-Result<search::PlanOutcome> Replanner::baseline_from_here() {
+Result<void> check_progress(const domain::MissionProgress& progress, std::uint8_t heading_end,
+                            const SewerMap& map, const Mission& mission) {
+  const auto invalid = [](std::string what) -> Result<void> {
+    return Error{ErrorCode::kInvalidArgument, "invalid progress report: " + std::move(what)};
+  };
+  if (progress.done.size() != mission.tasks.size()) {
+    return invalid(std::to_string(progress.done.size()) + " done flags for " +
+                   std::to_string(mission.tasks.size()) + " tasks");
+  }
+  if (!std::isfinite(progress.energy_used_wh) || progress.energy_used_wh < 0) {
+    return invalid("energy used " + std::to_string(progress.energy_used_wh) + " Wh");
+  }
+  if (heading_end > 1) return invalid("heading end " + std::to_string(heading_end));
+  const auto known_manhole = [&](ManholeId m) { return m.index() < map.manhole_count(); };
+  if (const auto* in = std::get_if<domain::InManhole>(&progress.position)) {
+    if (!known_manhole(in->manhole)) {
+      return invalid("unknown manhole #" + std::to_string(in->manhole.index()));
+    }
+  } else if (const auto* at = std::get_if<domain::AtSlot>(&progress.position)) {
+    if (!known_manhole(at->manhole)) {
+      return invalid("unknown manhole #" + std::to_string(at->manhole.index()));
+    }
+    if (at->slot.index() >= map.slots(at->manhole).size()) {
+      return invalid("manhole " + map.manhole(at->manhole).name + " has no slot " +
+                     std::to_string(to_paper_number(at->slot)));
+    }
+  } else {
+    const auto& p = std::get<domain::InPipe>(progress.position);
+    if (p.pipe.index() >= map.pipe_count()) {
+      return invalid("unknown pipe #" + std::to_string(p.pipe.index()));
+    }
+    const Pipe& pipe = map.pipe(p.pipe);
+    if (!std::isfinite(p.offset_m) || p.offset_m < 0 || p.offset_m > pipe.length_m) {
+      std::ostringstream out;
+      out << "offset " << p.offset_m << " m is outside pipe " << pipe.name << " (0 to "
+          << pipe.length_m << " m)";
+      return invalid(out.str());
+    }
+  }
+  // The final task is done only where it ends the mission: the validator's goal must hold here.
+  if (const auto final_task = mission.final_task_id();
+      final_task && progress.done[final_task->index()]) {
+    domain::MissionProgress all_done = progress;
+    std::fill(all_done.done.begin(), all_done.done.end(), true);
+    const auto report = domain::validate_plan({}, map, mission, all_done);
+    if (!report.valid) {
+      return invalid("the final task '" + mission.task(*final_task).name +
+                     "' is done, but the robot is " + domain::describe(progress.position, map));
+    }
+  }
+  return {};
+}
+
+Result<void> Replanner::learn(const Learnt& learnt) {
+  for (const Blockage& b : learnt.blockages) {
+    if (auto ok = check_failure(
+            {.kind = Failure::Kind::kBlockage, .pipe = b.pipe, .offset_m = b.offset_m}, map_);
+        !ok.has_value()) {
+      return ok;
+    }
+  }
+  for (const Blockage& b : learnt.danger_spots) {
+    if (auto ok = check_failure(
+            {.kind = Failure::Kind::kDangerInPipe, .pipe = b.pipe, .offset_m = b.offset_m}, map_);
+        !ok.has_value()) {
+      return ok;
+    }
+  }
+  for (const ClosedPassage& p : learnt.closed_passages) {
+    if (auto ok = check_failure({.kind = Failure::Kind::kDangerousPassage,
+                                 .manhole = p.manhole,
+                                 .from = p.from,
+                                 .to = p.to},
+                                map_);
+        !ok.has_value()) {
+      return ok;
+    }
+  }
+  mission_ = with_learnt(std::move(mission_), learnt);
+  const auto append = [](auto& to, const auto& from) {
+    to.insert(to.end(), from.begin(), from.end());
+  };
+  append(learnt_.blockages, learnt.blockages);
+  append(learnt_.danger_spots, learnt.danger_spots);
+  append(learnt_.closed_passages, learnt.closed_passages);
+  return {};
+}
+
+Result<void> Replanner::update(const domain::MissionProgress& progress, std::uint8_t heading_end) {
+  if (auto ok = check_progress(progress, heading_end, map_, mission_); !ok.has_value()) return ok;
+  progress_ = progress;
+  heading_end_ = heading_end;
+  return {};
+}
+
+const Clock& Replanner::clock() const {
+  return options_.clock != nullptr ? *options_.clock : steady_;
+}
+
+std::vector<ManholeId> Replanner::map_exits() const {
+  std::vector<ManholeId> exits;
+  for (ManholeId m : map_.manhole_ids()) {
+    if (map_.manhole(m).exit) exits.push_back(m);
+  }
+  return exits;
+}
+
+search::PlannerOptions Replanner::bounded(double deadline_s) const {
+  search::PlannerOptions options = options_.planner;
+  options.clock = &clock();
+  if (std::isfinite(deadline_s)) {
+    // At least a little: a limit of 0 means none to the planner.
+    options.time_limit_s = std::max(deadline_s - clock().now_s(), 1e-12);
+  }
+  return options;
+}
+
+Result<search::PlanOutcome> Replanner::baseline_from_here(double deadline_s) {
   domain::MissionProgress start = progress_;
   for (const auto& d : dropped_) start.done[d.task.index()] = true;
-  search::PlannerOptions same_goals = options_.planner;
+  search::PlannerOptions same_goals = bounded(deadline_s);
   same_goals.select_goals = false;
   auto outcome = search::plan_mission(map_, mission_, start, same_goals);
   if (outcome.has_value() || outcome.error().code != ErrorCode::kNoPlan) return outcome;
@@ -80,23 +272,20 @@ Result<search::PlanOutcome> Replanner::baseline_from_here() {
     start.done[t.index()] = true;
     mission_.tasks[t.index()].final = false;
   }
-  mission_.exits.clear();
-  for (ManholeId m : map_.manhole_ids()) {
-    if (map_.manhole(m).exit) mission_.exits.push_back(m);
-  }
-  return search::plan_mission(map_, mission_, start, same_goals);
+  mission_.exits = map_exits();
+  return search::plan_mission(map_, mission_, start, bounded(deadline_s));
 }
 
-Result<search::PlanOutcome> Replanner::plan_from_here() {
+Result<search::PlanOutcome> Replanner::plan_from_here(double deadline_s) {
   const bool first = !planned_;
   planned_ = true;
   if (options_.goals == ReplannerOptions::Goals::kPaperBaseline && !first) {
-    return baseline_from_here();
+    return baseline_from_here(deadline_s);
   }
   for (;;) {
     domain::MissionProgress start = progress_;
     for (const auto& d : dropped_) start.done[d.task.index()] = true;
-    auto outcome = search::plan_mission(map_, mission_, start, options_.planner);
+    auto outcome = search::plan_mission(map_, mission_, start, bounded(deadline_s));
     if (outcome.has_value() || outcome.error().code != ErrorCode::kNoPlan) return outcome;
     // The end point cut off: end at the nearest reachable exit instead.
     if (auto final_task = mission_.final_task_id();
@@ -104,18 +293,11 @@ Result<search::PlanOutcome> Replanner::plan_from_here() {
       dropped_.push_back({*final_task, "the mission's end point cannot be reached any more: " +
                                            one_line(outcome.error().message)});
       mission_.tasks[final_task->index()].final = false;
-      if (mission_.exits.empty()) {
-        for (ManholeId m : map_.manhole_ids()) {
-          if (map_.manhole(m).exit) mission_.exits.push_back(m);
-        }
-      }
+      if (mission_.exits.empty()) mission_.exits = map_exits();
       continue;
     }
     // The mission's exits cut off: any manhole the map marks as an exit will do.
-    std::vector<ManholeId> all_exits;
-    for (ManholeId m : map_.manhole_ids()) {
-      if (map_.manhole(m).exit) all_exits.push_back(m);
-    }
+    std::vector<ManholeId> all_exits = map_exits();
     if (all_exits.size() > mission_.exits.size()) {
       mission_.exits = std::move(all_exits);
       continue;
@@ -124,14 +306,55 @@ Result<search::PlanOutcome> Replanner::plan_from_here() {
   }
 }
 
+Result<search::PlanOutcome> Replanner::exit_from_here(const std::string& why) {
+  Mission to_exit = mission_;
+  for (Task& t : to_exit.tasks) t.final = false;
+  if (to_exit.exits.empty()) to_exit.exits = map_exits();
+  domain::MissionProgress start = progress_;
+  std::fill(start.done.begin(), start.done.end(), true);
+  // No time limit and no cancel: this is the answer when the time ran out.
+  const search::PlannerOptions options{
+      .algorithm = search::Algorithm::kAstar, .clock = &clock(), .improvement_expansions = 0};
+  auto outcome = search::plan_mission(map_, to_exit, start, options);
+  if (!outcome.has_value() && outcome.error().code == ErrorCode::kNoPlan) {
+    std::vector<ManholeId> all_exits = map_exits();
+    if (all_exits.size() > to_exit.exits.size()) {
+      to_exit.exits = std::move(all_exits);
+      outcome = search::plan_mission(map_, to_exit, start, options);
+    }
+  }
+  if (!outcome.has_value()) return outcome;
+  domain::MissionProgress now = progress_;
+  for (const auto& d : dropped_) now.done[d.task.index()] = true;
+  for (TaskId t : mission_.task_ids()) {
+    if (!now.done[t.index()]) dropped_.push_back({t, why});
+  }
+  mission_ = std::move(to_exit);
+  return outcome;
+}
+
 PlanResponse Replanner::plan(const std::string& reason) {
-  const Clock& clock = options_.clock != nullptr ? *options_.clock : steady_;
-  const double start_s = clock.now_s();
+  const double start_s = clock().now_s();
+  const double deadline_s = options_.planner.time_limit_s > 0
+                                ? start_s + options_.planner.time_limit_s
+                                : std::numeric_limits<double>::infinity();
   const std::size_t dropped_before = dropped_.size();
-  Result<search::PlanOutcome> outcome = plan_from_here();
-  const double seconds = clock.now_s() - start_s;
+  Result<search::PlanOutcome> outcome = plan_from_here(deadline_s);
+  bool cut_short = false;
+  if (!outcome.has_value() && outcome.error().code != ErrorCode::kNoPlan) {
+    // A limit, a cancel or a planner error proves nothing: the safe answer, the nearest exit.
+    const ErrorCode code = outcome.error().code;
+    const std::string why = code == ErrorCode::kSearchLimit ? "the planner's time ran out"
+                            : code == ErrorCode::kCancelled
+                                ? "the replan was cancelled"
+                                : "the planner failed: " + one_line(outcome.error().message);
+    outcome = exit_from_here(why);
+    cut_short = true;
+  }
+  const double seconds = clock().now_s() - start_s;
   if (!outcome.has_value()) {
     PlanResponse r;
+    // kNoPlan: the search proved that no exit can be reached.
     r.decision = PlanResponse::Decision::kCallForRecovery;
     r.reason = reason + "; no way to end the mission: " + one_line(outcome.error().message);
     r.planning_time_s = seconds;
@@ -142,6 +365,11 @@ PlanResponse Replanner::plan(const std::string& reason) {
   PlanResponse r = respond(std::move(*outcome), reason, seconds);
   r.newly_dropped.assign(dropped_.begin() + static_cast<std::ptrdiff_t>(dropped_before),
                          dropped_.end());
+  if (r.decision == PlanResponse::Decision::kFollowPlan &&
+      (cut_short || !r.newly_dropped.empty())) {
+    r.decision = PlanResponse::Decision::kDegraded;
+  }
+  if (has_plan(r.decision)) last_steps_ = r.plan.steps;
   return r;
 }
 
@@ -169,6 +397,7 @@ PlanResponse Replanner::respond(search::PlanOutcome outcome, const std::string& 
   }
   r.fused = std::move(*fused);
   r.plan = std::move(outcome.plan);
+
   if (const Task* final_task = mission_.final_task()) {
     r.end = describe(final_task->place, map_) + " (final task '" + final_task->name + "')";
   } else {
@@ -181,14 +410,25 @@ PlanResponse Replanner::respond(search::PlanOutcome outcome, const std::string& 
 }
 
 PlanResponse Replanner::report_failure(const Failure& failure) {
+  if (auto ok = check_failure(failure, map_); !ok.has_value()) {
+    PlanResponse r;
+    r.decision = PlanResponse::Decision::kInvalidReport;
+    r.reason = ok.error().message;
+    return r;
+  }
+  const std::vector<domain::PlanStep> failed_steps = std::move(last_steps_);
+  last_steps_.clear();
   std::string reason(to_string(failure.kind));
   switch (failure.kind) {
     case Failure::Kind::kBlockage:
     case Failure::Kind::kDangerInPipe:
+      (failure.kind == Failure::Kind::kBlockage ? learnt_.blockages : learnt_.danger_spots)
+          .push_back({failure.pipe, failure.offset_m});
       mission_.blockages.push_back({failure.pipe, failure.offset_m});
       reason += " in " + map_.pipe(failure.pipe).name + " at " + metres(failure.offset_m);
       break;
     case Failure::Kind::kDangerousPassage:
+      learnt_.closed_passages.push_back({failure.manhole, failure.from, failure.to});
       mission_.closed_passages.push_back({failure.manhole, failure.from, failure.to});
       reason += " at " + map_.manhole(failure.manhole).name + " from slot " +
                 std::to_string(to_paper_number(failure.from)) + " to " +
@@ -196,12 +436,47 @@ PlanResponse Replanner::report_failure(const Failure& failure) {
       break;
     case Failure::Kind::kStuck: {
       PlanResponse r;
-      r.decision = PlanResponse::Decision::kCallForRecovery;
+      r.decision = PlanResponse::Decision::kStuck;
       r.reason = "the robot cannot move: " + failure.detail;
       return r;
     }
   }
-  return plan(reason);
+  PlanResponse r = plan(reason);
+  // The plan that just failed, again: the robot would meet the same trouble at the same place
+  // (a task a hair beyond where it stops for a danger). Drop the task it was heading for.
+  while (has_plan(r.decision) && !failed_steps.empty() && r.plan.steps == failed_steps) {
+    const std::optional<TaskId> target = first_task_of(r.plan);
+    if (!target) break;
+    const std::size_t dropped_before = dropped_.size();
+    dropped_.push_back({*target, "the robot cannot get there: the plan after " + reason +
+                                     " was the plan that had just failed"});
+    if (mission_.tasks[target->index()].final) {
+      mission_.tasks[target->index()].final = false;
+      if (mission_.exits.empty()) mission_.exits = map_exits();
+    }
+    std::vector<domain::DroppedTask> dropped_so_far = std::move(r.newly_dropped);
+    dropped_so_far.push_back(dropped_[dropped_before]);
+    r = plan(reason);
+    dropped_so_far.insert(dropped_so_far.end(), r.newly_dropped.begin(), r.newly_dropped.end());
+    r.newly_dropped = std::move(dropped_so_far);
+    if (r.decision == PlanResponse::Decision::kFollowPlan) {
+      r.decision = PlanResponse::Decision::kDegraded;
+    }
+  }
+  return r;
+}
+
+std::optional<TaskId> Replanner::first_task_of(const domain::Plan& plan) const {
+  domain::MissionProgress start = progress_;
+  for (const auto& d : dropped_) start.done[d.task.index()] = true;
+  domain::PlanReplay replay(map_, mission_, start);
+  for (const auto& step : plan.steps) {
+    if (!replay.apply(step).has_value()) return std::nullopt;
+    for (TaskId t : mission_.task_ids()) {
+      if (!start.done[t.index()] && replay.done()[t.index()]) return t;
+    }
+  }
+  return std::nullopt;
 }
 
 }  // namespace sewerplan::executor

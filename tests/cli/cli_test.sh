@@ -160,6 +160,12 @@ echo '{"format": "sewerplan-faults", "version": 1, "obstacles": [{"pipe": "P99",
 expect 1 'P99' -- "$sp" simulate --map "$ais" --mission "$mission" --faults "$tmp/bad-faults.json" -q
 # Unbounded drawing (47 s and 6 GB): a rate beyond the limit is refused at once.
 expect 2 'obstacle_rate_per_km must be at most 1000' -- "$sp" simulate --map "$ais" --mission "$mission" --random-faults 1,1e9 -q
+# --learnt: the blockage the first mission met is known to the second, which plans around it.
+expect 0 'mission ended' -- "$sp" simulate --map "$ais" --mission "$mission" --faults "$src/datasets/ais-testbed/faults/blocked-p5.json" --learnt "$tmp/learnt.json" -q
+expect 0 '"pipe": "P5"' -- cat "$tmp/learnt.json"
+expect 0 ', 0 replans' -- "$sp" simulate --map "$ais" --mission "$mission" --faults "$src/datasets/ais-testbed/faults/blocked-p5.json" --learnt "$tmp/learnt.json" -q
+echo '{"format": "sewerplan-learnt", "version": 1, "blockages": [{"pipe": "PX", "offset_m": 1}]}' > "$tmp/bad-learnt.json"
+expect 1 'bad-learnt.json:\$\.blockages\[0\]\.pipe: error: unknown pipe "PX"' -- "$sp" simulate --map "$ais" --mission "$mission" --learnt "$tmp/bad-learnt.json" -q
 
 # PDDL round trip: export, then read back what FF and Fast Downward print for it.
 expect 0 'wrote .*domain.pddl and .*problem.pddl' -- "$sp" export-pddl --map "$ais" --mission "$mission" --out "$tmp/pddl"

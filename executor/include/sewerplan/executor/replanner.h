@@ -9,15 +9,17 @@
 // passage is closed. Then it replans from where the robot really is, with goal selection: the
 // most tasks that can still be done with the battery left, and still reaching an exit. If the
 // mission's end point (its final task) is cut off, the mission ends at the nearest reachable exit
-// instead; if no exit can be reached, the answer is to activate the locator beacon. Tasks done
-// stay done; tasks dropped stay dropped, each with its reason.
+// instead. The answer is anytime: when the time limit or a cancel stops the search first, it is the
+// safe one, the nearest reachable exit (kDegraded). The beacon (kCallForRecovery) is only the
+// answer when a search proved that no exit can be reached, or the robot cannot move (kStuck); a
+// limit never calls it. Tasks done stay done; tasks dropped stay dropped, each with its reason.
 //
 //   Replanner replanner(map, mission);
 //   PlanResponse r = replanner.plan();
 //   // ... execute r.fused; on progress:  replanner.update(progress, heading_end);
 //   // ... on a blockage recovery could not clear:
 //   r = replanner.report_failure({.kind = Failure::Kind::kBlockage, .pipe = p5, .offset_m = 4.0});
-//   if (r.decision == PlanResponse::Decision::kCallForRecovery) robot.activate_beacon();
+//   if (calls_beacon(r.decision)) robot.activate_beacon();
 #pragma once
 
 #include <cstdint>
@@ -31,6 +33,7 @@
 #include "sewerplan/domain/compile.h"
 #include "sewerplan/domain/plan.h"
 #include "sewerplan/domain/robot_state.h"
+#include "sewerplan/executor/learnt.h"
 #include "sewerplan/fusion/fuse.h"
 #include "sewerplan/search/planner.h"
 
@@ -56,9 +59,17 @@ struct Failure {
 std::string_view to_string(Failure::Kind kind);
 
 struct PlanResponse {
+  // What the caller does with the answer; switch on it. The names (to_string, parse_decision)
+  // are stable: the event log and every CLI --json output carry them.
   enum class Decision {
-    kFollowPlan,       // carry out `fused` (empty when the mission is already ended)
-    kCallForRecovery,  // no exit can be reached: activate the beacon and wait
+    kFollowPlan,       // "follow-plan": carry out `fused` (empty when the mission is already ended)
+    kDegraded,         // "degraded": carry out `fused`; it does less than asked (tasks dropped,
+                       // the end point given up, or the time ran out and it heads for an exit)
+    kCallForRecovery,  // "call-for-recovery": a search proved that no exit can be reached:
+                       // activate the beacon and wait
+    kStuck,            // "stuck": the robot cannot move: activate the beacon and wait
+    kInvalidReport,    // "invalid-report": the report was rejected (`reason` says why) and the
+                       // world model is unchanged; the robot's last plan stands
   };
   Decision decision = Decision::kFollowPlan;
   domain::Plan plan;
@@ -73,10 +84,31 @@ struct PlanResponse {
   double energy_wh = 0;
 };
 
+// Whether a failure report can be applied to `map`: known pipe, manhole and slots, a finite offset
+// within the pipe, two different slots of a dangerous passage. The error names what is wrong.
+Result<void> check_failure(const Failure& failure, const SewerMap& map);
+// Whether a progress report fits `map` and `mission`: a known place (a finite offset within its
+// pipe), one done flag per task, a finite energy of at least 0, a heading end of 0 or 1.
+Result<void> check_progress(const domain::MissionProgress& progress, std::uint8_t heading_end,
+                            const SewerMap& map, const Mission& mission);
+
+// The stable name of a decision ("follow-plan", "degraded", "call-for-recovery", "stuck",
+// "invalid-report") and back; parse_decision is empty for any other text.
+std::string_view to_string(PlanResponse::Decision decision);
+std::optional<PlanResponse::Decision> parse_decision(std::string_view name);
+// kFollowPlan and kDegraded: there is a plan to carry out.
+bool has_plan(PlanResponse::Decision decision);
+// kCallForRecovery and kStuck: the robot switches its locator beacon on.
+bool calls_beacon(PlanResponse::Decision decision);
+
 struct ReplannerOptions {
   // Goal selection is always on. The robot waits while it replans, so by default there is no
   // improvement search after the first plan (for a task beyond exhaustive A*, the tour search's
   // plan: bench/executor/replan_bench.cc); give it expansions to trade time for cost.
+  // `planner.time_limit_s` (0: none) is the deadline of each plan() and report_failure() as a
+  // whole, and `planner.cancel` cuts it short: either way the answer is the safe one (the nearest
+  // reachable exit, kDegraded), found by one search that neither bounds: it may overshoot the
+  // deadline by that search (bench/executor/deadline_bench.cc).
   search::PlannerOptions planner{.improvement_expansions = 0};
   // Used to time the planning (default: a steady clock).
   const Clock* clock = nullptr;
@@ -97,22 +129,41 @@ class Replanner {
   PlanResponse plan(const std::string& reason = "start");
 
   // Where the robot is, what it has done and the energy it has used; `heading_end` is the end of
-  // its pipe its front points to (0 or 1) when it is in a pipe.
-  void update(const domain::MissionProgress& progress, std::uint8_t heading_end);
+  // its pipe its front points to (0 or 1) when it is in a pipe. A report that check_progress
+  // rejects is an error, and the progress stays as it was.
+  Result<void> update(const domain::MissionProgress& progress, std::uint8_t heading_end);
 
-  // Changes the world model for `failure` and plans again from progress().
+  // Changes the world model for `failure` and plans again from progress(). A report that
+  // check_failure rejects changes nothing: the answer is kInvalidReport, its reason the error.
+  // A new plan identical to the one that just failed would fail the same way: the task it heads
+  // for first is dropped instead (the robot cannot get there), and the answer is kDegraded.
   PlanResponse report_failure(const Failure& failure);
 
-  // The mission as the Replanner now sees it: with the blockages and closures learnt, and
-  // without its final task once the end point was cut off.
+  // Adds what an earlier mission learnt (learnt.h) to the world model, for the next plan; an
+  // entry that check_failure would reject is an error, and nothing is added.
+  Result<void> learn(const Learnt& learnt);
+  // What this Replanner has learnt: learn()'s and every failure reported since.
+  const Learnt& learnt() const { return learnt_; }
+
+  // The mission as the Replanner now sees it: the operator's with what was learnt
+  // (with_learnt), and without its final task once the end point was cut off.
   const Mission& mission() const { return mission_; }
   const domain::MissionProgress& progress() const { return progress_; }
   const std::vector<domain::DroppedTask>& dropped() const { return dropped_; }
   std::uint8_t heading_end() const { return heading_end_; }
 
  private:
-  Result<search::PlanOutcome> plan_from_here();
-  Result<search::PlanOutcome> baseline_from_here();
+  const Clock& clock() const;
+  std::vector<ManholeId> map_exits() const;
+  // The planner's options, with a time limit to `deadline_s` (infinite: none).
+  search::PlannerOptions bounded(double deadline_s) const;
+  Result<search::PlanOutcome> plan_from_here(double deadline_s);
+  Result<search::PlanOutcome> baseline_from_here(double deadline_s);
+  // The safe answer: the nearest exit the robot can reach, every task left dropped for `why`.
+  // One optimal search over the robot's places, without a time limit or a cancel.
+  Result<search::PlanOutcome> exit_from_here(const std::string& why);
+  // The first task `plan` does from progress(), if any.
+  std::optional<TaskId> first_task_of(const domain::Plan& plan) const;
   PlanResponse respond(search::PlanOutcome outcome, const std::string& reason, double seconds);
 
   const SewerMap& map_;
@@ -122,7 +173,10 @@ class Replanner {
   domain::MissionProgress progress_;
   std::uint8_t heading_end_ = 1;
   std::vector<domain::DroppedTask> dropped_;
+  Learnt learnt_;
   bool planned_ = false;  // a first plan was made
+  // The steps of the last plan answered: after a failure, the plan that failed.
+  std::vector<domain::PlanStep> last_steps_;
 };
 
 }  // namespace sewerplan::executor

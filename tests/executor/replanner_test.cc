@@ -1,0 +1,228 @@
+// SPDX-License-Identifier: MIT
+// The Replanner's answers: typed decisions the robot software switches on, on the paper's test
+// environment (datasets/ais-testbed).
+#include "sewerplan/executor/replanner.h"
+
+#include <atomic>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "sewerplan/core/generator.h"
+#include "sewerplan/domain/mission_generator.h"
+#include "sewerplan/domain/validator.h"
+
+#include "support/ais_testbed.h"
+
+namespace sewerplan::executor {
+namespace {
+
+using Decision = PlanResponse::Decision;
+
+PipeId pipe_named(const SewerMap& map, std::string_view name) {
+  for (PipeId p : map.pipe_ids()) {
+    if (map.pipe(p).name == name) return p;
+  }
+  ADD_FAILURE() << "no pipe " << name;
+  return PipeId{0};
+}
+
+TEST(ReplannerDecision, EveryDecisionHasAStableNameThatParsesBack) {
+  const std::vector<std::pair<Decision, std::string_view>> names{
+      {Decision::kFollowPlan, "follow-plan"},
+      {Decision::kDegraded, "degraded"},
+      {Decision::kCallForRecovery, "call-for-recovery"},
+      {Decision::kStuck, "stuck"},
+      {Decision::kInvalidReport, "invalid-report"}};
+  for (const auto& [decision, name] : names) {
+    EXPECT_EQ(to_string(decision), name);
+    EXPECT_EQ(parse_decision(name), decision) << name;
+  }
+  EXPECT_EQ(parse_decision("follow"), std::nullopt);
+  EXPECT_EQ(parse_decision("call for recovery"), std::nullopt);
+}
+
+TEST(ReplannerDecision, OnlyFollowAndDegradedCarryAPlanAndOnlyRecoveryAndStuckCallTheBeacon) {
+  EXPECT_TRUE(has_plan(Decision::kFollowPlan));
+  EXPECT_TRUE(has_plan(Decision::kDegraded));
+  EXPECT_FALSE(has_plan(Decision::kCallForRecovery));
+  EXPECT_FALSE(has_plan(Decision::kStuck));
+  EXPECT_FALSE(has_plan(Decision::kInvalidReport));
+  EXPECT_TRUE(calls_beacon(Decision::kCallForRecovery));
+  EXPECT_TRUE(calls_beacon(Decision::kStuck));
+  EXPECT_FALSE(calls_beacon(Decision::kFollowPlan));
+  EXPECT_FALSE(calls_beacon(Decision::kDegraded));
+  EXPECT_FALSE(calls_beacon(Decision::kInvalidReport));
+}
+
+TEST(ReplannerDecision, TheWholeMissionIsFollowPlan) {
+  const auto ais = testing::load_ais_testbed();
+  Replanner replanner(ais.map, ais.mission);
+  const PlanResponse r = replanner.plan();
+  EXPECT_EQ(r.decision, Decision::kFollowPlan) << r.reason;
+  EXPECT_FALSE(r.plan.steps.empty());
+}
+
+TEST(ReplannerDecision, ABlockageThatCostsATaskIsDegraded) {
+  const auto ais = testing::load_ais_testbed();
+  Replanner replanner(ais.map, ais.mission);
+  (void)replanner.plan();
+  // P4 blocked in its middle: it cannot be inspected any more.
+  const PipeId p4 = pipe_named(ais.map, "P4");
+  const PlanResponse r = replanner.report_failure(
+      {.kind = Failure::Kind::kBlockage, .pipe = p4, .offset_m = ais.map.pipe(p4).length_m / 2});
+  ASSERT_EQ(r.newly_dropped.size(), 1U) << r.reason;
+  EXPECT_EQ(r.decision, Decision::kDegraded) << r.reason;
+  // Nothing more is lost on the next replan: following the plan again.
+  EXPECT_EQ(replanner.plan("again").decision, Decision::kFollowPlan);
+}
+
+TEST(ReplannerDecision, ARobotThatCannotMoveIsStuck) {
+  const auto ais = testing::load_ais_testbed();
+  Replanner replanner(ais.map, ais.mission);
+  const PlanResponse r =
+      replanner.report_failure({.kind = Failure::Kind::kStuck, .detail = "motor 3 dead"});
+  EXPECT_EQ(r.decision, Decision::kStuck);
+  EXPECT_NE(r.reason.find("motor 3 dead"), std::string::npos);
+}
+
+// Issue 14: a failure report with an unknown pipe aborted the whole process, even in a release
+// build. Each bad report is now answered, naming what is wrong, and changes nothing.
+TEST(ReplannerIssue14, BadFailureReportsAreAnsweredAsInvalidAndChangeNothing) {
+  const auto ais = testing::load_ais_testbed();
+  const PipeId p4 = pipe_named(ais.map, "P4");
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  const std::vector<std::pair<Failure, std::string_view>> bad{
+      {{.kind = Failure::Kind::kBlockage, .pipe = PipeId{9999}}, "unknown pipe #9999"},
+      {{.kind = Failure::Kind::kDangerInPipe, .pipe = p4, .offset_m = -0.1}, "outside pipe P4"},
+      {{.kind = Failure::Kind::kBlockage, .pipe = p4, .offset_m = 1e6}, "outside pipe P4"},
+      {{.kind = Failure::Kind::kBlockage, .pipe = p4, .offset_m = nan}, "outside pipe P4"},
+      {{.kind = Failure::Kind::kBlockage, .pipe = p4, .offset_m = inf}, "outside pipe P4"},
+      {{.kind = Failure::Kind::kDangerousPassage, .manhole = ManholeId{4242}},
+       "unknown manhole #4242"},
+      {{.kind = Failure::Kind::kDangerousPassage,
+        .manhole = ManholeId{0},
+        .from = SlotIndex{0},
+        .to = SlotIndex{77}},
+       "not slot 78"},
+      {{.kind = Failure::Kind::kDangerousPassage,
+        .manhole = ManholeId{0},
+        .from = SlotIndex{0},
+        .to = SlotIndex{0}},
+       "to itself"},
+  };
+  Replanner replanner(ais.map, ais.mission);
+  const PlanResponse first = replanner.plan();
+  for (const auto& [failure, message] : bad) {
+    EXPECT_FALSE(check_failure(failure, ais.map).has_value()) << message;
+    const PlanResponse r = replanner.report_failure(failure);
+    EXPECT_EQ(r.decision, Decision::kInvalidReport) << message;
+    EXPECT_NE(r.reason.find(message), std::string::npos) << r.reason;
+  }
+  EXPECT_EQ(replanner.mission().blockages, ais.mission.blockages);
+  EXPECT_EQ(replanner.mission().closed_passages, ais.mission.closed_passages);
+  EXPECT_EQ(replanner.plan().plan.steps, first.plan.steps);
+}
+
+TEST(ReplannerIssue14, BadProgressReportsAreErrorsAndKeepTheLastProgress) {
+  const auto ais = testing::load_ais_testbed();
+  Replanner replanner(ais.map, ais.mission);
+  const domain::MissionProgress before = replanner.progress();
+  const PipeId p4 = pipe_named(ais.map, "P4");
+  auto with = [&](domain::RobotPosition position) {
+    domain::MissionProgress p = before;
+    p.position = position;
+    return p;
+  };
+  domain::MissionProgress short_done = before;
+  short_done.done.pop_back();
+  domain::MissionProgress final_done_elsewhere = before;
+  final_done_elsewhere.done.back() = true;  // 'end' is in P9; the robot starts in P12
+  domain::MissionProgress nan_energy = before;
+  nan_energy.energy_used_wh = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<std::pair<domain::MissionProgress, std::string_view>> bad{
+      {with(domain::InPipe{PipeId{123}, 0}), "unknown pipe #123"},
+      {with(domain::InPipe{p4, -1}), "outside pipe P4"},
+      {with(domain::InPipe{p4, std::numeric_limits<double>::infinity()}), "outside pipe P4"},
+      {with(domain::AtSlot{ManholeId{0}, SlotIndex{50}}), "no slot 51"},
+      {with(domain::InManhole{ManholeId{500}}), "unknown manhole #500"},
+      {short_done, "2 done flags for 3 tasks"},
+      {nan_energy, "energy used"},
+      {final_done_elsewhere, "the final task 'end' is done, but the robot is in pipe P12"},
+  };
+  for (const auto& [progress, message] : bad) {
+    const Result<void> r = replanner.update(progress, 1);
+    ASSERT_FALSE(r.has_value()) << message;
+    EXPECT_NE(r.error().message.find(message), std::string::npos) << r.error().message;
+  }
+  EXPECT_FALSE(replanner.update(before, 2).has_value());
+  EXPECT_EQ(replanner.progress(), before);
+  EXPECT_TRUE(replanner.update(with(domain::InPipe{p4, 1.0}), 0).has_value());
+}
+
+// A clock that moves on by a second each time it is read: any time limit is over at the first
+// look, deterministically.
+class TickingClock final : public Clock {
+ public:
+  double now_s() const override { return now_s_ += 1.0; }
+
+ private:
+  mutable double now_s_ = 0;
+};
+
+// Issue 14: a replan that reached its time limit was answered with the beacon. The acceptance
+// case (a 1 microsecond limit on a generated network) answers degraded, heading to an exit along
+// a valid route; the 100,000-manhole case is bench/executor/deadline_bench.cc.
+TEST(ReplannerIssue14, AReplanOutOfTimeHeadsForTheNearestExitInsteadOfCallingTheBeacon) {
+  auto map = generate_network({.manholes = 2000, .seed = 7, .topology = Topology::kMeshed});
+  ASSERT_TRUE(map.has_value()) << map.error();
+  auto mission = domain::generate_mission(*map, {.tasks = 8, .seed = 3});
+  ASSERT_TRUE(mission.has_value()) << mission.error();
+  TickingClock clock;
+  // Greedy best-first search: an engine that asks its stop condition at every expansion.
+  Replanner replanner(*map, *mission,
+                      {.planner = {.algorithm = search::Algorithm::kGbfs,
+                                   .time_limit_s = 1e-6,
+                                   .improvement_expansions = 0},
+                       .clock = &clock});
+  const PlanResponse r = replanner.plan();
+  ASSERT_EQ(r.decision, Decision::kDegraded) << r.reason;
+  EXPECT_EQ(r.end.rfind("exit ", 0), 0U) << r.end;
+  EXPECT_EQ(r.newly_dropped.size(), mission->tasks.size());
+  EXPECT_NE(r.newly_dropped.front().reason.find("time ran out"), std::string::npos);
+  domain::MissionProgress start = replanner.progress();
+  for (const auto& d : replanner.dropped()) start.done[d.task.index()] = true;
+  const auto report = domain::validate_plan(r.plan, *map, replanner.mission(), start);
+  EXPECT_TRUE(report.valid) << report.error;
+  // Without a limit the same mission does tasks.
+  Replanner unlimited(*map, *mission);
+  EXPECT_TRUE(has_plan(unlimited.plan().decision));
+}
+
+TEST(ReplannerIssue14, AReplanThatIsCancelledHeadsForAnExitInsteadOfCallingTheBeacon) {
+  const auto ais = testing::load_ais_testbed();
+  std::atomic<bool> cancel{true};
+  Replanner replanner(ais.map, ais.mission,
+                      {.planner = {.cancel = &cancel, .improvement_expansions = 0}});
+  const PlanResponse r = replanner.plan();
+  ASSERT_EQ(r.decision, Decision::kDegraded) << r.reason;
+  EXPECT_EQ(r.end.rfind("exit ", 0), 0U) << r.end;
+  EXPECT_NE(r.newly_dropped.front().reason.find("cancelled"), std::string::npos);
+}
+
+TEST(ReplannerIssue14, OnlyAProofThatNoExitCanBeReachedCallsTheBeacon) {
+  const auto ais = testing::load_ais_testbed();
+  Replanner replanner(ais.map, ais.mission);
+  (void)replanner.plan();
+  // The robot starts in P12: both ends of it blocked.
+  const PipeId p12 = pipe_named(ais.map, "P12");
+  const double x = std::get<domain::InPipe>(replanner.progress().position).offset_m;
+  (void)replanner.report_failure(
+      {.kind = Failure::Kind::kBlockage, .pipe = p12, .offset_m = x + 0.5});
+  const PlanResponse r = replanner.report_failure(
+      {.kind = Failure::Kind::kBlockage, .pipe = p12, .offset_m = x - 0.5});
+  EXPECT_EQ(r.decision, Decision::kCallForRecovery) << r.reason;
+}
+}  // namespace
+}  // namespace sewerplan::executor
