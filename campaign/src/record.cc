@@ -23,7 +23,8 @@ Json execution_json(const Execution& e) {
               {"replans", e.replans},
               {"time_s", e.time_s},
               {"energy_wh", e.energy_wh},
-              {"disabled", e.disabled}};
+              {"disabled", e.disabled},
+              {"beacon_cause", std::string(executor::to_string(e.beacon_cause))}};
 }
 
 Json planning_json(const Execution& e) {
@@ -86,6 +87,12 @@ class Reader {
     x.time_s = get<double>(e, "time_s", path);
     x.energy_wh = get<double>(e, "energy_wh", path);
     x.disabled = get<bool>(e, "disabled", path);
+    // Records written before beacons had causes have none.
+    if (e.contains("beacon_cause")) {
+      const auto cause = executor::parse_beacon_cause(get<std::string>(e, "beacon_cause", path));
+      if (!cause) throw Bad{where_ + ": " + path + ".beacon_cause: unknown cause"};
+      x.beacon_cause = *cause;
+    }
     return x;
   }
   std::vector<double> times(const Json& j, const char* key) {

@@ -82,6 +82,7 @@ Execution execute(const SewerMap& map, const Mission& mission, const hal::FaultS
   e.time_s = report.time_s;
   e.energy_wh = report.energy_wh;
   e.disabled = disabled(faults, robot);
+  e.beacon_cause = report.beacon_cause;
   e.planning_times_s = report.planning_times_s;
   const std::optional<ManholeId> m = manhole_of(robot.pose());
   // A final task that is a place (go to a pipe or a manhole) is done by ending there: the executor

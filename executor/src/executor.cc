@@ -3,6 +3,7 @@
 #include "sewerplan/executor/executor.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iomanip>
 #include <optional>
@@ -33,6 +34,33 @@ std::vector<std::string> task_names(const Mission& mission, const std::vector<Ta
 }
 
 }  // namespace
+
+namespace {
+
+constexpr std::array<std::pair<MissionReport::BeaconCause, std::string_view>, 6> kBeaconCauses{{
+    {MissionReport::BeaconCause::kNone, "none"},
+    {MissionReport::BeaconCause::kNoExit, "no-exit"},
+    {MissionReport::BeaconCause::kStuck, "stuck"},
+    {MissionReport::BeaconCause::kMalfunction, "malfunction"},
+    {MissionReport::BeaconCause::kLink, "link"},
+    {MissionReport::BeaconCause::kLimit, "limit"},
+}};
+
+}  // namespace
+
+std::string_view to_string(MissionReport::BeaconCause cause) {
+  for (const auto& [c, name] : kBeaconCauses) {
+    if (c == cause) return name;
+  }
+  return "none";
+}
+
+std::optional<MissionReport::BeaconCause> parse_beacon_cause(std::string_view name) {
+  for (const auto& [c, n] : kBeaconCauses) {
+    if (n == name) return c;
+  }
+  return std::nullopt;
+}
 
 std::ostream& operator<<(std::ostream& os, const MissionReport& r) {
   os << std::fixed << std::setprecision(1);
@@ -78,20 +106,26 @@ class Executor::Run {
   MissionReport go() {
     PlanResponse response = replanner_.plan("start");
     log_plan("plan", response);
+    std::optional<Failure> last_failure;
     for (;;) {
+      report_.decision = response.decision;
       if (!has_plan(response.decision)) {
+        report_.beacon_cause = beacon_cause(response.decision, last_failure);
         return finish(MissionReport::Outcome::kBeacon, response.reason);
       }
       if (auto invalid = check(response)) {
+        report_.beacon_cause = MissionReport::BeaconCause::kLimit;
         return finish(MissionReport::Outcome::kBeacon, "the plan is not valid: " + *invalid);
       }
       std::optional<Replan> replan = execute(response);
       if (!replan) return finish(MissionReport::Outcome::kEnded, response.end);
       if (report_.replans >= options_.max_replans) {
+        report_.beacon_cause = MissionReport::BeaconCause::kLimit;
         return finish(MissionReport::Outcome::kBeacon,
                       "gave up after " + std::to_string(report_.replans) + " replans");
       }
       ++report_.replans;
+      last_failure = replan->failure;
       if (replan->failure) log_failure(*replan->failure);
       response = replan->failure ? replanner_.report_failure(*replan->failure)
                                  : replanner_.plan(replan->reason);
@@ -106,6 +140,23 @@ class Executor::Run {
   };
 
   double now() const { return robot_.status().elapsed_s; }
+
+  // Why the Replanner's answer switches the beacon on: a proof that no exit can be reached, or a
+  // robot that cannot move, by what stopped it (the robot's words in the last failure).
+  static MissionReport::BeaconCause beacon_cause(PlanResponse::Decision decision,
+                                                 const std::optional<Failure>& failure) {
+    using Cause = MissionReport::BeaconCause;
+    if (decision == PlanResponse::Decision::kCallForRecovery) return Cause::kNoExit;
+    if (decision != PlanResponse::Decision::kStuck) return Cause::kLimit;
+    const std::string detail = failure ? failure->detail : "";
+    if (detail.find("CAN link") != std::string::npos) return Cause::kLink;
+    if (detail.find("malfunction") != std::string::npos ||
+        detail.find("reboot failed") != std::string::npos ||
+        detail.find("battery empty") != std::string::npos) {
+      return Cause::kMalfunction;
+    }
+    return Cause::kStuck;
+  }
   const Mission& mission() const { return replanner_.mission(); }
 
   // The progress planning starts from: the dropped tasks count as done.
@@ -263,7 +314,9 @@ class Executor::Run {
          {"end", end},
          {"tasks_done", report_.tasks_done},
          {"energy_wh", report_.energy_wh},
-         {"replans", static_cast<std::int64_t>(report_.replans)}});
+         {"replans", static_cast<std::int64_t>(report_.replans)},
+         {"decision", std::string(to_string(report_.decision))},
+         {"beacon_cause", std::string(to_string(report_.beacon_cause))}});
     return report_;
   }
 

@@ -69,6 +69,9 @@ TEST(Executor, WithoutFaultsThePapersMissionIsDoneAsPlanned) {
   EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded);
   EXPECT_EQ(run.report.tasks_done, (std::vector<std::string>{"sample", "inspect"}));
   EXPECT_EQ(run.report.replans, 0U);
+  EXPECT_EQ(run.report.beacon_cause, MissionReport::BeaconCause::kNone);
+  EXPECT_NE(run.json_lines.find(R"("decision":"follow-plan","beacon_cause":"none")"),
+            std::string::npos);
   EXPECT_NEAR(run.report.time_s, 585.4, 0.05);  // the plan's cost, to the robot's clock
   EXPECT_TRUE(run.report.battery_reserve_kept);
 }
@@ -128,6 +131,11 @@ TEST(Executor, AStuckRobotSwitchesItsBeaconOn) {
   EXPECT_EQ(run.report.outcome, MissionOutcome::kBeacon);
   EXPECT_NE(run.report.end.find("cannot move"), std::string::npos) << run.report.end;
   EXPECT_EQ(count(run, "beacon"), 1U);
+  EXPECT_EQ(run.report.decision, PlanResponse::Decision::kStuck);
+  EXPECT_EQ(run.report.beacon_cause, MissionReport::BeaconCause::kMalfunction);
+  EXPECT_NE(run.json_lines.find(R"("decision":"stuck","beacon_cause":"malfunction")"),
+            std::string::npos)
+      << run.json_lines;
   // The robot's words were prefixed once more ("reboot failed: reboot failed: ...").
   EXPECT_NE(run.json_lines.find("reboot failed: permanent"), std::string::npos) << run.json_lines;
   EXPECT_EQ(run.json_lines.find("reboot failed: reboot failed"), std::string::npos)

@@ -33,6 +33,7 @@
 #include "sewerplan/core/mission.h"
 #include "sewerplan/core/result.h"
 #include "sewerplan/core/sewer_map.h"
+#include "sewerplan/executor/executor.h"
 #include "sewerplan/hal/fault_scenario.h"
 
 namespace sewerplan::campaign {
@@ -84,7 +85,9 @@ struct Execution {
   std::size_t replans = 0;
   double time_s = 0;  // mission time and energy, simulated (deterministic)
   double energy_wh = 0;
-  bool disabled = false;                 // a permanent malfunction struck
+  bool disabled = false;  // a permanent malfunction struck
+  // Why the beacon is on ("none" otherwise); "limit" must never happen.
+  executor::MissionReport::BeaconCause beacon_cause = executor::MissionReport::BeaconCause::kNone;
   std::vector<double> planning_times_s;  // measured
   friend bool operator==(const Execution&, const Execution&) = default;
 };
