@@ -220,7 +220,7 @@ class Executor::Run {
                 {"kind", std::string(fusion::action_kind(action))},
                 {"duration_s", fusion::duration_s(action)},
                 {"parameters", action_text(action)}});
-      for (const Job& job : fusion::expand(action, mission().profile)) {
+      for (const Job& job : jobs_for(action)) {
         if (auto failure = recovery_.run_job(job, action)) {
           sync_progress(replay.progress());
           return Replan{failure, ""};
@@ -239,10 +239,55 @@ class Executor::Run {
           log_.add(now(), "task_done", {{"task", mission().task(t).name}});
         }
       }
+      if (!agrees(tracker_.position(), replay.position())) {
+        // The robot is not where the plan puts it: plan again from where it really is, rather than
+        // carry on (or report the mission ended at an exit) on the plan's word.
+        sync_progress(replay.progress());
+        return Replan{std::nullopt, "the robot is " + tracker_.describe() + ", the plan has it " +
+                                        domain::describe(replay.position(), map_)};
+      }
       tracker_.set_position(replay.position());
       sync_progress(replay.progress());
     }
     return std::nullopt;
+  }
+
+  // The jobs for an action. A drive to a manhole of 0 m has none (fusion drops it), but the robot
+  // right at the pipe's end, as a pass into the pipe leaves it, must still drive onto the mouth.
+  std::vector<Job> jobs_for(const fusion::RobotAction& action) const {
+    std::vector<Job> jobs = fusion::expand(action, mission().profile);
+    const auto* drive = std::get_if<fusion::DriveToManhole>(&action);
+    if (!jobs.empty() || drive == nullptr ||
+        !std::holds_alternative<domain::InPipe>(tracker_.position())) {
+      return jobs;
+    }
+    if (drive->direction == fusion::Direction::kForward) {
+      jobs.emplace_back(DriveForward{.speed_mps = drive->speed_mps, .distance_m = 0});
+    } else {
+      jobs.emplace_back(DriveBackward{.speed_mps = drive->speed_mps, .distance_m = 0});
+    }
+    return jobs;
+  }
+
+  // Whether the position the robot's reports give agrees with the plan's. At a pipe's mouth
+  // agrees with right at that pipe's end (a drive onto the end arrives at the mouth); in the pipe
+  // right at its end does not agree with at the mouth.
+  bool agrees(const domain::RobotPosition& tracked, const domain::RobotPosition& planned) const {
+    constexpr double kToleranceM = 1e-3;
+    if (tracked == planned) return true;
+    const auto* in_planned = std::get_if<domain::InPipe>(&planned);
+    if (in_planned == nullptr) return false;
+    if (const auto* in = std::get_if<domain::InPipe>(&tracked)) {
+      return in->pipe == in_planned->pipe &&
+             std::abs(in->offset_m - in_planned->offset_m) <= kToleranceM;
+    }
+    if (const auto* at = std::get_if<domain::AtSlot>(&tracked)) {
+      const Slot& slot = map_.slot(at->manhole, at->slot);
+      return slot.pipe == in_planned->pipe &&
+             std::abs(domain::end_offset_m(map_.pipe(slot.pipe), slot.pipe_end) -
+                      in_planned->offset_m) <= kToleranceM;
+    }
+    return false;
   }
 
   // A replan reason when the plan left needs more energy than the battery has above the reserve.

@@ -203,7 +203,8 @@ JobReport SimRobot::run(const Job& job) {
 JobReport SimRobot::drive(double speed_mps, double distance_m, int direction, bool push) {
   if (!(std::isfinite(speed_mps) && speed_mps > 0)) return invalid("the speed must be > 0");
   if (!valid_number(distance_m)) return invalid("the distance must be >= 0");
-  if (distance_m == 0) return JobReport{};
+  // A drive of 0 m does nothing, except in a pipe right at its end, where it is at the mouth.
+  if (distance_m == 0 && !std::holds_alternative<InPipe>(pose_)) return JobReport{};
   if (const auto* in = std::get_if<InManhole>(&pose_)) {
     return failure(RobotErrorKind::kMalfunction, "cannot drive in manhole " +
                                                      map_.manhole(in->manhole).name +

@@ -194,6 +194,14 @@ for i in 0 1 2; do
 done
 expect 0 'Verdict: clean' -- "$sp" campaign merge "$tmp/shard0" "$tmp/shard1" "$tmp/shard2" -o "$tmp/merged"
 expect 0 '' -- bash -c "diff <(sed 's/,\"measured\".*//' \"$tmp/camp/runs.jsonl\") <(sed 's/,\"measured\".*//' \"$tmp/merged/runs.jsonl\")"
+# Issue 14: a go-to at P9's M10 end leaves the robot right at that end after a pass into P9; the
+# drive of 0 m back to M10 must bring it to the mouth (it stayed in P9, and was "ended at exit M10").
+cat >"$tmp/end-of-p9.json" <<'JSON'
+{"format": "sewerplan-mission", "version": 1, "name": "go-to-the-end-of-p9", "profile": "makro-1.1",
+ "start": {"pipe": "P12"}, "battery_reserve": 0.2,
+ "tasks": [{"name": "end", "type": "go_to", "at": {"pipe": "P9", "offset_m": 4.243}}]}
+JSON
+expect 0 'could reach an exit but did not \| 0 \| 0 \|' -- "$sp" campaign --map "$ais" --mission "$tmp/end-of-p9.json" --runs 12 --seed 5
 expect 1 'shard\(s\) 1 of 3 missing' -- "$sp" campaign merge "$tmp/shard0" "$tmp/shard2" -o "$tmp/merged2"
 expect 1 'shard 2/3 given twice' -- "$sp" campaign merge "$tmp/shard0" "$tmp/shard1" "$tmp/shard2" "$tmp/shard2" -o "$tmp/merged3"
 expect 6 'run 3 \(seed [0-9]+\): crash.*--only 3' -- env SEWERPLAN_CAMPAIGN_INJECT=crash:3,hang:4 "$sp" campaign --map "$ais" --mission "$mission" --runs 6 --timeout 5 --jobs 2
