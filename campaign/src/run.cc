@@ -67,7 +67,9 @@ Mission clairvoyant(const Mission& mission, const hal::FaultScenario& faults, bo
 
 Execution execute(const SewerMap& map, const Mission& mission, const hal::FaultScenario& faults,
                   const RunSettings& settings, executor::ReplannerOptions::Goals goals) {
-  executor::Replanner replanner(map, mission, {.goals = goals});
+  executor::ReplannerOptions replanner_options{.goals = goals};
+  replanner_options.planner.time_limit_s = settings.planner_time_limit_s;
+  executor::Replanner replanner(map, mission, replanner_options);
   hal::SimRobot robot(map, mission.profile, start_pose(replanner.progress().position), faults);
   executor::ExecutorOptions options;
   options.recovery.push_allowed = settings.push_allowed;

@@ -213,7 +213,11 @@ void write_summary_markdown(const Summary& s, std::ostream& out) {
   if (s.spec.shard_count > 1)
     out << " (shard " << s.spec.shard_index << "/" << s.spec.shard_count << ")";
   out << ", fault rates " << format_fault_rates(s.spec.rates)
-      << (s.spec.push_allowed ? ", push allowed" : "") << ".\n\n";
+      << (s.spec.push_allowed ? ", push allowed" : "");
+  if (s.spec.planner_time_limit_s > 0) {
+    out << ", planner time limit " << s.spec.planner_time_limit_s << " s";
+  }
+  out << ".\n\n";
   out << "| | ours | baseline |\n|---|---|---|\n";
   out << "| tasks done per run (oracle: " << num(s.oracle_tasks_mean) << ") | "
       << num(s.ours.tasks_mean) << " | " << num(s.baseline.tasks_mean) << " |\n";

@@ -202,6 +202,12 @@ cat >"$tmp/end-of-p9.json" <<'JSON'
  "tasks": [{"name": "end", "type": "go_to", "at": {"pipe": "P9", "offset_m": 4.243}}]}
 JSON
 expect 0 'could reach an exit but did not \| 0 \| 0 \|' -- "$sp" campaign --map "$ais" --mission "$tmp/end-of-p9.json" --runs 12 --seed 5
+# --planner-time-limit: every replan reaches a 1 us limit and still heads for an exit, never the beacon.
+expect 0 'planner time limit 1e-06 s' -- "$sp" campaign --map "$ais" --mission "$mission" --runs 6 --seed 5 --planner-time-limit 0.000001 -o "$tmp/limit"
+expect 0 'beacons: limit \| 0 \| 0 \|' -- cat "$tmp/limit/summary.md"
+expect 0 'could reach an exit but did not \| 0 \| 0 \|' -- cat "$tmp/limit/summary.md"
+expect 0 '"planner_time_limit_s": 1e-06' -- cat "$tmp/limit/campaign.json"
+expect 2 'planner-time-limit: Value -1 not in range' -- "$sp" campaign --map "$ais" --mission "$mission" --planner-time-limit -1
 expect 1 'shard\(s\) 1 of 3 missing' -- "$sp" campaign merge "$tmp/shard0" "$tmp/shard2" -o "$tmp/merged2"
 expect 1 'shard 2/3 given twice' -- "$sp" campaign merge "$tmp/shard0" "$tmp/shard1" "$tmp/shard2" "$tmp/shard2" -o "$tmp/merged3"
 expect 6 'run 3 \(seed [0-9]+\): crash.*--only 3' -- env SEWERPLAN_CAMPAIGN_INJECT=crash:3,hang:4 "$sp" campaign --map "$ais" --mission "$mission" --runs 6 --timeout 5 --jobs 2

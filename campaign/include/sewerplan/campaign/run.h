@@ -58,6 +58,10 @@ struct RunSettings {
   FaultRates rates;
   std::uint64_t campaign_seed = 0;
   bool push_allowed = false;  // recovery phase 3 (executor/recovery.h)
+  // The deadline of each plan of ours and the baseline (ReplannerOptions::planner.time_limit_s; 0:
+  // none); not the oracle's. Measured on the wall clock, so a limit some plans reach makes runs
+  // depend on the machine.
+  double planner_time_limit_s = 0;
 };
 
 // The run's own seed: splitmix64 of the campaign seed and the index.
