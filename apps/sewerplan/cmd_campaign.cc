@@ -38,6 +38,7 @@ struct CampaignCliOptions {
   std::string out;
   double timeout_s = 60;
   bool allow_push = false;
+  double planner_time_limit_s = 0;
   bool quiet = false;
   bool no_guard = false;
   std::string faults_out;
@@ -167,6 +168,7 @@ int run(const CampaignCliOptions& o, Context& c) {
   spec.runs = o.runs;
   spec.rates = *rates;
   spec.push_allowed = o.allow_push;
+  spec.planner_time_limit_s = o.planner_time_limit_s;
   spec.shard_index = shard->first;
   spec.shard_count = shard->second;
 
@@ -244,6 +246,10 @@ void add_campaign_command(CLI::App& app, Context& context) {
   cmd->add_option("--timeout", options->timeout_s, "Seconds before a run counts as hung")
       ->capture_default_str();
   cmd->add_flag("--allow-push", options->allow_push, "Allow recovery phase 3, pushing");
+  cmd->add_option("--planner-time-limit", options->planner_time_limit_s,
+                  "Seconds: the deadline of each replan of ours and the baseline (0: none)")
+      ->check(CLI::Range(0.0, 86400.0))
+      ->capture_default_str();
   cmd->add_flag("--no-guard", options->no_guard,
                 "Run in this process, not in guarded children (for a debugger)");
   cmd->add_option("--faults-out", options->faults_out,

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
-// sewerplan check --map MAP --mission MISSION PLAN [--json]
+// sewerplan check --map MAP --mission MISSION PLAN [--select-goals] [--json]
 #include <ostream>
+#include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -23,6 +25,7 @@ struct CheckOptions {
   std::string mission;
   std::string plan;
   bool json = false;
+  bool select_goals = false;
   MotionOptions motion;
 };
 
@@ -54,7 +57,26 @@ int run(const CheckOptions& o, Context& c) {
   Diagnostics plan_diagnostics;
   Result<domain::Plan> plan = domain::parse_plan(*text, o.plan, *map, *mission, plan_diagnostics);
   if (!plan.has_value()) return failed(plan.error(), plan_diagnostics, o.json, c);
-  const domain::ValidationReport report = domain::validate_plan(*plan, *map, *mission);
+  // With --select-goals, as `plan --select-goals` plans: the tasks the plan does not do are left
+  // out, and it must still end the mission (at its end point, or at an exit when that was left
+  // out too).
+  domain::MissionProgress start = domain::initial_progress(*mission, *map);
+  std::vector<std::string> left_out;
+  if (o.select_goals) {
+    domain::PlanReplay probe(*map, *mission, start);
+    for (const domain::PlanStep& step : plan->steps) {
+      if (!probe.apply(step).has_value()) break;  // validate_plan says why
+    }
+    for (TaskId t : mission->task_ids()) {
+      if (start.done[t.index()] || probe.done(t)) continue;
+      start.done[t.index()] = true;
+      left_out.push_back(mission->task(t).name);
+    }
+  }
+  const domain::ValidationReport report = domain::validate_plan(*plan, *map, *mission, start);
+  if (!o.json) {
+    for (const std::string& task : left_out) c.err << "left out: task '" << task << "'\n";
+  }
   if (o.json) {
     domain::write_plan_json(*plan, report, *map, *mission, c.out);
   } else {
@@ -75,6 +97,8 @@ void add_check_command(CLI::App& app, Context& context) {
   cmd->add_option("--mission", options->mission, "Mission file (.json)")->required();
   cmd->add_option("plan", options->plan, "Plan file, one action a line")->required();
   cmd->add_flag("--json", options->json, "Print the plan, its costs and the verdict as JSON");
+  cmd->add_flag("--select-goals", options->select_goals,
+                "Tasks the plan does not do count as left out (as plan --select-goals plans)");
   add_motion_options(*cmd, options->motion);
   cmd->callback([options, &context] { context.exit_code = run(*options, context); });
 }

@@ -20,13 +20,14 @@ hal::SimPose start_pose(const domain::RobotPosition& p) {
 
 Result<hal::FaultScenario> faults_for(const std::string& faults_file,
                                       const std::string& random_faults, const SewerMap& map,
-                                      Diagnostics& diagnostics) {
+                                      const Mission& mission, Diagnostics& diagnostics) {
   if (!faults_file.empty()) return hal::read_faults(faults_file, map, diagnostics);
   if (random_faults.empty()) return hal::FaultScenario{};
+  // Where the mission's robot fits, as `campaign` draws them (one rule for both).
   // SEED[,RATE]: RATE obstacles per km of drivable pipe (default 20), a quarter as many danger
   // spots, and one malfunction per 2 hours.
   const auto comma = random_faults.find(',');
-  hal::RandomFaultOptions r;
+  hal::RandomFaultOptions r = hal::random_fault_options(mission.profile);
   try {
     r.seed = std::stoull(random_faults.substr(0, comma));
     r.obstacle_rate_per_km =
@@ -49,12 +50,16 @@ std::optional<SimWorld> load_sim_world(const std::string& map_path, const std::s
   Result<Mission> mission = map.has_value() ? read_mission(mission_path, *map, diagnostics)
                                             : Result<Mission>(map.error());
   Result<hal::FaultScenario> faults =
-      mission.has_value() ? faults_for(faults_file, random_faults, *map, diagnostics)
+      mission.has_value() ? faults_for(faults_file, random_faults, *map, *mission, diagnostics)
                           : Result<hal::FaultScenario>(mission.error());
   print_diagnostics(diagnostics, err);
   if (!faults.has_value()) {
     if (diagnostics.error_count() == 0) err << faults.error().message << '\n';
-    exit_code = exit_code_for(faults.error());
+    // A fault file with a bad value is invalid input (1) like a bad map; a bad --random-faults
+    // is a usage error (2).
+    exit_code = !faults_file.empty() && faults.error().code == ErrorCode::kInvalidArgument
+                    ? kExitInvalidInput
+                    : exit_code_for(faults.error());
     return std::nullopt;
   }
   return SimWorld{std::move(*map), std::move(*mission), std::move(*faults)};

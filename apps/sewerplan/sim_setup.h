@@ -21,10 +21,11 @@ namespace sewerplan::cli {
 // as fusion assumes (fusion/fuse.h).
 hal::SimPose start_pose(const domain::RobotPosition& p);
 
-// The fault file if given, else random faults if given (SEED[,RATE]), else none.
+// The fault file if given, else random faults if given (SEED[,RATE]) on the pipes the mission's
+// robot fits (as `campaign` draws them), else none.
 Result<hal::FaultScenario> faults_for(const std::string& faults_file,
                                       const std::string& random_faults, const SewerMap& map,
-                                      Diagnostics& diagnostics);
+                                      const Mission& mission, Diagnostics& diagnostics);
 
 // The map, the mission and the hidden faults of a simulated run, read together.
 struct SimWorld {

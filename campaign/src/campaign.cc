@@ -160,8 +160,10 @@ RunRecord guarded(const SewerMap& map, const Mission& mission, const RunSettings
 
 std::vector<RunRecord> run_campaign(const SewerMap& map, const Mission& mission,
                                     const CampaignSpec& spec, const CampaignOptions& options) {
-  const RunSettings settings{
-      .rates = spec.rates, .campaign_seed = spec.seed, .push_allowed = spec.push_allowed};
+  const RunSettings settings{.rates = spec.rates,
+                             .campaign_seed = spec.seed,
+                             .push_allowed = spec.push_allowed,
+                             .planner_time_limit_s = spec.planner_time_limit_s};
   std::vector<std::size_t> indices;
   if (options.only) {
     indices.push_back(*options.only);

@@ -23,7 +23,8 @@ Json execution_json(const Execution& e) {
               {"replans", e.replans},
               {"time_s", e.time_s},
               {"energy_wh", e.energy_wh},
-              {"disabled", e.disabled}};
+              {"disabled", e.disabled},
+              {"beacon_cause", std::string(executor::to_string(e.beacon_cause))}};
 }
 
 Json planning_json(const Execution& e) {
@@ -86,6 +87,12 @@ class Reader {
     x.time_s = get<double>(e, "time_s", path);
     x.energy_wh = get<double>(e, "energy_wh", path);
     x.disabled = get<bool>(e, "disabled", path);
+    // Records written before beacons had causes have none.
+    if (e.contains("beacon_cause")) {
+      const auto cause = executor::parse_beacon_cause(get<std::string>(e, "beacon_cause", path));
+      if (!cause) throw Bad{where_ + ": " + path + ".beacon_cause: unknown cause"};
+      x.beacon_cause = *cause;
+    }
     return x;
   }
   std::vector<double> times(const Json& j, const char* key) {
@@ -204,7 +211,7 @@ Result<RunRecord> parse_run_line(std::string_view line, const std::string& file_
 bool CampaignSpec::same_campaign(const CampaignSpec& o) const {
   return map_fingerprint == o.map_fingerprint && mission_fingerprint == o.mission_fingerprint &&
          seed == o.seed && runs == o.runs && rates == o.rates && push_allowed == o.push_allowed &&
-         shard_count == o.shard_count;
+         planner_time_limit_s == o.planner_time_limit_s && shard_count == o.shard_count;
 }
 
 std::string fingerprint(std::string_view bytes) {
@@ -233,6 +240,7 @@ std::string campaign_json(const CampaignSpec& s) {
            {"passages", s.rates.passage_share},     {"malfunctions", s.rates.malfunctions_per_hour},
            {"permanent", s.rates.permanent_share},  {"transient", s.rates.transient_share}};
   j["push_allowed"] = s.push_allowed;
+  if (s.planner_time_limit_s > 0) j["planner_time_limit_s"] = s.planner_time_limit_s;
   j["shard"] = Json{{"index", s.shard_index}, {"count", s.shard_count}};
   return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
@@ -265,6 +273,9 @@ Result<CampaignSpec> parse_campaign_json(std::string_view text, const std::strin
     s.rates.permanent_share = in.get<double>(r, "permanent", "$.fault_rates");
     s.rates.transient_share = in.get<double>(r, "transient", "$.fault_rates");
     s.push_allowed = in.get<bool>(j, "push_allowed", "$");
+    if (j.contains("planner_time_limit_s")) {
+      s.planner_time_limit_s = in.get<double>(j, "planner_time_limit_s", "$");
+    }
     const Json& shard = in.at(j, "shard", "$");
     s.shard_index = in.get<std::size_t>(shard, "index", "$.shard");
     s.shard_count = in.get<std::size_t>(shard, "count", "$.shard");
@@ -301,7 +312,9 @@ std::string reproduce_command(const CampaignSpec& s, std::size_t run) {
   std::ostringstream out;
   out << "sewerplan campaign --map " << s.map_name << " --mission " << s.mission_name << " --runs "
       << s.runs << " --seed " << s.seed << " --fault-rates " << format_fault_rates(s.rates)
-      << (s.push_allowed ? " --allow-push" : "") << " --only " << run;
+      << (s.push_allowed ? " --allow-push" : "");
+  if (s.planner_time_limit_s > 0) out << " --planner-time-limit " << s.planner_time_limit_s;
+  out << " --only " << run;
   return out.str();
 }
 

@@ -67,7 +67,9 @@ Mission clairvoyant(const Mission& mission, const hal::FaultScenario& faults, bo
 
 Execution execute(const SewerMap& map, const Mission& mission, const hal::FaultScenario& faults,
                   const RunSettings& settings, executor::ReplannerOptions::Goals goals) {
-  executor::Replanner replanner(map, mission, {.goals = goals});
+  executor::ReplannerOptions replanner_options{.goals = goals};
+  replanner_options.planner.time_limit_s = settings.planner_time_limit_s;
+  executor::Replanner replanner(map, mission, replanner_options);
   hal::SimRobot robot(map, mission.profile, start_pose(replanner.progress().position), faults);
   executor::ExecutorOptions options;
   options.recovery.push_allowed = settings.push_allowed;
@@ -82,6 +84,7 @@ Execution execute(const SewerMap& map, const Mission& mission, const hal::FaultS
   e.time_s = report.time_s;
   e.energy_wh = report.energy_wh;
   e.disabled = disabled(faults, robot);
+  e.beacon_cause = report.beacon_cause;
   e.planning_times_s = report.planning_times_s;
   const std::optional<ManholeId> m = manhole_of(robot.pose());
   // A final task that is a place (go to a pipe or a manhole) is done by ending there: the executor
@@ -198,7 +201,7 @@ std::optional<Outcome> outcome_from_string(std::string_view name) {
 Result<hal::FaultScenario> run_faults(const SewerMap& map, const Mission& mission,
                                       const RunSettings& settings, std::size_t index) {
   const FaultRates& r = settings.rates;
-  hal::RandomFaultOptions o;
+  hal::RandomFaultOptions o = hal::random_fault_options(mission.profile);
   o.seed = run_seed(settings.campaign_seed, index);
   o.obstacle_rate_per_km = r.obstacles_per_km;
   o.transient_share = r.transient_share;
@@ -206,8 +209,6 @@ Result<hal::FaultScenario> run_faults(const SewerMap& map, const Mission& missio
   o.dangerous_passage_share = r.passage_share;
   o.malfunction_rate_per_hour = r.malfunctions_per_hour;
   o.permanent_malfunction_share = r.permanent_share;
-  o.min_pipe_diameter_m = mission.profile.min_pipe_diameter_m;
-  o.max_pipe_diameter_m = mission.profile.max_pipe_diameter_m;
   return hal::random_faults(map, o);
 }
 

@@ -50,6 +50,7 @@ void figures(const std::vector<const RunResult*>& runs, const Execution RunResul
       ++f.vs_oracle_histogram[std::min<std::size_t>(10, static_cast<std::size_t>(s * 10 + 1e-9))];
     }
     ++f.outcomes[static_cast<std::size_t>(e.outcome)];
+    ++f.beacon_causes[static_cast<std::size_t>(e.beacon_cause)];
     if (r->could_reach_exit && e.outcome != Outcome::kExit && e.outcome != Outcome::kEndPoint) {
       ++f.missed_exits;
     }
@@ -84,12 +85,18 @@ Json policy_json(const PolicyFigures& f) {
   for (std::size_t o = 0; o < f.outcomes.size(); ++o) {
     outcomes[std::string(to_string(static_cast<Outcome>(o)))] = f.outcomes[o];
   }
+  Json causes;
+  for (std::size_t c = 1; c < f.beacon_causes.size(); ++c) {
+    causes[std::string(executor::to_string(static_cast<executor::MissionReport::BeaconCause>(c)))] =
+        f.beacon_causes[c];
+  }
   return Json{{"tasks_mean", f.tasks_mean},
               {"tasks_vs_oracle_mean", f.vs_oracle_mean},
               {"tasks_vs_oracle_worst", f.vs_oracle_worst},
               {"worst_run", f.worst_run},
               {"outcomes", outcomes},
               {"missed_exits", f.missed_exits},
+              {"beacons_by_cause", causes},
               {"reserve_violations", f.reserve_violations},
               {"replans_mean", f.replans_mean},
               {"replans_max", f.replans_max},
@@ -124,7 +131,9 @@ std::string xml_escape(std::string_view s) {
 }  // namespace
 
 bool Summary::clean() const {
+  using Cause = executor::MissionReport::BeaconCause;
   return failed.empty() && ours.missed_exits == 0 &&
+         ours.beacon_causes[static_cast<std::size_t>(Cause::kLimit)] == 0 &&
          ours.outcomes[static_cast<std::size_t>(Outcome::kStranded)] == 0 &&
          ours.reserve_violations == 0;
 }
@@ -204,7 +213,11 @@ void write_summary_markdown(const Summary& s, std::ostream& out) {
   if (s.spec.shard_count > 1)
     out << " (shard " << s.spec.shard_index << "/" << s.spec.shard_count << ")";
   out << ", fault rates " << format_fault_rates(s.spec.rates)
-      << (s.spec.push_allowed ? ", push allowed" : "") << ".\n\n";
+      << (s.spec.push_allowed ? ", push allowed" : "");
+  if (s.spec.planner_time_limit_s > 0) {
+    out << ", planner time limit " << s.spec.planner_time_limit_s << " s";
+  }
+  out << ".\n\n";
   out << "| | ours | baseline |\n|---|---|---|\n";
   out << "| tasks done per run (oracle: " << num(s.oracle_tasks_mean) << ") | "
       << num(s.ours.tasks_mean) << " | " << num(s.baseline.tasks_mean) << " |\n";
@@ -216,6 +229,11 @@ void write_summary_markdown(const Summary& s, std::ostream& out) {
   for (Outcome o : {Outcome::kExit, Outcome::kEndPoint, Outcome::kBeacon, Outcome::kStranded}) {
     out << "| ended: " << to_string(o) << " | " << outcome(s.ours, o) << " | "
         << outcome(s.baseline, o) << " |\n";
+  }
+  for (std::size_t c = 1; c < s.ours.beacon_causes.size(); ++c) {
+    out << "| beacons: "
+        << executor::to_string(static_cast<executor::MissionReport::BeaconCause>(c)) << " | "
+        << s.ours.beacon_causes[c] << " | " << s.baseline.beacon_causes[c] << " |\n";
   }
   out << "| could reach an exit but did not | " << s.ours.missed_exits << " | "
       << s.baseline.missed_exits << " |\n";
@@ -237,7 +255,8 @@ void write_summary_markdown(const Summary& s, std::ostream& out) {
         << "; reproduce with `" << f.command << "`\n";
   }
   out << "Verdict: " << (s.clean() ? "clean" : "NOT clean")
-      << " (no crash, hang, missed exit, stranded robot or reserve violation).\n";
+      << " (no crash, hang, missed exit, stranded robot, reserve violation or beacon caused by a "
+         "limit).\n";
 }
 
 void write_summary_svg(const Summary& s, std::ostream& out) {

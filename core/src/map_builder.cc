@@ -6,6 +6,7 @@
 #include <numeric>
 #include <sstream>
 
+#include "sewerplan/core/limits.h"
 #include "sewerplan/core/map_queries.h"
 #include "sewerplan/core/text_file.h"
 
@@ -188,6 +189,16 @@ class MapBuilder::Validation {
     }
   }
 
+  // Numbers beyond core/limits.h: later stages (costs in integer milliseconds) could not hold them.
+  template <class Object>
+  void require_at_most(double v, double limit, std::string_view what, const Object& object,
+                       const FieldRef& f) {
+    if (std::isfinite(v) && std::abs(v) > limit) {
+      d_.error(at(f), object() + ": " + std::string(what) + " must be at most " +
+                          format_number(limit) + " m, got " + format_number(v));
+    }
+  }
+
   void check_numbers() {
     for (std::uint32_t i = 0; i < b_.manholes_.size(); ++i) check_manhole_numbers(i);
     for (std::uint32_t i = 0; i < b_.pipes_.size(); ++i) check_pipe_numbers(i);
@@ -200,6 +211,14 @@ class MapBuilder::Validation {
     require_finite(m.position.x_m, "x", object, {Kind::kManhole, i, m.line, "x_m"});
     require_finite(m.position.y_m, "y", object, {Kind::kManhole, i, m.line, "y_m"});
     require_finite(m.position.z_m, "z", object, {Kind::kManhole, i, m.line, "z_m"});
+    require_at_most(m.diameter_m, kMaxDiameter_m, "diameter", object,
+                    {Kind::kManhole, i, m.line, "diameter_m"});
+    require_at_most(m.position.x_m, kMaxCoordinate_m, "x", object,
+                    {Kind::kManhole, i, m.line, "x_m"});
+    require_at_most(m.position.y_m, kMaxCoordinate_m, "y", object,
+                    {Kind::kManhole, i, m.line, "y_m"});
+    require_at_most(m.position.z_m, kMaxCoordinate_m, "z", object,
+                    {Kind::kManhole, i, m.line, "z_m"});
     if (m.variant && (*m.variant < 'A' || *m.variant > 'Z')) {
       d_.error(at(Kind::kManhole, i, m.line, "variant"),
                object() + ": variant must be one capital letter A..Z");
@@ -211,6 +230,8 @@ class MapBuilder::Validation {
                      {Kind::kSlot, i, slot.line, "azimuth_deg", s});
       require_finite(slot.invert_z_m, "invert", slot_object,
                      {Kind::kSlot, i, slot.line, "invert_m", s});
+      require_at_most(slot.invert_z_m, kMaxCoordinate_m, "invert", slot_object,
+                      {Kind::kSlot, i, slot.line, "invert_m", s});
     }
     for (auto [v, field] :
          {std::pair{m.shaft_length_m, "shaft_length_m"},
@@ -227,8 +248,14 @@ class MapBuilder::Validation {
     auto object = [&] { return "pipe " + p.name; };
     require_positive(p.length_m, "length", object, {Kind::kPipe, i, p.line, "length_m"});
     require_positive(p.diameter_m, "diameter", object, {Kind::kPipe, i, p.line, "diameter_m"});
+    require_at_most(p.length_m, kMaxLength_m, "length", object,
+                    {Kind::kPipe, i, p.line, "length_m"});
+    require_at_most(p.diameter_m, kMaxDiameter_m, "diameter", object,
+                    {Kind::kPipe, i, p.line, "diameter_m"});
     if (p.height_m) {
       require_positive(*p.height_m, "height", object, {Kind::kPipe, i, p.line, "height_m"});
+      require_at_most(*p.height_m, kMaxDiameter_m, "height", object,
+                      {Kind::kPipe, i, p.line, "height_m"});
     }
     if (p.blockage_risk && !(*p.blockage_risk >= 0 && *p.blockage_risk <= 1)) {
       d_.error(at(Kind::kPipe, i, p.line, "blockage_risk"),

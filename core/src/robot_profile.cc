@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "sewerplan/core/limits.h"
+
 namespace sewerplan {
 namespace {
 
@@ -68,15 +70,26 @@ Result<void> validate_profile(const RobotProfile& p) {
   require(std::isfinite(p.joint_pitch_max_deg) && p.joint_pitch_max_deg >= 0 &&
               p.joint_pitch_max_deg <= 90,
           "joint_pitch_max_deg", p.joint_pitch_max_deg, "between 0 and 90");
-  positive(p.speed_mps, "speed_mps");
-  positive(p.inspection_speed_mps, "inspection_speed_mps");
-  non_negative(p.manhole_pass_s, "manhole_pass_s");
-  positive(p.manoeuvre_speed_mps, "manoeuvre_speed_mps");
-  non_negative(p.turn_s_per_deg, "turn_s_per_deg");
-  non_negative(p.step_s_per_m, "step_s_per_m");
-  non_negative(p.sample_s, "sample_s");
-  positive(p.battery_wh, "battery_wh");
-  positive(p.power_w, "power_w");
+  // Speeds, times and the battery within core/limits.h, so that plan costs fit the planner's
+  // integer milliseconds.
+  auto speed = [&](double v, std::string_view field) {
+    require(std::isfinite(v) && v >= kMinSpeed_mps && v <= kMaxSpeed_mps, field, v,
+            "from 0.001 to 100 m/s");
+  };
+  auto duration = [&](double v, std::string_view field) {
+    require(std::isfinite(v) && v >= 0 && v <= kMaxDuration_s, field, v, "from 0 to 1e6");
+  };
+  speed(p.speed_mps, "speed_mps");
+  speed(p.inspection_speed_mps, "inspection_speed_mps");
+  duration(p.manhole_pass_s, "manhole_pass_s");
+  speed(p.manoeuvre_speed_mps, "manoeuvre_speed_mps");
+  duration(p.turn_s_per_deg, "turn_s_per_deg");
+  duration(p.step_s_per_m, "step_s_per_m");
+  duration(p.sample_s, "sample_s");
+  require(std::isfinite(p.battery_wh) && p.battery_wh > 0 && p.battery_wh <= kMaxBattery_wh,
+          "battery_wh", p.battery_wh, "above 0 and at most 1e6");
+  require(std::isfinite(p.power_w) && p.power_w >= kMinPower_w && p.power_w <= kMaxPower_w,
+          "power_w", p.power_w, "from 0.001 to 1e6");
   const std::string text = problems.str();
   if (text.empty()) return {};
   return Error{ErrorCode::kInvalidProfile, "robot profile '" + p.name + "':" + text};

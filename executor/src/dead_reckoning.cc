@@ -36,7 +36,12 @@ void DeadReckoning::advance(const Job& job, const hal::JobReport& report) {
     return;
   }
   const double direction = direction_of(job);
-  if (direction == 0 || report.progress_m <= 0) return;
+  if (direction == 0 || report.progress_m < 0) return;
+  // A drive that got nowhere moves the robot only from right at a pipe's end to its mouth.
+  if (report.progress_m == 0 &&
+      !(report.ok() && std::holds_alternative<domain::InPipe>(position_))) {
+    return;
+  }
   if (const auto* at = std::get_if<domain::AtSlot>(&position_)) {
     // Back into the pipe the robot came out of.
     const Slot& slot = map_.slot(at->manhole, at->slot);

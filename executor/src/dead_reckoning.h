@@ -4,8 +4,9 @@
 // Private to executor. The planner needs the robot's position (in a pipe at an offset, at a
 // manhole's pipe mouth, in a manhole) to replan from; the executor knows it only from the jobs
 // it sent and their reports. A drive moves along the pipe, forward towards the end the robot's
-// front points to; reaching an end with a manhole puts it at that mouth; a turn through a
-// manhole or leaving the start manhole puts it into the new pipe, facing away from the manhole.
+// front points to; reaching an end with a manhole puts it at that mouth (a drive of 0 m done
+// right at that end, too); a turn through a manhole or leaving the start manhole puts it into the
+// new pipe, facing away from the manhole.
 #pragma once
 
 #include <cstdint>
@@ -24,7 +25,8 @@ class DeadReckoning {
       : map_(map), position_(start), heading_end_(heading_end) {}
 
   void advance(const Job& job, const hal::JobReport& report);
-  // After a plan step the validator's position is exact; the heading is kept.
+  // After a plan step whose position agrees with this one, the validator's is exact; the heading
+  // is kept.
   void set_position(const domain::RobotPosition& p) { position_ = p; }
 
   const domain::RobotPosition& position() const { return position_; }

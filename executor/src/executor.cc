@@ -3,97 +3,28 @@
 #include "sewerplan/executor/executor.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iomanip>
 #include <optional>
 #include <sstream>
 
-#include "sewerplan/core/overloaded.h"
 #include "sewerplan/domain/plan_text.h"
 #include "sewerplan/domain/validator.h"
 #include "sewerplan/fusion/jobs.h"
 #include "sewerplan/fusion/robot_action.h"
 
 #include "dead_reckoning.h"
+#include "job_arithmetic.h"
+#include "staged_recovery.h"
 
 namespace sewerplan::executor {
 namespace {
-
-// Where an obstacle or danger is taken to be: just ahead of where the robot stopped, so that the
-// robot's own position stays on its side of the blockage. No more than a millimetre: the robot
-// stops short of what it meets, and a task between where it stopped and the thing itself cannot
-// be reached from this side (a fault campaign found the robot replanning the same unreachable
-// sample a hundred times when the margin was 5 cm).
-constexpr double kAhead_m = 0.001;
-
-std::string job_text(const Job& job) {
-  std::ostringstream out;
-  out << job;
-  return out.str();
-}
-
-// The rest of a drive after `done_m`, or nothing for a job that is not a drive.
-std::optional<Job> rest_of(const Job& job, double done_m) {
-  return std::visit(
-      Overloaded{[&](const DriveForward& j) -> std::optional<Job> {
-                   return DriveForward{j.speed_mps, std::max(0.0, j.distance_m - done_m)};
-                 },
-                 [&](const DriveBackward& j) -> std::optional<Job> {
-                   return DriveBackward{j.speed_mps, std::max(0.0, j.distance_m - done_m)};
-                 },
-                 [&](const Push& j) -> std::optional<Job> {
-                   return Push{j.speed_mps, std::max(0.0, j.distance_m - done_m)};
-                 },
-                 [&](const Scan& j) -> std::optional<Job> {
-                   return Scan{j.speed_mps, std::max(0.0, j.distance_m - done_m), j.backward};
-                 },
-                 [](const auto&) -> std::optional<Job> { return std::nullopt; }},
-      job);
-}
-
-// The same drive, `extra_m` longer (after backing up that far).
-Job lengthened(const Job& job, double extra_m) {
-  return std::visit(
-      [&](auto j) -> Job {
-        if constexpr (requires { j.distance_m; }) j.distance_m += extra_m;
-        return j;
-      },
-      job);
-}
-
-// A drive of `distance_m` the other way, at the job's speed.
-Job back_off(const Job& job, double distance_m) {
-  return std::visit(Overloaded{[&](const DriveBackward& j) -> Job {
-                                 return DriveForward{j.speed_mps, distance_m};
-                               },
-                               [&](const Scan& j) -> Job {
-                                 if (j.backward) return DriveForward{j.speed_mps, distance_m};
-                                 return DriveBackward{j.speed_mps, distance_m};
-                               },
-                               [&](const auto& j) -> Job {
-                                 if constexpr (requires { j.speed_mps; }) {
-                                   return DriveBackward{j.speed_mps, distance_m};
-                                 }
-                                 return DriveBackward{0.1, distance_m};
-                               }},
-                    job);
-}
 
 std::string action_text(const fusion::RobotAction& action) {
   std::ostringstream out;
   out << action;
   return out.str();
-}
-
-// A push over the rest of a forward drive; none for a backward one (the robot pushes with its
-// head).
-std::optional<Job> push_for(const Job& job) {
-  if (const auto* d = std::get_if<DriveForward>(&job)) return Push{d->speed_mps, d->distance_m};
-  if (const auto* p = std::get_if<Push>(&job)) return *p;
-  if (const auto* s = std::get_if<Scan>(&job); s && !s->backward) {
-    return Push{s->speed_mps, s->distance_m};
-  }
-  return std::nullopt;
 }
 
 std::vector<std::string> task_names(const Mission& mission, const std::vector<TaskId>& tasks) {
@@ -103,6 +34,33 @@ std::vector<std::string> task_names(const Mission& mission, const std::vector<Ta
 }
 
 }  // namespace
+
+namespace {
+
+constexpr std::array<std::pair<MissionReport::BeaconCause, std::string_view>, 6> kBeaconCauses{{
+    {MissionReport::BeaconCause::kNone, "none"},
+    {MissionReport::BeaconCause::kNoExit, "no-exit"},
+    {MissionReport::BeaconCause::kStuck, "stuck"},
+    {MissionReport::BeaconCause::kMalfunction, "malfunction"},
+    {MissionReport::BeaconCause::kLink, "link"},
+    {MissionReport::BeaconCause::kLimit, "limit"},
+}};
+
+}  // namespace
+
+std::string_view to_string(MissionReport::BeaconCause cause) {
+  for (const auto& [c, name] : kBeaconCauses) {
+    if (c == cause) return name;
+  }
+  return "none";
+}
+
+std::optional<MissionReport::BeaconCause> parse_beacon_cause(std::string_view name) {
+  for (const auto& [c, n] : kBeaconCauses) {
+    if (n == name) return c;
+  }
+  return std::nullopt;
+}
 
 std::ostream& operator<<(std::ostream& os, const MissionReport& r) {
   os << std::fixed << std::setprecision(1);
@@ -138,25 +96,36 @@ class Executor::Run {
         options_(e.options_),
         log_(e.log_),
         tracker_(e.map_, e.replanner_.progress().position, e.replanner_.heading_end()),
+        recovery_(
+            e.map_, e.options_.recovery, e.replanner_.mission().profile.speed_mps, tracker_,
+            {.execute_job = [this](const Job& job) { return execute_job(job); },
+             .reboot = [this] { return robot_.reboot(); },
+             .log_recovery = [this](std::string_view phase, bool ok) { log_recovery(phase, ok); }}),
         done_(e.replanner_.progress().done) {}
 
   MissionReport go() {
     PlanResponse response = replanner_.plan("start");
     log_plan("plan", response);
+    std::optional<Failure> last_failure;
     for (;;) {
+      report_.decision = response.decision;
       if (!has_plan(response.decision)) {
+        report_.beacon_cause = beacon_cause(response.decision, last_failure);
         return finish(MissionReport::Outcome::kBeacon, response.reason);
       }
       if (auto invalid = check(response)) {
+        report_.beacon_cause = MissionReport::BeaconCause::kLimit;
         return finish(MissionReport::Outcome::kBeacon, "the plan is not valid: " + *invalid);
       }
       std::optional<Replan> replan = execute(response);
       if (!replan) return finish(MissionReport::Outcome::kEnded, response.end);
       if (report_.replans >= options_.max_replans) {
+        report_.beacon_cause = MissionReport::BeaconCause::kLimit;
         return finish(MissionReport::Outcome::kBeacon,
                       "gave up after " + std::to_string(report_.replans) + " replans");
       }
       ++report_.replans;
+      last_failure = replan->failure;
       if (replan->failure) log_failure(*replan->failure);
       response = replan->failure ? replanner_.report_failure(*replan->failure)
                                  : replanner_.plan(replan->reason);
@@ -171,6 +140,23 @@ class Executor::Run {
   };
 
   double now() const { return robot_.status().elapsed_s; }
+
+  // Why the Replanner's answer switches the beacon on: a proof that no exit can be reached, or a
+  // robot that cannot move, by what stopped it (the robot's words in the last failure).
+  static MissionReport::BeaconCause beacon_cause(PlanResponse::Decision decision,
+                                                 const std::optional<Failure>& failure) {
+    using Cause = MissionReport::BeaconCause;
+    if (decision == PlanResponse::Decision::kCallForRecovery) return Cause::kNoExit;
+    if (decision != PlanResponse::Decision::kStuck) return Cause::kLimit;
+    const std::string detail = failure ? failure->detail : "";
+    if (detail.find("CAN link") != std::string::npos) return Cause::kLink;
+    if (detail.find("malfunction") != std::string::npos ||
+        detail.find("reboot failed") != std::string::npos ||
+        detail.find("battery empty") != std::string::npos) {
+      return Cause::kMalfunction;
+    }
+    return Cause::kStuck;
+  }
   const Mission& mission() const { return replanner_.mission(); }
 
   // The progress planning starts from: the dropped tasks count as done.
@@ -234,8 +220,8 @@ class Executor::Run {
                 {"kind", std::string(fusion::action_kind(action))},
                 {"duration_s", fusion::duration_s(action)},
                 {"parameters", action_text(action)}});
-      for (const Job& job : fusion::expand(action, mission().profile)) {
-        if (auto failure = run_job(job, action)) {
+      for (const Job& job : jobs_for(action)) {
+        if (auto failure = recovery_.run_job(job, action)) {
           sync_progress(replay.progress());
           return Replan{failure, ""};
         }
@@ -253,10 +239,55 @@ class Executor::Run {
           log_.add(now(), "task_done", {{"task", mission().task(t).name}});
         }
       }
+      if (!agrees(tracker_.position(), replay.position())) {
+        // The robot is not where the plan puts it: plan again from where it really is, rather than
+        // carry on (or report the mission ended at an exit) on the plan's word.
+        sync_progress(replay.progress());
+        return Replan{std::nullopt, "the robot is " + tracker_.describe() + ", the plan has it " +
+                                        domain::describe(replay.position(), map_)};
+      }
       tracker_.set_position(replay.position());
       sync_progress(replay.progress());
     }
     return std::nullopt;
+  }
+
+  // The jobs for an action. A drive to a manhole of 0 m has none (fusion drops it), but the robot
+  // right at the pipe's end, as a pass into the pipe leaves it, must still drive onto the mouth.
+  std::vector<Job> jobs_for(const fusion::RobotAction& action) const {
+    std::vector<Job> jobs = fusion::expand(action, mission().profile);
+    const auto* drive = std::get_if<fusion::DriveToManhole>(&action);
+    if (!jobs.empty() || drive == nullptr ||
+        !std::holds_alternative<domain::InPipe>(tracker_.position())) {
+      return jobs;
+    }
+    if (drive->direction == fusion::Direction::kForward) {
+      jobs.emplace_back(DriveForward{.speed_mps = drive->speed_mps, .distance_m = 0});
+    } else {
+      jobs.emplace_back(DriveBackward{.speed_mps = drive->speed_mps, .distance_m = 0});
+    }
+    return jobs;
+  }
+
+  // Whether the position the robot's reports give agrees with the plan's. At a pipe's mouth
+  // agrees with right at that pipe's end (a drive onto the end arrives at the mouth); in the pipe
+  // right at its end does not agree with at the mouth.
+  bool agrees(const domain::RobotPosition& tracked, const domain::RobotPosition& planned) const {
+    constexpr double kToleranceM = 1e-3;
+    if (tracked == planned) return true;
+    const auto* in_planned = std::get_if<domain::InPipe>(&planned);
+    if (in_planned == nullptr) return false;
+    if (const auto* in = std::get_if<domain::InPipe>(&tracked)) {
+      return in->pipe == in_planned->pipe &&
+             std::abs(in->offset_m - in_planned->offset_m) <= kToleranceM;
+    }
+    if (const auto* at = std::get_if<domain::AtSlot>(&tracked)) {
+      const Slot& slot = map_.slot(at->manhole, at->slot);
+      return slot.pipe == in_planned->pipe &&
+             std::abs(domain::end_offset_m(map_.pipe(slot.pipe), slot.pipe_end) -
+                      in_planned->offset_m) <= kToleranceM;
+    }
+    return false;
   }
 
   // A replan reason when the plan left needs more energy than the battery has above the reserve.
@@ -290,7 +321,7 @@ class Executor::Run {
     ++report_.jobs;
     tracker_.advance(job, r);
     std::vector<std::pair<std::string, EventValue>> fields{
-        {"job", job_text(job)}, {"progress_m", r.progress_m}, {"ok", r.ok()}};
+        {"job", detail::job_text(job)}, {"progress_m", r.progress_m}, {"ok", r.ok()}};
     log_.add(now(), "job", std::move(fields));
     if (!r.ok()) {
       log_.add(now(), "error",
@@ -301,190 +332,8 @@ class Executor::Run {
     return r;
   }
 
-  void log_recovery(const std::string& phase, bool ok) {
-    log_.add(now(), "recovery", {{"phase", phase}, {"ok", ok}});
-  }
-
-  // Runs one job with staged recovery; a failure for the Replanner when recovery fails.
-  std::optional<Failure> run_job(const Job& job, const fusion::RobotAction& action) {
-    Job current = job;
-    int reboots = 0;
-    hal::JobReport r = execute_job(current);
-    for (;;) {
-      if (r.ok()) return std::nullopt;
-      const hal::RobotErrorKind kind = r.error->kind;
-      if (kind == hal::RobotErrorKind::kMalfunction) {
-        if (reboots >= options_.recovery.max_reboots) {
-          return Failure{.kind = Failure::Kind::kStuck, .detail = r.error->reason};
-        }
-        ++reboots;
-        const Result<void> rebooted = robot_.reboot();
-        log_recovery("reboot", rebooted.has_value());
-        if (!rebooted.has_value()) {
-          return Failure{
-              .kind = Failure::Kind::kStuck,
-              .detail = r.error->reason + "; reboot failed: " + rebooted.error().message};
-        }
-        ++report_.recoveries;
-        if (auto rest = rest_of(current, r.progress_m)) current = *rest;
-        r = execute_job(current);
-        continue;
-      }
-      if (kind == hal::RobotErrorKind::kDanger) return danger(current, action, r);
-      auto rest = rest_of(current, r.progress_m);
-      if (!rest) return danger(current, action, r);  // blocked in a manhole: as a danger
-      Cleared cleared = clear_blockage(*rest);
-      switch (cleared.how) {
-        case Cleared::How::kDone:
-          ++report_.recoveries;
-          return std::nullopt;
-        case Cleared::How::kOtherError:
-          // The obstacle is gone, and the drive met something else on the way (a danger spot
-          // beyond it, a malfunction): handled as the drive's own error.
-          ++report_.recoveries;
-          current = cleared.job;
-          r = cleared.report;
-          continue;
-        case Cleared::How::kStuck:
-          return Failure{.kind = Failure::Kind::kStuck, .detail = "recovery left the robot stuck"};
-        case Cleared::How::kStays:
-          break;
-      }
-      return blocked_here(Failure::Kind::kBlockage, current, r.error->reason);
-    }
-  }
-
-  // A job of the recovery phases, rebooting through transient malfunctions (at most max_reboots
-  // times); its report's progress is the whole distance driven.
-  hal::JobReport recovery_job(const Job& job) {
-    Job current = job;
-    hal::JobReport r = execute_job(current);
-    double progress_m = r.progress_m;
-    for (int reboots = 0; !r.ok() && r.error->kind == hal::RobotErrorKind::kMalfunction &&
-                          reboots < options_.recovery.max_reboots;
-         ++reboots) {
-      const Result<void> rebooted = robot_.reboot();
-      log_recovery("reboot", rebooted.has_value());
-      if (!rebooted.has_value()) break;
-      ++report_.recoveries;
-      if (auto rest = rest_of(current, r.progress_m)) current = *rest;
-      r = execute_job(current);
-      progress_m += r.progress_m;
-    }
-    r.progress_m = progress_m;
-    return r;
-  }
-
-  // What the blockage phases came to.
-  struct Cleared {
-    enum class How {
-      kDone,        // cleared, and the drive finished
-      kStays,       // the obstacle stays
-      kOtherError,  // cleared, and the drive (job) met another error (report) further on
-      kStuck,       // backing up or moving the head failed
-    };
-    How how = How::kStays;
-    Job job{};
-    hal::JobReport report;
-  };
-
-  Cleared clear_blockage(Job rest) {
-    const RecoveryConfig& c = options_.recovery;
-    // `back_m`: how far the retry drives back to where the robot met the obstacle. Blocked again
-    // further on, it met another obstacle: that one gets recovery of its own.
-    auto retry = [&](const Job& job, const std::string& phase,
-                     double back_m) -> std::optional<Cleared> {
-      hal::JobReport r = execute_job(job);
-      log_recovery(phase, r.ok());
-      if (r.ok()) return Cleared{Cleared::How::kDone, job, r};
-      if (r.error->kind != hal::RobotErrorKind::kBlockage || r.progress_m > back_m + 0.01) {
-        return Cleared{Cleared::How::kOtherError, job, std::move(r)};
-      }
-      if (auto left = rest_of(job, r.progress_m)) rest = *left;
-      return std::nullopt;
-    };
-    for (int i = 0; i < c.backup_retries; ++i) {
-      const hal::JobReport back = recovery_job(back_off(rest, c.backup_m));
-      if (!back.ok()) {
-        if (back.error->kind == hal::RobotErrorKind::kMalfunction) return {Cleared::How::kStuck};
-        break;  // no room to back up: on to the head
-      }
-      if (auto done =
-              retry(lengthened(rest, back.progress_m), "1: back up and retry", back.progress_m)) {
-        return *done;
-      }
-    }
-    for (int i = 0; i < c.lift_retries; ++i) {
-      if (!recovery_job(LiftHead{}).ok() || !recovery_job(LowerHead{}).ok()) {
-        return Cleared{Cleared::How::kStuck};
-      }
-      if (auto done = retry(rest, "2: lift the head and retry", 0)) return *done;
-    }
-    for (int i = 0; c.push_allowed && i < c.push_retries; ++i) {
-      const std::optional<Job> push_job = push_for(rest);
-      if (!push_job) break;  // the robot pushes with its head only
-      hal::JobReport push = execute_job(*push_job);
-      log_recovery("3: push", push.ok());
-      if (push.ok()) return Cleared{Cleared::How::kDone};
-      if (push.error->kind != hal::RobotErrorKind::kBlockage) {
-        return Cleared{Cleared::How::kOtherError, *push_job, std::move(push)};
-      }
-    }
-    return Cleared{Cleared::How::kStays};
-  }
-
-  // DANGER: back off to the last safe position, and report the spot or the passage.
-  std::optional<Failure> danger(const Job& job, const fusion::RobotAction& action,
-                                const hal::JobReport& r) {
-    if (const auto* pass = std::get_if<fusion::PassManhole>(&action);
-        pass && std::holds_alternative<TurnInManhole>(job)) {
-      back_out_of_manhole();
-      return Failure{.kind = Failure::Kind::kDangerousPassage,
-                     .manhole = pass->manhole,
-                     .from = pass->from_slot,
-                     .to = pass->to_slot,
-                     .detail = r.error->reason};
-    }
-    if (!rest_of(job, 0)) {
-      return Failure{.kind = Failure::Kind::kStuck, .detail = r.error->reason};
-    }
-    std::optional<Failure> failure =
-        blocked_here(Failure::Kind::kDangerInPipe, job, r.error->reason);
-    const hal::JobReport back = execute_job(back_off(job, options_.recovery.danger_backoff_m));
-    log_recovery("back off to safety", back.ok());
-    return failure;
-  }
-
-  // After a dangerous passage, back into the pipe the robot came by: at the pipe's mouth the plan
-  // model only lets it pass the manhole (and a U-turn exceeds every turn limit), so with the
-  // passage closed it could be trapped at the mouth; in the pipe it can drive back the way it
-  // came.
-  void back_out_of_manhole() {
-    const auto* at = std::get_if<domain::AtSlot>(&tracker_.position());
-    if (at == nullptr) return;
-    const Slot& slot = map_.slot(at->manhole, at->slot);
-    const double distance =
-        std::min(options_.recovery.danger_backoff_m, map_.pipe(slot.pipe).length_m / 2);
-    if (distance <= 0) return;
-    // Facing the manhole, the pipe is behind the robot; facing the pipe, ahead.
-    const double speed = mission().profile.speed_mps;
-    const Job back_job = tracker_.heading_end() == slot.pipe_end
-                             ? Job{DriveBackward{speed, distance}}
-                             : Job{DriveForward{speed, distance}};
-    const hal::JobReport back = execute_job(back_job);
-    log_recovery("back out of the manhole", back.ok());
-  }
-
-  // A blockage or danger just ahead of the robot in its pipe.
-  Failure blocked_here(Failure::Kind kind, const Job& job, const std::string& reason) const {
-    const auto* in = std::get_if<domain::InPipe>(&tracker_.position());
-    if (in == nullptr) return Failure{.kind = Failure::Kind::kStuck, .detail = reason};
-    const double length = map_.pipe(in->pipe).length_m;
-    const double ahead = in->offset_m + tracker_.direction_of(job) * kAhead_m;
-    return Failure{.kind = kind,
-                   .pipe = in->pipe,
-                   .offset_m = std::clamp(ahead, 0.0, length),
-                   .detail = reason};
+  void log_recovery(std::string_view phase, bool ok) {
+    log_.add(now(), "recovery", {{"phase", std::string(phase)}, {"ok", ok}});
   }
 
   MissionReport finish(MissionReport::Outcome outcome, const std::string& end) {
@@ -495,6 +344,7 @@ class Executor::Run {
     const hal::RobotStatus status = robot_.status();
     const RobotProfile& p = mission().profile;
     report_.outcome = outcome;
+    report_.recoveries = recovery_.cleared();
     report_.end = end;
     for (const auto& d : replanner_.dropped()) {
       report_.dropped.emplace_back(mission().task(d.task).name, d.reason);
@@ -509,7 +359,9 @@ class Executor::Run {
          {"end", end},
          {"tasks_done", report_.tasks_done},
          {"energy_wh", report_.energy_wh},
-         {"replans", static_cast<std::int64_t>(report_.replans)}});
+         {"replans", static_cast<std::int64_t>(report_.replans)},
+         {"decision", std::string(to_string(report_.decision))},
+         {"beacon_cause", std::string(to_string(report_.beacon_cause))}});
     return report_;
   }
 
@@ -519,6 +371,7 @@ class Executor::Run {
   const ExecutorOptions& options_;
   EventLog& log_;
   detail::DeadReckoning tracker_;
+  detail::StagedRecovery recovery_;
   std::vector<bool> done_;  // per task: done by the robot (or before the start)
   MissionReport report_;
 };

@@ -65,10 +65,22 @@ Result<void> check_options(const RandomFaultOptions& o) {
           std::string(problems.empty() ? "" : "; ") + std::string(name) + " must be from 0 to 1";
     }
   };
+  const auto at_most = [&](std::string_view name, double value, double limit, const char* unit) {
+    if (value > limit) {
+      std::ostringstream out;
+      out << name << " must be at most " << limit << unit << ", got " << value;
+      problems += std::string(problems.empty() ? "" : "; ") + out.str();
+    }
+  };
   rate("obstacle_rate_per_km", o.obstacle_rate_per_km);
   rate("danger_rate_per_km", o.danger_rate_per_km);
   rate("malfunction_rate_per_hour", o.malfunction_rate_per_hour);
   rate("horizon_s", o.horizon_s);
+  at_most("obstacle_rate_per_km", o.obstacle_rate_per_km, kMaxFaultsPerKm, " (one a metre)");
+  at_most("danger_rate_per_km", o.danger_rate_per_km, kMaxFaultsPerKm, " (one a metre)");
+  at_most("malfunction_rate_per_hour", o.malfunction_rate_per_hour, kMaxMalfunctionsPerHour,
+          " (one a second)");
+  at_most("horizon_s", o.horizon_s, kMaxHorizon_s, " s (a week)");
   rate("end_margin_m", o.end_margin_m);
   share("transient_share", o.transient_share);
   share("dangerous_passage_share", o.dangerous_passage_share);
@@ -197,8 +209,31 @@ Result<void> validate_faults(const FaultScenario& scenario, const SewerMap& map)
   return Error{ErrorCode::kInvalidArgument, "invalid fault scenario:" + problems.str()};
 }
 
+RandomFaultOptions random_fault_options(const RobotProfile& profile) {
+  RandomFaultOptions o;
+  o.min_pipe_diameter_m = profile.min_pipe_diameter_m;
+  o.max_pipe_diameter_m = profile.max_pipe_diameter_m;
+  return o;
+}
+
 Result<FaultScenario> random_faults(const SewerMap& map, const RandomFaultOptions& options) {
   if (Result<void> ok = check_options(options); !ok.has_value()) return ok.error();
+  // The expected number of faults, before drawing any: a long network at a high rate would
+  // otherwise draw without bound (hours and gigabytes).
+  double drivable_km = 0;
+  for (PipeId id : map.pipe_ids()) {
+    if (drivable(map.pipe(id), options)) drivable_km += map.pipe(id).length_m / 1000.0;
+  }
+  const double expected =
+      (options.obstacle_rate_per_km + options.danger_rate_per_km) * drivable_km +
+      options.malfunction_rate_per_hour * options.horizon_s / 3600.0;
+  if (!(expected <= static_cast<double>(kMaxRandomFaults))) {
+    std::ostringstream out;
+    out << "random faults: " << expected << " faults expected (" << drivable_km
+        << " km of drivable pipe), at most " << kMaxRandomFaults
+        << " can be drawn: lower the rates";
+    return Error{ErrorCode::kInvalidArgument, out.str()};
+  }
   // One independent stream per kind of fault, so that changing one rate leaves the others alone.
   Rng root(options.seed);
   Rng obstacles = root.split();

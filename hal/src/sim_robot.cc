@@ -161,6 +161,20 @@ Result<void> SimRobot::reboot() {
   JobReport report;
   report.duration_s = duration_s;
   static_cast<void>(finish(std::move(report)));
+  // A malfunction timed while the software restarts meets software that is not running: a
+  // transient one is cleared with the rest by this reboot, a permanent one stays. (They struck the
+  // next job at once, so that one cluster of transient faults used up the executor's reboots.)
+  for (std::size_t i = 0; i < faults_.malfunctions.size(); ++i) {
+    const auto* at_time = std::get_if<AtTime>(&faults_.malfunctions[i].when);
+    if (malfunction_struck_[i] || at_time == nullptr || at_time->time_s > status_.elapsed_s) {
+      continue;
+    }
+    if (faults_.malfunctions[i].kind == MalfunctionKind::kTransient) {
+      malfunction_struck_[i] = true;
+    } else {
+      strike(i, "at " + seconds(at_time->time_s));
+    }
+  }
   return {};
 }
 
@@ -189,7 +203,8 @@ JobReport SimRobot::run(const Job& job) {
 JobReport SimRobot::drive(double speed_mps, double distance_m, int direction, bool push) {
   if (!(std::isfinite(speed_mps) && speed_mps > 0)) return invalid("the speed must be > 0");
   if (!valid_number(distance_m)) return invalid("the distance must be >= 0");
-  if (distance_m == 0) return JobReport{};
+  // A drive of 0 m does nothing, except in a pipe right at its end, where it is at the mouth.
+  if (distance_m == 0 && !std::holds_alternative<InPipe>(pose_)) return JobReport{};
   if (const auto* in = std::get_if<InManhole>(&pose_)) {
     return failure(RobotErrorKind::kMalfunction, "cannot drive in manhole " +
                                                      map_.manhole(in->manhole).name +

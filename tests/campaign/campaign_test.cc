@@ -235,6 +235,27 @@ TEST(Campaign, RecordsReadBackAndBadLinesNameFileLineAndField) {
   EXPECT_EQ(bad.error().message, "r:1: $.run: wrong type");
 }
 
+TEST(Campaign, APlannerTimeLimitIsPartOfTheCampaignAndNoRunCallsTheBeaconForIt) {
+  const auto ais = testing::load_ais_testbed();
+  CampaignSpec spec = ais_spec(8);
+  spec.planner_time_limit_s = 1e-6;
+  Result<CampaignSpec> back = parse_campaign_json(campaign_json(spec), "campaign.json");
+  ASSERT_TRUE(back.has_value()) << back.error().message;
+  EXPECT_EQ(back->planner_time_limit_s, 1e-6);
+  EXPECT_FALSE(spec.same_campaign(ais_spec(8)));
+  EXPECT_NE(reproduce_command(spec, 3).find("--planner-time-limit 1e-06 --only 3"),
+            std::string::npos);
+  // Every plan reaches the limit: each run heads for the nearest exit and no beacon is the
+  // limit's.
+  for (const RunRecord& r : run_campaign(ais.map, ais.mission, spec, {})) {
+    ASSERT_TRUE(r.result.has_value());
+    EXPECT_NE(r.result->ours.beacon_cause, executor::MissionReport::BeaconCause::kLimit);
+    EXPECT_TRUE(r.result->ours.outcome == Outcome::kExit ||
+                r.result->ours.outcome == Outcome::kBeacon);
+    EXPECT_EQ(r.result->ours.tasks, 0U);
+  }
+}
+
 TEST(Campaign, FaultRatesAndShardsParseOrSayWhatIsWrong) {
   Result<FaultRates> r = parse_fault_rates("obstacles=40.123456789012,permanent=0.5");
   ASSERT_TRUE(r.has_value());

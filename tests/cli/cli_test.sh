@@ -182,6 +182,14 @@ JSON
 expect 4 "task 'far' \(inspect_pipe\): no route from the start" -- "$sp" plan --map "$ais" --mission "$tmp/cut.json"
 expect 2 'unknown' -- "$sp" plan --map "$ais" --mission "$mission" -a dijkstra
 expect 0 "dropped task 'far': no route" -- "$sp" plan --map "$ais" --mission "$tmp/cut.json" --select-goals
+# check reads what plan --select-goals wrote, against the same mission (it said: task not done).
+"$sp" plan --map "$ais" --mission "$tmp/cut.json" --select-goals -q -o "$tmp/selected.plan" > /dev/null 2>&1
+expect 0 "left out: task 'far'" -- "$sp" check --map "$ais" --mission "$tmp/cut.json" --select-goals "$tmp/selected.plan"
+expect 1 "task 'far' .* is not done" -- "$sp" check --map "$ais" --mission "$tmp/cut.json" "$tmp/selected.plan"
+# A pipe of 1e16 m passed validate and stopped plan on an internal check (exit 134).
+sed 's/"length_m": 8.485/"length_m": 1e16/' "$ais" > "$tmp/huge.json"
+expect 1 'length must be at most 100000 m, got 1e\+16' -- "$sp" validate "$tmp/huge.json"
+expect 1 'length must be at most' -- "$sp" plan --map "$tmp/huge.json" --mission "$mission"
 
 # simulate: the paper's mission with an obstacle the head lift clears and one in the inspected pipe.
 expect 0 'mission ended at pipe P9' -- "$sp" simulate --map "$ais" --mission "$mission" --faults "$src/datasets/ais-testbed/faults/demo.json" --log "$tmp/events.jsonl" -q
@@ -193,6 +201,11 @@ expect 4 'beacon on: the robot cannot move' -- "$sp" simulate --map "$ais" --mis
 echo '{"max_reboots": -1}' > "$tmp/recovery.json"
 expect 1 'recovery.json: "max_reboots" must be a count' -- "$sp" simulate --map "$ais" --mission "$mission" --recovery "$tmp/recovery.json" -q
 expect 2 'random-faults' -- "$sp" simulate --map "$ais" --mission "$mission" --faults "$tmp/stuck.json" --random-faults 3
+# A fault file with a bad value is invalid input (1), as the docs say, not a usage error.
+echo '{"format": "sewerplan-faults", "version": 1, "obstacles": [{"pipe": "P99", "offset_m": 1}]}' > "$tmp/bad-faults.json"
+expect 1 'P99' -- "$sp" simulate --map "$ais" --mission "$mission" --faults "$tmp/bad-faults.json" -q
+# Unbounded drawing (47 s and 6 GB): a rate beyond the limit is refused at once.
+expect 2 'obstacle_rate_per_km must be at most 1000' -- "$sp" simulate --map "$ais" --mission "$mission" --random-faults 1,1e9 -q
 # --learnt: the blockage the first mission met is known to the second, which plans around it.
 expect 0 'mission ended' -- "$sp" simulate --map "$ais" --mission "$mission" --faults "$src/datasets/ais-testbed/faults/blocked-p5.json" --learnt "$tmp/learnt.json" -q
 expect 0 '"pipe": "P5"' -- cat "$tmp/learnt.json"
@@ -229,6 +242,20 @@ for i in 0 1 2; do
 done
 expect 0 'Verdict: clean' -- "$sp" campaign merge "$tmp/shard0" "$tmp/shard1" "$tmp/shard2" -o "$tmp/merged"
 expect 0 '' -- bash -c "diff <(sed 's/,\"measured\".*//' \"$tmp/camp/runs.jsonl\") <(sed 's/,\"measured\".*//' \"$tmp/merged/runs.jsonl\")"
+# Issue 14: a go-to at P9's M10 end leaves the robot right at that end after a pass into P9; the
+# drive of 0 m back to M10 must bring it to the mouth (it stayed in P9, and was "ended at exit M10").
+cat >"$tmp/end-of-p9.json" <<'JSON'
+{"format": "sewerplan-mission", "version": 1, "name": "go-to-the-end-of-p9", "profile": "makro-1.1",
+ "start": {"pipe": "P12"}, "battery_reserve": 0.2,
+ "tasks": [{"name": "end", "type": "go_to", "at": {"pipe": "P9", "offset_m": 4.243}}]}
+JSON
+expect 0 'could reach an exit but did not \| 0 \| 0 \|' -- "$sp" campaign --map "$ais" --mission "$tmp/end-of-p9.json" --runs 12 --seed 5
+# --planner-time-limit: every replan reaches a 1 us limit and still heads for an exit, never the beacon.
+expect 0 'planner time limit 1e-06 s' -- "$sp" campaign --map "$ais" --mission "$mission" --runs 6 --seed 5 --planner-time-limit 0.000001 -o "$tmp/limit"
+expect 0 'beacons: limit \| 0 \| 0 \|' -- cat "$tmp/limit/summary.md"
+expect 0 'could reach an exit but did not \| 0 \| 0 \|' -- cat "$tmp/limit/summary.md"
+expect 0 '"planner_time_limit_s": 1e-06' -- cat "$tmp/limit/campaign.json"
+expect 2 'planner-time-limit: Value -1 not in range' -- "$sp" campaign --map "$ais" --mission "$mission" --planner-time-limit -1
 expect 1 'shard\(s\) 1 of 3 missing' -- "$sp" campaign merge "$tmp/shard0" "$tmp/shard2" -o "$tmp/merged2"
 expect 1 'shard 2/3 given twice' -- "$sp" campaign merge "$tmp/shard0" "$tmp/shard1" "$tmp/shard2" "$tmp/shard2" -o "$tmp/merged3"
 expect 6 'run 3 \(seed [0-9]+\): crash.*--only 3' -- env SEWERPLAN_CAMPAIGN_INJECT=crash:3,hang:4 "$sp" campaign --map "$ais" --mission "$mission" --runs 6 --timeout 5 --jobs 2

@@ -111,11 +111,11 @@ TEST(MapAscii, WritingThenReadingKeepsEveryNumberExactly) {
   MapBuilder b("exact");
   b.add_manhole({.name = "A",
                  .position = {0.1 + 0.2, 1.0 / 3.0, -1e-7},
-                 .diameter_m = 6.02e23,
+                 .diameter_m = 99.999999999999986,  // within core/limits.h
                  .variant = 'Z',
                  .slots = {{.pipe = "P", .azimuth_deg = 359.99999999999994, .invert_z_m = -0.0}}});
   b.add_manhole({.name = "B",
-                 .position = {123456789.123456789, -2.2250738585072014e-308, 5e-324},
+                 .position = {1234567.891234567, -2.2250738585072014e-308, 5e-324},
                  .diameter_m = 0.7,
                  .exit = true,
                  .slots = {{.pipe = "P", .azimuth_deg = -180, .invert_z_m = 2.0 / 3.0}}});

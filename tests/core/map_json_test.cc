@@ -98,6 +98,21 @@ TEST(MapJson, ReportsSyntaxErrorsWithLineAndColumn) {
   EXPECT_THAT(map.error().message, HasSubstr("t.json:3:16: error: JSON syntax error"));
 }
 
+// A pipe of 1e16 m passed validation and then stopped `plan` on an internal check: every number
+// beyond core/limits.h is a validation error naming the field.
+TEST(MapJson, NumbersBeyondTheLimitsLaterStagesHoldAreErrors) {
+  std::string text(kSmallMap);
+  text.replace(text.find("\"length_m\": 7.5"), 15, "\"length_m\": 1e16");
+  const std::string c_at = R"("x_m": 10, "y_m": 7.5)";
+  text.replace(text.find(c_at), c_at.size(), R"("x_m": 1e300, "y_m": 7.5)");
+  Diagnostics d;
+  Result<SewerMap> map = read(text, d);
+  ASSERT_FALSE(map.has_value());
+  EXPECT_THAT(map.error().message,
+              HasSubstr("t.json:$.pipes[1].length_m: error: pipe P2: length must be at most"));
+  EXPECT_THAT(map.error().message, HasSubstr("$.manholes[2].x_m: error: manhole C: x must be"));
+}
+
 TEST(MapJson, ReportsWrongTypesAndMissingFieldsByJsonPath) {
   std::string text(kSmallMap);
   text.replace(text.find("\"length_m\": 7.5"), 15, "\"length_m\": \"7.5\"");

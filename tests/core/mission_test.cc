@@ -138,10 +138,12 @@ TEST_F(MissionTest, RejectsAnUnknownOrImpossibleProfile) {
   EXPECT_THAT(m.error().message,
               HasSubstr("unknown robot profile 'makro-3' (built in: makro-1.1, makro-plus)"));
   m = read(R"({"format": "sewerplan-mission", "version": 1,
-    "profile": {"speed_mps": -1, "min_pipe_diameter_m": 0.7},
+    "profile": {"speed_mps": -1, "min_pipe_diameter_m": 0.7, "battery_wh": 1e300},
     "start": {"manhole": "M1"}, "tasks": []})");
   ASSERT_FALSE(m.has_value());
-  EXPECT_THAT(m.error().message, HasSubstr("speed_mps = -1: must be a positive number"));
+  EXPECT_THAT(m.error().message, HasSubstr("speed_mps = -1: must be from 0.001 to 100 m/s"));
+  // Beyond core/limits.h: plan costs would not fit the planner's integer milliseconds.
+  EXPECT_THAT(m.error().message, HasSubstr("battery_wh = 1e+300: must be above 0 and at most 1e6"));
   EXPECT_THAT(m.error().message,
               HasSubstr("max_pipe_diameter_m = 0.6: must be at least min_pipe_diameter_m"));
 }

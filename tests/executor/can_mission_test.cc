@@ -145,6 +145,18 @@ TEST(CanMission, LostFramesGarbageAndLateAcksAreRepairedWithoutChangingTheRun) {
   }
 }
 
+// An acknowledgement later than all the JOB's sends (3 x the ack timeout; about 1.5 s with the
+// defaults) ended the mission: the controller declared the link failed while the node drove the
+// job, and the reboot that followed read "reboot failed: reboot failed:". docs/can-protocol.md
+// says a late acknowledgement changes nothing: the controller waits for the job's result.
+TEST(CanMission, AnAcknowledgementLaterThanEveryResendChangesNothing) {
+  const auto ais = testing::load_ais_testbed();
+  const CanRun local = in_process(ais, {});
+  const CanRun bus = over_can(ais, {}, "late-ack=2@0.6");
+  EXPECT_EQ(bus.report, local.report);
+  EXPECT_EQ(bus.json_lines, local.json_lines);
+}
+
 TEST(CanMission, SilenceAndBusOffAreMalfunctionsThatARebootOverTheBusClears) {
   const auto ais = testing::load_ais_testbed();
   for (const char* spec : {"silence=4+3", "bus-off=4"}) {

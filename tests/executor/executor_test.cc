@@ -69,6 +69,9 @@ TEST(Executor, WithoutFaultsThePapersMissionIsDoneAsPlanned) {
   EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded);
   EXPECT_EQ(run.report.tasks_done, (std::vector<std::string>{"sample", "inspect"}));
   EXPECT_EQ(run.report.replans, 0U);
+  EXPECT_EQ(run.report.beacon_cause, MissionReport::BeaconCause::kNone);
+  EXPECT_NE(run.json_lines.find(R"("decision":"follow-plan","beacon_cause":"none")"),
+            std::string::npos);
   EXPECT_NEAR(run.report.time_s, 585.4, 0.05);  // the plan's cost, to the robot's clock
   EXPECT_TRUE(run.report.battery_reserve_kept);
 }
@@ -128,6 +131,45 @@ TEST(Executor, AStuckRobotSwitchesItsBeaconOn) {
   EXPECT_EQ(run.report.outcome, MissionOutcome::kBeacon);
   EXPECT_NE(run.report.end.find("cannot move"), std::string::npos) << run.report.end;
   EXPECT_EQ(count(run, "beacon"), 1U);
+  EXPECT_EQ(run.report.decision, PlanResponse::Decision::kStuck);
+  EXPECT_EQ(run.report.beacon_cause, MissionReport::BeaconCause::kMalfunction);
+  EXPECT_NE(run.json_lines.find(R"("decision":"stuck","beacon_cause":"malfunction")"),
+            std::string::npos)
+      << run.json_lines;
+  // The robot's words were prefixed once more ("reboot failed: reboot failed: ...").
+  EXPECT_NE(run.json_lines.find("reboot failed: permanent"), std::string::npos) << run.json_lines;
+  EXPECT_EQ(run.json_lines.find("reboot failed: reboot failed"), std::string::npos)
+      << run.json_lines;
+}
+
+// A cluster of transient malfunctions, the second and third timed while the robot reboots, used
+// up the two reboots a job had, and the mission ended with the beacon, tasks left and a full
+// battery. A reboot clears what strikes while it runs, and the budget bounds reboots in a row that
+// did not help.
+TEST(Executor, AClusterOfTransientMalfunctionsDoesNotEndTheMission) {
+  const auto ais = testing::load_ais_testbed();
+  const SimRun run =
+      simulate(ais.map, ais.mission, faults(ais.map, R"({"format": "sewerplan-faults", "version": 1,
+          "malfunctions": [{"at_time_s": 100, "kind": "transient"},
+                           {"at_time_s": 125, "kind": "transient"},
+                           {"at_time_s": 155, "kind": "transient"}]})"));
+  EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded) << run.report;
+  EXPECT_EQ(run.report.tasks_done, (std::vector<std::string>{"sample", "inspect"})) << run.report;
+}
+
+// Malfunctions that each strike after the robot has worked again since the last reboot: each is
+// a fault of its own, not a robot that cannot stay up.
+TEST(Executor, TransientMalfunctionsWithWorkBetweenThemAreEachRebootedThrough) {
+  const auto ais = testing::load_ais_testbed();
+  const SimRun run =
+      simulate(ais.map, ais.mission, faults(ais.map, R"({"format": "sewerplan-faults", "version": 1,
+          "malfunctions": [{"at_time_s": 100, "kind": "transient"},
+                           {"at_time_s": 135, "kind": "transient"},
+                           {"at_time_s": 170, "kind": "transient"},
+                           {"at_time_s": 205, "kind": "transient"}]})"));
+  EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded) << run.report;
+  EXPECT_EQ(run.report.tasks_done, (std::vector<std::string>{"sample", "inspect"})) << run.report;
+  EXPECT_EQ(run.report.recoveries, 4U) << run.report;
 }
 
 TEST(Executor, ATransientMalfunctionIsRebootedAndTheMissionGoesOn) {

@@ -6,6 +6,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "sewerplan/core/limits.h"
+
 #include "support/ais_testbed.h"
 #include "support/paths.h"
 #include "support/small_map.h"
@@ -91,6 +93,51 @@ TEST_F(FaultScenarioTest, BadRatesAreAnError) {
   EXPECT_EQ(f.error().code, ErrorCode::kInvalidArgument);
   EXPECT_THAT(f.error().message, HasSubstr("obstacle_rate_per_km"));
   EXPECT_THAT(f.error().message, HasSubstr("transient_share"));
+}
+
+// `simulate --random-faults 1,1e9` drew for 47 s and took 6 GB on this map: rates beyond any
+// sewer's, and counts beyond what can be drawn, are errors before drawing.
+TEST_F(FaultScenarioTest, RatesAndCountsBeyondTheLimitsAreAnErrorBeforeDrawing) {
+  Result<FaultScenario> f = random_faults(map_, {.seed = 1, .obstacle_rate_per_km = 1e9});
+  ASSERT_FALSE(f.has_value());
+  EXPECT_EQ(f.error().code, ErrorCode::kInvalidArgument);
+  EXPECT_THAT(f.error().message, HasSubstr("obstacle_rate_per_km must be at most 1000"));
+  EXPECT_FALSE(random_faults(map_, {.malfunction_rate_per_hour = 1e9}).has_value());
+  // Long pipes at the highest rates: more faults than can be drawn.
+  testing::SmallMap long_pipes;
+  long_pipes.manhole("M0", 0, 0, true);
+  for (int i = 1; i <= 6; ++i) {
+    long_pipes.manhole("M" + std::to_string(i), 100.0 * i, 0)
+        .pipe("P" + std::to_string(i), "M" + std::to_string(i - 1), "M" + std::to_string(i), 0.5,
+              kMaxLength_m);
+  }
+  f = random_faults(long_pipes.build(),
+                    {.seed = 1, .obstacle_rate_per_km = 1000, .danger_rate_per_km = 1000});
+  ASSERT_FALSE(f.has_value());
+  EXPECT_THAT(f.error().message, HasSubstr("faults expected"));
+  EXPECT_TRUE(random_faults(map_, {.seed = 1, .obstacle_rate_per_km = 1000}).has_value());
+}
+
+// simulate drew on 0.30-0.60 m pipes whatever the mission's robot, campaign on the profile's: one
+// rule for both now.
+TEST_F(FaultScenarioTest, RandomFaultsLieOnThePipesTheProfileFits) {
+  SewerMap map = testing::SmallMap()
+                     .manhole("M1", 0, 0, true)
+                     .manhole("M2", 100, 0)
+                     .manhole("M3", 200, 0)
+                     .pipe("wide", "M1", "M2", 0.5)
+                     .pipe("narrow", "M2", "M3", 0.2)
+                     .build();
+  RobotProfile small;
+  small.min_pipe_diameter_m = 0.15;
+  small.max_pipe_diameter_m = 0.25;
+  RandomFaultOptions o = random_fault_options(small);
+  o.seed = 1;
+  o.obstacle_rate_per_km = 200;
+  Result<FaultScenario> f = random_faults(map, o);
+  ASSERT_TRUE(f.has_value());
+  ASSERT_FALSE(f->obstacles.empty());
+  for (const Obstacle& obstacle : f->obstacles) EXPECT_EQ(map.pipe(obstacle.pipe).name, "narrow");
 }
 
 TEST_F(FaultScenarioTest, RoundTripsThroughJson) {

@@ -204,6 +204,25 @@ TEST_F(SimRobotTest, TurnsIntoTheOtherPipeAtItsEndInTheManhole) {
   EXPECT_EQ(r.pose(), SimPose(AtSlot{manhole("M1"), SlotIndex{0}, Facing::kIntoManhole}));
 }
 
+TEST_F(SimRobotTest, ADriveOfZeroMetresAtAPipesEndReachesItsMouth) {
+  // Just turned from P2 into P1: right at P1's M2 end, facing away from M2. Backing 0 m is
+  // arriving at M2's mouth of P1 (a plan's "drive back to M2" after a go-to at that end).
+  SimRobot r = robot(AtSlot{manhole("M2"), SlotIndex{1}, Facing::kIntoManhole});
+  ASSERT_TRUE(r.execute(TurnInManhole{.from_slot = 1, .to_slot = 0, .duration_s = 20}).ok());
+  const JobReport report = r.execute(DriveBackward{.speed_mps = 0.3, .distance_m = 0});
+  EXPECT_TRUE(report.ok());
+  EXPECT_DOUBLE_EQ(report.progress_m, 0);
+  EXPECT_EQ(r.pose(), SimPose(AtSlot{manhole("M2"), SlotIndex{0}, Facing::kIntoPipe}));
+  // Elsewhere in a pipe, and at a mouth, 0 m is no move at all.
+  SimRobot mid = robot(in_p1());
+  EXPECT_TRUE(mid.execute(DriveForward{.speed_mps = 0.3, .distance_m = 0}).ok());
+  EXPECT_EQ(mid.pose(), SimPose(in_p1()));
+  const SimPose mouth = AtSlot{manhole("M2"), SlotIndex{0}, Facing::kIntoManhole};
+  SimRobot at = robot(mouth);
+  EXPECT_TRUE(at.execute(DriveForward{.speed_mps = 0.3, .distance_m = 0}).ok());
+  EXPECT_EQ(at.pose(), mouth);
+}
+
 TEST_F(SimRobotTest, EntersAPipeOnlyFromInsideAManhole) {
   SimRobot r = robot(InManhole{manhole("M1")});
   JobReport blocked = r.execute(kDrive15);

@@ -238,11 +238,13 @@ JobReport CanRobot::execute(const Job& job) {
       }
     }
   }
-  if (!accepted && !result) {
-    return link_failure("no acknowledgement of " + name + ": " + problem + " (" +
-                            std::to_string(options_.attempts) + " attempts)",
-                        0);
-  }
+  // Without an acknowledgement the node may still be running the job, late: wait for its result
+  // as for an accepted job (asking again with RESULT_REQUEST), so that a late acknowledgement
+  // changes nothing. Declaring the link failed at once ended missions while the node drove on.
+  const std::string no_ack = accepted || result
+                                 ? std::string()
+                                 : "no acknowledgement of " + name + ": " + problem + " (" +
+                                       std::to_string(options_.attempts) + " attempts)";
   double progress_m = 0;
   for (int attempt = 0; attempt < options_.attempts && !result; ++attempt) {
     if (attempt > 0) {
@@ -274,6 +276,7 @@ JobReport CanRobot::execute(const Job& job) {
     if (answer) result = std::move(std::get<JobResult>(*answer));
   }
   if (!result) {
+    if (!no_ack.empty()) return link_failure(no_ack, progress_m);
     return link_failure("no result of " + name + ": " + problem + " (" +
                             std::to_string(options_.attempts) + " attempts)",
                         progress_m);

@@ -54,6 +54,7 @@ struct CampaignSpec {
   std::size_t runs = 0;
   FaultRates rates;
   bool push_allowed = false;
+  double planner_time_limit_s = 0;  // RunSettings::planner_time_limit_s
   std::size_t shard_index = 0;  // this directory holds the runs with index % shard_count == index
   std::size_t shard_count = 1;
   friend bool operator==(const CampaignSpec&, const CampaignSpec&) = default;

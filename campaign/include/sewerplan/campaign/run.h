@@ -33,6 +33,7 @@
 #include "sewerplan/core/mission.h"
 #include "sewerplan/core/result.h"
 #include "sewerplan/core/sewer_map.h"
+#include "sewerplan/executor/executor.h"
 #include "sewerplan/hal/fault_scenario.h"
 
 namespace sewerplan::campaign {
@@ -57,6 +58,10 @@ struct RunSettings {
   FaultRates rates;
   std::uint64_t campaign_seed = 0;
   bool push_allowed = false;  // recovery phase 3 (executor/recovery.h)
+  // The deadline of each plan of ours and the baseline (ReplannerOptions::planner.time_limit_s; 0:
+  // none); not the oracle's. Measured on the wall clock, so a limit some plans reach makes runs
+  // depend on the machine.
+  double planner_time_limit_s = 0;
 };
 
 // The run's own seed: splitmix64 of the campaign seed and the index.
@@ -84,7 +89,9 @@ struct Execution {
   std::size_t replans = 0;
   double time_s = 0;  // mission time and energy, simulated (deterministic)
   double energy_wh = 0;
-  bool disabled = false;                 // a permanent malfunction struck
+  bool disabled = false;  // a permanent malfunction struck
+  // Why the beacon is on ("none" otherwise); "limit" must never happen.
+  executor::MissionReport::BeaconCause beacon_cause = executor::MissionReport::BeaconCause::kNone;
   std::vector<double> planning_times_s;  // measured
   friend bool operator==(const Execution&, const Execution&) = default;
 };

@@ -29,8 +29,9 @@ struct PolicyFigures {
   double vs_oracle_mean = 0;  // share of the oracle's tasks, mean over runs
   double vs_oracle_worst = 1;
   std::size_t worst_run = 0;
-  std::array<std::size_t, 4> outcomes{};  // by Outcome
-  std::size_t missed_exits = 0;           // could reach an exit, did not
+  std::array<std::size_t, 4> outcomes{};       // by Outcome
+  std::size_t missed_exits = 0;                // could reach an exit, did not
+  std::array<std::size_t, 6> beacon_causes{};  // by executor::MissionReport::BeaconCause
   std::size_t reserve_violations = 0;
   double replans_mean = 0;
   std::size_t replans_max = 0;
@@ -62,7 +63,8 @@ struct Summary {
   std::vector<FailedRun> failed;  // crashes and hangs
   double wall_s = 0;              // measured: sum over runs
 
-  // No crash, hang, missed exit, stranded run or reserve violation (ours).
+  // No crash, hang, missed exit, stranded run, reserve violation or beacon caused by a limit
+  // (ours).
   bool clean() const;
 };
 

@@ -20,8 +20,10 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <ostream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "sewerplan/core/sewer_map.h"
@@ -38,7 +40,20 @@ struct MissionReport {
     kEnded,   // the plan was carried out: at an exit, or at the mission's end point
     kBeacon,  // no way out: the beacon is on
   };
+  // Why the beacon is on, for counting (campaigns show that no limit ever strands a robot).
+  enum class BeaconCause {
+    kNone,         // "none": not on
+    kNoExit,       // "no-exit": a search proved that no exit can be reached
+    kStuck,        // "stuck": the robot cannot move (recovery left it stuck, a danger in a manhole)
+    kMalfunction,  // "malfunction": a permanent malfunction, a reboot that failed
+    kLink,         // "link": the link to the robot failed (CAN)
+    kLimit,        // "limit": a bound of the executor (max_replans) or a plan that did not validate
+  };
   Outcome outcome = Outcome::kEnded;
+  // The Replanner's last decision (replanner.h): "follow-plan", "degraded", "call-for-recovery",
+  // "stuck"; the event log's mission_end and every --json output carry it.
+  PlanResponse::Decision decision = PlanResponse::Decision::kFollowPlan;
+  BeaconCause beacon_cause = BeaconCause::kNone;
   std::string end;                                           // "exit M4", or why the beacon is on
   std::vector<std::string> tasks_done;                       // in the order done
   std::vector<std::pair<std::string, std::string>> dropped;  // task name, reason
@@ -52,6 +67,9 @@ struct MissionReport {
 };
 
 std::ostream& operator<<(std::ostream& os, const MissionReport& report);
+// "none", "no-exit", "stuck", "malfunction", "link", "limit", and back (empty for other text).
+std::string_view to_string(MissionReport::BeaconCause cause);
+std::optional<MissionReport::BeaconCause> parse_beacon_cause(std::string_view name);
 
 struct ExecutorOptions {
   RecoveryConfig recovery;

@@ -29,6 +29,7 @@
 
 #include "sewerplan/core/diagnostics.h"
 #include "sewerplan/core/result.h"
+#include "sewerplan/core/robot_profile.h"
 #include "sewerplan/core/sewer_map.h"
 
 namespace sewerplan::hal {
@@ -139,9 +140,22 @@ struct RandomFaultOptions {
   double end_margin_m = 0.5;
 };
 
+// The limits of random_faults: rates beyond these are no sewer's, and more faults than
+// kMaxRandomFaults (expected, before drawing) would take the drawing hours and gigabytes.
+inline constexpr double kMaxFaultsPerKm = 1000;          // obstacles, and danger spots: one a metre
+inline constexpr double kMaxMalfunctionsPerHour = 3600;  // one a second
+inline constexpr double kMaxHorizon_s = 7 * 24 * 3600.0;
+inline constexpr std::size_t kMaxRandomFaults = 1'000'000;
+
+// The drivable pipes of `profile` (its diameter limits): where random faults lie, for `simulate`
+// and `campaign` alike.
+RandomFaultOptions random_fault_options(const RobotProfile& profile);
+
 // A scenario drawn with Rng (core/rng.h) only: the same map and options give the same scenario on
 // every platform. Faults come in pipe, manhole and time order. An error if a rate or share is
-// negative or not finite, or a share exceeds 1. Runtime: O(pipes + slots^2 per manhole + faults).
+// negative or not finite, a share exceeds 1, a rate or the horizon exceeds its limit above, or
+// more than kMaxRandomFaults faults are expected on `map`. Runtime: O(pipes + slots^2 per manhole
+// + faults).
 Result<FaultScenario> random_faults(const SewerMap& map, const RandomFaultOptions& options);
 
 // --- JSON files (format: docs/simulation.md) --------------------------------------------------

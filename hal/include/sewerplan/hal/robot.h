@@ -59,7 +59,8 @@ class Robot {
   // Runs `job` to its end or to the first error; never throws.
   virtual JobReport execute(const Job& job) = 0;
   virtual RobotStatus status() const = 0;
-  // Restarts the robot's control software; the error, if the fault was permanent.
+  // Restarts the robot's control software; the error, if the fault was permanent, reads
+  // "reboot failed: why".
   virtual Result<void> reboot() = 0;
   // Switches on the locator beacon, so that the robot can be found and recovered.
   virtual void activate_beacon() = 0;

@@ -1,0 +1,70 @@
+// SPDX-License-Identifier: MIT
+#include "job_arithmetic.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "sewerplan/core/overloaded.h"
+
+namespace sewerplan::executor::detail {
+
+std::optional<Job> rest_of(const Job& job, double done_m) {
+  return std::visit(
+      Overloaded{[&](const DriveForward& j) -> std::optional<Job> {
+                   return DriveForward{j.speed_mps, std::max(0.0, j.distance_m - done_m)};
+                 },
+                 [&](const DriveBackward& j) -> std::optional<Job> {
+                   return DriveBackward{j.speed_mps, std::max(0.0, j.distance_m - done_m)};
+                 },
+                 [&](const Push& j) -> std::optional<Job> {
+                   return Push{j.speed_mps, std::max(0.0, j.distance_m - done_m)};
+                 },
+                 [&](const Scan& j) -> std::optional<Job> {
+                   return Scan{j.speed_mps, std::max(0.0, j.distance_m - done_m), j.backward};
+                 },
+                 [](const auto&) -> std::optional<Job> { return std::nullopt; }},
+      job);
+}
+
+Job lengthened(const Job& job, double extra_m) {
+  return std::visit(
+      [&](auto j) -> Job {
+        if constexpr (requires { j.distance_m; }) j.distance_m += extra_m;
+        return j;
+      },
+      job);
+}
+
+Job back_off(const Job& job, double distance_m) {
+  return std::visit(Overloaded{[&](const DriveBackward& j) -> Job {
+                                 return DriveForward{j.speed_mps, distance_m};
+                               },
+                               [&](const Scan& j) -> Job {
+                                 if (j.backward) return DriveForward{j.speed_mps, distance_m};
+                                 return DriveBackward{j.speed_mps, distance_m};
+                               },
+                               [&](const auto& j) -> Job {
+                                 if constexpr (requires { j.speed_mps; }) {
+                                   return DriveBackward{j.speed_mps, distance_m};
+                                 }
+                                 return DriveBackward{0.1, distance_m};
+                               }},
+                    job);
+}
+
+std::optional<Job> push_for(const Job& job) {
+  if (const auto* d = std::get_if<DriveForward>(&job)) return Push{d->speed_mps, d->distance_m};
+  if (const auto* p = std::get_if<Push>(&job)) return *p;
+  if (const auto* s = std::get_if<Scan>(&job); s && !s->backward) {
+    return Push{s->speed_mps, s->distance_m};
+  }
+  return std::nullopt;
+}
+
+std::string job_text(const Job& job) {
+  std::ostringstream out;
+  out << job;
+  return out.str();
+}
+
+}  // namespace sewerplan::executor::detail

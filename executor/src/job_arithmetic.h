@@ -1,0 +1,32 @@
+// SPDX-License-Identifier: MIT
+// Job arithmetic: the rest of a drive, the same drive longer, a drive the other way, a push.
+//
+// Private to executor. Staged recovery (staged_recovery.h) builds its manoeuvres from the job
+// that failed: it resumes the rest after a reboot, backs up and drives the distance again, backs
+// off from a danger, pushes over the rest. These are the pure functions behind that.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "sewerplan/core/job.h"
+
+namespace sewerplan::executor::detail {
+
+// The rest of a drive after `done_m`, or nothing for a job that is not a drive.
+std::optional<Job> rest_of(const Job& job, double done_m);
+
+// The same drive, `extra_m` longer (after backing up that far).
+Job lengthened(const Job& job, double extra_m);
+
+// A drive of `distance_m` the other way, at the job's speed.
+Job back_off(const Job& job, double distance_m);
+
+// A push over the rest of a forward drive; none for a backward one (the robot pushes with its
+// head).
+std::optional<Job> push_for(const Job& job);
+
+// The job as the event log writes it.
+std::string job_text(const Job& job);
+
+}  // namespace sewerplan::executor::detail

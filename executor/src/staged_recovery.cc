@@ -1,0 +1,220 @@
+// SPDX-License-Identifier: MIT
+// The stages of kRecoveryTable (recovery.h), carried out for one job (staged_recovery.h).
+#include "staged_recovery.h"
+
+#include <algorithm>
+
+#include "job_arithmetic.h"
+
+namespace sewerplan::executor::detail {
+namespace {
+
+// Where an obstacle or danger is taken to be: just ahead of where the robot stopped, so that the
+// robot's own position stays on its side of the blockage. No more than a millimetre: the robot
+// stops short of what it meets, and a task between where it stopped and the thing itself cannot
+// be reached from this side (a fault campaign found the robot replanning the same unreachable
+// sample a hundred times when the margin was 5 cm).
+constexpr double kAhead_m = 0.001;
+
+// How many reboots one job may take. A reboot that lets the robot work again (the job after it
+// runs for a while before the next malfunction, or to its end) shows the fault was transient, so
+// the budget bounds reboots in a row that did not help: `max_reboots` of them, and at most
+// kRebootsPerJob in all, against a robot that fails after every short stretch. (It was
+// `max_reboots` per job in all: one cluster of transient faults used it up and ended a mission
+// with tasks left and a full battery.)
+class RebootBudget {
+ public:
+  static constexpr int kRebootsPerJob = 20;
+  explicit RebootBudget(const RecoveryConfig& config) : max_in_a_row_(config.max_reboots) {}
+
+  // True when `failed`, a malfunction, may be rebooted through; counts the reboot.
+  bool take(const hal::JobReport& failed) {
+    if (total_ > 0 && (failed.duration_s > 0 || failed.progress_m > 0)) in_a_row_ = 0;
+    if (in_a_row_ >= max_in_a_row_ || total_ >= kRebootsPerJob) return false;
+    ++in_a_row_;
+    ++total_;
+    return true;
+  }
+
+ private:
+  int max_in_a_row_;
+  int in_a_row_ = 0;
+  int total_ = 0;
+};
+
+}  // namespace
+
+// What the blockage stages came to.
+struct StagedRecovery::Cleared {
+  enum class How {
+    kDone,        // cleared, and the drive finished
+    kStays,       // the obstacle stays
+    kOtherError,  // cleared, and the drive (job) met another error (report) further on
+    kStuck,       // backing up or moving the head failed
+  };
+  How how = How::kStays;
+  Job job{};
+  hal::JobReport report;
+};
+
+std::optional<Failure> StagedRecovery::run_job(const Job& job, const fusion::RobotAction& action) {
+  Job current = job;
+  RebootBudget reboots(config_);
+  hal::JobReport r = host_.execute_job(current);
+  for (;;) {
+    if (r.ok()) return std::nullopt;
+    const hal::RobotErrorKind kind = r.error->kind;
+    if (kind == hal::RobotErrorKind::kMalfunction) {
+      if (!reboots.take(r)) {
+        return Failure{.kind = Failure::Kind::kStuck, .detail = r.error->reason};
+      }
+      const Result<void> rebooted = host_.reboot();
+      host_.log_recovery(logged_name(RecoveryPhase::kReboot), rebooted.has_value());
+      if (!rebooted.has_value()) {
+        // The robot's words say "reboot failed: why" (hal/robot.h).
+        return Failure{.kind = Failure::Kind::kStuck,
+                       .detail = r.error->reason + "; " + rebooted.error().message};
+      }
+      ++cleared_;
+      if (auto rest = rest_of(current, r.progress_m)) current = *rest;
+      r = host_.execute_job(current);
+      continue;
+    }
+    if (kind == hal::RobotErrorKind::kDanger) return danger(current, action, r);
+    auto rest = rest_of(current, r.progress_m);
+    if (!rest) return danger(current, action, r);  // blocked in a manhole: as a danger
+    Cleared cleared = clear_blockage(*rest);
+    switch (cleared.how) {
+      case Cleared::How::kDone:
+        ++cleared_;
+        return std::nullopt;
+      case Cleared::How::kOtherError:
+        // The obstacle is gone, and the drive met something else on the way (a danger spot
+        // beyond it, a malfunction): handled as the drive's own error.
+        ++cleared_;
+        current = cleared.job;
+        r = cleared.report;
+        continue;
+      case Cleared::How::kStuck:
+        return Failure{.kind = Failure::Kind::kStuck, .detail = "recovery left the robot stuck"};
+      case Cleared::How::kStays:
+        break;
+    }
+    return blocked_here(Failure::Kind::kBlockage, current, r.error->reason);
+  }
+}
+
+// A job of the recovery stages, rebooting through transient malfunctions (at most max_reboots
+// times); its report's progress is the whole distance driven.
+hal::JobReport StagedRecovery::recovery_job(const Job& job) {
+  Job current = job;
+  hal::JobReport r = host_.execute_job(current);
+  double progress_m = r.progress_m;
+  RebootBudget reboots(config_);
+  while (!r.ok() && r.error->kind == hal::RobotErrorKind::kMalfunction && reboots.take(r)) {
+    const Result<void> rebooted = host_.reboot();
+    host_.log_recovery(logged_name(RecoveryPhase::kReboot), rebooted.has_value());
+    if (!rebooted.has_value()) break;
+    ++cleared_;
+    if (auto rest = rest_of(current, r.progress_m)) current = *rest;
+    r = host_.execute_job(current);
+    progress_m += r.progress_m;
+  }
+  r.progress_m = progress_m;
+  return r;
+}
+
+StagedRecovery::Cleared StagedRecovery::clear_blockage(Job rest) {
+  const RecoveryConfig& c = config_;
+  // `back_m`: how far the retry drives back to where the robot met the obstacle. Blocked again
+  // further on, it met another obstacle: that one gets recovery of its own.
+  auto retry = [&](const Job& job, RecoveryPhase phase, double back_m) -> std::optional<Cleared> {
+    hal::JobReport r = host_.execute_job(job);
+    host_.log_recovery(logged_name(phase), r.ok());
+    if (r.ok()) return Cleared{Cleared::How::kDone, job, r};
+    if (r.error->kind != hal::RobotErrorKind::kBlockage || r.progress_m > back_m + 0.01) {
+      return Cleared{Cleared::How::kOtherError, job, std::move(r)};
+    }
+    if (auto left = rest_of(job, r.progress_m)) rest = *left;
+    return std::nullopt;
+  };
+  for (int i = 0; i < c.backup_retries; ++i) {
+    const hal::JobReport back = recovery_job(back_off(rest, c.backup_m));
+    if (!back.ok()) {
+      if (back.error->kind == hal::RobotErrorKind::kMalfunction) return {Cleared::How::kStuck};
+      break;  // no room to back up: on to the head
+    }
+    if (auto done = retry(lengthened(rest, back.progress_m), RecoveryPhase::kBackUpAndRetry,
+                          back.progress_m)) {
+      return *done;
+    }
+  }
+  for (int i = 0; i < c.lift_retries; ++i) {
+    if (!recovery_job(LiftHead{}).ok() || !recovery_job(LowerHead{}).ok()) {
+      return Cleared{Cleared::How::kStuck};
+    }
+    if (auto done = retry(rest, RecoveryPhase::kLiftHeadAndRetry, 0)) return *done;
+  }
+  for (int i = 0; c.push_allowed && i < c.push_retries; ++i) {
+    const std::optional<Job> push_job = push_for(rest);
+    if (!push_job) break;  // the robot pushes with its head only
+    hal::JobReport push = host_.execute_job(*push_job);
+    host_.log_recovery(logged_name(RecoveryPhase::kPush), push.ok());
+    if (push.ok()) return Cleared{Cleared::How::kDone};
+    if (push.error->kind != hal::RobotErrorKind::kBlockage) {
+      return Cleared{Cleared::How::kOtherError, *push_job, std::move(push)};
+    }
+  }
+  return Cleared{Cleared::How::kStays};
+}
+
+// DANGER: back off to the last safe position, and report the spot or the passage.
+std::optional<Failure> StagedRecovery::danger(const Job& job, const fusion::RobotAction& action,
+                                              const hal::JobReport& r) {
+  if (const auto* pass = std::get_if<fusion::PassManhole>(&action);
+      pass && std::holds_alternative<TurnInManhole>(job)) {
+    back_out_of_manhole();
+    return Failure{.kind = Failure::Kind::kDangerousPassage,
+                   .manhole = pass->manhole,
+                   .from = pass->from_slot,
+                   .to = pass->to_slot,
+                   .detail = r.error->reason};
+  }
+  if (!rest_of(job, 0)) {
+    return Failure{.kind = Failure::Kind::kStuck, .detail = r.error->reason};
+  }
+  std::optional<Failure> failure = blocked_here(Failure::Kind::kDangerInPipe, job, r.error->reason);
+  const hal::JobReport back = host_.execute_job(back_off(job, config_.danger_backoff_m));
+  host_.log_recovery(logged_name(RecoveryPhase::kBackOffToSafety), back.ok());
+  return failure;
+}
+
+// After a dangerous passage, back into the pipe the robot came by: at the pipe's mouth the plan
+// model only lets it pass the manhole (and a U-turn exceeds every turn limit), so with the
+// passage closed it could be trapped at the mouth; in the pipe it can drive back the way it came.
+void StagedRecovery::back_out_of_manhole() {
+  const auto* at = std::get_if<domain::AtSlot>(&tracker_.position());
+  if (at == nullptr) return;
+  const Slot& slot = map_.slot(at->manhole, at->slot);
+  const double distance = std::min(config_.danger_backoff_m, map_.pipe(slot.pipe).length_m / 2);
+  if (distance <= 0) return;
+  // Facing the manhole, the pipe is behind the robot; facing the pipe, ahead.
+  const Job back_job = tracker_.heading_end() == slot.pipe_end
+                           ? Job{DriveBackward{speed_mps_, distance}}
+                           : Job{DriveForward{speed_mps_, distance}};
+  const hal::JobReport back = host_.execute_job(back_job);
+  host_.log_recovery(logged_name(RecoveryPhase::kBackOutOfManhole), back.ok());
+}
+
+// A blockage or danger just ahead of the robot in its pipe.
+Failure StagedRecovery::blocked_here(Failure::Kind kind, const Job& job,
+                                     const std::string& reason) const {
+  const auto* in = std::get_if<domain::InPipe>(&tracker_.position());
+  if (in == nullptr) return Failure{.kind = Failure::Kind::kStuck, .detail = reason};
+  const double length = map_.pipe(in->pipe).length_m;
+  const double ahead = in->offset_m + tracker_.direction_of(job) * kAhead_m;
+  return Failure{
+      .kind = kind, .pipe = in->pipe, .offset_m = std::clamp(ahead, 0.0, length), .detail = reason};
+}
+
+}  // namespace sewerplan::executor::detail

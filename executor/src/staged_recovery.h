@@ -1,0 +1,76 @@
+// SPDX-License-Identifier: MIT
+// StagedRecovery: carries out the recovery table (recovery.h) for one job that failed.
+//
+// Private to executor. The Executor's run loop hands it each job of an action; it runs the job
+// through its host (which sends it to the robot, logs it and moves the dead reckoning), and when
+// the robot reports an error it works through the table's stages for that error: reboot and
+// resume; back up and retry, lift the head and retry, push; back off from a danger, back out of a
+// manhole. What the stages cannot clear comes back as a Failure for the Replanner, placed where
+// the dead reckoning puts the robot.
+//
+//   StagedRecovery recovery(map, config, speed_mps, tracker, host);
+//   if (std::optional<Failure> f = recovery.run_job(job, action)) replan(*f);
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+
+#include "sewerplan/core/job.h"
+#include "sewerplan/core/result.h"
+#include "sewerplan/core/sewer_map.h"
+#include "sewerplan/executor/recovery.h"
+#include "sewerplan/executor/replanner.h"
+#include "sewerplan/fusion/robot_action.h"
+#include "sewerplan/hal/robot.h"
+
+#include "dead_reckoning.h"
+
+namespace sewerplan::executor::detail {
+
+// What recovery needs from the run loop: a job sent, logged and tracked; a reboot; a log line.
+struct RecoveryHost {
+  std::function<hal::JobReport(const Job&)> execute_job;
+  std::function<Result<void>()> reboot;
+  std::function<void(std::string_view phase, bool ok)> log_recovery;
+};
+
+class StagedRecovery {
+ public:
+  // All must outlive this object.
+  StagedRecovery(const SewerMap& map, const RecoveryConfig& config, double speed_mps,
+                 const DeadReckoning& tracker, RecoveryHost host)
+      : map_(map),
+        config_(config),
+        speed_mps_(speed_mps),
+        tracker_(tracker),
+        host_(std::move(host)) {}
+
+  // Runs `job` (of `action`) with staged recovery; a failure for the Replanner when recovery
+  // fails.
+  std::optional<Failure> run_job(const Job& job, const fusion::RobotAction& action);
+
+  // Errors cleared by recovery without a replan, so far.
+  std::size_t cleared() const { return cleared_; }
+
+ private:
+  struct Cleared;
+  hal::JobReport recovery_job(const Job& job);
+  Cleared clear_blockage(Job rest);
+  std::optional<Failure> danger(const Job& job, const fusion::RobotAction& action,
+                                const hal::JobReport& r);
+  void back_out_of_manhole();
+  Failure blocked_here(Failure::Kind kind, const Job& job, const std::string& reason) const;
+
+  const SewerMap& map_;
+  const RecoveryConfig& config_;
+  double speed_mps_;
+  const DeadReckoning& tracker_;
+  RecoveryHost host_;
+  std::size_t cleared_ = 0;
+};
+
+}  // namespace sewerplan::executor::detail

@@ -1,0 +1,67 @@
+// SPDX-License-Identifier: MIT
+// The staged recovery table (recovery.h): one row per manoeuvre, in the order the stages are
+// tried, and the names the event log's "recovery" events carry are the table's.
+#include "sewerplan/executor/recovery.h"
+
+#include <set>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "sewerplan/executor/executor.h"
+#include "sewerplan/hal/fault_scenario.h"
+#include "sewerplan/hal/sim_robot.h"
+
+#include "support/ais_testbed.h"
+
+namespace sewerplan::executor {
+namespace {
+
+TEST(RecoveryTable, EveryManoeuvreHasOneRowAndANameOfItsOwn) {
+  std::set<RecoveryPhase> phases;
+  std::set<std::string_view> names;
+  for (const RecoveryStage& stage : kRecoveryTable) {
+    phases.insert(stage.phase);
+    names.insert(stage.logged);
+    EXPECT_FALSE(stage.tries.empty());
+    EXPECT_FALSE(stage.gives_up.empty());
+  }
+  EXPECT_EQ(phases.size(), kRecoveryTable.size());
+  EXPECT_EQ(names.size(), kRecoveryTable.size());
+  EXPECT_EQ(logged_name(RecoveryPhase::kBackUpAndRetry), "1: back up and retry");
+}
+
+TEST(RecoveryTable, TheBlockageStagesAreTriedInTheTablesOrder) {
+  // A permanent obstacle with push allowed goes through every blockage stage.
+  const auto ais = testing::load_ais_testbed();
+  Diagnostics d;
+  auto faults = hal::read_faults_json(R"({"format": "sewerplan-faults", "version": 1,
+      "obstacles": [{"pipe": "P1", "offset_m": 3.0, "kind": "permanent"}]})",
+                                      "test.json", ais.map, d);
+  ASSERT_TRUE(faults.has_value()) << d.error_summary();
+  ManualClock clock;
+  Replanner replanner(ais.map, ais.mission, {.clock = &clock});
+  const auto& start = std::get<domain::InPipe>(replanner.progress().position);
+  hal::SimRobot robot(ais.map, ais.mission.profile,
+                      hal::InPipe{start.pipe, start.offset_m, hal::Heading::kTowardsEnd1}, *faults);
+  EventLog log;
+  ExecutorOptions options;
+  options.recovery.push_allowed = true;
+  static_cast<void>(Executor(ais.map, replanner, robot, options, log).run());
+  std::vector<std::string> tried;
+  for (const Event& e : log.events()) {
+    if (e.type != "recovery") continue;
+    const std::string phase = std::get<std::string>(e.fields.front().second);
+    if (tried.empty() || tried.back() != phase) tried.push_back(phase);
+  }
+  std::vector<std::string> expected;
+  for (const RecoveryStage& stage : kRecoveryTable) {
+    if (stage.error == hal::RobotErrorKind::kBlockage) expected.emplace_back(stage.logged);
+  }
+  ASSERT_GE(tried.size(), expected.size());
+  EXPECT_EQ(std::vector<std::string>(tried.begin(), tried.begin() + 3), expected);
+}
+
+}  // namespace
+}  // namespace sewerplan::executor
