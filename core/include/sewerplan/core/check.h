@@ -7,6 +7,8 @@
 // condition, file and line to stderr and aborts: it marks a bug in sewerplan, never bad input.
 //
 //   SEWER_CHECK(id.index() < size_, "manhole id out of range");
+//
+// Thread safety: SEWER_CHECK shares nothing: use it on any thread.
 #pragma once
 
 namespace sewerplan::detail {

@@ -8,6 +8,9 @@
 //   SteadyClock clock;
 //   StopCondition stop = StopCondition::after_seconds(clock, 0.5);
 //   ManualClock fake;  fake.advance(2.0);  // fake.now_s() == 2.0
+//
+// Thread safety: SteadyClock is safe to share between threads; a ManualClock may be read from
+// several threads only while nobody advances it.
 #pragma once
 
 namespace sewerplan {

@@ -10,6 +10,8 @@
 //   Diagnostics diagnostics;
 //   auto map = read_map(path, diagnostics);
 //   for (const Diagnostic& d : diagnostics.all()) std::cerr << d << '\n';
+//
+// Thread safety: A Diagnostics is not thread-safe: one per reader, on one thread at a time.
 #pragma once
 
 #include <cstddef>

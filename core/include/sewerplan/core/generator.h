@@ -56,6 +56,9 @@
 //   Result<SewerMap> map = generate_network(options);
 //   if (!map.has_value()) return map.error();  // kInvalidArgument: an option out of range
 //   ManholeId m = *map->find_manhole("M1");
+//
+// Thread safety: generate_network is a pure function of its options: call it from any number of
+// threads.
 #pragma once
 
 #include <cstddef>

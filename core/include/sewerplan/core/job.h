@@ -11,6 +11,9 @@
 //
 //   Job j = DriveForward{.speed_mps = 0.3, .distance_m = 12.5};
 //   std::cout << j;  // "DriveForward(0.30 m/s, 12.50 m)"
+//
+// Thread safety: Plain values: const access from several threads is safe; a value being changed
+// must not be read at the same time.
 #pragma once
 
 #include <cstdint>

@@ -24,6 +24,9 @@
 //   if (!map.has_value()) return map.error();  // kParse or kInvalidMap, listing every problem
 //   std::ostringstream out;
 //   Result<void> written = write_map_ascii(*map, out);
+//
+// Thread safety: The readers and writers share nothing: call them from any number of threads, each
+// with its own Diagnostics.
 #pragma once
 
 #include <ostream>

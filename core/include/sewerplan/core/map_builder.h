@@ -19,6 +19,9 @@
 //   builder.add_pipe({.name = "P12", .from = "M1", .to = "M2", .length_m = 5, .diameter_m = 0.6});
 //   Diagnostics diagnostics;
 //   Result<SewerMap> map = std::move(builder).build(diagnostics);
+//
+// Thread safety: A MapBuilder is not thread-safe: build on one thread, then share the SewerMap it
+// makes.
 #pragma once
 
 #include <cstdint>

@@ -10,6 +10,9 @@
 //   Diagnostics diagnostics;
 //   Result<SewerMap> map = read_map("datasets/ais-testbed/map.json", diagnostics);
 //   Result<void> written = write_map(*map, "ais.sewer");  // format from the extension
+//
+// Thread safety: The readers and writers share nothing: call them from any number of threads, each
+// with its own Diagnostics.
 #pragma once
 
 #include <filesystem>

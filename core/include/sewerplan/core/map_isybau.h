@@ -26,6 +26,9 @@
 //   Diagnostics diagnostics;
 //   Result<SewerMap> map = read_map_isybau(text, "datasets/isybau/street-2017.xml", diagnostics);
 //   // errors name the element: "street.xml:/Identifikation/.../AbwassertechnischeAnlage[3]/..."
+//
+// Thread safety: The importer shares nothing: call it from any number of threads, each with its own
+// Diagnostics.
 #pragma once
 
 #include <string>

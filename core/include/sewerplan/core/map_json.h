@@ -16,6 +16,9 @@
 //   Diagnostics diagnostics;
 //   Result<SewerMap> map = read_map_json(text, "ais.json", diagnostics);
 //   write_map_json(*map, std::cout);
+//
+// Thread safety: The readers and writers share nothing: call them from any number of threads, each
+// with its own Diagnostics.
 #pragma once
 
 #include <ostream>

@@ -8,6 +8,8 @@
 //
 //   double turn = passage_turn_deg(map, m, SlotIndex{2}, SlotIndex{3});
 //   Components parts = connected_components(map);
+//
+// Thread safety: Pure functions of a const SewerMap: call them from any number of threads.
 #pragma once
 
 #include <array>

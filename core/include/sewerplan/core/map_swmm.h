@@ -20,6 +20,9 @@
 //   Diagnostics diagnostics;
 //   Result<SewerMap> map = read_map_swmm(text, "datasets/swmm/epa-example1.inp", diagnostics);
 //   if (!map.has_value()) std::cerr << map.error();  // kParse or kInvalidMap, naming file:line
+//
+// Thread safety: The importer shares nothing: call it from any number of threads, each with its own
+// Diagnostics.
 #pragma once
 
 #include <string>

@@ -15,6 +15,9 @@
 //   Diagnostics diagnostics;
 //   Result<Mission> mission = read_mission_json(text, "paper.json", map, diagnostics);
 //   for (const Task& task : mission->tasks) std::cout << task.name << '\n';
+//
+// Thread safety: A Mission is a plain value: const access from several threads is safe (its motion
+// table is immutable and shared); a mission being changed must not be read at the same time.
 #pragma once
 
 #include <filesystem>

@@ -21,6 +21,8 @@
 //   mission.passage_motion = std::make_shared<const PassageMotionTable>(std::move(*t));
 //   PassageVerdict v = judge_passage(map, mission.profile, mission.passage_motion.get(), m, a, b);
 //   if (v.allowed) cost_s += v.duration_s;
+//
+// Thread safety: A PassageMotionTable is immutable once read: share it (const) between threads.
 #pragma once
 
 #include <filesystem>

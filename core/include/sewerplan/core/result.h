@@ -13,6 +13,8 @@
 //   use(*map);
 //
 // There is no implicit conversion to bool: ask has_value().
+//
+// Thread safety: Result and Error are plain values: const access from several threads is safe.
 #pragma once
 
 #include <ostream>

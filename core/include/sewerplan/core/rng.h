@@ -9,6 +9,8 @@
 //   Rng rng(42);
 //   double length_m = rng.uniform(20.0, 80.0);
 //   if (rng.bernoulli(0.1)) { ... }
+//
+// Thread safety: An Rng is not thread-safe: one per thread (seed each from the run's seed).
 #pragma once
 
 #include <array>

@@ -15,6 +15,8 @@
 //
 //   RobotProfile p = *builtin_profile("makro-plus");
 //   double hours = p.battery_wh / p.power_w;  // endurance
+//
+// Thread safety: Plain values: const access from several threads is safe.
 #pragma once
 
 #include <optional>

@@ -24,6 +24,9 @@
 //
 // Conventions: lengths in metres; angles in degrees counter-clockwise from +x (east), as in the
 // files, so that reading and writing a map loses nothing; z up.
+//
+// Thread safety: A SewerMap is immutable once built: share it (const) between any number of
+// threads.
 #pragma once
 
 #include <array>

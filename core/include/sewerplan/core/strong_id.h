@@ -12,6 +12,8 @@
 //   std::vector<double> depth(map.manhole_count());
 //   depth[m.value()] = 2.5;
 //   for (ManholeId id : id_range<ManholeId>(map.manhole_count())) { ... }
+//
+// Thread safety: Plain values: safe to copy and read from any thread.
 #pragma once
 
 #include <compare>

@@ -10,6 +10,9 @@
 //   Result<std::string> text = read_text_file("ais.json");
 //   if (!text.has_value()) std::cerr << text.error().message;  // "cannot read ais.json: No such
 //   ..."
+//
+// Thread safety: The functions share nothing: call them from any number of threads (not on the same
+// file at once).
 #pragma once
 
 #include <filesystem>

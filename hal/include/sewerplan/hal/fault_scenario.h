@@ -16,6 +16,8 @@
 //       read_faults("datasets/ais-testbed/faults/blocked-p5.json", map, diagnostics);
 //   FaultScenario drawn = *random_faults(map, {.seed = 7, .obstacle_rate_per_km = 20});
 //   write_faults_json(drawn, map, std::cout);
+//
+// Thread safety: Plain values and pure functions: const access from several threads is safe.
 #pragma once
 
 #include <cstdint>

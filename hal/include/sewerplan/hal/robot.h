@@ -10,6 +10,8 @@
 //
 //   JobReport r = robot.execute(DriveForward{.speed_mps = 0.3, .distance_m = 12});
 //   if (!r.ok() && r.error->kind == RobotErrorKind::kMalfunction) robot.reboot();
+//
+// Thread safety: A Robot is not thread-safe unless an implementation says so: one thread drives it.
 #pragma once
 
 #include <optional>

@@ -18,6 +18,9 @@
 //                  *read_faults("blocked-p5.json", map, diagnostics));
 //   JobReport r = robot.execute(DriveForward{.speed_mps = 0.3, .distance_m = 20});
 //   // r.error: blockage "obstacle in P5 at 4.00 m", r.progress_m: how far it got
+//
+// Thread safety: A SimRobot is not thread-safe: one thread drives it (a SimNode's thread, behind
+// CAN).
 #pragma once
 
 #include <cstddef>

@@ -11,6 +11,9 @@
 //   auto [a, b] = make_memory_can_pair();
 //   a->send(*make_can_frame(0x123, false, {1, 2}));
 //   Result<std::optional<CanFrame>> f = b->receive(0.1);  // the frame, or empty after 0.1 s
+//
+// Thread safety: A CanBus is not thread-safe unless it says so (MemoryCanBus is: each end may live
+// on its own thread).
 #pragma once
 
 #include <condition_variable>

@@ -9,6 +9,8 @@
 //
 //   Result<CanFrame> f = make_can_frame(0x123, false, {0xde, 0xad});
 //   std::cout << *f;  // "123#DEAD", the candump notation (candump.h)
+//
+// Thread safety: Plain values: safe to copy and read from any thread.
 #pragma once
 
 #include <array>

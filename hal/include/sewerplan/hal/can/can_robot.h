@@ -16,6 +16,8 @@
 //   CanRobot robot(**bus, {});
 //   if (Result<void> up = robot.connect(); !up.has_value()) ...  // no node answers
 //   JobReport r = robot.execute(DriveForward{.speed_mps = 0.3, .distance_m = 12});
+//
+// Thread safety: A CanRobot is not thread-safe: one thread drives it, as any Robot.
 #pragma once
 
 #include <cstddef>

@@ -15,6 +15,8 @@
 //   ...
 //   Result<std::vector<CandumpRecord>> log = read_candump_file("run.log");
 //   ReplayCanBus replay(*log);
+//
+// Thread safety: RecordingCanBus and ReplayCanBus are not thread-safe: one thread uses each.
 #pragma once
 
 #include <cstddef>

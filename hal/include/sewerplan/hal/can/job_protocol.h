@@ -16,6 +16,9 @@
 //   for (const CanFrame& f : frames) {
 //     if (std::optional<Decoded> d = decoder.push(f)) ...  // the JobCommand, once the end arrives
 //   }
+//
+// Thread safety: The codecs are pure functions; a MessageDecoder is not thread-safe (one per
+// receiving thread).
 #pragma once
 
 #include <cstddef>

@@ -18,6 +18,9 @@
 //   SimNode node(line, robot, {.faults = *parse_bus_faults("drop=4")}, &line);
 //   std::atomic<bool> stop{false};
 //   std::thread t([&] { static_cast<void>(node.serve(stop)); });
+//
+// Thread safety: A SimNode is not thread-safe: it serves on one thread; only `stop` is set from
+// another.
 #pragma once
 
 #include <atomic>

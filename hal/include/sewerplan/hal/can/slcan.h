@@ -19,6 +19,8 @@
 //   if (!bus.has_value()) { std::cerr << bus.error().message; return; }
 //   (*bus)->send(frame);
 //   Result<std::optional<CanFrame>> in = (*bus)->receive(0.5);
+//
+// Thread safety: The SLCAN classes are not thread-safe: one thread uses each line and bus.
 #pragma once
 
 #include <cstddef>

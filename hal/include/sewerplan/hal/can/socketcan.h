@@ -9,6 +9,8 @@
 //   Result<std::unique_ptr<SocketCanBus>> bus = SocketCanBus::open("can0");
 //   // "socketcan:can0: this kernel has no CAN support (socket(PF_CAN): Address family not
 //   //  supported by protocol)" on a kernel without CAN
+//
+// Thread safety: A SocketCanBus is not thread-safe: one thread uses it.
 #pragma once
 
 #include <memory>
