@@ -39,6 +39,7 @@ $sp info "$out/city.json"
 # battery can do, so the planner selects the most it can do and still end the mission.
 echo; echo "\$ sewerplan plan --select-goals --map $out/city.json --mission $out/city-mission.json -o $out/city.plan"
 $sp plan --select-goals --map "$out/city.json" --mission "$out/city-mission.json" -o "$out/city.plan"
+$sp check --select-goals --map "$out/city.json" --mission "$out/city-mission.json" "$out/city.plan"
 echo; echo "\$ sewerplan simulate --map datasets/ais-testbed/map.json --mission datasets/ais-testbed/missions/paper.json --faults datasets/ais-testbed/faults/demo.json --log $out/events.jsonl"
 $sp simulate --map datasets/ais-testbed/map.json --mission datasets/ais-testbed/missions/paper.json \
   --faults datasets/ais-testbed/faults/demo.json --log "$out/events.jsonl"

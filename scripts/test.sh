@@ -5,9 +5,11 @@
 #   2. checks the code style (clang-format);
 #   3. builds with warnings as errors and runs the whole suite (unit, CLI, install/consumer, layering);
 #   4. builds with clang, AddressSanitizer and UndefinedBehaviorSanitizer and runs the suite again;
-#   5. fuzzes every parser for a short time (scripts/fuzz.sh, 15 s per target).
-# Build trees go to build/release, build/asan and build/fuzz. Set SEWERPLAN_SKIP_ASAN=1 to skip
-# step 4 locally, SEWERPLAN_SKIP_FUZZ=1 to skip step 5 (SEWERPLAN_FUZZ_SECONDS sets its time).
+#   5. builds the concurrent tests with ThreadSanitizer and runs them (scripts/tsan.sh);
+#   6. fuzzes every parser for a short time (scripts/fuzz.sh, 15 s per target).
+# Build trees go to build/release, build/asan, build/tsan and build/fuzz. Set SEWERPLAN_SKIP_ASAN=1
+# to skip step 4 locally, SEWERPLAN_SKIP_TSAN=1 step 5, SEWERPLAN_SKIP_FUZZ=1 step 6
+# (SEWERPLAN_FUZZ_SECONDS sets its time).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc)
@@ -29,6 +31,10 @@ if [ "${SEWERPLAN_SKIP_ASAN:-0}" != 1 ]; then
   cmake --build build/asan -j "$jobs"
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir build/asan --output-on-failure -j "$jobs"
+fi
+if [ "${SEWERPLAN_SKIP_TSAN:-0}" != 1 ]; then
+  echo "== ThreadSanitizer: the concurrent tests (gcc)"
+  bash scripts/tsan.sh
 fi
 if [ "${SEWERPLAN_SKIP_FUZZ:-0}" != 1 ]; then
   echo "== libFuzzer on every parser (clang)"

@@ -10,6 +10,11 @@
 //   CampaignOptions options{.jobs = 2, .timeout_s = 60};
 //   std::vector<RunRecord> records = run_campaign(map, mission, spec, options);
 //   Summary s = summarize(spec, records);  // summary.h
+//
+// Thread safety: run_campaign may be called from any thread; it only reads the map and
+// mission. It starts its own worker threads and, guarded, forks a child per run from them, so the
+// caller's other threads should hold no lock a run needs. `progress` runs on the worker threads,
+// one call at a time. parse_injections shares nothing.
 #pragma once
 
 #include <cstddef>

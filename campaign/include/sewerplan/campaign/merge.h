@@ -8,6 +8,9 @@
 //
 //   Result<MergedCampaign> all = merge_shards({"out/shard-0", "out/shard-1"});
 //   Summary s = summarize(all->spec, all->records);
+//
+// Thread safety: The functions share nothing but the file system: call them from any number
+// of threads, but not on the same directory while one of them writes it.
 #pragma once
 
 #include <filesystem>

@@ -10,6 +10,8 @@
 //   std::ofstream out(dir / "runs.jsonl");
 //   for (const RunRecord& r : records) out << run_json_line(r) << '\n';
 //   Result<RunRecord> back = parse_run_line(line, "runs.jsonl", 1);
+//
+// Thread safety: Plain values and pure functions: const access from several threads is safe.
 #pragma once
 
 #include <cstddef>

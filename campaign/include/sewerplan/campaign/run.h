@@ -21,6 +21,9 @@
 //
 //   RunResult r = *run_one(map, mission, {.rates = {}, .campaign_seed = 7}, 12);
 //   std::cout << run_json_line(r) << '\n';
+//
+// Thread safety: Plain values and pure functions; run_one builds its own Replanner, Executor
+// and simulated robot and only reads the map and mission, so runs may go on in parallel.
 #pragma once
 
 #include <cstddef>

@@ -11,6 +11,9 @@
 //   Summary s = summarize(spec, records);
 //   write_summary_markdown(s, std::cout);
 //   std::ofstream svg("summary.svg"); write_summary_svg(s, svg);
+//
+// Thread safety: Pure functions: call them from any number of threads, each writer with its
+// own stream.
 #pragma once
 
 #include <array>

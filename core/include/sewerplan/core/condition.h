@@ -14,6 +14,9 @@
 //   Diagnostics d;
 //   Result<SewerMap> map = read_map("street.xml", d);
 //   if (map.has_value()) map = read_condition(std::move(*map), "street-zustand.xml", d);
+//
+// Thread safety: The readers share nothing: call them from any number of threads, each with
+// its own Diagnostics.
 #pragma once
 
 #include <filesystem>

@@ -16,6 +16,8 @@
 //
 //   std::vector<FindingRisk> risks = assess_findings(map, profile, default_risk_table());
 //   std::vector<Blockage> closed = impassable_blockages(map, risks);  // add to the mission
+//
+// Thread safety: Plain values and pure functions: const access from several threads is safe.
 #pragma once
 
 #include <cstddef>

@@ -8,6 +8,8 @@
 // lies beyond these limits instead, naming the field; within them, a plan over a million pipes at
 // the slowest speed still fits the planner's 64-bit costs with room to spare (1e5 m / 1e-3 m/s =
 // 1e11 ms a pipe).
+//
+// Thread safety: Compile-time constants only: safe from any thread.
 #pragma once
 
 namespace sewerplan {

@@ -12,7 +12,8 @@
 //   ..." if (learnt.has_value()) (void)replanner.learn(*learnt);
 //   ... after the mission:  write_text_file("learnt.json", learnt_json(replanner.learnt(), map));
 //
-// A plain value type: safe to copy and to read from several threads, not to change while read.
+// Thread safety: A Learnt is a plain value: safe to copy and to read from several threads, not
+// to change while read. The free functions share nothing.
 #pragma once
 
 #include <filesystem>

@@ -11,6 +11,8 @@
 //    "duration_s":47}
 //
 //   log << write_action_json(action, map, mission) << '\n';
+//
+// Thread safety: A pure function: call it from any number of threads.
 #pragma once
 
 #include <string>

@@ -29,6 +29,9 @@
 //   non-finite azimuth or invert, a non-positive pipe length or diameter. Never a default.
 // - kInvalidProfile: the mission's profile fails validate_profile.
 // The goal is not checked: a prefix of a plan fuses (the executor fuses what it will run).
+//
+// Thread safety: fuse is a pure function of its (const) arguments: call it from any number of
+// threads.
 #pragma once
 
 #include <cstdint>

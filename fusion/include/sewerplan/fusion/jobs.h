@@ -17,6 +17,8 @@
 //   for (const PlannedJob& j : expand_plan(fused, mission.profile)) {
 //     robot.run(j.job);  // report progress per j.action_index (and plan_step of that action)
 //   }
+//
+// Thread safety: Pure functions and plain values: call them from any number of threads.
 #pragma once
 
 #include <cstddef>

@@ -18,6 +18,8 @@
 //   RobotBody body = robot_body(*builtin_profile("makro-1.1"));
 //   PassageGeometry g = passage_geometry(map, m, SlotIndex{0}, SlotIndex{2});
 //   bool ok = in_free_space(g, 0.1, -0.2, body.width_m / 2);
+//
+// Thread safety: Plain values and pure functions: const access from several threads is safe.
 #pragma once
 
 #include <cstdint>

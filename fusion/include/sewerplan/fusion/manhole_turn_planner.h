@@ -26,6 +26,10 @@
 //   ManholeTurnPlanner planner(robot_body(profile), profile);
 //   Result<TurnPlan> plan = planner.plan(passage_geometry(map, m, from, to));
 //   if (plan.has_value() && plan->feasible) use(plan->waypoints, plan->duration_s);
+//
+// Thread safety: A ManholeTurnPlanner does not change after construction: plan() and
+// check_state_space() may run on several threads at once, each call with OMPL objects of its own.
+// They set OMPL's process-wide log level (OMPL guards it with a mutex).
 #pragma once
 
 #include <cstdint>

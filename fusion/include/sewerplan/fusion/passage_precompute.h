@@ -14,6 +14,10 @@
 //   Result<PrecomputeResult> r = precompute_passage_motion(map, profile, {}, clock);
 //   write_passage_motion_json(r->table, map, out);
 //   std::cout << r->statistics.distinct_geometries << " geometries planned\n";
+//
+// Thread safety: A PassageMotionCache is not thread-safe: plan() fills it and counts hits, so
+// one thread at a time. precompute_passage_motion and to_manhole_frame share nothing (the former
+// calls `progress` on the calling thread).
 #pragma once
 
 #include <cstddef>

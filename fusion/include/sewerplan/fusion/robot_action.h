@@ -19,6 +19,8 @@
 // the robot entered by (core/job.h's DriveForward), backward is towards it. Units: metres, metres
 // per second, degrees, seconds. Actions refer to the map and the mission by ID and are only
 // meaningful with them.
+//
+// Thread safety: Plain values and pure functions: const access from several threads is safe.
 #pragma once
 
 #include <cstddef>

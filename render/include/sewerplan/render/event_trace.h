@@ -10,6 +10,9 @@
 //
 //   Diagnostics diagnostics;
 //   Result<EventTrace> trace = read_event_trace(text, "events.jsonl", map, mission, diagnostics);
+//
+// Thread safety: read_event_trace shares nothing: call it from any number of threads, each
+// with its own Diagnostics.
 #pragma once
 
 #include <string>

@@ -10,6 +10,9 @@
 //
 //   RenderInput in{.map = &map, .mission = &mission, .plan = &plan, .trace = &trace};
 //   std::ofstream("mission.svg") << render_map_svg(in);
+//
+// Thread safety: render_map_svg is a pure function of its input: call it from any number of
+// threads.
 #pragma once
 
 #include <string>
