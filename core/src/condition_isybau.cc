@@ -53,19 +53,7 @@ class ConditionReader {
 
   std::optional<double> number(XmlNode parent, std::string_view name, const std::string& object,
                                bool required) {
-    const XmlNode n = xml::child(parent, name);
-    const std::string_view t = xml::text(n);
-    if (t.empty()) {
-      if (required) d_.error(at(parent), object + ": no " + std::string(name));
-      return std::nullopt;
-    }
-    double v = 0;
-    if (ascii_syntax::parse_number(t, v) != ascii_syntax::NumberError::kNone) {
-      d_.error(at(n),
-               object + ": " + std::string(name) + " is not a number: " + ascii_syntax::quoted(t));
-      return std::nullopt;
-    }
-    return v;
+    return xml::number(parent, name, object, required, file_, d_);
   }
 
   std::optional<bool> against_flow(XmlNode inspection, const std::string& object);

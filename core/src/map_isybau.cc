@@ -118,19 +118,7 @@ class IsybauReader {
   // empty (when required) or not a number. Real exports write empty optional elements.
   std::optional<double> number(XmlNode parent, std::string_view name, const std::string& object,
                                bool required = true) {
-    const XmlNode n = xml::child(parent, name);
-    const std::string_view t = xml::text(n);
-    if (t.empty()) {
-      if (required) d_.error(at(parent), object + ": no " + std::string(name));
-      return std::nullopt;
-    }
-    double v = 0;
-    if (ascii_syntax::parse_number(t, v) != ascii_syntax::NumberError::kNone) {
-      d_.error(at(n),
-               object + ": " + std::string(name) + " is not a number: " + ascii_syntax::quoted(t));
-      return std::nullopt;
-    }
-    return v;
+    return xml::number(parent, name, object, required, file_, d_);
   }
 
   std::optional<std::string> name(XmlNode parent, std::string_view element,

@@ -6,6 +6,8 @@
 
 #include "sewerplan/core/text_file.h"
 
+#include "ascii_syntax.h"
+
 namespace sewerplan::xml {
 
 std::string_view local_name(pugi::xml_node node) {
@@ -112,6 +114,25 @@ std::optional<std::string> foreign_sewer_format(pugi::xml_node root) {
         "reads ISYBAU XML, not INTERLIS; export the network as ISYBAU XML");
   }
   return std::nullopt;
+}
+
+std::optional<double> number(pugi::xml_node parent, std::string_view name,
+                             const std::string& object, bool required, const std::string& file,
+                             Diagnostics& diagnostics) {
+  const pugi::xml_node n = child(parent, name);
+  const std::string_view t = text(n);
+  if (t.empty()) {
+    if (required)
+      diagnostics.error(file + ":" + path(parent), object + ": no " + std::string(name));
+    return std::nullopt;
+  }
+  double v = 0;
+  if (ascii_syntax::parse_number(t, v) != ascii_syntax::NumberError::kNone) {
+    diagnostics.error(file + ":" + path(n), object + ": " + std::string(name) +
+                                                " is not a number: " + ascii_syntax::quoted(t));
+    return std::nullopt;
+  }
+  return v;
 }
 
 }  // namespace sewerplan::xml

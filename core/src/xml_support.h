@@ -36,6 +36,13 @@ std::string_view text(pugi::xml_node node);
 // Runtime: O(depth x siblings); meant for error messages.
 std::string path(pugi::xml_node node);
 
+// The number in element `name` of `parent`, for `object` (a name for messages) in `file`. Missing
+// or empty: an error naming the element when `required`, else nothing (real exports write empty
+// optional elements). Not a number: an error at the element's path.
+std::optional<double> number(pugi::xml_node parent, std::string_view name,
+                             const std::string& object, bool required, const std::string& file,
+                             Diagnostics& diagnostics);
+
 // The line of byte `offset` in `text`, from 1.
 std::uint32_t line_of_offset(std::string_view text, std::ptrdiff_t offset);
 
