@@ -3,24 +3,13 @@
 #include "sewerplan/campaign/merge.h"
 
 #include <algorithm>
-#include <fstream>
 #include <sstream>
 
 #include "sewerplan/campaign/summary.h"
 #include "sewerplan/core/text_file.h"
 
 namespace sewerplan::campaign {
-namespace {
-
-Result<void> write_file(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  out.close();
-  if (!out) return Error{ErrorCode::kIo, path.string() + ": cannot write"};
-  return {};
-}
-
-}  // namespace
+namespace {}  // namespace
 
 Result<MergedCampaign> read_campaign_dir(const std::filesystem::path& dir) {
   const std::filesystem::path spec_path = dir / "campaign.json";
@@ -131,10 +120,11 @@ Result<void> write_campaign_dir(const std::filesystem::path& dir, const Campaign
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) return Error{ErrorCode::kIo, dir.string() + ": cannot create: " + ec.message()};
-  if (auto r = write_file(dir / "campaign.json", campaign_json(spec)); !r.has_value()) return r;
+  if (auto r = write_text_file(dir / "campaign.json", campaign_json(spec)); !r.has_value())
+    return r;
   std::string lines;
   for (const RunRecord& r : records) lines += run_json_line(r) + "\n";
-  if (auto r = write_file(dir / "runs.jsonl", lines); !r.has_value()) return r;
+  if (auto r = write_text_file(dir / "runs.jsonl", lines); !r.has_value()) return r;
   const Summary summary = summarize(spec, records);
   std::ostringstream json;
   std::ostringstream md;
@@ -142,9 +132,9 @@ Result<void> write_campaign_dir(const std::filesystem::path& dir, const Campaign
   write_summary_json(summary, json);
   write_summary_markdown(summary, md);
   write_summary_svg(summary, svg);
-  if (auto r = write_file(dir / "summary.json", json.str()); !r.has_value()) return r;
-  if (auto r = write_file(dir / "summary.md", md.str()); !r.has_value()) return r;
-  return write_file(dir / "summary.svg", svg.str());
+  if (auto r = write_text_file(dir / "summary.json", json.str()); !r.has_value()) return r;
+  if (auto r = write_text_file(dir / "summary.md", md.str()); !r.has_value()) return r;
+  return write_text_file(dir / "summary.svg", svg.str());
 }
 
 }  // namespace sewerplan::campaign

@@ -5,7 +5,9 @@
 // so that a user fixes a file in one pass. `where` is a file and line ("ais.sewer:12") or a file
 // and JSON path ("map.json:$.pipes[3].length_m"); the message names the object ("pipe P5: ...").
 // Errors make the load fail; warnings are reported and the load goes on with a documented
-// fallback.
+// fallback. A reader fails when its Diagnostics holds any error, including one added before it
+// was called (readers such as MapBuilder::build rely on that to fail on their own earlier
+// checks), so use one Diagnostics per file read and merge the lists for display if needed.
 //
 //   Diagnostics diagnostics;
 //   auto map = read_map(path, diagnostics);
