@@ -49,15 +49,15 @@ class SewerTaskCompiler {
     PositionGraph& graph = *result_.graph_;
     select_tasks();
     collect_keys(graph);
+    if (auto stopped = options_.stop.interrupted()) return stopped_error(*stopped, "the compile");
     GraphSearch search(graph);
-    if (options_.cancel != nullptr || options_.clock != nullptr) {
-      search.set_interrupt([this] { return stop_reason().has_value(); });
+    if (options_.stop.can_interrupt()) {
+      search.set_interrupt([this] { return options_.stop.interrupted().has_value(); });
     }
     route(search);
     if (search.interrupted()) {
-      return stop_reason() == ErrorCode::kCancelled
-                 ? Error{ErrorCode::kCancelled, "the compile was cancelled"}
-                 : Error{ErrorCode::kSearchLimit, "the compile reached the time limit"};
+      return stopped_error(options_.stop.interrupted().value_or(SearchStatus::kTimeLimit),
+                           "the compile");
     }
     detail::CompileReasons reasons(graph, mission_, progress_, bound_);
     if (options_.select_goals) {
@@ -79,16 +79,6 @@ class SewerTaskCompiler {
 
  private:
   std::size_t k() const { return keys_.size(); }
-
-  std::optional<ErrorCode> stop_reason() const {
-    if (options_.cancel != nullptr && options_.cancel->load(std::memory_order_relaxed)) {
-      return ErrorCode::kCancelled;
-    }
-    if (options_.clock != nullptr && options_.clock->now_s() >= options_.deadline_s) {
-      return ErrorCode::kSearchLimit;
-    }
-    return std::nullopt;
-  }
 
   // Leaves out the pending tasks known to be impossible; what remains impossible is returned.
   std::string select_goals(const detail::CompileReasons& reasons) {
