@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -138,7 +139,8 @@ Result<void> head_space_sanity(const HeadPathProblem& problem, const TurnPlanner
   return {};
 }
 
-Result<HeadPath> plan_head_path(const HeadPathProblem& problem, const TurnPlannerOptions& options) {
+Result<HeadPath> plan_head_path(const HeadPathProblem& problem, const TurnPlannerOptions& options,
+                                const StopCondition& stop) {
   ompl::msg::setLogLevel(std::getenv("SEWERPLAN_OMPL_DEBUG") ? ompl::msg::LOG_DEBUG
                                                              : ompl::msg::LOG_ERROR);
   const PassageGeometry g = problem.geometry;
@@ -175,18 +177,24 @@ Result<HeadPath> plan_head_path(const HeadPathProblem& problem, const TurnPlanne
   planner->setRange(0.3);
   planner->setGoalBias(0.2);
 
-  // A count of iterations, not a time: the same result on any machine.
+  // A count of iterations, not a time: the same result on any machine. Our stop condition (a
+  // cancel, the caller's deadline) ends it too, asked at every iteration.
   HeadPath result;
   const std::uint32_t limit = options.max_iterations;
   std::uint32_t& count = result.iterations;
-  const ob::PlannerStatus status =
-      planner->solve(ob::PlannerTerminationCondition([&count, limit] { return ++count > limit; }));
+  std::optional<SearchStatus> stopped;
+  const ob::PlannerStatus status = planner->solve(ob::PlannerTerminationCondition([&] {
+    if (++count > limit) return true;
+    stopped = stop.interrupted();
+    return stopped.has_value();
+  }));
   if (count > limit) count = limit;
   switch (ob::PlannerStatus::StatusType(status)) {
     case ob::PlannerStatus::EXACT_SOLUTION:
       break;
     case ob::PlannerStatus::TIMEOUT:
     case ob::PlannerStatus::APPROXIMATE_SOLUTION:
+      if (stopped) return stopped_error(*stopped, "the motion planner");
       return result;  // not found within the iterations
     case ob::PlannerStatus::UNKNOWN:
     case ob::PlannerStatus::INVALID_START:

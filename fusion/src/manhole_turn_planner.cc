@@ -238,7 +238,8 @@ Result<void> ManholeTurnPlanner::check_state_space(const PassageGeometry& geomet
                                    options_);
 }
 
-Result<TurnPlan> ManholeTurnPlanner::plan(const PassageGeometry& geometry) const {
+Result<TurnPlan> ManholeTurnPlanner::plan(const PassageGeometry& geometry,
+                                          const StopCondition& stop) const {
   const PassageGeometry g = quantised(geometry);
   if (Result<void> ok = check_numbers(g); !ok.has_value()) return ok.error();
   if (!motion_planning_available()) return detail::plan_head_path({}, options_).error();
@@ -297,6 +298,7 @@ Result<TurnPlan> ManholeTurnPlanner::plan(const PassageGeometry& geometry) const
   std::uint32_t iterations = 0;
   std::optional<std::string> problem;
   for (double pipe_room : {pipe_clearance, clearance}) {
+    if (auto stopped = stop.interrupted()) return stopped_error(*stopped, "the motion planner");
     Result<detail::HeadPath> head =
         detail::plan_head_path({.geometry = g,
                                 .start = start,
@@ -305,7 +307,7 @@ Result<TurnPlan> ManholeTurnPlanner::plan(const PassageGeometry& geometry) const
                                 .clearance_m = clearance,
                                 .pipe_clearance_m = pipe_room,
                                 .pipe_reach_m = kPipeReach_m},
-                               options_);
+                               options_, stop);
     if (!head.has_value()) return head.error();
     iterations += head->iterations;
     if (!head->found) {
