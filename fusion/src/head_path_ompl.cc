@@ -81,13 +81,16 @@ class SeededRrt : public og::RRT {
 Pose2 pose_of(const HeadState& s) { return Pose2{s->getX(), s->getY(), s->getYaw()}; }
 
 // Drops every state that a direct, valid Dubins motion can skip, greedily from the start: the
-// same path every time (OMPL's shortcutting samples at random).
-std::vector<HeadState> shortened(const ob::SpaceInformation& si, const std::vector<HeadState>& in) {
+// same path every time (OMPL's shortcutting samples at random). Its motion checks are most of a
+// plan's time after RRT (up to tens of ms: bench/fusion/passage_precompute_bench.cc,
+// BM_PrecomputeStopCheckGap), so `stop` is asked before each; when it fires the path is partial.
+std::vector<HeadState> shortened(const ob::SpaceInformation& si, const std::vector<HeadState>& in,
+                                 const StopCondition& stop) {
   std::vector<HeadState> out{in.front()};
   std::size_t i = 0;
   while (i + 1 < in.size()) {
     std::size_t j = in.size() - 1;
-    while (j > i + 1 && !si.checkMotion(in[i].get(), in[j].get())) --j;
+    while (j > i + 1 && !stop.interrupted() && !si.checkMotion(in[i].get(), in[j].get())) --j;
     out.push_back(in[j]);
     i = j;
   }
@@ -214,8 +217,10 @@ Result<HeadPath> plan_head_path(const HeadPathProblem& problem, const TurnPlanne
     copy = s;
     states.push_back(copy);
   }
+  std::vector<HeadState> path_states = shortened(*si, states, stop);
+  if (auto late = stop.interrupted()) return stopped_error(*late, "the motion planner");
   result.found = true;
-  result.poses = densified(space, shortened(*si, states));
+  result.poses = densified(space, path_states);
   return result;
 }
 
