@@ -6,6 +6,11 @@
 // which is what planning costs without motion results. Counters: passages, distinct geometries
 // (each planned once), and the share of passages the planner rejects that the rules accept
 // (motion_rejects_rules_allow) and the reverse (motion_allows_rules_reject), per passage.
+//
+// BM_PrecomputeStopCheckGap (issue 14: a cancel within 1 ms): the CPU time between two checks of
+// the stop condition during a precompute (bench/support/check_gap_clock.h): before each passage
+// and at every RRT iteration. Counters: checks, p50, p99 and the largest gap in microseconds.
+#include <algorithm>
 #include <cstddef>
 
 #include <benchmark/benchmark.h>
@@ -15,6 +20,7 @@
 #include "sewerplan/fusion/manhole_turn_planner.h"
 #include "sewerplan/fusion/passage_precompute.h"
 
+#include "support/check_gap_clock.h"
 #include "support/instances.h"
 
 namespace sewerplan::fusion {
@@ -56,6 +62,42 @@ void BM_PassagePrecompute(benchmark::State& state) {
       static_cast<double>(stats.allowed_by_motion_rules_reject) / passages;
 }
 BENCHMARK(BM_PassagePrecompute)->Arg(0)->Arg(1000)->Unit(benchmark::kMillisecond);
+
+void BM_PrecomputeStopCheckGap(benchmark::State& state) {
+  if (!motion_planning_available()) {
+    state.SkipWithError("built without OMPL");
+    return;
+  }
+  const SewerMap& map = map_for(state.range(0));
+  const RobotProfile profile = *builtin_profile("makro-1.1");
+  SteadyClock steady;
+  double max_gap_s = 0, p99_s = 0, p50_s = 0;
+  std::size_t checks = 0;
+  for (auto _ : state) {
+    const bench::CheckGapClock clock;
+    clock.now_s();
+    Result<PrecomputeResult> r = precompute_passage_motion(
+        map, profile, {.stop = StopCondition::at_deadline(clock, 1e12)}, steady);
+    clock.now_s();
+    if (!r.has_value()) {
+      state.SkipWithError(r.error().message.c_str());
+      return;
+    }
+    max_gap_s = std::max(max_gap_s, clock.max_gap_s());
+    p99_s = std::max(p99_s, clock.gap_quantile_s(0.99));
+    p50_s = std::max(p50_s, clock.gap_quantile_s(0.5));
+    checks = std::max(checks, clock.checks());
+  }
+  state.counters["checks"] = static_cast<double>(checks);
+  state.counters["p50_gap_us"] = p50_s * 1e6;
+  state.counters["p99_gap_us"] = p99_s * 1e6;
+  state.counters["max_gap_us"] = max_gap_s * 1e6;
+}
+BENCHMARK(BM_PrecomputeStopCheckGap)
+    ->Arg(0)
+    ->Arg(1000)
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond);
 
 // The baseline: the rules over every ordered slot pair.
 void BM_PassageRules(benchmark::State& state) {

@@ -7,6 +7,16 @@
 // no algorithm finishes within the 20 ms (an iteration where it did is not counted).
 // Argument: 0 EHC, 1 GBFS, 2 weighted A*, 3 A* (h_max), 4 the tour search, 5 plan_mission (the
 // whole planner: compile, tour search, improvement).
+//
+// BM_StopCheckGap measures what a loaded machine hides (docs/benchmarks.md): the CPU time each
+// algorithm spends between two checks of its stop condition (bench/support/check_gap_clock.h),
+// which a free core adds to a cancel's latency. Counters: checks, p50, p99 and the largest gap
+// (max_gap_us: the acceptance is under 1,000). Each run is cut at 0.5 s of CPU time. Arguments: the
+// algorithm as above plus 6 the exact tour search (on 12 tasks), 7 plan_mission with --algorithm
+// exact, and the manholes.
+//
+//   build/release/bench/sewerplan_search_bench --benchmark_filter='StopCheckGap|CancelLatency'
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -21,6 +31,7 @@
 #include "sewerplan/search/planner.h"
 #include "sewerplan/search/tour_search.h"
 
+#include "support/check_gap_clock.h"
 #include "support/instances.h"
 
 namespace sewerplan::search {
@@ -95,6 +106,72 @@ BENCHMARK(BM_CancelLatency)
     ->DenseRange(0, 5)
     ->Iterations(10)
     ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+void BM_StopCheckGap(benchmark::State& state) {
+  const int which = static_cast<int>(state.range(0));
+  const bool exact = which >= 6;
+  const bench::Instance& instance = bench::spread_instance(
+      static_cast<std::size_t>(state.range(1)), exact ? 12 : 50, domain::MissionSpread::kUniform);
+  const auto progress = domain::initial_progress(instance.mission, instance.map);
+  auto compiled =
+      domain::compile_sewer_task(instance.map, instance.mission, progress, {.select_goals = true});
+  if (!compiled.has_value()) {
+    state.SkipWithError(compiled.error().message.c_str());
+    return;
+  }
+  const domain::CompiledTask& task = compiled->task();
+  double max_gap_s = 0, p99_s = 0, p50_s = 0;
+  std::size_t checks = 0;
+  for (auto _ : state) {
+    const bench::CheckGapClock clock;
+    // Each run is cut at 0.5 s of CPU time: the gaps, not the runs, are measured.
+    const StopCondition stop = StopCondition::after_seconds(clock, 0.5);
+    auto h = make_heuristic(which == 3 ? HeuristicKind::kMax : HeuristicKind::kFf, task);
+    switch (which) {
+      case 0:
+        EnforcedHillClimbing(task, *h).search(stop, clock);
+        break;
+      case 1:
+        BestFirstSearch(task, *h, BestFirstSearch::greedy()).search(stop, clock);
+        break;
+      case 2:
+        BestFirstSearch(task, *h, BestFirstSearch::weighted_astar(2)).search(stop, clock);
+        break;
+      case 3:
+        BestFirstSearch(task, *h, BestFirstSearch::astar())
+            .search(StopCondition(stop).with_max_expansions(200'000), clock);
+        break;
+      case 4:
+        tour_search(task, stop, &clock);
+        break;
+      case 6:
+        exact_tour_search(task, stop, &clock);
+        break;
+      default:
+        (void)plan_mission(instance.map, instance.mission, progress,
+                           {.algorithm = which == 7 ? Algorithm::kExact : Algorithm::kAuto,
+                            .time_limit_s = 0.5,
+                            .clock = &clock,
+                            .select_goals = true});
+        break;
+    }
+    clock.now_s();
+    max_gap_s = std::max(max_gap_s, clock.max_gap_s());
+    p99_s = std::max(p99_s, clock.gap_quantile_s(0.99));
+    p50_s = std::max(p50_s, clock.gap_quantile_s(0.5));
+    checks = std::max(checks, clock.checks());
+  }
+  state.counters["checks"] = static_cast<double>(checks);
+  state.counters["p50_gap_us"] = p50_s * 1e6;
+  state.counters["p99_gap_us"] = p99_s * 1e6;
+  state.counters["max_gap_us"] = max_gap_s * 1e6;
+}
+BENCHMARK(BM_StopCheckGap)
+    ->ArgNames({"algorithm", "manholes"})
+    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6, 7}, {10000}})
+    ->Args({5, 100000})
+    ->Iterations(3)
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -49,15 +49,15 @@ class SewerTaskCompiler {
     PositionGraph& graph = *result_.graph_;
     select_tasks();
     collect_keys(graph);
+    if (auto stopped = options_.stop.interrupted()) return stopped_error(*stopped, "the compile");
     GraphSearch search(graph);
-    if (options_.cancel != nullptr || options_.clock != nullptr) {
-      search.set_interrupt([this] { return stop_reason().has_value(); });
+    if (options_.stop.can_interrupt()) {
+      search.set_interrupt([this] { return options_.stop.interrupted().has_value(); });
     }
     route(search);
     if (search.interrupted()) {
-      return stop_reason() == ErrorCode::kCancelled
-                 ? Error{ErrorCode::kCancelled, "the compile was cancelled"}
-                 : Error{ErrorCode::kSearchLimit, "the compile reached the time limit"};
+      return stopped_error(options_.stop.interrupted().value_or(SearchStatus::kTimeLimit),
+                           "the compile");
     }
     detail::CompileReasons reasons(graph, mission_, progress_, bound_);
     if (options_.select_goals) {
@@ -79,16 +79,6 @@ class SewerTaskCompiler {
 
  private:
   std::size_t k() const { return keys_.size(); }
-
-  std::optional<ErrorCode> stop_reason() const {
-    if (options_.cancel != nullptr && options_.cancel->load(std::memory_order_relaxed)) {
-      return ErrorCode::kCancelled;
-    }
-    if (options_.clock != nullptr && options_.clock->now_s() >= options_.deadline_s) {
-      return ErrorCode::kSearchLimit;
-    }
-    return std::nullopt;
-  }
 
   // Leaves out the pending tasks known to be impossible; what remains impossible is returned.
   std::string select_goals(const detail::CompileReasons& reasons) {
@@ -127,6 +117,16 @@ class SewerTaskCompiler {
     return it->second;
   }
 
+  void mark_landing(std::uint32_t key) {
+    if (landing_.size() <= key) landing_.resize(key + 1, false);
+    landing_[key] = true;
+  }
+  // A key a task action may leave the robot at (a spot, or a pipe end such as a go-to at a pipe's
+  // very end: issue 14), which a route from the start need not reach.
+  bool landing(std::size_t key) const {
+    return result_.graph_->is_extra_spot(keys_[key]) || (key < landing_.size() && landing_[key]);
+  }
+
   void collect_keys(PositionGraph& graph) {
     add_key(graph.node(progress_.position));
     for (TaskId t : pending_) {
@@ -139,13 +139,14 @@ class SewerTaskCompiler {
       }
       const auto& spot = std::get<PipeSpot>(task.place);
       const Pipe& pipe = map_.pipe(spot.pipe);
+      // Every key in a task's pipe is a place a task action may leave the robot at.
       for (std::size_t e = 0; e < 2; ++e) {
         if (pipe.ends[e].manhole || task.kind == TaskKind::kInspectPipe) {
-          add_key(graph.pipe_end(spot.pipe, e));
+          mark_landing(add_key(graph.pipe_end(spot.pipe, e)));
         }
       }
       if (spot.offset_m && task.kind != TaskKind::kInspectPipe) {
-        add_key(graph.spot(spot.pipe, *spot.offset_m));
+        mark_landing(add_key(graph.spot(spot.pipe, *spot.offset_m)));
       }
     }
   }
@@ -212,8 +213,12 @@ class SewerTaskCompiler {
       if (dist_[key_of_.at(n)] <= bound_) reachable.push_back(n);
     }
     for (std::size_t a = 1; a < k() && !search.interrupted(); ++a) {
-      // A task's spot is reached by the task's action, not by a route: always route from it.
-      const bool spot = result_.graph_->is_extra_spot(keys_[a]);
+      // A task's spot is reached by the task's action, not by a route: always route from it. So
+      // is a pipe end a task leaves the robot at: when no route from the start reaches it within
+      // the bound (a go-to at the far end of a pipe entered from its other end), route from it
+      // within the whole bound (issue 14: it was a dead end, and a feasible go-to "no plan").
+      const bool spot =
+          landing(a) && (result_.graph_->is_extra_spot(keys_[a]) || dist_[a] > bound_);
       if (!spot && dist_[a] > bound_) continue;
       found =
           search.run(std::span<const Node>(&keys_[a], 1), reachable,
@@ -273,11 +278,10 @@ class SewerTaskCompiler {
   // ball around every exit of the city; with exits every few manholes the forward balls are
   // small.)
   void route_to_exits(GraphSearch& search, const std::vector<Node>& targets) {
-    const PositionGraph& graph = *result_.graph_;
     for (std::size_t a = 0; a < k(); ++a) {
       const Node n = keys_[a];
       const bool in_reach =
-          a == 0 || graph.is_extra_spot(n) ||
+          a == 0 || landing(a) ||
           (std::find(targets.begin(), targets.end(), n) != targets.end() && dist_[a] <= bound_);
       if (!in_reach || exit_dist_[a] != kInfiniteCost) continue;
       const std::optional<Node> exit = search.run_to_nearest(n, exit_node_, bound_);
@@ -321,6 +325,7 @@ class SewerTaskCompiler {
   bool ends_at_exit_ = true;
   Cost bound_ = 0;
   std::vector<Node> keys_;
+  std::vector<bool> landing_;  // per key, see landing(); shorter when the last keys are not
   std::unordered_map<Node, std::uint32_t> key_of_;
   std::vector<Cost> dist_;  // k x k, row = from
   std::vector<std::vector<Node>> routes_;

@@ -37,6 +37,17 @@ bool has_task(const std::vector<domain::DroppedTask>& list, TaskId t) {
                      [&](const domain::DroppedTask& d) { return d.task == t; });
 }
 
+// The same place of the robot; offsets in a pipe within a micrometre (the executor's tracker
+// computes them from the jobs' progress, the replay from the plan's steps).
+bool same_place(const domain::RobotPosition& a, const domain::RobotPosition& b) {
+  const auto* in_a = std::get_if<domain::InPipe>(&a);
+  const auto* in_b = std::get_if<domain::InPipe>(&b);
+  if (in_a != nullptr && in_b != nullptr) {
+    return in_a->pipe == in_b->pipe && std::abs(in_a->offset_m - in_b->offset_m) < 1e-6;
+  }
+  return a == b;
+}
+
 }  // namespace
 
 std::string_view to_string(Failure::Kind kind) {
@@ -94,102 +105,6 @@ Replanner::Replanner(const SewerMap& map, Mission mission, ReplannerOptions opti
       options_(options),
       progress_(domain::initial_progress(mission_, map)) {
   options_.planner.select_goals = true;
-}
-
-Result<void> check_failure(const Failure& failure, const SewerMap& map) {
-  const auto invalid = [](std::string what) -> Result<void> {
-    return Error{ErrorCode::kInvalidArgument, "invalid failure report: " + std::move(what)};
-  };
-  switch (failure.kind) {
-    case Failure::Kind::kBlockage:
-    case Failure::Kind::kDangerInPipe: {
-      if (failure.pipe.index() >= map.pipe_count()) {
-        return invalid("unknown pipe #" + std::to_string(failure.pipe.index()));
-      }
-      const Pipe& pipe = map.pipe(failure.pipe);
-      if (!std::isfinite(failure.offset_m) || failure.offset_m < 0 ||
-          failure.offset_m > pipe.length_m) {
-        std::ostringstream out;
-        out << "offset " << failure.offset_m << " m is outside pipe " << pipe.name << " (0 to "
-            << pipe.length_m << " m)";
-        return invalid(out.str());
-      }
-      return {};
-    }
-    case Failure::Kind::kDangerousPassage: {
-      if (failure.manhole.index() >= map.manhole_count()) {
-        return invalid("unknown manhole #" + std::to_string(failure.manhole.index()));
-      }
-      const std::size_t slots = map.slots(failure.manhole).size();
-      const std::string& name = map.manhole(failure.manhole).name;
-      if (failure.from.index() >= slots || failure.to.index() >= slots) {
-        return invalid("manhole " + name + " has " + std::to_string(slots) + " slots, not slot " +
-                       std::to_string(to_paper_number(failure.from.index() >= slots ? failure.from
-                                                                                    : failure.to)));
-      }
-      if (failure.from == failure.to) {
-        return invalid("a passage of manhole " + name + " from slot " +
-                       std::to_string(to_paper_number(failure.from)) + " to itself");
-      }
-      return {};
-    }
-    case Failure::Kind::kStuck:
-      return {};
-  }
-  return invalid("unknown kind");
-}
-
-Result<void> check_progress(const domain::MissionProgress& progress, std::uint8_t heading_end,
-                            const SewerMap& map, const Mission& mission) {
-  const auto invalid = [](std::string what) -> Result<void> {
-    return Error{ErrorCode::kInvalidArgument, "invalid progress report: " + std::move(what)};
-  };
-  if (progress.done.size() != mission.tasks.size()) {
-    return invalid(std::to_string(progress.done.size()) + " done flags for " +
-                   std::to_string(mission.tasks.size()) + " tasks");
-  }
-  if (!std::isfinite(progress.energy_used_wh) || progress.energy_used_wh < 0) {
-    return invalid("energy used " + std::to_string(progress.energy_used_wh) + " Wh");
-  }
-  if (heading_end > 1) return invalid("heading end " + std::to_string(heading_end));
-  const auto known_manhole = [&](ManholeId m) { return m.index() < map.manhole_count(); };
-  if (const auto* in = std::get_if<domain::InManhole>(&progress.position)) {
-    if (!known_manhole(in->manhole)) {
-      return invalid("unknown manhole #" + std::to_string(in->manhole.index()));
-    }
-  } else if (const auto* at = std::get_if<domain::AtSlot>(&progress.position)) {
-    if (!known_manhole(at->manhole)) {
-      return invalid("unknown manhole #" + std::to_string(at->manhole.index()));
-    }
-    if (at->slot.index() >= map.slots(at->manhole).size()) {
-      return invalid("manhole " + map.manhole(at->manhole).name + " has no slot " +
-                     std::to_string(to_paper_number(at->slot)));
-    }
-  } else {
-    const auto& p = std::get<domain::InPipe>(progress.position);
-    if (p.pipe.index() >= map.pipe_count()) {
-      return invalid("unknown pipe #" + std::to_string(p.pipe.index()));
-    }
-    const Pipe& pipe = map.pipe(p.pipe);
-    if (!std::isfinite(p.offset_m) || p.offset_m < 0 || p.offset_m > pipe.length_m) {
-      std::ostringstream out;
-      out << "offset " << p.offset_m << " m is outside pipe " << pipe.name << " (0 to "
-          << pipe.length_m << " m)";
-      return invalid(out.str());
-    }
-  }
-  // The final task is done only where it ends the mission: the validator's goal must hold here.
-  if (const auto final_task = mission.final_task_id();
-      final_task && progress.done[final_task->index()]) {
-    domain::MissionProgress all_done = progress;
-    std::fill(all_done.done.begin(), all_done.done.end(), true);
-    const auto report = domain::validate_plan({}, map, mission, all_done);
-    if (!report.valid) {
-      return invalid("the final task '" + mission.task(*final_task).name +
-                     "' is done, but the robot is " + domain::describe(progress.position, map));
-    }
-  }
-  return {};
 }
 
 Result<PlanResponse> Replanner::plan_cancellable(const std::optional<Failure>& failure,
@@ -359,15 +274,22 @@ PlanResponse Replanner::plan(const std::string& reason) {
     cancelled_ = true;  // plan_cancellable answers kCancelled: no fallback
     return PlanResponse{.decision = PlanResponse::Decision::kDegraded, .reason = "cancelled"};
   }
+  std::string kept_because;
   if (!outcome.has_value() && outcome.error().code != ErrorCode::kNoPlan) {
-    // A limit, a cancel or a planner error proves nothing: the safe answer, the nearest exit.
+    // A limit, a cancel or a planner error proves nothing: the safe answer, the rest of the
+    // current plan if it still holds, else the nearest exit.
     const ErrorCode code = outcome.error().code;
     const std::string why = code == ErrorCode::kSearchLimit ? "the planner's time ran out"
                             : code == ErrorCode::kCancelled
                                 ? "the replan was cancelled"
                                 : "the planner failed: " + one_line(outcome.error().message);
-    outcome = exit_from_here(why);
-    cut_short = true;
+    if (auto rest = rest_of_current_plan()) {
+      outcome = std::move(*rest);
+      kept_because = why;
+    } else {
+      outcome = exit_from_here(why);
+      cut_short = true;
+    }
   }
   const double seconds = clock().now_s() - start_s;
   if (!outcome.has_value()) {
@@ -378,17 +300,66 @@ PlanResponse Replanner::plan(const std::string& reason) {
     r.planning_time_s = seconds;
     r.newly_dropped.assign(dropped_.begin() + static_cast<std::ptrdiff_t>(dropped_before),
                            dropped_.end());
+    last_start_.reset();
     return r;
   }
   PlanResponse r = respond(std::move(*outcome), reason, seconds);
+  if (!kept_because.empty()) r.reason += "; " + kept_because + ": the current plan still holds";
   r.newly_dropped.assign(dropped_.begin() + static_cast<std::ptrdiff_t>(dropped_before),
                          dropped_.end());
   if (r.decision == PlanResponse::Decision::kFollowPlan &&
       (cut_short || !r.newly_dropped.empty())) {
     r.decision = PlanResponse::Decision::kDegraded;
   }
-  if (has_plan(r.decision)) last_steps_ = r.plan.steps;
+  if (has_plan(r.decision)) {
+    last_steps_ = r.plan.steps;
+    last_start_ = progress_;
+    for (const auto& d : dropped_) last_start_->done[d.task.index()] = true;
+  } else {
+    last_start_.reset();
+  }
   return r;
+}
+
+std::optional<search::PlanOutcome> Replanner::rest_of_current_plan() const {
+  if (!last_start_) return std::nullopt;
+  domain::MissionProgress now = progress_;
+  for (const auto& d : dropped_) now.done[d.task.index()] = true;
+  // Where the robot is in the plan: the last state of its replay that is the robot's place and
+  // tasks done. The part already driven is replayed without what was learnt since (the robot
+  // drove it before).
+  Mission as_planned = mission_;
+  as_planned.blockages.clear();
+  as_planned.closed_passages.clear();
+  for (Task& t : as_planned.tasks) t.final = false;
+  if (domain::start_problem(map_, as_planned, *last_start_)) return std::nullopt;
+  domain::PlanReplay replay(map_, as_planned, *last_start_);
+  std::optional<std::size_t> here;
+  const auto at_now = [&] {
+    if (!same_place(replay.position(), now.position)) return false;
+    for (TaskId t : mission_.task_ids()) {
+      if (replay.done()[t.index()] != now.done[t.index()] && !now.done[t.index()]) return false;
+    }
+    return true;
+  };
+  for (std::size_t k = 0;; ++k) {
+    if (at_now()) here = k;
+    if (k == last_steps_.size() || !replay.apply(last_steps_[k]).has_value()) break;
+  }
+  if (!here) return std::nullopt;
+  domain::Plan rest;
+  rest.steps.assign(last_steps_.begin() + static_cast<std::ptrdiff_t>(*here), last_steps_.end());
+  // The rest on the world model as it is now, to the mission's end, within the battery left.
+  const domain::ValidationReport report = domain::validate_plan(rest, map_, mission_, now);
+  const double budget_wh = mission_.profile.battery_wh * (1 - mission_.battery_reserve_fraction) -
+                           progress_.energy_used_wh;
+  if (!report.valid || report.energy_wh > budget_wh + 1e-9) return std::nullopt;
+  search::PlanOutcome outcome;
+  outcome.plan = std::move(rest);
+  outcome.cost_s = report.total_cost_s;
+  outcome.energy_wh = report.energy_wh;
+  outcome.algorithm = "the current plan";
+  return outcome;
 }
 
 PlanResponse Replanner::respond(search::PlanOutcome outcome, const std::string& reason,
@@ -434,8 +405,8 @@ PlanResponse Replanner::report_failure(const Failure& failure) {
     r.reason = ok.error().message;
     return r;
   }
-  const std::vector<domain::PlanStep> failed_steps = std::move(last_steps_);
-  last_steps_.clear();
+  // Kept as the current plan: the safe answer if the replan runs out of time and it still holds.
+  const std::vector<domain::PlanStep> failed_steps = last_steps_;
   std::string reason(to_string(failure.kind));
   switch (failure.kind) {
     case Failure::Kind::kBlockage:

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "sewerplan/core/result.h"
+#include "sewerplan/core/stop_condition.h"
 #include "sewerplan/fusion/manhole_geometry.h"
 #include "sewerplan/fusion/manhole_turn_planner.h"
 
@@ -44,7 +45,10 @@ bool head_path_available();
 Result<void> head_space_sanity(const HeadPathProblem& problem, const TurnPlannerOptions& options);
 
 // kUnsupportedFormat without OMPL; an OMPL failure other than "no solution" (an invalid start or
-// goal, which the caller checks first) is kInvalidArgument.
-Result<HeadPath> plan_head_path(const HeadPathProblem& problem, const TurnPlannerOptions& options);
+// goal, which the caller checks first) is kInvalidArgument. `stop` (its cancel flag and time
+// limit) is OMPL's termination condition besides the iteration count, asked at every RRT
+// iteration: when it fires first, kCancelled or kSearchLimit.
+Result<HeadPath> plan_head_path(const HeadPathProblem& problem, const TurnPlannerOptions& options,
+                                const StopCondition& stop = {});
 
 }  // namespace sewerplan::fusion::detail

@@ -10,7 +10,8 @@ Result<void> head_space_sanity(const HeadPathProblem&, const TurnPlannerOptions&
   return Error{ErrorCode::kUnsupportedFormat, "this build of sewerplan has no OMPL"};
 }
 
-Result<HeadPath> plan_head_path(const HeadPathProblem&, const TurnPlannerOptions&) {
+Result<HeadPath> plan_head_path(const HeadPathProblem&, const TurnPlannerOptions&,
+                                const StopCondition&) {
   return Error{ErrorCode::kUnsupportedFormat,
                "this build of sewerplan has no OMPL (built with SEWERPLAN_WITH_OMPL=OFF): it "
                "cannot plan manhole motions; the angle and step rules apply"};

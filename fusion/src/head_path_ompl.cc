@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -80,13 +81,16 @@ class SeededRrt : public og::RRT {
 Pose2 pose_of(const HeadState& s) { return Pose2{s->getX(), s->getY(), s->getYaw()}; }
 
 // Drops every state that a direct, valid Dubins motion can skip, greedily from the start: the
-// same path every time (OMPL's shortcutting samples at random).
-std::vector<HeadState> shortened(const ob::SpaceInformation& si, const std::vector<HeadState>& in) {
+// same path every time (OMPL's shortcutting samples at random). Its motion checks are most of a
+// plan's time after RRT (up to tens of ms: bench/fusion/passage_precompute_bench.cc,
+// BM_PrecomputeStopCheckGap), so `stop` is asked before each; when it fires the path is partial.
+std::vector<HeadState> shortened(const ob::SpaceInformation& si, const std::vector<HeadState>& in,
+                                 const StopCondition& stop) {
   std::vector<HeadState> out{in.front()};
   std::size_t i = 0;
   while (i + 1 < in.size()) {
     std::size_t j = in.size() - 1;
-    while (j > i + 1 && !si.checkMotion(in[i].get(), in[j].get())) --j;
+    while (j > i + 1 && !stop.interrupted() && !si.checkMotion(in[i].get(), in[j].get())) --j;
     out.push_back(in[j]);
     i = j;
   }
@@ -138,7 +142,8 @@ Result<void> head_space_sanity(const HeadPathProblem& problem, const TurnPlanner
   return {};
 }
 
-Result<HeadPath> plan_head_path(const HeadPathProblem& problem, const TurnPlannerOptions& options) {
+Result<HeadPath> plan_head_path(const HeadPathProblem& problem, const TurnPlannerOptions& options,
+                                const StopCondition& stop) {
   ompl::msg::setLogLevel(std::getenv("SEWERPLAN_OMPL_DEBUG") ? ompl::msg::LOG_DEBUG
                                                              : ompl::msg::LOG_ERROR);
   const PassageGeometry g = problem.geometry;
@@ -175,18 +180,24 @@ Result<HeadPath> plan_head_path(const HeadPathProblem& problem, const TurnPlanne
   planner->setRange(0.3);
   planner->setGoalBias(0.2);
 
-  // A count of iterations, not a time: the same result on any machine.
+  // A count of iterations, not a time: the same result on any machine. Our stop condition (a
+  // cancel, the caller's deadline) ends it too, asked at every iteration.
   HeadPath result;
   const std::uint32_t limit = options.max_iterations;
   std::uint32_t& count = result.iterations;
-  const ob::PlannerStatus status =
-      planner->solve(ob::PlannerTerminationCondition([&count, limit] { return ++count > limit; }));
+  std::optional<SearchStatus> stopped;
+  const ob::PlannerStatus status = planner->solve(ob::PlannerTerminationCondition([&] {
+    if (++count > limit) return true;
+    stopped = stop.interrupted();
+    return stopped.has_value();
+  }));
   if (count > limit) count = limit;
   switch (ob::PlannerStatus::StatusType(status)) {
     case ob::PlannerStatus::EXACT_SOLUTION:
       break;
     case ob::PlannerStatus::TIMEOUT:
     case ob::PlannerStatus::APPROXIMATE_SOLUTION:
+      if (stopped) return stopped_error(*stopped, "the motion planner");
       return result;  // not found within the iterations
     case ob::PlannerStatus::UNKNOWN:
     case ob::PlannerStatus::INVALID_START:
@@ -206,8 +217,10 @@ Result<HeadPath> plan_head_path(const HeadPathProblem& problem, const TurnPlanne
     copy = s;
     states.push_back(copy);
   }
+  std::vector<HeadState> path_states = shortened(*si, states, stop);
+  if (auto late = stop.interrupted()) return stopped_error(*late, "the motion planner");
   result.found = true;
-  result.poses = densified(space, shortened(*si, states));
+  result.poses = densified(space, path_states);
   return result;
 }
 

@@ -81,11 +81,14 @@ struct Polyline {
 };
 
 // Moves the chain along the path with the head from arc `from_s` to the end; the first problem
-// found, or empty.
+// found, or empty. `stop` is asked at every head position; when it fires the answer is a problem
+// ("stopped"), and the caller asks `stop` again.
 std::optional<std::string> chain_problem(const Polyline& path, const PassageGeometry& g,
-                                         const RobotBody& body, double from_s) {
+                                         const RobotBody& body, double from_s,
+                                         const StopCondition& stop) {
   const double seg = body.segment_length_m;
   for (double head = from_s; head <= path.length() + 1e-9; head += kChainStep_m) {
+    if (stop.interrupted()) return "stopped";
     std::vector<std::pair<double, double>> joints{path.at(head)};
     double s = head;
     for (int k = 0; k < body.segment_count; ++k) {
@@ -238,7 +241,8 @@ Result<void> ManholeTurnPlanner::check_state_space(const PassageGeometry& geomet
                                    options_);
 }
 
-Result<TurnPlan> ManholeTurnPlanner::plan(const PassageGeometry& geometry) const {
+Result<TurnPlan> ManholeTurnPlanner::plan(const PassageGeometry& geometry,
+                                          const StopCondition& stop) const {
   const PassageGeometry g = quantised(geometry);
   if (Result<void> ok = check_numbers(g); !ok.has_value()) return ok.error();
   if (!motion_planning_available()) return detail::plan_head_path({}, options_).error();
@@ -297,6 +301,7 @@ Result<TurnPlan> ManholeTurnPlanner::plan(const PassageGeometry& geometry) const
   std::uint32_t iterations = 0;
   std::optional<std::string> problem;
   for (double pipe_room : {pipe_clearance, clearance}) {
+    if (auto stopped = stop.interrupted()) return stopped_error(*stopped, "the motion planner");
     Result<detail::HeadPath> head =
         detail::plan_head_path({.geometry = g,
                                 .start = start,
@@ -305,7 +310,7 @@ Result<TurnPlan> ManholeTurnPlanner::plan(const PassageGeometry& geometry) const
                                 .clearance_m = clearance,
                                 .pipe_clearance_m = pipe_room,
                                 .pipe_reach_m = kPipeReach_m},
-                               options_);
+                               options_, stop);
     if (!head.has_value()) return head.error();
     iterations += head->iterations;
     if (!head->found) {
@@ -319,7 +324,8 @@ Result<TurnPlan> ManholeTurnPlanner::plan(const PassageGeometry& geometry) const
     path = whole_path(start, head->poses, r, run_from, run_to, alpha, body_length);
     // Where the manoeuvre begins: the head at the from-pipe's mouth.
     mouth_s = first_arc_inside(path, r);
-    problem = chain_problem(path, g, body_, mouth_s);
+    problem = chain_problem(path, g, body_, mouth_s, stop);
+    if (auto stopped = stop.interrupted()) return stopped_error(*stopped, "the motion planner");
     if (!problem) break;
   }
   if (problem) {

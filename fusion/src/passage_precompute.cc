@@ -20,13 +20,14 @@ bool fits(const RobotProfile& p, double diameter_m) {
 
 }  // namespace
 
-Result<const TurnPlan*> PassageMotionCache::plan(const PassageGeometry& geometry) {
+Result<const TurnPlan*> PassageMotionCache::plan(const PassageGeometry& geometry,
+                                                 const StopCondition& stop) {
   const PassageKey key = passage_key(geometry);
   if (auto it = plans_.find(key); it != plans_.end()) {
     ++hits_;
     return &it->second;
   }
-  Result<TurnPlan> plan = planner_.plan(geometry);
+  Result<TurnPlan> plan = planner_.plan(geometry, stop);
   if (!plan.has_value()) return plan.error();
   return &plans_.emplace(key, std::move(*plan)).first->second;
 }
@@ -81,14 +82,18 @@ Result<PrecomputeResult> precompute_passage_motion(const SewerMap& map, const Ro
         if (i == j || !fits(profile, map.pipe(slots[j].pipe).diameter_m)) continue;
         const SlotIndex from{i};
         const SlotIndex to{j};
+        if (auto stopped = options.stop.interrupted()) {
+          return stopped_error(*stopped, "the motion precompute");
+        }
         const PassageGeometry g = passage_geometry(map, m, from, to);
-        Result<const TurnPlan*> plan = cache.plan(g);
+        Result<const TurnPlan*> plan = cache.plan(g, options.stop);
         if (!plan.has_value()) {
-          return Error{plan.error().code == ErrorCode::kInvalidArgument ? ErrorCode::kInvalidMap
-                                                                        : plan.error().code,
-                       "manhole " + map.manhole(m).name + " slot " +
-                           std::to_string(to_paper_number(from)) + " -> " +
-                           std::to_string(to_paper_number(to)) + ": " + plan.error().message};
+          const ErrorCode code = plan.error().code;
+          if (code == ErrorCode::kCancelled || code == ErrorCode::kSearchLimit) return plan.error();
+          return Error{
+              code == ErrorCode::kInvalidArgument ? ErrorCode::kInvalidMap : plan.error().code,
+              "manhole " + map.manhole(m).name + " slot " + std::to_string(to_paper_number(from)) +
+                  " -> " + std::to_string(to_paper_number(to)) + ": " + plan.error().message};
         }
         const TurnPlan& p = **plan;
         PassageMotion entry{.manhole = m, .from = from, .to = to, .feasible = p.feasible};

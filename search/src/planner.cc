@@ -178,14 +178,13 @@ Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
                                  const PlannerOptions& options) {
   const SteadyClock steady;
   const Clock& clock = options.clock != nullptr ? *options.clock : steady;
-  const double started_s = clock.now_s();
+  // The time limit bounds the compile and the search together.
+  StopCondition stop = options.time_limit_s > 0
+                           ? StopCondition::after_seconds(clock, options.time_limit_s)
+                           : StopCondition();
+  if (options.cancel != nullptr) stop.with_cancel(*options.cancel);
   Result<domain::SewerTask> compiled = domain::compile_sewer_task(
-      map, mission, progress,
-      {.select_goals = options.select_goals,
-       .cancel = options.cancel,
-       .clock = options.time_limit_s > 0 ? &clock : nullptr,
-       .deadline_s = options.time_limit_s > 0 ? started_s + options.time_limit_s
-                                              : std::numeric_limits<double>::infinity()});
+      map, mission, progress, {.select_goals = options.select_goals, .stop = stop});
   if (!compiled.has_value()) return compiled.error();
   const domain::CompiledTask& task = compiled->task();
   // An admissible estimate already beyond the battery proves there is no plan, whatever the
@@ -202,13 +201,7 @@ Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
       options.heuristic.value_or(optimal_search ? HeuristicKind::kMax : HeuristicKind::kFf);
   std::unique_ptr<Heuristic> heuristic = make_heuristic(kind, task);
   std::unique_ptr<SearchEngine> engine = make_engine(algorithm, task, *heuristic, options.weight);
-  // The time limit bounds the compile and the search together.
-  StopCondition stop =
-      options.time_limit_s > 0
-          ? StopCondition::after_seconds(clock, options.time_limit_s - (clock.now_s() - started_s))
-          : StopCondition();
   if (options.max_expansions > 0) stop.with_max_expansions(options.max_expansions);
-  if (options.cancel != nullptr) stop.with_cancel(*options.cancel);
   // kAuto beyond exhaustive A*: the tour search's first plan, where the task has its shape.
   std::optional<SearchResult> tour;
   bool exact = false;

@@ -5,22 +5,6 @@
 
 namespace sewerplan::search {
 
-std::string_view to_string(SearchStatus status) {
-  switch (status) {
-    case SearchStatus::kSolved:
-      return "solved";
-    case SearchStatus::kUnsolvable:
-      return "unsolvable";
-    case SearchStatus::kTimeLimit:
-      return "time limit";
-    case SearchStatus::kExpansionLimit:
-      return "expansion limit";
-    case SearchStatus::kCancelled:
-      return "cancelled";
-  }
-  return "unknown";
-}
-
 std::ostream& operator<<(std::ostream& os, const SearchStatistics& s) {
   return os << s.expanded << " expanded, " << s.generated << " generated, " << s.evaluated
             << " evaluated, " << s.reopened << " reopened, " << s.dead_ends << " dead ends, "
@@ -36,38 +20,6 @@ void accumulate(SearchStatistics& total, const SearchStatistics& more) {
   total.stored += more.stored;
   total.time_s += more.time_s;
   total.peak_memory_bytes = std::max(total.peak_memory_bytes, more.peak_memory_bytes);
-}
-
-StopCondition StopCondition::after_seconds(const Clock& clock, double seconds) {
-  StopCondition stop;
-  stop.clock_ = &clock;
-  stop.deadline_s_ = clock.now_s() + seconds;
-  return stop;
-}
-
-StopCondition& StopCondition::with_max_expansions(std::uint64_t expansions) {
-  max_expansions_ = expansions;
-  return *this;
-}
-
-StopCondition& StopCondition::with_cancel(const std::atomic<bool>& cancel) {
-  cancel_ = &cancel;
-  return *this;
-}
-
-std::optional<SearchStatus> StopCondition::check(std::uint64_t expansions) const {
-  if (cancel_ != nullptr && cancel_->load(std::memory_order_relaxed))
-    return SearchStatus::kCancelled;
-  if (expansions >= max_expansions_) return SearchStatus::kExpansionLimit;
-  if (clock_ != nullptr && clock_->now_s() >= deadline_s_) return SearchStatus::kTimeLimit;
-  return std::nullopt;
-}
-
-std::optional<SearchStatus> StopCondition::interrupted() const {
-  if (cancel_ != nullptr && cancel_->load(std::memory_order_relaxed))
-    return SearchStatus::kCancelled;
-  if (clock_ != nullptr && clock_->now_s() >= deadline_s_) return SearchStatus::kTimeLimit;
-  return std::nullopt;
 }
 
 SearchResult SearchEngine::search(const StopCondition& stop, const Clock& clock) {

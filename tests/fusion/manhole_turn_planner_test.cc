@@ -3,12 +3,15 @@
 // 90 degrees and climbs steps of up to 30 cm, also both at once.
 #include "sewerplan/fusion/manhole_turn_planner.h"
 
+#include <atomic>
 #include <cmath>
 
 #include <gtest/gtest.h>
 
 #include "sewerplan/core/robot_profile.h"
 #include "sewerplan/fusion/manhole_geometry.h"
+
+#include "support/ticking_clock.h"
 
 namespace sewerplan::fusion {
 namespace {
@@ -111,6 +114,33 @@ TEST_F(ManholeTurnPlannerTest, TheSameSeedGivesTheSameResult) {
   const TurnPlan b = plan(g, 7);
   EXPECT_TRUE(a.feasible) << a.reason;
   EXPECT_EQ(a, b);
+}
+
+// Issue 14: the motion planner honours the stop condition of every algorithm.
+TEST_F(ManholeTurnPlannerTest, ReturnsCancelledWhenTheFlagIsSet) {
+  std::atomic<bool> cancel{true};
+  const ManholeTurnPlanner planner(robot_body(profile_), profile_);
+  Result<TurnPlan> p = planner.plan(right_angle(), StopCondition().with_cancel(cancel));
+  ASSERT_FALSE(p.has_value());
+  EXPECT_EQ(p.error().code, ErrorCode::kCancelled);
+}
+
+// The deadline passes at the 5th clock read: the first is before OMPL starts, the others are
+// OMPL's termination condition at its first RRT iterations, too few to reach the to-pipe. Without
+// our condition inside OMPL's, the planner would answer the feasible plan.
+TEST_F(ManholeTurnPlannerTest, StopsInsideOmplAtTheDeadlineOfTheInjectedClock) {
+  const ManholeTurnPlanner planner(robot_body(profile_), profile_);
+  testing::TickingClock clock(1.0);
+  Result<TurnPlan> p = planner.plan(right_angle(), StopCondition::at_deadline(clock, 5));
+  ASSERT_FALSE(p.has_value());
+  EXPECT_EQ(p.error().code, ErrorCode::kSearchLimit);
+  EXPECT_EQ(clock.reads(), 5);
+  // A deadline never reached leaves the plan as it is without one (deterministic).
+  testing::TickingClock slow(1.0);
+  Result<TurnPlan> q = planner.plan(right_angle(), StopCondition::at_deadline(slow, 1e12));
+  ASSERT_TRUE(q.has_value()) << q.error();
+  EXPECT_EQ(*q, plan(right_angle()));
+  EXPECT_GT(slow.reads(), 5);
 }
 
 TEST_F(ManholeTurnPlannerTest, AUTurnInAOneMetreManholeIsNot) {

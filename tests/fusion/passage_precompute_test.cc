@@ -3,6 +3,7 @@
 // TurnInManhole job.
 #include "sewerplan/fusion/passage_precompute.h"
 
+#include <atomic>
 #include <cmath>
 #include <memory>
 #include <sstream>
@@ -13,6 +14,7 @@
 #include "sewerplan/fusion/jobs.h"
 
 #include "support/small_map.h"
+#include "support/ticking_clock.h"
 
 namespace sewerplan::fusion {
 namespace {
@@ -61,6 +63,22 @@ TEST_F(PassagePrecomputeTest, PlansEveryPassageOncePerGeometryAndComparesWithThe
   ASSERT_NE(into_step, nullptr);
   EXPECT_FALSE(into_step->feasible);
   EXPECT_NE(into_step->reason.find("0.40 m"), std::string::npos);
+}
+
+// Issue 14: `motion precompute` honours the stop condition: a cancel before it starts, and a
+// deadline that passes inside the first passage's OMPL planning (its 3rd clock read).
+TEST_F(PassagePrecomputeTest, StopsOnTheCancelFlagAndAtTheDeadline) {
+  std::atomic<bool> cancel{true};
+  Result<PrecomputeResult> cancelled = precompute_passage_motion(
+      map_, profile_, {.stop = StopCondition().with_cancel(cancel)}, clock_);
+  ASSERT_FALSE(cancelled.has_value());
+  EXPECT_EQ(cancelled.error().code, ErrorCode::kCancelled);
+  testing::TickingClock ticking(1.0);
+  Result<PrecomputeResult> late = precompute_passage_motion(
+      map_, profile_, {.stop = StopCondition::at_deadline(ticking, 3)}, clock_);
+  ASSERT_FALSE(late.has_value());
+  EXPECT_EQ(late.error().code, ErrorCode::kSearchLimit);
+  EXPECT_EQ(ticking.reads(), 3);
 }
 
 TEST_F(PassagePrecomputeTest, WaypointsAreInTheManholesFrame) {

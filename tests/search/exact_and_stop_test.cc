@@ -13,6 +13,7 @@
 #include "sewerplan/search/tour_search.h"
 
 #include "support/ais_testbed.h"
+#include "support/ticking_clock.h"
 
 namespace sewerplan::search {
 namespace {
@@ -131,18 +132,76 @@ TEST(CompileStop, StopsAtTheDeadlineOrTheCancel) {
   ASSERT_TRUE(g);
   const auto progress = domain::initial_progress(g->mission, g->map);
   ManualClock clock;
-  auto late =
-      domain::compile_sewer_task(g->map, g->mission, progress, {.clock = &clock, .deadline_s = 0});
+  auto late = domain::compile_sewer_task(g->map, g->mission, progress,
+                                         {.stop = StopCondition::at_deadline(clock, 0)});
   ASSERT_FALSE(late.has_value());
   EXPECT_EQ(late.error().code, ErrorCode::kSearchLimit);
   std::atomic<bool> cancel{true};
-  auto cancelled = domain::compile_sewer_task(g->map, g->mission, progress, {.cancel = &cancel});
+  auto cancelled = domain::compile_sewer_task(g->map, g->mission, progress,
+                                              {.stop = StopCondition().with_cancel(cancel)});
   ASSERT_FALSE(cancelled.has_value());
   EXPECT_EQ(cancelled.error().code, ErrorCode::kCancelled);
-  EXPECT_TRUE(
-      domain::compile_sewer_task(g->map, g->mission, progress, {.clock = &clock, .deadline_s = 1})
-          .has_value());
+  EXPECT_TRUE(domain::compile_sewer_task(g->map, g->mission, progress,
+                                         {.stop = StopCondition::at_deadline(clock, 1)})
+                  .has_value());
 }
+
+// Issue 14: the compile asks the stop condition before its route searches too, so a small map
+// (fewer than the 1,024 nodes settled between two checks inside them) stops as promptly.
+TEST(CompileStop, StopsBeforeTheRouteSearchesOnASmallMap) {
+  const auto ais = testing::load_ais_testbed();
+  const auto progress = domain::initial_progress(ais.mission, ais.map);
+  const ManualClock clock;
+  auto late = domain::compile_sewer_task(ais.map, ais.mission, progress,
+                                         {.stop = StopCondition::at_deadline(clock, 0)});
+  ASSERT_FALSE(late.has_value());
+  EXPECT_EQ(late.error().code, ErrorCode::kSearchLimit);
+  std::atomic<bool> cancel{true};
+  auto cancelled = domain::compile_sewer_task(ais.map, ais.mission, progress,
+                                              {.stop = StopCondition().with_cancel(cancel)});
+  ASSERT_FALSE(cancelled.has_value());
+  EXPECT_EQ(cancelled.error().code, ErrorCode::kCancelled);
+}
+
+// Issue 14: every algorithm of the planner, with and without goal selection, answers a cancel
+// and a deadline on the injected clock with kCancelled and kSearchLimit: never a plan, never
+// "no plan" (which would call the beacon).
+class PlannerStop : public ::testing::TestWithParam<std::tuple<Algorithm, bool>> {
+ protected:
+  PlannerOptions options() const {
+    return {.algorithm = std::get<0>(GetParam()), .select_goals = std::get<1>(GetParam())};
+  }
+  testing::AisTestbed ais_ = testing::load_ais_testbed();
+  domain::MissionProgress start_ = domain::initial_progress(ais_.mission, ais_.map);
+};
+
+TEST_P(PlannerStop, ReturnsCancelledWhenTheFlagIsSet) {
+  std::atomic<bool> cancel{true};
+  PlannerOptions o = options();
+  o.cancel = &cancel;
+  auto outcome = plan_mission(ais_.map, ais_.mission, start_, o);
+  ASSERT_FALSE(outcome.has_value());
+  EXPECT_EQ(outcome.error().code, ErrorCode::kCancelled);
+}
+
+TEST_P(PlannerStop, StopsAtTheDeadlineOfTheInjectedClock) {
+  testing::TickingClock clock(1.0);  // the deadline passes at the second read
+  PlannerOptions o = options();
+  o.clock = &clock;
+  o.time_limit_s = 0.5;
+  auto outcome = plan_mission(ais_.map, ais_.mission, start_, o);
+  ASSERT_FALSE(outcome.has_value());
+  EXPECT_EQ(outcome.error().code, ErrorCode::kSearchLimit);
+  // Without the limit, the same options plan.
+  EXPECT_TRUE(plan_mission(ais_.map, ais_.mission, start_, options()).has_value());
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryAlgorithm, PlannerStop,
+                         ::testing::Combine(::testing::Values(Algorithm::kAuto, Algorithm::kEhc,
+                                                              Algorithm::kGbfs,
+                                                              Algorithm::kWeightedAstar,
+                                                              Algorithm::kAstar, Algorithm::kExact),
+                                            ::testing::Bool()));
 
 // Issue 14: without goal selection, a mission whose tasks do not fit the battery together (each
 // does alone) was searched until the time limit; now it is answered at once. The expansion limit

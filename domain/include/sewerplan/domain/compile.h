@@ -40,10 +40,10 @@
 #include <string>
 #include <vector>
 
-#include "sewerplan/core/clock.h"
 #include "sewerplan/core/mission.h"
 #include "sewerplan/core/result.h"
 #include "sewerplan/core/sewer_map.h"
+#include "sewerplan/core/stop_condition.h"
 #include "sewerplan/domain/compiled_task.h"
 #include "sewerplan/domain/plan.h"
 #include "sewerplan/domain/robot_state.h"
@@ -78,12 +78,11 @@ struct CompileOptions {
   // battery already spent, a start the robot cannot move from, no exit within reach (or the
   // final task out of reach).
   bool select_goals = false;
-  // Cancellation and deadline (issue 14), checked every 1,024 nodes the route searches settle:
-  // the compile then fails with kCancelled or kSearchLimit. `cancel` may be set from any thread;
-  // the deadline is on `clock` (seconds, as Clock::now_s()).
-  const std::atomic<bool>* cancel = nullptr;
-  const Clock* clock = nullptr;
-  double deadline_s = std::numeric_limits<double>::infinity();
+  // Cancellation and deadline (issue 14): the stop condition of every algorithm
+  // (core/stop_condition.h; its cancel flag and time limit, not its expansion limit), checked
+  // before each phase and every 1,024 nodes the route searches settle: the compile then fails
+  // with kCancelled or kSearchLimit.
+  StopCondition stop;
 };
 
 class SewerTask {

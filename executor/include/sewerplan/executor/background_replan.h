@@ -4,7 +4,7 @@
 //
 // It runs Replanner::report_failure (or Replanner::plan) on a std::jthread; cancel() (or the
 // destructor) requests the thread's stop, which sets the cancel flag of the search's
-// StopCondition (search/stop_condition.h): the replan gives up at the search's next check and
+// StopCondition (core/stop_condition.h): the replan gives up at the search's next check and
 // get() answers kCancelled, without the safe fallback a synchronous plan() would compute. What the
 // report taught the world model (the blockage, the closed passage) stays learnt; only the plan is
 // discarded, and the newer report is planned from there:

@@ -10,9 +10,12 @@
 // most tasks that can still be done with the battery left, and still reaching an exit. If the
 // mission's end point (its final task) is cut off, the mission ends at the nearest reachable exit
 // instead. The answer is anytime: when the time limit or a cancel stops the search first, it is the
-// safe one, the nearest reachable exit (kDegraded). The beacon (kCallForRecovery) is only the
-// answer when a search proved that no exit can be reached, or the robot cannot move (kStuck); a
-// limit never calls it. Tasks done stay done; tasks dropped stay dropped, each with its reason.
+// safe one: the rest of the current plan if it still holds (the robot is at a state it passed
+// through, and what was learnt since and the battery left do not break the rest; kFollowPlan, as
+// it does every task it did), else the nearest reachable exit (kDegraded). The beacon
+// (kCallForRecovery) is only the answer when a search proved that no exit can be reached, or the
+// robot cannot move (kStuck); a limit never calls it. Tasks done stay done; tasks dropped stay
+// dropped, each with its reason.
 //
 //   Replanner replanner(map, mission);
 //   PlanResponse r = replanner.plan();
@@ -68,9 +71,11 @@ struct PlanResponse {
   // What the caller does with the answer; switch on it. The names (to_string, parse_decision)
   // are stable: the event log and every CLI --json output carry them.
   enum class Decision {
-    kFollowPlan,       // "follow-plan": carry out `fused` (empty when the mission is already ended)
-    kDegraded,         // "degraded": carry out `fused`; it does less than asked (tasks dropped,
-                       // the end point given up, or the time ran out and it heads for an exit)
+    kFollowPlan,  // "follow-plan": carry out `fused` (empty when the mission is already ended);
+                  // also when the time ran out and the rest of the current plan still holds
+                  // (`reason` says so): it does every task the robot was doing
+    kDegraded,    // "degraded": carry out `fused`; it does less than asked (tasks dropped,
+                  // the end point given up, or the time ran out and it heads for an exit)
     kCallForRecovery,  // "call-for-recovery": a search proved that no exit can be reached:
                        // activate the beacon and wait
     kStuck,            // "stuck": the robot cannot move: activate the beacon and wait
@@ -112,8 +117,9 @@ struct ReplannerOptions {
   // improvement search after the first plan (for a task beyond exhaustive A*, the tour search's
   // plan: bench/executor/replan_bench.cc); give it expansions to trade time for cost.
   // `planner.time_limit_s` (0: none) is the deadline of each plan() and report_failure() as a
-  // whole, and `planner.cancel` cuts it short: either way the answer is the safe one (the nearest
-  // reachable exit, kDegraded), found by one search that neither bounds: it may overshoot the
+  // whole, and `planner.cancel` cuts it short: either way the answer is the safe one: the rest of
+  // the current plan if it still holds (kFollowPlan; a replay, no search), else the nearest
+  // reachable exit (kDegraded), found by one search that neither bounds: it may overshoot the
   // deadline by that search (bench/executor/deadline_bench.cc).
   search::PlannerOptions planner{.improvement_expansions = 0};
   // Used to time the planning (default: a steady clock).
@@ -174,6 +180,11 @@ class Replanner {
   // The safe answer: the nearest exit the robot can reach, every task left dropped for `why`.
   // One optimal search over the robot's places, without a time limit or a cancel.
   Result<search::PlanOutcome> exit_from_here(const std::string& why);
+  // The rest of the plan answered last, from where the robot is now, if it still holds: the
+  // robot's place and tasks done are a state that plan passed through, and the steps after it
+  // replay on the world model as it is now (with what was learnt since) to the mission's end
+  // within the battery left. One replay of each: no search.
+  std::optional<search::PlanOutcome> rest_of_current_plan() const;
   // The first task `plan` does from progress(), if any.
   std::optional<TaskId> first_task_of(const domain::Plan& plan) const;
   PlanResponse respond(search::PlanOutcome outcome, const std::string& reason, double seconds);
@@ -192,6 +203,9 @@ class Replanner {
   bool planned_ = false;  // a first plan was made
   // The steps of the last plan answered: after a failure, the plan that failed.
   std::vector<domain::PlanStep> last_steps_;
+  // Where that plan began (the tasks dropped by then counted as done); empty when the last answer
+  // had no plan.
+  std::optional<domain::MissionProgress> last_start_;
 };
 
 }  // namespace sewerplan::executor

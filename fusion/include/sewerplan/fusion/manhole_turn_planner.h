@@ -19,9 +19,10 @@
 // Deterministic: the sampler and RRT's goal bias have their own RNGs seeded with `seed`, the
 // nearest-neighbour structure is linear, the planner stops after a fixed number of iterations (not
 // a time), and the path is shortened greedily rather than by random shortcuts. The same geometry
-// and seed give the same bits. OMPL stays in head_path_ompl.cc; a build without OMPL
-// (SEWERPLAN_WITH_OMPL=OFF) has this header, and plan() then fails with kUnsupportedFormat ("this
-// build has no OMPL").
+// and seed give the same bits. A caller's deadline or cancel (the StopCondition of every
+// sewerplan algorithm) does not change a plan: it ends the planning with an error instead. OMPL
+// stays in head_path_ompl.cc; a build without OMPL (SEWERPLAN_WITH_OMPL=OFF) has this header, and
+// plan() then fails with kUnsupportedFormat ("this build has no OMPL").
 //
 //   ManholeTurnPlanner planner(robot_body(profile), profile);
 //   Result<TurnPlan> plan = planner.plan(passage_geometry(map, m, from, to));
@@ -39,6 +40,7 @@
 #include "sewerplan/core/job.h"
 #include "sewerplan/core/result.h"
 #include "sewerplan/core/robot_profile.h"
+#include "sewerplan/core/stop_condition.h"
 #include "sewerplan/fusion/manhole_geometry.h"
 
 namespace sewerplan::fusion {
@@ -72,8 +74,10 @@ class ManholeTurnPlanner {
   ManholeTurnPlanner(RobotBody body, const RobotProfile& profile, TurnPlannerOptions options = {});
 
   // An infeasible passage is a TurnPlan with a reason, not an error. Errors: kInvalidArgument for
-  // a geometry with non-positive or non-finite sizes; kUnsupportedFormat without OMPL.
-  Result<TurnPlan> plan(const PassageGeometry& geometry) const;
+  // a geometry with non-positive or non-finite sizes; kUnsupportedFormat without OMPL;
+  // kCancelled or kSearchLimit when `stop` (its cancel flag or time limit, core/stop_condition.h)
+  // fires first: OMPL's termination condition asks it at every RRT iteration.
+  Result<TurnPlan> plan(const PassageGeometry& geometry, const StopCondition& stop = {}) const;
 
   const RobotBody& body() const { return body_; }
 

@@ -30,6 +30,7 @@
 #include "sewerplan/core/result.h"
 #include "sewerplan/core/robot_profile.h"
 #include "sewerplan/core/sewer_map.h"
+#include "sewerplan/core/stop_condition.h"
 #include "sewerplan/fusion/manhole_geometry.h"
 #include "sewerplan/fusion/manhole_turn_planner.h"
 
@@ -41,7 +42,8 @@ class PassageMotionCache {
   explicit PassageMotionCache(ManholeTurnPlanner planner) : planner_(std::move(planner)) {}
 
   // The plan of `geometry`, planned on first use. The pointer stays valid while the cache lives.
-  Result<const TurnPlan*> plan(const PassageGeometry& geometry);
+  // A planning that `stop` ended (kCancelled, kSearchLimit) is not kept.
+  Result<const TurnPlan*> plan(const PassageGeometry& geometry, const StopCondition& stop = {});
 
   std::size_t size() const { return plans_.size(); }
   std::size_t hits() const { return hits_; }
@@ -76,6 +78,9 @@ struct PrecomputeOptions {
   TurnPlannerOptions planner;
   // Called after each manhole with (manholes done, manholes in the map).
   std::function<void(std::size_t, std::size_t)> progress;
+  // Its cancel flag and time limit end the precompute (core/stop_condition.h): asked before each
+  // passage and at every RRT iteration.
+  StopCondition stop;
 };
 
 // The waypoints of a canonical plan in the manhole's frame (job.h): rotated to the from-slot's
@@ -84,7 +89,8 @@ std::vector<Waypoint> to_manhole_frame(const TurnPlan& plan, const SewerMap& map
                                        SlotIndex from, SlotIndex to);
 
 // Errors: kUnsupportedFormat in a build without OMPL; kInvalidProfile for a profile that fails
-// validate_profile; kInvalidMap for a passage with a non-finite or non-positive size.
+// validate_profile; kInvalidMap for a passage with a non-finite or non-positive size; kCancelled
+// or kSearchLimit when options.stop fires (no table: a part of one would read as complete).
 Result<PrecomputeResult> precompute_passage_motion(const SewerMap& map, const RobotProfile& profile,
                                                    const PrecomputeOptions& options,
                                                    const Clock& clock);

@@ -2,11 +2,11 @@
 // SearchEngine: the common face of sewerplan's heuristic search algorithms.
 //
 // An engine searches a domain::CompiledTask for a plan: initialize(), then step() (one expansion)
-// until it returns a final status, then result(). search() runs that loop under a StopCondition,
-// checked at every step, so a time limit or a cancel from another thread is honoured within one
-// expansion (and, inside an expansion, between heuristic evaluations). Engines: BestFirstSearch
-// (A*, weighted A*, greedy best-first, by configuration) and EnforcedHillClimbing (FF's). Modelled
-// on Fast Downward's SearchAlgorithm (Helmert 2006).
+// until it returns a final status, then result(). search() runs that loop under a StopCondition
+// (core/stop_condition.h), checked at every step, so a time limit or a cancel from another thread
+// is honoured within one expansion (and, inside an expansion, between heuristic evaluations).
+// Engines: BestFirstSearch (A*, weighted A*, greedy best-first, by configuration) and
+// EnforcedHillClimbing (FF's). Modelled on Fast Downward's SearchAlgorithm (Helmert 2006).
 //
 //   BestFirstSearch astar(task, heuristic, BestFirstSearch::astar());
 //   SearchResult r = astar.search(StopCondition::after_seconds(clock, 1.0));
@@ -22,13 +22,17 @@
 #include <string_view>
 #include <vector>
 
+#include "sewerplan/core/stop_condition.h"
 #include "sewerplan/domain/compiled_task.h"
-#include "sewerplan/search/stop_condition.h"
 
 namespace sewerplan::search {
 
 using domain::ActionId;
 using domain::Cost;
+// The stop condition is core's (core/stop_condition.h), shared with the compile and the motion
+// planner; these keep search::StopCondition and search::SearchStatus working.
+using sewerplan::SearchStatus;
+using sewerplan::StopCondition;
 
 struct SearchStatistics {
   std::uint64_t expanded = 0;

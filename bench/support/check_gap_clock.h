@@ -1,0 +1,55 @@
+// SPDX-License-Identifier: MIT
+// CheckGapClock: a Clock for a StopCondition that records how much work an algorithm does between
+// two checks of its stop condition: the bound on how late a cancel from another thread is seen.
+//
+// A StopCondition with a clock reads it at every check (after the cancel flag), so the gaps
+// between reads are the gaps between checks. It reads the calling thread's CPU time, not the wall
+// time: on a loaded machine a wall-clock cancel latency is mostly the wait for a time slice
+// (docs/benchmarks.md), while the CPU time between checks is the algorithm's own part, which a
+// free core would add to the cancel latency.
+//
+//   CheckGapClock clock;
+//   clock.now_s();                                  // the call's start
+//   plan_mission(map, mission, progress, {.time_limit_s = 1e9, .clock = &clock});
+//   clock.now_s();                                  // its end: the gap after the last check
+//   clock.max_gap_s();
+#pragma once
+
+#include <algorithm>
+#include <vector>
+
+#include "sewerplan/core/clock.h"
+
+#include <time.h>
+
+namespace sewerplan::bench {
+
+class CheckGapClock final : public Clock {
+ public:
+  double now_s() const override {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    const double t = static_cast<double>(ts.tv_sec) + static_cast<double>(ts.tv_nsec) * 1e-9;
+    if (last_s_ >= 0) gaps_s_.push_back(t - last_s_);
+    last_s_ = t;
+    return t;
+  }
+  std::size_t checks() const { return gaps_s_.size(); }
+  double max_gap_s() const {
+    return gaps_s_.empty() ? 0 : *std::max_element(gaps_s_.begin(), gaps_s_.end());
+  }
+  // The p-quantile of the gaps (p in [0, 1]).
+  double gap_quantile_s(double p) const {
+    if (gaps_s_.empty()) return 0;
+    std::vector<double> sorted = gaps_s_;
+    std::sort(sorted.begin(), sorted.end());
+    const auto i = static_cast<std::size_t>(p * static_cast<double>(sorted.size() - 1) + 0.5);
+    return sorted[std::min(i, sorted.size() - 1)];
+  }
+
+ private:
+  mutable std::vector<double> gaps_s_;
+  mutable double last_s_ = -1;
+};
+
+}  // namespace sewerplan::bench
