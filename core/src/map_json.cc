@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -249,8 +250,15 @@ class FastReader {
     if (!root() || !scan_.at_end() || !format_ || !version_ || !manholes_ || !pipes_) {
       return std::nullopt;
     }
-    if (!builder_) start_builder();
-    return std::move(builder_);
+    // Records move from their chunks, each freed once emptied, into vectors reserved at their
+    // size: a growing vector would hold two copies of a million records while it moves them.
+    MapBuilder builder{std::string(name_), json_locator(file_name_)};
+    builder.reserve(manholes_list_.size(), pipes_list_.size());
+    move_into(manholes_list_, [&](ManholeRecord&& r) { builder.add_manhole(std::move(r)); });
+    move_into(pipes_list_, [&](PipeRecord&& r) { builder.add_pipe(std::move(r)); });
+    move_into(points_list_, [&](PointRecord&& r) { builder.add_point(std::move(r)); });
+    move_into(findings_list_, [&](FindingRecord&& r) { builder.add_finding(std::move(r)); });
+    return builder;
   }
 
  private:
@@ -261,7 +269,35 @@ class FastReader {
     return true;
   }
 
-  void start_builder() { builder_.emplace(std::string(name_), json_locator(file_name_)); }
+  // Records in chunks that double up to 2^18 records (tens of MB, which malloc maps on their
+  // own and gives back to the system when freed).
+  template <class Record>
+  class Chunks {
+   public:
+    void push_back(Record&& r) {
+      if (chunks_.empty() || chunks_.back().size() == chunks_.back().capacity()) {
+        chunks_.emplace_back().reserve(chunks_.empty() || chunks_.size() < 9
+                                           ? std::size_t{1024} << chunks_.size()
+                                           : std::size_t{1} << 18U);
+      }
+      chunks_.back().push_back(std::move(r));
+      ++size_;
+    }
+    std::size_t size() const { return size_; }
+    std::vector<std::vector<Record>>& chunks() { return chunks_; }
+
+   private:
+    std::vector<std::vector<Record>> chunks_;
+    std::size_t size_ = 0;
+  };
+
+  template <class Record, class Add>
+  static void move_into(Chunks<Record>& records, Add add) {
+    for (std::vector<Record>& chunk : records.chunks()) {
+      for (Record& r : chunk) add(std::move(r));
+      std::vector<Record>().swap(chunk);
+    }
+  }
 
   bool root() {
     unsigned seen = 0;
@@ -276,8 +312,7 @@ class FastReader {
         version_ = once(seen, 2) && scan_.number(v) && v == kMapJsonVersion;
         return version_;
       }
-      if (key == "name") return !builder_ && once(seen, 4) && scan_.string(name_);
-      if (!builder_) start_builder();
+      if (key == "name") return once(seen, 4) && scan_.string(name_);
       if (key == "manholes") {
         manholes_ = once(seen, 8) && scan_.array([&] { return manhole(); });
         return manholes_;
@@ -346,7 +381,7 @@ class FastReader {
     for (SlotRecord& s : m.slots) {
       if (std::isnan(s.invert_z_m)) s.invert_z_m = m.position.z_m;
     }
-    builder_->add_manhole(std::move(m));
+    manholes_list_.push_back(std::move(m));
     return true;
   }
 
@@ -396,7 +431,7 @@ class FastReader {
       return false;
     });
     if (!ok || (seen & 31U) != 31U) return false;
-    builder_->add_pipe(std::move(p));
+    pipes_list_.push_back(std::move(p));
     return true;
   }
 
@@ -410,7 +445,7 @@ class FastReader {
       return false;
     });
     if (!ok || seen != 7U) return false;
-    builder_->add_point(std::move(p));
+    points_list_.push_back(std::move(p));
     return true;
   }
 
@@ -428,7 +463,7 @@ class FastReader {
       return false;
     });
     if (!ok || (seen & 11U) != 11U) return false;
-    builder_->add_finding(std::move(r));
+    findings_list_.push_back(std::move(r));
     return true;
   }
 
@@ -439,7 +474,10 @@ class FastReader {
   bool version_ = false;
   bool manholes_ = false;
   bool pipes_ = false;
-  std::optional<MapBuilder> builder_;
+  Chunks<ManholeRecord> manholes_list_;
+  Chunks<PipeRecord> pipes_list_;
+  Chunks<PointRecord> points_list_;
+  Chunks<FindingRecord> findings_list_;
 };
 
 }  // namespace
