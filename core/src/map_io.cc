@@ -9,6 +9,8 @@
 #include "sewerplan/core/map_swmm.h"
 #include "sewerplan/core/text_file.h"
 
+#include "map_json_fast.h"
+
 namespace sewerplan {
 namespace {
 
@@ -120,6 +122,15 @@ Result<SewerMap> read_map(const std::filesystem::path& path, Diagnostics& diagno
   if (!text.has_value()) return text.error();
   Result<MapFormat> format = detect_map_format(path, *text);
   if (!format.has_value()) return format.error();
+  if (*format == MapFormat::kJson) {
+    // The records own their names: free the text before building (a 1,000,000-manhole map is
+    // 430 MB of text), so that text and map are never held at once.
+    if (std::optional<MapBuilder> builder = detail::read_map_json_fast(*text, path.string())) {
+      std::string().swap(*text);
+      return std::move(*builder).build(diagnostics);
+    }
+    return detail::read_map_json_document(*text, path.string(), diagnostics);
+  }
   return parse_map(*text, path.string(), *format, diagnostics);
 }
 

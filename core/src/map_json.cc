@@ -1,11 +1,17 @@
 // SPDX-License-Identifier: MIT
 #include "sewerplan/core/map_json.h"
 
+#include <cmath>
+#include <limits>
+#include <vector>
+
 #include <nlohmann/json.hpp>
 
 #include "sewerplan/core/map_builder.h"
 
 #include "json_fields.h"
+#include "json_scan.h"
+#include "map_json_fast.h"
 
 namespace sewerplan {
 namespace {
@@ -232,10 +238,270 @@ void write_pipe(std::ostream& out, const SewerMap& map, const Pipe& p) {
   out << '}';
 }
 
+// The fast path: a well-formed map, every field known, of the right type and valid as the
+// document reader would find it, read in one pass with JsonScan (json_scan.h) and no document
+// tree. Anything else (nullopt) goes to the document reader, which reports it.
+class FastReader {
+ public:
+  FastReader(std::string_view text, const std::string& file_name)
+      : scan_(text), file_name_(file_name) {}
+
+  std::optional<MapBuilder> read() && {
+    if (!root() || !scan_.at_end() || !format_ || !version_ || !manholes_ || !pipes_) {
+      return std::nullopt;
+    }
+    // Records move from their chunks, each freed once emptied, into vectors reserved at their
+    // size: a growing vector would hold two copies of a million records while it moves them.
+    MapBuilder builder{std::string(name_), json_locator(file_name_)};
+    builder.reserve(manholes_list_.size(), pipes_list_.size());
+    move_into(manholes_list_, [&](ManholeRecord&& r) { builder.add_manhole(std::move(r)); });
+    move_into(pipes_list_, [&](PipeRecord&& r) { builder.add_pipe(std::move(r)); });
+    move_into(points_list_, [&](PointRecord&& r) { builder.add_point(std::move(r)); });
+    move_into(findings_list_, [&](FindingRecord&& r) { builder.add_finding(std::move(r)); });
+    return builder;
+  }
+
+ private:
+  // Each known field once: a repeated one goes to the document reader (which takes the first).
+  bool once(unsigned& seen, unsigned bit) {
+    if ((seen & bit) != 0) return false;
+    seen |= bit;
+    return true;
+  }
+
+  // Records in chunks that double up to 2^18 records (tens of MB, which malloc maps on their
+  // own and gives back to the system when freed).
+  template <class Record>
+  class Chunks {
+   public:
+    void push_back(Record&& r) {
+      if (chunks_.empty() || chunks_.back().size() == chunks_.back().capacity()) {
+        chunks_.emplace_back().reserve(chunks_.empty() || chunks_.size() < 9
+                                           ? std::size_t{1024} << chunks_.size()
+                                           : std::size_t{1} << 18U);
+      }
+      chunks_.back().push_back(std::move(r));
+      ++size_;
+    }
+    std::size_t size() const { return size_; }
+    std::vector<std::vector<Record>>& chunks() { return chunks_; }
+
+   private:
+    std::vector<std::vector<Record>> chunks_;
+    std::size_t size_ = 0;
+  };
+
+  template <class Record, class Add>
+  static void move_into(Chunks<Record>& records, Add add) {
+    for (std::vector<Record>& chunk : records.chunks()) {
+      for (Record& r : chunk) add(std::move(r));
+      std::vector<Record>().swap(chunk);
+    }
+  }
+
+  bool root() {
+    unsigned seen = 0;
+    return scan_.object([&](std::string_view key) {
+      if (key == "format") {
+        std::string_view f;
+        format_ = once(seen, 1) && scan_.string(f) && f == kMapJsonFormat;
+        return format_;
+      }
+      if (key == "version") {
+        double v = 0;
+        version_ = once(seen, 2) && scan_.number(v) && v == kMapJsonVersion;
+        return version_;
+      }
+      if (key == "name") return once(seen, 4) && scan_.string(name_);
+      if (key == "manholes") {
+        manholes_ = once(seen, 8) && scan_.array([&] { return manhole(); });
+        return manholes_;
+      }
+      if (key == "pipes") {
+        pipes_ = once(seen, 16) && scan_.array([&] { return pipe(); });
+        return pipes_;
+      }
+      if (key == "inspection_points") {
+        return once(seen, 32) && scan_.array([&] { return point(); });
+      }
+      if (key == "findings") {
+        std::uint32_t index = 0;
+        return once(seen, 64) && scan_.array([&] { return finding(++index); });
+      }
+      return false;
+    });
+  }
+
+  bool number(unsigned& seen, unsigned bit, double& out) {
+    return once(seen, bit) && scan_.number(out);
+  }
+
+  bool number(unsigned& seen, unsigned bit, std::optional<double>& out) {
+    double v = 0;
+    if (!number(seen, bit, v)) return false;
+    out = v;
+    return true;
+  }
+
+  bool string(unsigned& seen, unsigned bit, std::string& out) {
+    std::string_view v;
+    if (!once(seen, bit) || !scan_.string(v)) return false;
+    out = v;
+    return true;
+  }
+
+  bool manhole() {
+    ManholeRecord m;
+    unsigned seen = 0;
+    const bool ok = scan_.object([&](std::string_view key) {
+      if (key == "name") return string(seen, 1, m.name);
+      if (key == "x_m") return number(seen, 2, m.position.x_m);
+      if (key == "y_m") return number(seen, 4, m.position.y_m);
+      if (key == "z_m") return number(seen, 8, m.position.z_m);
+      if (key == "diameter_m") return number(seen, 16, m.diameter_m);
+      if (key == "exit") return once(seen, 32) && scan_.boolean(m.exit);
+      if (key == "variant") {
+        std::string_view v;
+        if (!once(seen, 64) || !scan_.string(v) || v.size() != 1) return false;
+        m.variant = v[0];
+        return true;
+      }
+      if (key == "shaft_length_m") return number(seen, 128, m.shaft_length_m);
+      if (key == "shaft_width_m") return number(seen, 256, m.shaft_width_m);
+      if (key == "depth_m") return number(seen, 512, m.depth_m);
+      if (key == "slots") {
+        return once(seen, 1024) && scan_.array([&] { return slot(m.slots.emplace_back()); });
+      }
+      return false;
+    });
+    if (!ok || (seen & (1U | 16U)) != (1U | 16U)) return false;
+    if (m.shaft_length_m.has_value() != m.shaft_width_m.has_value()) return false;
+    // The invert defaults to the manhole's floor, which may come after the slots. JSON has no
+    // NaN, so NaN marks an invert not given.
+    for (SlotRecord& s : m.slots) {
+      if (std::isnan(s.invert_z_m)) s.invert_z_m = m.position.z_m;
+    }
+    manholes_list_.push_back(std::move(m));
+    return true;
+  }
+
+  bool slot(SlotRecord& s) {
+    s.invert_z_m = std::numeric_limits<double>::quiet_NaN();
+    unsigned seen = 0;
+    return scan_.object([&](std::string_view key) {
+      if (key == "pipe") return string(seen, 1, s.pipe);
+      if (key == "azimuth_deg") return number(seen, 2, s.azimuth_deg);
+      if (key == "invert_m") return number(seen, 4, s.invert_z_m);
+      return false;
+    }) && (seen & 3U) == 3U;
+  }
+
+  bool end(unsigned& seen, unsigned bit, std::optional<std::string>& out) {
+    if (!once(seen, bit)) return false;
+    if (scan_.peek('n')) return scan_.null();
+    std::string_view v;
+    if (!scan_.string(v)) return false;
+    out = std::string(v);
+    return true;
+  }
+
+  bool pipe() {
+    PipeRecord p;
+    unsigned seen = 0;
+    const bool ok = scan_.object([&](std::string_view key) {
+      if (key == "name") return string(seen, 1, p.name);
+      if (key == "from") return end(seen, 2, p.from);
+      if (key == "to") return end(seen, 4, p.to);
+      if (key == "length_m") return number(seen, 8, p.length_m);
+      if (key == "diameter_m") return number(seen, 16, p.diameter_m);
+      if (key == "shape") {
+        std::string_view v;
+        if (!once(seen, 32) || !scan_.string(v)) return false;
+        const auto shape = pipe_shape_from_string(v);
+        if (shape) p.shape = *shape;
+        return shape.has_value();
+      }
+      if (key == "height_m") return number(seen, 64, p.height_m);
+      if (key == "blockage_risk") {
+        double v = 0;
+        if (!number(seen, 128, v)) return false;
+        p.blockage_risk = static_cast<float>(v);
+        return true;
+      }
+      return false;
+    });
+    if (!ok || (seen & 31U) != 31U) return false;
+    pipes_list_.push_back(std::move(p));
+    return true;
+  }
+
+  bool point() {
+    PointRecord p;
+    unsigned seen = 0;
+    const bool ok = scan_.object([&](std::string_view key) {
+      if (key == "name") return string(seen, 1, p.name);
+      if (key == "pipe") return string(seen, 2, p.pipe);
+      if (key == "offset_m") return number(seen, 4, p.offset_m);
+      return false;
+    });
+    if (!ok || seen != 7U) return false;
+    points_list_.push_back(std::move(p));
+    return true;
+  }
+
+  bool finding(std::uint32_t index) {
+    FindingRecord r;
+    r.line = index;
+    unsigned seen = 0;
+    const bool ok = scan_.object([&](std::string_view key) {
+      if (key == "pipe") return string(seen, 1, r.pipe);
+      if (key == "code") return string(seen, 2, r.code);
+      if (key == "characterisation") return string(seen, 4, r.characterisation);
+      if (key == "offset_m") return number(seen, 8, r.station_m);
+      if (key == "quantity1") return number(seen, 16, r.quantity1);
+      if (key == "quantity2") return number(seen, 32, r.quantity2);
+      return false;
+    });
+    if (!ok || (seen & 11U) != 11U) return false;
+    findings_list_.push_back(std::move(r));
+    return true;
+  }
+
+  detail::JsonScan scan_;
+  const std::string& file_name_;
+  std::string_view name_;
+  bool format_ = false;
+  bool version_ = false;
+  bool manholes_ = false;
+  bool pipes_ = false;
+  Chunks<ManholeRecord> manholes_list_;
+  Chunks<PipeRecord> pipes_list_;
+  Chunks<PointRecord> points_list_;
+  Chunks<FindingRecord> findings_list_;
+};
+
 }  // namespace
+
+namespace detail {
+
+std::optional<MapBuilder> read_map_json_fast(std::string_view text, const std::string& file_name) {
+  return FastReader(text, file_name).read();
+}
+
+}  // namespace detail
 
 Result<SewerMap> read_map_json(std::string_view text, const std::string& file_name,
                                Diagnostics& diagnostics) {
+  if (std::optional<MapBuilder> builder = detail::read_map_json_fast(text, file_name)) {
+    return std::move(*builder).build(diagnostics);
+  }
+  return detail::read_map_json_document(text, file_name, diagnostics);
+}
+
+namespace detail {
+
+Result<SewerMap> read_map_json_document(std::string_view text, const std::string& file_name,
+                                        Diagnostics& diagnostics) {
   std::optional<JsonDocument> doc = JsonDocument::parse(text, file_name, diagnostics);
   if (!doc) return Error{ErrorCode::kParse, diagnostics.error_summary()};
   JsonFields root(doc->root(), "$", file_name, diagnostics);
@@ -271,6 +537,8 @@ Result<SewerMap> read_map_json(std::string_view text, const std::string& file_na
   if (diagnostics.has_errors()) return Error{ErrorCode::kParse, diagnostics.error_summary()};
   return std::move(builder).build(diagnostics);
 }
+
+}  // namespace detail
 
 void write_map_json(const SewerMap& map, std::ostream& out) {
   out << "{\n  \"format\": \"" << kMapJsonFormat << "\",\n  \"version\": " << kMapJsonVersion

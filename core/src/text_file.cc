@@ -19,6 +19,27 @@ Result<std::string> read_text_file(const std::filesystem::path& path) {
   if (!in) {
     return Error{ErrorCode::kIo, "cannot read " + path.string() + ": " + std::strerror(errno)};
   }
+  // A regular file is read at once into a string of its size (a stream would grow and copy a
+  // 430 MB map several times); anything else (a pipe) through the stream.
+  const std::uintmax_t size = std::filesystem::is_regular_file(path, ec)
+                                  ? std::filesystem::file_size(path, ec)
+                                  : static_cast<std::uintmax_t>(-1);
+  if (!ec && size != static_cast<std::uintmax_t>(-1)) {
+    std::string text(static_cast<std::size_t>(size), '\0');
+    in.read(text.data(), static_cast<std::streamsize>(size));
+    const auto got = static_cast<std::size_t>(in.gcount());
+    if (in.bad()) {
+      return Error{ErrorCode::kIo, "cannot read " + path.string() + ": read error"};
+    }
+    text.resize(got);
+    if (got == size) {
+      // The file may have grown since: take the rest too.
+      std::ostringstream rest;
+      rest << in.rdbuf();
+      text += std::move(rest).str();
+    }
+    return text;
+  }
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) {

@@ -1,15 +1,21 @@
 // SPDX-License-Identifier: MIT
 #include "sewerplan/core/map_json.h"
 
+#include <optional>
 #include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "sewerplan/core/generator.h"
 #include "sewerplan/core/map_io.h"
 #include "sewerplan/core/map_queries.h"
 #include "sewerplan/core/text_file.h"
 
+#include "map_json_fast.h"
 #include "support/paths.h"
 
 namespace sewerplan {
@@ -172,6 +178,68 @@ TEST(MapJson, NeverCrashesOnTruncatedInput) {
     EXPECT_FALSE(map.has_value()) << "prefix of " << n << " bytes";
     EXPECT_FALSE(map.error().message.empty());
   }
+}
+
+// The fast path (no document tree: a million manholes in a fraction of the memory) reads what
+// the writer writes, and gives the same map and the same diagnostics as the document reader.
+TEST(MapJsonFastPath, ReadsWrittenMapsAsTheDocumentReaderDoes) {
+  Result<SewerMap> generated =
+      generate_network({.manholes = 300, .seed = 3, .topology = Topology::kMeshed});
+  ASSERT_TRUE(generated.has_value());
+  std::ostringstream out;
+  write_map_json(*generated, out);
+  // The small map has every optional field; the slots of B come before its floor here, which
+  // their default invert must still follow.
+  std::string reordered(kSmallMap);
+  const std::string floor = R"("z_m": 1.25, )";
+  reordered.erase(reordered.find(floor), floor.size());
+  reordered.replace(reordered.find(R"("slots": [{"pipe": "P1", "azimuth_deg": 180)"), 0, floor);
+  for (const std::string& text : {out.str(), std::string(kSmallMap), reordered}) {
+    std::optional<MapBuilder> fast = detail::read_map_json_fast(text, "t.json");
+    ASSERT_TRUE(fast.has_value()) << text.substr(0, 200);
+    Diagnostics fast_d, document_d;
+    Result<SewerMap> a = std::move(*fast).build(fast_d);
+    Result<SewerMap> b = detail::read_map_json_document(text, "t.json", document_d);
+    ASSERT_TRUE(a.has_value() && b.has_value());
+    EXPECT_EQ(*a, *b);
+    EXPECT_EQ(fast_d.all(), document_d.all());
+  }
+  Diagnostics d;
+  Result<SewerMap> reread = read(reordered, d);
+  ASSERT_TRUE(reread.has_value());
+  const ManholeId b = *reread->find_manhole("B");
+  EXPECT_DOUBLE_EQ(reread->slot(b, SlotIndex{1}).invert_z_m, 1.25)
+      << "invert defaults to the floor";
+}
+
+// What the fast path cannot read exactly as the document reader would goes to the document
+// reader, which reports it by JSON path (the tests above) or reads it.
+TEST(MapJsonFastPath, LeavesEverythingElseToTheDocumentReader) {
+  const std::vector<std::pair<std::string, std::string>> edits = {
+      {R"("name": "W")", R"("name": "W\u0031")"},                             // an escape
+      {R"("offset_m": 2.5)", R"("offset_m": 2.5, "note": 1)"},                // an unknown field
+      {R"("offset_m": 2.5)", R"("offset_m": "2.5")"},                         // a wrong type
+      {R"("offset_m": 2.5)", R"("offset_m": 2.5, "offset_m": 3)"},            // a field twice
+      {R"("x_m": 10, "y_m": 0)", R"("x_m": -0, "y_m": 0)"},                   // "-0"
+      {R"("x_m": 10, "y_m": 0)", R"("x_m": 1e999, "y_m": 0)"},                // beyond double
+      {R"("x_m": 10, "y_m": 0)", R"("x_m": 1234567890123456789, "y_m": 0)"},  // 19 digits
+      {R"("variant": "B")", R"("variant": "BC")"},                            // an error to report
+      {R"("version": 1)", R"("version": 1 2)"},                               // a syntax error
+      {R"("exit": true)", R"("exit": truex)"},
+  };
+  for (const auto& [from, to] : edits) {
+    std::string text(kSmallMap);
+    ASSERT_NE(text.find(from), std::string::npos) << from;
+    text.replace(text.find(from), from.size(), to);
+    EXPECT_FALSE(detail::read_map_json_fast(text, "t.json").has_value()) << to;
+    Diagnostics fast_path_unused;
+    Diagnostics d;
+    EXPECT_EQ(read(text, d).has_value(),
+              detail::read_map_json_document(text, "t.json", fast_path_unused).has_value());
+    EXPECT_EQ(d.all(), fast_path_unused.all()) << to;
+  }
+  EXPECT_FALSE(detail::read_map_json_fast(std::string(kSmallMap) + " x", "t.json").has_value());
+  EXPECT_TRUE(detail::read_map_json_fast(std::string(kSmallMap) + " \n", "t.json").has_value());
 }
 
 TEST(MapIo, ReadsTheAisTestbedByPath) {
