@@ -173,9 +173,11 @@ void improve(const domain::CompiledTask& task, const StopCondition& stop, const 
 
 }  // namespace
 
-Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
-                                 const domain::MissionProgress& progress,
-                                 const PlannerOptions& options) {
+namespace {
+
+Result<PlanOutcome> plan_once(const SewerMap& map, const Mission& mission,
+                              const domain::MissionProgress& progress,
+                              const PlannerOptions& options) {
   const SteadyClock steady;
   const Clock& clock = options.clock != nullptr ? *options.clock : steady;
   const double started_s = clock.now_s();
@@ -185,7 +187,8 @@ Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
        .cancel = options.cancel,
        .clock = options.time_limit_s > 0 ? &clock : nullptr,
        .deadline_s = options.time_limit_s > 0 ? started_s + options.time_limit_s
-                                              : std::numeric_limits<double>::infinity()});
+                                              : std::numeric_limits<double>::infinity(),
+       .risk = options.risk});
   if (!compiled.has_value()) return compiled.error();
   const domain::CompiledTask& task = compiled->task();
   // An admissible estimate already beyond the battery proves there is no plan, whatever the
@@ -259,7 +262,9 @@ Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
             outcome);
   }
   outcome.plan = compiled->expand(result.plan);
-  outcome.cost_s = domain::to_seconds(task.real_cost(result.cost));
+  const Cost risk = compiled->risk_cost(result.plan);
+  outcome.cost_s = domain::to_seconds(task.real_cost(result.cost) - risk);
+  outcome.risk_cost_s = domain::to_seconds(risk);
   outcome.dropped = compiled->dropped();
   for (TaskId t : compiled->forgone(result.plan)) {
     outcome.dropped.push_back({t, "not enough battery to do it as well and still end the mission"});
@@ -279,6 +284,35 @@ Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
     outcome.algorithm += ", proven optimal by the exact tour search";
   }
   return outcome;
+}
+
+}  // namespace
+
+Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
+                                 const domain::MissionProgress& progress,
+                                 const PlannerOptions& options) {
+  if (!options.risk.active() || mission.hazards.empty()) {
+    return plan_once(map, mission, progress, options);
+  }
+  const SteadyClock steady;
+  const Clock& clock = options.clock != nullptr ? *options.clock : steady;
+  const double started_s = clock.now_s();
+  Result<PlanOutcome> aware = plan_once(map, mission, progress, options);
+  const bool no_plan = !aware.has_value() && aware.error().code == ErrorCode::kNoPlan;
+  const bool fewer_tasks = aware.has_value() && options.select_goals && !aware->dropped.empty();
+  if (!no_plan && !fewer_tasks) return aware;
+  PlannerOptions blind = options;
+  blind.risk = {};
+  if (options.time_limit_s > 0) {
+    blind.time_limit_s = options.time_limit_s - (clock.now_s() - started_s);
+    if (blind.time_limit_s <= 0) return aware;
+  }
+  Result<PlanOutcome> fallback = plan_once(map, mission, progress, blind);
+  if (!fallback.has_value()) return aware.has_value() ? std::move(aware) : std::move(fallback);
+  if (fewer_tasks && fallback->dropped.size() >= aware->dropped.size()) return aware;
+  fallback->risk_note = no_plan ? "risk-blind: no plan weighing the risks fits the battery"
+                                : "risk-blind: weighing the risks would drop tasks";
+  return fallback;
 }
 
 }  // namespace sewerplan::search

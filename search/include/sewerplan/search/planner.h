@@ -75,6 +75,11 @@ struct PlannerOptions {
   // done and still end the mission, rather than fail when not all can. The plan's dropped tasks
   // say which were left out, and why.
   bool select_goals = false;
+  // Risk-aware planning (domain/compile.h, RiskCosts) where the mission has hazards: routes and
+  // task orders that weigh the expected cost of being stopped. It never costs a task or the
+  // mission: when the risk-aware compile finds no plan, or (with goal selection) its plan does
+  // fewer tasks than a risk-blind one, the risk-blind plan is the answer (PlanOutcome::risk_note).
+  domain::RiskCosts risk;
 };
 
 struct PlanOutcome {
@@ -90,6 +95,10 @@ struct PlanOutcome {
   std::size_t improvements = 0;  // cheaper plans found after the first
   // With goal selection: the tasks left out, in mission order, with the reason.
   std::vector<domain::DroppedTask> dropped;
+  // Risk-aware: the expected cost of stops the plan was chosen with (not in cost_s), and why the
+  // risk-blind plan was taken instead, if it was.
+  double risk_cost_s = 0;
+  std::string risk_note;
 };
 
 // kAuto's choice for `task`; any other algorithm is returned as it is.
