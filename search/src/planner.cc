@@ -297,7 +297,24 @@ Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
   const SteadyClock steady;
   const Clock& clock = options.clock != nullptr ? *options.clock : steady;
   const double started_s = clock.now_s();
-  Result<PlanOutcome> aware = plan_once(map, mission, progress, options);
+  // The expected cost of stops is not energy: the risk-aware search gets a battery larger by as
+  // much as any plan's expected cost can be (each route or inspection at most C, the way out at
+  // most return_s), and its plan must then fit the real battery by its true cost.
+  std::size_t pending = 0;
+  for (bool done : progress.done) pending += done ? 0 : 1;
+  const double allowance_s =
+      options.risk.return_s + options.risk.blockage_s * 2 * static_cast<double>(pending + 1);
+  Mission relaxed = mission;
+  relaxed.profile.battery_wh +=
+      mission.profile.energy_wh(allowance_s) / (1 - mission.battery_reserve_fraction);
+  const double budget_wh =
+      mission.profile.battery_wh * (1 - mission.battery_reserve_fraction) - progress.energy_used_wh;
+  Result<PlanOutcome> aware = plan_once(map, relaxed, progress, options);
+  if (aware.has_value() && aware->energy_wh > budget_wh + 1e-9) {
+    // Too tight for that: weigh the risks within the real battery (the expected cost then takes
+    // battery too, so the plan fits by construction).
+    aware = plan_once(map, mission, progress, options);
+  }
   const bool no_plan = !aware.has_value() && aware.error().code == ErrorCode::kNoPlan;
   const bool fewer_tasks = aware.has_value() && options.select_goals && !aware->dropped.empty();
   if (!no_plan && !fewer_tasks) return aware;

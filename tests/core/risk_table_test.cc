@@ -52,7 +52,7 @@ TEST(RiskTableJson, ErrorsNameTheFileAndPath) {
   Diagnostics d;
   Result<RiskTable> table = read_risk_table_json(text, "t.json", d);
   ASSERT_FALSE(table.has_value());
-  EXPECT_THAT(table.error().message, HasSubstr("t.json:$.rules[1].effect: unknown effect"));
+  EXPECT_THAT(table.error().message, HasSubstr("t.json:$.rules[1].effect: error: unknown effect"));
   EXPECT_THAT(table.error().message, HasSubstr("t.json:$.rules[2].probability"));
   EXPECT_THAT(table.error().message, HasSubstr("t.json:$.rules[3].code"));
   EXPECT_EQ(d.warning_count(), 1U);  // the unknown "colour"

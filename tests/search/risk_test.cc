@@ -105,14 +105,32 @@ TEST(RiskAwarePlanning, TheOnlyWayBackIsTakenWhateverItsRisk) {
   EXPECT_EQ(net.pipes_driven(outcome->plan), (std::vector<std::string>{"OUT_SAFE", "BACK_RISKY"}));
 }
 
-TEST(RiskAwarePlanning, NeverDropsATaskTheBlindPlanDoes) {
+TEST(RiskAwarePlanning, TheExpectedCostDoesNotTakeTheBattery) {
   TwoCorridors net;
   net.mission.closed_pipes.push_back(*net.map.find_pipe("BACK_SAFE"));
   for (Hazard& h : net.mission.hazards) h.probability = 1.0;  // 3600 s expected on the way back
-  // A battery for about 20 minutes: the blind plan (about 110 s) fits, the expected hour does not.
+  // A battery for 20 minutes, far less than the expected hour: the plan still goes the safe way
+  // out and comes back the only way there is.
   net.mission.profile.battery_wh = net.mission.profile.energy_wh(1200);
   const auto start = initial_progress(net.mission, net.map);
+  auto aware = plan_mission(net.map, net.mission, start,
+                            {.select_goals = true, .risk = domain::kDefaultRiskCosts});
+  ASSERT_TRUE(aware.has_value()) << aware.error();
+  EXPECT_TRUE(aware->dropped.empty());
+  EXPECT_TRUE(aware->risk_note.empty());
+  EXPECT_EQ(net.pipes_driven(aware->plan), (std::vector<std::string>{"OUT_SAFE", "BACK_RISKY"}));
+}
+
+TEST(RiskAwarePlanning, NeverDropsATaskOrTheBatteryTheBlindPlanKeeps) {
+  TwoCorridors net;
+  net.mission.closed_pipes.push_back(*net.map.find_pipe("BACK_SAFE"));
+  for (Hazard& h : net.mission.hazards) h.probability = 1.0;
+  const auto start = initial_progress(net.mission, net.map);
   auto blind = plan_mission(net.map, net.mission, start, {.select_goals = true});
+  ASSERT_TRUE(blind.has_value()) << blind.error();
+  // A battery for the short way only: the safe way out (100 s longer) does not fit.
+  net.mission.profile.battery_wh = net.mission.profile.energy_wh(blind->cost_s + 10);
+  blind = plan_mission(net.map, net.mission, start, {.select_goals = true});
   auto aware = plan_mission(net.map, net.mission, start,
                             {.select_goals = true, .risk = domain::kDefaultRiskCosts});
   ASSERT_TRUE(blind.has_value()) << blind.error();
@@ -121,6 +139,10 @@ TEST(RiskAwarePlanning, NeverDropsATaskTheBlindPlanDoes) {
   EXPECT_TRUE(aware->dropped.empty());
   EXPECT_EQ(aware->plan, blind->plan);
   EXPECT_FALSE(aware->risk_note.empty());
+  // Without goal selection the same: the blind plan rather than none.
+  aware = plan_mission(net.map, net.mission, start, {.risk = domain::kDefaultRiskCosts});
+  ASSERT_TRUE(aware.has_value()) << aware.error();
+  EXPECT_EQ(aware->plan, blind->plan);
 }
 
 }  // namespace

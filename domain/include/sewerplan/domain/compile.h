@@ -77,8 +77,9 @@ struct DroppedTask {
 // tasks (backing out, the recovery attempts and the detour), `return_s` on the way from a key to
 // the exit, where a stop may leave no way out at all. So a risky pipe is taken while tasks remain
 // rather than as the way back, and a safe detour wins where it costs less than the expected stop.
-// The expected cost counts against the battery like time (the robot keeps battery for it); the
-// plan's reported cost and energy are without it. Defaults: kDefaultRiskCosts; 0: risk-blind.
+// In the compiled task the expected cost counts against the bound like time (plan_mission gives a
+// risk-aware compile a larger battery, and checks the plan's true cost against the real one);
+// SewerTask::risk_cost() separates it again. Defaults: kDefaultRiskCosts; 0: risk-blind.
 struct RiskCosts {
   double blockage_s = 0;
   double return_s = 0;

@@ -76,9 +76,11 @@ struct PlannerOptions {
   // say which were left out, and why.
   bool select_goals = false;
   // Risk-aware planning (domain/compile.h, RiskCosts) where the mission has hazards: routes and
-  // task orders that weigh the expected cost of being stopped. It never costs a task or the
-  // mission: when the risk-aware compile finds no plan, or (with goal selection) its plan does
-  // fewer tasks than a risk-blind one, the risk-blind plan is the answer (PlanOutcome::risk_note).
+  // task orders that weigh the expected cost of being stopped. The expected cost is not energy:
+  // the risk-aware search gets a battery larger by the most a plan's expected cost can be, and its
+  // plan must fit the real battery by its true cost. It never costs a task or the mission: when
+  // the risk-aware plan does not fit, none is found, or (with goal selection) it does fewer tasks
+  // than a risk-blind one, the risk-blind plan is the answer (PlanOutcome::risk_note).
   domain::RiskCosts risk;
 };
 
