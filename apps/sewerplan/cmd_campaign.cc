@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // sewerplan campaign --map MAP --mission MISSION [--runs N] [--seed S] [--fault-rates R]
 //                    [--jobs J] [--shard I/N] [--only RUN] [--out DIR] [--timeout S] [-q]
+//                    [--condition FILE] [--risk MODE] [--risk-table FILE] [--faults-from-condition]
 // sewerplan campaign merge DIR... -o OUT
 #include <chrono>
 #include <cstdio>
@@ -20,6 +21,7 @@
 #include "sewerplan/core/text_file.h"
 
 #include "command.h"
+#include "condition_options.h"
 #include "motion_options.h"
 #include <unistd.h>
 
@@ -43,6 +45,9 @@ struct CampaignCliOptions {
   bool no_guard = false;
   std::string faults_out;
   MotionOptions motion;
+  std::string condition;
+  RiskOptions risk;
+  bool faults_from_condition = false;
   // merge
   std::vector<std::string> merge_dirs;
   std::string merge_out;
@@ -136,16 +141,34 @@ int run(const CampaignCliOptions& o, Context& c) {
   Result<std::string> map_text = read_text_file(o.map);
   Result<std::string> mission_text = read_text_file(o.mission);
   Diagnostics diagnostics;
-  Result<SewerMap> map =
-      map_text.has_value() ? read_map(o.map, diagnostics) : Result<SewerMap>(map_text.error());
+  Result<std::string> condition_text =
+      o.condition.empty() ? Result<std::string>(std::string()) : read_text_file(o.condition);
+  Result<SewerMap> map = !map_text.has_value() ? Result<SewerMap>(map_text.error())
+                         : !condition_text.has_value()
+                             ? Result<SewerMap>(condition_text.error())
+                             : read_map_with_condition(o.map, o.condition, diagnostics);
   Result<Mission> mission = !map.has_value() ? Result<Mission>(map.error())
                             : !mission_text.has_value()
                                 ? Result<Mission>(mission_text.error())
                                 : read_mission(o.mission, *map, diagnostics);
+  if (mission.has_value()) {
+    // Every policy plans with what the findings close; the hazards are there for the risk-aware
+    // execution and for the obstacles drawn from them (risk-blind planning does not weigh them).
+    RiskOptions risk = o.risk;
+    if (o.faults_from_condition && risk.risk_mode() != RiskMode::kAvoid) risk.mode = "expected";
+    if (Result<void> r = apply_risk(risk, *map, *mission, diagnostics, c.err); !r.has_value()) {
+      mission = r.error();
+    }
+  }
   print_diagnostics(diagnostics, c.err);
   if (!mission.has_value()) {
     if (diagnostics.error_count() == 0) c.err << mission.error().message << '\n';
     return exit_code_for(mission.error());
+  }
+  if (o.faults_from_condition && mission->hazards.empty()) {
+    c.err << "campaign: --faults-from-condition: the condition data has no possible blockage "
+             "(give --condition FILE, or a map with findings; --risk avoid closes them all)\n";
+    return kExitUsage;
   }
   std::string motion_path;
   if (int code = attach_motion(o.motion, o.map, *map, *mission, c.err, &motion_path);
@@ -171,6 +194,18 @@ int run(const CampaignCliOptions& o, Context& c) {
   spec.planner_time_limit_s = o.planner_time_limit_s;
   spec.shard_index = shard->first;
   spec.shard_count = shard->second;
+  if (!o.condition.empty()) {
+    spec.condition_name = o.condition;
+    spec.condition_fingerprint = campaign::fingerprint(*condition_text);
+  }
+  spec.risk = o.risk.mode;
+  spec.faults_from_condition = o.faults_from_condition;
+  if (!o.risk.table.empty()) {
+    // A risk table changes what the findings mean: part of the mission's identity.
+    Result<std::string> table = read_text_file(o.risk.table);
+    spec.mission_fingerprint = campaign::fingerprint(
+        spec.mission_fingerprint + "\nrisk-table:" + (table.has_value() ? *table : ""));
+  }
 
   campaign::CampaignOptions options;
   options.jobs = std::max<std::size_t>(1, o.jobs);
@@ -184,8 +219,7 @@ int run(const CampaignCliOptions& o, Context& c) {
       campaign::run_campaign(*map, *mission, spec, options);
 
   if (o.only && !o.faults_out.empty()) {
-    const campaign::RunSettings settings{
-        .rates = spec.rates, .campaign_seed = spec.seed, .push_allowed = spec.push_allowed};
+    const campaign::RunSettings settings = campaign::run_settings(spec);
     Result<hal::FaultScenario> faults = campaign::run_faults(*map, *mission, settings, *o.only);
     std::ofstream out(o.faults_out);
     if (faults.has_value()) hal::write_faults_json(*faults, *map, out);
@@ -256,6 +290,11 @@ void add_campaign_command(CLI::App& app, Context& context) {
                   "With --only: write the run's hidden faults (for simulate --faults, render)");
   cmd->add_flag("-q,--quiet", options->quiet, "No progress and no summary on the terminal");
   add_motion_options(*cmd, options->motion);
+  add_condition_option(*cmd, options->condition);
+  add_risk_options(*cmd, options->risk);
+  cmd->add_flag("--faults-from-condition", options->faults_from_condition,
+                "Draw hidden obstacles from the condition data too: each possible blockage, with "
+                "its probability, at its offset (docs/campaign.md)");
   CLI::App* merge_cmd =
       cmd->add_subcommand("merge", "Merge the output directories of a sharded campaign");
   merge_cmd->add_option("dirs", options->merge_dirs, "Shard directories")->required();

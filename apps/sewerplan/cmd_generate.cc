@@ -105,6 +105,9 @@ void add_generate_command(CLI::App& app, Context& context) {
   cmd->add_option("--high-step-fraction", o->generator.high_step_fraction,
                   "Share of incoming pipe ends more than 0.30 m above the manhole floor")
       ->capture_default_str();
+  cmd->add_option("--findings-per-km", o->generator.findings_per_km,
+                  "Inspection findings per km of pipe, for risk-aware planning (docs/planning.md)")
+      ->capture_default_str();
   cmd->add_option("--name", o->generator.name,
                   "Map name (default generated-<topology>-<n>-<seed>)");
   cmd->add_option("--out,-o", o->out, "Output map (.json or .sewer)")->required();

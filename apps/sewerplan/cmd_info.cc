@@ -30,6 +30,7 @@ struct InfoOptions {
   bool json = false;
   MotionOptions motion;
   std::string condition;
+  std::string risk_table;
 };
 
 std::map<std::string, std::size_t> findings_by_code(const SewerMap& map) {
@@ -39,15 +40,17 @@ std::map<std::string, std::size_t> findings_by_code(const SewerMap& map) {
 }
 
 // The findings that close a place for this robot, as the planner sees them.
-std::vector<FindingRisk> closing(const SewerMap& map, const RobotProfile& profile) {
-  std::vector<FindingRisk> risks = assess_findings(map, profile, default_risk_table());
+std::vector<FindingRisk> closing(const SewerMap& map, const RobotProfile& profile,
+                                 const RiskTable& table) {
+  std::vector<FindingRisk> risks = assess_findings(map, profile, table);
   std::erase_if(risks, [](const FindingRisk& r) { return r.effect != RiskEffect::kImpassable; });
   return risks;
 }
 
-nlohmann::json closing_json(const SewerMap& map, const RobotProfile& profile) {
+nlohmann::json closing_json(const SewerMap& map, const RobotProfile& profile,
+                            const RiskTable& table) {
   nlohmann::json list = nlohmann::json::array();
-  for (const FindingRisk& r : closing(map, profile)) {
+  for (const FindingRisk& r : closing(map, profile, table)) {
     const Finding& f = map.findings()[r.finding];
     list.push_back({{"pipe", map.pipe(f.pipe).name},
                     {"offset_m", f.offset_m},
@@ -57,7 +60,8 @@ nlohmann::json closing_json(const SewerMap& map, const RobotProfile& profile) {
   return list;
 }
 
-void print_findings(const SewerMap& map, const RobotProfile* profile, std::ostream& out) {
+void print_findings(const SewerMap& map, const RobotProfile* profile, const RiskTable& table,
+                    std::ostream& out) {
   if (map.finding_count() == 0) return;
   out << "findings       " << map.finding_count();
   bool first = true;
@@ -67,7 +71,7 @@ void print_findings(const SewerMap& map, const RobotProfile* profile, std::ostre
   }
   out << '\n';
   if (profile == nullptr) return;
-  const std::vector<FindingRisk> closed = closing(map, *profile);
+  const std::vector<FindingRisk> closed = closing(map, *profile, table);
   out << "closed by findings " << closed.size() << '\n';
   for (const FindingRisk& r : closed) {
     const Finding& f = map.findings()[r.finding];
@@ -140,6 +144,13 @@ int run(const InfoOptions& o, Context& c) {
     return exit_code_for(map.error());
   }
   const MapStatistics stats = map_statistics(*map);
+  Diagnostics table_diagnostics;
+  Result<RiskTable> table = risk_table({.table = o.risk_table}, table_diagnostics);
+  print_diagnostics(table_diagnostics, c.err);
+  if (!table.has_value()) {
+    if (table_diagnostics.error_count() == 0) c.err << table.error().message << '\n';
+    return exit_code_for(table.error());
+  }
   std::optional<RobotProfile> profile;
   std::vector<ManholeId> starts;
   if (!o.profile.empty()) {
@@ -169,18 +180,22 @@ int run(const InfoOptions& o, Context& c) {
     if (int code = attach_motion(o.motion, o.map, *map, with_motion, c.err); code != kExitOk) {
       return code;
     }
-    report = domain::analyse_driveability(*map, *profile, starts, with_motion.passage_motion.get());
+    // What the findings close, as plan closes it (the default risk mode).
+    const std::vector<Blockage> closures =
+        impassable_blockages(*map, assess_findings(*map, *profile, *table));
+    report = domain::analyse_driveability(*map, *profile, starts, with_motion.passage_motion.get(),
+                                          closures);
   }
   if (o.json) {
     nlohmann::json j = info_json(*map, stats);
     if (report) {
       j["driveability"] = driveability_json(*report, *map, *profile);
-      j["driveability"]["closed_by_findings"] = closing_json(*map, *profile);
+      j["driveability"]["closed_by_findings"] = closing_json(*map, *profile, *table);
     }
     c.out << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
   } else {
     print_info(*map, stats, c.out);
-    print_findings(*map, profile ? &*profile : nullptr, c.out);
+    print_findings(*map, profile ? &*profile : nullptr, *table, c.out);
     if (report) print_driveability(*report, *map, *profile, c.out);
   }
   return kExitOk;
@@ -206,6 +221,9 @@ void add_info_command(CLI::App& app, Context& context) {
                   "map's exits, or the largest connected part if it has none)");
   cmd->add_flag("--json", options->json, "Print the summary as JSON");
   add_condition_option(*cmd, options->condition);
+  cmd->add_option("--risk-table", options->risk_table,
+                  "The risk table that decides what the findings close (JSON, "
+                  "docs/formats/risk-table.md); default: the built-in one");
   cmd->callback([options, &context] { context.exit_code = run(*options, context); });
 }
 

@@ -11,6 +11,7 @@
 #include "sewerplan/core/text_file.h"
 #include "sewerplan/domain/plan_json.h"
 #include "sewerplan/domain/plan_text.h"
+#include "sewerplan/domain/route_risk.h"
 #include "sewerplan/domain/validator.h"
 #include "sewerplan/search/planner.h"
 
@@ -35,7 +36,7 @@ struct PlanOptions {
   bool quiet = false;
   MotionOptions motion;
   std::string condition;
-  std::string risk = "impassable";
+  RiskOptions risk;
 };
 
 void print_summary(const search::PlanOutcome& o, const domain::ValidationReport& report,
@@ -46,6 +47,24 @@ void print_summary(const search::PlanOutcome& o, const domain::ValidationReport&
       << std::setprecision(3) << o.compile.time_s * 1e3 << " ms (" << o.compile.keys
       << " keys), search " << o.search.time_s * 1e3 << " ms (" << o.search.expanded
       << " expanded)\n";
+}
+
+// Risk-aware planning: the possible blockages the route passes, and the chance of none.
+void print_route_risk(const search::PlanOutcome& o, const SewerMap& map, const Mission& m,
+                      std::ostream& err) {
+  const domain::RouteRisk risk =
+      domain::route_risk(o.plan, map, m, domain::initial_progress(m, map));
+  err << std::fixed << std::setprecision(2) << "risk: the route passes " << risk.passed.size()
+      << " possible blockages; unobstructed run " << risk.unobstructed << "; expected cost of "
+      << "stops " << std::setprecision(1) << o.risk_cost_s << " s";
+  if (!o.risk_note.empty()) err << " (" << o.risk_note << ")";
+  err << '\n';
+  for (const domain::HazardPassed& h : risk.passed) {
+    const Hazard& hazard = m.hazards[h.hazard];
+    err << "  step " << h.step + 1 << ": pipe " << map.pipe(hazard.pipe).name << " at "
+        << std::setprecision(2) << hazard.offset_m << " m, " << hazard.reason << ", p "
+        << hazard.probability << '\n';
+  }
 }
 
 int run(const PlanOptions& o, Context& c) {
@@ -72,18 +91,17 @@ int run(const PlanOptions& o, Context& c) {
   Result<SewerMap> map = read_map_with_condition(o.map, o.condition, diagnostics);
   std::optional<Result<Mission>> mission;
   if (map.has_value()) mission = read_mission(o.mission, *map, diagnostics);
+  std::optional<Error> risk_error;
   if (mission && mission->has_value()) {
-    const RiskMode mode = o.risk == "ignore"  ? RiskMode::kIgnore
-                          : o.risk == "avoid" ? RiskMode::kAvoid
-                                              : RiskMode::kImpassable;
-    if (const std::size_t closed = close_findings(*map, **mission, mode); closed > 0) {
-      c.err << "risk: " << closed << " places closed by inspection findings ("
-            << (mode == RiskMode::kAvoid ? "every risk avoided" : "impassable ones") << ")\n";
+    if (Result<void> r = apply_risk(o.risk, *map, **mission, diagnostics, c.err); !r.has_value()) {
+      risk_error = r.error();
     }
   }
+  options.risk = o.risk.costs();
   print_diagnostics(diagnostics, c.err);
   const Error* load_error = !map.has_value()        ? &map.error()
                             : !mission->has_value() ? &mission->error()
+                            : risk_error            ? &*risk_error
                                                     : nullptr;
   if (load_error != nullptr) {
     if (diagnostics.error_count() == 0) c.err << load_error->message << '\n';
@@ -122,6 +140,7 @@ int run(const PlanOptions& o, Context& c) {
     for (const auto& d : outcome->dropped) {
       c.err << "dropped task '" << m.task(d.task).name << "': " << d.reason << '\n';
     }
+    if (!m.hazards.empty()) print_route_risk(*outcome, *map, m, c.err);
   }
   return kExitOk;
 }
@@ -153,12 +172,7 @@ void add_plan_command(CLI::App& app, Context& context) {
   cmd->add_flag("--quiet,-q", o->quiet, "No summary on standard error");
   add_motion_options(*cmd, o->motion);
   add_condition_option(*cmd, o->condition);
-  cmd->add_option("--risk", o->risk,
-                  "What the inspection findings close (docs/formats/isybau.md, risk table): "
-                  "impassable (the default: what no robot of the profile passes), avoid (every "
-                  "place with a risk), ignore (nothing)")
-      ->check(CLI::IsMember({"ignore", "impassable", "avoid"}))
-      ->capture_default_str();
+  add_risk_options(*cmd, o->risk);
   cmd->callback([o, &context] { context.exit_code = run(*o, context); });
 }
 

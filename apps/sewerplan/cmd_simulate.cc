@@ -2,6 +2,7 @@
 // sewerplan simulate --map MAP --mission MISSION [--faults FILE | --random-faults SEED[,RATE]]
 //                    [--recovery FILE] [--allow-push] [--log FILE] [--learnt FILE] [--quiet]
 //                    [--can slcan:TTY|socketcan:IFACE | --replay CANDUMP.log] [--can-log FILE]
+//                    [--condition FILE] [--risk MODE] [--risk-table FILE]
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -18,6 +19,7 @@
 
 #include "can_link.h"
 #include "command.h"
+#include "condition_options.h"
 #include "motion_options.h"
 #include "sim_setup.h"
 
@@ -36,15 +38,24 @@ struct SimulateOptions {
   bool quiet = false;
   CanLinkOptions can;  // the robot over a CAN bus (docs/can.md)
   MotionOptions motion;
+  std::string condition;
+  RiskOptions risk;
 };
 
 int run(const SimulateOptions& o, Context& c) {
   int exit_code = kExitOk;
   std::optional<SimWorld> world =
-      load_sim_world(o.map, o.mission, o.faults, o.random_faults, c.err, exit_code);
+      load_sim_world(o.map, o.mission, o.faults, o.random_faults, c.err, exit_code, o.condition);
   if (!world) return exit_code;
   const SewerMap& map = world->map;
   Mission& mission = world->mission;
+  Diagnostics risk_diagnostics;
+  const Result<void> risk = apply_risk(o.risk, map, mission, risk_diagnostics, c.err);
+  print_diagnostics(risk_diagnostics, c.err);
+  if (!risk.has_value()) {
+    if (risk_diagnostics.error_count() == 0) c.err << risk.error().message << '\n';
+    return exit_code_for(risk.error());
+  }
   const hal::FaultScenario& faults = world->faults;
   if (int code = attach_motion(o.motion, o.map, map, mission, c.err); code != kExitOk) {
     return code;
@@ -71,7 +82,9 @@ int run(const SimulateOptions& o, Context& c) {
     }
   }
   executor::EventLog log(o.log.empty() ? nullptr : &log_file, o.quiet ? nullptr : &c.out);
-  executor::Replanner replanner(map, mission);
+  executor::ReplannerOptions replanner_options;
+  replanner_options.planner.risk = o.risk.costs();
+  executor::Replanner replanner(map, mission, replanner_options);
   if (!o.learnt.empty() && std::filesystem::exists(o.learnt)) {
     Diagnostics d;
     Result<executor::Learnt> learnt = executor::read_learnt(o.learnt, map, d);
@@ -139,6 +152,8 @@ void add_simulate_command(CLI::App& app, Context& context) {
   faults->excludes(can)->excludes(replay);
   random->excludes(can)->excludes(replay);
   add_motion_options(*cmd, options->motion);
+  add_condition_option(*cmd, options->condition);
+  add_risk_options(*cmd, options->risk);
   cmd->callback([options, &context] { context.exit_code = run(*options, context); });
 }
 

@@ -4,7 +4,6 @@
 #include <CLI/CLI.hpp>
 
 #include "sewerplan/core/condition.h"
-#include "sewerplan/core/condition_risk.h"
 #include "sewerplan/core/map_io.h"
 
 namespace sewerplan::cli {
@@ -22,9 +21,44 @@ Result<SewerMap> read_map_with_condition(const std::string& map, const std::stri
   return read_condition(std::move(*read), condition, diagnostics);
 }
 
-std::size_t close_findings(const SewerMap& map, Mission& mission, RiskMode mode) {
+RiskMode RiskOptions::risk_mode() const {
+  if (mode == "ignore") return RiskMode::kIgnore;
+  if (mode == "avoid") return RiskMode::kAvoid;
+  if (mode == "expected") return RiskMode::kExpected;
+  return RiskMode::kImpassable;
+}
+
+domain::RiskCosts RiskOptions::costs() const {
+  return risk_mode() == RiskMode::kExpected ? domain::kDefaultRiskCosts : domain::RiskCosts{};
+}
+
+void add_risk_options(CLI::App& command, RiskOptions& options) {
+  command
+      .add_option("--risk", options.mode,
+                  "What the inspection findings mean for planning (docs/planning.md, risk-aware "
+                  "planning): impassable (the default: close what no robot of the profile "
+                  "passes), avoid (close every place with a risk), expected (close the "
+                  "impassable ones, weigh the expected cost of the possible blockages), ignore")
+      ->check(CLI::IsMember({"ignore", "impassable", "avoid", "expected"}))
+      ->capture_default_str();
+  command.add_option("--risk-table", options.table,
+                     "The risk table (JSON, docs/formats/risk-table.md); default: the built-in "
+                     "one (info --risk-table-out writes it)");
+}
+
+Result<RiskTable> risk_table(const RiskOptions& options, Diagnostics& diagnostics) {
+  if (options.table.empty()) return default_risk_table();
+  return read_risk_table(options.table, diagnostics);
+}
+
+std::size_t close_findings(const SewerMap& map, Mission& mission, RiskMode mode,
+                           const RiskTable& table) {
   if (mode == RiskMode::kIgnore) return 0;
-  std::vector<FindingRisk> risks = assess_findings(map, mission.profile, default_risk_table());
+  std::vector<FindingRisk> risks = assess_findings(map, mission.profile, table);
+  if (mode == RiskMode::kExpected) {
+    std::vector<Hazard> hazards = blockage_hazards(map, risks);
+    mission.hazards.insert(mission.hazards.end(), hazards.begin(), hazards.end());
+  }
   if (mode == RiskMode::kAvoid) {
     for (FindingRisk& r : risks) {
       if (r.effect != RiskEffect::kNone) r.effect = RiskEffect::kImpassable;
@@ -33,6 +67,22 @@ std::size_t close_findings(const SewerMap& map, Mission& mission, RiskMode mode)
   const std::vector<Blockage> closed = impassable_blockages(map, risks);
   mission.blockages.insert(mission.blockages.end(), closed.begin(), closed.end());
   return closed.size();
+}
+
+Result<void> apply_risk(const RiskOptions& options, const SewerMap& map, Mission& mission,
+                        Diagnostics& diagnostics, std::ostream& err) {
+  Result<RiskTable> table = risk_table(options, diagnostics);
+  if (!table.has_value()) return table.error();
+  const RiskMode mode = options.risk_mode();
+  if (const std::size_t closed = close_findings(map, mission, mode, *table); closed > 0) {
+    err << "risk: " << closed << " places closed by inspection findings ("
+        << (mode == RiskMode::kAvoid ? "every risk avoided" : "impassable ones") << ")\n";
+  }
+  if (!mission.hazards.empty()) {
+    err << "risk: " << mission.hazards.size()
+        << " possible blockages weighed by their expected cost\n";
+  }
+  return {};
 }
 
 }  // namespace sewerplan::cli

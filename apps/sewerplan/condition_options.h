@@ -1,14 +1,18 @@
 // SPDX-License-Identifier: MIT
 // --condition FILE: inspection findings (ISYBAU Zustandsdaten) joined to the map a command reads,
-// and what they close for planning (core/condition.h, core/condition_risk.h).
+// and what they mean for planning: --risk MODE and --risk-table FILE (core/condition.h,
+// core/condition_risk.h, docs/planning.md "Risk-aware planning").
 #pragma once
 
+#include <ostream>
 #include <string>
 
+#include "sewerplan/core/condition_risk.h"
 #include "sewerplan/core/diagnostics.h"
 #include "sewerplan/core/mission.h"
 #include "sewerplan/core/result.h"
 #include "sewerplan/core/sewer_map.h"
+#include "sewerplan/domain/compile.h"
 
 namespace CLI {
 class App;
@@ -22,13 +26,33 @@ void add_condition_option(CLI::App& command, std::string& condition);
 Result<SewerMap> read_map_with_condition(const std::string& map, const std::string& condition,
                                          Diagnostics& diagnostics);
 
-// What planning makes of the findings (plan --risk): kIgnore none; kImpassable (the default)
-// closes the places the default risk table finds impassable for the mission's robot; kAvoid
-// closes every place with a risk at all (impassable, blockage or danger).
-enum class RiskMode { kIgnore, kImpassable, kAvoid };
+// What planning makes of the findings (--risk): kIgnore none; kImpassable (the default) closes
+// the places the risk table finds impassable for the mission's robot; kAvoid closes every place
+// with a risk at all (impassable, blockage or danger); kExpected closes the impassable ones and
+// weighs the others' blockage probabilities (Mission::hazards, domain::RiskCosts).
+enum class RiskMode { kIgnore, kImpassable, kAvoid, kExpected };
 
-// Adds a blockage at every finding `mode` closes; returns how many.
-std::size_t close_findings(const SewerMap& map, Mission& mission,
-                           RiskMode mode = RiskMode::kImpassable);
+struct RiskOptions {
+  std::string mode = "impassable";
+  std::string table;  // a risk table file; empty: the built-in one
+  RiskMode risk_mode() const;
+  // The planner's risk costs: kDefaultRiskCosts for kExpected, none otherwise.
+  domain::RiskCosts costs() const;
+};
+
+// --risk and --risk-table on `command`.
+void add_risk_options(CLI::App& command, RiskOptions& options);
+
+// The table of --risk-table, or the built-in one; problems go to `diagnostics`.
+Result<RiskTable> risk_table(const RiskOptions& options, Diagnostics& diagnostics);
+
+// Adds a blockage at every finding `mode` closes and, for kExpected, a hazard at every possible
+// blockage; returns how many places it closed.
+std::size_t close_findings(const SewerMap& map, Mission& mission, RiskMode mode,
+                           const RiskTable& table);
+
+// risk_table, then close_findings, saying what was closed on `err`; an error for a bad table.
+Result<void> apply_risk(const RiskOptions& options, const SewerMap& map, Mission& mission,
+                        Diagnostics& diagnostics, std::ostream& err);
 
 }  // namespace sewerplan::cli

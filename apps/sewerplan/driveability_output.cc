@@ -60,6 +60,10 @@ void print_driveability(const domain::DriveabilityReport& r, const SewerMap& map
       << r.reachable_length_m << " of " << total_m << " m) from " << r.starts.size()
       << (r.starts.size() == 1 ? " start" : " starts");
   print_names(r.starts, manhole_name, out);
+  if (r.closures.empty()) return;
+  out << "cut off        " << r.cut_off_manholes.size() << " manholes, " << r.cut_off_pipes.size()
+      << " pipes by " << r.closures.size() << " places closed by findings";
+  print_names(r.cut_off_pipes, pipe_name, out);
 }
 
 nlohmann::json driveability_json(const domain::DriveabilityReport& r, const SewerMap& map,
@@ -96,7 +100,11 @@ nlohmann::json driveability_json(const domain::DriveabilityReport& r, const Sewe
           {"reachable",
            {{"manholes", manhole_names(r.reachable_manholes)},
             {"pipes", pipe_names(r.reachable_pipes)},
-            {"length_m", r.reachable_length_m}}}};
+            {"length_m", r.reachable_length_m}}},
+          {"cut_off_by_findings",
+           {{"closures", r.closures.size()},
+            {"manholes", manhole_names(r.cut_off_manholes)},
+            {"pipes", pipe_names(r.cut_off_pipes)}}}};
 }
 
 }  // namespace sewerplan::cli

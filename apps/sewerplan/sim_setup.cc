@@ -8,6 +8,7 @@
 #include "sewerplan/core/map_io.h"
 
 #include "command.h"
+#include "condition_options.h"
 
 namespace sewerplan::cli {
 
@@ -44,9 +45,9 @@ Result<hal::FaultScenario> faults_for(const std::string& faults_file,
 std::optional<SimWorld> load_sim_world(const std::string& map_path, const std::string& mission_path,
                                        const std::string& faults_file,
                                        const std::string& random_faults, std::ostream& err,
-                                       int& exit_code) {
+                                       int& exit_code, const std::string& condition) {
   Diagnostics diagnostics;
-  Result<SewerMap> map = read_map(map_path, diagnostics);
+  Result<SewerMap> map = read_map_with_condition(map_path, condition, diagnostics);
   Result<Mission> mission = map.has_value() ? read_mission(mission_path, *map, diagnostics)
                                             : Result<Mission>(map.error());
   Result<hal::FaultScenario> faults =

@@ -34,10 +34,11 @@ struct SimWorld {
   hal::FaultScenario faults;
 };
 
-// Reads them, printing every problem to `err`; empty with `exit_code` set when one is wrong.
+// Reads them (the map with the condition data of `condition`, if given), printing every problem
+// to `err`; empty with `exit_code` set when one is wrong.
 std::optional<SimWorld> load_sim_world(const std::string& map_path, const std::string& mission_path,
                                        const std::string& faults_file,
                                        const std::string& random_faults, std::ostream& err,
-                                       int& exit_code);
+                                       int& exit_code, const std::string& condition = {});
 
 }  // namespace sewerplan::cli

@@ -158,12 +158,18 @@ RunRecord guarded(const SewerMap& map, const Mission& mission, const RunSettings
 
 }  // namespace
 
+RunSettings run_settings(const CampaignSpec& spec) {
+  return {.rates = spec.rates,
+          .campaign_seed = spec.seed,
+          .push_allowed = spec.push_allowed,
+          .planner_time_limit_s = spec.planner_time_limit_s,
+          .faults_from_condition = spec.faults_from_condition,
+          .risk = spec.risk == "expected" ? domain::kDefaultRiskCosts : domain::RiskCosts{}};
+}
+
 std::vector<RunRecord> run_campaign(const SewerMap& map, const Mission& mission,
                                     const CampaignSpec& spec, const CampaignOptions& options) {
-  const RunSettings settings{.rates = spec.rates,
-                             .campaign_seed = spec.seed,
-                             .push_allowed = spec.push_allowed,
-                             .planner_time_limit_s = spec.planner_time_limit_s};
+  const RunSettings settings = run_settings(spec);
   std::vector<std::size_t> indices;
   if (options.only) {
     indices.push_back(*options.only);

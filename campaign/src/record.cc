@@ -148,6 +148,10 @@ std::string run_json_line(const RunRecord& record) {
     j["baseline"] = execution_json(r->baseline);
     measured["planning_ms"] = planning_json(r->ours);
     measured["baseline_planning_ms"] = planning_json(r->baseline);
+    if (r->risk_aware) {
+      j["risk_aware"] = execution_json(*r->risk_aware);
+      measured["risk_aware_planning_ms"] = planning_json(*r->risk_aware);
+    }
   }
   j["measured"] = measured;
   return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
@@ -200,6 +204,10 @@ Result<RunRecord> parse_run_line(std::string_view line, const std::string& file_
       x.baseline = in.execution(j, "baseline");
       x.ours.planning_times_s = in.times(measured, "planning_ms");
       x.baseline.planning_times_s = in.times(measured, "baseline_planning_ms");
+      if (j.contains("risk_aware")) {
+        x.risk_aware = in.execution(j, "risk_aware");
+        x.risk_aware->planning_times_s = in.times(measured, "risk_aware_planning_ms");
+      }
       r.result = std::move(x);
     }
     return r;
@@ -211,7 +219,9 @@ Result<RunRecord> parse_run_line(std::string_view line, const std::string& file_
 bool CampaignSpec::same_campaign(const CampaignSpec& o) const {
   return map_fingerprint == o.map_fingerprint && mission_fingerprint == o.mission_fingerprint &&
          seed == o.seed && runs == o.runs && rates == o.rates && push_allowed == o.push_allowed &&
-         planner_time_limit_s == o.planner_time_limit_s && shard_count == o.shard_count;
+         planner_time_limit_s == o.planner_time_limit_s && shard_count == o.shard_count &&
+         condition_fingerprint == o.condition_fingerprint && risk == o.risk &&
+         faults_from_condition == o.faults_from_condition;
 }
 
 std::string fingerprint(std::string_view bytes) {
@@ -241,6 +251,12 @@ std::string campaign_json(const CampaignSpec& s) {
            {"permanent", s.rates.permanent_share},  {"transient", s.rates.transient_share}};
   j["push_allowed"] = s.push_allowed;
   if (s.planner_time_limit_s > 0) j["planner_time_limit_s"] = s.planner_time_limit_s;
+  if (!s.condition_name.empty()) {
+    j["condition"] = s.condition_name;
+    j["condition_fingerprint"] = s.condition_fingerprint;
+  }
+  if (s.risk != "impassable") j["risk"] = s.risk;
+  if (s.faults_from_condition) j["faults_from_condition"] = true;
   j["shard"] = Json{{"index", s.shard_index}, {"count", s.shard_count}};
   return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
@@ -275,6 +291,14 @@ Result<CampaignSpec> parse_campaign_json(std::string_view text, const std::strin
     s.push_allowed = in.get<bool>(j, "push_allowed", "$");
     if (j.contains("planner_time_limit_s")) {
       s.planner_time_limit_s = in.get<double>(j, "planner_time_limit_s", "$");
+    }
+    if (j.contains("condition")) {
+      s.condition_name = in.get<std::string>(j, "condition", "$");
+      s.condition_fingerprint = in.get<std::string>(j, "condition_fingerprint", "$");
+    }
+    if (j.contains("risk")) s.risk = in.get<std::string>(j, "risk", "$");
+    if (j.contains("faults_from_condition")) {
+      s.faults_from_condition = in.get<bool>(j, "faults_from_condition", "$");
     }
     const Json& shard = in.at(j, "shard", "$");
     s.shard_index = in.get<std::size_t>(shard, "index", "$.shard");
@@ -314,6 +338,9 @@ std::string reproduce_command(const CampaignSpec& s, std::size_t run) {
       << s.runs << " --seed " << s.seed << " --fault-rates " << format_fault_rates(s.rates)
       << (s.push_allowed ? " --allow-push" : "");
   if (s.planner_time_limit_s > 0) out << " --planner-time-limit " << s.planner_time_limit_s;
+  if (!s.condition_name.empty()) out << " --condition " << s.condition_name;
+  if (s.risk != "impassable") out << " --risk " << s.risk;
+  if (s.faults_from_condition) out << " --faults-from-condition";
   out << " --only " << run;
   return out.str();
 }

@@ -7,6 +7,7 @@
 #include <chrono>
 
 #include "sewerplan/core/clock.h"
+#include "sewerplan/core/rng.h"
 #include "sewerplan/domain/robot_state.h"
 #include "sewerplan/executor/executor.h"
 #include "sewerplan/executor/replanner.h"
@@ -66,9 +67,11 @@ Mission clairvoyant(const Mission& mission, const hal::FaultScenario& faults, bo
 }
 
 Execution execute(const SewerMap& map, const Mission& mission, const hal::FaultScenario& faults,
-                  const RunSettings& settings, executor::ReplannerOptions::Goals goals) {
+                  const RunSettings& settings, executor::ReplannerOptions::Goals goals,
+                  domain::RiskCosts risk = {}) {
   executor::ReplannerOptions replanner_options{.goals = goals};
   replanner_options.planner.time_limit_s = settings.planner_time_limit_s;
+  replanner_options.planner.risk = risk;
   executor::Replanner replanner(map, mission, replanner_options);
   hal::SimRobot robot(map, mission.profile, start_pose(replanner.progress().position), faults);
   executor::ExecutorOptions options;
@@ -209,7 +212,17 @@ Result<hal::FaultScenario> run_faults(const SewerMap& map, const Mission& missio
   o.dangerous_passage_share = r.passage_share;
   o.malfunction_rate_per_hour = r.malfunctions_per_hour;
   o.permanent_malfunction_share = r.permanent_share;
-  return hal::random_faults(map, o);
+  Result<hal::FaultScenario> faults = hal::random_faults(map, o);
+  if (!faults.has_value() || !settings.faults_from_condition) return faults;
+  // Each possible blockage of the condition data stops the robot with its probability: a draw of
+  // its own stream, so the random faults stay those of the same seed without condition data.
+  Rng rng(splitmix64(o.seed ^ 0x5A17C0DE5A17C0DEULL));
+  for (const Hazard& h : mission.hazards) {
+    if (rng.bernoulli(h.probability)) {
+      faults->obstacles.push_back({h.pipe, h.offset_m, hal::ObstacleKind::kPermanent});
+    }
+  }
+  return faults;
 }
 
 Result<RunResult> run_one(const SewerMap& map, const Mission& mission, const RunSettings& settings,
@@ -242,6 +255,10 @@ Result<RunResult> run_one(const SewerMap& map, const Mission& mission, const Run
   r.ours = execute(map, mission, *faults, settings, executor::ReplannerOptions::Goals::kReselect);
   r.baseline =
       execute(map, mission, *faults, settings, executor::ReplannerOptions::Goals::kPaperBaseline);
+  if (settings.risk.active()) {
+    r.risk_aware = execute(map, mission, *faults, settings,
+                           executor::ReplannerOptions::Goals::kReselect, settings.risk);
+  }
   r.could_reach_exit = r.oracle_can_end && !r.ours.disabled;
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   return r;

@@ -138,6 +138,39 @@ bool Summary::clean() const {
          ours.reserve_violations == 0;
 }
 
+namespace {
+
+bool ended(const Execution& e) {
+  return e.outcome == Outcome::kExit || e.outcome == Outcome::kEndPoint;
+}
+
+// Risk-aware planning against ours (risk-blind), on the runs that have it.
+void summarize_risk_aware(const std::vector<const RunResult*>& runs, Summary& s) {
+  std::vector<RunResult> aware;
+  for (const RunResult* r : runs) {
+    if (!r->risk_aware) continue;
+    const Execution& a = *r->risk_aware;
+    if (a.tasks > r->ours.tasks) {
+      ++s.risk_aware_better;
+    } else if (a.tasks == r->ours.tasks) {
+      ++s.risk_aware_equal;
+    } else {
+      ++s.risk_aware_worse;
+    }
+    if (ended(a) && !ended(r->ours)) ++s.risk_aware_only_ended;
+    if (!ended(a) && ended(r->ours)) ++s.risk_blind_only_ended;
+    aware.push_back(*r);
+    aware.back().ours = a;
+  }
+  if (aware.empty()) return;
+  std::vector<const RunResult*> pointers;
+  for (const RunResult& r : aware) pointers.push_back(&r);
+  s.risk_aware.emplace();
+  figures(pointers, &RunResult::ours, *s.risk_aware);
+}
+
+}  // namespace
+
 Summary summarize(const CampaignSpec& spec, const std::vector<RunRecord>& records) {
   Summary s;
   s.spec = spec;
@@ -168,6 +201,7 @@ Summary summarize(const CampaignSpec& spec, const std::vector<RunRecord>& record
   s.oracle_tasks_mean = runs.empty() ? 0 : oracle / static_cast<double>(runs.size());
   figures(runs, &RunResult::ours, s.ours);
   figures(runs, &RunResult::baseline, s.baseline);
+  summarize_risk_aware(runs, s);
   return s;
 }
 
@@ -201,8 +235,48 @@ void write_summary_json(const Summary& s, std::ostream& out) {
                               {"worse", s.worse_than_baseline}}},
          {"clean", s.clean()},
          {"measured", Json{{"wall_s_total", s.wall_s}}}};
+  if (s.risk_aware) {
+    j["risk_aware"] = policy_json(*s.risk_aware);
+    j["risk_aware_vs_ours"] = Json{{"better", s.risk_aware_better},
+                                   {"equal", s.risk_aware_equal},
+                                   {"worse", s.risk_aware_worse},
+                                   {"only_risk_aware_ended", s.risk_aware_only_ended},
+                                   {"only_ours_ended", s.risk_blind_only_ended}};
+  }
+  if (!s.spec.condition_name.empty()) j["condition"] = s.spec.condition_name;
+  if (s.spec.faults_from_condition) j["faults_from_condition"] = true;
   out << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
 }
+
+namespace {
+
+// Risk-aware against risk-blind planning (ours), on the same faults.
+void write_risk_aware_markdown(const Summary& s, std::ostream& out) {
+  const PolicyFigures& a = *s.risk_aware;
+  const auto ended_runs = [](const PolicyFigures& f) {
+    return f.outcomes[static_cast<std::size_t>(Outcome::kExit)] +
+           f.outcomes[static_cast<std::size_t>(Outcome::kEndPoint)];
+  };
+  out << "\nRisk-aware planning (--risk expected) against ours, which is risk-blind"
+      << (s.spec.faults_from_condition ? ", with obstacles drawn from the condition data" : "")
+      << ":\n\n| | risk-blind (ours) | risk-aware |\n|---|---|---|\n";
+  out << "| tasks done per run (oracle: " << num(s.oracle_tasks_mean) << ") | "
+      << num(s.ours.tasks_mean) << " | " << num(a.tasks_mean) << " |\n";
+  out << "| tasks vs oracle, mean | " << pct(s.ours.vs_oracle_mean) << " | "
+      << pct(a.vs_oracle_mean) << " |\n";
+  out << "| ended at an exit or the end point | " << ended_runs(s.ours) << " | " << ended_runs(a)
+      << " |\n";
+  out << "| could reach an exit but did not | " << s.ours.missed_exits << " | " << a.missed_exits
+      << " |\n";
+  out << "| replans per mission, mean | " << num(s.ours.replans_mean) << " | "
+      << num(a.replans_mean) << " |\n\n";
+  out << "Risk-aware against risk-blind, run by run: " << s.risk_aware_better << " better, "
+      << s.risk_aware_equal << " equal, " << s.risk_aware_worse
+      << " worse (tasks done); only the risk-aware robot ended: " << s.risk_aware_only_ended
+      << " runs, only the risk-blind one: " << s.risk_blind_only_ended << ".\n";
+}
+
+}  // namespace
 
 void write_summary_markdown(const Summary& s, std::ostream& out) {
   const auto outcome = [](const PolicyFigures& f, Outcome o) {
@@ -249,6 +323,7 @@ void write_summary_markdown(const Summary& s, std::ostream& out) {
       << s.equal_to_baseline << " equal, " << s.worse_than_baseline << " worse (tasks done).\n";
   out << "Runs that could reach an exit (oracle): " << s.could_reach_exit << " of " << s.completed
       << "; runs where ours did more than the oracle's plan: " << s.oracle_below_ours << ".\n";
+  if (s.risk_aware) write_risk_aware_markdown(s, out);
   out << "Crashes and hangs: " << s.failed.size() << (s.failed.empty() ? ".\n" : ":\n");
   for (const FailedRun& f : s.failed) {
     out << "- run " << f.run << " (seed " << f.seed << "): " << f.status << ", " << f.detail

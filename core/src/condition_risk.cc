@@ -134,4 +134,17 @@ std::vector<Blockage> impassable_blockages(const SewerMap& map,
   return out;
 }
 
+std::vector<Hazard> blockage_hazards(const SewerMap& map, const std::vector<FindingRisk>& risks) {
+  std::vector<Hazard> out;
+  for (const FindingRisk& r : risks) {
+    if (r.effect != RiskEffect::kBlockage || r.blockage_probability <= 0) continue;
+    const Finding& f = map.findings()[r.finding];
+    out.push_back({.pipe = f.pipe,
+                   .offset_m = f.offset_m,
+                   .probability = r.blockage_probability,
+                   .reason = r.reason});
+  }
+  return out;
+}
+
 }  // namespace sewerplan

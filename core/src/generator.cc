@@ -49,6 +49,9 @@ Result<void> check_options(const GeneratorOptions& options) {
       {options.undrivable_pipe_fraction, "undrivable_pipe_fraction"},
       {options.high_step_fraction, "high_step_fraction"},
   }};
+  if (!(options.findings_per_km >= 0 && options.findings_per_km <= 1000)) {
+    return Error{ErrorCode::kInvalidArgument, "findings_per_km must be from 0 to 1000"};
+  }
   for (const auto& [value, option] : fractions) {
     Result<void> checked = check_fraction(value, option);
     if (!checked.has_value()) return checked;
@@ -287,6 +290,49 @@ std::optional<Topology> topology_from_string(std::string_view name) {
   return std::nullopt;
 }
 
+namespace {
+
+// GeneratorOptions::findings_per_km: random findings, each pipe's number drawn from its length.
+SewerMap add_random_findings(SewerMap map, double per_km, Rng& rng) {
+  struct Kind {
+    const char* code;
+    double weight;
+    bool cross_section;
+  };
+  static constexpr std::array<Kind, 6> kKinds{{{"BBA", 0.30, true},
+                                               {"BBC", 0.25, true},
+                                               {"BBB", 0.15, true},
+                                               {"BAJ", 0.15, false},
+                                               {"BBE", 0.10, true},
+                                               {"BAC", 0.05, false}}};
+  std::vector<FindingRecord> findings;
+  for (const Pipe& pipe : map.pipes()) {
+    const double expected = pipe.length_m / 1000 * per_km;
+    auto count = static_cast<std::size_t>(expected);
+    if (rng.bernoulli(expected - static_cast<double>(count))) ++count;
+    for (std::size_t i = 0; i < count; ++i) {
+      double pick = rng.uniform01();
+      const Kind* kind = &kKinds.back();
+      for (const Kind& k : kKinds) {
+        if (pick < k.weight) {
+          kind = &k;
+          break;
+        }
+        pick -= k.weight;
+      }
+      FindingRecord f{
+          .pipe = pipe.name, .code = kind->code, .station_m = rng.uniform(0.0, pipe.length_m)};
+      if (kind->cross_section) f.quantity1 = std::round(rng.uniform(5.0, 40.0));
+      findings.push_back(std::move(f));
+    }
+  }
+  Diagnostics ignored;  // every finding names a pipe of the map, on it
+  return MapBuilder::add_findings(std::move(map), std::move(findings), line_locator("<generator>"),
+                                  ignored);
+}
+
+}  // namespace
+
 Result<SewerMap> generate_network(const GeneratorOptions& options) {
   Result<void> checked = check_options(options);
   if (!checked.has_value()) return checked.error();
@@ -303,7 +349,10 @@ Result<SewerMap> generate_network(const GeneratorOptions& options) {
   orient_flow(net);
   size_pipes(net, options, pipe_rng);
   choose_exits(net, options.exit_fraction, exit_rng);
-  return build_map(net, options);
+  Rng finding_rng = rng.split();
+  Result<SewerMap> map = build_map(net, options);
+  if (!map.has_value() || options.findings_per_km <= 0) return map;
+  return add_random_findings(std::move(*map), options.findings_per_km, finding_rng);
 }
 
 }  // namespace sewerplan

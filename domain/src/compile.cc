@@ -195,8 +195,10 @@ class SewerTaskCompiler {
     const std::vector<bool>* exits = nullptr;
     if (ends_at_exit_) {
       mark_exits();
-      exits = &exit_node_;
+      // Risk-aware, the way to the exit weighs risks more: its own searches (route_to_exits).
+      if (!options_.risk.active()) exits = &exit_node_;
     }
+    result_.graph_->set_risk_weight(options_.risk.blockage_s);
     // From the start first: only the keys it reaches within the bound take part after.
     auto found = search.run(std::span<const Node>(keys_.data(), 1), targets, bound_,
                             GraphSearch::Direction::kForward, exits);
@@ -226,7 +228,9 @@ class SewerTaskCompiler {
       store_routes(search, a, found);
     }
     result_.statistics_.route_searches = k();
+    result_.graph_->set_risk_weight(options_.risk.return_s);
     if (ends_at_exit_ && !search.interrupted()) route_to_exits(search, targets);
+    result_.graph_->set_risk_weight(0);
   }
 
   void mark_exits() {
@@ -308,8 +312,9 @@ class SewerTaskCompiler {
   }
 
   void build_task();
+  // `risk`: the part of `cost` that is the expected cost of stops (RiskCosts).
   void add_action(std::vector<Fact> pre, std::vector<Fact> eff, Cost cost, std::string name,
-                  std::span<const Node> route, std::optional<PlanStep> step);
+                  std::span<const Node> route, std::optional<PlanStep> step, Cost risk = 0);
   void add_task_actions(std::size_t index, VarId pos);
   std::vector<Fact> task_preconditions(std::size_t index, VarId pos, std::uint32_t key) const;
 
@@ -340,8 +345,9 @@ namespace sewerplan::domain {
 
 void SewerTaskCompiler::add_action(std::vector<Fact> pre, std::vector<Fact> eff, Cost cost,
                                    std::string name, std::span<const Node> route,
-                                   std::optional<PlanStep> step) {
+                                   std::optional<PlanStep> step, Cost risk) {
   builder_.add_action(pre, eff, cost, std::move(name));
+  result_.risk_.push_back(risk);
   if (result_.route_begin_.empty()) result_.route_begin_.push_back(0);
   result_.route_nodes_.insert(result_.route_nodes_.end(), route.begin(), route.end());
   result_.route_begin_.push_back(static_cast<std::uint32_t>(result_.route_nodes_.size()));
@@ -413,11 +419,15 @@ void SewerTaskCompiler::add_task_actions(std::size_t index, VarId pos) {
           const Node finish = graph.pipe_end(spot.pipe, e);
           std::optional<std::uint8_t> finish_end;
           if (keys_[y] != graph.pipe_end(spot.pipe, 1U - e)) finish_end = e;
+          // The inspection drives the whole pipe, past every hazard in it.
+          const Cost risk =
+              graph.risk_cost(spot.pipe, -1.0, pipe.length_m + 1.0, options_.risk.blockage_s);
           add_action(pre, {{var, 1}, {pos, static_cast<std::int32_t>(key_of_.at(finish))}},
                      to_cost(std::abs(at - start_end) / profile.speed_mps +
-                             pipe.length_m / profile.inspection_speed_mps),
+                             pipe.length_m / profile.inspection_speed_mps) +
+                         risk,
                      "inspect " + label + std::to_string(y) + " to end " + std::to_string(e), {},
-                     InspectPipe{spot.pipe, t, finish_end});
+                     InspectPipe{spot.pipe, t, finish_end}, risk);
         }
         break;
       }
@@ -440,9 +450,10 @@ void SewerTaskCompiler::build_task() {
     for (std::uint32_t b = 0; b < k(); ++b) {
       const Cost d = dist_[a * k() + b];
       if (a == b || d > bound_) continue;
+      const auto& route = routes_[a * k() + b];
       add_action({{pos, static_cast<std::int32_t>(a)}}, {{pos, static_cast<std::int32_t>(b)}}, d,
-                 "go key " + std::to_string(a) + " -> " + std::to_string(b), routes_[a * k() + b],
-                 std::nullopt);
+                 "go key " + std::to_string(a) + " -> " + std::to_string(b), route, std::nullopt,
+                 result_.graph_->route_risk(route, options_.risk.blockage_s));
     }
   }
   for (std::size_t i = 0; i < pending_.size(); ++i) {
@@ -475,7 +486,8 @@ void SewerTaskCompiler::build_task() {
   for (std::uint32_t a = 0; ends_at_exit_ && a < k(); ++a) {
     if (exit_dist_[a] > bound_) continue;
     add_action({{pos, static_cast<std::int32_t>(a)}}, {{pos, exit_value}}, exit_dist_[a],
-               "exit from key " + std::to_string(a), exit_routes_[a], std::nullopt);
+               "exit from key " + std::to_string(a), exit_routes_[a], std::nullopt,
+               result_.graph_->route_risk(exit_routes_[a], options_.risk.return_s));
   }
   result_.task_ = std::move(builder_).build();
 }
@@ -485,6 +497,12 @@ Result<SewerTask> compile_sewer_task(const SewerMap& map, const Mission& mission
                                      const CompileOptions& options) {
   SEWER_CHECK(progress.done.size() == mission.tasks.size(), "progress does not fit the mission");
   return SewerTaskCompiler(map, mission, progress, options).run();
+}
+
+Cost SewerTask::risk_cost(std::span<const ActionId> plan) const {
+  Cost total = 0;
+  for (ActionId a : plan) total += risk_[a.index()];
+  return total;
 }
 
 std::vector<TaskId> SewerTask::forgone(std::span<const ActionId> plan) const {

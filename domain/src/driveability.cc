@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 #include "sewerplan/core/map_queries.h"
 #include "sewerplan/core/mission.h"
@@ -104,12 +105,14 @@ std::vector<ManholeId> default_starts(const SewerMap& map) {
 
 DriveabilityReport analyse_driveability(const SewerMap& map, const RobotProfile& profile,
                                         std::span<const ManholeId> starts,
-                                        const PassageMotionTable* motion) {
-  Mission mission;  // no closures: the network and the robot only
+                                        const PassageMotionTable* motion,
+                                        std::span<const Blockage> closures) {
+  Mission mission;  // the network and the robot, and the findings' closures only
   mission.profile = profile;
   // The caller's table, not owned (the aliasing constructor with no owner).
   mission.passage_motion = std::shared_ptr<const PassageMotionTable>(
       std::shared_ptr<const PassageMotionTable>(), motion);
+  mission.blockages.assign(closures.begin(), closures.end());
   detail::PositionGraph graph(map, mission);
   DriveabilityReport report;
   for (PipeId p : map.pipe_ids()) {
@@ -120,6 +123,21 @@ DriveabilityReport analyse_driveability(const SewerMap& map, const RobotProfile&
   check_passages(map, profile, motion, graph, report);
   report.starts.assign(starts.begin(), starts.end());
   find_reachable(map, graph, report);
+  report.closures = mission.blockages;
+  if (!closures.empty()) {
+    // What the closures cut off: the same search without them.
+    mission.blockages.clear();
+    detail::PositionGraph open(map, mission);
+    DriveabilityReport without;
+    without.starts = report.starts;
+    find_reachable(map, open, without);
+    std::set_difference(without.reachable_manholes.begin(), without.reachable_manholes.end(),
+                        report.reachable_manholes.begin(), report.reachable_manholes.end(),
+                        std::back_inserter(report.cut_off_manholes));
+    std::set_difference(without.reachable_pipes.begin(), without.reachable_pipes.end(),
+                        report.reachable_pipes.begin(), report.reachable_pipes.end(),
+                        std::back_inserter(report.cut_off_pipes));
+  }
   return report;
 }
 

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sewerplan/domain/plan_text.h"
+#include "sewerplan/domain/route_risk.h"
 
 #include "object_names.h"
 
@@ -75,6 +76,20 @@ void write_plan_json(const Plan& plan, const ValidationReport& report, const Sew
     add_objects(s, step, map, mission);
     if (i < report.step_costs_s.size()) s["cost_s"] = report.step_costs_s[i];
     j["steps"].push_back(std::move(s));
+  }
+  if (!mission.hazards.empty()) {
+    // Risk-aware planning (route_risk.h): the possible blockages along the route.
+    const RouteRisk risk = route_risk(plan, map, mission, initial_progress(mission, map));
+    json passed = json::array();
+    for (const HazardPassed& h : risk.passed) {
+      const Hazard& hazard = mission.hazards[h.hazard];
+      passed.push_back({{"pipe", name_of(map, hazard.pipe)},
+                        {"offset_m", hazard.offset_m},
+                        {"probability", hazard.probability},
+                        {"reason", hazard.reason},
+                        {"step", h.step + 1}});
+    }
+    j["risk"] = {{"unobstructed_probability", risk.unobstructed}, {"hazards", std::move(passed)}};
   }
   out << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
 }

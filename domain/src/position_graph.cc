@@ -54,6 +54,38 @@ PositionGraph::PositionGraph(const SewerMap& map, const Mission& mission)
   passage_begin_[manholes_] = passages;
   passages_.resize(passages);
   judged_.assign(manholes_, false);
+  for (const Hazard& h : mission.hazards) {
+    if (h.probability > 0) hazards_.push_back(h);
+  }
+  std::sort(hazards_.begin(), hazards_.end(), [](const Hazard& a, const Hazard& b) {
+    return std::tie(a.pipe, a.offset_m) < std::tie(b.pipe, b.offset_m);
+  });
+}
+
+Cost PositionGraph::risk_cost_uncached(PipeId p, double a, double b, double weight_s) const {
+  if (a > b) std::swap(a, b);
+  auto it = std::lower_bound(hazards_.begin(), hazards_.end(), p,
+                             [](const Hazard& h, PipeId id) { return h.pipe < id; });
+  double unobstructed = 1;
+  for (; it != hazards_.end() && it->pipe == p; ++it) {
+    if (it->offset_m > a && it->offset_m < b)
+      unobstructed *= 1 - std::clamp(it->probability, 0.0, 1.0);
+  }
+  return unobstructed < 1 ? to_cost((1 - unobstructed) * weight_s) : 0;
+}
+
+Cost PositionGraph::route_risk(std::span<const Node> route, double weight_s) const {
+  Cost total = 0;
+  for (std::size_t i = 0; i + 1 < route.size(); ++i) {
+    const std::optional<PipeId> p = pipe_of(route[i]);
+    if (!p || pipe_of(route[i + 1])) continue;  // only DRIVE_PIPE_TO_MANHOLE crosses a pipe
+    const RobotPosition to = position(route[i + 1]);
+    const auto* slot = std::get_if<AtSlot>(&to);
+    if (slot == nullptr) continue;
+    const Slot& s = map_.slot(slot->manhole, slot->slot);
+    total += risk_cost(*p, offset_of(route[i]), end_offset_m(map_.pipe(*p), s.pipe_end), weight_s);
+  }
+  return total;
 }
 
 Node PositionGraph::spot(PipeId pipe, double offset_m) {

@@ -20,6 +20,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "sewerplan/core/mission.h"
@@ -81,6 +82,16 @@ class PositionGraph {
     return passage(m, from, to);
   }
   Cost drive_cost(double distance_m) const;
+  // Risk-aware planning (compile.h, RiskCosts): driving pipe p from offset a to b, past hazards
+  // (Mission::hazards) strictly between them that stop the robot with probabilities p_i, costs
+  // (1 - prod(1 - p_i)) x `weight_s` more. 0 without hazards or weight.
+  Cost risk_cost(PipeId p, double a, double b, double weight_s) const {
+    return weight_s > 0 && !hazards_.empty() ? risk_cost_uncached(p, a, b, weight_s) : 0;
+  }
+  // The weight the moves' costs carry (0: none, the default); the compiler sets it per search.
+  void set_risk_weight(double weight_s) { risk_weight_s_ = weight_s; }
+  // The risk cost that `route` (nodes, as routes are stored) carries at `weight_s`.
+  Cost route_risk(std::span<const Node> route, double weight_s) const;
 
   // f(to, cost) for each move out of `from`.
   template <class F>
@@ -107,6 +118,7 @@ class PositionGraph {
     if (!judged_[m.index()]) judge_manhole(m);
     return passages_[passage_begin_[m.index()] + std::size_t{from.value()} * count + to.value()];
   }
+  Cost risk_cost_uncached(PipeId p, double a, double b, double weight_s) const;
   bool judge_passage_uncached(ManholeId m, SlotIndex from, SlotIndex to, Cost* cost) const;
   void judge_manhole(ManholeId m) const;
   template <class F>
@@ -128,6 +140,8 @@ class PositionGraph {
   mutable std::vector<Cost> passages_;
   mutable std::vector<bool> judged_;
   std::vector<Spot> spots_;
+  std::vector<Hazard> hazards_;  // the mission's, sorted by pipe and offset
+  double risk_weight_s_ = 0;
   std::vector<std::pair<PipeId, std::vector<Node>>> spots_by_pipe_;  // sorted by pipe
 };
 
@@ -140,7 +154,7 @@ void PositionGraph::drive_out_of_pipe(Node, PipeId p, double x, F&& f) const {
     const double offset = e == 0 ? 0.0 : pipe.length_m;
     if (blocked_between(p, x, offset)) continue;
     f(at_slot(*pipe.ends[e].manhole, pipe.ends[e].slot),
-      drive_cost(x > offset ? x - offset : offset - x));
+      drive_cost(x > offset ? x - offset : offset - x) + risk_cost(p, x, offset, risk_weight_s_));
   }
 }
 
@@ -180,12 +194,14 @@ void PositionGraph::for_each_predecessor(Node to, F&& f) const {
     for (std::size_t e = 0; e < 2; ++e) {
       const double x = e == 0 ? 0.0 : pipe.length_m;
       if (blocked_between(slot.pipe, x, target)) continue;
-      f(pipe_end(slot.pipe, e), drive_cost(x > target ? x - target : target - x));
+      f(pipe_end(slot.pipe, e), drive_cost(x > target ? x - target : target - x) +
+                                    risk_cost(slot.pipe, x, target, risk_weight_s_));
     }
     for (Node n : extra_spots_in(slot.pipe)) {
       const double x = offset_of(n);
       if (blocked_between(slot.pipe, x, target)) continue;
-      f(n, drive_cost(x > target ? x - target : target - x));
+      f(n, drive_cost(x > target ? x - target : target - x) +
+               risk_cost(slot.pipe, x, target, risk_weight_s_));
     }
     return;
   }

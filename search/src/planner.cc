@@ -5,6 +5,7 @@
 #include <cmath>
 #include <iomanip>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "sewerplan/search/best_first_search.h"
@@ -173,9 +174,11 @@ void improve(const domain::CompiledTask& task, const StopCondition& stop, const 
 
 }  // namespace
 
-Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
-                                 const domain::MissionProgress& progress,
-                                 const PlannerOptions& options) {
+namespace {
+
+Result<PlanOutcome> plan_once(const SewerMap& map, const Mission& mission,
+                              const domain::MissionProgress& progress,
+                              const PlannerOptions& options) {
   const SteadyClock steady;
   const Clock& clock = options.clock != nullptr ? *options.clock : steady;
   // The time limit bounds the compile and the search together.
@@ -184,7 +187,8 @@ Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
                            : StopCondition();
   if (options.cancel != nullptr) stop.with_cancel(*options.cancel);
   Result<domain::SewerTask> compiled = domain::compile_sewer_task(
-      map, mission, progress, {.select_goals = options.select_goals, .stop = stop});
+      map, mission, progress,
+      {.select_goals = options.select_goals, .stop = stop, .risk = options.risk});
   if (!compiled.has_value()) return compiled.error();
   const domain::CompiledTask& task = compiled->task();
   // An admissible estimate already beyond the battery proves there is no plan, whatever the
@@ -252,7 +256,9 @@ Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
             outcome);
   }
   outcome.plan = compiled->expand(result.plan);
-  outcome.cost_s = domain::to_seconds(task.real_cost(result.cost));
+  const Cost risk = compiled->risk_cost(result.plan);
+  outcome.cost_s = domain::to_seconds(task.real_cost(result.cost) - risk);
+  outcome.risk_cost_s = domain::to_seconds(risk);
   outcome.dropped = compiled->dropped();
   for (TaskId t : compiled->forgone(result.plan)) {
     outcome.dropped.push_back({t, "not enough battery to do it as well and still end the mission"});
@@ -272,6 +278,61 @@ Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
     outcome.algorithm += ", proven optimal by the exact tour search";
   }
   return outcome;
+}
+
+}  // namespace
+
+Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
+                                 const domain::MissionProgress& progress,
+                                 const PlannerOptions& options) {
+  if (!options.risk.active() || mission.hazards.empty()) {
+    return plan_once(map, mission, progress, options);
+  }
+  const SteadyClock steady;
+  const Clock& clock = options.clock != nullptr ? *options.clock : steady;
+  const double started_s = clock.now_s();
+  // The expected cost of stops is not energy: the risk-aware search gets a battery larger by as
+  // much as any plan's expected cost can be (each route or inspection at most C, the way out at
+  // most return_s), and its plan must then fit the real battery by its true cost.
+  std::size_t pending = 0;
+  for (bool done : progress.done) pending += done ? 0 : 1;
+  const double allowance_s =
+      options.risk.return_s + options.risk.blockage_s * 2 * static_cast<double>(pending + 1);
+  Mission relaxed = mission;
+  relaxed.profile.battery_wh +=
+      mission.profile.energy_wh(allowance_s) / (1 - mission.battery_reserve_fraction);
+  const double budget_wh =
+      mission.profile.battery_wh * (1 - mission.battery_reserve_fraction) - progress.energy_used_wh;
+  // One time limit bounds every attempt together: each gets what the earlier ones left.
+  const auto time_left = [&](PlannerOptions o) -> std::optional<PlannerOptions> {
+    if (o.time_limit_s <= 0) return o;
+    o.time_limit_s -= clock.now_s() - started_s;
+    if (o.time_limit_s <= 0) return std::nullopt;
+    return o;
+  };
+  Result<PlanOutcome> aware = plan_once(map, relaxed, progress, options);
+  if (aware.has_value() && aware->energy_wh > budget_wh + 1e-9) {
+    // Too tight for that: weigh the risks within the real battery (the expected cost then takes
+    // battery too, so the plan fits by construction).
+    std::optional<PlannerOptions> retry = time_left(options);
+    if (!retry) {
+      return Error{ErrorCode::kSearchLimit,
+                   "time limit reached before a risk-weighed plan fitting the battery"};
+    }
+    aware = plan_once(map, mission, progress, *retry);
+  }
+  const bool no_plan = !aware.has_value() && aware.error().code == ErrorCode::kNoPlan;
+  const bool fewer_tasks = aware.has_value() && options.select_goals && !aware->dropped.empty();
+  if (!no_plan && !fewer_tasks) return aware;
+  std::optional<PlannerOptions> blind = time_left(options);
+  if (!blind) return aware;
+  blind->risk = {};
+  Result<PlanOutcome> fallback = plan_once(map, mission, progress, *blind);
+  if (!fallback.has_value()) return aware.has_value() ? std::move(aware) : std::move(fallback);
+  if (fewer_tasks && fallback->dropped.size() >= aware->dropped.size()) return aware;
+  fallback->risk_note = no_plan ? "risk-blind: no plan weighing the risks fits the battery"
+                                : "risk-blind: weighing the risks would drop tasks";
+  return fallback;
 }
 
 }  // namespace sewerplan::search

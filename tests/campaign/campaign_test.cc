@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -307,6 +308,74 @@ TEST(Campaign, TheSummaryIsWrittenAsJsonMarkdownAndSvg) {
   ASSERT_TRUE(read.has_value()) << read.error().message;
   EXPECT_EQ(read->spec, spec);
   EXPECT_EQ(read->records.size(), 5U);
+}
+
+}  // namespace
+}  // namespace sewerplan::campaign
+
+namespace sewerplan::campaign {
+namespace {
+
+// The AIS mission with a possible blockage (p = 0.4) in the middle of every pipe, as condition
+// data would give.
+Mission with_hazards(const SewerMap& map, Mission mission) {
+  for (PipeId p : map.pipe_ids()) {
+    mission.hazards.push_back({.pipe = p,
+                               .offset_m = map.pipe(p).length_m / 2,
+                               .probability = 0.4,
+                               .reason = "BBA roots"});
+  }
+  return mission;
+}
+
+TEST(Campaign, FaultsFromConditionAreSeededAndTheRiskAwareRunIsRecordedAndSummarized) {
+  const auto ais = testing::load_ais_testbed();
+  const Mission mission = with_hazards(ais.map, ais.mission);
+  CampaignSpec spec = ais_spec(6);
+  spec.rates = {.obstacles_per_km = 0, .danger_per_km = 0, .malfunctions_per_hour = 0};
+  spec.risk = "expected";
+  spec.faults_from_condition = true;
+  const RunSettings settings = run_settings(spec);
+  EXPECT_TRUE(settings.risk.active());
+  std::size_t obstacles = 0;
+  for (std::size_t k = 0; k < spec.runs; ++k) {
+    Result<hal::FaultScenario> a = run_faults(ais.map, mission, settings, k);
+    Result<hal::FaultScenario> b = run_faults(ais.map, mission, settings, k);
+    ASSERT_TRUE(a.has_value() && b.has_value());
+    EXPECT_EQ(*a, *b);
+    for (const hal::Obstacle& o : a->obstacles) {
+      EXPECT_EQ(o.kind, hal::ObstacleKind::kPermanent);
+      EXPECT_EQ(o.offset_m, ais.map.pipe(o.pipe).length_m / 2);
+    }
+    obstacles += a->obstacles.size();
+  }
+  // 0.4 of every pipe, in each of six runs: some, not all.
+  EXPECT_GT(obstacles, 0U);
+  EXPECT_LT(obstacles, 6 * ais.map.pipe_count());
+  // Without condition faults and with no random ones, nothing is hidden.
+  CampaignSpec plain = spec;
+  plain.faults_from_condition = false;
+  EXPECT_TRUE(run_faults(ais.map, mission, run_settings(plain), 0)->obstacles.empty());
+
+  const auto records = run_campaign(ais.map, mission, spec, {.guard = false});
+  for (const RunRecord& r : records) {
+    ASSERT_TRUE(r.result.has_value());
+    ASSERT_TRUE(r.result->risk_aware.has_value());
+    Result<RunRecord> back = parse_run_line(run_json_line(r), "runs.jsonl", r.index + 1);
+    ASSERT_TRUE(back.has_value()) << back.error().message;
+    EXPECT_EQ(run_json_line(*back), run_json_line(r));
+  }
+  const Summary s = summarize(spec, records);
+  ASSERT_TRUE(s.risk_aware.has_value());
+  EXPECT_EQ(s.risk_aware_better + s.risk_aware_equal + s.risk_aware_worse, spec.runs);
+  std::ostringstream md;
+  write_summary_markdown(s, md);
+  EXPECT_NE(md.str().find("Risk-aware planning (--risk expected) against ours"), std::string::npos);
+  // The risk settings are part of the campaign's identity.
+  Result<CampaignSpec> spec_back = parse_campaign_json(campaign_json(spec), "campaign.json");
+  ASSERT_TRUE(spec_back.has_value()) << spec_back.error().message;
+  EXPECT_EQ(*spec_back, spec);
+  EXPECT_FALSE(spec.same_campaign(plain));
 }
 
 }  // namespace

@@ -118,6 +118,24 @@ expect 0 'risk: 5 places closed by inspection findings \(every risk avoided\)' -
   "$isy/street-zustand.xml" --risk avoid --select-goals
 expect 4 '' -- "$sp" plan --map "$isybau" --mission "$tmp/street-mission.json" \
   --condition "$isy/street-zustand.xml" --risk avoid
+# --risk expected: the roots are weighed, not closed, and the route's risk is reported.
+expect 0 'risk: the route passes 1 possible blockages; unobstructed run 0\.70' -- \
+  "$sp" plan --map "$isybau" --mission "$tmp/street-mission.json" \
+  --condition "$isy/street-zustand.xml" --risk expected
+expect 0 '"unobstructed_probability": 0\.7' -- "$sp" plan --map "$isybau" \
+  --mission "$tmp/street-mission.json" --condition "$isy/street-zustand.xml" --risk expected --json
+# A risk table from a file: the shipped default gives the same; a bad one names file and path.
+expect 0 'risk: the route passes 1 possible blockages' -- "$sp" plan --map "$isybau" \
+  --mission "$tmp/street-mission.json" --condition "$isy/street-zustand.xml" --risk expected \
+  --risk-table "$src/datasets/condition/default-risk-table.json"
+echo '{"format": "sewerplan-risk-table", "version": 1, "rules": [{"code": "BBA", "effect": "x"}]}' \
+  > "$tmp/bad-table.json"
+expect 1 'bad-table.json:\$\.rules\[0\]\.effect: .*unknown effect' -- "$sp" plan --map "$isybau" \
+  --mission "$tmp/street-mission.json" --condition "$isy/street-zustand.xml" \
+  --risk-table "$tmp/bad-table.json"
+# info --profile shows what the findings cut off.
+expect 0 '"cut_off_by_findings"' -- \
+  "$sp" info --profile makro-plus --json "$isybau" --condition "$isy/street-zustand.xml"
 
 # Generated networks are deterministic and valid.
 expect 0 'wrote' -- "$sp" generate --manholes 500 --seed 3 -o "$tmp/g1.json"

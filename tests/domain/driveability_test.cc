@@ -11,6 +11,7 @@
 #include "sewerplan/core/map_io.h"
 
 #include "support/paths.h"
+#include "support/small_map.h"
 
 namespace sewerplan::domain {
 namespace {
@@ -145,6 +146,38 @@ TEST(DriveabilityMotion, TheMotionTableDecidesThePassagesItHas) {
   EXPECT_EQ(listed(motion, m7)->motion_reason, "too tight");
   EXPECT_FALSE(listed(motion, m7)->turn_exceeded);
   EXPECT_EQ(motion.passages.size(), rules.passages.size() - 1);
+}
+
+}  // namespace
+}  // namespace sewerplan::domain
+
+namespace sewerplan::domain {
+namespace {
+
+// Issue 15: a place an inspection finding closes (a collapse) is closed as the planner closes it,
+// and what it cuts off from the starts is listed.
+TEST(Driveability, FindingClosuresCutOffWhatLiesBehindThem) {
+  const SewerMap map = testing::SmallMap()
+                           .manhole("A", 0, 0, /*exit=*/true)
+                           .manhole("B", 10, 0)
+                           .manhole("C", 20, 0)
+                           .manhole("D", 30, 0)
+                           .pipe("P1", "A", "B")
+                           .pipe("P2", "B", "C")
+                           .pipe("P3", "C", "D")
+                           .build();
+  const RobotProfile profile = *builtin_profile("makro-1.1");
+  const std::vector<ManholeId> starts = default_starts(map);
+  const DriveabilityReport open = analyse_driveability(map, profile, starts);
+  EXPECT_EQ(open.reachable_manholes.size(), 4U);
+  EXPECT_TRUE(open.cut_off_manholes.empty());
+  const std::vector<Blockage> closures{{.pipe = *map.find_pipe("P2"), .offset_m = 5}};
+  const DriveabilityReport closed = analyse_driveability(map, profile, starts, nullptr, closures);
+  EXPECT_EQ(closed.closures, closures);
+  EXPECT_THAT(closed.cut_off_manholes, ElementsAre(*map.find_manhole("C"), *map.find_manhole("D")));
+  // P2 is still driven up to the collapse; P3 lies wholly behind it.
+  EXPECT_THAT(closed.cut_off_pipes, ElementsAre(*map.find_pipe("P3")));
+  EXPECT_EQ(closed.reachable_manholes.size(), 2U);
 }
 
 }  // namespace

@@ -49,6 +49,10 @@ struct CampaignOptions {
   std::map<std::size_t, InjectedFault> inject;
 };
 
+// What each run of `spec` is set to: its rates, seed, limits, and the risk settings (a `risk` of
+// "expected" adds the risk-aware execution with domain::kDefaultRiskCosts).
+RunSettings run_settings(const CampaignSpec& spec);
+
 // The runs of `spec`'s shard (or options.only), in index order.
 std::vector<RunRecord> run_campaign(const SewerMap& map, const Mission& mission,
                                     const CampaignSpec& spec, const CampaignOptions& options);

@@ -57,6 +57,13 @@ struct CampaignSpec {
   FaultRates rates;
   bool push_allowed = false;
   double planner_time_limit_s = 0;  // RunSettings::planner_time_limit_s
+  // Condition data (--condition), as given and by fingerprint; what the findings mean (--risk:
+  // "impassable", "avoid", "expected", "ignore"); RunSettings::faults_from_condition. Written
+  // only when not the defaults, so campaigns without condition data read as before.
+  std::string condition_name;
+  std::string condition_fingerprint;
+  std::string risk = "impassable";
+  bool faults_from_condition = false;
   std::size_t shard_index = 0;  // this directory holds the runs with index % shard_count == index
   std::size_t shard_count = 1;
   friend bool operator==(const CampaignSpec&, const CampaignSpec&) = default;

@@ -36,6 +36,7 @@
 #include "sewerplan/core/mission.h"
 #include "sewerplan/core/result.h"
 #include "sewerplan/core/sewer_map.h"
+#include "sewerplan/domain/compile.h"
 #include "sewerplan/executor/executor.h"
 #include "sewerplan/hal/fault_scenario.h"
 
@@ -65,6 +66,13 @@ struct RunSettings {
   // none); not the oracle's. Measured on the wall clock, so a limit some plans reach makes runs
   // depend on the machine.
   double planner_time_limit_s = 0;
+  // Hidden obstacles drawn from the inspection findings too (Mission::hazards): each possible
+  // blockage becomes a permanent obstacle at its offset with its probability, on top of the
+  // random faults of `rates` (docs/campaign.md, "Faults from condition data").
+  bool faults_from_condition = false;
+  // Risk-aware planning (domain::RiskCosts): when active, a fourth execution, the default
+  // Replanner planning with these costs (RunResult::risk_aware), on the same faults.
+  domain::RiskCosts risk;
 };
 
 // The run's own seed: splitmix64 of the campaign seed and the index.
@@ -121,11 +129,13 @@ struct RunResult {
   bool could_reach_exit = false;
   Execution ours;
   Execution baseline;
-  double wall_s = 0;  // measured
+  std::optional<Execution> risk_aware;  // with RunSettings::risk
+  double wall_s = 0;                    // measured
   friend bool operator==(const RunResult&, const RunResult&) = default;
 };
 
-// Runs the three executions of run `index`. Errors: the faults cannot be drawn (bad rates).
+// Runs the three (with RunSettings::risk, four) executions of run `index`. Errors: the faults
+// cannot be drawn (bad rates).
 Result<RunResult> run_one(const SewerMap& map, const Mission& mission, const RunSettings& settings,
                           std::size_t index);
 

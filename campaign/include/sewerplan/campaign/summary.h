@@ -19,6 +19,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -63,6 +64,15 @@ struct Summary {
   std::size_t better_than_baseline = 0;  // runs, by tasks done
   std::size_t equal_to_baseline = 0;
   std::size_t worse_than_baseline = 0;
+  // With risk-aware planning (RunResult::risk_aware): its figures, and it against ours (which is
+  // risk-blind) run by run: by tasks done, and the runs where only one of them ended at an exit
+  // or the end point.
+  std::optional<PolicyFigures> risk_aware;
+  std::size_t risk_aware_better = 0;
+  std::size_t risk_aware_equal = 0;
+  std::size_t risk_aware_worse = 0;
+  std::size_t risk_aware_only_ended = 0;
+  std::size_t risk_blind_only_ended = 0;
   std::vector<FailedRun> failed;  // crashes and hangs
   double wall_s = 0;              // measured: sum over runs
 

@@ -21,11 +21,15 @@
 #pragma once
 
 #include <cstddef>
+#include <filesystem>
+#include <ostream>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "sewerplan/core/diagnostics.h"
 #include "sewerplan/core/mission.h"
+#include "sewerplan/core/result.h"
 #include "sewerplan/core/robot_profile.h"
 #include "sewerplan/core/sewer_map.h"
 
@@ -59,6 +63,20 @@ struct RiskTable {
 // The defaults of docs/formats/isybau.md.
 RiskTable default_risk_table();
 
+// The kind of a risk table file, and its version (docs/formats/risk-table.md).
+inline constexpr std::string_view kRiskTableJsonFormat = "sewerplan-risk-table";
+inline constexpr int kRiskTableJsonVersion = 1;
+
+// Reads a risk table (plan --risk-table FILE). Each problem is an error naming the file and the
+// JSON path ("table.json:$.rules[2].effect: ..."): an unknown effect, a probability outside 0..1,
+// an empty code; unknown fields are warnings. Never throws.
+Result<RiskTable> read_risk_table_json(std::string_view text, const std::string& file_name,
+                                       Diagnostics& diagnostics);
+// The same for a file; an unreadable file is a kIo error naming it.
+Result<RiskTable> read_risk_table(const std::filesystem::path& path, Diagnostics& diagnostics);
+// The table in the form read_risk_table_json reads (`info --risk-table-out` writes the defaults).
+void write_risk_table_json(const RiskTable& table, std::ostream& out);
+
 struct FindingRisk {
   std::size_t finding = 0;  // index into SewerMap::findings()
   RiskEffect effect = RiskEffect::kNone;
@@ -74,5 +92,9 @@ std::vector<FindingRisk> assess_findings(const SewerMap& map, const RobotProfile
 // The kImpassable findings as mission blockages, in the map's order of findings.
 std::vector<Blockage> impassable_blockages(const SewerMap& map,
                                            const std::vector<FindingRisk>& risks);
+
+// What risk-aware planning needs of the findings: each kBlockage finding as a Hazard (mission.h)
+// with its probability and reason, in the map's order of findings.
+std::vector<Hazard> blockage_hazards(const SewerMap& map, const std::vector<FindingRisk>& risks);
 
 }  // namespace sewerplan

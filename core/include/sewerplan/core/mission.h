@@ -79,6 +79,17 @@ struct Blockage {
   friend bool operator==(const Blockage&, const Blockage&) = default;
 };
 
+// A place in a pipe where the robot may be stopped, with a probability: an inspection finding the
+// risk table (condition_risk.h) rates as a possible blockage. It closes nothing; risk-aware
+// planning (domain/compile.h, RiskCosts) charges the expected cost of meeting it.
+struct Hazard {
+  PipeId pipe{0};
+  double offset_m = 0;     // from the pipe's ends[0]
+  double probability = 0;  // of being stopped there, 0..1
+  std::string reason;      // "BBA roots", for reports
+  friend bool operator==(const Hazard&, const Hazard&) = default;
+};
+
 struct Mission {
   std::string name;
   RobotProfile profile;
@@ -90,6 +101,9 @@ struct Mission {
   std::vector<PipeId> closed_pipes;
   std::vector<ClosedPassage> closed_passages;
   std::vector<Blockage> blockages;
+  // Places that may stop the robot (not part of the mission's file: the CLI adds them from the
+  // map's inspection findings with --risk expected).
+  std::vector<Hazard> hazards;
   // Planned manhole passages (passage_motion.h), when the map has a motion table: they decide
   // which passages are allowed and what they cost, instead of the turn and step rules. Not part
   // of the mission's file; the CLI attaches the table kept beside the map. Shared, because it is

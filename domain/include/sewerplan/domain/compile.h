@@ -70,6 +70,27 @@ struct DroppedTask {
   friend bool operator==(const DroppedTask&, const DroppedTask&) = default;
 };
 
+// Risk-aware planning (plan --risk expected; docs/planning.md, "Risk-aware planning"). A move
+// past hazards (Mission::hazards) that stop the robot with probabilities p_i carries, on top of
+// its time, the expected cost of being stopped: P x C, where P = 1 - prod(1 - p_i) is the chance
+// that one of them stops it and C what a stop costs: `blockage_s` on the way to and between the
+// tasks (backing out, the recovery attempts and the detour), `return_s` on the way from a key to
+// the exit, where a stop may leave no way out at all. So a risky pipe is taken while tasks remain
+// rather than as the way back, and a safe detour wins where it costs less than the expected stop.
+// In the compiled task the expected cost counts against the bound like time (plan_mission gives a
+// risk-aware compile a larger battery, and checks the plan's true cost against the real one);
+// SewerTask::risk_cost() separates it again. Defaults: kDefaultRiskCosts; 0: risk-blind.
+struct RiskCosts {
+  double blockage_s = 0;
+  double return_s = 0;
+  bool active() const { return blockage_s > 0 || return_s > 0; }
+  friend bool operator==(const RiskCosts&, const RiskCosts&) = default;
+};
+
+// 10 minutes for a stop on the way out (about what MAKRO's recovery, backing out and a detour
+// take on the paper's network) and an hour on the way back (the robot may need to be fetched).
+inline constexpr RiskCosts kDefaultRiskCosts{.blockage_s = 600, .return_s = 3600};
+
 struct CompileOptions {
   // Goal selection (the paper, section 4.7: "tick off the highest possible number of goals"):
   // instead of failing, leave out the tasks that cannot be reached (dropped()), and let the
@@ -83,6 +104,8 @@ struct CompileOptions {
   // before each phase and every 1,024 nodes the route searches settle: the compile then fails
   // with kCancelled or kSearchLimit.
   StopCondition stop;
+  // Risk-aware routes and task orders (RiskCosts); risk-blind by default.
+  RiskCosts risk;
 };
 
 class SewerTask {
@@ -101,6 +124,9 @@ class SewerTask {
   const std::vector<DroppedTask>& dropped() const { return dropped_; }
   // With goal selection: the tasks that `plan` forgoes, in mission order (not those dropped()).
   std::vector<TaskId> forgone(std::span<const ActionId> plan) const;
+  // With CompileOptions::risk: the expected cost of stops (RiskCosts) that `plan`'s actions
+  // carry; the plan's true cost is its cost less this. 0 when risk-blind.
+  Cost risk_cost(std::span<const ActionId> plan) const;
 
  private:
   friend class SewerTaskCompiler;
@@ -113,6 +139,7 @@ class SewerTask {
   std::vector<std::uint32_t> route_begin_;
   std::vector<std::uint32_t> route_nodes_;
   std::vector<std::optional<PlanStep>> task_step_;
+  std::vector<Cost> risk_;  // per action: its expected cost of stops (RiskCosts)
   std::vector<DroppedTask> dropped_;
   std::vector<std::pair<ActionId, TaskId>> forgo_actions_;  // sorted by action
 };

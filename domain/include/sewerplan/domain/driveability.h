@@ -14,7 +14,10 @@
 //     is listed once;
 //   - the part of the network the robot reaches when lowered into any of the start manholes:
 //     the manholes it can stand in and the pipes it can drive.
-// Mission closures are not applied: this is about the network and the robot.
+//   - places closed by inspection findings (`closures`: the risk table's impassable findings,
+//     core/condition_risk.h), as the planner closes them: the robot drives up to one, not across;
+//     what it then cannot reach any more is listed as cut off.
+// Other mission closures are not applied: this is about the network and the robot.
 //
 //   DriveabilityReport r = analyse_driveability(map, *builtin_profile("makro-plus"), starts);
 //   std::cout << r.too_narrow.size() << " pipes too narrow, " << r.reachable_pipes.size()
@@ -27,6 +30,7 @@
 #include <string>
 #include <vector>
 
+#include "sewerplan/core/mission.h"
 #include "sewerplan/core/passage_motion.h"
 #include "sewerplan/core/robot_profile.h"
 #include "sewerplan/core/sewer_map.h"
@@ -55,6 +59,9 @@ struct DriveabilityReport {
   std::vector<ManholeId> reachable_manholes;  // in map order
   std::vector<PipeId> reachable_pipes;        // in map order
   double reachable_length_m = 0;
+  std::vector<Blockage> closures;           // as given
+  std::vector<ManholeId> cut_off_manholes;  // reachable but for the closures, in map order
+  std::vector<PipeId> cut_off_pipes;        // reachable but for the closures, in map order
   friend bool operator==(const DriveabilityReport&, const DriveabilityReport&) = default;
 };
 
@@ -67,6 +74,7 @@ std::vector<ManholeId> default_starts(const SewerMap& map);
 // square of their slot count + pipes).
 DriveabilityReport analyse_driveability(const SewerMap& map, const RobotProfile& profile,
                                         std::span<const ManholeId> starts,
-                                        const PassageMotionTable* motion = nullptr);
+                                        const PassageMotionTable* motion = nullptr,
+                                        std::span<const Blockage> closures = {});
 
 }  // namespace sewerplan::domain

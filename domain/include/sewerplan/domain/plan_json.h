@@ -9,7 +9,10 @@
 //    "kind": "drive_pipe_to_manhole", "pipe": "P12", "manhole": "M2", "cost_s": 9.43}, ...]}
 //
 // An invalid plan adds "error" and, when a step failed, "failed_step" (from 1, as in the error);
-// steps after it have no "cost_s". Slots are numbered from 1, as in the paper.
+// steps after it have no "cost_s". Slots are numbered from 1, as in the paper. A mission with
+// hazards (risk-aware planning, route_risk.h) adds "risk": {"unobstructed_probability": 0.72,
+// "hazards": [{"pipe": "P5", "offset_m": 12.5, "probability": 0.45, "reason": "BBA roots",
+// "step": 3}, ...]}, the possible blockages the route passes, in order.
 //
 //   ValidationReport report = validate_plan(plan, map, mission);
 //   write_plan_json(plan, report, map, mission, std::cout);

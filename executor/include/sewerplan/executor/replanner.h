@@ -121,6 +121,10 @@ struct ReplannerOptions {
   // the current plan if it still holds (kFollowPlan; a replay, no search), else the nearest
   // reachable exit (kDegraded), found by one search that neither bounds: it may overshoot the
   // deadline by that search (bench/executor/deadline_bench.cc).
+  // `planner.risk` (domain::RiskCosts, default none) makes every plan and replan risk-aware
+  // where the mission has hazards (Mission::hazards: plan --risk expected, docs/planning.md):
+  // routes and task orders weigh the expected cost of a possible blockage, more on the way back
+  // to the exit. The safe answer (the nearest reachable exit) stays risk-blind: the shortest way.
   search::PlannerOptions planner{.improvement_expansions = 0};
   // Used to time the planning (default: a steady clock).
   const Clock* clock = nullptr;

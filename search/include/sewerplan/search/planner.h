@@ -75,6 +75,13 @@ struct PlannerOptions {
   // done and still end the mission, rather than fail when not all can. The plan's dropped tasks
   // say which were left out, and why.
   bool select_goals = false;
+  // Risk-aware planning (domain/compile.h, RiskCosts) where the mission has hazards: routes and
+  // task orders that weigh the expected cost of being stopped. The expected cost is not energy:
+  // the risk-aware search gets a battery larger by the most a plan's expected cost can be, and its
+  // plan must fit the real battery by its true cost. It never costs a task or the mission: when
+  // the risk-aware plan does not fit, none is found, or (with goal selection) it does fewer tasks
+  // than a risk-blind one, the risk-blind plan is the answer (PlanOutcome::risk_note).
+  domain::RiskCosts risk;
 };
 
 struct PlanOutcome {
@@ -90,6 +97,10 @@ struct PlanOutcome {
   std::size_t improvements = 0;  // cheaper plans found after the first
   // With goal selection: the tasks left out, in mission order, with the reason.
   std::vector<domain::DroppedTask> dropped;
+  // Risk-aware: the expected cost of stops the plan was chosen with (not in cost_s), and why the
+  // risk-blind plan was taken instead, if it was.
+  double risk_cost_s = 0;
+  std::string risk_note;
 };
 
 // kAuto's choice for `task`; any other algorithm is returned as it is.
