@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "sewerplan/executor/event_json.h"
 #include "sewerplan/executor/executor.h"
 #include "sewerplan/hal/fault_scenario.h"
 #include "sewerplan/hal/sim_robot.h"
@@ -51,8 +52,9 @@ std::string run_log(const Scenario& s) {
   ExecutorOptions options;
   options.recovery.push_allowed = s.push_allowed;
   std::ostringstream json;
-  EventLog log(&json);
-  (void)Executor(ais.map, replanner, robot, options, log).run();
+  Executor executor(ais.map, replanner, robot, options);
+  executor.subscribe(json_lines_writer(json));
+  (void)executor.run();
   return json.str();
 }
 
