@@ -245,12 +245,10 @@ EventObserver json_lines_writer(std::ostream& out) {
   };
 }
 
-Result<std::vector<LoggedEvent>> read_event_log_lines(std::string_view text,
-                                                      const std::string& file_name,
-                                                      Diagnostics& diagnostics) {
+std::vector<LoggedEvent> read_event_log_lines(std::string_view text, const std::string& file_name,
+                                              Diagnostics& diagnostics) {
   std::vector<LoggedEvent> events;
   std::size_t line_number = 0;
-  const std::size_t errors_before = diagnostics.error_count();
   while (!text.empty()) {
     ++line_number;
     const std::size_t newline = text.find('\n');
@@ -276,19 +274,19 @@ Result<std::vector<LoggedEvent>> read_event_log_lines(std::string_view text,
     }
     if (event) events.push_back({std::move(*event), line_number});
   }
-  if (diagnostics.error_count() > errors_before) {
-    return Error{ErrorCode::kParse, file_name + ": not an event log"};
-  }
   return events;
 }
 
 Result<std::vector<Event>> read_event_log(std::string_view text, const std::string& file_name,
                                           Diagnostics& diagnostics) {
-  Result<std::vector<LoggedEvent>> lines = read_event_log_lines(text, file_name, diagnostics);
-  if (!lines.has_value()) return lines.error();
+  const std::size_t errors_before = diagnostics.error_count();
+  std::vector<LoggedEvent> lines = read_event_log_lines(text, file_name, diagnostics);
+  if (diagnostics.error_count() > errors_before) {
+    return Error{ErrorCode::kParse, file_name + ": not an event log"};
+  }
   std::vector<Event> events;
-  events.reserve(lines->size());
-  for (LoggedEvent& e : *lines) events.push_back(std::move(e.event));
+  events.reserve(lines.size());
+  for (LoggedEvent& e : lines) events.push_back(std::move(e.event));
   return events;
 }
 

@@ -11,14 +11,11 @@ namespace sewerplan::render {
 Result<EventTrace> read_event_trace(std::string_view text, const std::string& file_name,
                                     const SewerMap& map, const Mission& mission,
                                     Diagnostics& diagnostics) {
-  Result<std::vector<executor::LoggedEvent>> events =
-      executor::read_event_log_lines(text, file_name, diagnostics);
-  if (!events.has_value()) {
-    return Error{ErrorCode::kParse, file_name + ": not an event log of this map and mission"};
-  }
-  EventTrace trace;
   const std::size_t errors_before = diagnostics.error_count();
-  for (const executor::LoggedEvent& logged : *events) {
+  const std::vector<executor::LoggedEvent> events =
+      executor::read_event_log_lines(text, file_name, diagnostics);
+  EventTrace trace;
+  for (const executor::LoggedEvent& logged : events) {
     const std::string where = file_name + ":" + std::to_string(logged.line);
     auto bad = [&](const std::string& what) { diagnostics.error(where, what); };
     std::visit(

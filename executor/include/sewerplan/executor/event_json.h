@@ -42,14 +42,13 @@ EventObserver json_lines_writer(std::ostream& out);
 Result<std::vector<Event>> read_event_log(std::string_view text, const std::string& file_name,
                                           Diagnostics& diagnostics);
 
-// The events read from a log, each with its line, for readers that name lines in their own
-// errors (render's trace).
+// The events of the lines that read, each with its line, for readers that check more and name
+// lines in their own errors (render's trace); every bad line is an error in `diagnostics`.
 struct LoggedEvent {
   Event event;
   std::size_t line = 0;  // from 1
 };
-Result<std::vector<LoggedEvent>> read_event_log_lines(std::string_view text,
-                                                      const std::string& file_name,
-                                                      Diagnostics& diagnostics);
+std::vector<LoggedEvent> read_event_log_lines(std::string_view text, const std::string& file_name,
+                                              Diagnostics& diagnostics);
 
 }  // namespace sewerplan::executor
