@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: MIT
 # Builds the concurrent tests with ThreadSanitizer (gcc) in build/tsan and runs them: the
 # BackgroundReplan tests (a replan on its own thread, cancelled from another; tests/executor/
-# background_replan_test.cc). Only their own test binary (sewerplan_concurrency_tests) and the
+# background_replan_test.cc) and the ExecutorHalt tests (a mission halted from another thread while a
+# job runs; tests/executor/halt_test.cc). Only their own test binary (sewerplan_concurrency_tests) and the
 # libraries under it are built, without OMPL, so that it fits in scripts/test.sh.
 # Fails on the first data race.
 #   bash scripts/tsan.sh
@@ -17,6 +18,6 @@ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   > build/tsan.configure.log
 cmake --build "$build" -j "$jobs" --target sewerplan_concurrency_tests
 TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 \
-  "$build/tests/sewerplan_concurrency_tests" --gtest_filter='BackgroundReplan.*' --gtest_repeat=20 \
+  "$build/tests/sewerplan_concurrency_tests" --gtest_filter='BackgroundReplan.*:ExecutorHalt.*' --gtest_repeat=20 \
   --gtest_brief=1
 echo "== ThreadSanitizer: no data race in the concurrent tests"

@@ -13,6 +13,8 @@
 #include "sewerplan/core/map_io.h"
 #include "sewerplan/core/mission.h"
 #include "sewerplan/core/text_file.h"
+#include "sewerplan/executor/event_json.h"
+#include "sewerplan/executor/event_text.h"
 #include "sewerplan/executor/executor.h"
 #include "sewerplan/hal/fault_scenario.h"
 #include "sewerplan/hal/sim_robot.h"
@@ -81,7 +83,6 @@ int run(const SimulateOptions& o, Context& c) {
       return kExitIo;
     }
   }
-  executor::EventLog log(o.log.empty() ? nullptr : &log_file, o.quiet ? nullptr : &c.out);
   executor::ReplannerOptions replanner_options;
   replanner_options.planner.risk = o.risk.costs();
   executor::Replanner replanner(map, mission, replanner_options);
@@ -106,8 +107,10 @@ int run(const SimulateOptions& o, Context& c) {
   }
   hal::SimRobot sim(map, mission.profile, start_pose(replanner.progress().position), faults);
   hal::Robot& robot = can ? static_cast<hal::Robot&>(can->robot()) : sim;
-  const executor::MissionReport report =
-      executor::Executor(map, replanner, robot, options, log).run();
+  executor::Executor executor(map, replanner, robot, options);
+  if (!o.log.empty()) executor.subscribe(executor::json_lines_writer(log_file));
+  if (!o.quiet) executor.subscribe(executor::readable_writer(c.out));
+  const executor::MissionReport report = executor.run();
   c.out << '\n' << report;
   if (can) can->write_summary(c.err);
   if (!o.learnt.empty()) {

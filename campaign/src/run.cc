@@ -76,9 +76,7 @@ Execution execute(const SewerMap& map, const Mission& mission, const hal::FaultS
   hal::SimRobot robot(map, mission.profile, start_pose(replanner.progress().position), faults);
   executor::ExecutorOptions options;
   options.recovery.push_allowed = settings.push_allowed;
-  executor::EventLog log;
-  const executor::MissionReport report =
-      executor::Executor(map, replanner, robot, options, log).run();
+  const executor::MissionReport report = executor::Executor(map, replanner, robot, options).run();
   Execution e;
   e.tasks = report.tasks_done.size();
   e.end = report.end;

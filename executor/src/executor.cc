@@ -3,7 +3,7 @@
 #include "sewerplan/executor/executor.h"
 
 #include <algorithm>
-#include <array>
+#include <atomic>
 #include <cmath>
 #include <iomanip>
 #include <optional>
@@ -35,37 +35,20 @@ std::vector<std::string> task_names(const Mission& mission, const std::vector<Ta
 
 }  // namespace
 
-namespace {
-
-constexpr std::array<std::pair<MissionReport::BeaconCause, std::string_view>, 6> kBeaconCauses{{
-    {MissionReport::BeaconCause::kNone, "none"},
-    {MissionReport::BeaconCause::kNoExit, "no-exit"},
-    {MissionReport::BeaconCause::kStuck, "stuck"},
-    {MissionReport::BeaconCause::kMalfunction, "malfunction"},
-    {MissionReport::BeaconCause::kLink, "link"},
-    {MissionReport::BeaconCause::kLimit, "limit"},
-}};
-
-}  // namespace
-
-std::string_view to_string(MissionReport::BeaconCause cause) {
-  for (const auto& [c, name] : kBeaconCauses) {
-    if (c == cause) return name;
-  }
-  return "none";
-}
-
-std::optional<MissionReport::BeaconCause> parse_beacon_cause(std::string_view name) {
-  for (const auto& [c, n] : kBeaconCauses) {
-    if (n == name) return c;
-  }
-  return std::nullopt;
-}
-
 std::ostream& operator<<(std::ostream& os, const MissionReport& r) {
   os << std::fixed << std::setprecision(1);
-  os << (r.outcome == MissionReport::Outcome::kEnded ? "mission ended at " : "beacon on: ") << r.end
-     << '\n';
+  switch (r.outcome) {
+    case MissionReport::Outcome::kEnded:
+      os << "mission ended at ";
+      break;
+    case MissionReport::Outcome::kBeacon:
+      os << "beacon on: ";
+      break;
+    case MissionReport::Outcome::kHalted:
+      os << "halted ";
+      break;
+  }
+  os << r.end << '\n';
   os << "tasks done: " << r.tasks_done.size();
   for (std::size_t i = 0; i < r.tasks_done.size(); ++i) {
     os << (i == 0 ? " (" : ", ") << r.tasks_done[i] << (i + 1 == r.tasks_done.size() ? ")" : "");
@@ -84,8 +67,15 @@ std::ostream& operator<<(std::ostream& os, const MissionReport& r) {
 }
 
 Executor::Executor(const SewerMap& map, Replanner& replanner, hal::Robot& robot,
-                   ExecutorOptions options, EventLog& log)
-    : map_(map), replanner_(replanner), robot_(robot), options_(options), log_(log) {}
+                   ExecutorOptions options)
+    : map_(map), replanner_(replanner), robot_(robot), options_(options) {}
+
+void Executor::subscribe(EventObserver observer) { observers_.push_back(std::move(observer)); }
+
+void Executor::halt() {
+  halt_.store(true);
+  robot_.emergency_stop();
+}
 
 class Executor::Run {
  public:
@@ -94,21 +84,24 @@ class Executor::Run {
         replanner_(e.replanner_),
         robot_(e.robot_),
         options_(e.options_),
-        log_(e.log_),
+        observers_(e.observers_),
+        halt_(e.halt_),
         tracker_(e.map_, e.replanner_.progress().position, e.replanner_.heading_end()),
         recovery_(
             e.map_, e.options_.recovery, e.replanner_.mission().profile.speed_mps, tracker_,
             {.execute_job = [this](const Job& job) { return execute_job(job); },
-             .reboot = [this] { return robot_.reboot(); },
-             .log_recovery = [this](std::string_view phase, bool ok) { log_recovery(phase, ok); }}),
+             .reboot = [this] { return reboot(); },
+             .log_recovery = [this](RecoveryPhase phase, bool ok) { log_recovery(phase, ok); }}),
         done_(e.replanner_.progress().done) {}
 
   MissionReport go() {
+    if (halted()) return finish(MissionReport::Outcome::kHalted, "");
     PlanResponse response = replanner_.plan("start");
-    log_plan("plan", response);
+    log_plan(false, response);
     std::optional<Failure> last_failure;
     for (;;) {
       report_.decision = response.decision;
+      if (halted()) return finish(MissionReport::Outcome::kHalted, "");
       if (!has_plan(response.decision)) {
         report_.beacon_cause = beacon_cause(response.decision, last_failure);
         return finish(MissionReport::Outcome::kBeacon, response.reason);
@@ -118,6 +111,7 @@ class Executor::Run {
         return finish(MissionReport::Outcome::kBeacon, "the plan is not valid: " + *invalid);
       }
       std::optional<Replan> replan = execute(response);
+      if (halted()) return finish(MissionReport::Outcome::kHalted, "");
       if (!replan) return finish(MissionReport::Outcome::kEnded, response.end);
       if (report_.replans >= options_.max_replans) {
         report_.beacon_cause = MissionReport::BeaconCause::kLimit;
@@ -129,7 +123,7 @@ class Executor::Run {
       if (replan->failure) log_failure(*replan->failure);
       response = replan->failure ? replanner_.report_failure(*replan->failure)
                                  : replanner_.plan(replan->reason);
-      log_plan("replan", response);
+      log_plan(true, response);
     }
   }
 
@@ -140,6 +134,14 @@ class Executor::Run {
   };
 
   double now() const { return robot_.status().elapsed_s; }
+
+  bool halted() const { return halt_.load(); }
+
+  template <class What>
+  void emit(What what) {
+    const Event event{now(), std::move(what)};
+    for (const EventObserver& observer : observers_) observer(event);
+  }
 
   // Why the Replanner's answer switches the beacon on: a proof that no exit can be reached, or a
   // robot that cannot move, by what stopped it (the robot's words in the last failure).
@@ -172,39 +174,35 @@ class Executor::Run {
     return report.error;
   }
 
-  void log_plan(const char* type, const PlanResponse& r) {
+  void log_plan(bool replan, const PlanResponse& r) {
     std::vector<std::string> dropped;
     for (const auto& d : r.newly_dropped) {
       dropped.push_back(mission().task(d.task).name);
-      log_.add(now(), "task_dropped",
-               {{"task", mission().task(d.task).name}, {"reason", d.reason}});
+      emit(TaskDroppedEvent{mission().task(d.task).name, d.reason});
     }
     report_.planning_times_s.push_back(r.planning_time_s);
-    log_.add(now(), type,
-             {{"reason", r.reason},
-              {"planning_ms", r.planning_time_s * 1000},
-              {"decision", std::string(to_string(r.decision))},
-              {"goals", task_names(mission(), r.goals)},
-              {"dropped", dropped},
-              {"end", r.end},
-              {"steps", static_cast<std::int64_t>(r.plan.steps.size())},
-              {"cost_s", r.cost_s}});
+    emit(PlanEvent{.replan = replan,
+                   .reason = r.reason,
+                   .planning_ms = r.planning_time_s * 1000,
+                   .decision = r.decision,
+                   .goals = task_names(mission(), r.goals),
+                   .dropped = std::move(dropped),
+                   .end = r.end,
+                   .steps = r.plan.steps.size(),
+                   .cost_s = r.cost_s});
   }
 
   // What the Replanner is told: a blocked pipe, a closed passage, or a robot that cannot move.
   void log_failure(const Failure& f) {
-    std::vector<std::pair<std::string, EventValue>> fields{
-        {"kind", std::string(to_string(f.kind))}};
+    FailureEvent event{.kind = f.kind, .detail = f.detail};
     if (f.kind == Failure::Kind::kBlockage || f.kind == Failure::Kind::kDangerInPipe) {
-      fields.emplace_back("pipe", map_.pipe(f.pipe).name);
-      fields.emplace_back("offset_m", f.offset_m);
+      event.where = FailureEvent::InPipe{map_.pipe(f.pipe).name, f.offset_m};
     } else if (f.kind == Failure::Kind::kDangerousPassage) {
-      fields.emplace_back("manhole", map_.manhole(f.manhole).name);
-      fields.emplace_back("from_slot", static_cast<std::int64_t>(to_paper_number(f.from)));
-      fields.emplace_back("to_slot", static_cast<std::int64_t>(to_paper_number(f.to)));
+      event.where = FailureEvent::Passage{map_.manhole(f.manhole).name,
+                                          static_cast<int>(to_paper_number(f.from)),
+                                          static_cast<int>(to_paper_number(f.to))};
     }
-    fields.emplace_back("detail", f.detail);
-    log_.add(now(), "failure", std::move(fields));
+    emit(std::move(event));
   }
 
   // Runs the plan; empty when it was carried out to its end.
@@ -212,18 +210,19 @@ class Executor::Run {
     domain::PlanReplay replay(map_, mission(), planning_start());
     const auto& actions = response.fused.actions;
     for (std::size_t i = 0; i < actions.size(); ++i) {
+      if (halted()) return Replan{std::nullopt, "halted"};
       if (auto low = battery_low(actions, i)) return Replan{std::nullopt, *low};
       const fusion::RobotAction& action = actions[i];
-      log_.add(now(), "action",
-               {{"step", domain::format_step(response.plan.steps[fusion::plan_step(action)], map_,
-                                             mission())},
-                {"kind", std::string(fusion::action_kind(action))},
-                {"duration_s", fusion::duration_s(action)},
-                {"parameters", action_text(action)}});
+      emit(ActionEvent{.step = domain::format_step(response.plan.steps[fusion::plan_step(action)],
+                                                   map_, mission()),
+                       .kind = std::string(fusion::action_kind(action)),
+                       .duration_s = fusion::duration_s(action),
+                       .parameters = action_text(action)});
       for (const Job& job : jobs_for(action)) {
-        if (auto failure = recovery_.run_job(job, action)) {
+        std::optional<Failure> failure = recovery_.run_job(job, action);
+        if (failure || halted()) {
           sync_progress(replay.progress());
-          return Replan{failure, ""};
+          return Replan{failure, failure ? "" : "halted"};
         }
       }
       const domain::PlanStep& step = response.plan.steps[fusion::plan_step(action)];
@@ -236,7 +235,7 @@ class Executor::Run {
         if (!before[t.index()] && replay.done()[t.index()]) {
           report_.tasks_done.push_back(mission().task(t).name);
           done_[t.index()] = true;
-          log_.add(now(), "task_done", {{"task", mission().task(t).name}});
+          emit(TaskDoneEvent{mission().task(t).name});
         }
       }
       if (!agrees(tracker_.position(), replay.position())) {
@@ -316,30 +315,40 @@ class Executor::Run {
     (void)replanner_.update(progress, tracker_.heading_end());
   }
 
+  // Once a halt is requested, recovery goes on to no further job, reboot or event: what it then
+  // makes of the run is not used (the run loop checks halted() after every job).
+  static hal::JobReport halted_report() {
+    return {.error = hal::RobotError{hal::RobotErrorKind::kMalfunction, "halted"}};
+  }
+
   hal::JobReport execute_job(const Job& job) {
+    if (halted()) return halted_report();
     const hal::JobReport r = robot_.execute(job);
     ++report_.jobs;
     tracker_.advance(job, r);
-    std::vector<std::pair<std::string, EventValue>> fields{
-        {"job", detail::job_text(job)}, {"progress_m", r.progress_m}, {"ok", r.ok()}};
-    log_.add(now(), "job", std::move(fields));
+    emit(JobEvent{.job = detail::job_text(job), .progress_m = r.progress_m, .ok = r.ok()});
     if (!r.ok()) {
-      log_.add(now(), "error",
-               {{"kind", std::string(hal::to_string(r.error->kind))},
-                {"reason", r.error->reason},
-                {"where", tracker_.describe()}});
+      emit(ErrorEvent{
+          .kind = r.error->kind, .reason = r.error->reason, .where = tracker_.describe()});
     }
     return r;
   }
 
-  void log_recovery(std::string_view phase, bool ok) {
-    log_.add(now(), "recovery", {{"phase", std::string(phase)}, {"ok", ok}});
+  Result<void> reboot() {
+    if (halted()) return Error{ErrorCode::kCancelled, "halted"};
+    return robot_.reboot();
   }
 
-  MissionReport finish(MissionReport::Outcome outcome, const std::string& end) {
+  void log_recovery(RecoveryPhase phase, bool ok) {
+    if (!halted()) emit(RecoveryEvent{phase, ok});
+  }
+
+  // `end` of a halt is where the robot stopped.
+  MissionReport finish(MissionReport::Outcome outcome, std::string end) {
+    if (outcome == MissionReport::Outcome::kHalted) end = tracker_.describe();
     if (outcome == MissionReport::Outcome::kBeacon) {
       robot_.activate_beacon();
-      log_.add(now(), "beacon", {{"reason", end}});
+      emit(BeaconEvent{end});
     }
     const hal::RobotStatus status = robot_.status();
     const RobotProfile& p = mission().profile;
@@ -353,15 +362,13 @@ class Executor::Run {
     report_.energy_wh = p.battery_wh - status.battery_wh;
     report_.battery_reserve_kept =
         status.battery_wh + 1e-9 >= p.battery_wh * mission().battery_reserve_fraction;
-    log_.add(
-        now(), "mission_end",
-        {{"outcome", std::string(outcome == MissionReport::Outcome::kEnded ? "ended" : "beacon")},
-         {"end", end},
-         {"tasks_done", report_.tasks_done},
-         {"energy_wh", report_.energy_wh},
-         {"replans", static_cast<std::int64_t>(report_.replans)},
-         {"decision", std::string(to_string(report_.decision))},
-         {"beacon_cause", std::string(to_string(report_.beacon_cause))}});
+    emit(MissionEndEvent{.outcome = outcome,
+                         .end = end,
+                         .tasks_done = report_.tasks_done,
+                         .energy_wh = report_.energy_wh,
+                         .replans = report_.replans,
+                         .decision = report_.decision,
+                         .beacon_cause = report_.beacon_cause});
     return report_;
   }
 
@@ -369,7 +376,8 @@ class Executor::Run {
   Replanner& replanner_;
   hal::Robot& robot_;
   const ExecutorOptions& options_;
-  EventLog& log_;
+  const std::vector<EventObserver>& observers_;
+  const std::atomic<bool>& halt_;
   detail::DeadReckoning tracker_;
   detail::StagedRecovery recovery_;
   std::vector<bool> done_;  // per task: done by the robot (or before the start)

@@ -69,7 +69,7 @@ std::optional<Failure> StagedRecovery::run_job(const Job& job, const fusion::Rob
         return Failure{.kind = Failure::Kind::kStuck, .detail = r.error->reason};
       }
       const Result<void> rebooted = host_.reboot();
-      host_.log_recovery(logged_name(RecoveryPhase::kReboot), rebooted.has_value());
+      host_.log_recovery(RecoveryPhase::kReboot, rebooted.has_value());
       if (!rebooted.has_value()) {
         // The robot's words say "reboot failed: why" (hal/robot.h).
         return Failure{.kind = Failure::Kind::kStuck,
@@ -113,7 +113,7 @@ hal::JobReport StagedRecovery::recovery_job(const Job& job) {
   RebootBudget reboots(config_);
   while (!r.ok() && r.error->kind == hal::RobotErrorKind::kMalfunction && reboots.take(r)) {
     const Result<void> rebooted = host_.reboot();
-    host_.log_recovery(logged_name(RecoveryPhase::kReboot), rebooted.has_value());
+    host_.log_recovery(RecoveryPhase::kReboot, rebooted.has_value());
     if (!rebooted.has_value()) break;
     ++cleared_;
     if (auto rest = rest_of(current, r.progress_m)) current = *rest;
@@ -130,7 +130,7 @@ StagedRecovery::Cleared StagedRecovery::clear_blockage(Job rest) {
   // further on, it met another obstacle: that one gets recovery of its own.
   auto retry = [&](const Job& job, RecoveryPhase phase, double back_m) -> std::optional<Cleared> {
     hal::JobReport r = host_.execute_job(job);
-    host_.log_recovery(logged_name(phase), r.ok());
+    host_.log_recovery(phase, r.ok());
     if (r.ok()) return Cleared{Cleared::How::kDone, job, r};
     if (r.error->kind != hal::RobotErrorKind::kBlockage || r.progress_m > back_m + 0.01) {
       return Cleared{Cleared::How::kOtherError, job, std::move(r)};
@@ -159,7 +159,7 @@ StagedRecovery::Cleared StagedRecovery::clear_blockage(Job rest) {
     const std::optional<Job> push_job = push_for(rest);
     if (!push_job) break;  // the robot pushes with its head only
     hal::JobReport push = host_.execute_job(*push_job);
-    host_.log_recovery(logged_name(RecoveryPhase::kPush), push.ok());
+    host_.log_recovery(RecoveryPhase::kPush, push.ok());
     if (push.ok()) return Cleared{Cleared::How::kDone};
     if (push.error->kind != hal::RobotErrorKind::kBlockage) {
       return Cleared{Cleared::How::kOtherError, *push_job, std::move(push)};
@@ -185,7 +185,7 @@ std::optional<Failure> StagedRecovery::danger(const Job& job, const fusion::Robo
   }
   std::optional<Failure> failure = blocked_here(Failure::Kind::kDangerInPipe, job, r.error->reason);
   const hal::JobReport back = host_.execute_job(back_off(job, config_.danger_backoff_m));
-  host_.log_recovery(logged_name(RecoveryPhase::kBackOffToSafety), back.ok());
+  host_.log_recovery(RecoveryPhase::kBackOffToSafety, back.ok());
   return failure;
 }
 
@@ -203,7 +203,7 @@ void StagedRecovery::back_out_of_manhole() {
                            ? Job{DriveBackward{speed_mps_, distance}}
                            : Job{DriveForward{speed_mps_, distance}};
   const hal::JobReport back = host_.execute_job(back_job);
-  host_.log_recovery(logged_name(RecoveryPhase::kBackOutOfManhole), back.ok());
+  host_.log_recovery(RecoveryPhase::kBackOutOfManhole, back.ok());
 }
 
 // A blockage or danger just ahead of the robot in its pipe.

@@ -31,11 +31,11 @@
 
 namespace sewerplan::executor::detail {
 
-// What recovery needs from the run loop: a job sent, logged and tracked; a reboot; a log line.
+// What recovery needs from the run loop: a job sent, logged and tracked; a reboot; an event.
 struct RecoveryHost {
   std::function<hal::JobReport(const Job&)> execute_job;
   std::function<Result<void>()> reboot;
-  std::function<void(std::string_view phase, bool ok)> log_recovery;
+  std::function<void(RecoveryPhase phase, bool ok)> log_recovery;
 };
 
 class StagedRecovery {

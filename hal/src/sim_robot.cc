@@ -131,6 +131,7 @@ std::vector<Obstacle> SimRobot::remaining_obstacles() const {
 }
 
 JobReport SimRobot::execute(const Job& job) {
+  if (stopped_.load()) return finish(failure(RobotErrorKind::kMalfunction, "emergency stop"));
   const std::size_t index = jobs_executed_++;
   for (std::size_t i = 0; i < faults_.malfunctions.size(); ++i) {
     if (malfunction_struck_[i]) continue;
@@ -156,6 +157,7 @@ Result<void> SimRobot::reboot() {
     return Error{ErrorCode::kIo, "reboot failed: " + fault_->reason};
   }
   fault_.reset();
+  stopped_.store(false);
   const double duration_s =
       std::min(options_.reboot_s, profile_.seconds_for(std::max(0.0, status_.battery_wh)));
   JobReport report;

@@ -8,6 +8,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "sewerplan/executor/event_json.h"
 #include "sewerplan/executor/executor.h"
 #include "sewerplan/hal/can/can_robot.h"
 #include "sewerplan/hal/can/candump.h"
@@ -38,9 +39,10 @@ hal::SimPose start_of(const Replanner& replanner) {
 CanRun run_on(const SewerMap& map, const Mission& mission, hal::Robot& robot, ManualClock& clock) {
   Replanner replanner(map, mission, {.clock = &clock});
   std::ostringstream json;
-  EventLog log(&json);
   CanRun run;
-  run.mission = Executor(map, replanner, robot, {}, log).run();
+  Executor executor(map, replanner, robot);
+  executor.subscribe(json_lines_writer(json));
+  run.mission = executor.run();
   std::ostringstream report;
   report << run.mission;
   run.report = report.str();

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "sewerplan/domain/validator.h"
+#include "sewerplan/executor/event_json.h"
 #include "sewerplan/hal/fault_scenario.h"
 #include "sewerplan/hal/sim_robot.h"
 
@@ -41,10 +42,11 @@ SimRun simulate(const SewerMap& map, const Mission& mission, const hal::FaultSce
                       hal::InPipe{start.pipe, start.offset_m, hal::Heading::kTowardsEnd1},
                       scenario);
   std::ostringstream json;
-  EventLog log(&json);
   SimRun run;
-  run.report = Executor(map, replanner, robot, options, log).run();
-  run.events = log.events();
+  Executor executor(map, replanner, robot, options);
+  executor.subscribe(json_lines_writer(json));
+  executor.subscribe([&run](const Event& e) { run.events.push_back(e); });
+  run.report = executor.run();
   run.json_lines = json.str();
   EXPECT_EQ(robot.status().beacon_on, run.report.outcome == MissionOutcome::kBeacon);
   return run;
@@ -52,7 +54,7 @@ SimRun simulate(const SewerMap& map, const Mission& mission, const hal::FaultSce
 
 std::size_t count(const SimRun& run, std::string_view type) {
   std::size_t n = 0;
-  for (const Event& e : run.events) n += e.type == type ? 1U : 0U;
+  for (const Event& e : run.events) n += type_name(e) == type ? 1U : 0U;
   return n;
 }
 

@@ -40,6 +40,7 @@ class FirstDriveStopsShort final : public hal::Robot {
   hal::RobotStatus status() const override { return robot_.status(); }
   Result<void> reboot() override { return robot_.reboot(); }
   void activate_beacon() override { robot_.activate_beacon(); }
+  void emergency_stop() override { robot_.emergency_stop(); }
 
  private:
   hal::Robot& robot_;
@@ -55,12 +56,17 @@ struct GoToP9 {
                       hal::InPipe{std::get<domain::InPipe>(replanner.progress().position).pipe,
                                   std::get<domain::InPipe>(replanner.progress().position).offset_m,
                                   hal::Heading::kTowardsEnd1}};
-  EventLog log;
+  std::vector<Event> events;
+  MissionReport run(hal::Robot& driven) {
+    Executor executor(ais.map, replanner, driven);
+    executor.subscribe([this](const Event& e) { events.push_back(e); });
+    return executor.run();
+  }
 };
 
 TEST(ExecutorIssue14, AMissionEndedAtAnExitHasTheRobotThere) {
   GoToP9 s;
-  const MissionReport report = Executor(s.ais.map, s.replanner, s.robot, {}, s.log).run();
+  const MissionReport report = s.run(s.robot);
   ASSERT_EQ(report.outcome, MissionReport::Outcome::kEnded) << report;
   EXPECT_EQ(report.end, "exit M10") << report;
   EXPECT_EQ(report.tasks_done, (std::vector<std::string>{"end-of-p9"})) << report;
@@ -73,7 +79,7 @@ TEST(ExecutorIssue14, AMissionEndedAtAnExitHasTheRobotThere) {
 TEST(ExecutorIssue14, ARobotThatIsNotWhereThePlanPutsItIsReplannedFromWhereItIs) {
   GoToP9 s;
   FirstDriveStopsShort robot(s.robot);
-  const MissionReport report = Executor(s.ais.map, s.replanner, robot, {}, s.log).run();
+  const MissionReport report = s.run(robot);
   ASSERT_EQ(report.outcome, MissionReport::Outcome::kEnded) << report;
   EXPECT_EQ(report.end, "exit M10") << report;
   EXPECT_EQ(report.replans, 1U) << report;
@@ -82,10 +88,10 @@ TEST(ExecutorIssue14, ARobotThatIsNotWhereThePlanPutsItIsReplannedFromWhereItIs)
   EXPECT_EQ(s.ais.map.manhole(at->manhole).name, "M10");
   // The executor saw it after the first drive and planned again from there.
   bool noticed = false;
-  for (const Event& e : s.log.events()) {
-    if (e.type != "replan") continue;
-    const auto* reason = std::get_if<std::string>(&e.fields.front().second);
-    noticed = noticed || (reason != nullptr && reason->starts_with("the robot is in pipe P12 at"));
+  for (const Event& e : s.events) {
+    const auto* replan = std::get_if<PlanEvent>(&e.what);
+    noticed = noticed || (replan != nullptr && replan->replan &&
+                          replan->reason.starts_with("the robot is in pipe P12 at"));
   }
   EXPECT_TRUE(noticed);
 }

@@ -30,9 +30,7 @@ TEST(ReplannerIssue14, ATaskJustBeyondADangerSpotIsDroppedInsteadOfReplannedFore
   const auto& start = std::get<domain::InPipe>(replanner.progress().position);
   hal::SimRobot robot(ais.map, ais.mission.profile,
                       hal::InPipe{start.pipe, start.offset_m, hal::Heading::kTowardsEnd1}, *faults);
-  std::ostringstream json;
-  EventLog log(&json);
-  const MissionReport report = Executor(ais.map, replanner, robot, {}, log).run();
+  const MissionReport report = Executor(ais.map, replanner, robot).run();
   EXPECT_EQ(report.outcome, MissionReport::Outcome::kEnded) << report;
   EXPECT_LE(report.replans, 3U) << report;
   EXPECT_EQ(report.tasks_done, (std::vector<std::string>{"inspect"})) << report;

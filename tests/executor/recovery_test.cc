@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The staged recovery table (recovery.h): one row per manoeuvre, in the order the stages are
-// tried, and the names the event log's "recovery" events carry are the table's.
+// tried, and the "recovery" events carry the table's stages.
 #include "sewerplan/executor/recovery.h"
 
 #include <set>
@@ -45,22 +45,23 @@ TEST(RecoveryTable, TheBlockageStagesAreTriedInTheTablesOrder) {
   const auto& start = std::get<domain::InPipe>(replanner.progress().position);
   hal::SimRobot robot(ais.map, ais.mission.profile,
                       hal::InPipe{start.pipe, start.offset_m, hal::Heading::kTowardsEnd1}, *faults);
-  EventLog log;
   ExecutorOptions options;
   options.recovery.push_allowed = true;
-  static_cast<void>(Executor(ais.map, replanner, robot, options, log).run());
-  std::vector<std::string> tried;
-  for (const Event& e : log.events()) {
-    if (e.type != "recovery") continue;
-    const std::string phase = std::get<std::string>(e.fields.front().second);
-    if (tried.empty() || tried.back() != phase) tried.push_back(phase);
-  }
-  std::vector<std::string> expected;
+  Executor executor(ais.map, replanner, robot, options);
+  std::vector<RecoveryPhase> tried;
+  executor.subscribe([&](const Event& e) {
+    const auto* recovery = std::get_if<RecoveryEvent>(&e.what);
+    if (recovery != nullptr && (tried.empty() || tried.back() != recovery->phase)) {
+      tried.push_back(recovery->phase);
+    }
+  });
+  static_cast<void>(executor.run());
+  std::vector<RecoveryPhase> expected;
   for (const RecoveryStage& stage : kRecoveryTable) {
-    if (stage.error == hal::RobotErrorKind::kBlockage) expected.emplace_back(stage.logged);
+    if (stage.error == hal::RobotErrorKind::kBlockage) expected.push_back(stage.phase);
   }
   ASSERT_GE(tried.size(), expected.size());
-  EXPECT_EQ(std::vector<std::string>(tried.begin(), tried.begin() + 3), expected);
+  EXPECT_EQ(std::vector<RecoveryPhase>(tried.begin(), tried.begin() + 3), expected);
 }
 
 }  // namespace

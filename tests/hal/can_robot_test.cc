@@ -200,6 +200,24 @@ TEST_P(CanRobotTest, AnEmergencyStopLatchesUntilAReboot) {
   EXPECT_TRUE(robot.execute(jobs_[0]).ok());
 }
 
+TEST_P(CanRobotTest, AnEmergencyStopAskedForIsSentAndHoldsTheRobotUntilAReboot) {
+  auto n = node();
+  CanRobot robot(n->controller_bus(), fast());
+  ASSERT_TRUE(robot.connect().has_value());
+  robot.emergency_stop();  // as Executor::halt() does, from any thread
+  const JobReport stopped = robot.execute(jobs_[0]);
+  ASSERT_FALSE(stopped.ok());
+  EXPECT_EQ(stopped.error->kind, RobotErrorKind::kMalfunction);
+  EXPECT_EQ(stopped.error->reason, "emergency stop");
+  EXPECT_EQ(robot.stats().emergency_stops, 1U);
+  EXPECT_EQ(robot.stats().link_failures, 0U);
+  ASSERT_TRUE(robot.reboot().has_value());
+  EXPECT_TRUE(robot.execute(jobs_[0]).ok());
+  n->stop();
+  EXPECT_EQ(n->node().stats().emergency_stops, 1U);  // it reached the node
+  EXPECT_EQ(n->node().stats().jobs_run, 1U);         // the job asked for while stopped was not sent
+}
+
 TEST_P(CanRobotTest, AFloodOfGarbageIsAMalfunctionThatSaysSo) {
   auto n = node(faults("garbage=5,6,7,8"));
   CanRobotOptions options = fast();

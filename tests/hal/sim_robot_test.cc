@@ -66,6 +66,23 @@ TEST_F(SimRobotTest, DrivesAlongAPipeIntoTheNextManholesMouth) {
   EXPECT_DOUBLE_EQ(r.status().battery_wh, 240 - 50 * 120 / 3600.0);
 }
 
+TEST_F(SimRobotTest, AnEmergencyStopHoldsTheRobotWhereItIsUntilAReboot) {
+  SimRobot r = robot(in_p1());
+  r.emergency_stop();
+  for (int i = 0; i < 2; ++i) {
+    const JobReport stopped = r.execute(kDrive15);
+    ASSERT_FALSE(stopped.ok());
+    EXPECT_EQ(stopped.error->kind, RobotErrorKind::kMalfunction);
+    EXPECT_EQ(stopped.error->reason, "emergency stop");
+    EXPECT_DOUBLE_EQ(stopped.progress_m, 0);
+    EXPECT_EQ(r.pose(), SimPose(in_p1()));
+    EXPECT_DOUBLE_EQ(r.status().elapsed_s, 0);
+  }
+  ASSERT_TRUE(r.reboot().has_value());
+  EXPECT_FALSE(r.emergency_stopped());
+  EXPECT_TRUE(r.execute(kDrive15).ok());
+}
+
 TEST_F(SimRobotTest, ADriveBeyondAManholeStopsAtItsMouthWithoutError) {
   SimRobot r = robot(in_p1());
   JobReport report = r.execute(DriveForward{.speed_mps = 0.3, .distance_m = 100});

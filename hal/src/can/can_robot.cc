@@ -50,7 +50,7 @@ void CanRobot::heartbeat_if_due() {
 
 std::optional<Message> CanRobot::await(double timeout_s,
                                        const std::function<Verdict(const Message&)>& judge,
-                                       std::string& problem, bool& bus_failed) {
+                                       std::string& problem, bool& bus_failed, bool stoppable) {
   const double start_s = clock_->now_s();
   double window_start_s = start_s;
   double waited_s = 0;  // wall time spent in empty receives: bounds the wait under any Clock
@@ -68,6 +68,11 @@ std::optional<Message> CanRobot::await(double timeout_s,
     return false;
   };
   for (;;) {
+    if (stoppable && stop_requested_.load()) {
+      problem = "emergency stop";
+      bus_failed = true;
+      return std::nullopt;
+    }
     const double now_s = clock_->now_s();
     if (now_s - start_s >= options_.job_timeout_s) {
       problem = "no end within the job timeout of " + seconds_text(options_.job_timeout_s);
@@ -157,6 +162,15 @@ JobReport CanRobot::link_failure(const std::string& what, double progress_m) {
   return report;
 }
 
+JobReport CanRobot::stopped(double progress_m) {
+  ++stats_.emergency_stops;
+  static_cast<void>(send(EmergencyStop{StopReason::kController}));
+  JobReport report;
+  report.progress_m = progress_m;
+  report.error = RobotError{RobotErrorKind::kMalfunction, "emergency stop"};
+  return report;
+}
+
 template <class Reply>
 std::optional<Reply> CanRobot::ask(RequestKind kind, double timeout_s, std::string& problem) {
   const std::uint8_t seq = next_seq();
@@ -192,6 +206,7 @@ JobReport CanRobot::execute(const Job& job) {
                                   std::to_string((kMaxDataFrames - 5) / 4)};
     return report;
   }
+  if (stop_requested_.load()) return stopped(0);
   const std::uint8_t seq = next_seq();
   const std::string name = "job " + std::to_string(seq);
   last_bad_input_.clear();
@@ -212,8 +227,8 @@ JobReport CanRobot::execute(const Job& job) {
           const bool ours = (ack != nullptr && ack->seq == seq) || (r != nullptr && r->seq == seq);
           return ours ? Verdict::kTake : Verdict::kIgnore;
         },
-        problem, bus_failed);
-    if (bus_failed) return link_failure(problem, 0);
+        problem, bus_failed, true);
+    if (bus_failed) return stop_requested_.load() ? stopped(0) : link_failure(problem, 0);
     if (!answer) continue;
     if (auto* r = std::get_if<JobResult>(&*answer)) {
       result = std::move(*r);  // the acknowledgement was lost, the result was not
@@ -271,8 +286,10 @@ JobReport CanRobot::execute(const Job& job) {
           }
           return Verdict::kIgnore;
         },
-        problem, bus_failed);
-    if (bus_failed) return link_failure(problem, progress_m);
+        problem, bus_failed, true);
+    if (bus_failed) {
+      return stop_requested_.load() ? stopped(progress_m) : link_failure(problem, progress_m);
+    }
     if (answer) result = std::move(std::get<JobResult>(*answer));
   }
   if (!result) {
@@ -286,6 +303,7 @@ JobReport CanRobot::execute(const Job& job) {
 }
 
 Result<void> CanRobot::reboot() {
+  stop_requested_.store(false);
   if (Result<void> recovered = bus_.recover(); !recovered.has_value()) {
     return Error{ErrorCode::kBusError, "reboot failed: " + recovered.error().message};
   }

@@ -6,19 +6,29 @@
 // robot error is handled with staged recovery (recovery.h); what recovery cannot clear goes to
 // the Replanner as a failure, with where the robot really is, and its answer is followed: a new
 // plan, or the locator beacon. Before each action it checks that the plan left still fits the
-// battery the robot reports, and replans towards an exit when it does not. Everything is
-// written to the EventLog. The robot is the only source of time and energy, so a simulated run is
-// deterministic for its seed.
+// battery the robot reports, and replans towards an exit when it does not. Everything that
+// happens is an event (events.h), delivered to the observers subscribed before run(): the
+// JSON-lines log (event_json.h) and the readable live log (event_text.h) are two of them. The
+// robot is the only source of time and energy, so a simulated run is deterministic for its seed.
 //
 //   SimRobot robot(map, mission.profile, start_pose, faults);
 //   Replanner replanner(map, mission);
-//   EventLog log(&events_file, &std::cout);
-//   MissionReport report = Executor(map, replanner, robot, {}, log).run();
+//   Executor executor(map, replanner, robot);
+//   executor.subscribe(json_lines_writer(events_file));
+//   executor.subscribe(readable_writer(std::cout));
+//   MissionReport report = executor.run();
 //
-// Thread safety: An Executor is not thread-safe: run() on one thread; the Replanner, Robot and
-// EventLog it holds are used by that thread only while it runs.
+// halt(), from any thread, stops the mission: the robot's emergency stop ends the job it runs,
+// no job or reboot is sent after it, and run() returns a report of outcome kHalted after a last
+// mission_end event (outcome "halted", the robot where it stopped, the beacon off).
+//
+// Thread safety: An Executor is not thread-safe, except halt(): subscribe() and run() on one
+// thread; the Replanner and Robot it holds are used by that thread only while it runs, and the
+// observers are called on it. halt() may be called from any thread at any time, also from an
+// observer, before or during run().
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <optional>
 #include <ostream>
@@ -28,7 +38,7 @@
 
 #include "sewerplan/core/sewer_map.h"
 #include "sewerplan/domain/compile.h"
-#include "sewerplan/executor/event_log.h"
+#include "sewerplan/executor/events.h"
 #include "sewerplan/executor/recovery.h"
 #include "sewerplan/executor/replanner.h"
 #include "sewerplan/hal/robot.h"
@@ -36,25 +46,14 @@
 namespace sewerplan::executor {
 
 struct MissionReport {
-  enum class Outcome {
-    kEnded,   // the plan was carried out: at an exit, or at the mission's end point
-    kBeacon,  // no way out: the beacon is on
-  };
-  // Why the beacon is on, for counting (campaigns show that no limit ever strands a robot).
-  enum class BeaconCause {
-    kNone,         // "none": not on
-    kNoExit,       // "no-exit": a search proved that no exit can be reached
-    kStuck,        // "stuck": the robot cannot move (recovery left it stuck, a danger in a manhole)
-    kMalfunction,  // "malfunction": a permanent malfunction, a reboot that failed
-    kLink,         // "link": the link to the robot failed (CAN)
-    kLimit,        // "limit": a bound of the executor (max_replans) or a plan that did not validate
-  };
+  using Outcome = MissionOutcome;             // kEnded, kBeacon, kHalted (events.h)
+  using BeaconCause = executor::BeaconCause;  // why the beacon is on (events.h)
   Outcome outcome = Outcome::kEnded;
   // The Replanner's last decision (replanner.h): "follow-plan", "degraded", "call-for-recovery",
   // "stuck"; the event log's mission_end and every --json output carry it.
   PlanResponse::Decision decision = PlanResponse::Decision::kFollowPlan;
   BeaconCause beacon_cause = BeaconCause::kNone;
-  std::string end;                                           // "exit M4", or why the beacon is on
+  std::string end;  // "exit M4", why the beacon is on, or where the robot was halted
   std::vector<std::string> tasks_done;                       // in the order done
   std::vector<std::pair<std::string, std::string>> dropped;  // task name, reason
   double time_s = 0;
@@ -67,9 +66,6 @@ struct MissionReport {
 };
 
 std::ostream& operator<<(std::ostream& os, const MissionReport& report);
-// "none", "no-exit", "stuck", "malfunction", "link", "limit", and back (empty for other text).
-std::string_view to_string(MissionReport::BeaconCause cause);
-std::optional<MissionReport::BeaconCause> parse_beacon_cause(std::string_view name);
 
 struct ExecutorOptions {
   RecoveryConfig recovery;
@@ -79,10 +75,20 @@ struct ExecutorOptions {
 class Executor {
  public:
   // All must outlive the executor. The mission is the Replanner's.
-  Executor(const SewerMap& map, Replanner& replanner, hal::Robot& robot, ExecutorOptions options,
-           EventLog& log);
+  Executor(const SewerMap& map, Replanner& replanner, hal::Robot& robot,
+           ExecutorOptions options = {});
 
+  // Adds an observer of every event of run(), called in the order subscribed. Before run() only.
+  void subscribe(EventObserver observer);
+
+  // Runs the mission to its end, the beacon, or a halt. Once per Executor.
   MissionReport run();
+
+  // Asks run() to stop: the robot's emergency stop now (hal::Robot::emergency_stop), and run()
+  // returns at its next check (after the job the stop ended), sending the robot nothing more.
+  // Called before run(), run() halts before its first job. Thread-safe; returns at once.
+  void halt();
+  bool halt_requested() const { return halt_.load(); }
 
  private:
   class Run;
@@ -90,7 +96,8 @@ class Executor {
   Replanner& replanner_;
   hal::Robot& robot_;
   ExecutorOptions options_;
-  EventLog& log_;
+  std::vector<EventObserver> observers_;
+  std::atomic<bool> halt_{false};
 };
 
 }  // namespace sewerplan::executor

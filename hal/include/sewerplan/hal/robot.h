@@ -12,6 +12,8 @@
 //   if (!r.ok() && r.error->kind == RobotErrorKind::kMalfunction) robot.reboot();
 //
 // Thread safety: A Robot is not thread-safe unless an implementation says so: one thread drives it.
+// The exception is emergency_stop(), which every implementation must allow from any thread, also
+// while execute() runs on another (Executor::halt calls it).
 #pragma once
 
 #include <optional>
@@ -66,6 +68,10 @@ class Robot {
   virtual Result<void> reboot() = 0;
   // Switches on the locator beacon, so that the robot can be found and recovered.
   virtual void activate_beacon() = 0;
+  // Stops the robot where it is: the job running ends early (its report, a MALFUNCTION
+  // "emergency stop", says how far it got), and every job after it fails the same way, the robot
+  // not moving, until reboot() clears the stop. Thread-safe (above); returns at once.
+  virtual void emergency_stop() = 0;
 };
 
 std::ostream& operator<<(std::ostream& os, const RobotError& error);

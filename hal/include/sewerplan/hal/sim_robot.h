@@ -19,10 +19,15 @@
 //   JobReport r = robot.execute(DriveForward{.speed_mps = 0.3, .distance_m = 20});
 //   // r.error: blockage "obstacle in P5 at 4.00 m", r.progress_m: how far it got
 //
+// An emergency stop latches: a simulated job takes no wall time, so a stop during execute() takes
+// effect when it returns; the next job ends at once, the robot where it is (progress 0), and so
+// does every one after it until reboot().
+//
 // Thread safety: A SimRobot is not thread-safe: one thread drives it (a SimNode's thread, behind
-// CAN).
+// CAN); emergency_stop() may be called from any thread.
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -100,6 +105,8 @@ class SimRobot final : public Robot {
   RobotStatus status() const override { return status_; }
   Result<void> reboot() override;
   void activate_beacon() override { status_.beacon_on = true; }
+  void emergency_stop() override { stopped_.store(true); }
+  bool emergency_stopped() const { return stopped_.load(); }
 
   // Ground truth, for tests and the simulator's log; the executor must not look.
   const SimPose& pose() const { return pose_; }
@@ -148,6 +155,7 @@ class SimRobot final : public Robot {
   std::optional<Fault> fault_;
   bool battery_empty_ = false;
   std::size_t jobs_executed_ = 0;
+  std::atomic<bool> stopped_{false};  // the emergency stop, latched until reboot()
 };
 
 }  // namespace sewerplan::hal

@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: MIT
 // EventTrace: what a picture needs from an executed mission's event log (JSON lines, as
-// `sewerplan simulate --log` writes them; docs/executor.md).
+// `sewerplan simulate --log` writes them, read into typed events by executor/event_json.h).
 //
-// The route driven is the plan steps of the "action" events, in order (the last one may have been
-// cut short by a failure); blocked pipes and closed passages come from the "failure" events; done
-// tasks from "task_done"; the outcome from "mission_end" or "beacon". Events of other types are
-// skipped, so logs from newer versions still read. A line that is not a JSON object, a step that
-// does not parse, or a name not in the map is an error naming the file and line.
+// The route driven is the plan steps of the ActionEvents, in order (the last one may have been
+// cut short by a failure); blocked pipes and closed passages come from the FailureEvents; done
+// tasks from TaskDoneEvents; the outcome from the MissionEndEvent or a BeaconEvent. Lines of
+// types the reader does not know are skipped, so logs from newer versions still read. A line the
+// reader rejects, a step that does not parse, or a name not in the map is an error naming the
+// file and line.
 //
 //   Diagnostics diagnostics;
 //   Result<EventTrace> trace = read_event_trace(text, "events.jsonl", map, mission, diagnostics);

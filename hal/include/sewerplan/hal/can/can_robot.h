@@ -11,15 +11,21 @@
 // a MALFUNCTION whose reason says what happened, after an emergency stop; nothing waits without a
 // deadline and nothing throws. reboot() recovers the bus and asks the node to restart, which the
 // executor does after a malfunction; activate_beacon() asks the node to switch the beacon on.
+// emergency_stop() only raises a flag: the thread in execute() sees it within a heartbeat period
+// (0.5 s), sends EMERGENCY_STOP (reason: the controller), and ends the job as a MALFUNCTION
+// "emergency stop" with the progress last reported; a job asked for after it is not sent, until a
+// reboot() clears the stop (the node latches it likewise).
 //
 //   Result<std::unique_ptr<SlcanBus>> bus = SlcanBus::open("/dev/ttyUSB0", {});
 //   CanRobot robot(**bus, {});
 //   if (Result<void> up = robot.connect(); !up.has_value()) ...  // no node answers
 //   JobReport r = robot.execute(DriveForward{.speed_mps = 0.3, .distance_m = 12});
 //
-// Thread safety: A CanRobot is not thread-safe: one thread drives it, as any Robot.
+// Thread safety: A CanRobot is not thread-safe: one thread drives it, as any Robot;
+// emergency_stop() may be called from any thread.
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -67,6 +73,7 @@ class CanRobot final : public Robot {
   RobotStatus status() const override { return status_; }
   Result<void> reboot() override;
   void activate_beacon() override;
+  void emergency_stop() override { stop_requested_.store(true); }
 
   const CanLinkStats& stats() const { return stats_; }
 
@@ -74,10 +81,11 @@ class CanRobot final : public Robot {
   enum class Verdict { kTake, kAlive, kIgnore };
   // Waits for a message that `judge` takes; kAlive answers restart the window of `timeout_s`.
   // Empty with `problem` set when the window passes, and with `bus_failed` set too when the bus
-  // fails or bad input piles up beyond max_bad_input (no retry helps then).
+  // fails or bad input piles up beyond max_bad_input (no retry helps then), or when `stoppable`
+  // and an emergency stop is requested.
   std::optional<Message> await(double timeout_s,
                                const std::function<Verdict(const Message&)>& judge,
-                               std::string& problem, bool& bus_failed);
+                               std::string& problem, bool& bus_failed, bool stoppable = false);
   Result<void> send(const Message& message);
   // Sends `request` until `judge` takes an answer, at most options_.attempts times.
   std::optional<Message> exchange(const Message& request, double timeout_s,
@@ -87,6 +95,8 @@ class CanRobot final : public Robot {
   template <class Reply>
   std::optional<Reply> ask(RequestKind kind, double timeout_s, std::string& problem);
   JobReport link_failure(const std::string& what, double progress_m);
+  // Sends EMERGENCY_STOP for emergency_stop() and ends the job.
+  JobReport stopped(double progress_m);
   void heartbeat_if_due();
   std::uint8_t next_seq() { return ++seq_; }
 
@@ -101,6 +111,7 @@ class CanRobot final : public Robot {
   std::uint8_t heartbeat_counter_ = 0;
   std::string last_bad_input_;  // in the current job, for its failure's reason
   double last_heartbeat_s_ = -1e300;
+  std::atomic<bool> stop_requested_{false};  // emergency_stop(), until reboot()
 };
 
 }  // namespace sewerplan::hal

@@ -1,0 +1,131 @@
+// SPDX-License-Identifier: MIT
+// The event log's codec: JSON lines read back into the same typed events and written back to the
+// same bytes; logs of earlier versions read; bad lines named by file and line; the readable line.
+#include "sewerplan/executor/event_json.h"
+
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "sewerplan/executor/event_text.h"
+
+#include "support/paths.h"
+
+namespace sewerplan::executor {
+namespace {
+
+std::string file_text(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+class EventLogFile : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(EventLogFile, ReadsBackIntoEventsThatWriteTheSameBytes) {
+  const std::string text = file_text(testing::test_data_path(std::string("events/") + GetParam()));
+  ASSERT_FALSE(text.empty());
+  Diagnostics d;
+  Result<std::vector<Event>> events = read_event_log(text, GetParam(), d);
+  ASSERT_TRUE(events.has_value()) << d.error_summary();
+  std::string written;
+  for (const Event& e : *events) written += to_json_line(e) + '\n';
+  EXPECT_EQ(written, text);
+  ASSERT_FALSE(events->empty());
+  EXPECT_TRUE(std::holds_alternative<MissionEndEvent>(events->back().what));
+}
+
+INSTANTIATE_TEST_SUITE_P(Golden, EventLogFile,
+                         ::testing::Values("paper.jsonl", "demo.jsonl", "blocked-p5.jsonl",
+                                           "transient-p1.jsonl", "random-1.jsonl", "random-2.jsonl",
+                                           "random-3.jsonl", "random-4.jsonl", "random-5.jsonl",
+                                           "random-6.jsonl"));
+
+TEST(EventLog, ALogOfTheFirstVersionStillReads) {
+  // Decisions named "follow", no decision and beacon cause at the mission's end.
+  const std::string text =
+      file_text(testing::source_dir() / "fuzz" / "corpus" / "event_log" / "demo.jsonl");
+  Diagnostics d;
+  Result<std::vector<Event>> events = read_event_log(text, "demo.jsonl", d);
+  ASSERT_TRUE(events.has_value()) << d.error_summary();
+  const auto* plan = std::get_if<PlanEvent>(&events->front().what);
+  ASSERT_NE(plan, nullptr);
+  EXPECT_EQ(plan->decision, PlanResponse::Decision::kFollowPlan);
+  EXPECT_EQ(plan->goals, (std::vector<std::string>{"sample", "inspect", "end"}));
+  const auto* end = std::get_if<MissionEndEvent>(&events->back().what);
+  ASSERT_NE(end, nullptr);
+  EXPECT_EQ(end->outcome, MissionOutcome::kEnded);
+  EXPECT_EQ(end->beacon_cause, BeaconCause::kNone);
+}
+
+TEST(EventLog, EveryKindOfEventReadsBackEqual) {
+  const std::vector<Event> events{
+      {0, PlanEvent{.reason = "start", .goals = {"a"}, .steps = 3, .cost_s = 1.5}},
+      {1.25, PlanEvent{.replan = true, .decision = PlanResponse::Decision::kDegraded}},
+      {2, ActionEvent{"DRIVE_PIPE_TO_MANHOLE P1 M3", "drive_to_manhole", 9.5, "x"}},
+      {3, JobEvent{"DriveForward(0.30 m/s, 2.83 m)", 2.8285, false}},
+      {3, ErrorEvent{hal::RobotErrorKind::kDanger, "danger", "in pipe P1 at 2.00 m"}},
+      {4, RecoveryEvent{RecoveryPhase::kLiftHeadAndRetry, true}},
+      {5, FailureEvent{Failure::Kind::kBlockage, FailureEvent::InPipe{"P5", 3.951}, "obstacle"}},
+      {5, FailureEvent{Failure::Kind::kDangerousPassage, FailureEvent::Passage{"M8", 1, 2}, "d"}},
+      {5, FailureEvent{Failure::Kind::kStuck, std::monostate{}, "motor"}},
+      {6, TaskDoneEvent{"sample"}},
+      {6, TaskDroppedEvent{"inspect", "cut off"}},
+      {7, BeaconEvent{"no exit"}},
+      {8, MissionEndEvent{.outcome = MissionOutcome::kHalted,
+                          .tasks_done = {"sample"},
+                          .replans = 2,
+                          .beacon_cause = BeaconCause::kLink}}};
+  std::string text;
+  for (const Event& e : events) text += to_json_line(e) + '\n';
+  Diagnostics d;
+  Result<std::vector<Event>> read = read_event_log(text, "all.jsonl", d);
+  ASSERT_TRUE(read.has_value()) << d.error_summary() << text;
+  EXPECT_EQ(*read, events) << text;
+}
+
+TEST(EventLog, BadLinesAreNamedByFileAndLineAndOtherTypesSkipped) {
+  const std::string text =
+      "{\"t_s\":0.0,\"type\":\"task_done\",\"task\":\"a\"}\n"
+      "not json\n"
+      "\n"
+      "{\"t_s\":1.0,\"type\":\"job\",\"ok\":\"yes\"}\n"
+      "{\"t_s\":1.0,\"type\":\"plan\",\"decision\":\"maybe\"}\n"
+      "{\"t_s\":1.0,\"type\":\"from_a_newer_version\",\"x\":1}\n"
+      "{\"t_s\":1.0}\n";
+  Diagnostics d;
+  EXPECT_FALSE(read_event_log(text, "run.jsonl", d).has_value());
+  const std::string errors = d.error_summary();
+  EXPECT_NE(errors.find("run.jsonl:2: error: not a JSON object"), std::string::npos) << errors;
+  EXPECT_NE(errors.find("run.jsonl:4: error: job: \"ok\" is not true or false"), std::string::npos)
+      << errors;
+  EXPECT_NE(errors.find("run.jsonl:5: error: plan: \"decision\": unknown 'maybe'"),
+            std::string::npos)
+      << errors;
+  EXPECT_NE(errors.find("run.jsonl:7: error: no \"type\""), std::string::npos) << errors;
+  EXPECT_EQ(errors.find("run.jsonl:6"), std::string::npos) << errors;
+
+  Diagnostics fine;
+  const std::vector<LoggedEvent> skipped = read_event_log_lines(
+      "\n{\"t_s\":1.0,\"type\":\"from_a_newer_version\"}\n{\"type\":\"beacon\"}\n", "x", fine);
+  EXPECT_FALSE(fine.has_errors()) << fine.error_summary();
+  ASSERT_EQ(skipped.size(), 1U);
+  EXPECT_EQ(skipped.front().line, 3U);
+}
+
+TEST(EventLog, TheReadableLineHasTheTimeTheTypeAndTheFieldsInOrder) {
+  EXPECT_EQ(readable_line({39.262, ErrorEvent{hal::RobotErrorKind::kBlockage,
+                                              "obstacle in P1 at 3.00 m", "in pipe P1 at 2.95 m"}}),
+            "[    39.3 s] error        kind=blockage reason=obstacle in P1 at 3.00 m where=in pipe "
+            "P1 at 2.95 m");
+  EXPECT_EQ(readable_line({1, JobEvent{"TurnInManhole", 2.8285, true}}),
+            "[     1.0 s] job          job=TurnInManhole progress_m=2.829 ok=yes");
+  EXPECT_EQ(readable_line({2, PlanEvent{.replan = true, .goals = {"a", "b"}, .steps = 4}}),
+            "[     2.0 s] replan       reason= planning_ms=0 decision=follow-plan goals=[a, b] "
+            "dropped=[] end= steps=4 cost_s=0");
+}
+
+}  // namespace
+}  // namespace sewerplan::executor
