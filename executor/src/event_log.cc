@@ -5,6 +5,7 @@
 #include <cmath>
 #include <iomanip>
 #include <sstream>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
@@ -13,11 +14,21 @@
 namespace sewerplan::executor {
 namespace {
 
-std::string readable_value(const EventValue& value) {
+// A number with the precision of its unit, which the key's suffix names (issue 18): metres 2
+// decimals, seconds, milliseconds and watt-hours 1, anything else 2.
+int decimals_for(std::string_view key) {
+  const auto ends = [&](std::string_view suffix) {
+    return key.size() >= suffix.size() && key.substr(key.size() - suffix.size()) == suffix;
+  };
+  if (ends("_s") || ends("_ms") || ends("_wh")) return 1;
+  return 2;
+}
+
+std::string readable_value(std::string_view key, const EventValue& value) {
   return std::visit(Overloaded{[](const std::string& s) { return s; },
-                               [](double d) {
+                               [&](double d) {
                                  std::ostringstream out;
-                                 out << std::setprecision(4) << d;
+                                 out << std::fixed << std::setprecision(decimals_for(key)) << d;
                                  return out.str();
                                },
                                [](std::int64_t i) { return std::to_string(i); },
@@ -54,7 +65,9 @@ void EventLog::add(double t_s, std::string type,
     std::ostringstream line;
     line << '[' << std::fixed << std::setprecision(1) << std::setw(8) << e.t_s << " s] "
          << std::left << std::setw(12) << e.type << std::right;
-    for (const auto& [key, value] : e.fields) line << ' ' << key << '=' << readable_value(value);
+    for (const auto& [key, value] : e.fields) {
+      line << ' ' << key << '=' << readable_value(key, value);
+    }
     *readable_ << line.str() << '\n';
   }
 }
