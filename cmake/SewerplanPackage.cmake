@@ -17,6 +17,17 @@ if(TARGET sewerplan-compare)
   install(TARGETS sewerplan-compare RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endif()
 
+# CPACK_STRIP_FILES strips executables but not static libraries: strip their debug info too when
+# the install strips (cpack, cmake --install --strip).
+install(CODE "
+  if(CMAKE_INSTALL_DO_STRIP)
+    file(GLOB sewerplan_static_libs
+         \"\$ENV{DESTDIR}\${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_LIBDIR}/libsewerplan_*.a\")
+    foreach(lib IN LISTS sewerplan_static_libs)
+      execute_process(COMMAND \"${CMAKE_STRIP}\" --strip-debug \"\${lib}\")
+    endforeach()
+  endif()")
+
 set(CPACK_PACKAGE_NAME sewerplan)
 set(CPACK_PACKAGE_VENDOR "sewerplan")
 set(CPACK_PACKAGE_CONTACT "sewerplan maintainers <sewerplan@example.org>")
