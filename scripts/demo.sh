@@ -18,23 +18,23 @@ sp=build/release/bin/sewerplan
 out=build/demo
 mkdir -p "$out"
 
-echo; echo "\$ sewerplan info datasets/ais-testbed/map.json"
-$sp info datasets/ais-testbed/map.json
-echo; echo "\$ sewerplan validate datasets/ais-testbed/map.json --mission datasets/ais-testbed/missions/paper.json"
-$sp validate datasets/ais-testbed/map.json --mission datasets/ais-testbed/missions/paper.json
+echo; echo "\$ sewerplan info --map datasets/ais-testbed/map.json"
+$sp info --map datasets/ais-testbed/map.json
+echo; echo "\$ sewerplan validate --map datasets/ais-testbed/map.json --mission datasets/ais-testbed/missions/paper.json"
+$sp validate --map datasets/ais-testbed/map.json --mission datasets/ais-testbed/missions/paper.json
 echo; echo "\$ sewerplan plan --map datasets/ais-testbed/map.json --mission datasets/ais-testbed/missions/paper.json -o $out/paper.plan"
 $sp plan --map datasets/ais-testbed/map.json --mission datasets/ais-testbed/missions/paper.json -o "$out/paper.plan"
 cat "$out/paper.plan"
 echo; echo "\$ sewerplan check --map datasets/ais-testbed/map.json --mission datasets/ais-testbed/missions/paper.json $out/paper.plan"
 $sp check --map datasets/ais-testbed/map.json --mission datasets/ais-testbed/missions/paper.json "$out/paper.plan"
-echo; echo "\$ sewerplan convert datasets/ais-testbed/map.json $out/ais-testbed.sewer"
-$sp convert datasets/ais-testbed/map.json "$out/ais-testbed.sewer"
+echo; echo "\$ sewerplan convert --map datasets/ais-testbed/map.json -o $out/ais-testbed.sewer"
+$sp convert --map datasets/ais-testbed/map.json -o "$out/ais-testbed.sewer"
 sed -n '1,12p' "$out/ais-testbed.sewer"
 echo "..."
 echo; echo "\$ sewerplan generate --manholes 100000 --topology meshed --seed 2 -o $out/city.json --mission-tasks 20 --mission-out $out/city-mission.json"
 $sp generate --manholes 100000 --topology meshed --seed 2 -o "$out/city.json" --mission-tasks 20 \
   --mission-out "$out/city-mission.json"
-$sp info "$out/city.json"
+$sp info --map "$out/city.json"
 # The 20 tasks lie all over the robot's range (--mission-spread uniform, the default): more than one
 # battery can do, so the planner selects the most it can do and still end the mission.
 echo; echo "\$ sewerplan plan --select-goals --map $out/city.json --mission $out/city-mission.json -o $out/city.plan"
@@ -69,10 +69,10 @@ kill "$node_pid" 2>/dev/null || true
 wait "$node_pid" 2>/dev/null || true
 echo "(bus traffic in candump format: $out/can.log, $(wc -l < "$out/can.log") frames)"
 
-echo; echo "\$ sewerplan motion precompute $out/ais/map.json"
+echo; echo "\$ sewerplan motion precompute --map $out/ais/map.json"
 mkdir -p "$out/ais"
 cp "$ais" "$out/ais/map.json"
-$sp motion precompute "$out/ais/map.json"
+$sp motion precompute --map "$out/ais/map.json"
 echo; echo "\$ sewerplan plan --map $out/ais/map.json --mission $mission"
 $sp plan --map "$out/ais/map.json" --mission "$mission" -o "$out/paper-motion.plan"
 

@@ -10,6 +10,7 @@ packages=(
   libboost-graph-dev libeigen3-dev libompl-dev nlohmann-json3-dev libsimdjson-dev libpugixml-dev
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev
   clang libclang-rt-14-dev clang-format
+  help2man dpkg-dev python3
 )
 
 missing=()

@@ -22,6 +22,7 @@
 
 #include "command.h"
 #include "condition_options.h"
+#include "json_output.h"
 #include "motion_options.h"
 #include <unistd.h>
 
@@ -48,6 +49,7 @@ struct CampaignCliOptions {
   std::string condition;
   RiskOptions risk;
   bool faults_from_condition = false;
+  bool json = false;
   // merge
   std::vector<std::string> merge_dirs;
   std::string merge_out;
@@ -101,26 +103,31 @@ int merge(const CampaignCliOptions& o, Context& c) {
   std::vector<std::filesystem::path> dirs(o.merge_dirs.begin(), o.merge_dirs.end());
   Result<campaign::MergedCampaign> merged = campaign::merge_shards(dirs);
   if (!merged.has_value()) {
-    c.err << merged.error().message << '\n';
-    return exit_code_for(merged.error()) == kExitUsage ? kExitInvalidInput
-                                                       : exit_code_for(merged.error());
+    Error error = merged.error();
+    // Shards that are not one campaign are invalid input (1), not a usage error.
+    if (error.code == ErrorCode::kInvalidArgument) error.code = ErrorCode::kInvalidMission;
+    return fail(c, o.json, error);
   }
   if (auto w = campaign::write_campaign_dir(o.merge_out, merged->spec, merged->records);
       !w.has_value()) {
-    c.err << w.error().message << '\n';
-    return kExitIo;
+    return fail(c, o.json, Error{ErrorCode::kIo, w.error().message});
   }
   const campaign::Summary s = campaign::summarize(merged->spec, merged->records);
-  campaign::write_summary_markdown(s, c.out);
-  c.out << "\nwrote " << o.merge_out
-        << "/{campaign.json,runs.jsonl,summary.json,summary.md,summary.svg}\n";
+  if (o.json) {
+    campaign::write_summary_json(s, c.out);
+  } else {
+    campaign::write_summary_markdown(s, c.out);
+    c.out << "\nwrote " << o.merge_out
+          << "/{campaign.json,runs.jsonl,summary.json,summary.md,summary.svg}\n";
+  }
   return s.clean() ? kExitOk : kExitCampaignNotClean;
 }
 
 int run(const CampaignCliOptions& o, Context& c) {
   if (o.map.empty() || o.mission.empty()) {
-    c.err << "campaign: --map and --mission are required (or: campaign merge DIR... -o OUT)\n";
-    return kExitUsage;
+    return usage_error(c, o.json,
+                       "campaign: --map and --mission are required (or: campaign merge DIR... -o "
+                       "OUT)");
   }
   Result<campaign::FaultRates> rates = campaign::parse_fault_rates(o.fault_rates);
   Result<std::pair<std::size_t, std::size_t>> shard = campaign::parse_shard(o.shard);
@@ -129,14 +136,10 @@ int run(const CampaignCliOptions& o, Context& c) {
   for (const Error* e :
        {rates.has_value() ? nullptr : &rates.error(), shard.has_value() ? nullptr : &shard.error(),
         inject.has_value() ? nullptr : &inject.error()}) {
-    if (e != nullptr) {
-      c.err << e->message << '\n';
-      return kExitUsage;
-    }
+    if (e != nullptr) return usage_error(c, o.json, e->message);
   }
   if (o.runs == 0 || (o.only && *o.only >= o.runs)) {
-    c.err << "campaign: --runs must be at least 1 and --only below it\n";
-    return kExitUsage;
+    return usage_error(c, o.json, "campaign: --runs must be at least 1 and --only below it");
   }
   Result<std::string> map_text = read_text_file(o.map);
   Result<std::string> mission_text = read_text_file(o.mission);
@@ -160,21 +163,17 @@ int run(const CampaignCliOptions& o, Context& c) {
       mission = r.error();
     }
   }
+  if (!mission.has_value()) return fail(c, o.json, mission.error(), diagnostics);
   print_diagnostics(diagnostics, c.err);
-  if (!mission.has_value()) {
-    if (diagnostics.error_count() == 0) c.err << mission.error().message << '\n';
-    return exit_code_for(mission.error());
-  }
   if (o.faults_from_condition && mission->hazards.empty()) {
-    c.err << "campaign: --faults-from-condition: the condition data has no possible blockage "
-             "(give --condition FILE, or a map with findings; --risk avoid closes them all)\n";
-    return kExitUsage;
+    return usage_error(c, o.json,
+                       "campaign: --faults-from-condition: the condition data has no possible "
+                       "blockage (give --condition FILE, or a map with findings; --risk avoid "
+                       "closes them all)");
   }
-  std::string motion_path;
-  if (int code = attach_motion(o.motion, o.map, *map, *mission, c.err, &motion_path);
-      code != kExitOk) {
-    return code;
-  }
+  Result<std::string> motion = attach_motion_table(o.motion, o.map, *map, *mission, c.err);
+  if (!motion.has_value()) return fail(c, o.json, motion.error());
+  const std::string motion_path = *motion;
   campaign::CampaignSpec spec;
   spec.map_name = o.map;
   spec.mission_name = o.mission;
@@ -225,8 +224,8 @@ int run(const CampaignCliOptions& o, Context& c) {
     if (faults.has_value()) hal::write_faults_json(*faults, *map, out);
     out.close();
     if (!faults.has_value() || !out) {
-      c.err << o.faults_out << ": cannot write the run's faults\n";
-      return kExitIo;
+      return fail(c, o.json,
+                  Error{ErrorCode::kIo, o.faults_out + ": cannot write the run's faults"});
     }
   }
   if (o.only) {
@@ -241,12 +240,13 @@ int run(const CampaignCliOptions& o, Context& c) {
   }
   if (!o.out.empty()) {
     if (auto w = campaign::write_campaign_dir(o.out, spec, records); !w.has_value()) {
-      c.err << w.error().message << '\n';
-      return kExitIo;
+      return fail(c, o.json, Error{ErrorCode::kIo, w.error().message});
     }
   }
   const campaign::Summary s = campaign::summarize(spec, records);
-  if (!o.quiet) {
+  if (o.json) {
+    campaign::write_summary_json(s, c.out);
+  } else if (!o.quiet) {
     campaign::write_summary_markdown(s, c.out);
     if (!o.out.empty()) {
       c.out << "\nwrote " << o.out
@@ -289,6 +289,8 @@ void add_campaign_command(CLI::App& app, Context& context) {
   cmd->add_option("--faults-out", options->faults_out,
                   "With --only: write the run's hidden faults (for simulate --faults, render)");
   cmd->add_flag("-q,--quiet", options->quiet, "No progress and no summary on the terminal");
+  cmd->add_flag("--json", options->json,
+                "Print the summary as JSON (summary.json; with --only, the run's JSON line)");
   add_motion_options(*cmd, options->motion);
   add_condition_option(*cmd, options->condition);
   add_risk_options(*cmd, options->risk);
@@ -299,6 +301,7 @@ void add_campaign_command(CLI::App& app, Context& context) {
       cmd->add_subcommand("merge", "Merge the output directories of a sharded campaign");
   merge_cmd->add_option("dirs", options->merge_dirs, "Shard directories")->required();
   merge_cmd->add_option("-o,--out", options->merge_out, "Output directory")->required();
+  merge_cmd->add_flag("--json", options->json, "Print the summary as JSON (summary.json)");
   cmd->require_subcommand(0, 1);
   merge_cmd->callback([options, &context] { context.exit_code = merge(*options, context); });
   cmd->callback([options, merge_cmd, &context] {

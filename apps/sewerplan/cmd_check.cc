@@ -5,7 +5,6 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 
 #include "sewerplan/core/map_io.h"
 #include "sewerplan/core/mission.h"
@@ -13,8 +12,10 @@
 #include "sewerplan/domain/plan_json.h"
 #include "sewerplan/domain/plan_text.h"
 #include "sewerplan/domain/validator.h"
+#include "sewerplan/executor/replanner.h"
 
 #include "command.h"
+#include "json_output.h"
 #include "motion_options.h"
 
 namespace sewerplan::cli {
@@ -29,18 +30,13 @@ struct CheckOptions {
   MotionOptions motion;
 };
 
-// Reports a failure to load an input and returns its exit code.
+// A failure to load an input: the error object, and for programs that read only the plan JSON's
+// fields, "valid": false too.
 int failed(const Error& error, const Diagnostics& diagnostics, bool json, Context& c) {
-  print_diagnostics(diagnostics, c.err);
-  if (diagnostics.error_count() == 0) c.err << error.message << '\n';
-  if (json) {
-    nlohmann::ordered_json j = {{"format", domain::kPlanJsonFormat},
-                                {"version", domain::kPlanJsonVersion},
-                                {"valid", false},
-                                {"error", error.message}};
-    c.out << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
-  }
-  return exit_code_for(error);
+  return fail(c, json, error, diagnostics,
+              {{"format", domain::kPlanJsonFormat},
+               {"version", domain::kPlanJsonVersion},
+               {"valid", false}});
 }
 
 int run(const CheckOptions& o, Context& c) {
@@ -49,8 +45,9 @@ int run(const CheckOptions& o, Context& c) {
   if (!map.has_value()) return failed(map.error(), diagnostics, o.json, c);
   Result<Mission> mission = read_mission(o.mission, *map, diagnostics);
   if (!mission.has_value()) return failed(mission.error(), diagnostics, o.json, c);
-  if (int code = attach_motion(o.motion, o.map, *map, *mission, c.err); code != kExitOk) {
-    return code;
+  if (auto motion = attach_motion_table(o.motion, o.map, *map, *mission, c.err);
+      !motion.has_value()) {
+    return failed(motion.error(), {}, o.json, c);
   }
   Result<std::string> text = read_text_file(o.plan);
   if (!text.has_value()) return failed(text.error(), diagnostics, o.json, c);
@@ -78,7 +75,16 @@ int run(const CheckOptions& o, Context& c) {
     for (const std::string& task : left_out) c.err << "left out: task '" << task << "'\n";
   }
   if (o.json) {
-    domain::write_plan_json(*plan, report, *map, *mission, c.out);
+    Json j = plan_verdict_json(*plan, report, *map, *mission);
+    // A valid plan, as the Replanner would call it: it does everything asked (follow-plan), or
+    // less (degraded: tasks left out). An invalid one has the error instead.
+    if (report.valid) {
+      j["decision"] =
+          executor::to_string(left_out.empty() ? executor::PlanResponse::Decision::kFollowPlan
+                                               : executor::PlanResponse::Decision::kDegraded);
+    }
+    j["left_out"] = left_out;
+    print_json(c.out, j);
   } else {
     c.out << report << '\n';
   }
@@ -93,7 +99,7 @@ void add_check_command(CLI::App& app, Context& context) {
   CLI::App* cmd = app.add_subcommand(
       "check",
       "Validate a plan (the paper's text, or FF's or Fast Downward's output) on a map and mission");
-  cmd->add_option("--map", options->map, "Map file (.json or .sewer)")->required();
+  cmd->add_option("--map", options->map, "Map file (any format of docs/formats/)")->required();
   cmd->add_option("--mission", options->mission, "Mission file (.json)")->required();
   cmd->add_option("plan", options->plan, "Plan file, one action a line")->required();
   cmd->add_flag("--json", options->json, "Print the plan, its costs and the verdict as JSON");

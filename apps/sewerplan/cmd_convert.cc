@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
-// sewerplan convert IN OUT [--to json|ascii]
+// sewerplan convert --map IN -o OUT [--to json|ascii]
 #include <ostream>
+#include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -8,44 +10,63 @@
 
 #include "command.h"
 #include "condition_options.h"
+#include "json_output.h"
 
 namespace sewerplan::cli {
 namespace {
 
 struct ConvertOptions {
-  std::string in;
+  std::string map;
   std::string out;
+  std::vector<std::string> positional;  // OUT, or (deprecated) IN OUT
+  bool json = false;
   std::string to;
   std::string condition;
 };
 
 int run(const ConvertOptions& o, Context& c) {
+  // convert --map IN -o OUT (or --map IN OUT); the old convert IN OUT still works.
+  std::vector<std::string> rest = o.positional;
+  std::string in_positional;
+  if (o.map.empty() && !rest.empty()) {
+    in_positional = rest.front();
+    rest.erase(rest.begin());
+  }
+  int exit_code = kExitOk;
+  const std::optional<std::string> in =
+      map_path(o.map, in_positional, "convert", c, o.json, exit_code);
+  if (!in) return exit_code;
+  if (rest.size() > 1 || (!rest.empty() && !o.out.empty())) {
+    return usage_error(c, o.json, "convert: give the output once, with --out");
+  }
+  const std::string out = o.out.empty() ? (rest.empty() ? std::string() : rest.front()) : o.out;
+  if (out.empty()) return usage_error(c, o.json, "convert: --out is required");
   std::optional<MapFormat> format;
   if (!o.to.empty()) {
     format = map_format_from_name(o.to);
     if (!format) {
-      c.err << "--to: unknown format '" << o.to << "' (json or ascii)\n";
-      return kExitUsage;
+      return usage_error(c, o.json, "--to: unknown format '" + o.to + "' (json or ascii)");
     }
     if (!is_writable(*format)) {
-      c.err << "--to: sewerplan reads " << o.to << " but does not write it (json or ascii)\n";
-      return kExitUsage;
+      return usage_error(
+          c, o.json, "--to: sewerplan reads " + o.to + " but does not write it (json or ascii)");
     }
   }
   Diagnostics diagnostics;
-  Result<SewerMap> map = read_map_with_condition(o.in, o.condition, diagnostics);
+  Result<SewerMap> map = read_map_with_condition(*in, o.condition, diagnostics);
+  if (!map.has_value()) return fail(c, o.json, map.error(), diagnostics);
   print_diagnostics(diagnostics, c.err);
-  if (!map.has_value()) {
-    if (diagnostics.error_count() == 0) c.err << map.error().message << '\n';
-    return exit_code_for(map.error());
+  Result<void> written = write_map(*map, out, format);
+  if (!written.has_value()) return fail(c, o.json, written.error());
+  if (o.json) {
+    print_json(c.out, {{"wrote", out},
+                       {"manholes", map->manhole_count()},
+                       {"pipes", map->pipe_count()},
+                       {"findings", map->finding_count()}});
+  } else {
+    c.out << "wrote " << out << " (" << map->manhole_count() << " manholes, " << map->pipe_count()
+          << " pipes)\n";
   }
-  Result<void> written = write_map(*map, o.out, format);
-  if (!written.has_value()) {
-    c.err << written.error().message << '\n';
-    return exit_code_for(written.error());
-  }
-  c.out << "wrote " << o.out << " (" << map->manhole_count() << " manholes, " << map->pipe_count()
-        << " pipes)\n";
   return kExitOk;
 }
 
@@ -56,9 +77,12 @@ void add_convert_command(CLI::App& app, Context& context) {
   auto options = std::make_shared<ConvertOptions>();
   CLI::App* cmd =
       app.add_subcommand("convert", "Convert a map between the formats sewerplan reads");
-  cmd->add_option("in", options->in, "Map to read (.json, .sewer, SWMM .inp, ISYBAU .xml)")
-      ->required();
-  cmd->add_option("out", options->out, "Map to write; the extension gives the format")->required();
+  cmd->add_option("--map", options->map, "Map to read (.json, .sewer, SWMM .inp, ISYBAU .xml)");
+  cmd->add_option("--out,-o", options->out, "Map to write; the extension gives the format");
+  cmd->add_option("files", options->positional, "OUT (or, deprecated, IN OUT)")
+      ->expected(0, 2)
+      ->group("");
+  cmd->add_flag("--json", options->json, "Print what was written as JSON");
   cmd->add_option("--to", options->to,
                   "Output format when the extension does not tell: json, ascii (swmm and isybau "
                   "are read only)");

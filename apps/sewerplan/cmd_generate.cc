@@ -12,6 +12,7 @@
 #include "sewerplan/domain/mission_generator.h"
 
 #include "command.h"
+#include "json_output.h"
 
 namespace sewerplan::cli {
 namespace {
@@ -24,61 +25,71 @@ struct GenerateOptions {
   std::string mission_out;
   std::string profile = "makro-plus";
   std::string spread = "uniform";
+  bool json = false;
 };
 
-// A seeded mission on the generated map (domain/mission_generator.h), written as JSON.
-int write_mission(const SewerMap& map, const GenerateOptions& o, Context& c) {
+// A seeded mission on the generated map (domain/mission_generator.h), written as JSON; `report`
+// receives what --json says about it.
+int write_mission(const SewerMap& map, const GenerateOptions& o, Context& c, Json& report) {
   const auto spread = domain::mission_spread_from_string(o.spread);  // checked in run()
   Result<Mission> mission = domain::generate_mission(map, {.tasks = o.mission_tasks,
                                                            .seed = o.generator.seed,
                                                            .profile = o.profile,
                                                            .spread = *spread});
-  if (!mission.has_value()) {
-    c.err << mission.error().message << '\n';
-    return exit_code_for(mission.error());
-  }
+  if (!mission.has_value()) return fail(c, o.json, mission.error());
   std::ostringstream text;
   write_mission_json(*mission, map, text);
   if (Result<void> written = write_text_file(o.mission_out, text.str()); !written.has_value()) {
-    c.err << written.error().message << '\n';
-    return exit_code_for(written.error());
+    return fail(c, o.json, written.error());
   }
-  c.out << "wrote " << o.mission_out << " (" << o.mission_tasks << " tasks for " << o.profile
-        << ")\n";
+  report = {{"wrote", o.mission_out},
+            {"tasks", o.mission_tasks},
+            {"profile", o.profile},
+            {"spread", o.spread}};
+  if (!o.json) {
+    c.out << "wrote " << o.mission_out << " (" << o.mission_tasks << " tasks for " << o.profile
+          << ")\n";
+  }
   return kExitOk;
 }
 
 int run(GenerateOptions& o, Context& c) {
   auto topology = topology_from_string(o.topology);
   if (!topology) {
-    c.err << "--topology: unknown topology '" << o.topology << "' (tree or meshed)\n";
-    return kExitUsage;
+    return usage_error(c, o.json,
+                       "--topology: unknown topology '" + o.topology + "' (tree or meshed)");
   }
   o.generator.topology = *topology;
   if (!domain::mission_spread_from_string(o.spread)) {
-    c.err << "--mission-spread: unknown spread '" << o.spread
-          << "' (uniform, clustered or near-exit)\n";
-    return kExitUsage;
+    return usage_error(
+        c, o.json,
+        "--mission-spread: unknown spread '" + o.spread + "' (uniform, clustered or near-exit)");
+  }
+  if ((o.mission_tasks > 0 || !o.mission_out.empty()) &&
+      (o.mission_out.empty() || o.mission_tasks == 0)) {
+    return usage_error(c, o.json, "--mission-tasks and --mission-out go together");
   }
   Result<SewerMap> map = generate_network(o.generator);
-  if (!map.has_value()) {
-    c.err << map.error().message << '\n';
-    return exit_code_for(map.error());
-  }
+  if (!map.has_value()) return fail(c, o.json, map.error());
   Result<void> written = write_map(*map, o.out);
-  if (!written.has_value()) {
-    c.err << written.error().message << '\n';
-    return exit_code_for(written.error());
+  if (!written.has_value()) return fail(c, o.json, written.error());
+  Json report = {{"map",
+                  {{"wrote", o.out},
+                   {"name", map->name()},
+                   {"manholes", map->manhole_count()},
+                   {"pipes", map->pipe_count()},
+                   {"topology", to_string(*topology)},
+                   {"seed", o.generator.seed}}}};
+  if (!o.json) {
+    c.out << "wrote " << o.out << " (" << map->manhole_count() << " manholes, " << map->pipe_count()
+          << " pipes, " << to_string(*topology) << ", seed " << o.generator.seed << ")\n";
   }
-  c.out << "wrote " << o.out << " (" << map->manhole_count() << " manholes, " << map->pipe_count()
-        << " pipes, " << to_string(*topology) << ", seed " << o.generator.seed << ")\n";
-  if (o.mission_tasks > 0 || !o.mission_out.empty()) {
-    if (o.mission_out.empty() || o.mission_tasks == 0) {
-      c.err << "--mission-tasks and --mission-out go together\n";
-      return kExitUsage;
-    }
-    return write_mission(*map, o, c);
+  if (o.mission_tasks > 0) {
+    Json mission;
+    if (int code = write_mission(*map, o, c, mission); code != kExitOk) return code;
+    report["mission"] = std::move(mission);
   }
+  if (o.json) print_json(c.out, report);
   return kExitOk;
 }
 
@@ -119,6 +130,7 @@ void add_generate_command(CLI::App& app, Context& context) {
       ->capture_default_str();
   cmd->add_option("--mission-out", o->mission_out, "Where to write that mission (.json)");
   cmd->add_option("--profile", o->profile, "The mission's robot profile")->capture_default_str();
+  cmd->add_flag("--json", o->json, "Print what was written as JSON");
   cmd->callback([o, &context] { context.exit_code = run(*o, context); });
 }
 

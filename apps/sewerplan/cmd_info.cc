@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// sewerplan info MAP [--profile PROFILE [--start MANHOLE]] [--json]
+// sewerplan info --map MAP [--profile PROFILE [--start MANHOLE]] [--json]
 #include <iomanip>
 #include <map>
 #include <optional>
@@ -18,13 +18,16 @@
 #include "command.h"
 #include "condition_options.h"
 #include "driveability_output.h"
+#include "json_output.h"
 #include "motion_options.h"
+#include "text_format.h"
 
 namespace sewerplan::cli {
 namespace {
 
 struct InfoOptions {
   std::string map;
+  std::string map_positional;  // deprecated: info MAP
   std::string profile;
   std::vector<std::string> starts;
   bool json = false;
@@ -75,7 +78,8 @@ void print_findings(const SewerMap& map, const RobotProfile* profile, const Risk
   out << "closed by findings " << closed.size() << '\n';
   for (const FindingRisk& r : closed) {
     const Finding& f = map.findings()[r.finding];
-    out << "  pipe " << map.pipe(f.pipe).name << " at " << f.offset_m << " m: " << r.reason << '\n';
+    out << "  pipe " << map.pipe(f.pipe).name << " at " << metres(f.offset_m) << ": " << r.reason
+        << '\n';
   }
 }
 
@@ -136,13 +140,14 @@ void print_info(const SewerMap& map, const MapStatistics& s, std::ostream& out) 
 }
 
 int run(const InfoOptions& o, Context& c) {
+  int exit_code = kExitOk;
+  const std::optional<std::string> path =
+      map_path(o.map, o.map_positional, "info", c, o.json, exit_code);
+  if (!path) return exit_code;
   Diagnostics diagnostics;
-  Result<SewerMap> map = read_map_with_condition(o.map, o.condition, diagnostics);
+  Result<SewerMap> map = read_map_with_condition(*path, o.condition, diagnostics);
+  if (!map.has_value()) return fail(c, o.json, map.error(), diagnostics);
   print_diagnostics(diagnostics, c.err);
-  if (!map.has_value()) {
-    if (diagnostics.error_count() == 0) c.err << map.error().message << '\n';
-    return exit_code_for(map.error());
-  }
   const MapStatistics stats = map_statistics(*map);
   Diagnostics table_diagnostics;
   Result<RiskTable> table = risk_table({.table = o.risk_table}, table_diagnostics);
@@ -156,29 +161,29 @@ int run(const InfoOptions& o, Context& c) {
   if (!o.profile.empty()) {
     Result<RobotProfile> loaded = load_profile(o.profile);
     if (!loaded.has_value()) {
-      c.err << "--profile: " << loaded.error().message << '\n';
-      return exit_code_for(loaded.error());
+      return fail(c, o.json, Error{loaded.error().code, "--profile: " + loaded.error().message});
     }
     profile = *loaded;
     for (const std::string& name : o.starts) {
       const std::optional<ManholeId> m = map->find_manhole(name);
       if (!m) {
-        c.err << "--start: no manhole '" << name << "' in " << o.map << '\n';
-        return kExitInvalidInput;
+        return fail(
+            c, o.json,
+            Error{ErrorCode::kInvalidMap, "--start: no manhole '" + name + "' in " + *path});
       }
       starts.push_back(*m);
     }
     if (o.starts.empty()) starts = domain::default_starts(*map);
   } else if (!o.starts.empty()) {
-    c.err << "--start needs --profile\n";
-    return kExitUsage;
+    return usage_error(c, o.json, "--start needs --profile");
   }
   std::optional<domain::DriveabilityReport> report;
   if (profile) {
     Mission with_motion;  // only to carry the motion table, as plan does
     with_motion.profile = *profile;
-    if (int code = attach_motion(o.motion, o.map, *map, with_motion, c.err); code != kExitOk) {
-      return code;
+    if (auto motion = attach_motion_table(o.motion, *path, *map, with_motion, c.err);
+        !motion.has_value()) {
+      return fail(c, o.json, motion.error());
     }
     // What the findings close, as plan closes it (the default risk mode).
     const std::vector<Blockage> closures =
@@ -192,7 +197,7 @@ int run(const InfoOptions& o, Context& c) {
       j["driveability"] = driveability_json(*report, *map, *profile);
       j["driveability"]["closed_by_findings"] = closing_json(*map, *profile, *table);
     }
-    c.out << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
+    print_json(c.out, j);
   } else {
     print_info(*map, stats, c.out);
     print_findings(*map, profile ? &*profile : nullptr, *table, c.out);
@@ -210,8 +215,8 @@ void add_info_command(CLI::App& app, Context& context) {
       "info",
       "Summarise a map: counts, manhole types, lengths, diameters, exits, connectivity; with "
       "--profile, what a robot can drive");
-  cmd->add_option("map", options->map, "Map file (.json, .sewer, SWMM .inp, ISYBAU .xml)")
-      ->required();
+  cmd->add_option("--map", options->map, "Map file (.json, .sewer, SWMM .inp, ISYBAU .xml)");
+  cmd->add_option("map", options->map_positional, "Deprecated: use --map")->group("");
   add_motion_options(*cmd, options->motion);
   cmd->add_option("--profile", options->profile,
                   "Also report what this robot can drive: a built-in profile (makro-1.1, "

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// sewerplan motion precompute MAP [--profile P] [--seed S] [--iterations N] [-o FILE] [-q]
+// sewerplan motion precompute --map MAP [--profile P] [--seed S] [--iterations N] [-o FILE] [-q]
 #include <iomanip>
 #include <memory>
 #include <sstream>
@@ -13,37 +13,45 @@
 #include "sewerplan/fusion/passage_precompute.h"
 
 #include "command.h"
+#include "json_output.h"
 
 namespace sewerplan::cli {
 namespace {
 
 struct PrecomputeOptions {
   std::string map;
+  std::string map_positional;  // deprecated: motion precompute MAP
   std::string profile = "makro-1.1";
   std::uint32_t seed = 1;
   std::uint32_t iterations = fusion::TurnPlannerOptions{}.max_iterations;
   std::string out;
   bool quiet = false;
+  bool json = false;
 };
 
 int precompute(const PrecomputeOptions& o, Context& c) {
+  int exit_code = kExitOk;
+  const std::optional<std::string> path =
+      map_path(o.map, o.map_positional, "motion precompute", c, o.json, exit_code);
+  if (!path) return exit_code;
   if (!fusion::motion_planning_available()) {
-    c.err << "motion precompute: this build of sewerplan has no OMPL (built with "
-             "SEWERPLAN_WITH_OMPL=OFF), so it cannot plan manhole motions; planning uses the "
-             "angle and step rules\n";
-    return kExitInvalidInput;
+    return fail(c, o.json,
+                Error{ErrorCode::kUnsupportedFormat,
+                      "motion precompute: this build of sewerplan has no OMPL (built with "
+                      "SEWERPLAN_WITH_OMPL=OFF), so it cannot plan manhole motions; planning "
+                      "uses the angle and step rules"});
   }
   Diagnostics diagnostics;
-  Result<SewerMap> map = read_map(o.map, diagnostics);
+  Result<SewerMap> map = read_map(*path, diagnostics);
+  if (!map.has_value()) return fail(c, o.json, map.error(), diagnostics);
   print_diagnostics(diagnostics, c.err);
-  if (!map.has_value()) {
-    if (diagnostics.error_count() == 0) c.err << map.error().message << '\n';
-    return exit_code_for(map.error());
-  }
   Result<RobotProfile> profile = load_profile(o.profile);
   if (!profile.has_value()) {
-    c.err << profile.error().message << '\n';
-    return kExitInvalidInput;
+    const Error& e = profile.error();
+    // A profile that does not load is invalid input (1), whatever the reason.
+    return fail(
+        c, o.json,
+        Error{e.code == ErrorCode::kIo ? ErrorCode::kIo : ErrorCode::kInvalidProfile, e.message});
   }
   SteadyClock clock;
   std::size_t last_tenth = 0;
@@ -58,18 +66,28 @@ int precompute(const PrecomputeOptions& o, Context& c) {
   }
   Result<fusion::PrecomputeResult> r =
       fusion::precompute_passage_motion(*map, *profile, options, clock);
-  if (!r.has_value()) {
-    c.err << r.error().message << '\n';
-    return exit_code_for(r.error());
-  }
-  const std::string out = o.out.empty() ? default_motion_path(o.map).string() : o.out;
+  if (!r.has_value()) return fail(c, o.json, r.error());
+  const std::string out = o.out.empty() ? default_motion_path(*path).string() : o.out;
   std::ostringstream text;
   write_passage_motion_json(r->table, *map, text);
   if (Result<void> written = write_text_file(out, text.str()); !written.has_value()) {
-    c.err << written.error().message << '\n';
-    return exit_code_for(written.error());
+    return fail(c, o.json, written.error());
   }
   const fusion::PrecomputeStatistics& s = r->statistics;
+  if (o.json) {
+    print_json(c.out, {{"wrote", out},
+                       {"profile", profile->name},
+                       {"seed", o.seed},
+                       {"iterations", o.iterations},
+                       {"passages", s.passages},
+                       {"geometries", s.distinct_geometries},
+                       {"feasible", s.feasible},
+                       {"rules_allow", s.rules_allow},
+                       {"rejected_by_motion_rules_allow", s.rejected_by_motion_rules_allow},
+                       {"allowed_by_motion_rules_reject", s.allowed_by_motion_rules_reject},
+                       {"time_s", s.time_s}});
+    return kExitOk;
+  }
   c.out << "motion: " << s << "\n"
         << "  profile " << profile->name << ", seed " << o.seed << ", " << o.iterations
         << " iterations per geometry\n"
@@ -89,7 +107,8 @@ void add_motion_command(CLI::App& app, Context& context) {
   CLI::App* cmd = motion->add_subcommand(
       "precompute",
       "Plan every manhole passage of a map with OMPL and write MAP.motion.json beside it");
-  cmd->add_option("map", o->map, "Map file")->required();
+  cmd->add_option("--map", o->map, "Map file");
+  cmd->add_option("map", o->map_positional, "Deprecated: use --map")->group("");
   cmd->add_option("--profile", o->profile, "Robot profile: makro-1.1, makro-plus or a JSON file")
       ->capture_default_str();
   cmd->add_option("--seed", o->seed, "Seed of the motion planner")->capture_default_str();
@@ -98,6 +117,7 @@ void add_motion_command(CLI::App& app, Context& context) {
       ->capture_default_str();
   cmd->add_option("--out,-o", o->out, "Where to write the table (default: MAP.motion.json)");
   cmd->add_flag("--quiet,-q", o->quiet, "No progress on standard error");
+  cmd->add_flag("--json", o->json, "Print the summary as JSON");
   cmd->callback([o, &context] { context.exit_code = precompute(*o, context); });
 }
 

@@ -6,7 +6,6 @@
 #include <ostream>
 
 #include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 
 #include "sewerplan/core/map_io.h"
 #include "sewerplan/core/mission.h"
@@ -17,6 +16,7 @@
 #include "sewerplan/domain/validator.h"
 
 #include "command.h"
+#include "json_output.h"
 
 namespace sewerplan::cli {
 namespace {
@@ -27,18 +27,17 @@ struct Inputs {
 };
 
 // Loads the map and the mission, or reports why not and sets the exit code.
-std::optional<Inputs> load(const std::string& map_path, const std::string& mission_path,
+std::optional<Inputs> load(const std::string& map_path, const std::string& mission_path, bool json,
                            Context& c) {
   Diagnostics diagnostics;
   Result<SewerMap> map = read_map(map_path, diagnostics);
   Result<Mission> mission = map.has_value() ? read_mission(mission_path, *map, diagnostics)
                                             : Result<Mission>(map.error());
-  print_diagnostics(diagnostics, c.err);
   if (!mission.has_value()) {
-    if (diagnostics.error_count() == 0) c.err << mission.error().message << '\n';
-    c.exit_code = exit_code_for(mission.error());
+    c.exit_code = fail(c, json, mission.error(), diagnostics);
     return std::nullopt;
   }
+  print_diagnostics(diagnostics, c.err);
   return Inputs{std::move(*map), std::move(*mission)};
 }
 
@@ -55,34 +54,36 @@ struct ExportOptions {
   std::string mission;
   std::string out;
   bool action_costs = false;
+  bool json = false;
 };
 
 int run_export(const ExportOptions& o, Context& c) {
-  std::optional<Inputs> in = load(o.map, o.mission, c);
+  std::optional<Inputs> in = load(o.map, o.mission, o.json, c);
   if (!in) return c.exit_code;
   Result<domain::PddlFiles> files =
       domain::export_pddl(in->map, in->mission, {.action_costs = o.action_costs});
-  if (!files.has_value()) {
-    c.err << files.error().message << '\n';
-    return exit_code_for(files.error());
-  }
+  if (!files.has_value()) return fail(c, o.json, files.error());
   std::error_code ec;
   std::filesystem::create_directories(o.out, ec);
   if (ec) {
-    c.err << o.out << ": cannot create the directory: " << ec.message() << '\n';
-    return kExitIo;
+    return fail(c, o.json,
+                Error{ErrorCode::kIo, o.out + ": cannot create the directory: " + ec.message()});
   }
   const std::filesystem::path dir(o.out);
   for (const auto& [name, text] :
        {std::pair{"domain.pddl", &files->domain}, std::pair{"problem.pddl", &files->problem}}) {
     Result<void> written = write_file(dir / name, *text);
-    if (!written.has_value()) {
-      c.err << written.error().message << '\n';
-      return kExitIo;
-    }
+    if (!written.has_value()) return fail(c, o.json, written.error());
   }
-  c.out << "wrote " << (dir / "domain.pddl").string() << " and " << (dir / "problem.pddl").string()
-        << (o.action_costs ? " (with action costs)" : "") << '\n';
+  if (o.json) {
+    print_json(c.out, {{"domain", (dir / "domain.pddl").string()},
+                       {"problem", (dir / "problem.pddl").string()},
+                       {"action_costs", o.action_costs}});
+  } else {
+    c.out << "wrote " << (dir / "domain.pddl").string() << " and "
+          << (dir / "problem.pddl").string() << (o.action_costs ? " (with action costs)" : "")
+          << '\n';
+  }
   return kExitOk;
 }
 
@@ -98,34 +99,24 @@ struct ImportOptions {
 int run_import(const ImportOptions& o, Context& c) {
   const auto format = domain::pddl_plan_format_from_name(o.format);
   if (!format) {
-    c.err << "--format: unknown planner output '" << o.format << "' (ff or fd)\n";
-    return kExitUsage;
+    return usage_error(c, o.json, "--format: unknown planner output '" + o.format + "' (ff or fd)");
   }
-  std::optional<Inputs> in = load(o.map, o.mission, c);
+  std::optional<Inputs> in = load(o.map, o.mission, o.json, c);
   if (!in) return c.exit_code;
   Result<std::string> text = read_text_file(o.file);
-  if (!text.has_value()) {
-    c.err << text.error().message << '\n';
-    return exit_code_for(text.error());
-  }
+  if (!text.has_value()) return fail(c, o.json, text.error());
   Diagnostics diagnostics;
   Result<domain::Plan> plan =
       domain::import_pddl_plan(*text, o.file, *format, in->map, in->mission, diagnostics);
+  if (!plan.has_value()) return fail(c, o.json, plan.error(), diagnostics);
   print_diagnostics(diagnostics, c.err);
-  if (!plan.has_value()) {
-    if (diagnostics.error_count() == 0) c.err << plan.error().message << '\n';
-    return exit_code_for(plan.error());
-  }
   if (!o.out.empty()) {
     Result<void> written = write_file(o.out, domain::format_plan(*plan, in->map, in->mission));
-    if (!written.has_value()) {
-      c.err << written.error().message << '\n';
-      return kExitIo;
-    }
+    if (!written.has_value()) return fail(c, o.json, written.error());
   }
   const domain::ValidationReport report = domain::validate_plan(*plan, in->map, in->mission);
   if (o.json) {
-    domain::write_plan_json(*plan, report, in->map, in->mission, c.out);
+    print_json(c.out, plan_verdict_json(*plan, report, in->map, in->mission));
   } else {
     if (o.out.empty()) c.out << domain::format_plan(*plan, in->map, in->mission);
     c.out << report << '\n';
@@ -148,6 +139,7 @@ void add_export_pddl_command(CLI::App& app, Context& context) {
       ->required();
   cmd->add_flag("--action-costs", options->action_costs,
                 "Add :action-costs with each action's cost in ms (Fast Downward; not FF 2.3)");
+  cmd->add_flag("--json", options->json, "Print the files written as JSON");
   cmd->callback([options, &context] { context.exit_code = run_export(*options, context); });
 }
 

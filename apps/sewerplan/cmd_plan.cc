@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
 // sewerplan plan --map MAP --mission MISSION [--algorithm ...] [--json] [-o PLAN]
-#include <iomanip>
+#include <algorithm>
 #include <ostream>
 
 #include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 
+#include "sewerplan/core/clock.h"
 #include "sewerplan/core/map_io.h"
 #include "sewerplan/core/mission.h"
 #include "sewerplan/core/text_file.h"
@@ -13,11 +13,14 @@
 #include "sewerplan/domain/plan_text.h"
 #include "sewerplan/domain/route_risk.h"
 #include "sewerplan/domain/validator.h"
+#include "sewerplan/executor/replanner.h"
 #include "sewerplan/search/planner.h"
 
 #include "command.h"
 #include "condition_options.h"
+#include "json_output.h"
 #include "motion_options.h"
+#include "text_format.h"
 
 namespace sewerplan::cli {
 namespace {
@@ -41,11 +44,10 @@ struct PlanOptions {
 
 void print_summary(const search::PlanOutcome& o, const domain::ValidationReport& report,
                    std::ostream& err) {
-  err << std::fixed << std::setprecision(1) << "plan: " << o.plan.steps.size() << " steps, "
-      << report.total_cost_s << " s, " << std::setprecision(2) << report.energy_wh << " Wh"
-      << (o.optimal ? " (optimal)" : "") << "; " << o.algorithm << "; compile "
-      << std::setprecision(3) << o.compile.time_s * 1e3 << " ms (" << o.compile.keys
-      << " keys), search " << o.search.time_s * 1e3 << " ms (" << o.search.expanded
+  err << "plan: " << o.plan.steps.size() << " steps, " << seconds(report.total_cost_s) << ", "
+      << watt_hours(report.energy_wh) << (o.optimal ? " (optimal)" : "") << "; " << o.algorithm
+      << "; compile " << milliseconds(o.compile.time_s) << " (" << o.compile.keys
+      << " keys), search " << milliseconds(o.search.time_s) << " (" << o.search.expanded
       << " expanded)\n";
 }
 
@@ -67,20 +69,86 @@ void print_route_risk(const search::PlanOutcome& o, const SewerMap& map, const M
   }
 }
 
+Json statistics_json(const search::PlanOutcome& o) {
+  const domain::CompileStatistics& c = o.compile;
+  const search::SearchStatistics& s = o.search;
+  return {{"compile",
+           {{"time_s", c.time_s},
+            {"keys", c.keys},
+            {"graph_nodes", c.graph_nodes},
+            {"settled_nodes", c.settled_nodes},
+            {"route_searches", c.route_searches},
+            {"actions", c.actions}}},
+          {"search",
+           {{"time_s", s.time_s},
+            {"expanded", s.expanded},
+            {"generated", s.generated},
+            {"evaluated", s.evaluated},
+            {"reopened", s.reopened},
+            {"dead_ends", s.dead_ends},
+            {"stored", s.stored},
+            {"peak_memory_bytes", s.peak_memory_bytes}}},
+          {"improvements", o.improvements}};
+}
+
+Json dropped_json(const std::vector<domain::DroppedTask>& dropped, const Mission& m) {
+  Json list = Json::array();
+  for (const auto& d : dropped)
+    list.push_back({{"task", m.task(d.task).name}, {"reason", d.reason}});
+  return list;
+}
+
+// What `plan --json` adds to a failure: what the Replanner, which always selects goals and heads
+// for a reachable exit, would answer at the start (its decision, the tasks it would drop and why,
+// within kFallbackLimit_s), and how long the failed search ran.
+constexpr double kFallbackLimit_s = 5;
+Json failure_json(const SewerMap& map, const Mission& m, search::PlannerOptions options,
+                  double search_time_s) {
+  options.time_limit_s = options.time_limit_s > 0 ? std::min(options.time_limit_s, kFallbackLimit_s)
+                                                  : kFallbackLimit_s;
+  options.improvement_expansions = 0;
+  executor::Replanner replanner(map, m, {.planner = options});
+  const executor::PlanResponse r = replanner.plan();
+  Json goals = Json::array();
+  for (TaskId t : r.goals) goals.push_back(m.task(t).name);
+  return {{"decision", executor::to_string(r.decision)},
+          {"dropped", dropped_json(r.newly_dropped, m)},
+          {"fallback",
+           {{"tasks", goals},
+            {"end", r.end},
+            {"cost_s", r.cost_s},
+            {"energy_wh", r.energy_wh},
+            {"planning_time_s", r.planning_time_s}}},
+          {"statistics", {{"time_s", search_time_s}}}};
+}
+
+Json plan_json(const search::PlanOutcome& outcome, const domain::ValidationReport& report,
+               const SewerMap& map, const Mission& m) {
+  Json j = plan_verdict_json(outcome.plan, report, map, m);
+  j["decision"] =
+      executor::to_string(outcome.dropped.empty() ? executor::PlanResponse::Decision::kFollowPlan
+                                                  : executor::PlanResponse::Decision::kDegraded);
+  j["optimal"] = outcome.optimal;
+  j["algorithm"] = outcome.algorithm;
+  j["dropped"] = dropped_json(outcome.dropped, m);
+  j["statistics"] = statistics_json(outcome);
+  return j;
+}
+
 int run(const PlanOptions& o, Context& c) {
   search::PlannerOptions options;
   auto algorithm = search::algorithm_from_string(o.algorithm);
   if (!algorithm) {
-    c.err << "--algorithm: unknown '" << o.algorithm
-          << "' (auto, ehc, gbfs, wastar, astar, exact)\n";
-    return kExitUsage;
+    return usage_error(
+        c, o.json,
+        "--algorithm: unknown '" + o.algorithm + "' (auto, ehc, gbfs, wastar, astar, exact)");
   }
   options.algorithm = *algorithm;
   if (!o.heuristic.empty()) {
     options.heuristic = search::heuristic_from_string(o.heuristic);
     if (!options.heuristic) {
-      c.err << "--heuristic: unknown '" << o.heuristic << "' (ff, add, max, blind)\n";
-      return kExitUsage;
+      return usage_error(c, o.json,
+                         "--heuristic: unknown '" + o.heuristic + "' (ff, add, max, blind)");
     }
   }
   options.weight = o.weight;
@@ -98,41 +166,40 @@ int run(const PlanOptions& o, Context& c) {
     }
   }
   options.risk = o.risk.costs();
-  print_diagnostics(diagnostics, c.err);
-  const Error* load_error = !map.has_value()        ? &map.error()
-                            : !mission->has_value() ? &mission->error()
-                            : risk_error            ? &*risk_error
-                                                    : nullptr;
-  if (load_error != nullptr) {
-    if (diagnostics.error_count() == 0) c.err << load_error->message << '\n';
-    return exit_code_for(*load_error);
-  }
-  if (int code = attach_motion(o.motion, o.map, *map, **mission, c.err); code != kExitOk) {
-    return code;
+  if (!map.has_value()) return fail(c, o.json, map.error(), diagnostics);
+  if (!mission->has_value()) return fail(c, o.json, mission->error(), diagnostics);
+  if (risk_error) return fail(c, o.json, *risk_error, diagnostics);
+  print_diagnostics(diagnostics, c.err);  // warnings
+  if (auto motion = attach_motion_table(o.motion, o.map, *map, **mission, c.err);
+      !motion.has_value()) {
+    return fail(c, o.json, motion.error());
   }
   const Mission& m = **mission;
   domain::MissionProgress start = domain::initial_progress(m, *map);
+  const SteadyClock clock;
+  const double started_s = clock.now_s();
   Result<search::PlanOutcome> outcome = search::plan_mission(*map, m, start, options);
   if (!outcome.has_value()) {
-    c.err << outcome.error().message << '\n';
-    return exit_code_for(outcome.error());
+    return fail(c, o.json, outcome.error(), {},
+                o.json ? failure_json(*map, m, options, clock.now_s() - started_s) : Json());
   }
   // Tasks left out by goal selection are not required of the plan.
   for (const auto& d : outcome->dropped) start.done[d.task.index()] = true;
   const domain::ValidationReport report = domain::validate_plan(outcome->plan, *map, m, start);
   if (!report.valid) {  // a planner bug: say so rather than hand out a wrong plan
-    c.err << "internal error: the plan found does not validate: " << report << '\n';
-    return kExitNoPlan;
+    return fail(c, o.json,
+                Error{ErrorCode::kNoPlan,
+                      "internal error: the plan found does not validate: " + report.error});
   }
   const std::string text = domain::format_plan(outcome->plan, *map, m);
-  if (o.json) {
-    domain::write_plan_json(outcome->plan, report, *map, m, c.out);
-  } else if (!o.out.empty()) {
+  if (!o.out.empty()) {
     if (Result<void> written = write_text_file(o.out, text); !written.has_value()) {
-      c.err << written.error().message << '\n';
-      return exit_code_for(written.error());
+      return fail(c, o.json, written.error());
     }
-  } else {
+  }
+  if (o.json) {
+    print_json(c.out, plan_json(*outcome, report, *map, m));
+  } else if (o.out.empty()) {
     c.out << text;
   }
   if (!o.quiet) {
@@ -152,7 +219,7 @@ void add_plan_command(CLI::App& app, Context& context) {
   auto o = std::make_shared<PlanOptions>();
   CLI::App* cmd = app.add_subcommand(
       "plan", "Plan a mission: the paper's actions, one a line (summary on standard error)");
-  cmd->add_option("--map", o->map, "Map file (.json or .sewer)")->required();
+  cmd->add_option("--map", o->map, "Map file (any format of docs/formats/)")->required();
   cmd->add_option("--mission", o->mission, "Mission file (.json)")->required();
   cmd->add_option("--algorithm,-a", o->algorithm,
                   "auto (optimal A* for small missions, the tour search otherwise), ehc, gbfs, "
@@ -166,7 +233,9 @@ void add_plan_command(CLI::App& app, Context& context) {
                   "Expansions spent looking for cheaper plans after the first (0: none)")
       ->capture_default_str();
   cmd->add_option("--out,-o", o->out, "Write the plan text to this file");
-  cmd->add_flag("--json", o->json, "Print the plan with each action's cost as JSON");
+  cmd->add_flag("--json", o->json,
+                "Print the plan, its costs, decision, dropped tasks and planner statistics as "
+                "JSON (or the error, the Replanner's decision and the tasks it would drop)");
   cmd->add_flag("--select-goals", o->select_goals,
                 "Do as many tasks as can be done and still end the mission, rather than fail");
   cmd->add_flag("--quiet,-q", o->quiet, "No summary on standard error");

@@ -14,6 +14,7 @@
 #include "sewerplan/render/svg_map.h"
 
 #include "command.h"
+#include "json_output.h"
 
 namespace sewerplan::cli {
 namespace {
@@ -28,52 +29,47 @@ struct RenderOptions {
   double width_px = 1000;
   bool focus = false;
   std::string out;
+  bool json = false;
 };
 
 int run(const RenderOptions& o, Context& c) {
   if ((!o.plan.empty() || !o.log.empty() || o.focus) && o.mission.empty()) {
-    c.err << "render: --plan, --log and --focus need --mission\n";
-    return kExitUsage;
+    return usage_error(c, o.json, "render: --plan, --log and --focus need --mission");
   }
   if (!(o.width_px >= 200 && o.width_px <= 20000)) {
-    c.err << "render: --width must be 200 to 20000 pixels\n";
-    return kExitUsage;
+    return usage_error(c, o.json, "render: --width must be 200 to 20000 pixels");
   }
   Diagnostics diagnostics;
-  auto fail = [&](const Error& e) {
-    print_diagnostics(diagnostics, c.err);
-    if (diagnostics.error_count() == 0) c.err << e.message << '\n';
-    return exit_code_for(e);
-  };
+  auto failed = [&](const Error& e) { return fail(c, o.json, e, diagnostics); };
   Result<SewerMap> map = read_map(o.map, diagnostics);
-  if (!map.has_value()) return fail(map.error());
+  if (!map.has_value()) return failed(map.error());
   std::optional<Mission> mission;
   if (!o.mission.empty()) {
     Result<Mission> m = read_mission(o.mission, *map, diagnostics);
-    if (!m.has_value()) return fail(m.error());
+    if (!m.has_value()) return failed(m.error());
     mission = std::move(*m);
   }
   std::optional<domain::Plan> plan;
   if (!o.plan.empty()) {
     Result<std::string> text = read_text_file(o.plan);
-    if (!text.has_value()) return fail(text.error());
+    if (!text.has_value()) return failed(text.error());
     Result<domain::Plan> p = domain::parse_plan(*text, o.plan, *map, *mission, diagnostics);
-    if (!p.has_value()) return fail(p.error());
+    if (!p.has_value()) return failed(p.error());
     plan = std::move(*p);
   }
   std::optional<render::EventTrace> trace;
   if (!o.log.empty()) {
     Result<std::string> text = read_text_file(o.log);
-    if (!text.has_value()) return fail(text.error());
+    if (!text.has_value()) return failed(text.error());
     Result<render::EventTrace> t =
         render::read_event_trace(*text, o.log, *map, *mission, diagnostics);
-    if (!t.has_value()) return fail(t.error());
+    if (!t.has_value()) return failed(t.error());
     trace = std::move(*t);
   }
   std::optional<hal::FaultScenario> faults;
   if (!o.faults.empty()) {
     Result<hal::FaultScenario> f = hal::read_faults(o.faults, *map, diagnostics);
-    if (!f.has_value()) return fail(f.error());
+    if (!f.has_value()) return failed(f.error());
     faults = std::move(*f);
   }
   print_diagnostics(diagnostics, c.err);
@@ -88,11 +84,19 @@ int run(const RenderOptions& o, Context& c) {
   std::ofstream out(o.out, std::ios::binary);
   out << render::render_map_svg(input);
   out.close();
-  if (!out) {
-    c.err << o.out << ": cannot write\n";
-    return kExitIo;
+  if (!out) return fail(c, o.json, Error{ErrorCode::kIo, o.out + ": cannot write"});
+  if (o.json) {
+    print_json(c.out, {{"wrote", o.out},
+                       {"format", "svg"},
+                       {"width_px", o.width_px},
+                       {"focus", o.focus},
+                       {"mission", o.mission.empty() ? Json() : Json(o.mission)},
+                       {"plan", o.plan.empty() ? Json() : Json(o.plan)},
+                       {"log", o.log.empty() ? Json() : Json(o.log)},
+                       {"faults", o.faults.empty() ? Json() : Json(o.faults)}});
+  } else {
+    c.out << "wrote " << o.out << '\n';
   }
-  c.out << "wrote " << o.out << '\n';
   return kExitOk;
 }
 
@@ -114,6 +118,7 @@ void add_render_command(CLI::App& app, Context& context) {
   cmd->add_flag("--focus", options->focus,
                 "Only the mission's area (start, tasks, routes), not the whole network");
   cmd->add_option("-o,--out", options->out, "SVG file to write")->required();
+  cmd->add_flag("--json", options->json, "Print what was written as JSON");
   cmd->callback([options, &context] { context.exit_code = run(*options, context); });
 }
 

@@ -22,6 +22,7 @@
 #include "can_link.h"
 #include "command.h"
 #include "condition_options.h"
+#include "json_output.h"
 #include "motion_options.h"
 #include "sim_setup.h"
 
@@ -42,25 +43,44 @@ struct SimulateOptions {
   MotionOptions motion;
   std::string condition;
   RiskOptions risk;
+  bool json = false;
 };
 
+Json report_json(const executor::MissionReport& r) {
+  Json dropped = Json::array();
+  for (const auto& [task, reason] : r.dropped)
+    dropped.push_back({{"task", task}, {"reason", reason}});
+  return {{"outcome", executor::to_string(r.outcome)},
+          {"decision", executor::to_string(r.decision)},
+          {"beacon_cause", executor::to_string(r.beacon_cause)},
+          {"end", r.end},
+          {"tasks_done", r.tasks_done},
+          {"dropped", dropped},
+          {"time_s", r.time_s},
+          {"energy_wh", r.energy_wh},
+          {"replans", r.replans},
+          {"planning_times_s", r.planning_times_s},
+          {"jobs", r.jobs},
+          {"recoveries", r.recoveries},
+          {"battery_reserve_kept", r.battery_reserve_kept}};
+}
+
 int run(const SimulateOptions& o, Context& c) {
-  int exit_code = kExitOk;
-  std::optional<SimWorld> world =
-      load_sim_world(o.map, o.mission, o.faults, o.random_faults, c.err, exit_code, o.condition);
-  if (!world) return exit_code;
+  Diagnostics diagnostics;
+  Result<SimWorld> world =
+      read_sim_world(o.map, o.mission, o.faults, o.random_faults, diagnostics, o.condition);
+  if (!world.has_value()) return fail(c, o.json, world.error(), diagnostics);
+  print_diagnostics(diagnostics, c.err);
   const SewerMap& map = world->map;
   Mission& mission = world->mission;
   Diagnostics risk_diagnostics;
   const Result<void> risk = apply_risk(o.risk, map, mission, risk_diagnostics, c.err);
+  if (!risk.has_value()) return fail(c, o.json, risk.error(), risk_diagnostics);
   print_diagnostics(risk_diagnostics, c.err);
-  if (!risk.has_value()) {
-    if (risk_diagnostics.error_count() == 0) c.err << risk.error().message << '\n';
-    return exit_code_for(risk.error());
-  }
   const hal::FaultScenario& faults = world->faults;
-  if (int code = attach_motion(o.motion, o.map, map, mission, c.err); code != kExitOk) {
-    return code;
+  if (auto motion = attach_motion_table(o.motion, o.map, map, mission, c.err);
+      !motion.has_value()) {
+    return fail(c, o.json, motion.error());
   }
   executor::ExecutorOptions options;
   if (!o.recovery.empty()) {
@@ -68,10 +88,7 @@ int run(const SimulateOptions& o, Context& c) {
     Result<executor::RecoveryConfig> recovery =
         text.has_value() ? executor::read_recovery_json(*text, o.recovery)
                          : Result<executor::RecoveryConfig>(text.error());
-    if (!recovery.has_value()) {
-      c.err << recovery.error().message << '\n';
-      return exit_code_for(recovery.error());
-    }
+    if (!recovery.has_value()) return fail(c, o.json, recovery.error());
     options.recovery = *recovery;
   }
   if (o.allow_push) options.recovery.push_allowed = true;
@@ -79,8 +96,7 @@ int run(const SimulateOptions& o, Context& c) {
   if (!o.log.empty()) {
     log_file.open(o.log);
     if (!log_file) {
-      c.err << o.log << ": cannot write the event log\n";
-      return kExitIo;
+      return fail(c, o.json, Error{ErrorCode::kIo, o.log + ": cannot write the event log"});
     }
   }
   executor::ReplannerOptions replanner_options;
@@ -91,33 +107,35 @@ int run(const SimulateOptions& o, Context& c) {
     Result<executor::Learnt> learnt = executor::read_learnt(o.learnt, map, d);
     Result<void> learn =
         learnt.has_value() ? replanner.learn(*learnt) : Result<void>(learnt.error());
-    if (!learn.has_value()) {
-      c.err << learn.error().message << '\n';
-      return exit_code_for(learn.error());
-    }
+    if (!learn.has_value()) return fail(c, o.json, learn.error(), d);
   }
   std::unique_ptr<CanLink> can;
   if (!o.can.bus.empty() || !o.can.replay.empty()) {
     Result<std::unique_ptr<CanLink>> link = CanLink::open(o.can);
-    if (!link.has_value()) {
-      c.err << link.error().message << '\n';
-      return exit_code_for(link.error());
-    }
+    if (!link.has_value()) return fail(c, o.json, link.error());
     can = std::move(*link);
   }
   hal::SimRobot sim(map, mission.profile, start_pose(replanner.progress().position), faults);
   hal::Robot& robot = can ? static_cast<hal::Robot&>(can->robot()) : sim;
   executor::Executor executor(map, replanner, robot, options);
   if (!o.log.empty()) executor.subscribe(executor::json_lines_writer(log_file));
-  if (!o.quiet) executor.subscribe(executor::readable_writer(c.out));
+  // With --json, standard output is the report alone: the live log goes to standard error.
+  if (!o.quiet) executor.subscribe(executor::readable_writer(o.json ? c.err : c.out));
   const executor::MissionReport report = executor.run();
-  c.out << '\n' << report;
+  if (o.json) {
+    print_json(c.out, report_json(report));
+  } else {
+    c.out << '\n' << report << "decision " << executor::to_string(report.decision);
+    if (report.outcome == executor::MissionReport::Outcome::kBeacon) {
+      c.out << " (beacon: " << executor::to_string(report.beacon_cause) << ')';
+    }
+    c.out << '\n';
+  }
   if (can) can->write_summary(c.err);
   if (!o.learnt.empty()) {
     if (auto written = write_text_file(o.learnt, executor::learnt_json(replanner.learnt(), map));
         !written.has_value()) {
-      c.err << written.error().message << '\n';
-      return kExitIo;
+      return fail(c, false, written.error());  // the report is out already
     }
   }
   return report.outcome == executor::MissionReport::Outcome::kEnded ? kExitOk : kExitNoPlan;
@@ -145,6 +163,8 @@ void add_simulate_command(CLI::App& app, Context& context) {
   cmd->add_option("--learnt", options->learnt,
                   "What the robot learnt (JSON): read if it exists, written at the end");
   cmd->add_flag("-q,--quiet", options->quiet, "Only the final report");
+  cmd->add_flag("--json", options->json,
+                "Print the report as JSON (the live log goes to standard error)");
   auto* can =
       cmd->add_option("--can", options->can.bus,
                       "Run on a robot over CAN: slcan:TTY or socketcan:IFACE (docs/can.md)");

@@ -1,29 +1,30 @@
 // SPDX-License-Identifier: MIT
-// sewerplan validate MAP [--mission FILE] [--strict] [--json]
+// sewerplan validate --map MAP [--mission FILE] [--strict] [--json]
 #include <ostream>
 
 #include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 
 #include "sewerplan/core/map_io.h"
 #include "sewerplan/core/mission.h"
 
 #include "command.h"
 #include "condition_options.h"
+#include "json_output.h"
 
 namespace sewerplan::cli {
 namespace {
 
 struct ValidateOptions {
   std::string map;
+  std::string map_positional;  // deprecated: validate MAP
   std::string mission;
   bool strict = false;
   bool json = false;
   std::string condition;
 };
 
-nlohmann::json diagnostics_json(const Diagnostics& diagnostics, Severity severity) {
-  nlohmann::json list = nlohmann::json::array();
+Json diagnostics_json(const Diagnostics& diagnostics, Severity severity) {
+  Json list = Json::array();
   for (const Diagnostic& d : diagnostics.all()) {
     if (d.severity == severity) list.push_back({{"where", d.where}, {"message", d.message}});
   }
@@ -31,8 +32,12 @@ nlohmann::json diagnostics_json(const Diagnostics& diagnostics, Severity severit
 }
 
 int run(const ValidateOptions& o, Context& c) {
+  int exit_code = kExitOk;
+  const std::optional<std::string> path =
+      map_path(o.map, o.map_positional, "validate", c, o.json, exit_code);
+  if (!path) return exit_code;
   Diagnostics diagnostics;
-  Result<SewerMap> map = read_map_with_condition(o.map, o.condition, diagnostics);
+  Result<SewerMap> map = read_map_with_condition(*path, o.condition, diagnostics);
   std::optional<Error> failure;
   if (!map.has_value()) {
     failure = map.error();
@@ -42,21 +47,22 @@ int run(const ValidateOptions& o, Context& c) {
   }
   const bool valid = !failure && !(o.strict && diagnostics.warning_count() > 0);
   if (o.json) {
-    nlohmann::json j = {{"valid", valid},
-                        {"errors", diagnostics_json(diagnostics, Severity::kError)},
-                        {"warnings", diagnostics_json(diagnostics, Severity::kWarning)}};
+    Json j = {{"valid", valid},
+              {"errors", diagnostics_json(diagnostics, Severity::kError)},
+              {"warnings", diagnostics_json(diagnostics, Severity::kWarning)}};
     if (failure && failure->code == ErrorCode::kIo)
       j["errors"].push_back({{"where", ""}, {"message", failure->message}});
+    if (failure) j["error"] = error_object(*failure, diagnostics, exit_code_for(*failure));
     if (map.has_value()) {
       j["manholes"] = map->manhole_count();
       j["pipes"] = map->pipe_count();
     }
-    c.out << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
+    print_json(c.out, j);
   } else {
     print_diagnostics(diagnostics, c.err);
     if (failure && diagnostics.error_count() == 0) c.err << failure->message << '\n';
     if (valid) {
-      c.out << o.map << ": valid (" << map->manhole_count() << " manholes, " << map->pipe_count()
+      c.out << *path << ": valid (" << map->manhole_count() << " manholes, " << map->pipe_count()
             << " pipes" << (o.mission.empty() ? "" : ", mission " + o.mission + " valid") << ", "
             << diagnostics.warning_count() << " warnings)\n";
     }
@@ -73,7 +79,8 @@ void add_validate_command(CLI::App& app, Context& context) {
   CLI::App* cmd = app.add_subcommand(
       "validate",
       "Check a map (and a mission on it): every problem with its file and line or path");
-  cmd->add_option("map", options->map, "Map file (.json or .sewer)")->required();
+  cmd->add_option("--map", options->map, "Map file (any format of docs/formats/)");
+  cmd->add_option("map", options->map_positional, "Deprecated: use --map")->group("");
   cmd->add_option("--mission", options->mission, "Also check this mission file against the map");
   cmd->add_flag("--strict", options->strict, "Treat warnings as errors");
   cmd->add_flag("--json", options->json, "Print the result as JSON");

@@ -20,27 +20,40 @@ void add_motion_options(CLI::App& cmd, MotionOptions& options) {
                "Ignore planned manhole passages: use the angle and step rules");
 }
 
-int attach_motion(const MotionOptions& options, const std::string& map_path, const SewerMap& map,
-                  Mission& mission, std::ostream& err, std::string* used_path) {
-  if (used_path != nullptr) used_path->clear();
-  if (options.none) return kExitOk;
+Result<std::string> attach_motion_table(const MotionOptions& options, const std::string& map_path,
+                                        const SewerMap& map, Mission& mission, std::ostream& err) {
+  if (options.none) return std::string();
   std::filesystem::path path = options.path;
   if (path.empty()) {
     path = default_motion_path(map_path);
     std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) return kExitOk;
+    if (!std::filesystem::exists(path, ec)) return std::string();
   }
   Result<PassageMotionTable> table = load_passage_motion(path, map, mission.profile);
   if (!table.has_value()) {
-    err << table.error().message << "\n(use --no-motion to plan with the angle and step rules)\n";
-    return table.error().code == ErrorCode::kIo ? kExitIo : kExitInvalidInput;
+    Error error = table.error();
+    // A table for another map or profile is invalid input (exit code 1), not a usage error.
+    if (error.code == ErrorCode::kInvalidArgument) error.code = ErrorCode::kInvalidMap;
+    error.message += "\n(use --no-motion to plan with the angle and step rules)";
+    return error;
   }
   std::size_t infeasible = 0;
   for (const PassageMotion& p : table->entries()) infeasible += p.feasible ? 0U : 1U;
   err << "motion: using " << table->size() << " planned manhole passages from " << path.string()
       << " (" << infeasible << " infeasible)\n";
   mission.passage_motion = std::make_shared<const PassageMotionTable>(std::move(*table));
-  if (used_path != nullptr) *used_path = path.string();
+  return path.string();
+}
+
+int attach_motion(const MotionOptions& options, const std::string& map_path, const SewerMap& map,
+                  Mission& mission, std::ostream& err, std::string* used_path) {
+  if (used_path != nullptr) used_path->clear();
+  Result<std::string> used = attach_motion_table(options, map_path, map, mission, err);
+  if (!used.has_value()) {
+    err << used.error().message << '\n';
+    return used.error().code == ErrorCode::kIo ? kExitIo : kExitInvalidInput;
+  }
+  if (used_path != nullptr) *used_path = *used;
   return kExitOk;
 }
 

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "sewerplan/core/mission.h"
+#include "sewerplan/core/result.h"
 #include "sewerplan/core/sewer_map.h"
 
 namespace CLI {
@@ -24,6 +25,11 @@ struct MotionOptions {
 };
 
 void add_motion_options(CLI::App& cmd, MotionOptions& options);
+
+// Attaches the table to the mission (saying so on `err`): the path used, empty when none is; or
+// the error, not printed (a stale or broken table: kInvalidMap and the like, or kIo).
+Result<std::string> attach_motion_table(const MotionOptions& options, const std::string& map_path,
+                                        const SewerMap& map, Mission& mission, std::ostream& err);
 
 // Attaches the table to the mission. Returns kExitOk, or the exit code after printing the error.
 // `used_path`, when given, receives the table's path (empty when none is used).

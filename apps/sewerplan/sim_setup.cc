@@ -42,28 +42,40 @@ Result<hal::FaultScenario> faults_for(const std::string& faults_file,
   return hal::random_faults(map, r);
 }
 
+Result<SimWorld> read_sim_world(const std::string& map_path, const std::string& mission_path,
+                                const std::string& faults_file, const std::string& random_faults,
+                                Diagnostics& diagnostics, const std::string& condition) {
+  Result<SewerMap> map = read_map_with_condition(map_path, condition, diagnostics);
+  if (!map.has_value()) return map.error();
+  Result<Mission> mission = read_mission(mission_path, *map, diagnostics);
+  if (!mission.has_value()) return mission.error();
+  Result<hal::FaultScenario> faults =
+      faults_for(faults_file, random_faults, *map, *mission, diagnostics);
+  if (!faults.has_value()) {
+    Error error = faults.error();
+    if (!faults_file.empty() && error.code == ErrorCode::kInvalidArgument) {
+      error.code = ErrorCode::kInvalidMission;
+    }
+    return error;
+  }
+  return SimWorld{std::move(*map), std::move(*mission), std::move(*faults)};
+}
+
 std::optional<SimWorld> load_sim_world(const std::string& map_path, const std::string& mission_path,
                                        const std::string& faults_file,
                                        const std::string& random_faults, std::ostream& err,
                                        int& exit_code, const std::string& condition) {
   Diagnostics diagnostics;
-  Result<SewerMap> map = read_map_with_condition(map_path, condition, diagnostics);
-  Result<Mission> mission = map.has_value() ? read_mission(mission_path, *map, diagnostics)
-                                            : Result<Mission>(map.error());
-  Result<hal::FaultScenario> faults =
-      mission.has_value() ? faults_for(faults_file, random_faults, *map, *mission, diagnostics)
-                          : Result<hal::FaultScenario>(mission.error());
+  Result<SimWorld> world =
+      read_sim_world(map_path, mission_path, faults_file, random_faults, diagnostics,
+                     condition);
   print_diagnostics(diagnostics, err);
-  if (!faults.has_value()) {
-    if (diagnostics.error_count() == 0) err << faults.error().message << '\n';
-    // A fault file with a bad value is invalid input (1) like a bad map; a bad --random-faults
-    // is a usage error (2).
-    exit_code = !faults_file.empty() && faults.error().code == ErrorCode::kInvalidArgument
-                    ? kExitInvalidInput
-                    : exit_code_for(faults.error());
+  if (!world.has_value()) {
+    if (diagnostics.error_count() == 0) err << world.error().message << '\n';
+    exit_code = exit_code_for(world.error());
     return std::nullopt;
   }
-  return SimWorld{std::move(*map), std::move(*mission), std::move(*faults)};
+  return std::move(*world);
 }
 
 }  // namespace sewerplan::cli

@@ -34,8 +34,14 @@ struct SimWorld {
   hal::FaultScenario faults;
 };
 
-// Reads them (the map with the condition data of `condition`, if given), printing every problem
-// to `err`; empty with `exit_code` set when one is wrong.
+// Reads them (the map with the condition data of `condition`, if given); the problems go to
+// `diagnostics`. A fault file with a bad value is invalid input (kInvalidMission, exit code 1)
+// like a bad map; a bad --random-faults a usage error (kInvalidArgument, exit code 2).
+Result<SimWorld> read_sim_world(const std::string& map_path, const std::string& mission_path,
+                                const std::string& faults_file, const std::string& random_faults,
+                                Diagnostics& diagnostics, const std::string& condition = {});
+
+// Reads them, printing every problem to `err`; empty with `exit_code` set when one is wrong.
 std::optional<SimWorld> load_sim_world(const std::string& map_path, const std::string& mission_path,
                                        const std::string& faults_file,
                                        const std::string& random_faults, std::ostream& err,

@@ -143,7 +143,14 @@ int run(const Options& options) {
   fs::create_directories(root / "instances");
   std::vector<std::string> datasets = options.datasets;
   if (datasets.empty() && !options.no_datasets) {
-    const std::string dir = std::string(SEWERPLAN_SOURCE_DIR) + "/datasets/ais-testbed/";
+    // The source tree's copy, or, installed (the Debian package), the one beside the binary.
+    std::string dir = std::string(SEWERPLAN_SOURCE_DIR) + "/datasets/ais-testbed/";
+    std::error_code ec;
+    if (!fs::exists(dir, ec)) {
+      const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+      if (!ec)
+        dir = (exe.parent_path().parent_path() / "share/sewerplan/datasets/ais-testbed/").string();
+    }
     datasets.push_back(dir + "map.json:" + dir + "missions/paper.json");
   }
   const std::size_t total =

@@ -4,6 +4,7 @@
 
 #include <iomanip>
 #include <sstream>
+#include <string_view>
 
 #include "sewerplan/core/overloaded.h"
 
@@ -12,11 +13,18 @@
 namespace sewerplan::executor {
 namespace {
 
-std::string readable_value(const detail::FieldValue& value) {
+// A number with the precision of its unit, which the key's suffix names: metres 2 decimals,
+// seconds, milliseconds and watt-hours 1, anything else 2.
+int decimals_for(std::string_view key) {
+  if (key.ends_with("_s") || key.ends_with("_ms") || key.ends_with("_wh")) return 1;
+  return 2;
+}
+
+std::string readable_value(std::string_view key, const detail::FieldValue& value) {
   return std::visit(Overloaded{[](const std::string& s) { return s; },
-                               [](double d) {
+                               [&](double d) {
                                  std::ostringstream out;
-                                 out << std::setprecision(4) << d;
+                                 out << std::fixed << std::setprecision(decimals_for(key)) << d;
                                  return out.str();
                                },
                                [](std::int64_t i) { return std::to_string(i); },
@@ -36,7 +44,7 @@ std::string readable_line(const Event& event) {
   line << '[' << std::fixed << std::setprecision(1) << std::setw(8) << event.t_s << " s] "
        << std::left << std::setw(12) << type_name(event) << std::right;
   for (const auto& [key, value] : detail::fields_of(event)) {
-    line << ' ' << key << '=' << readable_value(value);
+    line << ' ' << key << '=' << readable_value(key, value);
   }
   return line.str();
 }

@@ -11,6 +11,7 @@
 
 #include "sewerplan/domain/plan_text.h"
 #include "sewerplan/domain/validator.h"
+#include "sewerplan/fusion/action_text.h"
 #include "sewerplan/fusion/jobs.h"
 #include "sewerplan/fusion/robot_action.h"
 
@@ -20,12 +21,6 @@
 
 namespace sewerplan::executor {
 namespace {
-
-std::string action_text(const fusion::RobotAction& action) {
-  std::ostringstream out;
-  out << action;
-  return out.str();
-}
 
 std::vector<std::string> task_names(const Mission& mission, const std::vector<TaskId>& tasks) {
   std::vector<std::string> names;
@@ -58,7 +53,7 @@ std::ostream& operator<<(std::ostream& os, const MissionReport& r) {
   os << "time " << r.time_s << " s, energy " << r.energy_wh << " Wh, " << r.jobs << " jobs, "
      << r.recoveries << " errors cleared by recovery, " << r.replans << " replans";
   if (!r.planning_times_s.empty()) {
-    os << std::setprecision(3) << " (planning";
+    os << std::setprecision(1) << " (planning";
     for (double t : r.planning_times_s) os << ' ' << t * 1000 << " ms";
     os << ')';
   }
@@ -217,7 +212,7 @@ class Executor::Run {
                                                    map_, mission()),
                        .kind = std::string(fusion::action_kind(action)),
                        .duration_s = fusion::duration_s(action),
-                       .parameters = action_text(action)});
+                       .parameters = fusion::describe(action, map_, mission())});
       for (const Job& job : jobs_for(action)) {
         std::optional<Failure> failure = recovery_.run_job(job, action);
         if (failure || halted()) {

@@ -30,84 +30,94 @@ expect() {
 
 ais=$src/datasets/ais-testbed/map.json
 mission=$src/datasets/ais-testbed/missions/paper.json
-expect 0 "valid \(12 manholes, 14 pipes" -- "$sp" validate "$ais"
-expect 0 "mission .*paper.json valid" -- "$sp" validate "$ais" --mission "$mission"
-expect 0 '"valid": true' -- "$sp" validate "$ais" --json
+expect 0 "valid \(12 manholes, 14 pipes" -- "$sp" validate --map "$ais"
+expect 0 "mission .*paper.json valid" -- "$sp" validate --map "$ais" --mission "$mission"
+expect 0 '"valid": true' -- "$sp" validate --map "$ais" --json
 expect 1 'broken.json:\$\.pipes\[1\]\.to: error: pipe P2: to names unknown manhole .C.' -- \
-  "$sp" validate "$src/tests/data/json/broken.json"
+  "$sp" validate --map "$src/tests/data/json/broken.json"
 expect 1 'pipe P2: length must be a positive number of metres, got -2' -- \
-  "$sp" validate "$src/tests/data/json/broken.json"
-expect 1 '"valid": false' -- "$sp" validate "$src/tests/data/json/broken.json" --json
-expect 3 'cannot read .*missing.json: No such file' -- "$sp" validate "$tmp/missing.json"
+  "$sp" validate --map "$src/tests/data/json/broken.json"
+expect 1 '"valid": false' -- "$sp" validate --map "$src/tests/data/json/broken.json" --json
+expect 3 'cannot read .*missing.json: No such file' -- "$sp" validate --map "$tmp/missing.json"
 expect 2 'required' -- "$sp" validate
-expect 2 '' -- "$sp" frobnicate
+# The map named the old way, positionally, still works, with a deprecation note; twice is an error.
+expect 0 'validate: the map as a positional argument is deprecated; use --map' -- "$sp" validate "$ais"
 expect 0 'TYPE_4: 2' -- "$sp" info "$ais"
-expect 0 '"manholes": 12' -- "$sp" info "$ais" --json
-expect 0 'exits +4: M1, M4, M10, M12' -- "$sp" info "$ais"
+expect 0 'wrote .*\(12 manholes, 14 pipes\)' -- "$sp" convert "$ais" "$tmp/old-form.sewer"
+expect 0 'wrote .*\(12 manholes, 14 pipes\)' -- "$sp" convert --map "$ais" "$tmp/old-form2.sewer"
+expect 2 'give the map once' -- "$sp" validate --map "$ais" "$ais"
+expect 2 'give the output once' -- "$sp" convert --map "$ais" -o "$tmp/x.sewer" "$tmp/y.sewer"
+# --help and --version: the exit codes, and the version from CMake's project().
+expect 0 '6  campaign: not clean' -- "$sp" --help
+expect 0 '^sewerplan [0-9]+\.[0-9]+\.[0-9]+$' -- "$sp" --version
+expect 2 '' -- "$sp" frobnicate
+expect 0 'TYPE_4: 2' -- "$sp" info --map "$ais"
+expect 0 '"manholes": 12' -- "$sp" info --map "$ais" --json
+expect 0 'exits +4: M1, M4, M10, M12' -- "$sp" info --map "$ais"
 echo '{"format": "sewerplan-mission", "version": 1, "start": {"pipe": "P99"}, "tasks": []}' > "$tmp/m.json"
-expect 1 "m.json:\\\$\\.start\\.pipe: error: unknown pipe 'P99'" -- "$sp" validate "$ais" --mission "$tmp/m.json"
+expect 1 "m.json:\\\$\\.start\\.pipe: error: unknown pipe 'P99'" -- "$sp" validate --map "$ais" --mission "$tmp/m.json"
 
 # Conversions round-trip through every format.
-expect 0 'wrote' -- "$sp" convert "$ais" "$tmp/a.sewer"
-expect 0 'wrote' -- "$sp" convert "$tmp/a.sewer" "$tmp/b.json"
-expect 0 'valid \(12 manholes, 14 pipes' -- "$sp" validate "$tmp/b.json"
-if ! cmp -s <("$sp" info "$ais" --json | grep -v '"name"') <("$sp" info "$tmp/b.json" --json | grep -v '"name"'); then
+expect 0 'wrote' -- "$sp" convert --map "$ais" -o "$tmp/a.sewer"
+expect 0 'wrote' -- "$sp" convert --map "$tmp/a.sewer" -o "$tmp/b.json"
+expect 0 'valid \(12 manholes, 14 pipes' -- "$sp" validate --map "$tmp/b.json"
+if ! cmp -s <("$sp" info --map "$ais" --json | grep -v '"name"') <("$sp" info --map "$tmp/b.json" --json | grep -v '"name"'); then
   echo "FAIL: JSON -> ASCII -> JSON changed the map"; failures=$((failures + 1))
 else
   passed=$((passed + 1))
 fi
-expect 2 'unknown format' -- "$sp" convert "$ais" "$tmp/x.out" --to xml
-expect 1 'cannot tell the format' -- "$sp" convert "$ais" "$tmp/x.out"
+expect 2 'unknown format' -- "$sp" convert --map "$ais" -o "$tmp/x.out" --to xml
+expect 1 'cannot tell the format' -- "$sp" convert --map "$ais" -o "$tmp/x.out"
 
 # Imported sewer databases: SWMM and ISYBAU, converted to the native formats, never written.
 swmm="$src/datasets/swmm/epa-example1.inp"
 isybau="$src/datasets/isybau/street-2017.xml"
-expect 0 'wrote .*\(14 manholes, 13 pipes\)' -- "$sp" convert "$swmm" "$tmp/ex1.json"
-expect 0 'valid \(14 manholes, 13 pipes' -- "$sp" validate "$tmp/ex1.json"
-expect 0 'wrote .*\(4 manholes, 4 pipes\)' -- "$sp" convert "$isybau" "$tmp/street.sewer"
-expect 1 'does not write them' -- "$sp" convert "$ais" "$tmp/ais.inp"
-expect 2 'does not write it' -- "$sp" convert "$ais" "$tmp/ais.out" --to isybau
+expect 0 'wrote .*\(14 manholes, 13 pipes\)' -- "$sp" convert --map "$swmm" -o "$tmp/ex1.json"
+expect 0 'valid \(14 manholes, 13 pipes' -- "$sp" validate --map "$tmp/ex1.json"
+expect 0 'wrote .*\(4 manholes, 4 pipes\)' -- "$sp" convert --map "$isybau" -o "$tmp/street.sewer"
+expect 1 'does not write them' -- "$sp" convert --map "$ais" -o "$tmp/ais.inp"
+expect 2 'does not write it' -- "$sp" convert --map "$ais" -o "$tmp/ais.out" --to isybau
 expect 1 'net.inp:1: error: data before the first \[SECTION\]' -- \
   bash -c "printf 'x\n[JUNCTIONS]\n' > '$tmp/net.inp'; '$sp' validate '$tmp/net.inp'"
 # Driveability for a robot profile.
 echo '{"base": "makro-plus", "name": "low-steps", "max_step_m": 0.2}' > "$tmp/low-steps.json"
-expect 0 'too narrow +1 pipes: S4' -- "$sp" info --profile makro-plus "$isybau"
+expect 0 'too narrow +1 pipes: S4' -- "$sp" info --map "$isybau" --profile makro-plus
 expect 0 'S2 2<->3 \(S3, S2\): turn 116.57 deg > 90.00 step 0.35 m > 0.30' -- \
-  "$sp" info --profile makro-plus "$isybau"
+  "$sp" info --map "$isybau" --profile makro-plus
 expect 0 'reachable +3 of 4 manholes, 2 of 4 pipes .* from 1 start: S4' -- \
-  "$sp" info --profile "$tmp/low-steps.json" --start S4 "$isybau"
-expect 0 '"too_wide": \[' -- "$sp" info --profile makro-plus --json "$swmm"
-expect 1 "--start: no manhole 'M99'" -- "$sp" info --profile makro-plus --start M99 "$isybau"
-expect 2 'needs --profile' -- "$sp" info --start S1 "$isybau"
+  "$sp" info --map "$isybau" --profile "$tmp/low-steps.json" --start S4
+expect 0 '"too_wide": \[' -- "$sp" info --map "$swmm" --profile makro-plus --json
+expect 1 "--start: no manhole 'M99'" -- "$sp" info --map "$isybau" --profile makro-plus --start M99
+expect 2 'needs --profile' -- "$sp" info --map "$isybau" --start S1
 
 # Issue 15: real exports. 2013 floor points, optional elements, Latin-1 names, findings.
 isy=$src/datasets/isybau
-expect 0 'pipe ends begin inside their manhole' -- "$sp" validate "$isy/street-2013.xml"
-expect 0 'S2 2<->3 \(S3, S2\): turn 116.9. deg' -- "$sp" info --profile makro-plus "$isy/street-2013.xml"
-expect 0 'valid \(4 manholes, 4 pipes' -- "$sp" validate "$isy/street-optional.xml"
-expect 0 'wrote .*\(4 manholes, 4 pipes\)' -- "$sp" convert "$isy/street-latin1.xml" "$tmp/latin1.json"
+expect 0 'pipe ends begin inside their manhole' -- "$sp" validate --map "$isy/street-2013.xml"
+expect 0 'S2 2<->3 \(S3, S2\): turn 116.9. deg' -- "$sp" info --map "$isy/street-2013.xml" --profile makro-plus
+expect 0 'valid \(4 manholes, 4 pipes' -- "$sp" validate --map "$isy/street-optional.xml"
+expect 0 'wrote .*\(4 manholes, 4 pipes\)' -- "$sp" convert --map "$isy/street-latin1.xml" -o "$tmp/latin1.json"
 if grep -q '"name": "Süd3"' "$tmp/latin1.json"; then passed=$((passed + 1)); else
   echo "FAIL: the Latin-1 name Süd3 did not reach the JSON map"; failures=$((failures + 1)); fi
-expect 0 '"manholes": 4' -- "$sp" info --json "$isy/street-latin1.xml"
-expect 0 '"valid": true' -- "$sp" validate --json "$isy/street-latin1.xml"
+expect 0 '"manholes": 4' -- "$sp" info --map "$isy/street-latin1.xml" --json
+expect 0 '"valid": true' -- "$sp" validate --map "$isy/street-latin1.xml" --json
 printf 'sewerdb 1\nmanhole M\xfc x=0 y=0 z=0 diameter=1\n' > "$tmp/latin1.sewer"
-expect 1 '"valid": false' -- "$sp" validate --json "$tmp/latin1.sewer"
-expect 1 'not valid UTF-8' -- "$sp" validate "$tmp/latin1.sewer"
+expect 1 '"valid": false' -- "$sp" validate --map "$tmp/latin1.sewer" --json
+expect 1 'not valid UTF-8' -- "$sp" validate --map "$tmp/latin1.sewer"
 expect 1 'a Zustandsdaten file \(6 inspected objects\) without Stammdaten' -- \
-  "$sp" validate "$isy/street-zustand.xml"
+  "$sp" validate --map "$isy/street-zustand.xml"
 expect 1 'no conduit a robot could drive' -- \
   bash -c "printf '[JUNCTIONS]\nJ1 1 1\n' > '$tmp/j.inp'; '$sp' validate --strict '$tmp/j.inp'"
 expect 1 'a DWA-M 150 file' -- bash -c "echo '<DATA><KG/></DATA>' > '$tmp/m150.xml'; '$sp' validate '$tmp/m150.xml'"
 expect 1 'an INTERLIS transfer file' -- bash -c "echo '<TRANSFER/>' > '$tmp/t.xtf'; '$sp' validate '$tmp/t.xtf'"
 expect 0 'findings +7: BAA 1, BAC 1, BAJ 1, BBA 1, BBB 1, BCD 1, BCE 1' -- \
-  "$sp" info "$isybau" --condition "$isy/street-zustand.xml"
+  "$sp" info --map "$isybau" --condition "$isy/street-zustand.xml"
 expect 0 'pipe S2 at 18.00 m: BAC collapse' -- \
-  "$sp" info --profile makro-plus "$isybau" --condition "$isy/street-zustand.xml"
+  "$sp" info --map "$isybau" --profile makro-plus --condition "$isy/street-zustand.xml"
 expect 0 '"closed_by_findings": \[' -- \
-  "$sp" info --profile makro-plus --json "$isybau" --condition "$isy/street-zustand.xml"
-expect 0 'wrote' -- "$sp" convert "$isybau" "$tmp/cond.json" --condition "$isy/street-zustand.xml"
-expect 0 '"findings": 7' -- "$sp" info --json "$tmp/cond.json"
-expect 1 'holds no inspection findings' -- "$sp" convert "$tmp/cond.json" "$tmp/cond.sewer"
+  "$sp" info --map "$isybau" --profile makro-plus --json --condition "$isy/street-zustand.xml"
+expect 0 'wrote' -- "$sp" convert --map "$isybau" -o "$tmp/cond.json" --condition "$isy/street-zustand.xml"
+expect 0 '"findings": 7' -- "$sp" info --map "$tmp/cond.json" --json
+expect 1 'holds no inspection findings' -- "$sp" convert --map "$tmp/cond.json" -o "$tmp/cond.sewer"
 # Planning with findings: the roots in pipe S1 may block; --risk avoid closes them, ignore does not.
 echo '{"format": "sewerplan-mission", "version": 1, "profile": "makro-plus", "start": {"manhole": "S1"},
   "tasks": [{"name": "roots", "type": "inspect_pipe", "pipe": "S1"}]}' > "$tmp/street-mission.json"
@@ -142,7 +152,7 @@ expect 0 'wrote' -- "$sp" generate --manholes 500 --seed 3 -o "$tmp/g1.json"
 expect 0 'wrote' -- "$sp" generate --manholes 500 --seed 3 -o "$tmp/g2.json"
 if cmp -s "$tmp/g1.json" "$tmp/g2.json"; then passed=$((passed + 1)); else
   echo "FAIL: the same seed gave different networks"; failures=$((failures + 1)); fi
-expect 0 'valid \(500 manholes' -- "$sp" validate "$tmp/g1.json"
+expect 0 'valid \(500 manholes' -- "$sp" validate --map "$tmp/g1.json"
 expect 2 'manholes' -- "$sp" generate --manholes 3 -o "$tmp/g3.json"
 for spread in uniform clustered near-exit; do  # issue 16: missions of every shape
   expect 0 '5 tasks' -- "$sp" generate --manholes 500 --seed 3 -o "$tmp/g4.json" --mission-tasks 5 \
@@ -183,7 +193,7 @@ else
   echo "FAIL: sewerplan plan on the paper's mission differs from $plans/paper-corrected.plan"
   diff "$tmp/plan.txt" "$plans/paper-corrected.plan" | head; failures=$((failures + 1))
 fi
-expect 0 'plan: 14 steps, 585.4 s, 19.51 Wh \(optimal\)' -- "$sp" plan --map "$ais" --mission "$mission" -o "$tmp/p.plan"
+expect 0 'plan: 14 steps, 585.4 s, 19.5 Wh \(optimal\)' -- "$sp" plan --map "$ais" --mission "$mission" -o "$tmp/p.plan"
 expect 0 'valid: 14 steps' -- "$sp" check --map "$ais" --mission "$mission" "$tmp/p.plan"
 for a in ehc gbfs wastar astar; do
   "$sp" plan --map "$ais" --mission "$mission" -a "$a" -q -o "$tmp/$a.plan" > /dev/null 2>&1
@@ -206,7 +216,7 @@ expect 0 "left out: task 'far'" -- "$sp" check --map "$ais" --mission "$tmp/cut.
 expect 1 "task 'far' .* is not done" -- "$sp" check --map "$ais" --mission "$tmp/cut.json" "$tmp/selected.plan"
 # A pipe of 1e16 m passed validate and stopped plan on an internal check (exit 134).
 sed 's/"length_m": 8.485/"length_m": 1e16/' "$ais" > "$tmp/huge.json"
-expect 1 'length must be at most 100000 m, got 1e\+16' -- "$sp" validate "$tmp/huge.json"
+expect 1 'length must be at most 100000 m, got 1e\+16' -- "$sp" validate --map "$tmp/huge.json"
 expect 1 'length must be at most' -- "$sp" plan --map "$tmp/huge.json" --mission "$mission"
 
 # simulate: the paper's mission with an obstacle the head lift clears and one in the inspected pipe.
@@ -293,13 +303,13 @@ expect 2 "need --mission" -- "$sp" render --map "$ais" --log "$tmp/events.jsonl"
 # says so; --no-motion and a stale table. A build without OMPL says it cannot plan them.
 mkdir -p "$tmp/motion"
 cp "$ais" "$tmp/motion/map.json"
-motion_out=$("$sp" motion precompute "$tmp/motion/map.json" -q 2>&1)
+motion_out=$("$sp" motion precompute --map "$tmp/motion/map.json" -q 2>&1)
 if grep -q 'has no OMPL' <<<"$motion_out"; then
-  expect 1 'this build of sewerplan has no OMPL' -- "$sp" motion precompute "$tmp/motion/map.json"
+  expect 1 'this build of sewerplan has no OMPL' -- "$sp" motion precompute --map "$tmp/motion/map.json"
 else
   expect 0 'motion: 50 passages, [0-9]+ geometries, [0-9]+ feasible; motion rejects' -- \
-    "$sp" motion precompute "$tmp/motion/map.json" --seed 3
-  expect 0 'wrote .*/motion/map.motion.json' -- "$sp" motion precompute "$tmp/motion/map.json" -q
+    "$sp" motion precompute --map "$tmp/motion/map.json" --seed 3
+  expect 0 'wrote .*/motion/map.motion.json' -- "$sp" motion precompute --map "$tmp/motion/map.json" -q
   expect 0 'motion: using 50 planned manhole passages from .*map.motion.json' -- \
     "$sp" plan --map "$tmp/motion/map.json" --mission "$mission"
   expect 0 'plan: 14 steps, 585.4 s' -- \
@@ -308,7 +318,7 @@ else
   expect 0 'valid: 14 steps' -- \
     "$sp" check --map "$tmp/motion/map.json" --mission "$mission" "$tmp/motion/plan.txt"
   echo '{"base": "makro-1.1", "name": "long", "length_m": 2.4}' > "$tmp/motion/long.json"
-  "$sp" motion precompute "$tmp/motion/map.json" -q --profile "$tmp/motion/long.json" \
+  "$sp" motion precompute --map "$tmp/motion/map.json" -q --profile "$tmp/motion/long.json" \
     -o "$tmp/motion/long.motion.json" >/dev/null
   expect 0 'motion: using 50' -- \
     "$sp" simulate --map "$tmp/motion/map.json" --mission "$mission" -q

@@ -14,6 +14,7 @@
 #include "sewerplan/core/map_queries.h"
 #include "sewerplan/domain/plan_text.h"
 #include "sewerplan/domain/validator.h"
+#include "sewerplan/fusion/action_text.h"
 
 #include "fusion/fusion_testing.h"
 #include "support/ais_testbed.h"
@@ -23,6 +24,7 @@ namespace sewerplan::fusion {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 using testing::fuse_text;
 using testing::parse;
@@ -150,6 +152,18 @@ TEST_F(FusePaperPlanTest, PrintsEachActionWithItsStep) {
   EXPECT_THAT(out.str(), HasSubstr("step 1: DriveToManhole(pipe #11 -> manhole #1, forward 2.83 m "
                                    "at 0.30 m/s, type 2, pipe 0.60 m) [9.4 s]"));
   EXPECT_THAT(out.str(), HasSubstr("step 6: PassManhole(manhole #5, slot 3 -> 4, turn 90.0 deg"));
+}
+
+// Logs name the objects as the map and the mission do, never by their internal indices (issue 18).
+TEST_F(FusePaperPlanTest, DescribesAnActionByTheNamesOfItsObjects) {
+  EXPECT_EQ(describe(fused_.actions.at(0), ais_.map, ais_.mission),
+            "DriveToManhole(pipe P12 -> manhole M2, forward 2.83 m at 0.30 m/s, type 2, pipe "
+            "0.60 m) [9.4 s]");
+  EXPECT_THAT(describe(fused_.actions.at(5), ais_.map, ais_.mission),
+              HasSubstr("PassManhole(manhole M6, slot 3 -> 4"));
+  const std::string sample = describe(fused_.actions.at(6), ais_.map, ais_.mission);
+  EXPECT_THAT(sample, HasSubstr("TakeWaterSample(pipe P6 at 3.00 m, task sample,"));
+  EXPECT_THAT(sample, Not(HasSubstr("#")));
 }
 
 TEST_F(FusePaperPlanTest, AnInvalidStepIsAnErrorNamingTheStep) {

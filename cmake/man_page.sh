@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# Writes sewerplan's man page with help2man: the main --help and --version, and a COMMANDS section
+# with every command's own --help (one page listing them all), the exit codes and where the docs are.
+# Usage: man_page.sh SEWERPLAN OUT.1
+set -euo pipefail
+sp=$1
+out=$2
+include=$(mktemp)
+trap 'rm -f "$include"' EXIT
+{
+  echo "[COMMANDS]"
+  commands=$("$sp" --help | awk '/^Subcommands:/ {on = 1; next} on && !NF {exit} on {print $1}')
+  for c in $commands; do
+    echo ".SS $c"
+    echo ".nf"
+    # Each command's --help without the footer it shares with the main --help (printed once).
+    "$sp" "$c" --help | sed -e '/^Give the map with --map/,$d' -e "s|$sp|sewerplan|g" \
+      -e 's/\\/\\e/g' -e 's/^\./\\\&./'
+    echo ".fi"
+  done
+  echo "[SEE ALSO]"
+  echo "The command line in full, with every --json schema: /usr/share/doc/sewerplan/cli.md."
+  echo "The formats: /usr/share/doc/sewerplan/formats/. Example data:"
+  echo "/usr/share/sewerplan/datasets/ais-testbed."
+} > "$include"
+help2man --no-info --no-discard-stderr --section=1 \
+  --name="planning and replanning for autonomous sewer-inspection robots" \
+  --include="$include" --output="$out" "$sp"

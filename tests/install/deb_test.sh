@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# The Debian package: `cpack -G DEB` in the release tree builds sewerplan_<version>_amd64.deb;
+# unpacked into a scratch root (dpkg -x, never into /), its sewerplan prints the project's version
+# and plans the AIS test environment from the example data it ships, its man page and bash
+# completion are there, its binaries carry no debug info, its control file lists dependencies, and
+# a project outside the tree builds against its CMake package (find_package(sewerplan)).
+# Usage: deb_test.sh BUILD_DIR SOURCE_DIR VERSION
+set -euo pipefail
+build=$(cd "$1" && pwd)
+src=$2
+version=$3
+work="$build/deb-test"
+rm -rf "$work"
+mkdir -p "$work"
+(cd "$work" && cpack -G DEB --config "$build/CPackConfig.cmake" -B "$work/out" > "$work/cpack.log") || {
+  cat "$work/cpack.log"; exit 1; }
+deb="$work/out/sewerplan_${version}_amd64.deb"
+test -f "$deb" || { echo "FAIL: no $deb"; ls "$work/out"; exit 1; }
+echo "built $(basename "$deb") ($(du -k "$deb" | cut -f1) KiB)"
+dpkg-deb --field "$deb" Package Version Depends
+dpkg-deb --field "$deb" Depends | grep -q 'libc6' || { echo "FAIL: no shared-library dependencies"; exit 1; }
+root="$work/root"
+dpkg -x "$deb" "$root"
+sp="$root/usr/bin/sewerplan"
+[ "$("$sp" --version)" = "sewerplan $version" ] || { echo "FAIL: sewerplan --version: $("$sp" --version)"; exit 1; }
+data="$root/usr/share/sewerplan/datasets/ais-testbed"
+"$sp" plan --map "$data/map.json" --mission "$data/missions/paper.json" -q > "$work/paper.plan"
+cmp "$work/paper.plan" "$data/plans/paper-corrected.plan" || { echo "FAIL: the installed plan differs"; exit 1; }
+if [ -x "$build/bench/sewerplan-compare" ]; then
+  test -x "$root/usr/bin/sewerplan-compare" || { echo "FAIL: no sewerplan-compare"; exit 1; }
+fi
+test -f "$root/usr/share/man/man1/sewerplan.1"* || { echo "FAIL: no man page"; exit 1; }
+test -f "$root/usr/share/bash-completion/completions/sewerplan" || { echo "FAIL: no completion"; exit 1; }
+test -f "$root/usr/share/doc/sewerplan/cli.md" || { echo "FAIL: no docs"; exit 1; }
+test -f "$root/usr/include/sewerplan/version.h" || { echo "FAIL: no version.h"; exit 1; }
+for f in "$sp" "$root"/usr/lib/libsewerplan_*.a; do
+  if objdump -h "$f" 2>/dev/null | grep -q '\.debug_info'; then echo "FAIL: $f has debug info"; exit 1; fi
+done
+# A consumer project against the unpacked package.
+cmake -S "$src/tests/consumer" -B "$work/consumer" -G Ninja -DCMAKE_PREFIX_PATH="$root/usr" > /dev/null
+cmake --build "$work/consumer" > /dev/null
+out=$("$work/consumer/consumer" "$data/map.json")
+[ "$out" = "ais-testbed: 12 manholes, 14 pipes" ] || { echo "FAIL: consumer said '$out'"; exit 1; }
+echo "deb: installed into a scratch root, --version, plan, man page, completion, consumer: ok"
