@@ -67,8 +67,7 @@ std::optional<SimWorld> load_sim_world(const std::string& map_path, const std::s
                                        int& exit_code, const std::string& condition) {
   Diagnostics diagnostics;
   Result<SimWorld> world =
-      read_sim_world(map_path, mission_path, faults_file, random_faults, diagnostics,
-                     condition);
+      read_sim_world(map_path, mission_path, faults_file, random_faults, diagnostics, condition);
   print_diagnostics(diagnostics, err);
   if (!world.has_value()) {
     if (diagnostics.error_count() == 0) err << world.error().message << '\n';

@@ -2,6 +2,7 @@
 // The event log's JSON lines stay byte-identical: missions on the paper's test environment, with
 // and without faults, against logs written before events became typed (tests/data/events/).
 // Planning times are 0 (a ManualClock), so the logs are the same on every run.
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -76,8 +77,13 @@ hal::RandomFaultOptions harsh(std::uint64_t seed) {
 
 class EventGolden : public ::testing::TestWithParam<Scenario> {};
 
+// SEWERPLAN_UPDATE_GOLDEN=1 rewrites the golden logs after an intended change of the format;
+// review their diff before committing it.
 TEST_P(EventGolden, TheLogIsByteIdenticalToTheOneWrittenBefore) {
   const Scenario& s = GetParam();
+  if (std::getenv("SEWERPLAN_UPDATE_GOLDEN") != nullptr) {
+    std::ofstream(testing::test_data_path(std::string("events/") + s.golden)) << run_log(s);
+  }
   const std::string expected = golden(s.golden);
   ASSERT_FALSE(expected.empty()) << s.golden;
   EXPECT_EQ(run_log(s), expected);

@@ -121,10 +121,10 @@ TEST(EventLog, TheReadableLineHasTheTimeTheTypeAndTheFieldsInOrder) {
             "[    39.3 s] error        kind=blockage reason=obstacle in P1 at 3.00 m where=in pipe "
             "P1 at 2.95 m");
   EXPECT_EQ(readable_line({1, JobEvent{"TurnInManhole", 2.8285, true}}),
-            "[     1.0 s] job          job=TurnInManhole progress_m=2.829 ok=yes");
+            "[     1.0 s] job          job=TurnInManhole progress_m=2.83 ok=yes");
   EXPECT_EQ(readable_line({2, PlanEvent{.replan = true, .goals = {"a", "b"}, .steps = 4}}),
-            "[     2.0 s] replan       reason= planning_ms=0 decision=follow-plan goals=[a, b] "
-            "dropped=[] end= steps=4 cost_s=0");
+            "[     2.0 s] replan       reason= planning_ms=0.0 decision=follow-plan goals=[a, b] "
+            "dropped=[] end= steps=4 cost_s=0.0");
 }
 
 }  // namespace
