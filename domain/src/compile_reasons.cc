@@ -107,8 +107,10 @@ std::string CompileReasons::fatal(const std::vector<Cost>& exit_dist, bool ends_
   }
   if (mission_.exits.size() > 8) names += ", ...";
   if (exit_dist[0] == kInfiniteCost) {
+    // The route searches stop at the battery, so "not found" covers both: name both.
     return "\n  - no exit (" + names + ") can be reached from the start (" +
-           describe(progress_.position, map) + ") within " + limits();
+           describe(progress_.position, map) + ") on the " + energy(bound_) +
+           " left above the reserve, within " + limits();
   }
   if (exit_dist[0] > bound_) {
     return "\n  - reaching the nearest exit needs at least " + energy(exit_dist[0]) + ", but " +

@@ -197,6 +197,23 @@ TEST(Planner, NamesTheExitsWhenNoneCanBeReached) {
               HasSubstr("no exit (A) can be reached from the start (in pipe P2 at 5 m)"));
 }
 
+// The route searches stop at the battery: an exit beyond it is "not reached", and the message must
+// say that the battery is what is short, not only the robot's limits (a robot blocked late in a
+// mission reported only its limits).
+TEST(Planner, NamesTheBatteryWhenNoExitIsWithinIt) {
+  const SewerMap map = line_map(0.4);
+  Mission mission;
+  mission.profile = *builtin_profile("makro-1.1");
+  mission.profile.battery_wh = 0.5;
+  mission.start = PipeSpot{*map.find_pipe("P2"), {}, {}};
+  mission.exits = {*map.find_manhole("A")};
+  Result<PlanOutcome> outcome = validated(map, mission);
+  ASSERT_FALSE(outcome.has_value());
+  EXPECT_THAT(outcome.error().message,
+              HasSubstr("no exit (A) can be reached from the start (in pipe P2 at 5 m) on the "));
+  EXPECT_THAT(outcome.error().message, HasSubstr(" Wh left above the reserve, within makro-1.1"));
+}
+
 TEST(Planner, ReturnsAnEmptyPlanWhenTheRobotIsAlreadyDone) {
   const SewerMap map = line_map(0.4);
   Mission mission;
