@@ -71,8 +71,7 @@ void BM_PrecomputeStopCheckGap(benchmark::State& state) {
   const SewerMap& map = map_for(state.range(0));
   const RobotProfile profile = *builtin_profile("makro-1.1");
   SteadyClock steady;
-  double max_gap_s = 0, p99_s = 0, p50_s = 0;
-  std::size_t checks = 0;
+  bench::GapCounters gaps;
   for (auto _ : state) {
     const bench::CheckGapClock clock;
     clock.now_s();
@@ -83,15 +82,9 @@ void BM_PrecomputeStopCheckGap(benchmark::State& state) {
       state.SkipWithError(r.error().message.c_str());
       return;
     }
-    max_gap_s = std::max(max_gap_s, clock.max_gap_s());
-    p99_s = std::max(p99_s, clock.gap_quantile_s(0.99));
-    p50_s = std::max(p50_s, clock.gap_quantile_s(0.5));
-    checks = std::max(checks, clock.checks());
+    gaps.add(clock);
   }
-  state.counters["checks"] = static_cast<double>(checks);
-  state.counters["p50_gap_us"] = p50_s * 1e6;
-  state.counters["p99_gap_us"] = p99_s * 1e6;
-  state.counters["max_gap_us"] = max_gap_s * 1e6;
+  gaps.write(state);
 }
 BENCHMARK(BM_PrecomputeStopCheckGap)
     ->Arg(0)

@@ -121,8 +121,7 @@ void BM_StopCheckGap(benchmark::State& state) {
     return;
   }
   const domain::CompiledTask& task = compiled->task();
-  double max_gap_s = 0, p99_s = 0, p50_s = 0;
-  std::size_t checks = 0;
+  bench::GapCounters gaps;
   for (auto _ : state) {
     const bench::CheckGapClock clock;
     // Each run is cut at 0.5 s of CPU time: the gaps, not the runs, are measured.
@@ -157,15 +156,9 @@ void BM_StopCheckGap(benchmark::State& state) {
         break;
     }
     clock.now_s();
-    max_gap_s = std::max(max_gap_s, clock.max_gap_s());
-    p99_s = std::max(p99_s, clock.gap_quantile_s(0.99));
-    p50_s = std::max(p50_s, clock.gap_quantile_s(0.5));
-    checks = std::max(checks, clock.checks());
+    gaps.add(clock);
   }
-  state.counters["checks"] = static_cast<double>(checks);
-  state.counters["p50_gap_us"] = p50_s * 1e6;
-  state.counters["p99_gap_us"] = p99_s * 1e6;
-  state.counters["max_gap_us"] = max_gap_s * 1e6;
+  gaps.write(state);
 }
 BENCHMARK(BM_StopCheckGap)
     ->ArgNames({"algorithm", "manholes"})

@@ -18,6 +18,8 @@
 #include <algorithm>
 #include <vector>
 
+#include <benchmark/benchmark.h>
+
 #include "sewerplan/core/clock.h"
 
 #include <time.h>
@@ -50,6 +52,28 @@ class CheckGapClock final : public Clock {
  private:
   mutable std::vector<double> gaps_s_;
   mutable double last_s_ = -1;
+};
+
+// The worst gaps over a benchmark's iterations, written as its counters: checks, and the p50, p99
+// and largest gap in microseconds.
+struct GapCounters {
+  double max_s = 0;
+  double p99_s = 0;
+  double p50_s = 0;
+  std::size_t checks = 0;
+
+  void add(const CheckGapClock& clock) {
+    max_s = std::max(max_s, clock.max_gap_s());
+    p99_s = std::max(p99_s, clock.gap_quantile_s(0.99));
+    p50_s = std::max(p50_s, clock.gap_quantile_s(0.5));
+    checks = std::max(checks, clock.checks());
+  }
+  void write(benchmark::State& state) const {
+    state.counters["checks"] = static_cast<double>(checks);
+    state.counters["p50_gap_us"] = p50_s * 1e6;
+    state.counters["p99_gap_us"] = p99_s * 1e6;
+    state.counters["max_gap_us"] = max_s * 1e6;
+  }
 };
 
 }  // namespace sewerplan::bench
