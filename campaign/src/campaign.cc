@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cstring>
+#include <latch>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -58,8 +59,15 @@ std::string signal_text(int sig) {
 }
 
 // Runs one run in a forked child; the child writes its record as a line to a pipe.
+//
+// `heap` is held by the calling worker, and released only while it waits for its child: a fork
+// copies only the forking thread, so a lock another thread holds at that moment stays locked in
+// the child for ever. glibc's malloc guards its own locks around fork, but not every allocator
+// does (ASan's before LLVM 17 does not; a child then waited on it for ever), so no worker
+// allocates while another forks.
 RunRecord guarded(const SewerMap& map, const Mission& mission, const RunSettings& settings,
-                  const CampaignOptions& options, std::size_t index) {
+                  const CampaignOptions& options, std::size_t index,
+                  std::unique_lock<std::mutex>& heap) {
   const auto start = SteadyTime::now();
   RunRecord failed;
   failed.index = index;
@@ -100,7 +108,9 @@ RunRecord guarded(const SewerMap& map, const Mission& mission, const RunSettings
   bool hung = false;
   for (;;) {
     pollfd p{fds[0], POLLIN, 0};
+    heap.unlock();  // waiting allocates nothing
     const int ready = ::poll(&p, 1, 20);
+    heap.lock();
     if (ready > 0) {
       char buffer[4096];
       const ssize_t n = ::read(fds[0], buffer, sizeof buffer);
@@ -180,27 +190,40 @@ std::vector<RunRecord> run_campaign(const SewerMap& map, const Mission& mission,
   }
   std::vector<RunRecord> records(indices.size());
   std::atomic<std::size_t> next{0};
-  std::mutex progress_mutex;
+  // Unguarded runs share this process, one at a time.
+  const std::size_t jobs =
+      options.guard ? std::max<std::size_t>(1, std::min(options.jobs, indices.size())) : 1;
+  // A thread's start and end allocate in the thread itself (thread-local caches), outside
+  // `heap`: no worker forks before every worker has started, nor while one is ending.
+  std::latch started(static_cast<std::ptrdiff_t>(jobs));
+  std::latch finished(static_cast<std::ptrdiff_t>(jobs));
+  // The workers' own bookkeeping runs under `heap`, so that none allocates while another forks
+  // (guarded()); they wait for their children without it.
+  std::mutex heap_mutex;
   Progress progress{.total = indices.size()};
   const auto start = SteadyTime::now();
   auto work = [&] {
+    started.arrive_and_wait();
     for (std::size_t k; (k = next++) < indices.size();) {
-      RunRecord r = options.guard ? guarded(map, mission, settings, options, indices[k])
+      std::unique_lock heap(heap_mutex);
+      RunRecord r = options.guard ? guarded(map, mission, settings, options, indices[k], heap)
                                   : compute(map, mission, settings, indices[k]);
       const bool failed = r.status != RunRecord::Status::kOk;
       records[k] = std::move(r);
-      const std::lock_guard lock(progress_mutex);
       ++progress.done;
       if (failed) ++progress.failed;
       progress.elapsed_s = seconds_since(start);
       if (options.progress) options.progress(progress);
     }
+    finished.arrive_and_wait();
   };
-  // Unguarded runs share this process, one at a time.
-  const std::size_t jobs =
-      options.guard ? std::max<std::size_t>(1, std::min(options.jobs, indices.size())) : 1;
   std::vector<std::thread> threads;
-  for (std::size_t j = 1; j < jobs; ++j) threads.emplace_back(work);
+  threads.reserve(jobs);
+  {
+    // Starting the threads allocates: no worker may fork meanwhile.
+    const std::lock_guard starting(heap_mutex);
+    for (std::size_t j = 1; j < jobs; ++j) threads.emplace_back(work);
+  }
   work();
   for (std::thread& t : threads) t.join();
   return records;
