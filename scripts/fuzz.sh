@@ -16,7 +16,8 @@ build=${SEWERPLAN_FUZZ_BUILD:-build/fuzz}
 if ! grep -qs '^SEWERPLAN_FUZZ:BOOL=ON' "$build/CMakeCache.txt"; then
   build=build/fuzz
   mkdir -p build
-  CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
+  CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Debug \
+    -DCMAKE_CXX_FLAGS_DEBUG="-O1 -gline-tables-only" \
     -DSEWERPLAN_FUZZ=ON -DSEWERPLAN_SANITIZE=ON -DSEWERPLAN_BUILD_TESTS=OFF -DSEWERPLAN_BUILD_BENCH=OFF \
     > build/fuzz.configure.log
 fi

@@ -20,15 +20,20 @@ bash scripts/install-deps.sh
 echo "== style: clang-format"
 bash scripts/check-format.sh
 
+# The trees are built from scratch, so their debug information is cut to line tables (-g1,
+# -gline-tables-only): sanitizer reports and backtraces still name file and line, and a file
+# compiles in about a quarter less time.
 echo "== release build and tests"
-cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo
+cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG"
 cmake --build build/release -j "$jobs"
 ctest --test-dir build/release --output-on-failure -j "$jobs"
 
 if [ "${SEWERPLAN_SKIP_ASAN:-0}" != 1 ]; then
   echo "== ASan + UBSan build and tests (clang)"
-  CXX=clang++ cmake -S . -B build/asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
-    -DSEWERPLAN_SANITIZE=ON -DSEWERPLAN_BUILD_BENCH=OFF -DSEWERPLAN_FUZZ=OFF
+  CXX=clang++ cmake -S . -B build/asan -G Ninja -DCMAKE_BUILD_TYPE=Debug \
+    -DCMAKE_CXX_FLAGS_DEBUG="-O1 -gline-tables-only" -DSEWERPLAN_SANITIZE=ON \
+    -DSEWERPLAN_BUILD_BENCH=OFF -DSEWERPLAN_FUZZ=OFF
   cmake --build build/asan -j "$jobs"
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir build/asan --output-on-failure -j "$jobs"

@@ -13,6 +13,7 @@ jobs=${SEWERPLAN_JOBS:-$(nproc)}
 build=build/tsan
 mkdir -p build
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
   -DCMAKE_CXX_FLAGS="-fsanitize=thread" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" \
   -DSEWERPLAN_BUILD_BENCH=OFF -DSEWERPLAN_WITH_OMPL=OFF -DSEWERPLAN_FUZZ=OFF \
   > build/tsan.configure.log
