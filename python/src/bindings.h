@@ -14,13 +14,15 @@
 #include <condition_variable>
 #include <memory>
 #include <mutex>
-#include <pybind11/pybind11.h>
+
 #include "sewerplan/core/diagnostics.h"
 #include "sewerplan/core/mission.h"
 #include "sewerplan/core/result.h"
 #include "sewerplan/core/sewer_map.h"
 #include "sewerplan/domain/plan.h"
 #include "sewerplan/domain/robot_state.h"
+
+#include <pybind11/pybind11.h>
 
 namespace sewerplan::python {
 

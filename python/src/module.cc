@@ -7,14 +7,16 @@
 #include <string>
 #include <utility>
 #include <vector>
-#include <pybind11/stl.h>
-#include <pybind11/stl/filesystem.h>
+
 #include "sewerplan/core/generator.h"
 #include "sewerplan/core/map_io.h"
 #include "sewerplan/core/map_json.h"
 #include "sewerplan/core/robot_profile.h"
 #include "sewerplan/domain/mission_generator.h"
+
 #include "bindings.h"
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 namespace sewerplan::python {
 namespace {
@@ -102,10 +104,9 @@ void bind_errors(py::module_& m) {
   auto* type = new py::exception<Error>(m, "Error", PyExc_RuntimeError);
   error_type = type->ptr();
   py::class_<Diagnostic>(m, "Diagnostic", "A problem found in an input file, naming where.")
-      .def_property_readonly("severity",
-                             [](const Diagnostic& d) {
-                               return d.severity == Severity::kError ? "error" : "warning";
-                             })
+      .def_property_readonly(
+          "severity",
+          [](const Diagnostic& d) { return d.severity == Severity::kError ? "error" : "warning"; })
       .def_readonly("where", &Diagnostic::where)
       .def_readonly("message", &Diagnostic::message)
       .def_property_readonly("file", [](const Diagnostic& d) { return split_where(d.where).file; })
@@ -122,8 +123,7 @@ void bind_errors(py::module_& m) {
         out << "<Diagnostic " << d << '>';
         return out.str();
       });
-  py::class_<CancelToken>(m, "CancelToken",
-                          "A cancel flag for plan(), settable from any thread.")
+  py::class_<CancelToken>(m, "CancelToken", "A cancel flag for plan(), settable from any thread.")
       .def(py::init<>())
       .def("cancel", &CancelToken::cancel)
       .def_property_readonly("cancelled", &CancelToken::cancelled)
@@ -270,7 +270,8 @@ void bind_profile(py::module_& m) {
   py::class_<RobotProfile>(m, "RobotProfile", "What a robot can do and what its actions cost.")
       .def(py::init([](const std::string& name) {
              std::optional<RobotProfile> p = builtin_profile(name);
-             if (!p) raise_error({ErrorCode::kInvalidProfile, "no built-in profile '" + name + "'"});
+             if (!p)
+               raise_error({ErrorCode::kInvalidProfile, "no built-in profile '" + name + "'"});
              return *p;
            }),
            py::arg("name") = "makro-1.1", "A built-in profile: 'makro-1.1' or 'makro-plus'.")
@@ -312,8 +313,8 @@ void bind_mission(py::module_& m) {
             raise_error({ErrorCode::kInvalidArgument, "no task '" + name + "'"});
           },
           py::arg("task"), "Where a task is done, as people read it: 'pipe P4'.")
-      .def_property_readonly("start",
-                             [](const MissionHandle& h) { return describe(h.mission.start, *h.map); })
+      .def_property_readonly(
+          "start", [](const MissionHandle& h) { return describe(h.mission.start, *h.map); })
       .def_property_readonly("exits",
                              [](const MissionHandle& h) {
                                std::vector<std::string> names;

@@ -5,7 +5,7 @@
 #include <string>
 #include <utility>
 #include <vector>
-#include <pybind11/stl.h>
+
 #include "sewerplan/core/overloaded.h"
 #include "sewerplan/domain/plan_text.h"
 #include "sewerplan/domain/validator.h"
@@ -13,7 +13,9 @@
 #include "sewerplan/fusion/action_text.h"
 #include "sewerplan/fusion/fuse.h"
 #include "sewerplan/search/planner.h"
+
 #include "bindings.h"
+#include <pybind11/stl.h>
 
 namespace sewerplan::python {
 namespace {
@@ -117,8 +119,8 @@ Step step_of(const domain::PlanStep& step, const SewerMap& map, const Mission& m
 std::vector<Action> actions_of(const PlanHandle& h) {
   const SewerMap& map = *h.mission->map;
   const Mission& mission = h.mission->mission;
-  Result<fusion::FusedPlan> fused = fusion::fuse(h.plan, map, mission, h.start,
-                                                 {.start_heading_end = h.start_heading_end});
+  Result<fusion::FusedPlan> fused =
+      fusion::fuse(h.plan, map, mission, h.start, {.start_heading_end = h.start_heading_end});
   std::vector<Action> actions;
   for (const fusion::RobotAction& a : value_or_raise(std::move(fused)).actions) {
     actions.push_back({std::string(fusion::action_kind(a)), fusion::plan_step(a),
@@ -173,7 +175,8 @@ Outcome plan(const std::shared_ptr<const MissionHandle>& mission, const std::str
 Response response_of(executor::PlanResponse r, const ReplannerHandle& h) {
   const executor::Replanner& replanner = *h.replanner;
   // The Replanner's mission may have changed (what it learnt): the plan is read against it.
-  auto mission = std::make_shared<MissionHandle>(MissionHandle{h.mission->map, replanner.mission()});
+  auto mission =
+      std::make_shared<MissionHandle>(MissionHandle{h.mission->map, replanner.mission()});
   Response out;
   out.decision = r.decision;
   out.plan = std::make_shared<PlanHandle>(
@@ -193,7 +196,8 @@ void set_position(domain::RobotPosition& position, const SewerMap& map,
                   const std::optional<std::string>& manhole, const std::optional<int>& slot,
                   const std::optional<std::string>& pipe, const std::optional<double>& offset_m) {
   if (manhole.has_value() == pipe.has_value()) {
-    raise_error({ErrorCode::kInvalidArgument, "give either manhole (and slot) or pipe and offset_m"});
+    raise_error(
+        {ErrorCode::kInvalidArgument, "give either manhole (and slot) or pipe and offset_m"});
   }
   if (pipe) {
     position.emplace<domain::InPipe>(pipe_named(map, *pipe), offset_m.value_or(0.0));
@@ -230,20 +234,17 @@ void bind_plan_types(py::module_& m) {
       .def_readonly("reason", &Dropped::reason)
       .def("__repr__",
            [](const Dropped& d) { return "<DroppedTask " + d.task + ": " + d.reason + ">"; });
-  py::class_<PlanHandle, std::shared_ptr<PlanHandle>>(m, "Plan",
-                                                      "A plan in the paper's actions.")
+  py::class_<PlanHandle, std::shared_ptr<PlanHandle>>(m, "Plan", "A plan in the paper's actions.")
       .def_property_readonly("mission", [](const PlanHandle& h) { return h.mission; })
       .def_property_readonly("steps",
                              [](const PlanHandle& h) {
                                std::vector<Step> steps;
                                for (const domain::PlanStep& s : h.plan.steps) {
-                                 steps.push_back(
-                                     step_of(s, *h.mission->map, h.mission->mission));
+                                 steps.push_back(step_of(s, *h.mission->map, h.mission->mission));
                                }
                                return steps;
                              })
-      .def_property_readonly("actions", &actions_of,
-                             "The fused actions, one per step (fusion).")
+      .def_property_readonly("actions", &actions_of, "The fused actions, one per step (fusion).")
       .def_property_readonly("text",
                              [](const PlanHandle& h) {
                                return domain::format_plan(h.plan, *h.mission->map,
@@ -398,9 +399,10 @@ void bind_replanner(py::module_& m) {
           "faces.")
       .def(
           "report_failure",
-          [](ReplannerHandle& h, executor::Failure::Kind kind, const std::optional<std::string>& pipe,
-             double offset_m, const std::optional<std::string>& manhole, int from_slot,
-             int to_slot, const std::string& detail) {
+          [](ReplannerHandle& h, executor::Failure::Kind kind,
+             const std::optional<std::string>& pipe, double offset_m,
+             const std::optional<std::string>& manhole, int from_slot, int to_slot,
+             const std::string& detail) {
             const SewerMap& map = *h.mission->map;
             executor::Failure failure{.kind = kind, .offset_m = offset_m, .detail = detail};
             if (pipe) failure.pipe = pipe_named(map, *pipe);

@@ -5,8 +5,7 @@
 #include <string>
 #include <utility>
 #include <vector>
-#include <pybind11/stl.h>
-#include <pybind11/stl/filesystem.h>
+
 #include "sewerplan/campaign/campaign.h"
 #include "sewerplan/campaign/summary.h"
 #include "sewerplan/core/map_json.h"
@@ -14,7 +13,10 @@
 #include "sewerplan/executor/executor.h"
 #include "sewerplan/hal/fault_scenario.h"
 #include "sewerplan/hal/sim_robot.h"
+
 #include "bindings.h"
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 namespace sewerplan::python {
 namespace {
@@ -123,8 +125,8 @@ void bind_events(py::module_& m) {
       .def_readonly("progress_m", &ex::JobEvent::progress_m)
       .def_readonly("ok", &ex::JobEvent::ok);
   py::class_<ex::ErrorEvent>(m, "ErrorEvent")
-      .def_property_readonly("kind",
-                             [](const ex::ErrorEvent& e) { return std::string(hal::to_string(e.kind)); })
+      .def_property_readonly(
+          "kind", [](const ex::ErrorEvent& e) { return std::string(hal::to_string(e.kind)); })
       .def_readonly("reason", &ex::ErrorEvent::reason)
       .def_readonly("where", &ex::ErrorEvent::where);
   py::class_<ex::RecoveryEvent>(m, "RecoveryEvent")
@@ -193,7 +195,8 @@ void bind_simulate(py::module_& m) {
       "read_faults",
       [](std::shared_ptr<const SewerMap> map, const std::filesystem::path& path) {
         Diagnostics diagnostics;
-        hal::FaultScenario s = value_or_raise(hal::read_faults(path, *map, diagnostics), &diagnostics);
+        hal::FaultScenario s =
+            value_or_raise(hal::read_faults(path, *map, diagnostics), &diagnostics);
         return Faults{std::move(map), std::move(s)};
       },
       py::arg("map"), py::arg("path"), "Reads a fault scenario (docs/simulation.md).");
@@ -250,10 +253,9 @@ void bind_campaign(py::module_& m) {
   py::class_<campaign::RunRecord>(m, "RunRecord", "One run of a campaign.")
       .def_readonly("index", &campaign::RunRecord::index)
       .def_readonly("seed", &campaign::RunRecord::seed)
-      .def_property_readonly("status",
-                             [](const campaign::RunRecord& r) {
-                               return std::string(campaign::to_string(r.status));
-                             })
+      .def_property_readonly(
+          "status",
+          [](const campaign::RunRecord& r) { return std::string(campaign::to_string(r.status)); })
       .def_readonly("detail", &campaign::RunRecord::detail)
       .def_property_readonly("tasks",
                              [](const campaign::RunRecord& r) -> std::optional<std::size_t> {
@@ -265,16 +267,18 @@ void bind_campaign(py::module_& m) {
                                if (!r.result) return std::nullopt;
                                return r.result->oracle_tasks;
                              })
-      .def_property_readonly("ours",
-                             [](const campaign::RunRecord& r) -> std::optional<campaign::Execution> {
-                               if (!r.result) return std::nullopt;
-                               return r.result->ours;
-                             })
-      .def_property_readonly("baseline",
-                             [](const campaign::RunRecord& r) -> std::optional<campaign::Execution> {
-                               if (!r.result) return std::nullopt;
-                               return r.result->baseline;
-                             })
+      .def_property_readonly(
+          "ours",
+          [](const campaign::RunRecord& r) -> std::optional<campaign::Execution> {
+            if (!r.result) return std::nullopt;
+            return r.result->ours;
+          })
+      .def_property_readonly(
+          "baseline",
+          [](const campaign::RunRecord& r) -> std::optional<campaign::Execution> {
+            if (!r.result) return std::nullopt;
+            return r.result->baseline;
+          })
       .def("to_json", &campaign::run_json_line);
   py::class_<campaign::Summary>(m, "CampaignSummary")
       .def_readonly("runs", &campaign::Summary::runs)
