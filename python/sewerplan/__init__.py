@@ -24,7 +24,10 @@ def _place(map_, place):
         return place
     kind = map_.kind_of(place)
     if kind is None:
-        raise Error(f"no manhole, pipe or point named '{place}' in map {map_.name}")
+        message = f"no manhole, pipe or point named '{place}' in map {map_.name}"
+        error = Error(message)
+        error.code, error.message, error.diagnostics = "invalid-mission", message, []
+        raise error
     return {kind: place}
 
 

@@ -90,8 +90,10 @@ def test_a_bad_mission_names_the_json_path(ais_map):
         sewerplan.mission(ais_map, start="M1", tasks=[{"type": "inspect_pipe", "pipe": "P99"}])
     assert error.value.code == "invalid-mission"
     assert any(d.path == "$.tasks[0].pipe" for d in error.value.diagnostics)
-    with pytest.raises(sewerplan.Error):
+    with pytest.raises(sewerplan.Error) as error:
         sewerplan.mission(ais_map, start="nowhere")
+    assert error.value.code == "invalid-mission"
+    assert "nowhere" in error.value.message
 
 
 def test_profiles():
