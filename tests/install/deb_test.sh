@@ -41,13 +41,13 @@ for f in "$sp" "$root"/usr/lib/libsewerplan_*.a; do
 done
 if ls "$build"/python/sewerplan/_sewerplan*.so > /dev/null 2>&1; then
   pydir="$root/usr/lib/python3/dist-packages"
-  ls "$pydir"/sewerplan/_sewerplan*.so > /dev/null || { echo "FAIL: no Python module"; exit 1; }
+  module=$(ls "$pydir"/sewerplan/_sewerplan*.so) || { echo "FAIL: no Python module"; exit 1; }
+  if objdump -h "$module" | grep -q '\.debug_info'; then echo "FAIL: $module has debug info"; exit 1; fi
   dpkg-deb --field "$deb" Depends | grep -q 'python3' || { echo "FAIL: no python3 dependency"; exit 1; }
-  out=$(cd "$work" && PYTHONPATH="$pydir" /usr/bin/python3 -c \
-    'import sewerplan; print(sewerplan.__file__)')
+  py=(env PYTHONDONTWRITEBYTECODE=1 PYTHONPATH="$pydir" /usr/bin/python3)
+  out=$(cd "$work" && "${py[@]}" -c 'import sewerplan; print(sewerplan.__file__)')
   case "$out" in "$pydir"/*) ;; *) echo "FAIL: imported sewerplan from $out"; exit 1 ;; esac
-  (cd "$work" && PYTHONPATH="$pydir" /usr/bin/python3 "$src/examples/python/plan_ais.py" "$data") \
-    > "$work/python.out"
+  (cd "$work" && "${py[@]}" "$src/examples/python/plan_ais.py" "$data") > "$work/python.out"
   grep -q '14 steps, 585.4 s, 19.5 Wh' "$work/python.out" || {
     echo "FAIL: the Python example said:"; cat "$work/python.out"; exit 1; }
   python_ok=", Python module"
