@@ -3,7 +3,8 @@
 # `cmake --install` puts under the prefix (the CLI and sewerplan-compare, the libraries and their
 # headers, the CMake package, version.h), plus the docs, the AIS test environment as example data,
 # the man page and the bash completion. Binaries and libraries are stripped of their debug info in
-# the package; its run-time dependencies come from dpkg-shlibdeps, and the -dev packages that
+# the package; with SEWERPLAN_PYTHON the Python module goes into Debian's python3 dist-packages;
+# its run-time dependencies come from dpkg-shlibdeps, and the -dev packages that
 # find_package(sewerplan) needs (cmake/sewerplanConfig.cmake.in) are listed. tests/install/deb_test.sh
 # builds it and installs it into a scratch root.
 install(FILES ${PROJECT_SOURCE_DIR}/README.md ${PROJECT_SOURCE_DIR}/LICENSE
@@ -42,6 +43,9 @@ set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(sewerplan_dev_depends "nlohmann-json3-dev (>= 3.10), libeigen3-dev (>= 3.3), libsimdjson-dev, libpugixml-dev")
 if(SEWERPLAN_WITH_OMPL)
   string(APPEND sewerplan_dev_depends ", libompl-dev")
+endif()
+if(TARGET sewerplan_python)  # built for one python3 version (python/CMakeLists.txt)
+  string(APPEND sewerplan_dev_depends ", ${SEWERPLAN_PYTHON_DEB_DEPENDS}")
 endif()
 set(CPACK_DEBIAN_PACKAGE_DEPENDS "${sewerplan_dev_depends}")
 set(CPACK_DEBIAN_PACKAGE_DESCRIPTION "${PROJECT_DESCRIPTION}

@@ -3,8 +3,9 @@
 # Sets up everything and runs every test, on a fresh Debian 12 machine:
 #   1. installs the Debian packages sewerplan needs (scripts/install-deps.sh, skips what is present);
 #   2. checks the code style (clang-format);
-#   3. builds with warnings as errors and runs the whole suite (unit, CLI and its --json, install:
-#      the CMake package and the Debian package in a scratch root, layering);
+#   3. builds with warnings as errors, with the Python module (SEWERPLAN_PYTHON), and runs the whole
+#      suite (unit, CLI and its --json, pytest and the Python example, install: the CMake package
+#      and the Debian package in a scratch root, layering);
 #   4. builds with clang, AddressSanitizer and UndefinedBehaviorSanitizer and runs the suite again;
 #   5. builds the concurrent tests with ThreadSanitizer and runs them (scripts/tsan.sh);
 #   6. fuzzes every parser for a short time (scripts/fuzz.sh, 15 s per target).
@@ -24,7 +25,7 @@ bash scripts/check-format.sh
 # -gline-tables-only): sanitizer reports and backtraces still name file and line, and a file
 # compiles in about a quarter less time.
 echo "== release build and tests"
-cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSEWERPLAN_PYTHON=ON \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG"
 cmake --build build/release -j "$jobs"
 ctest --test-dir build/release --output-on-failure -j "$jobs"

@@ -3,7 +3,8 @@
 # Checks the one-way dependencies between the libraries by their includes:
 #   core <- domain <- search; fusion on core and domain; hal on core; executor on all;
 #   campaign on all (with executor); render on core, domain, hal and executor (the typed events of
-#   the logs it draws); nothing includes campaign except apps, tests and bench (and campaign itself).
+#   the logs it draws); nothing includes campaign except apps, tests, bench and the Python module
+#   (python/) (and campaign itself).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 declare -A allowed=(

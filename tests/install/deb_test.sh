@@ -4,7 +4,9 @@
 # unpacked into a scratch root (dpkg -x, never into /), its sewerplan prints the project's version
 # and plans the AIS test environment from the example data it ships, its man page and bash
 # completion are there, its binaries carry no debug info, its control file lists dependencies, and
-# a project outside the tree builds against its CMake package (find_package(sewerplan)).
+# a project outside the tree builds against its CMake package (find_package(sewerplan)); with the
+# Python module (SEWERPLAN_PYTHON), Debian's python3 imports it from the root's dist-packages and
+# runs examples/python/plan_ais.py on the example data.
 # Usage: deb_test.sh BUILD_DIR SOURCE_DIR VERSION
 set -euo pipefail
 build=$(cd "$1" && pwd)
@@ -37,9 +39,22 @@ test -f "$root/usr/include/sewerplan/version.h" || { echo "FAIL: no version.h"; 
 for f in "$sp" "$root"/usr/lib/libsewerplan_*.a; do
   if objdump -h "$f" 2>/dev/null | grep -q '\.debug_info'; then echo "FAIL: $f has debug info"; exit 1; fi
 done
+if ls "$build"/python/sewerplan/_sewerplan*.so > /dev/null 2>&1; then
+  pydir="$root/usr/lib/python3/dist-packages"
+  module=$(ls "$pydir"/sewerplan/_sewerplan*.so) || { echo "FAIL: no Python module"; exit 1; }
+  if objdump -h "$module" | grep -q '\.debug_info'; then echo "FAIL: $module has debug info"; exit 1; fi
+  dpkg-deb --field "$deb" Depends | grep -q 'python3' || { echo "FAIL: no python3 dependency"; exit 1; }
+  py=(env PYTHONDONTWRITEBYTECODE=1 PYTHONPATH="$pydir" /usr/bin/python3)
+  out=$(cd "$work" && "${py[@]}" -c 'import sewerplan; print(sewerplan.__file__)')
+  case "$out" in "$pydir"/*) ;; *) echo "FAIL: imported sewerplan from $out"; exit 1 ;; esac
+  (cd "$work" && "${py[@]}" "$src/examples/python/plan_ais.py" "$data") > "$work/python.out"
+  grep -q '14 steps, 585.4 s, 19.5 Wh' "$work/python.out" || {
+    echo "FAIL: the Python example said:"; cat "$work/python.out"; exit 1; }
+  python_ok=", Python module"
+fi
 # A consumer project against the unpacked package.
 cmake -S "$src/tests/consumer" -B "$work/consumer" -G Ninja -DCMAKE_PREFIX_PATH="$root/usr" > /dev/null
 cmake --build "$work/consumer" > /dev/null
 out=$("$work/consumer/consumer" "$data/map.json")
 [ "$out" = "ais-testbed: 12 manholes, 14 pipes" ] || { echo "FAIL: consumer said '$out'"; exit 1; }
-echo "deb: installed into a scratch root, --version, plan, man page, completion, consumer: ok"
+echo "deb: installed into a scratch root, --version, plan, man page, completion, consumer${python_ok:-}: ok"

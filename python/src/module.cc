@@ -1,0 +1,412 @@
+// SPDX-License-Identifier: MIT
+// The sewerplan Python module: errors, maps, robot profiles and missions (bindings.h says why the
+// module is split into three files).
+#include <cctype>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "sewerplan/core/generator.h"
+#include "sewerplan/core/map_io.h"
+#include "sewerplan/core/map_json.h"
+#include "sewerplan/core/robot_profile.h"
+#include "sewerplan/domain/mission_generator.h"
+
+#include "bindings.h"
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+namespace sewerplan::python {
+namespace {
+
+// Set once at import: the sewerplan.Error type.
+PyObject* error_type = nullptr;
+
+// A diagnostic's place, split: "map.json:$.pipes[3]" -> file, path; "a.sewer:12" or
+// "m.json:3:7" -> file, line (and column); anything else: file only.
+struct Where {
+  std::string file;
+  std::optional<int> line;
+  std::optional<std::string> path;
+};
+
+bool all_digits(const std::string& s) {
+  if (s.empty()) return false;
+  for (char c : s) {
+    if (std::isdigit(static_cast<unsigned char>(c)) == 0) return false;
+  }
+  return true;
+}
+
+Where split_where(const std::string& where) {
+  if (const auto dollar = where.find(":$"); dollar != std::string::npos) {
+    return {where.substr(0, dollar), std::nullopt, where.substr(dollar + 1)};
+  }
+  std::string rest = where;
+  std::vector<std::string> numbers;
+  while (numbers.size() < 2) {
+    const auto colon = rest.rfind(':');
+    if (colon == std::string::npos || !all_digits(rest.substr(colon + 1))) break;
+    numbers.push_back(rest.substr(colon + 1));
+    rest = rest.substr(0, colon);
+  }
+  if (numbers.empty()) return {where, std::nullopt, std::nullopt};
+  return {rest, std::stoi(numbers.back()), std::nullopt};
+}
+
+py::dict profile_dict(const RobotProfile& p) {
+  py::dict d;
+  d["name"] = p.name;
+  d["length_m"] = p.length_m;
+  d["segment_count"] = p.segment_count;
+  d["body_width_m"] = p.body_width_m;
+  d["symmetric"] = p.symmetric;
+  d["min_pipe_diameter_m"] = p.min_pipe_diameter_m;
+  d["max_pipe_diameter_m"] = p.max_pipe_diameter_m;
+  d["max_step_m"] = p.max_step_m;
+  d["max_turn_deg"] = p.max_turn_deg;
+  d["joint_yaw_max_deg"] = p.joint_yaw_max_deg;
+  d["joint_pitch_max_deg"] = p.joint_pitch_max_deg;
+  d["speed_mps"] = p.speed_mps;
+  d["inspection_speed_mps"] = p.inspection_speed_mps;
+  d["manhole_pass_s"] = p.manhole_pass_s;
+  d["manoeuvre_speed_mps"] = p.manoeuvre_speed_mps;
+  d["turn_s_per_deg"] = p.turn_s_per_deg;
+  d["step_s_per_m"] = p.step_s_per_m;
+  d["sample_s"] = p.sample_s;
+  d["battery_wh"] = p.battery_wh;
+  d["power_w"] = p.power_w;
+  return d;
+}
+
+std::string task_place(const Task& task, const SewerMap& map) { return describe(task.place, map); }
+
+std::shared_ptr<MissionHandle> mission_from_json(std::shared_ptr<const SewerMap> map,
+                                                 const std::string& text,
+                                                 const std::string& file_name) {
+  Diagnostics diagnostics;
+  Mission mission =
+      value_or_raise(read_mission_json(text, file_name, *map, diagnostics), &diagnostics);
+  return std::make_shared<MissionHandle>(MissionHandle{std::move(map), std::move(mission)});
+}
+
+std::string mission_json(const MissionHandle& h) {
+  std::ostringstream out;
+  write_mission_json(h.mission, *h.map, out);
+  return out.str();
+}
+
+void bind_errors(py::module_& m) {
+  // Never destroyed: the type lives as long as the interpreter, which may end after this
+  // library's static destructors.
+  auto* type = new py::exception<Error>(m, "Error", PyExc_RuntimeError);
+  error_type = type->ptr();
+  py::class_<Diagnostic>(m, "Diagnostic", "A problem found in an input file, naming where.")
+      .def_property_readonly(
+          "severity",
+          [](const Diagnostic& d) { return d.severity == Severity::kError ? "error" : "warning"; })
+      .def_readonly("where", &Diagnostic::where)
+      .def_readonly("message", &Diagnostic::message)
+      .def_property_readonly("file", [](const Diagnostic& d) { return split_where(d.where).file; })
+      .def_property_readonly("line", [](const Diagnostic& d) { return split_where(d.where).line; })
+      .def_property_readonly("path", [](const Diagnostic& d) { return split_where(d.where).path; })
+      .def("__str__",
+           [](const Diagnostic& d) {
+             std::ostringstream out;
+             out << d;
+             return out.str();
+           })
+      .def("__repr__", [](const Diagnostic& d) {
+        std::ostringstream out;
+        out << "<Diagnostic " << d << '>';
+        return out.str();
+      });
+  py::class_<CancelToken>(m, "CancelToken", "A cancel flag for plan(), settable from any thread.")
+      .def(py::init<>())
+      .def("cancel", &CancelToken::cancel)
+      .def_property_readonly("cancelled", &CancelToken::cancelled)
+      .def("wait_entered", &CancelToken::wait_entered, py::call_guard<py::gil_scoped_release>(),
+           "Blocks until a call given this token runs without the GIL.");
+}
+
+void bind_map_types(py::module_& m) {
+  py::class_<Position>(m, "Position")
+      .def_readonly("x_m", &Position::x_m)
+      .def_readonly("y_m", &Position::y_m)
+      .def_readonly("z_m", &Position::z_m);
+  py::class_<Manhole>(m, "Manhole")
+      .def_readonly("name", &Manhole::name)
+      .def_readonly("position", &Manhole::position)
+      .def_readonly("diameter_m", &Manhole::diameter_m)
+      .def_readonly("exit", &Manhole::exit)
+      .def_property_readonly("slot_count", [](const Manhole& mh) { return int{mh.slot_count}; })
+      .def("__repr__", [](const Manhole& mh) { return "<Manhole " + mh.name + ">"; });
+  py::class_<InspectionPoint>(m, "InspectionPoint")
+      .def_readonly("name", &InspectionPoint::name)
+      .def_readonly("offset_m", &InspectionPoint::offset_m);
+}
+
+void bind_map(py::module_& m) {
+  py::class_<SewerMap, std::shared_ptr<SewerMap>>(
+      m, "SewerMap", "A sewer network: manholes, pipes, inspection points (immutable).")
+      .def_property_readonly("name", &SewerMap::name)
+      .def_property_readonly("manhole_count", &SewerMap::manhole_count)
+      .def_property_readonly("pipe_count", &SewerMap::pipe_count)
+      .def_property_readonly("point_count", &SewerMap::point_count)
+      .def_property_readonly("manholes",
+                             [](const SewerMap& map) {
+                               return std::vector<Manhole>(map.manholes().begin(),
+                                                           map.manholes().end());
+                             })
+      .def_property_readonly("points",
+                             [](const SewerMap& map) {
+                               return std::vector<InspectionPoint>(map.points().begin(),
+                                                                   map.points().end());
+                             })
+      .def_property_readonly(
+          "pipes",
+          [](const SewerMap& map) {
+            py::list pipes;
+            for (const Pipe& pipe : map.pipes()) {
+              py::dict d;
+              d["name"] = pipe.name;
+              d["length_m"] = pipe.length_m;
+              d["diameter_m"] = pipe.diameter_m;
+              d["shape"] = std::string(to_string(pipe.shape));
+              for (std::size_t end = 0; end < 2; ++end) {
+                const auto& manhole = pipe.ends[end].manhole;
+                d[end == 0 ? "from" : "to"] =
+                    manhole ? py::object(py::str(map.manhole(*manhole).name)) : py::none();
+              }
+              pipes.append(d);
+            }
+            return pipes;
+          },
+          "Each pipe as a dict: name, from, to (manhole names or None), length_m, diameter_m, "
+          "shape.")
+      .def_property_readonly("exits",
+                             [](const SewerMap& map) {
+                               std::vector<std::string> names;
+                               for (const Manhole& mh : map.manholes()) {
+                                 if (mh.exit) names.push_back(mh.name);
+                               }
+                               return names;
+                             })
+      .def(
+          "kind_of",
+          [](const SewerMap& map, const std::string& name) -> std::optional<std::string> {
+            if (map.find_manhole(name)) return "manhole";
+            if (map.find_pipe(name)) return "pipe";
+            if (map.find_point(name)) return "point";
+            return std::nullopt;
+          },
+          "'manhole', 'pipe', 'point', or None for a name the map does not have.")
+      .def("to_json",
+           [](const SewerMap& map) {
+             std::ostringstream out;
+             write_map_json(map, out);
+             return out.str();
+           })
+      .def("__eq__", [](const SewerMap& a, const SewerMap& b) { return a == b; })
+      .def("__repr__", [](const SewerMap& map) {
+        return "<SewerMap " + map.name() + ": " + std::to_string(map.manhole_count()) +
+               " manholes, " + std::to_string(map.pipe_count()) + " pipes>";
+      });
+
+  m.def(
+      "read_map",
+      [](const std::filesystem::path& path) {
+        Diagnostics diagnostics;
+        return std::make_shared<SewerMap>(
+            value_or_raise(read_map(path, diagnostics), &diagnostics));
+      },
+      py::arg("path"),
+      "Reads a map in any format sewerplan knows (JSON, .sewer, SWMM .inp, ISYBAU .xml).");
+  m.def(
+      "parse_map",
+      [](const std::string& text, const std::string& file_name, const std::string& format) {
+        const std::optional<MapFormat> f = map_format_from_name(format);
+        if (!f) raise_error({ErrorCode::kUnsupportedFormat, "unknown map format '" + format + "'"});
+        Diagnostics diagnostics;
+        return std::make_shared<SewerMap>(
+            value_or_raise(parse_map(text, file_name, *f, diagnostics), &diagnostics));
+      },
+      py::arg("text"), py::arg("file_name") = "<string>", py::arg("format") = "json",
+      "Reads a map from text; format: 'json', 'ascii', 'swmm' or 'isybau'.");
+  m.def(
+      "write_map",
+      [](const SewerMap& map, const std::filesystem::path& path,
+         const std::optional<std::string>& format) {
+        std::optional<MapFormat> f;
+        if (format) {
+          f = map_format_from_name(*format);
+          if (!f) {
+            raise_error({ErrorCode::kUnsupportedFormat, "unknown map format '" + *format + "'"});
+          }
+        }
+        const Result<void> written = write_map(map, path, f);
+        if (!written.has_value()) raise_error(written.error());
+      },
+      py::arg("map"), py::arg("path"), py::arg("format") = py::none(),
+      "Writes a map as JSON or the ASCII database (the extension decides without format).");
+  m.def(
+      "generate_network",
+      [](std::size_t manholes, std::uint64_t seed, const std::string& topology) {
+        GeneratorOptions options;
+        options.manholes = manholes;
+        options.seed = seed;
+        const std::optional<Topology> t = topology_from_string(topology);
+        if (!t) raise_error({ErrorCode::kInvalidArgument, "unknown topology '" + topology + "'"});
+        options.topology = *t;
+        return std::make_shared<SewerMap>(value_or_raise(generate_network(options)));
+      },
+      py::arg("manholes"), py::arg("seed") = 1, py::arg("topology") = "meshed",
+      "A seeded synthetic network (sewerplan generate).");
+}
+
+void bind_profile(py::module_& m) {
+  py::class_<RobotProfile>(m, "RobotProfile", "What a robot can do and what its actions cost.")
+      .def(py::init([](const std::string& name) {
+             std::optional<RobotProfile> p = builtin_profile(name);
+             if (!p)
+               raise_error({ErrorCode::kInvalidProfile, "no built-in profile '" + name + "'"});
+             return *p;
+           }),
+           py::arg("name") = "makro-1.1", "A built-in profile: 'makro-1.1' or 'makro-plus'.")
+      .def_readwrite("name", &RobotProfile::name)
+      .def_readwrite("speed_mps", &RobotProfile::speed_mps)
+      .def_readwrite("inspection_speed_mps", &RobotProfile::inspection_speed_mps)
+      .def_readwrite("battery_wh", &RobotProfile::battery_wh)
+      .def_readwrite("power_w", &RobotProfile::power_w)
+      .def_readwrite("min_pipe_diameter_m", &RobotProfile::min_pipe_diameter_m)
+      .def_readwrite("max_pipe_diameter_m", &RobotProfile::max_pipe_diameter_m)
+      .def_readwrite("max_step_m", &RobotProfile::max_step_m)
+      .def_readwrite("max_turn_deg", &RobotProfile::max_turn_deg)
+      .def_readwrite("sample_s", &RobotProfile::sample_s)
+      .def("to_dict", &profile_dict,
+           "Every field, as the mission format's profile object takes them.");
+  m.def("builtin_profile_names", &builtin_profile_names);
+}
+
+void bind_mission(py::module_& m) {
+  py::class_<Task>(m, "Task")
+      .def_readonly("name", &Task::name)
+      .def_property_readonly("kind", [](const Task& t) { return std::string(to_string(t.kind)); })
+      .def_readonly("final", &Task::final);
+  py::class_<MissionHandle, std::shared_ptr<MissionHandle>>(
+      m, "Mission", "What an operator asks of the robot on one map (it keeps its map).")
+      .def_static("from_json", &mission_from_json, py::arg("map"), py::arg("text"),
+                  py::arg("file_name") = "<string>",
+                  "Reads a mission in the JSON format (docs/formats/mission-json.md).")
+      .def_property_readonly("map", [](const MissionHandle& h) { return h.map; })
+      .def_property_readonly("name", [](const MissionHandle& h) { return h.mission.name; })
+      .def_property_readonly("profile", [](const MissionHandle& h) { return h.mission.profile; })
+      .def_property_readonly("tasks", [](const MissionHandle& h) { return h.mission.tasks; })
+      .def(
+          "task_place",
+          [](const MissionHandle& h, const std::string& name) {
+            for (const Task& t : h.mission.tasks) {
+              if (t.name == name) return task_place(t, *h.map);
+            }
+            raise_error({ErrorCode::kInvalidArgument, "no task '" + name + "'"});
+          },
+          py::arg("task"), "Where a task is done, as people read it: 'pipe P4'.")
+      .def_property_readonly(
+          "start", [](const MissionHandle& h) { return describe(h.mission.start, *h.map); })
+      .def_property_readonly("exits",
+                             [](const MissionHandle& h) {
+                               std::vector<std::string> names;
+                               for (ManholeId id : h.mission.exits) {
+                                 names.push_back(h.map->manhole(id).name);
+                               }
+                               return names;
+                             })
+      .def_property_readonly(
+          "battery_reserve",
+          [](const MissionHandle& h) { return h.mission.battery_reserve_fraction; })
+      .def("to_json", &mission_json, "The mission in its JSON format.")
+      .def("__repr__", [](const MissionHandle& h) {
+        return "<Mission " + h.mission.name + ": " + std::to_string(h.mission.tasks.size()) +
+               " tasks>";
+      });
+  m.def(
+      "read_mission",
+      [](std::shared_ptr<const SewerMap> map, const std::filesystem::path& path) {
+        Diagnostics diagnostics;
+        Mission mission = value_or_raise(read_mission(path, *map, diagnostics), &diagnostics);
+        return std::make_shared<MissionHandle>(MissionHandle{std::move(map), std::move(mission)});
+      },
+      py::arg("map"), py::arg("path"), "Reads a mission file against its map.");
+  m.def(
+      "generate_mission",
+      [](std::shared_ptr<const SewerMap> map, std::size_t tasks, std::uint64_t seed,
+         const std::string& profile) {
+        domain::MissionOptions options;
+        options.tasks = tasks;
+        options.seed = seed;
+        options.profile = profile;
+        Mission mission = value_or_raise(domain::generate_mission(*map, options));
+        return std::make_shared<MissionHandle>(MissionHandle{std::move(map), std::move(mission)});
+      },
+      py::arg("map"), py::arg("tasks") = 5, py::arg("seed") = 1, py::arg("profile") = "makro-plus",
+      "A seeded mission on a map (sewerplan generate --mission-tasks).");
+}
+
+}  // namespace
+
+void CancelToken::mark_entered() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    entered_ = true;
+  }
+  entered_cv_.notify_all();
+}
+
+void CancelToken::wait_entered() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  entered_cv_.wait(lock, [this] { return entered_; });
+}
+
+void raise_error(const Error& error, const Diagnostics* diagnostics) {
+  std::string message = error.message;
+  if (message.empty() && diagnostics != nullptr) message = diagnostics->error_summary();
+  py::object type = py::reinterpret_borrow<py::object>(error_type);
+  py::object exception = type(message);
+  exception.attr("code") = std::string(to_string(error.code));
+  exception.attr("message") = message;
+  exception.attr("diagnostics") =
+      diagnostics != nullptr ? diagnostics->all() : std::vector<Diagnostic>{};
+  PyErr_SetObject(error_type, exception.ptr());
+  throw py::error_already_set();
+}
+
+ManholeId manhole_named(const SewerMap& map, const std::string& name) {
+  const std::optional<ManholeId> id = map.find_manhole(name);
+  if (!id) raise_error({ErrorCode::kInvalidArgument, "no manhole '" + name + "' in the map"});
+  return *id;
+}
+
+PipeId pipe_named(const SewerMap& map, const std::string& name) {
+  const std::optional<PipeId> id = map.find_pipe(name);
+  if (!id) raise_error({ErrorCode::kInvalidArgument, "no pipe '" + name + "' in the map"});
+  return *id;
+}
+
+void bind_maps(py::module_& m) {
+  bind_errors(m);
+  bind_map_types(m);
+  bind_map(m);
+  bind_profile(m);
+  bind_mission(m);
+}
+
+}  // namespace sewerplan::python
+
+PYBIND11_MODULE(_sewerplan, m) {
+  m.doc() = "sewerplan: planning and replanning for autonomous sewer-inspection robots";
+  sewerplan::python::bind_maps(m);
+  sewerplan::python::bind_planning(m);
+  sewerplan::python::bind_simulation(m);
+}

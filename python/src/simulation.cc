@@ -1,0 +1,320 @@
+// SPDX-License-Identifier: MIT
+// The Python module: simulated missions with faults (events as Python objects) and campaigns.
+#include <optional>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "sewerplan/campaign/campaign.h"
+#include "sewerplan/campaign/summary.h"
+#include "sewerplan/core/map_json.h"
+#include "sewerplan/executor/event_json.h"
+#include "sewerplan/executor/executor.h"
+#include "sewerplan/hal/fault_scenario.h"
+#include "sewerplan/hal/sim_robot.h"
+
+#include "bindings.h"
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+namespace sewerplan::python {
+namespace {
+
+namespace ex = executor;
+
+struct Faults {
+  std::shared_ptr<const SewerMap> map;
+  hal::FaultScenario scenario;
+};
+
+struct Simulation {
+  ex::MissionReport report;
+  std::vector<ex::Event> events;
+};
+
+struct Campaign {
+  std::vector<campaign::RunRecord> records;
+  campaign::Summary summary;
+};
+
+hal::SimPose start_pose(const domain::RobotPosition& p) {
+  if (const auto* in = std::get_if<domain::InManhole>(&p)) return hal::InManhole{in->manhole};
+  if (const auto* at = std::get_if<domain::AtSlot>(&p)) return hal::AtSlot{at->manhole, at->slot};
+  const auto& pipe = std::get<domain::InPipe>(p);
+  return hal::InPipe{pipe.pipe, pipe.offset_m, hal::Heading::kTowardsEnd1};
+}
+
+Simulation simulate(const std::shared_ptr<const MissionHandle>& mission,
+                    const std::optional<Faults>& faults, bool allow_push,
+                    double planner_time_limit_s) {
+  const SewerMap& map = *mission->map;
+  if (faults && faults->map.get() != mission->map.get()) {
+    raise_error({ErrorCode::kInvalidArgument, "the faults were read against another map"});
+  }
+  Simulation out;
+  {
+    py::gil_scoped_release release;
+    ex::ReplannerOptions replanner_options;
+    replanner_options.planner.time_limit_s = planner_time_limit_s;
+    ex::Replanner replanner(map, mission->mission, replanner_options);
+    hal::SimRobot robot(map, mission->mission.profile, start_pose(replanner.progress().position),
+                        faults ? faults->scenario : hal::FaultScenario{});
+    ex::ExecutorOptions options;
+    options.recovery.push_allowed = allow_push;
+    ex::Executor executor(map, replanner, robot, options);
+    executor.subscribe([&out](const ex::Event& e) { out.events.push_back(e); });
+    out.report = executor.run();
+  }
+  return out;
+}
+
+Campaign run(const std::shared_ptr<const MissionHandle>& mission, std::size_t runs,
+             std::uint64_t seed, const std::string& rates, std::size_t jobs, bool guard,
+             double timeout_s, bool allow_push) {
+  const SewerMap& map = *mission->map;
+  campaign::CampaignSpec spec;
+  spec.map_name = map.name();
+  spec.mission_name = mission->mission.name;
+  std::ostringstream map_json;
+  write_map_json(map, map_json);
+  spec.map_fingerprint = campaign::fingerprint(map_json.str());
+  std::ostringstream mission_json;
+  write_mission_json(mission->mission, map, mission_json);
+  spec.mission_fingerprint = campaign::fingerprint(mission_json.str());
+  spec.seed = seed;
+  spec.runs = runs;
+  spec.rates = value_or_raise(campaign::parse_fault_rates(rates));
+  spec.push_allowed = allow_push;
+  campaign::CampaignOptions options;
+  options.jobs = std::max<std::size_t>(1, jobs);
+  options.guard = guard;
+  options.timeout_s = timeout_s;
+  Campaign out;
+  {
+    py::gil_scoped_release release;
+    out.records = campaign::run_campaign(map, mission->mission, spec, options);
+    out.summary = campaign::summarize(spec, out.records);
+  }
+  return out;
+}
+
+template <class T>
+std::string name_of(T value) {
+  return std::string(ex::to_string(value));
+}
+
+void bind_events(py::module_& m) {
+  py::class_<ex::PlanEvent>(m, "PlanEvent")
+      .def_readonly("replan", &ex::PlanEvent::replan)
+      .def_readonly("reason", &ex::PlanEvent::reason)
+      .def_readonly("planning_ms", &ex::PlanEvent::planning_ms)
+      .def_readonly("decision", &ex::PlanEvent::decision)
+      .def_readonly("goals", &ex::PlanEvent::goals)
+      .def_readonly("dropped", &ex::PlanEvent::dropped)
+      .def_readonly("end", &ex::PlanEvent::end)
+      .def_readonly("steps", &ex::PlanEvent::steps)
+      .def_readonly("cost_s", &ex::PlanEvent::cost_s);
+  py::class_<ex::ActionEvent>(m, "ActionEvent")
+      .def_readonly("step", &ex::ActionEvent::step)
+      .def_readonly("kind", &ex::ActionEvent::kind)
+      .def_readonly("duration_s", &ex::ActionEvent::duration_s)
+      .def_readonly("parameters", &ex::ActionEvent::parameters);
+  py::class_<ex::JobEvent>(m, "JobEvent")
+      .def_readonly("job", &ex::JobEvent::job)
+      .def_readonly("progress_m", &ex::JobEvent::progress_m)
+      .def_readonly("ok", &ex::JobEvent::ok);
+  py::class_<ex::ErrorEvent>(m, "ErrorEvent")
+      .def_property_readonly(
+          "kind", [](const ex::ErrorEvent& e) { return std::string(hal::to_string(e.kind)); })
+      .def_readonly("reason", &ex::ErrorEvent::reason)
+      .def_readonly("where", &ex::ErrorEvent::where);
+  py::class_<ex::RecoveryEvent>(m, "RecoveryEvent")
+      .def_property_readonly(
+          "phase", [](const ex::RecoveryEvent& e) { return std::string(ex::logged_name(e.phase)); })
+      .def_readonly("ok", &ex::RecoveryEvent::ok);
+  py::class_<ex::FailureEvent>(m, "FailureEvent")
+      .def_readonly("kind", &ex::FailureEvent::kind)
+      .def_property_readonly("pipe",
+                             [](const ex::FailureEvent& e) -> std::optional<std::string> {
+                               const auto* in = std::get_if<ex::FailureEvent::InPipe>(&e.where);
+                               if (in == nullptr) return std::nullopt;
+                               return in->pipe;
+                             })
+      .def_property_readonly("offset_m",
+                             [](const ex::FailureEvent& e) -> std::optional<double> {
+                               const auto* in = std::get_if<ex::FailureEvent::InPipe>(&e.where);
+                               if (in == nullptr) return std::nullopt;
+                               return in->offset_m;
+                             })
+      .def_property_readonly("manhole",
+                             [](const ex::FailureEvent& e) -> std::optional<std::string> {
+                               const auto* p = std::get_if<ex::FailureEvent::Passage>(&e.where);
+                               if (p == nullptr) return std::nullopt;
+                               return p->manhole;
+                             })
+      .def_readonly("detail", &ex::FailureEvent::detail);
+  py::class_<ex::TaskDoneEvent>(m, "TaskDoneEvent").def_readonly("task", &ex::TaskDoneEvent::task);
+  py::class_<ex::TaskDroppedEvent>(m, "TaskDroppedEvent")
+      .def_readonly("task", &ex::TaskDroppedEvent::task)
+      .def_readonly("reason", &ex::TaskDroppedEvent::reason);
+  py::class_<ex::BeaconEvent>(m, "BeaconEvent").def_readonly("reason", &ex::BeaconEvent::reason);
+  py::class_<ex::MissionEndEvent>(m, "MissionEndEvent")
+      .def_property_readonly("outcome",
+                             [](const ex::MissionEndEvent& e) { return name_of(e.outcome); })
+      .def_readonly("end", &ex::MissionEndEvent::end)
+      .def_readonly("tasks_done", &ex::MissionEndEvent::tasks_done)
+      .def_readonly("energy_wh", &ex::MissionEndEvent::energy_wh)
+      .def_readonly("replans", &ex::MissionEndEvent::replans)
+      .def_readonly("decision", &ex::MissionEndEvent::decision)
+      .def_property_readonly("beacon_cause",
+                             [](const ex::MissionEndEvent& e) { return name_of(e.beacon_cause); });
+  py::class_<ex::Event>(m, "Event",
+                        "One thing that happened in a simulated mission: t_s, type, and `what`, "
+                        "the event's own object (PlanEvent, ActionEvent, ...).")
+      .def_readonly("t_s", &ex::Event::t_s)
+      .def_property_readonly("type",
+                             [](const ex::Event& e) { return std::string(ex::type_name(e)); })
+      .def_readonly("what", &ex::Event::what)
+      .def("to_json", &ex::to_json_line, "The event's line in the JSON-lines log.")
+      .def("__repr__", [](const ex::Event& e) { return "<Event " + ex::to_json_line(e) + ">"; });
+}
+
+void bind_simulate(py::module_& m) {
+  py::class_<Faults>(m, "FaultScenario", "The trouble hidden in a simulated sewer.")
+      .def_property_readonly("obstacles",
+                             [](const Faults& f) { return f.scenario.obstacles.size(); })
+      .def_property_readonly("danger_spots",
+                             [](const Faults& f) { return f.scenario.danger_spots.size(); })
+      .def_property_readonly("dangerous_passages",
+                             [](const Faults& f) { return f.scenario.dangerous_passages.size(); })
+      .def_property_readonly("malfunctions",
+                             [](const Faults& f) { return f.scenario.malfunctions.size(); })
+      .def("to_json", [](const Faults& f) { return hal::faults_json(f.scenario, *f.map); });
+  m.def(
+      "read_faults",
+      [](std::shared_ptr<const SewerMap> map, const std::filesystem::path& path) {
+        Diagnostics diagnostics;
+        hal::FaultScenario s =
+            value_or_raise(hal::read_faults(path, *map, diagnostics), &diagnostics);
+        return Faults{std::move(map), std::move(s)};
+      },
+      py::arg("map"), py::arg("path"), "Reads a fault scenario (docs/simulation.md).");
+  m.def(
+      "random_faults",
+      [](const std::shared_ptr<const MissionHandle>& mission, std::uint64_t seed,
+         double obstacles_per_km) {
+        // As `sewerplan simulate --random-faults SEED,RATE` draws them.
+        hal::RandomFaultOptions r = hal::random_fault_options(mission->mission.profile);
+        r.seed = seed;
+        r.obstacle_rate_per_km = obstacles_per_km;
+        r.danger_rate_per_km = obstacles_per_km / 4;
+        r.malfunction_rate_per_hour = 0.5;
+        return Faults{mission->map, value_or_raise(hal::random_faults(*mission->map, r))};
+      },
+      py::arg("mission"), py::arg("seed"), py::arg("obstacles_per_km") = 20.0,
+      "Random faults where the mission's robot fits, as simulate --random-faults draws them.");
+  py::class_<ex::MissionReport>(m, "MissionReport", "How a simulated mission went.")
+      .def_property_readonly("outcome",
+                             [](const ex::MissionReport& r) { return name_of(r.outcome); })
+      .def_readonly("decision", &ex::MissionReport::decision)
+      .def_property_readonly("beacon_cause",
+                             [](const ex::MissionReport& r) { return name_of(r.beacon_cause); })
+      .def_readonly("end", &ex::MissionReport::end)
+      .def_readonly("tasks_done", &ex::MissionReport::tasks_done)
+      .def_readonly("dropped", &ex::MissionReport::dropped)
+      .def_readonly("time_s", &ex::MissionReport::time_s)
+      .def_readonly("energy_wh", &ex::MissionReport::energy_wh)
+      .def_readonly("replans", &ex::MissionReport::replans)
+      .def_readonly("planning_times_s", &ex::MissionReport::planning_times_s)
+      .def_readonly("jobs", &ex::MissionReport::jobs)
+      .def_readonly("recoveries", &ex::MissionReport::recoveries)
+      .def_readonly("battery_reserve_kept", &ex::MissionReport::battery_reserve_kept);
+  py::class_<Simulation>(m, "Simulation", "simulate()'s answer: the report and every event.")
+      .def_readonly("report", &Simulation::report)
+      .def_readonly("events", &Simulation::events);
+  m.def("simulate", &simulate, py::arg("mission"), py::arg("faults") = py::none(),
+        py::arg("allow_push") = false, py::arg("planner_time_limit_s") = 0.0,
+        "Runs the mission on the simulated robot with the faults hidden in it, with recovery "
+        "and replanning, as `sewerplan simulate` does (the GIL is released meanwhile).");
+}
+
+void bind_campaign(py::module_& m) {
+  py::class_<campaign::Execution>(m, "Execution", "One policy's run of a campaign run.")
+      .def_readonly("tasks", &campaign::Execution::tasks)
+      .def_property_readonly(
+          "outcome",
+          [](const campaign::Execution& e) { return std::string(campaign::to_string(e.outcome)); })
+      .def_readonly("end", &campaign::Execution::end)
+      .def_readonly("reserve_kept", &campaign::Execution::reserve_kept)
+      .def_readonly("replans", &campaign::Execution::replans)
+      .def_readonly("time_s", &campaign::Execution::time_s)
+      .def_readonly("energy_wh", &campaign::Execution::energy_wh);
+  py::class_<campaign::RunRecord>(m, "RunRecord", "One run of a campaign.")
+      .def_readonly("index", &campaign::RunRecord::index)
+      .def_readonly("seed", &campaign::RunRecord::seed)
+      .def_property_readonly(
+          "status",
+          [](const campaign::RunRecord& r) { return std::string(campaign::to_string(r.status)); })
+      .def_readonly("detail", &campaign::RunRecord::detail)
+      .def_property_readonly("tasks",
+                             [](const campaign::RunRecord& r) -> std::optional<std::size_t> {
+                               if (!r.result) return std::nullopt;
+                               return r.result->tasks;
+                             })
+      .def_property_readonly("oracle_tasks",
+                             [](const campaign::RunRecord& r) -> std::optional<std::size_t> {
+                               if (!r.result) return std::nullopt;
+                               return r.result->oracle_tasks;
+                             })
+      .def_property_readonly(
+          "ours",
+          [](const campaign::RunRecord& r) -> std::optional<campaign::Execution> {
+            if (!r.result) return std::nullopt;
+            return r.result->ours;
+          })
+      .def_property_readonly(
+          "baseline",
+          [](const campaign::RunRecord& r) -> std::optional<campaign::Execution> {
+            if (!r.result) return std::nullopt;
+            return r.result->baseline;
+          })
+      .def("to_json", &campaign::run_json_line);
+  py::class_<campaign::Summary>(m, "CampaignSummary")
+      .def_readonly("runs", &campaign::Summary::runs)
+      .def_readonly("completed", &campaign::Summary::completed)
+      .def_readonly("could_reach_exit", &campaign::Summary::could_reach_exit)
+      .def_readonly("oracle_tasks_mean", &campaign::Summary::oracle_tasks_mean)
+      .def_property_readonly("ours_tasks_mean",
+                             [](const campaign::Summary& s) { return s.ours.tasks_mean; })
+      .def_property_readonly("baseline_tasks_mean",
+                             [](const campaign::Summary& s) { return s.baseline.tasks_mean; })
+      .def_readonly("better_than_baseline", &campaign::Summary::better_than_baseline)
+      .def_readonly("equal_to_baseline", &campaign::Summary::equal_to_baseline)
+      .def_readonly("worse_than_baseline", &campaign::Summary::worse_than_baseline)
+      .def_property_readonly("clean", &campaign::Summary::clean)
+      .def("to_json", [](const campaign::Summary& s) {
+        std::ostringstream out;
+        campaign::write_summary_json(s, out);
+        return out.str();
+      });
+  py::class_<Campaign>(m, "Campaign", "run_campaign()'s answer.")
+      .def_readonly("records", &Campaign::records)
+      .def_readonly("summary", &Campaign::summary);
+  m.def("run_campaign", &run, py::arg("mission"), py::arg("runs"), py::arg("seed") = 1,
+        py::arg("rates") = "", py::arg("jobs") = 1, py::arg("guard") = true,
+        py::arg("timeout_s") = 60.0, py::arg("allow_push") = false,
+        "Seeded simulated runs with random faults, each against the oracle and the paper-era "
+        "baseline (sewerplan campaign; rates as --fault-rates writes them). The GIL is released "
+        "meanwhile.");
+}
+
+}  // namespace
+
+void bind_simulation(py::module_& m) {
+  bind_events(m);
+  bind_simulate(m);
+  bind_campaign(m);
+}
+
+}  // namespace sewerplan::python
