@@ -30,12 +30,12 @@ class OrderCosts {
   // The cost of the prepared order (kInfiniteCost: impossible).
   Cost total() const { return join(heads_.back(), {}); }
   // The cost of the prepared order with goal g inserted before position `at` (0..m).
-  Cost inserted(std::size_t at, std::size_t g) const;
+  Cost inserted(std::size_t at, std::size_t g);
   // For each j in [0, places) but i, the cost of the prepared order with its goal i taken out and
   // put back at position j of the order without it: out[j] (out[i] is kInfiniteCost).
-  void moved(std::size_t i, std::size_t places, std::vector<Cost>& out) const;
+  void moved(std::size_t i, std::size_t places, std::vector<Cost>& out);
   // The cost of the prepared order with the stretch [i, j) reversed.
-  Cost reversed(std::size_t i, std::size_t j) const;
+  Cost reversed(std::size_t i, std::size_t j);
 
  private:
   static constexpr std::size_t kStart = static_cast<std::size_t>(-1);
@@ -46,23 +46,26 @@ class OrderCosts {
     std::vector<Cost> cost;
   };
   // Costs per option of `goal` of all that follows it (goal kStart: nothing follows but the end).
-  struct Back {
+  struct Rest {
     std::size_t goal = kStart;
-    std::vector<Cost> cost;
+    const Cost* cost = nullptr;
   };
 
   std::int32_t place(std::size_t goal, std::size_t option) const;
-  Front advance(const Front& from, std::size_t goal) const;
-  // The cheapest cost from `at` to do what `back` holds, and end.
-  Cost rest(std::int32_t at, const Back& back) const;
-  Back prepend(std::size_t goal, const Back& back) const;
-  Cost join(const Front& front, const Back& back) const;
-  Back back_at(std::size_t k) const;  // order[k..], tail(k)
+  // Buffers are reused: the searches call these some K^3 times and allocated on every call.
+  void advance(const Front& from, std::size_t goal, Front& to) const;
+  // The cheapest cost from `at` to do what `rest` holds, and end.
+  Cost rest(std::int32_t at, Rest rest) const;
+  void prepend(std::size_t goal, Rest rest, std::vector<Cost>& to) const;
+  Cost join(const Front& front, Rest rest) const;
+  Rest rest_at(std::size_t k) const;  // order[k..], tail(k)
 
   const Shape& s_;
   std::vector<std::size_t> order_;
   std::vector<Front> heads_;              // heads_[k]: after order_[0..k)
   std::vector<std::vector<Cost>> tails_;  // tails_[k]: per option of order_[k]
+  Front front_, next_, trial_;            // scratch
+  std::vector<Cost> back_[2];             // scratch
 };
 
 }  // namespace sewerplan::search::detail
