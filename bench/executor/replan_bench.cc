@@ -84,5 +84,18 @@ BENCHMARK(BM_ReplanAfterBlockageGenerated)
     ->Args({100000, 20})
     ->Unit(benchmark::kMillisecond);
 
+// Issue 16: the same on missions spread over the network (the generator's and the planning
+// benchmarks' default). Arguments: manholes, tasks, spread (MissionSpread: 0 uniform, 1 clustered).
+// Goal at 100,000 manholes and 20 tasks: under 10 ms.
+void BM_ReplanAfterBlockageSpread(benchmark::State& state) {
+  replan_after_blockage(state, spread_instance(static_cast<std::size_t>(state.range(0)),
+                                               static_cast<std::size_t>(state.range(1)),
+                                               static_cast<domain::MissionSpread>(state.range(2))));
+}
+BENCHMARK(BM_ReplanAfterBlockageSpread)
+    ->ArgNames({"manholes", "tasks", "spread"})
+    ->ArgsProduct({{100000}, {20}, {0, 1}})
+    ->Unit(benchmark::kMillisecond);
+
 }  // namespace
 }  // namespace sewerplan::bench

@@ -4,13 +4,14 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
-#include <numeric>
 #include <optional>
 #include <sstream>
 
 #include "sewerplan/core/limits.h"
 #include "sewerplan/core/map_queries.h"
 #include "sewerplan/core/text_file.h"
+
+#include "huge_pages.h"
 
 namespace sewerplan {
 namespace {
@@ -38,11 +39,34 @@ template <class Record>
 std::vector<std::uint32_t> sorted_names(const std::vector<Record>& records, std::string_view kind,
                                         Kind ref_kind, const Locator& locate,
                                         Diagnostics& diagnostics) {
-  std::vector<std::uint32_t> order(records.size());
-  std::iota(order.begin(), order.end(), 0U);
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return records[a].name < records[b].name || (records[a].name == records[b].name && a < b);
+  // Sorted by the names' first 8 bytes held beside the index, the full names compared only where
+  // those are equal: comparing through the index to a million names scattered in memory was a
+  // quarter of reading a 1,000,000-manhole map (issue 16). The order is the same: a smaller
+  // prefix (zero-padded, big-endian) means a smaller name.
+  struct Key {
+    std::uint64_t prefix;
+    std::uint32_t index;
+  };
+  std::vector<Key> keys;
+  detail::reserve_huge(keys, records.size());
+  for (std::uint32_t i = 0; i < records.size(); ++i) {
+    std::uint64_t prefix = 0;
+    const std::string& name = records[i].name;
+    for (std::size_t k = 0; k < 8; ++k) {
+      prefix = (prefix << 8U) | (k < name.size() ? static_cast<unsigned char>(name[k]) : 0U);
+    }
+    keys.push_back({prefix, i});
+  }
+  std::sort(keys.begin(), keys.end(), [&](const Key& a, const Key& b) {
+    if (a.prefix != b.prefix) return a.prefix < b.prefix;
+    const std::string& x = records[a.index].name;
+    const std::string& y = records[b.index].name;
+    return x < y || (x == y && a.index < b.index);
   });
+  std::vector<std::uint32_t> order;
+  detail::reserve_huge(order, records.size());
+  for (const Key& k : keys) order.push_back(k.index);
+  std::vector<Key>().swap(keys);
   for (std::size_t k = 0; k < order.size(); ++k) {
     const Record& r = records[order[k]];
     RecordRef ref{ref_kind, order[k], 0, r.line};
@@ -71,6 +95,7 @@ class NameIndex {
     std::size_t capacity = 16;
     while (capacity < 2 * records.size()) capacity <<= 1U;
     mask_ = capacity - 1;
+    detail::reserve_huge(slots_, capacity);
     slots_.assign(capacity, kEmpty);
     for (std::uint32_t i = 0; i < records.size(); ++i) {
       std::size_t h = std::hash<std::string_view>{}(records[i].name) & mask_;
@@ -155,8 +180,8 @@ SewerMap MapBuilder::add_findings(SewerMap map, std::vector<FindingRecord> findi
 }
 
 void MapBuilder::reserve(std::size_t manholes, std::size_t pipes) {
-  manholes_.reserve(manholes);
-  pipes_.reserve(pipes);
+  detail::reserve_huge(manholes_, manholes);
+  detail::reserve_huge(pipes_, pipes);
 }
 
 // The checks of build(), one function per concern so that each stays readable.
@@ -309,7 +334,7 @@ class MapBuilder::Validation {
   }
 
   void build_pipes(SewerMap& map) {
-    map.pipes_.reserve(b_.pipes_.size());
+    detail::reserve_huge(map.pipes_, b_.pipes_.size());
     for (std::uint32_t i = 0; i < b_.pipes_.size(); ++i) {
       PipeRecord& r = b_.pipes_[i];
       Pipe p;
@@ -333,8 +358,8 @@ class MapBuilder::Validation {
   void build_manholes(SewerMap& map) {
     std::size_t total_slots = 0;
     for (const ManholeRecord& m : b_.manholes_) total_slots += m.slots.size();
-    map.manholes_.reserve(b_.manholes_.size());
-    map.slots_.reserve(total_slots);
+    detail::reserve_huge(map.manholes_, b_.manholes_.size());
+    detail::reserve_huge(map.slots_, total_slots);
     for (std::uint32_t i = 0; i < b_.manholes_.size(); ++i) {
       ManholeRecord& r = b_.manholes_[i];
       Manhole m;
@@ -415,7 +440,7 @@ class MapBuilder::Validation {
   }
 
   void build_points(SewerMap& map) {
-    map.points_.reserve(b_.points_.size());
+    detail::reserve_huge(map.points_, b_.points_.size());
     for (std::uint32_t i = 0; i < b_.points_.size(); ++i) {
       PointRecord& r = b_.points_[i];
       InspectionPoint point;

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "sewerplan/core/map_io.h"
 
+#include <optional>
 #include <sstream>
+#include <string_view>
 
 #include "sewerplan/core/map_ascii.h"
 #include "sewerplan/core/map_isybau.h"
@@ -10,6 +12,7 @@
 #include "sewerplan/core/text_file.h"
 
 #include "map_json_fast.h"
+#include "mapped_file.h"
 
 namespace sewerplan {
 namespace {
@@ -118,20 +121,28 @@ Result<SewerMap> parse_map(std::string_view text, const std::string& file_name, 
 }
 
 Result<SewerMap> read_map(const std::filesystem::path& path, Diagnostics& diagnostics) {
-  Result<std::string> text = read_text_file(path);
-  if (!text.has_value()) return text.error();
-  Result<MapFormat> format = detect_map_format(path, *text);
+  // A regular file is read where the page cache holds it (mapped_file.h); anything else as text.
+  std::optional<detail::MappedFile> mapped = detail::MappedFile::open(path);
+  std::string read;
+  if (!mapped) {
+    Result<std::string> text = read_text_file(path);
+    if (!text.has_value()) return text.error();
+    read = std::move(*text);
+  }
+  const std::string_view text = mapped ? mapped->text() : std::string_view(read);
+  Result<MapFormat> format = detect_map_format(path, text);
   if (!format.has_value()) return format.error();
   if (*format == MapFormat::kJson) {
     // The records own their names: free the text before building (a 1,000,000-manhole map is
     // 430 MB of text), so that text and map are never held at once.
-    if (std::optional<MapBuilder> builder = detail::read_map_json_fast(*text, path.string())) {
-      std::string().swap(*text);
+    if (std::optional<MapBuilder> builder = detail::read_map_json_fast(text, path.string())) {
+      if (mapped) mapped->close();
+      std::string().swap(read);
       return std::move(*builder).build(diagnostics);
     }
-    return detail::read_map_json_document(*text, path.string(), diagnostics);
+    return detail::read_map_json_document(text, path.string(), diagnostics);
   }
-  return parse_map(*text, path.string(), *format, diagnostics);
+  return parse_map(text, path.string(), *format, diagnostics);
 }
 
 Result<void> write_map(const SewerMap& map, const std::filesystem::path& path,

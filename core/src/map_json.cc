@@ -9,6 +9,7 @@
 
 #include "sewerplan/core/map_builder.h"
 
+#include "huge_pages.h"
 #include "json_fields.h"
 #include "json_scan.h"
 #include "map_json_fast.h"
@@ -276,9 +277,9 @@ class FastReader {
    public:
     void push_back(Record&& r) {
       if (chunks_.empty() || chunks_.back().size() == chunks_.back().capacity()) {
-        chunks_.emplace_back().reserve(chunks_.empty() || chunks_.size() < 9
-                                           ? std::size_t{1024} << chunks_.size()
-                                           : std::size_t{1} << 18U);
+        detail::reserve_huge(chunks_.emplace_back(), chunks_.empty() || chunks_.size() < 9
+                                                         ? std::size_t{1024} << chunks_.size()
+                                                         : std::size_t{1} << 18U);
       }
       chunks_.back().push_back(std::move(r));
       ++size_;

@@ -9,6 +9,7 @@
 
 #include "sewerplan/core/clock.h"
 
+#include "tour_costs.h"
 #include "tour_shape.h"
 
 namespace sewerplan::search {
@@ -107,7 +108,8 @@ class Evaluator {
 
 class Tour {
  public:
-  Tour(const Shape& shape, const StopCondition& stop) : s_(shape), eval_(shape), stop_(stop) {}
+  Tour(const Shape& shape, const StopCondition& stop)
+      : s_(shape), eval_(shape), costs_(shape), stop_(stop) {}
 
   // The reason the stop condition gave, once it fired; then build() returns nothing more.
   std::optional<SearchStatus> stopped() const { return stopped_; }
@@ -127,13 +129,13 @@ class Tour {
     while (!todo.empty()) {  // cheapest insertion
       Cost best = kInfiniteCost;
       std::size_t best_goal = 0, best_at = 0;
+      std::vector<std::size_t> full = order;
+      if (last) full.push_back(*last);
+      costs_.prepare(full);
       for (std::size_t i = 0; i < todo.size(); ++i) {
         if (check_stop()) return {};
         for (std::size_t at = 0; at <= order.size(); ++at) {
-          std::vector<std::size_t> trial = order;
-          trial.insert(trial.begin() + static_cast<std::ptrdiff_t>(at), todo[i]);
-          if (last) trial.push_back(*last);
-          const Cost c = eval_.cost(trial);
+          const Cost c = costs_.inserted(at, todo[i]);
           if (c < best) {
             best = c;
             best_goal = i;
@@ -158,16 +160,18 @@ class Tour {
     const bool has_last = !order.empty() && s_.goals[order.back()].last;
     const std::size_t places = order.size() - (has_last ? 1 : 0);
     Cost best = kInfiniteCost;
-    std::vector<std::size_t> best_order;
+    std::optional<std::size_t> best_at;
+    costs_.prepare(order);
     for (std::size_t at = 0; at <= places; ++at) {
-      std::vector<std::size_t> trial = order;
-      trial.insert(trial.begin() + static_cast<std::ptrdiff_t>(at), g);
-      const Cost c = eval_.cost(trial);
+      const Cost c = costs_.inserted(at, g);
       if (c < best) {
         best = c;
-        best_order = std::move(trial);
+        best_at = at;
       }
     }
+    if (!best_at) return {};
+    std::vector<std::size_t> best_order = order;
+    best_order.insert(best_order.begin() + static_cast<std::ptrdiff_t>(*best_at), g);
     return best_order;
   }
 
@@ -193,52 +197,57 @@ class Tour {
   }
 
  private:
-  Cost with_last(std::vector<std::size_t> order, std::optional<std::size_t> last) {
-    if (last) order.push_back(*last);
-    return eval_.cost(order);
-  }
-
   // Or-opt (move one goal) and 2-opt (reverse a stretch) until neither helps, at most 50 rounds.
+  // Trial orders are priced from the current order's costs (tour_costs.h), which are read again
+  // after every change, so the moves tried and taken are those of evaluating each trial whole.
   void improve(std::vector<std::size_t>& order, std::optional<std::size_t> last) {
-    Cost best = with_last(order, last);
+    const std::size_t n = order.size();
+    std::vector<std::size_t> full = order;
+    if (last) full.push_back(*last);
+    Cost best = eval_.cost(full);
+    std::vector<Cost> moved;
     for (int round = 0; round < 50; ++round) {
       bool better = false;
-      for (std::size_t i = 0; i < order.size(); ++i) {
-        if (check_stop()) return;
-        for (std::size_t j = 0; j < order.size(); ++j) {
-          if (i == j) continue;
-          std::vector<std::size_t> trial = order;
-          const std::size_t g = trial[i];
-          trial.erase(trial.begin() + static_cast<std::ptrdiff_t>(i));
-          trial.insert(trial.begin() + static_cast<std::ptrdiff_t>(j), g);
-          const Cost c = with_last(trial, last);
-          if (c < best) {
-            best = c;
-            order = std::move(trial);
-            better = true;
-          }
+      costs_.prepare(full);
+      for (std::size_t i = 0; i < n; ++i) {
+        if (check_stop()) return write_back(full, order);
+        costs_.moved(i, n, moved);
+        for (std::size_t j = 0; j < n; ++j) {
+          if (i == j || moved[j] >= best) continue;
+          best = moved[j];
+          const std::size_t g = full[i];
+          full.erase(full.begin() + static_cast<std::ptrdiff_t>(i));
+          full.insert(full.begin() + static_cast<std::ptrdiff_t>(j), g);
+          better = true;
+          costs_.prepare(full);
+          costs_.moved(i, n, moved);
         }
       }
-      for (std::size_t i = 0; i + 1 < order.size(); ++i) {
-        if (check_stop()) return;
-        for (std::size_t j = i + 2; j <= order.size(); ++j) {
-          std::vector<std::size_t> trial = order;
-          std::reverse(trial.begin() + static_cast<std::ptrdiff_t>(i),
-                       trial.begin() + static_cast<std::ptrdiff_t>(j));
-          const Cost c = with_last(trial, last);
-          if (c < best) {
-            best = c;
-            order = std::move(trial);
-            better = true;
-          }
+      for (std::size_t i = 0; i + 1 < n; ++i) {
+        if (check_stop()) return write_back(full, order);
+        for (std::size_t j = i + 2; j <= n; ++j) {
+          const Cost c = costs_.reversed(i, j);
+          if (c >= best) continue;
+          best = c;
+          std::reverse(full.begin() + static_cast<std::ptrdiff_t>(i),
+                       full.begin() + static_cast<std::ptrdiff_t>(j));
+          better = true;
+          costs_.prepare(full);
         }
       }
       if (!better) break;
     }
+    write_back(full, order);
+  }
+
+  static void write_back(const std::vector<std::size_t>& full, std::vector<std::size_t>& order) {
+    std::copy(full.begin(), full.begin() + static_cast<std::ptrdiff_t>(order.size()),
+              order.begin());
   }
 
   const Shape& s_;
   Evaluator eval_;
+  detail::OrderCosts costs_;
   const StopCondition& stop_;
   std::optional<SearchStatus> stopped_;
 };

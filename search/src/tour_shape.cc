@@ -76,6 +76,16 @@ std::optional<Shape> read_shape(const CompiledTask& task) {
     }
     g.options.push_back({*at, to.value_or(kStays), task.cost(a), a});
   }
+  if (s.places > 0 && s.places <= Shape::kDensePlaces) {
+    const auto n = static_cast<std::size_t>(s.places);
+    s.move_matrix.assign(n * n, kInfiniteCost);
+    for (std::size_t a = 0; a < n; ++a) s.move_matrix[a * n + a] = 0;
+    for (const auto& [key, move] : s.moves) {
+      const auto a = static_cast<std::size_t>(key / s.places);
+      const auto b = static_cast<std::size_t>(key % s.places);
+      if (a != b) s.move_matrix[a * n + b] = move.first;
+    }
+  }
   return s;
 }
 

@@ -94,6 +94,33 @@ TEST(MapBuilder, WarnsAboutDisconnectedParts) {
   EXPECT_THAT(d.all()[0].message, HasSubstr("2 disconnected parts (sizes 3 2 manholes)"));
 }
 
+// Names are sorted by their first 8 bytes first (map_builder.cc): names that share them, or are
+// prefixes of each other, are still found, and a repeated long name is still reported.
+TEST(MapBuilder, FindsNamesThatShareTheirFirstEightBytes) {
+  const std::vector<std::string> names{"Schacht-0012", "Schacht-001", "Schacht",
+                                       "Schacht-0002", "Sch",         "Schacht-00120"};
+  MapBuilder b("prefixes");
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    b.add_manhole({.name = names[i], .diameter_m = 1.0, .exit = i == 0, .slots = {}});
+  }
+  Diagnostics d;
+  Result<SewerMap> map = std::move(b).build(d);
+  ASSERT_TRUE(map.has_value()) << map.error();
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    ASSERT_EQ(map->find_manhole(names[i]), ManholeId{static_cast<std::uint32_t>(i)}) << names[i];
+  }
+  EXPECT_FALSE(map->find_manhole("Schacht-00").has_value());
+
+  MapBuilder twice("twice");
+  for (const char* name : {"Schacht-0012", "Schacht-0013", "Schacht-0012"}) {
+    twice.add_manhole({.name = name, .diameter_m = 1.0, .slots = {}});
+  }
+  Diagnostics d2;
+  EXPECT_FALSE(std::move(twice).build(d2).has_value());
+  ASSERT_EQ(d2.error_count(), 1U);
+  EXPECT_THAT(d2.all()[0].message, HasSubstr("duplicate manhole name 'Schacht-0012'"));
+}
+
 TEST(MapBuilder, AcceptsBlindPipeEnds) {
   MapBuilder b = three_manholes();
   b.add_manhole({.name = "M6", .diameter_m = 1.0, .slots = {{.pipe = "S1"}}});

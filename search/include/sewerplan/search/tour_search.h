@@ -33,7 +33,8 @@ namespace sewerplan::search {
 // A plan of `task` within its cost bound (with forgo actions for the goals left out when the
 // bound calls for it and the task has them), checked by replaying it on the task. Empty when the
 // task is not of the shape above, or no order found fits the bound. Runtime: O(goals^3 x
-// places-per-goal^2) for the insertion, and as much per round of improvement (at most 50 rounds).
+// options-per-goal^2) for the insertion, and as much per round of improvement (at most 50 rounds):
+// each trial order is priced from the current one's costs, not evaluated whole.
 // What a tour search found out besides its plan.
 struct TourReport {
   bool has_shape = false;
