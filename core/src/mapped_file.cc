@@ -10,12 +10,14 @@
 
 namespace sewerplan::detail {
 
-std::optional<MappedFile> MappedFile::open(const std::filesystem::path& path) {
+std::optional<MappedFile> MappedFile::open(const std::filesystem::path& path,
+                                           std::size_t min_bytes) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) return std::nullopt;
   struct stat st {};
   void* data = MAP_FAILED;
-  if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0) {
+  if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) &&
+      st.st_size > 0 && static_cast<std::size_t>(st.st_size) >= min_bytes) {
     data = ::mmap(nullptr, static_cast<std::size_t>(st.st_size), PROT_READ,
                   MAP_PRIVATE | MAP_POPULATE, fd, 0);
   }
