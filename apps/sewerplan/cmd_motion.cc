@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// sewerplan motion precompute --map MAP [--profile P] [--seed S] [--iterations N] [-o FILE] [-q]
+// sewerplan motion precompute --map MAP [--profile P] [--seed S] [--iterations N]
+//                              [--time-limit SECONDS] [-o FILE] [-q]
 #include <iomanip>
 #include <memory>
 #include <sstream>
@@ -24,6 +25,7 @@ struct PrecomputeOptions {
   std::string profile = "makro-1.1";
   std::uint32_t seed = 1;
   std::uint32_t iterations = fusion::TurnPlannerOptions{}.max_iterations;
+  double time_limit_s = 0;  // 0: none
   std::string out;
   bool quiet = false;
   bool json = false;
@@ -56,6 +58,8 @@ int precompute(const PrecomputeOptions& o, Context& c) {
   SteadyClock clock;
   std::size_t last_tenth = 0;
   fusion::PrecomputeOptions options{.planner = {.seed = o.seed, .max_iterations = o.iterations}};
+  // The same stop condition as every planner's (core/stop_condition.h): no table when it fires.
+  if (o.time_limit_s > 0) options.stop = StopCondition::after_seconds(clock, o.time_limit_s);
   if (!o.quiet) {
     options.progress = [&](std::size_t done, std::size_t total) {
       const std::size_t tenth = done * 10 / total;
@@ -114,6 +118,10 @@ void add_motion_command(CLI::App& app, Context& context) {
   cmd->add_option("--seed", o->seed, "Seed of the motion planner")->capture_default_str();
   cmd->add_option("--iterations", o->iterations,
                   "Planner iterations per passage geometry before it counts as infeasible")
+      ->capture_default_str();
+  cmd->add_option("--time-limit", o->time_limit_s,
+                  "Seconds before the precompute stops without a table (exit 5; 0: none)")
+      ->check(CLI::Range(0.0, 86400.0))
       ->capture_default_str();
   cmd->add_option("--out,-o", o->out, "Where to write the table (default: MAP.motion.json)");
   cmd->add_flag("--quiet,-q", o->quiet, "No progress on standard error");

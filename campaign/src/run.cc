@@ -72,6 +72,9 @@ Execution execute(const SewerMap& map, const Mission& mission, const hal::FaultS
   executor::ReplannerOptions replanner_options{.goals = goals};
   replanner_options.planner.time_limit_s = settings.planner_time_limit_s;
   replanner_options.planner.risk = risk;
+  // The paper-era baseline plans as MAKRO did: no battery kept for a blocked hazard pipe.
+  replanner_options.planner.contingency =
+      goals != executor::ReplannerOptions::Goals::kPaperBaseline;
   executor::Replanner replanner(map, mission, replanner_options);
   hal::SimRobot robot(map, mission.profile, start_pose(replanner.progress().position), faults);
   executor::ExecutorOptions options;
@@ -244,8 +247,11 @@ Result<RunResult> run_one(const SewerMap& map, const Mission& mission, const Run
   }
 
   ManualClock no_time;
+  // The oracle knows which hazards stop the robot: it keeps no battery for the others.
+  executor::ReplannerOptions oracle_options{.clock = &no_time};
+  oracle_options.planner.contingency = false;
   executor::Replanner oracle(map, clairvoyant(mission, *faults, settings.push_allowed),
-                             {.clock = &no_time});
+                             oracle_options);
   const executor::PlanResponse plan = oracle.plan("oracle");
   r.oracle_can_end = executor::has_plan(plan.decision);
   r.oracle_tasks = r.oracle_can_end ? plan.goals.size() : 0;

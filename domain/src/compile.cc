@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <iomanip>
+#include <map>
 #include <sstream>
+#include <tuple>
 #include <unordered_map>
 
 #include "sewerplan/core/clock.h"
@@ -68,10 +70,23 @@ class SewerTaskCompiler {
                !why.empty()) {
       return Error{ErrorCode::kNoPlan, "the mission cannot be completed:" + why};
     }
+    contingency_ = options_.contingency && ends_at_exit_ && graph.has_hazards();
+    if (contingency_) {
+      contingency_search_ = std::make_unique<GraphSearch>(graph);
+      if (options_.stop.can_interrupt()) {
+        contingency_search_->set_interrupt(
+            [this] { return options_.stop.interrupted().has_value(); });
+      }
+    }
     build_task();
+    if (contingency_search_ && contingency_search_->interrupted()) {
+      return stopped_error(options_.stop.interrupted().value_or(SearchStatus::kTimeLimit),
+                           "the compile");
+    }
     result_.statistics_.keys = keys_.size();
     result_.statistics_.graph_nodes = graph.size();
-    result_.statistics_.settled_nodes = search.settled_total();
+    result_.statistics_.settled_nodes =
+        search.settled_total() + (contingency_search_ ? contingency_search_->settled_total() : 0);
     result_.statistics_.actions = result_.task_.action_count();
     result_.statistics_.time_s = clock.now_s() - start_s;
     return std::move(result_);
@@ -312,9 +327,87 @@ class SewerTaskCompiler {
   }
 
   void build_task();
-  // `risk`: the part of `cost` that is the expected cost of stops (RiskCosts).
-  void add_action(std::vector<Fact> pre, std::vector<Fact> eff, Cost cost, std::string name,
-                  std::span<const Node> route, std::optional<PlanStep> step, Cost risk = 0);
+  // `risk`: the part of `cost` that is the expected cost of stops (RiskCosts). The action's
+  // contingency reserve follows from its route and `need` (the battery a task action's own
+  // drive needs when it starts: in_pipe_need).
+  ActionId add_action(std::vector<Fact> pre, std::vector<Fact> eff, Cost cost, std::string name,
+                      std::span<const Node> route, std::optional<PlanStep> step, Cost risk = 0,
+                      Cost need = 0);
+
+  // Contingency-aware battery planning (CompileOptions::contingency). A pipe with a hazard may
+  // turn out blocked, and so may one more on the way out after it: two levels, each a plain
+  // Dijkstra search.
+  // The battery needed at `from` to reach an exit with `first` (and `second`) found blocked: the
+  // cheapest way out avoiding them and, at the first level, enough on that way to back out of
+  // each hazard pipe it drives and still reach an exit (route_need). kInfiniteCost: no way out
+  // within the battery. Kept per place and pipes.
+  Cost exit_need(Node from, PipeId first, std::optional<PipeId> second) {
+    const auto key = std::make_tuple(from, first.value(), second ? second->value() + 1 : 0U);
+    if (auto it = exit_need_.find(key); it != exit_need_.end()) return it->second;
+    PositionGraph& graph = *result_.graph_;
+    const bool first_was = graph.excluded(first);
+    const bool second_was = second && graph.excluded(*second);
+    graph.exclude_pipe(first, true);
+    if (second) graph.exclude_pipe(*second, true);
+    const std::optional<Node> exit = contingency_search_->run_to_nearest(from, exit_node_, bound_);
+    Cost need = exit ? contingency_search_->distance(*exit) : kInfiniteCost;
+    std::vector<Node> route;
+    if (exit && !second) contingency_search_->path(*exit, route);
+    if (second) graph.exclude_pipe(*second, second_was);
+    if (!route.empty()) need = std::max(need, route_need(route, first));
+    graph.exclude_pipe(first, first_was);
+    exit_need_.emplace(key, need);
+    return need;
+  }
+  // The battery needed, `prefix` before the robot drives pipe p from the end node `entry` (offset
+  // `from`) towards offset `to` at `speed_mps`, should the farthest hazard on the way stop it:
+  // the drive there, back to the entry's manhole, and from there to an exit another way
+  // (exit_need; `blocked`: a pipe found blocked before, at the second level). 0 when no hazard
+  // is on the way, the drive does not start at a pipe end with a manhole, or there is no other
+  // way out at all (no battery would help then).
+  Cost in_pipe_need(PipeId p, Node entry, double from, double to, Cost prefix, double speed_mps,
+                    std::optional<PipeId> blocked = std::nullopt) {
+    const PositionGraph& graph = *result_.graph_;
+    if (!contingency_) return 0;
+    const std::optional<double> hazard = graph.farthest_hazard(p, from, to);
+    if (!hazard) return 0;
+    const std::size_t e = entry == graph.pipe_end(p, 0) ? 0 : entry == graph.pipe_end(p, 1) ? 1 : 2;
+    if (e == 2 || !map_.pipe(p).ends[e].manhole) return 0;
+    const PipeEnd& end = map_.pipe(p).ends[e];
+    const Node back = graph.at_slot(*end.manhole, end.slot);
+    const Cost out = blocked ? exit_need(back, *blocked, p) : exit_need(back, p, std::nullopt);
+    if (out >= kInfiniteCost) return 0;
+    const double d = std::abs(*hazard - from);
+    return prefix + to_cost(d / speed_mps) + graph.drive_cost(d) + out;
+  }
+  // in_pipe_need over every pipe a route drives.
+  Cost route_need(std::span<const Node> route, std::optional<PipeId> blocked = std::nullopt) {
+    if (!contingency_) return 0;
+    const PositionGraph& graph = *result_.graph_;
+    Cost need = 0;
+    Cost prefix = 0;
+    for (std::size_t i = 0; i + 1 < route.size(); ++i) {
+      const Node u = route[i];
+      const Node v = route[i + 1];
+      Cost step = kInfiniteCost;
+      graph.for_each_successor(u, [&](Node to, Cost c) {
+        if (to == v) step = std::min(step, c);
+      });
+      if (step >= kInfiniteCost) break;
+      const std::optional<PipeId> p = graph.pipe_of(u);
+      if (p && !graph.pipe_of(v)) {  // DRIVE_PIPE_TO_MANHOLE
+        const RobotPosition to = graph.position(v);
+        if (const auto* at = std::get_if<AtSlot>(&to)) {
+          const Slot& slot = map_.slot(at->manhole, at->slot);
+          need = std::max(need, in_pipe_need(*p, u, graph.offset_of(u),
+                                             end_offset_m(map_.pipe(*p), slot.pipe_end), prefix,
+                                             mission_.profile.speed_mps, blocked));
+        }
+      }
+      prefix += step;
+    }
+    return need;
+  }
   void add_task_actions(std::size_t index, VarId pos);
   std::vector<Fact> task_preconditions(std::size_t index, VarId pos, std::uint32_t key) const;
 
@@ -337,21 +430,27 @@ class SewerTaskCompiler {
   std::vector<Cost> exit_dist_;
   std::vector<bool> exit_node_;
   std::vector<std::vector<Node>> exit_routes_;
+  bool contingency_ = false;
+  std::unique_ptr<GraphSearch> contingency_search_;
+  std::map<std::tuple<Node, std::uint32_t, std::uint32_t>, Cost> exit_need_;
 };
 
 }  // namespace sewerplan::domain
 
 namespace sewerplan::domain {
 
-void SewerTaskCompiler::add_action(std::vector<Fact> pre, std::vector<Fact> eff, Cost cost,
-                                   std::string name, std::span<const Node> route,
-                                   std::optional<PlanStep> step, Cost risk) {
-  builder_.add_action(pre, eff, cost, std::move(name));
+ActionId SewerTaskCompiler::add_action(std::vector<Fact> pre, std::vector<Fact> eff, Cost cost,
+                                       std::string name, std::span<const Node> route,
+                                       std::optional<PlanStep> step, Cost risk, Cost need) {
+  const ActionId id = builder_.add_action(pre, eff, cost, std::move(name));
+  need = std::max(need, route_need(route));
+  if (need > cost) builder_.set_reserve(id, need - cost);
   result_.risk_.push_back(risk);
   if (result_.route_begin_.empty()) result_.route_begin_.push_back(0);
   result_.route_nodes_.insert(result_.route_nodes_.end(), route.begin(), route.end());
   result_.route_begin_.push_back(static_cast<std::uint32_t>(result_.route_nodes_.size()));
   result_.task_step_.push_back(std::move(step));
+  return id;
 }
 
 std::vector<Fact> SewerTaskCompiler::task_preconditions(std::size_t index, VarId pos,
@@ -397,7 +496,8 @@ void SewerTaskCompiler::add_task_actions(std::size_t index, VarId pos) {
         if (blocked(x)) break;
         add_action(pre, move_to(x, {{var, 1}}),
                    to_cost(std::abs(x - at) / profile.speed_mps + profile.sample_s),
-                   "sample " + label + std::to_string(y), {}, TakeWaterSample{spot.pipe, t});
+                   "sample " + label + std::to_string(y), {}, TakeWaterSample{spot.pipe, t}, 0,
+                   in_pipe_need(spot.pipe, keys_[y], at, x, 0, profile.speed_mps));
         break;
       }
       case TaskKind::kGoTo: {
@@ -408,7 +508,8 @@ void SewerTaskCompiler::add_task_actions(std::size_t index, VarId pos) {
         const double x = spot.offset_m.value_or(at);
         if (blocked(x)) break;
         add_action(pre, move_to(x, {{var, 1}}), to_cost(std::abs(x - at) / profile.speed_mps),
-                   "go-to " + label + std::to_string(y), {}, GoToPoint{spot.pipe, t});
+                   "go-to " + label + std::to_string(y), {}, GoToPoint{spot.pipe, t}, 0,
+                   in_pipe_need(spot.pipe, keys_[y], at, x, 0, profile.speed_mps));
         break;
       }
       case TaskKind::kInspectPipe: {
@@ -427,7 +528,11 @@ void SewerTaskCompiler::add_task_actions(std::size_t index, VarId pos) {
                              pipe.length_m / profile.inspection_speed_mps) +
                          risk,
                      "inspect " + label + std::to_string(y) + " to end " + std::to_string(e), {},
-                     InspectPipe{spot.pipe, t, finish_end}, risk);
+                     InspectPipe{spot.pipe, t, finish_end}, risk,
+                     in_pipe_need(spot.pipe, graph.pipe_end(spot.pipe, 1U - e), start_end,
+                                  end_offset_m(pipe, e),
+                                  to_cost(std::abs(at - start_end) / profile.speed_mps),
+                                  profile.inspection_speed_mps));
         }
         break;
       }

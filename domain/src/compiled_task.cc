@@ -79,11 +79,30 @@ void CompiledTask::Builder::add_goal(Fact fact) { task_.goal_.push_back(fact); }
 
 void CompiledTask::Builder::set_cost_bound(Cost bound) { task_.cost_bound_ = bound; }
 
+void CompiledTask::Builder::set_reserve(ActionId a, Cost reserve) {
+  if (task_.reserve_.size() < task_.costs_.size()) task_.reserve_.resize(task_.costs_.size(), 0);
+  const Cost cap = task_.cost_bound_ >= kInfiniteCost ? kInfiniteCost / 4 : task_.cost_bound_ + 1;
+  task_.reserve_[a.index()] = std::clamp<Cost>(reserve, 0, cap);
+}
+
+bool CompiledTask::solves(std::span<const ActionId> plan, Cost* cost) const {
+  std::vector<std::int32_t> state(initial_.begin(), initial_.end());
+  Cost g = 0;
+  for (ActionId a : plan) {
+    if (!is_applicable(a, state) || exceeds_bound_before(g, a)) return false;
+    apply(a, state);
+    g += costs_[a.index()];
+  }
+  if (cost != nullptr) *cost = g;
+  return is_goal(state) && !exceeds_bound(g);
+}
+
 void CompiledTask::Builder::set_penalty_unit(Cost unit) { task_.penalty_unit_ = unit; }
 
 CompiledTask CompiledTask::Builder::build() && {
   CompiledTask& t = task_;
   if (t.pre_begin_.empty()) t.pre_begin_.push_back(0);
+  if (!t.reserve_.empty()) t.reserve_.resize(t.costs_.size(), 0);
   SEWER_CHECK(t.initial_.size() == t.domain_sizes_.size(), "one initial value per variable");
   SEWER_CHECK(t.penalty_unit_ == 0 || t.penalty_unit_ / 2 > t.cost_bound_,
               "the penalty unit must exceed twice the cost bound");

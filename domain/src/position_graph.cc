@@ -74,6 +74,21 @@ Cost PositionGraph::risk_cost_uncached(PipeId p, double a, double b, double weig
   return unobstructed < 1 ? to_cost((1 - unobstructed) * weight_s) : 0;
 }
 
+std::optional<double> PositionGraph::farthest_hazard(PipeId p, double from, double to) const {
+  const double lo = std::min(from, to);
+  const double hi = std::max(from, to);
+  auto it = std::lower_bound(hazards_.begin(), hazards_.end(), p,
+                             [](const Hazard& h, PipeId id) { return h.pipe < id; });
+  std::optional<double> farthest;
+  for (; it != hazards_.end() && it->pipe == p; ++it) {
+    if (it->offset_m <= lo || it->offset_m >= hi) continue;
+    if (!farthest || std::abs(it->offset_m - from) > std::abs(*farthest - from)) {
+      farthest = it->offset_m;
+    }
+  }
+  return farthest;
+}
+
 Cost PositionGraph::route_risk(std::span<const Node> route, double weight_s) const {
   Cost total = 0;
   for (std::size_t i = 0; i + 1 < route.size(); ++i) {

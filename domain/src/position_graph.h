@@ -88,6 +88,24 @@ class PositionGraph {
   Cost risk_cost(PipeId p, double a, double b, double weight_s) const {
     return weight_s > 0 && !hazards_.empty() ? risk_cost_uncached(p, a, b, weight_s) : 0;
   }
+  // The farthest hazard from `from` strictly between offsets `from` and `to` of p, if any.
+  std::optional<double> farthest_hazard(PipeId p, double from, double to) const;
+  bool has_hazards() const { return !hazards_.empty(); }
+  // Contingency-aware battery planning (compile.h): while excluded, no move enters `pipe`, as if
+  // it were found blocked (none is, by default).
+  void exclude_pipe(PipeId pipe, bool excluded) {
+    if (excluded_.empty()) excluded_.assign(pipes_, false);
+    if (excluded_[pipe.index()] != excluded) {
+      if (excluded) {
+        ++excluded_count_;
+      } else {
+        --excluded_count_;
+      }
+    }
+    excluded_[pipe.index()] = excluded;
+  }
+  bool excluded(PipeId pipe) const { return excluded_count_ > 0 && excluded_[pipe.index()]; }
+
   // The weight the moves' costs carry (0: none, the default); the compiler sets it per search.
   void set_risk_weight(double weight_s) { risk_weight_s_ = weight_s; }
   // The risk cost that `route` (nodes, as routes are stored) carries at `weight_s`.
@@ -142,6 +160,8 @@ class PositionGraph {
   std::vector<Spot> spots_;
   std::vector<Hazard> hazards_;  // the mission's, sorted by pipe and offset
   double risk_weight_s_ = 0;
+  std::vector<bool> excluded_;  // by pipe; empty until one is excluded
+  std::size_t excluded_count_ = 0;
   std::vector<std::pair<PipeId, std::vector<Node>>> spots_by_pipe_;  // sorted by pipe
 };
 
@@ -163,7 +183,7 @@ void PositionGraph::for_each_successor(Node from, F&& f) const {
   if (from < manholes_) {  // in manhole: ENTER_PIPE
     const ManholeId m{from};
     for (const Slot& s : map_.slots(m)) {
-      if (drivable_[s.pipe.index()]) {
+      if (drivable_[s.pipe.index()] && !excluded(s.pipe)) {
         f(pipe_end(s.pipe, s.pipe_end), to_cost(profile_.manhole_pass_s));
       }
     }
@@ -173,6 +193,7 @@ void PositionGraph::for_each_successor(Node from, F&& f) const {
     const auto slots = map_.slots(m);
     for (std::uint16_t j = 0; j < slots.size(); ++j) {
       if (j == i.value() || !passage_allowed(m, i, SlotIndex{j})) continue;
+      if (excluded(slots[j].pipe)) continue;
       f(pipe_end(slots[j].pipe, slots[j].pipe_end), passage_cost(m, i, SlotIndex{j}));
     }
   } else {  // in a pipe: DRIVE_PIPE_TO_MANHOLE

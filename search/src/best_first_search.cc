@@ -84,7 +84,7 @@ std::optional<SearchStatus> BestFirstSearch::step() {
   for (ActionId a : applicable_) {
     if (interrupted()) return std::nullopt;  // search() reports the stop
     const Cost succ_g = g + task_.cost(a);
-    if (succ_g > bound_ || task_.exceeds_bound(succ_g)) {
+    if (succ_g > bound_ || task_.exceeds_bound_before(g, a)) {
       ++result_.statistics.dead_ends;
       continue;
     }

@@ -86,7 +86,7 @@ std::optional<SearchStatus> EnforcedHillClimbing::step() {
   for (ActionId a : candidates) {
     if (interrupted()) return std::nullopt;  // search() reports the stop
     const Cost succ_g = g + task_.cost(a);
-    if (task_.exceeds_bound(current_g_ + succ_g)) {
+    if (task_.exceeds_bound_before(current_g_ + g, a)) {
       ++result_.statistics.dead_ends;
       continue;
     }

@@ -91,13 +91,19 @@ class SubsetProgramme {
                              static_cast<std::size_t>(*s_.end)]
                     : Cost{0};
     };
-    if (set == 0) return {tail(s_.start), kNone};
+    // The way to the end needs its contingency reserve too (CompiledTask::reserve).
+    auto reserve = [&](std::int32_t at) { return s_.end ? s_.move_reserve(at, *s_.end) : 0; };
+    if (set == 0) {
+      const Cost t = tail(s_.start);
+      return {t < kInfiniteCost && s_.fits(0, t, reserve(s_.start)) ? t : kInfiniteCost, kNone};
+    }
     Cost best = kInfiniteCost;
     std::uint32_t from = kNone;
     for (std::size_t e = 0; e < width_; ++e) {
       const Cost c = cost_[set * width_ + e];
       const Cost t = tail(leave_place_[e]);
       if (c >= kInfiniteCost || t >= kInfiniteCost || c + t > bound_) continue;
+      if (!s_.fits(c, t, reserve(leave_place_[e]))) continue;
       if (c + t < best) {
         best = c + t;
         from = static_cast<std::uint32_t>(e);
@@ -150,6 +156,9 @@ class SubsetProgramme {
         const Cost d =
             moves_[static_cast<std::size_t>(at) * places + static_cast<std::size_t>(opt.at)];
         if (d >= kInfiniteCost) continue;
+        if (!s_.fits(c, d, s_.move_reserve(at, opt.at)) || !s_.fits(c + d, opt.cost, opt.reserve)) {
+          continue;
+        }
         const Cost nc = c + d + opt.cost;
         if (nc > bound_) continue;
         const std::int32_t place = leave(opt);
@@ -230,13 +239,7 @@ std::optional<SearchResult> exact_tour_search(const domain::CompiledTask& task,
     if ((*best_set & (1U << g)) == 0) result.plan.push_back(*shape->goals[g].forgo);
   }
   programme.plan(*best_set, best_from, result.plan);
-  std::vector<std::int32_t> state(task.initial_state().begin(), task.initial_state().end());
-  for (ActionId a : result.plan) {
-    if (!task.is_applicable(a, state)) return std::nullopt;  // not of the shape after all
-    task.apply(a, state);
-    result.cost += task.cost(a);
-  }
-  if (!task.is_goal(state) || task.exceeds_bound(result.cost)) return std::nullopt;
+  if (!task.solves(result.plan, &result.cost)) return std::nullopt;  // not of the shape after all
   result.status = SearchStatus::kSolved;
   return result;
 }

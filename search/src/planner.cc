@@ -191,9 +191,12 @@ Result<PlanOutcome> plan_once(const SewerMap& map, const Mission& mission,
                            ? StopCondition::after_seconds(clock, options.time_limit_s)
                            : StopCondition();
   if (options.cancel != nullptr) stop.with_cancel(*options.cancel);
-  Result<domain::SewerTask> compiled = domain::compile_sewer_task(
-      map, mission, progress,
-      {.select_goals = options.select_goals, .stop = stop, .risk = options.risk});
+  Result<domain::SewerTask> compiled =
+      domain::compile_sewer_task(map, mission, progress,
+                                 {.select_goals = options.select_goals,
+                                  .stop = stop,
+                                  .risk = options.risk,
+                                  .contingency = options.contingency});
   if (!compiled.has_value()) return compiled.error();
   const domain::CompiledTask& task = compiled->task();
   // An admissible estimate already beyond the battery proves there is no plan, whatever the
@@ -285,11 +288,9 @@ Result<PlanOutcome> plan_once(const SewerMap& map, const Mission& mission,
   return outcome;
 }
 
-}  // namespace
-
-Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
-                                 const domain::MissionProgress& progress,
-                                 const PlannerOptions& options) {
+Result<PlanOutcome> plan_weighing_risks(const SewerMap& map, const Mission& mission,
+                                        const domain::MissionProgress& progress,
+                                        const PlannerOptions& options) {
   if (!options.risk.active() || mission.hazards.empty()) {
     return plan_once(map, mission, progress, options);
   }
@@ -338,6 +339,35 @@ Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
   fallback->risk_note = no_plan ? "risk-blind: no plan weighing the risks fits the battery"
                                 : "risk-blind: weighing the risks would drop tasks";
   return fallback;
+}
+
+}  // namespace
+
+Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
+                                 const domain::MissionProgress& progress,
+                                 const PlannerOptions& options) {
+  const SteadyClock steady;
+  const Clock& clock = options.clock != nullptr ? *options.clock : steady;
+  const double started_s = clock.now_s();
+  Result<PlanOutcome> kept = plan_weighing_risks(map, mission, progress, options);
+  if (kept.has_value() || kept.error().code != ErrorCode::kNoPlan || !options.contingency ||
+      mission.hazards.empty()) {
+    return kept;
+  }
+  // No plan keeps the reserves: the best there is without them (a robot that may still drive
+  // out is better than a beacon), within what is left of the time limit.
+  PlannerOptions without = options;
+  without.contingency = false;
+  if (without.time_limit_s > 0) {
+    without.time_limit_s -= clock.now_s() - started_s;
+    if (without.time_limit_s <= 0) return kept;
+  }
+  Result<PlanOutcome> plain = plan_weighing_risks(map, mission, progress, without);
+  if (!plain.has_value()) return plain.error().code == ErrorCode::kNoPlan ? kept : plain;
+  plain->contingency_note =
+      "no plan keeps the battery to back out of a blocked hazard pipe and reach an exit another "
+      "way: planned without that reserve";
+  return plain;
 }
 
 }  // namespace sewerplan::search

@@ -42,8 +42,15 @@ class Evaluator {
         const Option& opt = g.options[o];
         for (std::size_t p = 0; p < prev.size(); ++p) {
           const Cost d = s_.move_cost(prev[p].first, opt.at);
-          if (d >= kInfiniteCost || prev[p].second.cost >= kInfiniteCost) continue;
-          const Cost c = prev[p].second.cost + d + opt.cost;
+          const Cost spent = prev[p].second.cost;
+          if (d >= kInfiniteCost || spent >= kInfiniteCost) continue;
+          // The contingency reserves (CompiledTask::reserve): feasibility only gets easier with
+          // less spent, so the cheapest entry per place stays the one to keep.
+          if (!s_.fits(spent, d, s_.move_reserve(prev[p].first, opt.at)) ||
+              !s_.fits(spent + d, opt.cost, opt.reserve)) {
+            continue;
+          }
+          const Cost c = spent + d + opt.cost;
           const std::int32_t where = opt.to == kStays ? opt.at : opt.to;
           auto it = std::find_if(next.begin(), next.end(),
                                  [&](const auto& e) { return e.first == where; });
@@ -64,6 +71,9 @@ class Evaluator {
     for (std::size_t p = 0; p < last.size(); ++p) {
       const Cost tail = s_.end ? s_.move_cost(last[p].first, *s_.end) : 0;
       if (tail >= kInfiniteCost) continue;
+      if (s_.end && !s_.fits(last[p].second.cost, tail, s_.move_reserve(last[p].first, *s_.end))) {
+        continue;
+      }
       if (last[p].second.cost + tail < best) {
         best = last[p].second.cost + tail;
         best_p = static_cast<std::int32_t>(p);
@@ -355,13 +365,7 @@ std::optional<SearchResult> tour_search(const CompiledTask& task, const StopCond
   for (std::size_t g : forgone) result.plan.push_back(*shape->goals[g].forgo);
   tour.cost(order, result.plan);
   // Check the plan on the task itself.
-  std::vector<std::int32_t> state(task.initial_state().begin(), task.initial_state().end());
-  for (ActionId a : result.plan) {
-    if (!task.is_applicable(a, state)) return std::nullopt;
-    task.apply(a, state);
-    result.cost += task.cost(a);
-  }
-  if (!task.is_goal(state) || task.exceeds_bound(result.cost)) return std::nullopt;
+  if (!task.solves(result.plan, &result.cost)) return std::nullopt;
   result.status = SearchStatus::kSolved;
   result.statistics.time_s = time.now_s() - start_s;
   return result;

@@ -11,6 +11,7 @@ std::optional<Shape> read_shape(const CompiledTask& task) {
   Shape s;
   const VarId pos{0};
   s.places = task.domain_size(pos);
+  s.bound = task.cost_bound();
   s.start = task.initial_state()[0];
   const std::size_t goals = task.variable_count() - 1;
   s.goals.resize(goals);
@@ -62,6 +63,13 @@ std::optional<Shape> read_shape(const CompiledTask& task) {
       auto key = static_cast<std::int64_t>(*at) * s.places + *to;
       auto [it, added] = s.moves.try_emplace(key, task.cost(a), a);
       if (!added && task.cost(a) < it->second.first) it->second = {task.cost(a), a};
+      if (it->second.second == a) {
+        if (task.reserve(a) > 0) {
+          s.move_reserves[key] = task.reserve(a);
+        } else {
+          s.move_reserves.erase(key);
+        }
+      }
       continue;
     }
     if (!sets_goal) return std::nullopt;
@@ -74,7 +82,7 @@ std::optional<Shape> read_shape(const CompiledTask& task) {
       g.forgo_cost = task.cost(a);
       continue;
     }
-    g.options.push_back({*at, to.value_or(kStays), task.cost(a), a});
+    g.options.push_back({*at, to.value_or(kStays), task.cost(a), a, task.reserve(a)});
   }
   if (s.places > 0 && s.places <= Shape::kDensePlaces) {
     const auto n = static_cast<std::size_t>(s.places);

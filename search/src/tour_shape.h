@@ -25,6 +25,7 @@ struct Option {
   std::int32_t to = 0;  // where it leaves the robot (kStays: where it was)
   Cost cost = 0;
   ActionId action{0};
+  Cost reserve = 0;  // CompiledTask::reserve: battery needed beyond the cost when it starts
 };
 
 struct Goal {
@@ -43,7 +44,9 @@ struct Shape {
   // the tour search reads a move's cost in its innermost loop, and a hash lookup there took half
   // its time (issue 16: 50 tasks on 1,000 manholes).
   std::vector<Cost> move_matrix;
-  std::vector<Goal> goals;  // goal i is variable i + 1
+  std::vector<Goal> goals;                               // goal i is variable i + 1
+  Cost bound = kInfiniteCost;                            // the task's cost bound
+  std::unordered_map<std::int64_t, Cost> move_reserves;  // the moves' nonzero reserves
 
   static constexpr std::int32_t kDensePlaces = 2048;  // 32 MB at most
 
@@ -55,6 +58,16 @@ struct Shape {
     if (a == b) return 0;
     auto it = moves.find(static_cast<std::int64_t>(a) * places + b);
     return it == moves.end() ? kInfiniteCost : it->second.first;
+  }
+  Cost move_reserve(std::int32_t a, std::int32_t b) const {
+    if (a == b || move_reserves.empty()) return 0;
+    auto it = move_reserves.find(static_cast<std::int64_t>(a) * places + b);
+    return it == move_reserves.end() ? 0 : it->second;
+  }
+  // Whether an action of cost `cost` and reserve `reserve`, started with `g` spent, stays within
+  // the bound (CompiledTask::exceeds_bound_before, for real costs).
+  bool fits(Cost g, Cost cost, Cost reserve) const {
+    return reserve == 0 || bound >= kInfiniteCost || g + cost + reserve <= bound;
   }
 };
 

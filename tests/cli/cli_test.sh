@@ -310,6 +310,13 @@ else
   expect 0 'motion: 50 passages, [0-9]+ geometries, [0-9]+ feasible; motion rejects' -- \
     "$sp" motion precompute --map "$tmp/motion/map.json" --seed 3
   expect 0 'wrote .*/motion/map.motion.json' -- "$sp" motion precompute --map "$tmp/motion/map.json" -q
+  # A time limit that has passed before the first passage: no table, exit 5.
+  expect 5 'time limit' -- "$sp" motion precompute --map "$tmp/motion/map.json" -q \
+    --time-limit 1e-9 -o "$tmp/motion/limited.motion.json"
+  if [ -e "$tmp/motion/limited.motion.json" ]; then
+    echo "FAIL: motion precompute --time-limit wrote a table"; failures=$((failures + 1))
+  fi
+  expect 2 'time-limit' -- "$sp" motion precompute --map "$tmp/motion/map.json" --time-limit -1
   expect 0 'motion: using 50 planned manhole passages from .*map.motion.json' -- \
     "$sp" plan --map "$tmp/motion/map.json" --mission "$mission"
   expect 0 'plan: 14 steps, 585.4 s' -- \

@@ -106,6 +106,12 @@ struct CompileOptions {
   StopCondition stop;
   // Risk-aware routes and task orders (RiskCosts); risk-blind by default.
   RiskCosts risk;
+  // Contingency-aware battery planning (docs/planning.md): where the mission has hazards
+  // (Mission::hazards) and ends at an exit, every action that drives a pipe past a hazard keeps
+  // enough battery, when it starts, to drive to the farthest hazard it passes, back out, and
+  // reach an exit without that pipe (CompiledTask::reserve). A pipe that is the only way out
+  // asks for nothing (no battery would help there). Missions without hazards are unchanged.
+  bool contingency = true;
 };
 
 class SewerTask {

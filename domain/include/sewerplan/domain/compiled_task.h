@@ -77,6 +77,18 @@ class CompiledTask {
   Cost penalty_unit() const { return penalty_unit_; }
   Cost real_cost(Cost cost) const { return penalty_unit_ > 0 ? cost % penalty_unit_ : cost; }
   bool exceeds_bound(Cost cost) const { return real_cost(cost) > cost_bound_; }
+  // Battery an action needs left beyond its own cost when it starts (0 for most): a contingency
+  // the plan must be able to pay for, such as backing out of a pipe that turns out blocked and
+  // driving to an exit another way (compile.h, contingency-aware battery planning). An action
+  // with `g` spent before it may be applied only if g + cost + reserve stays within the bound.
+  Cost reserve(ActionId a) const { return reserve_.empty() ? 0 : reserve_[a.index()]; }
+  bool exceeds_bound_before(Cost g_before, ActionId a) const {
+    const Cost after = g_before + cost(a);
+    return exceeds_bound(after) || real_cost(after) + reserve(a) > cost_bound_;
+  }
+  // Whether `plan` is applicable from the initial state, reaches the goal and stays within the
+  // bound at every action, its reserve included; its cost in `cost` (if given).
+  bool solves(std::span<const ActionId> plan, Cost* cost = nullptr) const;
 
   // Total number of facts, and a dense index of each (for heuristics' per-fact arrays).
   std::size_t fact_count() const { return fact_offsets_.back(); }
@@ -102,6 +114,7 @@ class CompiledTask {
   std::vector<std::uint32_t> eff_begin_;
   std::vector<Fact> facts_;
   std::vector<Cost> costs_;
+  std::vector<Cost> reserve_;  // empty: none
   std::vector<std::string> names_;
   Cost cost_bound_ = kInfiniteCost;
   Cost penalty_unit_ = 0;
@@ -127,6 +140,8 @@ class CompiledTask::Builder {
   void set_initial(std::vector<std::int32_t> values);
   void add_goal(Fact fact);
   void set_cost_bound(Cost bound);
+  // CompiledTask::reserve(a); at most the bound plus one (more could wrap a penalty unit).
+  void set_reserve(ActionId a, Cost reserve);
   // Precondition: more than twice the cost bound (see penalty_unit()).
   void set_penalty_unit(Cost unit);
   // Checks every fact against its variable's domain (SEWER_CHECK: a compiler bug otherwise).

@@ -82,6 +82,11 @@ struct PlannerOptions {
   // the risk-aware plan does not fit, none is found, or (with goal selection) it does fewer tasks
   // than a risk-blind one, the risk-blind plan is the answer (PlanOutcome::risk_note).
   domain::RiskCosts risk;
+  // Contingency-aware battery planning (domain::CompileOptions::contingency, docs/planning.md):
+  // where the mission has hazards, keep at every drive past one enough battery to back out and
+  // reach an exit another way. Where no plan can keep those reserves, the plan without them is
+  // the answer (PlanOutcome::contingency_note), so this never turns a plan into no plan.
+  bool contingency = true;
 };
 
 struct PlanOutcome {
@@ -101,6 +106,9 @@ struct PlanOutcome {
   // risk-blind plan was taken instead, if it was.
   double risk_cost_s = 0;
   std::string risk_note;
+  // Set when no plan keeps the contingency reserves (PlannerOptions::contingency) and the plan
+  // was made without them.
+  std::string contingency_note;
 };
 
 // kAuto's choice for `task`; any other algorithm is returned as it is.

@@ -1,0 +1,135 @@
+// SPDX-License-Identifier: MIT
+// Contingency-aware battery planning (PlannerOptions::contingency, domain::CompileOptions::
+// contingency): at every drive past a possible blockage the plan keeps enough battery to back out
+// and reach an exit another way, so a hazard that does stop the robot cannot strand it (issue 14:
+// robots blocked late in their tour had a way out but not the battery for it).
+#include <gtest/gtest.h>
+
+#include "sewerplan/domain/plan_text.h"
+#include "sewerplan/search/planner.h"
+
+#include "support/small_map.h"
+
+namespace sewerplan::search {
+namespace {
+
+using domain::initial_progress;
+using testing::add_task;
+using testing::small_mission;
+using testing::SmallMap;
+
+// The robot starts at S. The task is a water sample 45 m into SX (there and back). The near
+// exit E is 10 m west
+// through SHORT, with roots at 5 m (p = 0.3); the far exit F is 90 m north through LONG.
+// The battery fits the task and the short way out with a minute to spare.
+struct Trap {
+  SewerMap map = SmallMap()
+                     .manhole("S", 0, 0)
+                     .manhole("X", 50, 0)
+                     .manhole("Y", 100, 0)
+                     .manhole("E", -10, 0, /*exit=*/true)
+                     .manhole("F", 0, 90, /*exit=*/true)
+                     .pipe("SX", "S", "X", 0.5, 50.0)
+                     .pipe("XY", "X", "Y", 0.5, 50.0)
+                     .pipe("SHORT", "S", "E", 0.5, 10.0)
+                     .pipe("LONG", "S", "F", 0.5, 90.0)
+                     .build();
+  Mission mission = make_mission(map);
+
+  static Mission make_mission(const SewerMap& map) {
+    Mission m = small_mission(map, "S");
+    add_task(m, map, "sample in SX", TaskKind::kTakeWaterSample, "SX", 45.0);
+    m.hazards.push_back(
+        {.pipe = *map.find_pipe("SHORT"), .offset_m = 5, .probability = 0.3, .reason = "roots"});
+    return m;
+  }
+};
+
+// The blind plan's cost, and a battery that fits it with `spare_s` to spare.
+double battery_for(const Trap& trap, double spare_s) {
+  auto blind = plan_mission(trap.map, trap.mission, initial_progress(trap.mission, trap.map),
+                            {.select_goals = true, .contingency = false});
+  EXPECT_TRUE(blind.has_value()) << blind.error();
+  return trap.mission.profile.energy_wh(blind->cost_s + spare_s);
+}
+
+TEST(ContingencyPlanning, TheBlindPlanIsStrandedWhenTheHazardStopsIt) {
+  Trap trap;
+  trap.mission.profile.battery_wh = battery_for(trap, 60);
+  auto blind = plan_mission(trap.map, trap.mission, initial_progress(trap.mission, trap.map),
+                            {.select_goals = true, .contingency = false});
+  ASSERT_TRUE(blind.has_value()) << blind.error();
+  EXPECT_TRUE(blind->dropped.empty());
+  // Back at S after the task, SHORT turns out blocked: the far exit needs more than is left.
+  domain::MissionProgress at_s = initial_progress(trap.mission, trap.map);
+  at_s.done.assign(1, true);
+  at_s.energy_used_wh = trap.mission.profile.energy_wh(
+      blind->cost_s - trap.mission.profile.manhole_pass_s - 10.0 / trap.mission.profile.speed_mps);
+  Mission blocked = trap.mission;
+  blocked.blockages.push_back({.pipe = *trap.map.find_pipe("SHORT"), .offset_m = 5});
+  auto out = plan_mission(trap.map, blocked, at_s, {.select_goals = true});
+  ASSERT_FALSE(out.has_value());
+  EXPECT_EQ(out.error().code, ErrorCode::kNoPlan);
+}
+
+TEST(ContingencyPlanning, KeepsTheBatteryToBackOutAndTakeTheFarExit) {
+  Trap trap;
+  trap.mission.profile.battery_wh = battery_for(trap, 60);
+  const auto start = initial_progress(trap.mission, trap.map);
+  for (Algorithm algorithm : {Algorithm::kAuto, Algorithm::kAstar, Algorithm::kExact,
+                              Algorithm::kGbfs, Algorithm::kEhc, Algorithm::kWeightedAstar}) {
+    SCOPED_TRACE(std::string(to_string(algorithm)));
+    auto safe =
+        plan_mission(trap.map, trap.mission, start, {.algorithm = algorithm, .select_goals = true});
+    ASSERT_TRUE(safe.has_value()) << safe.error();
+    // The task would leave too little to back out of SHORT and drive LONG: it is forgone, and
+    // the robot goes out through SHORT with the battery for LONG still in hand.
+    ASSERT_EQ(safe->dropped.size(), 1U) << domain::format_plan(safe->plan, trap.map, trap.mission);
+    EXPECT_TRUE(safe->contingency_note.empty());
+    // SHORT blocked at once: backing out and driving LONG fits what is left.
+    domain::MissionProgress backed_out = start;
+    backed_out.energy_used_wh = trap.mission.profile.energy_wh(
+        trap.mission.profile.manhole_pass_s + 2 * 5.0 / trap.mission.profile.speed_mps);
+    Mission blocked = trap.mission;
+    blocked.blockages.push_back({.pipe = *trap.map.find_pipe("SHORT"), .offset_m = 5});
+    auto out = plan_mission(trap.map, blocked, backed_out, {.select_goals = true});
+    ASSERT_TRUE(out.has_value()) << out.error();
+  }
+}
+
+TEST(ContingencyPlanning, WithBatteryToSpareTheTaskIsDone) {
+  Trap trap;
+  // Enough to back out of SHORT after the task and still drive LONG.
+  trap.mission.profile.battery_wh = battery_for(trap, 800);
+  auto plan = plan_mission(trap.map, trap.mission, initial_progress(trap.mission, trap.map),
+                           {.select_goals = true});
+  ASSERT_TRUE(plan.has_value()) << plan.error();
+  EXPECT_TRUE(plan->dropped.empty());
+}
+
+TEST(ContingencyPlanning, NoPlanKeepsTheReserveSoThePlanGoesWithoutIt) {
+  Trap trap;
+  // Roots near F's end of LONG too, and a battery for six minutes: neither way out keeps the
+  // battery to back out and take the other. Rather than no plan, the plan without the reserve
+  // (the robot may still drive out), and a note saying so.
+  trap.mission.hazards.push_back(
+      {.pipe = *trap.map.find_pipe("LONG"), .offset_m = 80, .probability = 0.3, .reason = "roots"});
+  trap.mission.profile.battery_wh = trap.mission.profile.energy_wh(360);
+  auto plan = plan_mission(trap.map, trap.mission, initial_progress(trap.mission, trap.map),
+                           {.select_goals = true});
+  ASSERT_TRUE(plan.has_value()) << plan.error();
+  EXPECT_FALSE(plan->contingency_note.empty());
+}
+
+TEST(ContingencyPlanning, WithoutHazardsNothingChanges) {
+  Trap trap;
+  trap.mission.profile.battery_wh = battery_for(trap, 60);
+  trap.mission.hazards.clear();
+  auto plan = plan_mission(trap.map, trap.mission, initial_progress(trap.mission, trap.map),
+                           {.select_goals = true});
+  ASSERT_TRUE(plan.has_value()) << plan.error();
+  EXPECT_TRUE(plan->dropped.empty());
+}
+
+}  // namespace
+}  // namespace sewerplan::search
