@@ -119,7 +119,7 @@ class Evaluator {
 class Tour {
  public:
   Tour(const Shape& shape, const StopCondition& stop)
-      : s_(shape), eval_(shape), costs_(shape), stop_(stop) {}
+      : s_(shape), eval_(shape), costs_(shape), whole_(shape.has_reserves()), stop_(stop) {}
 
   // The reason the stop condition gave, once it fired; then build() returns nothing more.
   std::optional<SearchStatus> stopped() const { return stopped_; }
@@ -141,11 +141,11 @@ class Tour {
       std::size_t best_goal = 0, best_at = 0;
       std::vector<std::size_t> full = order;
       if (last) full.push_back(*last);
-      costs_.prepare(full);
+      prepare(full);
       for (std::size_t i = 0; i < todo.size(); ++i) {
         if (check_stop()) return {};
         for (std::size_t at = 0; at <= order.size(); ++at) {
-          const Cost c = costs_.inserted(at, todo[i]);
+          const Cost c = inserted(at, todo[i]);
           if (c < best) {
             best = c;
             best_goal = i;
@@ -171,9 +171,9 @@ class Tour {
     const std::size_t places = order.size() - (has_last ? 1 : 0);
     Cost best = kInfiniteCost;
     std::optional<std::size_t> best_at;
-    costs_.prepare(order);
+    prepare(order);
     for (std::size_t at = 0; at <= places; ++at) {
-      const Cost c = costs_.inserted(at, g);
+      const Cost c = inserted(at, g);
       if (c < best) {
         best = c;
         best_at = at;
@@ -207,42 +207,77 @@ class Tour {
   }
 
  private:
+  // Trial orders around the current one (`full`, set by prepare): priced from its costs
+  // (tour_costs.h), or evaluated whole where contingency reserves make a move's feasibility depend
+  // on what was spent before it, which those costs do not keep. Both price a trial as evaluating it
+  // whole would.
+  void prepare(const std::vector<std::size_t>& full) {
+    current_ = full;
+    if (!whole_) costs_.prepare(full);
+  }
+  Cost inserted(std::size_t at, std::size_t g) {
+    if (!whole_) return costs_.inserted(at, g);
+    trial_ = current_;
+    trial_.insert(trial_.begin() + static_cast<std::ptrdiff_t>(at), g);
+    return eval_.cost(trial_);
+  }
+  // out[j]: the goal at i moved to place j (j < places).
+  void moved(std::size_t i, std::size_t places, std::vector<Cost>& out) {
+    if (!whole_) return costs_.moved(i, places, out);
+    out.assign(places, kInfiniteCost);
+    for (std::size_t j = 0; j < places; ++j) {
+      if (j == i) continue;
+      trial_ = current_;
+      trial_.erase(trial_.begin() + static_cast<std::ptrdiff_t>(i));
+      trial_.insert(trial_.begin() + static_cast<std::ptrdiff_t>(j), current_[i]);
+      out[j] = eval_.cost(trial_);
+    }
+  }
+  // The stretch [i, j) reversed.
+  Cost reversed(std::size_t i, std::size_t j) {
+    if (!whole_) return costs_.reversed(i, j);
+    trial_ = current_;
+    std::reverse(trial_.begin() + static_cast<std::ptrdiff_t>(i),
+                 trial_.begin() + static_cast<std::ptrdiff_t>(j));
+    return eval_.cost(trial_);
+  }
+
   // Or-opt (move one goal) and 2-opt (reverse a stretch) until neither helps, at most 50 rounds.
-  // Trial orders are priced from the current order's costs (tour_costs.h), which are read again
-  // after every change, so the moves tried and taken are those of evaluating each trial whole.
+  // Trial orders are priced as above, and their costs read again after every change, so the moves
+  // tried and taken are those of evaluating each trial whole.
   void improve(std::vector<std::size_t>& order, std::optional<std::size_t> last) {
     const std::size_t n = order.size();
     std::vector<std::size_t> full = order;
     if (last) full.push_back(*last);
     Cost best = eval_.cost(full);
-    std::vector<Cost> moved;
+    std::vector<Cost> moved_costs;
     for (int round = 0; round < 50; ++round) {
       bool better = false;
-      costs_.prepare(full);
+      prepare(full);
       for (std::size_t i = 0; i < n; ++i) {
         if (check_stop()) return write_back(full, order);
-        costs_.moved(i, n, moved);
+        moved(i, n, moved_costs);
         for (std::size_t j = 0; j < n; ++j) {
-          if (i == j || moved[j] >= best) continue;
-          best = moved[j];
+          if (i == j || moved_costs[j] >= best) continue;
+          best = moved_costs[j];
           const std::size_t g = full[i];
           full.erase(full.begin() + static_cast<std::ptrdiff_t>(i));
           full.insert(full.begin() + static_cast<std::ptrdiff_t>(j), g);
           better = true;
-          costs_.prepare(full);
-          costs_.moved(i, n, moved);
+          prepare(full);
+          moved(i, n, moved_costs);
         }
       }
       for (std::size_t i = 0; i + 1 < n; ++i) {
         if (check_stop()) return write_back(full, order);
         for (std::size_t j = i + 2; j <= n; ++j) {
-          const Cost c = costs_.reversed(i, j);
+          const Cost c = reversed(i, j);
           if (c >= best) continue;
           best = c;
           std::reverse(full.begin() + static_cast<std::ptrdiff_t>(i),
                        full.begin() + static_cast<std::ptrdiff_t>(j));
           better = true;
-          costs_.prepare(full);
+          prepare(full);
         }
       }
       if (!better) break;
@@ -258,6 +293,8 @@ class Tour {
   const Shape& s_;
   Evaluator eval_;
   detail::OrderCosts costs_;
+  const bool whole_;
+  std::vector<std::size_t> current_, trial_;
   const StopCondition& stop_;
   std::optional<SearchStatus> stopped_;
 };

@@ -59,6 +59,17 @@ struct Shape {
     auto it = moves.find(static_cast<std::int64_t>(a) * places + b);
     return it == moves.end() ? kInfiniteCost : it->second.first;
   }
+  // Whether any move or option keeps a contingency reserve: then whether a move fits depends on
+  // what was spent before it, not only on costs.
+  bool has_reserves() const {
+    if (!move_reserves.empty()) return true;
+    for (const Goal& g : goals) {
+      for (const Option& o : g.options) {
+        if (o.reserve > 0) return true;
+      }
+    }
+    return false;
+  }
   Cost move_reserve(std::int32_t a, std::int32_t b) const {
     if (a == b || move_reserves.empty()) return 0;
     auto it = move_reserves.find(static_cast<std::int64_t>(a) * places + b);
