@@ -43,6 +43,9 @@ set(sewerplan_dev_depends "nlohmann-json3-dev (>= 3.10), libeigen3-dev (>= 3.3),
 if(SEWERPLAN_WITH_OMPL)
   string(APPEND sewerplan_dev_depends ", libompl-dev")
 endif()
+if(SEWERPLAN_WITH_GIS)
+  string(APPEND sewerplan_dev_depends ", libproj-dev")
+endif()
 set(CPACK_DEBIAN_PACKAGE_DEPENDS "${sewerplan_dev_depends}")
 set(CPACK_DEBIAN_PACKAGE_DESCRIPTION "${PROJECT_DESCRIPTION}
  The sewerplan command (plan, check, simulate, campaign, render, ...) and the C++ libraries
