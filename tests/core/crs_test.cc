@@ -91,10 +91,13 @@ Result<SewerMap> read_isybau(const std::string& text, Diagnostics& d) {
 }
 
 TEST(Crs, IsybauTakesItFromTheLagesystem) {
-  for (const auto& [lagesystem, crs] : {std::pair{"ETRS89_UTM32", "EPSG:25832"},
-                                        {"DE_DHDN_3GK3_NW177", "EPSG:31467"},
-                                        {"EPSG:25833", "EPSG:25833"},
-                                        {"31468", "EPSG:31468"}}) {
+  struct Case {
+    const char* lagesystem;
+    const char* crs;
+  };
+  for (const auto& [lagesystem, crs] :
+       {Case{"ETRS89_UTM32", "EPSG:25832"}, Case{"DE_DHDN_3GK3_NW177", "EPSG:31467"},
+        Case{"EPSG:25833", "EPSG:25833"}, Case{"31468", "EPSG:31468"}}) {
     Diagnostics d;
     Result<SewerMap> map = read_isybau(testing::georeferenced_street(lagesystem), d);
     ASSERT_TRUE(map.has_value()) << map.error();
