@@ -199,7 +199,7 @@ TEST(Nav2RouteGraph, NodesAndTwoDirectedEdgesPerPipeWithUniqueIds) {
   }
   std::size_t between_manholes = 0;
   for (const Pipe& p : ais.map.pipes()) {
-    between_manholes += p.ends[0].manhole && p.ends[1].manhole ? 1 : 0;
+    if (p.ends[0].manhole && p.ends[1].manhole) ++between_manholes;
   }
   EXPECT_EQ(nodes.size(), ais.map.manhole_count());
   EXPECT_EQ(edges, 2 * between_manholes);
