@@ -26,7 +26,7 @@
 // coordinates are the map's x and y in metres, less `origin` (Nav2 keeps them in float: give an
 // origin near the network when its coordinates are large, as UTM's are).
 //
-//   Result<std::string> text = gis::to_geojson({.map = &map, .plan = &plan, .mission = &m}, wgs84);
+//   Result<std::string> text = gis::to_geojson({.map = &map, .mission = &m, .plan = &plan}, wgs84);
 //
 // Thread safety: free functions over values they only read (the projection: one per thread).
 #pragma once
