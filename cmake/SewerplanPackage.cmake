@@ -47,6 +47,9 @@ endif()
 if(TARGET sewerplan_python)  # built for one python3 version (python/CMakeLists.txt)
   string(APPEND sewerplan_dev_depends ", ${SEWERPLAN_PYTHON_DEB_DEPENDS}")
 endif()
+if(SEWERPLAN_WITH_GIS)
+  string(APPEND sewerplan_dev_depends ", libproj-dev")
+endif()
 set(CPACK_DEBIAN_PACKAGE_DEPENDS "${sewerplan_dev_depends}")
 set(CPACK_DEBIAN_PACKAGE_DESCRIPTION "${PROJECT_DESCRIPTION}
  The sewerplan command (plan, check, simulate, campaign, render, ...) and the C++ libraries

@@ -12,6 +12,7 @@ packages=(
   clang libclang-rt-14-dev clang-format
   help2man dpkg-dev python3
   pybind11-dev python3-dev python3-pytest
+  libproj-dev
 )
 
 missing=()

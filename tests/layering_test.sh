@@ -16,6 +16,7 @@ declare -A allowed=(
   [executor]="core domain search fusion hal executor"
   [campaign]="core domain search fusion hal executor campaign"
   [render]="core domain hal executor render"
+  [gis]="core domain gis"
 )
 status=0
 for lib in "${!allowed[@]}"; do

@@ -10,6 +10,7 @@
 
 #include "command.h"
 #include "condition_options.h"
+#include "crs_option.h"
 #include "json_output.h"
 
 namespace sewerplan::cli {
@@ -22,6 +23,7 @@ struct ConvertOptions {
   bool json = false;
   std::string to;
   std::string condition;
+  std::string crs;
 };
 
 int run(const ConvertOptions& o, Context& c) {
@@ -54,6 +56,7 @@ int run(const ConvertOptions& o, Context& c) {
   }
   Diagnostics diagnostics;
   Result<SewerMap> map = read_map_with_condition(*in, o.condition, diagnostics);
+  if (map.has_value()) map = apply_crs_option(std::move(*map), o.crs);
   if (!map.has_value()) return fail(c, o.json, map.error(), diagnostics);
   print_diagnostics(diagnostics, c.err);
   Result<void> written = write_map(*map, out, format);
@@ -62,6 +65,7 @@ int run(const ConvertOptions& o, Context& c) {
     print_json(c.out, {{"wrote", out},
                        {"manholes", map->manhole_count()},
                        {"pipes", map->pipe_count()},
+                       {"crs", map->crs() ? Json(map->crs()->to_string()) : Json()},
                        {"findings", map->finding_count()}});
   } else {
     c.out << "wrote " << out << " (" << map->manhole_count() << " manholes, " << map->pipe_count()
@@ -87,6 +91,7 @@ void add_convert_command(CLI::App& app, Context& context) {
                   "Output format when the extension does not tell: json, ascii (swmm and isybau "
                   "are read only)");
   add_condition_option(*cmd, options->condition);
+  add_crs_option(*cmd, options->crs);
   cmd->callback([options, &context] { context.exit_code = run(*options, context); });
 }
 

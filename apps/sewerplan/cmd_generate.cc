@@ -12,6 +12,7 @@
 #include "sewerplan/domain/mission_generator.h"
 
 #include "command.h"
+#include "crs_option.h"
 #include "json_output.h"
 
 namespace sewerplan::cli {
@@ -26,6 +27,7 @@ struct GenerateOptions {
   std::string profile = "makro-plus";
   std::string spread = "uniform";
   bool json = false;
+  std::string crs;
 };
 
 // A seeded mission on the generated map (domain/mission_generator.h), written as JSON; `report`
@@ -70,6 +72,7 @@ int run(GenerateOptions& o, Context& c) {
     return usage_error(c, o.json, "--mission-tasks and --mission-out go together");
   }
   Result<SewerMap> map = generate_network(o.generator);
+  if (map.has_value()) map = apply_crs_option(std::move(*map), o.crs);
   if (!map.has_value()) return fail(c, o.json, map.error());
   Result<void> written = write_map(*map, o.out);
   if (!written.has_value()) return fail(c, o.json, written.error());
@@ -130,6 +133,7 @@ void add_generate_command(CLI::App& app, Context& context) {
       ->capture_default_str();
   cmd->add_option("--mission-out", o->mission_out, "Where to write that mission (.json)");
   cmd->add_option("--profile", o->profile, "The mission's robot profile")->capture_default_str();
+  add_crs_option(*cmd, o->crs);
   cmd->add_flag("--json", o->json, "Print what was written as JSON");
   cmd->callback([o, &context] { context.exit_code = run(*o, context); });
 }

@@ -17,6 +17,7 @@
 
 #include "command.h"
 #include "condition_options.h"
+#include "crs_option.h"
 #include "driveability_output.h"
 #include "json_output.h"
 #include "motion_options.h"
@@ -34,6 +35,7 @@ struct InfoOptions {
   MotionOptions motion;
   std::string condition;
   std::string risk_table;
+  std::string crs;
 };
 
 std::map<std::string, std::size_t> findings_by_code(const SewerMap& map) {
@@ -95,6 +97,7 @@ nlohmann::json info_json(const SewerMap& map, const MapStatistics& s) {
   nlohmann::json types = nlohmann::json::object();
   for (auto [type, count] : s.manholes_by_type) types[std::to_string(type)] = count;
   return {{"name", map.name()},
+          {"crs", map.crs() ? nlohmann::json(map.crs()->to_string()) : nlohmann::json()},
           {"manholes", s.manholes},
           {"pipes", s.pipes},
           {"inspection_points", s.inspection_points},
@@ -115,6 +118,8 @@ nlohmann::json info_json(const SewerMap& map, const MapStatistics& s) {
 void print_info(const SewerMap& map, const MapStatistics& s, std::ostream& out) {
   out << std::fixed << std::setprecision(2);
   out << "map            " << map.name() << '\n'
+      << "crs            " << (map.crs() ? map.crs()->to_string() : "none (local coordinates)")
+      << '\n'
       << "manholes       " << s.manholes << '\n'
       << "pipes          " << s.pipes << " (" << s.total_length_m << " m in all)\n"
       << "by type        ";
@@ -146,6 +151,7 @@ int run(const InfoOptions& o, Context& c) {
   if (!path) return exit_code;
   Diagnostics diagnostics;
   Result<SewerMap> map = read_map_with_condition(*path, o.condition, diagnostics);
+  if (map.has_value()) map = apply_crs_option(std::move(*map), o.crs);
   if (!map.has_value()) return fail(c, o.json, map.error(), diagnostics);
   print_diagnostics(diagnostics, c.err);
   const MapStatistics stats = map_statistics(*map);
@@ -226,6 +232,7 @@ void add_info_command(CLI::App& app, Context& context) {
                   "map's exits, or the largest connected part if it has none)");
   cmd->add_flag("--json", options->json, "Print the summary as JSON");
   add_condition_option(*cmd, options->condition);
+  add_crs_option(*cmd, options->crs);
   cmd->add_option("--risk-table", options->risk_table,
                   "The risk table that decides what the findings close (JSON, "
                   "docs/formats/risk-table.md); default: the built-in one");

@@ -50,6 +50,7 @@ void add_sim_node_command(CLI::App& app, Context& context);
 void add_campaign_command(CLI::App& app, Context& context);
 void add_render_command(CLI::App& app, Context& context);
 void add_motion_command(CLI::App& app, Context& context);
+void add_export_geojson_command(CLI::App& app, Context& context);  // with SEWERPLAN_WITH_GIS
 
 // Helpers shared by the commands.
 int exit_code_for(const Error& error);

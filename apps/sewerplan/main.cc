@@ -89,6 +89,9 @@ int main(int argc, char** argv) {
   add_campaign_command(app, context);
   add_render_command(app, context);
   add_motion_command(app, context);
+#ifdef SEWERPLAN_WITH_GIS
+  add_export_geojson_command(app, context);
+#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

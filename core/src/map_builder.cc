@@ -136,6 +136,12 @@ void MapBuilder::add_manhole(ManholeRecord record) { manholes_.push_back(std::mo
 void MapBuilder::add_pipe(PipeRecord record) { pipes_.push_back(std::move(record)); }
 void MapBuilder::add_point(PointRecord record) { points_.push_back(std::move(record)); }
 void MapBuilder::add_finding(FindingRecord record) { findings_.push_back(std::move(record)); }
+void MapBuilder::set_crs(std::optional<Crs> crs) { crs_ = std::move(crs); }
+
+SewerMap MapBuilder::with_crs(SewerMap map, std::optional<Crs> crs) {
+  map.crs_ = std::move(crs);
+  return map;
+}
 
 SewerMap MapBuilder::add_findings(SewerMap map, std::vector<FindingRecord> findings,
                                   const Locator& locator, Diagnostics& diagnostics) {
@@ -192,6 +198,7 @@ class MapBuilder::Validation {
   Result<SewerMap> run() {
     SewerMap map;
     map.name_ = std::move(b_.name_);
+    map.crs_ = std::move(b_.crs_);
     map.manholes_by_name_ = sorted_names(b_.manholes_, "manhole", Kind::kManhole, b_.locator_, d_);
     map.pipes_by_name_ = sorted_names(b_.pipes_, "pipe", Kind::kPipe, b_.locator_, d_);
     map.points_by_name_ =

@@ -3,6 +3,7 @@
 #include "sewerplan/core/map_isybau.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <optional>
@@ -12,6 +13,7 @@
 
 #include <pugixml.hpp>
 
+#include "sewerplan/core/crs.h"
 #include "sewerplan/core/map_builder.h"
 
 #include "ascii_syntax.h"
@@ -89,6 +91,7 @@ class IsybauReader {
     std::vector<XmlNode> inspected;
     const std::vector<XmlNode> objects = objects_of(root, &inspected);
     for (XmlNode object : objects) read_object(object);
+    net_.crs = read_crs(root);
     detail::read_condition_records(inspected, file_, d_, net_.findings, finding_elements_);
     if (d_.error_count() > errors_before) return Error{ErrorCode::kParse, d_.error_summary()};
     resolve_pending_edges();
@@ -133,6 +136,7 @@ class IsybauReader {
 
   bool check_root(XmlNode root);
   void read_object(XmlNode object);
+  std::optional<Crs> read_crs(XmlNode root);
   void read_node(XmlNode object, XmlNode knoten, const std::string& name);
   void read_shaft(XmlNode knoten, ImportNode& node);
   void read_node_geometry(XmlNode object, XmlNode knoten, ImportNode& node);
@@ -164,6 +168,58 @@ class IsybauReader {
   std::unordered_set<std::string> connection_points_;
   Fallbacks fallbacks_;
 };
+
+// The AdV names of the coordinate reference systems German sewer data is surveyed in, as ISYBAU's
+// Lagesystem gives them (GeoInfoDok's CRS list), by prefix: "DE_DHDN_3GK3_NW177" is Gauss-Krüger
+// zone 3 whatever the state's realisation (the suffix); PROJ transforms it with the national
+// datum shift.
+constexpr std::array<std::pair<std::string_view, std::uint32_t>, 8> kAdvCrs{{
+    {"ETRS89_UTM32", 25832},
+    {"ETRS89_UTM33", 25833},
+    {"DE_ETRS89_UTM32", 25832},
+    {"DE_ETRS89_UTM33", 25833},
+    {"DE_DHDN_3GK2", 31466},
+    {"DE_DHDN_3GK3", 31467},
+    {"DE_DHDN_3GK4", 31468},
+    {"DE_DHDN_3GK5", 31469},
+}};
+
+// A Lagesystem as a Crs: an AdV name (kAdvCrs), "EPSG:25832", or an EPSG code alone.
+std::optional<Crs> crs_of_lagesystem(std::string_view text) {
+  for (const auto& [prefix, code] : kAdvCrs) {
+    if (text.starts_with(prefix)) return Crs{.authority = "EPSG", .code = code};
+  }
+  Result<Crs> crs = parse_crs(text);
+  if (!crs.has_value()) crs = parse_crs("EPSG:" + std::string(text));
+  return crs.has_value() ? std::optional(std::move(*crs)) : std::nullopt;
+}
+
+// The position reference of the network: the Lagesystem elements of its objects' geometry. One
+// the reader does not know, or two that differ, are a warning and no CRS (give --crs).
+std::optional<Crs> IsybauReader::read_crs(XmlNode root) {
+  std::vector<XmlNode> found;
+  detail::collect(root, "Lagesystem", found);
+  std::optional<Crs> crs;
+  for (XmlNode n : found) {
+    const std::string_view text = xml::text(n);
+    if (text.empty()) continue;
+    std::optional<Crs> this_one = crs_of_lagesystem(text);
+    if (!this_one) {
+      d_.warning(at(n), "Lagesystem \"" + std::string(text) +
+                            "\" is not a reference system sewerplan knows: the map has no CRS "
+                            "(give one with --crs EPSG:NNNN)");
+      return std::nullopt;
+    }
+    if (crs && *crs != *this_one) {
+      d_.warning(at(n), "Lagesystem \"" + std::string(text) + "\" differs from " +
+                            crs->to_string() +
+                            " of the objects before: the map has no CRS (give one with --crs)");
+      return std::nullopt;
+    }
+    crs = std::move(this_one);
+  }
+  return crs;
+}
 
 bool IsybauReader::check_root(XmlNode root) {
   const std::string_view name = xml::local_name(root);

@@ -254,6 +254,7 @@ class FastReader {
     // Records move from their chunks, each freed once emptied, into vectors reserved at their
     // size: a growing vector would hold two copies of a million records while it moves them.
     MapBuilder builder{std::string(name_), json_locator(file_name_)};
+    builder.set_crs(std::move(crs_));
     builder.reserve(manholes_list_.size(), pipes_list_.size());
     move_into(manholes_list_, [&](ManholeRecord&& r) { builder.add_manhole(std::move(r)); });
     move_into(pipes_list_, [&](PipeRecord&& r) { builder.add_pipe(std::move(r)); });
@@ -314,6 +315,14 @@ class FastReader {
         return version_;
       }
       if (key == "name") return once(seen, 4) && scan_.string(name_);
+      if (key == "crs") {
+        std::string_view text;
+        if (!once(seen, 128) || !scan_.string(text)) return false;
+        Result<Crs> crs = parse_crs(text);
+        if (!crs.has_value()) return false;
+        crs_ = std::move(*crs);
+        return true;
+      }
       if (key == "manholes") {
         manholes_ = once(seen, 8) && scan_.array([&] { return manhole(); });
         return manholes_;
@@ -471,6 +480,7 @@ class FastReader {
   detail::JsonScan scan_;
   const std::string& file_name_;
   std::string_view name_;
+  std::optional<Crs> crs_;
   bool format_ = false;
   bool version_ = false;
   bool manholes_ = false;
@@ -508,12 +518,20 @@ Result<SewerMap> read_map_json_document(std::string_view text, const std::string
   JsonFields root(doc->root(), "$", file_name, diagnostics);
   check_header(root);
   MapBuilder builder(root.string("name", Need::kOptional).value_or(""), json_locator(file_name));
+  if (std::optional<std::string> crs_text = root.string("crs", Need::kOptional)) {
+    Result<Crs> crs = parse_crs(*crs_text);
+    if (crs.has_value()) {
+      builder.set_crs(std::move(*crs));
+    } else {
+      diagnostics.error(root.where("crs"), crs.error().message);
+    }
+  }
   const auto manholes = root.array("manholes");
   const auto pipes = root.array("pipes");
   const auto points = root.array("inspection_points", Need::kOptional);
   const auto findings = root.array("findings", Need::kOptional);
   root.warn_unknown(
-      {"format", "version", "name", "manholes", "pipes", "inspection_points", "findings"});
+      {"format", "version", "name", "crs", "manholes", "pipes", "inspection_points", "findings"});
   builder.reserve(manholes ? manholes->size() : 0, pipes ? pipes->size() : 0);
   std::size_t i = 0;
   if (manholes) {
@@ -545,6 +563,7 @@ void write_map_json(const SewerMap& map, std::ostream& out) {
   out << "{\n  \"format\": \"" << kMapJsonFormat << "\",\n  \"version\": " << kMapJsonVersion
       << ",\n  \"name\": ";
   write_string(out, map.name());
+  if (map.crs()) out << ",\n  \"crs\": \"" << map.crs()->to_string() << '"';
   out << ",\n  \"manholes\": [\n";
   for (ManholeId m : map.manhole_ids()) {
     if (m.value() > 0) out << ",\n";

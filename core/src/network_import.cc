@@ -130,6 +130,7 @@ Result<SewerMap> assemble_network(NetworkImport network, std::string map_name, L
                "their direction is taken from the pipe's next point outside the shaft");
   MapBuilder builder(std::move(map_name), std::move(locator));
   builder.reserve(network.nodes.size(), network.links.size());
+  builder.set_crs(std::move(network.crs));
   for (std::size_t i = 0; i < network.nodes.size(); ++i) {
     ImportNode& n = network.nodes[i];
     builder.add_manhole({.name = std::move(n.name),

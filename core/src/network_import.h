@@ -65,6 +65,7 @@ struct NetworkImport {
   std::vector<ImportNode> nodes;
   std::vector<ImportLink> links;
   std::vector<FindingRecord> findings;  // inspection findings, by pipe name
+  std::optional<Crs> crs;               // the coordinate reference system, if the file names one
 };
 
 // The direction, in degrees counter-clockwise from +x in (-180, 180], from (x0, y0) to (x1, y1).

@@ -97,7 +97,7 @@ std::optional<PointId> SewerMap::find_point(std::string_view name) const {
 }
 
 std::size_t SewerMap::memory_bytes() const {
-  std::size_t bytes = sizeof(*this) + heap_bytes(name_);
+  std::size_t bytes = sizeof(*this) + heap_bytes(name_) + (crs_ ? heap_bytes(crs_->authority) : 0);
   bytes += manholes_.capacity() * sizeof(Manhole) + slots_.capacity() * sizeof(Slot) +
            pipes_.capacity() * sizeof(Pipe) + points_.capacity() * sizeof(InspectionPoint) +
            findings_.capacity() * sizeof(Finding);
@@ -111,8 +111,9 @@ std::size_t SewerMap::memory_bytes() const {
 }
 
 bool operator==(const SewerMap& a, const SewerMap& b) {
-  return a.name_ == b.name_ && a.manholes_ == b.manholes_ && a.slots_ == b.slots_ &&
-         a.pipes_ == b.pipes_ && a.points_ == b.points_ && a.findings_ == b.findings_;
+  return a.name_ == b.name_ && a.crs_ == b.crs_ && a.manholes_ == b.manholes_ &&
+         a.slots_ == b.slots_ && a.pipes_ == b.pipes_ && a.points_ == b.points_ &&
+         a.findings_ == b.findings_;
 }
 
 }  // namespace sewerplan

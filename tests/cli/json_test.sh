@@ -125,6 +125,25 @@ else
   json 1 "$(err unsupported-format 1)" -- "$sp" motion precompute --map "$tmp/motion/map.json" --json
 fi
 
+# The map's coordinate reference system (--crs), and export-geojson (docs/cli.md)
+json 0 "j['crs'] is None" -- "$sp" info --map "$ais" --json
+json 2 "$(err usage 2) and j['error']['message'].startswith('--crs')" -- \
+  "$sp" info --map "$ais" --crs EPSG:x25 --json
+json 0 "j['crs'] == 'EPSG:25832'" -- "$sp" convert --map "$ais" --crs epsg:25832 -o "$tmp/utm.json" --json
+json 0 "j['crs'] == 'EPSG:25832'" -- "$sp" info --map "$tmp/utm.json" --json
+json 2 "$(err usage 2) and 'names its own CRS' in j['error']['message']" -- \
+  "$sp" info --map "$tmp/utm.json" --crs EPSG:31467 --json
+if "$sp" --help | grep -q export-geojson; then
+  json 2 "$(err usage 2) and 'no coordinate reference system' in j['error']['message']" -- \
+    "$sp" export-geojson --map "$ais" -o "$tmp/ais.geojson" --json
+  json 0 "j['crs'] == 'EPSG:25832' and j['wrote'].endswith('ais.geojson') and j['plan_steps'] > 0 and j['driveability'] is True and j['nav2'].endswith('nav2.geojson')" -- \
+    "$sp" export-geojson --map "$ais" --assume-crs EPSG:25832 --mission "$mission" --plan-route \
+    --profile makro-plus -o "$tmp/ais.geojson" --nav2 "$tmp/nav2.geojson" --json
+  json 0 "j['plan_steps'] == 14" -- "$sp" export-geojson --map "$tmp/utm.json" --mission "$mission" \
+    --plan "$plans/paper-corrected.plan" -o "$tmp/ais.geojson" --json
+  json 2 "$(err usage 2)" -- "$sp" export-geojson --map "$ais" --json
+fi
+
 # A command-line error that CLI11 finds (an unknown option) is an error object too.
 json 2 "$(err usage 2)" -- "$sp" validate --map "$ais" --frobnicate --json
 

@@ -114,11 +114,16 @@ class MapBuilder {
   void add_pipe(PipeRecord record);
   void add_point(PointRecord record);
   void add_finding(FindingRecord record);
+  // The coordinate reference system of the records' positions (crs.h), when the source names one.
+  void set_crs(std::optional<Crs> crs);
   void reserve(std::size_t manholes, std::size_t pipes);
 
   // Validates and builds. On error, every problem found is in `diagnostics` and the Error's
   // message lists them. Warnings are added to `diagnostics` either way.
   Result<SewerMap> build(Diagnostics& diagnostics) &&;
+
+  // `map` with its coordinate reference system replaced (a --crs given for a source without one).
+  static SewerMap with_crs(SewerMap map, std::optional<Crs> crs);
 
   // `map` with `findings` added (a condition file joined to a map read before): a finding naming
   // no pipe of the map is left out with a warning, as is one off its pipe (clamped onto it).
@@ -128,6 +133,7 @@ class MapBuilder {
  private:
   class Validation;
   std::string name_;
+  std::optional<Crs> crs_;
   Locator locator_;
   std::vector<ManholeRecord> manholes_;
   std::vector<PipeRecord> pipes_;

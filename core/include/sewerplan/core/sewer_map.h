@@ -38,6 +38,7 @@
 #include <string_view>
 #include <vector>
 
+#include "sewerplan/core/crs.h"
 #include "sewerplan/core/strong_id.h"
 
 namespace sewerplan {
@@ -137,6 +138,9 @@ class SewerMap {
   SewerMap() = default;
 
   const std::string& name() const { return name_; }
+  // The coordinate reference system of the manholes' x and y (crs.h); empty: local coordinates,
+  // or a source that did not say.
+  const std::optional<Crs>& crs() const { return crs_; }
 
   std::size_t manhole_count() const { return manholes_.size(); }
   std::size_t pipe_count() const { return pipes_.size(); }
@@ -177,6 +181,7 @@ class SewerMap {
   friend class MapBuilder;
 
   std::string name_;
+  std::optional<Crs> crs_;
   std::vector<Manhole> manholes_;
   std::vector<Slot> slots_;
   std::vector<Pipe> pipes_;

@@ -1,0 +1,328 @@
+// SPDX-License-Identifier: MIT
+#include "sewerplan/gis/geojson.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <variant>
+
+#include <nlohmann/json.hpp>
+
+#include "sewerplan/core/overloaded.h"
+
+namespace sewerplan::gis {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+// The two ends of a pipe's line in map coordinates; a blind end lies along its slot's azimuth.
+// Empty for a pipe with no manhole at all.
+std::optional<std::array<MapXY, 2>> pipe_line(const SewerMap& map, PipeId id) {
+  const Pipe& pipe = map.pipe(id);
+  std::array<std::optional<MapXY>, 2> ends;
+  for (std::size_t e = 0; e < 2; ++e) {
+    if (const auto& m = pipe.ends[e].manhole) {
+      const Position& p = map.manhole(*m).position;
+      ends[e] = MapXY{.x = p.x_m, .y = p.y_m};
+    }
+  }
+  for (std::size_t e = 0; e < 2; ++e) {
+    const std::size_t other = 1 - e;
+    if (ends[e] || !ends[other]) continue;
+    const PipeEnd& at = pipe.ends[other];
+    const double azimuth = map.slot(*at.manhole, at.slot).azimuth_deg * std::numbers::pi / 180;
+    ends[e] = MapXY{.x = ends[other]->x + pipe.length_m * std::cos(azimuth),
+                    .y = ends[other]->y + pipe.length_m * std::sin(azimuth)};
+  }
+  if (!ends[0] || !ends[1]) return std::nullopt;
+  return std::array<MapXY, 2>{*ends[0], *ends[1]};
+}
+
+// The point `offset_m` from the pipe's ends[0], on its straight line.
+std::optional<MapXY> pipe_point(const SewerMap& map, PipeId id, double offset_m) {
+  const auto line = pipe_line(map, id);
+  if (!line) return std::nullopt;
+  const double length = map.pipe(id).length_m;
+  const double t = length > 0 ? std::clamp(offset_m / length, 0.0, 1.0) : 0.0;
+  return MapXY{.x = (*line)[0].x + t * ((*line)[1].x - (*line)[0].x),
+               .y = (*line)[0].y + t * ((*line)[1].y - (*line)[0].y)};
+}
+
+MapXY manhole_point(const SewerMap& map, ManholeId id) {
+  const Position& p = map.manhole(id).position;
+  return {.x = p.x_m, .y = p.y_m};
+}
+
+std::optional<MapXY> place_point(const SewerMap& map, const Place& place) {
+  return std::visit(Overloaded{[&](ManholeId m) { return std::optional(manhole_point(map, m)); },
+                               [&](const PipeSpot& s) {
+                                 double offset = map.pipe(s.pipe).length_m / 2;
+                                 if (s.offset_m) {
+                                   offset = *s.offset_m;
+                                 } else if (s.point) {
+                                   offset = map.point(*s.point).offset_m;
+                                 }
+                                 return pipe_point(map, s.pipe, offset);
+                               }},
+                    place);
+}
+
+double rounded(double degrees) { return std::round(degrees * 1e8) / 1e8; }
+
+class Writer {
+ public:
+  explicit Writer(const Wgs84Projection& wgs84) : wgs84_(wgs84) {}
+
+  // [lon, lat]; records the first point the projection rejects.
+  Json position(MapXY p) {
+    Result<LonLat> ll = wgs84_.to_wgs84(p.x, p.y);
+    if (!ll.has_value()) {
+      if (!error_) error_ = ll.error();
+      return Json::array({0.0, 0.0});
+    }
+    return Json::array({rounded(ll->lon_deg), rounded(ll->lat_deg)});
+  }
+
+  void point(MapXY p, Json properties) {
+    add({{"type", "Point"}, {"coordinates", position(p)}}, std::move(properties));
+  }
+
+  void line(std::span<const MapXY> points, Json properties) {
+    Json coordinates = Json::array();
+    for (const MapXY& p : points) coordinates.push_back(position(p));
+    add({{"type", "LineString"}, {"coordinates", std::move(coordinates)}}, std::move(properties));
+  }
+
+  void add(Json geometry, Json properties) {
+    features_.push_back({{"type", "Feature"},
+                         {"geometry", std::move(geometry)},
+                         {"properties", std::move(properties)}});
+  }
+
+  Result<std::string> finish(const std::string& name) {
+    if (error_) return *error_;
+    Json doc = {{"type", "FeatureCollection"}, {"name", name}, {"features", std::move(features_)}};
+    return doc.dump(1, ' ', false, Json::error_handler_t::replace) + "\n";
+  }
+
+ private:
+  const Wgs84Projection& wgs84_;
+  Json features_ = Json::array();
+  std::optional<Error> error_;
+};
+
+Json optional_number(const std::optional<double>& v) { return v ? Json(*v) : Json(); }
+
+std::string why_not_driveable(PipeId id, const domain::DriveabilityReport& r) {
+  const auto contains = [](const std::vector<PipeId>& list, PipeId p) {
+    return std::binary_search(list.begin(), list.end(), p);
+  };
+  if (contains(r.too_narrow, id)) return "too narrow";
+  if (contains(r.too_wide, id)) return "too wide";
+  if (contains(r.cut_off_pipes, id)) return "cut off by a closure";
+  if (!contains(r.reachable_pipes, id)) return "unreachable";
+  return "";
+}
+
+void network(const SewerMap& map, const domain::DriveabilityReport* driveability, Writer& w) {
+  for (ManholeId id : map.manhole_ids()) {
+    const Manhole& m = map.manhole(id);
+    w.point(manhole_point(map, id), {{"layer", "manhole"},
+                                     {"name", m.name},
+                                     {"type", m.slot_count},
+                                     {"diameter_m", m.diameter_m},
+                                     {"z_m", m.position.z_m},
+                                     {"depth_m", optional_number(m.depth_m)},
+                                     {"exit", m.exit}});
+  }
+  for (PipeId id : map.pipe_ids()) {
+    const Pipe& p = map.pipe(id);
+    const auto end_name = [&](std::size_t e) {
+      return p.ends[e].manhole ? Json(map.manhole(*p.ends[e].manhole).name) : Json();
+    };
+    Json properties = {{"layer", "pipe"},
+                       {"name", p.name},
+                       {"from", end_name(0)},
+                       {"to", end_name(1)},
+                       {"length_m", p.length_m},
+                       {"diameter_m", p.diameter_m},
+                       {"shape", std::string(to_string(p.shape))},
+                       {"height_m", p.height_m},
+                       {"blockage_risk", p.blockage_risk ? Json(*p.blockage_risk) : Json()}};
+    if (driveability != nullptr) {
+      const std::string why = why_not_driveable(id, *driveability);
+      properties["driveable"] = why.empty();
+      properties["why_not"] = why.empty() ? Json() : Json(why);
+    }
+    if (const auto line = pipe_line(map, id)) {
+      w.line(*line, std::move(properties));
+    } else {
+      w.add(Json(), std::move(properties));  // RFC 7946 3.2: an unlocated feature
+    }
+  }
+  for (PointId id : map.point_ids()) {
+    const InspectionPoint& p = map.point(id);
+    if (const auto at = pipe_point(map, p.pipe, p.offset_m)) {
+      w.point(*at, {{"layer", "inspection_point"},
+                    {"name", p.name},
+                    {"pipe", map.pipe(p.pipe).name},
+                    {"offset_m", p.offset_m}});
+    }
+  }
+  for (const Finding& f : map.findings()) {
+    if (const auto at = pipe_point(map, f.pipe, f.offset_m)) {
+      w.point(*at, {{"layer", "finding"},
+                    {"code", f.code},
+                    {"characterisation", f.characterisation},
+                    {"pipe", map.pipe(f.pipe).name},
+                    {"offset_m", f.offset_m}});
+    }
+  }
+}
+
+void mission_features(const SewerMap& map, const Mission& mission, Writer& w) {
+  if (const auto at = place_point(map, mission.start)) {
+    w.point(*at, {{"layer", "start"}, {"name", mission.name}});
+  }
+  for (const Task& t : mission.tasks) {
+    if (t.kind == TaskKind::kInspectPipe) {
+      const PipeId pipe = std::get<PipeSpot>(t.place).pipe;
+      if (const auto line = pipe_line(map, pipe)) {
+        w.line(*line, {{"layer", "task"},
+                       {"name", t.name},
+                       {"kind", std::string(to_string(t.kind))},
+                       {"final", t.final}});
+      }
+      continue;
+    }
+    if (const auto at = place_point(map, t.place)) {
+      w.point(*at, {{"layer", "task"},
+                    {"name", t.name},
+                    {"kind", std::string(to_string(t.kind))},
+                    {"final", t.final}});
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<MapXY> route_points(const SewerMap& map, const Mission& mission,
+                                std::span<const domain::PlanStep> steps) {
+  std::vector<MapXY> points;
+  const auto push = [&](std::optional<MapXY> p) {
+    if (p) points.push_back(*p);
+  };
+  push(place_point(map, mission.start));
+  // The manhole the robot is in, if it is in one: an inspection leaves by the pipe's other end.
+  bool in_manhole = false;
+  ManholeId at{0};
+  if (const auto* m = std::get_if<ManholeId>(&mission.start)) {
+    in_manhole = true;
+    at = *m;
+  }
+  const auto task_point = [&](TaskId t) { return place_point(map, mission.task(t).place); };
+  for (const domain::PlanStep& step : steps) {
+    std::visit(Overloaded{[&](const domain::DrivePipeToManhole& s) {
+                            push(manhole_point(map, s.manhole));
+                            in_manhole = true;
+                            at = s.manhole;
+                          },
+                          [&](const domain::DriveManhole&) {},
+                          [&](const domain::EnterPipe& s) {
+                            push(manhole_point(map, s.manhole));
+                            in_manhole = false;
+                          },
+                          [&](const domain::TakeWaterSample& s) {
+                            push(task_point(s.task));
+                            in_manhole = false;
+                          },
+                          [&](const domain::GoToPoint& s) {
+                            push(task_point(s.task));
+                            in_manhole = false;
+                          },
+                          [&](const domain::GoToManhole& s) {
+                            push(manhole_point(map, s.manhole));
+                            in_manhole = true;
+                            at = s.manhole;
+                          },
+                          [&](const domain::InspectPipe& s) {
+                            const Pipe& pipe = map.pipe(s.pipe);
+                            std::uint8_t end = 1;
+                            if (s.finish_end) {
+                              end = *s.finish_end;
+                            } else if (in_manhole && pipe.ends[1].manhole == at) {
+                              end = 0;
+                            }
+                            push(pipe_point(map, s.pipe, end == 0 ? 0 : pipe.length_m));
+                            in_manhole = false;
+                          }},
+               step);
+  }
+  return points;
+}
+
+Result<std::string> to_geojson(const GeoJsonInput& in, const Wgs84Projection& wgs84) {
+  SEWER_CHECK(in.map != nullptr, "to_geojson needs a map");
+  const SewerMap& map = *in.map;
+  Writer w(wgs84);
+  network(map, in.driveability, w);
+  if (in.mission != nullptr) {
+    mission_features(map, *in.mission, w);
+    if (in.plan != nullptr) {
+      w.line(route_points(map, *in.mission, in.plan->steps),
+             {{"layer", "planned_route"}, {"steps", in.plan->steps.size()}});
+    }
+    if (in.driven != nullptr) {
+      w.line(route_points(map, *in.mission, *in.driven),
+             {{"layer", "driven_route"}, {"steps", in.driven->size()}});
+    }
+  }
+  for (const Blockage& b : in.blocked) {
+    if (const auto at = pipe_point(map, b.pipe, b.offset_m)) {
+      w.point(*at,
+              {{"layer", "blocked"}, {"pipe", map.pipe(b.pipe).name}, {"offset_m", b.offset_m}});
+    }
+  }
+  return w.finish(map.name());
+}
+
+std::string to_nav2_route_graph(const SewerMap& map, MapXY origin, std::string_view frame) {
+  Json features = Json::array();
+  const auto xy = [&](MapXY p) { return Json::array({p.x - origin.x, p.y - origin.y}); };
+  for (ManholeId id : map.manhole_ids()) {
+    features.push_back(
+        {{"type", "Feature"},
+         {"properties",
+          {{"id", id.value()}, {"frame", frame}, {"metadata", {{"name", map.manhole(id).name}}}}},
+         {"geometry", {{"type", "Point"}, {"coordinates", xy(manhole_point(map, id))}}}});
+  }
+  // Edge IDs follow the node IDs, so that every ID in the file is unique.
+  std::size_t next_id = map.manhole_count();
+  for (PipeId id : map.pipe_ids()) {
+    const Pipe& p = map.pipe(id);
+    if (!p.ends[0].manhole || !p.ends[1].manhole) continue;  // a blind end leads nowhere
+    const std::array<ManholeId, 2> ends{*p.ends[0].manhole, *p.ends[1].manhole};
+    for (std::size_t e = 0; e < 2; ++e) {
+      const ManholeId start = ends[e];
+      const ManholeId end = ends[1 - e];
+      features.push_back(
+          {{"type", "Feature"},
+           {"properties",
+            {{"id", next_id++},
+             {"startid", start.value()},
+             {"endid", end.value()},
+             {"cost", p.length_m},
+             {"metadata", {{"pipe", p.name}, {"diameter_m", p.diameter_m}}}}},
+           {"geometry",
+            {{"type", "MultiLineString"},
+             {"coordinates", Json::array({Json::array({xy(manhole_point(map, start)),
+                                                       xy(manhole_point(map, end))})})}}}});
+    }
+  }
+  Json doc = {
+      {"type", "FeatureCollection"}, {"name", map.name()}, {"features", std::move(features)}};
+  return doc.dump(1, ' ', false, Json::error_handler_t::replace) + "\n";
+}
+
+}  // namespace sewerplan::gis

@@ -1,0 +1,70 @@
+// SPDX-License-Identifier: MIT
+#include "sewerplan/gis/wgs84_projection.h"
+
+#include <array>
+#include <cmath>
+#include <numbers>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "tm_reference.h"
+
+namespace sewerplan::gis {
+namespace {
+
+Crs epsg(std::uint32_t code) { return {.authority = "EPSG", .code = code}; }
+
+// Places in Germany, longitude and latitude.
+constexpr std::array<std::array<double, 2>, 4> kPlaces{{
+    {9.0, 52.0},        // on UTM 32's central meridian
+    {7.6261, 51.9607},  // Münster
+    {10.5, 53.5},       // east of the meridian
+    {8.5324, 52.0302},  // Bielefeld
+}};
+
+TEST(Wgs84Projection, Utm32AgreesWithAnIndependentTransverseMercator) {
+  Result<Wgs84Projection> utm = Wgs84Projection::create(epsg(25832));
+  ASSERT_TRUE(utm.has_value()) << utm.error();
+  for (const auto& [lon, lat] : kPlaces) {
+    const testing::EastNorth expected = testing::transverse_mercator(testing::kUtm32, lon, lat);
+    Result<MapXY> xy = utm->from_wgs84(lon, lat);
+    ASSERT_TRUE(xy.has_value()) << xy.error();
+    EXPECT_NEAR(xy->x, expected.east, 0.01) << lon << ", " << lat;
+    EXPECT_NEAR(xy->y, expected.north, 0.01) << lon << ", " << lat;
+    // And back: longitude first, within a millimetre (1e-8 degrees).
+    Result<LonLat> back = utm->to_wgs84(expected.east, expected.north);
+    ASSERT_TRUE(back.has_value()) << back.error();
+    EXPECT_NEAR(back->lon_deg, lon, 1e-8);
+    EXPECT_NEAR(back->lat_deg, lat, 1e-8);
+  }
+}
+
+TEST(Wgs84Projection, GaussKruegerZone3RoundTripsAndLiesWhereTheZoneSays) {
+  Result<Wgs84Projection> gk = Wgs84Projection::create(epsg(31467));
+  ASSERT_TRUE(gk.has_value()) << gk.error();
+  for (const auto& [lon, lat] : kPlaces) {
+    Result<MapXY> xy = gk->from_wgs84(lon, lat);
+    ASSERT_TRUE(xy.has_value()) << xy.error();
+    // DHDN is another datum: the Bessel projection of the WGS84 angles misses by the datum shift,
+    // some tens to a couple of hundred metres, never by a zone or an axis swap.
+    const testing::EastNorth bessel =
+        testing::transverse_mercator(testing::kGaussKruger3, lon, lat);
+    EXPECT_NEAR(xy->x, bessel.east, 300) << lon << ", " << lat;
+    EXPECT_NEAR(xy->y, bessel.north, 300) << lon << ", " << lat;
+    Result<LonLat> back = gk->to_wgs84(xy->x, xy->y);
+    ASSERT_TRUE(back.has_value()) << back.error();
+    EXPECT_NEAR(back->lon_deg, lon, 1e-8);
+    EXPECT_NEAR(back->lat_deg, lat, 1e-8);
+  }
+}
+
+TEST(Wgs84Projection, AnUnknownCodeIsAnErrorNamingIt) {
+  Result<Wgs84Projection> none = Wgs84Projection::create(epsg(999999));
+  ASSERT_FALSE(none.has_value());
+  EXPECT_EQ(none.error().code, ErrorCode::kInvalidArgument);
+  EXPECT_THAT(none.error().message, ::testing::HasSubstr("EPSG:999999"));
+}
+
+}  // namespace
+}  // namespace sewerplan::gis
