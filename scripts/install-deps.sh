@@ -11,6 +11,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev
   clang libclang-rt-14-dev clang-format
   help2man dpkg-dev python3
+  libcpp-httplib-dev pkg-config
+  nodejs npm chromium
 )
 
 missing=()

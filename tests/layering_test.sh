@@ -15,6 +15,7 @@ declare -A allowed=(
   [executor]="core domain search fusion hal executor"
   [campaign]="core domain search fusion hal executor campaign"
   [render]="core domain hal executor render"
+  [server]="core domain search fusion hal executor server"
 )
 status=0
 for lib in "${!allowed[@]}"; do
