@@ -52,7 +52,8 @@ try {
     const point = await page.evaluate(([n, f]) => window.station.screenPoint(n, f), [name, fraction]);
     const box = await page.locator('#view canvas').boundingBox();
     const before = await page.evaluate(() => JSON.stringify(window.station.state.mission));
-    await page.mouse.click(box.x + point[0], box.y + point[1]);
+    await page.mouse.move(box.x + point[0], box.y + point[1]);  // hover first, as a user does
+    await page.mouse.click(box.x + point[0], box.y + point[1], { delay: 50 });
     await page.waitForFunction((b) => JSON.stringify(window.station.state.mission) !== b, before,
                                { timeout: 10000 });
   }
@@ -80,6 +81,7 @@ try {
 } catch (e) {
   failed = true;
   console.error('station e2e: FAILED:', e.message);
+  await browser.contexts()[0]?.pages()[0]?.screenshot({ path: join(out, 'failed.png') });
 } finally {
   await browser.close();
   server.kill('SIGTERM');
