@@ -42,7 +42,7 @@ try {
   const t0 = Date.now();
   await page.goto(url);
   console.log(`page loaded: ${Date.now() - t0} ms`);
-  await page.waitForSelector('body[data-ready=true]', { timeout: 30000 });
+  await page.waitForSelector('body[data-ready=true]', { timeout: 90000 });
   console.log(`page load and first draw (AIS map): ${Date.now() - t0} ms`);
   await page.screenshot({ path: join(out, '1-map.png') });
 
