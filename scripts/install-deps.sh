@@ -13,7 +13,14 @@ packages=(
   help2man dpkg-dev python3
   pybind11-dev python3-dev python3-pytest
   libproj-dev
+  libcpp-httplib-dev pkg-config chromium
 )
+# node and npm build and test the operator station's page (web/). Debian's nodejs and npm are
+# installed only where no npm exists: a Node.js from elsewhere (such as NodeSource's, which bundles
+# npm and conflicts with Debian's npm package) is used as it is.
+if ! command -v npm > /dev/null 2>&1; then
+  packages+=(nodejs npm)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -17,6 +17,7 @@ declare -A allowed=(
   [campaign]="core domain search fusion hal executor campaign"
   [render]="core domain hal executor render"
   [gis]="core domain gis"
+  [server]="core domain search fusion hal executor server"
 )
 status=0
 for lib in "${!allowed[@]}"; do

@@ -14,11 +14,11 @@
 #include "sewerplan/core/map_queries.h"
 #include "sewerplan/core/robot_profile.h"
 #include "sewerplan/domain/driveability.h"
+#include "sewerplan/server/driveability_output.h"
 
 #include "command.h"
 #include "condition_options.h"
 #include "crs_option.h"
-#include "driveability_output.h"
 #include "json_output.h"
 #include "motion_options.h"
 #include "text_format.h"
@@ -200,14 +200,14 @@ int run(const InfoOptions& o, Context& c) {
   if (o.json) {
     nlohmann::json j = info_json(*map, stats);
     if (report) {
-      j["driveability"] = driveability_json(*report, *map, *profile);
+      j["driveability"] = server::driveability_json(*report, *map, *profile);
       j["driveability"]["closed_by_findings"] = closing_json(*map, *profile, *table);
     }
     print_json(c.out, j);
   } else {
     print_info(*map, stats, c.out);
     print_findings(*map, profile ? &*profile : nullptr, *table, c.out);
-    if (report) print_driveability(*report, *map, *profile, c.out);
+    if (report) server::print_driveability(*report, *map, *profile, c.out);
   }
   return kExitOk;
 }

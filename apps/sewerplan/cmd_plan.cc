@@ -69,72 +69,6 @@ void print_route_risk(const search::PlanOutcome& o, const SewerMap& map, const M
   }
 }
 
-Json statistics_json(const search::PlanOutcome& o) {
-  const domain::CompileStatistics& c = o.compile;
-  const search::SearchStatistics& s = o.search;
-  return {{"compile",
-           {{"time_s", c.time_s},
-            {"keys", c.keys},
-            {"graph_nodes", c.graph_nodes},
-            {"settled_nodes", c.settled_nodes},
-            {"route_searches", c.route_searches},
-            {"actions", c.actions}}},
-          {"search",
-           {{"time_s", s.time_s},
-            {"expanded", s.expanded},
-            {"generated", s.generated},
-            {"evaluated", s.evaluated},
-            {"reopened", s.reopened},
-            {"dead_ends", s.dead_ends},
-            {"stored", s.stored},
-            {"peak_memory_bytes", s.peak_memory_bytes}}},
-          {"improvements", o.improvements}};
-}
-
-Json dropped_json(const std::vector<domain::DroppedTask>& dropped, const Mission& m) {
-  Json list = Json::array();
-  for (const auto& d : dropped)
-    list.push_back({{"task", m.task(d.task).name}, {"reason", d.reason}});
-  return list;
-}
-
-// What `plan --json` adds to a failure: what the Replanner, which always selects goals and heads
-// for a reachable exit, would answer at the start (its decision, the tasks it would drop and why,
-// within kFallbackLimit_s), and how long the failed search ran.
-constexpr double kFallbackLimit_s = 5;
-Json failure_json(const SewerMap& map, const Mission& m, search::PlannerOptions options,
-                  double search_time_s) {
-  options.time_limit_s = options.time_limit_s > 0 ? std::min(options.time_limit_s, kFallbackLimit_s)
-                                                  : kFallbackLimit_s;
-  options.improvement_expansions = 0;
-  executor::Replanner replanner(map, m, {.planner = options});
-  const executor::PlanResponse r = replanner.plan();
-  Json goals = Json::array();
-  for (TaskId t : r.goals) goals.push_back(m.task(t).name);
-  return {{"decision", executor::to_string(r.decision)},
-          {"dropped", dropped_json(r.newly_dropped, m)},
-          {"fallback",
-           {{"tasks", goals},
-            {"end", r.end},
-            {"cost_s", r.cost_s},
-            {"energy_wh", r.energy_wh},
-            {"planning_time_s", r.planning_time_s}}},
-          {"statistics", {{"time_s", search_time_s}}}};
-}
-
-Json plan_json(const search::PlanOutcome& outcome, const domain::ValidationReport& report,
-               const SewerMap& map, const Mission& m) {
-  Json j = plan_verdict_json(outcome.plan, report, map, m);
-  j["decision"] =
-      executor::to_string(outcome.dropped.empty() ? executor::PlanResponse::Decision::kFollowPlan
-                                                  : executor::PlanResponse::Decision::kDegraded);
-  j["optimal"] = outcome.optimal;
-  j["algorithm"] = outcome.algorithm;
-  j["dropped"] = dropped_json(outcome.dropped, m);
-  j["statistics"] = statistics_json(outcome);
-  return j;
-}
-
 int run(const PlanOptions& o, Context& c) {
   search::PlannerOptions options;
   auto algorithm = search::algorithm_from_string(o.algorithm);
@@ -181,7 +115,7 @@ int run(const PlanOptions& o, Context& c) {
   Result<search::PlanOutcome> outcome = search::plan_mission(*map, m, start, options);
   if (!outcome.has_value()) {
     return fail(c, o.json, outcome.error(), {},
-                o.json ? failure_json(*map, m, options, clock.now_s() - started_s) : Json());
+                o.json ? plan_failure_json(*map, m, options, clock.now_s() - started_s) : Json());
   }
   // Tasks left out by goal selection are not required of the plan.
   for (const auto& d : outcome->dropped) start.done[d.task.index()] = true;

@@ -46,25 +46,6 @@ struct SimulateOptions {
   bool json = false;
 };
 
-Json report_json(const executor::MissionReport& r) {
-  Json dropped = Json::array();
-  for (const auto& [task, reason] : r.dropped)
-    dropped.push_back({{"task", task}, {"reason", reason}});
-  return {{"outcome", executor::to_string(r.outcome)},
-          {"decision", executor::to_string(r.decision)},
-          {"beacon_cause", executor::to_string(r.beacon_cause)},
-          {"end", r.end},
-          {"tasks_done", r.tasks_done},
-          {"dropped", dropped},
-          {"time_s", r.time_s},
-          {"energy_wh", r.energy_wh},
-          {"replans", r.replans},
-          {"planning_times_s", r.planning_times_s},
-          {"jobs", r.jobs},
-          {"recoveries", r.recoveries},
-          {"battery_reserve_kept", r.battery_reserve_kept}};
-}
-
 int run(const SimulateOptions& o, Context& c) {
   Diagnostics diagnostics;
   Result<SimWorld> world =

@@ -23,14 +23,6 @@ struct ValidateOptions {
   std::string condition;
 };
 
-Json diagnostics_json(const Diagnostics& diagnostics, Severity severity) {
-  Json list = Json::array();
-  for (const Diagnostic& d : diagnostics.all()) {
-    if (d.severity == severity) list.push_back({{"where", d.where}, {"message", d.message}});
-  }
-  return list;
-}
-
 int run(const ValidateOptions& o, Context& c) {
   int exit_code = kExitOk;
   const std::optional<std::string> path =

@@ -13,6 +13,7 @@
 
 #include "sewerplan/core/diagnostics.h"
 #include "sewerplan/core/result.h"
+#include "sewerplan/server/documents.h"
 
 namespace CLI {
 class App;
@@ -20,15 +21,10 @@ class App;
 
 namespace sewerplan::cli {
 
-enum ExitCode : int {
-  kExitOk = 0,
-  kExitInvalidInput = 1,
-  kExitUsage = 2,
-  kExitIo = 3,
-  kExitNoPlan = 4,
-  kExitSearchLimit = 5,
-  kExitCampaignNotClean = 6,
-};
+// The exit codes (0 success ... 6 campaign not clean) and exit_code_for live with the JSON
+// documents that carry them (server/documents.h).
+using enum server::ExitCode;
+using server::exit_code_for;
 
 // What a command's callback reports back to main().
 struct Context {
@@ -51,9 +47,9 @@ void add_campaign_command(CLI::App& app, Context& context);
 void add_render_command(CLI::App& app, Context& context);
 void add_motion_command(CLI::App& app, Context& context);
 void add_export_geojson_command(CLI::App& app, Context& context);  // with SEWERPLAN_WITH_GIS
+void add_serve_command(CLI::App& app, Context& context);
 
 // Helpers shared by the commands.
-int exit_code_for(const Error& error);
 void print_diagnostics(const Diagnostics& diagnostics, std::ostream& err);
 
 }  // namespace sewerplan::cli

@@ -8,56 +8,7 @@
 #include "sewerplan/domain/plan_json.h"
 
 namespace sewerplan::cli {
-namespace {
-
-// "FILE:LINE", "FILE:$.json.path" or "FILE:/xml/path" into file and line or path.
-void add_where(Json& j, const std::string& where) {
-  const auto colon = where.rfind(':');
-  if (colon == std::string::npos || colon == 0) return;
-  const std::string file = where.substr(0, colon);
-  const std::string rest = where.substr(colon + 1);
-  if (rest.empty()) return;
-  j["file"] = file;
-  const bool digits =
-      std::all_of(rest.begin(), rest.end(), [](unsigned char ch) { return std::isdigit(ch); });
-  if (digits && rest.size() < 10) {
-    j["line"] = std::stoi(rest);
-  } else {
-    j["path"] = rest;
-  }
-}
-
-std::string_view severity_name(Severity s) {
-  switch (s) {
-    case Severity::kError:
-      return "error";
-    case Severity::kWarning:
-      return "warning";
-  }
-  return "error";
-}
-
-}  // namespace
-
-Json error_object(const Error& error, const Diagnostics& diagnostics, int exit_code) {
-  Json j = {{"code", exit_code == kExitUsage && error.code == ErrorCode::kInvalidArgument
-                         ? std::string("usage")
-                         : std::string(to_string(error.code))},
-            {"exit_code", exit_code},
-            {"message", error.message}};
-  Json list = Json::array();
-  bool located = false;
-  for (const Diagnostic& d : diagnostics.all()) {
-    if (!located && d.severity == Severity::kError) {
-      add_where(j, d.where);
-      located = true;
-    }
-    list.push_back(
-        {{"severity", severity_name(d.severity)}, {"where", d.where}, {"message", d.message}});
-  }
-  j["diagnostics"] = std::move(list);
-  return j;
-}
+namespace {}  // namespace
 
 void print_json(std::ostream& out, const Json& j) {
   out << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
@@ -73,20 +24,6 @@ int fail(Context& c, bool json, const Error& error, const Diagnostics& diagnosti
     print_json(c.out, j);
   }
   return code;
-}
-
-Json plan_verdict_json(const domain::Plan& plan, const domain::ValidationReport& report,
-                       const SewerMap& map, const Mission& mission) {
-  std::ostringstream text;
-  domain::write_plan_json(plan, report, map, mission, text);
-  Json j = Json::parse(text.str());
-  if (!report.valid) {
-    j["error"] = {{"code", "invalid-plan"},
-                  {"exit_code", kExitInvalidInput},
-                  {"message", report.error},
-                  {"diagnostics", Json::array()}};
-  }
-  return j;
 }
 
 int usage_error(Context& c, bool json, const std::string& message) {

@@ -29,10 +29,15 @@
 
 namespace sewerplan::cli {
 
-using Json = nlohmann::ordered_json;
-
-// {"code", "exit_code", "message", "file"/"line"/"path", "diagnostics"}: the object under "error".
-Json error_object(const Error& error, const Diagnostics& diagnostics, int exit_code);
+// The documents shared with the operator station's server (server/documents.h).
+using server::diagnostics_json;
+using server::dropped_json;
+using server::error_object;
+using server::Json;
+using server::plan_failure_json;
+using server::plan_json;
+using server::plan_verdict_json;
+using server::report_json;
 
 // Indented, invalid UTF-8 replaced (a name in a Latin-1 file never aborts the output), newline.
 void print_json(std::ostream& out, const Json& j);
@@ -43,12 +48,6 @@ int fail(Context& c, bool json, const Error& error, const Diagnostics& diagnosti
          Json extra = Json::object());
 // A usage error (exit code 2) with this message.
 int usage_error(Context& c, bool json, const std::string& message);
-
-// A plan and its validation as the plan JSON (domain/plan_json.h, "sewerplan-plan" version 1),
-// with an invalid plan's reason in the shared error shape: {"error": {"code": "invalid-plan",
-// "exit_code": 1, "message": ...}} (plus "failed_step" beside it, from 1, when a step failed).
-Json plan_verdict_json(const domain::Plan& plan, const domain::ValidationReport& report,
-                       const SewerMap& map, const Mission& mission);
 
 // The map's path from --map or, deprecated, the positional MAP (which prints a note saying so on
 // standard error). Empty after a usage error (both given, or neither), with `exit_code` set.

@@ -13,29 +13,6 @@
 
 namespace sewerplan::cli {
 
-int exit_code_for(const Error& error) {
-  switch (error.code) {
-    case ErrorCode::kIo:
-    case ErrorCode::kCanTimeout:
-    case ErrorCode::kBusError:
-      return kExitIo;
-    case ErrorCode::kInvalidArgument:
-      return kExitUsage;
-    case ErrorCode::kNoPlan:
-      return kExitNoPlan;
-    case ErrorCode::kSearchLimit:
-    case ErrorCode::kCancelled:
-      return kExitSearchLimit;
-    case ErrorCode::kParse:
-    case ErrorCode::kInvalidMap:
-    case ErrorCode::kInvalidMission:
-    case ErrorCode::kInvalidProfile:
-    case ErrorCode::kUnsupportedFormat:
-      return kExitInvalidInput;
-  }
-  return kExitInvalidInput;
-}
-
 void print_diagnostics(const Diagnostics& diagnostics, std::ostream& err) {
   for (const Diagnostic& d : diagnostics.all()) err << d << '\n';
   if (diagnostics.dropped() > 0) err << "(" << diagnostics.dropped() << " more not shown)\n";
@@ -48,7 +25,8 @@ namespace {
 constexpr const char* kFooter =
     "Give the map with --map FILE (the old positional MAP of validate, info, convert and motion\n"
     "precompute still works, with a note on standard error). --json, on every command but\n"
-    "sim-node, prints one JSON document on standard output; a failure prints {\"error\":\n"
+    "sim-node and serve, prints one JSON document on standard output; a failure prints\n"
+    "{\"error\": "
     "{\"code\", \"exit_code\", \"message\", ...}} (schemas: docs/cli.md).\n"
     "\n"
     "Exit codes:\n"
@@ -92,6 +70,7 @@ int main(int argc, char** argv) {
 #ifdef SEWERPLAN_WITH_GIS
   add_export_geojson_command(app, context);
 #endif
+  add_serve_command(app, context);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -14,18 +14,13 @@
 #include "sewerplan/domain/robot_state.h"
 #include "sewerplan/hal/fault_scenario.h"
 #include "sewerplan/hal/sim_robot.h"
+#include "sewerplan/server/sim_setup.h"
 
 namespace sewerplan::cli {
 
-// The simulated robot starts where the mission puts it; in a pipe it faces the pipe's ends[1],
-// as fusion assumes (fusion/fuse.h).
-hal::SimPose start_pose(const domain::RobotPosition& p);
-
-// The fault file if given, else random faults if given (SEED[,RATE]) on the pipes the mission's
-// robot fits (as `campaign` draws them), else none.
-Result<hal::FaultScenario> faults_for(const std::string& faults_file,
-                                      const std::string& random_faults, const SewerMap& map,
-                                      const Mission& mission, Diagnostics& diagnostics);
+// start_pose and faults_for are shared with the operator station (server/sim_setup.h).
+using server::faults_for;
+using server::start_pose;
 
 // The map, the mission and the hidden faults of a simulated run, read together.
 struct SimWorld {

@@ -12,7 +12,7 @@
 #include "sewerplan/core/sewer_map.h"
 #include "sewerplan/domain/driveability.h"
 
-namespace sewerplan::cli {
+namespace sewerplan::server {
 
 void print_driveability(const domain::DriveabilityReport& report, const SewerMap& map,
                         const RobotProfile& profile, std::ostream& out);
@@ -20,4 +20,4 @@ void print_driveability(const domain::DriveabilityReport& report, const SewerMap
 nlohmann::json driveability_json(const domain::DriveabilityReport& report, const SewerMap& map,
                                  const RobotProfile& profile);
 
-}  // namespace sewerplan::cli
+}  // namespace sewerplan::server

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "driveability_output.h"
+#include "sewerplan/server/driveability_output.h"
 
 #include <cmath>
 #include <iomanip>
@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace sewerplan::cli {
+namespace sewerplan::server {
 namespace {
 
 constexpr std::size_t kListed = 8;  // names shown per line of the text report
@@ -107,4 +107,4 @@ nlohmann::json driveability_json(const domain::DriveabilityReport& r, const Sewe
             {"pipes", pipe_names(r.cut_off_pipes)}}}};
 }
 
-}  // namespace sewerplan::cli
+}  // namespace sewerplan::server

@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: MIT
+// sewerplan serve [--map FILE ...] [--host 127.0.0.1] [--port 8080] [--token T] [--web DIR]
+// The operator station (docs/server.md): the server of server/station_server.h, and the page.
+#include <csignal>
+#include <filesystem>
+#include <ostream>
+#include <thread>
+
+#include <CLI/CLI.hpp>
+
+#include "sewerplan/server/station_server.h"
+
+#include "command.h"
+#include "json_output.h"
+
+namespace sewerplan::cli {
+namespace {
+
+struct ServeOptions {
+  std::vector<std::string> maps;
+  std::string host = "127.0.0.1";
+  int port = 8080;
+  std::string token;
+  std::string web;
+};
+
+// The built page: --web, else the build tree's (while developing), else the install's
+// share/sewerplan/web beside bin/.
+std::filesystem::path web_root(const std::string& option) {
+  if (!option.empty()) return option;
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const std::filesystem::path installed = exe.parent_path().parent_path() / "share/sewerplan/web";
+    if (std::filesystem::is_directory(installed / "assets")) return installed;
+  }
+#ifdef SEWERPLAN_WEB_BUILD_DIR
+  if (std::filesystem::is_directory(SEWERPLAN_WEB_BUILD_DIR)) return SEWERPLAN_WEB_BUILD_DIR;
+#endif
+  return {};
+}
+
+int run(const ServeOptions& o, Context& c) {
+  server::ServerOptions options{.host = o.host, .port = o.port, .token = o.token};
+  for (const std::string& m : o.maps) options.maps.emplace_back(m);
+  options.web_root = web_root(o.web);
+  if (options.web_root.empty()) {
+    c.err << "sewerplan serve: the page is not built (SEWERPLAN_WEB=ON, or --web DIR): API only\n";
+  }
+  if (o.host != "127.0.0.1" && o.host != "localhost" && o.host != "::1") {
+    c.err << "sewerplan serve: warning: listening on " << o.host
+          << ", reachable from other machines" << (o.token.empty() ? " without a --token" : "")
+          << '\n';
+  }
+  Result<std::unique_ptr<server::StationServer>> created = server::StationServer::create(options);
+  if (!created.has_value()) return fail(c, false, created.error());
+  server::StationServer& station = **created;
+  // SIGINT and SIGTERM stop the server from a thread of ours, not from a signal handler.
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+  const Result<int> port = station.bind();
+  if (!port.has_value()) return fail(c, false, port.error());
+  c.out << "sewerplan serve: http://" << o.host << ':' << *port << '/'
+        << (o.token.empty() ? "" : "?token=" + o.token) << std::endl;
+  std::thread waiter([&] {
+    int signal = 0;
+    sigwait(&signals, &signal);
+    station.stop();
+  });
+  station.run();
+  // Stopped by a signal: the waiter has returned. Otherwise wake it so it can be joined.
+  pthread_kill(waiter.native_handle(), SIGTERM);
+  waiter.join();
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_serve_command(CLI::App& app, Context& context) {
+  // Shared with the callback, which CLI11 keeps after this function returns.
+  auto o = std::make_shared<ServeOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "serve", "The operator station: a web server with the maps, and the page (docs/server.md)");
+  cmd->add_option("--map", o->maps, "A map to offer (any format of docs/formats/); repeatable");
+  cmd->add_option("--host", o->host, "Address to listen on")->capture_default_str();
+  cmd->add_option("--port", o->port, "Port to listen on (0: any free port)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 65535));
+  cmd->add_option("--token", o->token, "Require \"Authorization: Bearer TOKEN\" on the API");
+  cmd->add_option("--web", o->web, "Serve the page from this directory (default: the built one)");
+  cmd->callback([o, &context] { context.exit_code = run(*o, context); });
+}
+
+}  // namespace sewerplan::cli

@@ -1,0 +1,69 @@
+// SPDX-License-Identifier: MIT
+// The operator station's server: the HTTP side of `sewerplan serve` (docs/server.md). It holds the
+// maps it was started with and answers the browser page (web/) with the library called in-process,
+// the same functions and the same JSON documents (documents.h) as the CLI's commands:
+//
+//   GET  /api/maps                          the maps: id, name, counts
+//   GET  /api/maps/ID                       one map's geometry, in its own coordinates
+//   GET  /api/maps/ID/driveability?profile= what a built-in profile cannot drive, and why
+//   POST /api/maps/ID/validate              a mission (the CLI's JSON): the CLI's messages
+//   POST /api/maps/ID/plan?time_limit=S     a mission: `plan --json`, plus the fused actions
+//   POST /api/maps/ID/simulate              {"mission", "faults" | "random_faults"}: the
+//                                           executor's events as server-sent events, then the
+//                                           report
+//   POST /api/maps/ID/replay                an event log (JSON lines) read back as events
+//
+// and the page's files from `web_root` on every other GET. Maps are named by their ID (the file's
+// stem), never by a path, so a request reaches no file but the page's own. Every bad request gets
+// a 4xx status with {"error": {...}} (documents.h); with a token, every /api/ request needs
+// "Authorization: Bearer TOKEN" (or ?token=TOKEN).
+//
+//   Result<std::unique_ptr<StationServer>> s = StationServer::create(options);
+//   Result<int> port = (*s)->bind();   // port 0: any free port
+//   (*s)->run();                       // until stop(), from another thread or a signal
+//
+// Thread safety: the maps are read-only after create(); each request plans or simulates on its
+// own copies, on the server's worker threads. stop() may be called from any thread.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sewerplan/core/result.h"
+
+namespace sewerplan::server {
+
+struct ServerOptions {
+  std::vector<std::filesystem::path> maps;  // any format read_map reads
+  std::string host = "127.0.0.1";
+  int port = 8080;                 // 0: any free port (bind() says which)
+  std::string token;               // empty: no token asked
+  std::filesystem::path web_root;  // the built page (share/sewerplan/web); empty: API only
+  std::size_t max_body_bytes = 16u << 20;
+  double max_plan_time_s = 60;  // a request's time_limit is capped at this
+};
+
+class StationServer {
+ public:
+  // Reads every map (an error names the file that failed). IDs are the files' stems, made unique.
+  static Result<std::unique_ptr<StationServer>> create(const ServerOptions& options);
+  ~StationServer();
+  StationServer(const StationServer&) = delete;
+  StationServer& operator=(const StationServer&) = delete;
+
+  // Binds host:port; returns the port bound (kIo if it cannot).
+  Result<int> bind();
+  // Serves until stop(). Precondition: bind() succeeded.
+  void run();
+  void stop();
+
+ private:
+  struct Impl;
+  explicit StationServer(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace sewerplan::server

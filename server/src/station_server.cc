@@ -1,0 +1,382 @@
+// SPDX-License-Identifier: MIT
+#include "sewerplan/server/station_server.h"
+
+#include <algorithm>
+#include <atomic>
+#include <exception>
+#include <map>
+#include <set>
+#include <string_view>
+#include <thread>
+#include <utility>
+
+#include "sewerplan/core/clock.h"
+#include "sewerplan/core/map_io.h"
+#include "sewerplan/core/mission.h"
+#include "sewerplan/core/robot_profile.h"
+#include "sewerplan/domain/driveability.h"
+#include "sewerplan/domain/plan_text.h"
+#include "sewerplan/domain/validator.h"
+#include "sewerplan/executor/event_json.h"
+#include "sewerplan/executor/executor.h"
+#include "sewerplan/fusion/action_json.h"
+#include "sewerplan/fusion/action_text.h"
+#include "sewerplan/fusion/fuse.h"
+#include "sewerplan/hal/fault_scenario.h"
+#include "sewerplan/hal/sim_robot.h"
+#include "sewerplan/search/planner.h"
+#include "sewerplan/server/documents.h"
+#include "sewerplan/server/driveability_output.h"
+#include "sewerplan/server/sim_setup.h"
+
+#include "map_geometry.h"
+#include <httplib.h>
+
+namespace sewerplan::server {
+namespace {
+
+constexpr int kBadRequest = 400;
+constexpr int kUnauthorized = 401;
+constexpr int kNotFound = 404;
+constexpr int kUnprocessable = 422;  // well-formed, but not a valid mission, log or plan request
+
+struct LoadedMap {
+  std::string id;
+  SewerMap map;
+  std::string geometry;  // map_geometry_json, computed once
+};
+
+std::string dump(const Json& j) {
+  return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
+void send_json(httplib::Response& res, const Json& j, int status = 200) {
+  res.status = status;
+  res.set_content(dump(j), "application/json");
+}
+
+void send_error(httplib::Response& res, int status, const Error& error,
+                const Diagnostics& diagnostics = {}, Json extra = Json::object()) {
+  Json j = {{"error", error_object(error, diagnostics, exit_code_for(error))}};
+  for (auto& [key, value] : extra.items()) j[key] = value;
+  send_json(res, j, status);
+}
+
+void bad_request(httplib::Response& res, const std::string& message) {
+  send_error(res, kBadRequest, Error{ErrorCode::kInvalidArgument, message});
+}
+
+// The request's time limit: ?time_limit=S, at most `max_s` (default 10 s).
+std::optional<double> time_limit(const httplib::Request& req, double max_s) {
+  if (!req.has_param("time_limit")) return std::min(10.0, max_s);
+  try {
+    std::size_t used = 0;
+    const std::string text = req.get_param_value("time_limit");
+    const double s = std::stod(text, &used);
+    if (used != text.size() || !(s > 0)) return std::nullopt;
+    return std::min(s, max_s);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+}
+
+// Unique IDs from the files' stems: "map", "map-2", ...
+std::string unique_id(const std::filesystem::path& path, std::set<std::string>& taken) {
+  std::string stem = path.stem().string();
+  if (stem.empty()) stem = "map";
+  std::string id = stem;
+  for (int n = 2; taken.contains(id); ++n) id = stem + "-" + std::to_string(n);
+  taken.insert(id);
+  return id;
+}
+
+}  // namespace
+
+struct StationServer::Impl {
+  ServerOptions options;
+  std::vector<LoadedMap> maps;
+  httplib::Server http;
+  std::atomic<bool> running{false};
+  std::atomic<bool> stopping{false};
+
+  const LoadedMap* find_map(const httplib::Request& req, httplib::Response& res) const {
+    const std::string id = req.matches[1];
+    for (const LoadedMap& m : maps) {
+      if (m.id == id) return &m;
+    }
+    send_error(res, kNotFound, Error{ErrorCode::kInvalidArgument, "no map '" + id + "'"});
+    return nullptr;
+  }
+
+  // The body as a mission on `map`, or a 422 with the CLI's messages.
+  static std::optional<Mission> read_body_mission(std::string_view text, const SewerMap& map,
+                                                  httplib::Response& res) {
+    Diagnostics diagnostics;
+    Result<Mission> mission = read_mission_json(text, "mission.json", map, diagnostics);
+    if (!mission.has_value()) {
+      send_error(res, kUnprocessable, mission.error(), diagnostics);
+      return std::nullopt;
+    }
+    return std::move(*mission);
+  }
+
+  void routes();
+  void list_maps(httplib::Response& res) const;
+  void driveability(const httplib::Request& req, httplib::Response& res) const;
+  void validate(const httplib::Request& req, httplib::Response& res) const;
+  void plan(const httplib::Request& req, httplib::Response& res) const;
+  void simulate(const httplib::Request& req, httplib::Response& res) const;
+  void replay(const httplib::Request& req, httplib::Response& res) const;
+  bool authorised(const httplib::Request& req) const;
+};
+
+bool StationServer::Impl::authorised(const httplib::Request& req) const {
+  if (options.token.empty()) return true;
+  const std::string bearer = "Bearer " + options.token;
+  return req.get_header_value("Authorization") == bearer ||
+         (req.has_param("token") && req.get_param_value("token") == options.token);
+}
+
+void StationServer::Impl::list_maps(httplib::Response& res) const {
+  Json list = Json::array();
+  for (const LoadedMap& m : maps) {
+    list.push_back({{"id", m.id},
+                    {"name", m.map.name()},
+                    {"manholes", m.map.manhole_count()},
+                    {"pipes", m.map.pipe_count()}});
+  }
+  send_json(res, {{"maps", list}, {"profiles", builtin_profile_names()}});
+}
+
+void StationServer::Impl::driveability(const httplib::Request& req, httplib::Response& res) const {
+  const LoadedMap* m = find_map(req, res);
+  if (!m) return;
+  const std::string name = req.get_param_value("profile");
+  // Built-in profiles only: a profile named by a path would read a file on the server.
+  const std::optional<RobotProfile> profile = builtin_profile(name);
+  if (!profile) {
+    return bad_request(res, "profile: unknown '" + name + "' (built-in: makro-1.1, makro-plus)");
+  }
+  const std::vector<ManholeId> starts = domain::default_starts(m->map);
+  const domain::DriveabilityReport report = domain::analyse_driveability(m->map, *profile, starts);
+  res.set_content(driveability_json(report, m->map, *profile).dump(), "application/json");
+}
+
+void StationServer::Impl::validate(const httplib::Request& req, httplib::Response& res) const {
+  const LoadedMap* m = find_map(req, res);
+  if (!m) return;
+  Diagnostics diagnostics;
+  Result<Mission> mission = read_mission_json(req.body, "mission.json", m->map, diagnostics);
+  Json j = {{"valid", mission.has_value()},
+            {"errors", diagnostics_json(diagnostics, Severity::kError)},
+            {"warnings", diagnostics_json(diagnostics, Severity::kWarning)}};
+  if (!mission.has_value()) {
+    j["error"] = error_object(mission.error(), diagnostics, exit_code_for(mission.error()));
+  }
+  send_json(res, j);
+}
+
+void StationServer::Impl::plan(const httplib::Request& req, httplib::Response& res) const {
+  const LoadedMap* m = find_map(req, res);
+  if (!m) return;
+  const std::optional<double> limit = time_limit(req, options.max_plan_time_s);
+  if (!limit) return bad_request(res, "time_limit: expected seconds > 0");
+  std::optional<Mission> mission = read_body_mission(req.body, m->map, res);
+  if (!mission) return;
+  search::PlannerOptions planner;
+  planner.time_limit_s = *limit;
+  planner.select_goals = req.get_param_value("select_goals") == "1";
+  domain::MissionProgress start = domain::initial_progress(*mission, m->map);
+  const SteadyClock clock;
+  const double started_s = clock.now_s();
+  Result<search::PlanOutcome> outcome = search::plan_mission(m->map, *mission, start, planner);
+  if (!outcome.has_value()) {
+    return send_error(res, kUnprocessable, outcome.error(), {},
+                      plan_failure_json(m->map, *mission, planner, clock.now_s() - started_s));
+  }
+  const domain::MissionProgress fuse_start = start;
+  for (const auto& d : outcome->dropped) start.done[d.task.index()] = true;
+  const domain::ValidationReport report =
+      domain::validate_plan(outcome->plan, m->map, *mission, start);
+  Json j = plan_json(*outcome, report, m->map, *mission);
+  j["text"] = domain::format_plan(outcome->plan, m->map, *mission);
+  j["motion_table"] = false;  // the server plans with the turn and step rules
+  Json actions = Json::array();
+  if (Result<fusion::FusedPlan> fused = fusion::fuse(outcome->plan, m->map, *mission, fuse_start);
+      fused.has_value()) {
+    for (const fusion::RobotAction& action : fused->actions) {
+      Json a = Json::parse(fusion::write_action_json(action, m->map, *mission));
+      a["text"] = fusion::describe(action, m->map, *mission);
+      actions.push_back(std::move(a));
+    }
+  }
+  j["fused"] = std::move(actions);
+  send_json(res, j);
+}
+
+void StationServer::Impl::simulate(const httplib::Request& req, httplib::Response& res) const {
+  const LoadedMap* m = find_map(req, res);
+  if (!m) return;
+  const Json body = Json::parse(req.body, nullptr, false);
+  if (body.is_discarded() || !body.is_object()) {
+    return bad_request(res, "expected a JSON object {\"mission\", \"faults\" | \"random_faults\"}");
+  }
+  if (!body.contains("mission") || !body["mission"].is_object()) {
+    return bad_request(res, "\"mission\": expected the mission's JSON object");
+  }
+  std::optional<Mission> mission = read_body_mission(dump(body["mission"]), m->map, res);
+  if (!mission) return;
+  Diagnostics diagnostics;
+  Result<hal::FaultScenario> faults = hal::FaultScenario{};
+  if (body.contains("faults")) {
+    faults = hal::read_faults_json(dump(body["faults"]), "faults.json", m->map, diagnostics);
+  } else if (body.contains("random_faults")) {
+    if (!body["random_faults"].is_string()) {
+      return bad_request(res, "\"random_faults\": expected \"SEED[,RATE]\"");
+    }
+    faults =
+        faults_for("", body["random_faults"].get<std::string>(), m->map, *mission, diagnostics);
+  }
+  if (!faults.has_value()) {
+    const int status =
+        faults.error().code == ErrorCode::kInvalidArgument ? kBadRequest : kUnprocessable;
+    return send_error(res, status, faults.error(), diagnostics);
+  }
+  struct Run {
+    const SewerMap* map;
+    Mission mission;
+    hal::FaultScenario faults;
+  };
+  auto run = std::make_shared<Run>(Run{&m->map, std::move(*mission), std::move(*faults)});
+  res.set_header("Cache-Control", "no-cache");
+  res.set_chunked_content_provider(
+      "text/event-stream", [run](std::size_t, httplib::DataSink& sink) {
+        executor::Replanner replanner(*run->map, run->mission);
+        hal::SimRobot robot(*run->map, run->mission.profile,
+                            start_pose(replanner.progress().position), run->faults);
+        executor::Executor executor(*run->map, replanner, robot);
+        // A closed tab: the write fails, and the mission halts at its next check.
+        executor.subscribe([&](const executor::Event& event) {
+          const std::string message = "event: " + std::string(executor::type_name(event)) +
+                                      "\ndata: " + executor::to_json_line(event) + "\n\n";
+          if (!sink.write(message.data(), message.size())) executor.halt();
+        });
+        const executor::MissionReport report = executor.run();
+        const std::string last = "event: report\ndata: " + dump(report_json(report)) + "\n\n";
+        sink.write(last.data(), last.size());
+        sink.done();
+        return true;
+      });
+}
+
+void StationServer::Impl::replay(const httplib::Request& req, httplib::Response& res) const {
+  const LoadedMap* m = find_map(req, res);
+  if (!m) return;
+  Diagnostics diagnostics;
+  Result<std::vector<executor::Event>> events =
+      executor::read_event_log(req.body, "events.jsonl", diagnostics);
+  if (!events.has_value()) return send_error(res, kUnprocessable, events.error(), diagnostics);
+  Json list = Json::array();
+  for (const executor::Event& e : *events) list.push_back(Json::parse(executor::to_json_line(e)));
+  send_json(res, {{"events", list}});
+}
+
+void StationServer::Impl::routes() {
+  http.set_payload_max_length(options.max_body_bytes);
+  // A browser keeps idle connections open, each holding a worker for the keep-alive timeout, and
+  // a simulation holds one while it streams: more workers than httplib's default of 8.
+  http.new_task_queue = [] { return new httplib::ThreadPool(32); };
+  http.set_keep_alive_timeout(2);
+  http.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
+    if (req.path.starts_with("/api/") && !authorised(req)) {
+      send_json(res,
+                {{"error",
+                  {{"code", "unauthorised"},
+                   {"message", "this server needs \"Authorization: Bearer TOKEN\" (--token)"}}}},
+                kUnauthorized);
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    return httplib::Server::HandlerResponse::Unhandled;
+  });
+  // A status without a body of ours (no route, a body over the limit, a bad request line): JSON.
+  http.set_error_handler([](const httplib::Request& req, httplib::Response& res) {
+    if (!res.body.empty()) return;
+    const std::string message = res.status == 413   ? "the request body is over the size limit"
+                                : res.status == 404 ? "nothing at " + req.path
+                                                    : "bad request";
+    send_json(res,
+              {{"error", {{"code", "http-" + std::to_string(res.status)}, {"message", message}}}},
+              res.status);
+  });
+  http.set_exception_handler(
+      [](const httplib::Request&, httplib::Response& res, std::exception_ptr) {
+        send_json(res, {{"error", {{"code", "internal"}, {"message", "internal error"}}}}, 500);
+      });
+  using Req = httplib::Request;
+  using Res = httplib::Response;
+  http.Get("/api/maps", [this](const Req&, Res& res) { list_maps(res); });
+  http.Get(R"(/api/maps/([^/]+))", [this](const Req& req, Res& res) {
+    if (const LoadedMap* m = find_map(req, res)) res.set_content(m->geometry, "application/json");
+  });
+  http.Get(R"(/api/maps/([^/]+)/driveability)",
+           [this](const Req& req, Res& res) { driveability(req, res); });
+  http.Post(R"(/api/maps/([^/]+)/validate)",
+            [this](const Req& req, Res& res) { validate(req, res); });
+  http.Post(R"(/api/maps/([^/]+)/plan)", [this](const Req& req, Res& res) { plan(req, res); });
+  http.Post(R"(/api/maps/([^/]+)/simulate)",
+            [this](const Req& req, Res& res) { simulate(req, res); });
+  http.Post(R"(/api/maps/([^/]+)/replay)", [this](const Req& req, Res& res) { replay(req, res); });
+  // The page: httplib refuses paths that climb out of the mount ("..").
+  if (!options.web_root.empty()) http.set_mount_point("/", options.web_root.string());
+}
+
+Result<std::unique_ptr<StationServer>> StationServer::create(const ServerOptions& options) {
+  auto impl = std::make_unique<Impl>();
+  impl->options = options;
+  std::set<std::string> taken;
+  for (const std::filesystem::path& path : options.maps) {
+    Diagnostics diagnostics;
+    Result<SewerMap> map = read_map(path, diagnostics);
+    if (!map.has_value()) return map.error();
+    const std::string id = unique_id(path, taken);
+    std::string geometry = map_geometry_json(*map, id);
+    impl->maps.push_back({id, std::move(*map), std::move(geometry)});
+  }
+  if (!options.web_root.empty() && !std::filesystem::is_directory(options.web_root)) {
+    return Error{ErrorCode::kIo, options.web_root.string() + ": no such directory (the page)"};
+  }
+  impl->routes();
+  return std::unique_ptr<StationServer>(new StationServer(std::move(impl)));
+}
+
+StationServer::StationServer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+StationServer::~StationServer() { stop(); }
+
+Result<int> StationServer::bind() {
+  const int port = impl_->options.port == 0
+                       ? impl_->http.bind_to_any_port(impl_->options.host)
+                       : (impl_->http.bind_to_port(impl_->options.host, impl_->options.port)
+                              ? impl_->options.port
+                              : -1);
+  if (port < 0) {
+    return Error{ErrorCode::kIo, "cannot listen on " + impl_->options.host + ":" +
+                                     std::to_string(impl_->options.port)};
+  }
+  return port;
+}
+
+// httplib's stop() does nothing before listen_after_bind() is running: stop() waits for run() to
+// get there (or to see `stopping` and return) so that a stop right after the start is not lost.
+void StationServer::run() {
+  impl_->running = true;
+  if (!impl_->stopping) impl_->http.listen_after_bind();
+  impl_->running = false;
+}
+
+void StationServer::stop() {
+  impl_->stopping = true;
+  while (impl_->running && !impl_->http.is_running()) std::this_thread::yield();
+  impl_->http.stop();
+}
+
+}  // namespace sewerplan::server
