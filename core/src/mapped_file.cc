@@ -16,8 +16,8 @@ std::optional<MappedFile> MappedFile::open(const std::filesystem::path& path,
   if (fd < 0) return std::nullopt;
   struct stat st {};
   void* data = MAP_FAILED;
-  if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) &&
-      st.st_size > 0 && static_cast<std::size_t>(st.st_size) >= min_bytes) {
+  if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0 &&
+      static_cast<std::size_t>(st.st_size) >= min_bytes) {
     data = ::mmap(nullptr, static_cast<std::size_t>(st.st_size), PROT_READ,
                   MAP_PRIVATE | MAP_POPULATE, fd, 0);
   }

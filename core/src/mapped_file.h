@@ -26,7 +26,7 @@ class MappedFile {
  public:
   static constexpr std::size_t kMinMappedBytes = std::size_t{64} << 20;  // 64 MiB
 
-  // Empty if the file is not a regular file of at least min_bytes (and one byte) or cannot be mapped.
+  // Empty if the file is not a non-empty regular file of at least min_bytes, or cannot be mapped.
   static std::optional<MappedFile> open(const std::filesystem::path& path,
                                         std::size_t min_bytes = kMinMappedBytes);
 
