@@ -111,10 +111,8 @@ int run(const ExportOptions& o, Context& c) {
   }
   std::optional<render::EventTrace> trace;
   if (!o.log.empty()) {
-    Result<std::string> text = read_text_file(o.log);
-    if (!text.has_value()) return failed(text.error());
     Result<render::EventTrace> t =
-        render::read_event_trace(*text, o.log, *map, *mission, diagnostics);
+        render::read_event_trace_file(o.log, *map, *mission, diagnostics);
     if (!t.has_value()) return failed(t.error());
     trace = std::move(*t);
   }

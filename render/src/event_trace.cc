@@ -3,6 +3,7 @@
 #include "sewerplan/render/event_trace.h"
 
 #include "sewerplan/core/overloaded.h"
+#include "sewerplan/core/text_file.h"
 #include "sewerplan/domain/plan_text.h"
 #include "sewerplan/executor/event_json.h"
 
@@ -66,6 +67,13 @@ Result<EventTrace> read_event_trace(std::string_view text, const std::string& fi
     return Error{ErrorCode::kParse, file_name + ": not an event log of this map and mission"};
   }
   return trace;
+}
+
+Result<EventTrace> read_event_trace_file(const std::filesystem::path& path, const SewerMap& map,
+                                         const Mission& mission, Diagnostics& diagnostics) {
+  Result<std::string> text = read_text_file(path);
+  if (!text.has_value()) return text.error();
+  return read_event_trace(*text, path.string(), map, mission, diagnostics);
 }
 
 }  // namespace sewerplan::render

@@ -11,11 +11,14 @@
 //
 //   Diagnostics diagnostics;
 //   Result<EventTrace> trace = read_event_trace(text, "events.jsonl", map, mission, diagnostics);
+//   Result<EventTrace> from_file = read_event_trace_file("events.jsonl", map, mission,
+//   diagnostics);
 //
 // Thread safety: read_event_trace shares nothing: call it from any number of threads, each
 // with its own Diagnostics.
 #pragma once
 
+#include <filesystem>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -40,5 +43,8 @@ struct EventTrace {
 Result<EventTrace> read_event_trace(std::string_view text, const std::string& file_name,
                                     const SewerMap& map, const Mission& mission,
                                     Diagnostics& diagnostics);
+// The same, read from the file at `path` (an I/O error names the file).
+Result<EventTrace> read_event_trace_file(const std::filesystem::path& path, const SewerMap& map,
+                                         const Mission& mission, Diagnostics& diagnostics);
 
 }  // namespace sewerplan::render
