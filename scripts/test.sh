@@ -8,18 +8,27 @@
 #      and the Debian package in a scratch root, layering);
 #   4. builds with clang, AddressSanitizer and UndefinedBehaviorSanitizer and runs the suite again;
 #   5. builds the concurrent tests with ThreadSanitizer and runs them (scripts/tsan.sh);
-#   6. fuzzes every parser for a short time (scripts/fuzz.sh, 15 s per target).
+#   6. fuzzes every parser for a short time (scripts/fuzz.sh, 10 s per target).
+# Each stage prints its wall time, so the CI budget (45 minutes) can be watched stage by stage.
 # Build trees go to build/release, build/asan, build/tsan and build/fuzz. Set SEWERPLAN_SKIP_ASAN=1
 # to skip step 4 locally, SEWERPLAN_SKIP_TSAN=1 step 5, SEWERPLAN_SKIP_FUZZ=1 step 6
 # (SEWERPLAN_FUZZ_SECONDS sets its time).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc)
+# Prints how long the stage that just ended took (bash counts SECONDS from the start).
+stage_start=0
+stage_done() {
+  echo "== $1: $((SECONDS - stage_start)) s (total $((SECONDS / 60)) min $((SECONDS % 60)) s)"
+  stage_start=$SECONDS
+}
 
 bash scripts/install-deps.sh
+stage_done "dependencies"
 
 echo "== style: clang-format"
 bash scripts/check-format.sh
+stage_done "style"
 
 # The trees are built from scratch, so their debug information is cut to line tables (-g1,
 # -gline-tables-only): sanitizer reports and backtraces still name file and line, and a file
@@ -29,6 +38,7 @@ cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSEWERPL
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG"
 cmake --build build/release -j "$jobs"
 ctest --test-dir build/release --output-on-failure -j "$jobs"
+stage_done "release build and tests"
 
 if [ "${SEWERPLAN_SKIP_ASAN:-0}" != 1 ]; then
   echo "== ASan + UBSan build and tests (clang)"
@@ -38,15 +48,18 @@ if [ "${SEWERPLAN_SKIP_ASAN:-0}" != 1 ]; then
   cmake --build build/asan -j "$jobs"
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir build/asan --output-on-failure -j "$jobs"
+  stage_done "ASan + UBSan build and tests"
 fi
 if [ "${SEWERPLAN_SKIP_TSAN:-0}" != 1 ]; then
   echo "== ThreadSanitizer: the concurrent tests (gcc)"
   bash scripts/tsan.sh
+  stage_done "ThreadSanitizer"
 fi
 if [ "${SEWERPLAN_SKIP_FUZZ:-0}" != 1 ]; then
   echo "== libFuzzer on every parser (clang)"
   # Its own tree (build/fuzz, core and domain only): coverage instrumentation would slow the ASan
   # suite's planner tests, some of which run against a time limit.
-  bash scripts/fuzz.sh "${SEWERPLAN_FUZZ_SECONDS:-15}"
+  bash scripts/fuzz.sh "${SEWERPLAN_FUZZ_SECONDS:-10}"
+  stage_done "fuzzing"
 fi
 echo "== all tests passed"
