@@ -40,9 +40,10 @@ class CanRobotTest : public ::testing::TestWithParam<Transport> {
         profile_(*builtin_profile("makro-1.1")) {}
 
   SimPose start() const { return InPipe{*map_.find_pipe("P1"), 5.0, Heading::kTowardsEnd1}; }
-  std::unique_ptr<CanNodeThread> node(BusFaults bus_faults = {}, FaultScenario faults = {}) {
+  std::unique_ptr<CanNodeThread> node(BusFaults bus_faults = {}, FaultScenario faults = {},
+                                      double heartbeat_s = 0.5) {
     return std::make_unique<CanNodeThread>(map_, profile_, start(), std::move(faults),
-                                           std::move(bus_faults), GetParam());
+                                           std::move(bus_faults), GetParam(), heartbeat_s);
   }
   static BusFaults faults(std::string_view spec) {
     Result<BusFaults> f = parse_bus_faults(spec);
@@ -145,6 +146,25 @@ TEST_P(CanRobotTest, ALateAcknowledgementIsWaitedForOrRetried) {
   EXPECT_GE(robot.stats().retries, 1U);
   n->stop();
   EXPECT_EQ(n->node().stats().jobs_run, 2U);
+}
+
+// An acknowledgement later than every send and every result request (0.3 s + 3 x 0.2 s here;
+// 1.5 s + 3 x 2 s with the defaults): the node, busy, goes on sending heartbeats, so the controller
+// waits for the result. The simulated node used to sleep through the delay, silent, and the
+// mission ended in a lost link and a failed reboot.
+TEST_P(CanRobotTest, AnAcknowledgementLaterThanEveryRetryChangesNothingWhileTheNodeIsAlive) {
+  SimRobot local(map_, profile_, start());
+  auto n = node(faults("late-ack=0@1.5"), {}, /*heartbeat_s=*/0.05);
+  CanRobot robot(n->controller_bus(),
+                 {.ack_timeout_s = 0.1, .link_timeout_s = 0.2, .heartbeat_s = 0.05});
+  ASSERT_TRUE(robot.connect().has_value());
+  EXPECT_EQ(robot.execute(jobs_[0]), local.execute(jobs_[0]));
+  EXPECT_EQ(robot.execute(jobs_[1]), local.execute(jobs_[1]));
+  EXPECT_EQ(robot.stats().link_failures, 0U);
+  EXPECT_EQ(robot.stats().emergency_stops, 0U);
+  n->stop();
+  EXPECT_EQ(n->node().stats().jobs_run, 2U);
+  EXPECT_EQ(n->robot().pose(), local.pose());
 }
 
 TEST_P(CanRobotTest, SilenceIsAMalfunctionThatARebootOverTheBusClears) {
