@@ -136,7 +136,8 @@ void SimNode::handle_job(const JobCommand& command) {
     return;
   }
   const BusFaults& faults = options_.faults;
-  if (faults.late_ack && faults.late_ack->job == stats_.jobs_run && !late_job_) {
+  if (faults.late_ack && faults.late_ack->job == stats_.jobs_run && !late_ack_used_) {
+    late_ack_used_ = true;  // once: a job sent after the held one was dropped is not held
     // Held back while the node goes on serving (heartbeats busy, the adapter answering): a node
     // that slept here fell silent altogether, which is a lost link, not a late acknowledgement.
     late_job_ = LateJob{command, clock_->now_s() + faults.late_ack->delay_s};

@@ -133,6 +133,7 @@ class SimNode {
     double due_s = 0;
   };
   std::optional<LateJob> late_job_;
+  bool late_ack_used_ = false;
   std::uint8_t heartbeat_counter_ = 0;
   double last_heartbeat_s_ = -1e300;
 };
