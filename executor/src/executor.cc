@@ -213,7 +213,7 @@ class Executor::Run {
                        .kind = std::string(fusion::action_kind(action)),
                        .duration_s = fusion::duration_s(action),
                        .parameters = fusion::describe(action, map_, mission())});
-      for (const Job& job : jobs_for(action)) {
+      for (const Job& job : fusion::expand(action, mission().profile)) {
         std::optional<Failure> failure = recovery_.run_job(job, action);
         if (failure || halted()) {
           sync_progress(replay.progress());
@@ -244,23 +244,6 @@ class Executor::Run {
       sync_progress(replay.progress());
     }
     return std::nullopt;
-  }
-
-  // The jobs for an action. A drive to a manhole of 0 m has none (fusion drops it), but the robot
-  // right at the pipe's end, as a pass into the pipe leaves it, must still drive onto the mouth.
-  std::vector<Job> jobs_for(const fusion::RobotAction& action) const {
-    std::vector<Job> jobs = fusion::expand(action, mission().profile);
-    const auto* drive = std::get_if<fusion::DriveToManhole>(&action);
-    if (!jobs.empty() || drive == nullptr ||
-        !std::holds_alternative<domain::InPipe>(tracker_.position())) {
-      return jobs;
-    }
-    if (drive->direction == fusion::Direction::kForward) {
-      jobs.emplace_back(DriveForward{.speed_mps = drive->speed_mps, .distance_m = 0});
-    } else {
-      jobs.emplace_back(DriveBackward{.speed_mps = drive->speed_mps, .distance_m = 0});
-    }
-    return jobs;
   }
 
   // Whether the position the robot's reports give agrees with the plan's. At a pipe's mouth
