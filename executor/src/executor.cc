@@ -107,7 +107,10 @@ class Executor::Run {
       }
       std::optional<Replan> replan = execute(response);
       if (halted()) return finish(MissionReport::Outcome::kHalted, "");
-      if (!replan) return finish(MissionReport::Outcome::kEnded, response.end);
+      if (!replan) {
+        confirm_final_task();
+        return finish(MissionReport::Outcome::kEnded, response.end);
+      }
       if (report_.replans >= options_.max_replans) {
         report_.beacon_cause = MissionReport::BeaconCause::kLimit;
         return finish(MissionReport::Outcome::kBeacon,
@@ -244,6 +247,31 @@ class Executor::Run {
       sync_progress(replay.progress());
     }
     return std::nullopt;
+  }
+
+  // The final go-to that no plan step names (to a manhole, or to a whole pipe: the plan ends
+  // there) is done when the plan has been carried out and the robot, by its own reports, is there.
+  void confirm_final_task() {
+    const std::optional<TaskId> t = mission().final_task_id();
+    if (!t || done_[t->index()] || !at(mission().task(*t).place)) return;
+    const std::string& name = mission().task(*t).name;
+    report_.tasks_done.push_back(name);
+    done_[t->index()] = true;
+    emit(TaskDoneEvent{name});
+  }
+
+  // Whether the robot's reports put it at `place`: in the manhole or at one of its mouths; in the
+  // pipe or at one of its mouths; within 1 mm of a point in a pipe.
+  bool at(const Place& place) const {
+    const domain::RobotPosition& here = tracker_.position();
+    if (const auto* m = std::get_if<ManholeId>(&place)) return domain::manhole_of(here) == *m;
+    const auto& spot = std::get<PipeSpot>(place);
+    if (spot.offset_m) return agrees(here, domain::InPipe{spot.pipe, *spot.offset_m});
+    if (const auto* in = std::get_if<domain::InPipe>(&here)) return in->pipe == spot.pipe;
+    if (const auto* slot = std::get_if<domain::AtSlot>(&here)) {
+      return map_.slot(slot->manhole, slot->slot).pipe == spot.pipe;
+    }
+    return false;
   }
 
   // Whether the position the robot's reports give agrees with the plan's. At a pipe's mouth
