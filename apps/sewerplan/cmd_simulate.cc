@@ -3,10 +3,13 @@
 //                    [--recovery FILE] [--allow-push] [--log FILE] [--learnt FILE] [--quiet]
 //                    [--can slcan:TTY|socketcan:IFACE | --replay CANDUMP.log] [--can-log FILE]
 //                    [--condition FILE] [--risk MODE] [--risk-table FILE]
+#include <cerrno>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <ostream>
+#include <thread>
 
 #include <CLI/CLI.hpp>
 
@@ -25,6 +28,8 @@
 #include "json_output.h"
 #include "motion_options.h"
 #include "sim_setup.h"
+#include <poll.h>
+#include <unistd.h>
 
 namespace sewerplan::cli {
 namespace {
@@ -44,6 +49,64 @@ struct SimulateOptions {
   std::string condition;
   RiskOptions risk;
   bool json = false;
+};
+
+// Ctrl-C (SIGINT) and SIGTERM halt the mission (Executor::halt: the robot's emergency stop, the
+// log closed, exit 4) instead of killing the process with the robot driving. The handler only
+// writes a byte to a pipe (async-signal-safe); a watcher thread reads it and calls halt().
+int g_signal_pipe_write = -1;
+
+extern "C" void on_halt_signal(int) {
+  const int saved = errno;
+  if (g_signal_pipe_write >= 0) {
+    const char byte = 'h';
+    [[maybe_unused]] const ssize_t n = ::write(g_signal_pipe_write, &byte, 1);
+  }
+  errno = saved;
+}
+
+class HaltOnSignal {
+ public:
+  explicit HaltOnSignal(executor::Executor& executor) {
+    if (::pipe(fds_) != 0) return;
+    g_signal_pipe_write = fds_[1];
+    struct sigaction action {};
+    action.sa_handler = on_halt_signal;
+    sigemptyset(&action.sa_mask);
+    sigaction(SIGINT, &action, &old_int_);
+    sigaction(SIGTERM, &action, &old_term_);
+    watcher_ = std::thread([this, &executor] {
+      pollfd fd{.fd = fds_[0], .events = POLLIN, .revents = 0};
+      while (true) {
+        if (::poll(&fd, 1, -1) < 0) {
+          if (errno == EINTR) continue;
+          return;
+        }
+        char byte = 0;
+        if (::read(fds_[0], &byte, 1) != 1 || byte == 'q') return;
+        executor.halt();
+      }
+    });
+  }
+  HaltOnSignal(const HaltOnSignal&) = delete;
+  HaltOnSignal& operator=(const HaltOnSignal&) = delete;
+  ~HaltOnSignal() {
+    if (!watcher_.joinable()) return;
+    sigaction(SIGINT, &old_int_, nullptr);
+    sigaction(SIGTERM, &old_term_, nullptr);
+    g_signal_pipe_write = -1;
+    const char quit = 'q';
+    [[maybe_unused]] const ssize_t n = ::write(fds_[1], &quit, 1);
+    watcher_.join();
+    ::close(fds_[0]);
+    ::close(fds_[1]);
+  }
+
+ private:
+  int fds_[2] = {-1, -1};
+  struct sigaction old_int_ {};
+  struct sigaction old_term_ {};
+  std::thread watcher_;
 };
 
 int run(const SimulateOptions& o, Context& c) {
@@ -102,7 +165,10 @@ int run(const SimulateOptions& o, Context& c) {
   if (!o.log.empty()) executor.subscribe(executor::json_lines_writer(log_file));
   // With --json, standard output is the report alone: the live log goes to standard error.
   if (!o.quiet) executor.subscribe(executor::readable_writer(o.json ? c.err : c.out));
-  const executor::MissionReport report = executor.run();
+  const executor::MissionReport report = [&] {
+    HaltOnSignal halt_on_signal(executor);
+    return executor.run();
+  }();
   if (o.json) {
     print_json(c.out, report_json(report));
   } else {

@@ -92,17 +92,15 @@ Execution execute(const SewerMap& map, const Mission& mission, const hal::FaultS
   e.planning_times_s = report.planning_times_s;
   const std::optional<ManholeId> m = manhole_of(robot.pose());
   // A final task that is a place (go to a pipe or a manhole) is done by ending there: the executor
-  // validated the plan and carried it out to its end, and the Replanner had not dropped it.
+  // counts it when the robot is confirmed there at the end of the plan.
   const Task* final_task = replanner.mission().final_task();
   const bool ended = report.outcome == executor::MissionReport::Outcome::kEnded;
-  if (ended && final_task != nullptr &&
-      std::find(report.tasks_done.begin(), report.tasks_done.end(), final_task->name) ==
-          report.tasks_done.end()) {
-    ++e.tasks;
-  }
+  const bool at_end_point = ended && final_task != nullptr &&
+                            std::find(report.tasks_done.begin(), report.tasks_done.end(),
+                                      final_task->name) != report.tasks_done.end();
   if (m && map.manhole(*m).exit) {
     e.outcome = Outcome::kExit;
-  } else if (ended && final_task != nullptr) {
+  } else if (at_end_point) {
     e.outcome = Outcome::kEndPoint;
   } else if (robot.status().beacon_on) {
     e.outcome = Outcome::kBeacon;

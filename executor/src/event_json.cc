@@ -241,7 +241,7 @@ std::string to_json_line(const Event& event) {
 EventObserver json_lines_writer(std::ostream& out) {
   return [&out](const Event& event) {
     out << to_json_line(event) << '\n';
-    if (std::holds_alternative<MissionEndEvent>(event.what)) out.flush();
+    out.flush();  // a watcher (tail -f, a test) sees each event as it happens
   };
 }
 

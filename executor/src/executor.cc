@@ -107,7 +107,10 @@ class Executor::Run {
       }
       std::optional<Replan> replan = execute(response);
       if (halted()) return finish(MissionReport::Outcome::kHalted, "");
-      if (!replan) return finish(MissionReport::Outcome::kEnded, response.end);
+      if (!replan) {
+        confirm_final_task();
+        return finish(MissionReport::Outcome::kEnded, response.end);
+      }
       if (report_.replans >= options_.max_replans) {
         report_.beacon_cause = MissionReport::BeaconCause::kLimit;
         return finish(MissionReport::Outcome::kBeacon,
@@ -213,7 +216,7 @@ class Executor::Run {
                        .kind = std::string(fusion::action_kind(action)),
                        .duration_s = fusion::duration_s(action),
                        .parameters = fusion::describe(action, map_, mission())});
-      for (const Job& job : jobs_for(action)) {
+      for (const Job& job : fusion::expand(action, mission().profile)) {
         std::optional<Failure> failure = recovery_.run_job(job, action);
         if (failure || halted()) {
           sync_progress(replay.progress());
@@ -246,21 +249,29 @@ class Executor::Run {
     return std::nullopt;
   }
 
-  // The jobs for an action. A drive to a manhole of 0 m has none (fusion drops it), but the robot
-  // right at the pipe's end, as a pass into the pipe leaves it, must still drive onto the mouth.
-  std::vector<Job> jobs_for(const fusion::RobotAction& action) const {
-    std::vector<Job> jobs = fusion::expand(action, mission().profile);
-    const auto* drive = std::get_if<fusion::DriveToManhole>(&action);
-    if (!jobs.empty() || drive == nullptr ||
-        !std::holds_alternative<domain::InPipe>(tracker_.position())) {
-      return jobs;
+  // The final go-to that no plan step names (to a manhole, or to a whole pipe: the plan ends
+  // there) is done when the plan has been carried out and the robot, by its own reports, is there.
+  void confirm_final_task() {
+    const std::optional<TaskId> t = mission().final_task_id();
+    if (!t || done_[t->index()] || !at(mission().task(*t).place)) return;
+    const std::string& name = mission().task(*t).name;
+    report_.tasks_done.push_back(name);
+    done_[t->index()] = true;
+    emit(TaskDoneEvent{name});
+  }
+
+  // Whether the robot's reports put it at `place`: in the manhole or at one of its mouths; in the
+  // pipe or at one of its mouths; within 1 mm of a point in a pipe.
+  bool at(const Place& place) const {
+    const domain::RobotPosition& here = tracker_.position();
+    if (const auto* m = std::get_if<ManholeId>(&place)) return domain::manhole_of(here) == *m;
+    const auto& spot = std::get<PipeSpot>(place);
+    if (spot.offset_m) return agrees(here, domain::InPipe{spot.pipe, *spot.offset_m});
+    if (const auto* in = std::get_if<domain::InPipe>(&here)) return in->pipe == spot.pipe;
+    if (const auto* slot = std::get_if<domain::AtSlot>(&here)) {
+      return map_.slot(slot->manhole, slot->slot).pipe == spot.pipe;
     }
-    if (drive->direction == fusion::Direction::kForward) {
-      jobs.emplace_back(DriveForward{.speed_mps = drive->speed_mps, .distance_m = 0});
-    } else {
-      jobs.emplace_back(DriveBackward{.speed_mps = drive->speed_mps, .distance_m = 0});
-    }
-    return jobs;
+    return false;
   }
 
   // Whether the position the robot's reports give agrees with the plan's. At a pipe's mouth

@@ -6,9 +6,9 @@
 namespace sewerplan::fusion {
 namespace {
 
-// A drive along the pipe; nothing for a distance of 0.
-void add_drive(std::vector<Job>& jobs, const PipeDrive& drive) {
-  if (drive.distance_m == 0) return;
+// A drive along the pipe; nothing for a distance of 0 unless `onto_mouth`.
+void add_drive(std::vector<Job>& jobs, const PipeDrive& drive, bool onto_mouth = false) {
+  if (drive.distance_m == 0 && !onto_mouth) return;
   switch (drive.direction) {
     case Direction::kForward:
       jobs.emplace_back(DriveForward{.speed_mps = drive.speed_mps, .distance_m = drive.distance_m});
@@ -28,7 +28,9 @@ std::vector<Job> expand(const RobotAction& action, const RobotProfile& /*profile
       [&jobs](const auto& a) {
         using T = std::decay_t<decltype(a)>;
         if constexpr (std::is_same_v<T, DriveToManhole>) {
-          add_drive(jobs, {a.direction, a.distance_m, a.speed_mps});
+          // Also of 0 m: a robot right at the pipe's end (as a pass into the pipe leaves it)
+          // still drives onto the mouth; at the mouth already, a robot does nothing.
+          add_drive(jobs, {a.direction, a.distance_m, a.speed_mps}, /*onto_mouth=*/true);
         } else if constexpr (std::is_same_v<T, PassManhole>) {
           jobs.emplace_back(TurnInManhole{.from_slot = a.from_slot.value(),
                                           .to_slot = a.to_slot.value(),

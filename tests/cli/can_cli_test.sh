@@ -98,6 +98,31 @@ expect 0 'reason=CAN link: no acknowledgement of job' -- "$sp" simulate --map "$
   --mission "$mission" --can "slcan:$pty"
 stop_node
 
+# Ctrl-C halts a running mission (Executor::halt; docs/cli.md): the node holds job 2's
+# acknowledgement back for 30 s (busy, with heartbeats), so the controller is waiting on a job when
+# SIGINT arrives. The mission ends "halted", the log is complete, the exit code is 4.
+start_node --bus-faults 'late-ack=2@30'
+"$sp" simulate --map "$ais" --mission "$mission" --can "slcan:$pty" --log "$tmp/halt.jsonl" \
+  > "$tmp/halt.out" 2> "$tmp/halt.err" &
+sim_pid=$!
+# The log is flushed per event: the second job's line is there while the third job waits.
+for _ in $(seq 1 200); do
+  [ "$(grep -c '"type":"job"' "$tmp/halt.jsonl" 2>/dev/null)" -ge 2 ] && break
+  sleep 0.05
+done
+kill -INT "$sim_pid"
+wait "$sim_pid"
+got=$?
+stop_node
+if [ "$got" -eq 4 ] && tail -1 "$tmp/halt.jsonl" | grep -q '"outcome":"halted"' &&
+  grep -q 'halted' "$tmp/halt.out" && ! grep -q 'CAN link' "$tmp/halt.jsonl"; then
+  passed=$((passed + 1))
+else
+  echo "FAIL: SIGINT during simulate --can -> exit $got (want 4), log ends:"
+  tail -2 "$tmp/halt.jsonl"; tail -5 "$tmp/halt.out"; tail -5 "$tmp/halt.err"
+  failures=$((failures + 1))
+fi
+
 # Errors name what is wrong.
 expect 2 "--can: expected slcan:TTY or socketcan:INTERFACE, got 'can0'" -- \
   "$sp" simulate --map "$ais" --mission "$mission" --can can0

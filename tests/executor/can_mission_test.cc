@@ -112,7 +112,7 @@ TEST(CanMission, ThePapersMissionOverSlcanEqualsTheSimulatedRobotInProcess) {
   const CanRun bus = over_can(ais, {});
   EXPECT_EQ(bus.report, local.report);
   EXPECT_EQ(bus.json_lines, local.json_lines);
-  EXPECT_EQ(bus.mission.tasks_done, (std::vector<std::string>{"sample", "inspect"}));
+  EXPECT_EQ(bus.mission.tasks_done, (std::vector<std::string>{"sample", "inspect", "end"}));
   EXPECT_EQ(bus.link.retries, 0U);
 }
 
@@ -164,7 +164,8 @@ TEST(CanMission, SilenceAndBusOffAreMalfunctionsThatARebootOverTheBusClears) {
   for (const char* spec : {"silence=4+3", "bus-off=4"}) {
     const CanRun bus = over_can(ais, {}, spec);
     EXPECT_EQ(bus.mission.outcome, MissionOutcome::kEnded) << spec;
-    EXPECT_EQ(bus.mission.tasks_done, (std::vector<std::string>{"sample", "inspect"})) << spec;
+    EXPECT_EQ(bus.mission.tasks_done, (std::vector<std::string>{"sample", "inspect", "end"}))
+        << spec;
     EXPECT_EQ(bus.mission.recoveries, 1U) << spec;
     EXPECT_THAT(bus.json_lines, HasSubstr(R"("kind":"malfunction","reason":"CAN link: )"));
     EXPECT_THAT(bus.json_lines, HasSubstr(R"("phase":"reboot","ok":true)"));

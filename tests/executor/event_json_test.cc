@@ -3,6 +3,7 @@
 // same bytes; logs of earlier versions read; bad lines named by file and line; the readable line.
 #include "sewerplan/executor/event_json.h"
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -84,6 +85,30 @@ TEST(EventLog, EveryKindOfEventReadsBackEqual) {
   Result<std::vector<Event>> read = read_event_log(text, "all.jsonl", d);
   ASSERT_TRUE(read.has_value()) << d.error_summary() << text;
   EXPECT_EQ(*read, events) << text;
+}
+
+// Counts the flushes of the stream written to.
+class SyncCounter : public std::stringbuf {
+ public:
+  int syncs = 0;
+
+ protected:
+  int sync() override {
+    ++syncs;
+    return std::stringbuf::sync();
+  }
+};
+
+TEST(EventLog, TheWriterFlushesEveryLineSoThatAWatcherSeesIt) {
+  SyncCounter buffer;
+  std::ostream out(&buffer);
+  const EventObserver write = json_lines_writer(out);
+  write({0, PlanEvent{.reason = "start"}});
+  EXPECT_EQ(buffer.syncs, 1);
+  write({3, JobEvent{"DriveForward(0.30 m/s, 2.83 m)", 2.83, true}});
+  EXPECT_EQ(buffer.syncs, 2);
+  const std::string text = buffer.str();
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 2);
 }
 
 TEST(EventLog, BadLinesAreNamedByFileAndLineAndOtherTypesSkipped) {

@@ -69,7 +69,7 @@ TEST(Executor, WithoutFaultsThePapersMissionIsDoneAsPlanned) {
   const auto ais = testing::load_ais_testbed();
   const SimRun run = simulate(ais.map, ais.mission, {});
   EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded);
-  EXPECT_EQ(run.report.tasks_done, (std::vector<std::string>{"sample", "inspect"}));
+  EXPECT_EQ(run.report.tasks_done, (std::vector<std::string>{"sample", "inspect", "end"}));
   EXPECT_EQ(run.report.replans, 0U);
   EXPECT_EQ(run.report.beacon_cause, MissionReport::BeaconCause::kNone);
   EXPECT_NE(run.json_lines.find(R"("decision":"follow-plan","beacon_cause":"none")"),
@@ -85,7 +85,7 @@ TEST(Executor, ABlockedPipeOnTheRouteIsDrivenAroundAndEveryTaskDone) {
       simulate(ais.map, ais.mission, faults(ais.map, R"({"format": "sewerplan-faults", "version": 1,
                           "obstacles": [{"pipe": "P4", "offset_m": 5.0, "kind": "permanent"}]})"));
   EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded);
-  EXPECT_EQ(run.report.tasks_done, (std::vector<std::string>{"sample"}));
+  EXPECT_EQ(run.report.tasks_done, (std::vector<std::string>{"sample", "end"}));
   EXPECT_TRUE(run.report.dropped.empty());
   EXPECT_EQ(run.report.replans, 1U);
   EXPECT_NE(run.report.end.find("pipe P9"), std::string::npos) << run.report.end;
@@ -102,7 +102,7 @@ TEST(Executor, ABlockageThatCutsATaskOffDropsItAndDoesTheRest) {
   ASSERT_TRUE(scenario.has_value()) << d.error_summary();
   const SimRun run = simulate(ais.map, ais.mission, *scenario);
   EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded);
-  EXPECT_EQ(run.report.tasks_done, (std::vector<std::string>{"sample"}));
+  EXPECT_EQ(run.report.tasks_done, (std::vector<std::string>{"sample", "end"}));
   EXPECT_TRUE(dropped(run, "inspect", "pipe P4 is blocked at 4.95 m"));
   EXPECT_NE(run.report.end.find("pipe P9"), std::string::npos) << run.report.end;
   // The transient obstacle in P1 was cleared by lifting the head, without a replan.
@@ -156,7 +156,8 @@ TEST(Executor, AClusterOfTransientMalfunctionsDoesNotEndTheMission) {
                            {"at_time_s": 125, "kind": "transient"},
                            {"at_time_s": 155, "kind": "transient"}]})"));
   EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded) << run.report;
-  EXPECT_EQ(run.report.tasks_done, (std::vector<std::string>{"sample", "inspect"})) << run.report;
+  EXPECT_EQ(run.report.tasks_done, (std::vector<std::string>{"sample", "inspect", "end"}))
+      << run.report;
 }
 
 // Malfunctions that each strike after the robot has worked again since the last reboot: each is
@@ -170,7 +171,8 @@ TEST(Executor, TransientMalfunctionsWithWorkBetweenThemAreEachRebootedThrough) {
                            {"at_time_s": 170, "kind": "transient"},
                            {"at_time_s": 205, "kind": "transient"}]})"));
   EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded) << run.report;
-  EXPECT_EQ(run.report.tasks_done, (std::vector<std::string>{"sample", "inspect"})) << run.report;
+  EXPECT_EQ(run.report.tasks_done, (std::vector<std::string>{"sample", "inspect", "end"}))
+      << run.report;
   EXPECT_EQ(run.report.recoveries, 4U) << run.report;
 }
 
@@ -180,7 +182,7 @@ TEST(Executor, ATransientMalfunctionIsRebootedAndTheMissionGoesOn) {
       simulate(ais.map, ais.mission, faults(ais.map, R"({"format": "sewerplan-faults", "version": 1,
                                   "malfunctions": [{"at_job": 3, "kind": "transient"}]})"));
   EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded);
-  EXPECT_EQ(run.report.tasks_done, (std::vector<std::string>{"sample", "inspect"}));
+  EXPECT_EQ(run.report.tasks_done, (std::vector<std::string>{"sample", "inspect", "end"}));
   EXPECT_EQ(run.report.replans, 0U);
   EXPECT_EQ(run.report.recoveries, 1U);
   EXPECT_NE(run.json_lines.find(R"("phase":"reboot","ok":true)"), std::string::npos);
@@ -199,7 +201,7 @@ TEST(Executor, ATransientObstacleIsClearedWithoutAReplan) {
                  options);
     EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded) << kind;
     EXPECT_EQ(run.report.replans, 0U) << kind;
-    EXPECT_EQ(run.report.tasks_done.size(), 2U) << kind;
+    EXPECT_EQ(run.report.tasks_done.size(), 3U) << kind;
     EXPECT_EQ(run.report.recoveries, 1U) << kind;
   }
 }
@@ -285,7 +287,7 @@ TEST(Executor, ASecondObstacleBehindAClearedOneGetsItsOwnRecovery) {
                         {"pipe": "P1", "offset_m": 6.0, "kind": "transient_lift"}]})"));
   EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded) << run.report;
   EXPECT_EQ(run.report.replans, 0U) << run.report;
-  EXPECT_EQ(run.report.tasks_done.size(), 2U) << run.report;
+  EXPECT_EQ(run.report.tasks_done.size(), 3U) << run.report;
   EXPECT_EQ(run.report.recoveries, 2U) << run.report;
 }
 

@@ -27,8 +27,16 @@ TEST(ExpandTest, ADriveToAManholeIsOneDriveInItsDirection) {
             std::vector<Job>{(DriveBackward{.speed_mps = 0.3, .distance_m = 2.5})});
 }
 
-TEST(ExpandTest, ADriveOfZeroMetresHasNoJob) {
-  EXPECT_TRUE(expand(DriveToManhole{.distance_m = 0, .speed_mps = 0.3}, profile()).empty());
+// A drive to a manhole of 0 m still takes a robot right at the pipe's end onto the mouth (the
+// executor used to add that job itself); a 0 m approach to a point is no job.
+TEST(ExpandTest, ADriveOfZeroMetresToAManholeIsAJobAndToAPointNone) {
+  EXPECT_EQ(expand(DriveToManhole{.distance_m = 0, .speed_mps = 0.3}, profile()),
+            std::vector<Job>{(DriveForward{.speed_mps = 0.3, .distance_m = 0})});
+  EXPECT_EQ(
+      expand(DriveToManhole{.direction = Direction::kBackward, .distance_m = 0, .speed_mps = 0.3},
+             profile()),
+      std::vector<Job>{(DriveBackward{.speed_mps = 0.3, .distance_m = 0})});
+  EXPECT_TRUE(expand(GoToPoint{.drive = {Direction::kForward, 0, 0.3}}, profile()).empty());
 }
 
 TEST(ExpandTest, APassageIsOneTurnWithTheActionsParameters) {
@@ -96,11 +104,12 @@ TEST(ExpandPlanTest, ThePapersPlanGivesItsJobsWithActionAndJobIndices) {
   std::ostringstream kinds;
   for (const PlannedJob& j : jobs)
     kinds << j.action_index << '.' << j.job_index << job_kind(j.job) << ' ';
-  // The drive of 0 m to M5 after the inspection (action 10) has no job.
+  // The drive of 0 m to M5 after the inspection (action 10) takes the robot from the pipe's end,
+  // where the scan leaves it, onto the mouth.
   EXPECT_EQ(kinds.str(),
             "0.0drive_forward 1.0turn_in_manhole 2.0drive_forward 3.0turn_in_manhole "
             "4.0drive_forward 5.0turn_in_manhole 6.0drive_forward 6.1stop 6.2take_sample "
-            "7.0drive_backward 8.0turn_in_manhole 9.0scan 11.0turn_in_manhole "
+            "7.0drive_backward 8.0turn_in_manhole 9.0scan 10.0drive_forward 11.0turn_in_manhole "
             "12.0drive_forward 13.0turn_in_manhole ");
   std::ostringstream first;
   first << jobs.at(7);

@@ -4,7 +4,9 @@
 // clear reason that a reboot over the bus clears.
 #include "sewerplan/hal/can/can_robot.h"
 
+#include <future>
 #include <limits>
+#include <thread>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -40,9 +42,10 @@ class CanRobotTest : public ::testing::TestWithParam<Transport> {
         profile_(*builtin_profile("makro-1.1")) {}
 
   SimPose start() const { return InPipe{*map_.find_pipe("P1"), 5.0, Heading::kTowardsEnd1}; }
-  std::unique_ptr<CanNodeThread> node(BusFaults bus_faults = {}, FaultScenario faults = {}) {
+  std::unique_ptr<CanNodeThread> node(BusFaults bus_faults = {}, FaultScenario faults = {},
+                                      double heartbeat_s = 0.5) {
     return std::make_unique<CanNodeThread>(map_, profile_, start(), std::move(faults),
-                                           std::move(bus_faults), GetParam());
+                                           std::move(bus_faults), GetParam(), heartbeat_s);
   }
   static BusFaults faults(std::string_view spec) {
     Result<BusFaults> f = parse_bus_faults(spec);
@@ -147,6 +150,25 @@ TEST_P(CanRobotTest, ALateAcknowledgementIsWaitedForOrRetried) {
   EXPECT_EQ(n->node().stats().jobs_run, 2U);
 }
 
+// An acknowledgement later than every send and every result request (0.3 s + 3 x 0.2 s here;
+// 1.5 s + 3 x 2 s with the defaults): the node, busy, goes on sending heartbeats, so the controller
+// waits for the result. The simulated node used to sleep through the delay, silent, and the
+// mission ended in a lost link and a failed reboot.
+TEST_P(CanRobotTest, AnAcknowledgementLaterThanEveryRetryChangesNothingWhileTheNodeIsAlive) {
+  SimRobot local(map_, profile_, start());
+  auto n = node(faults("late-ack=0@1.5"), {}, /*heartbeat_s=*/0.05);
+  CanRobot robot(n->controller_bus(),
+                 {.ack_timeout_s = 0.1, .link_timeout_s = 0.2, .heartbeat_s = 0.05});
+  ASSERT_TRUE(robot.connect().has_value());
+  EXPECT_EQ(robot.execute(jobs_[0]), local.execute(jobs_[0]));
+  EXPECT_EQ(robot.execute(jobs_[1]), local.execute(jobs_[1]));
+  EXPECT_EQ(robot.stats().link_failures, 0U);
+  EXPECT_EQ(robot.stats().emergency_stops, 0U);
+  n->stop();
+  EXPECT_EQ(n->node().stats().jobs_run, 2U);
+  EXPECT_EQ(n->robot().pose(), local.pose());
+}
+
 TEST_P(CanRobotTest, SilenceIsAMalfunctionThatARebootOverTheBusClears) {
   // Request 0 is connect's; the job is sent 3 times (1-3) into the silence.
   auto n = node(faults("silence=1+3"));
@@ -216,6 +238,66 @@ TEST_P(CanRobotTest, AnEmergencyStopAskedForIsSentAndHoldsTheRobotUntilAReboot) 
   n->stop();
   EXPECT_EQ(n->node().stats().emergency_stops, 1U);  // it reached the node
   EXPECT_EQ(n->node().stats().jobs_run, 1U);         // the job asked for while stopped was not sent
+}
+
+// The steady clock, which also tells another thread once the controller has timed out `timeouts`
+// times in the job it waits on: the clock is read on the controller's thread, so it may look at
+// the robot's stats there.
+class WaitingSignal final : public Clock {
+ public:
+  explicit WaitingSignal(std::size_t timeouts) : timeouts_(timeouts) {}
+  void watch(const CanRobot& robot) { robot_ = &robot; }
+  std::future<void> waiting() { return waiting_.get_future(); }
+  double now_s() const override {
+    if (robot_ != nullptr && !signalled_ && robot_->stats().timeouts >= timeouts_) {
+      signalled_ = true;
+      waiting_.set_value();
+    }
+    return steady_.now_s();
+  }
+
+ private:
+  std::size_t timeouts_;
+  const CanRobot* robot_ = nullptr;
+  SteadyClock steady_;
+  mutable bool signalled_ = false;
+  mutable std::promise<void> waiting_;
+};
+
+// Executor::halt() while the controller waits on a job that the node holds back (late-ack 30 s):
+// while it waits for the acknowledgement (1 timeout), and while it waits for the result after
+// every send has timed out (3). The stop ends the wait, reaches the node, and the held job never
+// runs (the simulated node used to sleep through the delay and run the job after the stop).
+TEST_P(CanRobotTest, AnEmergencyStopWhileTheControllerWaitsOnAJobEndsItAndTheJobNeverRuns) {
+  for (const std::size_t timeouts : {1U, 3U}) {
+    SimRobot local(map_, profile_, start());
+    auto n = node(faults("late-ack=0@30"), {}, /*heartbeat_s=*/0.05);
+    WaitingSignal clock(timeouts);
+    CanRobotOptions options{.ack_timeout_s = 0.1, .link_timeout_s = 0.2, .heartbeat_s = 0.05};
+    options.clock = &clock;
+    CanRobot robot(n->controller_bus(), options);
+    ASSERT_TRUE(robot.connect().has_value());
+    clock.watch(robot);
+    std::future<void> waiting = clock.waiting();
+    std::thread halt([&] {
+      waiting.wait();
+      robot.emergency_stop();  // as Executor::halt() does
+    });
+    const JobReport stopped = robot.execute(jobs_[0]);
+    halt.join();
+    ASSERT_FALSE(stopped.ok()) << timeouts;
+    EXPECT_EQ(stopped.error->reason, "emergency stop") << timeouts;
+    EXPECT_EQ(stopped.progress_m, 0) << timeouts;
+    EXPECT_EQ(robot.stats().link_failures, 0U) << timeouts;
+    EXPECT_GE(robot.stats().timeouts, timeouts);
+    // After a reboot the next job runs, the held one does not.
+    ASSERT_TRUE(robot.reboot().has_value()) << timeouts;
+    EXPECT_EQ(robot.execute(jobs_[1]), local.execute(jobs_[1])) << timeouts;
+    n->stop();
+    EXPECT_EQ(n->node().stats().emergency_stops, 1U) << timeouts;
+    EXPECT_EQ(n->node().stats().jobs_run, 1U) << timeouts;
+    EXPECT_EQ(n->robot().pose(), local.pose()) << timeouts;
+  }
 }
 
 TEST_P(CanRobotTest, AFloodOfGarbageIsAMalfunctionThatSaysSo) {

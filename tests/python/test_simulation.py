@@ -43,7 +43,7 @@ def test_simulation_is_deterministic(paper):
 def test_without_faults_every_task_is_done(paper):
     report = sewerplan.simulate(paper).report
     assert report.outcome == "ended"
-    assert report.tasks_done == ["sample", "inspect"]
+    assert report.tasks_done == ["sample", "inspect", "end"]
     assert report.end == "pipe P9 (final task 'end')"
     assert report.decision == sewerplan.Decision.FOLLOW_PLAN
     assert report.battery_reserve_kept

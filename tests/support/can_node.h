@@ -24,9 +24,10 @@ class CanNodeThread {
  public:
   // `map` must outlive this.
   CanNodeThread(const SewerMap& map, const RobotProfile& profile, hal::SimPose start,
-                hal::FaultScenario faults, hal::BusFaults bus_faults, Transport transport)
+                hal::FaultScenario faults, hal::BusFaults bus_faults, Transport transport,
+                double heartbeat_s = 0.5)
       : robot_(map, profile, start, std::move(faults)) {
-    hal::SimNodeOptions options{.heartbeat_s = 0.5, .faults = std::move(bus_faults)};
+    hal::SimNodeOptions options{.heartbeat_s = heartbeat_s, .faults = std::move(bus_faults)};
     if (transport == Transport::kSlcanPty) {
       Result<hal::Pty> pty = hal::open_pty();
       if (!pty.has_value()) {

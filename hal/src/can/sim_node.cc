@@ -2,9 +2,7 @@
 #include "sewerplan/hal/can/sim_node.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <thread>
 
 #include "sewerplan/core/overloaded.h"
 
@@ -37,6 +35,16 @@ Result<void> SimNode::serve(const std::atomic<bool>& stop) {
 
 Result<void> SimNode::poll(double timeout_s) {
   heartbeat_if_due();
+  if (late_job_) {
+    const double left_s = late_job_->due_s - clock_->now_s();
+    if (left_s <= 0) {
+      const JobCommand command = std::move(late_job_->command);
+      late_job_.reset();
+      run_job(command);
+    } else {
+      timeout_s = std::min(timeout_s, left_s);
+    }
+  }
   Result<std::optional<CanFrame>> in = bus_.receive(timeout_s);
   if (!in.has_value()) {
     // Garbage is dropped; a closed line ends the service.
@@ -60,7 +68,9 @@ void SimNode::heartbeat_if_due() {
   const double now_s = clock_->now_s();
   if (now_s - last_heartbeat_s_ < options_.heartbeat_s) return;
   last_heartbeat_s_ = now_s;
-  const NodeState state = estop_latched_ ? NodeState::kStopped : NodeState::kIdle;
+  const NodeState state = estop_latched_ ? NodeState::kStopped
+                          : late_job_    ? NodeState::kBusy
+                                         : NodeState::kIdle;
   const std::uint8_t last = last_job_ ? last_job_->seq : 0;
   for (const CanFrame& f : encode(Heartbeat{true, state, heartbeat_counter_++, last})) {
     static_cast<void>(bus_.send(f));
@@ -105,6 +115,7 @@ void SimNode::handle(const Message& message) {
                  [&](const EmergencyStop&) {
                    ++stats_.emergency_stops;
                    estop_latched_ = true;
+                   late_job_.reset();  // stopped before it started: never run
                    send(EmergencyStopAck{});
                  },
                  [](const auto&) {},
@@ -118,14 +129,25 @@ void SimNode::handle_job(const JobCommand& command) {
     for (const Message& m : last_job_answer_) send(m);
     return;
   }
+  // The late job sent again: its answers are still held back.
+  if (late_job_ && late_job_->command == command) return;
   if (estop_latched_) {
     send(JobAck{command.seq, AckCode::kRefused, 0});
     return;
   }
   const BusFaults& faults = options_.faults;
-  if (faults.late_ack && faults.late_ack->job == stats_.jobs_run) {
-    std::this_thread::sleep_for(std::chrono::duration<double>(faults.late_ack->delay_s));
+  if (faults.late_ack && faults.late_ack->job == stats_.jobs_run && !late_ack_used_) {
+    late_ack_used_ = true;  // once: a job sent after the held one was dropped is not held
+    // Held back while the node goes on serving (heartbeats busy, the adapter answering): a node
+    // that slept here fell silent altogether, which is a lost link, not a late acknowledgement.
+    late_job_ = LateJob{command, clock_->now_s() + faults.late_ack->delay_s};
+    return;
   }
+  late_job_.reset();  // a newer job replaces one still held back
+  run_job(command);
+}
+
+void SimNode::run_job(const JobCommand& command) {
   ++stats_.jobs_run;
   const JobReport report = robot_.execute(command.job);
   last_job_ = command;
@@ -152,6 +174,7 @@ void SimNode::handle_request(const Request& request) {
         send(*last_reboot_);
         return;
       }
+      late_job_.reset();  // a restarted node has forgotten it
       const Result<void> rebooted = robot_.reboot();
       if (rebooted.has_value()) estop_latched_ = false;
       last_reboot_ = RebootResult{

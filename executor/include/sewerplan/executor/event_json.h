@@ -33,8 +33,8 @@ namespace sewerplan::executor {
 // One event as a JSON object on one line, without the newline.
 std::string to_json_line(const Event& event);
 
-// An observer that writes each event as a line to `out` (which must outlive it), and flushes at
-// mission_end, so that a log is whole when run() returns.
+// An observer that writes each event as a line to `out` (which must outlive it) and flushes it,
+// so that whoever follows the file sees every event as it happens (a few hundred a mission).
 EventObserver json_lines_writer(std::ostream& out);
 
 // Reads a whole log. Every bad line is an error in `diagnostics` at "file:line"; any error makes

@@ -4,7 +4,8 @@
 //
 // The paper's base machine (Adria, Streich and Hertzberg 2004, sections 2.3 and 4.6) executes
 // short manoeuvres; an action is a short sequence of them:
-//   DriveToManhole  -> DriveForward or DriveBackward (speed, distance)
+//   DriveToManhole  -> DriveForward or DriveBackward (speed, distance; also of 0 m: a robot
+//                      right at the pipe's end drives onto the manhole's mouth)
 //   PassManhole     -> TurnInManhole (slots, turn, step, manhole diameter, duration)
 //   EnterPipe       -> EnterPipeFromManhole (slot, duration)
 //   TakeWaterSample -> [drive to the spot], Stop, TakeSample (sample time)
@@ -12,7 +13,7 @@
 //                      the inspection finishes at the end the robot came in by)
 //   GoToPoint       -> [drive to the point]
 //   GoToManhole     -> nothing (the robot is there)
-// A drive of distance 0 is left out, so an action may expand to no job at all.
+// Any other drive of distance 0 is left out, so an action may expand to no job at all.
 //
 //   for (const PlannedJob& j : expand_plan(fused, mission.profile)) {
 //     robot.run(j.job);  // report progress per j.action_index (and plan_step of that action)

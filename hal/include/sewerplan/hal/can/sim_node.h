@@ -47,6 +47,9 @@ struct Silence {
   std::uint64_t requests = 1;  // how many requests in a row the node ignores
   friend bool operator==(const Silence&, const Silence&) = default;
 };
+// The node holds job J's answers back for delay_s (from the node's Clock) while it goes on
+// serving: heartbeats (busy), other requests, the adapter's commands. The job runs when the delay
+// has passed, unless an emergency stop, a reboot or a newer job comes first.
 struct LateAck {
   std::uint64_t job = 0;  // the job (from 0, counting jobs run) whose acknowledgement is late
   double delay_s = 1.0;   // wall time
@@ -73,7 +76,7 @@ std::ostream& operator<<(std::ostream& os, const BusFaults& faults);
 struct SimNodeOptions {
   double heartbeat_s = 0.5;  // wall time between the node's heartbeats; 0: none
   BusFaults faults;
-  const Clock* clock = nullptr;  // for heartbeats; empty: a SteadyClock
+  const Clock* clock = nullptr;  // for heartbeats and late acknowledgements; empty: a SteadyClock
 };
 
 struct SimNodeStats {
@@ -104,6 +107,7 @@ class SimNode {
  private:
   void handle(const Message& message);
   void handle_job(const JobCommand& command);
+  void run_job(const JobCommand& command);
   void handle_request(const Request& request);
   void handle_malformed(const Malformed& malformed);
   void send(const Message& message);
@@ -123,6 +127,13 @@ class SimNode {
   std::optional<JobCommand> last_job_;
   std::vector<Message> last_job_answer_;
   std::optional<RebootResult> last_reboot_;
+  // The job whose acknowledgement a late-ack fault holds back, and when it is run and answered.
+  struct LateJob {
+    JobCommand command;
+    double due_s = 0;
+  };
+  std::optional<LateJob> late_job_;
+  bool late_ack_used_ = false;
   std::uint8_t heartbeat_counter_ = 0;
   double last_heartbeat_s_ = -1e300;
 };
