@@ -165,9 +165,10 @@ namespace sewerplan {
 
 Result<SewerMap> read_condition_isybau(SewerMap map, std::string_view text,
                                        const std::string& file_name, Diagnostics& diagnostics) {
+  const Diagnostics::Mark before = diagnostics.mark();
   pugi::xml_document doc;
   if (!xml::load_utf8(doc, text, file_name, diagnostics)) {
-    return Error{ErrorCode::kParse, diagnostics.error_summary()};
+    return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
   }
   const pugi::xml_node root = doc.document_element();
   const std::string_view name = xml::local_name(root);
@@ -176,21 +177,20 @@ Result<SewerMap> read_condition_isybau(SewerMap map, std::string_view text,
         file_name + ":" + xml::path(root),
         xml::foreign_sewer_format(root).value_or("not an ISYBAU file: the root element is <" +
                                                  std::string(name) + ">, not <Identifikation>"));
-    return Error{ErrorCode::kParse, diagnostics.error_summary()};
+    return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
   }
   std::vector<pugi::xml_node> inspected;
   detail::collect(root, "InspizierteAbwassertechnischeAnlage", inspected);
   if (inspected.empty()) {
     diagnostics.error(file_name,
                       "no Zustandsdaten in this file (no InspizierteAbwassertechnischeAnlage)");
-    return Error{ErrorCode::kParse, diagnostics.error_summary()};
+    return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
   }
-  const std::size_t errors_before = diagnostics.error_count();
   std::vector<FindingRecord> findings;
   std::vector<pugi::xml_node> elements;
   detail::read_condition_records(inspected, file_name, diagnostics, findings, elements);
-  if (diagnostics.error_count() > errors_before) {
-    return Error{ErrorCode::kParse, diagnostics.error_summary()};
+  if (diagnostics.has_errors_since(before)) {
+    return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
   }
   const Locator locate = [&](const RecordRef& ref, std::string_view) {
     return ref.line > 0 && ref.line <= elements.size()

@@ -26,16 +26,20 @@ void Diagnostics::add(Severity severity, std::string where, std::string message)
   if (kept_.size() < kMaxKept) kept_.push_back({severity, std::move(where), std::move(message)});
 }
 
-std::string Diagnostics::error_summary() const {
+std::string Diagnostics::error_summary(Mark since) const {
   std::ostringstream out;
   bool first = true;
-  for (const Diagnostic& d : kept_) {
+  for (std::size_t i = std::min(since.kept, kept_.size()); i < kept_.size(); ++i) {
+    const Diagnostic& d = kept_[i];
     if (d.severity != Severity::kError) continue;
     if (!first) out << '\n';
     out << d;
     first = false;
   }
-  if (dropped() > 0) out << "\n(" << dropped() << " more problems not shown)";
+  const std::size_t dropped_before = since.errors + since.warnings - since.kept;
+  if (dropped() > dropped_before) {
+    out << "\n(" << dropped() - dropped_before << " more problems not shown)";
+  }
   return out.str();
 }
 

@@ -125,6 +125,7 @@ class AsciiReader {
 
   const std::string& file_;
   Diagnostics& d_;
+  Diagnostics::Mark before_ = d_.mark();  // problems reported before this file are the caller's
   std::uint32_t line_ = 0;
   std::string object_;  // "pipe P5": the object of the current line, for messages
   std::size_t syntax_errors_ = 0;
@@ -156,7 +157,7 @@ Result<SewerMap> AsciiReader::run(std::string_view text) {
     ++syntax_errors_;
     d_.error(file_, "missing header 'sewerdb 1': the file has no content");
   }
-  if (syntax_errors_ > 0) return Error{ErrorCode::kParse, d_.error_summary()};
+  if (syntax_errors_ > 0) return Error{ErrorCode::kParse, d_.error_summary(before_)};
   return build();
 }
 

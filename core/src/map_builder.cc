@@ -193,7 +193,7 @@ void MapBuilder::reserve(std::size_t manholes, std::size_t pipes) {
 // The checks of build(), one function per concern so that each stays readable.
 class MapBuilder::Validation {
  public:
-  Validation(MapBuilder& b, Diagnostics& d) : b_(b), d_(d) {}
+  Validation(MapBuilder& b, Diagnostics& d) : b_(b), d_(d), before_(d.mark()) {}
 
   Result<SewerMap> run() {
     SewerMap map;
@@ -212,7 +212,8 @@ class MapBuilder::Validation {
     check_unmatched_pipe_ends(map);
     build_points(map);
     pipe_index_.reset();
-    if (d_.has_errors()) return Error{ErrorCode::kInvalidMap, d_.error_summary()};
+    if (d_.has_errors_since(before_))
+      return Error{ErrorCode::kInvalidMap, d_.error_summary(before_)};
     warn_about_topology(map);
     if (b_.findings_.empty()) return map;
     return MapBuilder::add_findings(std::move(map), std::move(b_.findings_), b_.locator_, d_);
@@ -492,6 +493,7 @@ class MapBuilder::Validation {
 
   MapBuilder& b_;
   Diagnostics& d_;
+  Diagnostics::Mark before_;     // errors before the build are the caller's
   std::vector<bool> slot_seen_;  // per pipe end: 2 * pipe + end
   std::optional<NameIndex<ManholeRecord>> manhole_index_;
   std::optional<NameIndex<Pipe>> pipe_index_;

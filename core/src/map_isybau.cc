@@ -86,17 +86,17 @@ class IsybauReader {
       : file_(file), options_(o), d_(d) {}
 
   Result<SewerMap> run(XmlNode root) {
-    const std::size_t errors_before = d_.error_count();
-    if (!check_root(root)) return Error{ErrorCode::kParse, d_.error_summary()};
+    const Diagnostics::Mark before = d_.mark();
+    if (!check_root(root)) return Error{ErrorCode::kParse, d_.error_summary(before)};
     std::vector<XmlNode> inspected;
     const std::vector<XmlNode> objects = objects_of(root, &inspected);
     for (XmlNode object : objects) read_object(object);
     net_.crs = read_crs(root);
     detail::read_condition_records(inspected, file_, d_, net_.findings, finding_elements_);
-    if (d_.error_count() > errors_before) return Error{ErrorCode::kParse, d_.error_summary()};
+    if (d_.has_errors_since(before)) return Error{ErrorCode::kParse, d_.error_summary(before)};
     resolve_pending_edges();
     check_not_empty(inspected.size(), objects.size());
-    if (d_.error_count() > errors_before) return Error{ErrorCode::kParse, d_.error_summary()};
+    if (d_.has_errors_since(before)) return Error{ErrorCode::kParse, d_.error_summary(before)};
     drop_connection_point_ends();
     report_fallbacks();
     // Records point at their elements through `line`: index + 1 into node_elements_ (manholes)
@@ -547,9 +547,10 @@ Result<SewerMap> read_map_isybau(std::string_view text, const std::string& file_
   if (!std::isfinite(options.manhole_diameter_m) || options.manhole_diameter_m <= 0) {
     return Error{ErrorCode::kInvalidArgument, "ISYBAU import: manhole diameter must be positive"};
   }
+  const Diagnostics::Mark before = diagnostics.mark();
   pugi::xml_document doc;
   if (!xml::load_utf8(doc, text, file_name, diagnostics))
-    return Error{ErrorCode::kParse, diagnostics.error_summary()};
+    return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
   return IsybauReader(file_name, options, diagnostics).run(doc.document_element());
 }
 

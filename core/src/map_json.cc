@@ -513,8 +513,9 @@ namespace detail {
 
 Result<SewerMap> read_map_json_document(std::string_view text, const std::string& file_name,
                                         Diagnostics& diagnostics) {
+  const Diagnostics::Mark before = diagnostics.mark();
   std::optional<JsonDocument> doc = JsonDocument::parse(text, file_name, diagnostics);
-  if (!doc) return Error{ErrorCode::kParse, diagnostics.error_summary()};
+  if (!doc) return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
   JsonFields root(doc->root(), "$", file_name, diagnostics);
   check_header(root);
   MapBuilder builder(root.string("name", Need::kOptional).value_or(""), json_locator(file_name));
@@ -553,7 +554,8 @@ Result<SewerMap> read_map_json_document(std::string_view text, const std::string
     }
   }
   doc.reset();  // free the parsed document before building
-  if (diagnostics.has_errors()) return Error{ErrorCode::kParse, diagnostics.error_summary()};
+  if (diagnostics.has_errors_since(before))
+    return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
   return std::move(builder).build(diagnostics);
 }
 

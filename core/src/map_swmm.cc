@@ -45,8 +45,8 @@ class SwmmReader {
              Diagnostics& d)
       : s_(s), file_(file), options_(o), d_(d) {}
 
-  Result<SewerMap> run() {
-    const std::size_t errors_before = d_.error_count();
+  // `before`: where the diagnostics stood before the file was split into sections.
+  Result<SewerMap> run(Diagnostics::Mark before) {
     read_options();
     read_map_units();
     read_nodes("JUNCTIONS", true);
@@ -58,12 +58,12 @@ class SwmmReader {
     read_conduits();
     read_vertices();
     count_other_links();
-    if (net_.links.empty() && d_.error_count() == errors_before) {
+    if (net_.links.empty() && !d_.has_errors_since(before)) {
       d_.error(file_, std::to_string(net_.nodes.size()) +
                           " nodes but no conduit a robot could drive ([CONDUITS] with a "
                           "dimensioned cross-section): not a sewer network");
     }
-    if (d_.error_count() > errors_before) return Error{ErrorCode::kParse, d_.error_summary()};
+    if (d_.has_errors_since(before)) return Error{ErrorCode::kParse, d_.error_summary(before)};
     report_fallbacks();
     return detail::assemble_network(std::move(net_), std::filesystem::path(file_).stem().string(),
                                     line_locator(file_), file_, d_);
@@ -362,6 +362,7 @@ Result<SewerMap> read_map_swmm(std::string_view text, const std::string& file_na
   if (!std::isfinite(options.manhole_diameter_m) || options.manhole_diameter_m <= 0) {
     return Error{ErrorCode::kInvalidArgument, "SWMM import: manhole diameter must be positive"};
   }
+  const Diagnostics::Mark before = diagnostics.mark();
   TextConversion conversion = TextConversion::kNone;
   const std::string utf8 = text_to_utf8(text, "", conversion);
   if (conversion != TextConversion::kNone) {
@@ -370,12 +371,12 @@ Result<SewerMap> read_map_swmm(std::string_view text, const std::string& file_na
   const detail::SwmmSections sections = detail::split_swmm_sections(utf8, file_name, diagnostics);
   if (!sections.header_line("JUNCTIONS") && !sections.header_line("OUTFALLS") &&
       !sections.header_line("STORAGE") && !sections.header_line("DIVIDERS") &&
-      !diagnostics.has_errors()) {
+      !diagnostics.has_errors_since(before)) {
     diagnostics.error(file_name,
                       "no [JUNCTIONS], [OUTFALLS], [STORAGE] or [DIVIDERS] section: "
                       "not a SWMM network");
   }
-  return SwmmReader(sections, file_name, options, diagnostics).run();
+  return SwmmReader(sections, file_name, options, diagnostics).run(before);
 }
 
 }  // namespace sewerplan

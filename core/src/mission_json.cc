@@ -293,8 +293,9 @@ std::string_view to_string(TaskKind kind) {
 
 Result<Mission> read_mission_json(std::string_view text, const std::string& file_name,
                                   const SewerMap& map, Diagnostics& diagnostics) {
+  const Diagnostics::Mark before = diagnostics.mark();
   auto doc = JsonDocument::parse(text, file_name, diagnostics);
-  if (!doc) return Error{ErrorCode::kParse, diagnostics.error_summary()};
+  if (!doc) return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
   JsonFields root(doc->root(), "$", file_name, diagnostics);
   root.warn_unknown({"format", "version", "name", "profile", "start", "tasks", "exits",
                      "battery_reserve", "closed"});
@@ -330,8 +331,8 @@ Result<Mission> read_mission_json(std::string_view text, const std::string& file
   }
   if (auto closed = root.member("closed", Need::kOptional)) reader.closed(*closed, m);
   check_tasks(m, file_name, exits_unreadable, diagnostics);
-  if (diagnostics.has_errors()) {
-    return Error{ErrorCode::kInvalidMission, diagnostics.error_summary()};
+  if (diagnostics.has_errors_since(before)) {
+    return Error{ErrorCode::kInvalidMission, diagnostics.error_summary(before)};
   }
   return m;
 }

@@ -186,8 +186,9 @@ std::string profile_geometry_fingerprint(const RobotProfile& p) {
 Result<PassageMotionTable> read_passage_motion_json(std::string_view text,
                                                     const std::string& file_name,
                                                     const SewerMap& map, Diagnostics& diagnostics) {
+  const Diagnostics::Mark before = diagnostics.mark();
   auto doc = JsonDocument::parse(text, file_name, diagnostics);
-  if (!doc) return Error{ErrorCode::kParse, diagnostics.error_summary()};
+  if (!doc) return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
   JsonFields root(doc->root(), "$", file_name, diagnostics);
   root.warn_unknown({"format", "version", "map", "map_fingerprint", "profile",
                      "profile_fingerprint", "passages"});
@@ -210,7 +211,8 @@ Result<PassageMotionTable> read_passage_motion_json(std::string_view text,
       if (p) entries.push_back(std::move(*p));
     }
   }
-  if (diagnostics.has_errors()) return Error{ErrorCode::kParse, diagnostics.error_summary()};
+  if (diagnostics.has_errors_since(before))
+    return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
   std::vector<PassageMotion> sorted = entries;
   std::sort(sorted.begin(), sorted.end(), key_less);
   for (std::size_t i = 1; i < sorted.size(); ++i) {
@@ -220,7 +222,7 @@ Result<PassageMotionTable> read_passage_motion_json(std::string_view text,
                             std::to_string(to_paper_number(sorted[i].from)) + " -> " +
                             std::to_string(to_paper_number(sorted[i].to)) +
                             " is listed more than once");
-      return Error{ErrorCode::kParse, diagnostics.error_summary()};
+      return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
     }
   }
   return PassageMotionTable(*map_fp, *profile_fp, std::move(entries));

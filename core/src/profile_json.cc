@@ -100,10 +100,11 @@ namespace sewerplan {
 
 Result<RobotProfile> read_profile_json(std::string_view text, const std::string& file_name,
                                        Diagnostics& diagnostics) {
+  const Diagnostics::Mark before = diagnostics.mark();
   auto doc = detail::JsonDocument::parse(text, file_name, diagnostics);
-  if (!doc) return Error{ErrorCode::kParse, diagnostics.error_summary()};
+  if (!doc) return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
   auto profile = detail::read_profile_value(doc->root(), "$", file_name, diagnostics);
-  if (!profile) return Error{ErrorCode::kInvalidProfile, diagnostics.error_summary()};
+  if (!profile) return Error{ErrorCode::kInvalidProfile, diagnostics.error_summary(before)};
   return *profile;
 }
 

@@ -63,8 +63,9 @@ std::optional<RiskRule> read_rule(JsonElement json, const std::string& path,
 
 Result<RiskTable> read_risk_table_json(std::string_view text, const std::string& file_name,
                                        Diagnostics& diagnostics) {
+  const Diagnostics::Mark before = diagnostics.mark();
   auto doc = JsonDocument::parse(text, file_name, diagnostics);
-  if (!doc) return Error{ErrorCode::kParse, diagnostics.error_summary()};
+  if (!doc) return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
   JsonFields root(doc->root(), "$", file_name, diagnostics);
   root.warn_unknown({"format", "version", "rules"});
   if (auto format = root.string("format"); format && *format != kRiskTableJsonFormat) {
@@ -84,7 +85,8 @@ Result<RiskTable> read_risk_table_json(std::string_view text, const std::string&
       }
     }
   }
-  if (diagnostics.has_errors()) return Error{ErrorCode::kParse, diagnostics.error_summary()};
+  if (diagnostics.has_errors_since(before))
+    return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
   return table;
 }
 

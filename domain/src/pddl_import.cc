@@ -158,9 +158,10 @@ class Importer {
 Result<Plan> import_pddl_plan(std::string_view text, const std::string& file_name,
                               PddlPlanFormat format, const SewerMap& map, const Mission& mission,
                               Diagnostics& diagnostics) {
+  const Diagnostics::Mark before = diagnostics.mark();
   std::optional<std::string> translated =
       Importer(file_name, format, map, mission, diagnostics).translate(text);
-  if (!translated) return Error{ErrorCode::kParse, diagnostics.error_summary()};
+  if (!translated) return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
   return parse_plan(*translated, file_name, map, mission, diagnostics);
 }
 

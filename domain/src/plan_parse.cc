@@ -312,7 +312,7 @@ Result<Plan> parse_plan(std::string_view text, const std::string& file_name, con
   constexpr std::string_view kByteOrderMark = "\xEF\xBB\xBF";
   if (text.starts_with(kByteOrderMark)) text.remove_prefix(kByteOrderMark.size());
   PlanParser parser(map, mission, file_name, diagnostics);
-  const std::size_t errors_before = diagnostics.error_count();
+  const Diagnostics::Mark before = diagnostics.mark();
   Plan plan;
   std::size_t number = 0;
   while (!text.empty()) {
@@ -322,8 +322,8 @@ Result<Plan> parse_plan(std::string_view text, const std::string& file_name, con
     if (end == std::string_view::npos) break;
     text.remove_prefix(end + 1);
   }
-  if (diagnostics.error_count() > errors_before) {
-    return Error{ErrorCode::kParse, diagnostics.error_summary()};
+  if (diagnostics.has_errors_since(before)) {
+    return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
   }
   return plan;
 }

@@ -133,19 +133,20 @@ Mission with_learnt(Mission mission, const Learnt& learnt) {
 
 Result<Learnt> read_learnt_json(std::string_view text, const std::string& file_name,
                                 const SewerMap& map, Diagnostics& diagnostics) {
+  const Diagnostics::Mark before = diagnostics.mark();
   json root;
   try {
     root = json::parse(text);
   } catch (const json::parse_error& e) {
     report_json_syntax_error(text, file_name, e.byte, e.what(), diagnostics);
-    return Error{ErrorCode::kParse, diagnostics.error_summary()};
+    return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
   } catch (const json::exception& e) {
     diagnostics.error(file_name, std::string("JSON error: ") + e.what());
-    return Error{ErrorCode::kParse, diagnostics.error_summary()};
+    return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
   }
   LearntReader reader(map, file_name, diagnostics);
   if (!reader.object(root, "$", {"format", "version", "blockages", "danger", "closed_passages"})) {
-    return Error{ErrorCode::kParse, diagnostics.error_summary()};
+    return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
   }
   if (!root.contains("format") || root["format"] != std::string(kLearntJsonFormat)) {
     reader.error("$.format", "expected \"" + std::string(kLearntJsonFormat) + "\"");
@@ -161,7 +162,8 @@ Result<Learnt> read_learnt_json(std::string_view text, const std::string& file_n
   reader.each(root, "danger", learnt.danger_spots, in_pipe);
   reader.each(root, "closed_passages", learnt.closed_passages,
               [&](const json& j, const std::string& path) { return reader.passage(j, path); });
-  if (diagnostics.has_errors()) return Error{ErrorCode::kParse, diagnostics.error_summary()};
+  if (diagnostics.has_errors_since(before))
+    return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
   return learnt;
 }
 

@@ -217,19 +217,19 @@ class FaultReader {
 
 Result<FaultScenario> read_faults_json(std::string_view text, const std::string& file_name,
                                        const SewerMap& map, Diagnostics& diagnostics) {
+  const Diagnostics::Mark before = diagnostics.mark();
   json doc;
   try {
     doc = json::parse(text.begin(), text.end());
   } catch (const nlohmann::json::parse_error& e) {
     report_json_syntax_error(text, file_name, e.byte, e.what(), diagnostics);
-    return Error{ErrorCode::kParse, diagnostics.error_summary()};
+    return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
   } catch (const nlohmann::json::exception& e) {
     // A number too large for any type (found by fuzz/faults_json_fuzz.cc).
     diagnostics.error(file_name, std::string("JSON error: ") + e.what());
-    return Error{ErrorCode::kParse, diagnostics.error_summary()};
+    return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
   }
   Fields root(doc, "$", file_name, diagnostics);
-  const std::size_t errors_before = diagnostics.error_count();
   if (auto format = root.string("format"); format && *format != kFaultsJsonFormat) {
     root.error("format",
                "expected \"" + std::string(kFaultsJsonFormat) + "\", got \"" + *format + "\"");
@@ -237,8 +237,8 @@ Result<FaultScenario> read_faults_json(std::string_view text, const std::string&
   if (auto version = root.number("version"); version && *version != kFaultsJsonVersion) {
     root.error("version", "unsupported version " + number_text(*version));
   }
-  if (diagnostics.error_count() > errors_before) {
-    return Error{ErrorCode::kParse, diagnostics.error_summary()};
+  if (diagnostics.has_errors_since(before)) {
+    return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
   }
   root.warn_unknown({"format", "version", "obstacles", "danger", "malfunctions", "battery_wh"});
   FaultReader reader(map, file_name, diagnostics);
@@ -253,8 +253,8 @@ Result<FaultScenario> read_faults_json(std::string_view text, const std::string&
       root.error("battery_wh", "expected an energy >= 0 Wh, got " + number_text(*battery_wh));
     }
   }
-  if (diagnostics.has_errors()) {
-    return Error{ErrorCode::kInvalidArgument, diagnostics.error_summary()};
+  if (diagnostics.has_errors_since(before)) {
+    return Error{ErrorCode::kInvalidArgument, diagnostics.error_summary(before)};
   }
   return scenario;
 }

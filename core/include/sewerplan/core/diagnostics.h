@@ -45,6 +45,17 @@ class Diagnostics {
   void error(std::string where, std::string message);
   void warning(std::string where, std::string message);
 
+  // Where this collection stands. A reader takes a mark when it starts, so that problems a caller
+  // collected before (one Diagnostics reused across several files) neither fail the read nor
+  // appear in its error.
+  struct Mark {
+    std::size_t errors = 0;
+    std::size_t warnings = 0;
+    std::size_t kept = 0;
+  };
+  Mark mark() const { return {errors_, warnings_, kept_.size()}; }
+  bool has_errors_since(Mark since) const { return errors_ > since.errors; }
+
   const std::vector<Diagnostic>& all() const { return kept_; }
   std::size_t error_count() const { return errors_; }
   std::size_t warning_count() const { return warnings_; }
@@ -52,8 +63,10 @@ class Diagnostics {
   // Diagnostics dropped after kMaxKept.
   std::size_t dropped() const { return errors_ + warnings_ - kept_.size(); }
 
-  // All kept errors, one "where: error: message" line each, plus a count of dropped ones.
-  std::string error_summary() const;
+  // The kept errors since `since`, one "where: error: message" line each, plus a count of the
+  // problems dropped since then; without a mark, all of them.
+  std::string error_summary(Mark since) const;
+  std::string error_summary() const { return error_summary(Mark{}); }
 
  private:
   void add(Severity severity, std::string where, std::string message);
