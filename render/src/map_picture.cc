@@ -287,7 +287,7 @@ class Scene {
     const double r = manhole_radius();
     draw_manhole_.assign(map_.manhole_count(), false);
     Grid cells(in_.width_px, height_, 2 * r + 1);
-    labels_ = Grid(in_.width_px, height_, 4);
+    labels_ = Grid(in_.width_px, height_, 2);
     for (const bool exits : {true, false}) {
       for (ManholeId id : map_.manhole_ids()) {
         const Manhole& m = map_.manhole(id);
@@ -309,7 +309,8 @@ class Scene {
     for (ManholeId id : map_.manhole_ids()) {
       if (!draw_manhole_[id.index()]) continue;
       const Point c = manhole_px(id);
-      const Rect box{c.x + r + 3, c.y + r, text_width(map_.manhole(id).name, 11), 10};
+      // Below right of its own dot, clear of it by a grid cell at least.
+      const Rect box{c.x + r + 3, c.y + r + 2, text_width(map_.manhole(id).name, 11), 8};
       if (fits(box)) manhole_label_[id.index()] = true;
     }
   }
