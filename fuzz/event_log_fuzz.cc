@@ -9,7 +9,7 @@
 #include "sewerplan/core/check.h"
 #include "sewerplan/executor/event_json.h"
 #include "sewerplan/render/event_trace.h"
-#include "sewerplan/render/svg_map.h"
+#include "sewerplan/render/map_picture.h"
 
 #include "fuzz_support.h"
 

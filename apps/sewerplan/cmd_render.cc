@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // sewerplan render --map MAP [--mission MISSION] [--plan PLAN] [--log EVENTS] [--faults FAULTS]
-//                  [--title T] [--width PX] -o FILE.svg
+//                  [--profile P] [--title T] [--width PX] [--focus] -o FILE.svg|FILE.png
+#include <filesystem>
 #include <fstream>
 #include <ostream>
 
@@ -8,10 +9,12 @@
 
 #include "sewerplan/core/map_io.h"
 #include "sewerplan/core/mission.h"
+#include "sewerplan/core/robot_profile.h"
 #include "sewerplan/core/text_file.h"
+#include "sewerplan/domain/driveability.h"
 #include "sewerplan/domain/plan_text.h"
 #include "sewerplan/hal/fault_scenario.h"
-#include "sewerplan/render/svg_map.h"
+#include "sewerplan/render/map_picture.h"
 
 #include "command.h"
 #include "json_output.h"
@@ -25,6 +28,7 @@ struct RenderOptions {
   std::string plan;
   std::string log;
   std::string faults;
+  std::string profile;
   std::string title;
   double width_px = 1000;
   bool focus = false;
@@ -70,28 +74,43 @@ int run(const RenderOptions& o, Context& c) {
     if (!f.has_value()) return failed(f.error());
     faults = std::move(*f);
   }
+  std::optional<domain::DriveabilityReport> driveability;
+  if (!o.profile.empty()) {
+    Result<RobotProfile> profile = load_profile(o.profile);
+    if (!profile.has_value()) {
+      return failed(Error{profile.error().code, "--profile: " + profile.error().message});
+    }
+    driveability = domain::analyse_driveability(*map, *profile, domain::default_starts(*map));
+  }
   print_diagnostics(diagnostics, c.err);
+  const bool png = std::filesystem::path(o.out).extension() == ".png";
   const render::RenderInput input{.map = &*map,
                                   .mission = mission ? &*mission : nullptr,
                                   .plan = plan ? &*plan : nullptr,
                                   .trace = trace ? &*trace : nullptr,
                                   .faults = faults ? &*faults : nullptr,
+                                  .driveability = driveability ? &*driveability : nullptr,
                                   .title = o.title,
                                   .width_px = o.width_px,
                                   .focus = o.focus};
+  Result<std::string> picture =
+      png ? render::render_map_png(input) : Result<std::string>(render::render_map_svg(input));
+  if (!picture.has_value()) return failed(picture.error());
   std::ofstream out(o.out, std::ios::binary);
-  out << render::render_map_svg(input);
+  out << *picture;
   out.close();
   if (!out) return fail(c, o.json, Error{ErrorCode::kIo, o.out + ": cannot write"});
   if (o.json) {
     print_json(c.out, {{"wrote", o.out},
-                       {"format", "svg"},
+                       {"format", png ? "png" : "svg"},
+                       {"bytes", picture->size()},
                        {"width_px", o.width_px},
                        {"focus", o.focus},
                        {"mission", o.mission.empty() ? Json() : Json(o.mission)},
                        {"plan", o.plan.empty() ? Json() : Json(o.plan)},
                        {"log", o.log.empty() ? Json() : Json(o.log)},
-                       {"faults", o.faults.empty() ? Json() : Json(o.faults)}});
+                       {"faults", o.faults.empty() ? Json() : Json(o.faults)},
+                       {"profile", o.profile.empty() ? Json() : Json(o.profile)}});
   } else {
     c.out << "wrote " << o.out << '\n';
   }
@@ -104,18 +123,23 @@ void add_render_command(CLI::App& app, Context& context) {
   auto options = std::make_shared<RenderOptions>();
   CLI::App* cmd = app.add_subcommand(
       "render",
-      "Draw the network to scale as SVG, with a mission, a plan, faults and a driven route");
+      "Draw the network to scale as SVG or PNG, with a mission, a plan, faults, a driven route "
+      "and what a robot can drive");
   cmd->add_option("--map", options->map, "Map file")->required();
   cmd->add_option("--mission", options->mission, "Mission file (.json): start and tasks");
   cmd->add_option("--plan", options->plan, "Plan text: the planned route");
   cmd->add_option("--log", options->log,
                   "Event log (simulate --log): route driven, blocked pipes, tasks done");
   cmd->add_option("--faults", options->faults, "Fault scenario: the hidden faults");
+  cmd->add_option("--profile", options->profile,
+                  "Colour the pipes by what this robot can drive from the map's exits (the "
+                  "reasons of info --profile): a built-in profile or a profile JSON file");
   cmd->add_option("--title", options->title, "Title (default: map and mission names)");
   cmd->add_option("--width", options->width_px, "Width in pixels")->capture_default_str();
   cmd->add_flag("--focus", options->focus,
                 "Only the mission's area (start, tasks, routes), not the whole network");
-  cmd->add_option("-o,--out", options->out, "SVG file to write")->required();
+  cmd->add_option("-o,--out", options->out, "File to write: PNG if it ends in .png, else SVG")
+      ->required();
   cmd->add_flag("--json", options->json, "Print what was written as JSON");
   cmd->callback([options, &context] { context.exit_code = run(*options, context); });
 }

@@ -22,10 +22,7 @@ Result<SewerMap> read_map_with_condition(const std::string& map, const std::stri
 }
 
 RiskMode RiskOptions::risk_mode() const {
-  if (mode == "ignore") return RiskMode::kIgnore;
-  if (mode == "avoid") return RiskMode::kAvoid;
-  if (mode == "expected") return RiskMode::kExpected;
-  return RiskMode::kImpassable;
+  return risk_mode_from_string(mode).value_or(RiskMode::kImpassable);
 }
 
 domain::RiskCosts RiskOptions::costs() const {
@@ -49,24 +46,6 @@ void add_risk_options(CLI::App& command, RiskOptions& options) {
 Result<RiskTable> risk_table(const RiskOptions& options, Diagnostics& diagnostics) {
   if (options.table.empty()) return default_risk_table();
   return read_risk_table(options.table, diagnostics);
-}
-
-std::size_t close_findings(const SewerMap& map, Mission& mission, RiskMode mode,
-                           const RiskTable& table) {
-  if (mode == RiskMode::kIgnore) return 0;
-  std::vector<FindingRisk> risks = assess_findings(map, mission.profile, table);
-  if (mode == RiskMode::kExpected) {
-    std::vector<Hazard> hazards = blockage_hazards(map, risks);
-    mission.hazards.insert(mission.hazards.end(), hazards.begin(), hazards.end());
-  }
-  if (mode == RiskMode::kAvoid) {
-    for (FindingRisk& r : risks) {
-      if (r.effect != RiskEffect::kNone) r.effect = RiskEffect::kImpassable;
-    }
-  }
-  const std::vector<Blockage> closed = impassable_blockages(map, risks);
-  mission.blockages.insert(mission.blockages.end(), closed.begin(), closed.end());
-  return closed.size();
 }
 
 Result<void> apply_risk(const RiskOptions& options, const SewerMap& map, Mission& mission,

@@ -26,12 +26,7 @@ void add_condition_option(CLI::App& command, std::string& condition);
 Result<SewerMap> read_map_with_condition(const std::string& map, const std::string& condition,
                                          Diagnostics& diagnostics);
 
-// What planning makes of the findings (--risk): kIgnore none; kImpassable (the default) closes
-// the places the risk table finds impassable for the mission's robot; kAvoid closes every place
-// with a risk at all (impassable, blockage or danger); kExpected closes the impassable ones and
-// weighs the others' blockage probabilities (Mission::hazards, domain::RiskCosts).
-enum class RiskMode { kIgnore, kImpassable, kAvoid, kExpected };
-
+// --risk (a RiskMode's name, core/condition_risk.h) and --risk-table.
 struct RiskOptions {
   std::string mode = "impassable";
   std::string table;  // a risk table file; empty: the built-in one
@@ -45,11 +40,6 @@ void add_risk_options(CLI::App& command, RiskOptions& options);
 
 // The table of --risk-table, or the built-in one; problems go to `diagnostics`.
 Result<RiskTable> risk_table(const RiskOptions& options, Diagnostics& diagnostics);
-
-// Adds a blockage at every finding `mode` closes and, for kExpected, a hazard at every possible
-// blockage; returns how many places it closed.
-std::size_t close_findings(const SewerMap& map, Mission& mission, RiskMode mode,
-                           const RiskTable& table);
 
 // risk_table, then close_findings, saying what was closed on `err`; an error for a bad table.
 Result<void> apply_risk(const RiskOptions& options, const SewerMap& map, Mission& mission,

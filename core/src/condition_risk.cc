@@ -147,4 +147,30 @@ std::vector<Hazard> blockage_hazards(const SewerMap& map, const std::vector<Find
   return out;
 }
 
+std::optional<RiskMode> risk_mode_from_string(std::string_view name) {
+  if (name == "ignore") return RiskMode::kIgnore;
+  if (name == "impassable") return RiskMode::kImpassable;
+  if (name == "avoid") return RiskMode::kAvoid;
+  if (name == "expected") return RiskMode::kExpected;
+  return std::nullopt;
+}
+
+std::size_t close_findings(const SewerMap& map, Mission& mission, RiskMode mode,
+                           const RiskTable& table) {
+  if (mode == RiskMode::kIgnore) return 0;
+  std::vector<FindingRisk> risks = assess_findings(map, mission.profile, table);
+  if (mode == RiskMode::kExpected) {
+    std::vector<Hazard> hazards = blockage_hazards(map, risks);
+    mission.hazards.insert(mission.hazards.end(), hazards.begin(), hazards.end());
+  }
+  if (mode == RiskMode::kAvoid) {
+    for (FindingRisk& r : risks) {
+      if (r.effect != RiskEffect::kNone) r.effect = RiskEffect::kImpassable;
+    }
+  }
+  const std::vector<Blockage> closed = impassable_blockages(map, risks);
+  mission.blockages.insert(mission.blockages.end(), closed.begin(), closed.end());
+  return closed.size();
+}
+
 }  // namespace sewerplan

@@ -141,4 +141,15 @@ DriveabilityReport analyse_driveability(const SewerMap& map, const RobotProfile&
   return report;
 }
 
+std::string_view why_not_driveable(PipeId pipe, const DriveabilityReport& r) {
+  const auto contains = [](const std::vector<PipeId>& list, PipeId p) {
+    return std::binary_search(list.begin(), list.end(), p);
+  };
+  if (contains(r.too_narrow, pipe)) return "too narrow";
+  if (contains(r.too_wide, pipe)) return "too wide";
+  if (contains(r.cut_off_pipes, pipe)) return "cut off by a closure";
+  if (!contains(r.reachable_pipes, pipe)) return "unreachable";
+  return "";
+}
+
 }  // namespace sewerplan::domain

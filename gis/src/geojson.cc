@@ -9,64 +9,17 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sewerplan/core/overloaded.h"
+#include "sewerplan/domain/route_geometry.h"
 
 namespace sewerplan::gis {
 namespace {
 
 using Json = nlohmann::ordered_json;
-
-// The two ends of a pipe's line in map coordinates; a blind end lies along its slot's azimuth.
-// Empty for a pipe with no manhole at all.
-std::optional<std::array<MapXY, 2>> pipe_line(const SewerMap& map, PipeId id) {
-  const Pipe& pipe = map.pipe(id);
-  std::array<std::optional<MapXY>, 2> ends;
-  for (std::size_t e = 0; e < 2; ++e) {
-    if (const auto& m = pipe.ends[e].manhole) {
-      const Position& p = map.manhole(*m).position;
-      ends[e] = MapXY{.x = p.x_m, .y = p.y_m};
-    }
-  }
-  for (std::size_t e = 0; e < 2; ++e) {
-    const std::size_t other = 1 - e;
-    if (ends[e] || !ends[other]) continue;
-    const PipeEnd& at = pipe.ends[other];
-    const double azimuth = map.slot(*at.manhole, at.slot).azimuth_deg * std::numbers::pi / 180;
-    ends[e] = MapXY{.x = ends[other]->x + pipe.length_m * std::cos(azimuth),
-                    .y = ends[other]->y + pipe.length_m * std::sin(azimuth)};
-  }
-  if (!ends[0] || !ends[1]) return std::nullopt;
-  return std::array<MapXY, 2>{*ends[0], *ends[1]};
-}
-
-// The point `offset_m` from the pipe's ends[0], on its straight line.
-std::optional<MapXY> pipe_point(const SewerMap& map, PipeId id, double offset_m) {
-  const auto line = pipe_line(map, id);
-  if (!line) return std::nullopt;
-  const double length = map.pipe(id).length_m;
-  const double t = length > 0 ? std::clamp(offset_m / length, 0.0, 1.0) : 0.0;
-  return MapXY{.x = (*line)[0].x + t * ((*line)[1].x - (*line)[0].x),
-               .y = (*line)[0].y + t * ((*line)[1].y - (*line)[0].y)};
-}
-
-MapXY manhole_point(const SewerMap& map, ManholeId id) {
-  const Position& p = map.manhole(id).position;
-  return {.x = p.x_m, .y = p.y_m};
-}
-
-std::optional<MapXY> place_point(const SewerMap& map, const Place& place) {
-  return std::visit(Overloaded{[&](ManholeId m) { return std::optional(manhole_point(map, m)); },
-                               [&](const PipeSpot& s) {
-                                 double offset = map.pipe(s.pipe).length_m / 2;
-                                 if (s.offset_m) {
-                                   offset = *s.offset_m;
-                                 } else if (s.point) {
-                                   offset = map.point(*s.point).offset_m;
-                                 }
-                                 return pipe_point(map, s.pipe, offset);
-                               }},
-                    place);
-}
+using domain::manhole_point;
+using domain::pipe_line;
+using domain::pipe_point;
+using domain::place_point;
+using domain::route_points;
 
 double rounded(double degrees) { return std::round(degrees * 1e8) / 1e8; }
 
@@ -114,17 +67,6 @@ class Writer {
 
 Json optional_number(const std::optional<double>& v) { return v ? Json(*v) : Json(); }
 
-std::string why_not_driveable(PipeId id, const domain::DriveabilityReport& r) {
-  const auto contains = [](const std::vector<PipeId>& list, PipeId p) {
-    return std::binary_search(list.begin(), list.end(), p);
-  };
-  if (contains(r.too_narrow, id)) return "too narrow";
-  if (contains(r.too_wide, id)) return "too wide";
-  if (contains(r.cut_off_pipes, id)) return "cut off by a closure";
-  if (!contains(r.reachable_pipes, id)) return "unreachable";
-  return "";
-}
-
 void network(const SewerMap& map, const domain::DriveabilityReport* driveability, Writer& w) {
   for (ManholeId id : map.manhole_ids()) {
     const Manhole& m = map.manhole(id);
@@ -151,9 +93,9 @@ void network(const SewerMap& map, const domain::DriveabilityReport* driveability
                        {"height_m", p.height_m},
                        {"blockage_risk", p.blockage_risk ? Json(*p.blockage_risk) : Json()}};
     if (driveability != nullptr) {
-      const std::string why = why_not_driveable(id, *driveability);
+      const std::string_view why = domain::why_not_driveable(id, *driveability);
       properties["driveable"] = why.empty();
-      properties["why_not"] = why.empty() ? Json() : Json(why);
+      properties["why_not"] = why.empty() ? Json() : Json(std::string(why));
     }
     if (const auto line = pipe_line(map, id)) {
       w.line(*line, std::move(properties));
@@ -206,61 +148,6 @@ void mission_features(const SewerMap& map, const Mission& mission, Writer& w) {
 }
 
 }  // namespace
-
-std::vector<MapXY> route_points(const SewerMap& map, const Mission& mission,
-                                std::span<const domain::PlanStep> steps) {
-  std::vector<MapXY> points;
-  const auto push = [&](std::optional<MapXY> p) {
-    if (p) points.push_back(*p);
-  };
-  push(place_point(map, mission.start));
-  // The manhole the robot is in, if it is in one: an inspection leaves by the pipe's other end.
-  bool in_manhole = false;
-  ManholeId at{0};
-  if (const auto* m = std::get_if<ManholeId>(&mission.start)) {
-    in_manhole = true;
-    at = *m;
-  }
-  const auto task_point = [&](TaskId t) { return place_point(map, mission.task(t).place); };
-  for (const domain::PlanStep& step : steps) {
-    std::visit(Overloaded{[&](const domain::DrivePipeToManhole& s) {
-                            push(manhole_point(map, s.manhole));
-                            in_manhole = true;
-                            at = s.manhole;
-                          },
-                          [&](const domain::DriveManhole&) {},
-                          [&](const domain::EnterPipe& s) {
-                            push(manhole_point(map, s.manhole));
-                            in_manhole = false;
-                          },
-                          [&](const domain::TakeWaterSample& s) {
-                            push(task_point(s.task));
-                            in_manhole = false;
-                          },
-                          [&](const domain::GoToPoint& s) {
-                            push(task_point(s.task));
-                            in_manhole = false;
-                          },
-                          [&](const domain::GoToManhole& s) {
-                            push(manhole_point(map, s.manhole));
-                            in_manhole = true;
-                            at = s.manhole;
-                          },
-                          [&](const domain::InspectPipe& s) {
-                            const Pipe& pipe = map.pipe(s.pipe);
-                            std::uint8_t end = 1;
-                            if (s.finish_end) {
-                              end = *s.finish_end;
-                            } else if (in_manhole && pipe.ends[1].manhole == at) {
-                              end = 0;
-                            }
-                            push(pipe_point(map, s.pipe, end == 0 ? 0 : pipe.length_m));
-                            in_manhole = false;
-                          }},
-               step);
-  }
-  return points;
-}
 
 Result<std::string> to_geojson(const GeoJsonInput& in, const Wgs84Projection& wgs84) {
   SEWER_CHECK(in.map != nullptr, "to_geojson needs a map");

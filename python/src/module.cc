@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "sewerplan/core/condition.h"
 #include "sewerplan/core/generator.h"
 #include "sewerplan/core/map_io.h"
 #include "sewerplan/core/map_json.h"
@@ -155,6 +156,7 @@ void bind_map(py::module_& m) {
       .def_property_readonly("manhole_count", &SewerMap::manhole_count)
       .def_property_readonly("pipe_count", &SewerMap::pipe_count)
       .def_property_readonly("point_count", &SewerMap::point_count)
+      .def_property_readonly("finding_count", &SewerMap::finding_count)
       .def_property_readonly("manholes",
                              [](const SewerMap& map) {
                                return std::vector<Manhole>(map.manholes().begin(),
@@ -224,6 +226,16 @@ void bind_map(py::module_& m) {
       },
       py::arg("path"),
       "Reads a map in any format sewerplan knows (JSON, .sewer, SWMM .inp, ISYBAU .xml).");
+  m.def(
+      "read_condition",
+      [](const SewerMap& map, const std::filesystem::path& path) {
+        Diagnostics diagnostics;
+        return std::make_shared<SewerMap>(
+            value_or_raise(read_condition(map, path, diagnostics), &diagnostics));
+      },
+      py::arg("map"), py::arg("path"),
+      "A copy of `map` with the inspection findings of an ISYBAU Zustandsdaten file joined to "
+      "its pipes by name (sewerplan --condition).");
   m.def(
       "parse_map",
       [](const std::string& text, const std::string& file_name, const std::string& format) {

@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The Python module: simulated missions with faults (events as Python objects) and campaigns.
+#include <functional>
+#include <mutex>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -8,6 +10,7 @@
 
 #include "sewerplan/campaign/campaign.h"
 #include "sewerplan/campaign/summary.h"
+#include "sewerplan/core/condition_risk.h"
 #include "sewerplan/core/map_json.h"
 #include "sewerplan/executor/event_json.h"
 #include "sewerplan/executor/executor.h"
@@ -28,6 +31,27 @@ struct Faults {
   hal::FaultScenario scenario;
 };
 
+// A fault with the map's names, as Python sees it.
+struct ObstacleView {
+  std::string pipe;
+  double offset_m = 0;
+  std::string kind;
+};
+struct DangerSpotView {
+  std::string pipe;
+  double offset_m = 0;
+};
+struct PassageView {
+  std::string manhole;
+  unsigned from_slot = 0;
+  unsigned to_slot = 0;
+};
+struct MalfunctionView {
+  std::string kind;
+  std::optional<std::uint32_t> at_job;
+  std::optional<double> at_time_s;
+};
+
 struct Simulation {
   ex::MissionReport report;
   std::vector<ex::Event> events;
@@ -36,6 +60,32 @@ struct Simulation {
 struct Campaign {
   std::vector<campaign::RunRecord> records;
   campaign::Summary summary;
+};
+
+// halt() for a simulation, settable from any Python thread: it halts the Executor of the
+// simulate() call it was given to, or, before that call starts, makes it halt at once.
+class Halter {
+ public:
+  void halt() {
+    std::lock_guard lock(mutex_);
+    requested_ = true;
+    if (executor_ != nullptr) executor_->halt();
+  }
+  bool requested() const {
+    std::lock_guard lock(mutex_);
+    return requested_;
+  }
+  // While `executor` runs: halt() goes to it (and at once, if it was called already).
+  void attach(ex::Executor* executor) {
+    std::lock_guard lock(mutex_);
+    executor_ = executor;
+    if (executor_ != nullptr && requested_) executor_->halt();
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  bool requested_ = false;
+  ex::Executor* executor_ = nullptr;
 };
 
 hal::SimPose start_pose(const domain::RobotPosition& p) {
@@ -47,12 +97,15 @@ hal::SimPose start_pose(const domain::RobotPosition& p) {
 
 Simulation simulate(const std::shared_ptr<const MissionHandle>& mission,
                     const std::optional<Faults>& faults, bool allow_push,
-                    double planner_time_limit_s) {
+                    double planner_time_limit_s, const std::optional<py::function>& on_event,
+                    const std::shared_ptr<Halter>& halter) {
   const SewerMap& map = *mission->map;
   if (faults && faults->map.get() != mission->map.get()) {
     raise_error({ErrorCode::kInvalidArgument, "the faults were read against another map"});
   }
   Simulation out;
+  // The callback's exception, if it raised: the run is halted and it is raised here.
+  std::optional<py::error_already_set> raised;
   {
     py::gil_scoped_release release;
     ex::ReplannerOptions replanner_options;
@@ -63,16 +116,52 @@ Simulation simulate(const std::shared_ptr<const MissionHandle>& mission,
     ex::ExecutorOptions options;
     options.recovery.push_allowed = allow_push;
     ex::Executor executor(map, replanner, robot, options);
-    executor.subscribe([&out](const ex::Event& e) { out.events.push_back(e); });
+    executor.subscribe([&](const ex::Event& e) {
+      out.events.push_back(e);
+      if (!on_event || raised) return;
+      // The GIL only for the callback: the simulation runs without it.
+      py::gil_scoped_acquire gil;
+      try {
+        (*on_event)(e);
+      } catch (py::error_already_set& error) {
+        raised.emplace(std::move(error));
+        executor.halt();
+      }
+    });
+    if (halter) halter->attach(&executor);
     out.report = executor.run();
+    if (halter) halter->attach(nullptr);
   }
+  if (raised) throw std::move(*raised);
   return out;
 }
 
 Campaign run(const std::shared_ptr<const MissionHandle>& mission, std::size_t runs,
              std::uint64_t seed, const std::string& rates, std::size_t jobs, bool guard,
-             double timeout_s, bool allow_push) {
+             double timeout_s, bool allow_push, const std::string& risk,
+             const std::optional<std::filesystem::path>& risk_table, bool faults_from_condition,
+             double planner_time_limit_s) {
   const SewerMap& map = *mission->map;
+  // What the map's findings mean for planning, as `sewerplan campaign --risk` applies them.
+  const std::optional<RiskMode> mode = risk_mode_from_string(risk);
+  if (!mode) {
+    raise_error({ErrorCode::kInvalidArgument,
+                 "risk must be ignore, impassable, avoid or expected, not '" + risk + "'"});
+  }
+  Diagnostics diagnostics;
+  const RiskTable table =
+      risk_table ? value_or_raise(read_risk_table(*risk_table, diagnostics), &diagnostics)
+                 : default_risk_table();
+  Mission planned = mission->mission;
+  // Obstacles drawn from the findings need their hazards: every policy plans with what the
+  // findings close, the risk-aware one weighs the rest.
+  close_findings(map, planned,
+                 faults_from_condition && *mode != RiskMode::kAvoid ? RiskMode::kExpected : *mode,
+                 table);
+  if (faults_from_condition && planned.hazards.empty()) {
+    raise_error({ErrorCode::kInvalidArgument,
+                 "faults_from_condition: the map's findings hold no possible blockage"});
+  }
   campaign::CampaignSpec spec;
   spec.map_name = map.name();
   spec.mission_name = mission->mission.name;
@@ -86,6 +175,16 @@ Campaign run(const std::shared_ptr<const MissionHandle>& mission, std::size_t ru
   spec.runs = runs;
   spec.rates = value_or_raise(campaign::parse_fault_rates(rates));
   spec.push_allowed = allow_push;
+  spec.planner_time_limit_s = planner_time_limit_s;
+  spec.risk = risk;
+  spec.faults_from_condition = faults_from_condition;
+  if (risk_table) {
+    // A risk table changes what the findings mean: part of the mission's identity.
+    std::ostringstream table_json;
+    write_risk_table_json(table, table_json);
+    spec.mission_fingerprint =
+        campaign::fingerprint(spec.mission_fingerprint + "\nrisk-table:" + table_json.str());
+  }
   campaign::CampaignOptions options;
   options.jobs = std::max<std::size_t>(1, jobs);
   options.guard = guard;
@@ -93,7 +192,7 @@ Campaign run(const std::shared_ptr<const MissionHandle>& mission, std::size_t ru
   Campaign out;
   {
     py::gil_scoped_release release;
-    out.records = campaign::run_campaign(map, mission->mission, spec, options);
+    out.records = campaign::run_campaign(map, planned, spec, options);
     out.summary = campaign::summarize(spec, out.records);
   }
   return out;
@@ -181,15 +280,70 @@ void bind_events(py::module_& m) {
 }
 
 void bind_simulate(py::module_& m) {
-  py::class_<Faults>(m, "FaultScenario", "The trouble hidden in a simulated sewer.")
+  py::class_<ObstacleView>(m, "Obstacle", "Something in a pipe that stops the robot.")
+      .def_readonly("pipe", &ObstacleView::pipe)
+      .def_readonly("offset_m", &ObstacleView::offset_m)
+      .def_readonly("kind", &ObstacleView::kind, "'permanent' or 'transient'")
+      .def("__repr__", [](const ObstacleView& o) {
+        return "<Obstacle " + o.kind + " in " + o.pipe + " at " + std::to_string(o.offset_m) +
+               " m>";
+      });
+  py::class_<DangerSpotView>(m, "DangerSpot", "A place in a pipe the robot must not drive onto.")
+      .def_readonly("pipe", &DangerSpotView::pipe)
+      .def_readonly("offset_m", &DangerSpotView::offset_m);
+  py::class_<PassageView>(m, "DangerousPassage",
+                          "A passage of a manhole between two slots the robot must not take.")
+      .def_readonly("manhole", &PassageView::manhole)
+      .def_readonly("from_slot", &PassageView::from_slot)
+      .def_readonly("to_slot", &PassageView::to_slot);
+  py::class_<MalfunctionView>(m, "Malfunction", "A robot malfunction, at a job or a time.")
+      .def_readonly("kind", &MalfunctionView::kind, "'transient' or 'permanent'")
+      .def_readonly("at_job", &MalfunctionView::at_job, "the job's index from 0, or None")
+      .def_readonly("at_time_s", &MalfunctionView::at_time_s, "the mission time, or None");
+  py::class_<Faults>(m, "FaultScenario",
+                     "The trouble hidden in a simulated sewer: lists of Obstacle, DangerSpot, "
+                     "DangerousPassage and Malfunction objects.")
       .def_property_readonly("obstacles",
-                             [](const Faults& f) { return f.scenario.obstacles.size(); })
+                             [](const Faults& f) {
+                               std::vector<ObstacleView> out;
+                               for (const hal::Obstacle& o : f.scenario.obstacles) {
+                                 out.push_back({f.map->pipe(o.pipe).name, o.offset_m,
+                                                std::string(hal::to_string(o.kind))});
+                               }
+                               return out;
+                             })
       .def_property_readonly("danger_spots",
-                             [](const Faults& f) { return f.scenario.danger_spots.size(); })
-      .def_property_readonly("dangerous_passages",
-                             [](const Faults& f) { return f.scenario.dangerous_passages.size(); })
+                             [](const Faults& f) {
+                               std::vector<DangerSpotView> out;
+                               for (const hal::DangerSpot& d : f.scenario.danger_spots) {
+                                 out.push_back({f.map->pipe(d.pipe).name, d.offset_m});
+                               }
+                               return out;
+                             })
+      .def_property_readonly(
+          "dangerous_passages",
+          [](const Faults& f) {
+            std::vector<PassageView> out;
+            for (const hal::DangerousPassage& p : f.scenario.dangerous_passages) {
+              out.push_back(
+                  {f.map->manhole(p.manhole).name, p.from_slot.value(), p.to_slot.value()});
+            }
+            return out;
+          })
       .def_property_readonly("malfunctions",
-                             [](const Faults& f) { return f.scenario.malfunctions.size(); })
+                             [](const Faults& f) {
+                               std::vector<MalfunctionView> out;
+                               for (const hal::Malfunction& mf : f.scenario.malfunctions) {
+                                 MalfunctionView v{.kind = std::string(hal::to_string(mf.kind))};
+                                 if (const auto* j = std::get_if<hal::AtJob>(&mf.when)) {
+                                   v.at_job = j->index;
+                                 } else {
+                                   v.at_time_s = std::get<hal::AtTime>(mf.when).time_s;
+                                 }
+                                 out.push_back(std::move(v));
+                               }
+                               return out;
+                             })
       .def("to_json", [](const Faults& f) { return hal::faults_json(f.scenario, *f.map); });
   m.def(
       "read_faults",
@@ -233,10 +387,20 @@ void bind_simulate(py::module_& m) {
   py::class_<Simulation>(m, "Simulation", "simulate()'s answer: the report and every event.")
       .def_readonly("report", &Simulation::report)
       .def_readonly("events", &Simulation::events);
+  py::class_<Halter, std::shared_ptr<Halter>>(
+      m, "Halter", "halt() for simulate(), from any thread: the running mission stops.")
+      .def(py::init<>())
+      .def("halt", &Halter::halt,
+           "Stops the simulate() call given this Halter (at once if it has not started): the "
+           "robot's emergency stop, then a mission_end event with outcome 'halted'.")
+      .def_property_readonly("requested", &Halter::requested);
   m.def("simulate", &simulate, py::arg("mission"), py::arg("faults") = py::none(),
         py::arg("allow_push") = false, py::arg("planner_time_limit_s") = 0.0,
+        py::arg("on_event") = py::none(), py::arg("halt") = py::none(),
         "Runs the mission on the simulated robot with the faults hidden in it, with recovery "
-        "and replanning, as `sewerplan simulate` does (the GIL is released meanwhile).");
+        "and replanning, as `sewerplan simulate` does. The GIL is released meanwhile and taken "
+        "only to call on_event(event) as each event happens (an exception it raises halts the "
+        "run and is raised here); a Halter given as halt stops the run from another thread.");
 }
 
 void bind_campaign(py::module_& m) {
@@ -274,6 +438,13 @@ void bind_campaign(py::module_& m) {
             return r.result->ours;
           })
       .def_property_readonly(
+          "risk_aware",
+          [](const campaign::RunRecord& r) -> std::optional<campaign::Execution> {
+            if (!r.result || !r.result->risk_aware) return std::nullopt;
+            return *r.result->risk_aware;
+          },
+          "With risk='expected': the risk-aware policy's run, else None.")
+      .def_property_readonly(
           "baseline",
           [](const campaign::RunRecord& r) -> std::optional<campaign::Execution> {
             if (!r.result) return std::nullopt;
@@ -303,10 +474,14 @@ void bind_campaign(py::module_& m) {
       .def_readonly("summary", &Campaign::summary);
   m.def("run_campaign", &run, py::arg("mission"), py::arg("runs"), py::arg("seed") = 1,
         py::arg("rates") = "", py::arg("jobs") = 1, py::arg("guard") = true,
-        py::arg("timeout_s") = 60.0, py::arg("allow_push") = false,
+        py::arg("timeout_s") = 60.0, py::arg("allow_push") = false, py::arg("risk") = "impassable",
+        py::arg("risk_table") = py::none(), py::arg("faults_from_condition") = false,
+        py::arg("planner_time_limit_s") = 0.0,
         "Seeded simulated runs with random faults, each against the oracle and the paper-era "
-        "baseline (sewerplan campaign; rates as --fault-rates writes them). The GIL is released "
-        "meanwhile.");
+        "baseline (sewerplan campaign; rates as --fault-rates writes them). risk, risk_table and "
+        "faults_from_condition are the campaign's --risk, --risk-table and "
+        "--faults-from-condition, applied to the map's findings (read_condition). The GIL is "
+        "released meanwhile.");
 }
 
 }  // namespace

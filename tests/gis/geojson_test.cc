@@ -150,7 +150,7 @@ TEST(GeoJson, APlansRouteStartsAtTheMissionsStartAndVisitsItsManholes) {
   EXPECT_EQ(routes[0]["properties"]["steps"], ais.plan.steps.size());
   const Json start = layer(doc, "start").at(0)["geometry"]["coordinates"];
   EXPECT_EQ(routes[0]["geometry"]["coordinates"][0], start);
-  const std::vector<MapXY> points = route_points(ais.map, ais.mission, ais.plan.steps);
+  const std::vector<MapXY> points = domain::route_points(ais.map, ais.mission, ais.plan.steps);
   EXPECT_EQ(routes[0]["geometry"]["coordinates"].size(), points.size());
   EXPECT_EQ(layer(doc, "task").size(), ais.mission.tasks.size());
 }

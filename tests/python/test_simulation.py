@@ -1,6 +1,9 @@
 # SPDX-License-Identifier: MIT
 # Simulated missions with faults (events as objects) and a small campaign from Python.
 import json
+import threading
+
+import pytest
 
 import sewerplan
 from conftest import AIS
@@ -8,7 +11,7 @@ from conftest import AIS
 
 def test_simulates_a_blocked_pipe(ais_map, paper):
     faults = sewerplan.read_faults(ais_map, str(AIS / "faults" / "blocked-p5.json"))
-    assert faults.obstacles >= 1
+    assert len(faults.obstacles) >= 1
     run = sewerplan.simulate(paper, faults)
     report = run.report
     assert report.outcome == "ended"
@@ -60,3 +63,100 @@ def test_a_small_campaign(paper):
     assert json.loads(summary.to_json())["runs"] == 3
     again = sewerplan.run_campaign(paper, runs=3, seed=1, guard=False)
     assert [r.ours.tasks for r in again.records] == [r.ours.tasks for r in campaign.records]
+
+
+def test_faults_are_objects(ais_map, paper):
+    faults = sewerplan.read_faults(ais_map, str(AIS / "faults" / "blocked-p5.json"))
+    obstacle = faults.obstacles[0]
+    assert isinstance(obstacle, sewerplan.Obstacle)
+    assert obstacle.pipe == "P5" and obstacle.kind in ("permanent", "transient")
+    assert 0 <= obstacle.offset_m
+    drawn = sewerplan.random_faults(paper, seed=3, obstacles_per_km=200)
+    listed = json.loads(drawn.to_json())
+    assert [o.pipe for o in drawn.obstacles] == [o["pipe"] for o in listed["obstacles"]]
+    assert all(isinstance(d, sewerplan.DangerSpot) for d in drawn.danger_spots)
+    for m in drawn.malfunctions:
+        assert isinstance(m, sewerplan.Malfunction)
+        assert (m.at_job is None) != (m.at_time_s is None)
+
+
+def test_events_arrive_live_and_a_thread_halts_the_run(paper):
+    """The callback sees each event as it happens, and halt() from another thread stops the run."""
+    seen = []
+    first_action = threading.Event()
+    halted = threading.Event()
+
+    def on_event(event):
+        seen.append(event)
+        if event.type == "action" and not first_action.is_set():
+            first_action.set()
+            # Hold the run here (the wait lets the GIL go) until the other thread has halted.
+            assert halted.wait(timeout=60)
+
+    halter = sewerplan.Halter()
+
+    def halt_when_driving():
+        assert first_action.wait(timeout=60)
+        halter.halt()
+        halted.set()
+
+    thread = threading.Thread(target=halt_when_driving)
+    thread.start()
+    run = sewerplan.simulate(paper, on_event=on_event, halt=halter)
+    thread.join()
+    assert halter.requested
+    assert run.report.outcome == "halted"
+    assert run.report.tasks_done != ["sample", "inspect"]  # without the halt, both are done
+    assert [e.type for e in seen] == [e.type for e in run.events]
+    assert isinstance(seen[0].what, sewerplan.PlanEvent)
+    assert seen[-1].type == "mission_end" and seen[-1].what.outcome == "halted"
+
+
+def test_a_halter_used_before_the_run_halts_it_at_once(paper):
+    halter = sewerplan.Halter()
+    halter.halt()
+    run = sewerplan.simulate(paper, halt=halter)
+    assert run.report.outcome == "halted"
+    assert not [e for e in run.events if e.type == "action"]
+
+
+def test_an_exception_in_the_callback_halts_the_run_and_is_raised(paper):
+    calls = []
+
+    def on_event(event):
+        calls.append(event.type)
+        if event.type == "action":
+            raise ValueError("enough")
+
+    with pytest.raises(ValueError, match="enough"):
+        sewerplan.simulate(paper, on_event=on_event)
+    assert calls.count("action") == 1  # not called again after it raised
+
+
+def with_findings(map_, findings):
+    doc = json.loads(map_.to_json())
+    doc["findings"] = findings
+    return sewerplan.parse_map(json.dumps(doc), "with-findings.json")
+
+
+def test_a_campaign_with_the_condition_options(ais_map):
+    """risk and faults_from_condition, as sewerplan campaign --risk --faults-from-condition."""
+    roots = [{"pipe": p["name"], "code": "BBA", "offset_m": p["length_m"] / 2}
+             for p in ais_map.pipes]
+    found = with_findings(ais_map, roots)
+    assert found.finding_count == len(roots)
+    mission = sewerplan.read_mission(found, str(AIS / "missions" / "paper.json"))
+    campaign = sewerplan.run_campaign(mission, runs=2, seed=4, risk="expected",
+                                      faults_from_condition=True, guard=False)
+    assert all(r.status == "ok" for r in campaign.records)
+    assert all(r.risk_aware is not None for r in campaign.records)
+    summary = json.loads(campaign.summary.to_json())
+    assert "risk_aware" in summary
+    plain = sewerplan.run_campaign(mission, runs=2, seed=4, risk="ignore", guard=False)
+    assert all(r.risk_aware is None for r in plain.records)
+    with pytest.raises(sewerplan.Error) as error:
+        sewerplan.run_campaign(mission, runs=1, risk="sometimes")
+    assert error.value.code == "invalid-argument"
+    bare = sewerplan.read_mission(ais_map, str(AIS / "missions" / "paper.json"))
+    with pytest.raises(sewerplan.Error, match="no possible blockage"):
+        sewerplan.run_campaign(bare, runs=1, faults_from_condition=True)

@@ -22,6 +22,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <string_view>
@@ -96,5 +97,20 @@ std::vector<Blockage> impassable_blockages(const SewerMap& map,
 // What risk-aware planning needs of the findings: each kBlockage finding as a Hazard (mission.h)
 // with its probability and reason, in the map's order of findings.
 std::vector<Hazard> blockage_hazards(const SewerMap& map, const std::vector<FindingRisk>& risks);
+
+// What planning makes of the findings (the CLI's --risk, the Python campaign's risk=):
+// kIgnore none; kImpassable (the default) closes the places the risk table finds impassable for
+// the mission's robot; kAvoid closes every place with a risk at all (impassable, blockage or
+// danger); kExpected closes the impassable ones and weighs the others' blockage probabilities
+// (Mission::hazards, domain::RiskCosts).
+enum class RiskMode { kIgnore, kImpassable, kAvoid, kExpected };
+
+// "ignore", "impassable", "avoid", "expected"; empty for another name.
+std::optional<RiskMode> risk_mode_from_string(std::string_view name);
+
+// Adds a blockage to `mission` at every finding `mode` closes and, for kExpected, a hazard at
+// every possible blockage; returns how many places it closed.
+std::size_t close_findings(const SewerMap& map, Mission& mission, RiskMode mode,
+                           const RiskTable& table);
 
 }  // namespace sewerplan

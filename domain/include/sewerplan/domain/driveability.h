@@ -28,6 +28,7 @@
 
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "sewerplan/core/mission.h"
@@ -76,5 +77,9 @@ DriveabilityReport analyse_driveability(const SewerMap& map, const RobotProfile&
                                         std::span<const ManholeId> starts,
                                         const PassageMotionTable* motion = nullptr,
                                         std::span<const Blockage> closures = {});
+
+// Why the robot cannot drive `pipe`: "too narrow", "too wide", "cut off by a closure" or
+// "unreachable"; empty when it can. Runtime: O(log pipes).
+std::string_view why_not_driveable(PipeId pipe, const DriveabilityReport& report);
 
 }  // namespace sewerplan::domain

@@ -60,8 +60,4 @@ Result<std::string> to_geojson(const GeoJsonInput& input, const Wgs84Projection&
 std::string to_nav2_route_graph(const SewerMap& map, MapXY origin = {},
                                 std::string_view frame = "map");
 
-// The places a sequence of plan steps passes, from the mission's start, in map coordinates.
-std::vector<MapXY> route_points(const SewerMap& map, const Mission& mission,
-                                std::span<const domain::PlanStep> steps);
-
 }  // namespace sewerplan::gis

@@ -22,6 +22,7 @@
 
 #include "sewerplan/core/crs.h"
 #include "sewerplan/core/result.h"
+#include "sewerplan/domain/route_geometry.h"
 
 namespace sewerplan::gis {
 
@@ -30,11 +31,8 @@ struct LonLat {
   double lat_deg = 0;
 };
 
-// A point in the map's CRS: x east, y north.
-struct MapXY {
-  double x = 0;
-  double y = 0;
-};
+// A point in the map's CRS: x east, y north (route_geometry.h).
+using MapXY = domain::MapXY;
 
 class Wgs84Projection {
  public:
