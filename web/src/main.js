@@ -238,16 +238,22 @@ async function replayLog(file) {
   player.speed = Number($('speed').value);
   try {
     const { events } = await api.replay(state.map.id, await file.text());
+    // A log has no routes: each plan's route is the steps its actions ran until the next plan.
+    const isPlan = (e) => e.type === 'plan' || e.type === 'replan';
+    let steps = [];
+    const queued = [];
     for (const e of events) {
-      if (e.type === 'plan' || e.type === 'replan') {
-        // A log has no routes: each plan's route is the pipes its actions drive until the next plan.
-        const next = events.findIndex((x, i) => i > events.indexOf(e) && (x.type === 'plan' || x.type === 'replan'));
-        const actions = events.slice(events.indexOf(e) + 1, next < 0 ? undefined : next).filter((x) => x.type === 'action');
-        player.push(e.type, e);
-        player.push('route', { t_s: e.t_s, steps: actions.map((a) => a.step) });
+      if (isPlan(e)) {
+        steps = [];
+        queued.push(e, { route: true, steps });
       } else {
-        player.push(e.type, e);
+        if (e.type === 'action') steps.push(e.step);
+        queued.push(e);
       }
+    }
+    for (const q of queued) {
+      if (q.route) player.push('route', { steps: q.steps });
+      else player.push(q.type, q);
     }
   } catch (e) {
     $('messages').textContent = e.message;
