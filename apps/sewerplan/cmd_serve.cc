@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // sewerplan serve [--map FILE ...] [--host 127.0.0.1] [--port 8080] [--token T] [--web DIR]
-// The operator station (docs/server.md): the server of server/station_server.h, and the page.
+// The operator station (docs/operator-station.md): the server of server/station_server.h, and the
+// page.
 #include <csignal>
 #include <filesystem>
 #include <ostream>
@@ -83,7 +84,8 @@ void add_serve_command(CLI::App& app, Context& context) {
   // Shared with the callback, which CLI11 keeps after this function returns.
   auto o = std::make_shared<ServeOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "serve", "The operator station: a web server with the maps, and the page (docs/server.md)");
+      "serve",
+      "The operator station: a web server with the maps, and the page (docs/operator-station.md)");
   cmd->add_option("--map", o->maps, "A map to offer (any format of docs/formats/); repeatable");
   cmd->add_option("--host", o->host, "Address to listen on")->capture_default_str();
   cmd->add_option("--port", o->port, "Port to listen on (0: any free port)")

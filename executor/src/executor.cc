@@ -67,6 +67,10 @@ Executor::Executor(const SewerMap& map, Replanner& replanner, hal::Robot& robot,
 
 void Executor::subscribe(EventObserver observer) { observers_.push_back(std::move(observer)); }
 
+void Executor::subscribe_plans(PlanObserver observer) {
+  plan_observers_.push_back(std::move(observer));
+}
+
 void Executor::halt() {
   halt_.store(true);
   robot_.emergency_stop();
@@ -80,6 +84,7 @@ class Executor::Run {
         robot_(e.robot_),
         options_(e.options_),
         observers_(e.observers_),
+        plan_observers_(e.plan_observers_),
         halt_(e.halt_),
         tracker_(e.map_, e.replanner_.progress().position, e.replanner_.heading_end()),
         recovery_(
@@ -188,6 +193,7 @@ class Executor::Run {
                    .end = r.end,
                    .steps = r.plan.steps.size(),
                    .cost_s = r.cost_s});
+    for (const PlanObserver& observer : plan_observers_) observer(r);
   }
 
   // What the Replanner is told: a blocked pipe, a closed passage, or a robot that cannot move.
@@ -383,6 +389,7 @@ class Executor::Run {
   hal::Robot& robot_;
   const ExecutorOptions& options_;
   const std::vector<EventObserver>& observers_;
+  const std::vector<PlanObserver>& plan_observers_;
   const std::atomic<bool>& halt_;
   detail::DeadReckoning tracker_;
   detail::StagedRecovery recovery_;

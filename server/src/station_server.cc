@@ -3,16 +3,23 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
+#include <chrono>
 #include <exception>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <set>
 #include <string_view>
 #include <thread>
+#include <type_traits>
 #include <utility>
+#include <variant>
 
 #include "sewerplan/core/clock.h"
 #include "sewerplan/core/map_io.h"
 #include "sewerplan/core/mission.h"
+#include "sewerplan/core/passage_motion.h"
 #include "sewerplan/core/robot_profile.h"
 #include "sewerplan/domain/driveability.h"
 #include "sewerplan/domain/plan_text.h"
@@ -38,12 +45,23 @@ namespace {
 constexpr int kBadRequest = 400;
 constexpr int kUnauthorized = 401;
 constexpr int kNotFound = 404;
+constexpr int kConflict = 409;       // the station holds as many maps as it may
 constexpr int kUnprocessable = 422;  // well-formed, but not a valid mission, log or plan request
+
+// Debian's httplib compresses every "application/json", "application/javascript" and "text/..."
+// answer with brotli at its slowest quality (11) when the client accepts "br", as every browser
+// does: the page's 840 kB bundle took 3 s to compress on an idle machine and 14 to 20 s on a
+// loaded one, and a 100,000-manhole map's geometry far longer. The station serves its own
+// machine or a LAN: it sends uncompressed, and these types (with a charset, so that httplib's
+// exact match does not see them) are how (docs/operator-station.md, "Figures").
+constexpr const char* kJsonType = "application/json; charset=utf-8";
+constexpr const char* kJavaScriptType = "application/javascript; charset=utf-8";
 
 struct LoadedMap {
   std::string id;
   SewerMap map;
-  std::string geometry;  // map_geometry_json, computed once
+  std::string geometry;                // map_geometry_json, computed once
+  std::filesystem::path motion_table;  // MAP.motion.json beside the map, if there is one
 };
 
 std::string dump(const Json& j) {
@@ -52,7 +70,7 @@ std::string dump(const Json& j) {
 
 void send_json(httplib::Response& res, const Json& j, int status = 200) {
   res.status = status;
-  res.set_content(dump(j), "application/json");
+  res.set_content(dump(j), kJsonType);
 }
 
 void send_error(httplib::Response& res, int status, const Error& error,
@@ -80,10 +98,46 @@ std::optional<double> time_limit(const httplib::Request& req, double max_s) {
   }
 }
 
-// Unique IDs from the files' stems: "map", "map-2", ...
-std::string unique_id(const std::filesystem::path& path, std::set<std::string>& taken) {
-  std::string stem = path.stem().string();
-  if (stem.empty()) stem = "map";
+// The server's wall clock in milliseconds since 1970, as the page's Date.now(): each streamed
+// event carries it (an SSE field "wall_ms", which EventSource ignores), so that the page can
+// measure how long an event took from the executor to the page.
+std::string wall_ms() {
+  const auto now = std::chrono::system_clock::now().time_since_epoch();
+  return std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(now).count());
+}
+
+// A plan's route for the map: {"steps": [the paper's text of each step], "pipes": [the pipes it
+// drives or enters, in order]}.
+Json route_json(const domain::Plan& plan, const SewerMap& map, const Mission& mission) {
+  Json steps = Json::array();
+  Json pipes = Json::array();
+  for (const domain::PlanStep& step : plan.steps) {
+    steps.push_back(domain::format_step(step, map, mission));
+    std::visit(
+        [&](const auto& s) {
+          std::optional<PipeId> pipe;
+          if constexpr (requires { s.pipe; }) pipe = s.pipe;
+          // A passage enters the pipe of its `to` slot (the end "in P9" is reached so).
+          if constexpr (std::is_same_v<std::decay_t<decltype(s)>, domain::DriveManhole>) {
+            pipe = map.slot(s.manhole, s.to).pipe;
+          }
+          if (!pipe) return;
+          const std::string& name = map.pipe(*pipe).name;
+          if (pipes.empty() || pipes.back() != name) pipes.push_back(name);
+        },
+        step);
+  }
+  return {{"steps", std::move(steps)}, {"pipes", std::move(pipes)}};
+}
+
+// Unique IDs from the files' stems: "map", "map-2", ...; only letters, digits, '.', '_' and '-'
+// (an uploaded file's name is the client's).
+std::string unique_id(std::string stem, std::set<std::string>& taken) {
+  std::erase_if(stem, [](char c) {
+    return !(std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-');
+  });
+  if (stem.size() > 64) stem.resize(64);
+  if (stem.empty() || stem.starts_with('.')) stem = "map" + stem;
   std::string id = stem;
   for (int n = 2; taken.contains(id); ++n) id = stem + "-" + std::to_string(n);
   taken.insert(id);
@@ -94,15 +148,21 @@ std::string unique_id(const std::filesystem::path& path, std::set<std::string>& 
 
 struct StationServer::Impl {
   ServerOptions options;
-  std::vector<LoadedMap> maps;
+  // The maps given at the start and uploaded since; never removed, so a map a simulation runs on
+  // stays while it runs. Guarded by maps_mutex: uploads come while other requests read.
+  std::vector<std::shared_ptr<const LoadedMap>> maps;
+  std::set<std::string> taken_ids;
+  mutable std::mutex maps_mutex;
   httplib::Server http;
   std::atomic<bool> running{false};
   std::atomic<bool> stopping{false};
 
-  const LoadedMap* find_map(const httplib::Request& req, httplib::Response& res) const {
+  std::shared_ptr<const LoadedMap> find_map(const httplib::Request& req,
+                                            httplib::Response& res) const {
     const std::string id = req.matches[1];
-    for (const LoadedMap& m : maps) {
-      if (m.id == id) return &m;
+    const std::lock_guard lock(maps_mutex);
+    for (const auto& m : maps) {
+      if (m->id == id) return m;
     }
     send_error(res, kNotFound, Error{ErrorCode::kInvalidArgument, "no map '" + id + "'"});
     return nullptr;
@@ -120,9 +180,27 @@ struct StationServer::Impl {
     return std::move(*mission);
   }
 
+  // As the CLI's plan and simulate: the planned manhole passages beside the map (MAP.motion.json,
+  // `motion precompute`), unless ?motion=0; a table for another map or robot is a 422, as the
+  // CLI's exit code 1. Whether a table is used: the mission's passage_motion.
+  static bool attach_motion(const LoadedMap& m, const httplib::Request& req, Mission& mission,
+                            httplib::Response& res) {
+    if (m.motion_table.empty() || req.get_param_value("motion") == "0") return true;
+    Result<PassageMotionTable> table = load_passage_motion(m.motion_table, m.map, mission.profile);
+    if (!table.has_value()) {
+      Error error = table.error();
+      error.message += " (plan with ?motion=0 to use the angle and step rules)";
+      send_error(res, kUnprocessable, error);
+      return false;
+    }
+    mission.passage_motion = std::make_shared<const PassageMotionTable>(std::move(*table));
+    return true;
+  }
+
   void routes();
   void list_maps(httplib::Response& res) const;
   void driveability(const httplib::Request& req, httplib::Response& res) const;
+  void upload_map(const httplib::Request& req, httplib::Response& res);
   void validate(const httplib::Request& req, httplib::Response& res) const;
   void plan(const httplib::Request& req, httplib::Response& res) const;
   void simulate(const httplib::Request& req, httplib::Response& res) const;
@@ -139,17 +217,57 @@ bool StationServer::Impl::authorised(const httplib::Request& req) const {
 
 void StationServer::Impl::list_maps(httplib::Response& res) const {
   Json list = Json::array();
-  for (const LoadedMap& m : maps) {
-    list.push_back({{"id", m.id},
-                    {"name", m.map.name()},
-                    {"manholes", m.map.manhole_count()},
-                    {"pipes", m.map.pipe_count()}});
+  const std::lock_guard lock(maps_mutex);
+  for (const auto& m : maps) {
+    list.push_back({{"id", m->id},
+                    {"name", m->map.name()},
+                    {"manholes", m->map.manhole_count()},
+                    {"pipes", m->map.pipe_count()}});
   }
   send_json(res, {{"maps", list}, {"profiles", builtin_profile_names()}});
 }
 
+// POST /api/maps?name=FILE[&format=F]: the body is a map file in any format read_map reads (the
+// format from ?format=, else the name's extension, else the content), read in memory: nothing
+// is written on the server. Its ID is the name's stem, made unique.
+void StationServer::Impl::upload_map(const httplib::Request& req, httplib::Response& res) {
+  const std::string name = req.has_param("name") ? req.get_param_value("name") : "upload";
+  const std::filesystem::path file = std::filesystem::path(name).filename();
+  std::optional<MapFormat> format;
+  if (req.has_param("format")) {
+    format = map_format_from_name(req.get_param_value("format"));
+    if (!format) return bad_request(res, "format: expected json, ascii, swmm or isybau");
+  } else {
+    Result<MapFormat> detected = detect_map_format(file, req.body);
+    if (!detected.has_value()) return send_error(res, kUnprocessable, detected.error());
+    format = *detected;
+  }
+  Diagnostics diagnostics;
+  Result<SewerMap> map = parse_map(req.body, file.string(), *format, diagnostics);
+  if (!map.has_value()) return send_error(res, kUnprocessable, map.error(), diagnostics);
+  const std::lock_guard lock(maps_mutex);
+  if (maps.size() >= options.max_maps) {
+    return send_error(
+        res, kConflict,
+        Error{ErrorCode::kInvalidArgument, "the station holds " + std::to_string(maps.size()) +
+                                               " maps, its limit: no more uploads"});
+  }
+  const std::string id = unique_id(file.stem().string(), taken_ids);
+  std::string geometry = map_geometry_json(*map, id);
+  auto loaded =
+      std::make_shared<const LoadedMap>(LoadedMap{id, std::move(*map), std::move(geometry), {}});
+  maps.push_back(loaded);
+  send_json(res,
+            {{"id", id},
+             {"name", loaded->map.name()},
+             {"manholes", loaded->map.manhole_count()},
+             {"pipes", loaded->map.pipe_count()},
+             {"warnings", diagnostics_json(diagnostics, Severity::kWarning)}},
+            201);
+}
+
 void StationServer::Impl::driveability(const httplib::Request& req, httplib::Response& res) const {
-  const LoadedMap* m = find_map(req, res);
+  const auto m = find_map(req, res);
   if (!m) return;
   const std::string name = req.get_param_value("profile");
   // Built-in profiles only: a profile named by a path would read a file on the server.
@@ -159,11 +277,11 @@ void StationServer::Impl::driveability(const httplib::Request& req, httplib::Res
   }
   const std::vector<ManholeId> starts = domain::default_starts(m->map);
   const domain::DriveabilityReport report = domain::analyse_driveability(m->map, *profile, starts);
-  res.set_content(driveability_json(report, m->map, *profile).dump(), "application/json");
+  res.set_content(driveability_json(report, m->map, *profile).dump(), kJsonType);
 }
 
 void StationServer::Impl::validate(const httplib::Request& req, httplib::Response& res) const {
-  const LoadedMap* m = find_map(req, res);
+  const auto m = find_map(req, res);
   if (!m) return;
   Diagnostics diagnostics;
   Result<Mission> mission = read_mission_json(req.body, "mission.json", m->map, diagnostics);
@@ -177,12 +295,12 @@ void StationServer::Impl::validate(const httplib::Request& req, httplib::Respons
 }
 
 void StationServer::Impl::plan(const httplib::Request& req, httplib::Response& res) const {
-  const LoadedMap* m = find_map(req, res);
+  const auto m = find_map(req, res);
   if (!m) return;
   const std::optional<double> limit = time_limit(req, options.max_plan_time_s);
   if (!limit) return bad_request(res, "time_limit: expected seconds > 0");
   std::optional<Mission> mission = read_body_mission(req.body, m->map, res);
-  if (!mission) return;
+  if (!mission || !attach_motion(*m, req, *mission, res)) return;
   search::PlannerOptions planner;
   planner.time_limit_s = *limit;
   planner.select_goals = req.get_param_value("select_goals") == "1";
@@ -200,7 +318,7 @@ void StationServer::Impl::plan(const httplib::Request& req, httplib::Response& r
       domain::validate_plan(outcome->plan, m->map, *mission, start);
   Json j = plan_json(*outcome, report, m->map, *mission);
   j["text"] = domain::format_plan(outcome->plan, m->map, *mission);
-  j["motion_table"] = false;  // the server plans with the turn and step rules
+  j["motion_table"] = mission->passage_motion != nullptr;
   Json actions = Json::array();
   if (Result<fusion::FusedPlan> fused = fusion::fuse(outcome->plan, m->map, *mission, fuse_start);
       fused.has_value()) {
@@ -215,7 +333,7 @@ void StationServer::Impl::plan(const httplib::Request& req, httplib::Response& r
 }
 
 void StationServer::Impl::simulate(const httplib::Request& req, httplib::Response& res) const {
-  const LoadedMap* m = find_map(req, res);
+  const auto m = find_map(req, res);
   if (!m) return;
   const Json body = Json::parse(req.body, nullptr, false);
   if (body.is_discarded() || !body.is_object()) {
@@ -225,7 +343,7 @@ void StationServer::Impl::simulate(const httplib::Request& req, httplib::Respons
     return bad_request(res, "\"mission\": expected the mission's JSON object");
   }
   std::optional<Mission> mission = read_body_mission(dump(body["mission"]), m->map, res);
-  if (!mission) return;
+  if (!mission || !attach_motion(*m, req, *mission, res)) return;
   Diagnostics diagnostics;
   Result<hal::FaultScenario> faults = hal::FaultScenario{};
   if (body.contains("faults")) {
@@ -243,11 +361,12 @@ void StationServer::Impl::simulate(const httplib::Request& req, httplib::Respons
     return send_error(res, status, faults.error(), diagnostics);
   }
   struct Run {
+    std::shared_ptr<const LoadedMap> loaded;  // keeps the map while the stream runs
     const SewerMap* map;
     Mission mission;
     hal::FaultScenario faults;
   };
-  auto run = std::make_shared<Run>(Run{&m->map, std::move(*mission), std::move(*faults)});
+  auto run = std::make_shared<Run>(Run{m, &m->map, std::move(*mission), std::move(*faults)});
   res.set_header("Cache-Control", "no-cache");
   res.set_chunked_content_provider(
       "text/event-stream", [run](std::size_t, httplib::DataSink& sink) {
@@ -256,21 +375,26 @@ void StationServer::Impl::simulate(const httplib::Request& req, httplib::Respons
                             start_pose(replanner.progress().position), run->faults);
         executor::Executor executor(*run->map, replanner, robot);
         // A closed tab: the write fails, and the mission halts at its next check.
-        executor.subscribe([&](const executor::Event& event) {
-          const std::string message = "event: " + std::string(executor::type_name(event)) +
-                                      "\ndata: " + executor::to_json_line(event) + "\n\n";
+        const auto send = [&](std::string_view type, const std::string& data) {
+          const std::string message = "event: " + std::string(type) + "\ndata: " + data +
+                                      "\nwall_ms: " + wall_ms() + "\n\n";
           if (!sink.write(message.data(), message.size())) executor.halt();
+        };
+        executor.subscribe([&](const executor::Event& event) {
+          send(executor::type_name(event), executor::to_json_line(event));
+        });
+        executor.subscribe_plans([&](const executor::PlanResponse& response) {
+          send("route", dump(route_json(response.plan, *run->map, replanner.mission())));
         });
         const executor::MissionReport report = executor.run();
-        const std::string last = "event: report\ndata: " + dump(report_json(report)) + "\n\n";
-        sink.write(last.data(), last.size());
+        send("report", dump(report_json(report)));
         sink.done();
         return true;
       });
 }
 
 void StationServer::Impl::replay(const httplib::Request& req, httplib::Response& res) const {
-  const LoadedMap* m = find_map(req, res);
+  const auto m = find_map(req, res);
   if (!m) return;
   Diagnostics diagnostics;
   Result<std::vector<executor::Event>> events =
@@ -315,8 +439,9 @@ void StationServer::Impl::routes() {
   using Req = httplib::Request;
   using Res = httplib::Response;
   http.Get("/api/maps", [this](const Req&, Res& res) { list_maps(res); });
+  http.Post("/api/maps", [this](const Req& req, Res& res) { upload_map(req, res); });
   http.Get(R"(/api/maps/([^/]+))", [this](const Req& req, Res& res) {
-    if (const LoadedMap* m = find_map(req, res)) res.set_content(m->geometry, "application/json");
+    if (const auto m = find_map(req, res)) res.set_content(m->geometry, kJsonType);
   });
   http.Get(R"(/api/maps/([^/]+)/driveability)",
            [this](const Req& req, Res& res) { driveability(req, res); });
@@ -327,20 +452,27 @@ void StationServer::Impl::routes() {
             [this](const Req& req, Res& res) { simulate(req, res); });
   http.Post(R"(/api/maps/([^/]+)/replay)", [this](const Req& req, Res& res) { replay(req, res); });
   // The page: httplib refuses paths that climb out of the mount ("..").
-  if (!options.web_root.empty()) http.set_mount_point("/", options.web_root.string());
+  if (!options.web_root.empty()) {
+    http.set_mount_point("/", options.web_root.string());
+    http.set_file_extension_and_mimetype_mapping("js", kJavaScriptType);
+    http.set_file_extension_and_mimetype_mapping("mjs", kJavaScriptType);
+  }
 }
 
 Result<std::unique_ptr<StationServer>> StationServer::create(const ServerOptions& options) {
   auto impl = std::make_unique<Impl>();
   impl->options = options;
-  std::set<std::string> taken;
   for (const std::filesystem::path& path : options.maps) {
     Diagnostics diagnostics;
     Result<SewerMap> map = read_map(path, diagnostics);
     if (!map.has_value()) return map.error();
-    const std::string id = unique_id(path, taken);
+    const std::string id = unique_id(path.stem().string(), impl->taken_ids);
     std::string geometry = map_geometry_json(*map, id);
-    impl->maps.push_back({id, std::move(*map), std::move(geometry)});
+    std::filesystem::path motion = default_motion_path(path);
+    std::error_code ec;
+    if (!std::filesystem::exists(motion, ec)) motion.clear();
+    impl->maps.push_back(std::make_shared<const LoadedMap>(
+        LoadedMap{id, std::move(*map), std::move(geometry), std::move(motion)}));
   }
   if (!options.web_root.empty() && !std::filesystem::is_directory(options.web_root)) {
     return Error{ErrorCode::kIo, options.web_root.string() + ": no such directory (the page)"};

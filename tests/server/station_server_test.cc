@@ -1,17 +1,24 @@
 // SPDX-License-Identifier: MIT
-// The operator station's HTTP API (docs/server.md), through httplib's client against a server on
-// an ephemeral port: every endpoint answers what the CLI's --json answers, and every bad request
-// gets a 4xx JSON error naming what is wrong.
+// The operator station's HTTP API (docs/operator-station.md), through httplib's client against a
+// server on an ephemeral port: every endpoint answers what the CLI's --json answers, and every bad
+// request gets a 4xx JSON error naming what is wrong.
 #include "sewerplan/server/station_server.h"
 
+#include <algorithm>
+#include <atomic>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "sewerplan/core/map_io.h"
+#include "sewerplan/core/passage_motion.h"
+#include "sewerplan/core/robot_profile.h"
 #include "sewerplan/core/text_file.h"
 
 #include <httplib.h>
@@ -29,7 +36,7 @@ std::string read(const std::filesystem::path& path) { return *read_text_file(pat
 class StationServerTest : public ::testing::Test {
  protected:
   void start(ServerOptions options) {
-    options.maps = {kAis / "map.json"};
+    if (options.maps.empty()) options.maps = {kAis / "map.json"};
     options.port = 0;
     Result<std::unique_ptr<StationServer>> created = StationServer::create(options);
     ASSERT_TRUE(created.has_value()) << created.error();
@@ -37,10 +44,16 @@ class StationServerTest : public ::testing::Test {
     Result<int> port = server_->bind();
     ASSERT_TRUE(port.has_value()) << port.error();
     thread_ = std::thread([this] { server_->run(); });
+    port_ = *port;
     client_ = std::make_unique<httplib::Client>("127.0.0.1", *port);
     client_->set_read_timeout(120, 0);
   }
-  void SetUp() override { start({}); }
+  void SetUp() override {
+    if (!std::string(::testing::UnitTest::GetInstance()->current_test_info()->name())
+             .starts_with("Manual")) {
+      start({});
+    }
+  }
   void TearDown() override {
     if (server_) server_->stop();
     if (thread_.joinable()) thread_.join();
@@ -61,6 +74,7 @@ class StationServerTest : public ::testing::Test {
   std::unique_ptr<StationServer> server_;
   std::thread thread_;
   std::unique_ptr<httplib::Client> client_;
+  int port_ = 0;
 };
 
 TEST_F(StationServerTest, ListsItsMapsByIdAndTheBuiltInProfiles) {
@@ -94,6 +108,118 @@ TEST_F(StationServerTest, PlansThePapersMissionIn14StepsWithItsFusedActions) {
   EXPECT_EQ(j["fused"].size(), 14u);
   EXPECT_EQ(j["dropped"].size(), 0u);
   EXPECT_NEAR(j["cost_s"].get<double>(), 585.4, 0.1);
+}
+
+// As the CLI's plan: the planned manhole passages beside the map are used, unless ?motion=0.
+TEST_F(StationServerTest, ManualPlansWithTheMotionTableBesideTheMapAndSaysSo) {
+  const std::filesystem::path dir =
+      std::filesystem::path(::testing::TempDir()) / "station-motion-table";
+  std::filesystem::create_directories(dir);
+  std::filesystem::copy_file(kAis / "map.json", dir / "ais.json",
+                             std::filesystem::copy_options::overwrite_existing);
+  Diagnostics diagnostics;
+  const Result<SewerMap> map = read_map(dir / "ais.json", diagnostics);
+  ASSERT_TRUE(map.has_value());
+  // One passage the paper's plan takes, M3 from P1 (slot 3) to P5 (slot 1), found impossible.
+  const PassageMotion passage{.manhole = *map->find_manhole("M3"),
+                              .from = SlotIndex{2},
+                              .to = SlotIndex{0},
+                              .feasible = false,
+                              .reason = "the body hits the wall"};
+  const PassageMotionTable table(map_geometry_fingerprint(*map),
+                                 profile_geometry_fingerprint(*builtin_profile("makro-1.1")),
+                                 {passage});
+  {
+    std::ofstream out(default_motion_path(dir / "ais.json"));
+    write_passage_motion_json(table, *map, out);
+  }
+  start({.maps = {dir / "ais.json"}});
+  const std::string mission = read(kAis / "missions/paper.json");
+  auto [status, with] = post("/api/maps/ais/plan", mission);
+  ASSERT_EQ(status, 200) << with.dump();
+  EXPECT_TRUE(with["motion_table"]);
+  EXPECT_EQ(with["text"].get<std::string>().find("FROM_3_TO_1 M3"), std::string::npos)
+      << with["text"];
+  auto [status_rules, rules] = post("/api/maps/ais/plan?motion=0", mission);
+  ASSERT_EQ(status_rules, 200);
+  EXPECT_FALSE(rules["motion_table"]);
+  EXPECT_NEAR(rules["cost_s"].get<double>(), 585.4, 0.1);
+  EXPECT_GT(with["cost_s"].get<double>(), rules["cost_s"].get<double>());
+  std::filesystem::remove_all(dir);
+}
+
+TEST_F(StationServerTest, TakesAnUploadedMapInAnyFormatUnderANewId) {
+  auto r = client_->Post("/api/maps?name=epa-example1.inp",
+                         read(kSource / "datasets/swmm/epa-example1.inp"), "text/plain");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 201) << r->body;
+  EXPECT_EQ(json::parse(r->body)["id"], "epa-example1");
+  EXPECT_GT(json::parse(r->body)["manholes"].get<int>(), 0);
+  r = client_->Post("/api/maps?name=ais.json", read(kAis / "map.json"), "application/json");
+  ASSERT_EQ(r->status, 201) << r->body;
+  EXPECT_EQ(json::parse(r->body)["id"], "ais");
+  EXPECT_EQ(get("/api/maps").second["maps"].size(), 3u);
+  auto [status, plan] = post("/api/maps/ais/plan", read(kAis / "missions/paper.json"));
+  EXPECT_EQ(status, 200) << plan.dump();
+  EXPECT_EQ(plan["steps"].size(), 14u);
+  // The same name again: a new ID. The format named by ?format=.
+  r = client_->Post("/api/maps?name=ais.json", read(kAis / "map.json"), "application/json");
+  EXPECT_EQ(json::parse(r->body)["id"], "ais-2");
+  r = client_->Post("/api/maps?name=x&format=json", read(kAis / "map.json"), "application/json");
+  EXPECT_EQ(r->status, 201);
+}
+
+TEST_F(StationServerTest, RefusesHostileUploadsWithA4xxAndWritesNothing) {
+  const std::string map = read(kAis / "map.json");
+  // A name that climbs: only its stem, cleaned, becomes the ID; nothing is written anywhere.
+  auto r =
+      client_->Post("/api/maps?name=../../../tmp/evil%20%3Bname.json", map, "application/json");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 201) << r->body;
+  EXPECT_EQ(json::parse(r->body)["id"], "evilname");
+  EXPECT_FALSE(std::filesystem::exists("/tmp/evil ;name.json"));
+  EXPECT_EQ(post("/api/maps?name=a.json", "{not json").first, 422);
+  EXPECT_EQ(post("/api/maps?name=a.json", R"({"format": "sewerplan-map"})").first, 422);
+  EXPECT_EQ(post("/api/maps?name=a.bin", std::string(100, '\0')).first, 422);
+  EXPECT_EQ(post("/api/maps?name=a&format=pdf", map).first, 400);
+  const auto [status, error] = post("/api/maps?name=a.json", "{not json");
+  EXPECT_TRUE(error["error"].contains("message")) << error.dump();
+}
+
+TEST_F(StationServerTest, ManualRefusesMapsBeyondItsLimit) {
+  start({.max_maps = 2});
+  const std::string map = read(kAis / "map.json");
+  EXPECT_EQ(post("/api/maps?name=a.json", map).first, 201);
+  EXPECT_EQ(post("/api/maps?name=b.json", map).first, 409);
+}
+
+// Uploads while other requests plan and list: every answer whole, no map lost.
+TEST_F(StationServerTest, AnswersConcurrentPlansAndUploads) {
+  const std::string map = read(kAis / "map.json");
+  const std::string mission = read(kAis / "missions/paper.json");
+  const int port = port_;
+  std::vector<std::thread> threads;
+  std::atomic<int> planned{0};
+  std::atomic<int> uploaded{0};
+  for (int t = 0; t < 4; ++t) {
+    threads.emplace_back([&, t] {
+      httplib::Client c("127.0.0.1", port);
+      c.set_read_timeout(120, 0);
+      for (int i = 0; i < 3; ++i) {
+        if (t % 2 == 0) {
+          auto r = c.Post("/api/maps/map/plan", mission, "application/json");
+          if (r && r->status == 200 && json::parse(r->body)["steps"].size() == 14) ++planned;
+        } else {
+          auto r = c.Post("/api/maps?name=m.json", map, "application/json");
+          if (r && r->status == 201) ++uploaded;
+        }
+      }
+    });
+  }
+  for (std::thread& t : threads) t.join();
+  EXPECT_EQ(planned, 6);
+  EXPECT_EQ(uploaded, 6);
+  EXPECT_EQ(get("/api/maps").second["maps"].size(), 7u);
 }
 
 TEST_F(StationServerTest, ValidatesAMissionWithTheClisMessages) {
@@ -162,6 +288,50 @@ TEST_F(StationServerTest, ServesThePageButNoFileOutsideIt) {
   std::filesystem::remove_all(root);
 }
 
+// httplib would compress with brotli at its slowest quality for a browser ("br"): the page's
+// bundle took 14 s to arrive on a loaded machine. The page and the maps go uncompressed.
+TEST_F(StationServerTest, SendsThePageAndTheMapsUncompressedToABrowser) {
+  const std::filesystem::path root = std::filesystem::temp_directory_path() / "sewerplan-web-br";
+  std::filesystem::create_directories(root);
+  std::ofstream(root / "index.html") << "<html>station</html>";
+  std::ofstream(root / "bundle.js") << std::string(100000, ' ') << "export const x = 1;\n";
+  TearDown();
+  start({.web_root = root});
+  const httplib::Headers browser = {{"Accept-Encoding", "gzip, deflate, br"}};
+  for (const char* path : {"/bundle.js", "/api/maps/map", "/api/maps"}) {
+    auto r = client_->Get(path, browser);
+    ASSERT_TRUE(r) << path;
+    EXPECT_EQ(r->status, 200) << path;
+    EXPECT_EQ(r->get_header_value("Content-Encoding"), "") << path;
+  }
+  EXPECT_EQ(client_->Get("/bundle.js", browser)->get_header_value("Content-Type"),
+            "application/javascript; charset=utf-8");
+  std::filesystem::remove_all(root);
+}
+
+// One server-sent event of the simulation's stream.
+struct Sse {
+  std::string type;
+  std::string data;
+  long long wall_ms = -1;
+};
+
+std::vector<Sse> parse_stream(const std::string& body) {
+  std::vector<Sse> events;
+  std::size_t at = 0;
+  for (std::size_t end; (end = body.find("\n\n", at)) != std::string::npos; at = end + 2) {
+    Sse e;
+    std::istringstream block(body.substr(at, end - at));
+    for (std::string line; std::getline(block, line);) {
+      if (line.starts_with("event: ")) e.type = line.substr(7);
+      if (line.starts_with("data: ")) e.data = line.substr(6);
+      if (line.starts_with("wall_ms: ")) e.wall_ms = std::stoll(line.substr(9));
+    }
+    events.push_back(std::move(e));
+  }
+  return events;
+}
+
 TEST_F(StationServerTest, StreamsASimulationsEventsAndItsReportThatReplayReadsBack) {
   const std::string body = R"({"mission": )" + read(kAis / "missions/paper.json") +
                            R"(, "faults": )" + read(kAis / "faults/blocked-p5.json") + "}";
@@ -169,21 +339,40 @@ TEST_F(StationServerTest, StreamsASimulationsEventsAndItsReportThatReplayReadsBa
   ASSERT_TRUE(r);
   ASSERT_EQ(r->status, 200) << r->body;
   EXPECT_EQ(r->get_header_value("Content-Type"), "text/event-stream");
-  EXPECT_NE(r->body.find("event: plan\n"), std::string::npos);
-  EXPECT_NE(r->body.find("event: replan"), std::string::npos);  // P5 is blocked
-  const auto report_at = r->body.find("event: report\ndata: ");
-  ASSERT_NE(report_at, std::string::npos);
-  const json report = json::parse(r->body.substr(report_at + 20));
+  const std::vector<Sse> stream = parse_stream(r->body);
+  ASSERT_FALSE(stream.empty());
+  ASSERT_EQ(stream.back().type, "report");
+  const json report = json::parse(stream.back().data);
   EXPECT_EQ(report["outcome"], "ended");
   EXPECT_GE(report["replans"].get<int>(), 1);
-  // The data lines are the event log's JSON lines: replay reads them back, one event each.
+  // The event log's JSON lines (replay reads them back, one event each), each plan followed by
+  // its route, every event stamped with the server's wall clock.
   std::string log;
   std::size_t events = 0;
-  for (std::size_t at = 0; (at = r->body.find("data: ", at)) < report_at; ++events) {
-    const auto end = r->body.find('\n', at);
-    log += r->body.substr(at + 6, end - at - 6) + "\n";
-    at = end;
+  std::vector<json> routes;
+  std::vector<std::string> plans;
+  for (std::size_t i = 0; i + 1 < stream.size(); ++i) {
+    const Sse& e = stream[i];
+    EXPECT_GT(e.wall_ms, 0) << e.type;
+    if (e.type == "route") {
+      ASSERT_GT(i, 0u);
+      EXPECT_TRUE(stream[i - 1].type == "plan" || stream[i - 1].type == "replan");
+      routes.push_back(json::parse(e.data));
+      continue;
+    }
+    if (e.type == "plan" || e.type == "replan") plans.push_back(e.type);
+    log += e.data + "\n";
+    ++events;
   }
+  ASSERT_EQ(plans, (std::vector<std::string>{"plan", "replan"}));  // P5 is blocked
+  ASSERT_EQ(routes.size(), 2u);
+  // The paper's route, through P5 to the end in P9; the replan's backs out of P5 and avoids it.
+  EXPECT_EQ(routes[0]["steps"].size(), 14u);
+  EXPECT_EQ(routes[0]["steps"][0], "DRIVE_PIPE_TO_MANHOLE P12 M2");
+  EXPECT_EQ(routes[0]["pipes"], json::parse(R"(["P12", "P1", "P5", "P6", "P4", "P8", "P9"])"));
+  ASSERT_FALSE(routes[1]["pipes"].empty());
+  EXPECT_EQ(routes[1]["pipes"][0], "P5");
+  EXPECT_EQ(std::ranges::count(routes[1]["pipes"], json("P5")), 1);
   auto [status, replayed] = post("/api/maps/map/replay", log);
   EXPECT_EQ(status, 200);
   EXPECT_EQ(replayed["events"].size(), events);

@@ -1,23 +1,34 @@
 // SPDX-License-Identifier: MIT
 // End-to-end: `sewerplan serve` on the AIS test environment, the page in Debian's headless
-// Chromium (playwright-core, no bundled browser). Clicks the paper's mission onto the map (start
-// in P12, the sample in P6, the inspection of P4, the end in P9), plans, and checks that the route
-// and the steps appear. Saves a screenshot of each step beside OUT (default: web/e2e-out/).
+// Chromium (playwright-core, no bundled browser). The issue's acceptance flow: click the paper's
+// mission onto the map (the start in P12, the sample in P6, the inspection of P4, the end in
+// P9), plan and see the paper's 14 steps; hide a permanent obstacle in P4 by clicking, simulate,
+// and see the recovery phases, the replan (old and new route) and the dropped inspection on the
+// map and in the log, and the end reached; download the mission, upload it back, replay an event
+// log, upload a map. Saves a screenshot of each step in OUT (docs/operator-station.md uses them) and prints
+// the figures (page load, first draw, plan round trip, event delay).
 //
-//   node e2e/station.test.mjs SEWERPLAN_BINARY SOURCE_DIR [OUT_DIR]
+//   node e2e/station.test.mjs SEWERPLAN_BINARY SOURCE_DIR [OUT_DIR] [--large MAP]
+//
+// --large MAP (not in ctest: it takes a minute) opens a second, large map as well and reports
+// its first draw and a zoom (docs/operator-station.md has the figures for 100,000 manholes).
 import { spawn } from 'node:child_process';
-import { mkdirSync } from 'node:fs';
+import { mkdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { chromium } from 'playwright-core';
 
-const [binary, source, out = 'e2e-out'] = process.argv.slice(2);
+const args = process.argv.slice(2);
+const largeAt = args.indexOf('--large');
+const large = largeAt >= 0 ? args.splice(largeAt, 2)[1] : null;
+const [binary, source, out = 'e2e-out'] = args;
 if (!binary || !source) {
-  console.error('usage: node e2e/station.test.mjs SEWERPLAN_BINARY SOURCE_DIR [OUT_DIR]');
+  console.error('usage: node e2e/station.test.mjs SEWERPLAN_BINARY SOURCE_DIR [OUT_DIR] [--large MAP]');
   process.exit(2);
 }
 mkdirSync(out, { recursive: true });
+const ais = join(source, 'datasets/ais-testbed');
 
-const server = spawn(binary, ['serve', '--map', join(source, 'datasets/ais-testbed/map.json'),
+const server = spawn(binary, ['serve', '--map', join(ais, 'map.json'), ...(large ? ['--map', large] : []),
                               '--port', '0', ...process.env.SEWERPLAN_WEB_DIR ? ['--web', process.env.SEWERPLAN_WEB_DIR] : []],
                      { stdio: ['ignore', 'pipe', 'inherit'] });
 const url = await new Promise((resolve, reject) => {
@@ -30,40 +41,43 @@ const url = await new Promise((resolve, reject) => {
   server.on('exit', (code) => reject(new Error(`sewerplan serve exited with ${code}`)));
 });
 
+const check = (ok, what) => { if (!ok) throw new Error(what); };
 const browser = await chromium.launch({
   executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
-  args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
+  args: ['--no-sandbox'],
 });
 let failed = false;
 try {
-  const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+  const page = await browser.newPage({ viewport: { width: 1280, height: 900 }, acceptDownloads: true });
   page.on('pageerror', (e) => console.error('page error:', e.message));
   page.on('console', (m) => m.type() === 'error' && console.error('console:', m.text()));
   const t0 = Date.now();
   await page.goto(url);
   console.log(`page loaded: ${Date.now() - t0} ms`);
   await page.waitForSelector('body[data-ready=true]', { timeout: 90000 });
-  console.log(`page load and first draw (AIS map): ${Date.now() - t0} ms`);
+  console.log(`page load and first draw (AIS map): ${Date.now() - t0} ms; in the page:`,
+              await page.evaluate(() => window.station.state.timings));
   await page.screenshot({ path: join(out, '1-map.png') });
 
-  // Clicks the middle of a pipe (where the page's view projects it) in the given mode.
-  async function clickPipe(mode, name, fraction = 0.5) {
+  // Clicks a pipe at `fraction` of its length (where the page's view projects it) in `mode`.
+  const canvas = page.locator('#view canvas');
+  async function click(mode, point, what) {
     await page.check(`input[name=mode][value=${mode}]`);
-    const point = await page.evaluate(([n, f]) => window.station.screenPoint(n, f), [name, fraction]);
-    const box = await page.locator('#view canvas').boundingBox();
-    const before = await page.evaluate(() => JSON.stringify(window.station.state.mission));
+    const box = await canvas.boundingBox();
+    const before = await page.evaluate(() => JSON.stringify([window.station.state.mission, window.station.state.faults]));
     await page.mouse.move(box.x + point[0], box.y + point[1]);  // hover first, as a user does
     await page.mouse.click(box.x + point[0], box.y + point[1], { delay: 50 });
-    await page.waitForFunction((b) => JSON.stringify(window.station.state.mission) !== b, before,
-                               { timeout: 10000 });
+    await page.waitForFunction((b) => JSON.stringify([window.station.state.mission, window.station.state.faults]) !== b,
+                               before, { timeout: 10000 }).catch(() => { throw new Error(`the click on ${what} changed nothing`); });
   }
-  await clickPipe('start', 'P12');
-  await clickPipe('sample', 'P6');
-  await clickPipe('inspect', 'P4');
-  await clickPipe('end', 'P9');
+  const pipe = (name, fraction = 0.5) => page.evaluate(([n, f]) => window.station.screenPoint(n, f), [name, fraction]);
+  await click('start', await pipe('P12'), 'P12');
+  await click('sample', await pipe('P6'), 'P6');
+  await click('inspect', await pipe('P4'), 'P4');
+  await click('end', await pipe('P9', 0.3), 'P9');
   const tasks = await page.locator('#tasks li').allTextContents();
   console.log('tasks:', tasks);
-  if (tasks.length !== 3) throw new Error(`expected 3 tasks from the clicks, got ${tasks.length}`);
+  check(tasks.length === 3, `expected 3 tasks from the clicks, got ${tasks.length}`);
   await page.screenshot({ path: join(out, '2-mission.png') });
 
   const t1 = Date.now();
@@ -72,11 +86,82 @@ try {
   console.log(`plan round trip through the page: ${Date.now() - t1} ms`);
   const steps = await page.locator('#steps li').allTextContents();
   console.log(`${steps.length} steps:`, steps.join(' | '));
-  if (!steps.some((s) => s.startsWith('TAKE_WATER_SAMPLE P6'))) throw new Error('no sample in P6');
-  if (!steps.some((s) => s.startsWith('INSPECT') && s.includes('P4'))) throw new Error('no inspection of P4');
+  check(steps.length === 14, `expected the paper's 14 steps, got ${steps.length}`);
+  check(steps.some((s) => s.startsWith('TAKE_WATER_SAMPLE P6')), 'no sample in P6');
+  check(steps.some((s) => s.startsWith('INSPECT') && s.includes('P4')), 'no inspection of P4');
   const route = await page.evaluate(() => [...window.station.state.route]);
-  if (!route.includes('P12') || !route.includes('P9')) throw new Error(`route ${route} misses P12 or P9`);
+  check(route.includes('P12') && route.includes('P9'), `route ${route} misses P12 or P9`);
   await page.screenshot({ path: join(out, '3-plan.png') });
+
+  // A permanent obstacle 5 m into P4, hidden from the planner, and the simulation.
+  await click('obstacle-permanent', await pipe('P4', 5 / 8), 'P4 (obstacle)');
+  const faults = await page.evaluate(() => window.station.state.faults.obstacles);
+  check(faults.length === 1 && faults[0].pipe === 'P4' && faults[0].kind === 'permanent', `faults ${JSON.stringify(faults)}`);
+  await page.screenshot({ path: join(out, '4-faults.png') });
+  await page.selectOption('#speed', 'Infinity');
+  await page.click('#simulate');
+  await page.waitForFunction(() => window.station.state.outcome && window.station.player.idle, null, { timeout: 60000 });
+  const run = await page.evaluate(() => {
+    const s = window.station.state;
+    return { outcome: s.outcome, oldRoutes: s.oldRoutes.map((r) => [...r]), route: [...s.route],
+             dropped: [...s.dropped], failures: s.failures.length, delays: s.delays_ms,
+             types: s.events.map((e) => e.type) };
+  });
+  const log = (await page.locator('#events li').allTextContents()).join('\n');
+  console.log(`simulated: ${run.outcome.outcome} (${run.outcome.end}); old route ${run.oldRoutes.join(' ')}; new route ${run.route.join(' ')}`);
+  check(run.types.includes('recovery') && /recovery phase 1: back up and retry: failed/.test(log) &&
+        /recovery phase 2: lift the head and retry: failed/.test(log), 'no recovery phases in the log');
+  check(run.types.includes('replan') && /replan: blockage in P4/.test(log), 'no replan for the blockage in P4');
+  // The old route went on through P4 to M5 and P8; the new one backs out of P4 and goes round.
+  check(run.oldRoutes.length === 1 && run.oldRoutes[0].includes('P8') && run.route[0] === 'P4' &&
+        !run.route.includes('P8'), 'the old route and the new one are not both drawn');
+  check(run.dropped.includes('inspect-1') && /task inspect-1 DROPPED/.test(log), 'the inspection of P4 was not dropped');
+  check(run.failures === 1, 'the failure in P4 is not marked');
+  check(run.outcome.outcome === 'ended' || /BEACON ON/.test(log), 'neither the end reached nor the beacon');
+  check(await page.locator('#outcome').textContent() !== '', 'no outcome shown');
+  const delays = [...run.delays].sort((a, b) => a - b);
+  console.log(`event delay, server to page (${delays.length} events): median ${delays[delays.length >> 1]} ms, max ${delays.at(-1)} ms`);
+  await page.screenshot({ path: join(out, '5-simulated.png') });
+
+  // The mission downloaded is the CLI's mission JSON; uploaded back, the same tasks.
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#mission-download')]);
+  const saved = JSON.parse(readFileSync(await download.path(), 'utf8'));
+  check(saved.format === 'sewerplan-mission' && saved.tasks.length === 3 && saved.start.pipe === 'P12',
+        `downloaded mission ${JSON.stringify(saved)}`);
+  await page.setInputFiles('#mission-upload', join(ais, 'missions/paper.json'));
+  await page.waitForFunction(() => window.station.state.mission.name === 'paper-section-6');
+  check((await page.locator('#tasks li').count()) === 3, 'the uploaded mission has not 3 tasks');
+
+  // Replay of a `simulate --log` file in the same player.
+  await page.setInputFiles('#replay-upload', join(source, 'tests/data/events/demo.jsonl'));
+  await page.waitForFunction(() => window.station.state.outcome && window.station.player.idle, null, { timeout: 30000 });
+  const replayed = await page.evaluate(() => ({ dropped: [...window.station.state.dropped],
+                                                old: window.station.state.oldRoutes.length }));
+  check(replayed.dropped.includes('inspect') && replayed.old === 1, `replay: ${JSON.stringify(replayed)}`);
+  await page.screenshot({ path: join(out, '6-replay.png') });
+
+  // A map uploaded (SWMM), listed and opened under its new ID.
+  await page.setInputFiles('#map-upload', join(source, 'datasets/swmm/epa-example1.inp'));
+  await page.waitForFunction(() => document.body.dataset.opened === 'epa-example1', null, { timeout: 30000 });
+  check((await page.locator('#map option').count()) === (large ? 3 : 2), 'the uploaded map is not listed');
+  await page.screenshot({ path: join(out, '7-uploaded-map.png') });
+
+  if (large) {
+    const t2 = Date.now();
+    const id = await page.evaluate(() => document.querySelector('#map').options[1].value);
+    check(!id.startsWith('epa'), `the large map is ${id}`);
+    await page.selectOption('#map', id);
+    await page.waitForFunction((i) => document.body.dataset.opened === i, id, { timeout: 120000 });
+    console.log(`large map ${id}: open and first draw ${Date.now() - t2} ms; in the page:`,
+                await page.evaluate(() => window.station.state.timings));
+    await page.screenshot({ path: join(out, '8-large.png') });
+    const box = await canvas.boundingBox();
+    const t3 = Date.now();
+    await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+    await page.evaluate(() => window.station.zoomAndWait(3));
+    console.log(`large map: a zoom by 3 levels drawn in ${Date.now() - t3} ms`);
+    await page.screenshot({ path: join(out, '9-large-zoom.png') });
+  }
   console.log('station e2e: ok');
 } catch (e) {
   failed = true;

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The server's JSON API (docs/server.md). The token, if the station was started with one, comes
-// from the page's own URL (?token=...), as `sewerplan serve` prints it.
+// The server's JSON API (docs/operator-station.md). The token, if the station was started with
+// one, comes from the page's own URL (?token=...), as `sewerplan serve` prints it.
 const token = new URLSearchParams(location.search).get('token');
 const headers = token ? { Authorization: `Bearer ${token}` } : {};
 
@@ -11,20 +11,21 @@ async function call(path, options = {}) {
   return body;
 }
 
+const map = (id) => `api/maps/${encodeURIComponent(id)}`;
 export const listMaps = () => call('api/maps');
-export const mapGeometry = (id) => call(`api/maps/${encodeURIComponent(id)}`);
-export const driveability = (id, profile) =>
-  call(`api/maps/${encodeURIComponent(id)}/driveability?profile=${encodeURIComponent(profile)}`);
-export const validate = (id, mission) =>
-  call(`api/maps/${encodeURIComponent(id)}/validate`, { method: 'POST', body: JSON.stringify(mission) });
+export const uploadMap = (name, text) =>
+  call(`api/maps?name=${encodeURIComponent(name)}`, { method: 'POST', body: text });
+export const mapGeometry = (id) => call(map(id));
+export const driveability = (id, profile) => call(`${map(id)}/driveability?profile=${encodeURIComponent(profile)}`);
+export const validate = (id, mission) => call(`${map(id)}/validate`, { method: 'POST', body: JSON.stringify(mission) });
 export const plan = (id, mission, timeLimit) =>
-  call(`api/maps/${encodeURIComponent(id)}/plan?time_limit=${timeLimit}`,
-       { method: 'POST', body: JSON.stringify(mission) });
+  call(`${map(id)}/plan?time_limit=${timeLimit}`, { method: 'POST', body: JSON.stringify(mission) });
+export const replay = (id, log) => call(`${map(id)}/replay`, { method: 'POST', body: log });
 
-// Runs a simulation; onEvent(type, data) for every server-sent event as it arrives.
+// Runs a simulation; onEvent(type, data, {wall_ms, received_ms}) for every server-sent event as
+// it arrives: wall_ms is the server's clock when it sent the event, received_ms the page's.
 export async function simulate(id, body, onEvent, signal) {
-  const response = await fetch(`api/maps/${encodeURIComponent(id)}/simulate`,
-                               { method: 'POST', body: JSON.stringify(body), headers, signal });
+  const response = await fetch(`${map(id)}/simulate`, { method: 'POST', body: JSON.stringify(body), headers, signal });
   if (!response.ok) {
     const error = await response.json();
     throw Object.assign(new Error(error.error?.message ?? response.statusText), { body: error });
@@ -34,6 +35,7 @@ export async function simulate(id, body, onEvent, signal) {
   for (;;) {
     const { value, done } = await reader.read();
     if (done) break;
+    const received = Date.now();
     buffer += value;
     let end;
     while ((end = buffer.indexOf('\n\n')) >= 0) {
@@ -41,7 +43,8 @@ export async function simulate(id, body, onEvent, signal) {
       buffer = buffer.slice(end + 2);
       const type = /^event: (.*)$/m.exec(block)?.[1];
       const data = /^data: (.*)$/m.exec(block)?.[1];
-      if (type && data) onEvent(type, JSON.parse(data));
+      const wall = /^wall_ms: (\d+)$/m.exec(block)?.[1];
+      if (type && data) onEvent(type, JSON.parse(data), { wall_ms: wall ? Number(wall) : null, received_ms: received });
     }
   }
 }

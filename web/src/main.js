@@ -1,171 +1,89 @@
 // SPDX-License-Identifier: MIT
-// The operator station's page: the map in its own coordinates (deck.gl, an orthographic view on
-// WebGL: no tiles), a mission clicked onto it, the plan and a simulation streamed from the server.
-import { Deck, OrthographicView } from '@deck.gl/core';
-import { LineLayer, ScatterplotLayer, TextLayer } from '@deck.gl/layers';
+// The operator station's page: wires the map view (map-view.js), the mission editor (mission.js),
+// the hidden faults (faults.js), the plan view (plan-view.js) and the event player (player.js) to
+// the server's API (api.js). All state is here, in `state`.
 import * as api from './api.js';
+import { clickFault, isEmpty, newFaults, renderFaults } from './faults.js';
+import { loadGeometry, offsetOf, pipesOfSteps, placePoint } from './geometry.js';
+import { createMapView } from './map-view.js';
+import { clickMission, describePlace, download, newMission, renderTasks } from './mission.js';
+import { renderPlan } from './plan-view.js';
+import { actionTarget, Player, wherePoint } from './player.js';
 
 const $ = (id) => document.getElementById(id);
-const state = { map: null, blocked: new Map(), mission: null, route: new Set(), robot: null };
+const state = {
+  map: null, blocked: new Map(), mission: null, faults: newFaults(), route: new Set(), oldRoutes: [],
+  failures: [], robot: null, beacon: false, dropped: new Set(), done: new Set(), events: [], outcome: null,
+  delays_ms: [],
+};
 
-const deck = new Deck({
-  parent: $('view'),
-  views: new OrthographicView({ flipY: false }),
-  controller: { doubleClickZoom: false },  // clicks place tasks: none may zoom
-  initialViewState: { target: [0, 0, 0], zoom: 0 },
-  getCursor: ({ isHovering }) => (isHovering ? 'pointer' : 'grab'),
-  onHover: (info) => showHover(info),
-  onClick: (info) => clickPipe(info),
-  layers: [],
-});
-
-// Columns of the geometry document -> one object per pipe and manhole, for deck.gl's accessors.
-function loadGeometry(g) {
-  const m = g.manholes;
-  const manholes = m.name.map((name, i) => ({ i, name, position: [m.x[i], m.y[i]], slots: m.slots[i],
-                                              exit: m.exit[i] === 1 }));
-  const p = g.pipes;
-  const pipes = [];
-  p.name.forEach((name, i) => {
-    const a = p.from[i], b = p.to[i];
-    if (a < 0 || b < 0) return;  // an open end: not drawn in this slice
-    pipes.push({ i, name, from: manholes[a].position, to: manholes[b].position,
-                 length_m: p.length_m[i], diameter_m: p.diameter_m[i] });
-  });
-  return { id: g.id, name: g.name, bounds: g.bounds, manholes, pipes,
-           pipeByName: new Map(pipes.map((x) => [x.name, x])) };
-}
-
-function fitView(bounds) {
-  const [x0, y0, x1, y1] = bounds;
-  const view = $('view');
-  const size = Math.max(x1 - x0, y1 - y0, 1);
-  const zoom = Math.log2(Math.min(view.clientWidth, view.clientHeight) / (size * 1.1));
-  deck.setProps({ initialViewState: { target: [(x0 + x1) / 2, (y0 + y1) / 2, 0], zoom } });
-}
-
-function render() {
-  const map = state.map;
-  if (!map) return;
-  const taskPipes = new Map(state.mission.tasks.map((t) => [t.pipe ?? t.at?.pipe, t]));
-  const layers = [
-    new LineLayer({
-      id: 'pipes', data: map.pipes, pickable: true,
-      getSourcePosition: (p) => p.from, getTargetPosition: (p) => p.to,
-      getColor: (p) => (state.route.has(p.name) ? [230, 120, 0] : state.blocked.has(p.name)
-                        ? [200, 40, 40] : [60, 90, 160]),
-      getWidth: (p) => (state.route.has(p.name) ? 6 : 1 + 4 * Math.min(p.diameter_m, 1)),
-      widthUnits: 'pixels',
-      updateTriggers: { getColor: [state.route, state.blocked], getWidth: [state.route] },
-    }),
-    new ScatterplotLayer({
-      id: 'manholes', data: map.manholes, pickable: true,
-      getPosition: (m) => m.position, radiusUnits: 'pixels',
-      getRadius: (m) => (m.exit ? 6 : 3 + Math.min(m.slots, 4) * 0.5),
-      getFillColor: (m) => (m.exit ? [20, 150, 60] : [90, 90, 90]),
-    }),
-    new ScatterplotLayer({
-      id: 'tasks', data: [...taskPipes.entries()].filter(([pipe]) => map.pipeByName.has(pipe)),
-      getPosition: ([pipe, t]) => pointOnPipe(map.pipeByName.get(pipe), t.at?.offset_m),
-      radiusUnits: 'pixels', getRadius: 7, getFillColor: [240, 200, 0], stroked: true,
-      getLineColor: [0, 0, 0], lineWidthUnits: 'pixels', getLineWidth: 1,
-    }),
-  ];
-  if (map.manholes.length <= 2000) {  // names at every zoom only on small maps
-    layers.push(new TextLayer({ id: 'names', data: map.manholes, getPosition: (m) => m.position,
-                                getText: (m) => m.name, getSize: 11, getPixelOffset: [0, -12] }));
-  }
-  if (state.robot) {
-    layers.push(new ScatterplotLayer({ id: 'robot', data: [state.robot], getPosition: (r) => r,
-                                       radiusUnits: 'pixels', getRadius: 9,
-                                       getFillColor: [220, 0, 120] }));
-  }
-  deck.setProps({ layers });
-}
-
-function pointOnPipe(pipe, offset) {
-  const t = offset === undefined ? 0.5 : Math.max(0, Math.min(1, offset / pipe.length_m));
-  return [pipe.from[0] + t * (pipe.to[0] - pipe.from[0]), pipe.from[1] + t * (pipe.to[1] - pipe.from[1])];
-}
-
-// The clicked offset along the pipe, from its `from` end, in metres of the pipe's length.
-function offsetOf(pipe, [x, y]) {
-  const dx = pipe.to[0] - pipe.from[0], dy = pipe.to[1] - pipe.from[1];
-  const t = ((x - pipe.from[0]) * dx + (y - pipe.from[1]) * dy) / (dx * dx + dy * dy || 1);
-  return Math.round(Math.max(0, Math.min(1, t)) * pipe.length_m * 100) / 100;
-}
+const view = createMapView($('view'), { onClick: (info) => clickMap(info), onHover: (info) => showHover(info) });
+const draw = () => view.draw(state);
 
 function showHover(info) {
   const box = $('hover');
-  if (!info.object || !info.layer || !['pipes', 'manholes'].includes(info.layer.id)) {
+  if (!info.object || !['pipes', 'manholes'].includes(info.layer?.id)) {
     box.style.display = 'none';
     return;
   }
   const o = info.object;
   const reason = state.blocked.get(o.name);
   box.textContent = info.layer.id === 'pipes'
-    ? `pipe ${o.name}, ${o.length_m.toFixed(1)} m, ⌀ ${o.diameter_m.toFixed(2)} m${reason ? ` — ${reason}` : ''}`
-    : `manhole ${o.name}${o.exit ? ' (exit)' : ''}`;
+    ? `pipe ${o.name}, ${o.length_m.toFixed(1)} m, ⌀ ${o.diameter_m.toFixed(2)} m${o.openEnd ? ', open end' : ''}${reason ? ` — ${reason}` : ''}`
+    : `manhole ${o.name}${o.exit ? ' (exit)' : ''}, ${o.slots} slots`;
   Object.assign(box.style, { display: 'block', left: `${info.x + 12}px`, top: `${info.y + 12}px` });
 }
 
-function clickPipe(info) {
-  if (!info.object || info.layer?.id !== 'pipes') return;
-  const pipe = info.object;
-  const offset = offsetOf(pipe, info.coordinate);
+function clickMap(info) {
+  const layer = info.layer?.id;
+  if (!info.object || (layer !== 'pipes' && layer !== 'manholes')) return;
+  const where = layer === 'pipes'
+    ? { pipe: info.object.name, offset: offsetOf(info.object, info.coordinate) }
+    : { manhole: info.object.name };
   const mode = document.querySelector('input[name=mode]:checked').value;
-  const m = state.mission;
-  const n = m.tasks.filter((t) => !t.final).length + 1;
-  if (mode === 'start') m.start = { pipe: pipe.name, offset_m: offset };
-  if (mode === 'sample') {
-    m.tasks.splice(endIndex(), 0, { name: `sample-${n}`, type: 'take_water_sample',
-                                    at: { pipe: pipe.name, offset_m: offset } });
-  }
-  if (mode === 'inspect') {
-    m.tasks.splice(endIndex(), 0, { name: `inspect-${n}`, type: 'inspect_pipe', pipe: pipe.name });
-  }
-  if (mode === 'end') {
-    m.tasks = m.tasks.filter((t) => !t.final);
-    m.tasks.push({ name: 'end', type: 'go_to', at: { pipe: pipe.name, offset_m: offset }, final: true });
-  }
-  missionChanged();
+  if (clickFault(state.faults, mode, where)) faultsChanged();
+  else if (clickMission(state.mission, mode, where)) missionChanged();
 }
 
-const endIndex = () => {
-  const i = state.mission.tasks.findIndex((t) => t.final);
-  return i < 0 ? state.mission.tasks.length : i;
-};
-
-const describePlace = (p) => (p ? `${p.pipe ?? p.manhole ?? p.point}${p.offset_m !== undefined ? ` at ${p.offset_m} m` : ''}` : '—');
+const taskStatus = (t) => (state.dropped.has(t.name) ? '— dropped' : state.done.has(t.name) ? '— done' : '');
 
 async function missionChanged() {
   const m = state.mission;
   m.profile = $('profile').value;
   $('mission-summary').textContent = `start: ${describePlace(m.start)}`;
-  $('tasks').replaceChildren(...m.tasks.map((t, i) => {
-    const li = document.createElement('li');
-    li.textContent = `${t.name}: ${t.type} ${t.pipe ?? describePlace(t.at)} `;
-    const remove = document.createElement('button');
-    remove.textContent = '×';
-    remove.onclick = () => { m.tasks.splice(i, 1); missionChanged(); };
-    li.append(remove);
-    return li;
-  }));
-  render();
+  renderTasks($('tasks'), m, missionChanged, taskStatus);
+  draw();
   if (!m.start || m.tasks.length === 0) return;
   const verdict = await api.validate(state.map.id, m);
   $('messages').textContent = verdict.errors.map((e) => `${e.where}: ${e.message}`).join('\n');
 }
 
+function faultsChanged() {
+  renderFaults($('faults'), state.faults, faultsChanged);
+  draw();
+}
+
 async function openMap(id) {
+  const t0 = performance.now();
   state.map = loadGeometry(await api.mapGeometry(id));
-  state.mission = { format: 'sewerplan-mission', version: 1, name: 'station', tasks: [] };
+  state.mission = newMission($('profile').value);
+  state.faults = newFaults();
+  clearRun();
   state.route = new Set();
-  state.robot = null;
-  fitView(state.map.bounds);
+  view.fit(state.map.bounds);
   await loadDriveability();
   missionChanged();
+  faultsChanged();
+  await afterDraw();
+  state.timings.open_map_ms = Math.round(performance.now() - t0);
+  document.body.dataset.opened = id;
 }
+
+// Resolves after deck.gl has drawn the current layers.
+const afterDraw = () => new Promise((resolve) => {
+  view.deck.setProps({ onAfterRender: () => { view.deck.setProps({ onAfterRender: () => {} }); resolve(); } });
+  view.deck.redraw(true);
+});
 
 // The pipes the profile cannot drive, with the reasons of `info --profile`.
 async function loadDriveability() {
@@ -175,90 +93,244 @@ async function loadDriveability() {
     ...r.too_wide.map((p) => [p, `too wide for ${r.profile}`]),
     ...r.cut_off_by_findings.pipes.map((p) => [p, 'cut off by inspection findings']),
   ]);
-  render();
+  draw();
 }
 
 async function runPlan() {
   $('messages').textContent = '';
   try {
+    const t0 = performance.now();
     const result = await api.plan(state.map.id, state.mission, $('time-limit').value);
+    state.timings.plan_round_trip_ms = Math.round(performance.now() - t0);
+    clearRun();
     state.route = new Set(result.steps.flatMap((s) => [s.pipe, s.from_pipe, s.to_pipe]).filter(Boolean));
-    $('plan-summary').textContent =
-      `${result.steps.length} steps, ${result.cost_s.toFixed(1)} s, ${result.energy_wh.toFixed(1)} Wh; ` +
-      `${result.decision}; ${result.algorithm}${result.motion_table ? '; motion table' : ''}`;
-    $('steps').replaceChildren(...result.steps.map((s, i) => {
-      const li = document.createElement('li');
-      li.textContent = s.action;
-      li.title = result.fused[i]?.text ?? '';
-      return li;
-    }));
-    $('dropped').replaceChildren(...result.dropped.map((d) => {
-      const li = document.createElement('li');
-      li.textContent = `${d.task}: ${d.reason}`;
-      return li;
-    }));
-    render();
+    renderPlan(result);
+    draw();
   } catch (e) {
     $('messages').textContent = e.message;
   }
 }
 
-// Where an event puts the robot, if it says: a failure's pipe and offset, or the first pipe or
-// manhole named by the action it starts (its parameters as fusion prints them).
-function robotAt(event) {
-  if (event.pipe && state.map.pipeByName.has(event.pipe)) {
-    return pointOnPipe(state.map.pipeByName.get(event.pipe), event.offset_m);
-  }
-  if (typeof event.parameters !== 'string') return null;
-  for (const word of event.parameters.split(/[\s,()]+/)) {
-    if (state.map.pipeByName.has(word)) return pointOnPipe(state.map.pipeByName.get(word));
-    const manhole = state.map.manholes.find((m) => m.name === word);
-    if (manhole) return manhole.position;
-  }
-  return null;
+// --- simulation and replay ---
+
+function clearRun() {
+  state.oldRoutes = [];
+  state.failures = [];
+  state.dropped = new Set();
+  state.done = new Set();
+  state.events = [];
+  state.delays_ms = [];
+  state.outcome = null;
+  state.beacon = false;
+  $('events').replaceChildren();
+  $('outcome').textContent = '';
+  player.reset(placePoint(state.map, state.mission?.start));
+  view.drawRobot(null, false);
 }
+
+function logLine(type, text) {
+  const li = document.createElement('li');
+  li.className = type;
+  li.textContent = text;
+  $('events').append(li);
+  li.scrollIntoView({ block: 'nearest' });
+}
+
+const fmt = (t) => `${(t ?? 0).toFixed(1)} s`;
+
+// One event, when the player reaches its time: the log, the map, the robot's motion.
+function playEvent(type, e) {
+  state.events.push({ type, ...e });
+  const map = state.map;
+  switch (type) {
+    case 'route': {
+      // The plan just announced: the route before it becomes an old route.
+      if (state.events.filter((x) => x.type === 'route').length > 1 && state.route.size > 0) state.oldRoutes.push(state.route);
+      state.route = new Set(e.pipes ?? pipesOfSteps(map, e.steps));
+      draw();
+      return;
+    }
+    case 'plan': case 'replan':
+      logLine(type, `${fmt(e.t_s)} ${type}: ${e.reason} → ${e.decision}, ${e.steps} steps, ends ${e.end}` +
+                    `${e.dropped.length ? `; drops ${e.dropped.join(', ')}` : ''}`);
+      return;
+    case 'action': {
+      const to = actionTarget(map, e, state.mission);
+      if (to) player.moveTo(to, e.t_s, e.duration_s);
+      logLine(type, `${fmt(e.t_s)} ${e.step}`);
+      return;
+    }
+    case 'error': {
+      const at = wherePoint(map, e.where);
+      if (at) player.placeAt(at, e.t_s);
+      logLine(type, `${fmt(e.t_s)} error: ${e.kind}, ${e.reason} (${e.where})`);
+      return;
+    }
+    case 'recovery':
+      logLine(type, `${fmt(e.t_s)} recovery phase ${e.phase}: ${e.ok ? 'cleared' : 'failed'}`);
+      return;
+    case 'failure': {
+      const at = e.pipe ? placePoint(map, { pipe: e.pipe, offset_m: e.offset_m }) : placePoint(map, { manhole: e.manhole });
+      if (at) state.failures.push(at);
+      logLine(type, `${fmt(e.t_s)} FAILURE ${e.kind}: ${e.detail}`);
+      draw();
+      return;
+    }
+    case 'task_done':
+      state.done.add(e.task);
+      logLine(type, `${fmt(e.t_s)} task ${e.task} done`);
+      break;
+    case 'task_dropped':
+      state.dropped.add(e.task);
+      logLine(type, `${fmt(e.t_s)} task ${e.task} DROPPED: ${e.reason}`);
+      break;
+    case 'beacon':
+      state.beacon = true;
+      logLine(type, `${fmt(e.t_s)} BEACON ON: ${e.reason}`);
+      break;
+    case 'mission_end':
+      state.outcome = e;
+      if (e.outcome === 'beacon') state.beacon = true;
+      $('outcome').className = e.outcome;
+      $('outcome').textContent = e.outcome === 'ended' ? `Ended: ${e.end} reached` : e.outcome === 'beacon'
+        ? `Beacon on: ${e.end}` : `Halted: ${e.end}`;
+      logLine(type, `${fmt(e.t_s)} mission end: ${e.outcome}, ${e.end}; done: ${e.tasks_done.join(', ') || 'none'}; ` +
+                    `${e.replans} replans, ${e.energy_wh.toFixed(1)} Wh`);
+      break;
+    case 'report':
+      state.report = e;
+      return;
+    default:
+      return;
+  }
+  renderTasks($('tasks'), state.mission, missionChanged, taskStatus);
+  draw();
+}
+
+const player = new Player({
+  onEvent: (type, data) => playEvent(type, data),
+  onRobot: (point) => { state.robot = point; view.drawRobot(point, state.beacon); },
+});
 
 let running = null;
 async function runSimulation() {
   running?.abort();  // a new run cancels the last one's stream, and the server halts it
   running = new AbortController();
-  $('events').replaceChildren();
+  clearRun();
+  player.speed = Number($('speed').value);
   const body = { mission: state.mission };
-  if ($('faults').value.trim()) body.random_faults = $('faults').value.trim();
+  if ($('random-faults').value.trim()) body.random_faults = $('random-faults').value.trim();
+  else if (!isEmpty(state.faults)) body.faults = state.faults;
   try {
-    await api.simulate(state.map.id, body, (type, data) => {
-      const li = document.createElement('li');
-      li.textContent = `${(data.t_s ?? 0).toFixed(1)} s ${type} ${JSON.stringify(data).slice(0, 160)}`;
-      $('events').append(li);
-      li.scrollIntoView({ block: 'nearest' });
-      const at = robotAt(data);
-      if (at) { state.robot = at; render(); }
+    await api.simulate(state.map.id, body, (type, data, meta) => {
+      if (meta.wall_ms !== null) state.delays_ms.push(meta.received_ms - meta.wall_ms);
+      player.push(type, data, meta);
     }, running.signal);
   } catch (e) {
     if (e.name !== 'AbortError') $('messages').textContent = e.message;
   }
 }
 
-async function start() {
+// Replays a `simulate --log` file in the same player: the server reads it back (api replay).
+async function replayLog(file) {
+  running?.abort();
+  clearRun();
+  player.speed = Number($('speed').value);
+  try {
+    const { events } = await api.replay(state.map.id, await file.text());
+    // A log has no routes: each plan's route is the steps its actions ran until the next plan.
+    const isPlan = (e) => e.type === 'plan' || e.type === 'replan';
+    let steps = [];
+    const queued = [];
+    for (const e of events) {
+      if (isPlan(e)) {
+        steps = [];
+        queued.push(e, { route: true, steps });
+      } else {
+        if (e.type === 'action') steps.push(e.step);
+        queued.push(e);
+      }
+    }
+    for (const q of queued) {
+      if (q.route) player.push('route', { steps: q.steps });
+      else player.push(q.type, q);
+    }
+  } catch (e) {
+    $('messages').textContent = e.message;
+  }
+}
+
+async function uploadMission(file) {
+  try {
+    const mission = JSON.parse(await file.text());
+    if (mission.format !== 'sewerplan-mission') throw new Error(`${file.name}: not a sewerplan mission`);
+    state.mission = mission;
+    if (mission.profile && [...$('profile').options].some((o) => o.value === mission.profile)) $('profile').value = mission.profile;
+    clearRun();
+    missionChanged();
+  } catch (e) {
+    $('messages').textContent = e.message;
+  }
+}
+
+async function listMaps() {
   const { maps, profiles } = await api.listMaps();
   $('map').replaceChildren(...maps.map((m) => new Option(`${m.id} (${m.manholes} manholes)`, m.id)));
+  return { maps, profiles };
+}
+
+// A map file sent to the server (any format it reads), listed and opened under its new ID.
+async function uploadMap(file) {
+  try {
+    const { id } = await api.uploadMap(file.name, await file.text());
+    await listMaps();
+    $('map').value = id;
+    await openMap(id);
+  } catch (e) {
+    $('messages').textContent = e.message;
+  }
+}
+
+async function start() {
+  const t0 = performance.now();
+  const { maps, profiles } = await listMaps();
   $('profile').replaceChildren(...profiles.map((p) => new Option(p, p)));
+  $('map-upload').onchange = (e) => e.target.files[0] && uploadMap(e.target.files[0]);
   $('map').onchange = () => openMap($('map').value);
   $('profile').onchange = () => { loadDriveability(); missionChanged(); };
   $('plan').onclick = runPlan;
   $('simulate').onclick = runSimulation;
+  $('speed').onchange = () => { player.speed = Number($('speed').value); };
+  $('add-malfunction').onclick = () => {
+    state.faults.malfunctions.push({ at_job: Number($('malfunction-job').value), kind: 'transient' });
+    faultsChanged();
+  };
+  $('mission-download').onclick = () => download(`${state.mission.name}.json`, state.mission);
+  $('mission-upload').onchange = (e) => e.target.files[0] && uploadMission(e.target.files[0]);
+  $('replay-upload').onchange = (e) => e.target.files[0] && replayLog(e.target.files[0]);
   if (maps.length > 0) await openMap(maps[0].id);
+  state.timings.first_draw_ms = Math.round(performance.now() - t0);
   document.body.dataset.ready = 'true';
 }
 
+state.timings = {};
 start();
 
-// For the browser test (e2e/): the state, and where a pipe's point is on the screen.
+// For the browser test (e2e/): the state, the player, and where a pipe's point is on the screen.
 window.station = {
   state,
+  player,
+  openMap,
   screenPoint(name, fraction) {
     const pipe = state.map.pipeByName.get(name);
-    const viewport = deck.getViewports()[0];
-    return viewport.project(pointOnPipe(pipe, fraction * pipe.length_m));
+    return view.project(placePoint(state.map, { pipe: name, offset_m: fraction * pipe.length_m }));
+  },
+  manholePoint(name) { return view.project(state.map.manholeByName.get(name).position); },
+  // Zooms in by `levels` about the view's centre; resolves when it is drawn.
+  zoomAndWait(levels) {
+    const vp = view.deck.getViewports()[0];
+    const target = vp.unproject([vp.width / 2, vp.height / 2]);
+    view.deck.setProps({ initialViewState: { target: [target[0], target[1], 0], zoom: vp.zoom + levels } });
+    return afterDraw();
   },
 };

@@ -30,6 +30,7 @@
 
 #include <atomic>
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -80,6 +81,12 @@ class Executor {
 
   // Adds an observer of every event of run(), called in the order subscribed. Before run() only.
   void subscribe(EventObserver observer);
+  // Adds an observer of every plan the Replanner answers (the first and each replan), with its
+  // steps and fused actions, called right after the plan's PlanEvent: what the event log does not
+  // carry, e.g. the route for an operator's map (the station's server, docs/operator-station.md).
+  // Before run() only.
+  using PlanObserver = std::function<void(const PlanResponse&)>;
+  void subscribe_plans(PlanObserver observer);
 
   // Runs the mission to its end, the beacon, or a halt. Once per Executor.
   MissionReport run();
@@ -97,6 +104,7 @@ class Executor {
   hal::Robot& robot_;
   ExecutorOptions options_;
   std::vector<EventObserver> observers_;
+  std::vector<PlanObserver> plan_observers_;
   std::atomic<bool> halt_{false};
 };
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The JSON documents that the `sewerplan` command prints with --json and that the operator
 // station's server (station_server.h) answers with: one schema, written in one place (docs/cli.md
-// has every schema, docs/server.md which endpoint answers with which).
+// has every schema, docs/operator-station.md which endpoint answers with which).
 //
 // A failure has one shape everywhere:
 //

@@ -1,16 +1,18 @@
 // SPDX-License-Identifier: MIT
-// The operator station's server: the HTTP side of `sewerplan serve` (docs/server.md). It holds the
-// maps it was started with and answers the browser page (web/) with the library called in-process,
-// the same functions and the same JSON documents (documents.h) as the CLI's commands:
+// The operator station's server: the HTTP side of `sewerplan serve` (docs/operator-station.md). It
+// holds the maps it was started with and those uploaded, and answers the browser page (web/) with
+// the library called in-process, the same functions and the same JSON documents (documents.h) as
+// the CLI's commands:
 //
 //   GET  /api/maps                          the maps: id, name, counts
+//   POST /api/maps?name=FILE[&format=F]     a map file (any format read_map reads): its new ID
 //   GET  /api/maps/ID                       one map's geometry, in its own coordinates
 //   GET  /api/maps/ID/driveability?profile= what a built-in profile cannot drive, and why
 //   POST /api/maps/ID/validate              a mission (the CLI's JSON): the CLI's messages
 //   POST /api/maps/ID/plan?time_limit=S     a mission: `plan --json`, plus the fused actions
 //   POST /api/maps/ID/simulate              {"mission", "faults" | "random_faults"}: the
-//                                           executor's events as server-sent events, then the
-//                                           report
+//                                           executor's events as server-sent events (each plan
+//                                           followed by its route), then the report
 //   POST /api/maps/ID/replay                an event log (JSON lines) read back as events
 //
 // and the page's files from `web_root` on every other GET. Maps are named by their ID (the file's
@@ -22,8 +24,9 @@
 //   Result<int> port = (*s)->bind();   // port 0: any free port
 //   (*s)->run();                       // until stop(), from another thread or a signal
 //
-// Thread safety: the maps are read-only after create(); each request plans or simulates on its
-// own copies, on the server's worker threads. stop() may be called from any thread.
+// Thread safety: a map is read-only once loaded, and the list of maps is guarded (uploads come
+// while other requests read); each request plans or simulates on its own copies, on the server's
+// worker threads. stop() may be called from any thread.
 #pragma once
 
 #include <cstddef>
@@ -44,6 +47,7 @@ struct ServerOptions {
   std::filesystem::path web_root;  // the built page (share/sewerplan/web); empty: API only
   std::size_t max_body_bytes = 16u << 20;
   double max_plan_time_s = 60;  // a request's time_limit is capped at this
+  std::size_t max_maps = 64;    // the maps given and uploaded (POST /api/maps) at most
 };
 
 class StationServer {
