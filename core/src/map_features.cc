@@ -194,7 +194,6 @@ bool truthy(const GisValue& v) {
 struct Counts {
   std::size_t default_diameter = 0;
   std::size_t no_level = 0;
-  std::size_t by_distance = 0;
   std::size_t reversed = 0;
 };
 
@@ -310,137 +309,182 @@ struct EndJoin {
   bool failed = false;
 };
 
-std::vector<std::string> read_pipes(const GisLayer& layer, const GisFieldMapping& m,
-                                    const std::string& source, const Manholes& manholes,
-                                    detail::NetworkImport& net, Counts& counts, Diagnostics& d) {
-  FeatureFields ff(layer, source, d);
-  std::vector<std::string> wheres;
-  const std::optional<Field> name = ff.require(m[PipeField::kName], "pipe name");
-  std::optional<Field> height = resolve(layer, m[PipeField::kHeight]);
-  std::optional<Field> width = resolve(layer, m[PipeField::kWidth]);
-  if (!height && !width) {
-    d.error(source + ":" + layer.name, "no field for the pipe's clear height (" +
-                                           tried(m[PipeField::kHeight]) + ") or width (" +
-                                           tried(m[PipeField::kWidth]) +
-                                           "; name one in a field mapping file, docs/gis.md)");
+// The pipe layer's fields, resolved once, and what a feature needs to become an ImportLink.
+class PipeReader {
+ public:
+  PipeReader(const GisLayer& layer, const GisFieldMapping& m, const std::string& source,
+             const Manholes& manholes, detail::NetworkImport& net, Counts& counts, Diagnostics& d)
+      : m_(m),
+        manholes_(manholes),
+        net_(net),
+        counts_(counts),
+        d_(d),
+        ff_(layer, source, d),
+        nearest_(net.nodes, m.tolerance_m) {
+    name_ = ff_.require(m[PipeField::kName], "pipe name");
+    height_ = resolve(layer, m[PipeField::kHeight]);
+    width_ = resolve(layer, m[PipeField::kWidth]);
+    if (!height_ && !width_) {
+      d.error(source + ":" + layer.name, "no field for the pipe's clear height (" +
+                                             tried(m[PipeField::kHeight]) + ") or width (" +
+                                             tried(m[PipeField::kWidth]) +
+                                             "; name one in a field mapping file, docs/gis.md)");
+    }
+    from_ = resolve(layer, m[PipeField::kFrom]);
+    to_ = resolve(layer, m[PipeField::kTo]);
+    from_level_ = resolve(layer, m[PipeField::kFromLevel]);
+    to_level_ = resolve(layer, m[PipeField::kToLevel]);
+    shape_ = resolve(layer, m[PipeField::kShape]);
+    length_ = resolve(layer, m[PipeField::kLength]);
   }
-  if (!name || (!height && !width)) return wheres;
-  const std::optional<Field> from = resolve(layer, m[PipeField::kFrom]);
-  const std::optional<Field> to = resolve(layer, m[PipeField::kTo]);
-  const std::optional<Field> from_level = resolve(layer, m[PipeField::kFromLevel]);
-  const std::optional<Field> to_level = resolve(layer, m[PipeField::kToLevel]);
-  const std::optional<Field> shape = resolve(layer, m[PipeField::kShape]);
-  const std::optional<Field> length = resolve(layer, m[PipeField::kLength]);
-  const NearestManhole nearest(net.nodes, m.tolerance_m);
-  for (const GisFeature& f : layer.features) {
-    const std::string where = ff.where(f);
+
+  bool usable() const { return name_ && (height_ || width_); }
+
+  // The feature's link, or nullopt with its errors reported.
+  std::optional<detail::ImportLink> read(const GisFeature& f) {
+    where_ = ff_.where(f);
     const bool line = f.geometry == GisGeometry::kLine && f.points.size() >= 2;
     if (f.geometry != GisGeometry::kNone && !line) {
-      d.error(where, f.geometry == GisGeometry::kLine
-                         ? "a line of fewer than two points"
-                         : "the geometry is a " + f.geometry_name + ": a pipe is a line");
-      continue;
+      d_.error(where_, f.geometry == GisGeometry::kLine
+                           ? "a line of fewer than two points"
+                           : "the geometry is a " + f.geometry_name + ": a pipe is a line");
+      return std::nullopt;
     }
-    const std::optional<std::string> n = ff.text(f, name);
+    const std::optional<std::string> n = ff_.text(f, name_);
     if (!n) {
-      d.error(where, "field " + name->name + ": empty: every pipe needs a name");
-      continue;
+      d_.error(where_, "field " + name_->name + ": empty: every pipe needs a name");
+      return std::nullopt;
     }
-    const std::size_t errors = d.error_count();
-    auto join = [&](const std::optional<Field>& field, bool first) {
-      EndJoin e;
-      if (const std::optional<std::string> key = ff.text(f, field)) {
-        auto it = manholes.by_key.find(*key);
-        if (it != manholes.by_key.end()) {
-          e.node = it->second;
-        } else if (manholes.rejected.contains(*key)) {
-          e.failed = true;  // its manhole's error says why
-        } else {
-          d.error(where, "pipe " + *n + ": field " + field->name + ": '" + *key +
-                             "' names no manhole (by " + manholes.describe_key + ")");
-          e.failed = true;
-        }
-        return e;
-      }
-      if (!line) return e;
-      const auto& p = first ? f.points.front() : f.points.back();
-      e.node = nearest.find(p[0], p[1]);
-      if (e.node) {
-        ++counts.by_distance;
-      } else {
-        d.warning(where, "pipe " + *n + ": no manhole within " +
-                             detail::metres_text(m.tolerance_m) + " of its " +
-                             (first ? "first" : "last") + " point: a blind end");
-      }
-      return e;
-    };
-    const EndJoin a = join(from, true);
-    const EndJoin b = join(to, false);
-    if (a.failed || b.failed) continue;
+    const std::size_t errors = d_.error_count();
+    const EndJoin a = join(f, *n, from_, true);
+    const EndJoin b = join(f, *n, to_, false);
+    if (a.failed || b.failed) return std::nullopt;
     if (!a.node && !b.node) {
-      d.error(where, "pipe " + *n + ": joins no manhole at either end");
-      continue;
-    }
-    std::vector<std::array<double, 3>> points = f.points;
-    if (line && a.node && b.node) {  // a line drawn against its from/to fields
-      const detail::ImportNode& s = net.nodes[*a.node];
-      if (distance(points.front(), s.position.x_m, s.position.y_m) >
-          distance(points.back(), s.position.x_m, s.position.y_m)) {
-        std::ranges::reverse(points);
-        ++counts.reversed;
-      }
-    }
-    std::optional<double> h = ff.number(f, height);
-    std::optional<double> w = ff.number(f, width);
-    if (!h && !w) {
-      d.error(where, "pipe " + *n + ": no clear height or width (fields " +
-                         (height ? height->name : "-") + ", " + (width ? width->name : "-") + ")");
-      continue;
-    }
-    if (!h) h = w;
-    if (!w) w = h;
-    if (*h <= 0 || *w <= 0) {
-      d.error(where, "pipe " + *n + ": its clear height and width must be positive");
-      continue;
+      d_.error(where_, "pipe " + *n + ": joins no manhole at either end");
+      return std::nullopt;
     }
     detail::ImportLink link{.name = *n};
-    if (a.node) link.from = net.nodes[*a.node].name;
-    if (b.node) link.to = net.nodes[*b.node].name;
-    link.height_m = *h;
-    link.diameter_m = std::min(*h, *w);
-    link.shape = *h == *w ? PipeShape::kCircular : PipeShape::kOther;
-    if (const std::optional<std::string> s = ff.text(f, shape)) {
-      if (std::optional<PipeShape> known = pipe_shape_from_string(lower(*s))) {
-        link.shape = *known;
-      } else {
-        d.warning(where, "pipe " + *n + ": field " + shape->name + ": unknown shape '" + *s +
-                             "' (circular, rectangular, egg, other): read as " +
-                             std::string(to_string(link.shape)));
+    if (!size(f, link)) return std::nullopt;
+    if (a.node) link.from = net_.nodes[*a.node].name;
+    if (b.node) link.to = net_.nodes[*b.node].name;
+    std::vector<std::array<double, 3>> points = f.points;
+    if (line && a.node && b.node) {  // a line drawn against its from/to fields
+      const Position& s = net_.nodes[*a.node].position;
+      if (distance(points.front(), s.x_m, s.y_m) > distance(points.back(), s.x_m, s.y_m)) {
+        std::ranges::reverse(points);
+        ++counts_.reversed;
       }
     }
-    std::optional<double> len = ff.number(f, length);
+    std::optional<double> len = ff_.number(f, length_);
     if (!len && line) len = line_length(f);
     if (!len && a.node && b.node) {
-      const Position& p = net.nodes[*a.node].position;
-      const Position& q = net.nodes[*b.node].position;
+      const Position& p = net_.nodes[*a.node].position;
+      const Position& q = net_.nodes[*b.node].position;
       len = std::hypot(q.x_m - p.x_m, q.y_m - p.y_m);
     }
     link.length_m = len.value_or(0);
     auto invert = [&](const std::optional<Field>& field, const EndJoin& e, bool first) {
-      if (std::optional<double> v = ff.number(f, field)) return *v;
+      if (std::optional<double> v = ff_.number(f, field)) return *v;
       if (line && f.has_z) return first ? points.front()[2] : points.back()[2];
-      return e.node ? net.nodes[*e.node].position.z_m : 0.0;
+      return e.node ? net_.nodes[*e.node].position.z_m : 0.0;
     };
-    link.from_invert_z_m = invert(from_level, a, true);
-    link.to_invert_z_m = invert(to_level, b, false);
+    link.from_invert_z_m = invert(from_level_, a, true);
+    link.to_invert_z_m = invert(to_level_, b, false);
     for (std::size_t i = 1; i + 1 < points.size(); ++i) {
       link.vertices.push_back({points[i][0], points[i][1]});
     }
-    if (d.error_count() > errors) continue;
-    link.line = static_cast<std::uint32_t>(wheres.size() + 1);
-    wheres.push_back(where);
-    net.links.push_back(std::move(link));
+    if (d_.error_count() > errors) return std::nullopt;
+    return link;
   }
+
+  const std::string& where() const { return where_; }
+
+ private:
+  EndJoin join(const GisFeature& f, const std::string& pipe, const std::optional<Field>& field,
+               bool first) {
+    EndJoin e;
+    if (const std::optional<std::string> key = ff_.text(f, field)) {
+      auto it = manholes_.by_key.find(*key);
+      if (it != manholes_.by_key.end()) {
+        e.node = it->second;
+      } else if (manholes_.rejected.contains(*key)) {
+        e.failed = true;  // its manhole's error says why
+      } else {
+        d_.error(where_, "pipe " + pipe + ": field " + field->name + ": '" + *key +
+                             "' names no manhole (by " + manholes_.describe_key + ")");
+        e.failed = true;
+      }
+      return e;
+    }
+    if (f.geometry != GisGeometry::kLine || f.points.size() < 2) return e;
+    const auto& p = first ? f.points.front() : f.points.back();
+    e.node = nearest_.find(p[0], p[1]);
+    if (!e.node) {
+      d_.warning(where_, "pipe " + pipe + ": no manhole within " +
+                             detail::metres_text(m_.tolerance_m) + " of its " +
+                             (first ? "first" : "last") + " point: a blind end");
+    }
+    return e;
+  }
+
+  // Clear height and width (one of them may stand for both), and the shape.
+  bool size(const GisFeature& f, detail::ImportLink& link) {
+    std::optional<double> h = ff_.number(f, height_);
+    std::optional<double> w = ff_.number(f, width_);
+    if (!h && !w) {
+      d_.error(where_, "pipe " + link.name + ": no clear height or width (fields " +
+                           (height_ ? height_->name : "-") + ", " + (width_ ? width_->name : "-") +
+                           ")");
+      return false;
+    }
+    if (!h) h = w;
+    if (!w) w = h;
+    if (*h <= 0 || *w <= 0) {
+      d_.error(where_, "pipe " + link.name + ": its clear height and width must be positive");
+      return false;
+    }
+    link.height_m = *h;
+    link.diameter_m = std::min(*h, *w);
+    link.shape = *h == *w ? PipeShape::kCircular : PipeShape::kOther;
+    if (const std::optional<std::string> s = ff_.text(f, shape_)) {
+      if (std::optional<PipeShape> known = pipe_shape_from_string(lower(*s))) {
+        link.shape = *known;
+      } else {
+        d_.warning(where_, "pipe " + link.name + ": field " + shape_->name + ": unknown shape '" +
+                               *s + "' (circular, rectangular, egg, other): read as " +
+                               std::string(to_string(link.shape)));
+      }
+    }
+    return true;
+  }
+
+  const GisFieldMapping& m_;
+  const Manholes& manholes_;
+  detail::NetworkImport& net_;
+  Counts& counts_;
+  Diagnostics& d_;
+  FeatureFields ff_;
+  NearestManhole nearest_;
+  std::optional<Field> name_, height_, width_, from_, to_, from_level_, to_level_, shape_, length_;
+  std::string where_;
+};
+
+std::vector<std::string> read_pipes(const GisLayer& layer, const GisFieldMapping& m,
+                                    const std::string& source, const Manholes& manholes,
+                                    detail::NetworkImport& net, Counts& counts, Diagnostics& d) {
+  std::vector<std::string> wheres;
+  PipeReader reader(layer, m, source, manholes, net, counts, d);
+  if (!reader.usable()) return wheres;
+  std::vector<detail::ImportLink> links;
+  for (const GisFeature& f : layer.features) {
+    std::optional<detail::ImportLink> link = reader.read(f);
+    if (!link) continue;
+    link->line = static_cast<std::uint32_t>(wheres.size() + 1);
+    wheres.push_back(reader.where());
+    links.push_back(std::move(*link));
+  }
+  // After the loop: the nearest-manhole index refers to net.nodes, not net.links.
+  for (detail::ImportLink& l : links) net.links.push_back(std::move(l));
   return wheres;
 }
 
