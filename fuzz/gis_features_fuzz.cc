@@ -19,33 +19,33 @@ using sewerplan::GisGeometry;
 using sewerplan::GisLayer;
 
 // Field names the defaults know (some cut to a Shapefile's 10 characters), and a few they do not.
-const std::vector<std::string> kFields = {"identifier",
-                                          "name",
-                                          "wn_obj_id",
-                                          "ws_type",
-                                          "exit",
-                                          "co_level",
-                                          "wn_bottom_level",
-                                          "_depth",
-                                          "ma_dimension1",
-                                          "ma_dimensi",
-                                          "ma_dimension2",
-                                          "rp_from_fk",
-                                          "rp_to_fk_wastewater_networkelement",
-                                          "from",
-                                          "to",
-                                          "rp_from_level",
-                                          "to_level",
-                                          "clear_height",
-                                          "height_m",
-                                          "width",
-                                          "diameter_m",
-                                          "shape",
-                                          "length_effective",
-                                          "length",
-                                          "remark"};
-const std::vector<std::string> kTexts = {"M1",  "M2", "M3",  "manhole", "egg",  "1",
-                                         "0.5", "",   "nan", "-3",      "true", "x"};
+const char* const kFields[] = {"identifier",
+                               "name",
+                               "wn_obj_id",
+                               "ws_type",
+                               "exit",
+                               "co_level",
+                               "wn_bottom_level",
+                               "_depth",
+                               "ma_dimension1",
+                               "ma_dimensi",
+                               "ma_dimension2",
+                               "rp_from_fk",
+                               "rp_to_fk_wastewater_networkelement",
+                               "from",
+                               "to",
+                               "rp_from_level",
+                               "to_level",
+                               "clear_height",
+                               "height_m",
+                               "width",
+                               "diameter_m",
+                               "shape",
+                               "length_effective",
+                               "length",
+                               "remark"};
+const char* const kTexts[] = {"M1",  "M2", "M3",  "manhole", "egg",  "1",
+                              "0.5", "",   "nan", "-3",      "true", "x"};
 
 GisLayer make_layer(FuzzedDataProvider& in, const std::string& name) {
   GisLayer layer{.name = name};
@@ -80,7 +80,7 @@ GisLayer make_layer(FuzzedDataProvider& in, const std::string& name) {
           f.values.emplace_back(in.ConsumeIntegralInRange<int>(-2, 2000) * 1.0);
           break;
         default:
-          f.values.emplace_back(in.ConsumeBool() ? in.PickValueInArray(kTexts)
+          f.values.emplace_back(in.ConsumeBool() ? std::string(in.PickValueInArray(kTexts))
                                                  : in.ConsumeRandomLengthString(12));
       }
     }
