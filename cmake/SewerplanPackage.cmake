@@ -47,8 +47,8 @@ endif()
 if(TARGET sewerplan_python)  # built for one python3 version (python/CMakeLists.txt)
   string(APPEND sewerplan_dev_depends ", ${SEWERPLAN_PYTHON_DEB_DEPENDS}")
 endif()
-if(SEWERPLAN_WITH_GIS)
-  string(APPEND sewerplan_dev_depends ", libproj-dev")
+if(SEWERPLAN_WITH_GIS)  # the static gis library links -lproj and -lgdal; shlibdeps adds libgdal32
+  string(APPEND sewerplan_dev_depends ", libproj-dev, libgdal-dev")
 endif()
 set(CPACK_DEBIAN_PACKAGE_DEPENDS "${sewerplan_dev_depends}")
 set(CPACK_DEBIAN_PACKAGE_DESCRIPTION "${PROJECT_DESCRIPTION}

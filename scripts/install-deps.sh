@@ -12,7 +12,7 @@ packages=(
   clang libclang-rt-14-dev clang-format
   help2man dpkg-dev python3
   pybind11-dev python3-dev python3-pytest
-  libproj-dev libcairo2-dev
+  libproj-dev libcairo2-dev libgdal-dev gdal-bin
   libcpp-httplib-dev pkg-config chromium
 )
 # node and npm build and test the operator station's page (web/). Debian's nodejs and npm are

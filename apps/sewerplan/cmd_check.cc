@@ -16,6 +16,7 @@
 
 #include "command.h"
 #include "json_output.h"
+#include "map_input.h"
 #include "motion_options.h"
 
 namespace sewerplan::cli {
@@ -41,7 +42,7 @@ int failed(const Error& error, const Diagnostics& diagnostics, bool json, Contex
 
 int run(const CheckOptions& o, Context& c) {
   Diagnostics diagnostics;
-  Result<SewerMap> map = read_map(o.map, diagnostics);
+  Result<SewerMap> map = read_input_map(o.map, diagnostics);
   if (!map.has_value()) return failed(map.error(), diagnostics, o.json, c);
   Result<Mission> mission = read_mission(o.mission, *map, diagnostics);
   if (!mission.has_value()) return failed(mission.error(), diagnostics, o.json, c);

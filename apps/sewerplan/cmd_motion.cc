@@ -15,6 +15,7 @@
 
 #include "command.h"
 #include "json_output.h"
+#include "map_input.h"
 
 namespace sewerplan::cli {
 namespace {
@@ -44,7 +45,7 @@ int precompute(const PrecomputeOptions& o, Context& c) {
                       "uses the angle and step rules"});
   }
   Diagnostics diagnostics;
-  Result<SewerMap> map = read_map(*path, diagnostics);
+  Result<SewerMap> map = read_input_map(*path, diagnostics);
   if (!map.has_value()) return fail(c, o.json, map.error(), diagnostics);
   print_diagnostics(diagnostics, c.err);
   Result<RobotProfile> profile = load_profile(o.profile);

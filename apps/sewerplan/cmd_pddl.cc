@@ -17,6 +17,7 @@
 
 #include "command.h"
 #include "json_output.h"
+#include "map_input.h"
 
 namespace sewerplan::cli {
 namespace {
@@ -30,7 +31,7 @@ struct Inputs {
 std::optional<Inputs> load(const std::string& map_path, const std::string& mission_path, bool json,
                            Context& c) {
   Diagnostics diagnostics;
-  Result<SewerMap> map = read_map(map_path, diagnostics);
+  Result<SewerMap> map = read_input_map(map_path, diagnostics);
   Result<Mission> mission = map.has_value() ? read_mission(mission_path, *map, diagnostics)
                                             : Result<Mission>(map.error());
   if (!mission.has_value()) {

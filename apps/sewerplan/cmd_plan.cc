@@ -18,6 +18,7 @@
 
 #include "command.h"
 #include "condition_options.h"
+#include "crs_option.h"
 #include "json_output.h"
 #include "motion_options.h"
 #include "text_format.h"
@@ -40,6 +41,7 @@ struct PlanOptions {
   MotionOptions motion;
   std::string condition;
   RiskOptions risk;
+  std::string crs;
 };
 
 void print_summary(const search::PlanOutcome& o, const domain::ValidationReport& report,
@@ -91,6 +93,7 @@ int run(const PlanOptions& o, Context& c) {
   options.select_goals = o.select_goals;
   Diagnostics diagnostics;
   Result<SewerMap> map = read_map_with_condition(o.map, o.condition, diagnostics);
+  if (map.has_value()) map = apply_crs_option(std::move(*map), o.crs);
   std::optional<Result<Mission>> mission;
   if (map.has_value()) mission = read_mission(o.mission, *map, diagnostics);
   std::optional<Error> risk_error;
@@ -176,6 +179,7 @@ void add_plan_command(CLI::App& app, Context& context) {
   add_motion_options(*cmd, o->motion);
   add_condition_option(*cmd, o->condition);
   add_risk_options(*cmd, o->risk);
+  add_crs_option(*cmd, o->crs);
   cmd->callback([o, &context] { context.exit_code = run(*o, context); });
 }
 

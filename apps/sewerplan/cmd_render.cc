@@ -18,6 +18,7 @@
 
 #include "command.h"
 #include "json_output.h"
+#include "map_input.h"
 
 namespace sewerplan::cli {
 namespace {
@@ -45,7 +46,7 @@ int run(const RenderOptions& o, Context& c) {
   }
   Diagnostics diagnostics;
   auto failed = [&](const Error& e) { return fail(c, o.json, e, diagnostics); };
-  Result<SewerMap> map = read_map(o.map, diagnostics);
+  Result<SewerMap> map = read_input_map(o.map, diagnostics);
   if (!map.has_value()) return failed(map.error());
   std::optional<Mission> mission;
   if (!o.mission.empty()) {

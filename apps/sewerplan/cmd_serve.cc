@@ -13,6 +13,7 @@
 
 #include "command.h"
 #include "json_output.h"
+#include "map_input.h"
 
 namespace sewerplan::cli {
 namespace {
@@ -44,6 +45,9 @@ std::filesystem::path web_root(const std::string& option) {
 int run(const ServeOptions& o, Context& c) {
   server::ServerOptions options{.host = o.host, .port = o.port, .token = o.token};
   for (const std::string& m : o.maps) options.maps.emplace_back(m);
+  options.read_map_with = [](const std::filesystem::path& path, Diagnostics& diagnostics) {
+    return read_input_map(path.string(), diagnostics);
+  };
   options.web_root = web_root(o.web);
   if (options.web_root.empty()) {
     c.err << "sewerplan serve: the page is not built (SEWERPLAN_WEB=ON, or --web DIR): API only\n";

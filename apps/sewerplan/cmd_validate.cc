@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// sewerplan validate --map MAP [--mission FILE] [--strict] [--json]
+// sewerplan validate --map MAP [--mission FILE] [--strict] [--json] [--crs AUTHORITY:CODE]
 #include <ostream>
 
 #include <CLI/CLI.hpp>
@@ -9,6 +9,7 @@
 
 #include "command.h"
 #include "condition_options.h"
+#include "crs_option.h"
 #include "json_output.h"
 
 namespace sewerplan::cli {
@@ -21,6 +22,7 @@ struct ValidateOptions {
   bool strict = false;
   bool json = false;
   std::string condition;
+  std::string crs;
 };
 
 int run(const ValidateOptions& o, Context& c) {
@@ -30,6 +32,7 @@ int run(const ValidateOptions& o, Context& c) {
   if (!path) return exit_code;
   Diagnostics diagnostics;
   Result<SewerMap> map = read_map_with_condition(*path, o.condition, diagnostics);
+  if (map.has_value()) map = apply_crs_option(std::move(*map), o.crs);
   std::optional<Error> failure;
   if (!map.has_value()) {
     failure = map.error();
@@ -77,6 +80,7 @@ void add_validate_command(CLI::App& app, Context& context) {
   cmd->add_flag("--strict", options->strict, "Treat warnings as errors");
   cmd->add_flag("--json", options->json, "Print the result as JSON");
   add_condition_option(*cmd, options->condition);
+  add_crs_option(*cmd, options->crs);
   cmd->callback([options, &context] { context.exit_code = run(*options, context); });
 }
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "sewerplan/core/map_io.h"
 
+#include <cctype>
 #include <optional>
 #include <sstream>
 #include <string_view>
@@ -121,6 +122,16 @@ Result<SewerMap> parse_map(std::string_view text, const std::string& file_name, 
 }
 
 Result<SewerMap> read_map(const std::filesystem::path& path, Diagnostics& diagnostics) {
+  std::string ext = path.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  std::error_code ec;
+  if (ext == ".shp" || ext == ".gpkg" || std::filesystem::is_directory(path, ec)) {
+    return Error{
+        ErrorCode::kUnsupportedFormat,
+        path.string() +
+            ": a GIS source (GeoPackage, Shapefile or a directory of them): read it with "
+            "gis::read_gis_map (docs/formats/gis-layers.md), as the sewerplan command does"};
+  }
   // A regular file is read where the page cache holds it (mapped_file.h); anything else as text.
   std::optional<detail::MappedFile> mapped = detail::MappedFile::open(path);
   std::string read;

@@ -464,7 +464,8 @@ Result<std::unique_ptr<StationServer>> StationServer::create(const ServerOptions
   impl->options = options;
   for (const std::filesystem::path& path : options.maps) {
     Diagnostics diagnostics;
-    Result<SewerMap> map = read_map(path, diagnostics);
+    Result<SewerMap> map = options.read_map_with ? options.read_map_with(path, diagnostics)
+                                                 : read_map(path, diagnostics);
     if (!map.has_value()) return map.error();
     const std::string id = unique_id(path.stem().string(), impl->taken_ids);
     std::string geometry = map_geometry_json(*map, id);

@@ -133,6 +133,13 @@ json 0 "j['crs'] == 'EPSG:25832'" -- "$sp" convert --map "$ais" --crs epsg:25832
 json 0 "j['crs'] == 'EPSG:25832'" -- "$sp" info --map "$tmp/utm.json" --json
 json 2 "$(err usage 2) and 'names its own CRS' in j['error']['message']" -- \
   "$sp" info --map "$tmp/utm.json" --crs EPSG:31467 --json
+json 0 "j['valid'] is True" -- "$sp" validate --map "$ais" --crs EPSG:25832 --json
+json 2 "$(err usage 2) and 'names its own CRS' in j['error']['message']" -- \
+  "$sp" validate --map "$tmp/utm.json" --crs EPSG:31467 --json
+json 0 "len(j['steps']) == 14" -- \
+  "$sp" plan --map "$tmp/utm.json" --crs EPSG:25832 --mission "$mission" --json -q
+json 2 "$(err usage 2) and 'names its own CRS' in j['error']['message']" -- \
+  "$sp" plan --map "$tmp/utm.json" --crs EPSG:31467 --mission "$mission" --json
 if "$sp" --help | grep -q export-geojson; then
   json 2 "$(err usage 2) and 'no coordinate reference system' in j['error']['message']" -- \
     "$sp" export-geojson --map "$ais" -o "$tmp/ais.geojson" --json

@@ -5,7 +5,8 @@
 // (map_ascii.h, ".sewer"), read and written; EPA SWMM input files (map_swmm.h, ".inp") and
 // ISYBAU XML (map_isybau.h, ".xml"), read only. A file with another extension is recognised by its
 // content: '{' opens a JSON map, a "sewerdb" line an ASCII database, a "[SECTION]" line a SWMM
-// file, '<' an ISYBAU file.
+// file, '<' an ISYBAU file. GIS sources (a GeoPackage, a Shapefile, a directory) need GDAL: they
+// are read by gis::read_gis_map (gis/gdal_import.h), and read_map says so.
 //
 //   Diagnostics diagnostics;
 //   Result<SewerMap> map = read_map("datasets/ais-testbed/map.json", diagnostics);

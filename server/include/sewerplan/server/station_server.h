@@ -31,16 +31,23 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "sewerplan/core/diagnostics.h"
 #include "sewerplan/core/result.h"
+#include "sewerplan/core/sewer_map.h"
 
 namespace sewerplan::server {
 
+// How the server reads a map file; the CLI passes its own, which also reads GIS sources.
+using MapReader = std::function<Result<SewerMap>(const std::filesystem::path&, Diagnostics&)>;
+
 struct ServerOptions {
-  std::vector<std::filesystem::path> maps;  // any format read_map reads
+  std::vector<std::filesystem::path> maps;  // any format read_map (or read_map_with) reads
+  MapReader read_map_with;                  // empty: core's read_map
   std::string host = "127.0.0.1";
   int port = 8080;                 // 0: any free port (bind() says which)
   std::string token;               // empty: no token asked

@@ -1,0 +1,242 @@
+// SPDX-License-Identifier: MIT
+// GDAL's C API (Debian libgdal-dev), private to this file: layers and features in, as the plain
+// values of core/map_features.h.
+#include "sewerplan/gis/gdal_import.h"
+
+#include <algorithm>
+#include <cctype>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "sewerplan/core/map_features.h"
+#include "sewerplan/core/text_file.h"
+
+#include <cpl_error.h>
+#include <gdal.h>
+#include <ogr_api.h>
+#include <ogr_srs_api.h>
+
+namespace sewerplan::gis {
+namespace {
+
+std::string lower(std::string text) {
+  std::ranges::transform(text, text.begin(), [](unsigned char c) { return std::tolower(c); });
+  return text;
+}
+
+// GDAL reports through a global handler that prints to stderr; a quiet one is pushed for the
+// calling thread while sewerplan reads, and the last message goes into the error instead.
+class QuietGdal {
+ public:
+  QuietGdal() {
+    static std::once_flag registered;
+    std::call_once(registered, [] { GDALAllRegister(); });
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    CPLErrorReset();
+  }
+  ~QuietGdal() { CPLPopErrorHandler(); }
+  QuietGdal(const QuietGdal&) = delete;
+  QuietGdal& operator=(const QuietGdal&) = delete;
+
+  static std::string last_message() {
+    const char* m = CPLGetLastErrorMsg();
+    return m != nullptr && *m != '\0' ? std::string(": ") + m : std::string();
+  }
+};
+
+struct DatasetClose {
+  void operator()(void* ds) const { GDALClose(ds); }
+};
+using Dataset = std::unique_ptr<void, DatasetClose>;
+
+struct FeatureDestroy {
+  void operator()(OGRFeatureH f) const { OGR_F_Destroy(f); }
+};
+using Feature = std::unique_ptr<std::remove_pointer_t<OGRFeatureH>, FeatureDestroy>;
+
+GisGeometry kind_of(OGRwkbGeometryType type) {
+  const OGRwkbGeometryType flat = OGR_GT_Flatten(type);
+  if (flat == wkbNone) return GisGeometry::kNone;
+  if (flat == wkbPoint || flat == wkbMultiPoint) return GisGeometry::kPoint;
+  if (flat == wkbLineString || flat == wkbMultiLineString || flat == wkbCircularString ||
+      flat == wkbCompoundCurve || flat == wkbMultiCurve) {
+    return GisGeometry::kLine;
+  }
+  return GisGeometry::kOther;
+}
+
+// A layer of unknown geometry type (a GeoPackage's GEOMETRY, ogr2ogr's output from GeoJSON) is a
+// point or line layer if every feature with a geometry is one.
+GisGeometry kind_of(OGRLayerH layer) {
+  const OGRwkbGeometryType declared = OGR_L_GetGeomType(layer);
+  if (OGR_GT_Flatten(declared) != wkbUnknown) return kind_of(declared);
+  std::optional<GisGeometry> seen;
+  OGR_L_ResetReading(layer);
+  while (Feature f{OGR_L_GetNextFeature(layer)}) {
+    OGRGeometryH g = OGR_F_GetGeometryRef(f.get());
+    if (g == nullptr || OGR_G_IsEmpty(g)) continue;
+    const GisGeometry k = kind_of(OGR_G_GetGeometryType(g));
+    if (seen && *seen != k) return GisGeometry::kOther;
+    seen = k;
+  }
+  return seen.value_or(GisGeometry::kOther);
+}
+
+void read_geometry(OGRGeometryH g, GisFeature& out) {
+  if (g == nullptr || OGR_G_IsEmpty(g)) return;  // kNone
+  out.geometry_name = OGR_G_GetGeometryName(g);
+  std::unique_ptr<std::remove_pointer_t<OGRGeometryH>, decltype(&OGR_G_DestroyGeometry)> linear(
+      nullptr, &OGR_G_DestroyGeometry);
+  if (OGR_GT_IsNonLinear(OGR_G_GetGeometryType(g))) {  // QGEP's compound curves
+    linear.reset(OGR_G_GetLinearGeometry(g, 0, nullptr));
+    if (!linear) {
+      out.geometry = GisGeometry::kOther;
+      return;
+    }
+    g = linear.get();
+  }
+  OGRwkbGeometryType flat = OGR_GT_Flatten(OGR_G_GetGeometryType(g));
+  if (flat == wkbMultiPoint || flat == wkbMultiLineString) {
+    const int parts = OGR_G_GetGeometryCount(g);
+    if (parts != 1) {
+      out.geometry = GisGeometry::kOther;
+      out.geometry_name += " of " + std::to_string(parts) + " parts";
+      return;
+    }
+    g = OGR_G_GetGeometryRef(g, 0);
+    flat = OGR_GT_Flatten(OGR_G_GetGeometryType(g));
+  }
+  if (flat != wkbPoint && flat != wkbLineString) {
+    out.geometry = GisGeometry::kOther;
+    return;
+  }
+  out.geometry = flat == wkbPoint ? GisGeometry::kPoint : GisGeometry::kLine;
+  out.has_z = OGR_G_Is3D(g) != 0;
+  const int n = OGR_G_GetPointCount(g);
+  for (int i = 0; i < n; ++i) {
+    out.points.push_back({OGR_G_GetX(g, i), OGR_G_GetY(g, i), OGR_G_GetZ(g, i)});
+  }
+}
+
+// The layer's CRS as AUTHORITY:CODE, identified by GDAL when the source does not say it.
+void read_crs(OGRLayerH layer, GisLayer& out) {
+  OGRSpatialReferenceH srs = OGR_L_GetSpatialRef(layer);
+  if (srs == nullptr) return;
+  std::unique_ptr<std::remove_pointer_t<OGRSpatialReferenceH>, decltype(&OSRRelease)> copy(
+      OSRClone(srs), &OSRRelease);
+  if (OSRGetAuthorityName(copy.get(), nullptr) == nullptr) OSRAutoIdentifyEPSG(copy.get());
+  const char* authority = OSRGetAuthorityName(copy.get(), nullptr);
+  const char* code = OSRGetAuthorityCode(copy.get(), nullptr);
+  if (authority != nullptr && code != nullptr) {
+    if (Result<Crs> crs = parse_crs(std::string(authority) + ":" + code); crs.has_value()) {
+      out.crs = *crs;
+      return;
+    }
+  }
+  const char* name = OSRGetName(copy.get());
+  out.unnamed_crs = name != nullptr && *name != '\0' ? name : "unnamed";
+}
+
+GisLayer read_layer(OGRLayerH layer) {
+  GisLayer out;
+  out.name = to_utf8_lossy(OGR_L_GetName(layer));
+  read_crs(layer, out);
+  OGRFeatureDefnH defn = OGR_L_GetLayerDefn(layer);
+  const int fields = OGR_FD_GetFieldCount(defn);
+  std::vector<bool> numeric;
+  for (int i = 0; i < fields; ++i) {
+    OGRFieldDefnH fd = OGR_FD_GetFieldDefn(defn, i);
+    out.fields.push_back(to_utf8_lossy(OGR_Fld_GetNameRef(fd)));
+    const OGRFieldType t = OGR_Fld_GetType(fd);
+    numeric.push_back(t == OFTInteger || t == OFTInteger64 || t == OFTReal);
+  }
+  OGR_L_ResetReading(layer);
+  while (Feature f{OGR_L_GetNextFeature(layer)}) {
+    GisFeature feature;
+    feature.fid = OGR_F_GetFID(f.get());
+    for (int i = 0; i < fields; ++i) {
+      if (!OGR_F_IsFieldSetAndNotNull(f.get(), i)) {
+        feature.values.emplace_back();
+      } else if (numeric[static_cast<std::size_t>(i)]) {
+        feature.values.emplace_back(OGR_F_GetFieldAsDouble(f.get(), i));
+      } else {
+        feature.values.emplace_back(to_utf8_lossy(OGR_F_GetFieldAsString(f.get(), i)));
+      }
+    }
+    read_geometry(OGR_F_GetGeometryRef(f.get()), feature);
+    out.features.push_back(std::move(feature));
+  }
+  return out;
+}
+
+}  // namespace
+
+bool is_gis_source(const std::filesystem::path& path) {
+  const std::string ext = lower(path.extension().string());
+  if (ext == ".shp" || ext == ".gpkg") return true;
+  std::error_code ec;
+  return std::filesystem::is_directory(path, ec);
+}
+
+std::filesystem::path field_mapping_sidecar(const std::filesystem::path& source) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(source, ec)) return source / "fields.json";
+  std::filesystem::path p = source;
+  return p.replace_extension(".fields.json");
+}
+
+Result<SewerMap> read_gis_map(const std::filesystem::path& source, Diagnostics& diagnostics,
+                              const std::optional<std::filesystem::path>& mapping_file) {
+  std::error_code ec;
+  if (!std::filesystem::exists(source, ec)) {
+    return Error{ErrorCode::kIo, source.string() + ": no such file or directory"};
+  }
+  GisFieldMapping mapping = GisFieldMapping::defaults();
+  std::optional<std::filesystem::path> mapping_path = mapping_file;
+  if (!mapping_path && std::filesystem::exists(field_mapping_sidecar(source), ec)) {
+    mapping_path = field_mapping_sidecar(source);
+  }
+  if (mapping_path) {
+    Result<GisFieldMapping> read = read_gis_field_mapping(*mapping_path, diagnostics);
+    if (!read.has_value()) return read.error();
+    mapping = std::move(*read);
+  }
+  const bool shapefile = lower(source.extension().string()) == ".shp";
+  std::filesystem::path open = source;
+  if (shapefile) open = source.has_parent_path() ? source.parent_path() : ".";
+  const std::string name = source.string();
+  QuietGdal quiet;
+  const char* const drivers[] = {"ESRI Shapefile", "GPKG", nullptr};
+  Dataset ds(
+      GDALOpenEx(open.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, drivers, nullptr, nullptr));
+  if (!ds) {
+    return Error{ErrorCode::kParse, name + ": not a GeoPackage or Shapefile GDAL can open" +
+                                        QuietGdal::last_message()};
+  }
+  std::vector<GisLayerInfo> infos;
+  std::vector<OGRLayerH> layers;
+  const int count = GDALDatasetGetLayerCount(ds.get());
+  for (int i = 0; i < count; ++i) {
+    OGRLayerH l = GDALDatasetGetLayer(ds.get(), i);
+    if (l == nullptr) continue;
+    layers.push_back(l);
+    infos.push_back(
+        {.name = to_utf8_lossy(OGR_L_GetName(l)),
+         .geometry = kind_of(l),
+         .features = static_cast<std::size_t>(std::max<GIntBig>(0, OGR_L_GetFeatureCount(l, 1)))});
+  }
+  const std::string preferred = shapefile ? source.stem().string() : std::string();
+  Result<GisLayerChoice> choice = choose_gis_layers(infos, mapping, name, preferred);
+  if (!choice.has_value()) return choice.error();
+  const GisLayer manholes = read_layer(layers[choice->manholes]);
+  const GisLayer pipes = read_layer(layers[choice->pipes]);
+  std::string map_name = source.stem().string();
+  if (map_name.empty() || map_name == ".") map_name = std::filesystem::absolute(source).filename();
+  return map_from_gis_layers(manholes, pipes, mapping, name, to_utf8_lossy(map_name), diagnostics);
+}
+
+}  // namespace sewerplan::gis
