@@ -199,6 +199,9 @@ Result<PlanOutcome> plan_once(const SewerMap& map, const Mission& mission,
                                   .contingency = options.contingency});
   if (!compiled.has_value()) return compiled.error();
   const domain::CompiledTask& task = compiled->task();
+  // Checked between the stretches here (each well under a millisecond, issue 14) as the searches
+  // check theirs.
+  if (auto stopped = stop.interrupted()) return search_failure(*stopped, mission, progress, task);
   // An admissible estimate already beyond the battery proves there is no plan, whatever the
   // algorithm: without this, greedy searches would exhaust the bounded state space to find out.
   // (With goal selection, forgoing tasks is always possible, and the estimate includes penalties.)
@@ -207,6 +210,7 @@ Result<PlanOutcome> plan_once(const SewerMap& map, const Mission& mission,
       lower == Heuristic::kDeadEnd || (task.penalty_unit() == 0 && lower > task.cost_bound())) {
     return search_failure(SearchStatus::kUnsolvable, mission, progress, task);
   }
+  if (auto stopped = stop.interrupted()) return search_failure(*stopped, mission, progress, task);
   const Algorithm algorithm = resolve(options.algorithm, task);
   const bool optimal_search = algorithm == Algorithm::kAstar || algorithm == Algorithm::kExact;
   const HeuristicKind kind =

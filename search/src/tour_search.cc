@@ -124,8 +124,14 @@ class Tour {
   // The reason the stop condition gave, once it fired; then build() returns nothing more.
   std::optional<SearchStatus> stopped() const { return stopped_; }
 
-  // An order of the goals in `goals` (the last-goal, if any, at the end).
-  std::vector<std::size_t> build(const std::vector<std::size_t>& goals) {
+  // An order of the goals in `goals` (the last-goal, if any, at the end). Where contingency
+  // reserves leave no feasible place for any goal still to insert, and all of those can be forgone
+  // and `left_out` is given, the order of the others is kept and those goals go into `left_out`
+  // (more goals only spend more before each reserve, so none of them would fit later either);
+  // else the answer is empty.
+  std::vector<std::size_t> build(const std::vector<std::size_t>& goals,
+                                 std::vector<std::size_t>* left_out = nullptr) {
+    if (left_out != nullptr) left_out->clear();
     std::vector<std::size_t> order;
     std::optional<std::size_t> last;
     std::vector<std::size_t> todo;
@@ -153,7 +159,17 @@ class Tour {
           }
         }
       }
-      if (best >= kInfiniteCost) return {};
+      if (best >= kInfiniteCost) {
+        // Issue 14: giving up here left the tour search without an answer whenever the reserves
+        // called for dropping more than one goal, and the engines took seconds instead.
+        const bool can_leave =
+            left_out != nullptr && std::all_of(todo.begin(), todo.end(), [&](std::size_t g) {
+              return s_.goals[g].forgo.has_value();
+            });
+        if (!can_leave || !fits_whole(order, last)) return {};
+        *left_out = todo;
+        break;
+      }
       order.insert(order.begin() + static_cast<std::ptrdiff_t>(best_at), todo[best_goal]);
       todo.erase(todo.begin() + static_cast<std::ptrdiff_t>(best_goal));
     }
@@ -164,6 +180,13 @@ class Tour {
   }
 
   Cost cost(const std::vector<std::size_t>& order) { return eval_.cost(order); }
+
+  // Whether `order` followed by `last` (if any) can be done at all, reserves included.
+  bool fits_whole(const std::vector<std::size_t>& order, std::optional<std::size_t> last) {
+    std::vector<std::size_t> full = order;
+    if (last) full.push_back(*last);
+    return eval_.cost(full) < kInfiniteCost;
+  }
 
   // `order` with goal g at its cheapest place (before the last-goal, if any); empty if none.
   std::vector<std::size_t> insert(const std::vector<std::size_t>& order, std::size_t g) {
@@ -315,13 +338,21 @@ std::optional<SearchResult> tour_search(const CompiledTask& task, const StopCond
   std::vector<std::size_t> goals(shape->goals.size());
   for (std::size_t i = 0; i < goals.size(); ++i) goals[i] = i;
   Tour tour(*shape, stop);
-  std::vector<std::size_t> order = tour.build(goals);
+  std::vector<std::size_t> left_out;
+  std::vector<std::size_t> order = tour.build(goals, &left_out);
   if (tour.stopped()) {
     out.stopped = tour.stopped();
     return std::nullopt;
   }
-  if (!order.empty() || goals.empty()) out.cheapest_order = tour.cost(order);
-  std::vector<std::size_t> forgone;
+  if ((!order.empty() || goals.empty()) && left_out.empty()) out.cheapest_order = tour.cost(order);
+  // Goals the reserves left no place for are forgone (build() lists only goals that can be); they
+  // are offered again below once the order is final.
+  std::vector<std::size_t> forgone = left_out;
+  const auto forgo = [&](const std::vector<std::size_t>& gone) {
+    for (std::size_t g : gone) goals.erase(std::find(goals.begin(), goals.end(), g));
+  };
+  forgo(left_out);
+  bool put_back = !left_out.empty();
   // Over the bound (or no order at all): leave out, one at a time, the goal whose absence saves
   // the most, where goals can be forgone.
   auto fits = [&](const std::vector<std::size_t>& o) {
@@ -333,10 +364,11 @@ std::optional<SearchResult> tour_search(const CompiledTask& task, const StopCond
   // rebuild per candidate and drop made 50 uniform tasks take minutes).
   constexpr std::size_t kRebuildGoals = 12;
   bool cut = false;
-  while (order.empty() || !fits(order)) {
+  while ((order.empty() && !goals.empty()) || !fits(order)) {
     std::optional<std::size_t> drop;
-    Cost best = kInfiniteCost;
-    std::vector<std::size_t> best_order;
+    // The fewest goals left out with it (by the reserves, in a rebuild), then the lowest cost.
+    std::pair<std::size_t, Cost> best{0, kInfiniteCost};
+    std::vector<std::size_t> best_order, best_left;
     const bool rebuild = order.empty() || goals.size() <= kRebuildGoals;
     for (std::size_t g : goals) {
       if (!shape->goals[g].forgo) continue;
@@ -344,17 +376,20 @@ std::optional<SearchResult> tour_search(const CompiledTask& task, const StopCond
       for (std::size_t h : rebuild ? goals : order) {
         if (h != g) rest.push_back(h);
       }
-      std::vector<std::size_t> o = rebuild ? tour.build(rest) : rest;
+      std::vector<std::size_t> o = rebuild ? tour.build(rest, &left_out) : rest;
+      if (!rebuild) left_out.clear();
       if (!rebuild && tour.check_stop()) break;
       if (tour.stopped()) {
         out.stopped = tour.stopped();
         return std::nullopt;
       }
-      const Cost c = o.empty() && !rest.empty() ? kInfiniteCost : tour.cost(o);
-      if (c < best) {
+      const bool none = o.empty() && rest.size() > left_out.size();
+      const std::pair<std::size_t, Cost> c{left_out.size(), none ? kInfiniteCost : tour.cost(o)};
+      if (c.second < kInfiniteCost && (!drop || c < best)) {
         best = c;
         drop = g;
         best_order = std::move(o);
+        best_left = left_out;
       }
     }
     if (tour.stopped()) {
@@ -363,12 +398,14 @@ std::optional<SearchResult> tour_search(const CompiledTask& task, const StopCond
     }
     if (!drop) return std::nullopt;
     cut = cut || !rebuild;
-    goals.erase(std::find(goals.begin(), goals.end(), *drop));
-    forgone.push_back(*drop);
+    put_back = put_back || !best_left.empty();
+    best_left.push_back(*drop);
+    forgo(best_left);
+    forgone.insert(forgone.end(), best_left.begin(), best_left.end());
     order = std::move(best_order);
     if (goals.empty()) break;
   }
-  if (cut) {
+  if (cut || put_back) {
     order = tour.polish(std::move(order));
     // Cutting can leave room: put back, cheapest first, each forgone goal that still fits.
     for (bool added = true; added && !forgone.empty();) {

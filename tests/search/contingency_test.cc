@@ -5,8 +5,10 @@
 // robots blocked late in their tour had a way out but not the battery for it).
 #include <gtest/gtest.h>
 
+#include "sewerplan/domain/compile.h"
 #include "sewerplan/domain/plan_text.h"
 #include "sewerplan/search/planner.h"
+#include "sewerplan/search/tour_search.h"
 
 #include "support/small_map.h"
 
@@ -129,6 +131,48 @@ TEST(ContingencyPlanning, WithoutHazardsNothingChanges) {
                            {.select_goals = true});
   ASSERT_TRUE(plan.has_value()) << plan.error();
   EXPECT_TRUE(plan->dropped.empty());
+}
+
+// Issue 14: with reserves, the cheapest insertion found no place for any goal once more than one
+// had to go, and the tour search gave no answer at all (the engines then took seconds on the
+// battery trap). Three samples 10 m into short side pipes of S: with the reserve for backing out
+// of SHORT and driving LONG, at most one of them fits.
+TEST(ContingencyPlanning, TheTourSearchDropsTheGoalsTheReservesLeaveNoRoomFor) {
+  Trap trap;
+  trap.map = SmallMap()
+                 .manhole("S", 0, 0)
+                 .manhole("A", 20, 0)
+                 .manhole("B", 0, -20)
+                 .manhole("C", 14, 14)
+                 .manhole("E", -10, 0, /*exit=*/true)
+                 .manhole("F", 0, 90, /*exit=*/true)
+                 .pipe("SA", "S", "A", 0.5, 20.0)
+                 .pipe("SB", "S", "B", 0.5, 20.0)
+                 .pipe("SC", "S", "C", 0.5, 20.0)
+                 .pipe("SHORT", "S", "E", 0.5, 10.0)
+                 .pipe("LONG", "S", "F", 0.5, 90.0)
+                 .build();
+  Mission& m = trap.mission;
+  m = small_mission(trap.map, "S");
+  for (const char* pipe : {"SA", "SB", "SC"}) {
+    add_task(m, trap.map, std::string("sample in ") + pipe, TaskKind::kTakeWaterSample, pipe, 10.0);
+  }
+  m.hazards.push_back(
+      {.pipe = *trap.map.find_pipe("SHORT"), .offset_m = 5, .probability = 0.3, .reason = "roots"});
+  m.profile.battery_wh = battery_for(trap, 60);
+  auto compiled = domain::compile_sewer_task(trap.map, m, initial_progress(m, trap.map),
+                                             {.select_goals = true, .contingency = true});
+  ASSERT_TRUE(compiled.has_value()) << compiled.error();
+  const domain::CompiledTask& task = compiled->task();
+  auto exact = exact_tour_search(task);
+  ASSERT_TRUE(exact.has_value());
+  ASSERT_EQ(exact->status, SearchStatus::kSolved);
+  const std::size_t fewest = compiled->forgone(exact->plan).size();
+  ASSERT_GE(fewest, 2U);  // the case that gave no answer
+  auto tour = tour_search(task);
+  ASSERT_TRUE(tour.has_value());
+  EXPECT_TRUE(task.solves(tour->plan));  // every reserve kept
+  EXPECT_EQ(compiled->forgone(tour->plan).size(), fewest);
 }
 
 }  // namespace
