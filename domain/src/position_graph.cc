@@ -112,6 +112,9 @@ std::optional<double> PositionGraph::farthest_hazard(PipeId p, double from, doub
 }
 
 Cost PositionGraph::route_risk(std::span<const Node> route, double weight_s) const {
+  // Every GO action asks: without hazards or weight, skip walking its route (issue 16: at 1,000
+  // manholes and 50 tasks, 13,000 routes).
+  if (weight_s <= 0 || hazards_.empty()) return 0;
   Cost total = 0;
   for (std::size_t i = 0; i + 1 < route.size(); ++i) {
     const std::optional<PipeId> p = pipe_of(route[i]);
