@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <iomanip>
 #include <map>
+#include <mutex>
 #include <sstream>
 #include <tuple>
 #include <unordered_map>
@@ -20,6 +21,14 @@ namespace sewerplan::domain {
 using detail::GraphSearch;
 using detail::Node;
 using detail::PositionGraph;
+
+struct CompileCache::State {
+  std::mutex mutex;
+  std::shared_ptr<detail::GraphCore> core;
+};
+
+CompileCache::CompileCache() : state_(std::make_unique<State>()) {}
+CompileCache::~CompileCache() = default;
 
 SewerTask::SewerTask() = default;
 SewerTask::SewerTask(SewerTask&&) noexcept = default;
@@ -42,7 +51,7 @@ class SewerTaskCompiler {
   SewerTaskCompiler(const SewerMap& map, const Mission& mission, const MissionProgress& progress,
                     const CompileOptions& options)
       : map_(map), mission_(mission), progress_(progress), options_(options) {
-    result_.graph_ = std::make_unique<PositionGraph>(map, mission);
+    result_.graph_ = std::make_unique<PositionGraph>(map, mission, cached_core());
   }
 
   Result<SewerTask> run() {
@@ -52,7 +61,7 @@ class SewerTaskCompiler {
     select_tasks();
     collect_keys(graph);
     if (auto stopped = options_.stop.interrupted()) return stopped_error(*stopped, "the compile");
-    GraphSearch search(graph);
+    GraphSearch search(graph, &graph.core().scratch);
     if (options_.stop.can_interrupt()) {
       search.set_interrupt([this] { return options_.stop.interrupted().has_value(); });
     }
@@ -95,6 +104,24 @@ class SewerTaskCompiler {
 
  private:
   std::size_t k() const { return keys_.size(); }
+
+  // The cache's core when it serves this map and robot and no other compile's task holds it
+  // (then only the cache does: the count grows only here, under the lock); else a fresh one,
+  // which the cache keeps if its own does not serve.
+  std::shared_ptr<detail::GraphCore> cached_core() const {
+    if (options_.cache == nullptr) return nullptr;
+    CompileCache::State& state = *options_.cache->state_;
+    const std::lock_guard lock(state.mutex);
+    const auto& core = state.core;
+    const PassageMotionTable* motion = mission_.passage_motion.get();
+    if (core != nullptr && core->serves(map_, mission_.profile, motion)) {
+      if (core.use_count() == 1) return core;
+      return nullptr;
+    }
+    state.core =
+        std::make_shared<detail::GraphCore>(map_, mission_.profile, mission_.passage_motion);
+    return state.core;
+  }
 
   // Leaves out the pending tasks known to be impossible; what remains impossible is returned.
   std::string select_goals(const detail::CompileReasons& reasons) {
@@ -212,7 +239,7 @@ class SewerTaskCompiler {
     if (ends_at_exit_) {
       mark_exits();
       // Risk-aware, the way to the exit weighs risks more: its own searches (route_to_exits).
-      if (!options_.risk.active()) exits = &exit_node_;
+      if (!options_.risk.active()) exits = &exit_node();
     }
     result_.graph_->set_risk_weight(options_.risk.blockage_s);
     // From the start first: only the keys it reaches within the bound take part after.
@@ -249,16 +276,28 @@ class SewerTaskCompiler {
     result_.graph_->set_risk_weight(0);
   }
 
+  // Marks the mission's exits in the core's exit marks (unmarking the last compile's, unless they
+  // are the same).
   void mark_exits() {
     const PositionGraph& graph = *result_.graph_;
-    exit_node_.assign(graph.size(), false);
+    detail::GraphCore& core = graph.core();
+    if (core.exits_marked == mission_.exits && core.exit_marks.size() >= graph.size()) return;
+    core.exits_marked = mission_.exits;
+    for (Node n : core.marked_exits) core.exit_marks[n] = false;
+    core.marked_exits.clear();
+    if (core.exit_marks.size() < graph.size()) core.exit_marks.resize(graph.size(), false);
+    auto mark = [&](Node n) {
+      core.exit_marks[n] = true;
+      core.marked_exits.push_back(n);
+    };
     for (ManholeId e : mission_.exits) {
-      exit_node_[graph.in_manhole(e)] = true;
+      mark(graph.in_manhole(e));
       for (std::uint16_t s = 0; s < map_.manhole(e).slot_count; ++s) {
-        exit_node_[graph.at_slot(e, SlotIndex{s})] = true;
+        mark(graph.at_slot(e, SlotIndex{s}));
       }
     }
   }
+  const std::vector<bool>& exit_node() const { return result_.graph_->core().exit_marks; }
 
   // Whether some pending task has no key the start reaches within the bound (row 0 of dist_).
   bool needs_unbounded_diagnosis() const {
@@ -304,7 +343,7 @@ class SewerTaskCompiler {
           a == 0 || landing(a) ||
           (std::find(targets.begin(), targets.end(), n) != targets.end() && dist_[a] <= bound_);
       if (!in_reach || exit_dist_[a] != kInfiniteCost) continue;
-      const std::optional<Node> exit = search.run_to_nearest(n, exit_node_, bound_);
+      const std::optional<Node> exit = search.run_to_nearest(n, exit_node(), bound_);
       ++result_.statistics_.route_searches;
       if (!exit) continue;
       exit_dist_[a] = search.distance(*exit);
@@ -350,7 +389,7 @@ class SewerTaskCompiler {
     const bool second_was = second && graph.excluded(*second);
     graph.exclude_pipe(first, true);
     if (second) graph.exclude_pipe(*second, true);
-    const std::optional<Node> exit = contingency_search_->run_to_nearest(from, exit_node_, bound_);
+    const std::optional<Node> exit = contingency_search_->run_to_nearest(from, exit_node(), bound_);
     Cost need = exit ? contingency_search_->distance(*exit) : kInfiniteCost;
     std::vector<Node> route;
     if (exit && !second) contingency_search_->path(*exit, route);
@@ -429,7 +468,6 @@ class SewerTaskCompiler {
   std::vector<Cost> dist_;  // k x k, row = from
   std::vector<std::vector<Node>> routes_;
   std::vector<Cost> exit_dist_;
-  std::vector<bool> exit_node_;
   std::vector<std::vector<Node>> exit_routes_;
   bool contingency_ = false;
   std::unique_ptr<GraphSearch> contingency_search_;

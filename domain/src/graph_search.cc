@@ -10,12 +10,24 @@ namespace {
 constexpr Node kNoParent = 0xffffffffU;
 }
 
-GraphSearch::GraphSearch(const PositionGraph& graph)
+GraphSearch::GraphSearch(const PositionGraph& graph, SearchScratch* scratch)
     : graph_(graph),
-      dist_(graph.size(), kInfiniteCost),
-      parent_(graph.size(), kNoParent),
-      settled_(graph.size(), false),
-      is_target_(graph.size(), false) {}
+      scratch_(scratch != nullptr ? *scratch : own_),
+      dist_(scratch_.dist),
+      parent_(scratch_.parent),
+      settled_(scratch_.settled),
+      is_target_(scratch_.is_target),
+      touched_(scratch_.touched),
+      heap_(scratch_.heap) {
+  if (dist_.size() < graph.size()) {
+    dist_.resize(graph.size(), kInfiniteCost);
+    parent_.resize(graph.size(), kNoParent);
+    settled_.resize(graph.size(), false);
+    is_target_.resize(graph.size(), false);
+  }
+}
+
+GraphSearch::~GraphSearch() { reset(); }
 
 void GraphSearch::reset() {
   for (Node n : touched_) {

@@ -4,7 +4,8 @@
 // Private to domain. Forward from one source, or backward from many (every exit at once, giving
 // each node's distance to its nearest exit). A run stops when every target is settled or the next
 // node costs more than the bound, so on a large map it explores only the region around the
-// mission's keys. The arrays are sized once and reset through the list of touched nodes.
+// mission's keys. The arrays are sized once and reset through the list of touched nodes; they may
+// be a GraphCore's scratch (position_graph.h), kept clean for the next compile on the same map.
 // Ties are broken by node number, so the paths are the same on every run.
 #pragma once
 
@@ -22,7 +23,11 @@ class GraphSearch {
  public:
   enum class Direction { kForward, kBackward };
 
-  explicit GraphSearch(const PositionGraph& graph);
+  // `scratch`: arrays to use (clean, see SearchScratch; they are left clean), or null for own.
+  explicit GraphSearch(const PositionGraph& graph, SearchScratch* scratch = nullptr);
+  GraphSearch(const GraphSearch&) = delete;
+  GraphSearch& operator=(const GraphSearch&) = delete;
+  ~GraphSearch();
 
   // With `goal`, the search also goes on until it has settled one node with goal[node], and
   // returns the first (the nearest), if one is within the bound: one search gives a key's routes
@@ -45,12 +50,14 @@ class GraphSearch {
 
  private:
   const PositionGraph& graph_;
-  std::vector<Cost> dist_;
-  std::vector<Node> parent_;
-  std::vector<bool> settled_;
-  std::vector<bool> is_target_;
-  std::vector<Node> touched_;
-  std::vector<std::pair<Cost, Node>> heap_;
+  SearchScratch own_;
+  SearchScratch& scratch_;
+  std::vector<Cost>& dist_;
+  std::vector<Node>& parent_;
+  std::vector<bool>& settled_;
+  std::vector<bool>& is_target_;
+  std::vector<Node>& touched_;
+  std::vector<std::pair<Cost, Node>>& heap_;
   Direction direction_ = Direction::kForward;
   std::size_t settled_total_ = 0;
   std::function<bool()> interrupt_;

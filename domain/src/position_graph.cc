@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "sewerplan/core/check.h"
 #include "sewerplan/core/map_queries.h"
@@ -21,39 +22,60 @@ bool passage_less(const ClosedPassage& a, const ClosedPassage& b) {
 
 }  // namespace
 
-PositionGraph::PositionGraph(const SewerMap& map, const Mission& mission)
+GraphCore::GraphCore(const SewerMap& map_in, const RobotProfile& profile_in,
+                     std::shared_ptr<const PassageMotionTable> motion_in)
+    : map(&map_in),
+      profile(profile_in),
+      motion(std::move(motion_in)),
+      manholes(map_in.manhole_count()),
+      pipes(map_in.pipe_count()),
+      slots(map_in.slot_count()) {
+  fits.resize(pipes);
+  for (PipeId p : map_in.pipe_ids()) {
+    // Diameters are data, compared exactly, as the validator does.
+    const double d = map_in.pipe(p).diameter_m;
+    fits[p.index()] = d >= profile.min_pipe_diameter_m && d <= profile.max_pipe_diameter_m;
+  }
+  manhole_of_slot.resize(slots);
+  passage_begin.resize(manholes + 1);
+  std::size_t count = 0;
+  for (ManholeId m : map_in.manhole_ids()) {
+    const Manhole& manhole = map_in.manhole(m);
+    for (std::uint16_t s = 0; s < manhole.slot_count; ++s) {
+      manhole_of_slot[manhole.first_slot + s] = m.value();
+    }
+    passage_begin[m.index()] = count;
+    count += std::size_t{manhole.slot_count} * manhole.slot_count;
+  }
+  passage_begin[manholes] = count;
+  passages.resize(count);
+  judged.assign(manholes, false);
+}
+
+bool GraphCore::serves(const SewerMap& map_in, const RobotProfile& profile_in,
+                       const PassageMotionTable* motion_in) const {
+  return map == &map_in && manholes == map_in.manhole_count() && pipes == map_in.pipe_count() &&
+         slots == map_in.slot_count() && motion.get() == motion_in && profile == profile_in;
+}
+
+PositionGraph::PositionGraph(const SewerMap& map, const Mission& mission,
+                             std::shared_ptr<GraphCore> core)
     : map_(map),
       mission_(mission),
       profile_(mission.profile),
-      motion_(mission.passage_motion.get()),
       has_blockages_(!mission.blockages.empty()),
       manholes_(static_cast<Node>(map.manhole_count())),
       slots_(static_cast<Node>(map.slot_count())),
-      pipes_(static_cast<Node>(map.pipe_count())) {
-  fits_.resize(map.pipe_count());
-  for (PipeId p : map.pipe_ids()) {
-    // Diameters are data, compared exactly, as the validator does.
-    const double d = map.pipe(p).diameter_m;
-    fits_[p.index()] = d >= profile_.min_pipe_diameter_m && d <= profile_.max_pipe_diameter_m;
-  }
-  drivable_ = fits_;
+      pipes_(static_cast<Node>(map.pipe_count())),
+      core_(core != nullptr
+                ? std::move(core)
+                : std::make_shared<GraphCore>(map, mission.profile, mission.passage_motion)) {
+  SEWER_CHECK(core_->serves(map, mission.profile, mission.passage_motion.get()),
+              "a position graph's core built for another map or robot");
+  drivable_ = core_->fits;
   for (PipeId p : mission.closed_pipes) drivable_[p.index()] = false;
   for (const ClosedPassage& c : mission.closed_passages) closed_passages_.push_back(normalised(c));
   std::sort(closed_passages_.begin(), closed_passages_.end(), passage_less);
-  manhole_of_slot_.resize(slots_);
-  passage_begin_.resize(manholes_ + 1);
-  std::size_t passages = 0;
-  for (ManholeId m : map.manhole_ids()) {
-    const Manhole& manhole = map.manhole(m);
-    for (std::uint16_t s = 0; s < manhole.slot_count; ++s) {
-      manhole_of_slot_[manhole.first_slot + s] = m.value();
-    }
-    passage_begin_[m.index()] = passages;
-    passages += std::size_t{manhole.slot_count} * manhole.slot_count;
-  }
-  passage_begin_[manholes_] = passages;
-  passages_.resize(passages);
-  judged_.assign(manholes_, false);
   for (const Hazard& h : mission.hazards) {
     if (h.probability > 0) hazards_.push_back(h);
   }
@@ -90,6 +112,9 @@ std::optional<double> PositionGraph::farthest_hazard(PipeId p, double from, doub
 }
 
 Cost PositionGraph::route_risk(std::span<const Node> route, double weight_s) const {
+  // Every GO action asks: without hazards or weight, skip walking its route (issue 16: at 1,000
+  // manholes and 50 tasks, 13,000 routes).
+  if (weight_s <= 0 || hazards_.empty()) return 0;
   Cost total = 0;
   for (std::size_t i = 0; i + 1 < route.size(); ++i) {
     const std::optional<PipeId> p = pipe_of(route[i]);
@@ -164,34 +189,27 @@ RobotPosition PositionGraph::position(Node n) const {
   return InPipe{*pipe_of(n), offset_of(n)};
 }
 
-bool PositionGraph::judge_passage_uncached(ManholeId m, SlotIndex from, SlotIndex to,
-                                           Cost* cost) const {
-  const Slot& target = map_.slot(m, to);
-  if (!drivable_[target.pipe.index()]) return false;
-  const PassageVerdict verdict = judge_passage(map_, profile_, motion_, m, from, to);
-  if (!verdict.allowed) return false;
-  if (!closed_passages_.empty() &&
-      std::binary_search(closed_passages_.begin(), closed_passages_.end(),
-                         normalised({m, from, to}), passage_less)) {
-    return false;
-  }
-  *cost = to_cost(verdict.duration_s);
-  return true;
+bool PositionGraph::closed(ManholeId m, SlotIndex from, SlotIndex to) const {
+  return std::binary_search(closed_passages_.begin(), closed_passages_.end(),
+                            normalised({m, from, to}), passage_less);
 }
 
 void PositionGraph::judge_manhole(ManholeId m) const {
+  GraphCore& core = *core_;
   const std::uint16_t count = map_.manhole(m).slot_count;
-  const std::size_t begin = passage_begin_[m.index()];
+  const std::size_t begin = core.passage_begin[m.index()];
   for (std::uint16_t i = 0; i < count; ++i) {
     for (std::uint16_t j = 0; j < count; ++j) {
       Cost cost = kInfiniteCost;
-      if (i == j || !judge_passage_uncached(m, SlotIndex{i}, SlotIndex{j}, &cost)) {
-        cost = kInfiniteCost;
+      if (i != j) {
+        const PassageVerdict verdict =
+            judge_passage(map_, core.profile, core.motion.get(), m, SlotIndex{i}, SlotIndex{j});
+        if (verdict.allowed) cost = to_cost(verdict.duration_s);
       }
-      passages_[begin + std::size_t{i} * count + j] = cost;
+      core.passages[begin + std::size_t{i} * count + j] = cost;
     }
   }
-  judged_[m.index()] = true;
+  core.judged[m.index()] = true;
 }
 
 Cost PositionGraph::drive_cost(double distance_m) const {

@@ -14,11 +14,18 @@
 // trigonometry, and a Dijkstra over a city asks for the same passages again from every key:
 // issue 16, bench/domain/compile_bench.cc).
 //
+// What depends only on the map and the robot (the pipes it fits, the slot index, the judged
+// passages) and the route searches' scratch arrays live in a GraphCore, which the graphs of
+// successive compiles on one map may share (CompileCache, compile.h): building them touches every
+// manhole and pipe of the map, a fifth of a replan's time at 100,000 manholes (issue 16). The
+// mission's closures, closed passages, blockages and hazards are applied by each graph on top.
+//
 // Not thread-safe: the passage cache fills as searches visit manholes, so one graph serves one
-// thread.
+// thread, and a core one graph at a time.
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <vector>
@@ -34,6 +41,46 @@ namespace sewerplan::domain::detail {
 
 using Node = std::uint32_t;
 
+// A route search's arrays over every node (graph_search.h), kept clean between runs: every
+// distance infinite, no parent, nothing settled or targeted, so a search can start at once.
+struct SearchScratch {
+  std::vector<Cost> dist;
+  std::vector<Node> parent;
+  std::vector<bool> settled;
+  std::vector<bool> is_target;
+  std::vector<Node> touched;
+  std::vector<std::pair<Cost, Node>> heap;
+};
+
+// The part of a PositionGraph that depends on the map and the robot alone, with the scratch
+// arrays of the compile's route searches and its exit marks.
+struct GraphCore {
+  GraphCore(const SewerMap& map, const RobotProfile& profile,
+            std::shared_ptr<const PassageMotionTable> motion);
+  // Whether this core was built for `map` (the same object, of the same size) and this robot.
+  bool serves(const SewerMap& map, const RobotProfile& profile,
+              const PassageMotionTable* motion) const;
+
+  const SewerMap* map;
+  RobotProfile profile;
+  std::shared_ptr<const PassageMotionTable> motion;  // held, so that its address stays its own
+  std::size_t manholes;
+  std::size_t pipes;
+  std::size_t slots;
+  std::vector<bool> fits;                      // by pipe: the robot fits its diameter
+  std::vector<std::uint32_t> manhole_of_slot;  // by global slot index
+  std::vector<std::size_t> passage_begin;      // by manhole: its slot_count^2 passages
+  // The passages' costs by the robot's limits and the motion table alone (kInfiniteCost: not
+  // allowed), judged on a manhole's first visit; closures are applied by the graph.
+  std::vector<Cost> passages;
+  std::vector<bool> judged;
+  SearchScratch scratch;  // the compile's route searches
+  // Exit marks by node (the last compile's), the nodes marked, and the exits they mark.
+  std::vector<bool> exit_marks;
+  std::vector<Node> marked_exits;
+  std::vector<ManholeId> exits_marked;
+};
+
 class PositionGraph {
  public:
   struct Spot {
@@ -41,7 +88,10 @@ class PositionGraph {
     double offset_m;
   };
 
-  PositionGraph(const SewerMap& map, const Mission& mission);
+  // `core`: one built for this map and the mission's robot and motion table (GraphCore::serves),
+  // used by no other graph meanwhile; a fresh one if null.
+  PositionGraph(const SewerMap& map, const Mission& mission,
+                std::shared_ptr<GraphCore> core = nullptr);
 
   // Adds an extra spot in a pipe (or returns the node of an end, or of an existing spot, there).
   Node spot(PipeId pipe, double offset_m);
@@ -67,7 +117,7 @@ class PositionGraph {
   // The robot can enter p: it fits p's diameter and the mission does not close p.
   bool pipe_drivable(PipeId p) const { return drivable_[p.index()]; }
   // The robot fits p's diameter: it can move in p if it is there (a closed pipe can be left).
-  bool pipe_fits(PipeId p) const { return fits_[p.index()]; }
+  bool pipe_fits(PipeId p) const { return core_->fits[p.index()]; }
   bool passage_allowed(ManholeId m, SlotIndex from, SlotIndex to) const {
     return passage(m, from, to) != kInfiniteCost;
   }
@@ -122,22 +172,30 @@ class PositionGraph {
 
   const SewerMap& map() const { return map_; }
   const RobotProfile& profile() const { return profile_; }
+  GraphCore& core() const { return *core_; }
+  const std::shared_ptr<GraphCore>& shared_core() const { return core_; }
 
  private:
   ManholeId manhole_of_slot_node(Node n, SlotIndex* slot) const {
     const std::uint32_t global = n - manholes_;
-    const ManholeId m{manhole_of_slot_[global]};
+    const ManholeId m{core_->manhole_of_slot[global]};
     *slot = SlotIndex{static_cast<std::uint16_t>(global - map_.manhole(m).first_slot)};
     return m;
   }
-  // The passage's cost, kInfiniteCost where not allowed (from the cache, judged on first use).
+  // The passage's cost, kInfiniteCost where not allowed (the robot's limits and the motion
+  // table from the core's cache, judged on first use; then the mission's closures).
   Cost passage(ManholeId m, SlotIndex from, SlotIndex to) const {
-    const std::uint16_t count = map_.manhole(m).slot_count;
-    if (!judged_[m.index()]) judge_manhole(m);
-    return passages_[passage_begin_[m.index()] + std::size_t{from.value()} * count + to.value()];
+    GraphCore& core = *core_;
+    if (!core.judged[m.index()]) judge_manhole(m);
+    const std::size_t slots = map_.manhole(m).slot_count;
+    const Cost cost =
+        core.passages[core.passage_begin[m.index()] + from.value() * slots + to.value()];
+    if (cost == kInfiniteCost || !drivable_[map_.slot(m, to).pipe.index()]) return kInfiniteCost;
+    if (!closed_passages_.empty() && closed(m, from, to)) return kInfiniteCost;
+    return cost;
   }
+  bool closed(ManholeId m, SlotIndex from, SlotIndex to) const;
   Cost risk_cost_uncached(PipeId p, double a, double b, double weight_s) const;
-  bool judge_passage_uncached(ManholeId m, SlotIndex from, SlotIndex to, Cost* cost) const;
   void judge_manhole(ManholeId m) const;
   template <class F>
   void drive_out_of_pipe(Node from, PipeId p, double x, F&& f) const;
@@ -145,18 +203,13 @@ class PositionGraph {
   const SewerMap& map_;
   const Mission& mission_;
   const RobotProfile& profile_;
-  const PassageMotionTable* motion_;  // the mission's, or nullptr
   bool has_blockages_ = false;
   Node manholes_;
   Node slots_;
   Node pipes_;
-  std::vector<bool> fits_;
-  std::vector<bool> drivable_;
+  std::shared_ptr<GraphCore> core_;
+  std::vector<bool> drivable_;                  // by pipe: fits, and the mission does not close it
   std::vector<ClosedPassage> closed_passages_;  // normalised: from < to, sorted
-  std::vector<std::uint32_t> manhole_of_slot_;  // by global slot index
-  std::vector<std::size_t> passage_begin_;      // by manhole: its slot_count^2 passages
-  mutable std::vector<Cost> passages_;
-  mutable std::vector<bool> judged_;
   std::vector<Spot> spots_;
   std::vector<Hazard> hazards_;  // the mission's, sorted by pipe and offset
   double risk_weight_s_ = 0;
@@ -167,7 +220,7 @@ class PositionGraph {
 
 template <class F>
 void PositionGraph::drive_out_of_pipe(Node, PipeId p, double x, F&& f) const {
-  if (!fits_[p.index()]) return;
+  if (!core_->fits[p.index()]) return;
   const Pipe& pipe = map_.pipe(p);
   for (std::size_t e = 0; e < 2; ++e) {
     if (!pipe.ends[e].manhole) continue;
@@ -192,13 +245,18 @@ void PositionGraph::for_each_successor(Node from, F&& f) const {
     const ManholeId m = manhole_of_slot_node(from, &i);
     const auto slots = map_.slots(m);
     for (std::uint16_t j = 0; j < slots.size(); ++j) {
-      if (j == i.value() || !passage_allowed(m, i, SlotIndex{j})) continue;
-      if (excluded(slots[j].pipe)) continue;
-      f(pipe_end(slots[j].pipe, slots[j].pipe_end), passage_cost(m, i, SlotIndex{j}));
+      if (j == i.value()) continue;
+      const Cost cost = passage(m, i, SlotIndex{j});
+      if (cost == kInfiniteCost || excluded(slots[j].pipe)) continue;
+      f(pipe_end(slots[j].pipe, slots[j].pipe_end), cost);
     }
-  } else {  // in a pipe: DRIVE_PIPE_TO_MANHOLE
-    const PipeId p = *pipe_of(from);
-    drive_out_of_pipe(from, p, offset_of(from), f);
+  } else if (from < manholes_ + slots_ + 2 * pipes_) {  // at a pipe's end: DRIVE_PIPE_TO_MANHOLE
+    const Node end = from - manholes_ - slots_;
+    const PipeId p{end / 2};
+    drive_out_of_pipe(from, p, end % 2 == 0 ? 0.0 : map_.pipe(p).length_m, f);
+  } else {  // at an extra spot in a pipe
+    const Spot& spot = spots_[from - manholes_ - slots_ - 2 * pipes_];
+    drive_out_of_pipe(from, spot.pipe, spot.offset_m, f);
   }
 }
 
@@ -209,7 +267,7 @@ void PositionGraph::for_each_predecessor(Node to, F&& f) const {
     SlotIndex s{0};
     const ManholeId m = manhole_of_slot_node(to, &s);
     const Slot& slot = map_.slot(m, s);
-    if (!fits_[slot.pipe.index()]) return;
+    if (!core_->fits[slot.pipe.index()]) return;
     const Pipe& pipe = map_.pipe(slot.pipe);
     const double target = slot.pipe_end == 0 ? 0.0 : pipe.length_m;
     for (std::size_t e = 0; e < 2; ++e) {
@@ -235,8 +293,9 @@ void PositionGraph::for_each_predecessor(Node to, F&& f) const {
   const ManholeId m = *end.manhole;
   f(in_manhole(m), to_cost(profile_.manhole_pass_s));  // ENTER_PIPE
   for (std::uint16_t i = 0; i < map_.manhole(m).slot_count; ++i) {
-    if (i == end.slot.value() || !passage_allowed(m, SlotIndex{i}, end.slot)) continue;
-    f(at_slot(m, SlotIndex{i}), passage_cost(m, SlotIndex{i}, end.slot));
+    if (i == end.slot.value()) continue;
+    const Cost cost = passage(m, SlotIndex{i}, end.slot);
+    if (cost != kInfiniteCost) f(at_slot(m, SlotIndex{i}), cost);
   }
 }
 

@@ -177,6 +177,7 @@ std::vector<ManholeId> Replanner::map_exits() const {
 search::PlannerOptions Replanner::bounded(double deadline_s) const {
   search::PlannerOptions options = options_.planner;
   options.clock = &clock();
+  options.compile_cache = compile_cache_.get();
   if (background_cancel_ != nullptr) options.cancel = background_cancel_;
   if (std::isfinite(deadline_s)) {
     // At least a little: a limit of 0 means none to the planner.
@@ -242,8 +243,10 @@ Result<search::PlanOutcome> Replanner::exit_from_here(const std::string& why) {
   domain::MissionProgress start = progress_;
   std::fill(start.done.begin(), start.done.end(), true);
   // No time limit and no cancel: this is the answer when the time ran out.
-  const search::PlannerOptions options{
-      .algorithm = search::Algorithm::kAstar, .clock = &clock(), .improvement_expansions = 0};
+  const search::PlannerOptions options{.algorithm = search::Algorithm::kAstar,
+                                       .clock = &clock(),
+                                       .improvement_expansions = 0,
+                                       .compile_cache = compile_cache_.get()};
   auto outcome = search::plan_mission(map_, to_exit, start, options);
   if (!outcome.has_value() && outcome.error().code == ErrorCode::kNoPlan) {
     std::vector<ManholeId> all_exits = map_exits();

@@ -196,7 +196,8 @@ Result<PlanOutcome> plan_once(const SewerMap& map, const Mission& mission,
                                  {.select_goals = options.select_goals,
                                   .stop = stop,
                                   .risk = options.risk,
-                                  .contingency = options.contingency});
+                                  .contingency = options.contingency,
+                                  .cache = options.compile_cache});
   if (!compiled.has_value()) return compiled.error();
   const domain::CompiledTask& task = compiled->task();
   // Checked between the stretches here (each well under a millisecond, issue 14) as the searches

@@ -2,11 +2,15 @@
 // Planning missions end to end: the paper's mission, and missions that cannot be done.
 #include "sewerplan/search/planner.h"
 
+#include <algorithm>
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "sewerplan/core/generator.h"
 #include "sewerplan/core/map_builder.h"
 #include "sewerplan/core/map_io.h"
+#include "sewerplan/domain/mission_generator.h"
 #include "sewerplan/domain/validator.h"
 
 #include "support/paths.h"
@@ -238,6 +242,46 @@ TEST(Planner, EntersAPipeFromAStartInAManhole) {
       DriveManhole{*map.find_manhole("B"), SlotIndex{1}, SlotIndex{0}},
       DrivePipeToManhole{*map.find_pipe("P1"), *map.find_manhole("A")}};
   EXPECT_EQ(outcome->plan.steps, expected);
+}
+
+// Issue 16: a replanner keeps the map's indices and the judged passages from one plan to the next
+// (domain::CompileCache). What changes between plans (a pipe found blocked or closed, a passage
+// closed, the robot's progress) must count as if planned afresh: the same plans, step for step.
+TEST(Planner, PlansWithACompileCacheAsWithout) {
+  Result<SewerMap> map =
+      generate_network({.manholes = 1000, .seed = 3, .topology = Topology::kMeshed});
+  ASSERT_TRUE(map.has_value()) << map.error();
+  Result<Mission> generated = domain::generate_mission(*map, {.tasks = 8, .seed = 3});
+  ASSERT_TRUE(generated.has_value()) << generated.error();
+  Mission mission = *generated;
+  domain::CompileCache cache;
+  const PlannerOptions cached{.select_goals = true, .compile_cache = &cache};
+  const PlannerOptions fresh{.select_goals = true};
+  const auto progress = domain::initial_progress(mission, *map);
+  // What the first plan relies on: its first pipe driven through a manhole, and that passage.
+  auto first = plan_mission(*map, mission, progress, fresh);
+  ASSERT_TRUE(first.has_value()) << first.error();
+  const auto drive =
+      std::find_if(first->plan.steps.begin(), first->plan.steps.end(),
+                   [](const PlanStep& s) { return std::holds_alternative<DriveManhole>(s); });
+  ASSERT_NE(drive, first->plan.steps.end());
+  const auto d = std::get<DriveManhole>(*drive);
+  const PipeId pipe = map->slot(d.manhole, d.to).pipe;
+  // Then, one after the other: that pipe blocked half-way, the passage closed, the pipe closed.
+  for (int change = 0; change < 4; ++change) {
+    if (change == 1) mission.blockages.push_back({pipe, map->pipe(pipe).length_m / 2});
+    if (change == 2) mission.closed_passages.push_back({d.manhole, d.from, d.to});
+    if (change == 3) mission.closed_pipes.push_back(pipe);
+    auto with = plan_mission(*map, mission, progress, cached);
+    auto without = plan_mission(*map, mission, progress, fresh);
+    ASSERT_EQ(with.has_value(), without.has_value()) << "after change " << change;
+    if (!without.has_value()) continue;
+    EXPECT_EQ(with->plan.steps, without->plan.steps) << "after change " << change;
+    EXPECT_EQ(with->cost_s, without->cost_s);
+    if (change > 0) {
+      EXPECT_NE(without->plan.steps, first->plan.steps) << "change " << change;
+    }
+  }
 }
 
 }  // namespace

@@ -54,6 +54,35 @@ namespace detail {
 class PositionGraph;
 }
 
+// CompileCache: what successive compiles on one map keep from one to the next (issue 16).
+//
+// A compile's primitive graph has indices over the whole map (the pipes the robot fits, each
+// slot's manhole, room for every manhole's passages) and its route searches arrays over every
+// position: building them touched every manhole and pipe, a fifth of a replan at 100,000
+// manholes. A cache keeps them, with the passages judged so far, for the next compile on the
+// same map with the same robot profile and motion table (it starts afresh when those change).
+// What a replan changes (blockages, closed pipes and passages, hazards, the robot's position and
+// the tasks done) is applied by each compile on top, so a plan is the same with or without it.
+//
+//   CompileCache cache;  // e.g. the Replanner's, for the whole mission
+//   auto task = compile_sewer_task(map, mission, progress, {.cache = &cache});
+//
+// Thread-safe: one compile uses what it holds at a time (until its SewerTask is destroyed);
+// a compile that finds it in use builds its own. Precondition: the map is not modified while
+// the cache lives (it is recognised by its address and sizes).
+class CompileCache {
+ public:
+  CompileCache();
+  CompileCache(const CompileCache&) = delete;
+  CompileCache& operator=(const CompileCache&) = delete;
+  ~CompileCache();
+
+ private:
+  friend class SewerTaskCompiler;
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
 struct CompileStatistics {
   std::size_t keys = 0;
   std::size_t graph_nodes = 0;    // positions of the primitive graph
@@ -112,6 +141,9 @@ struct CompileOptions {
   // reach an exit without that pipe (CompiledTask::reserve). A pipe that is the only way out
   // asks for nothing (no battery would help there). Missions without hazards are unchanged.
   bool contingency = true;
+  // Keeps the map's indices and the searches' arrays for the next compile (CompileCache); null:
+  // none.
+  CompileCache* cache = nullptr;
 };
 
 class SewerTask {

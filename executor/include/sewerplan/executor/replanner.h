@@ -32,6 +32,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -210,6 +211,9 @@ class Replanner {
   // Where that plan began (the tasks dropped by then counted as done); empty when the last answer
   // had no plan.
   std::optional<domain::MissionProgress> last_start_;
+  // Kept across its plans (issue 16: a replan need not rebuild the map's indices); shared by
+  // copies, which is safe (domain::CompileCache is thread-safe).
+  std::shared_ptr<domain::CompileCache> compile_cache_ = std::make_shared<domain::CompileCache>();
 };
 
 }  // namespace sewerplan::executor

@@ -87,6 +87,10 @@ struct PlannerOptions {
   // reach an exit another way. Where no plan can keep those reserves, the plan without them is
   // the answer (PlanOutcome::contingency_note), so this never turns a plan into no plan.
   bool contingency = true;
+  // Keeps the map's indices and the route searches' arrays from one plan to the next on the same
+  // map (domain::CompileCache: a replan need not rebuild them); null: none. The plans are the
+  // same with or without it.
+  domain::CompileCache* compile_cache = nullptr;
 };
 
 struct PlanOutcome {
