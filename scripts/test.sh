@@ -47,6 +47,7 @@ if [ "${SEWERPLAN_SKIP_ASAN:-0}" != 1 ]; then
     -DSEWERPLAN_BUILD_BENCH=OFF -DSEWERPLAN_FUZZ=OFF
   cmake --build build/asan -j "$jobs"
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    LSAN_OPTIONS="suppressions=$PWD/scripts/lsan.supp" \
     ctest --test-dir build/asan --output-on-failure -j "$jobs"
   stage_done "ASan + UBSan build and tests"
 fi
