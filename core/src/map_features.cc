@@ -172,7 +172,15 @@ class NearestManhole {
   }
 
  private:
-  std::int64_t cell(double v) const { return static_cast<std::int64_t>(std::floor(v / cell_m_)); }
+  // Clamped to +-2^40 cells (and NaN to 0), so that a wild coordinate in a feature (found by
+  // fuzz/gis_features_fuzz.cc: -6.5e307) converts without overflow; the distance test in find()
+  // still decides, so far-off points sharing the edge cell change nothing.
+  std::int64_t cell(double v) const {
+    constexpr double kLimit = 1099511627776.0;  // 2^40
+    const double c = std::floor(v / cell_m_);
+    if (std::isnan(c)) return 0;
+    return static_cast<std::int64_t>(std::clamp(c, -kLimit, kLimit));
+  }
   static std::uint64_t key(std::int64_t x, std::int64_t y) {
     return (static_cast<std::uint64_t>(x) << 32) ^ static_cast<std::uint32_t>(y);
   }
