@@ -17,6 +17,7 @@
 
 #include "support/ais_testbed.h"
 #include "support/can_node.h"
+#include "support/paths.h"
 
 namespace sewerplan::executor {
 namespace {
@@ -90,8 +91,8 @@ CanRun over_can(const testing::AisTestbed& ais, const hal::FaultScenario& faults
 
 hal::FaultScenario demo_faults(const SewerMap& map) {
   Diagnostics d;
-  auto scenario = hal::read_faults(
-      std::string(SEWERPLAN_SOURCE_DIR) + "/datasets/ais-testbed/faults/demo.json", map, d);
+  auto scenario =
+      hal::read_faults(sewerplan::testing::dataset_path("ais-testbed/faults/demo.json"), map, d);
   EXPECT_TRUE(scenario.has_value()) << d.error_summary();
   return scenario.has_value() ? *scenario : hal::FaultScenario{};
 }

@@ -14,6 +14,7 @@
 #include "sewerplan/hal/sim_robot.h"
 
 #include "support/ais_testbed.h"
+#include "support/paths.h"
 
 namespace sewerplan::executor {
 namespace {
@@ -98,7 +99,7 @@ TEST(Executor, ABlockageThatCutsATaskOffDropsItAndDoesTheRest) {
   const auto ais = testing::load_ais_testbed();
   Diagnostics d;
   const auto scenario = hal::read_faults(
-      std::string(SEWERPLAN_SOURCE_DIR) + "/datasets/ais-testbed/faults/demo.json", ais.map, d);
+      sewerplan::testing::dataset_path("ais-testbed/faults/demo.json"), ais.map, d);
   ASSERT_TRUE(scenario.has_value()) << d.error_summary();
   const SimRun run = simulate(ais.map, ais.mission, *scenario);
   EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded);
@@ -115,8 +116,7 @@ TEST(Executor, WhenThePlannedEndIsCutOffTheNearestReachableExitIsTaken) {
   const auto ais = testing::load_ais_testbed();
   Diagnostics d;
   const auto scenario = hal::read_faults(
-      std::string(SEWERPLAN_SOURCE_DIR) + "/datasets/ais-testbed/faults/blocked-p5.json", ais.map,
-      d);
+      sewerplan::testing::dataset_path("ais-testbed/faults/blocked-p5.json"), ais.map, d);
   ASSERT_TRUE(scenario.has_value()) << d.error_summary();
   const SimRun run = simulate(ais.map, ais.mission, *scenario);
   EXPECT_EQ(run.report.outcome, MissionOutcome::kEnded);

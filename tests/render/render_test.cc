@@ -16,6 +16,7 @@
 #include "sewerplan/render/map_picture.h"
 
 #include "support/ais_testbed.h"
+#include "support/paths.h"
 #include <cairo.h>
 
 namespace sewerplan::render {
@@ -46,8 +47,8 @@ std::size_t count(const pugi::xml_document& doc, const char* xpath) {
 
 TEST(Render, TheNetworkPlanAndLogAreDrawnWithALegend) {
   const auto ais = testing::load_ais_testbed();
-  Result<std::string> plan_text = read_text_file(
-      std::string(SEWERPLAN_SOURCE_DIR) + "/datasets/ais-testbed/plans/paper-corrected.plan");
+  Result<std::string> plan_text =
+      read_text_file(sewerplan::testing::dataset_path("ais-testbed/plans/paper-corrected.plan"));
   ASSERT_TRUE(plan_text.has_value());
   Diagnostics diagnostics;
   Result<domain::Plan> plan =

@@ -21,6 +21,7 @@
 #include "sewerplan/core/robot_profile.h"
 #include "sewerplan/core/text_file.h"
 
+#include "support/paths.h"
 #include <httplib.h>
 
 namespace sewerplan::server {
@@ -28,7 +29,7 @@ namespace {
 
 using nlohmann::json;
 
-const std::filesystem::path kSource = SEWERPLAN_SOURCE_DIR;
+const std::filesystem::path kSource = sewerplan::testing::source_dir();
 const std::filesystem::path kAis = kSource / "datasets/ais-testbed";
 
 std::string read(const std::filesystem::path& path) { return *read_text_file(path); }

@@ -7,7 +7,9 @@
 
 namespace sewerplan::testing {
 
-inline std::filesystem::path source_dir() { return SEWERPLAN_SOURCE_DIR; }
+// The source tree's root. Only paths.cc knows it (a private definition), so the test files'
+// compile lines name no machine path and a compiler cache shares them between checkouts.
+std::filesystem::path source_dir();
 inline std::filesystem::path dataset_path(const std::string& relative) {
   return source_dir() / "datasets" / relative;
 }
