@@ -43,11 +43,17 @@ void BestFirstSearch::open(StateId id, const NodeInfo& info) {
                  [](const Entry& a, const Entry& b) { return later(a, b); });
 }
 
+void BestFirstSearch::watch(const StopCondition* stop) {
+  SearchEngine::watch(stop);
+  heuristic_.watch(stop);
+}
+
 void BestFirstSearch::initialize() {
   result_ = SearchResult{};
   const auto [id, added] = registry_.insert(task_.initial_state());
   info_.resize(registry_.size());
   const Cost h = heuristic_.evaluate(task_.initial_state(), nullptr);
+  if (h == Heuristic::kInterrupted) return;  // search() reports the stop
   ++result_.statistics.evaluated;
   ++result_.statistics.generated;
   if (h == Heuristic::kDeadEnd) {
@@ -95,6 +101,7 @@ std::optional<SearchStatus> BestFirstSearch::step() {
     if (added) {
       info_.resize(registry_.size());
       const Cost h = heuristic_.evaluate(successor_, nullptr);
+      if (h == Heuristic::kInterrupted) return std::nullopt;  // search() reports the stop
       ++result_.statistics.evaluated;
       if (h == Heuristic::kDeadEnd) {
         info_[id.index()].status = Status::kDeadEnd;

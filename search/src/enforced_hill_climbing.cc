@@ -15,6 +15,12 @@ EnforcedHillClimbing::Visit& EnforcedHillClimbing::visit(StateId id) {
   return visits_[id.index()];
 }
 
+void EnforcedHillClimbing::watch(const StopCondition* stop) {
+  SearchEngine::watch(stop);
+  heuristic_.watch(stop);
+  if (fallback_) fallback_->watch(stop);
+}
+
 void EnforcedHillClimbing::initialize() {
   result_ = SearchResult{};
   fallback_.reset();
@@ -22,6 +28,7 @@ void EnforcedHillClimbing::initialize() {
   const auto [id, added] = registry_.insert(task_.initial_state());
   std::vector<ActionId> helpful;
   const Cost h = heuristic_.evaluate(task_.initial_state(), &helpful);
+  if (h == Heuristic::kInterrupted) return;  // search() reports the stop
   ++result_.statistics.evaluated;
   ++result_.statistics.generated;
   current_g_ = 0;
@@ -97,6 +104,7 @@ std::optional<SearchStatus> EnforcedHillClimbing::step() {
     if (visit(id).iteration == iteration_) continue;
     std::vector<ActionId> helpful;
     const Cost h = heuristic_.evaluate(successor_, &helpful);
+    if (h == Heuristic::kInterrupted) return std::nullopt;  // search() reports the stop
     ++result_.statistics.evaluated;
     Visit& v = visit(id);
     v = {iteration_, s, a, succ_g, {}};

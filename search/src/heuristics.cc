@@ -31,7 +31,11 @@ class CombiningHeuristic final : public Heuristic {
 
   Cost evaluate(std::span<const std::int32_t> state, std::vector<ActionId>* preferred) override {
     if (preferred != nullptr) preferred->clear();
-    if (!exploration_.explore(state, combine_)) return kDeadEnd;
+    if (!relaxed_.build(watched())) return kInterrupted;
+    if (auto outcome = exploration_.explore(state, combine_, watched());
+        outcome != RelaxedExploration::Outcome::kGoalsReached) {
+      return outcome == RelaxedExploration::Outcome::kDeadEnd ? kDeadEnd : kInterrupted;
+    }
     Cost h = 0;
     for (std::uint32_t g : relaxed_.goal_facts()) {
       h = combine_ == RelaxedExploration::Combine::kSum ? h + exploration_.fact_cost(g)
@@ -60,7 +64,11 @@ class FfHeuristic final : public Heuristic {
 
   Cost evaluate(std::span<const std::int32_t> state, std::vector<ActionId>* preferred) override {
     if (preferred != nullptr) preferred->clear();
-    if (!exploration_.explore(state, RelaxedExploration::Combine::kSum)) return kDeadEnd;
+    if (!relaxed_.build(watched())) return kInterrupted;
+    if (auto outcome = exploration_.explore(state, RelaxedExploration::Combine::kSum, watched());
+        outcome != RelaxedExploration::Outcome::kGoalsReached) {
+      return outcome == RelaxedExploration::Outcome::kDeadEnd ? kDeadEnd : kInterrupted;
+    }
     Cost h = 0;
     relaxed_plan_.clear();
     stack_.assign(relaxed_.goal_facts().begin(), relaxed_.goal_facts().end());

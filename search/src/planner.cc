@@ -206,12 +206,16 @@ Result<PlanOutcome> plan_once(const SewerMap& map, const Mission& mission,
   // An admissible estimate already beyond the battery proves there is no plan, whatever the
   // algorithm: without this, greedy searches would exhaust the bounded state space to find out.
   // (With goal selection, forgoing tasks is always possible, and the estimate includes penalties.)
-  if (auto lower =
-          make_heuristic(HeuristicKind::kMax, task)->evaluate(task.initial_state(), nullptr);
-      lower == Heuristic::kDeadEnd || (task.penalty_unit() == 0 && lower > task.cost_bound())) {
+  std::unique_ptr<Heuristic> admissible = make_heuristic(HeuristicKind::kMax, task);
+  admissible->watch(&stop);
+  const Cost lower = admissible->evaluate(task.initial_state(), nullptr);
+  admissible.reset();
+  if (auto stopped = stop.interrupted(); stopped || lower == Heuristic::kInterrupted) {
+    return search_failure(stopped.value_or(SearchStatus::kTimeLimit), mission, progress, task);
+  }
+  if (lower == Heuristic::kDeadEnd || (task.penalty_unit() == 0 && lower > task.cost_bound())) {
     return search_failure(SearchStatus::kUnsolvable, mission, progress, task);
   }
-  if (auto stopped = stop.interrupted()) return search_failure(*stopped, mission, progress, task);
   const Algorithm algorithm = resolve(options.algorithm, task);
   const bool optimal_search = algorithm == Algorithm::kAstar || algorithm == Algorithm::kExact;
   const HeuristicKind kind =

@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "sewerplan/core/stop_condition.h"
 #include "sewerplan/domain/compiled_task.h"
 
 namespace sewerplan::search::detail {
@@ -31,7 +32,11 @@ struct UnaryOperator {
 
 class RelaxedTask {
  public:
-  explicit RelaxedTask(const domain::CompiledTask& task);
+  // Nothing is built yet: see build().
+  explicit RelaxedTask(const domain::CompiledTask& task) : task_(task) {}
+  // Flattens the task, asking `stop` (if not null) every 1,024 actions; returns false if it fired
+  // (the next call goes on where this one stopped). True once built; the rest needs it built.
+  bool build(const StopCondition* stop);
   const domain::CompiledTask& task() const { return task_; }
   std::size_t fact_count() const { return task_.fact_count(); }
   const std::vector<UnaryOperator>& operators() const { return operators_; }
@@ -52,6 +57,10 @@ class RelaxedTask {
   std::vector<std::uint32_t> consumer_begin_;
   std::vector<std::uint32_t> consumers_;
   std::vector<std::uint32_t> goal_facts_;
+  std::uint32_t next_action_ = 0;  // the flattening's progress
+  bool built_ = false;
+
+  void index_consumers();
 };
 
 class RelaxedExploration {
@@ -61,8 +70,11 @@ class RelaxedExploration {
 
   explicit RelaxedExploration(const RelaxedTask& relaxed) : relaxed_(relaxed) {}
 
-  // Fills fact costs from `state`; returns false if some goal fact is unreachable.
-  bool explore(std::span<const std::int32_t> state, Combine combine);
+  enum class Outcome { kGoalsReached, kDeadEnd, kInterrupted };
+  // Fills fact costs from `state` (the relaxed task must be built); kDeadEnd if some goal fact is
+  // unreachable, kInterrupted if `stop` (if not null) fired first.
+  Outcome explore(std::span<const std::int32_t> state, Combine combine,
+                  const StopCondition* stop = nullptr);
   Cost fact_cost(std::uint32_t f) const { return fact_cost_[f]; }
   std::uint32_t supporter(std::uint32_t f) const { return supporter_[f]; }
 

@@ -26,8 +26,9 @@ SearchResult SearchEngine::search(const StopCondition& stop, const Clock& clock)
   const double start_s = clock.now_s();
   watch(&stop);
   initialize();
-  std::optional<SearchStatus> stopped;
-  while (!step()) {
+  // The first evaluation may have been interrupted (the expansion limit is for step()s).
+  std::optional<SearchStatus> stopped = stop.interrupted();
+  while (!stopped && !step()) {
     stopped = stop.check(statistics().expanded);
     if (stopped) break;
   }

@@ -44,6 +44,7 @@ class BestFirstSearch final : public SearchEngine {
 
   void initialize() override;
   std::optional<SearchStatus> step() override;
+  void watch(const StopCondition* stop) override;
   SearchResult result() const override { return result_; }
   const SearchStatistics& statistics() const override { return result_.statistics; }
   std::string_view name() const override;

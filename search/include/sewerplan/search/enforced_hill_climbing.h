@@ -34,6 +34,7 @@ class EnforcedHillClimbing final : public SearchEngine {
 
   void initialize() override;
   std::optional<SearchStatus> step() override;
+  void watch(const StopCondition* stop) override;
   SearchResult result() const override;
   const SearchStatistics& statistics() const override;
   std::string_view name() const override { return "enforced hill-climbing"; }

@@ -8,6 +8,11 @@
 // uniform-cost search, for tests. kDeadEnd marks a state from which the relaxation reaches no
 // goal, so the real task cannot either.
 //
+// A heuristic may watch a stop condition (issue 14: a cancel within 1 ms): evaluate() then checks
+// it inside its own work (the relaxed task's construction, done on the first evaluation, and the
+// relaxed exploration), and returns kInterrupted once it fires. The search engines watch their
+// search()'s condition through their heuristic; kInterrupted is never returned without one.
+//
 //   std::unique_ptr<Heuristic> h = make_heuristic(HeuristicKind::kFf, task);
 //   std::vector<ActionId> helpful;
 //   Cost estimate = h->evaluate(task.initial_state(), &helpful);
@@ -22,6 +27,7 @@
 #include <string_view>
 #include <vector>
 
+#include "sewerplan/core/stop_condition.h"
 #include "sewerplan/domain/compiled_task.h"
 
 namespace sewerplan::search {
@@ -37,14 +43,24 @@ std::optional<HeuristicKind> heuristic_from_string(std::string_view name);  // f
 class Heuristic {
  public:
   static constexpr Cost kDeadEnd = -1;
+  // The watched stop condition fired during the evaluation: no estimate (the caller stops).
+  static constexpr Cost kInterrupted = -2;
 
   virtual ~Heuristic() = default;
-  // The estimate for `state` (one value per variable), or kDeadEnd. If `preferred` is given, it
-  // is replaced by the heuristic's preferred actions (none for heuristics without them).
+  // The estimate for `state` (one value per variable), kDeadEnd, or kInterrupted (only while a
+  // stop condition is watched). If `preferred` is given, it is replaced by the heuristic's
+  // preferred actions (none for heuristics without them).
   virtual Cost evaluate(std::span<const std::int32_t> state, std::vector<ActionId>* preferred) = 0;
   // Never above the true cost to the goal.
   virtual bool admissible() const = 0;
   virtual std::string_view name() const = 0;
+
+  // The stop condition evaluate() checks (nullptr: none); it must outlive the watch.
+  void watch(const StopCondition* stop) { watched_ = stop; }
+  const StopCondition* watched() const { return watched_; }
+
+ private:
+  const StopCondition* watched_ = nullptr;
 };
 
 // `task` must outlive the heuristic.

@@ -76,10 +76,11 @@ class SearchEngine {
   virtual const SearchStatistics& statistics() const = 0;
   virtual std::string_view name() const = 0;
 
-  // The stop condition that step() also checks between heuristic evaluations (search() sets it
-  // for its run; nullptr: none). An interrupted step() returns nullopt, and search() then reports
-  // the stop.
-  void watch(const StopCondition* stop) { watched_ = stop; }
+  // The stop condition that step() also checks between heuristic evaluations, and the heuristic
+  // inside them (search() sets it for its run; nullptr: none). An interrupted initialize() or
+  // step() returns as it is, and search() then reports the stop: an engine interrupted so is not
+  // stepped again.
+  virtual void watch(const StopCondition* stop) { watched_ = stop; }
 
  protected:
   bool interrupted() const { return watched_ != nullptr && watched_->interrupted().has_value(); }
