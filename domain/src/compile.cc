@@ -51,25 +51,29 @@ class SewerTaskCompiler {
   SewerTaskCompiler(const SewerMap& map, const Mission& mission, const MissionProgress& progress,
                     const CompileOptions& options)
       : map_(map), mission_(mission), progress_(progress), options_(options) {
-    result_.graph_ = std::make_unique<PositionGraph>(map, mission, cached_core());
+    result_.graph_ = std::make_unique<PositionGraph>(map, mission, cached_core(), &options_.stop);
   }
 
   Result<SewerTask> run() {
     SteadyClock clock;
     const double start_s = clock.now_s();
     PositionGraph& graph = *result_.graph_;
+    if (!graph.core().complete) return stop_error();
     select_tasks();
     collect_keys(graph);
     if (auto stopped = options_.stop.interrupted()) return stopped_error(*stopped, "the compile");
+    // The arrays over every node, grown before the searches with checks between slices (on a
+    // large map, one fill was the longest stretch without a check: issue 14).
+    if (!GraphSearch::grow(graph.core().scratch, graph.size(), &options_.stop) ||
+        !detail::grow_in_slices(graph.core().exit_marks, graph.size(), &options_.stop)) {
+      return stop_error();
+    }
     GraphSearch search(graph, &graph.core().scratch);
     if (options_.stop.can_interrupt()) {
       search.set_interrupt([this] { return options_.stop.interrupted().has_value(); });
     }
     route(search);
-    if (search.interrupted()) {
-      return stopped_error(options_.stop.interrupted().value_or(SearchStatus::kTimeLimit),
-                           "the compile");
-    }
+    if (search.interrupted()) return stop_error();
     detail::CompileReasons reasons(graph, mission_, progress_, bound_);
     if (options_.select_goals) {
       if (auto why = select_goals(reasons); !why.empty()) {
@@ -81,7 +85,9 @@ class SewerTaskCompiler {
     }
     contingency_ = options_.contingency && ends_at_exit_ && graph.has_hazards();
     if (contingency_) {
-      contingency_search_ = std::make_unique<GraphSearch>(graph);
+      if (!GraphSearch::grow(contingency_scratch_, graph.size(), &options_.stop))
+        return stop_error();
+      contingency_search_ = std::make_unique<GraphSearch>(graph, &contingency_scratch_);
       if (options_.stop.can_interrupt()) {
         contingency_search_->set_interrupt(
             [this] { return options_.stop.interrupted().has_value(); });
@@ -89,10 +95,7 @@ class SewerTaskCompiler {
     }
     build_task();
     if (build_stopped_) return stopped_error(*build_stopped_, "the compile");
-    if (contingency_search_ && contingency_search_->interrupted()) {
-      return stopped_error(options_.stop.interrupted().value_or(SearchStatus::kTimeLimit),
-                           "the compile");
-    }
+    if (contingency_search_ && contingency_search_->interrupted()) return stop_error();
     result_.statistics_.keys = keys_.size();
     result_.statistics_.graph_nodes = graph.size();
     result_.statistics_.settled_nodes =
@@ -104,6 +107,12 @@ class SewerTaskCompiler {
 
  private:
   std::size_t k() const { return keys_.size(); }
+
+  // The error of a compile stopped by its stop condition.
+  Error stop_error() const {
+    return stopped_error(options_.stop.interrupted().value_or(SearchStatus::kTimeLimit),
+                         "the compile");
+  }
 
   // The cache's core when it serves this map and robot and no other compile's task holds it
   // (then only the cache does: the count grows only here, under the lock); else a fresh one,
@@ -118,8 +127,8 @@ class SewerTaskCompiler {
       if (core.use_count() == 1) return core;
       return nullptr;
     }
-    state.core =
-        std::make_shared<detail::GraphCore>(map_, mission_.profile, mission_.passage_motion);
+    state.core = std::make_shared<detail::GraphCore>(map_, mission_.profile,
+                                                     mission_.passage_motion, &options_.stop);
     return state.core;
   }
 
@@ -470,6 +479,7 @@ class SewerTaskCompiler {
   std::vector<Cost> exit_dist_;
   std::vector<std::vector<Node>> exit_routes_;
   bool contingency_ = false;
+  detail::SearchScratch contingency_scratch_;  // declared first: outlives its search
   std::unique_ptr<GraphSearch> contingency_search_;
   // Issue 14: building the task's actions (k^2 moves, each with its route, its risk and its
   // reserve) took 20 to 30 ms on 10,000 manholes without a look at the stop condition. Checked

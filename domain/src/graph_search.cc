@@ -10,6 +10,22 @@ namespace {
 constexpr Node kNoParent = 0xffffffffU;
 }
 
+bool GraphSearch::grow(SearchScratch& scratch, std::size_t nodes, const StopCondition* stop) {
+  constexpr std::size_t kSlice = 16384;  // nodes between two checks: well under 0.1 ms
+  if (scratch.dist.size() >= nodes) return true;
+  scratch.dist.reserve(nodes);
+  scratch.parent.reserve(nodes);
+  while (scratch.dist.size() < nodes) {
+    if (stop != nullptr && stop->interrupted()) return false;
+    const std::size_t size = std::min(nodes, scratch.dist.size() + kSlice);
+    scratch.dist.resize(size, kInfiniteCost);
+    scratch.parent.resize(size, kNoParent);
+    scratch.settled.resize(size, false);
+    scratch.is_target.resize(size, false);
+  }
+  return true;
+}
+
 GraphSearch::GraphSearch(const PositionGraph& graph, SearchScratch* scratch)
     : graph_(graph),
       scratch_(scratch != nullptr ? *scratch : own_),
@@ -64,7 +80,7 @@ std::optional<Node> GraphSearch::settle(Cost bound, Direction direction, Done&& 
     if (settled_[n] || d != dist_[n]) continue;
     settled_[n] = true;
     ++settled_total_;
-    if ((settled_total_ & 1023U) == 0 && interrupt_ && interrupt_()) {
+    if ((settled_total_ & 255U) == 0 && interrupt_ && interrupt_()) {
       interrupted_ = true;
       break;
     }

@@ -22,16 +22,37 @@ bool passage_less(const ClosedPassage& a, const ClosedPassage& b) {
 
 }  // namespace
 
+namespace {
+// Entries handled between two checks of a stop condition while building or growing the arrays
+// over a whole map: well under 0.1 ms each.
+constexpr std::size_t kSlice = 16384;
+
+bool fired(const StopCondition* stop) { return stop != nullptr && stop->interrupted().has_value(); }
+}  // namespace
+
+bool grow_in_slices(std::vector<bool>& bits, std::size_t size, const StopCondition* stop) {
+  while (bits.size() < size) {
+    if (fired(stop)) return false;
+    bits.resize(std::min(size, bits.size() + kSlice * 8), false);
+  }
+  return true;
+}
+
 GraphCore::GraphCore(const SewerMap& map_in, const RobotProfile& profile_in,
-                     std::shared_ptr<const PassageMotionTable> motion_in)
+                     std::shared_ptr<const PassageMotionTable> motion_in, const StopCondition* stop)
     : map(&map_in),
       profile(profile_in),
       motion(std::move(motion_in)),
       manholes(map_in.manhole_count()),
       pipes(map_in.pipe_count()),
       slots(map_in.slot_count()) {
+  complete = build(map_in, stop);
+}
+
+bool GraphCore::build(const SewerMap& map_in, const StopCondition* stop) {
   fits.resize(pipes);
   for (PipeId p : map_in.pipe_ids()) {
+    if (p.index() % kSlice == 0 && fired(stop)) return false;
     // Diameters are data, compared exactly, as the validator does.
     const double d = map_in.pipe(p).diameter_m;
     fits[p.index()] = d >= profile.min_pipe_diameter_m && d <= profile.max_pipe_diameter_m;
@@ -40,6 +61,7 @@ GraphCore::GraphCore(const SewerMap& map_in, const RobotProfile& profile_in,
   passage_begin.resize(manholes + 1);
   std::size_t count = 0;
   for (ManholeId m : map_in.manhole_ids()) {
+    if (m.index() % kSlice == 0 && fired(stop)) return false;
     const Manhole& manhole = map_in.manhole(m);
     for (std::uint16_t s = 0; s < manhole.slot_count; ++s) {
       manhole_of_slot[manhole.first_slot + s] = m.value();
@@ -48,18 +70,24 @@ GraphCore::GraphCore(const SewerMap& map_in, const RobotProfile& profile_in,
     count += std::size_t{manhole.slot_count} * manhole.slot_count;
   }
   passage_begin[manholes] = count;
-  passages.resize(count);
-  judged.assign(manholes, false);
+  // Reserved at once, filled (and so paged in) slice by slice.
+  passages.reserve(count);
+  while (passages.size() < count) {
+    if (fired(stop)) return false;
+    passages.resize(std::min(count, passages.size() + kSlice), Cost{0});
+  }
+  return grow_in_slices(judged, manholes, stop);
 }
 
 bool GraphCore::serves(const SewerMap& map_in, const RobotProfile& profile_in,
                        const PassageMotionTable* motion_in) const {
-  return map == &map_in && manholes == map_in.manhole_count() && pipes == map_in.pipe_count() &&
-         slots == map_in.slot_count() && motion.get() == motion_in && profile == profile_in;
+  return complete && map == &map_in && manholes == map_in.manhole_count() &&
+         pipes == map_in.pipe_count() && slots == map_in.slot_count() &&
+         motion.get() == motion_in && profile == profile_in;
 }
 
 PositionGraph::PositionGraph(const SewerMap& map, const Mission& mission,
-                             std::shared_ptr<GraphCore> core)
+                             std::shared_ptr<GraphCore> core, const StopCondition* stop)
     : map_(map),
       mission_(mission),
       profile_(mission.profile),
@@ -69,7 +97,8 @@ PositionGraph::PositionGraph(const SewerMap& map, const Mission& mission,
       pipes_(static_cast<Node>(map.pipe_count())),
       core_(core != nullptr
                 ? std::move(core)
-                : std::make_shared<GraphCore>(map, mission.profile, mission.passage_motion)) {
+                : std::make_shared<GraphCore>(map, mission.profile, mission.passage_motion, stop)) {
+  if (!core_->complete) return;  // stopped: the caller must not search it
   SEWER_CHECK(core_->serves(map, mission.profile, mission.passage_motion.get()),
               "a position graph's core built for another map or robot");
   drivable_ = core_->fits;

@@ -335,6 +335,11 @@ std::optional<SearchResult> tour_search(const CompiledTask& task, const StopCond
   std::optional<Shape> shape = read_shape(task);
   if (!shape) return std::nullopt;
   out.has_shape = true;
+  // Reading the shape goes over every action: checked before the first tour too (issue 14).
+  if (auto stopped = stop.interrupted()) {
+    out.stopped = stopped;
+    return std::nullopt;
+  }
   std::vector<std::size_t> goals(shape->goals.size());
   for (std::size_t i = 0; i < goals.size(); ++i) goals[i] = i;
   Tour tour(*shape, stop);

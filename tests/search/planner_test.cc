@@ -14,6 +14,7 @@
 #include "sewerplan/domain/validator.h"
 
 #include "support/paths.h"
+#include "support/ticking_clock.h"
 
 namespace sewerplan::search {
 namespace {
@@ -282,6 +283,38 @@ TEST(Planner, PlansWithACompileCacheAsWithout) {
       EXPECT_NE(without->plan.steps, first->plan.steps) << "change " << change;
     }
   }
+}
+
+// Issue 14: a compile stopped anywhere (building the map's core, growing the search arrays over a
+// 10,000-manhole map slice by slice, the route searches) leaves the cache so that the next plan is
+// the plan made afresh, step for step.
+TEST(Planner, PlansAfterStoppedCompilesAsAfresh) {
+  Result<SewerMap> map =
+      generate_network({.manholes = 10000, .seed = 5, .topology = Topology::kMeshed});
+  ASSERT_TRUE(map.has_value()) << map.error();
+  Result<Mission> mission = domain::generate_mission(*map, {.tasks = 8, .seed = 5});
+  ASSERT_TRUE(mission.has_value()) << mission.error();
+  const auto progress = domain::initial_progress(*mission, *map);
+  auto fresh = plan_mission(*map, *mission, progress, {.select_goals = true});
+  ASSERT_TRUE(fresh.has_value()) << fresh.error();
+  domain::CompileCache cache;
+  int stopped = 0;
+  for (double checks = 1; checks <= 40; ++checks) {
+    testing::TickingClock clock(1.0);
+    auto cut = plan_mission(*map, *mission, progress,
+                            {.time_limit_s = checks,
+                             .clock = &clock,
+                             .select_goals = true,
+                             .compile_cache = &cache});
+    if (cut.has_value()) break;
+    EXPECT_EQ(cut.error().code, ErrorCode::kSearchLimit) << cut.error();
+    ++stopped;
+    auto next =
+        plan_mission(*map, *mission, progress, {.select_goals = true, .compile_cache = &cache});
+    ASSERT_TRUE(next.has_value()) << next.error();
+    EXPECT_EQ(next->plan.steps, fresh->plan.steps) << "after a stop at check " << checks;
+  }
+  EXPECT_GT(stopped, 5);
 }
 
 }  // namespace
