@@ -147,7 +147,7 @@ TEST(CompileStop, StopsAtTheDeadlineOrTheCancel) {
 }
 
 // Issue 14: the compile asks the stop condition before its route searches too, so a small map
-// (fewer than the 1,024 nodes settled between two checks inside them) stops as promptly.
+// (fewer than the 256 nodes settled between two checks inside them) stops as promptly.
 TEST(CompileStop, StopsBeforeTheRouteSearchesOnASmallMap) {
   const auto ais = testing::load_ais_testbed();
   const auto progress = domain::initial_progress(ais.mission, ais.map);

@@ -301,11 +301,9 @@ TEST(Planner, PlansAfterStoppedCompilesAsAfresh) {
   int stopped = 0;
   for (double checks = 1; checks <= 40; ++checks) {
     testing::TickingClock clock(1.0);
-    auto cut = plan_mission(*map, *mission, progress,
-                            {.time_limit_s = checks,
-                             .clock = &clock,
-                             .select_goals = true,
-                             .compile_cache = &cache});
+    auto cut = plan_mission(
+        *map, *mission, progress,
+        {.time_limit_s = checks, .clock = &clock, .select_goals = true, .compile_cache = &cache});
     if (cut.has_value()) break;
     EXPECT_EQ(cut.error().code, ErrorCode::kSearchLimit) << cut.error();
     ++stopped;

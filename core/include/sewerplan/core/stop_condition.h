@@ -7,9 +7,10 @@
 // (domain/compile.h), and the motion planner through a manhole and its precompute
 // (fusion/manhole_turn_planner.h, passage_precompute.h: OMPL's own PlannerTerminationCondition is
 // built from it). After OMPL's PlannerTerminationCondition: the caller composes the limits, and the
-// algorithm asks at every unit of its work (an expansion, an order evaluated, 1,024 nodes settled,
-// an RRT iteration). Time comes from an injected Clock (clock.h); the cancel flag may be set from
-// any thread. SearchStatus, the outcome of a search, names the reasons to stop among its values.
+// algorithm asks at every unit of its work (an expansion, a slice of a heuristic's exploration, an
+// order evaluated, 256 nodes settled, an RRT iteration). Time comes from an injected Clock
+// (clock.h); the cancel flag may be set from any thread. SearchStatus, the outcome of a search,
+// names the reasons to stop among its values.
 //
 // Thread-safety: a StopCondition is an immutable value once composed; check() may be called from
 // any number of threads at once (it reads the atomic cancel flag and the clock).

@@ -130,7 +130,8 @@ struct CompileOptions {
   bool select_goals = false;
   // Cancellation and deadline (issue 14): the stop condition of every algorithm
   // (core/stop_condition.h; its cancel flag and time limit, not its expansion limit), checked
-  // before each phase and every 1,024 nodes the route searches settle: the compile then fails
+  // before each phase, between slices of the map-wide arrays it builds, and every 256 nodes the
+  // route searches settle: the compile then fails
   // with kCancelled or kSearchLimit.
   StopCondition stop;
   // Risk-aware routes and task orders (RiskCosts); risk-blind by default.
