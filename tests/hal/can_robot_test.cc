@@ -300,6 +300,38 @@ TEST_P(CanRobotTest, AnEmergencyStopWhileTheControllerWaitsOnAJobEndsItAndTheJob
   }
 }
 
+// Executor::halt() during a reboot that the node does not answer (silent from the reboot on): the
+// stop ends the wait after the first attempt's timeout instead of after every attempt's (6 s with
+// the default timeouts), the reboot fails as stopped, reaches the node, and the stop holds: the
+// next job is not sent.
+TEST_P(CanRobotTest, AnEmergencyStopDuringARebootEndsItsWait) {
+  auto n = node(faults("silence=1+100"), {}, /*heartbeat_s=*/0.05);
+  WaitingSignal clock(0);  // signals once the reboot waits for its answer
+  // Long timeouts: without the stop the reboot would wait 3 x 5 s.
+  CanRobotOptions options{.ack_timeout_s = 5, .link_timeout_s = 5, .heartbeat_s = 0.05};
+  options.clock = &clock;
+  CanRobot robot(n->controller_bus(), options);
+  ASSERT_TRUE(robot.connect().has_value());  // request 0, answered
+  clock.watch(robot);
+  std::future<void> waiting = clock.waiting();
+  std::thread halt([&] {
+    waiting.wait();
+    robot.emergency_stop();  // as Executor::halt() does
+  });
+  const Result<void> rebooted = robot.reboot();
+  halt.join();
+  ASSERT_FALSE(rebooted.has_value());
+  EXPECT_EQ(rebooted.error().code, ErrorCode::kCancelled);
+  EXPECT_THAT(rebooted.error().message, HasSubstr("emergency stop"));
+  EXPECT_EQ(robot.stats().timeouts, 0U);  // not options.attempts (3)
+  EXPECT_EQ(robot.stats().retries, 0U);
+  const JobReport held = robot.execute(jobs_[0]);
+  ASSERT_FALSE(held.ok());
+  EXPECT_EQ(held.error->reason, "emergency stop");
+  n->stop();
+  EXPECT_EQ(n->node().stats().jobs_run, 0U);
+}
+
 TEST_P(CanRobotTest, AFloodOfGarbageIsAMalfunctionThatSaysSo) {
   auto n = node(faults("garbage=5,6,7,8"));
   CanRobotOptions options = fast();

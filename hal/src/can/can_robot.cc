@@ -130,7 +130,7 @@ std::optional<Message> CanRobot::await(double timeout_s,
 
 std::optional<Message> CanRobot::exchange(const Message& request, double timeout_s,
                                           const std::function<Verdict(const Message&)>& judge,
-                                          std::string& problem) {
+                                          std::string& problem, bool stoppable) {
   for (int attempt = 0; attempt < options_.attempts; ++attempt) {
     if (attempt > 0) ++stats_.retries;
     if (Result<void> sent = send(request); !sent.has_value()) {
@@ -138,7 +138,7 @@ std::optional<Message> CanRobot::exchange(const Message& request, double timeout
       return std::nullopt;
     }
     bool bus_failed = false;
-    if (std::optional<Message> answer = await(timeout_s, judge, problem, bus_failed)) {
+    if (std::optional<Message> answer = await(timeout_s, judge, problem, bus_failed, stoppable)) {
       return answer;
     }
     if (bus_failed) return std::nullopt;
@@ -172,7 +172,8 @@ JobReport CanRobot::stopped(double progress_m) {
 }
 
 template <class Reply>
-std::optional<Reply> CanRobot::ask(RequestKind kind, double timeout_s, std::string& problem) {
+std::optional<Reply> CanRobot::ask(RequestKind kind, double timeout_s, std::string& problem,
+                                   bool stoppable) {
   const std::uint8_t seq = next_seq();
   std::optional<Message> answer = exchange(
       Request{kind, seq}, timeout_s,
@@ -180,7 +181,7 @@ std::optional<Reply> CanRobot::ask(RequestKind kind, double timeout_s, std::stri
         const auto* r = std::get_if<Reply>(&m);
         return r != nullptr && r->seq == seq ? Verdict::kTake : Verdict::kIgnore;
       },
-      problem);
+      problem, stoppable);
   if (!answer) return std::nullopt;
   return std::get<Reply>(*answer);
 }
@@ -308,8 +309,14 @@ Result<void> CanRobot::reboot() {
     return Error{ErrorCode::kBusError, "reboot failed: " + recovered.error().message};
   }
   std::string problem;
+  // Stoppable: a halt during a reboot used to wait for every attempt's timeout (6 s by default).
   std::optional<RebootResult> answer =
-      ask<RebootResult>(RequestKind::kReboot, options_.link_timeout_s, problem);
+      ask<RebootResult>(RequestKind::kReboot, options_.link_timeout_s, problem, true);
+  if (!answer && stop_requested_.load()) {
+    ++stats_.emergency_stops;
+    static_cast<void>(send(EmergencyStop{StopReason::kController}));
+    return Error{ErrorCode::kCancelled, "reboot stopped: emergency stop"};
+  }
   if (!answer) {
     return Error{ErrorCode::kCanTimeout, "reboot failed: no answer over CAN: " + problem};
   }

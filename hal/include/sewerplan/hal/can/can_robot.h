@@ -14,7 +14,9 @@
 // emergency_stop() only raises a flag: the thread in execute() sees it within a heartbeat period
 // (0.5 s), sends EMERGENCY_STOP (reason: the controller), and ends the job as a MALFUNCTION
 // "emergency stop" with the progress last reported; a job asked for after it is not sent, until a
-// reboot() clears the stop (the node latches it likewise).
+// reboot() clears the stop (the node latches it likewise). An emergency_stop() during a reboot ends
+// its wait for the node's answer likewise (within a heartbeat period, not after every attempt's
+// timeout): the reboot fails with kCancelled, and the stop holds until the next reboot.
 //
 //   Result<std::unique_ptr<SlcanBus>> bus = SlcanBus::open("/dev/ttyUSB0", {});
 //   CanRobot robot(**bus, {});
@@ -90,10 +92,12 @@ class CanRobot final : public Robot {
   // Sends `request` until `judge` takes an answer, at most options_.attempts times.
   std::optional<Message> exchange(const Message& request, double timeout_s,
                                   const std::function<Verdict(const Message&)>& judge,
-                                  std::string& problem);
+                                  std::string& problem, bool stoppable = false);
   // Sends a request of `kind` with a new sequence number and takes the first `Reply` to it.
+  // `stoppable`: emergency_stop() ends the wait (as it ends a job's).
   template <class Reply>
-  std::optional<Reply> ask(RequestKind kind, double timeout_s, std::string& problem);
+  std::optional<Reply> ask(RequestKind kind, double timeout_s, std::string& problem,
+                           bool stoppable = false);
   JobReport link_failure(const std::string& what, double progress_m);
   // Sends EMERGENCY_STOP for emergency_stop() and ends the job.
   JobReport stopped(double progress_m);
