@@ -6,6 +6,7 @@
 #include <sstream>
 #include <string>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -107,6 +108,38 @@ TEST(Campaign, TheOracleBoundsOursAndEveryRunThatCanEndEnds) {
   EXPECT_EQ(s.oracle_below_ours, 0U);
   EXPECT_GE(s.ours.vs_oracle_mean, s.baseline.vs_oracle_mean);
   EXPECT_TRUE(s.clean());
+}
+
+// Issue 14: beacons by cause sum to "ended: beacon". A robot that breaks down at an exit manhole
+// calls for recovery, yet ends `exit` (it is where it can be recovered): it is counted apart, and
+// a limit there still makes the campaign unclean.
+TEST(Campaign, BeaconsByCauseSumToTheBeaconOutcome) {
+  using Cause = executor::MissionReport::BeaconCause;
+  auto record = [](std::size_t index, Outcome outcome, Cause cause) {
+    RunResult x;
+    x.index = index;
+    x.ours.outcome = outcome;
+    x.ours.beacon_cause = cause;
+    return RunRecord{.index = index, .result = x};
+  };
+  std::vector<RunRecord> records{record(0, Outcome::kBeacon, Cause::kMalfunction),
+                                 record(1, Outcome::kExit, Cause::kMalfunction),
+                                 record(2, Outcome::kExit, Cause::kNone)};
+  const Summary s = summarize(ais_spec(3), records);
+  const auto n = [](const auto& counts, auto i) { return counts[static_cast<std::size_t>(i)]; };
+  std::size_t by_cause = 0;
+  for (std::size_t c = 1; c < s.ours.beacon_causes.size(); ++c) by_cause += s.ours.beacon_causes[c];
+  EXPECT_EQ(by_cause, n(s.ours.outcomes, Outcome::kBeacon));
+  EXPECT_EQ(n(s.ours.beacon_causes, Cause::kMalfunction), 1U);
+  EXPECT_EQ(n(s.ours.exit_beacon_causes, Cause::kMalfunction), 1U);
+  EXPECT_EQ(n(s.ours.outcomes, Outcome::kExit), 2U);
+  std::ostringstream md;
+  write_summary_markdown(s, md);
+  EXPECT_THAT(md.str(),
+              ::testing::HasSubstr("| beacon called, ended otherwise (at an exit) | 1 |"));
+  EXPECT_TRUE(s.clean());
+  records.push_back(record(3, Outcome::kExit, Cause::kLimit));
+  EXPECT_FALSE(summarize(ais_spec(4), records).clean());
 }
 
 TEST(Campaign, ShardsMergeIntoTheWholeCampaign) {

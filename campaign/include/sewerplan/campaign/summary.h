@@ -33,9 +33,13 @@ struct PolicyFigures {
   double vs_oracle_mean = 0;  // share of the oracle's tasks, mean over runs
   double vs_oracle_worst = 1;
   std::size_t worst_run = 0;
-  std::array<std::size_t, 4> outcomes{};       // by Outcome
-  std::size_t missed_exits = 0;                // could reach an exit, did not
-  std::array<std::size_t, 6> beacon_causes{};  // by executor::MissionReport::BeaconCause
+  std::array<std::size_t, 4> outcomes{};  // by Outcome
+  std::size_t missed_exits = 0;           // could reach an exit, did not
+  // By executor::MissionReport::BeaconCause, over the runs that end with the beacon (outcome
+  // beacon: they sum to it), and over the runs that called for recovery yet ended otherwise (a
+  // breakdown at an exit manhole: outcome exit, where the robot can be recovered; issue 14).
+  std::array<std::size_t, 6> beacon_causes{};
+  std::array<std::size_t, 6> exit_beacon_causes{};
   std::size_t reserve_violations = 0;
   double replans_mean = 0;
   std::size_t replans_max = 0;
