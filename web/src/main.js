@@ -322,6 +322,9 @@ async function start() {
   });
   if (maps.length > 0) await openMap(maps[0].id);
   state.timings.first_draw_ms = Math.round(performance.now() - t0);
+  // Since navigation started: when the page's code started, and when the map was drawn.
+  state.timings.started_at_ms = Math.round(t0);
+  state.timings.ready_at_ms = Math.round(performance.now());
   document.body.dataset.ready = 'true';
 }
 
