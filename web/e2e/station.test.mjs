@@ -5,7 +5,8 @@
 // P9), plan and see the paper's 14 steps; hide a permanent obstacle in P4 by clicking, simulate,
 // and see the recovery phases, the replan (old and new route) and the dropped inspection on the
 // map and in the log, and the end reached; download the mission, upload it back, replay an event
-// log; run a fault campaign of 20 runs (progress, charts) and replay one of its runs; upload a map. Saves a screenshot of each step in OUT (docs/operator-station.md uses them) and prints
+// log; run a fault campaign of 20 runs (progress, charts) and replay one of its runs, cancel a
+// long one; upload a map. Saves a screenshot of each step in OUT (docs/operator-station.md uses them) and prints
 // the figures (page load, first draw, plan round trip, event delay).
 //
 //   node e2e/station.test.mjs SEWERPLAN_BINARY SOURCE_DIR [OUT_DIR] [--large MAP]
@@ -186,6 +187,18 @@ try {
   check(opened.tasks_done.length === pick.ours.tasks && opened.replans === pick.ours.replans,
         `run ${pick.run} replayed: ${opened.tasks_done.length} tasks, ${opened.replans} replans; recorded ${pick.ours.tasks}, ${pick.ours.replans}`);
   await shot('11-campaign-run.png');
+  // A long campaign, cancelled from its button once runs come in: the summary of the runs done.
+  await page.fill('#campaign-runs', '5000');
+  await page.click('#campaign-start');
+  await page.waitForFunction(() => window.station.campaign.progressSeen >= 2, null, { timeout: 30000 });
+  await page.click('#campaign-cancel');
+  await page.waitForFunction(() => window.station.campaign.summary, null, { timeout: 30000 });
+  const cancelled = await page.evaluate(() => ({ state: window.station.campaign.summary.state,
+                                                 runs: window.station.campaign.summary.runs.length,
+                                                 status: document.querySelector('#campaign-status').textContent }));
+  console.log(`campaign cancelled: ${cancelled.status}`);
+  check(cancelled.state === 'cancelled' && cancelled.runs >= 2 && cancelled.runs < 5000 && /^Cancelled: /.test(cancelled.status),
+        `cancel: ${JSON.stringify(cancelled)}`);
 
   // A map uploaded (SWMM), listed and opened under its new ID.
   await page.setInputFiles('#map-upload', join(source, 'datasets/swmm/epa-example1.inp'));
