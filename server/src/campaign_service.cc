@@ -255,6 +255,7 @@ void CampaignService::start(const Json& body, std::shared_ptr<const SewerMap> ma
         Tally tally;
         campaign::CampaignOptions options;
         options.jobs = running->jobs;
+        options.guard = limits_.guard;
         options.stop = StopCondition().with_cancel(running->cancel);
         // Called one run at a time (campaign.h).
         options.progress = [&](const campaign::Progress& p) {

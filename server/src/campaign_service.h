@@ -37,6 +37,7 @@ namespace sewerplan::server {
 struct CampaignLimits {
   std::size_t max_runs = 10000;
   std::size_t max_jobs = 1;  // the machine's cores
+  bool guard = true;         // ServerOptions::campaign_guard
 };
 
 class CampaignService {

@@ -437,7 +437,8 @@ Result<std::unique_ptr<StationServer>> StationServer::create(const ServerOptions
   impl->campaigns = std::make_unique<CampaignService>(CampaignLimits{
       .max_runs = options.max_campaign_runs,
       .max_jobs =
-          options.max_campaign_jobs == 0 ? cores : std::min(options.max_campaign_jobs, cores)});
+          options.max_campaign_jobs == 0 ? cores : std::min(options.max_campaign_jobs, cores),
+      .guard = options.campaign_guard});
   for (const std::filesystem::path& path : options.maps) {
     Diagnostics diagnostics;
     Result<SewerMap> map = options.read_map_with ? options.read_map_with(path, diagnostics)

@@ -271,5 +271,41 @@ TEST_F(CampaignApiTest, StoppingTheServerStopsItsCampaign) {
   EXPECT_LT(summary["runs"].size(), 5000u);
 }
 
+// Unguarded (ServerOptions::campaign_guard, for the sanitizer build): the same runs, and a cancel
+// between runs.
+TEST_F(CampaignApiTest, ManualRunsUnguardedWithTheSameRunsAndStopsBetweenThem) {
+  start({.campaign_guard = false});
+  auto r = client_->Post("/api/maps/map/campaign", request({{"runs", 4}, {"seed", 3}}),
+                         "application/json");
+  ASSERT_TRUE(r);
+  const json done = events(r->body).back().second;
+  ASSERT_EQ(done["runs"].size(), 4u);
+  Diagnostics diagnostics;
+  const SewerMap map = *read_map(kAis / "map.json", diagnostics);
+  const Mission mission = *read_mission(kAis / "missions/paper.json", map, diagnostics);
+  campaign::CampaignSpec spec;
+  spec.seed = 3;
+  spec.runs = 4;
+  const auto guarded = campaign::run_campaign(map, mission, spec, {});
+  for (std::size_t i = 0; i < 4; ++i) {
+    json line = json::parse(campaign::run_json_line(guarded[i]));
+    json got = done["runs"][i];
+    line.erase("measured");
+    got.erase("measured");
+    EXPECT_EQ(got, line);
+  }
+  json summary;
+  stream(request({{"runs", 5000}}), [&](const std::string& type, const json& data) {
+    if (type == "progress" && data["done"] == 1) {
+      httplib::Client other("127.0.0.1", port_);
+      EXPECT_TRUE(other.Post("/api/campaign/cancel", "", "application/json"));
+    }
+    if (type == "summary") summary = data;
+    return true;
+  });
+  EXPECT_EQ(summary["state"], "cancelled");
+  EXPECT_LT(summary["runs"].size(), 5000u);
+}
+
 }  // namespace
 }  // namespace sewerplan::server

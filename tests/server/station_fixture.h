@@ -31,6 +31,10 @@ class StationFixture : public ::testing::Test {
  protected:
   void start(ServerOptions options) {
     if (options.maps.empty()) options.maps = {kAis / "map.json"};
+#ifdef SEWERPLAN_TEST_FORK_UNSAFE_ALLOCATOR
+    // The test's own client threads allocate while a campaign forks its guarded children.
+    options.campaign_guard = false;
+#endif
     options.port = 0;
     Result<std::unique_ptr<StationServer>> created = StationServer::create(options);
     ASSERT_TRUE(created.has_value()) << created.error();

@@ -63,6 +63,11 @@ struct ServerOptions {
   std::size_t max_maps = 64;              // the maps given and uploaded (POST /api/maps) at most
   std::size_t max_campaign_runs = 10000;  // a campaign's runs at most
   std::size_t max_campaign_jobs = 0;      // a campaign's jobs at most; 0: the machine's cores
+  // Each campaign run in a forked child (campaign.h), so that a crash or a hang is counted and
+  // never takes the server down. false: in the server's threads, one at a time, a stop honoured
+  // between runs; for an allocator that is not safe to fork under while other threads allocate
+  // (ASan before LLVM 17, campaign.h), as the sanitizer build's tests have.
+  bool campaign_guard = true;
 };
 
 class StationServer {
