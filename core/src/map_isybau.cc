@@ -423,6 +423,9 @@ bool IsybauReader::read_profile(XmlNode kante, ImportLink& link) {
                                             : PipeShape::kOther;
   std::optional<double> width = number(profil, "Profilbreite", what, false);
   std::optional<double> height = number(profil, "Profilhoehe", what, false);
+  // Real exports write 0 for a size nobody measured (special profiles, tanks): not a size.
+  if (width && *width <= 0) width.reset();
+  if (height && *height <= 0) height.reset();
   if (!width && !height) return false;
   if (!width || !height) {
     const double given = width ? *width : *height;
@@ -594,7 +597,8 @@ void IsybauReader::report_fallbacks() {
   warn(f.size_from_one_side,
        "non-circular profiles are given by one dimension only: an egg's other one from the "
        "standard 2:3, another shape's taken equal");
-  warn(f.without_size, "Haltungen have no profile size (Profilbreite, Profilhoehe): left out");
+  warn(f.without_size,
+       "Haltungen have no profile size (Profilbreite, Profilhoehe missing or 0): left out");
   warn(f.length_from_other, "Haltungen have no Laenge: their Rohrlaenge or DMPLaenge is used");
   warn(f.length_from_line,
        "Haltungen have no Laenge, Rohrlaenge or DMPLaenge: the length of their line (or of the "

@@ -199,6 +199,20 @@ TEST(MapIsybau, Issue15SlotDirectionsOf2013FloorPointsMatch2017) {
   EXPECT_FALSE(has_warning(d17, "pipe ends begin inside their manhole"));
 }
 
+// A real 2017 export writes Profilbreite and Profilhoehe 0 for the special profiles of its tank
+// connections; that rejected the whole file (diameter must be positive). A size of 0 is no size:
+// that Haltung is left out with the others that have none, the rest of the network is read.
+TEST(MapIsybau, ProfileSizesOfZeroLeaveTheHaltungOut) {
+  std::string text = replaced(fixture(), "<Profilbreite>500</Profilbreite>",
+                              "<Profilbreite>0</Profilbreite>\n<Profilhoehe>0</Profilhoehe>");
+  Diagnostics d;
+  Result<SewerMap> map = read_map_isybau(text, "net.xml", d);
+  ASSERT_TRUE(map.has_value()) << map.error().message;
+  EXPECT_EQ(map->pipe_count(), 3U);
+  EXPECT_FALSE(map->find_pipe("S2").has_value());
+  EXPECT_TRUE(has_warning(d, "1 Haltungen have no profile size"));
+}
+
 // Issue 15: Profilbreite, Profilhoehe, Laenge and SohlhoeheZulauf are optional in the schema.
 TEST(MapIsybau, Issue15OptionalElementsFallBackWithWarnings) {
   Diagnostics d;
