@@ -130,7 +130,7 @@ def main():
         ]
         records = [(0.0, "BCD", None)] + [
             (length - off if against else off, code, q) for off, code, q in found
-        ] + [(length, "BCE", None)]
+        ] + [(math.floor(length * 100) / 100, "BCE", None)]  # 2 decimals, not past the end
         records.sort(key=lambda r: r[0])
         for station, code, q in records:
             lines.append("              <RZustand>")
