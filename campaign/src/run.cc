@@ -101,7 +101,10 @@ Execution execute(const SewerMap& map, const Mission& mission, const hal::FaultS
   const bool at_end_point = ended && final_task != nullptr &&
                             std::find(report.tasks_done.begin(), report.tasks_done.end(),
                                       final_task->name) != report.tasks_done.end();
-  if (m && map.manhole(*m).exit) {
+  // An exit of the mission (its list, "map" or "all"), not the map's exit flag: an operator may
+  // name any manhole where the robot can be recovered, and imported maps mark few or none.
+  const std::vector<ManholeId>& exits = replanner.mission().exits;
+  if (m && std::find(exits.begin(), exits.end(), *m) != exits.end()) {
     e.outcome = Outcome::kExit;
   } else if (at_end_point) {
     e.outcome = Outcome::kEndPoint;
