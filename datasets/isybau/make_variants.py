@@ -149,7 +149,7 @@ objects = [
         record("4.72", "BAA", "A", "", 50),
         record("20.00", "BBB", "A", "", 15)]),
     # Pipe S2 (30 m), with the flow: a collapse at 18 m.
-    inspected("S2", 1, "2021-05-06", "O", [record("18.00", "BAC", "A")]),
+    inspected("S2", 1, "2021-05-06", "O", [record("18.00", "BAC", "C")]),
     # Manhole S2 (Anlagentyp 3): not a pipe; left out.
     inspected("S2", 3, "2021-05-06", "", [record("0.5", "DAB", "A")]),
     # A lateral's inspection, named like no Haltung of the map: left out with a warning.
