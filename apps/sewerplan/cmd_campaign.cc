@@ -180,7 +180,14 @@ int run(const CampaignCliOptions& o, Context& c) {
   campaign::CampaignSpec spec;
   spec.map_name = o.map;
   spec.mission_name = o.mission;
-  spec.map_fingerprint = campaign::fingerprint(*map_text);
+  // A field mapping changes the map read from a GIS source: shards read through different ones
+  // must not merge.
+  Result<std::string> fields_text =
+      o.gis_fields.empty() ? Result<std::string>(std::string()) : read_text_file(o.gis_fields);
+  spec.map_fingerprint = campaign::fingerprint(
+      o.gis_fields.empty()
+          ? *map_text
+          : *map_text + "\ngis-fields:" + (fields_text.has_value() ? *fields_text : std::string()));
   // A planned-motion table changes every plan, so it belongs to the mission's identity: shards
   // made with and without it (or with different tables) must not merge.
   Result<std::string> motion_text =
