@@ -23,6 +23,7 @@
 #include "command.h"
 #include "condition_options.h"
 #include "json_output.h"
+#include "map_input.h"
 #include "motion_options.h"
 #include <unistd.h>
 
@@ -31,6 +32,7 @@ namespace {
 
 struct CampaignCliOptions {
   std::string map;
+  std::string gis_fields;  // --gis-fields
   std::string mission;
   std::size_t runs = 100;
   std::uint64_t seed = 1;
@@ -146,10 +148,11 @@ int run(const CampaignCliOptions& o, Context& c) {
   Diagnostics diagnostics;
   Result<std::string> condition_text =
       o.condition.empty() ? Result<std::string>(std::string()) : read_text_file(o.condition);
-  Result<SewerMap> map = !map_text.has_value() ? Result<SewerMap>(map_text.error())
-                         : !condition_text.has_value()
-                             ? Result<SewerMap>(condition_text.error())
-                             : read_map_with_condition(o.map, o.condition, diagnostics);
+  Result<SewerMap> map =
+      !map_text.has_value() ? Result<SewerMap>(map_text.error())
+      : !condition_text.has_value()
+          ? Result<SewerMap>(condition_text.error())
+          : read_map_with_condition({o.map, o.gis_fields}, o.condition, diagnostics);
   Result<Mission> mission = !map.has_value() ? Result<Mission>(map.error())
                             : !mission_text.has_value()
                                 ? Result<Mission>(mission_text.error())
@@ -177,7 +180,14 @@ int run(const CampaignCliOptions& o, Context& c) {
   campaign::CampaignSpec spec;
   spec.map_name = o.map;
   spec.mission_name = o.mission;
-  spec.map_fingerprint = campaign::fingerprint(*map_text);
+  // A field mapping changes the map read from a GIS source: shards read through different ones
+  // must not merge.
+  Result<std::string> fields_text =
+      o.gis_fields.empty() ? Result<std::string>(std::string()) : read_text_file(o.gis_fields);
+  spec.map_fingerprint = campaign::fingerprint(
+      o.gis_fields.empty()
+          ? *map_text
+          : *map_text + "\ngis-fields:" + (fields_text.has_value() ? *fields_text : std::string()));
   // A planned-motion table changes every plan, so it belongs to the mission's identity: shards
   // made with and without it (or with different tables) must not merge.
   Result<std::string> motion_text =
@@ -265,6 +275,7 @@ void add_campaign_command(CLI::App& app, Context& context) {
       "Run many seeded simulated missions with random faults, against an oracle and the "
       "paper-era baseline (docs/campaign.md)");
   cmd->add_option("--map", options->map, "Map file");
+  add_gis_fields_option(*cmd, options->gis_fields);
   cmd->add_option("--mission", options->mission, "Mission file (.json)");
   cmd->add_option("--runs", options->runs, "Number of runs")->capture_default_str();
   cmd->add_option("--seed", options->seed, "Campaign seed")->capture_default_str();
