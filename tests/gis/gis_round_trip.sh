@@ -112,6 +112,12 @@ expect_exit 1 "$tmp/malformed.json" "$sp" validate --map "$tmp/net.gpkg" --gis-f
 echo '{"pipes": ' > "$tmp/cut.json"
 expect_exit 1 "$tmp/cut.out.json" "$sp" convert --map "$tmp/net.gpkg" --gis-fields "$tmp/cut.json" -o "$tmp/x.json" --json
 expect_exit 2 "$tmp/not-gis.json" "$sp" info --map "$map" --gis-fields "$tmp/all-exits.json" --json
+# A campaign on a Shapefile directory (no one file to fingerprint): the map as read is its identity,
+# so a field mapping that changes the network changes the fingerprint and the shards do not merge.
+expect_exit 0 "$tmp/campaign-a.out" "$sp" campaign --map "$tmp/shp" --mission "$tmp/no-sample.json" \
+  --runs 2 --seed 1 --jobs 1 -q -o "$tmp/campaign-a"
+expect_exit 0 "$tmp/campaign-b.out" "$sp" campaign --map "$tmp/shp" --gis-fields "$tmp/all-exits.json" \
+  --mission "$tmp/no-sample.json" --runs 2 --seed 1 --jobs 1 -q -o "$tmp/campaign-b"
 /usr/bin/python3 - "$tmp" <<'PY'
 import json, sys
 tmp = sys.argv[1]
@@ -129,6 +135,9 @@ assert cut["code"] == "parse" and cut["diagnostics"][0]["where"].startswith(f"{t
 not_gis = load("not-gis.json")["error"]
 assert not_gis["code"] == "usage" and "is not a GIS source" in not_gis["message"], not_gis
 print("--gis-fields: a mapping file applied; missing, malformed and misplaced ones name the file")
+fingerprint = lambda d: json.load(open(f"{tmp}/{d}/campaign.json"))["map_fingerprint"]
+assert fingerprint("campaign-a") != fingerprint("campaign-b"), "a field mapping left the map's fingerprint"
+print("campaign: a Shapefile directory is read, and its field mapping is part of the map's identity")
 PY
 /usr/bin/python3 - "$tmp/valid.json" "$tmp/bad.json" "$tmp/no-m1.json" <<'PY'
 import json, sys
