@@ -255,6 +255,9 @@ class SewerTaskCompiler {
                  GraphSearch::Direction::kForward);
       store_routes(search, 0, std::nullopt);
     }
+    // Issue 14: the store grown by doubling would copy itself whole between two stop checks
+    // (megabytes on 100,000 manholes): sized once from the start's routes, one row of k.
+    route_store_.reserve(route_store_.size() * (k() + k() / 2) + 4096);
     std::vector<Node> reachable;
     for (Node n : targets) {
       if (dist_[key_of_.at(n)] <= bound_) reachable.push_back(n);
