@@ -45,6 +45,17 @@ class SubsetProgramme {
       leave_begin_.push_back(static_cast<std::uint32_t>(leave_place_.size()));
     }
     width_ = leave_place_.size();
+    // Each option's leave index, found once rather than at every entry it extends.
+    for (std::size_t g = 0; g < k; ++g) {
+      option_begin_.push_back(static_cast<std::uint32_t>(option_slot_.size()));
+      for (const detail::Option& o : s_.goals[g].options) {
+        std::uint32_t slot = leave_begin_[g];
+        while (leave_place_[slot] != leave(o)) ++slot;
+        option_slot_.push_back(slot);
+      }
+    }
+    all_ = k == 0 ? 0U : static_cast<std::uint32_t>((std::uint64_t{1} << k) - 1);
+    reserves_ = s_.has_reserves();
     for (std::size_t g = 0; g < k; ++g) {
       if (s_.goals[g].last) last_mask_ |= 1U << g;
     }
@@ -148,30 +159,32 @@ class SubsetProgramme {
   // or forgone, and forgo actions come first).
   void extend(std::uint32_t set, std::int32_t at, std::uint32_t e, Cost c) {
     if ((set & last_mask_) != 0) return;
-    const auto places = static_cast<std::size_t>(s_.places);
-    for (std::size_t g = 0; g < s_.goals.size(); ++g) {
-      const std::uint32_t bit = 1U << g;
-      if ((set & bit) != 0) continue;
-      const detail::Goal& goal = s_.goals[g];
-      const std::uint32_t next = set | bit;
-      for (std::size_t o = 0; o < goal.options.size(); ++o) {
-        const detail::Option& opt = goal.options[o];
-        const Cost d =
-            moves_[static_cast<std::size_t>(at) * places + static_cast<std::size_t>(opt.at)];
+    const Cost* row =
+        moves_.data() + static_cast<std::size_t>(at) * static_cast<std::size_t>(s_.places);
+    const std::uint32_t from = (e == kNone ? (kNone >> 8U) : e) << 8U;
+    // The goals outside `set`, lowest first (as a loop over every goal skipping those in it).
+    for (std::uint32_t outside = all_ & ~set; outside != 0; outside &= outside - 1) {
+      const auto g = static_cast<std::size_t>(std::countr_zero(outside));
+      const std::uint32_t next = set | (1U << g);
+      const Cost limit =
+          rest_bound_.empty() ? bound_ : std::min(bound_, upper_ - rest_bound_[next]);
+      const detail::Option* options = s_.goals[g].options.data();
+      const std::size_t n = s_.goals[g].options.size();
+      const std::uint32_t* slots = option_slot_.data() + option_begin_[g];
+      for (std::size_t o = 0; o < n; ++o) {
+        const detail::Option& opt = options[o];
+        const Cost d = row[static_cast<std::size_t>(opt.at)];
         if (d >= kInfiniteCost) continue;
-        if (!s_.fits(c, d, s_.move_reserve(at, opt.at)) || !s_.fits(c + d, opt.cost, opt.reserve)) {
+        if (reserves_ && (!s_.fits(c, d, s_.move_reserve(at, opt.at)) ||
+                          !s_.fits(c + d, opt.cost, opt.reserve))) {
           continue;
         }
         const Cost nc = c + d + opt.cost;
-        if (nc > bound_) continue;
-        if (!rest_bound_.empty() && nc + rest_bound_[next] > upper_) continue;
-        const std::int32_t place = leave(opt);
-        std::uint32_t slot = leave_begin_[g];
-        while (leave_place_[slot] != place) ++slot;
-        const std::size_t index = next * width_ + slot;
+        if (nc > limit) continue;
+        const std::size_t index = next * width_ + slots[o];
         if (nc < cost_[index]) {
           cost_[index] = nc;
-          parent_[index] = ((e == kNone ? (kNone >> 8U) : e) << 8U) | static_cast<std::uint32_t>(o);
+          parent_[index] = from | static_cast<std::uint32_t>(o);
         }
       }
     }
@@ -227,9 +240,13 @@ class SubsetProgramme {
   Cost bound_;
   Cost upper_;
   std::vector<Cost> rest_bound_;  // by subset, with an upper bound: see fill_rest_bounds()
-  std::vector<std::uint32_t> leave_begin_;  // by goal, into leave_place_
-  std::vector<std::int32_t> leave_place_;   // flattened leave places
-  std::vector<std::uint32_t> leave_goal_;   // the goal of each
+  std::vector<std::uint32_t> option_begin_;  // by goal, into option_slot_
+  std::vector<std::uint32_t> option_slot_;   // each option's leave index
+  std::uint32_t all_ = 0;                    // every goal's bit
+  bool reserves_ = false;                    // Shape::has_reserves()
+  std::vector<std::uint32_t> leave_begin_;   // by goal, into leave_place_
+  std::vector<std::int32_t> leave_place_;    // flattened leave places
+  std::vector<std::uint32_t> leave_goal_;    // the goal of each
   std::size_t width_ = 0;
   std::uint32_t last_mask_ = 0;
   std::vector<Cost> moves_;            // places x places
