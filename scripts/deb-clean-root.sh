@@ -10,7 +10,8 @@
 # data and compared with the shipped paper-corrected.plan, the man page (`man -w` where man-db is,
 # else the file), the bash completion, the installed Python example (plan_ais.py), and with GIS:
 # `sewerplan export-geojson`, a GeoPackage written from it by the host's ogr2ogr (gdal-bin) read
-# back by the installed `sewerplan convert` and by the installed Python module.
+# back by the installed `sewerplan convert` and by the installed Python module; `sewerplan-compare`;
+# and `sewerplan serve` answering with the installed page and its map list.
 #
 # Not part of the test command: it downloads a few hundred MB the first time (the bookworm base,
 # then the package's dependencies). Caches, under CACHE (default BUILD/deb-clean-root): the base
@@ -187,6 +188,37 @@ if in_root sewerplan --help | grep -q export-geojson; then
   else
     echo "skipped: GeoPackage import (no ogr2ogr on the host: apt-get install gdal-bin)"
   fi
+fi
+if [ -f "$root/usr/bin/sewerplan-compare" ]; then
+  in_root sewerplan-compare --help > /dev/null || fail "sewerplan-compare --help"
+  echo "ok: sewerplan-compare runs"
+fi
+if [ -f "$root/usr/share/sewerplan/web/index.html" ]; then
+  # The operator station from the installed page: the server starts, serves the page and its API.
+  # exec: the background job is the server itself (env, chroot and sewerplan exec each other), so
+  # that killing it leaves nothing running in the root.
+  (exec env -i PATH=/usr/sbin:/usr/bin:/sbin:/bin HOME=/root LANG=C.UTF-8 chroot "$root" \
+    sewerplan serve --map "$data/map.json" --port 18089 > "$cache/serve.log" 2>&1) &
+  serve_pid=$!
+  got=$(in_root python3 - <<'PY' || true
+import json, time, urllib.request
+base = "http://127.0.0.1:18089"
+for _ in range(100):
+    try:
+        page = urllib.request.urlopen(base + "/", timeout=2).read().decode()
+        break
+    except OSError:
+        time.sleep(0.1)
+else:
+    raise SystemExit("no answer")
+maps = json.load(urllib.request.urlopen(base + "/api/maps", timeout=2))
+print("<html" in page.lower(), len(maps["maps"]) if isinstance(maps, dict) else len(maps))
+PY
+)
+  kill "$serve_pid" 2> /dev/null || true
+  wait "$serve_pid" 2> /dev/null || true
+  [ "$got" = "True 1" ] || { cat "$cache/serve.log"; fail "sewerplan serve answered '$got', want the page and 1 map"; }
+  echo "ok: sewerplan serve: the installed page and /api/maps"
 fi
 if [ "$consumer" -eq 1 ]; then
   step "consumer: apt-get install cmake g++ ninja-build, then a project with find_package(sewerplan)"
