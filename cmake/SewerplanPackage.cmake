@@ -14,6 +14,10 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/datasets/ais-testbed
         DESTINATION ${CMAKE_INSTALL_DATADIR}/sewerplan/datasets)
 install(FILES ${PROJECT_SOURCE_DIR}/apps/sewerplan/completion/sewerplan.bash
         DESTINATION ${CMAKE_INSTALL_DATADIR}/bash-completion/completions RENAME sewerplan)
+if(TARGET sewerplan_python)  # finds the example data beside it: ../../datasets/ais-testbed
+  install(PROGRAMS ${PROJECT_SOURCE_DIR}/examples/python/plan_ais.py
+          DESTINATION ${CMAKE_INSTALL_DATADIR}/sewerplan/examples/python)
+endif()
 if(TARGET sewerplan-compare)
   install(TARGETS sewerplan-compare RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endif()

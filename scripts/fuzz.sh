@@ -2,8 +2,9 @@
 # SPDX-License-Identifier: MIT
 # Builds the libFuzzer targets (fuzz/, clang with ASan and UBSan) in build/fuzz and runs each for a
 # bounded time, starting from its seed corpus fuzz/corpus/<name>/ (read only: new inputs go to a
-# temporary directory). Fails on the first crash, leak or sanitizer report; the input that caused
-# it is left in <build>/artifacts/. SEWERPLAN_FUZZ_BUILD names a build tree to reuse.
+# temporary directory), as many side by side as there are cores. Fails on a crash, leak or sanitizer
+# report (no new target starts after one); the input that caused it is left in <build>/artifacts/.
+# SEWERPLAN_FUZZ_BUILD names a build tree to reuse.
 #   bash scripts/fuzz.sh [SECONDS_PER_TARGET]   (default 20)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -31,19 +32,40 @@ cmake --build "$build" -j "$jobs" --target "${targets[@]/#/sewerplan_fuzz_}"
 mkdir -p "$build/artifacts"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-for name in "${targets[@]}"; do
-  echo "== fuzz $name (${seconds} s)"
+# One target for `seconds`; its report is printed whole when it ends, so that targets running side
+# by side do not interleave their lines. A crash writes the failed marker and the log's tail.
+fuzz_one() {
+  local name=$1 status=0
   mkdir -p "$work/$name"
-  status=0
   ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     "$build/fuzz/sewerplan_fuzz_$name" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
     -print_final_stats=1 -artifact_prefix="$build/artifacts/$name-" \
     "$work/$name" "fuzz/corpus/$name" > "$work/$name.log" 2>&1 || status=$?
-  grep -E "^stat::(number_of_executed_units|new_units_added)" "$work/$name.log" || true
-  if [ "$status" != 0 ]; then
-    tail -n 60 "$work/$name.log" >&2
-    echo "fuzz $name: failed (input in $build/artifacts/)" >&2
-    exit 1
+  {
+    echo "== fuzz $name (${seconds} s)"
+    grep -E "^stat::(number_of_executed_units|new_units_added)" "$work/$name.log" || true
+    if [ "$status" != 0 ]; then
+      tail -n 60 "$work/$name.log"
+      echo "fuzz $name: failed (input in $build/artifacts/)"
+      touch "$work/failed"
+    fi
+  } > "$work/$name.report"
+  cat "$work/$name.report"
+}
+# The targets run `jobs` at a time (each fuzzer uses one core).
+running=0
+for name in "${targets[@]}"; do
+  [ -e "$work/failed" ] && break
+  fuzz_one "$name" &
+  running=$((running + 1))
+  if [ "$running" -ge "$jobs" ]; then
+    wait -n || true
+    running=$((running - 1))
   fi
 done
+wait
+if [ -e "$work/failed" ]; then
+  echo "fuzzing: a target failed (above)" >&2
+  exit 1
+fi
 echo "== fuzzing: no crash in ${#targets[@]} targets"

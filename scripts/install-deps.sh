@@ -14,6 +14,7 @@ packages=(
   pybind11-dev python3-dev python3-pytest
   libproj-dev libcairo2-dev libgdal-dev gdal-bin
   libcpp-httplib-dev pkg-config chromium
+  mmdebstrap  # scripts/deb-clean-root.sh: the package on a clean Debian 12 root
 )
 # node and npm build and test the operator station's page (web/). Debian's nodejs and npm are
 # installed only where no npm exists: a Node.js from elsewhere (such as NodeSource's, which bundles

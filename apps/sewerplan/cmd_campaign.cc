@@ -18,11 +18,13 @@
 #include "sewerplan/campaign/merge.h"
 #include "sewerplan/campaign/summary.h"
 #include "sewerplan/core/map_io.h"
+#include "sewerplan/core/map_json.h"
 #include "sewerplan/core/text_file.h"
 
 #include "command.h"
 #include "condition_options.h"
 #include "json_output.h"
+#include "map_input.h"
 #include "motion_options.h"
 #include <unistd.h>
 
@@ -31,6 +33,7 @@ namespace {
 
 struct CampaignCliOptions {
   std::string map;
+  std::string gis_fields;  // --gis-fields
   std::string mission;
   std::size_t runs = 100;
   std::uint64_t seed = 1;
@@ -141,15 +144,23 @@ int run(const CampaignCliOptions& o, Context& c) {
   if (o.runs == 0 || (o.only && *o.only >= o.runs)) {
     return usage_error(c, o.json, "campaign: --runs must be at least 1 and --only below it");
   }
-  Result<std::string> map_text = read_text_file(o.map);
   Result<std::string> mission_text = read_text_file(o.mission);
   Diagnostics diagnostics;
   Result<std::string> condition_text =
       o.condition.empty() ? Result<std::string>(std::string()) : read_text_file(o.condition);
-  Result<SewerMap> map = !map_text.has_value() ? Result<SewerMap>(map_text.error())
-                         : !condition_text.has_value()
-                             ? Result<SewerMap>(condition_text.error())
-                             : read_map_with_condition(o.map, o.condition, diagnostics);
+  Result<SewerMap> map =
+      !condition_text.has_value()
+          ? Result<SewerMap>(condition_text.error())
+          : read_map_with_condition({o.map, o.gis_fields}, o.condition, diagnostics);
+  // The map as read, in our JSON: a GIS source has no one file to hash (a Shapefile directory),
+  // and its field mapping (--gis-fields or a sidecar file) changes the network, so shards read
+  // through different mappings must not merge.
+  std::string map_fingerprint;
+  if (map.has_value()) {
+    std::ostringstream map_json;
+    write_map_json(*map, map_json);
+    map_fingerprint = campaign::fingerprint(map_json.str());
+  }
   Result<Mission> mission = !map.has_value() ? Result<Mission>(map.error())
                             : !mission_text.has_value()
                                 ? Result<Mission>(mission_text.error())
@@ -177,7 +188,7 @@ int run(const CampaignCliOptions& o, Context& c) {
   campaign::CampaignSpec spec;
   spec.map_name = o.map;
   spec.mission_name = o.mission;
-  spec.map_fingerprint = campaign::fingerprint(*map_text);
+  spec.map_fingerprint = map_fingerprint;
   // A planned-motion table changes every plan, so it belongs to the mission's identity: shards
   // made with and without it (or with different tables) must not merge.
   Result<std::string> motion_text =
@@ -265,6 +276,7 @@ void add_campaign_command(CLI::App& app, Context& context) {
       "Run many seeded simulated missions with random faults, against an oracle and the "
       "paper-era baseline (docs/campaign.md)");
   cmd->add_option("--map", options->map, "Map file");
+  add_gis_fields_option(*cmd, options->gis_fields);
   cmd->add_option("--mission", options->mission, "Mission file (.json)");
   cmd->add_option("--runs", options->runs, "Number of runs")->capture_default_str();
   cmd->add_option("--seed", options->seed, "Campaign seed")->capture_default_str();

@@ -24,6 +24,7 @@ namespace {
 
 struct CheckOptions {
   std::string map;
+  std::string gis_fields;  // --gis-fields
   std::string mission;
   std::string plan;
   bool json = false;
@@ -42,7 +43,7 @@ int failed(const Error& error, const Diagnostics& diagnostics, bool json, Contex
 
 int run(const CheckOptions& o, Context& c) {
   Diagnostics diagnostics;
-  Result<SewerMap> map = read_input_map(o.map, diagnostics);
+  Result<SewerMap> map = read_input_map({o.map, o.gis_fields}, diagnostics);
   if (!map.has_value()) return failed(map.error(), diagnostics, o.json, c);
   Result<Mission> mission = read_mission(o.mission, *map, diagnostics);
   if (!mission.has_value()) return failed(mission.error(), diagnostics, o.json, c);
@@ -101,6 +102,7 @@ void add_check_command(CLI::App& app, Context& context) {
       "check",
       "Validate a plan (the paper's text, or FF's or Fast Downward's output) on a map and mission");
   cmd->add_option("--map", options->map, "Map file (any format of docs/formats/)")->required();
+  add_gis_fields_option(*cmd, options->gis_fields);
   cmd->add_option("--mission", options->mission, "Mission file (.json)")->required();
   cmd->add_option("plan", options->plan, "Plan file, one action a line")->required();
   cmd->add_flag("--json", options->json, "Print the plan, its costs and the verdict as JSON");

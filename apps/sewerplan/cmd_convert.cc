@@ -12,12 +12,14 @@
 #include "condition_options.h"
 #include "crs_option.h"
 #include "json_output.h"
+#include "map_input.h"
 
 namespace sewerplan::cli {
 namespace {
 
 struct ConvertOptions {
   std::string map;
+  std::string gis_fields;  // --gis-fields
   std::string out;
   std::vector<std::string> positional;  // OUT, or (deprecated) IN OUT
   bool json = false;
@@ -55,7 +57,7 @@ int run(const ConvertOptions& o, Context& c) {
     }
   }
   Diagnostics diagnostics;
-  Result<SewerMap> map = read_map_with_condition(*in, o.condition, diagnostics);
+  Result<SewerMap> map = read_map_with_condition({*in, o.gis_fields}, o.condition, diagnostics);
   if (map.has_value()) map = apply_crs_option(std::move(*map), o.crs);
   if (!map.has_value()) return fail(c, o.json, map.error(), diagnostics);
   print_diagnostics(diagnostics, c.err);
@@ -82,6 +84,7 @@ void add_convert_command(CLI::App& app, Context& context) {
   CLI::App* cmd =
       app.add_subcommand("convert", "Convert a map between the formats sewerplan reads");
   cmd->add_option("--map", options->map, "Map to read (.json, .sewer, SWMM .inp, ISYBAU .xml)");
+  add_gis_fields_option(*cmd, options->gis_fields);
   cmd->add_option("--out,-o", options->out, "Map to write; the extension gives the format");
   cmd->add_option("files", options->positional, "OUT (or, deprecated, IN OUT)")
       ->expected(0, 2)

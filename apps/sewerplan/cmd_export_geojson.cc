@@ -11,9 +11,7 @@
 #include <CLI/CLI.hpp>
 
 #include "sewerplan/core/mission.h"
-#include "sewerplan/core/robot_profile.h"
 #include "sewerplan/core/text_file.h"
-#include "sewerplan/domain/driveability.h"
 #include "sewerplan/domain/plan_text.h"
 #include "sewerplan/gis/geojson.h"
 #include "sewerplan/gis/wgs84_projection.h"
@@ -23,13 +21,16 @@
 #include "command.h"
 #include "condition_options.h"
 #include "crs_option.h"
+#include "driveability_option.h"
 #include "json_output.h"
+#include "map_input.h"
 
 namespace sewerplan::cli {
 namespace {
 
 struct ExportOptions {
   std::string map;
+  std::string gis_fields;  // --gis-fields
   std::string crs;
   std::string mission;
   std::string plan;
@@ -93,7 +94,7 @@ int run(const ExportOptions& o, Context& c) {
   }
   Diagnostics diagnostics;
   auto failed = [&](const Error& e) { return fail(c, o.json, e, diagnostics); };
-  Result<SewerMap> map = read_map_with_condition(o.map, o.condition, diagnostics);
+  Result<SewerMap> map = read_map_with_condition({o.map, o.gis_fields}, o.condition, diagnostics);
   if (map.has_value()) map = apply_crs_option(std::move(*map), o.crs);
   if (!map.has_value()) return failed(map.error());
   std::optional<Mission> mission;
@@ -116,14 +117,9 @@ int run(const ExportOptions& o, Context& c) {
     if (!t.has_value()) return failed(t.error());
     trace = std::move(*t);
   }
-  std::optional<domain::DriveabilityReport> driveability;
-  if (!o.profile.empty()) {
-    Result<RobotProfile> profile = load_profile(o.profile);
-    if (!profile.has_value()) {
-      return failed(Error{profile.error().code, "--profile: " + profile.error().message});
-    }
-    driveability = domain::analyse_driveability(*map, *profile, domain::default_starts(*map));
-  }
+  Result<std::optional<domain::DriveabilityReport>> driveability =
+      driveability_for_profile(*map, o.profile);
+  if (!driveability.has_value()) return failed(driveability.error());
   print_diagnostics(diagnostics, c.err);
   Json report = {{"crs", map->crs() ? Json(map->crs()->to_string()) : Json()}};
   if (!o.out.empty()) {
@@ -143,14 +139,14 @@ int run(const ExportOptions& o, Context& c) {
         .plan = plan ? &*plan : nullptr,
         .driven = trace ? &trace->driven : nullptr,
         .blocked = trace ? std::span<const Blockage>(trace->blocked) : std::span<const Blockage>(),
-        .driveability = driveability ? &*driveability : nullptr};
+        .driveability = *driveability ? &**driveability : nullptr};
     Result<std::string> text = gis::to_geojson(input, *wgs84);
     if (!text.has_value()) return failed(text.error());
     if (Result<void> w = write_text_file(o.out, *text); !w.has_value()) return failed(w.error());
     report["wrote"] = o.out;
     report["plan_steps"] = plan ? Json(plan->steps.size()) : Json();
     report["driven_steps"] = trace ? Json(trace->driven.size()) : Json();
-    report["driveability"] = driveability.has_value();
+    report["driveability"] = driveability->has_value();
     if (!o.json) c.out << "wrote " << o.out << " (WGS84, from " << map->crs()->to_string() << ")\n";
   }
   if (!o.nav2.empty()) {
@@ -177,6 +173,7 @@ void add_export_geojson_command(CLI::App& app, Context& context) {
       "Write the network, a plan's route, a driven route and driveability as GeoJSON (WGS84), "
       "and Nav2's route graph");
   cmd->add_option("--map", o->map, "Map file")->required();
+  add_gis_fields_option(*cmd, o->gis_fields);
   cmd->add_option("--crs,--assume-crs", o->crs,
                   "The map's coordinate reference system when its file names none, e.g. "
                   "EPSG:25832");

@@ -20,6 +20,7 @@
 #include "condition_options.h"
 #include "crs_option.h"
 #include "json_output.h"
+#include "map_input.h"
 #include "motion_options.h"
 #include "text_format.h"
 
@@ -28,6 +29,7 @@ namespace {
 
 struct InfoOptions {
   std::string map;
+  std::string gis_fields;      // --gis-fields
   std::string map_positional;  // deprecated: info MAP
   std::string profile;
   std::vector<std::string> starts;
@@ -150,7 +152,7 @@ int run(const InfoOptions& o, Context& c) {
       map_path(o.map, o.map_positional, "info", c, o.json, exit_code);
   if (!path) return exit_code;
   Diagnostics diagnostics;
-  Result<SewerMap> map = read_map_with_condition(*path, o.condition, diagnostics);
+  Result<SewerMap> map = read_map_with_condition({*path, o.gis_fields}, o.condition, diagnostics);
   if (map.has_value()) map = apply_crs_option(std::move(*map), o.crs);
   if (!map.has_value()) return fail(c, o.json, map.error(), diagnostics);
   print_diagnostics(diagnostics, c.err);
@@ -222,6 +224,7 @@ void add_info_command(CLI::App& app, Context& context) {
       "Summarise a map: counts, manhole types, lengths, diameters, exits, connectivity; with "
       "--profile, what a robot can drive");
   cmd->add_option("--map", options->map, "Map file (.json, .sewer, SWMM .inp, ISYBAU .xml)");
+  add_gis_fields_option(*cmd, options->gis_fields);
   cmd->add_option("map", options->map_positional, "Deprecated: use --map")->group("");
   add_motion_options(*cmd, options->motion);
   cmd->add_option("--profile", options->profile,

@@ -22,6 +22,7 @@ namespace {
 
 struct PrecomputeOptions {
   std::string map;
+  std::string gis_fields;      // --gis-fields
   std::string map_positional;  // deprecated: motion precompute MAP
   std::string profile = "makro-1.1";
   std::uint32_t seed = 1;
@@ -45,7 +46,7 @@ int precompute(const PrecomputeOptions& o, Context& c) {
                       "uses the angle and step rules"});
   }
   Diagnostics diagnostics;
-  Result<SewerMap> map = read_input_map(*path, diagnostics);
+  Result<SewerMap> map = read_input_map({*path, o.gis_fields}, diagnostics);
   if (!map.has_value()) return fail(c, o.json, map.error(), diagnostics);
   print_diagnostics(diagnostics, c.err);
   Result<RobotProfile> profile = load_profile(o.profile);
@@ -113,6 +114,7 @@ void add_motion_command(CLI::App& app, Context& context) {
       "precompute",
       "Plan every manhole passage of a map with OMPL and write MAP.motion.json beside it");
   cmd->add_option("--map", o->map, "Map file");
+  add_gis_fields_option(*cmd, o->gis_fields);
   cmd->add_option("map", o->map_positional, "Deprecated: use --map")->group("");
   cmd->add_option("--profile", o->profile, "Robot profile: makro-1.1, makro-plus or a JSON file")
       ->capture_default_str();

@@ -28,10 +28,10 @@ struct Inputs {
 };
 
 // Loads the map and the mission, or reports why not and sets the exit code.
-std::optional<Inputs> load(const std::string& map_path, const std::string& mission_path, bool json,
+std::optional<Inputs> load(const MapSource& map_source, const std::string& mission_path, bool json,
                            Context& c) {
   Diagnostics diagnostics;
-  Result<SewerMap> map = read_input_map(map_path, diagnostics);
+  Result<SewerMap> map = read_input_map(map_source, diagnostics);
   Result<Mission> mission = map.has_value() ? read_mission(mission_path, *map, diagnostics)
                                             : Result<Mission>(map.error());
   if (!mission.has_value()) {
@@ -52,6 +52,7 @@ Result<void> write_file(const std::filesystem::path& path, const std::string& te
 
 struct ExportOptions {
   std::string map;
+  std::string gis_fields;  // --gis-fields
   std::string mission;
   std::string out;
   bool action_costs = false;
@@ -59,7 +60,7 @@ struct ExportOptions {
 };
 
 int run_export(const ExportOptions& o, Context& c) {
-  std::optional<Inputs> in = load(o.map, o.mission, o.json, c);
+  std::optional<Inputs> in = load({o.map, o.gis_fields}, o.mission, o.json, c);
   if (!in) return c.exit_code;
   Result<domain::PddlFiles> files =
       domain::export_pddl(in->map, in->mission, {.action_costs = o.action_costs});
@@ -90,6 +91,7 @@ int run_export(const ExportOptions& o, Context& c) {
 
 struct ImportOptions {
   std::string map;
+  std::string gis_fields;  // --gis-fields
   std::string mission;
   std::string format;
   std::string file;
@@ -102,7 +104,7 @@ int run_import(const ImportOptions& o, Context& c) {
   if (!format) {
     return usage_error(c, o.json, "--format: unknown planner output '" + o.format + "' (ff or fd)");
   }
-  std::optional<Inputs> in = load(o.map, o.mission, o.json, c);
+  std::optional<Inputs> in = load({o.map, o.gis_fields}, o.mission, o.json, c);
   if (!in) return c.exit_code;
   Result<std::string> text = read_text_file(o.file);
   if (!text.has_value()) return fail(c, o.json, text.error());
@@ -135,6 +137,7 @@ void add_export_pddl_command(CLI::App& app, Context& context) {
       "Write a map and mission as PDDL (domain.pddl, problem.pddl) for FF or Fast "
       "Downward, in the paper's action vocabulary");
   cmd->add_option("--map", options->map, "Map file")->required();
+  add_gis_fields_option(*cmd, options->gis_fields);
   cmd->add_option("--mission", options->mission, "Mission file (.json)")->required();
   cmd->add_option("--out", options->out, "Directory to write domain.pddl and problem.pddl to")
       ->required();
@@ -152,6 +155,7 @@ void add_import_plan_command(CLI::App& app, Context& context) {
   cmd->add_option("--format", options->format, "ff (FF's standard output) or fd (sas_plan)")
       ->required();
   cmd->add_option("--map", options->map, "Map file the PDDL was exported from")->required();
+  add_gis_fields_option(*cmd, options->gis_fields);
   cmd->add_option("--mission", options->mission, "Mission file the PDDL was exported from")
       ->required();
   cmd->add_option("file", options->file, "The planner's output")->required();

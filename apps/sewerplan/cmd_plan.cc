@@ -20,6 +20,7 @@
 #include "condition_options.h"
 #include "crs_option.h"
 #include "json_output.h"
+#include "map_input.h"
 #include "motion_options.h"
 #include "text_format.h"
 
@@ -28,6 +29,7 @@ namespace {
 
 struct PlanOptions {
   std::string map;
+  std::string gis_fields;  // --gis-fields
   std::string mission;
   std::string algorithm = "auto";
   std::string heuristic;
@@ -92,7 +94,7 @@ int run(const PlanOptions& o, Context& c) {
   options.improvement_expansions = o.improvement_expansions;
   options.select_goals = o.select_goals;
   Diagnostics diagnostics;
-  Result<SewerMap> map = read_map_with_condition(o.map, o.condition, diagnostics);
+  Result<SewerMap> map = read_map_with_condition({o.map, o.gis_fields}, o.condition, diagnostics);
   if (map.has_value()) map = apply_crs_option(std::move(*map), o.crs);
   std::optional<Result<Mission>> mission;
   if (map.has_value()) mission = read_mission(o.mission, *map, diagnostics);
@@ -157,6 +159,7 @@ void add_plan_command(CLI::App& app, Context& context) {
   CLI::App* cmd = app.add_subcommand(
       "plan", "Plan a mission: the paper's actions, one a line (summary on standard error)");
   cmd->add_option("--map", o->map, "Map file (any format of docs/formats/)")->required();
+  add_gis_fields_option(*cmd, o->gis_fields);
   cmd->add_option("--mission", o->mission, "Mission file (.json)")->required();
   cmd->add_option("--algorithm,-a", o->algorithm,
                   "auto (optimal A* for small missions, the tour search otherwise), ehc, gbfs, "

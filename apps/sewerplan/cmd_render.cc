@@ -9,14 +9,13 @@
 
 #include "sewerplan/core/map_io.h"
 #include "sewerplan/core/mission.h"
-#include "sewerplan/core/robot_profile.h"
 #include "sewerplan/core/text_file.h"
-#include "sewerplan/domain/driveability.h"
 #include "sewerplan/domain/plan_text.h"
 #include "sewerplan/hal/fault_scenario.h"
 #include "sewerplan/render/map_picture.h"
 
 #include "command.h"
+#include "driveability_option.h"
 #include "json_output.h"
 #include "map_input.h"
 
@@ -25,6 +24,7 @@ namespace {
 
 struct RenderOptions {
   std::string map;
+  std::string gis_fields;  // --gis-fields
   std::string mission;
   std::string plan;
   std::string log;
@@ -46,7 +46,7 @@ int run(const RenderOptions& o, Context& c) {
   }
   Diagnostics diagnostics;
   auto failed = [&](const Error& e) { return fail(c, o.json, e, diagnostics); };
-  Result<SewerMap> map = read_input_map(o.map, diagnostics);
+  Result<SewerMap> map = read_input_map({o.map, o.gis_fields}, diagnostics);
   if (!map.has_value()) return failed(map.error());
   std::optional<Mission> mission;
   if (!o.mission.empty()) {
@@ -75,14 +75,9 @@ int run(const RenderOptions& o, Context& c) {
     if (!f.has_value()) return failed(f.error());
     faults = std::move(*f);
   }
-  std::optional<domain::DriveabilityReport> driveability;
-  if (!o.profile.empty()) {
-    Result<RobotProfile> profile = load_profile(o.profile);
-    if (!profile.has_value()) {
-      return failed(Error{profile.error().code, "--profile: " + profile.error().message});
-    }
-    driveability = domain::analyse_driveability(*map, *profile, domain::default_starts(*map));
-  }
+  Result<std::optional<domain::DriveabilityReport>> driveability =
+      driveability_for_profile(*map, o.profile);
+  if (!driveability.has_value()) return failed(driveability.error());
   print_diagnostics(diagnostics, c.err);
   const bool png = std::filesystem::path(o.out).extension() == ".png";
   const render::RenderInput input{.map = &*map,
@@ -90,7 +85,7 @@ int run(const RenderOptions& o, Context& c) {
                                   .plan = plan ? &*plan : nullptr,
                                   .trace = trace ? &*trace : nullptr,
                                   .faults = faults ? &*faults : nullptr,
-                                  .driveability = driveability ? &*driveability : nullptr,
+                                  .driveability = *driveability ? &**driveability : nullptr,
                                   .title = o.title,
                                   .width_px = o.width_px,
                                   .focus = o.focus};
@@ -127,6 +122,7 @@ void add_render_command(CLI::App& app, Context& context) {
       "Draw the network to scale as SVG or PNG, with a mission, a plan, faults, a driven route "
       "and what a robot can drive");
   cmd->add_option("--map", options->map, "Map file")->required();
+  add_gis_fields_option(*cmd, options->gis_fields);
   cmd->add_option("--mission", options->mission, "Mission file (.json): start and tasks");
   cmd->add_option("--plan", options->plan, "Plan text: the planned route");
   cmd->add_option("--log", options->log,

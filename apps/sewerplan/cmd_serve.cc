@@ -20,6 +20,7 @@ namespace {
 
 struct ServeOptions {
   std::vector<std::string> maps;
+  std::string gis_fields;  // --gis-fields: for the GIS sources among the maps
   std::string host = "127.0.0.1";
   int port = 8080;
   std::string token;
@@ -45,8 +46,10 @@ std::filesystem::path web_root(const std::string& option) {
 int run(const ServeOptions& o, Context& c) {
   server::ServerOptions options{.host = o.host, .port = o.port, .token = o.token};
   for (const std::string& m : o.maps) options.maps.emplace_back(m);
-  options.read_map_with = [](const std::filesystem::path& path, Diagnostics& diagnostics) {
-    return read_input_map(path.string(), diagnostics);
+  options.read_map_with = [fields = o.gis_fields](const std::filesystem::path& path,
+                                                  Diagnostics& diagnostics) {
+    return read_input_map({path.string(), is_gis_path(path.string()) ? fields : std::string()},
+                          diagnostics);
   };
   options.web_root = web_root(o.web);
   if (options.web_root.empty()) {
@@ -91,6 +94,7 @@ void add_serve_command(CLI::App& app, Context& context) {
       "serve",
       "The operator station: a web server with the maps, and the page (docs/operator-station.md)");
   cmd->add_option("--map", o->maps, "A map to offer (any format of docs/formats/); repeatable");
+  add_gis_fields_option(*cmd, o->gis_fields);
   cmd->add_option("--host", o->host, "Address to listen on")->capture_default_str();
   cmd->add_option("--port", o->port, "Port to listen on (0: any free port)")
       ->capture_default_str()

@@ -19,6 +19,7 @@
 #include "sewerplan/hal/can/slcan.h"
 
 #include "command.h"
+#include "map_input.h"
 #include "sim_setup.h"
 
 namespace sewerplan::cli {
@@ -26,6 +27,7 @@ namespace {
 
 struct SimNodeCliOptions {
   std::string map;
+  std::string gis_fields;  // --gis-fields
   std::string mission;
   std::string faults;
   std::string random_faults;
@@ -41,7 +43,7 @@ extern "C" void stop_serving(int /*signal*/) { g_stop.store(true); }
 int run(const SimNodeCliOptions& o, Context& c) {
   int exit_code = kExitOk;
   std::optional<SimWorld> world =
-      load_sim_world(o.map, o.mission, o.faults, o.random_faults, c.err, exit_code);
+      load_sim_world({o.map, o.gis_fields}, o.mission, o.faults, o.random_faults, c.err, exit_code);
   if (!world) return exit_code;
   const SewerMap& map = world->map;
   const Mission& mission = world->mission;
@@ -88,6 +90,7 @@ void add_sim_node_command(CLI::App& app, Context& context) {
   cmd->add_flag("--pty", options->pty, "Serve on a new pseudo-terminal (prints its path)")
       ->required();
   cmd->add_option("--map", options->map, "Map file")->required();
+  add_gis_fields_option(*cmd, options->gis_fields);
   cmd->add_option("--mission", options->mission, "Mission file (.json): where the robot starts")
       ->required();
   auto* faults =

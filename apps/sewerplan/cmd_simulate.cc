@@ -26,6 +26,7 @@
 #include "command.h"
 #include "condition_options.h"
 #include "json_output.h"
+#include "map_input.h"
 #include "motion_options.h"
 #include "sim_setup.h"
 #include <poll.h>
@@ -36,6 +37,7 @@ namespace {
 
 struct SimulateOptions {
   std::string map;
+  std::string gis_fields;  // --gis-fields
   std::string mission;
   std::string faults;
   std::string random_faults;  // SEED[,RATE]
@@ -111,8 +113,8 @@ class HaltOnSignal {
 
 int run(const SimulateOptions& o, Context& c) {
   Diagnostics diagnostics;
-  Result<SimWorld> world =
-      read_sim_world(o.map, o.mission, o.faults, o.random_faults, diagnostics, o.condition);
+  Result<SimWorld> world = read_sim_world({o.map, o.gis_fields}, o.mission, o.faults,
+                                          o.random_faults, diagnostics, o.condition);
   if (!world.has_value()) return fail(c, o.json, world.error(), diagnostics);
   print_diagnostics(diagnostics, c.err);
   const SewerMap& map = world->map;
@@ -197,6 +199,7 @@ void add_simulate_command(CLI::App& app, Context& context) {
       "simulate",
       "Run a mission on the simulated robot, with hidden faults, recovery and replanning");
   cmd->add_option("--map", options->map, "Map file")->required();
+  add_gis_fields_option(*cmd, options->gis_fields);
   cmd->add_option("--mission", options->mission, "Mission file (.json)")->required();
   auto* faults =
       cmd->add_option("--faults", options->faults, "Fault scenario (docs/simulation.md)");

@@ -11,12 +11,14 @@
 #include "condition_options.h"
 #include "crs_option.h"
 #include "json_output.h"
+#include "map_input.h"
 
 namespace sewerplan::cli {
 namespace {
 
 struct ValidateOptions {
   std::string map;
+  std::string gis_fields;      // --gis-fields
   std::string map_positional;  // deprecated: validate MAP
   std::string mission;
   bool strict = false;
@@ -31,7 +33,7 @@ int run(const ValidateOptions& o, Context& c) {
       map_path(o.map, o.map_positional, "validate", c, o.json, exit_code);
   if (!path) return exit_code;
   Diagnostics diagnostics;
-  Result<SewerMap> map = read_map_with_condition(*path, o.condition, diagnostics);
+  Result<SewerMap> map = read_map_with_condition({*path, o.gis_fields}, o.condition, diagnostics);
   if (map.has_value()) map = apply_crs_option(std::move(*map), o.crs);
   std::optional<Error> failure;
   if (!map.has_value()) {
@@ -75,6 +77,7 @@ void add_validate_command(CLI::App& app, Context& context) {
       "validate",
       "Check a map (and a mission on it): every problem with its file and line or path");
   cmd->add_option("--map", options->map, "Map file (any format of docs/formats/)");
+  add_gis_fields_option(*cmd, options->gis_fields);
   cmd->add_option("map", options->map_positional, "Deprecated: use --map")->group("");
   cmd->add_option("--mission", options->mission, "Also check this mission file against the map");
   cmd->add_flag("--strict", options->strict, "Treat warnings as errors");

@@ -6,8 +6,6 @@
 #include "sewerplan/core/condition.h"
 #include "sewerplan/core/map_io.h"
 
-#include "map_input.h"
-
 namespace sewerplan::cli {
 
 void add_condition_option(CLI::App& command, std::string& condition) {
@@ -16,7 +14,7 @@ void add_condition_option(CLI::App& command, std::string& condition) {
                      "Zustandsdaten file (docs/formats/isybau.md)");
 }
 
-Result<SewerMap> read_map_with_condition(const std::string& map, const std::string& condition,
+Result<SewerMap> read_map_with_condition(const MapSource& map, const std::string& condition,
                                          Diagnostics& diagnostics) {
   Result<SewerMap> read = read_input_map(map, diagnostics);
   if (!read.has_value() || condition.empty()) return read;

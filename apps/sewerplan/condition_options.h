@@ -14,6 +14,8 @@
 #include "sewerplan/core/sewer_map.h"
 #include "sewerplan/domain/compile.h"
 
+#include "map_input.h"
+
 namespace CLI {
 class App;
 }
@@ -22,8 +24,8 @@ namespace sewerplan::cli {
 
 void add_condition_option(CLI::App& command, std::string& condition);
 
-// read_map, then read_condition when `condition` is not empty.
-Result<SewerMap> read_map_with_condition(const std::string& map, const std::string& condition,
+// read_input_map, then read_condition when `condition` is not empty.
+Result<SewerMap> read_map_with_condition(const MapSource& map, const std::string& condition,
                                          Diagnostics& diagnostics);
 
 // --risk (a RiskMode's name, core/condition_risk.h) and --risk-table.

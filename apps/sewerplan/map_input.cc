@@ -1,29 +1,57 @@
 // SPDX-License-Identifier: MIT
 #include "map_input.h"
 
+#include <cctype>
 #include <filesystem>
+#include <optional>
+
+#include <CLI/CLI.hpp>
 
 #include "sewerplan/core/map_io.h"
 #ifdef SEWERPLAN_WITH_GIS
 #include "sewerplan/gis/gdal_import.h"
+#include "sewerplan/gis/map_source.h"
 #endif
 
 namespace sewerplan::cli {
 
-Result<SewerMap> read_input_map(const std::string& path, Diagnostics& diagnostics) {
+void add_gis_fields_option(CLI::App& command, std::string& gis_fields) {
+  command.add_option("--gis-fields", gis_fields,
+                     "Field mapping (JSON, docs/formats/gis-layers.md) of a GeoPackage or "
+                     "Shapefile map, instead of the one beside it (NET.fields.json)");
+}
+
+bool is_gis_path(const std::string& path) {
 #ifdef SEWERPLAN_WITH_GIS
-  if (gis::is_gis_source(path)) return gis::read_gis_map(path, diagnostics);
+  return gis::is_gis_source(path);
 #else
-  const std::string ext = std::filesystem::path(path).extension().string();
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
   std::error_code ec;
-  if (ext == ".shp" || ext == ".gpkg" || std::filesystem::is_directory(path, ec)) {
+  return ext == ".shp" || ext == ".gpkg" || std::filesystem::is_directory(path, ec);
+#endif
+}
+
+Result<SewerMap> read_input_map(const MapSource& source, Diagnostics& diagnostics) {
+  std::optional<std::filesystem::path> fields;
+  if (!source.gis_fields.empty()) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(source.gis_fields, ec)) {
+      return Error{ErrorCode::kIo, "--gis-fields " + source.gis_fields + ": no such file"};
+    }
+    fields = source.gis_fields;
+  }
+#ifdef SEWERPLAN_WITH_GIS
+  return gis::read_map_source(source.path, diagnostics, fields);
+#else
+  if (is_gis_path(source.path) || fields) {
     return Error{ErrorCode::kUnsupportedFormat,
-                 path +
+                 (fields ? "--gis-fields " + source.gis_fields : source.path) +
                      ": a GIS source (Shapefile, GeoPackage or directory): this sewerplan is "
                      "built without GIS support (SEWERPLAN_WITH_GIS)"};
   }
+  return read_map(source.path, diagnostics);
 #endif
-  return read_map(path, diagnostics);
 }
 
 }  // namespace sewerplan::cli

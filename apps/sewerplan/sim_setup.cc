@@ -11,10 +11,10 @@
 
 namespace sewerplan::cli {
 
-Result<SimWorld> read_sim_world(const std::string& map_path, const std::string& mission_path,
+Result<SimWorld> read_sim_world(const MapSource& map_source, const std::string& mission_path,
                                 const std::string& faults_file, const std::string& random_faults,
                                 Diagnostics& diagnostics, const std::string& condition) {
-  Result<SewerMap> map = read_map_with_condition(map_path, condition, diagnostics);
+  Result<SewerMap> map = read_map_with_condition(map_source, condition, diagnostics);
   if (!map.has_value()) return map.error();
   Result<Mission> mission = read_mission(mission_path, *map, diagnostics);
   if (!mission.has_value()) return mission.error();
@@ -30,13 +30,13 @@ Result<SimWorld> read_sim_world(const std::string& map_path, const std::string& 
   return SimWorld{std::move(*map), std::move(*mission), std::move(*faults)};
 }
 
-std::optional<SimWorld> load_sim_world(const std::string& map_path, const std::string& mission_path,
+std::optional<SimWorld> load_sim_world(const MapSource& map_source, const std::string& mission_path,
                                        const std::string& faults_file,
                                        const std::string& random_faults, std::ostream& err,
                                        int& exit_code, const std::string& condition) {
   Diagnostics diagnostics;
   Result<SimWorld> world =
-      read_sim_world(map_path, mission_path, faults_file, random_faults, diagnostics, condition);
+      read_sim_world(map_source, mission_path, faults_file, random_faults, diagnostics, condition);
   print_diagnostics(diagnostics, err);
   if (!world.has_value()) {
     if (diagnostics.error_count() == 0) err << world.error().message << '\n';

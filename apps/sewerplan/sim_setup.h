@@ -16,6 +16,8 @@
 #include "sewerplan/hal/sim_robot.h"
 #include "sewerplan/server/sim_setup.h"
 
+#include "map_input.h"
+
 namespace sewerplan::cli {
 
 // start_pose and faults_for are shared with the operator station (server/sim_setup.h).
@@ -32,12 +34,12 @@ struct SimWorld {
 // Reads them (the map with the condition data of `condition`, if given); the problems go to
 // `diagnostics`. A fault file with a bad value is invalid input (kInvalidMission, exit code 1)
 // like a bad map; a bad --random-faults a usage error (kInvalidArgument, exit code 2).
-Result<SimWorld> read_sim_world(const std::string& map_path, const std::string& mission_path,
+Result<SimWorld> read_sim_world(const MapSource& map_source, const std::string& mission_path,
                                 const std::string& faults_file, const std::string& random_faults,
                                 Diagnostics& diagnostics, const std::string& condition = {});
 
 // Reads them, printing every problem to `err`; empty with `exit_code` set when one is wrong.
-std::optional<SimWorld> load_sim_world(const std::string& map_path, const std::string& mission_path,
+std::optional<SimWorld> load_sim_world(const MapSource& map_source, const std::string& mission_path,
                                        const std::string& faults_file,
                                        const std::string& random_faults, std::ostream& err,
                                        int& exit_code, const std::string& condition = {});

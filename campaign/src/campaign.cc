@@ -58,16 +58,17 @@ std::string signal_text(int sig) {
   return "signal " + std::to_string(sig) + (name != nullptr ? std::string(" (") + name + ")" : "");
 }
 
-// Runs one run in a forked child; the child writes its record as a line to a pipe.
+// Runs one run in a forked child; the child writes its record as a line to a pipe. Nothing when
+// options.stop fired meanwhile (the child is killed).
 //
 // `heap` is held by the calling worker, and released only while it waits for its child: a fork
 // copies only the forking thread, so a lock another thread holds at that moment stays locked in
 // the child for ever. glibc's malloc guards its own locks around fork, but not every allocator
 // does (ASan's before LLVM 17 does not; a child then waited on it for ever), so no worker
 // allocates while another forks.
-RunRecord guarded(const SewerMap& map, const Mission& mission, const RunSettings& settings,
-                  const CampaignOptions& options, std::size_t index,
-                  std::unique_lock<std::mutex>& heap) {
+std::optional<RunRecord> guarded(const SewerMap& map, const Mission& mission,
+                                 const RunSettings& settings, const CampaignOptions& options,
+                                 std::size_t index, std::unique_lock<std::mutex>& heap) {
   const auto start = SteadyTime::now();
   RunRecord failed;
   failed.index = index;
@@ -131,6 +132,12 @@ RunRecord guarded(const SewerMap& map, const Mission& mission, const RunSettings
       }
       break;
     }
+    if (options.stop.interrupted()) {
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, &status, 0);
+      ::close(fds[0]);
+      return std::nullopt;
+    }
     if (seconds_since(start) > options.timeout_s) {
       ::kill(pid, SIGKILL);
       ::waitpid(pid, &status, 0);
@@ -188,7 +195,7 @@ std::vector<RunRecord> run_campaign(const SewerMap& map, const Mission& mission,
       if (spec.in_shard(i)) indices.push_back(i);
     }
   }
-  std::vector<RunRecord> records(indices.size());
+  std::vector<std::optional<RunRecord>> records(indices.size());
   std::atomic<std::size_t> next{0};
   // Unguarded runs share this process, one at a time.
   const std::size_t jobs =
@@ -204,16 +211,20 @@ std::vector<RunRecord> run_campaign(const SewerMap& map, const Mission& mission,
   const auto start = SteadyTime::now();
   auto work = [&] {
     started.arrive_and_wait();
-    for (std::size_t k; (k = next++) < indices.size();) {
+    for (std::size_t k; !options.stop.interrupted() && (k = next++) < indices.size();) {
       std::unique_lock heap(heap_mutex);
-      RunRecord r = options.guard ? guarded(map, mission, settings, options, indices[k], heap)
-                                  : compute(map, mission, settings, indices[k]);
-      const bool failed = r.status != RunRecord::Status::kOk;
+      std::optional<RunRecord> r =
+          options.guard ? guarded(map, mission, settings, options, indices[k], heap)
+                        : std::optional<RunRecord>(compute(map, mission, settings, indices[k]));
+      if (!r) break;  // stopped
+      const bool failed = r->status != RunRecord::Status::kOk;
       records[k] = std::move(r);
       ++progress.done;
       if (failed) ++progress.failed;
       progress.elapsed_s = seconds_since(start);
+      progress.last = &*records[k];
       if (options.progress) options.progress(progress);
+      progress.last = nullptr;
     }
     finished.arrive_and_wait();
   };
@@ -226,7 +237,12 @@ std::vector<RunRecord> run_campaign(const SewerMap& map, const Mission& mission,
   }
   work();
   for (std::thread& t : threads) t.join();
-  return records;
+  std::vector<RunRecord> finished_runs;
+  finished_runs.reserve(records.size());
+  for (std::optional<RunRecord>& r : records) {
+    if (r) finished_runs.push_back(std::move(*r));
+  }
+  return finished_runs;
 }
 
 Result<std::map<std::size_t, InjectedFault>> parse_injections(std::string_view text) {

@@ -68,7 +68,7 @@ Mission clairvoyant(const Mission& mission, const hal::FaultScenario& faults, bo
 
 Execution execute(const SewerMap& map, const Mission& mission, const hal::FaultScenario& faults,
                   const RunSettings& settings, executor::ReplannerOptions::Goals goals,
-                  domain::RiskCosts risk = {}) {
+                  domain::RiskCosts risk = {}, const ExecutionObservers& observers = {}) {
   executor::ReplannerOptions replanner_options{.goals = goals};
   replanner_options.planner.time_limit_s = settings.planner_time_limit_s;
   replanner_options.planner.risk = risk;
@@ -79,7 +79,10 @@ Execution execute(const SewerMap& map, const Mission& mission, const hal::FaultS
   hal::SimRobot robot(map, mission.profile, start_pose(replanner.progress().position), faults);
   executor::ExecutorOptions options;
   options.recovery.push_allowed = settings.push_allowed;
-  const executor::MissionReport report = executor::Executor(map, replanner, robot, options).run();
+  executor::Executor executor(map, replanner, robot, options);
+  if (observers.on_event) executor.subscribe(observers.on_event);
+  if (observers.on_plan) executor.subscribe_plans(observers.on_plan);
+  const executor::MissionReport report = executor.run();
   Execution e;
   e.tasks = report.tasks_done.size();
   e.end = report.end;
@@ -98,7 +101,10 @@ Execution execute(const SewerMap& map, const Mission& mission, const hal::FaultS
   const bool at_end_point = ended && final_task != nullptr &&
                             std::find(report.tasks_done.begin(), report.tasks_done.end(),
                                       final_task->name) != report.tasks_done.end();
-  if (m && map.manhole(*m).exit) {
+  // An exit of the mission (its list, "map" or "all"), not the map's exit flag: an operator may
+  // name any manhole where the robot can be recovered, and imported maps mark few or none.
+  const std::vector<ManholeId>& exits = replanner.mission().exits;
+  if (m && std::find(exits.begin(), exits.end(), *m) != exits.end()) {
     e.outcome = Outcome::kExit;
   } else if (at_end_point) {
     e.outcome = Outcome::kEndPoint;
@@ -264,6 +270,46 @@ Result<RunResult> run_one(const SewerMap& map, const Mission& mission, const Run
   r.could_reach_exit = r.oracle_can_end && !r.ours.disabled;
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   return r;
+}
+
+std::string_view to_string(Policy policy) {
+  switch (policy) {
+    case Policy::kOurs:
+      return "ours";
+    case Policy::kBaseline:
+      return "baseline";
+    case Policy::kRiskAware:
+      return "risk_aware";
+  }
+  return "ours";
+}
+
+std::optional<Policy> policy_from_string(std::string_view name) {
+  for (Policy p : {Policy::kOurs, Policy::kBaseline, Policy::kRiskAware}) {
+    if (to_string(p) == name) return p;
+  }
+  return std::nullopt;
+}
+
+Result<Execution> replay_execution(const SewerMap& map, const Mission& mission,
+                                   const RunSettings& settings, std::size_t index, Policy policy,
+                                   const ExecutionObservers& observers) {
+  if (policy == Policy::kRiskAware && !settings.risk.active()) {
+    return Error{ErrorCode::kInvalidArgument,
+                 "the campaign has no risk-aware execution (risk \"expected\")"};
+  }
+  Result<hal::FaultScenario> faults = run_faults(map, mission, settings, index);
+  if (!faults.has_value()) return faults.error();
+  using Goals = executor::ReplannerOptions::Goals;
+  switch (policy) {
+    case Policy::kOurs:
+      return execute(map, mission, *faults, settings, Goals::kReselect, {}, observers);
+    case Policy::kBaseline:
+      return execute(map, mission, *faults, settings, Goals::kPaperBaseline, {}, observers);
+    case Policy::kRiskAware:
+      return execute(map, mission, *faults, settings, Goals::kReselect, settings.risk, observers);
+  }
+  return Error{ErrorCode::kInvalidArgument, "unknown policy"};
 }
 
 }  // namespace sewerplan::campaign

@@ -212,23 +212,86 @@ struct Manholes {
   std::unordered_set<std::string> rejected;  // keys of manholes left out for an error
 };
 
+// The manhole layer's fields besides the name, resolved once.
+struct ManholeFields {
+  ManholeFields(const GisLayer& layer, const GisFieldMapping& m)
+      : id(resolve(layer, m[ManholeField::kId])),
+        type(resolve(layer, m[ManholeField::kType])),
+        exit(resolve(layer, m[ManholeField::kExit])),
+        cover(resolve(layer, m[ManholeField::kCoverLevel])),
+        invert(resolve(layer, m[ManholeField::kInvertLevel])),
+        depth(resolve(layer, m[ManholeField::kDepth])),
+        dim1(resolve(layer, m[ManholeField::kDimension1])),
+        dim2(resolve(layer, m[ManholeField::kDimension2])) {
+    for (const std::string& t : m.exit_types) exit_types.push_back(lower(t));
+  }
+  std::optional<Field> id, type, exit, cover, invert, depth, dim1, dim2;
+  std::vector<std::string> exit_types;  // lower case
+};
+
+// The invert (z): its field, else the cover level less the depth, else the point's z, else 0
+// (counted); the depth: its field, else the cover level less the invert. A cover below the invert
+// is an error.
+void read_levels(FeatureFields& ff, const GisFeature& f, const ManholeFields& fields,
+                 const std::string& where, detail::ImportNode& node, Counts& counts,
+                 Diagnostics& d) {
+  const std::optional<double> c = ff.number(f, fields.cover);
+  std::optional<double> z = ff.number(f, fields.invert);
+  node.depth_m = ff.number(f, fields.depth);
+  if (!z && c && node.depth_m) z = *c - *node.depth_m;
+  if (!z && f.has_z) z = f.points[0][2];
+  if (!z) ++counts.no_level;
+  node.position.z_m = z.value_or(0);
+  if (!node.depth_m && c && z) node.depth_m = *c - *z;
+  if (node.depth_m && *node.depth_m < 0) {
+    d.error(where, "manhole " + node.name + ": its cover lies below its invert (depth " +
+                       detail::metres_text(*node.depth_m) + ")");
+  }
+}
+
+// The shaft: a round one's diameter, or a rectangular one's length and width (two different
+// dimensions; its diameter the smaller); neither: `default_diameter_m` (counted).
+void read_shaft(FeatureFields& ff, const GisFeature& f, const ManholeFields& fields,
+                double default_diameter_m, const std::string& where, detail::ImportNode& node,
+                Counts& counts, Diagnostics& d) {
+  const std::optional<double> d1 = ff.number(f, fields.dim1);
+  const std::optional<double> d2 = ff.number(f, fields.dim2);
+  if ((d1 && *d1 <= 0) || (d2 && *d2 <= 0)) {
+    d.error(where, "manhole " + node.name + ": field " +
+                       (d1 && *d1 <= 0 ? fields.dim1->name : fields.dim2->name) +
+                       ": a shaft dimension must be positive");
+  }
+  if (d1 && d2 && *d1 != *d2) {
+    node.shaft_length_m = *d1;
+    node.shaft_width_m = *d2;
+  }
+  node.diameter_m = d1 ? std::min(*d1, d2.value_or(*d1)) : d2.value_or(0);
+  if (node.diameter_m <= 0) {
+    node.diameter_m = default_diameter_m;
+    ++counts.default_diameter;
+  }
+}
+
+// Its exit field when the feature has a value there, else its type among the exit types; with
+// neither field every manhole is an exit.
+bool is_exit(FeatureFields& ff, const GisFeature& f, const ManholeFields& fields) {
+  if (fields.exit && fields.exit->index < f.values.size() &&
+      !std::holds_alternative<std::monostate>(f.values[fields.exit->index])) {
+    return truthy(f.values[fields.exit->index]);
+  }
+  if (!fields.type) return true;
+  const std::optional<std::string> t = ff.text(f, fields.type);
+  return t && std::ranges::find(fields.exit_types, lower(*t)) != fields.exit_types.end();
+}
+
 Manholes read_manholes(const GisLayer& layer, const GisFieldMapping& m, const std::string& source,
                        detail::NetworkImport& net, Counts& counts, Diagnostics& d) {
   FeatureFields ff(layer, source, d);
   Manholes out;
   const std::optional<Field> name = ff.require(m[ManholeField::kName], "manhole name");
   if (!name) return out;
-  const std::optional<Field> id = resolve(layer, m[ManholeField::kId]);
-  out.describe_key = (id ? id->name : name->name) + " of layer " + layer.name;
-  const std::optional<Field> type = resolve(layer, m[ManholeField::kType]);
-  const std::optional<Field> exit = resolve(layer, m[ManholeField::kExit]);
-  const std::optional<Field> cover = resolve(layer, m[ManholeField::kCoverLevel]);
-  const std::optional<Field> invert = resolve(layer, m[ManholeField::kInvertLevel]);
-  const std::optional<Field> depth = resolve(layer, m[ManholeField::kDepth]);
-  const std::optional<Field> dim1 = resolve(layer, m[ManholeField::kDimension1]);
-  const std::optional<Field> dim2 = resolve(layer, m[ManholeField::kDimension2]);
-  std::vector<std::string> exit_types;
-  for (const std::string& t : m.exit_types) exit_types.push_back(lower(t));
+  const ManholeFields fields(layer, m);
+  out.describe_key = (fields.id ? fields.id->name : name->name) + " of layer " + layer.name;
   for (const GisFeature& f : layer.features) {
     const std::string where = ff.where(f);
     std::optional<std::string> n = ff.text(f, name);
@@ -236,7 +299,7 @@ Manholes read_manholes(const GisLayer& layer, const GisFieldMapping& m, const st
       d.error(where, "field " + name->name + ": empty: every manhole needs a name");
       continue;
     }
-    const std::string key = ff.text(f, id).value_or(*n);
+    const std::string key = ff.text(f, fields.id).value_or(*n);
     const std::size_t errors = d.error_count();
     if (f.geometry != GisGeometry::kPoint || f.points.empty()) {
       d.error(where, f.geometry == GisGeometry::kNone
@@ -248,49 +311,17 @@ Manholes read_manholes(const GisLayer& layer, const GisFieldMapping& m, const st
     detail::ImportNode node{.name = *n, .has_xy = true};
     node.position.x_m = f.points[0][0];
     node.position.y_m = f.points[0][1];
-    const std::optional<double> c = ff.number(f, cover);
-    std::optional<double> z = ff.number(f, invert);
-    node.depth_m = ff.number(f, depth);
-    if (!z && c && node.depth_m) z = *c - *node.depth_m;
-    if (!z && f.has_z) z = f.points[0][2];
-    if (!z) ++counts.no_level;
-    node.position.z_m = z.value_or(0);
-    if (!node.depth_m && c && z) node.depth_m = *c - *z;
-    if (node.depth_m && *node.depth_m < 0) {
-      d.error(where, "manhole " + *n + ": its cover lies below its invert (depth " +
-                         detail::metres_text(*node.depth_m) + ")");
-    }
-    const std::optional<double> d1 = ff.number(f, dim1);
-    const std::optional<double> d2 = ff.number(f, dim2);
-    if ((d1 && *d1 <= 0) || (d2 && *d2 <= 0)) {
-      d.error(where, "manhole " + *n + ": field " + (d1 && *d1 <= 0 ? dim1->name : dim2->name) +
-                         ": a shaft dimension must be positive");
-    }
-    if (d1 && d2 && *d1 != *d2) {
-      node.shaft_length_m = *d1;
-      node.shaft_width_m = *d2;
-    }
-    node.diameter_m = d1 ? std::min(*d1, d2.value_or(*d1)) : d2.value_or(0);
-    if (node.diameter_m <= 0) {
-      node.diameter_m = m.default_manhole_diameter_m;
-      ++counts.default_diameter;
-    }
-    if (exit && exit->index < f.values.size() &&
-        !std::holds_alternative<std::monostate>(f.values[exit->index])) {
-      node.exit = truthy(f.values[exit->index]);
-    } else if (type) {
-      const std::optional<std::string> t = ff.text(f, type);
-      node.exit = t && std::ranges::find(exit_types, lower(*t)) != exit_types.end();
-    } else {
-      node.exit = true;
-    }
+    read_levels(ff, f, fields, where, node, counts, d);
+    read_shaft(ff, f, fields, m.default_manhole_diameter_m, where, node, counts, d);
+    node.exit = is_exit(ff, f, fields);
     if (d.error_count() > errors) {
       out.rejected.insert(key);
       continue;
     }
     if (!out.by_key.emplace(key, static_cast<std::uint32_t>(net.nodes.size())).second &&
-        id) {  // a duplicate name is MapBuilder's to report
-      d.error(where, "field " + id->name + ": '" + key + "' is the key of an earlier manhole too");
+        fields.id) {  // a duplicate name is MapBuilder's to report
+      d.error(where,
+              "field " + fields.id->name + ": '" + key + "' is the key of an earlier manhole too");
       continue;
     }
     node.line = static_cast<std::uint32_t>(out.where.size() + 1);

@@ -92,6 +92,7 @@ class IsybauReader {
     const std::vector<XmlNode> objects = objects_of(root, &inspected);
     for (XmlNode object : objects) read_object(object);
     net_.crs = read_crs(root);
+    strip_utm_zone_prefix();
     detail::read_condition_records(inspected, file_, d_, net_.findings, finding_elements_);
     if (d_.has_errors_since(before)) return Error{ErrorCode::kParse, d_.error_summary(before)};
     resolve_pending_edges();
@@ -137,6 +138,7 @@ class IsybauReader {
   bool check_root(XmlNode root);
   void read_object(XmlNode object);
   std::optional<Crs> read_crs(XmlNode root);
+  void strip_utm_zone_prefix();
   void read_node(XmlNode object, XmlNode knoten, const std::string& name);
   void read_shaft(XmlNode knoten, ImportNode& node);
   void read_node_geometry(XmlNode object, XmlNode knoten, ImportNode& node);
@@ -194,10 +196,12 @@ std::optional<Crs> crs_of_lagesystem(std::string_view text) {
   return crs.has_value() ? std::optional(std::move(*crs)) : std::nullopt;
 }
 
-// The position reference of the network: the Lagesystem elements of its objects' geometry. One
-// the reader does not know, or two that differ, are a warning and no CRS (give --crs).
+// The position reference of the network: the CRSLage elements of its objects' geometry (the
+// official 2013 and 2017 samples and real exports), or Lagesystem (older writers). One the reader
+// does not know, or two that differ, are a warning and no CRS (give --crs).
 std::optional<Crs> IsybauReader::read_crs(XmlNode root) {
   std::vector<XmlNode> found;
+  detail::collect(root, "CRSLage", found);
   detail::collect(root, "Lagesystem", found);
   std::optional<Crs> crs;
   for (XmlNode n : found) {
@@ -205,20 +209,52 @@ std::optional<Crs> IsybauReader::read_crs(XmlNode root) {
     if (text.empty()) continue;
     std::optional<Crs> this_one = crs_of_lagesystem(text);
     if (!this_one) {
-      d_.warning(at(n), "Lagesystem \"" + std::string(text) +
+      d_.warning(at(n), std::string(xml::local_name(n)) + " \"" + std::string(text) +
                             "\" is not a reference system sewerplan knows: the map has no CRS "
                             "(give one with --crs EPSG:NNNN)");
       return std::nullopt;
     }
     if (crs && *crs != *this_one) {
-      d_.warning(at(n), "Lagesystem \"" + std::string(text) + "\" differs from " +
-                            crs->to_string() +
+      d_.warning(at(n), std::string(xml::local_name(n)) + " \"" + std::string(text) +
+                            "\" differs from " + crs->to_string() +
                             " of the objects before: the map has no CRS (give one with --crs)");
       return std::nullopt;
     }
     crs = std::move(this_one);
   }
   return crs;
+}
+
+// German surveys write a UTM Rechtswert with its zone in front: 32570429.702 is easting 570429.702
+// in zone 32 (the official ISYBAU samples and most real exports in ETRS89_UTM32 do). With a UTM
+// CRS (EPSG:25832, 25833), such a Rechtswert (zone x 10^6 + an easting below 10^6) is read as the
+// easting, with one warning; without it the map would hold x values 32 000 km off the zone.
+void IsybauReader::strip_utm_zone_prefix() {
+  if (!net_.crs || net_.crs->authority != "EPSG" ||
+      (net_.crs->code != 25832 && net_.crs->code != 25833)) {
+    return;
+  }
+  const double zone = net_.crs->code - 25800;
+  const double prefix = zone * 1e6;
+  std::size_t stripped = 0;
+  auto strip = [&](double& x) {
+    if (x >= prefix && x < prefix + 1e6) {
+      x -= prefix;
+      ++stripped;
+    }
+  };
+  for (ImportNode& node : net_.nodes) {
+    if (node.has_xy) strip(node.position.x_m);
+  }
+  for (ImportLink& link : net_.links) {
+    for (std::array<double, 2>& v : link.vertices) strip(v[0]);
+  }
+  detail::warn_counted(d_, file_, stripped,
+                       "Rechtswerte carry the UTM zone number " +
+                           std::to_string(static_cast<int>(zone)) +
+                           " in front (as 32570429.70 for easting 570429.70): read without it, "
+                           "as eastings in " +
+                           net_.crs->to_string());
 }
 
 bool IsybauReader::check_root(XmlNode root) {
@@ -387,6 +423,9 @@ bool IsybauReader::read_profile(XmlNode kante, ImportLink& link) {
                                             : PipeShape::kOther;
   std::optional<double> width = number(profil, "Profilbreite", what, false);
   std::optional<double> height = number(profil, "Profilhoehe", what, false);
+  // Real exports write 0 for a size nobody measured (special profiles, tanks): not a size.
+  if (width && *width <= 0) width.reset();
+  if (height && *height <= 0) height.reset();
   if (!width && !height) return false;
   if (!width || !height) {
     const double given = width ? *width : *height;
@@ -404,22 +443,58 @@ bool IsybauReader::read_profile(XmlNode kante, ImportLink& link) {
   return true;
 }
 
-// The pipe's line: 2013 and 2017 store segments (Kanten/Kante with Start and Ende), 2006 a
-// Polygon of Punkte. All its points are the link's vertices: those at a node are skipped when
-// taking directions, and at a connection point (a blind end) the last one gives the direction.
+// The points of a chain of segments (Kante elements with Start and Ende) below `parent`: the first
+// Start, then every Ende.
+void append_segments(XmlNode parent, std::vector<XmlNode>& points) {
+  const std::size_t before = points.size();
+  for (XmlNode k = parent.first_child(); k; k = k.next_sibling()) {
+    if (xml::local_name(k) != "Kante") continue;
+    if (points.size() == before) points.push_back(xml::child(k, "Start"));
+    points.push_back(xml::child(k, "Ende"));
+  }
+}
+
+// The pipe's line. 2013 exports store segments (Kanten/Kante with Start and Ende); the 2017
+// samples a polyline (Polygone/Polygon, Polygonart 3) of such segments; 2006 a Polygon of
+// Punkte. Closed rings (Polygonart 1, 2: an outline) are not the line. All its points are the
+// link's vertices: those at a node are skipped when taking directions, and at a connection point
+// (a blind end) the last one gives the direction.
 void IsybauReader::read_edge_geometry(XmlNode object, ImportLink& link) {
   const XmlNode data = xml::descend(object, {"Geometrie", "Geometriedaten"});
   std::vector<XmlNode> points;
-  for (XmlNode k = xml::child(data, "Kanten").first_child(); k; k = k.next_sibling()) {
-    if (xml::local_name(k) != "Kante") continue;
-    if (points.empty()) points.push_back(xml::child(k, "Start"));
-    points.push_back(xml::child(k, "Ende"));
+  append_segments(xml::child(data, "Kanten"), points);
+  for (XmlNode polygon = xml::child(data, "Polygone").first_child(); polygon && points.empty();
+       polygon = polygon.next_sibling()) {
+    if (xml::local_name(polygon) != "Polygon") continue;
+    const std::string_view kind = xml::text(xml::child(polygon, "Polygonart"));
+    if (kind == "1" || kind == "2") continue;  // a ring: an outline, not the pipe's line
+    append_segments(polygon, points);
+    for (XmlNode p = polygon.first_child(); p; p = p.next_sibling()) {
+      if (xml::local_name(p) == "Punkt") points.push_back(p);
+    }
   }
-  const XmlNode polygon = xml::descend(data, {"Polygone", "Polygon"});
-  for (XmlNode p = polygon.first_child(); p; p = p.next_sibling()) {
-    if (xml::local_name(p) == "Punkt") points.push_back(p);
+  // The 2017 samples mark where the pipe proper begins at each shaft wall (RAP, Rohranfangspunkt):
+  // the points before the first and after the last are the channel in the manholes' floors.
+  // Lines that give a mouth begin (end) there, and the slot's direction is the pipe's axis.
+  std::optional<std::size_t> first_mouth;
+  std::size_t last_mouth = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (xml::text(xml::child(points[i], "PunktattributAbwasser")) != "RAP") continue;
+    if (!first_mouth) first_mouth = i;
+    last_mouth = i;
+  }
+  if (first_mouth) {
+    // One RAP alone (2013 exports mark the mouth at a structure's wall) belongs to the nearer end.
+    const bool at_from = last_mouth > *first_mouth || 2 * *first_mouth < points.size();
+    const bool at_to = last_mouth > *first_mouth || !at_from;
+    const std::size_t begin = at_from ? *first_mouth : 0;
+    const std::size_t end = at_to ? last_mouth + 1 : points.size();
+    points = std::vector<XmlNode>(points.begin() + static_cast<std::ptrdiff_t>(begin),
+                                  points.begin() + static_cast<std::ptrdiff_t>(end));
+    link.starts_at_mouth = {at_from, at_to};
   }
   const std::string what = "pipe " + link.name;
+  link.vertices_include_ends = true;
   for (std::size_t i = 0; i < points.size(); ++i) {
     const std::optional<double> x = number(points[i], "Rechtswert", what);
     const std::optional<double> y = number(points[i], "Hochwert", what);
@@ -522,7 +597,8 @@ void IsybauReader::report_fallbacks() {
   warn(f.size_from_one_side,
        "non-circular profiles are given by one dimension only: an egg's other one from the "
        "standard 2:3, another shape's taken equal");
-  warn(f.without_size, "Haltungen have no profile size (Profilbreite, Profilhoehe): left out");
+  warn(f.without_size,
+       "Haltungen have no profile size (Profilbreite, Profilhoehe missing or 0): left out");
   warn(f.length_from_other, "Haltungen have no Laenge: their Rohrlaenge or DMPLaenge is used");
   warn(f.length_from_line,
        "Haltungen have no Laenge, Rohrlaenge or DMPLaenge: the length of their line (or of the "

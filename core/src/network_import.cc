@@ -22,15 +22,25 @@ struct PendingSlot {
 };
 
 struct Direction {
-  std::array<double, 2> point;
-  bool skipped_inside = false;  // points inside the manhole were passed over to find it
+  std::array<double, 2> origin;  // where the pipe's end lies in the manhole
+  std::array<double, 2> point;   // the point it heads for
+  bool skipped_inside = false;   // points inside the manhole were passed over to find it
 };
 
-// The first point along the link, leaving the node at `end`, outside the manhole's shaft (farther
-// than its radius from the node's position): a pipe's line often ends at the manhole's floor
-// point, a few centimetres off the cover point that gives the node's position (ISYBAU 2013), and
-// the few centimetres between them say nothing about the pipe's direction. The far node counts as
-// the last point. If every point lies inside the shaft, the farthest distinct one.
+// Closer than this to where the pipe's end lies, a point says nothing about its direction (survey
+// noise: two points a few centimetres apart).
+constexpr double kDirectionMinM = 0.1;
+
+// Where the pipe leaves the node at `end` and the point it heads for. A pipe's line often ends at
+// the manhole's floor point (ISYBAU: SMP), 5 to 20 cm off the cover point that gives the node's
+// position; the direction between cover and floor says nothing about the pipe, and neither does
+// the one from the cover to a point just outside the shaft (the 2017 samples mark the pipe's start
+// at the shaft wall, RAP, 0.5 m from the floor point: seen from the cover 20 deg off). So where
+// the line's own end lies inside the shaft (`vertices_include_ends`), that is the origin; the
+// direction is to the first point along the line farther than kDirectionMinM from it and outside
+// the shaft, the far node counting as the last point. If there is none, the farthest distinct one.
+// Where the line marks the pipe's mouth at the wall (`starts_at_mouth`), the direction is the
+// pipe's axis from there: the channel from the floor point to the wall may bend 20 degrees.
 std::optional<Direction> next_point(const ImportLink& link, std::size_t end, const ImportNode& node,
                                     const ImportNode* far) {
   std::vector<std::array<double, 2>> along;
@@ -38,19 +48,38 @@ std::optional<Direction> next_point(const ImportLink& link, std::size_t end, con
   for (std::size_t k = 0; k < n; ++k) along.push_back(link.vertices[end == 0 ? k : n - 1 - k]);
   if (far != nullptr && far->has_xy) along.push_back({far->position.x_m, far->position.y_m});
   const double radius = node.diameter_m / 2;
+  const std::array<double, 2> centre{node.position.x_m, node.position.y_m};
+  auto distance = [](const std::array<double, 2>& a, const std::array<double, 2>& b) {
+    return std::hypot(a[0] - b[0], a[1] - b[1]);
+  };
+  std::array<double, 2> origin = centre;
   bool skipped = false;
+  if (link.starts_at_mouth[end] && n > 0) {  // the pipe's axis from its mouth at the wall
+    for (const std::array<double, 2>& p : along) {
+      if (distance(p, along.front()) > kDirectionMinM) return Direction{along.front(), p, false};
+    }
+  }
+  if (link.vertices_include_ends && n > 0) {
+    const double d = distance(along.front(), centre);
+    if (d > kSamePointM && d <= radius) {
+      origin = along.front();
+      skipped = true;
+    }
+  }
   std::optional<std::array<double, 2>> farthest;
   double farthest_m = kSamePointM;
   for (const std::array<double, 2>& p : along) {
-    const double d = std::hypot(p[0] - node.position.x_m, p[1] - node.position.y_m);
-    if (d > radius) return Direction{p, skipped};
-    if (d > kSamePointM) skipped = true;
-    if (d > farthest_m) {
-      farthest_m = d;
+    const double from_origin = distance(p, origin);
+    if (from_origin > kDirectionMinM && distance(p, centre) > radius) {
+      return Direction{origin, p, skipped};
+    }
+    if (distance(p, centre) > kSamePointM) skipped = true;
+    if (from_origin > farthest_m) {
+      farthest_m = from_origin;
       farthest = p;
     }
   }
-  if (farthest) return Direction{*farthest, skipped};
+  if (farthest) return Direction{origin, *farthest, skipped};
   return std::nullopt;
 }
 
@@ -102,8 +131,7 @@ Result<SewerMap> assemble_network(NetworkImport network, std::string map_name, L
           node.has_xy ? next_point(link, end, node, find(end == 0 ? link.to : link.from))
                       : std::nullopt;
       if (p) {
-        slot.azimuth_deg =
-            azimuth_deg(node.position.x_m, node.position.y_m, p->point[0], p->point[1]);
+        slot.azimuth_deg = azimuth_deg(p->origin[0], p->origin[1], p->point[0], p->point[1]);
         if (p->skipped_inside) ++inside;
       } else {
         pending.push_back({it->second, slots[it->second].size()});

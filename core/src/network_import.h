@@ -58,6 +58,13 @@ struct ImportLink {
   double from_invert_z_m = 0;  // absolute invert of the pipe end at `from`
   double to_invert_z_m = 0;
   std::vector<std::array<double, 2>> vertices;  // intermediate points, from `from` to `to`
+  // The vertices begin and end where the pipe meets its nodes (ISYBAU lines), which may be a floor
+  // point a few centimetres off the node's position; else they are only the points between.
+  bool vertices_include_ends = false;
+  // Where the pipe proper begins at each end (ISYBAU 2017: the Rohranfangspunkte, RAP, at the shaft
+  // wall), when the line marks it: the slot's direction is the pipe's axis from there, not the
+  // channel in the manhole's floor that leads to it. The vertices then begin and end there.
+  std::array<bool, 2> starts_at_mouth{false, false};
   std::uint32_t line = 0;
 };
 

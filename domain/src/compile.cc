@@ -6,6 +6,7 @@
 #include <iomanip>
 #include <map>
 #include <mutex>
+#include <span>
 #include <sstream>
 #include <tuple>
 #include <unordered_map>
@@ -241,6 +242,7 @@ class SewerTaskCompiler {
   void route(GraphSearch& search) {
     dist_.assign(k() * k(), kInfiniteCost);
     routes_.assign(k() * k(), {});
+    route_store_.clear();
     exit_dist_.assign(k(), kInfiniteCost);
     exit_routes_.assign(k(), {});
     const std::vector<Node> targets = route_targets();
@@ -262,6 +264,9 @@ class SewerTaskCompiler {
                  GraphSearch::Direction::kForward);
       store_routes(search, 0, std::nullopt);
     }
+    // Issue 14: the store grown by doubling would copy itself whole between two stop checks
+    // (megabytes on 100,000 manholes): sized once from the start's routes, one row of k.
+    route_store_.reserve(route_store_.size() * (k() + k() / 2) + 4096);
     std::vector<Node> reachable;
     for (Node n : targets) {
       if (dist_[key_of_.at(n)] <= bound_) reachable.push_back(n);
@@ -331,11 +336,11 @@ class SewerTaskCompiler {
     for (std::size_t b = 0; b < k(); ++b) {
       dist_[a * k() + b] = search.distance(keys_[b]);
       if (a != b && dist_[a * k() + b] != kInfiniteCost)
-        search.path(keys_[b], routes_[a * k() + b]);
+        keep_path(search, keys_[b], routes_[a * k() + b]);
     }
     if (exit) {
       exit_dist_[a] = search.distance(*exit);
-      search.path(*exit, exit_routes_[a]);
+      keep_path(search, *exit, exit_routes_[a]);
     }
   }
 
@@ -356,7 +361,7 @@ class SewerTaskCompiler {
       ++result_.statistics_.route_searches;
       if (!exit) continue;
       exit_dist_[a] = search.distance(*exit);
-      search.path(*exit, exit_routes_[a]);
+      keep_path(search, *exit, exit_routes_[a]);
     }
   }
 
@@ -475,9 +480,23 @@ class SewerTaskCompiler {
   std::vector<bool> landing_;  // per key, see landing(); shorter when the last keys are not
   std::unordered_map<Node, std::uint32_t> key_of_;
   std::vector<Cost> dist_;  // k x k, row = from
-  std::vector<std::vector<Node>> routes_;
+  // The routes of the searches, each a stretch of one store (issue 16: 13,000 routes as vectors
+  // of their own, allocated, reversed, copied and freed, were a seventh of the plan's time on
+  // 1,000 manholes with 50 tasks).
+  struct RouteRef {
+    std::size_t begin = 0;
+    std::size_t size = 0;
+  };
+  std::vector<Node> route_store_;
+  std::span<const Node> route(RouteRef r) const { return {route_store_.data() + r.begin, r.size}; }
+  void keep_path(const GraphSearch& search, Node n, RouteRef& ref) {
+    const std::size_t begin = route_store_.size();
+    search.append_path(n, route_store_);
+    ref = {begin, route_store_.size() - begin};
+  }
+  std::vector<RouteRef> routes_;
   std::vector<Cost> exit_dist_;
-  std::vector<std::vector<Node>> exit_routes_;
+  std::vector<RouteRef> exit_routes_;
   bool contingency_ = false;
   detail::SearchScratch contingency_scratch_;  // declared first: outlives its search
   std::unique_ptr<GraphSearch> contingency_search_;
@@ -613,8 +632,8 @@ void SewerTaskCompiler::build_task() {
   // Issue 14: growing the route table by doubling copied it whole (millions of nodes on 10,000
   // manholes), a stretch of several milliseconds between two stop checks; sized once instead.
   std::size_t nodes = 0;
-  for (const auto& route : routes_) nodes += route.size();
-  for (const auto& route : exit_routes_) nodes += route.size();
+  for (const RouteRef& r : routes_) nodes += r.size;
+  for (const RouteRef& r : exit_routes_) nodes += r.size;
   result_.route_nodes_.reserve(nodes + nodes / 8 + 4096);  // and the tasks' own
   result_.route_begin_.reserve(routes_.size() + exit_routes_.size() + 1);
   for (std::uint32_t a = 0; a < k(); ++a) {
@@ -622,13 +641,10 @@ void SewerTaskCompiler::build_task() {
       const Cost d = dist_[a * k() + b];
       if (a == b || d > bound_) continue;
       if (build_interrupted()) return;
-      const auto& route = routes_[a * k() + b];
+      const std::span<const Node> route = this->route(routes_[a * k() + b]);
       add_action({{pos, static_cast<std::int32_t>(a)}}, {{pos, static_cast<std::int32_t>(b)}}, d,
                  "go key " + std::to_string(a) + " -> " + std::to_string(b), route, std::nullopt,
                  result_.graph_->route_risk(route, options_.risk.blockage_s));
-      // Copied into the task: freed here, between two stop checks, rather than all at once when
-      // the compiler goes (about a millisecond on 10,000 manholes).
-      std::vector<Node>().swap(routes_[a * k() + b]);
     }
   }
   for (std::size_t i = 0; i < pending_.size(); ++i) {
@@ -663,8 +679,8 @@ void SewerTaskCompiler::build_task() {
     if (exit_dist_[a] > bound_) continue;
     if (build_interrupted()) return;
     add_action({{pos, static_cast<std::int32_t>(a)}}, {{pos, exit_value}}, exit_dist_[a],
-               "exit from key " + std::to_string(a), exit_routes_[a], std::nullopt,
-               result_.graph_->route_risk(exit_routes_[a], options_.risk.return_s));
+               "exit from key " + std::to_string(a), route(exit_routes_[a]), std::nullopt,
+               result_.graph_->route_risk(route(exit_routes_[a]), options_.risk.return_s));
   }
   result_.task_ = std::move(builder_).build();
 }

@@ -141,9 +141,16 @@ std::optional<Node> GraphSearch::run_to_nearest(Node source, const std::vector<b
 
 void GraphSearch::path(Node n, std::vector<Node>& out) const {
   out.clear();
+  append_path(n, out);
+}
+
+void GraphSearch::append_path(Node n, std::vector<Node>& out) const {
   if (dist_[n] == kInfiniteCost) return;
+  const std::size_t begin = out.size();
   for (Node at = n; at != kNoParent; at = parent_[at]) out.push_back(at);
-  if (direction_ == Direction::kForward) std::reverse(out.begin(), out.end());
+  if (direction_ == Direction::kForward) {
+    std::reverse(out.begin() + static_cast<std::ptrdiff_t>(begin), out.end());
+  }
 }
 
 }  // namespace sewerplan::domain::detail

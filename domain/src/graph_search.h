@@ -47,6 +47,8 @@ class GraphSearch {
   Cost distance(Node n) const { return dist_[n]; }
   // Forward: the nodes from the source to n. Backward: from n to its nearest source.
   void path(Node n, std::vector<Node>& out) const;
+  // The same, appended to `out` (which keeps what it held).
+  void append_path(Node n, std::vector<Node>& out) const;
   // Asked every 256 settled nodes; when it says stop, the run ends there and interrupted() holds.
   void set_interrupt(std::function<bool()> interrupt) { interrupt_ = std::move(interrupt); }
   bool interrupted() const { return interrupted_; }

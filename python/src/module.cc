@@ -14,6 +14,9 @@
 #include "sewerplan/core/map_json.h"
 #include "sewerplan/core/robot_profile.h"
 #include "sewerplan/domain/mission_generator.h"
+#ifdef SEWERPLAN_WITH_GIS
+#include "sewerplan/gis/map_source.h"
+#endif
 
 #include "bindings.h"
 #include <pybind11/stl.h>
@@ -21,6 +24,29 @@
 
 namespace sewerplan::python {
 namespace {
+
+#ifdef SEWERPLAN_WITH_GIS
+constexpr bool kHasGis = true;
+#else
+constexpr bool kHasGis = false;
+#endif
+
+// The reader the sewerplan command uses for `path` (gis/map_source.h); without GIS, core's, which
+// answers a GIS source with an error that says so.
+Result<SewerMap> read_any_map(const std::filesystem::path& path,
+                              const std::optional<std::filesystem::path>& gis_fields,
+                              Diagnostics& diagnostics) {
+#ifdef SEWERPLAN_WITH_GIS
+  return gis::read_map_source(path, diagnostics, gis_fields);
+#else
+  if (gis_fields) {
+    return Error{ErrorCode::kUnsupportedFormat,
+                 gis_fields->string() + ": a GIS field mapping, but this sewerplan is built " +
+                     "without GIS support (SEWERPLAN_WITH_GIS)"};
+  }
+  return read_map(path, diagnostics);
+#endif
+}
 
 // Set once at import: the sewerplan.Error type.
 PyObject* error_type = nullptr;
@@ -153,6 +179,11 @@ void bind_map(py::module_& m) {
   py::class_<SewerMap, std::shared_ptr<SewerMap>>(
       m, "SewerMap", "A sewer network: manholes, pipes, inspection points (immutable).")
       .def_property_readonly("name", &SewerMap::name)
+      .def_property_readonly("crs",
+                             [](const SewerMap& map) -> std::optional<std::string> {
+                               if (!map.crs()) return std::nullopt;
+                               return map.crs()->to_string();
+                             })
       .def_property_readonly("manhole_count", &SewerMap::manhole_count)
       .def_property_readonly("pipe_count", &SewerMap::pipe_count)
       .def_property_readonly("point_count", &SewerMap::point_count)
@@ -219,13 +250,18 @@ void bind_map(py::module_& m) {
 
   m.def(
       "read_map",
-      [](const std::filesystem::path& path) {
+      [](const std::filesystem::path& path,
+         const std::optional<std::filesystem::path>& gis_fields) {
         Diagnostics diagnostics;
         return std::make_shared<SewerMap>(
-            value_or_raise(read_map(path, diagnostics), &diagnostics));
+            value_or_raise(read_any_map(path, gis_fields, diagnostics), &diagnostics));
       },
-      py::arg("path"),
-      "Reads a map in any format sewerplan knows (JSON, .sewer, SWMM .inp, ISYBAU .xml).");
+      py::arg("path"), py::arg("gis_fields") = py::none(),
+      "Reads a map in any format sewerplan knows (JSON, .sewer, SWMM .inp, ISYBAU .xml) or, "
+      "when built with GIS (has_gis), a GeoPackage, a Shapefile or a directory of them through "
+      "GDAL, as the sewerplan command does; gis_fields: their field mapping file instead of the "
+      "one beside the source (docs/formats/gis-layers.md).");
+  m.attr("has_gis") = kHasGis;
   m.def(
       "read_condition",
       [](const SewerMap& map, const std::filesystem::path& path) {

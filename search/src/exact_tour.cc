@@ -28,7 +28,9 @@ constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
 
 class SubsetProgramme {
  public:
-  SubsetProgramme(const Shape& shape, Cost bound) : s_(shape), bound_(bound) {
+  // `upper`: only plans doing every goal within this cost are wanted (kInfiniteCost: any).
+  SubsetProgramme(const Shape& shape, Cost bound, Cost upper)
+      : s_(shape), bound_(bound), upper_(upper) {
     const std::size_t k = s_.goals.size();
     leave_begin_.push_back(0);
     for (std::size_t g = 0; g < k; ++g) {
@@ -43,6 +45,17 @@ class SubsetProgramme {
       leave_begin_.push_back(static_cast<std::uint32_t>(leave_place_.size()));
     }
     width_ = leave_place_.size();
+    // Each option's leave index, found once rather than at every entry it extends.
+    for (std::size_t g = 0; g < k; ++g) {
+      option_begin_.push_back(static_cast<std::uint32_t>(option_slot_.size()));
+      for (const detail::Option& o : s_.goals[g].options) {
+        std::uint32_t slot = leave_begin_[g];
+        while (leave_place_[slot] != leave(o)) ++slot;
+        option_slot_.push_back(slot);
+      }
+    }
+    all_ = k == 0 ? 0U : static_cast<std::uint32_t>((std::uint64_t{1} << k) - 1);
+    reserves_ = s_.has_reserves();
     for (std::size_t g = 0; g < k; ++g) {
       if (s_.goals[g].last) last_mask_ |= 1U << g;
     }
@@ -54,6 +67,7 @@ class SubsetProgramme {
             s_.move_cost(static_cast<std::int32_t>(a), static_cast<std::int32_t>(b));
       }
     }
+    if (upper_ < kInfiniteCost) fill_rest_bounds();
   }
 
   static std::size_t memory_bytes(const Shape& shape) {
@@ -145,39 +159,94 @@ class SubsetProgramme {
   // or forgone, and forgo actions come first).
   void extend(std::uint32_t set, std::int32_t at, std::uint32_t e, Cost c) {
     if ((set & last_mask_) != 0) return;
-    const auto places = static_cast<std::size_t>(s_.places);
-    for (std::size_t g = 0; g < s_.goals.size(); ++g) {
-      const std::uint32_t bit = 1U << g;
-      if ((set & bit) != 0) continue;
-      const detail::Goal& goal = s_.goals[g];
-      const std::uint32_t next = set | bit;
-      for (std::size_t o = 0; o < goal.options.size(); ++o) {
-        const detail::Option& opt = goal.options[o];
-        const Cost d =
-            moves_[static_cast<std::size_t>(at) * places + static_cast<std::size_t>(opt.at)];
+    const Cost* row =
+        moves_.data() + static_cast<std::size_t>(at) * static_cast<std::size_t>(s_.places);
+    const std::uint32_t from = (e == kNone ? (kNone >> 8U) : e) << 8U;
+    // The goals outside `set`, lowest first (as a loop over every goal skipping those in it).
+    for (std::uint32_t outside = all_ & ~set; outside != 0; outside &= outside - 1) {
+      const auto g = static_cast<std::size_t>(std::countr_zero(outside));
+      const std::uint32_t next = set | (1U << g);
+      const Cost limit =
+          rest_bound_.empty() ? bound_ : std::min(bound_, upper_ - rest_bound_[next]);
+      const detail::Option* options = s_.goals[g].options.data();
+      const std::size_t n = s_.goals[g].options.size();
+      const std::uint32_t* slots = option_slot_.data() + option_begin_[g];
+      for (std::size_t o = 0; o < n; ++o) {
+        const detail::Option& opt = options[o];
+        const Cost d = row[static_cast<std::size_t>(opt.at)];
         if (d >= kInfiniteCost) continue;
-        if (!s_.fits(c, d, s_.move_reserve(at, opt.at)) || !s_.fits(c + d, opt.cost, opt.reserve)) {
+        if (reserves_ && (!s_.fits(c, d, s_.move_reserve(at, opt.at)) ||
+                          !s_.fits(c + d, opt.cost, opt.reserve))) {
           continue;
         }
         const Cost nc = c + d + opt.cost;
-        if (nc > bound_) continue;
-        const std::int32_t place = leave(opt);
-        std::uint32_t slot = leave_begin_[g];
-        while (leave_place_[slot] != place) ++slot;
-        const std::size_t index = next * width_ + slot;
+        if (nc > limit) continue;
+        const std::size_t index = next * width_ + slots[o];
         if (nc < cost_[index]) {
           cost_[index] = nc;
-          parent_[index] = ((e == kNone ? (kNone >> 8U) : e) << 8U) | static_cast<std::uint32_t>(o);
+          parent_[index] = from | static_cast<std::uint32_t>(o);
         }
       }
     }
   }
 
+  // With an upper bound U on plans doing every goal (issue 16: the tour search's plan, when it
+  // forgoes none), an entry for S costing c can only lead to a wanted plan if c plus the least
+  // the goals outside S still cost stays within U. That least, per goal: its cheapest option,
+  // with the cheapest move into the place that option needs (from anywhere else). Summed per
+  // subset over the goals outside it.
+  void fill_rest_bounds() {
+    const std::size_t k = s_.goals.size();
+    const auto places = static_cast<std::size_t>(s_.places);
+    std::vector<Cost> least(k, kInfiniteCost);
+    for (std::size_t g = 0; g < k; ++g) {
+      for (const detail::Option& o : s_.goals[g].options) {
+        Cost in = kInfiniteCost;
+        for (std::size_t a = 0; a < places; ++a) {
+          if (static_cast<std::int32_t>(a) == o.at) {
+            if (static_cast<std::int32_t>(a) == s_.start) in = 0;
+            continue;
+          }
+          in = std::min(in, moves_[a * places + static_cast<std::size_t>(o.at)]);
+        }
+        // Two goals may share a place: the move into it may then be none.
+        in = std::min(in, shared_place_move(g, o.at));
+        if (in < kInfiniteCost) least[g] = std::min(least[g], in + o.cost);
+      }
+      if (least[g] >= kInfiniteCost) least[g] = 0;  // not wanted anyway; keep the sums finite
+    }
+    const std::size_t subsets = std::size_t{1} << k;
+    rest_bound_.assign(subsets, 0);
+    const auto all = static_cast<std::uint32_t>(subsets - 1);
+    for (std::uint32_t set = all; set-- > 0;) {  // from the larger subsets down
+      const std::uint32_t outside = all & ~set;
+      if (outside == 0) continue;
+      const auto g = static_cast<std::size_t>(std::countr_zero(outside));
+      rest_bound_[set] = rest_bound_[set | (1U << g)] + least[g];
+    }
+  }
+  // 0 if another goal leaves the robot at `at` (a move of none into it), else kInfiniteCost.
+  Cost shared_place_move(std::size_t goal, std::int32_t at) const {
+    for (std::size_t h = 0; h < s_.goals.size(); ++h) {
+      if (h == goal) continue;
+      for (const detail::Option& o : s_.goals[h].options) {
+        if (leave(o) == at) return 0;
+      }
+    }
+    return kInfiniteCost;
+  }
+
   const Shape& s_;
   Cost bound_;
-  std::vector<std::uint32_t> leave_begin_;  // by goal, into leave_place_
-  std::vector<std::int32_t> leave_place_;   // flattened leave places
-  std::vector<std::uint32_t> leave_goal_;   // the goal of each
+  Cost upper_;
+  std::vector<Cost> rest_bound_;  // by subset, with an upper bound: see fill_rest_bounds()
+  std::vector<std::uint32_t> option_begin_;  // by goal, into option_slot_
+  std::vector<std::uint32_t> option_slot_;   // each option's leave index
+  std::uint32_t all_ = 0;                    // every goal's bit
+  bool reserves_ = false;                    // Shape::has_reserves()
+  std::vector<std::uint32_t> leave_begin_;   // by goal, into leave_place_
+  std::vector<std::int32_t> leave_place_;    // flattened leave places
+  std::vector<std::uint32_t> leave_goal_;    // the goal of each
   std::size_t width_ = 0;
   std::uint32_t last_mask_ = 0;
   std::vector<Cost> moves_;            // places x places
@@ -189,7 +258,7 @@ class SubsetProgramme {
 
 std::optional<SearchResult> exact_tour_search(const domain::CompiledTask& task,
                                               const StopCondition& stop, const Clock* clock,
-                                              std::size_t max_bytes) {
+                                              std::size_t max_bytes, Cost upper) {
   const SteadyClock steady;
   const Clock& time = clock != nullptr ? *clock : steady;
   const double start_s = time.now_s();
@@ -201,7 +270,7 @@ std::optional<SearchResult> exact_tour_search(const domain::CompiledTask& task,
   if (SubsetProgramme::memory_bytes(*shape) > max_bytes) return std::nullopt;
   const Cost bound =
       task.cost_bound() >= domain::kInfiniteCost ? domain::kInfiniteCost / 2 : task.cost_bound();
-  SubsetProgramme programme(*shape, bound);
+  SubsetProgramme programme(*shape, bound, upper);
   SearchResult result;
   if (auto why = programme.run(stop, &result.statistics.expanded)) {
     result.status = *why;

@@ -142,6 +142,28 @@ bool exact_fits(const domain::CompiledTask& task, const domain::CompileStatistic
   return work <= improvement_work(compile);
 }
 
+// Issue 16: beyond that estimate, the exact tour search still replaces the improvement where its
+// table (which bounds its work: each entry is extended once) is at most kExactBytesPerSettled per
+// node the compile's route searches settled, up to kAutoExactBytes. The estimate above counts
+// every goal at every entry and ignores that a first plan doing every task bounds the search (see
+// exact_tour_search's `upper`); on 10,000 manholes with 15 spread tasks it left the improvement to
+// weighted A*, whose budget found nothing, and plans 6 % above the optimum. The table's size is
+// known before it is allocated, so a table too large costs nothing. Deterministic: sizes, not
+// time. 0: none.
+constexpr std::size_t kExactBytesPerSettled = 512;
+constexpr std::size_t kAutoExactBytes = std::size_t{32} << 20U;
+
+std::size_t exact_bytes(const domain::CompiledTask& task,
+                        const domain::CompileStatistics& compile) {
+  if (exact_fits(task, compile)) return std::size_t{600} << 20U;  // exact_tour_search's default
+  const std::size_t k = task.variable_count() - 1;
+  if (k > kMaxExactGoals) return 0;
+  const std::size_t bytes =
+      std::min(kAutoExactBytes, kExactBytesPerSettled * compile.settled_nodes);
+  // At least one leave place per goal, 12 bytes each: a table surely too large is not even read.
+  return (std::size_t{1} << k) * k * 12 <= bytes ? bytes : 0;
+}
+
 // Anytime improvement: each search may only return plans cheaper than the best so far. One that
 // exhausts its bounded space proves no cheaper plan exists.
 void improve(const domain::CompiledTask& task, const StopCondition& stop, const Clock& clock,
@@ -257,9 +279,13 @@ Result<PlanOutcome> plan_once(const SewerMap& map, const Mission& mission,
   PlanOutcome outcome;
   outcome.optimal = exact || (!tour && optimal_search && heuristic->admissible());
   bool exact_improved = false;
+  const std::size_t exact_table = exact_bytes(task, compiled->statistics());
   if (!outcome.optimal && tour && options.improvement_expansions > 0 &&
-      options.adaptive_improvement && exact_fits(task, compiled->statistics())) {
-    std::optional<SearchResult> best = exact_tour_search(task, stop, &clock);
+      options.adaptive_improvement && exact_table > 0) {
+    // A first plan doing every task bounds the optimum, which then does every task too.
+    const bool all_done = task.penalty_unit() == 0 || result.cost < task.penalty_unit();
+    std::optional<SearchResult> best = exact_tour_search(
+        task, stop, &clock, exact_table, all_done ? result.cost : domain::kInfiniteCost);
     if (best && best->status == SearchStatus::kSolved) {
       if (best->cost < result.cost) ++outcome.improvements;
       best->statistics.time_s += result.statistics.time_s;

@@ -33,11 +33,15 @@ class Evaluator {
   // The real cost of doing `order` (goal indices) from the start, and ending as the goal asks;
   // kInfiniteCost if impossible. With `plan`, also the actions.
   Cost cost(const std::vector<std::size_t>& order, std::vector<ActionId>* plan = nullptr) {
-    layers_.assign(1, {{s_.start, {0, -1, -1}}});
+    // The layers' buffers are kept from one order to the next (issue 16: the tour search
+    // evaluates thousands of orders, and allocating a layer per goal for each was a third of it).
+    used_ = 1;
+    layer(0).assign(1, {s_.start, {0, -1, -1}});
     for (std::size_t k = 0; k < order.size(); ++k) {
       const Goal& g = s_.goals[order[k]];
-      std::vector<std::pair<std::int32_t, Entry>> next;
-      const auto& prev = layers_.back();
+      auto& next = layer(used_);  // first: it may move the layers
+      next.clear();
+      const auto& prev = layers_[used_ - 1];
       for (std::size_t o = 0; o < g.options.size(); ++o) {
         const Option& opt = g.options[o];
         for (std::size_t p = 0; p < prev.size(); ++p) {
@@ -63,11 +67,11 @@ class Evaluator {
         }
       }
       if (next.empty()) return kInfiniteCost;
-      layers_.push_back(std::move(next));
+      ++used_;
     }
     Cost best = kInfiniteCost;
     std::int32_t best_p = -1;
-    const auto& last = layers_.back();
+    const auto& last = layers_[used_ - 1];
     for (std::size_t p = 0; p < last.size(); ++p) {
       const Cost tail = s_.end ? s_.move_cost(last[p].first, *s_.end) : 0;
       if (tail >= kInfiniteCost) continue;
@@ -98,7 +102,7 @@ class Evaluator {
                    std::vector<ActionId>& plan) const {
     std::vector<const Option*> chosen(order.size());
     std::vector<std::int32_t> before(order.size());
-    const std::int32_t final_place = layers_.back()[static_cast<std::size_t>(p)].first;
+    const std::int32_t final_place = layers_[used_ - 1][static_cast<std::size_t>(p)].first;
     for (std::size_t k = order.size(); k > 0; --k) {
       const Entry& e = layers_[k][static_cast<std::size_t>(p)].second;
       chosen[k - 1] = &s_.goals[order[k - 1]].options[static_cast<std::size_t>(e.option)];
@@ -112,8 +116,14 @@ class Evaluator {
     if (s_.end) add_move(final_place, *s_.end, plan);
   }
 
+  std::vector<std::pair<std::int32_t, Entry>>& layer(std::size_t i) {
+    if (layers_.size() <= i) layers_.resize(i + 1);
+    return layers_[i];
+  }
+
   const Shape& s_;
-  std::vector<std::vector<std::pair<std::int32_t, Entry>>> layers_;
+  std::vector<std::vector<std::pair<std::int32_t, Entry>>> layers_;  // the first used_ in use
+  std::size_t used_ = 0;
 };
 
 class Tour {

@@ -36,26 +36,14 @@
 #include "sewerplan/server/driveability_output.h"
 #include "sewerplan/server/sim_setup.h"
 
+#include "campaign_service.h"
+#include "http_reply.h"
 #include "map_geometry.h"
+#include "plan_route.h"
 #include <httplib.h>
 
 namespace sewerplan::server {
 namespace {
-
-constexpr int kBadRequest = 400;
-constexpr int kUnauthorized = 401;
-constexpr int kNotFound = 404;
-constexpr int kConflict = 409;       // the station holds as many maps as it may
-constexpr int kUnprocessable = 422;  // well-formed, but not a valid mission, log or plan request
-
-// Debian's httplib compresses every "application/json", "application/javascript" and "text/..."
-// answer with brotli at its slowest quality (11) when the client accepts "br", as every browser
-// does: the page's 840 kB bundle took 3 s to compress on an idle machine and 14 to 20 s on a
-// loaded one, and a 100,000-manhole map's geometry far longer. The station serves its own
-// machine or a LAN: it sends uncompressed, and these types (with a charset, so that httplib's
-// exact match does not see them) are how (docs/operator-station.md, "Figures").
-constexpr const char* kJsonType = "application/json; charset=utf-8";
-constexpr const char* kJavaScriptType = "application/javascript; charset=utf-8";
 
 struct LoadedMap {
   std::string id;
@@ -63,26 +51,6 @@ struct LoadedMap {
   std::string geometry;                // map_geometry_json, computed once
   std::filesystem::path motion_table;  // MAP.motion.json beside the map, if there is one
 };
-
-std::string dump(const Json& j) {
-  return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-}
-
-void send_json(httplib::Response& res, const Json& j, int status = 200) {
-  res.status = status;
-  res.set_content(dump(j), kJsonType);
-}
-
-void send_error(httplib::Response& res, int status, const Error& error,
-                const Diagnostics& diagnostics = {}, Json extra = Json::object()) {
-  Json j = {{"error", error_object(error, diagnostics, exit_code_for(error))}};
-  for (auto& [key, value] : extra.items()) j[key] = value;
-  send_json(res, j, status);
-}
-
-void bad_request(httplib::Response& res, const std::string& message) {
-  send_error(res, kBadRequest, Error{ErrorCode::kInvalidArgument, message});
-}
 
 // The request's time limit: ?time_limit=S, at most `max_s` (default 10 s).
 std::optional<double> time_limit(const httplib::Request& req, double max_s) {
@@ -104,30 +72,6 @@ std::optional<double> time_limit(const httplib::Request& req, double max_s) {
 std::string wall_ms() {
   const auto now = std::chrono::system_clock::now().time_since_epoch();
   return std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(now).count());
-}
-
-// A plan's route for the map: {"steps": [the paper's text of each step], "pipes": [the pipes it
-// drives or enters, in order]}.
-Json route_json(const domain::Plan& plan, const SewerMap& map, const Mission& mission) {
-  Json steps = Json::array();
-  Json pipes = Json::array();
-  for (const domain::PlanStep& step : plan.steps) {
-    steps.push_back(domain::format_step(step, map, mission));
-    std::visit(
-        [&](const auto& s) {
-          std::optional<PipeId> pipe;
-          if constexpr (requires { s.pipe; }) pipe = s.pipe;
-          // A passage enters the pipe of its `to` slot (the end "in P9" is reached so).
-          if constexpr (std::is_same_v<std::decay_t<decltype(s)>, domain::DriveManhole>) {
-            pipe = map.slot(s.manhole, s.to).pipe;
-          }
-          if (!pipe) return;
-          const std::string& name = map.pipe(*pipe).name;
-          if (pipes.empty() || pipes.back() != name) pipes.push_back(name);
-        },
-        step);
-  }
-  return {{"steps", std::move(steps)}, {"pipes", std::move(pipes)}};
 }
 
 // Unique IDs from the files' stems: "map", "map-2", ...; only letters, digits, '.', '_' and '-'
@@ -153,6 +97,8 @@ struct StationServer::Impl {
   std::vector<std::shared_ptr<const LoadedMap>> maps;
   std::set<std::string> taken_ids;
   mutable std::mutex maps_mutex;
+  // Declared before `http`, so that it outlives the requests that use it.
+  std::unique_ptr<CampaignService> campaigns;
   httplib::Server http;
   std::atomic<bool> running{false};
   std::atomic<bool> stopping{false};
@@ -205,6 +151,7 @@ struct StationServer::Impl {
   void plan(const httplib::Request& req, httplib::Response& res) const;
   void simulate(const httplib::Request& req, httplib::Response& res) const;
   void replay(const httplib::Request& req, httplib::Response& res) const;
+  void campaign(const httplib::Request& req, httplib::Response& res);
   bool authorised(const httplib::Request& req) const;
 };
 
@@ -384,7 +331,7 @@ void StationServer::Impl::simulate(const httplib::Request& req, httplib::Respons
           send(executor::type_name(event), executor::to_json_line(event));
         });
         executor.subscribe_plans([&](const executor::PlanResponse& response) {
-          send("route", dump(route_json(response.plan, *run->map, replanner.mission())));
+          send("route", dump(plan_route_json(response.plan, *run->map, replanner.mission())));
         });
         const executor::MissionReport report = executor.run();
         send("report", dump(report_json(report)));
@@ -403,6 +350,24 @@ void StationServer::Impl::replay(const httplib::Request& req, httplib::Response&
   Json list = Json::array();
   for (const executor::Event& e : *events) list.push_back(Json::parse(executor::to_json_line(e)));
   send_json(res, {{"events", list}});
+}
+
+// POST /api/maps/ID/campaign: the mission read as /simulate reads it, the rest by the service.
+void StationServer::Impl::campaign(const httplib::Request& req, httplib::Response& res) {
+  const auto m = find_map(req, res);
+  if (!m) return;
+  const Json body = Json::parse(req.body, nullptr, false);
+  if (body.is_discarded() || !body.is_object()) {
+    return bad_request(res, "expected a JSON object {\"mission\", \"runs\", \"seed\", ...}");
+  }
+  if (!body.contains("mission") || !body["mission"].is_object()) {
+    return bad_request(res, "\"mission\": expected the mission's JSON object");
+  }
+  std::optional<Mission> mission = read_body_mission(dump(body["mission"]), m->map, res);
+  if (!mission || !attach_motion(*m, req, *mission, res)) return;
+  // The map stays while the campaign runs and while its runs can be replayed.
+  campaigns->start(body, std::shared_ptr<const SewerMap>(m, &m->map), m->id, std::move(*mission),
+                   res);
 }
 
 void StationServer::Impl::routes() {
@@ -451,6 +416,12 @@ void StationServer::Impl::routes() {
   http.Post(R"(/api/maps/([^/]+)/simulate)",
             [this](const Req& req, Res& res) { simulate(req, res); });
   http.Post(R"(/api/maps/([^/]+)/replay)", [this](const Req& req, Res& res) { replay(req, res); });
+  http.Post(R"(/api/maps/([^/]+)/campaign)",
+            [this](const Req& req, Res& res) { campaign(req, res); });
+  http.Get("/api/campaign", [this](const Req&, Res& res) { campaigns->status(res); });
+  http.Post("/api/campaign/cancel", [this](const Req&, Res& res) { campaigns->cancel(res); });
+  http.Get(R"(/api/campaign/runs/([^/]+))",
+           [this](const Req& req, Res& res) { campaigns->run_events(req, res); });
   // The page: httplib refuses paths that climb out of the mount ("..").
   if (!options.web_root.empty()) {
     http.set_mount_point("/", options.web_root.string());
@@ -462,6 +433,12 @@ void StationServer::Impl::routes() {
 Result<std::unique_ptr<StationServer>> StationServer::create(const ServerOptions& options) {
   auto impl = std::make_unique<Impl>();
   impl->options = options;
+  const std::size_t cores = std::max(1u, std::thread::hardware_concurrency());
+  impl->campaigns = std::make_unique<CampaignService>(CampaignLimits{
+      .max_runs = options.max_campaign_runs,
+      .max_jobs =
+          options.max_campaign_jobs == 0 ? cores : std::min(options.max_campaign_jobs, cores),
+      .guard = options.campaign_guard});
   for (const std::filesystem::path& path : options.maps) {
     Diagnostics diagnostics;
     Result<SewerMap> map = options.read_map_with ? options.read_map_with(path, diagnostics)
@@ -508,6 +485,7 @@ void StationServer::run() {
 
 void StationServer::stop() {
   impl_->stopping = true;
+  impl_->campaigns->shut_down();  // httplib waits for the requests that run, a campaign's too
   while (impl_->running && !impl_->http.is_running()) std::this_thread::yield();
   impl_->http.stop();
 }

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "sewerplan/campaign/campaign.h"
 
+#include <atomic>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -12,6 +13,7 @@
 
 #include "sewerplan/campaign/merge.h"
 #include "sewerplan/campaign/summary.h"
+#include "sewerplan/executor/events.h"
 
 #include "support/ais_testbed.h"
 
@@ -77,6 +79,26 @@ TEST(Campaign, OneRunAloneEqualsItsLineInTheCampaign) {
     const auto in_process = run_campaign(ais.map, ais.mission, spec, {.guard = false, .only = k});
     EXPECT_EQ(fixed_part(in_process.front()), fixed_part(all[k]));
   }
+}
+
+// A robot that ends in an exit the mission names is out, whether or not the map marks that manhole
+// an exit: the campaign read the map's flag, so on the official ISYBAU sample, with a mission whose
+// exits are a pump station and dead ends the map does not mark, 35 of 40 runs that ended in such an
+// exit were counted "stranded" and the campaign was not clean.
+TEST(Campaign, ARunEndingInAnExitOfTheMissionEndsAtAnExitWhateverTheMapMarks) {
+  const auto ais = testing::load_ais_testbed();
+  Mission mission = ais.mission;
+  mission.tasks.clear();
+  const ManholeId m2 = *ais.map.find_manhole("M2");
+  ASSERT_FALSE(ais.map.manhole(m2).exit);
+  mission.exits = {m2};
+  RunSettings settings;
+  settings.rates = *parse_fault_rates("obstacles=0,danger=0,passages=0,malfunctions=0");
+  const Result<RunResult> run = run_one(ais.map, mission, settings, 0);
+  ASSERT_TRUE(run.has_value()) << run.error();
+  EXPECT_EQ(run->ours.end, "exit M2");
+  EXPECT_EQ(run->ours.outcome, Outcome::kExit);
+  EXPECT_EQ(run->baseline.outcome, Outcome::kExit);
 }
 
 // The oracle knows every fault that stays in advance and plans optimally on the AIS mission (A*),
@@ -248,6 +270,92 @@ TEST(Campaign, ACrashOrAHangIsCaughtCountedAndReproducible) {
   ASSERT_TRUE(back.has_value());
   EXPECT_EQ(back->status, RunRecord::Status::kHang);
   EXPECT_EQ(back->seed, records[4].seed);
+}
+
+// A cancel from the progress callback (as the station's cancel button, from another thread): no run
+// starts after it, and a child still running is killed at once. Run 0 hangs for ever (far beyond
+// any test's time limit): without the stop, the campaign would wait for its hour-long timeout.
+TEST(Campaign, ACancelStopsTheCampaignAndKillsTheRunInProgress) {
+  const auto ais = testing::load_ais_testbed();
+  const CampaignSpec spec = ais_spec(40);
+  std::atomic<bool> cancel{false};
+  CampaignOptions options{.jobs = 2, .timeout_s = 3600};
+  options.inject = {{0, InjectedFault::kHang}};
+  options.stop = StopCondition().with_cancel(cancel);
+  std::size_t seen = 0;
+  options.progress = [&](const Progress& p) {
+    ASSERT_NE(p.last, nullptr);
+    EXPECT_EQ(p.last->status, RunRecord::Status::kOk);
+    ++seen;
+    if (p.done == 3) cancel = true;
+  };
+  const auto records = run_campaign(ais.map, ais.mission, spec, options);
+  // The runs that finished, in index order, each as the campaign without a cancel has it; not the
+  // hung run 0.
+  ASSERT_EQ(records.size(), seen);
+  EXPECT_GE(records.size(), 3U);
+  EXPECT_LT(records.size(), 40U);
+  const auto whole = run_campaign(ais.map, ais.mission, ais_spec(6), {.jobs = 2});
+  for (std::size_t k = 0; k < records.size(); ++k) {
+    EXPECT_NE(records[k].index, 0U);
+    if (k > 0) {
+      EXPECT_LT(records[k - 1].index, records[k].index);
+    }
+    if (records[k].index < whole.size()) {
+      EXPECT_EQ(fixed_part(records[k]), fixed_part(whole[records[k].index]));
+    }
+  }
+}
+
+TEST(Campaign, AStopUnguardedEndsBetweenRuns) {
+  const auto ais = testing::load_ais_testbed();
+  std::atomic<bool> cancel{false};
+  CampaignOptions options{.guard = false};
+  options.stop = StopCondition().with_cancel(cancel);
+  options.progress = [&](const Progress& p) { cancel = p.done == 2; };
+  const auto records = run_campaign(ais.map, ais.mission, ais_spec(10), options);
+  ASSERT_EQ(records.size(), 2U);
+  EXPECT_EQ(records[1].index, 1U);
+}
+
+// A run's execution simulated again from its seed (the station's replay of a campaign run) is the
+// one the campaign recorded, event by event to its end, for ours and the baseline.
+TEST(Campaign, AnExecutionReplayedFromItsSeedEqualsTheRunsRecord) {
+  const auto ais = testing::load_ais_testbed();
+  CampaignSpec spec = ais_spec(10, 4);
+  spec.rates.obstacles_per_km = 60;
+  const auto records = run_campaign(ais.map, ais.mission, spec, {.jobs = 2});
+  const RunSettings settings = run_settings(spec);
+  std::size_t replanned = 0;
+  for (const RunRecord& r : records) {
+    ASSERT_TRUE(r.result) << r.detail;
+    for (Policy policy : {Policy::kOurs, Policy::kBaseline}) {
+      std::vector<executor::Event> events;
+      std::size_t plans = 0;
+      ExecutionObservers observers{
+          .on_event = [&](const executor::Event& e) { events.push_back(e); },
+          .on_plan = [&](const executor::PlanResponse&) { ++plans; }};
+      Result<Execution> again =
+          replay_execution(ais.map, ais.mission, settings, r.index, policy, observers);
+      ASSERT_TRUE(again.has_value()) << again.error();
+      Execution recorded = policy == Policy::kOurs ? r.result->ours : r.result->baseline;
+      recorded.planning_times_s.clear();
+      EXPECT_EQ(again->planning_times_s.size(), plans);
+      again->planning_times_s.clear();
+      EXPECT_EQ(*again, recorded) << to_string(policy) << " of " << run_json_line(r);
+      ASSERT_FALSE(events.empty());
+      const auto* end = std::get_if<executor::MissionEndEvent>(&events.back().what);
+      ASSERT_NE(end, nullptr) << "the last event is not the mission's end";
+      EXPECT_EQ(end->tasks_done.size(), recorded.tasks);
+      EXPECT_EQ(end->replans, recorded.replans);
+      if (policy == Policy::kOurs && recorded.replans > 0) ++replanned;
+    }
+  }
+  EXPECT_GT(replanned, 0U) << "no run replanned: the replay was not put to the test";
+  EXPECT_FALSE(
+      replay_execution(ais.map, ais.mission, settings, 0, Policy::kRiskAware, {}).has_value());
+  EXPECT_EQ(policy_from_string("baseline"), Policy::kBaseline);
+  EXPECT_FALSE(policy_from_string("oracle"));
 }
 
 TEST(Campaign, RecordsReadBackAndBadLinesNameFileLineAndField) {

@@ -105,9 +105,11 @@ start_node --bus-faults 'late-ack=2@30'
 "$sp" simulate --map "$ais" --mission "$mission" --can "slcan:$pty" --log "$tmp/halt.jsonl" \
   > "$tmp/halt.out" 2> "$tmp/halt.err" &
 sim_pid=$!
-# The log is flushed per event: the second job's line is there while the third job waits.
-for _ in $(seq 1 200); do
-  [ "$(grep -c '"type":"job"' "$tmp/halt.jsonl" 2>/dev/null)" -ge 2 ] && break
+# The log is flushed per event: the second job's line is there while the third job waits. (Up to
+# 60 s: the simulator and the node start slowly on a loaded machine; the node holds for 30 s.)
+for _ in $(seq 1 1200); do
+  jobs_logged=$(grep -c '"type":"job"' "$tmp/halt.jsonl" 2> /dev/null || true)
+  [ "${jobs_logged:-0}" -ge 2 ] && break
   sleep 0.05
 done
 kill -INT "$sim_pid"

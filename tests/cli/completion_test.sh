@@ -31,4 +31,11 @@ got=$(complete_words "$sp" plan -a as)
 [ "$got" = "astar" ] || { echo "FAIL: 'sewerplan plan -a as' completes to '$got', not 'astar'"; exit 1; }
 got=$(complete_words "$sp" simulate --js)
 [ "$got" = "--json" ] || { echo "FAIL: 'sewerplan simulate --js' completes to '$got'"; exit 1; }
+# --gis-fields on every command that reads a map, and a JSON file (or a directory) after it.
+for command in validate info convert plan check export-pddl import-plan simulate sim-node campaign render serve; do
+  got=$(complete_words "$sp" "$command" --gis-f)
+  [ "$got" = "--gis-fields" ] || { echo "FAIL: 'sewerplan $command --gis-f' completes to '$got'"; exit 1; }
+done
+got=$(cd "$src/datasets/ais-testbed" && complete_words "$sp" info --gis-fields ma)
+[ "$got" = "map.json" ] || { echo "FAIL: 'info --gis-fields ma' completes to '$got', not 'map.json'"; exit 1; }
 echo "completion: ${help_commands}"

@@ -151,6 +151,19 @@ if "$sp" --help | grep -q export-geojson; then
   json 2 "$(err usage 2)" -- "$sp" export-geojson --map "$ais" --json
 fi
 
+# --gis-fields FILE (docs/cli.md) on every command that reads a map: a missing file is an I/O error
+# naming it before any map is read; one given for a map that is no GIS source is a usage error (the
+# GIS sources themselves: tests/gis/gis_round_trip.sh).
+json 3 "$(err io 3) and j['error']['message'] == '--gis-fields $tmp/no-fields.json: no such file'" -- \
+  "$sp" plan --map "$ais" --mission "$mission" --gis-fields "$tmp/no-fields.json" --json
+echo '{}' > "$tmp/fields.json"
+if "$sp" --help | grep -q export-geojson; then
+  json 2 "$(err usage 2) and 'is not a GIS source' in j['error']['message']" -- \
+    "$sp" validate --map "$ais" --gis-fields "$tmp/fields.json" --json
+else
+  json 1 "$(err unsupported-format 1)" -- "$sp" validate --map "$ais" --gis-fields "$tmp/fields.json" --json
+fi
+
 # A command-line error that CLI11 finds (an unknown option) is an error object too.
 json 2 "$(err usage 2)" -- "$sp" validate --map "$ais" --frobnicate --json
 

@@ -11,6 +11,7 @@
 #include "sewerplan/core/map_io.h"
 #include "sewerplan/core/map_isybau.h"
 #include "sewerplan/core/map_json.h"
+#include "sewerplan/core/robot_profile.h"
 #include "sewerplan/core/text_file.h"
 
 #include "support/map_checks.h"
@@ -164,6 +165,42 @@ TEST(ConditionRisk, DefaultTableClosesCollapsesAndNarrowDeformations) {
             1U);
   // The table is data: an empty one closes nothing.
   EXPECT_TRUE(impassable_blockages(*map, assess_findings(*map, profile, RiskTable{})).empty());
+}
+
+// DIN EN 13508-2 tells a break (A: pieces displaced, B: pieces missing) from a collapse (C) by
+// the characterisation: only a collapse, or a BAC that does not say which, closes the pipe.
+TEST(ConditionRisk, DefaultTableTellsABreakFromACollapse) {
+  const std::string collapse =
+      "<InspektionsKode>BAC</InspektionsKode>\n"
+      "              <Charakterisierung1>C</Charakterisierung1>";
+  const std::string text = zustand();
+  const std::size_t at = text.find(collapse);
+  ASSERT_NE(at, std::string::npos);
+  auto bac_with = [&](std::string_view characterisation) {
+    std::string changed = text;
+    changed.replace(at, collapse.size(),
+                    characterisation.empty()
+                        ? std::string("<InspektionsKode>BAC</InspektionsKode>")
+                        : "<InspektionsKode>BAC</InspektionsKode><Charakterisierung1>" +
+                              std::string(characterisation) + "</Charakterisierung1>");
+    Diagnostics d;
+    Result<SewerMap> map = read_condition_isybau(street(d), changed, "z.xml", d);
+    EXPECT_TRUE(map.has_value());
+    if (!map.has_value()) return FindingRisk{};
+    const std::vector<FindingRisk> risks =
+        assess_findings(*map, *builtin_profile("makro-plus"), default_risk_table());
+    const Finding* f = find(*map, "S2", "BAC");
+    EXPECT_NE(f, nullptr);
+    return f == nullptr ? FindingRisk{}
+                        : risks[static_cast<std::size_t>(f - map->findings().data())];
+  };
+  EXPECT_EQ(bac_with("C").effect, RiskEffect::kImpassable);
+  EXPECT_THAT(bac_with("C").reason, HasSubstr("collapse"));
+  const FindingRisk missing_pieces = bac_with("B");
+  EXPECT_EQ(missing_pieces.effect, RiskEffect::kBlockage);
+  EXPECT_DOUBLE_EQ(missing_pieces.blockage_probability, 0.5);
+  EXPECT_EQ(bac_with("A").effect, RiskEffect::kDanger);
+  EXPECT_EQ(bac_with("").effect, RiskEffect::kImpassable);
 }
 
 }  // namespace

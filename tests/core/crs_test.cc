@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: MIT
 #include "sewerplan/core/crs.h"
 
+#include <regex>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -105,6 +107,51 @@ TEST(Crs, IsybauTakesItFromTheLagesystem) {
     EXPECT_EQ(map->crs()->to_string(), crs) << lagesystem;
     EXPECT_DOUBLE_EQ(map->manhole(*map->find_manhole("S1")).position.x_m, testing::kStreetEasting);
   }
+}
+
+// The official ISYBAU 2013 and 2017 samples, and real exports, name the reference system in
+// Geometrie/CRSLage; reading only Lagesystem left them without a CRS.
+TEST(Crs, IsybauTakesItFromCrsLageAsTheOfficialSamplesWriteIt) {
+  for (const auto& [lagesystem, crs] :
+       {std::pair{"ETRS89_UTM32", "EPSG:25832"}, std::pair{"DE_DHDN_3GK2", "EPSG:31466"}}) {
+    Diagnostics d;
+    Result<SewerMap> map = read_isybau(testing::georeferenced_street(lagesystem, "CRSLage"), d);
+    ASSERT_TRUE(map.has_value()) << map.error();
+    ASSERT_TRUE(map->crs().has_value()) << lagesystem;
+    EXPECT_EQ(map->crs()->to_string(), crs) << lagesystem;
+  }
+  Diagnostics unknown_d;
+  Result<SewerMap> unknown =
+      read_isybau(testing::georeferenced_street("Stadtnetz 7", "CRSLage"), unknown_d);
+  ASSERT_TRUE(unknown.has_value()) << unknown.error();
+  EXPECT_FALSE(unknown->crs().has_value());
+  EXPECT_TRUE(says(unknown_d, "CRSLage \"Stadtnetz 7\" is not a reference system"));
+}
+
+// The official samples (and most German exports in UTM) write the zone before the easting:
+// Rechtswert 32570429.702 is easting 570429.702 in zone 32. Read as it stands, every manhole was
+// 32,000 km off and the whole file was rejected.
+TEST(Crs, IsybauReadsUtmRechtswerteWithTheirZoneInFront) {
+  const std::string text =
+      std::regex_replace(testing::georeferenced_street("ETRS89_UTM32", "CRSLage"),
+                         std::regex("<Rechtswert>4"), "<Rechtswert>324");
+  ASSERT_NE(text.find("<Rechtswert>32477000"), std::string::npos);
+  Diagnostics d;
+  Result<SewerMap> map = read_isybau(text, d);
+  ASSERT_TRUE(map.has_value()) << map.error();
+  EXPECT_EQ(map->crs()->to_string(), "EPSG:25832");
+  EXPECT_DOUBLE_EQ(map->manhole(*map->find_manhole("S1")).position.x_m, testing::kStreetEasting);
+  EXPECT_DOUBLE_EQ(map->manhole(*map->find_manhole("S2")).position.x_m,
+                   testing::kStreetEasting + 30);
+  EXPECT_TRUE(says(d, "Rechtswerte carry the UTM zone number 32 in front"));
+  // Lengths from the line (S4 has one) and directions are those of the unprefixed network.
+  EXPECT_NEAR(map->pipe(*map->find_pipe("S1")).length_m, 30.0, 1e-9);
+  // Gauss-Krueger Rechtswerte carry their zone by definition (EPSG:31466's false easting): kept.
+  Diagnostics gk_d;
+  Result<SewerMap> gk = read_isybau(testing::georeferenced_street("DE_DHDN_3GK2", "CRSLage"), gk_d);
+  ASSERT_TRUE(gk.has_value()) << gk.error();
+  EXPECT_DOUBLE_EQ(gk->manhole(*gk->find_manhole("S1")).position.x_m, testing::kStreetEasting);
+  EXPECT_FALSE(says(gk_d, "UTM zone number"));
 }
 
 TEST(Crs, IsybauWithoutALagesystemOrAnUnknownOneHasNone) {

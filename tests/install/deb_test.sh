@@ -6,7 +6,8 @@
 # completion are there, its binaries carry no debug info, its control file lists dependencies, and
 # a project outside the tree builds against its CMake package (find_package(sewerplan)); with the
 # Python module (SEWERPLAN_PYTHON), Debian's python3 imports it from the root's dist-packages and
-# runs examples/python/plan_ais.py on the example data.
+# runs the Python example it installs (share/sewerplan/examples/python/plan_ais.py) on the example
+# data. scripts/deb-clean-root.sh installs it with apt on a clean Debian 12 root (docs/packaging.md).
 # Usage: deb_test.sh BUILD_DIR SOURCE_DIR VERSION
 set -euo pipefail
 build=$(cd "$1" && pwd)
@@ -32,7 +33,7 @@ cmp "$work/paper.plan" "$data/plans/paper-corrected.plan" || { echo "FAIL: the i
 if [ -x "$build/bench/sewerplan-compare" ]; then
   test -x "$root/usr/bin/sewerplan-compare" || { echo "FAIL: no sewerplan-compare"; exit 1; }
 fi
-test -f "$root/usr/share/man/man1/sewerplan.1"* || { echo "FAIL: no man page"; exit 1; }
+test -f "$root/usr/share/man/man1/sewerplan.1.gz" || { echo "FAIL: no man page sewerplan.1.gz"; exit 1; }
 test -f "$root/usr/share/bash-completion/completions/sewerplan" || { echo "FAIL: no completion"; exit 1; }
 test -f "$root/usr/share/doc/sewerplan/cli.md" || { echo "FAIL: no docs"; exit 1; }
 test -f "$root/usr/include/sewerplan/version.h" || { echo "FAIL: no version.h"; exit 1; }
@@ -47,7 +48,9 @@ if ls "$build"/python/sewerplan/_sewerplan*.so > /dev/null 2>&1; then
   py=(env PYTHONDONTWRITEBYTECODE=1 PYTHONPATH="$pydir" /usr/bin/python3)
   out=$(cd "$work" && "${py[@]}" -c 'import sewerplan; print(sewerplan.__file__)')
   case "$out" in "$pydir"/*) ;; *) echo "FAIL: imported sewerplan from $out"; exit 1 ;; esac
-  (cd "$work" && "${py[@]}" "$src/examples/python/plan_ais.py" "$data") > "$work/python.out"
+  example="$root/usr/share/sewerplan/examples/python/plan_ais.py"
+  test -x "$example" || { echo "FAIL: no $example"; exit 1; }
+  (cd "$work" && "${py[@]}" "$example" "$data") > "$work/python.out"
   grep -q '14 steps, 585.4 s, 19.5 Wh' "$work/python.out" || {
     echo "FAIL: the Python example said:"; cat "$work/python.out"; exit 1; }
   python_ok=", Python module"

@@ -21,62 +21,14 @@
 #include "sewerplan/core/robot_profile.h"
 #include "sewerplan/core/text_file.h"
 
+#include "station_fixture.h"
 #include "support/paths.h"
 #include <httplib.h>
 
 namespace sewerplan::server {
 namespace {
 
-using nlohmann::json;
-
-const std::filesystem::path kSource = sewerplan::testing::source_dir();
-const std::filesystem::path kAis = kSource / "datasets/ais-testbed";
-
-std::string read(const std::filesystem::path& path) { return *read_text_file(path); }
-
-class StationServerTest : public ::testing::Test {
- protected:
-  void start(ServerOptions options) {
-    if (options.maps.empty()) options.maps = {kAis / "map.json"};
-    options.port = 0;
-    Result<std::unique_ptr<StationServer>> created = StationServer::create(options);
-    ASSERT_TRUE(created.has_value()) << created.error();
-    server_ = std::move(*created);
-    Result<int> port = server_->bind();
-    ASSERT_TRUE(port.has_value()) << port.error();
-    thread_ = std::thread([this] { server_->run(); });
-    port_ = *port;
-    client_ = std::make_unique<httplib::Client>("127.0.0.1", *port);
-    client_->set_read_timeout(120, 0);
-  }
-  void SetUp() override {
-    if (!std::string(::testing::UnitTest::GetInstance()->current_test_info()->name())
-             .starts_with("Manual")) {
-      start({});
-    }
-  }
-  void TearDown() override {
-    if (server_) server_->stop();
-    if (thread_.joinable()) thread_.join();
-  }
-
-  // The status and the body as JSON (a 4xx body must be JSON too).
-  std::pair<int, json> get(const std::string& path) {
-    auto r = client_->Get(path.c_str());
-    EXPECT_TRUE(r) << path;
-    return {r->status, json::parse(r->body)};
-  }
-  std::pair<int, json> post(const std::string& path, const std::string& body) {
-    auto r = client_->Post(path.c_str(), body, "application/json");
-    EXPECT_TRUE(r) << path;
-    return {r->status, json::parse(r->body)};
-  }
-
-  std::unique_ptr<StationServer> server_;
-  std::thread thread_;
-  std::unique_ptr<httplib::Client> client_;
-  int port_ = 0;
-};
+class StationServerTest : public StationFixture {};
 
 TEST_F(StationServerTest, ListsItsMapsByIdAndTheBuiltInProfiles) {
   auto [status, j] = get("/api/maps");

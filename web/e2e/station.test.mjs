@@ -5,7 +5,8 @@
 // P9), plan and see the paper's 14 steps; hide a permanent obstacle in P4 by clicking, simulate,
 // and see the recovery phases, the replan (old and new route) and the dropped inspection on the
 // map and in the log, and the end reached; download the mission, upload it back, replay an event
-// log, upload a map. Saves a screenshot of each step in OUT (docs/operator-station.md uses them) and prints
+// log; run a fault campaign of 20 runs (progress, charts) and replay one of its runs, cancel a
+// long one; upload a map. Saves a screenshot of each step in OUT (docs/operator-station.md uses them) and prints
 // the figures (page load, first draw, plan round trip, event delay).
 //
 //   node e2e/station.test.mjs SEWERPLAN_BINARY SOURCE_DIR [OUT_DIR] [--large MAP]
@@ -28,6 +29,12 @@ if (!binary || !source) {
 mkdirSync(out, { recursive: true });
 const ais = join(source, 'datasets/ais-testbed');
 
+const started = Date.now();
+// The browser starts while the server reads its maps.
+const launching = chromium.launch({
+  executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
+  args: ['--no-sandbox'],
+});
 const server = spawn(binary, ['serve', '--map', join(ais, 'map.json'), ...(large ? ['--map', large] : []),
                               '--port', '0', ...process.env.SEWERPLAN_WEB_DIR ? ['--web', process.env.SEWERPLAN_WEB_DIR] : []],
                      { stdio: ['ignore', 'pipe', 'inherit'] });
@@ -42,13 +49,19 @@ const url = await new Promise((resolve, reject) => {
 });
 
 const check = (ok, what) => { if (!ok) throw new Error(what); };
-const browser = await chromium.launch({
-  executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
-  args: ['--no-sandbox'],
-});
+const browser = await launching;
+console.log(`server and browser up: ${Date.now() - started} ms`);
+let shotsMs = 0;
 let failed = false;
 try {
   const page = await browser.newPage({ viewport: { width: 1280, height: 900 }, acceptDownloads: true });
+  // A screenshot of a step (docs/operator-station.md uses them), timed.
+  const shot = async (name, target = page) => {
+    const t = Date.now();
+    await target.screenshot({ path: join(out, name) });
+    shotsMs += Date.now() - t;
+    console.log(`[${Date.now() - started} ms] ${name}`);
+  };
   page.on('pageerror', (e) => console.error('page error:', e.message));
   page.on('console', (m) => m.type() === 'error' && console.error('console:', m.text()));
   const t0 = Date.now();
@@ -57,7 +70,7 @@ try {
   await page.waitForSelector('body[data-ready=true]', { timeout: 90000 });
   console.log(`page load and first draw (AIS map): ${Date.now() - t0} ms; in the page:`,
               await page.evaluate(() => window.station.state.timings));
-  await page.screenshot({ path: join(out, '1-map.png') });
+  await shot('1-map.png');
 
   // Clicks a pipe at `fraction` of its length (where the page's view projects it) in `mode`.
   const canvas = page.locator('#view canvas');
@@ -78,7 +91,7 @@ try {
   const tasks = await page.locator('#tasks li').allTextContents();
   console.log('tasks:', tasks);
   check(tasks.length === 3, `expected 3 tasks from the clicks, got ${tasks.length}`);
-  await page.screenshot({ path: join(out, '2-mission.png') });
+  await shot('2-mission.png');
 
   const t1 = Date.now();
   await page.click('#plan');
@@ -91,13 +104,13 @@ try {
   check(steps.some((s) => s.startsWith('INSPECT') && s.includes('P4')), 'no inspection of P4');
   const route = await page.evaluate(() => [...window.station.state.route]);
   check(route.includes('P12') && route.includes('P9'), `route ${route} misses P12 or P9`);
-  await page.screenshot({ path: join(out, '3-plan.png') });
+  await shot('3-plan.png');
 
   // A permanent obstacle 5 m into P4, hidden from the planner, and the simulation.
   await click('obstacle-permanent', await pipe('P4', 5 / 8), 'P4 (obstacle)');
   const faults = await page.evaluate(() => window.station.state.faults.obstacles);
   check(faults.length === 1 && faults[0].pipe === 'P4' && faults[0].kind === 'permanent', `faults ${JSON.stringify(faults)}`);
-  await page.screenshot({ path: join(out, '4-faults.png') });
+  await shot('4-faults.png');
   await page.selectOption('#speed', 'Infinity');
   await page.click('#simulate');
   await page.waitForFunction(() => window.station.state.outcome && window.station.player.idle, null, { timeout: 60000 });
@@ -121,7 +134,7 @@ try {
   check(await page.locator('#outcome').textContent() !== '', 'no outcome shown');
   const delays = [...run.delays].sort((a, b) => a - b);
   console.log(`event delay, server to page (${delays.length} events): median ${delays[delays.length >> 1]} ms, max ${delays.at(-1)} ms`);
-  await page.screenshot({ path: join(out, '5-simulated.png') });
+  await shot('5-simulated.png');
 
   // The mission downloaded is the CLI's mission JSON; uploaded back, the same tasks.
   const [download] = await Promise.all([page.waitForEvent('download'), page.click('#mission-download')]);
@@ -138,13 +151,60 @@ try {
   const replayed = await page.evaluate(() => ({ dropped: [...window.station.state.dropped],
                                                 old: window.station.state.oldRoutes.length }));
   check(replayed.dropped.includes('inspect') && replayed.old === 1, `replay: ${JSON.stringify(replayed)}`);
-  await page.screenshot({ path: join(out, '6-replay.png') });
+  await shot('6-replay.png');
+
+  // A fault campaign on the AIS map and the paper's mission (uploaded above): 20 runs, the
+  // progress run by run, the summary's charts, and a run opened in the replay view.
+  await page.fill('#campaign-runs', '20');
+  await page.fill('#campaign-seed', '7');
+  await page.fill('#campaign-rates', 'obstacles=40');
+  const t4 = Date.now();
+  await page.click('#campaign-start');
+  await page.waitForSelector('#chart-outcomes', { timeout: 120000 });
+  console.log(`campaign of 20 runs through the page, start to charts: ${Date.now() - t4} ms`);
+  const campaign = await page.evaluate(() => {
+    const c = window.station.campaign;
+    const bars = [...document.querySelectorAll('#chart-outcomes rect[data-series=ours]')];
+    return { progress: c.progressSeen, value: document.querySelector('#campaign-progress').value,
+             max: document.querySelector('#campaign-progress').max, runs: c.summary.runs, summary: c.summary.summary,
+             rows: document.querySelectorAll('#campaign-table tr[data-run]').length,
+             ours: bars.map((b) => Number(b.dataset.value)), charts: document.querySelectorAll('#campaign-charts svg').length };
+  });
+  console.log(`campaign: ${campaign.progress} progress events; ours ended ${campaign.ours.join('/')} (exit/end point/beacon/stranded)`);
+  check(campaign.progress === 20 && campaign.value === 20 && campaign.max === 20, `progress ${campaign.progress}, bar ${campaign.value}/${campaign.max}`);
+  check(campaign.summary.runs === 20 && campaign.rows === 20 && campaign.charts === 4, `summary ${campaign.summary.runs} runs, ${campaign.rows} rows, ${campaign.charts} charts`);
+  check(campaign.ours.length === 4 && campaign.ours.reduce((a, b) => a + b, 0) === campaign.summary.completed,
+        `the outcome chart's bars ${campaign.ours} do not add up to ${campaign.summary.completed} runs`);
+  check(/^Done: 20 of 20 runs/.test(await page.locator('#campaign-status').textContent()), 'no summary line');
+  await shot('10-campaign.png', page.locator('#campaign-charts'));
+  // The first run that replanned, replayed: it ends as the campaign recorded it.
+  const pick = campaign.runs.find((r) => r.status === 'ok' && r.ours.replans > 0) ?? campaign.runs[0];
+  await page.click(`#campaign-table tr[data-run="${pick.run}"]`);
+  await page.waitForFunction((i) => window.station.state.openedRun === i && window.station.state.outcome && window.station.player.idle,
+                             pick.run, { timeout: 30000 });
+  const opened = await page.evaluate(() => window.station.state.outcome);
+  console.log(`campaign run ${pick.run} replayed: ${opened.outcome}, ${opened.end}, ${opened.replans} replans`);
+  check(opened.tasks_done.length === pick.ours.tasks && opened.replans === pick.ours.replans,
+        `run ${pick.run} replayed: ${opened.tasks_done.length} tasks, ${opened.replans} replans; recorded ${pick.ours.tasks}, ${pick.ours.replans}`);
+  await shot('11-campaign-run.png');
+  // A long campaign, cancelled from its button once runs come in: the summary of the runs done.
+  await page.fill('#campaign-runs', '5000');
+  await page.click('#campaign-start');
+  await page.waitForFunction(() => window.station.campaign.progressSeen >= 2, null, { timeout: 30000 });
+  await page.click('#campaign-cancel');
+  await page.waitForFunction(() => window.station.campaign.summary, null, { timeout: 30000 });
+  const cancelled = await page.evaluate(() => ({ state: window.station.campaign.summary.state,
+                                                 runs: window.station.campaign.summary.runs.length,
+                                                 status: document.querySelector('#campaign-status').textContent }));
+  console.log(`campaign cancelled: ${cancelled.status}`);
+  check(cancelled.state === 'cancelled' && cancelled.runs >= 2 && cancelled.runs < 5000 && /^Cancelled: /.test(cancelled.status),
+        `cancel: ${JSON.stringify(cancelled)}`);
 
   // A map uploaded (SWMM), listed and opened under its new ID.
   await page.setInputFiles('#map-upload', join(source, 'datasets/swmm/epa-example1.inp'));
   await page.waitForFunction(() => document.body.dataset.opened === 'epa-example1', null, { timeout: 30000 });
   check((await page.locator('#map option').count()) === (large ? 3 : 2), 'the uploaded map is not listed');
-  await page.screenshot({ path: join(out, '7-uploaded-map.png') });
+  await shot('7-uploaded-map.png');
 
   if (large) {
     const t2 = Date.now();
@@ -154,15 +214,15 @@ try {
     await page.waitForFunction((i) => document.body.dataset.opened === i, id, { timeout: 120000 });
     console.log(`large map ${id}: open and first draw ${Date.now() - t2} ms; in the page:`,
                 await page.evaluate(() => window.station.state.timings));
-    await page.screenshot({ path: join(out, '8-large.png') });
+    await shot('8-large.png');
     const box = await canvas.boundingBox();
     const t3 = Date.now();
     await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
     await page.evaluate(() => window.station.zoomAndWait(3));
     console.log(`large map: a zoom by 3 levels drawn in ${Date.now() - t3} ms`);
-    await page.screenshot({ path: join(out, '9-large-zoom.png') });
+    await shot('9-large-zoom.png');
   }
-  console.log('station e2e: ok');
+  console.log(`station e2e: ok in ${Date.now() - started} ms, of which screenshots ${shotsMs} ms`);
 } catch (e) {
   failed = true;
   console.error('station e2e: FAILED:', e.message);

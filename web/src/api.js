@@ -22,10 +22,16 @@ export const plan = (id, mission, timeLimit) =>
   call(`${map(id)}/plan?time_limit=${timeLimit}`, { method: 'POST', body: JSON.stringify(mission) });
 export const replay = (id, log) => call(`${map(id)}/replay`, { method: 'POST', body: log });
 
-// Runs a simulation; onEvent(type, data, {wall_ms, received_ms}) for every server-sent event as
-// it arrives: wall_ms is the server's clock when it sent the event, received_ms the page's.
-export async function simulate(id, body, onEvent, signal) {
-  const response = await fetch(`${map(id)}/simulate`, { method: 'POST', body: JSON.stringify(body), headers, signal });
+export const campaignStatus = () => call('api/campaign');
+export const cancelCampaign = () => call('api/campaign/cancel', { method: 'POST' });
+export const campaignRun = (index, policy = 'ours') =>
+  call(`api/campaign/runs/${index}?policy=${encodeURIComponent(policy)}`);
+
+// Posts `body` and reads the answer's server-sent events as they arrive: onEvent(type, data,
+// {wall_ms, received_ms}); wall_ms is the server's clock when it sent the event (if it says),
+// received_ms the page's. A 4xx answer throws its error's message.
+async function stream(path, body, onEvent, signal) {
+  const response = await fetch(path, { method: 'POST', body: JSON.stringify(body), headers, signal });
   if (!response.ok) {
     const error = await response.json();
     throw Object.assign(new Error(error.error?.message ?? response.statusText), { body: error });
@@ -48,3 +54,8 @@ export async function simulate(id, body, onEvent, signal) {
     }
   }
 }
+
+// Runs a simulation: the executor's events, each plan's route, then the report.
+export const simulate = (id, body, onEvent, signal) => stream(`${map(id)}/simulate`, body, onEvent, signal);
+// Runs a fault campaign: "start", a "progress" per run, then "summary".
+export const campaign = (id, body, onEvent, signal) => stream(`${map(id)}/campaign`, body, onEvent, signal);

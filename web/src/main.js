@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // The operator station's page: wires the map view (map-view.js), the mission editor (mission.js),
-// the hidden faults (faults.js), the plan view (plan-view.js) and the event player (player.js) to
-// the server's API (api.js). All state is here, in `state`.
+// the hidden faults (faults.js), the plan view (plan-view.js), the event player (player.js) and the
+// campaign panel (campaign.js) to the server's API (api.js). All state is here, in `state`.
 import * as api from './api.js';
+import { CampaignPanel } from './campaign.js';
 import { clickFault, isEmpty, newFaults, renderFaults } from './faults.js';
 import { loadGeometry, offsetOf, pipesOfSteps, placePoint } from './geometry.js';
 import { createMapView } from './map-view.js';
@@ -231,30 +232,35 @@ async function runSimulation() {
   }
 }
 
-// Replays a `simulate --log` file in the same player: the server reads it back (api replay).
-async function replayLog(file) {
-  running?.abort();
+// Plays a log's events in the player, as a simulation's stream: each plan followed by its route,
+// given ({"type": "route", "pipes"}, a campaign run's) or else the steps its actions ran until the
+// next plan (a `simulate --log` file has no routes).
+function playEvents(events) {
+  running?.abort();  // a new run cancels the last one's stream, and the server halts it
   clearRun();
   player.speed = Number($('speed').value);
+  const isPlan = (e) => e.type === 'plan' || e.type === 'replan';
+  const hasRoutes = events.some((e) => e.type === 'route');
+  let steps = [];
+  for (const e of events) {
+    if (e.type === 'route') {
+      player.push('route', e);
+    } else if (isPlan(e) && !hasRoutes) {
+      player.push(e.type, e);
+      steps = [];
+      player.push('route', { steps });
+    } else {
+      if (e.type === 'action') steps.push(e.step);
+      player.push(e.type, e);
+    }
+  }
+}
+
+// Replays a `simulate --log` file in the same player: the server reads it back (api replay).
+async function replayLog(file) {
   try {
     const { events } = await api.replay(state.map.id, await file.text());
-    // A log has no routes: each plan's route is the steps its actions ran until the next plan.
-    const isPlan = (e) => e.type === 'plan' || e.type === 'replan';
-    let steps = [];
-    const queued = [];
-    for (const e of events) {
-      if (isPlan(e)) {
-        steps = [];
-        queued.push(e, { route: true, steps });
-      } else {
-        if (e.type === 'action') steps.push(e.step);
-        queued.push(e);
-      }
-    }
-    for (const q of queued) {
-      if (q.route) player.push('route', { steps: q.steps });
-      else player.push(q.type, q);
-    }
+    playEvents(events);
   } catch (e) {
     $('messages').textContent = e.message;
   }
@@ -308,11 +314,21 @@ async function start() {
   $('mission-download').onclick = () => download(`${state.mission.name}.json`, state.mission);
   $('mission-upload').onchange = (e) => e.target.files[0] && uploadMission(e.target.files[0]);
   $('replay-upload').onchange = (e) => e.target.files[0] && replayLog(e.target.files[0]);
+  campaign = new CampaignPanel($, {
+    mapId: () => state.map.id,
+    mission: () => state.mission,
+    onOpenRun: (index, events) => { state.openedRun = index; playEvents(events); },
+    onError: (message) => { $('campaign-status').textContent = message; },
+  });
   if (maps.length > 0) await openMap(maps[0].id);
   state.timings.first_draw_ms = Math.round(performance.now() - t0);
+  // Since navigation started: when the page's code started, and when the map was drawn.
+  state.timings.started_at_ms = Math.round(t0);
+  state.timings.ready_at_ms = Math.round(performance.now());
   document.body.dataset.ready = 'true';
 }
 
+let campaign = null;
 state.timings = {};
 start();
 
@@ -320,6 +336,7 @@ start();
 window.station = {
   state,
   player,
+  get campaign() { return campaign; },
   openMap,
   screenPoint(name, fraction) {
     const pipe = state.map.pipeByName.get(name);

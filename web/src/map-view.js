@@ -15,6 +15,9 @@ export function createMapView(parent, { onClick, onHover }) {
     parent,
     views: new OrthographicView({ flipY: false }),
     controller: { doubleClickZoom: false },  // clicks place tasks: none may zoom
+    // deck.gl holds every click back for the double-click interval (300 ms), in case a second
+    // follows; with no double-click zoom none is wanted, so a click places its task at once.
+    eventRecognizerOptions: { click: { interval: 0 } },
     initialViewState: { target: [0, 0, 0], zoom: 0 },
     getCursor: ({ isHovering }) => (isHovering ? 'pointer' : 'grab'),
     onHover,

@@ -23,7 +23,8 @@ _sewerplan() {
   case $prev in
     -a|--algorithm) COMPREPLY=($(compgen -W "auto astar wastar gbfs ehc exact" -- "$cur")); return ;;
     --heuristic) COMPREPLY=($(compgen -W "ff add max blind" -- "$cur")); return ;;
-    --risk) COMPREPLY=($(compgen -W "impassable avoid ignore" -- "$cur")); return ;;
+    --risk) COMPREPLY=($(compgen -W "impassable avoid expected ignore" -- "$cur")); return ;;
+    --gis-fields) COMPREPLY=($(compgen -f -X '!*.json' -- "$cur") $(compgen -d -- "$cur")); return ;;
     --topology|-t) COMPREPLY=($(compgen -W "tree meshed" -- "$cur")); return ;;
     --to) COMPREPLY=($(compgen -W "json ascii" -- "$cur")); return ;;
     --format) COMPREPLY=($(compgen -W "ff fd" -- "$cur")); return ;;

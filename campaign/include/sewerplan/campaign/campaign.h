@@ -5,7 +5,10 @@
 // record as one JSON line to a pipe. A child killed by a signal is a crash, one still running at
 // the time limit is killed (SIGKILL) and is a hang; either is recorded with its seed and the
 // campaign goes on. A progress callback sees every finished run. The records come back in index
-// order, so the output does not depend on the number of threads.
+// order, so the output does not depend on the number of threads. A stop condition (a cancel flag
+// set from another thread, a time limit) ends the campaign early: no run starts after it fires,
+// and the guarded children still running are killed at once (within the guard's 20 ms poll); the
+// records returned are then those of the runs that finished.
 //
 //   CampaignOptions options{.jobs = 2, .timeout_s = 60};
 //   std::vector<RunRecord> records = run_campaign(map, mission, spec, options);
@@ -27,6 +30,7 @@
 #include "sewerplan/campaign/run.h"
 #include "sewerplan/core/mission.h"
 #include "sewerplan/core/sewer_map.h"
+#include "sewerplan/core/stop_condition.h"
 
 namespace sewerplan::campaign {
 
@@ -35,6 +39,7 @@ struct Progress {
   std::size_t total = 0;
   std::size_t failed = 0;  // crashes and hangs so far
   double elapsed_s = 0;
+  const RunRecord* last = nullptr;  // the run just finished; valid during the call only
 };
 
 // For tests of the guard only: make a run's child crash (SIGSEGV) or hang.
@@ -47,13 +52,17 @@ struct CampaignOptions {
   std::optional<std::size_t> only;  // run just this index (it need not be in the shard)
   std::function<void(const Progress&)> progress;  // called from one thread at a time
   std::map<std::size_t, InjectedFault> inject;
+  // When to give up (StopCondition::with_cancel, after_seconds): checked before each run and,
+  // guarded, while a child runs (it is killed). Unguarded, a run in progress finishes first.
+  StopCondition stop;
 };
 
 // What each run of `spec` is set to: its rates, seed, limits, and the risk settings (a `risk` of
 // "expected" adds the risk-aware execution with domain::kDefaultRiskCosts).
 RunSettings run_settings(const CampaignSpec& spec);
 
-// The runs of `spec`'s shard (or options.only), in index order.
+// The runs of `spec`'s shard (or options.only), in index order; after options.stop fired, only
+// those that finished (fewer than the shard holds).
 std::vector<RunRecord> run_campaign(const SewerMap& map, const Mission& mission,
                                     const CampaignSpec& spec, const CampaignOptions& options);
 

@@ -50,7 +50,7 @@ inline constexpr int kCampaignJsonVersion = 1;
 struct CampaignSpec {
   std::string map_name;  // the files as given, for the commands printed to reproduce a run
   std::string mission_name;
-  std::string map_fingerprint;  // FNV-1a 64 of the file's bytes, 16 hex digits
+  std::string map_fingerprint;  // FNV-1a 64 of the map as read, in native JSON, 16 hex digits
   std::string mission_fingerprint;
   std::uint64_t seed = 0;
   std::size_t runs = 0;

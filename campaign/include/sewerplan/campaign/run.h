@@ -139,4 +139,25 @@ struct RunResult {
 Result<RunResult> run_one(const SewerMap& map, const Mission& mission, const RunSettings& settings,
                           std::size_t index);
 
+// The executions of a run that drive the simulated robot (the oracle is counted, not driven).
+enum class Policy { kOurs, kBaseline, kRiskAware };
+std::string_view to_string(Policy policy);  // "ours", "baseline", "risk_aware"
+std::optional<Policy> policy_from_string(std::string_view name);
+
+// What to see of an execution replayed: its events as the executor sends them (the lines of
+// `simulate --log`), and each plan it follows.
+struct ExecutionObservers {
+  executor::EventObserver on_event;
+  executor::Executor::PlanObserver on_plan;
+};
+
+// One execution of run `index` again, as run_one carries it out (the same faults, the same
+// seeded robot, the same policy), seen by `observers`: a campaign run's event log without storing
+// every log. Its result equals the run's record but for the measured planning times (unless a
+// planner time limit made the run depend on the machine, RunSettings::planner_time_limit_s).
+// Errors: bad rates; kRiskAware without RunSettings::risk.
+Result<Execution> replay_execution(const SewerMap& map, const Mission& mission,
+                                   const RunSettings& settings, std::size_t index, Policy policy,
+                                   const ExecutionObservers& observers);
+
 }  // namespace sewerplan::campaign

@@ -68,8 +68,9 @@ struct PlannerOptions {
   // Issue 16: the improvement budget follows the problem: about as much work as the compile did
   // (its Dijkstra nodes settled), counted in heuristic evaluations times the task's size, so a
   // small network does not pay 10,000 expansions for a plan found in microseconds; and where the
-  // tour search applies and the exact tour search (tour_search.h) fits in that work, it replaces
-  // the improvement and proves the plan optimal. Deterministic: counts, not time.
+  // tour search applies and the exact tour search (tour_search.h) fits in that work, or its table
+  // is small beside the compile's work (docs/planning.md), it replaces the improvement and proves
+  // the plan optimal. Deterministic: counts and sizes, not time.
   bool adaptive_improvement = true;
   // Goal selection (domain/compile.h, CompileOptions::select_goals): do as many tasks as can be
   // done and still end the mission, rather than fail when not all can. The plan's dropped tasks

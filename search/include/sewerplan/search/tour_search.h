@@ -54,12 +54,16 @@ std::optional<SearchResult> tour_search(const domain::CompiledTask& task,
 // kUnsolvable: proven that no plan fits the bound; kTimeLimit / kCancelled: stopped (checked
 // every 256 subsets). Empty when the task is not of the shape, has more than kMaxExactGoals
 // goals, or the table would take more than `max_bytes` (2^goals x leave places x 12 bytes:
-// 20 goals of 2 leave places take 500 MB). bench/search/exact_bench.cc has its speed and the
-// default planner's gap to it.
+// 20 goals of 2 leave places take 500 MB). `upper`: a known plan doing every goal costs this
+// much (real cost; kInfiniteCost: none known): only plans doing every goal within it are then
+// looked for, and subsets that cannot be completed within it are dropped early (the planner's
+// improvement after the tour search). bench/search/exact_bench.cc has its speed and the default
+// planner's gap to it.
 inline constexpr std::size_t kMaxExactGoals = 20;
 std::optional<SearchResult> exact_tour_search(const domain::CompiledTask& task,
                                               const StopCondition& stop = {},
                                               const Clock* clock = nullptr,
-                                              std::size_t max_bytes = std::size_t{600} << 20U);
+                                              std::size_t max_bytes = std::size_t{600} << 20U,
+                                              Cost upper = domain::kInfiniteCost);
 
 }  // namespace sewerplan::search

@@ -14,6 +14,12 @@
 //                                           executor's events as server-sent events (each plan
 //                                           followed by its route), then the report
 //   POST /api/maps/ID/replay                an event log (JSON lines) read back as events
+//   POST /api/maps/ID/campaign              {"mission", "runs", "seed", "fault_rates", "jobs"}: a
+//                                           fault campaign, its progress as server-sent events,
+//                                           then its summary (one campaign at a time)
+//   GET  /api/campaign                      the running campaign's progress, or the last summary
+//   POST /api/campaign/cancel               stops the running campaign
+//   GET  /api/campaign/runs/I               run I of the last campaign simulated again: its events
 //
 // and the page's files from `web_root` on every other GET. Maps are named by their ID (the file's
 // stem), never by a path, so a request reaches no file but the page's own. Every bad request gets
@@ -53,8 +59,15 @@ struct ServerOptions {
   std::string token;               // empty: no token asked
   std::filesystem::path web_root;  // the built page (share/sewerplan/web); empty: API only
   std::size_t max_body_bytes = 16u << 20;
-  double max_plan_time_s = 60;  // a request's time_limit is capped at this
-  std::size_t max_maps = 64;    // the maps given and uploaded (POST /api/maps) at most
+  double max_plan_time_s = 60;            // a request's time_limit is capped at this
+  std::size_t max_maps = 64;              // the maps given and uploaded (POST /api/maps) at most
+  std::size_t max_campaign_runs = 10000;  // a campaign's runs at most
+  std::size_t max_campaign_jobs = 0;      // a campaign's jobs at most; 0: the machine's cores
+  // Each campaign run in a forked child (campaign.h), so that a crash or a hang is counted and
+  // never takes the server down. false: in the server's threads, one at a time, a stop honoured
+  // between runs; for an allocator that is not safe to fork under while other threads allocate
+  // (ASan before LLVM 17, campaign.h), as the sanitizer build's tests have.
+  bool campaign_guard = true;
 };
 
 class StationServer {

@@ -1,0 +1,389 @@
+// SPDX-License-Identifier: MIT
+#include "campaign_service.h"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <charconv>
+#include <cstdint>
+#include <set>
+#include <sstream>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "sewerplan/campaign/campaign.h"
+#include "sewerplan/campaign/record.h"
+#include "sewerplan/campaign/run.h"
+#include "sewerplan/campaign/summary.h"
+#include "sewerplan/core/stop_condition.h"
+#include "sewerplan/executor/event_json.h"
+
+#include "http_reply.h"
+#include "plan_route.h"
+
+namespace sewerplan::server {
+
+struct CampaignService::Running {
+  std::shared_ptr<const SewerMap> map;  // kept while the campaign runs
+  Mission mission;
+  campaign::CampaignSpec spec;
+  std::size_t jobs = 1;
+  std::atomic<bool> cancel{false};
+  Json progress;  // the last "progress" event; guarded by the service's mutex
+};
+
+struct CampaignService::Finished {
+  std::shared_ptr<const SewerMap> map;
+  Mission mission;
+  campaign::CampaignSpec spec;
+  std::vector<campaign::RunRecord> records;
+  Json document;  // {"state", "map", "summary", "runs"}
+};
+
+namespace {
+
+constexpr std::array<std::string_view, 6> kFields = {"mission",     "runs", "seed",
+                                                     "fault_rates", "jobs", "allow_push"};
+constexpr std::array<std::string_view, 6> kRateNames = {"obstacles",    "danger",    "passages",
+                                                        "malfunctions", "permanent", "transient"};
+
+// What a request asks beyond its mission; an error names the field that is wrong.
+struct CampaignRequest {
+  std::size_t runs = 100;
+  std::uint64_t seed = 1;
+  campaign::FaultRates rates;
+  std::size_t jobs = 1;
+  bool push_allowed = false;
+};
+
+Error field_error(const std::string& message) {
+  return Error{ErrorCode::kInvalidArgument, "campaign: " + message};
+}
+
+std::string shortened(std::string_view text) {
+  return std::string(text.substr(0, 64)) + (text.size() > 64 ? "..." : "");
+}
+
+// A whole number from `min` to `max`, or nothing.
+std::optional<std::uint64_t> whole(const Json& v, std::uint64_t min, std::uint64_t max) {
+  std::uint64_t n = 0;
+  if (v.is_number_unsigned()) {
+    n = v.get<std::uint64_t>();
+  } else if (v.is_string()) {
+    const std::string& text = v.get_ref<const std::string&>();
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
+    if (ec != std::errc{} || end != text.data() + text.size() || text.empty()) return std::nullopt;
+  } else {
+    return std::nullopt;
+  }
+  if (n < min || n > max) return std::nullopt;
+  return n;
+}
+
+// "fault_rates": the CLI's text ("obstacles=20,danger=5") or an object of the same names.
+Result<campaign::FaultRates> read_rates(const Json& v) {
+  std::string text;
+  if (v.is_string()) {
+    text = v.get<std::string>();
+  } else if (v.is_object()) {
+    for (const auto& [name, value] : v.items()) {
+      if (std::find(kRateNames.begin(), kRateNames.end(), name) == kRateNames.end()) {
+        return field_error("fault_rates." + shortened(name) +
+                           ": unknown rate (expected obstacles, danger, passages, malfunctions, "
+                           "permanent, transient)");
+      }
+      if (!value.is_number()) return field_error("fault_rates." + name + ": expected a number");
+      char buffer[32];
+      const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value.get<double>());
+      text += (text.empty() ? "" : ",") + name + "=" + std::string(buffer, end);
+      (void)ec;
+    }
+  } else {
+    return field_error("fault_rates: expected an object {\"obstacles\": 20, ...} or its text");
+  }
+  Result<campaign::FaultRates> rates = campaign::parse_fault_rates(text);
+  if (!rates.has_value()) {
+    std::string message = rates.error().message;
+    if (message.starts_with("--fault-rates: ")) message.erase(0, 15);
+    return field_error("fault_rates: " + message);
+  }
+  return rates;
+}
+
+Result<CampaignRequest> read_request(const Json& body, const CampaignLimits& limits) {
+  CampaignRequest r;
+  for (const auto& [key, value] : body.items()) {
+    if (std::find(kFields.begin(), kFields.end(), key) == kFields.end()) {
+      return field_error("unknown field '" + shortened(key) +
+                         "' (expected mission, runs, seed, fault_rates, jobs, allow_push)");
+    }
+  }
+  if (body.contains("runs")) {
+    const auto runs = whole(body["runs"], 1, limits.max_runs);
+    if (!runs) {
+      return field_error("runs: expected a whole number from 1 to " +
+                         std::to_string(limits.max_runs) + " (the station's limit)");
+    }
+    r.runs = *runs;
+  }
+  if (body.contains("seed")) {
+    const auto seed = whole(body["seed"], 0, UINT64_MAX);
+    if (!seed) return field_error("seed: expected a whole number from 0 (or its decimal text)");
+    r.seed = *seed;
+  }
+  if (body.contains("jobs")) {
+    const auto jobs = whole(body["jobs"], 1, limits.max_jobs);
+    if (!jobs) {
+      return field_error("jobs: expected 1 to " + std::to_string(limits.max_jobs) +
+                         " (the machine's cores)");
+    }
+    r.jobs = *jobs;
+  }
+  if (body.contains("fault_rates")) {
+    Result<campaign::FaultRates> rates = read_rates(body["fault_rates"]);
+    if (!rates.has_value()) return rates.error();
+    r.rates = *rates;
+  }
+  if (body.contains("allow_push")) {
+    if (!body["allow_push"].is_boolean()) return field_error("allow_push: expected true or false");
+    r.push_allowed = body["allow_push"].get<bool>();
+  }
+  return r;
+}
+
+// The running tallies of a "progress" event: runs done, crashes and hangs, and ours so far.
+struct Tally {
+  std::array<std::size_t, 4> outcomes{};  // by campaign::Outcome
+  std::size_t tasks = 0;
+  std::size_t oracle_tasks = 0;
+
+  void add(const campaign::RunRecord& r) {
+    if (!r.result) return;
+    ++outcomes[static_cast<std::size_t>(r.result->ours.outcome)];
+    tasks += r.result->ours.tasks;
+    oracle_tasks += r.result->oracle_tasks;
+  }
+};
+
+Json progress_json(const campaign::Progress& p, const Tally& tally) {
+  Json outcomes = Json::object();
+  for (std::size_t o = 0; o < tally.outcomes.size(); ++o) {
+    outcomes[std::string(campaign::to_string(static_cast<campaign::Outcome>(o)))] =
+        tally.outcomes[o];
+  }
+  return {{"done", p.done},
+          {"total", p.total},
+          {"failed", p.failed},
+          {"elapsed_s", p.elapsed_s},
+          {"outcomes", outcomes},
+          {"tasks", tally.tasks},
+          {"oracle_tasks", tally.oracle_tasks}};
+}
+
+// The summary.json document, by the campaign library's own writer, and each run's line.
+Json finished_json(const campaign::CampaignSpec& spec,
+                   const std::vector<campaign::RunRecord>& records, bool cancelled) {
+  std::ostringstream summary;
+  campaign::write_summary_json(campaign::summarize(spec, records), summary);
+  Json runs = Json::array();
+  for (const campaign::RunRecord& r : records) runs.push_back(Json::parse(run_json_line(r)));
+  return {{"state", cancelled ? "cancelled" : "done"},
+          {"map", spec.map_name},
+          {"total", spec.runs},
+          {"summary", Json::parse(summary.str())},
+          {"runs", std::move(runs)}};
+}
+
+bool same_but_measured(campaign::Execution a, campaign::Execution b) {
+  a.planning_times_s.clear();
+  b.planning_times_s.clear();
+  return a == b;
+}
+
+}  // namespace
+
+void CampaignService::start(const Json& body, std::shared_ptr<const SewerMap> map,
+                            const std::string& map_id, Mission mission, httplib::Response& res) {
+  Result<CampaignRequest> request = read_request(body, limits_);
+  if (!request.has_value()) return bad_request(res, request.error().message);
+  auto running = std::make_shared<Running>();
+  running->map = std::move(map);
+  running->jobs = request->jobs;
+  campaign::CampaignSpec& spec = running->spec;
+  spec.map_name = map_id;
+  spec.mission_name = mission.name;
+  // Identities for merging shards, which the station does not write: the map's ID and the mission.
+  spec.map_fingerprint = campaign::fingerprint(map_id);
+  spec.mission_fingerprint = campaign::fingerprint(dump(body["mission"]));
+  spec.seed = request->seed;
+  spec.runs = request->runs;
+  spec.rates = request->rates;
+  spec.push_allowed = request->push_allowed;
+  running->mission = std::move(mission);
+  {
+    const std::lock_guard lock(mutex_);
+    if (shut_down_) {
+      return send_error(res, kConflict,
+                        Error{ErrorCode::kInvalidArgument, "the station is stopping"});
+    }
+    if (running_) {
+      return send_error(
+          res, kConflict,
+          Error{ErrorCode::kInvalidArgument,
+                "a campaign is running (one at a time): cancel it (POST /api/campaign/cancel) "
+                "or wait for its summary"});
+    }
+    running_ = running;
+    running->progress = {{"done", 0}, {"total", spec.runs}};
+  }
+  res.set_header("Cache-Control", "no-cache");
+  res.set_chunked_content_provider(
+      "text/event-stream",
+      [this, running](std::size_t, httplib::DataSink& sink) {
+        // A closed tab: the write fails, and the campaign stops at once.
+        const auto send = [&](std::string_view type, const Json& data) {
+          const std::string message =
+              "event: " + std::string(type) + "\ndata: " + dump(data) + "\n\n";
+          if (!sink.write(message.data(), message.size())) running->cancel = true;
+        };
+        const campaign::CampaignSpec& run_spec = running->spec;
+        send("start", {{"total", run_spec.runs},
+                       {"jobs", running->jobs},
+                       {"seed", std::to_string(run_spec.seed)},
+                       {"fault_rates", campaign::format_fault_rates(run_spec.rates)}});
+        Tally tally;
+        campaign::CampaignOptions options;
+        options.jobs = running->jobs;
+        options.guard = limits_.guard;
+        options.stop = StopCondition().with_cancel(running->cancel);
+        // Called one run at a time (campaign.h).
+        options.progress = [&](const campaign::Progress& p) {
+          if (p.last != nullptr) tally.add(*p.last);
+          Json j = progress_json(p, tally);
+          {
+            const std::lock_guard lock(mutex_);
+            running->progress = j;
+          }
+          send("progress", j);
+        };
+        std::vector<campaign::RunRecord> records =
+            campaign::run_campaign(*running->map, running->mission, run_spec, options);
+        auto finished = std::make_shared<Finished>();
+        finished->map = running->map;
+        finished->mission = running->mission;
+        finished->spec = run_spec;
+        finished->document = finished_json(run_spec, records, running->cancel.load());
+        finished->records = std::move(records);
+        finish(running, finished);
+        send("summary", finished->document);
+        sink.done();
+        return true;
+      },
+      [this, running](bool) { release(running); });
+}
+
+void CampaignService::finish(const std::shared_ptr<Running>& running,
+                             std::shared_ptr<const Finished> finished) {
+  const std::lock_guard lock(mutex_);
+  last_ = std::move(finished);
+  if (running_ == running) running_ = nullptr;
+}
+
+// The stream is gone (or never started): its campaign no longer holds the station's one slot.
+void CampaignService::release(const std::shared_ptr<Running>& running) {
+  const std::lock_guard lock(mutex_);
+  running->cancel = true;
+  if (running_ == running) running_ = nullptr;
+}
+
+void CampaignService::cancel(httplib::Response& res) {
+  const std::lock_guard lock(mutex_);
+  if (!running_) {
+    return send_error(res, kConflict, Error{ErrorCode::kInvalidArgument, "no campaign is running"});
+  }
+  running_->cancel = true;
+  send_json(res, {{"cancelled", true}});
+}
+
+void CampaignService::status(httplib::Response& res) const {
+  const std::lock_guard lock(mutex_);
+  if (running_) {
+    return send_json(
+        res,
+        {{"state", "running"}, {"map", running_->spec.map_name}, {"progress", running_->progress}});
+  }
+  if (last_) return send_json(res, last_->document);
+  send_json(res, {{"state", "none"}});
+}
+
+void CampaignService::run_events(const httplib::Request& req, httplib::Response& res) const {
+  const std::string text = req.matches[1];
+  std::size_t index = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), index);
+  if (ec != std::errc{} || end != text.data() + text.size()) {
+    return bad_request(res, "run: expected a run's index, got '" + shortened(text) + "'");
+  }
+  const std::string policy_name =
+      req.has_param("policy") ? req.get_param_value("policy") : std::string("ours");
+  const std::optional<campaign::Policy> policy = campaign::policy_from_string(policy_name);
+  if (!policy) return bad_request(res, "policy: expected ours, baseline or risk_aware");
+  std::shared_ptr<const Finished> last;
+  {
+    const std::lock_guard lock(mutex_);
+    last = last_;
+  }
+  if (!last) {
+    return send_error(res, kNotFound,
+                      Error{ErrorCode::kInvalidArgument, "no campaign has finished yet"});
+  }
+  const auto record = std::find_if(last->records.begin(), last->records.end(),
+                                   [&](const campaign::RunRecord& r) { return r.index == index; });
+  if (record == last->records.end()) {
+    return send_error(
+        res, kNotFound,
+        Error{ErrorCode::kInvalidArgument, "run " + std::to_string(index) + ": not among the " +
+                                               std::to_string(last->records.size()) +
+                                               " finished runs of the last campaign"});
+  }
+  if (!record->result) {
+    // A run that crashed or hung in its guarded child would do so here, in the server.
+    return send_error(res, kUnprocessable,
+                      Error{ErrorCode::kInvalidArgument,
+                            "run " + std::to_string(index) + ": " +
+                                std::string(to_string(record->status)) + " (" + record->detail +
+                                "); not simulated again in the station: reproduce it with `" +
+                                campaign::reproduce_command(last->spec, index) + "`"});
+  }
+  Json events = Json::array();
+  campaign::ExecutionObservers observers;
+  observers.on_event = [&](const executor::Event& e) {
+    events.push_back(Json::parse(executor::to_json_line(e)));
+  };
+  observers.on_plan = [&](const executor::PlanResponse& response) {
+    Json route = plan_route_json(response.plan, *last->map, last->mission);
+    route["type"] = "route";
+    events.push_back(std::move(route));
+  };
+  Result<campaign::Execution> replayed = campaign::replay_execution(
+      *last->map, last->mission, campaign::run_settings(last->spec), index, *policy, observers);
+  if (!replayed.has_value()) return bad_request(res, replayed.error().message);
+  const campaign::RunResult& result = *record->result;
+  const campaign::Execution* recorded = *policy == campaign::Policy::kOurs       ? &result.ours
+                                        : *policy == campaign::Policy::kBaseline ? &result.baseline
+                                        : result.risk_aware ? &*result.risk_aware
+                                                            : nullptr;
+  send_json(res,
+            {{"run", Json::parse(run_json_line(*record))},
+             {"policy", campaign::to_string(*policy)},
+             {"events", std::move(events)},
+             {"same_as_record", recorded != nullptr && same_but_measured(*replayed, *recorded)}});
+}
+
+void CampaignService::shut_down() {
+  const std::lock_guard lock(mutex_);
+  shut_down_ = true;
+  if (running_) running_->cancel = true;
+}
+
+}  // namespace sewerplan::server

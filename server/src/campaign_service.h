@@ -1,0 +1,75 @@
+// SPDX-License-Identifier: MIT
+// CampaignService: the operator station's fault campaigns (docs/operator-station.md, "Campaigns"),
+// one at a time, run in-process by the campaign library (campaign/campaign.h) on the open map and
+// mission, as `sewerplan campaign` runs them: guarded children, `jobs` at a time.
+//
+// start() checks a request (runs, seed, fault rates, jobs, push) and answers a 400 naming the
+// field, a 409 while another campaign runs, or a stream of server-sent events: "start", one
+// "progress" per finished run (runs done of the total, crashes, our outcomes and tasks so far),
+// and "summary" at the end (the summary.json document, from the campaign library's own writer, and
+// each run's runs.jsonl line). cancel() (or a closed stream, or the server stopping) stops the
+// campaign through its stop condition: no run starts after it, and running children are killed.
+// The last finished (or cancelled) campaign stays: status() gives its summary, and run_events()
+// simulates one of its runs again from its seed (campaign::replay_execution) for the page's
+// replay view, without storing every run's log.
+//
+//   CampaignService campaigns({.max_runs = 10000, .max_jobs = 2});
+//   campaigns.start(body, map, "ais", std::move(mission), res);  // POST /api/maps/ID/campaign
+//   campaigns.cancel();                                           // POST /api/campaign/cancel
+//
+// Thread safety: every member may be called from any of the server's threads; one mutex guards
+// the running and the last campaign, which are shared with the stream that runs it.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include "sewerplan/core/mission.h"
+#include "sewerplan/core/sewer_map.h"
+#include "sewerplan/server/documents.h"
+
+#include <httplib.h>
+
+namespace sewerplan::server {
+
+struct CampaignLimits {
+  std::size_t max_runs = 10000;
+  std::size_t max_jobs = 1;  // the machine's cores
+  bool guard = true;         // ServerOptions::campaign_guard
+};
+
+class CampaignService {
+ public:
+  explicit CampaignService(CampaignLimits limits) : limits_(limits) {}
+
+  // `body` is the request's JSON object; its "mission" is `mission`, already read and checked.
+  void start(const Json& body, std::shared_ptr<const SewerMap> map, const std::string& map_id,
+             Mission mission, httplib::Response& res);
+  // 200 {"cancelled": true}, or 409 when no campaign runs.
+  void cancel(httplib::Response& res);
+  // {"state": "none" | "running" | "done" | "cancelled", ...}: the running campaign's progress,
+  // or the last one's summary and runs.
+  void status(httplib::Response& res) const;
+  // GET /api/campaign/runs/I?policy=ours|baseline: run I of the last campaign simulated again,
+  // {"run": its runs.jsonl line, "policy", "events": [...], "same_as_record": bool}.
+  void run_events(const httplib::Request& req, httplib::Response& res) const;
+  // Cancels a running campaign and refuses new ones (the server is stopping).
+  void shut_down();
+
+  struct Running;
+  struct Finished;
+
+ private:
+  void finish(const std::shared_ptr<Running>& running, std::shared_ptr<const Finished> finished);
+  void release(const std::shared_ptr<Running>& running);
+
+  CampaignLimits limits_;
+  mutable std::mutex mutex_;
+  bool shut_down_ = false;
+  std::shared_ptr<Running> running_;
+  std::shared_ptr<const Finished> last_;
+};
+
+}  // namespace sewerplan::server
