@@ -197,21 +197,21 @@ if [ -f "$root/usr/share/sewerplan/web/index.html" ]; then
   # The operator station from the installed page: the server starts, serves the page and its API.
   # exec: the background job is the server itself (env, chroot and sewerplan exec each other), so
   # that killing it leaves nothing running in the root.
+  # --port 0: any free port (the root shares the host's network); the URL is read from its output.
   (exec env -i PATH=/usr/sbin:/usr/bin:/sbin:/bin HOME=/root LANG=C.UTF-8 chroot "$root" \
-    sewerplan serve --map "$data/map.json" --port 18089 > "$cache/serve.log" 2>&1) &
+    sewerplan serve --map "$data/map.json" --port 0 > "$cache/serve.log" 2>&1) &
   serve_pid=$!
-  got=$(in_root python3 - <<'PY' || true
-import json, time, urllib.request
-base = "http://127.0.0.1:18089"
-for _ in range(100):
-    try:
-        page = urllib.request.urlopen(base + "/", timeout=2).read().decode()
-        break
-    except OSError:
-        time.sleep(0.1)
-else:
-    raise SystemExit("no answer")
-maps = json.load(urllib.request.urlopen(base + "/api/maps", timeout=2))
+  url=""
+  for _ in $(seq 1 100); do
+    url=$(grep -oE 'http://127\.0\.0\.1:[0-9]+/' "$cache/serve.log" 2> /dev/null | head -1 || true)
+    [ -n "$url" ] && break
+    sleep 0.1
+  done
+  got=$(in_root python3 - "$url" <<'PY' || true
+import json, sys, urllib.request
+base = sys.argv[1].rstrip("/")
+page = urllib.request.urlopen(base + "/", timeout=5).read().decode()
+maps = json.load(urllib.request.urlopen(base + "/api/maps", timeout=5))
 print("<html" in page.lower(), len(maps["maps"]) if isinstance(maps, dict) else len(maps))
 PY
 )

@@ -2,6 +2,7 @@
 // sewerplan serve [--map FILE ...] [--host 127.0.0.1] [--port 8080] [--token T] [--web DIR]
 // The operator station (docs/operator-station.md): the server of server/station_server.h, and the
 // page.
+#include <algorithm>
 #include <csignal>
 #include <filesystem>
 #include <ostream>
@@ -44,6 +45,13 @@ std::filesystem::path web_root(const std::string& option) {
 }
 
 int run(const ServeOptions& o, Context& c) {
+  // A mapping applies to the GIS maps only; with none among them it would be ignored silently.
+  if (!o.gis_fields.empty() && std::none_of(o.maps.begin(), o.maps.end(), is_gis_path)) {
+    return usage_error(c, false,
+                       "serve: --gis-fields " + o.gis_fields +
+                           ": none of the maps is a GIS source (GeoPackage, Shapefile or a "
+                           "directory of them)");
+  }
   server::ServerOptions options{.host = o.host, .port = o.port, .token = o.token};
   for (const std::string& m : o.maps) options.maps.emplace_back(m);
   options.read_map_with = [fields = o.gis_fields](const std::filesystem::path& path,

@@ -30,9 +30,9 @@ void add_gis_fields_option(CLI::App& command, std::string& gis_fields);
 // A GeoPackage, a Shapefile or a directory (what gis::read_map_source reads through GDAL).
 bool is_gis_path(const std::string& path);
 
-// Errors: a GIS source without GIS support (kUnsupportedFormat, saying so); --gis-fields naming
-// no file (kIo), a malformed one (kParse, its problems in `diagnostics`), or given with a map that
-// is not a GIS source (kInvalidArgument: a usage error).
+// Errors: a GIS source, or any --gis-fields, without GIS support (kUnsupportedFormat, saying so);
+// --gis-fields naming no file (kIo), a malformed one (kParse, its problems in `diagnostics`), or
+// given with a map that is not a GIS source (kInvalidArgument: a usage error).
 Result<SewerMap> read_input_map(const MapSource& source, Diagnostics& diagnostics);
 
 }  // namespace sewerplan::cli

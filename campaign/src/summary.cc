@@ -51,7 +51,7 @@ void figures(const std::vector<const RunResult*>& runs, const Execution RunResul
     }
     ++f.outcomes[static_cast<std::size_t>(e.outcome)];
     const auto cause = static_cast<std::size_t>(e.beacon_cause);
-    ++(e.outcome == Outcome::kBeacon ? f.beacon_causes : f.exit_beacon_causes)[cause];
+    ++(e.outcome == Outcome::kBeacon ? f.beacon_causes : f.ended_otherwise_beacon_causes)[cause];
     if (r->could_reach_exit && e.outcome != Outcome::kExit && e.outcome != Outcome::kEndPoint) {
       ++f.missed_exits;
     }
@@ -86,12 +86,12 @@ Json policy_json(const PolicyFigures& f) {
   for (std::size_t o = 0; o < f.outcomes.size(); ++o) {
     outcomes[std::string(to_string(static_cast<Outcome>(o)))] = f.outcomes[o];
   }
-  Json causes, exit_causes;
+  Json causes, otherwise_causes;
   for (std::size_t c = 1; c < f.beacon_causes.size(); ++c) {
     const std::string name(
         executor::to_string(static_cast<executor::MissionReport::BeaconCause>(c)));
     causes[name] = f.beacon_causes[c];
-    exit_causes[name] = f.exit_beacon_causes[c];
+    otherwise_causes[name] = f.ended_otherwise_beacon_causes[c];
   }
   return Json{{"tasks_mean", f.tasks_mean},
               {"tasks_vs_oracle_mean", f.vs_oracle_mean},
@@ -100,7 +100,7 @@ Json policy_json(const PolicyFigures& f) {
               {"outcomes", outcomes},
               {"missed_exits", f.missed_exits},
               {"beacons_by_cause", causes},
-              {"beacons_at_exit_by_cause", exit_causes},
+              {"beacons_ended_otherwise_by_cause", otherwise_causes},
               {"reserve_violations", f.reserve_violations},
               {"replans_mean", f.replans_mean},
               {"replans_max", f.replans_max},
@@ -138,7 +138,7 @@ bool Summary::clean() const {
   using Cause = executor::MissionReport::BeaconCause;
   return failed.empty() && ours.missed_exits == 0 &&
          ours.beacon_causes[static_cast<std::size_t>(Cause::kLimit)] == 0 &&
-         ours.exit_beacon_causes[static_cast<std::size_t>(Cause::kLimit)] == 0 &&
+         ours.ended_otherwise_beacon_causes[static_cast<std::size_t>(Cause::kLimit)] == 0 &&
          ours.outcomes[static_cast<std::size_t>(Outcome::kStranded)] == 0 &&
          ours.reserve_violations == 0;
 }
@@ -314,13 +314,14 @@ void write_summary_markdown(const Summary& s, std::ostream& out) {
         << executor::to_string(static_cast<executor::MissionReport::BeaconCause>(c)) << " | "
         << s.ours.beacon_causes[c] << " | " << s.baseline.beacon_causes[c] << " |\n";
   }
-  const auto at_exit = [](const PolicyFigures& f) {
+  const auto ended_otherwise = [](const PolicyFigures& f) {
     std::size_t n = 0;
-    for (std::size_t c = 1; c < f.exit_beacon_causes.size(); ++c) n += f.exit_beacon_causes[c];
+    for (std::size_t c = 1; c < f.ended_otherwise_beacon_causes.size(); ++c)
+      n += f.ended_otherwise_beacon_causes[c];
     return n;
   };
-  out << "| beacon called, ended otherwise (at an exit) | " << at_exit(s.ours) << " | "
-      << at_exit(s.baseline) << " |\n";
+  out << "| beacon called, run ended otherwise | " << ended_otherwise(s.ours) << " | "
+      << ended_otherwise(s.baseline) << " |\n";
   out << "| could reach an exit but did not | " << s.ours.missed_exits << " | "
       << s.baseline.missed_exits << " |\n";
   out << "| battery-reserve violations | " << s.ours.reserve_violations << " | "

@@ -67,17 +67,21 @@ class SubsetProgramme {
             s_.move_cost(static_cast<std::int32_t>(a), static_cast<std::int32_t>(b));
       }
     }
-    if (upper_ < kInfiniteCost) fill_rest_bounds();
   }
 
   static std::size_t memory_bytes(const Shape& shape) {
     std::size_t leaves = 0;
     for (const auto& g : shape.goals) leaves += g.options.size();
-    return (std::size_t{1} << shape.goals.size()) * leaves * (sizeof(Cost) + sizeof(std::uint32_t));
+    // The table (a cost and a parent per subset and leaf), and the bounds by subset.
+    return (std::size_t{1} << shape.goals.size()) *
+           (leaves * (sizeof(Cost) + sizeof(std::uint32_t)) + sizeof(Cost));
   }
 
   // Fills the table; returns the stop condition's reason if it fired.
   std::optional<SearchStatus> run(const StopCondition& stop, std::uint64_t* entries) {
+    if (upper_ < kInfiniteCost) {
+      if (auto why = fill_rest_bounds(stop)) return why;
+    }
     const std::size_t k = s_.goals.size();
     const std::size_t subsets = std::size_t{1} << k;
     cost_.assign(subsets * width_, kInfiniteCost);
@@ -195,7 +199,8 @@ class SubsetProgramme {
   // the goals outside S still cost stays within U. That least, per goal: its cheapest option,
   // with the cheapest move into the place that option needs (from anywhere else). Summed per
   // subset over the goals outside it.
-  void fill_rest_bounds() {
+  // Returns the stop condition's reason if it fired (2^k subsets: checked every 2^14).
+  std::optional<SearchStatus> fill_rest_bounds(const StopCondition& stop) {
     const std::size_t k = s_.goals.size();
     const auto places = static_cast<std::size_t>(s_.places);
     std::vector<Cost> least(k, kInfiniteCost);
@@ -219,11 +224,15 @@ class SubsetProgramme {
     rest_bound_.assign(subsets, 0);
     const auto all = static_cast<std::uint32_t>(subsets - 1);
     for (std::uint32_t set = all; set-- > 0;) {  // from the larger subsets down
+      if ((set & 0x3fffU) == 0) {
+        if (auto why = stop.interrupted()) return why;
+      }
       const std::uint32_t outside = all & ~set;
       if (outside == 0) continue;
       const auto g = static_cast<std::size_t>(std::countr_zero(outside));
       rest_bound_[set] = rest_bound_[set | (1U << g)] + least[g];
     }
+    return std::nullopt;
   }
   // 0 if another goal leaves the robot at `at` (a move of none into it), else kInfiniteCost.
   Cost shared_place_move(std::size_t goal, std::int32_t at) const {

@@ -232,12 +232,15 @@ Result<PlanOutcome> plan_once(const SewerMap& map, const Mission& mission,
   admissible->watch(&stop);
   const Cost lower = admissible->evaluate(task.initial_state(), nullptr);
   admissible.reset();
-  if (auto stopped = stop.interrupted(); stopped || lower == Heuristic::kInterrupted) {
-    return search_failure(stopped.value_or(SearchStatus::kTimeLimit), mission, progress, task);
+  if (lower == Heuristic::kInterrupted) {
+    return search_failure(stop.interrupted().value_or(SearchStatus::kTimeLimit), mission, progress,
+                          task);
   }
+  // A finished proof stands even if the stop fired as it finished.
   if (lower == Heuristic::kDeadEnd || (task.penalty_unit() == 0 && lower > task.cost_bound())) {
     return search_failure(SearchStatus::kUnsolvable, mission, progress, task);
   }
+  if (auto stopped = stop.interrupted()) return search_failure(*stopped, mission, progress, task);
   const Algorithm algorithm = resolve(options.algorithm, task);
   const bool optimal_search = algorithm == Algorithm::kAstar || algorithm == Algorithm::kExact;
   const HeuristicKind kind =

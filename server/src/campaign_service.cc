@@ -331,8 +331,23 @@ void CampaignService::run_events(const httplib::Request& req, httplib::Response&
   std::shared_ptr<const Finished> last;
   {
     const std::lock_guard lock(mutex_);
+    if (replays_ >= std::max<std::size_t>(1, limits_.max_jobs)) {
+      return send_error(res, kConflict,
+                        Error{ErrorCode::kInvalidArgument,
+                              "run: " + std::to_string(replays_) +
+                                  " runs are being simulated again already; try when they end"});
+    }
+    ++replays_;
     last = last_;
   }
+  // Counts this replay until the request ends, however it ends.
+  struct Replaying {
+    const CampaignService& service;
+    ~Replaying() {
+      const std::lock_guard lock(service.mutex_);
+      --service.replays_;
+    }
+  } const replaying{*this};
   if (!last) {
     return send_error(res, kNotFound,
                       Error{ErrorCode::kInvalidArgument, "no campaign has finished yet"});

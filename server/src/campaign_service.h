@@ -52,7 +52,8 @@ class CampaignService {
   // {"state": "none" | "running" | "done" | "cancelled", ...}: the running campaign's progress,
   // or the last one's summary and runs.
   void status(httplib::Response& res) const;
-  // GET /api/campaign/runs/I?policy=ours|baseline: run I of the last campaign simulated again,
+  // GET /api/campaign/runs/I?policy=ours|baseline|risk_aware: run I of the last campaign simulated
+  // again (at most CampaignLimits::max_jobs at once: 409 beyond),
   // {"run": its runs.jsonl line, "policy", "events": [...], "same_as_record": bool}.
   void run_events(const httplib::Request& req, httplib::Response& res) const;
   // Cancels a running campaign and refuses new ones (the server is stopping).
@@ -68,6 +69,9 @@ class CampaignService {
   CampaignLimits limits_;
   mutable std::mutex mutex_;
   bool shut_down_ = false;
+  // Runs being simulated again (run_events), at most limits_.max_jobs at once: each is a whole
+  // simulation on a request's thread.
+  mutable std::size_t replays_ = 0;
   std::shared_ptr<Running> running_;
   std::shared_ptr<const Finished> last_;
 };

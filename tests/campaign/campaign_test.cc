@@ -153,12 +153,11 @@ TEST(Campaign, BeaconsByCauseSumToTheBeaconOutcome) {
   for (std::size_t c = 1; c < s.ours.beacon_causes.size(); ++c) by_cause += s.ours.beacon_causes[c];
   EXPECT_EQ(by_cause, n(s.ours.outcomes, Outcome::kBeacon));
   EXPECT_EQ(n(s.ours.beacon_causes, Cause::kMalfunction), 1U);
-  EXPECT_EQ(n(s.ours.exit_beacon_causes, Cause::kMalfunction), 1U);
+  EXPECT_EQ(n(s.ours.ended_otherwise_beacon_causes, Cause::kMalfunction), 1U);
   EXPECT_EQ(n(s.ours.outcomes, Outcome::kExit), 2U);
   std::ostringstream md;
   write_summary_markdown(s, md);
-  EXPECT_THAT(md.str(),
-              ::testing::HasSubstr("| beacon called, ended otherwise (at an exit) | 1 |"));
+  EXPECT_THAT(md.str(), ::testing::HasSubstr("| beacon called, run ended otherwise | 1 |"));
   EXPECT_TRUE(s.clean());
   records.push_back(record(3, Outcome::kExit, Cause::kLimit));
   EXPECT_FALSE(summarize(ais_spec(4), records).clean());

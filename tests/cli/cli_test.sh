@@ -345,5 +345,10 @@ else
     "$sp" plan --map "$tmp/motion/map.json" --mission "$mission" --motion "$tmp/motion/none.json"
 fi
 
+# serve applies --gis-fields to its GIS maps; with none among them the mapping would be ignored
+# silently, so it is a usage error before the server starts.
+expect 2 'serve: --gis-fields .*: none of the maps is a GIS source' -- \
+  timeout 20 "$sp" serve --map "$ais" --gis-fields "$tmp/fields-for-nothing.json" --port 0
+
 echo "$passed passed, $failures failed"
 [ "$failures" -eq 0 ]

@@ -4,6 +4,7 @@
 // summary.json, one at a time, and any run simulated again for the replay view; hostile requests
 // get a 400 that names the field.
 #include <atomic>
+#include <chrono>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -252,7 +253,13 @@ TEST_F(CampaignApiTest, AClosedStreamCancelsItsCampaign) {
   stream(request({{"runs", 5000}, {"jobs", 1}}),
          [&](const std::string& type, const json&) { return type != "progress"; });
   // The server notices at its next write, after the run in progress: wait for it.
-  while (get("/api/campaign").second["state"] == "running") std::this_thread::yield();
+  // (Bounded: a server that never notices fails the test instead of spinning until ctest's
+  // timeout.)
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (get("/api/campaign").second["state"] == "running" &&
+         std::chrono::steady_clock::now() < give_up) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
   auto [status, state] = get("/api/campaign");
   EXPECT_EQ(state["state"], "cancelled");
   EXPECT_LT(state["runs"].size(), 5000u);

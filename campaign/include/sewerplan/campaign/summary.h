@@ -36,10 +36,11 @@ struct PolicyFigures {
   std::array<std::size_t, 4> outcomes{};  // by Outcome
   std::size_t missed_exits = 0;           // could reach an exit, did not
   // By executor::MissionReport::BeaconCause, over the runs that end with the beacon (outcome
-  // beacon: they sum to it), and over the runs that called for recovery yet ended otherwise (a
-  // breakdown at an exit manhole: outcome exit, where the robot can be recovered; issue 14).
+  // beacon: they sum to it), and over the runs that called for recovery yet ended otherwise,
+  // whatever their outcome (most often a breakdown at an exit manhole: outcome exit, where the
+  // robot can be recovered; issue 14).
   std::array<std::size_t, 6> beacon_causes{};
-  std::array<std::size_t, 6> exit_beacon_causes{};
+  std::array<std::size_t, 6> ended_otherwise_beacon_causes{};
   std::size_t reserve_violations = 0;
   double replans_mean = 0;
   std::size_t replans_max = 0;
