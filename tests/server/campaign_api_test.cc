@@ -29,6 +29,19 @@ class CampaignApiTest : public StationFixture {
     return fields.dump();
   }
 
+  // The station's runs equal the library's records of them, but for what is measured (times).
+  static void expect_same_runs(const json& runs, const std::vector<campaign::RunRecord>& records,
+                               std::size_t count) {
+    ASSERT_GE(records.size(), count);
+    for (std::size_t i = 0; i < count; ++i) {
+      json line = json::parse(campaign::run_json_line(records[i]));
+      json got = runs[i];
+      line.erase("measured");
+      got.erase("measured");
+      EXPECT_EQ(got, line) << "run " << i;
+    }
+  }
+
   // The server-sent events of a finished stream: (type, data).
   static std::vector<std::pair<std::string, json>> events(const std::string& stream) {
     std::vector<std::pair<std::string, json>> out;
@@ -123,13 +136,7 @@ TEST_F(CampaignApiTest, StreamsItsProgressThenTheSummaryTheCampaignLibraryWrites
     }
   }
   EXPECT_EQ(summary, expected);
-  for (std::size_t i = 0; i < 12; ++i) {
-    json line = json::parse(campaign::run_json_line(records[i]));
-    json got = done["runs"][i];
-    line.erase("measured");
-    got.erase("measured");
-    EXPECT_EQ(got, line);
-  }
+  expect_same_runs(done["runs"], records, 12);
   // The last campaign stays, for the page.
   auto [status, state] = get("/api/campaign");
   EXPECT_EQ(status, 200);
@@ -294,13 +301,7 @@ TEST_F(CampaignApiTest, ManualRunsUnguardedWithTheSameRunsAndStopsBetweenThem) {
   spec.seed = 3;
   spec.runs = 4;
   const auto guarded = campaign::run_campaign(map, mission, spec, {});
-  for (std::size_t i = 0; i < 4; ++i) {
-    json line = json::parse(campaign::run_json_line(guarded[i]));
-    json got = done["runs"][i];
-    line.erase("measured");
-    got.erase("measured");
-    EXPECT_EQ(got, line);
-  }
+  expect_same_runs(done["runs"], guarded, 4);
   json summary;
   stream(request({{"runs", 5000}}), [&](const std::string& type, const json& data) {
     if (type == "progress" && data["done"] == 1) {
