@@ -49,6 +49,124 @@ const url = await new Promise((resolve, reject) => {
 });
 
 const check = (ok, what) => { if (!ok) throw new Error(what); };
+const loadavg = () => { try { return readFileSync('/proc/loadavg', 'utf8').split(' ').slice(0, 3).join(' '); } catch { return '?'; } };
+const ms = (x) => `${x.toFixed(1)} ms`;
+// p50, p95 and max of a list of times (nearest rank).
+function quantiles(values) {
+  const v = [...values].sort((a, b) => a - b);
+  const q = (f) => v[Math.max(0, Math.ceil(f * v.length) - 1)];
+  return { p50: q(0.5), p95: q(0.95), max: v.at(-1), count: v.length };
+}
+
+// Frame times while the view moves on every animation frame, `frames` frames long, panning by
+// `pan` screen pixels and zooming by `zoom` levels in all: the intervals between the page's
+// animation frames. They include the GPU's work, on the CPU here (SwiftShader): Chromium does
+// not start a frame before the last one is drawn.
+async function motion(page, what, { frames = 60, pan = [0, 0], zoom = 0 }) {
+  const r = await page.evaluate(async ([n, [px, py], dz]) => {
+    const view = window.station.view;
+    const v0 = view.viewState();
+    const renders = view.stats.renders, lod = view.stats.lod.length;
+    const stamps = [];
+    let target = [...v0.target];
+    await new Promise((resolve) => {
+      const step = (t) => {
+        stamps.push(t);
+        if (stamps.length > n) return resolve();
+        const z = v0.zoom + (dz * stamps.length) / n;
+        target = [target[0] + (px / n) * 2 ** -z, target[1] + (py / n) * 2 ** -z];
+        view.setView({ target, zoom: z });
+        requestAnimationFrame(step);
+      };
+      requestAnimationFrame(step);
+    });
+    return { stamps, renders: view.stats.renders - renders, lod: view.stats.lod.slice(lod) };
+  }, [frames, pan, zoom]);
+  const dt = r.stamps.slice(1).map((t, i) => t - r.stamps[i]);
+  const f = quantiles(dt);
+  const fps = (dt.length * 1000) / (r.stamps.at(-1) - r.stamps[0]);
+  const lod = r.lod.map((x) => `${x.mode} at level ${x.level}, ${x.drawn}, in ${ms(x.ms)}`);
+  console.log(`large map, ${what}: ${f.count} frames, frame time p50 ${ms(f.p50)}, p95 ${ms(f.p95)}, max ${ms(f.max)}, ` +
+              `${fps.toFixed(1)} fps, ${r.renders} drawn; LOD rebuilds: ${lod.join('; ') || 'none'} (load ${loadavg()})`);
+  return f;
+}
+
+// Moves the mouse over `points` (view pixels), one at a time, each until the page has picked
+// there; returns what the hover box shows at each ('' for nothing) and prints the picks' times.
+async function hovers(page, canvas, what, points) {
+  const box = await canvas.boundingBox();
+  const first = await page.evaluate(() => window.station.view.stats.picks.length);
+  const shown = [];
+  for (const [x, y] of points) {
+    const n = await page.evaluate(() => window.station.view.stats.picks.length);
+    await page.mouse.move(box.x + x, box.y + y);
+    await page.waitForFunction((k) => window.station.view.stats.picks.length > k, n, { timeout: 20000 });
+    shown.push(await page.evaluate(() => {
+      const hover = document.querySelector('#hover');
+      return hover.style.display === 'none' ? '' : hover.textContent;
+    }));
+  }
+  const picks = await page.evaluate((k) => window.station.view.stats.picks.slice(k), first);
+  const pick = quantiles(picks.map((p) => p.pick_ms)), shownAfter = quantiles(picks.map((p) => p.event_to_shown_ms));
+  console.log(`large map, hover ${what}: ${picks.length} picks, the pick p50 ${ms(pick.p50)} max ${ms(pick.max)}; ` +
+              `pointer event to hover shown p50 ${ms(shownAfter.p50)} max ${ms(shownAfter.max)}; ` +
+              `${shown.filter(Boolean).length} of ${points.length} named (load ${loadavg()})`);
+  return shown;
+}
+
+// The pipe (with two manholes, at least 40 pixels long on the screen, so that its middle is clear
+// of their circles) whose middle is nearest the view's centre, and that middle on the screen.
+const nearestPipe = (page) => page.evaluate(() => {
+  const { target, zoom } = window.station.view.viewState();
+  let best = null, bestD = Infinity;
+  for (const p of window.station.state.map.pipes) {
+    const d = Math.hypot((p.from[0] + p.to[0]) / 2 - target[0], (p.from[1] + p.to[1]) / 2 - target[1]);
+    const onScreen = Math.hypot(p.to[0] - p.from[0], p.to[1] - p.from[1]) * 2 ** zoom;
+    if (d < bestD && !p.openEnd && onScreen >= 40) { best = p.name; bestD = d; }
+  }
+  return { name: best, at: window.station.screenPoint(best, 0.5) };
+});
+
+// The large map (--large): open it, then time what a user does with it: hover at the overview, pan
+// and zoom in (each frame drawn), pan zoomed in, hover a pipe there (its name shown), zoom out.
+async function largeMap(page, canvas, shot) {
+  console.log(`large map: load ${loadavg()}`);
+  const t2 = Date.now();
+  const id = await page.evaluate(() => document.querySelector('#map').options[1].value);
+  check(!id.startsWith('epa'), `the large map is ${id}`);
+  await page.selectOption('#map', id);
+  await page.waitForFunction((i) => document.body.dataset.opened === i, id, { timeout: 180000 });
+  const timings = await page.evaluate(() => window.station.state.timings);
+  console.log(`large map ${id}: open and first draw ${Date.now() - t2} ms; in the page: geometry fetched and parsed ` +
+              `${timings.geometry_ms} ms, turned into pipes and manholes ${timings.load_geometry_ms} ms, ` +
+              `the profile's driveability asked ${timings.driveability_ms} ms, then drawn ` +
+              `${timings.open_map_ms - timings.geometry_ms - timings.load_geometry_ms - timings.driveability_ms} ms ` +
+              `(load ${loadavg()})`);
+  await shot('8-large.png');
+  const box = await canvas.boundingBox();
+  const around = (n) => Array.from({ length: n }, (_, i) => [box.width / 2 + 9 * i - 45, box.height / 2 + 5 * i - 25]);
+  await hovers(page, canvas, 'at the overview', around(10));
+  const fitted = await page.evaluate(() => window.station.view.viewState());
+  const frames = [];
+  frames.push(await motion(page, 'pan at the overview (600 px)', { pan: [600, 0] }));
+  await page.evaluate((v) => window.station.view.setView(v), fitted);  // back to the whole map
+  frames.push(await motion(page, 'zoom in 3 levels', { zoom: 3 }));
+  frames.push(await motion(page, 'pan zoomed in (600 px)', { pan: [-600, 300] }));
+  // The pipe nearest the view's centre, hovered at its middle: named.
+  const near = await nearestPipe(page);
+  const [named] = await hovers(page, canvas, `on pipe ${near.name} zoomed in`, [near.at]);
+  check(named.startsWith(`pipe ${near.name},`), `hovering pipe ${near.name} zoomed in shows '${named}'`);
+  frames.push(await motion(page, 'zoom out 3 levels', { zoom: -3 }));
+  const all = quantiles(frames.map((f) => f.p95));
+  console.log(`large map: the worst p95 frame time of the four motions ${ms(all.max)}`);
+  const t3 = Date.now();
+  await page.evaluate(() => window.station.zoomAndWait(3));
+  console.log(`large map: a zoom by 3 levels at once, drawn in ${Date.now() - t3} ms`);
+  const shown = await nearestPipe(page);
+  await hovers(page, canvas, `on pipe ${shown.name}`, [shown.at]);
+  await shot('9-large-zoom.png');
+}
+
 const browser = await launching;
 console.log(`server and browser up: ${Date.now() - started} ms`);
 let shotsMs = 0;
@@ -73,7 +191,7 @@ try {
   await shot('1-map.png');
 
   // Clicks a pipe at `fraction` of its length (where the page's view projects it) in `mode`.
-  const canvas = page.locator('#view canvas');
+  const canvas = page.locator('#view #deckgl-overlay');
   async function click(mode, point, what) {
     await page.check(`input[name=mode][value=${mode}]`);
     const box = await canvas.boundingBox();
@@ -206,22 +324,7 @@ try {
   check((await page.locator('#map option').count()) === (large ? 3 : 2), 'the uploaded map is not listed');
   await shot('7-uploaded-map.png');
 
-  if (large) {
-    const t2 = Date.now();
-    const id = await page.evaluate(() => document.querySelector('#map').options[1].value);
-    check(!id.startsWith('epa'), `the large map is ${id}`);
-    await page.selectOption('#map', id);
-    await page.waitForFunction((i) => document.body.dataset.opened === i, id, { timeout: 120000 });
-    console.log(`large map ${id}: open and first draw ${Date.now() - t2} ms; in the page:`,
-                await page.evaluate(() => window.station.state.timings));
-    await shot('8-large.png');
-    const box = await canvas.boundingBox();
-    const t3 = Date.now();
-    await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
-    await page.evaluate(() => window.station.zoomAndWait(3));
-    console.log(`large map: a zoom by 3 levels drawn in ${Date.now() - t3} ms`);
-    await shot('9-large-zoom.png');
-  }
+  if (large) await largeMap(page, canvas, shot);
   console.log(`station e2e: ok in ${Date.now() - started} ms, of which screenshots ${shotsMs} ms`);
 } catch (e) {
   failed = true;

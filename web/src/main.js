@@ -66,13 +66,21 @@ function faultsChanged() {
 
 async function openMap(id) {
   const t0 = performance.now();
-  state.map = loadGeometry(await api.mapGeometry(id));
+  // The profile's report is asked at once: the server works on it while the page reads the map.
+  const report = api.driveability(id, $('profile').value);
+  report.catch(() => {});  // awaited below, where a failure is reported
+  const geometry = await api.mapGeometry(id);
+  state.timings.geometry_ms = Math.round(performance.now() - t0);  // fetched and parsed
+  state.map = loadGeometry(geometry);
+  state.timings.load_geometry_ms = Math.round(performance.now() - t0) - state.timings.geometry_ms;
   state.mission = newMission($('profile').value);
   state.faults = newFaults();
   clearRun();
   state.route = new Set();
   view.fit(state.map.bounds);
-  await loadDriveability();
+  const t1 = performance.now();
+  await loadDriveability(report);
+  state.timings.driveability_ms = Math.round(performance.now() - t1);  // waited for the profile's report
   missionChanged();
   faultsChanged();
   await afterDraw();
@@ -80,15 +88,12 @@ async function openMap(id) {
   document.body.dataset.opened = id;
 }
 
-// Resolves after deck.gl has drawn the current layers.
-const afterDraw = () => new Promise((resolve) => {
-  view.deck.setProps({ onAfterRender: () => { view.deck.setProps({ onAfterRender: () => {} }); resolve(); } });
-  view.deck.redraw(true);
-});
+// Resolves after the map view has drawn the current layers (and the network's image, lod.js).
+const afterDraw = () => view.whenDrawn();
 
 // The pipes the profile cannot drive, with the reasons of `info --profile`.
-async function loadDriveability() {
-  const r = await api.driveability(state.map.id, $('profile').value);
+async function loadDriveability(report = api.driveability(state.map.id, $('profile').value)) {
+  const r = await report;
   state.blocked = new Map([
     ...r.too_narrow.map((p) => [p, `too narrow for ${r.profile}`]),
     ...r.too_wide.map((p) => [p, `too wide for ${r.profile}`]),
@@ -343,11 +348,12 @@ window.station = {
     return view.project(placePoint(state.map, { pipe: name, offset_m: fraction * pipe.length_m }));
   },
   manholePoint(name) { return view.project(state.map.manholeByName.get(name).position); },
+  // The map view: its view state, setView and drawing statistics (frames, LOD, picks).
+  view,
   // Zooms in by `levels` about the view's centre; resolves when it is drawn.
   zoomAndWait(levels) {
-    const vp = view.deck.getViewports()[0];
-    const target = vp.unproject([vp.width / 2, vp.height / 2]);
-    view.deck.setProps({ initialViewState: { target: [target[0], target[1], 0], zoom: vp.zoom + levels } });
+    const { target, zoom } = view.viewState();
+    view.setView({ target, zoom: zoom + levels });
     return afterDraw();
   },
 };

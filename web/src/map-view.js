@@ -1,16 +1,31 @@
 // SPDX-License-Identifier: MIT
-// The map view: deck.gl in an OrthographicView (WebGL, the network's own metres, no tiles). Pipes
-// are one LineLayer and manholes one ScatterplotLayer, each one GPU draw call whatever the count;
-// the mission, the hidden faults, the routes and the robot are small layers over them.
+// The map view: deck.gl in an OrthographicView (WebGL, the network's own metres, no tiles). The
+// network is drawn at a level of detail (lod.js): the pipes and manholes of a window around the
+// view, as a LineLayer and a ScatterplotLayer of binary columns when they are few, else as an
+// image of the window drawn by a worker (raster-worker.js) and shown in a 2-D canvas under deck.gl's,
+// moved and scaled with the view at each frame; either is rebuilt only when the view leaves the
+// window or the zoom level changes. Hover and click pick on the CPU from lod.js's grid (no GPU
+// picking pass, which would draw the scene again). The routes, the mission, the hidden faults
+// and the robot are small deck.gl layers over it.
 import { Deck, OrthographicView } from '@deck.gl/core';
 import { LineLayer, ScatterplotLayer, TextLayer } from '@deck.gl/layers';
 import { placePoint, pointOnPipe } from './geometry.js';
+import { GridIndex, keyServes, lodKey, mapColumns, pick, pipeClasses, vectorData } from './lod.js';
 
 const kNamesUpTo = 2000;  // manhole names at every zoom only on maps this small
 
 // scene: {map, blocked: Map(pipe -> reason), route: Set, oldRoutes: [Set], mission, faults,
 //         failures: [[x, y]], robot: [x, y] | null, beacon: bool}
 export function createMapView(parent, { onClick, onHover }) {
+  let viewState = { target: [0, 0, 0], zoom: 0 };
+  let hovering = false;
+  // What the browser test reads (web/e2e): frames drawn, LOD rebuilds and picks, timed.
+  const stats = { renders: 0, lod: [], picks: [] };
+  const drawn = [];  // resolves of whenDrawn()
+  // The window's image, under deck.gl's canvas (which is transparent where nothing is drawn).
+  const under = document.createElement('canvas');
+  Object.assign(under.style, { position: 'absolute', left: '0', top: '0', width: '100%', height: '100%' });
+  parent.prepend(under);
   const deck = new Deck({
     parent,
     views: new OrthographicView({ flipY: false }),
@@ -18,33 +33,131 @@ export function createMapView(parent, { onClick, onHover }) {
     // deck.gl holds every click back for the double-click interval (300 ms), in case a second
     // follows; with no double-click zoom none is wanted, so a click places its task at once.
     eventRecognizerOptions: { click: { interval: 0 } },
-    initialViewState: { target: [0, 0, 0], zoom: 0 },
-    getCursor: ({ isHovering }) => (isHovering ? 'pointer' : 'grab'),
-    onHover,
-    onClick,
+    initialViewState: viewState,
+    onViewStateChange: ({ viewState: v }) => { viewState = v; refresh(); },
+    getCursor: ({ isDragging }) => (isDragging ? 'grabbing' : hovering ? 'pointer' : 'grab'),
+    onHover: (info, event) => {
+      const t0 = performance.now();
+      const picked = pickAt(info);
+      hovering = Boolean(picked.object);
+      onHover(picked);
+      const t1 = performance.now();
+      // From the pointer's event to the hover shown, and the pick itself.
+      stats.picks.push({ pick_ms: t1 - t0, event_to_shown_ms: t1 - (event?.srcEvent?.timeStamp ?? t0) });
+    },
+    onClick: (info) => onClick(pickAt(info)),
+    onBeforeRender: () => blit(),
+    onAfterRender: () => {
+      ++stats.renders;
+      if (!waiting) drawn.splice(0).forEach((resolve) => resolve());
+    },
     layers: [],
   });
-  let base = [];  // the layers that change only with the map, the profile, the mission or a plan
+  let map = null;
+  let index = null;    // the map's grid (lod.js)
+  let classes = null;  // each pipe's class for the scene's profile
+  let key = null;      // the window and level drawn
+  let network = [];    // the pipe and manhole layers of a 'vector' key
+  let image = null;    // the last image of a window: {image, bounds, key}
+  let overlay = [];    // the routes, then the marks: change with the mission, the faults or a plan
+  let drawnBlocked = null;
   let robotLayers = [];
 
-  function baseLayers(s) {
+  // The worker draws one window at a time; a request made while it draws waits, and only the
+  // latest waits (the view moved on).
+  const worker = new Worker(new URL('./raster-worker.js', import.meta.url), { type: 'module' });
+  let busy = false, next = null, waiting = false, requestId = 0;
+  worker.onmessage = ({ data }) => {
+    busy = false;
+    if (data.id === requestId && key?.mode !== 'vector') {
+      image?.image.close();
+      image = data;
+      network = [];  // a 'vector' key's layers stay until the image replaces them
+      stats.lod.push({ ms: data.ms, mode: data.key.mode, level: data.key.level,
+                       drawn: `an image of ${data.image.width}x${data.image.height}` });
+      setLayers();
+    } else {
+      data.image.close();
+    }
+    if (next) request(next);
+    else waiting = false;
+    deck.redraw(true);
+  };
+  worker.onerror = (e) => {  // no image will come: say why, and let whenDrawn() resolve
+    console.error(`the map's rasterizer failed: ${e.message}`);
+    busy = waiting = false;
+  };
+  function request(k) {
+    waiting = true;
+    if (busy) { next = k; return; }
+    busy = true;
+    next = null;
+    worker.postMessage({ id: ++requestId, key: k });
+  }
+
+  // Bottom to top: pipes, routes, manholes, then the mission's marks and the robot.
+  const setLayers = () => deck.setProps({ layers: [network[0], overlay[0], network[1], ...overlay.slice(1), ...robotLayers]
+    .filter(Boolean) });
+
+  // The view's rectangle in metres (2^zoom pixels a metre).
+  function viewOf(v) {
+    const half = 2 ** -v.zoom / 2, w = parent.clientWidth * half, h = parent.clientHeight * half;
+    return { zoom: v.zoom, rect: [v.target[0] - w, v.target[1] - h, v.target[0] + w, v.target[1] + h] };
+  }
+
+  // Shows the window's image where the view has it (each frame: a 2-D canvas blit, milliseconds).
+  function blit() {
+    const width = parent.clientWidth, height = parent.clientHeight;
+    if (under.width !== width || under.height !== height) Object.assign(under, { width, height });
+    const g = under.getContext('2d');
+    g.clearRect(0, 0, width, height);
+    if (!image || key?.mode === 'vector' && network.length > 0) return;
+    const { rect, zoom } = viewOf(viewState), s = 2 ** zoom;
+    const [x0, y0, x1, y1] = image.bounds;
+    g.drawImage(image.image, (x0 - rect[0]) * s, (rect[3] - y1) * s, (x1 - x0) * s, (y1 - y0) * s);
+  }
+
+  // Rebuilds the network's layers, or asks for the window's image, when the view left the window
+  // drawn or changed its level.
+  function refresh() {
+    if (!index) return;
+    const view = viewOf(viewState);
+    if (keyServes(key, view)) return;
+    key = lodKey(index, view);
+    if (key.mode !== 'vector') {
+      request(key);
+      return;
+    }
+    const t0 = performance.now();
+    const data = vectorData(index, key, classes);
+    network = [
+      new LineLayer({ id: 'pipes', data: data.pipes, widthUnits: 'pixels' }),
+      new ScatterplotLayer({ id: 'manholes', data: data.manholes, radiusUnits: 'pixels' }),
+    ];
+    stats.lod.push({ ms: performance.now() - t0, mode: key.mode, level: key.level,
+                     drawn: `${data.pipes.length} lines, ${data.manholes.length} circles` });
+    setLayers();
+  }
+
+  // The feature under the pointer as deck.gl's picking info reads ({layer: {id}, object}).
+  function pickAt(info) {
+    if (!index || !key || !info.coordinate) return info;
+    const hit = pick(index, key.mode === 'overview', info.coordinate, viewState.zoom);
+    if (!hit) return { ...info, layer: null, object: null };
+    const pipe = hit.kind === 'pipe';
+    return { ...info, layer: { id: pipe ? 'pipes' : 'manholes' }, object: pipe ? map.pipes[hit.index] : map.manholes[hit.index] };
+  }
+
+  function overlayLayers(s) {
     const map = s.map;
     const old = new Set(s.oldRoutes.flatMap((r) => [...r]));
+    const routed = [...new Set([...old, ...s.route])].map((n) => map.pipeByName.get(n)).filter(Boolean);
     const layers = [
       new LineLayer({
-        id: 'pipes', data: map.pipes, pickable: true,
+        id: 'routes', data: routed,
         getSourcePosition: (p) => p.from, getTargetPosition: (p) => p.to,
-        getColor: (p) => (s.route.has(p.name) ? [230, 120, 0] : old.has(p.name) ? [150, 110, 200]
-                          : s.blocked.has(p.name) ? [200, 40, 40] : p.openEnd ? [140, 140, 140] : [60, 90, 160]),
-        getWidth: (p) => (s.route.has(p.name) ? 6 : old.has(p.name) ? 4 : 1 + 4 * Math.min(p.diameter_m, 1)),
-        widthUnits: 'pixels',
-        updateTriggers: { getColor: [s.route, s.blocked, s.oldRoutes], getWidth: [s.route, s.oldRoutes] },
-      }),
-      new ScatterplotLayer({
-        id: 'manholes', data: map.manholes, pickable: true,
-        getPosition: (m) => m.position, radiusUnits: 'pixels',
-        getRadius: (m) => (m.exit ? 6 : 3 + Math.min(m.slots, 4) * 0.5),
-        getFillColor: (m) => (m.exit ? [20, 150, 60] : [90, 90, 90]),
+        getColor: (p) => (s.route.has(p.name) ? [230, 120, 0] : [150, 110, 200]),
+        getWidth: (p) => (s.route.has(p.name) ? 6 : 4), widthUnits: 'pixels',
       }),
     ];
     const tasks = s.mission.tasks.map((t) => ({ t, at: placePoint(map, t.at ?? { pipe: t.pipe }) }))
@@ -76,13 +189,38 @@ export function createMapView(parent, { onClick, onHover }) {
     return layers;
   }
 
+  const setView = (v, { now = true } = {}) => {
+    viewState = { target: [v.target[0], v.target[1], 0], zoom: v.zoom };
+    deck.setProps({ initialViewState: viewState });
+    if (now) refresh();
+  };
+
   return {
     deck,
-    // Redraws everything (a changed map, mission, plan or fault).
-    draw(scene) {
-      if (!scene.map) return;
-      base = baseLayers(scene);
-      deck.setProps({ layers: [...base, ...robotLayers] });
+    stats,
+    // Draws a changed scene (map, profile, mission, plan or fault); the network's layers are
+    // rebuilt only for another map or profile.
+    draw(s) {
+      if (!s.map) return;
+      if (s.map !== map) {
+        map = s.map;
+        const columns = mapColumns(map);
+        index = new GridIndex(columns);
+        worker.postMessage({ map: columns });
+        image?.image.close();
+        image = null;
+        ++requestId;  // an image of the last map still being drawn is not shown
+        drawnBlocked = null;
+      }
+      if (s.blocked !== drawnBlocked) {
+        classes = pipeClasses(map, s.blocked);
+        worker.postMessage({ classes });
+        drawnBlocked = s.blocked;
+        key = null;
+      }
+      overlay = overlayLayers(s);
+      if (key) setLayers();
+      else refresh();
     },
     // Moves the robot only: one small layer per animation frame.
     drawRobot(robot, beacon) {
@@ -92,12 +230,23 @@ export function createMapView(parent, { onClick, onHover }) {
         stroked: beacon, getLineColor: [255, 230, 0], lineWidthUnits: 'pixels', getLineWidth: 4,
         updateTriggers: { getRadius: beacon, getFillColor: beacon },
       })] : [];
-      deck.setProps({ layers: [...base, ...robotLayers] });
+      setLayers();
     },
+    // Fits the view to a new map's bounds; its network is drawn by the next draw() (with the
+    // map's grid: the last map's would be drawn in vain).
     fit([x0, y0, x1, y1]) {
       const size = Math.max(x1 - x0, y1 - y0, 1);
       const zoom = Math.log2(Math.min(parent.clientWidth, parent.clientHeight) / (size * 1.1));
-      deck.setProps({ initialViewState: { target: [(x0 + x1) / 2, (y0 + y1) / 2, 0], zoom } });
+      setView({ target: [(x0 + x1) / 2, (y0 + y1) / 2], zoom }, { now: false });
+    },
+    // The view ({target, zoom}) and setting it, as a pan or a zoom would.
+    viewState: () => viewState,
+    setView,
+    // Resolves when deck.gl has drawn the current layers and the window's image has come.
+    whenDrawn() {
+      const done = new Promise((resolve) => drawn.push(resolve));
+      deck.redraw(true);
+      return done;
     },
     // Where a map point is on the screen, in the view's pixels.
     project(point) { return deck.getViewports()[0].project(point); },

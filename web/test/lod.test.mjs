@@ -1,0 +1,146 @@
+// SPDX-License-Identifier: MIT
+// The map view's level of detail (src/lod.js) in plain node, no browser: the grid's queries against
+// a brute-force scan, picking, how a window is drawn (vector, detail, overview) and when it is
+// rebuilt. The drawing itself (the worker's image) is checked by the browser test (e2e/).
+//
+//   node --test test/
+import assert from 'node:assert/strict';
+import { test } from 'node:test';
+import { loadGeometry } from '../src/geometry.js';
+import { GridIndex, kBlocked, keyServes, kNormal, kOpenEnd, kVectorBudget, lodKey, mapColumns, pick,
+         pipeClasses, vectorData } from '../src/lod.js';
+
+// A seeded street grid of `side` x `side` manholes 30 m apart (jittered by up to 10 m), each joined to
+// its right neighbour and, every other column, to the one above; every 7th manhole an exit, and one
+// pipe with an open end.
+function gridMap(side, seed = 1) {
+  let s = seed;
+  const rnd = () => (s = (s * 1103515245 + 12345) % 2147483648) / 2147483648;
+  const g = { id: 'grid', name: 'grid', bounds: [0, 0, side * 30, side * 30],
+              manholes: { name: [], x: [], y: [], slots: [], exit: [] },
+              pipes: { name: [], from: [], to: [], length_m: [], diameter_m: [] }, points: [] };
+  const m = g.manholes, p = g.pipes;
+  for (let i = 0; i < side * side; ++i) {
+    m.name.push(`M${i}`);
+    m.x.push((i % side) * 30 + rnd() * 10);
+    m.y.push(Math.floor(i / side) * 30 + rnd() * 10);
+    m.slots.push(2 + (i % 3));
+    m.exit.push(i % 7 === 0 ? 1 : 0);
+  }
+  const join = (a, b) => {
+    p.name.push(`P${p.name.length}`);
+    p.from.push(a);
+    p.to.push(b);
+    p.length_m.push(b < 0 ? 12 : Math.hypot(m.x[a] - m.x[b], m.y[a] - m.y[b]));
+    p.diameter_m.push(0.2 + rnd() * 0.8);
+  };
+  for (let i = 0; i < side * side; ++i) {
+    if (i % side + 1 < side) join(i, i + 1);
+    if (i + side < side * side && i % 2 === 0) join(i, i + side);
+  }
+  join(0, -1);
+  return loadGeometry(g);
+}
+
+const inRect = ([x0, y0, x1, y1], x, y) => x >= x0 && x <= x1 && y >= y0 && y <= y1;
+// The view of a screen of 1000 x 800 pixels centred on (x, y) at `zoom` (2^zoom pixels a metre).
+const viewAt = (x, y, zoom) => {
+  const w = 500 * 2 ** -zoom, h = 400 * 2 ** -zoom;
+  return { zoom, rect: [x - w, y - h, x + w, y + h] };
+};
+
+test('the grid lists every pipe and manhole of a rectangle, each pipe once', () => {
+  const map = gridMap(40);
+  const index = new GridIndex(mapColumns(map));
+  let s = 7;
+  const rnd = () => (s = (s * 1103515245 + 12345) % 2147483648) / 2147483648;
+  for (let k = 0; k < 50; ++k) {
+    const x = rnd() * 1300 - 50, y = rnd() * 1300 - 50, rect = [x, y, x + rnd() * 400, y + rnd() * 400];
+    const pipes = index.pipesIn(rect);
+    assert.equal(new Set(pipes).size, pipes.length, 'a pipe listed twice');
+    const listed = new Set(pipes);
+    map.pipes.forEach((p, i) => {
+      // A pipe whose bounding box meets the rectangle is listed (its cells meet the rectangle's).
+      const meets = Math.min(p.from[0], p.to[0]) <= rect[2] && Math.max(p.from[0], p.to[0]) >= rect[0] &&
+                    Math.min(p.from[1], p.to[1]) <= rect[3] && Math.max(p.from[1], p.to[1]) >= rect[1];
+      if (meets) assert.ok(listed.has(i), `pipe ${p.name} meets ${rect} but is not listed`);
+    });
+    const manholes = new Set(index.manholesIn(rect));
+    map.manholes.forEach((m, i) => {
+      if (inRect(rect, ...m.position)) assert.ok(manholes.has(i), `manhole ${m.name} is in ${rect} but not listed`);
+    });
+    const counts = index.counts(rect);
+    assert.ok(counts.pipes >= pipes.length && counts.manholes === manholes.size);
+  }
+});
+
+test('a pick names the manhole under the pointer, else the pipe, and only what is drawn', () => {
+  const map = gridMap(30);
+  const index = new GridIndex(mapColumns(map));
+  const zoom = 2;  // 4 pixels a metre: pipes 80 to 160 pixels long
+  for (const [i, m] of map.manholes.entries()) {
+    assert.deepEqual(pick(index, false, m.position, zoom), { kind: 'manhole', index: i });
+  }
+  for (const [i, p] of map.pipes.entries()) {
+    if (p.openEnd) continue;
+    const middle = [(p.from[0] + p.to[0]) / 2, (p.from[1] + p.to[1]) / 2];
+    assert.deepEqual(pick(index, false, middle, zoom), { kind: 'pipe', index: i }, `the middle of ${p.name}`);
+  }
+  // Off the map, and between the rows of a street (15 m = 60 pixels from any pipe): nothing.
+  assert.equal(pick(index, false, [-500, -500], zoom), null);
+  const above = map.pipes.find((p) => p.name === 'P0');  // M0 to M1, with no pipe up from M1
+  assert.equal(pick(index, false, [(above.from[0] + above.to[0]) / 2, above.from[1] + 17], zoom), null);
+  // In the overview only exits are drawn: on a manhole that is no exit, a pipe (or nothing).
+  const plain = map.manholes.findIndex((m) => !m.exit);
+  assert.notEqual(pick(index, true, map.manholes[plain].position, zoom)?.kind, 'manhole');
+  const exit = map.manholes.findIndex((m) => m.exit);
+  assert.deepEqual(pick(index, true, map.manholes[exit].position, zoom), { kind: 'manhole', index: exit });
+});
+
+test('a window is drawn as layers when small, as an image beyond, merged beyond the detail budget', () => {
+  const small = gridMap(4);
+  const smallIndex = new GridIndex(mapColumns(small));
+  assert.equal(lodKey(smallIndex, viewAt(45, 45, 0)).mode, 'vector');  // a small map, at any zoom
+  assert.equal(lodKey(smallIndex, viewAt(45, 45, -6)).mode, 'vector');
+  const big = gridMap(200);  // 40,000 manholes, 60,000 pipes
+  const index = new GridIndex(mapColumns(big));
+  const centre = [3000, 3000];
+  assert.equal(lodKey(index, viewAt(...centre, -3)).mode, 'overview');     // the whole map
+  assert.equal(lodKey(index, viewAt(...centre, -1)).mode, 'detail');       // about 5,000 pipes
+  assert.equal(lodKey(index, viewAt(...centre, 2)).mode, 'vector');        // a few streets
+  const key = lodKey(index, viewAt(...centre, 2));
+  const n = index.counts(key.window);
+  assert.ok(n.pipes + n.manholes <= kVectorBudget);
+});
+
+test('a window is rebuilt only when the view leaves it or the zoom rounds to another level', () => {
+  const map = gridMap(100);
+  const index = new GridIndex(mapColumns(map));
+  const key = lodKey(index, viewAt(1500, 1500, 0));
+  assert.ok(keyServes(key, viewAt(1500, 1500, 0)));
+  assert.ok(keyServes(key, viewAt(1600, 1550, 0)), 'a pan of 100 pixels');
+  assert.ok(keyServes(key, viewAt(1500, 1500, 0.4)), 'a zoom within the level');
+  assert.ok(!keyServes(key, viewAt(1500, 1500, 0.6)), 'a zoom to the next level');
+  assert.ok(!keyServes(key, viewAt(2500, 1500, 0)), 'a pan of a whole view');
+  assert.ok(!keyServes(null, viewAt(1500, 1500, 0)));
+});
+
+test("a vector window's layers hold its pipes and manholes, coloured by class", () => {
+  const map = gridMap(6);
+  const blocked = new Map([['P3', 'too narrow for makro-1.1']]);
+  const classes = pipeClasses(map, blocked);
+  assert.equal(classes[map.pipes.findIndex((p) => p.name === 'P3')], kBlocked);
+  assert.equal(classes[map.pipes.findIndex((p) => p.openEnd)], kOpenEnd);
+  assert.equal(classes[map.pipes.findIndex((p) => p.name === 'P0')], kNormal);
+  const index = new GridIndex(mapColumns(map));
+  const key = lodKey(index, viewAt(90, 90, 1));
+  assert.equal(key.mode, 'vector');
+  const data = vectorData(index, key, classes);
+  assert.equal(data.pipes.length, map.pipes.length);
+  assert.equal(data.manholes.length, map.manholes.length);
+  const colors = data.pipes.attributes.getColor.value;
+  const p3 = index.pipesIn(key.window).indexOf(map.pipes.findIndex((p) => p.name === 'P3'));
+  assert.deepEqual([...colors.slice(4 * p3, 4 * p3 + 3)], [200, 40, 40]);
+  const positions = data.manholes.attributes.getPosition.value;
+  assert.ok(positions instanceof Float64Array, 'positions keep double precision');
+});
