@@ -46,27 +46,6 @@ std::map<std::string, std::size_t> findings_by_code(const SewerMap& map) {
   return counts;
 }
 
-// The findings that close a place for this robot, as the planner sees them.
-std::vector<FindingRisk> closing(const SewerMap& map, const RobotProfile& profile,
-                                 const RiskTable& table) {
-  std::vector<FindingRisk> risks = assess_findings(map, profile, table);
-  std::erase_if(risks, [](const FindingRisk& r) { return r.effect != RiskEffect::kImpassable; });
-  return risks;
-}
-
-nlohmann::json closing_json(const SewerMap& map, const RobotProfile& profile,
-                            const RiskTable& table) {
-  nlohmann::json list = nlohmann::json::array();
-  for (const FindingRisk& r : closing(map, profile, table)) {
-    const Finding& f = map.findings()[r.finding];
-    list.push_back({{"pipe", map.pipe(f.pipe).name},
-                    {"offset_m", f.offset_m},
-                    {"code", f.code},
-                    {"reason", r.reason}});
-  }
-  return list;
-}
-
 void print_findings(const SewerMap& map, const RobotProfile* profile, const RiskTable& table,
                     std::ostream& out) {
   if (map.finding_count() == 0) return;
@@ -78,7 +57,7 @@ void print_findings(const SewerMap& map, const RobotProfile* profile, const Risk
   }
   out << '\n';
   if (profile == nullptr) return;
-  const std::vector<FindingRisk> closed = closing(map, *profile, table);
+  const std::vector<FindingRisk> closed = server::closing_findings(map, *profile, table);
   out << "closed by findings " << closed.size() << '\n';
   for (const FindingRisk& r : closed) {
     const Finding& f = map.findings()[r.finding];
@@ -194,16 +173,15 @@ int run(const InfoOptions& o, Context& c) {
       return fail(c, o.json, motion.error());
     }
     // What the findings close, as plan closes it (the default risk mode).
-    const std::vector<Blockage> closures =
-        impassable_blockages(*map, assess_findings(*map, *profile, *table));
-    report = domain::analyse_driveability(*map, *profile, starts, with_motion.passage_motion.get(),
-                                          closures);
+    report =
+        server::analyse_profile(*map, *profile, starts, with_motion.passage_motion.get(), *table);
   }
   if (o.json) {
     nlohmann::json j = info_json(*map, stats);
     if (report) {
       j["driveability"] = server::driveability_json(*report, *map, *profile);
-      j["driveability"]["closed_by_findings"] = closing_json(*map, *profile, *table);
+      j["driveability"]["closed_by_findings"] =
+          server::closed_by_findings_json(*map, *profile, *table);
     }
     print_json(c.out, j);
   } else {

@@ -79,8 +79,10 @@ int run(const ServeOptions& o, Context& c) {
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
   const Result<int> port = station.bind();
   if (!port.has_value()) return fail(c, false, port.error());
+  // The token in the fragment, which the browser keeps to itself: never in a request's URL, so in
+  // no server's or proxy's log (the page sends it as a header, web/src/api.js).
   c.out << "sewerplan serve: http://" << o.host << ':' << *port << '/'
-        << (o.token.empty() ? "" : "?token=" + o.token) << std::endl;
+        << (o.token.empty() ? "" : "#token=" + o.token) << std::endl;
   std::thread waiter([&] {
     int signal = 0;
     sigwait(&signals, &signal);
@@ -107,7 +109,9 @@ void add_serve_command(CLI::App& app, Context& context) {
   cmd->add_option("--port", o->port, "Port to listen on (0: any free port)")
       ->capture_default_str()
       ->check(CLI::Range(0, 65535));
-  cmd->add_option("--token", o->token, "Require \"Authorization: Bearer TOKEN\" on the API");
+  cmd->add_option("--token", o->token,
+                  "Require \"Authorization: Bearer TOKEN\" on the API (the printed address "
+                  "carries it in its #fragment, for the page)");
   cmd->add_option("--web", o->web, "Serve the page from this directory (default: the built one)");
   cmd->callback([o, &context] { context.exit_code = run(*o, context); });
 }

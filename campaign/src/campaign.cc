@@ -2,10 +2,14 @@
 // The guarded, parallel campaign runner (campaign.h).
 #include "sewerplan/campaign/campaign.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <chrono>
+#include <condition_variable>
 #include <cstring>
+#include <deque>
+#include <functional>
 #include <latch>
 #include <mutex>
 #include <string>
@@ -58,17 +62,34 @@ std::string signal_text(int sig) {
   return "signal " + std::to_string(sig) + (name != nullptr ? std::string(" (") + name + ")" : "");
 }
 
-// Runs one run in a forked child; the child writes its record as a line to a pipe. Nothing when
-// options.stop fired meanwhile (the child is killed).
+// What the guarded workers share with the thread that called run_campaign.
 //
-// `heap` is held by the calling worker, and released only while it waits for its child: a fork
-// copies only the forking thread, so a lock another thread holds at that moment stays locked in
-// the child for ever. glibc's malloc guards its own locks around fork, but not every allocator
-// does (ASan's before LLVM 17 does not; a child then waited on it for ever), so no worker
-// allocates while another forks.
+// A fork copies only the forking thread, so a lock another thread holds at that moment stays
+// locked in the child for ever. glibc's malloc guards its own locks around fork, but not every
+// allocator does (ASan's before LLVM 17 does not; a child then waited on it for ever), so nothing
+// of ours allocates while a worker forks: the workers' own bookkeeping runs under `heap`, which a
+// worker releases only while it waits for its child, and the caller's progress callback, which
+// runs under no lock of ours (a slow one must not hold up the workers), sets `reporting` meanwhile:
+// no child is forked until it returns.
+struct Workers {
+  std::mutex heap;
+  std::condition_variable changed;  // a run finished, a worker ended, or the callback returned
+  std::deque<std::pair<std::size_t, double>> finished;  // not yet reported: (slot, elapsed_s)
+  std::size_t ended = 0;                                // workers that have ended
+  bool reporting = false;                               // the progress callback runs
+};
+
+// Runs one run in a forked child; the child writes its record as a line to a pipe. Nothing when
+// options.stop fired meanwhile (the child is killed, or none was forked). `heap` holds
+// shared.heap, and is released while the worker waits (Workers).
 std::optional<RunRecord> guarded(const SewerMap& map, const Mission& mission,
                                  const RunSettings& settings, const CampaignOptions& options,
-                                 std::size_t index, std::unique_lock<std::mutex>& heap) {
+                                 std::size_t index, Workers& shared,
+                                 std::unique_lock<std::mutex>& heap) {
+  while (shared.reporting) {
+    if (options.stop.interrupted()) return std::nullopt;
+    shared.changed.wait_for(heap, std::chrono::milliseconds(20));
+  }
   const auto start = SteadyTime::now();
   RunRecord failed;
   failed.index = index;
@@ -173,6 +194,60 @@ std::optional<RunRecord> guarded(const SewerMap& map, const Mission& mission,
   return *record;
 }
 
+// The guarded runs: `jobs` worker threads take the runs in index order, and this thread reports
+// each finished one through `report` (with no lock held) as it comes.
+void run_guarded(const SewerMap& map, const Mission& mission, const RunSettings& settings,
+                 const CampaignOptions& options, const std::vector<std::size_t>& indices,
+                 std::vector<std::optional<RunRecord>>& records, std::size_t jobs,
+                 const std::function<void(std::size_t, double)>& report,
+                 SteadyTime::time_point start) {
+  Workers shared;
+  std::atomic<std::size_t> next{0};
+  // A thread's start and end allocate in the thread itself (thread-local caches), outside
+  // `heap`: no worker forks before every worker has started, nor while one is ending.
+  std::latch started(static_cast<std::ptrdiff_t>(jobs));
+  std::latch finished(static_cast<std::ptrdiff_t>(jobs));
+  auto work = [&] {
+    started.arrive_and_wait();
+    for (std::size_t k; !options.stop.interrupted() && (k = next++) < indices.size();) {
+      std::unique_lock heap(shared.heap);
+      std::optional<RunRecord> r =
+          guarded(map, mission, settings, options, indices[k], shared, heap);
+      if (!r) break;  // stopped
+      records[k] = std::move(r);
+      shared.finished.emplace_back(k, seconds_since(start));
+      shared.changed.notify_all();
+    }
+    finished.arrive_and_wait();
+    const std::lock_guard heap(shared.heap);
+    ++shared.ended;
+    shared.changed.notify_all();
+  };
+  std::vector<std::thread> threads;
+  threads.reserve(jobs);
+  {
+    // Starting the threads allocates: no worker may fork meanwhile.
+    const std::lock_guard starting(shared.heap);
+    for (std::size_t j = 0; j < jobs; ++j) threads.emplace_back(work);
+  }
+  // Every finished run is reported, those that finished after a stop too.
+  std::unique_lock lock(shared.heap);
+  for (;;) {
+    shared.changed.wait(lock, [&] { return !shared.finished.empty() || shared.ended == jobs; });
+    if (shared.finished.empty()) break;
+    const auto [k, elapsed_s] = shared.finished.front();
+    shared.finished.pop_front();
+    shared.reporting = true;
+    lock.unlock();
+    report(k, elapsed_s);
+    lock.lock();
+    shared.reporting = false;
+    shared.changed.notify_all();
+  }
+  lock.unlock();
+  for (std::thread& t : threads) t.join();
+}
+
 }  // namespace
 
 RunSettings run_settings(const CampaignSpec& spec) {
@@ -182,6 +257,16 @@ RunSettings run_settings(const CampaignSpec& spec) {
           .planner_time_limit_s = spec.planner_time_limit_s,
           .faults_from_condition = spec.faults_from_condition,
           .risk = spec.risk == "expected" ? domain::kDefaultRiskCosts : domain::RiskCosts{}};
+}
+
+std::size_t campaign_jobs(const CampaignSpec& spec, const CampaignOptions& options) {
+  if (!options.guard) return 1;
+  std::size_t runs = 1;
+  if (!options.only) {
+    runs = 0;
+    for (std::size_t i = 0; i < spec.runs; ++i) runs += spec.in_shard(i) ? 1U : 0U;
+  }
+  return std::max<std::size_t>(1, std::min(options.jobs, runs));
 }
 
 std::vector<RunRecord> run_campaign(const SewerMap& map, const Mission& mission,
@@ -196,47 +281,28 @@ std::vector<RunRecord> run_campaign(const SewerMap& map, const Mission& mission,
     }
   }
   std::vector<std::optional<RunRecord>> records(indices.size());
-  std::atomic<std::size_t> next{0};
-  // Unguarded runs share this process, one at a time.
-  const std::size_t jobs =
-      options.guard ? std::max<std::size_t>(1, std::min(options.jobs, indices.size())) : 1;
-  // A thread's start and end allocate in the thread itself (thread-local caches), outside
-  // `heap`: no worker forks before every worker has started, nor while one is ending.
-  std::latch started(static_cast<std::ptrdiff_t>(jobs));
-  std::latch finished(static_cast<std::ptrdiff_t>(jobs));
-  // The workers' own bookkeeping runs under `heap`, so that none allocates while another forks
-  // (guarded()); they wait for their children without it.
-  std::mutex heap_mutex;
   Progress progress{.total = indices.size()};
   const auto start = SteadyTime::now();
-  auto work = [&] {
-    started.arrive_and_wait();
-    for (std::size_t k; !options.stop.interrupted() && (k = next++) < indices.size();) {
-      std::unique_lock heap(heap_mutex);
-      std::optional<RunRecord> r =
-          options.guard ? guarded(map, mission, settings, options, indices[k], heap)
-                        : std::optional<RunRecord>(compute(map, mission, settings, indices[k]));
-      if (!r) break;  // stopped
-      const bool failed = r->status != RunRecord::Status::kOk;
-      records[k] = std::move(r);
-      ++progress.done;
-      if (failed) ++progress.failed;
-      progress.elapsed_s = seconds_since(start);
-      progress.last = &*records[k];
-      if (options.progress) options.progress(progress);
-      progress.last = nullptr;
-    }
-    finished.arrive_and_wait();
+  // Counts run k in `progress` and tells the caller's callback; with no lock held.
+  const auto report = [&](std::size_t k, double elapsed_s) {
+    ++progress.done;
+    if (records[k]->status != RunRecord::Status::kOk) ++progress.failed;
+    progress.elapsed_s = elapsed_s;
+    progress.last = &*records[k];
+    if (options.progress) options.progress(progress);
+    progress.last = nullptr;
   };
-  std::vector<std::thread> threads;
-  threads.reserve(jobs);
-  {
-    // Starting the threads allocates: no worker may fork meanwhile.
-    const std::lock_guard starting(heap_mutex);
-    for (std::size_t j = 1; j < jobs; ++j) threads.emplace_back(work);
+  if (!options.guard) {
+    // In this thread, one run at a time; the stop is honoured between runs.
+    for (std::size_t k = 0; k < indices.size() && !options.stop.interrupted(); ++k) {
+      records[k] = compute(map, mission, settings, indices[k]);
+      report(k, seconds_since(start));
+    }
+  } else {
+    run_guarded(
+        map, mission, settings, options, indices, records, campaign_jobs(spec, options),
+        [&](std::size_t k, double elapsed_s) { report(k, elapsed_s); }, start);
   }
-  work();
-  for (std::thread& t : threads) t.join();
   std::vector<RunRecord> finished_runs;
   finished_runs.reserve(records.size());
   for (std::optional<RunRecord>& r : records) {

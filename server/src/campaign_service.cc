@@ -5,10 +5,14 @@
 #include <array>
 #include <atomic>
 #include <charconv>
+#include <condition_variable>
 #include <cstdint>
+#include <deque>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string_view>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -16,6 +20,7 @@
 #include "sewerplan/campaign/record.h"
 #include "sewerplan/campaign/run.h"
 #include "sewerplan/campaign/summary.h"
+#include "sewerplan/core/condition_risk.h"
 #include "sewerplan/core/stop_condition.h"
 #include "sewerplan/executor/event_json.h"
 
@@ -28,9 +33,14 @@ struct CampaignService::Running {
   std::shared_ptr<const SewerMap> map;  // kept while the campaign runs
   Mission mission;
   campaign::CampaignSpec spec;
-  std::size_t jobs = 1;
+  std::size_t jobs = 1;          // asked for
+  std::size_t running_jobs = 1;  // run with (campaign::campaign_jobs)
   std::atomic<bool> cancel{false};
-  Json progress;  // the last "progress" event; guarded by the service's mutex
+  // Guarded by the service's mutex: what the campaign's thread hands to the stream's.
+  Json progress;             // the last "progress" event
+  std::deque<Json> pending;  // "progress" events not yet written, the newest kMaxPending
+  std::shared_ptr<const Finished> finished;  // set when the campaign has ended
+  std::condition_variable changed;           // a progress event, or the end
 };
 
 struct CampaignService::Finished {
@@ -43,8 +53,20 @@ struct CampaignService::Finished {
 
 namespace {
 
-constexpr std::array<std::string_view, 6> kFields = {"mission",     "runs", "seed",
-                                                     "fault_rates", "jobs", "allow_push"};
+// A stream's reader this many progress events behind misses the oldest (each carries the totals so
+// far, so the newest says all): a stalled browser costs bounded memory, and holds up no run.
+constexpr std::size_t kMaxPending = 256;
+
+constexpr std::array<std::string_view, 9> kFields = {"mission",
+                                                     "runs",
+                                                     "seed",
+                                                     "fault_rates",
+                                                     "jobs",
+                                                     "allow_push",
+                                                     "planner_time_limit_s",
+                                                     "risk",
+                                                     "faults_from_condition"};
+constexpr double kMaxPlannerTimeLimitS = 86400;  // as the CLI's --planner-time-limit
 constexpr std::array<std::string_view, 6> kRateNames = {"obstacles",    "danger",    "passages",
                                                         "malfunctions", "permanent", "transient"};
 
@@ -55,6 +77,10 @@ struct CampaignRequest {
   campaign::FaultRates rates;
   std::size_t jobs = 1;
   bool push_allowed = false;
+  double planner_time_limit_s = 0;  // 0: none
+  RiskMode risk = RiskMode::kImpassable;
+  std::string risk_name = "impassable";
+  bool faults_from_condition = false;
 };
 
 Error field_error(const std::string& message) {
@@ -116,7 +142,8 @@ Result<CampaignRequest> read_request(const Json& body, const CampaignLimits& lim
   for (const auto& [key, value] : body.items()) {
     if (std::find(kFields.begin(), kFields.end(), key) == kFields.end()) {
       return field_error("unknown field '" + shortened(key) +
-                         "' (expected mission, runs, seed, fault_rates, jobs, allow_push)");
+                         "' (expected mission, runs, seed, fault_rates, jobs, allow_push, "
+                         "planner_time_limit_s, risk, faults_from_condition)");
     }
   }
   if (body.contains("runs")) {
@@ -148,6 +175,28 @@ Result<CampaignRequest> read_request(const Json& body, const CampaignLimits& lim
   if (body.contains("allow_push")) {
     if (!body["allow_push"].is_boolean()) return field_error("allow_push: expected true or false");
     r.push_allowed = body["allow_push"].get<bool>();
+  }
+  if (body.contains("planner_time_limit_s")) {
+    const Json& v = body["planner_time_limit_s"];
+    const double s = v.is_number() ? v.get<double>() : -1;
+    if (!(s >= 0 && s <= kMaxPlannerTimeLimitS)) {
+      return field_error("planner_time_limit_s: expected seconds from 0 (no limit) to 86400");
+    }
+    r.planner_time_limit_s = s;
+  }
+  if (body.contains("risk")) {
+    const Json& v = body["risk"];
+    const std::optional<RiskMode> mode =
+        v.is_string() ? risk_mode_from_string(v.get_ref<const std::string&>()) : std::nullopt;
+    if (!mode) return field_error("risk: expected ignore, impassable, avoid or expected");
+    r.risk = *mode;
+    r.risk_name = v.get<std::string>();
+  }
+  if (body.contains("faults_from_condition")) {
+    if (!body["faults_from_condition"].is_boolean()) {
+      return field_error("faults_from_condition: expected true or false");
+    }
+    r.faults_from_condition = body["faults_from_condition"].get<bool>();
   }
   return r;
 }
@@ -195,6 +244,15 @@ Json finished_json(const campaign::CampaignSpec& spec,
           {"runs", std::move(runs)}};
 }
 
+// What the library runs a campaign with: its jobs, the guard, and the cancel flag as its stop.
+campaign::CampaignOptions campaign_options(CampaignService::Running& running, bool guard) {
+  campaign::CampaignOptions options;
+  options.jobs = running.jobs;
+  options.guard = guard;
+  options.stop = StopCondition().with_cancel(running.cancel);
+  return options;
+}
+
 bool same_but_measured(campaign::Execution a, campaign::Execution b) {
   a.planning_times_s.clear();
   b.planning_times_s.clear();
@@ -205,8 +263,41 @@ bool same_but_measured(campaign::Execution a, campaign::Execution b) {
 
 void CampaignService::start(const Json& body, std::shared_ptr<const SewerMap> map,
                             const std::string& map_id, Mission mission, httplib::Response& res) {
+  std::shared_ptr<Running> running = begin(body, std::move(map), map_id, std::move(mission), res);
+  if (!running) return;
+  res.set_header("Cache-Control", "no-cache");
+  res.set_chunked_content_provider(
+      "text/event-stream",
+      [this, running](std::size_t, httplib::DataSink& sink) {
+        stream(running,
+               [&sink](std::string_view text) { return sink.write(text.data(), text.size()); });
+        sink.done();
+        return true;
+      },
+      [this, running](bool) { release(running); });
+}
+
+std::shared_ptr<CampaignService::Running> CampaignService::begin(
+    const Json& body, std::shared_ptr<const SewerMap> map, const std::string& map_id,
+    Mission mission, httplib::Response& res) {
   Result<CampaignRequest> request = read_request(body, limits_);
-  if (!request.has_value()) return bad_request(res, request.error().message);
+  if (!request.has_value()) {
+    bad_request(res, request.error().message);
+    return nullptr;
+  }
+  // As `sewerplan campaign`: every policy plans with what the map's findings close; drawing
+  // obstacles from the condition data needs its possible blockages (as hazards).
+  const RiskMode planning = request->faults_from_condition && request->risk != RiskMode::kAvoid
+                                ? RiskMode::kExpected
+                                : request->risk;
+  close_findings(*map, mission, planning, default_risk_table());
+  if (request->faults_from_condition && mission.hazards.empty()) {
+    bad_request(res,
+                "campaign: faults_from_condition: the map's condition data has no possible "
+                "blockage (upload its ISYBAU Zustandsdaten, POST /api/maps/ID/condition; risk "
+                "avoid closes them all)");
+    return nullptr;
+  }
   auto running = std::make_shared<Running>();
   running->map = std::move(map);
   running->jobs = request->jobs;
@@ -220,73 +311,99 @@ void CampaignService::start(const Json& body, std::shared_ptr<const SewerMap> ma
   spec.runs = request->runs;
   spec.rates = request->rates;
   spec.push_allowed = request->push_allowed;
+  spec.planner_time_limit_s = request->planner_time_limit_s;
+  spec.risk = request->risk_name;
+  spec.faults_from_condition = request->faults_from_condition;
   running->mission = std::move(mission);
+  running->running_jobs = campaign::campaign_jobs(spec, campaign_options(*running, limits_.guard));
   {
     const std::lock_guard lock(mutex_);
     if (shut_down_) {
-      return send_error(res, kConflict,
-                        Error{ErrorCode::kInvalidArgument, "the station is stopping"});
+      send_error(res, kConflict, Error{ErrorCode::kInvalidArgument, "the station is stopping"});
+      return nullptr;
     }
     if (running_) {
-      return send_error(
-          res, kConflict,
-          Error{ErrorCode::kInvalidArgument,
-                "a campaign is running (one at a time): cancel it (POST /api/campaign/cancel) "
-                "or wait for its summary"});
+      send_error(res, kConflict,
+                 Error{ErrorCode::kInvalidArgument,
+                       "a campaign is running (one at a time): cancel it (POST "
+                       "/api/campaign/cancel) or wait for its summary"});
+      return nullptr;
     }
     running_ = running;
     running->progress = {{"done", 0}, {"total", spec.runs}};
   }
-  res.set_header("Cache-Control", "no-cache");
-  res.set_chunked_content_provider(
-      "text/event-stream",
-      [this, running](std::size_t, httplib::DataSink& sink) {
-        // A closed tab: the write fails, and the campaign stops at once.
-        const auto send = [&](std::string_view type, const Json& data) {
-          const std::string message =
-              "event: " + std::string(type) + "\ndata: " + dump(data) + "\n\n";
-          if (!sink.write(message.data(), message.size())) running->cancel = true;
-        };
-        const campaign::CampaignSpec& run_spec = running->spec;
-        send("start", {{"total", run_spec.runs},
-                       {"jobs", running->jobs},
-                       {"seed", std::to_string(run_spec.seed)},
-                       {"fault_rates", campaign::format_fault_rates(run_spec.rates)}});
-        Tally tally;
-        campaign::CampaignOptions options;
-        options.jobs = running->jobs;
-        options.guard = limits_.guard;
-        options.stop = StopCondition().with_cancel(running->cancel);
-        // Called one run at a time (campaign.h).
-        options.progress = [&](const campaign::Progress& p) {
-          if (p.last != nullptr) tally.add(*p.last);
-          Json j = progress_json(p, tally);
-          {
-            const std::lock_guard lock(mutex_);
-            running->progress = j;
-          }
-          send("progress", j);
-        };
-        std::vector<campaign::RunRecord> records =
-            campaign::run_campaign(*running->map, running->mission, run_spec, options);
-        auto finished = std::make_shared<Finished>();
-        finished->map = running->map;
-        finished->mission = running->mission;
-        finished->spec = run_spec;
-        finished->document = finished_json(run_spec, records, running->cancel.load());
-        finished->records = std::move(records);
-        finish(running, finished);
-        send("summary", finished->document);
-        sink.done();
-        return true;
-      },
-      [this, running](bool) { release(running); });
+  return running;
+}
+
+// The campaign runs on a thread of its own, whose progress callback only records (Running); this
+// thread, the stream's, writes. A reader that stalls holds up only its own stream: the campaign
+// goes on, a cancel stops it at once, and the station's slot is free when it ends.
+void CampaignService::stream(const std::shared_ptr<Running>& running,
+                             const std::function<bool(std::string_view)>& write) {
+  bool reading = true;  // the reader is there: once a write fails, the campaign is cancelled
+  const auto send = [&](std::string_view type, const Json& data) {
+    if (!reading) return;
+    const std::string message = "event: " + std::string(type) + "\ndata: " + dump(data) + "\n\n";
+    if (!write(message)) {
+      reading = false;
+      running->cancel = true;
+    }
+  };
+  // First, so that a reader that stalls on the first event holds up no run.
+  std::thread campaign_thread([this, running] {
+    Tally tally;
+    campaign::CampaignOptions options = campaign_options(*running, limits_.guard);
+    // On this thread, under no lock of the campaign library's (campaign.h): records only.
+    options.progress = [&](const campaign::Progress& p) {
+      if (p.last != nullptr) tally.add(*p.last);
+      Json j = progress_json(p, tally);
+      const std::lock_guard lock(mutex_);
+      running->progress = j;
+      if (running->pending.size() == kMaxPending) running->pending.pop_front();
+      running->pending.push_back(std::move(j));
+      running->changed.notify_all();
+    };
+    std::vector<campaign::RunRecord> records =
+        campaign::run_campaign(*running->map, running->mission, running->spec, options);
+    auto finished = std::make_shared<Finished>();
+    finished->map = running->map;
+    finished->mission = running->mission;
+    finished->spec = running->spec;
+    finished->document = finished_json(running->spec, records, running->cancel.load());
+    finished->records = std::move(records);
+    finish(running, std::move(finished));
+  });
+  const campaign::CampaignSpec& spec = running->spec;
+  send("start", {{"total", spec.runs},
+                 {"jobs", running->running_jobs},
+                 {"jobs_requested", running->jobs},
+                 {"seed", std::to_string(spec.seed)},
+                 {"fault_rates", campaign::format_fault_rates(spec.rates)},
+                 {"planner_time_limit_s", spec.planner_time_limit_s},
+                 {"risk", spec.risk},
+                 {"faults_from_condition", spec.faults_from_condition}});
+  std::shared_ptr<const Finished> finished;
+  while (!finished) {
+    std::deque<Json> events;
+    {
+      std::unique_lock lock(mutex_);
+      running->changed.wait(lock, [&] { return !running->pending.empty() || running->finished; });
+      events.swap(running->pending);
+      // Set after the campaign's last progress event: all of them are in `events` now.
+      finished = running->finished;
+    }
+    for (const Json& e : events) send("progress", e);
+  }
+  campaign_thread.join();
+  send("summary", finished->document);
 }
 
 void CampaignService::finish(const std::shared_ptr<Running>& running,
                              std::shared_ptr<const Finished> finished) {
   const std::lock_guard lock(mutex_);
-  last_ = std::move(finished);
+  last_ = finished;
+  running->finished = std::move(finished);
+  running->changed.notify_all();
   if (running_ == running) running_ = nullptr;
 }
 

@@ -17,14 +17,22 @@
 //   campaigns.start(body, map, "ais", std::move(mission), res);  // POST /api/maps/ID/campaign
 //   campaigns.cancel();                                           // POST /api/campaign/cancel
 //
+// The campaign runs on a thread of its own, started by the stream: the library's progress callback
+// (on that thread, under no lock of the library's) only records the event, and the stream's
+// thread writes it. A reader that stalls holds up its own stream only (its events queue, the
+// newest 256 kept: each carries the totals so far), not the campaign; a cancel stops the campaign
+// at once, and its summary (status()) and the station's one slot do not wait for the reader.
+//
 // Thread safety: every member may be called from any of the server's threads; one mutex guards
-// the running and the last campaign, which are shared with the stream that runs it.
+// the running and the last campaign, which are shared with the stream and the campaign's thread.
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
+#include <string_view>
 
 #include "sewerplan/core/mission.h"
 #include "sewerplan/core/sewer_map.h"
@@ -47,6 +55,20 @@ class CampaignService {
   // `body` is the request's JSON object; its "mission" is `mission`, already read and checked.
   void start(const Json& body, std::shared_ptr<const SewerMap> map, const std::string& map_id,
              Mission mission, httplib::Response& res);
+
+  // start() in its three steps, for a writer of the events other than httplib's (the tests' reader
+  // that stalls). begin() checks the request and takes the station's slot: the campaign, or
+  // nullptr with the 4xx in `res`. stream() runs it on its own thread and writes its events
+  // through `write` on this one (false: the reader is gone, and the campaign is cancelled);
+  // it returns when the campaign has ended and the summary is written. release() ends the
+  // stream's hold (it cancels a campaign that never streamed).
+  using EventWriter = std::function<bool(std::string_view)>;
+  struct Running;
+  std::shared_ptr<Running> begin(const Json& body, std::shared_ptr<const SewerMap> map,
+                                 const std::string& map_id, Mission mission,
+                                 httplib::Response& res);
+  void stream(const std::shared_ptr<Running>& running, const EventWriter& write);
+  void release(const std::shared_ptr<Running>& running);
   // 200 {"cancelled": true}, or 409 when no campaign runs.
   void cancel(httplib::Response& res);
   // {"state": "none" | "running" | "done" | "cancelled", ...}: the running campaign's progress,
@@ -59,12 +81,10 @@ class CampaignService {
   // Cancels a running campaign and refuses new ones (the server is stopping).
   void shut_down();
 
-  struct Running;
   struct Finished;
 
  private:
   void finish(const std::shared_ptr<Running>& running, std::shared_ptr<const Finished> finished);
-  void release(const std::shared_ptr<Running>& running);
 
   CampaignLimits limits_;
   mutable std::mutex mutex_;

@@ -36,6 +36,35 @@ std::string describe(const domain::PassageLimit& p, const SewerMap& map,
 
 }  // namespace
 
+std::vector<FindingRisk> closing_findings(const SewerMap& map, const RobotProfile& profile,
+                                          const RiskTable& table) {
+  std::vector<FindingRisk> risks = assess_findings(map, profile, table);
+  std::erase_if(risks, [](const FindingRisk& r) { return r.effect != RiskEffect::kImpassable; });
+  return risks;
+}
+
+domain::DriveabilityReport analyse_profile(const SewerMap& map, const RobotProfile& profile,
+                                           std::span<const ManholeId> starts,
+                                           const PassageMotionTable* motion,
+                                           const RiskTable& table) {
+  const std::vector<Blockage> closures =
+      impassable_blockages(map, assess_findings(map, profile, table));
+  return domain::analyse_driveability(map, profile, starts, motion, closures);
+}
+
+nlohmann::json closed_by_findings_json(const SewerMap& map, const RobotProfile& profile,
+                                       const RiskTable& table) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const FindingRisk& r : closing_findings(map, profile, table)) {
+    const Finding& f = map.findings()[r.finding];
+    list.push_back({{"pipe", map.pipe(f.pipe).name},
+                    {"offset_m", f.offset_m},
+                    {"code", f.code},
+                    {"reason", r.reason}});
+  }
+  return list;
+}
+
 void print_driveability(const domain::DriveabilityReport& r, const SewerMap& map,
                         const RobotProfile& profile, std::ostream& out) {
   auto pipe_name = [&](PipeId p) { return map.pipe(p).name; };

@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <string_view>
 #include <thread>
@@ -17,6 +18,8 @@
 #include <variant>
 
 #include "sewerplan/core/clock.h"
+#include "sewerplan/core/condition.h"
+#include "sewerplan/core/condition_risk.h"
 #include "sewerplan/core/map_io.h"
 #include "sewerplan/core/mission.h"
 #include "sewerplan/core/passage_motion.h"
@@ -50,6 +53,10 @@ struct LoadedMap {
   SewerMap map;
   std::string geometry;                // map_geometry_json, computed once
   std::filesystem::path motion_table;  // MAP.motion.json beside the map, if there is one
+  // The map as given, when `map` has condition data joined by an upload (a later upload replaces
+  // it); null otherwise.
+  std::shared_ptr<const SewerMap> as_given;
+  std::string condition_name;  // the uploaded condition file's name
 };
 
 // The request's time limit: ?time_limit=S, at most `max_s` (default 10 s).
@@ -147,19 +154,28 @@ struct StationServer::Impl {
   void list_maps(httplib::Response& res) const;
   void driveability(const httplib::Request& req, httplib::Response& res) const;
   void upload_map(const httplib::Request& req, httplib::Response& res);
+  void upload_condition(const httplib::Request& req, httplib::Response& res);
   void validate(const httplib::Request& req, httplib::Response& res) const;
   void plan(const httplib::Request& req, httplib::Response& res) const;
   void simulate(const httplib::Request& req, httplib::Response& res) const;
   void replay(const httplib::Request& req, httplib::Response& res) const;
   void campaign(const httplib::Request& req, httplib::Response& res);
-  bool authorised(const httplib::Request& req) const;
+  // Why an /api/ request is refused for its token, if it is.
+  std::optional<std::string> unauthorised(const httplib::Request& req) const;
 };
 
-bool StationServer::Impl::authorised(const httplib::Request& req) const {
-  if (options.token.empty()) return true;
-  const std::string bearer = "Bearer " + options.token;
-  return req.get_header_value("Authorization") == bearer ||
-         (req.has_param("token") && req.get_param_value("token") == options.token);
+// With a token, an API request needs it in its "Authorization: Bearer" header; one in the URL
+// (?token=) is refused, whether right or wrong: URLs end up in logs, proxies and the history.
+std::optional<std::string> StationServer::Impl::unauthorised(const httplib::Request& req) const {
+  if (options.token.empty()) return std::nullopt;
+  if (req.has_param("token")) {
+    return "token: not accepted in the URL (?token=), which ends up in logs and the history: send "
+           "\"Authorization: Bearer TOKEN\"";
+  }
+  if (req.get_header_value("Authorization") != "Bearer " + options.token) {
+    return "this server needs \"Authorization: Bearer TOKEN\" (--token)";
+  }
+  return std::nullopt;
 }
 
 void StationServer::Impl::list_maps(httplib::Response& res) const {
@@ -169,7 +185,9 @@ void StationServer::Impl::list_maps(httplib::Response& res) const {
     list.push_back({{"id", m->id},
                     {"name", m->map.name()},
                     {"manholes", m->map.manhole_count()},
-                    {"pipes", m->map.pipe_count()}});
+                    {"pipes", m->map.pipe_count()},
+                    {"findings", m->map.finding_count()},
+                    {"motion_table", !m->motion_table.empty()}});
   }
   send_json(res, {{"maps", list}, {"profiles", builtin_profile_names()}});
 }
@@ -201,8 +219,8 @@ void StationServer::Impl::upload_map(const httplib::Request& req, httplib::Respo
   }
   const std::string id = unique_id(file.stem().string(), taken_ids);
   std::string geometry = map_geometry_json(*map, id);
-  auto loaded =
-      std::make_shared<const LoadedMap>(LoadedMap{id, std::move(*map), std::move(geometry), {}});
+  auto loaded = std::make_shared<const LoadedMap>(
+      LoadedMap{id, std::move(*map), std::move(geometry), {}, nullptr, {}});
   maps.push_back(loaded);
   send_json(res,
             {{"id", id},
@@ -211,6 +229,34 @@ void StationServer::Impl::upload_map(const httplib::Request& req, httplib::Respo
              {"pipes", loaded->map.pipe_count()},
              {"warnings", diagnostics_json(diagnostics, Severity::kWarning)}},
             201);
+}
+
+// POST /api/maps/ID/condition?name=FILE: the body is the map's inspection findings (ISYBAU
+// Zustandsdaten, as `--condition FILE`), joined to the map as it was given (a later upload
+// replaces them), read in memory. The map keeps its ID; requests already running keep the map
+// they started with.
+void StationServer::Impl::upload_condition(const httplib::Request& req, httplib::Response& res) {
+  const auto m = find_map(req, res);
+  if (!m) return;
+  const std::string name =
+      std::filesystem::path(req.has_param("name") ? req.get_param_value("name") : "condition.xml")
+          .filename()
+          .string();
+  const std::shared_ptr<const SewerMap> as_given =
+      m->as_given ? m->as_given : std::make_shared<const SewerMap>(m->map);
+  Diagnostics diagnostics;
+  Result<SewerMap> joined = read_condition_isybau(*as_given, req.body, name, diagnostics);
+  if (!joined.has_value()) return send_error(res, kUnprocessable, joined.error(), diagnostics);
+  auto loaded = std::make_shared<const LoadedMap>(
+      LoadedMap{m->id, std::move(*joined), m->geometry, m->motion_table, as_given, name});
+  const std::lock_guard lock(maps_mutex);
+  for (auto& slot : maps) {
+    if (slot->id == loaded->id) slot = loaded;
+  }
+  send_json(res, {{"id", loaded->id},
+                  {"condition", name},
+                  {"findings", loaded->map.finding_count()},
+                  {"warnings", diagnostics_json(diagnostics, Severity::kWarning)}});
 }
 
 void StationServer::Impl::driveability(const httplib::Request& req, httplib::Response& res) const {
@@ -222,9 +268,19 @@ void StationServer::Impl::driveability(const httplib::Request& req, httplib::Res
   if (!profile) {
     return bad_request(res, "profile: unknown '" + name + "' (built-in: makro-1.1, makro-plus)");
   }
+  // As `info --profile`: the motion table beside the map (unless ?motion=0), and what the map's
+  // findings close for this robot.
+  Mission with_motion;  // only to carry the table, as plan does
+  with_motion.profile = *profile;
+  if (!attach_motion(*m, req, with_motion, res)) return;
+  const RiskTable table = default_risk_table();
   const std::vector<ManholeId> starts = domain::default_starts(m->map);
-  const domain::DriveabilityReport report = domain::analyse_driveability(m->map, *profile, starts);
-  res.set_content(driveability_json(report, m->map, *profile).dump(), kJsonType);
+  const domain::DriveabilityReport report =
+      analyse_profile(m->map, *profile, starts, with_motion.passage_motion.get(), table);
+  Json j = driveability_json(report, m->map, *profile);
+  j["closed_by_findings"] = closed_by_findings_json(m->map, *profile, table);
+  j["motion_table"] = with_motion.passage_motion != nullptr;
+  res.set_content(j.dump(), kJsonType);
 }
 
 void StationServer::Impl::validate(const httplib::Request& req, httplib::Response& res) const {
@@ -377,12 +433,9 @@ void StationServer::Impl::routes() {
   http.new_task_queue = [] { return new httplib::ThreadPool(32); };
   http.set_keep_alive_timeout(2);
   http.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
-    if (req.path.starts_with("/api/") && !authorised(req)) {
-      send_json(res,
-                {{"error",
-                  {{"code", "unauthorised"},
-                   {"message", "this server needs \"Authorization: Bearer TOKEN\" (--token)"}}}},
-                kUnauthorized);
+    if (!req.path.starts_with("/api/")) return httplib::Server::HandlerResponse::Unhandled;
+    if (const std::optional<std::string> why = unauthorised(req)) {
+      send_json(res, {{"error", {{"code", "unauthorised"}, {"message", *why}}}}, kUnauthorized);
       return httplib::Server::HandlerResponse::Handled;
     }
     return httplib::Server::HandlerResponse::Unhandled;
@@ -408,6 +461,8 @@ void StationServer::Impl::routes() {
   http.Get(R"(/api/maps/([^/]+))", [this](const Req& req, Res& res) {
     if (const auto m = find_map(req, res)) res.set_content(m->geometry, kJsonType);
   });
+  http.Post(R"(/api/maps/([^/]+)/condition)",
+            [this](const Req& req, Res& res) { upload_condition(req, res); });
   http.Get(R"(/api/maps/([^/]+)/driveability)",
            [this](const Req& req, Res& res) { driveability(req, res); });
   http.Post(R"(/api/maps/([^/]+)/validate)",
@@ -450,7 +505,7 @@ Result<std::unique_ptr<StationServer>> StationServer::create(const ServerOptions
     std::error_code ec;
     if (!std::filesystem::exists(motion, ec)) motion.clear();
     impl->maps.push_back(std::make_shared<const LoadedMap>(
-        LoadedMap{id, std::move(*map), std::move(geometry), std::move(motion)}));
+        LoadedMap{id, std::move(*map), std::move(geometry), std::move(motion), nullptr, {}}));
   }
   if (!options.web_root.empty() && !std::filesystem::is_directory(options.web_root)) {
     return Error{ErrorCode::kIo, options.web_root.string() + ": no such directory (the page)"};

@@ -2,10 +2,12 @@
 #include "sewerplan/campaign/campaign.h"
 
 #include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -304,6 +306,68 @@ TEST(Campaign, ACancelStopsTheCampaignAndKillsTheRunInProgress) {
       EXPECT_EQ(fixed_part(records[k]), fixed_part(whole[records[k].index]));
     }
   }
+}
+
+// A clock for a stop condition's deadline that reads 0 until fired, then far beyond it, and counts
+// how often it was read since: each read is a worker checking whether to stop.
+class FiringClock final : public Clock {
+ public:
+  double now_s() const override {
+    if (!fired) return 0;
+    ++reads_since;
+    return 1e9;
+  }
+  std::atomic<bool> fired{false};
+  mutable std::atomic<std::size_t> reads_since{0};
+};
+
+// The progress callback runs on the caller's thread under no lock of the campaign's: while it is
+// held up, the workers still check the stop condition, and the one waiting on a hung child kills
+// it (run 1 would otherwise wait out its hour-long timeout). Before, the callback ran with the
+// workers' lock held, and no worker checked anything until it returned (the station's campaign
+// stalled behind a browser that did not read its stream).
+TEST(Campaign, AStopIsHonouredWhileTheProgressCallbackIsHeldUp) {
+  const auto ais = testing::load_ais_testbed();
+  FiringClock clock;
+  CampaignOptions options{.jobs = 2, .timeout_s = 3600};
+  options.inject = {{1, InjectedFault::kHang}};
+  options.stop = StopCondition::at_deadline(clock, 1.0);
+  const auto caller = std::this_thread::get_id();
+  std::size_t calls = 0;
+  bool checked = false;
+  options.progress = [&](const Progress& p) {
+    EXPECT_EQ(std::this_thread::get_id(), caller);
+    ASSERT_NE(p.last, nullptr);
+    EXPECT_NE(p.last->index, 1U);
+    if (calls++ > 0) return;
+    clock.fired = true;
+    // Both workers check the stop while this call is held up; a generous bound, not a timing.
+    const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    while (clock.reads_since < 2 && std::chrono::steady_clock::now() < give_up) {
+      std::this_thread::yield();
+    }
+    checked = clock.reads_since >= 2;
+  };
+  const auto records = run_campaign(ais.map, ais.mission, ais_spec(40), options);
+  EXPECT_TRUE(checked) << "no worker checked the stop while the callback ran";
+  ASSERT_EQ(records.size(), calls);  // every finished run reported, the hung one not finished
+  EXPECT_GE(records.size(), 1U);
+  EXPECT_LT(records.size(), 40U);
+  for (const RunRecord& r : records) EXPECT_NE(r.index, 1U);
+}
+
+// What runs: the jobs asked for, at most one per run of the shard, and one unguarded.
+TEST(Campaign, CampaignJobsAreWhatRuns) {
+  CampaignSpec spec = ais_spec(5);
+  EXPECT_EQ(campaign_jobs(spec, {.jobs = 4}), 4U);
+  EXPECT_EQ(campaign_jobs(spec, {.jobs = 8}), 5U);
+  EXPECT_EQ(campaign_jobs(spec, {.jobs = 4, .guard = false}), 1U);
+  EXPECT_EQ(campaign_jobs(spec, {.jobs = 4, .only = 3}), 1U);
+  spec.shard_index = 1;
+  spec.shard_count = 3;  // runs 1 and 4
+  EXPECT_EQ(campaign_jobs(spec, {.jobs = 4}), 2U);
+  spec.runs = 0;
+  EXPECT_EQ(campaign_jobs(spec, {.jobs = 4}), 1U);
 }
 
 TEST(Campaign, AStopUnguardedEndsBetweenRuns) {

@@ -5,8 +5,12 @@
 // get a 400 that names the field.
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
+#include <filesystem>
+#include <mutex>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -14,8 +18,11 @@
 
 #include "sewerplan/campaign/campaign.h"
 #include "sewerplan/campaign/summary.h"
+#include "sewerplan/core/condition.h"
+#include "sewerplan/core/condition_risk.h"
 #include "sewerplan/core/map_io.h"
 
+#include "campaign_service.h"
 #include "station_fixture.h"
 
 namespace sewerplan::server {
@@ -216,6 +223,14 @@ TEST_F(CampaignApiTest, RefusesHostileRequestsWithA400NamingTheField) {
   refused({{"fault_rates", 7}}, "fault_rates");
   refused({{"allow_push", "yes"}}, "allow_push");
   refused({{"runs", 3}, {"evil", true}}, "evil");
+  refused({{"planner_time_limit_s", -1}}, "planner_time_limit_s");
+  refused({{"planner_time_limit_s", 1e9}}, "planner_time_limit_s");
+  refused({{"planner_time_limit_s", "soon"}}, "planner_time_limit_s");
+  refused({{"risk", "reckless"}}, "risk");
+  refused({{"risk", 1}}, "risk");
+  refused({{"faults_from_condition", 1}}, "faults_from_condition");
+  // The AIS map has no condition data: nothing to draw faults from.
+  refused({{"faults_from_condition", true}}, "faults_from_condition");
   EXPECT_EQ(post("/api/maps/map/campaign", "[1]").first, 400);
   EXPECT_EQ(post("/api/maps/map/campaign", R"({"runs": 3})").first, 400);  // no mission
   EXPECT_EQ(post("/api/maps/map/campaign", R"({"mission": {"format": "x"}})").first, 422);
@@ -313,6 +328,204 @@ TEST_F(CampaignApiTest, ManualRunsUnguardedWithTheSameRunsAndStopsBetweenThem) {
   });
   EXPECT_EQ(summary["state"], "cancelled");
   EXPECT_LT(summary["runs"].size(), 5000u);
+}
+
+// Condition data for a map, uploaded as the page does beside the map: the risk-aware execution and
+// obstacles drawn from the findings, with a planner time limit, run as the campaign library runs
+// them on the map joined with the same findings (`sewerplan campaign --condition --risk expected
+// --faults-from-condition --planner-time-limit`).
+TEST_F(CampaignApiTest, ManualRunsWithConditionDataRiskAndAPlannerTimeLimit) {
+  const std::filesystem::path swmm = kSource / "datasets/swmm/swmmio-state-plane.inp";
+  const std::filesystem::path condition = kSource / "datasets/condition/swmm-state-plane";
+  // The library's map with the same findings.
+  Diagnostics diagnostics;
+  Result<SewerMap> map = read_map(swmm, diagnostics);
+  ASSERT_TRUE(map.has_value());
+  map = read_condition(std::move(*map), condition / "zustand.xml", diagnostics);
+  ASSERT_TRUE(map.has_value());
+  ASSERT_GT(map->finding_count(), 0u);
+  start({.maps = {swmm}});
+  const std::string mission_text = read(condition / "mission.json");
+  json body = {{"mission", json::parse(mission_text)},
+               {"runs", 2},
+               {"seed", 5},
+               {"risk", "expected"},
+               {"faults_from_condition", true},
+               {"planner_time_limit_s", 20}};
+  // Before the findings: nothing to draw faults from.
+  auto [refused, why] = post("/api/maps/swmmio-state-plane/campaign", body.dump());
+  EXPECT_EQ(refused, 400);
+  EXPECT_NE(why["error"]["message"].get<std::string>().find("faults_from_condition"),
+            std::string::npos);
+  EXPECT_EQ(post("/api/maps/swmmio-state-plane/condition?name=z.xml", "<not isybau/>").first, 422);
+  auto [uploaded, joined] = post("/api/maps/swmmio-state-plane/condition?name=zustand.xml",
+                                 read(condition / "zustand.xml"));
+  ASSERT_EQ(uploaded, 200) << joined.dump();
+  EXPECT_EQ(joined["findings"], map->finding_count());
+  // Again: it replaces the findings, not adds to them.
+  EXPECT_EQ(post("/api/maps/swmmio-state-plane/condition?name=zustand.xml",
+                 read(condition / "zustand.xml"))
+                .second["findings"],
+            map->finding_count());
+  EXPECT_EQ(get("/api/maps").second["maps"][0]["findings"], map->finding_count());
+  auto r = client_->Post("/api/maps/swmmio-state-plane/campaign", body.dump(), "application/json");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  const auto stream = events(r->body);
+  ASSERT_FALSE(stream.empty());
+  EXPECT_EQ(stream.front().second["risk"], "expected");
+  EXPECT_EQ(stream.front().second["faults_from_condition"], true);
+  EXPECT_EQ(stream.front().second["planner_time_limit_s"], 20);
+  const json done = stream.back().second;
+  ASSERT_EQ(done["runs"].size(), 2u);
+  for (const json& run : done["runs"]) EXPECT_TRUE(run.contains("risk_aware")) << run.dump();
+
+  Result<Mission> mission = read_mission(condition / "mission.json", *map, diagnostics);
+  ASSERT_TRUE(mission.has_value()) << mission.error();
+  close_findings(*map, *mission, RiskMode::kExpected, default_risk_table());
+  campaign::CampaignSpec spec;
+  spec.seed = 5;
+  spec.runs = 2;
+  spec.risk = "expected";
+  spec.faults_from_condition = true;
+  spec.planner_time_limit_s = 20;
+  const auto records = campaign::run_campaign(*map, *mission, spec, {.guard = false});
+  expect_same_runs(done["runs"], records, 2);
+}
+
+// The start event says what runs: unguarded, one job whatever was asked; guarded, at most one a
+// run.
+TEST_F(CampaignApiTest, ManualTheStartEventReportsTheJobsThatRun) {
+  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "needs 2 cores to ask for 2 jobs";
+  start({.campaign_guard = false});
+  auto r = client_->Post("/api/maps/map/campaign", request({{"runs", 3}, {"jobs", 2}}),
+                         "application/json");
+  ASSERT_TRUE(r);
+  const auto unguarded = events(r->body);
+  ASSERT_FALSE(unguarded.empty());
+  EXPECT_EQ(unguarded.front().second["jobs"], 1);
+  EXPECT_EQ(unguarded.front().second["jobs_requested"], 2);
+#ifndef SEWERPLAN_TEST_FORK_UNSAFE_ALLOCATOR
+  TearDown();
+  start({});
+  r = client_->Post("/api/maps/map/campaign", request({{"runs", 1}, {"jobs", 2}}),
+                    "application/json");
+  ASSERT_TRUE(r);
+  const auto one_run = events(r->body);
+  ASSERT_FALSE(one_run.empty());
+  EXPECT_EQ(one_run.front().second["jobs"], 1);
+  r = client_->Post("/api/maps/map/campaign", request({{"runs", 3}, {"jobs", 2}}),
+                    "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(events(r->body).front().second["jobs"], 2);
+#endif
+}
+
+// A reader that does not read: the stream's writes block until the test lets them go, as a
+// stalled browser's socket does (for httplib's 5 s write timeout). The campaign goes on without it.
+class CampaignStreamTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    Diagnostics diagnostics;
+    map_ = std::make_shared<const SewerMap>(*read_map(kAis / "map.json", diagnostics));
+    mission_ = *read_mission(kAis / "missions/paper.json", *map_, diagnostics);
+  }
+
+  // Begins a campaign and streams it on a thread of its own into a reader that stalls.
+  void begin(json fields) {
+    fields["mission"] = json::parse(read(kAis / "missions/paper.json"));
+    httplib::Response res;
+    running_ = service_.begin(fields, map_, "map", mission_, res);
+    ASSERT_TRUE(running_) << res.body;
+    reader_ = std::thread([this] {
+      service_.stream(running_, [this](std::string_view text) {
+        std::unique_lock lock(mutex_);
+        released_.wait(lock, [this] { return reading_; });
+        written_ += text;
+        return true;
+      });
+      service_.release(running_);
+    });
+  }
+  // The reader reads again; its stream ends.
+  void let_go() {
+    {
+      const std::lock_guard lock(mutex_);
+      reading_ = true;
+    }
+    released_.notify_all();
+    reader_.join();
+  }
+  json status() {
+    httplib::Response res;
+    service_.status(res);
+    return json::parse(res.body);
+  }
+  // Polls status() until `done` says so: a generous bound that only a stuck campaign reaches.
+  json wait_for(const std::function<bool(const json&)>& done) {
+    const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    json s = status();
+    while (!done(s) && std::chrono::steady_clock::now() < give_up) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      s = status();
+    }
+    return s;
+  }
+  void TearDown() override {
+    if (reader_.joinable()) let_go();
+  }
+
+#ifdef SEWERPLAN_TEST_FORK_UNSAFE_ALLOCATOR
+  static constexpr bool kGuard = false;
+#else
+  static constexpr bool kGuard = true;
+#endif
+  CampaignService service_{{.max_runs = 10000, .max_jobs = 2, .guard = kGuard}};
+  std::shared_ptr<const SewerMap> map_;
+  Mission mission_;
+  std::shared_ptr<CampaignService::Running> running_;
+  std::thread reader_;
+  std::mutex mutex_;
+  std::condition_variable released_;
+  bool reading_ = false;
+  std::string written_;
+};
+
+// Every run ends while the reader has not read the first event; then the stream has them all.
+TEST_F(CampaignStreamTest, AReaderThatStallsHoldsUpNoRun) {
+  begin({{"runs", 12u}, {"jobs", 2u}});
+  const json s = wait_for([](const json& j) { return j["state"] != "running"; });
+  EXPECT_EQ(s["state"], "done");
+  EXPECT_EQ(s["runs"].size(), 12u);
+  let_go();
+  std::size_t progress = 0;
+  std::vector<std::string> types;
+  for (std::size_t at = 0; (at = written_.find("event: ", at)) != std::string::npos; ++at) {
+    types.push_back(written_.substr(at + 7, written_.find('\n', at) - at - 7));
+    progress += types.back() == "progress" ? 1U : 0U;
+  }
+  ASSERT_GE(types.size(), 2u);
+  EXPECT_EQ(types.front(), "start");
+  EXPECT_EQ(progress, 12u);
+  EXPECT_EQ(types.back(), "summary");
+}
+
+// A cancel while the reader stalls stops the campaign: its summary is there before the reader
+// reads again.
+TEST_F(CampaignStreamTest, ACancelWhileTheReaderStallsStopsTheCampaign) {
+  begin({{"runs", 5000u}, {"jobs", 2u}});
+  wait_for([](const json& j) {
+    return j["state"] != "running" || j.value("progress", json::object()).value("done", 0) >= 2;
+  });
+  httplib::Response res;
+  service_.cancel(res);
+  EXPECT_EQ(res.status, 200) << res.body;
+  const json s = wait_for([](const json& j) { return j["state"] != "running"; });
+  EXPECT_EQ(s["state"], "cancelled");
+  EXPECT_GE(s["runs"].size(), 2u);
+  EXPECT_LT(s["runs"].size(), 5000u);
+  let_go();
+  EXPECT_NE(written_.rfind("event: summary"), std::string::npos);
 }
 
 }  // namespace

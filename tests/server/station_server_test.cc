@@ -219,6 +219,31 @@ TEST_F(StationServerTest, WithATokenRefusesApiRequestsWithoutIt) {
   EXPECT_EQ(get("/api/maps").first, 401);
   client_->set_bearer_token_auth("s3cret");
   EXPECT_EQ(get("/api/maps").first, 200);
+  // A stream too: the page reads it with fetch() and the header.
+  auto r = client_->Post("/api/maps/map/simulate",
+                         json{{"mission", json::parse(read(kAis / "missions/paper.json"))}}.dump(),
+                         "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200);
+  EXPECT_NE(r->body.find("event: report"), std::string::npos);
+}
+
+// A token in the URL ends up in logs and the history: refused with a 401 that says where it goes,
+// with or without the header, right or wrong.
+TEST_F(StationServerTest, WithATokenRefusesOneInTheUrl) {
+  TearDown();
+  start({.token = "s3cret"});
+  auto [status, j] = get("/api/maps?token=s3cret");
+  EXPECT_EQ(status, 401);
+  EXPECT_EQ(j["error"]["code"], "unauthorised");
+  EXPECT_NE(j["error"]["message"].get<std::string>().find("Authorization: Bearer"),
+            std::string::npos);
+  EXPECT_NE(j["error"]["message"].get<std::string>().find("?token="), std::string::npos);
+  client_->set_bearer_token_auth("s3cret");
+  EXPECT_EQ(get("/api/maps?token=s3cret").first, 401);
+  EXPECT_EQ(get("/api/campaign?token=wrong").first, 401);
+  EXPECT_EQ(post("/api/maps/map/simulate?token=s3cret", "{}").first, 401);
+  EXPECT_EQ(get("/api/maps").first, 200);
 }
 
 TEST_F(StationServerTest, ServesThePageButNoFileOutsideIt) {

@@ -35,8 +35,12 @@ const launching = chromium.launch({
   executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
   args: ['--no-sandbox'],
 });
+// With a token, as on a shared machine: every request of the page, the streams too, must carry it in
+// its header (the printed address has it in its #fragment, which the page takes from there).
+const token = 'e2e-token';
 const server = spawn(binary, ['serve', '--map', join(ais, 'map.json'), ...(large ? ['--map', large] : []),
-                              '--port', '0', ...process.env.SEWERPLAN_WEB_DIR ? ['--web', process.env.SEWERPLAN_WEB_DIR] : []],
+                              '--port', '0', '--token', token,
+                              ...process.env.SEWERPLAN_WEB_DIR ? ['--web', process.env.SEWERPLAN_WEB_DIR] : []],
                      { stdio: ['ignore', 'pipe', 'inherit'] });
 const url = await new Promise((resolve, reject) => {
   let text = '';
@@ -186,6 +190,10 @@ try {
   await page.goto(url);
   console.log(`page loaded: ${Date.now() - t0} ms`);
   await page.waitForSelector('body[data-ready=true]', { timeout: 90000 });
+  check(url.includes(`#token=${token}`), `the printed address ${url} does not carry the token in its fragment`);
+  check(!page.url().includes(token), `the token stays in the address bar: ${page.url()}`);
+  const inUrl = await fetch(new URL(`api/maps?token=${token}`, url));
+  check(inUrl.status === 401, `?token= in a URL answered ${inUrl.status}, not 401`);
   console.log(`page load and first draw (AIS map): ${Date.now() - t0} ms; in the page:`,
               await page.evaluate(() => window.station.state.timings));
   await shot('1-map.png');

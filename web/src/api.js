@@ -1,7 +1,23 @@
 // SPDX-License-Identifier: MIT
-// The server's JSON API (docs/operator-station.md). The token, if the station was started with
-// one, comes from the page's own URL (?token=...), as `sewerplan serve` prints it.
-const token = new URLSearchParams(location.search).get('token');
+// The server's JSON API (docs/operator-station.md).
+//
+// The token, if the station was started with one: `sewerplan serve` prints the page's address with
+// it in the fragment (#token=T), which a browser never sends to a server. The page keeps it for
+// this tab (sessionStorage: a reload works) and takes it out of the address bar and the history.
+// Every request sends it as "Authorization: Bearer T", the streams too (read with fetch(), not
+// EventSource, which cannot set a header); the server refuses a ?token= in a URL.
+const TOKEN_KEY = 'sewerplan-token';
+function readToken() {
+  const fragment = new URLSearchParams(location.hash.slice(1));
+  const token = fragment.get('token');
+  if (token === null) return sessionStorage.getItem(TOKEN_KEY);
+  sessionStorage.setItem(TOKEN_KEY, token);
+  fragment.delete('token');
+  const rest = fragment.toString();
+  history.replaceState(null, '', `${location.pathname}${location.search}${rest ? `#${rest}` : ''}`);
+  return token;
+}
+const token = readToken();
 const headers = token ? { Authorization: `Bearer ${token}` } : {};
 
 async function call(path, options = {}) {
@@ -12,14 +28,21 @@ async function call(path, options = {}) {
 }
 
 const map = (id) => `api/maps/${encodeURIComponent(id)}`;
+// Whether driveability, plans, simulations and campaigns use the map's motion table, when it has
+// one (the server's default; false: ?motion=0, the CLI's --no-motion).
+export const settings = { motion: true };
+const motion = (path) => (settings.motion ? path : `${path}${path.includes('?') ? '&' : '?'}motion=0`);
 export const listMaps = () => call('api/maps');
 export const uploadMap = (name, text) =>
   call(`api/maps?name=${encodeURIComponent(name)}`, { method: 'POST', body: text });
 export const mapGeometry = (id) => call(map(id));
-export const driveability = (id, profile) => call(`${map(id)}/driveability?profile=${encodeURIComponent(profile)}`);
+export const uploadCondition = (id, name, text) =>
+  call(`${map(id)}/condition?name=${encodeURIComponent(name)}`, { method: 'POST', body: text });
+export const driveability = (id, profile) =>
+  call(motion(`${map(id)}/driveability?profile=${encodeURIComponent(profile)}`));
 export const validate = (id, mission) => call(`${map(id)}/validate`, { method: 'POST', body: JSON.stringify(mission) });
 export const plan = (id, mission, timeLimit) =>
-  call(`${map(id)}/plan?time_limit=${timeLimit}`, { method: 'POST', body: JSON.stringify(mission) });
+  call(motion(`${map(id)}/plan?time_limit=${timeLimit}`), { method: 'POST', body: JSON.stringify(mission) });
 export const replay = (id, log) => call(`${map(id)}/replay`, { method: 'POST', body: log });
 
 export const campaignStatus = () => call('api/campaign');
@@ -56,6 +79,6 @@ async function stream(path, body, onEvent, signal) {
 }
 
 // Runs a simulation: the executor's events, each plan's route, then the report.
-export const simulate = (id, body, onEvent, signal) => stream(`${map(id)}/simulate`, body, onEvent, signal);
+export const simulate = (id, body, onEvent, signal) => stream(motion(`${map(id)}/simulate`), body, onEvent, signal);
 // Runs a fault campaign: "start", a "progress" per run, then "summary".
-export const campaign = (id, body, onEvent, signal) => stream(`${map(id)}/campaign`, body, onEvent, signal);
+export const campaign = (id, body, onEvent, signal) => stream(motion(`${map(id)}/campaign`), body, onEvent, signal);

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The campaign panel: a fault campaign on the open map and mission, run by the server's campaign
 // library as `sewerplan campaign` runs it (docs/campaign.md): the form (runs, seed, fault rates,
-// jobs, push), the progress streamed run by run with a cancel button, the summary as charts (the
+// jobs, push, the planner's time limit, risk, obstacles from the map's condition data), the progress streamed run by run with a cancel button, the summary as charts (the
 // figures of summary.md: outcomes, tasks against the oracle and the baseline, beacons by cause),
 // drawn as plain SVG, and the table of runs, where a click opens the run in the replay view.
 import * as api from './api.js';
@@ -93,7 +93,10 @@ export class CampaignPanel {
     const $ = this.$;
     const body = { mission: this.mission(), runs: Number($('campaign-runs').value),
                    seed: $('campaign-seed').value.trim() || '1', jobs: Number($('campaign-jobs').value),
-                   allow_push: $('campaign-push').checked };
+                   allow_push: $('campaign-push').checked,
+                   planner_time_limit_s: Number($('campaign-planner-limit').value || 0),
+                   risk: $('campaign-risk').value,
+                   faults_from_condition: $('campaign-faults-from-condition').checked };
     const rates = $('campaign-rates').value.trim();
     if (rates) body.fault_rates = rates;
     return body;
@@ -134,7 +137,8 @@ export class CampaignPanel {
     if (type === 'start') {
       $('campaign-progress').max = data.total;
       $('campaign-progress').value = 0;
-      $('campaign-status').textContent = `0/${data.total} runs (${data.jobs} at a time), faults ${data.fault_rates}`;
+      const jobs = data.jobs === data.jobs_requested ? `${data.jobs} at a time` : `${data.jobs} at a time, of ${data.jobs_requested} asked`;
+      $('campaign-status').textContent = `0/${data.total} runs (${jobs}), faults ${data.fault_rates}, risk ${data.risk}`;
     } else if (type === 'progress') {
       this.progressSeen += 1;
       $('campaign-progress').max = data.total;

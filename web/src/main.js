@@ -75,6 +75,7 @@ async function openMap(id) {
   state.timings.load_geometry_ms = Math.round(performance.now() - t0) - state.timings.geometry_ms;
   state.mission = newMission($('profile').value);
   state.faults = newFaults();
+  $('condition').textContent = '';
   clearRun();
   state.route = new Set();
   view.fit(state.map.bounds);
@@ -92,8 +93,23 @@ async function openMap(id) {
 const afterDraw = () => view.whenDrawn();
 
 // The pipes the profile cannot drive, with the reasons of `info --profile`.
+// With the map's motion table (unless unticked), as `info --profile`; the manhole passages the
+// robot cannot take are counted beside the profile, those the table rejects apart.
 async function loadDriveability(report = api.driveability(state.map.id, $('profile').value)) {
-  const r = await report;
+  let r;
+  try {
+    r = await report;
+  } catch (e) {
+    $('driveability').textContent = e.message;
+    state.blocked = new Map();
+    draw();
+    return;
+  }
+  const byTable = r.passages.filter((p) => p.motion_reason).length;
+  $('driveability').textContent = `${r.passages.length} of ${r.passages_checked} manhole passages not drivable` +
+    (r.motion_table ? ` (${byTable} by the motion table)` : '');
+  $('driveability').title = r.passages.slice(0, 50).map((p) =>
+    `${p.manhole} ${p.from_pipe} to ${p.to_pipe}: ${p.motion_reason ?? [p.turn_exceeded && `turn ${p.turn_deg.toFixed(0)} deg`, p.step_exceeded && `step ${p.step_m.toFixed(2)} m`].filter(Boolean).join(', ')}`).join('\n');
   state.blocked = new Map([
     ...r.too_narrow.map((p) => [p, `too narrow for ${r.profile}`]),
     ...r.too_wide.map((p) => [p, `too wide for ${r.profile}`]),
@@ -302,13 +318,28 @@ async function uploadMap(file) {
   }
 }
 
+// The open map's inspection findings (ISYBAU Zustandsdaten), joined to it on the server: what they
+// close shows in the driveability, and campaigns can draw obstacles from them.
+async function uploadCondition(file) {
+  try {
+    const r = await api.uploadCondition(state.map.id, file.name, await file.text());
+    $('condition').textContent = `${r.findings} findings from ${r.condition}` +
+      (r.warnings.length ? ` (${r.warnings.length} warnings)` : '');
+    await loadDriveability();
+  } catch (e) {
+    $('condition').textContent = e.message;
+  }
+}
+
 async function start() {
   const t0 = performance.now();
   const { maps, profiles } = await listMaps();
   $('profile').replaceChildren(...profiles.map((p) => new Option(p, p)));
   $('map-upload').onchange = (e) => e.target.files[0] && uploadMap(e.target.files[0]);
+  $('condition-upload').onchange = (e) => e.target.files[0] && uploadCondition(e.target.files[0]);
   $('map').onchange = () => openMap($('map').value);
   $('profile').onchange = () => { loadDriveability(); missionChanged(); };
+  $('motion').onchange = () => { api.settings.motion = $('motion').checked; loadDriveability(); };
   $('plan').onclick = runPlan;
   $('simulate').onclick = runSimulation;
   $('speed').onchange = () => { player.speed = Number($('speed').value); };

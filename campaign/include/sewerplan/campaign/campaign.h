@@ -15,9 +15,14 @@
 //   Summary s = summarize(spec, records);  // summary.h
 //
 // Thread safety: run_campaign may be called from any thread; it only reads the map and
-// mission. It starts its own worker threads and, guarded, forks a child per run from them, so the
-// caller's other threads should hold no lock a run needs. `progress` runs on the worker threads,
-// one call at a time. parse_injections shares nothing.
+// mission. Guarded, it starts its own worker threads and forks a child per run from them, so the
+// caller's other threads should hold no lock a run needs. `progress` runs on the thread that
+// called run_campaign, one call at a time, with no lock of the campaign's held: a slow callback
+// holds up no worker and no running child, and a stop is honoured meanwhile. Guarded, no child is
+// forked while it runs (its allocations stay out of a fork: an allocator that is not safe to fork
+// under, such as ASan's before LLVM 17, would leave the child waiting on its lock), so it should
+// return promptly: record, and write elsewhere. Unguarded, the runs run on that thread too, and
+// the callback between them. parse_injections shares nothing.
 #pragma once
 
 #include <cstddef>
@@ -50,7 +55,8 @@ struct CampaignOptions {
   double timeout_s = 60;  // per run; a child still running then is a hang
   bool guard = true;      // false: in this process, one run at a time (a crash takes it down)
   std::optional<std::size_t> only;  // run just this index (it need not be in the shard)
-  std::function<void(const Progress&)> progress;  // called from one thread at a time
+  // Each finished run (after a stop too), on the caller's thread (see above).
+  std::function<void(const Progress&)> progress;
   std::map<std::size_t, InjectedFault> inject;
   // When to give up (StopCondition::with_cancel, after_seconds): checked before each run and,
   // guarded, while a child runs (it is killed). Unguarded, a run in progress finishes first.
@@ -60,6 +66,10 @@ struct CampaignOptions {
 // What each run of `spec` is set to: its rates, seed, limits, and the risk settings (a `risk` of
 // "expected" adds the risk-aware execution with domain::kDefaultRiskCosts).
 RunSettings run_settings(const CampaignSpec& spec);
+
+// The worker threads run_campaign runs `spec` with: options.jobs, at most one a run (of the
+// shard, or options.only), at least one; unguarded, one.
+std::size_t campaign_jobs(const CampaignSpec& spec, const CampaignOptions& options);
 
 // The runs of `spec`'s shard (or options.only), in index order; after options.stop fired, only
 // those that finished (fewer than the shard holds).

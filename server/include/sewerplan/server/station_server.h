@@ -6,15 +6,18 @@
 //
 //   GET  /api/maps                          the maps: id, name, counts
 //   POST /api/maps?name=FILE[&format=F]     a map file (any format read_map reads): its new ID
+//   POST /api/maps/ID/condition?name=FILE   the map's inspection findings (ISYBAU Zustandsdaten)
 //   GET  /api/maps/ID                       one map's geometry, in its own coordinates
-//   GET  /api/maps/ID/driveability?profile= what a built-in profile cannot drive, and why
+//   GET  /api/maps/ID/driveability?profile= what a built-in profile cannot drive, and why, as
+//                                           `info --profile` (the motion table unless ?motion=0)
 //   POST /api/maps/ID/validate              a mission (the CLI's JSON): the CLI's messages
 //   POST /api/maps/ID/plan?time_limit=S     a mission: `plan --json`, plus the fused actions
 //   POST /api/maps/ID/simulate              {"mission", "faults" | "random_faults"}: the
 //                                           executor's events as server-sent events (each plan
 //                                           followed by its route), then the report
 //   POST /api/maps/ID/replay                an event log (JSON lines) read back as events
-//   POST /api/maps/ID/campaign              {"mission", "runs", "seed", "fault_rates", "jobs"}: a
+//   POST /api/maps/ID/campaign              {"mission", "runs", "seed", "fault_rates", "jobs",
+//   ...}: a
 //                                           fault campaign, its progress as server-sent events,
 //                                           then its summary (one campaign at a time)
 //   GET  /api/campaign                      the running campaign's progress, or the last summary
@@ -24,7 +27,7 @@
 // and the page's files from `web_root` on every other GET. Maps are named by their ID (the file's
 // stem), never by a path, so a request reaches no file but the page's own. Every bad request gets
 // a 4xx status with {"error": {...}} (documents.h); with a token, every /api/ request needs
-// "Authorization: Bearer TOKEN" (or ?token=TOKEN).
+// "Authorization: Bearer TOKEN" (a ?token= in the URL is a 401: URLs end up in logs).
 //
 //   Result<std::unique_ptr<StationServer>> s = StationServer::create(options);
 //   Result<int> port = (*s)->bind();   // port 0: any free port
@@ -56,7 +59,7 @@ struct ServerOptions {
   MapReader read_map_with;                  // empty: core's read_map
   std::string host = "127.0.0.1";
   int port = 8080;                 // 0: any free port (bind() says which)
-  std::string token;               // empty: no token asked
+  std::string token;               // empty: no token asked; else the API's bearer token
   std::filesystem::path web_root;  // the built page (share/sewerplan/web); empty: API only
   std::size_t max_body_bytes = 16u << 20;
   double max_plan_time_s = 60;            // a request's time_limit is capped at this
