@@ -42,6 +42,7 @@ class RouteStore {
   void clear() { nodes_.clear(); }
   // Nodes held (the routes kept so far).
   std::size_t size() const { return nodes_.size(); }
+  std::size_t capacity() const { return nodes_.capacity(); }
 
   // Sizes the store for `keys` rows like the one kept so far (and half as many again), at most
   // kMaxReservedNodes.
