@@ -40,6 +40,10 @@ class JsonScan {
     return false;
   }
 
+  // Where the scan is in the text, and the text's size (bytes).
+  std::size_t position() const { return pos_; }
+  std::size_t size() const { return text_.size(); }
+
   // Only white space is left.
   bool at_end() {
     skip_space();

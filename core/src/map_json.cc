@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "sewerplan/core/map_json.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -9,7 +10,6 @@
 
 #include "sewerplan/core/map_builder.h"
 
-#include "huge_pages.h"
 #include "json_fields.h"
 #include "json_scan.h"
 #include "map_json_fast.h"
@@ -245,22 +245,15 @@ void write_pipe(std::ostream& out, const SewerMap& map, const Pipe& p) {
 class FastReader {
  public:
   FastReader(std::string_view text, const std::string& file_name)
-      : scan_(text), file_name_(file_name) {}
+      : scan_(text), file_name_(file_name), builder_("", json_locator(file_name)) {}
 
   std::optional<MapBuilder> read() && {
     if (!root() || !scan_.at_end() || !format_ || !version_ || !manholes_ || !pipes_) {
       return std::nullopt;
     }
-    // Records move from their chunks, each freed once emptied, into vectors reserved at their
-    // size: a growing vector would hold two copies of a million records while it moves them.
-    MapBuilder builder{std::string(name_), json_locator(file_name_)};
-    builder.set_crs(std::move(crs_));
-    builder.reserve(manholes_list_.size(), pipes_list_.size());
-    move_into(manholes_list_, [&](ManholeRecord&& r) { builder.add_manhole(std::move(r)); });
-    move_into(pipes_list_, [&](PipeRecord&& r) { builder.add_pipe(std::move(r)); });
-    move_into(points_list_, [&](PointRecord&& r) { builder.add_point(std::move(r)); });
-    move_into(findings_list_, [&](FindingRecord&& r) { builder.add_finding(std::move(r)); });
-    return builder;
+    builder_.set_name(std::string(name_));
+    builder_.set_crs(std::move(crs_));
+    return std::move(builder_);
   }
 
  private:
@@ -271,34 +264,17 @@ class FastReader {
     return true;
   }
 
-  // Records in chunks that double up to 2^18 records (tens of MB, which malloc maps on their
-  // own and gives back to the system when freed).
-  template <class Record>
-  class Chunks {
-   public:
-    void push_back(Record&& r) {
-      if (chunks_.empty() || chunks_.back().size() == chunks_.back().capacity()) {
-        detail::reserve_huge(chunks_.emplace_back(), chunks_.empty() || chunks_.size() < 9
-                                                         ? std::size_t{1024} << chunks_.size()
-                                                         : std::size_t{1} << 18U);
-      }
-      chunks_.back().push_back(std::move(r));
-      ++size_;
-    }
-    std::size_t size() const { return size_; }
-    std::vector<std::vector<Record>>& chunks() { return chunks_; }
-
-   private:
-    std::vector<std::vector<Record>> chunks_;
-    std::size_t size_ = 0;
-  };
-
-  template <class Record, class Add>
-  static void move_into(Chunks<Record>& records, Add add) {
-    for (std::vector<Record>& chunk : records.chunks()) {
-      for (Record& r : chunk) add(std::move(r));
-      std::vector<Record>().swap(chunk);
-    }
+  // The records go straight into the builder's vectors, which are reserved once kSample records of
+  // an array are read: for as many more as the rest of the text holds at the bytes those took (an
+  // overestimate, as the rest holds the other arrays too, but memory reserved and never written is
+  // never given: issue 16). Before, the records were read into chunks and moved into vectors of
+  // their size: every record written to fresh memory twice, and fresh memory was the largest cost
+  // of reading a 1,000,000-manhole map (the kernel zeroing it). An estimate too small only means a
+  // vector grows as usual.
+  static constexpr std::size_t kSample = 1024;
+  std::size_t rest_at_rate(std::size_t count, std::size_t begin) const {
+    const std::size_t used = scan_.position() - begin;
+    return count + (scan_.size() - scan_.position()) / std::max<std::size_t>(1, used / count);
   }
 
   bool root() {
@@ -324,11 +300,26 @@ class FastReader {
         return true;
       }
       if (key == "manholes") {
-        manholes_ = once(seen, 8) && scan_.array([&] { return manhole(); });
+        if (!once(seen, 8)) return false;
+        const std::size_t begin = scan_.position();
+        std::size_t count = 0;
+        manholes_ = scan_.array([&] {
+          if (++count == kSample) {
+            const std::size_t manholes = rest_at_rate(count, begin);
+            builder_.reserve(manholes, 0, manholes * slot_count_ / count + kSample);
+          }
+          return manhole();
+        });
         return manholes_;
       }
       if (key == "pipes") {
-        pipes_ = once(seen, 16) && scan_.array([&] { return pipe(); });
+        if (!once(seen, 16)) return false;
+        const std::size_t begin = scan_.position();
+        std::size_t count = 0;
+        pipes_ = scan_.array([&] {
+          if (++count == kSample) builder_.reserve(0, rest_at_rate(count, begin), 0);
+          return pipe();
+        });
         return pipes_;
       }
       if (key == "inspection_points") {
@@ -362,6 +353,7 @@ class FastReader {
 
   bool manhole() {
     ManholeRecord m;
+    slots_.clear();
     unsigned seen = 0;
     const bool ok = scan_.object([&](std::string_view key) {
       if (key == "name") return string(seen, 1, m.name);
@@ -380,7 +372,7 @@ class FastReader {
       if (key == "shaft_width_m") return number(seen, 256, m.shaft_width_m);
       if (key == "depth_m") return number(seen, 512, m.depth_m);
       if (key == "slots") {
-        return once(seen, 1024) && scan_.array([&] { return slot(m.slots.emplace_back()); });
+        return once(seen, 1024) && scan_.array([&] { return slot(slots_.emplace_back()); });
       }
       return false;
     });
@@ -388,10 +380,12 @@ class FastReader {
     if (m.shaft_length_m.has_value() != m.shaft_width_m.has_value()) return false;
     // The invert defaults to the manhole's floor, which may come after the slots. JSON has no
     // NaN, so NaN marks an invert not given.
-    for (SlotRecord& s : m.slots) {
+    for (SlotRecord& s : slots_) {
       if (std::isnan(s.invert_z_m)) s.invert_z_m = m.position.z_m;
     }
-    manholes_list_.push_back(std::move(m));
+    builder_.add_manhole(std::move(m));
+    for (SlotRecord& s : slots_) builder_.add_slot(std::move(s));
+    slot_count_ += slots_.size();
     return true;
   }
 
@@ -441,7 +435,7 @@ class FastReader {
       return false;
     });
     if (!ok || (seen & 31U) != 31U) return false;
-    pipes_list_.push_back(std::move(p));
+    builder_.add_pipe(std::move(p));
     return true;
   }
 
@@ -455,7 +449,7 @@ class FastReader {
       return false;
     });
     if (!ok || seen != 7U) return false;
-    points_list_.push_back(std::move(p));
+    builder_.add_point(std::move(p));
     return true;
   }
 
@@ -473,7 +467,7 @@ class FastReader {
       return false;
     });
     if (!ok || (seen & 11U) != 11U) return false;
-    findings_list_.push_back(std::move(r));
+    builder_.add_finding(std::move(r));
     return true;
   }
 
@@ -485,10 +479,9 @@ class FastReader {
   bool version_ = false;
   bool manholes_ = false;
   bool pipes_ = false;
-  Chunks<ManholeRecord> manholes_list_;
-  Chunks<PipeRecord> pipes_list_;
-  Chunks<PointRecord> points_list_;
-  Chunks<FindingRecord> findings_list_;
+  MapBuilder builder_;
+  std::size_t slot_count_ = 0;
+  std::vector<SlotRecord> slots_;  // the current manhole's, while it is read
 };
 
 }  // namespace

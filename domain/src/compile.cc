@@ -16,12 +16,14 @@
 #include "compile_reasons.h"
 #include "graph_search.h"
 #include "position_graph.h"
+#include "route_store.h"
 
 namespace sewerplan::domain {
 
 using detail::GraphSearch;
 using detail::Node;
 using detail::PositionGraph;
+using detail::RouteRef;
 
 struct CompileCache::State {
   std::mutex mutex;
@@ -264,9 +266,8 @@ class SewerTaskCompiler {
                  GraphSearch::Direction::kForward);
       store_routes(search, 0, std::nullopt);
     }
-    // Issue 14: the store grown by doubling would copy itself whole between two stop checks
-    // (megabytes on 100,000 manholes): sized once from the start's routes, one row of k.
-    route_store_.reserve(route_store_.size() * (k() + k() / 2) + 4096);
+    // Issue 14: sized once from the start's routes (route_store.h).
+    route_store_.reserve_rows(k());
     std::vector<Node> reachable;
     for (Node n : targets) {
       if (dist_[key_of_.at(n)] <= bound_) reachable.push_back(n);
@@ -480,19 +481,11 @@ class SewerTaskCompiler {
   std::vector<bool> landing_;  // per key, see landing(); shorter when the last keys are not
   std::unordered_map<Node, std::uint32_t> key_of_;
   std::vector<Cost> dist_;  // k x k, row = from
-  // The routes of the searches, each a stretch of one store (issue 16: 13,000 routes as vectors
-  // of their own, allocated, reversed, copied and freed, were a seventh of the plan's time on
-  // 1,000 manholes with 50 tasks).
-  struct RouteRef {
-    std::size_t begin = 0;
-    std::size_t size = 0;
-  };
-  std::vector<Node> route_store_;
-  std::span<const Node> route(RouteRef r) const { return {route_store_.data() + r.begin, r.size}; }
+  // The routes of the searches, each a stretch of one store (route_store.h).
+  detail::RouteStore route_store_;
+  std::span<const Node> route(RouteRef r) const { return route_store_.route(r); }
   void keep_path(const GraphSearch& search, Node n, RouteRef& ref) {
-    const std::size_t begin = route_store_.size();
-    search.append_path(n, route_store_);
-    ref = {begin, route_store_.size() - begin};
+    ref = route_store_.keep(search, n);
   }
   std::vector<RouteRef> routes_;
   std::vector<Cost> exit_dist_;

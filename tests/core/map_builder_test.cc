@@ -29,6 +29,28 @@ MapBuilder three_manholes() {
   return b;
 }
 
+// A reader may hand a manhole's slots one by one after it (add_slot): the same map.
+TEST(MapBuilder, SlotsHandedOneByOneBuildTheSameMap) {
+  MapBuilder b("line");
+  b.add_manhole({.name = "M1", .diameter_m = 1.0, .exit = true});
+  b.add_slot({.pipe = "P1"});
+  b.add_manhole({.name = "M2",
+                 .position = {10, 0, 0},
+                 .diameter_m = 1.0,
+                 .slots = {{.pipe = "P1", .azimuth_deg = 180}}});
+  b.add_slot({.pipe = "P2", .azimuth_deg = 0, .invert_z_m = 0.1});
+  b.add_manhole({.name = "M3", .position = {20, 0, 0}, .diameter_m = 1.0});
+  b.add_slot({.pipe = "P2", .azimuth_deg = 180});
+  b.add_pipe({.name = "P1", .from = "M1", .to = "M2", .length_m = 10, .diameter_m = 0.6});
+  b.add_pipe({.name = "P2", .from = "M2", .to = "M3", .length_m = 10, .diameter_m = 0.6});
+  Diagnostics d1, d2;
+  Result<SewerMap> streamed = std::move(b).build(d1);
+  Result<SewerMap> whole = three_manholes().build(d2);
+  ASSERT_TRUE(streamed.has_value() && whole.has_value());
+  EXPECT_EQ(*streamed, *whole);
+  EXPECT_EQ(d1.all(), d2.all());
+}
+
 TEST(MapBuilder, BuildsAConsistentNetworkWithSlotsAsAdjacency) {
   Diagnostics d;
   Result<SewerMap> map = three_manholes().build(d);

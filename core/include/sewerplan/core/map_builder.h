@@ -27,6 +27,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -110,13 +111,20 @@ class MapBuilder {
  public:
   explicit MapBuilder(std::string map_name, Locator locator = line_locator("<map>"));
 
+  // Its slots are `record.slots`, then any add_slot() before the next add_manhole().
   void add_manhole(ManholeRecord record);
+  // One more slot of the manhole added last (precondition: one was added). A reader streaming a
+  // large map hands the slots one by one, with no vector per manhole (issue 16: a million of them
+  // were the reader's largest share of small allocations).
+  void add_slot(SlotRecord slot);
   void add_pipe(PipeRecord record);
   void add_point(PointRecord record);
   void add_finding(FindingRecord record);
+  // The map's name, when the reader learns it after the records (as given to the constructor).
+  void set_name(std::string map_name);
   // The coordinate reference system of the records' positions (crs.h), when the source names one.
   void set_crs(std::optional<Crs> crs);
-  void reserve(std::size_t manholes, std::size_t pipes);
+  void reserve(std::size_t manholes, std::size_t pipes, std::size_t slots = 0);
 
   // Validates and builds. On error, every problem found is in `diagnostics` and the Error's
   // message lists them. Warnings are added to `diagnostics` either way.
@@ -135,7 +143,12 @@ class MapBuilder {
   std::string name_;
   std::optional<Crs> crs_;
   Locator locator_;
+  // The manholes as added, their `slots` moved into one store: manhole i's slots are
+  // slots_[slot_end_[i - 1] .. slot_end_[i]) (from 0 for the first).
   std::vector<ManholeRecord> manholes_;
+  std::vector<SlotRecord> slots_;
+  std::vector<std::uint32_t> slot_end_;
+  std::span<const SlotRecord> slots_of(std::size_t manhole) const;
   std::vector<PipeRecord> pipes_;
   std::vector<PointRecord> points_;
   std::vector<FindingRecord> findings_;

@@ -1,0 +1,19 @@
+// SPDX-License-Identifier: MIT
+#include "route_store.h"
+
+#include <algorithm>
+
+namespace sewerplan::domain::detail {
+
+void RouteStore::reserve_rows(std::size_t keys) {
+  const std::size_t wanted = nodes_.size() * (keys + keys / 2) + 4096;
+  nodes_.reserve(std::min(wanted, std::max(kMaxReservedNodes, nodes_.size())));
+}
+
+RouteRef RouteStore::keep(const GraphSearch& search, Node n) {
+  const std::size_t begin = nodes_.size();
+  search.append_path(n, nodes_);
+  return {begin, nodes_.size() - begin};
+}
+
+}  // namespace sewerplan::domain::detail
