@@ -24,6 +24,7 @@
 #include "sewerplan/core/mission.h"
 #include "sewerplan/core/passage_motion.h"
 #include "sewerplan/core/robot_profile.h"
+#include "sewerplan/domain/compile.h"
 #include "sewerplan/domain/driveability.h"
 #include "sewerplan/domain/plan_text.h"
 #include "sewerplan/domain/validator.h"
@@ -148,6 +149,29 @@ struct StationServer::Impl {
     }
     mission.passage_motion = std::make_shared<const PassageMotionTable>(std::move(*table));
     return true;
+  }
+
+  // As the CLI's plan and simulate (--risk, with the built-in risk table): what the map's
+  // inspection findings close (?risk=impassable, the default; avoid: every place with a risk;
+  // ignore: nothing), and with ?risk=expected the possible blockages weighed by their expected
+  // cost. What was applied, or nullopt after a 400 for an unknown mode.
+  struct AppliedRisk {
+    RiskMode mode;
+    std::string name;
+    std::size_t closed = 0;  // places the findings closed
+  };
+  static std::optional<AppliedRisk> apply_risk(const LoadedMap& m, const httplib::Request& req,
+                                               Mission& mission, httplib::Response& res) {
+    const std::string name = req.has_param("risk") ? req.get_param_value("risk") : "impassable";
+    const std::optional<RiskMode> mode = risk_mode_from_string(name);
+    if (!mode) {
+      bad_request(res, "risk: expected ignore, impassable, avoid or expected, not '" + name + "'");
+      return std::nullopt;
+    }
+    return AppliedRisk{*mode, name, close_findings(m.map, mission, *mode, default_risk_table())};
+  }
+  static domain::RiskCosts risk_costs(RiskMode mode) {
+    return mode == RiskMode::kExpected ? domain::kDefaultRiskCosts : domain::RiskCosts{};
   }
 
   void routes();
@@ -304,8 +328,11 @@ void StationServer::Impl::plan(const httplib::Request& req, httplib::Response& r
   if (!limit) return bad_request(res, "time_limit: expected seconds > 0");
   std::optional<Mission> mission = read_body_mission(req.body, m->map, res);
   if (!mission || !attach_motion(*m, req, *mission, res)) return;
+  const std::optional<AppliedRisk> risk = apply_risk(*m, req, *mission, res);
+  if (!risk) return;
   search::PlannerOptions planner;
   planner.time_limit_s = *limit;
+  planner.risk = risk_costs(risk->mode);
   planner.select_goals = req.get_param_value("select_goals") == "1";
   domain::MissionProgress start = domain::initial_progress(*mission, m->map);
   const SteadyClock clock;
@@ -322,6 +349,9 @@ void StationServer::Impl::plan(const httplib::Request& req, httplib::Response& r
   Json j = plan_json(*outcome, report, m->map, *mission);
   j["text"] = domain::format_plan(outcome->plan, m->map, *mission);
   j["motion_table"] = mission->passage_motion != nullptr;
+  j["risk"] = {{"mode", risk->name},
+               {"closed_by_findings", risk->closed},
+               {"possible_blockages", mission->hazards.size()}};
   Json actions = Json::array();
   if (Result<fusion::FusedPlan> fused = fusion::fuse(outcome->plan, m->map, *mission, fuse_start);
       fused.has_value()) {
@@ -347,6 +377,8 @@ void StationServer::Impl::simulate(const httplib::Request& req, httplib::Respons
   }
   std::optional<Mission> mission = read_body_mission(dump(body["mission"]), m->map, res);
   if (!mission || !attach_motion(*m, req, *mission, res)) return;
+  const std::optional<AppliedRisk> risk = apply_risk(*m, req, *mission, res);
+  if (!risk) return;
   Diagnostics diagnostics;
   Result<hal::FaultScenario> faults = hal::FaultScenario{};
   if (body.contains("faults")) {
@@ -368,12 +400,16 @@ void StationServer::Impl::simulate(const httplib::Request& req, httplib::Respons
     const SewerMap* map;
     Mission mission;
     hal::FaultScenario faults;
+    domain::RiskCosts risk;
   };
-  auto run = std::make_shared<Run>(Run{m, &m->map, std::move(*mission), std::move(*faults)});
+  auto run = std::make_shared<Run>(
+      Run{m, &m->map, std::move(*mission), std::move(*faults), risk_costs(risk->mode)});
   res.set_header("Cache-Control", "no-cache");
   res.set_chunked_content_provider(
       "text/event-stream", [run](std::size_t, httplib::DataSink& sink) {
-        executor::Replanner replanner(*run->map, run->mission);
+        executor::ReplannerOptions replanning;
+        replanning.planner.risk = run->risk;
+        executor::Replanner replanner(*run->map, run->mission, replanning);
         hal::SimRobot robot(*run->map, run->mission.profile,
                             start_pose(replanner.progress().position), run->faults);
         executor::Executor executor(*run->map, replanner, robot);

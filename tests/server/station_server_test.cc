@@ -310,6 +310,53 @@ std::vector<Sse> parse_stream(const std::string& body) {
   return events;
 }
 
+// A map with inspection findings is planned and simulated as the CLI's plan and simulate do it
+// (--risk, default impassable): what the findings close is closed, unless ?risk=ignore.
+TEST_F(StationServerTest, ManualPlansAndSimulatesWithWhatTheMapsFindingsClose) {
+  const std::filesystem::path condition = kSource / "datasets/condition/swmm-state-plane";
+  start({.maps = {kSource / "datasets/swmm/swmmio-state-plane.inp"}});
+  const std::string mission = read(condition / "mission.json");
+  const std::string map = "/api/maps/swmmio-state-plane";
+  // Before the findings: every task is reachable.
+  auto [before, planned] = post(map + "/plan", mission);
+  ASSERT_EQ(before, 200) << planned.dump();
+  EXPECT_EQ(planned["risk"]["closed_by_findings"], 0);
+  ASSERT_EQ(post(map + "/condition?name=zustand.xml", read(condition / "zustand.xml")).first, 200);
+  // With them (as `plan --condition`), a sample lies behind a pipe no robot passes.
+  auto [closed, why] = post(map + "/plan", mission);
+  EXPECT_EQ(closed, 422);
+  EXPECT_NE(why.dump().find("sample-J2-023.1"), std::string::npos) << why.dump();
+  auto [selected, dropped] = post(map + "/plan?select_goals=1", mission);
+  ASSERT_EQ(selected, 200) << dropped.dump();
+  EXPECT_EQ(dropped["risk"]["mode"], "impassable");
+  EXPECT_EQ(dropped["risk"]["closed_by_findings"], 19);
+  EXPECT_NE(dropped["dropped"].dump().find("sample-J2-023.1"), std::string::npos)
+      << dropped["dropped"].dump();
+  auto [expected, weighed] = post(map + "/plan?select_goals=1&risk=expected", mission);
+  ASSERT_EQ(expected, 200) << weighed.dump();
+  EXPECT_GT(weighed["risk"]["possible_blockages"].get<int>(), 0);
+  auto [ignored, blind] = post(map + "/plan?risk=ignore", mission);
+  ASSERT_EQ(ignored, 200) << blind.dump();
+  EXPECT_EQ(blind["cost_s"], planned["cost_s"]);
+  auto [bad, named] = post(map + "/plan?risk=maybe", mission);
+  EXPECT_EQ(bad, 400);
+  EXPECT_NE(named["error"]["message"].get<std::string>().find("risk"), std::string::npos);
+  // The simulation leaves the closed sample out, as the plan did; blind to the findings, it takes
+  // it (the hidden world has no faults).
+  const std::string body = R"({"mission": )" + mission + "}";
+  const auto sample_taken = [&](const std::string& query) {
+    auto r = client_->Post(map + "/simulate" + query, body, "application/json");
+    EXPECT_TRUE(r && r->status == 200) << (r ? r->body : "no answer");
+    if (!r) return false;
+    return std::ranges::any_of(parse_stream(r->body), [](const Sse& e) {
+      return e.type == "task_done" && e.data.find("sample-J2-023.1") != std::string::npos;
+    });
+  };
+  EXPECT_FALSE(sample_taken(""));
+  EXPECT_TRUE(sample_taken("?risk=ignore"));
+  EXPECT_EQ(client_->Post(map + "/simulate?risk=maybe", body, "application/json")->status, 400);
+}
+
 TEST_F(StationServerTest, StreamsASimulationsEventsAndItsReportThatReplayReadsBack) {
   const std::string body = R"({"mission": )" + read(kAis / "missions/paper.json") +
                            R"(, "faults": )" + read(kAis / "faults/blocked-p5.json") + "}";

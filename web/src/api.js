@@ -30,8 +30,11 @@ async function call(path, options = {}) {
 const map = (id) => `api/maps/${encodeURIComponent(id)}`;
 // Whether driveability, plans, simulations and campaigns use the map's motion table, when it has
 // one (the server's default; false: ?motion=0, the CLI's --no-motion).
-export const settings = { motion: true };
+// What plans and simulations make of the map's inspection findings (the CLI's --risk: impassable,
+// the server's default, avoid, expected or ignore).
+export const settings = { motion: true, risk: 'impassable' };
 const motion = (path) => (settings.motion ? path : `${path}${path.includes('?') ? '&' : '?'}motion=0`);
+const risk = (path) => `${path}${path.includes('?') ? '&' : '?'}risk=${encodeURIComponent(settings.risk)}`;
 export const listMaps = () => call('api/maps');
 export const uploadMap = (name, text) =>
   call(`api/maps?name=${encodeURIComponent(name)}`, { method: 'POST', body: text });
@@ -42,7 +45,7 @@ export const driveability = (id, profile) =>
   call(motion(`${map(id)}/driveability?profile=${encodeURIComponent(profile)}`));
 export const validate = (id, mission) => call(`${map(id)}/validate`, { method: 'POST', body: JSON.stringify(mission) });
 export const plan = (id, mission, timeLimit) =>
-  call(motion(`${map(id)}/plan?time_limit=${timeLimit}`), { method: 'POST', body: JSON.stringify(mission) });
+  call(risk(motion(`${map(id)}/plan?time_limit=${timeLimit}`)), { method: 'POST', body: JSON.stringify(mission) });
 export const replay = (id, log) => call(`${map(id)}/replay`, { method: 'POST', body: log });
 
 export const campaignStatus = () => call('api/campaign');
@@ -79,6 +82,6 @@ async function stream(path, body, onEvent, signal) {
 }
 
 // Runs a simulation: the executor's events, each plan's route, then the report.
-export const simulate = (id, body, onEvent, signal) => stream(motion(`${map(id)}/simulate`), body, onEvent, signal);
+export const simulate = (id, body, onEvent, signal) => stream(risk(motion(`${map(id)}/simulate`)), body, onEvent, signal);
 // Runs a fault campaign: "start", a "progress" per run, then "summary".
 export const campaign = (id, body, onEvent, signal) => stream(motion(`${map(id)}/campaign`), body, onEvent, signal);

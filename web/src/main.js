@@ -340,6 +340,7 @@ async function start() {
   $('map').onchange = () => openMap($('map').value);
   $('profile').onchange = () => { loadDriveability(); missionChanged(); };
   $('motion').onchange = () => { api.settings.motion = $('motion').checked; loadDriveability(); };
+  $('risk').onchange = () => { api.settings.risk = $('risk').value; };
   $('plan').onclick = runPlan;
   $('simulate').onclick = runSimulation;
   $('speed').onchange = () => { player.speed = Number($('speed').value); };
