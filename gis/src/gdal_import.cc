@@ -175,13 +175,6 @@ GisLayer read_layer(OGRLayerH layer) {
 
 }  // namespace
 
-bool is_gis_source(const std::filesystem::path& path) {
-  const std::string ext = lower(path.extension().string());
-  if (ext == ".shp" || ext == ".gpkg") return true;
-  std::error_code ec;
-  return std::filesystem::is_directory(path, ec);
-}
-
 std::filesystem::path field_mapping_sidecar(const std::filesystem::path& source) {
   std::error_code ec;
   if (std::filesystem::is_directory(source, ec)) return source / "fields.json";
