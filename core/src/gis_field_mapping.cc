@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
 // The field mapping of GIS sewer layers: its defaults, its JSON file, and the choice of the layers.
 #include <algorithm>
-#include <cctype>
 #include <initializer_list>
 #include <string>
 #include <utility>
 
+#include "sewerplan/core/ascii_case.h"
 #include "sewerplan/core/map_features.h"
 #include "sewerplan/core/text_file.h"
 
@@ -31,12 +31,6 @@ bool is_size(std::string_view key) {
 std::vector<GisFieldCandidate> names(std::initializer_list<const char*> fields, double scale = 1) {
   std::vector<GisFieldCandidate> out;
   for (const char* f : fields) out.push_back({f, scale});
-  return out;
-}
-
-std::string lower(std::string_view text) {
-  std::string out(text);
-  std::ranges::transform(out, out.begin(), [](unsigned char c) { return std::tolower(c); });
   return out;
 }
 
@@ -94,7 +88,7 @@ bool well_known(std::string_view name, GisGeometry geometry) {
   static const std::vector<std::string_view> kPipes = {"vw_qgep_reach", "vw_tww_reach", "pipes",
                                                        "pipe",          "reaches",      "haltung",
                                                        "haltungen",     "conduits",     "links"};
-  const std::string n = lower(name);
+  const std::string n = ascii_lower(name);
   const auto& known = geometry == GisGeometry::kPoint ? kManholes : kPipes;
   return std::ranges::find(known, n) != known.end();
 }
@@ -127,7 +121,7 @@ Result<std::size_t> choose(const std::vector<GisLayerInfo>& layers, GisGeometry 
   std::optional<std::size_t> chosen;
   if (!named.empty()) {
     for (std::size_t i = 0; i < layers.size(); ++i) {
-      if (lower(layers[i].name) == lower(named)) chosen = i;
+      if (ascii_lower(layers[i].name) == ascii_lower(named)) chosen = i;
     }
     if (!chosen) {
       return Error{ErrorCode::kInvalidMap, source + ": no layer '" + named + "' (the " + what +
@@ -152,7 +146,7 @@ Result<std::size_t> choose(const std::vector<GisLayerInfo>& layers, GisGeometry 
       return Error{ErrorCode::kInvalidMap, source + ": no " + kind + " layer for the " + what +
                                                "; the source has " + list(layers)};
     } else if (auto p = pick([&](const GisLayerInfo& l) {
-                 return !preferred.empty() && lower(l.name) == lower(preferred);
+                 return !preferred.empty() && ascii_lower(l.name) == ascii_lower(preferred);
                })) {
       chosen = p;
     } else if (auto k = pick([&](const GisLayerInfo& l) { return well_known(l.name, geometry); })) {

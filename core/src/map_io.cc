@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "sewerplan/core/map_io.h"
 
-#include <cctype>
 #include <optional>
 #include <sstream>
 #include <string_view>
 
+#include "sewerplan/core/ascii_case.h"
 #include "sewerplan/core/map_ascii.h"
 #include "sewerplan/core/map_isybau.h"
 #include "sewerplan/core/map_json.h"
@@ -122,8 +122,7 @@ Result<SewerMap> parse_map(std::string_view text, const std::string& file_name, 
 }
 
 bool is_gis_source_path(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = ascii_lower(path.extension().string());
   if (ext == ".shp" || ext == ".gpkg") return true;
   std::error_code ec;
   return std::filesystem::is_directory(path, ec);
