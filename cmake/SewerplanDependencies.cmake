@@ -4,7 +4,7 @@ find_package(nlohmann_json 3.10 REQUIRED)
 find_package(Eigen3 3.3 REQUIRED NO_MODULE)
 find_package(Boost 1.74 REQUIRED)  # Boost.Graph is header-only
 find_package(CLI11 2.0 REQUIRED)
-find_package(simdjson 3.0 REQUIRED)  # fast JSON reading (core/src/json_fields.h)
+find_package(simdjson 3.0 REQUIRED)  # fast JSON reading (sewerplan/core/json_fields.h)
 find_package(pugixml 1.13 REQUIRED)  # ISYBAU XML (core/src/xml_support.h)
 
 # OMPL 1.5.2 on Debian ships no CMake target, its OMPL_LIBRARIES names Boost libraries that are not

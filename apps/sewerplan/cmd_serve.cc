@@ -10,6 +10,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "sewerplan/core/map_io.h"
 #include "sewerplan/server/station_server.h"
 
 #include "command.h"
@@ -46,7 +47,7 @@ std::filesystem::path web_root(const std::string& option) {
 
 int run(const ServeOptions& o, Context& c) {
   // A mapping applies to the GIS maps only; with none among them it would be ignored silently.
-  if (!o.gis_fields.empty() && std::none_of(o.maps.begin(), o.maps.end(), is_gis_path)) {
+  if (!o.gis_fields.empty() && std::none_of(o.maps.begin(), o.maps.end(), is_gis_source_path)) {
     return usage_error(c, false,
                        "serve: --gis-fields " + o.gis_fields +
                            ": none of the maps is a GIS source (GeoPackage, Shapefile or a "
@@ -56,7 +57,7 @@ int run(const ServeOptions& o, Context& c) {
   for (const std::string& m : o.maps) options.maps.emplace_back(m);
   options.read_map_with = [fields = o.gis_fields](const std::filesystem::path& path,
                                                   Diagnostics& diagnostics) {
-    return read_input_map({path.string(), is_gis_path(path.string()) ? fields : std::string()},
+    return read_input_map({path.string(), is_gis_source_path(path) ? fields : std::string()},
                           diagnostics);
   };
   options.web_root = web_root(o.web);

@@ -2,7 +2,8 @@
 // The map a command reads: any format of docs/formats/ (core/map_io.h), or a GIS source (a
 // GeoPackage, a Shapefile or a directory of them, read through GDAL when the CLI is built with
 // SEWERPLAN_WITH_GIS). The choice of reader is the gis library's (gis/map_source.h), shared with
-// the Python module; this file adds the command line's side: --gis-fields FILE, the field mapping
+// the Python module, as is the reader without GIS (core/map_io.h: read_map_without_gis); this file
+// adds the command line's side: --gis-fields FILE, the field mapping
 // of a GIS source (docs/formats/gis-layers.md) instead of its sidecar. Every command reads its map
 // here.
 #pragma once
@@ -26,9 +27,6 @@ struct MapSource {
 };
 
 void add_gis_fields_option(CLI::App& command, std::string& gis_fields);
-
-// A GeoPackage, a Shapefile or a directory (what gis::read_map_source reads through GDAL).
-bool is_gis_path(const std::string& path);
 
 // Errors: a GIS source, or any --gis-fields, without GIS support (kUnsupportedFormat, saying so);
 // --gis-fields naming no file (kIo), a malformed one (kParse, its problems in `diagnostics`), or

@@ -1,15 +1,14 @@
 // SPDX-License-Identifier: MIT
 // The field mapping of GIS sewer layers: its defaults, its JSON file, and the choice of the layers.
 #include <algorithm>
-#include <cctype>
 #include <initializer_list>
 #include <string>
 #include <utility>
 
+#include "sewerplan/core/ascii_case.h"
+#include "sewerplan/core/json_fields.h"
 #include "sewerplan/core/map_features.h"
 #include "sewerplan/core/text_file.h"
-
-#include "json_fields.h"
 
 namespace sewerplan {
 namespace {
@@ -34,25 +33,18 @@ std::vector<GisFieldCandidate> names(std::initializer_list<const char*> fields, 
   return out;
 }
 
-std::string lower(std::string_view text) {
-  std::string out(text);
-  std::ranges::transform(out, out.begin(), [](unsigned char c) { return std::tolower(c); });
-  return out;
-}
-
 // One field of the mapping file: "name", {"field": "name", "unit": "mm"}, or null.
-std::optional<std::vector<GisFieldCandidate>> read_field(detail::JsonFields& f,
-                                                         std::string_view key,
+std::optional<std::vector<GisFieldCandidate>> read_field(JsonFields& f, std::string_view key,
                                                          std::string_view file) {
-  std::optional<detail::JsonElement> e = f.member(key, detail::JsonFields::Need::kOptional);
+  std::optional<JsonElement> e = f.member(key, JsonFields::Need::kOptional);
   if (!e) return std::nullopt;
   if (e->is_null()) return std::vector<GisFieldCandidate>{};
   const double unit = is_size(key) ? kMm : 1.0;
   if (e->is_string())
     return std::vector<GisFieldCandidate>{{std::string(e->get_string().value()), unit}};
-  detail::JsonFields spec(*e, f.path() + "." + std::string(key), file, f.diagnostics());
+  JsonFields spec(*e, f.path() + "." + std::string(key), file, f.diagnostics());
   std::optional<std::string> field = spec.string("field");
-  std::optional<std::string> unit_name = spec.string("unit", detail::JsonFields::Need::kOptional);
+  std::optional<std::string> unit_name = spec.string("unit", JsonFields::Need::kOptional);
   spec.warn_unknown({"field", "unit"});
   if (!field) return std::nullopt;
   double scale = unit;
@@ -72,10 +64,10 @@ std::optional<std::vector<GisFieldCandidate>> read_field(detail::JsonFields& f,
 }
 
 template <std::size_t N>
-void read_layer(detail::JsonFields& f, std::string_view file, std::string& layer,
+void read_layer(JsonFields& f, std::string_view file, std::string& layer,
                 std::array<std::vector<GisFieldCandidate>, N>& fields,
                 const std::array<std::string_view, N>& keys) {
-  if (auto name = f.string("layer", detail::JsonFields::Need::kOptional)) layer = *name;
+  if (auto name = f.string("layer", JsonFields::Need::kOptional)) layer = *name;
   for (std::size_t i = 0; i < N; ++i) {
     if (auto read = read_field(f, keys[i], file)) fields[i] = std::move(*read);
   }
@@ -94,7 +86,7 @@ bool well_known(std::string_view name, GisGeometry geometry) {
   static const std::vector<std::string_view> kPipes = {"vw_qgep_reach", "vw_tww_reach", "pipes",
                                                        "pipe",          "reaches",      "haltung",
                                                        "haltungen",     "conduits",     "links"};
-  const std::string n = lower(name);
+  const std::string n = ascii_lower(name);
   const auto& known = geometry == GisGeometry::kPoint ? kManholes : kPipes;
   return std::ranges::find(known, n) != known.end();
 }
@@ -127,7 +119,7 @@ Result<std::size_t> choose(const std::vector<GisLayerInfo>& layers, GisGeometry 
   std::optional<std::size_t> chosen;
   if (!named.empty()) {
     for (std::size_t i = 0; i < layers.size(); ++i) {
-      if (lower(layers[i].name) == lower(named)) chosen = i;
+      if (ascii_lower(layers[i].name) == ascii_lower(named)) chosen = i;
     }
     if (!chosen) {
       return Error{ErrorCode::kInvalidMap, source + ": no layer '" + named + "' (the " + what +
@@ -152,7 +144,7 @@ Result<std::size_t> choose(const std::vector<GisLayerInfo>& layers, GisGeometry 
       return Error{ErrorCode::kInvalidMap, source + ": no " + kind + " layer for the " + what +
                                                "; the source has " + list(layers)};
     } else if (auto p = pick([&](const GisLayerInfo& l) {
-                 return !preferred.empty() && lower(l.name) == lower(preferred);
+                 return !preferred.empty() && ascii_lower(l.name) == ascii_lower(preferred);
                })) {
       chosen = p;
     } else if (auto k = pick([&](const GisLayerInfo& l) { return well_known(l.name, geometry); })) {
@@ -222,16 +214,16 @@ GisFieldMapping GisFieldMapping::defaults() {
 Result<GisFieldMapping> parse_gis_field_mapping(std::string_view text, const std::string& file,
                                                 Diagnostics& diagnostics) {
   GisFieldMapping m = GisFieldMapping::defaults();
-  std::optional<detail::JsonDocument> doc = detail::JsonDocument::parse(text, file, diagnostics);
+  std::optional<JsonDocument> doc = JsonDocument::parse(text, file, diagnostics);
   if (doc) {
-    using Need = detail::JsonFields::Need;
-    detail::JsonFields root(doc->root(), "$", file, diagnostics);
+    using Need = JsonFields::Need;
+    JsonFields root(doc->root(), "$", file, diagnostics);
     if (auto e = root.member("manholes", Need::kOptional)) {
-      detail::JsonFields f(*e, "$.manholes", file, diagnostics);
+      JsonFields f(*e, "$.manholes", file, diagnostics);
       read_layer(f, file, m.manhole_layer, m.manhole, kManholeKeys);
       if (auto types = f.array("exit_types", Need::kOptional)) {
         m.exit_types.clear();
-        for (detail::JsonElement t : *types) {
+        for (JsonElement t : *types) {
           if (t.is_string()) {
             m.exit_types.emplace_back(t.get_string().value());
           } else {
@@ -252,7 +244,7 @@ Result<GisFieldMapping> parse_gis_field_mapping(std::string_view text, const std
       });
     }
     if (auto e = root.member("pipes", Need::kOptional)) {
-      detail::JsonFields f(*e, "$.pipes", file, diagnostics);
+      JsonFields f(*e, "$.pipes", file, diagnostics);
       read_layer(f, file, m.pipe_layer, m.pipe, kPipeKeys);
       f.warn_unknown([](std::string_view k) {
         return k == "layer" || std::ranges::find(kPipeKeys, k) != kPipeKeys.end();

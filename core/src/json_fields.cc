@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: MIT
-#include "json_fields.h"
+#include "sewerplan/core/json_fields.h"
 
 #include <algorithm>
 #include <charconv>
 
 #include <nlohmann/json.hpp>
 
-namespace sewerplan::detail {
+namespace sewerplan {
 namespace {
 
 // simdjson does not say where a syntax error is; nlohmann does. Used only on the error path.
@@ -16,6 +16,10 @@ void report_syntax_error(std::string_view text, std::string_view file, std::stri
     [[maybe_unused]] const nlohmann::json parsed = nlohmann::json::parse(text.begin(), text.end());
   } catch (const nlohmann::json::parse_error& e) {
     report_json_syntax_error(text, file, e.byte, e.what(), diagnostics);
+    return;
+  } catch (const nlohmann::json::exception& e) {
+    // Well-formed but not readable: a number too large for a double ("number overflow").
+    diagnostics.error(std::string(file), std::string("JSON error: ") + e.what());
     return;
   } catch (const std::exception&) {
     // Fall through to simdjson's own message.
@@ -53,6 +57,10 @@ std::string JsonFields::where(std::string_view key) const {
     w += key;
   }
   return w;
+}
+
+void JsonFields::error(std::string_view key, const std::string& message) {
+  diagnostics_.error(where(key), message);
 }
 
 bool JsonFields::has(std::string_view key) const {
@@ -141,6 +149,15 @@ void JsonFields::warn_unknown(const std::function<bool(std::string_view)>& is_kn
   }
 }
 
+void JsonFields::reject_unknown(std::initializer_list<std::string_view> known) {
+  if (!is_object_) return;
+  for (simdjson::dom::key_value_pair field : object_) {
+    if (std::find(known.begin(), known.end(), field.key) == known.end()) {
+      diagnostics_.error(where(field.key), "unknown field '" + std::string(field.key) + "'");
+    }
+  }
+}
+
 std::optional<std::string> string_element(JsonElement element, const std::string& where,
                                           Diagnostics& diagnostics) {
   std::string_view s;
@@ -175,4 +192,4 @@ std::string format_double(double v) {
   return std::string(buffer, end);
 }
 
-}  // namespace sewerplan::detail
+}  // namespace sewerplan

@@ -13,6 +13,8 @@
 #include <unordered_set>
 #include <utility>
 
+#include "sewerplan/core/ascii_case.h"
+
 #include "network_import.h"
 
 namespace sewerplan {
@@ -20,12 +22,6 @@ namespace {
 
 // A Shapefile's field names are cut to this many characters.
 constexpr std::size_t kShapefileFieldChars = 10;
-
-std::string lower(std::string_view text) {
-  std::string out(text);
-  std::ranges::transform(out, out.begin(), [](unsigned char c) { return std::tolower(c); });
-  return out;
-}
 
 struct Field {
   std::size_t index = 0;
@@ -35,16 +31,16 @@ struct Field {
 
 std::optional<Field> resolve(const GisLayer& layer, const std::vector<GisFieldCandidate>& wanted) {
   for (const GisFieldCandidate& c : wanted) {
-    const std::string want = lower(c.field);
+    const std::string want = ascii_lower(c.field);
     for (std::size_t i = 0; i < layer.fields.size(); ++i) {
-      if (lower(layer.fields[i]) == want) return Field{i, c.to_metres, layer.fields[i]};
+      if (ascii_lower(layer.fields[i]) == want) return Field{i, c.to_metres, layer.fields[i]};
     }
     if (want.size() <= kShapefileFieldChars) continue;
     std::optional<std::size_t> cut;
     std::size_t hits = 0;
     for (std::size_t i = 0; i < layer.fields.size(); ++i) {
       if (layer.fields[i].size() == kShapefileFieldChars &&
-          want.starts_with(lower(layer.fields[i]))) {
+          want.starts_with(ascii_lower(layer.fields[i]))) {
         cut = i;
         ++hits;
       }
@@ -193,7 +189,7 @@ class NearestManhole {
 bool truthy(const GisValue& v) {
   if (const double* n = std::get_if<double>(&v)) return *n != 0;
   if (const std::string* t = std::get_if<std::string>(&v)) {
-    const std::string s = lower(*t);
+    const std::string s = ascii_lower(*t);
     return s == "1" || s == "true" || s == "t" || s == "yes" || s == "y" || s == "ja";
   }
   return false;
@@ -223,7 +219,7 @@ struct ManholeFields {
         depth(resolve(layer, m[ManholeField::kDepth])),
         dim1(resolve(layer, m[ManholeField::kDimension1])),
         dim2(resolve(layer, m[ManholeField::kDimension2])) {
-    for (const std::string& t : m.exit_types) exit_types.push_back(lower(t));
+    for (const std::string& t : m.exit_types) exit_types.push_back(ascii_lower(t));
   }
   std::optional<Field> id, type, exit, cover, invert, depth, dim1, dim2;
   std::vector<std::string> exit_types;  // lower case
@@ -281,7 +277,7 @@ bool is_exit(FeatureFields& ff, const GisFeature& f, const ManholeFields& fields
   }
   if (!fields.type) return true;
   const std::optional<std::string> t = ff.text(f, fields.type);
-  return t && std::ranges::find(fields.exit_types, lower(*t)) != fields.exit_types.end();
+  return t && std::ranges::find(fields.exit_types, ascii_lower(*t)) != fields.exit_types.end();
 }
 
 Manholes read_manholes(const GisLayer& layer, const GisFieldMapping& m, const std::string& source,
@@ -486,7 +482,7 @@ class PipeReader {
     link.diameter_m = std::min(*h, *w);
     link.shape = *h == *w ? PipeShape::kCircular : PipeShape::kOther;
     if (const std::optional<std::string> s = ff_.text(f, shape_)) {
-      if (std::optional<PipeShape> known = pipe_shape_from_string(lower(*s))) {
+      if (std::optional<PipeShape> known = pipe_shape_from_string(ascii_lower(*s))) {
         link.shape = *known;
       } else {
         d_.warning(where_, "pipe " + link.name + ": field " + shape_->name + ": unknown shape '" +

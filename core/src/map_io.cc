@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "sewerplan/core/map_io.h"
 
-#include <cctype>
 #include <optional>
 #include <sstream>
 #include <string_view>
 
+#include "sewerplan/core/ascii_case.h"
 #include "sewerplan/core/map_ascii.h"
 #include "sewerplan/core/map_isybau.h"
 #include "sewerplan/core/map_json.h"
@@ -121,11 +121,32 @@ Result<SewerMap> parse_map(std::string_view text, const std::string& file_name, 
   return Error{ErrorCode::kUnsupportedFormat, file_name + ": unknown format"};
 }
 
-Result<SewerMap> read_map(const std::filesystem::path& path, Diagnostics& diagnostics) {
-  std::string ext = path.extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+bool is_gis_source_path(const std::filesystem::path& path) {
+  const std::string ext = ascii_lower(path.extension().string());
+  if (ext == ".shp" || ext == ".gpkg") return true;
   std::error_code ec;
-  if (ext == ".shp" || ext == ".gpkg" || std::filesystem::is_directory(path, ec)) {
+  return std::filesystem::is_directory(path, ec);
+}
+
+Result<SewerMap> read_map_without_gis(const std::filesystem::path& path, Diagnostics& diagnostics,
+                                      const std::optional<std::filesystem::path>& field_mapping) {
+  if (field_mapping) {
+    return Error{ErrorCode::kUnsupportedFormat,
+                 field_mapping->string() +
+                     ": a GIS field mapping, but this sewerplan is built without GIS support "
+                     "(SEWERPLAN_WITH_GIS)"};
+  }
+  if (is_gis_source_path(path)) {
+    return Error{ErrorCode::kUnsupportedFormat,
+                 path.string() +
+                     ": a GIS source (GeoPackage, Shapefile or a directory of them), but this "
+                     "sewerplan is built without GIS support (SEWERPLAN_WITH_GIS)"};
+  }
+  return read_map(path, diagnostics);
+}
+
+Result<SewerMap> read_map(const std::filesystem::path& path, Diagnostics& diagnostics) {
+  if (is_gis_source_path(path)) {
     return Error{
         ErrorCode::kUnsupportedFormat,
         path.string() +

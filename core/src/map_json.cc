@@ -8,18 +8,15 @@
 
 #include <nlohmann/json.hpp>
 
+#include "sewerplan/core/json_fields.h"
 #include "sewerplan/core/map_builder.h"
 
-#include "json_fields.h"
 #include "json_scan.h"
 #include "map_json_fast.h"
 
 namespace sewerplan {
 namespace {
 
-using detail::JsonDocument;
-using detail::JsonElement;
-using detail::JsonFields;
 using Need = JsonFields::Need;
 using nlohmann::json;
 
@@ -114,7 +111,7 @@ std::optional<std::string> read_end(JsonFields& f, std::string_view key) {
   std::string_view name;
   if (v->get_string().get(name) != simdjson::SUCCESS) {
     f.diagnostics().error(f.where(key),
-                          "expected a manhole name or null, got " + detail::describe_json(*v));
+                          "expected a manhole name or null, got " + describe_json(*v));
     return std::nullopt;
   }
   return std::string(name);
@@ -178,9 +175,9 @@ void check_header(JsonFields& f) {
   }
   auto version = f.number("version");
   if (version && *version != kMapJsonVersion) {
-    f.diagnostics().error(f.where("version"),
-                          "unsupported version " + detail::format_double(*version) +
-                              ", this reader knows version " + std::to_string(kMapJsonVersion));
+    f.diagnostics().error(f.where("version"), "unsupported version " + format_double(*version) +
+                                                  ", this reader knows version " +
+                                                  std::to_string(kMapJsonVersion));
   }
 }
 
@@ -190,17 +187,17 @@ void write_string(std::ostream& out, const std::string& s) {
 }
 
 void write_optional(std::ostream& out, std::string_view key, const std::optional<double>& v) {
-  if (v) out << ", \"" << key << "\": " << detail::format_double(*v);
+  if (v) out << ", \"" << key << "\": " << format_double(*v);
 }
 
 void write_manhole(std::ostream& out, const SewerMap& map, ManholeId id) {
   const Manhole& m = map.manhole(id);
   out << "    {\"name\": ";
   write_string(out, m.name);
-  out << ", \"x_m\": " << detail::format_double(m.position.x_m)
-      << ", \"y_m\": " << detail::format_double(m.position.y_m)
-      << ", \"z_m\": " << detail::format_double(m.position.z_m)
-      << ", \"diameter_m\": " << detail::format_double(m.diameter_m);
+  out << ", \"x_m\": " << format_double(m.position.x_m)
+      << ", \"y_m\": " << format_double(m.position.y_m)
+      << ", \"z_m\": " << format_double(m.position.z_m)
+      << ", \"diameter_m\": " << format_double(m.diameter_m);
   if (m.exit) out << ", \"exit\": true";
   if (m.variant) out << ", \"variant\": \"" << *m.variant << '"';
   write_optional(out, "shaft_length_m", m.shaft_length_m);
@@ -211,8 +208,8 @@ void write_manhole(std::ostream& out, const SewerMap& map, ManholeId id) {
   for (const Slot& s : map.slots(id)) {
     out << (first ? "" : ", ") << "{\"pipe\": ";
     write_string(out, map.pipe(s.pipe).name);
-    out << ", \"azimuth_deg\": " << detail::format_double(s.azimuth_deg)
-        << ", \"invert_m\": " << detail::format_double(s.invert_z_m) << '}';
+    out << ", \"azimuth_deg\": " << format_double(s.azimuth_deg)
+        << ", \"invert_m\": " << format_double(s.invert_z_m) << '}';
     first = false;
   }
   out << "]}";
@@ -229,13 +226,13 @@ void write_pipe(std::ostream& out, const SewerMap& map, const Pipe& p) {
       out << "null";
     }
   }
-  out << ", \"length_m\": " << detail::format_double(p.length_m)
-      << ", \"diameter_m\": " << detail::format_double(p.diameter_m);
+  out << ", \"length_m\": " << format_double(p.length_m)
+      << ", \"diameter_m\": " << format_double(p.diameter_m);
   if (p.shape != PipeShape::kCircular) {
     out << ", \"shape\": \"" << to_string(p.shape)
-        << "\", \"height_m\": " << detail::format_double(p.height_m);
+        << "\", \"height_m\": " << format_double(p.height_m);
   }
-  if (p.blockage_risk) out << ", \"blockage_risk\": " << detail::format_double(*p.blockage_risk);
+  if (p.blockage_risk) out << ", \"blockage_risk\": " << format_double(*p.blockage_risk);
   out << '}';
 }
 
@@ -576,7 +573,7 @@ void write_map_json(const SewerMap& map, std::ostream& out) {
     write_string(out, point.name);
     out << ", \"pipe\": ";
     write_string(out, map.pipe(point.pipe).name);
-    out << ", \"offset_m\": " << detail::format_double(point.offset_m) << '}';
+    out << ", \"offset_m\": " << format_double(point.offset_m) << '}';
   }
   out << (map.point_count() > 0 ? "\n  ]" : "]");
   if (map.finding_count() > 0) {
@@ -591,7 +588,7 @@ void write_map_json(const SewerMap& map, std::ostream& out) {
         out << ", \"characterisation\": ";
         write_string(out, f.characterisation);
       }
-      out << ", \"offset_m\": " << detail::format_double(f.offset_m);
+      out << ", \"offset_m\": " << format_double(f.offset_m);
       write_optional(out, "quantity1", f.quantity1);
       write_optional(out, "quantity2", f.quantity2);
       out << '}';

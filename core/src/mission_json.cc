@@ -3,20 +3,15 @@
 #include <map>
 #include <set>
 
+#include "sewerplan/core/json_fields.h"
 #include "sewerplan/core/mission.h"
 #include "sewerplan/core/text_file.h"
 
-#include "json_fields.h"
 #include "profile_json.h"
 
 namespace sewerplan {
 namespace {
 
-using detail::indexed;
-using detail::JsonArray;
-using detail::JsonDocument;
-using detail::JsonElement;
-using detail::JsonFields;
 using Need = JsonFields::Need;
 
 // Resolves names against the map; each failure is reported at the field that named it.
@@ -53,7 +48,7 @@ class MissionReader {
     std::size_t i = 0;
     for (JsonElement e : array) {
       const std::string where = file_ + ":" + indexed(path, i++);
-      auto name = detail::string_element(e, where, d_);
+      auto name = string_element(e, where, d_);
       if (!name) continue;
       if (auto id = pipe_named(*name, where)) ids.push_back(*id);
     }
@@ -75,9 +70,9 @@ class MissionReader {
     PipeSpot spot{*id, f.number("offset_m", Need::kOptional), std::nullopt};
     const double length = map_.pipe(*id).length_m;
     if (spot.offset_m && !(*spot.offset_m >= 0 && *spot.offset_m <= length)) {
-      d_.error(f.where("offset_m"), "offset " + detail::format_double(*spot.offset_m) +
+      d_.error(f.where("offset_m"), "offset " + format_double(*spot.offset_m) +
                                         " m is outside pipe " + map_.pipe(*id).name + " (0 to " +
-                                        detail::format_double(length) + " m)");
+                                        format_double(length) + " m)");
     }
     return spot;
   }
@@ -119,9 +114,9 @@ class MissionReader {
     }
     const double length = map_.pipe(*id).length_m;
     if (!(*offset >= 0 && *offset <= length)) {
-      d_.error(f.where("offset_m"), "pipe " + *name + " is " + detail::format_double(length) +
-                                        " m long, got an offset of " +
-                                        detail::format_double(*offset) + " m");
+      d_.error(f.where("offset_m"), "pipe " + *name + " is " + format_double(length) +
+                                        " m long, got an offset of " + format_double(*offset) +
+                                        " m");
       return;
     }
     m.blockages.push_back({*id, *offset});
@@ -135,7 +130,7 @@ class MissionReader {
     if (exits && (!exits->is_string() || (exits->get_string().value_unsafe() != "map" &&
                                           exits->get_string().value_unsafe() != "all"))) {
       d_.error(file_ + ":$.exits", "expected an array of manhole names, \"map\" or \"all\", got " +
-                                       detail::describe_json(*exits));
+                                       describe_json(*exits));
       return;
     }
     if (exits) choice = exits->get_string().value_unsafe();
@@ -149,7 +144,7 @@ class MissionReader {
     std::size_t i = 0;
     for (JsonElement e : array) {
       const std::string where = file_ + ":" + indexed("$.exits", i++);
-      auto name = detail::string_element(e, where, d_);
+      auto name = string_element(e, where, d_);
       if (!name) continue;
       if (auto id = manhole_named(*name, where)) m.exits.push_back(*id);
     }
@@ -217,8 +212,7 @@ class MissionReader {
     for (auto [key, v] : {std::pair{"from_slot", *from}, std::pair{"to_slot", *to}}) {
       if (!(v >= 1 && v <= slots && v == static_cast<double>(static_cast<int>(v)))) {
         d_.error(f.where(key), "manhole " + map_.manhole(*id).name + " has slots 1 to " +
-                                   detail::format_double(slots) + ", got " +
-                                   detail::format_double(v));
+                                   format_double(slots) + ", got " + format_double(v));
         return;
       }
     }
@@ -304,8 +298,7 @@ Result<Mission> read_mission_json(std::string_view text, const std::string& file
                                                 "\", got \"" + *format + "\"");
   }
   if (auto version = root.number("version"); version && *version != kMissionJsonVersion) {
-    diagnostics.error(root.where("version"),
-                      "unsupported version " + detail::format_double(*version));
+    diagnostics.error(root.where("version"), "unsupported version " + format_double(*version));
   }
   MissionReader reader(map, file_name, diagnostics);
   Mission m;
@@ -325,9 +318,8 @@ Result<Mission> read_mission_json(std::string_view text, const std::string& file
   const bool exits_unreadable = diagnostics.error_count() > errors_before_exits;
   m.battery_reserve_fraction = root.number("battery_reserve", Need::kOptional).value_or(0.2);
   if (!(m.battery_reserve_fraction >= 0 && m.battery_reserve_fraction < 1)) {
-    diagnostics.error(root.where("battery_reserve"),
-                      "must be a fraction from 0 to below 1, got " +
-                          detail::format_double(m.battery_reserve_fraction));
+    diagnostics.error(root.where("battery_reserve"), "must be a fraction from 0 to below 1, got " +
+                                                         format_double(m.battery_reserve_fraction));
   }
   if (auto closed = root.member("closed", Need::kOptional)) reader.closed(*closed, m);
   check_tasks(m, file_name, exits_unreadable, diagnostics);

@@ -4,9 +4,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "sewerplan/core/json_fields.h"
 #include "sewerplan/core/mission.h"
 
-#include "json_fields.h"
 #include "profile_json.h"
 
 namespace sewerplan {
@@ -72,7 +72,7 @@ std::string describe(const Place& place, const SewerMap& map) {
   const auto& spot = std::get<PipeSpot>(place);
   const std::string pipe = "pipe " + map.pipe(spot.pipe).name;
   if (spot.point) return "point " + map.point(*spot.point).name + " (" + pipe + ")";
-  if (spot.offset_m) return pipe + " at " + detail::format_double(*spot.offset_m) + " m";
+  if (spot.offset_m) return pipe + " at " + format_double(*spot.offset_m) + " m";
   return pipe;
 }
 

@@ -11,19 +11,13 @@
 #include <nlohmann/json.hpp>
 
 #include "sewerplan/core/check.h"
+#include "sewerplan/core/json_fields.h"
 #include "sewerplan/core/map_queries.h"
 #include "sewerplan/core/text_file.h"
-
-#include "json_fields.h"
 
 namespace sewerplan {
 namespace {
 
-using detail::indexed;
-using detail::JsonArray;
-using detail::JsonDocument;
-using detail::JsonElement;
-using detail::JsonFields;
 using Need = JsonFields::Need;
 
 constexpr double kLimitTolerance = 1e-9;
@@ -43,7 +37,7 @@ class Fingerprint {
     hash_ ^= 0xff;  // separator
     hash_ *= 1099511628211ULL;
   }
-  void add(double v) { add(detail::format_double(v)); }
+  void add(double v) { add(format_double(v)); }
   std::string hex() const {
     std::ostringstream out;
     out << std::hex << std::setw(16) << std::setfill('0') << hash_;
@@ -57,15 +51,14 @@ class Fingerprint {
 std::optional<Waypoint> read_waypoint(JsonElement e, const std::string& where, Diagnostics& d) {
   JsonArray array;
   if (e.get_array().get(array) != simdjson::SUCCESS || array.size() != 4) {
-    d.error(where,
-            "expected a waypoint [x_m, y_m, z_m, heading_deg], got " + detail::describe_json(e));
+    d.error(where, "expected a waypoint [x_m, y_m, z_m, heading_deg], got " + describe_json(e));
     return std::nullopt;
   }
   double v[4];
   std::size_t i = 0;
   for (JsonElement x : array) {
     if (x.get_double().get(v[i]) != simdjson::SUCCESS || !std::isfinite(v[i])) {
-      d.error(where, "waypoint values must be finite numbers, got " + detail::describe_json(x));
+      d.error(where, "waypoint values must be finite numbers, got " + describe_json(x));
       return std::nullopt;
     }
     ++i;
@@ -79,7 +72,7 @@ std::optional<SlotIndex> read_slot(JsonFields& f, std::string_view key, const Ma
   if (!(*n >= 1 && *n <= manhole.slot_count && std::floor(*n) == *n)) {
     f.diagnostics().error(f.where(key), "manhole " + manhole.name + " has slots 1 to " +
                                             std::to_string(manhole.slot_count) + ", got " +
-                                            detail::format_double(*n));
+                                            format_double(*n));
     return std::nullopt;
   }
   return SlotIndex{static_cast<std::uint16_t>(*n - 1)};
@@ -114,7 +107,7 @@ std::optional<PassageMotion> read_passage(JsonElement e, const std::string& path
     if (!duration) return std::nullopt;
     if (!(std::isfinite(*duration) && *duration >= 0)) {
       d.error(f.where("duration_s"),
-              "must be a finite number >= 0, got " + detail::format_double(*duration));
+              "must be a finite number >= 0, got " + format_double(*duration));
       return std::nullopt;
     }
     p.duration_s = *duration;
@@ -197,8 +190,7 @@ Result<PassageMotionTable> read_passage_motion_json(std::string_view text,
                                                 "\", got \"" + *format + "\"");
   }
   if (auto version = root.number("version"); version && *version != kPassageMotionJsonVersion) {
-    diagnostics.error(root.where("version"),
-                      "unsupported version " + detail::format_double(*version));
+    diagnostics.error(root.where("version"), "unsupported version " + format_double(*version));
   }
   const auto map_fp = root.string("map_fingerprint");
   const auto profile_fp = root.string("profile_fingerprint");

@@ -3,9 +3,8 @@
 
 #include <array>
 
+#include "sewerplan/core/json_fields.h"
 #include "sewerplan/core/text_file.h"
-
-#include "json_fields.h"
 
 namespace sewerplan::detail {
 namespace {
@@ -101,7 +100,7 @@ namespace sewerplan {
 Result<RobotProfile> read_profile_json(std::string_view text, const std::string& file_name,
                                        Diagnostics& diagnostics) {
   const Diagnostics::Mark before = diagnostics.mark();
-  auto doc = detail::JsonDocument::parse(text, file_name, diagnostics);
+  auto doc = JsonDocument::parse(text, file_name, diagnostics);
   if (!doc) return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
   auto profile = detail::read_profile_value(doc->root(), "$", file_name, diagnostics);
   if (!profile) return Error{ErrorCode::kInvalidProfile, diagnostics.error_summary(before)};

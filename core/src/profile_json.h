@@ -9,9 +9,8 @@
 #include <nlohmann/json.hpp>
 
 #include "sewerplan/core/diagnostics.h"
+#include "sewerplan/core/json_fields.h"
 #include "sewerplan/core/robot_profile.h"
-
-#include "json_fields.h"
 
 namespace sewerplan::detail {
 

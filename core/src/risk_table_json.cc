@@ -3,17 +3,12 @@
 #include <nlohmann/json.hpp>
 
 #include "sewerplan/core/condition_risk.h"
+#include "sewerplan/core/json_fields.h"
 #include "sewerplan/core/text_file.h"
-
-#include "json_fields.h"
 
 namespace sewerplan {
 namespace {
 
-using detail::indexed;
-using detail::JsonDocument;
-using detail::JsonElement;
-using detail::JsonFields;
 using Need = JsonFields::Need;
 
 constexpr RiskEffect kEffects[] = {RiskEffect::kNone, RiskEffect::kDanger, RiskEffect::kBlockage,
@@ -48,7 +43,7 @@ std::optional<RiskRule> read_rule(JsonElement json, const std::string& path,
   auto share = [&](std::string_view key) {
     const double v = f.number(key, Need::kOptional).value_or(0);
     if (!(v >= 0 && v <= 1)) {
-      d.error(f.where(key), "must be a probability from 0 to 1, got " + detail::format_double(v));
+      d.error(f.where(key), "must be a probability from 0 to 1, got " + format_double(v));
     }
     return v;
   };
@@ -73,8 +68,7 @@ Result<RiskTable> read_risk_table_json(std::string_view text, const std::string&
                                                 "\", got \"" + *format + "\"");
   }
   if (auto version = root.number("version"); version && *version != kRiskTableJsonVersion) {
-    diagnostics.error(root.where("version"),
-                      "unsupported version " + detail::format_double(*version));
+    diagnostics.error(root.where("version"), "unsupported version " + format_double(*version));
   }
   RiskTable table;
   if (auto rules = root.array("rules")) {

@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: MIT
 #include "sewerplan/core/text_file.h"
 
-#include <cctype>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
 #include <sstream>
 #include <system_error>
+
+#include "sewerplan/core/ascii_case.h"
 
 namespace sewerplan {
 
@@ -135,8 +136,7 @@ std::string to_utf8_lossy(std::string_view text) {
 
 std::string text_to_utf8(std::string_view text, std::string_view declared_encoding,
                          TextConversion& conversion) {
-  std::string declared(declared_encoding);
-  for (char& c : declared) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string declared = ascii_lower(declared_encoding);
   for (std::string_view latin1 : {"iso-8859-1", "iso8859-1", "latin1", "latin-1", "l1",
                                   "iso-8859-15", "windows-1252", "cp1252"}) {
     if (declared == latin1) {

@@ -2,6 +2,7 @@
 // PddlNames: object names as PDDL accepts them, and the way back.
 #include <algorithm>
 
+#include "sewerplan/core/ascii_case.h"
 #include "sewerplan/domain/pddl.h"
 
 namespace sewerplan::domain {
@@ -12,14 +13,6 @@ bool is_name_char(char c) { return is_letter(c) || (c >= '0' && c <= '9') || c =
 
 bool is_pddl_name(std::string_view s) {
   return !s.empty() && is_letter(s.front()) && std::all_of(s.begin(), s.end(), is_name_char);
-}
-
-std::string lower(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) {
-    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-  }
-  return out;
 }
 
 // Words the PDDL readers treat specially, which an object must not be called.
@@ -50,20 +43,21 @@ PddlNames::PddlNames(const SewerMap& map, const Mission& mission) {
 }
 
 std::string PddlNames::claim(const std::string& name, std::string_view prefix) {
-  if (is_pddl_name(name) && !is_reserved(lower(name)) && back_.emplace(lower(name), name).second) {
+  if (is_pddl_name(name) && !is_reserved(ascii_lower(name)) &&
+      back_.emplace(ascii_lower(name), name).second) {
     return name;
   }
   ++renamed_;
   const std::string base = std::string(prefix) + sanitised(name);
   std::string candidate = base;
-  for (std::size_t n = 2; !back_.emplace(lower(candidate), name).second; ++n) {
+  for (std::size_t n = 2; !back_.emplace(ascii_lower(candidate), name).second; ++n) {
     candidate = base + "-" + std::to_string(n);
   }
   return candidate;
 }
 
 std::optional<std::string> PddlNames::original(std::string_view pddl_name) const {
-  auto found = back_.find(lower(pddl_name));
+  auto found = back_.find(ascii_lower(pddl_name));
   if (found == back_.end()) return std::nullopt;
   return found->second;
 }

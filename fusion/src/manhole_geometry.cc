@@ -6,10 +6,12 @@
 
 #include "sewerplan/core/map_queries.h"
 
+#include "plan_numbers.h"
+
 namespace sewerplan::fusion {
 namespace {
 
-constexpr double kDegToRad = std::numbers::pi / 180.0;
+using detail::kDegToRad;
 
 // Inside the strip of half-width `half_width_m` along the unit direction at `azimuth_deg`,
 // from the axis outwards.

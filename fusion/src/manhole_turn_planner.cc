@@ -11,13 +11,15 @@
 #include <sstream>
 
 #include "head_path.h"
+#include "plan_numbers.h"
 
 namespace sewerplan::fusion {
 namespace {
 
+using detail::kDegToRad;
 using detail::Pose2;
+using detail::rounded;
 
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 // Steps up to this height the wheels drive over without lifting a segment.
 constexpr double kDriveOverStep_m = 0.05;
 // Chain check: the head advances this far between two checks; a joint may exceed its yaw limit by
@@ -34,9 +36,6 @@ std::string metres(double v) {
 }
 
 double wrapped(double a) { return std::remainder(a, 2 * std::numbers::pi); }
-
-// Rounded to 1 / scale, dividing by the exact scale so that 0.495 prints as 0.495.
-double rounded(double v, double scale) { return std::round(v * scale) / scale; }
 
 // A polyline of head poses with its cumulative arc length.
 struct Polyline {

@@ -7,12 +7,13 @@
 
 #include "sewerplan/core/map_queries.h"
 
+#include "plan_numbers.h"
+
 namespace sewerplan::fusion {
 namespace {
 
-constexpr double kDegToRad = std::numbers::pi / 180.0;
-// Rounded to 1 / scale, dividing by the exact scale so that 0.495 prints as 0.495.
-double rounded(double v, double scale) { return std::round(v * scale) / scale; }
+using detail::kDegToRad;
+using detail::rounded;
 
 bool fits(const RobotProfile& p, double diameter_m) {
   return diameter_m >= p.min_pipe_diameter_m && diameter_m <= p.max_pipe_diameter_m;

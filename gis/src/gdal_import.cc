@@ -4,7 +4,6 @@
 #include "sewerplan/gis/gdal_import.h"
 
 #include <algorithm>
-#include <cctype>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -12,6 +11,7 @@
 #include <system_error>
 #include <vector>
 
+#include "sewerplan/core/ascii_case.h"
 #include "sewerplan/core/map_features.h"
 #include "sewerplan/core/text_file.h"
 
@@ -22,11 +22,6 @@
 
 namespace sewerplan::gis {
 namespace {
-
-std::string lower(std::string text) {
-  std::ranges::transform(text, text.begin(), [](unsigned char c) { return std::tolower(c); });
-  return text;
-}
 
 // GDAL reports through a global handler that prints to stderr; a quiet one is pushed for the
 // calling thread while sewerplan reads, and the last message goes into the error instead.
@@ -175,13 +170,6 @@ GisLayer read_layer(OGRLayerH layer) {
 
 }  // namespace
 
-bool is_gis_source(const std::filesystem::path& path) {
-  const std::string ext = lower(path.extension().string());
-  if (ext == ".shp" || ext == ".gpkg") return true;
-  std::error_code ec;
-  return std::filesystem::is_directory(path, ec);
-}
-
 std::filesystem::path field_mapping_sidecar(const std::filesystem::path& source) {
   std::error_code ec;
   if (std::filesystem::is_directory(source, ec)) return source / "fields.json";
@@ -205,7 +193,7 @@ Result<SewerMap> read_gis_map(const std::filesystem::path& source, Diagnostics& 
     if (!read.has_value()) return read.error();
     mapping = std::move(*read);
   }
-  const bool shapefile = lower(source.extension().string()) == ".shp";
+  const bool shapefile = ascii_lower(source.extension().string()) == ".shp";
   std::filesystem::path open = source;
   if (shapefile) open = source.has_parent_path() ? source.parent_path() : ".";
   const std::string name = source.string();

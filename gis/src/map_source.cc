@@ -8,7 +8,7 @@ namespace sewerplan::gis {
 
 Result<SewerMap> read_map_source(const std::filesystem::path& path, Diagnostics& diagnostics,
                                  const std::optional<std::filesystem::path>& field_mapping) {
-  if (is_gis_source(path)) return read_gis_map(path, diagnostics, field_mapping);
+  if (is_gis_source_path(path)) return read_gis_map(path, diagnostics, field_mapping);
   if (field_mapping) {
     return Error{ErrorCode::kInvalidArgument,
                  field_mapping->string() + ": a GIS field mapping, but " + path.string() +

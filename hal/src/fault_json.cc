@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: MIT
-// The fault file format (docs/simulation.md), read and written with nlohmann::json: fault files
-// are small, so its document tree is fast enough, and hal must not use core's private reader.
+// The fault file format (docs/simulation.md): read through core's JSON reader (json_fields.h), as
+// every file of sewerplan is; written with nlohmann::json, whose number text the messages share.
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
+#include "sewerplan/core/json_fields.h"
 #include "sewerplan/core/text_file.h"
 #include "sewerplan/hal/fault_scenario.h"
 
@@ -17,87 +18,17 @@ using json = nlohmann::ordered_json;
 
 std::string number_text(double value) { return json(value).dump(); }
 
-// Reads the members of one JSON object, reporting problems at "file:$.path.key".
-class Fields {
- public:
-  Fields(const json& object, std::string path, const std::string& file, Diagnostics& diagnostics)
-      : object_(object), path_(std::move(path)), file_(file), diagnostics_(diagnostics) {
-    if (!object_.is_object()) error("", "expected an object, got " + type_of(object_));
-  }
-
-  std::string where(std::string_view key = {}) const {
-    return file_ + ":" + path_ + (key.empty() ? "" : "." + std::string(key));
-  }
-  void error(std::string_view key, std::string message) {
-    diagnostics_.error(where(key), std::move(message));
-  }
-  bool has(std::string_view key) const {
-    return object_.is_object() && object_.contains(std::string(key));
-  }
-
-  const json* member(std::string_view key, bool required = true) {
-    if (!object_.is_object()) return nullptr;
-    auto it = object_.find(std::string(key));
-    if (it == object_.end()) {
-      if (required) error(key, "missing");
-      return nullptr;
-    }
-    return &*it;
-  }
-  std::optional<double> number(std::string_view key, bool required = true) {
-    const json* value = member(key, required);
-    if (value == nullptr) return std::nullopt;
-    if (!value->is_number()) return wrong_type<double>(key, "a number", *value);
-    return value->get<double>();
-  }
-  // A whole number from `min`.
-  std::optional<std::uint32_t> count(std::string_view key, std::uint32_t min) {
-    std::optional<double> value = number(key);
-    if (!value) return std::nullopt;
-    if (!(*value >= min && *value <= 65535.0 * 65536.0 && std::floor(*value) == *value)) {
-      error(key,
+// A whole number from `min` in the field `key`.
+std::optional<std::uint32_t> count(JsonFields& f, std::string_view key, std::uint32_t min) {
+  std::optional<double> value = f.number(key);
+  if (!value) return std::nullopt;
+  if (!(*value >= min && *value <= 65535.0 * 65536.0 && std::floor(*value) == *value)) {
+    f.error(key,
             "expected a whole number from " + std::to_string(min) + ", got " + number_text(*value));
-      return std::nullopt;
-    }
-    return static_cast<std::uint32_t>(*value);
-  }
-  std::optional<std::string> string(std::string_view key, bool required = true) {
-    const json* value = member(key, required);
-    if (value == nullptr) return std::nullopt;
-    if (!value->is_string()) return wrong_type<std::string>(key, "a string", *value);
-    return value->get<std::string>();
-  }
-  const json* array(std::string_view key) {
-    const json* value = member(key, false);
-    if (value == nullptr) return nullptr;
-    if (!value->is_array()) {
-      error(key, "expected an array, got " + type_of(*value));
-      return nullptr;
-    }
-    return value;
-  }
-  void warn_unknown(std::initializer_list<std::string_view> known) {
-    if (!object_.is_object()) return;
-    for (const auto& item : object_.items()) {
-      if (std::find(known.begin(), known.end(), item.key()) == known.end()) {
-        diagnostics_.warning(where(item.key()), "unknown field, ignored");
-      }
-    }
-  }
-
- private:
-  static std::string type_of(const json& value) { return value.type_name(); }
-  template <class T>
-  std::optional<T> wrong_type(std::string_view key, std::string_view expected, const json& got) {
-    error(key, "expected " + std::string(expected) + ", got " + type_of(got));
     return std::nullopt;
   }
-
-  const json& object_;
-  std::string path_;
-  const std::string& file_;
-  Diagnostics& diagnostics_;
-};
+  return static_cast<std::uint32_t>(*value);
+}
 
 class FaultReader {
  public:
@@ -106,18 +37,18 @@ class FaultReader {
 
   // Each list's items, with their path, to `read`.
   template <class F>
-  void each(Fields& root, std::string_view key, F read) {
-    const json* items = root.array(key);
-    if (items == nullptr) return;
-    for (std::size_t i = 0; i < items->size(); ++i) {
-      Fields f((*items)[i], "$." + std::string(key) + "[" + std::to_string(i) + "]", file_,
-               diagnostics_);
+  void each(JsonFields& root, std::string_view key, F read) {
+    const std::optional<JsonArray> items = root.array(key, JsonFields::Need::kOptional);
+    if (!items) return;
+    std::size_t i = 0;
+    for (JsonElement item : *items) {
+      JsonFields f(item, indexed("$." + std::string(key), i++), file_, diagnostics_);
       read(f);
     }
   }
 
   // A pipe by name and an offset inside it.
-  std::optional<std::pair<PipeId, double>> pipe_spot(Fields& f) {
+  std::optional<std::pair<PipeId, double>> pipe_spot(JsonFields& f) {
     std::optional<std::string> name = f.string("pipe");
     std::optional<double> offset_m = f.number("offset_m");
     if (!name) return std::nullopt;
@@ -136,7 +67,7 @@ class FaultReader {
     return std::pair{*pipe, *offset_m};
   }
 
-  void obstacle(Fields& f, FaultScenario& out) {
+  void obstacle(JsonFields& f, FaultScenario& out) {
     f.warn_unknown({"pipe", "offset_m", "kind"});
     auto spot = pipe_spot(f);
     std::optional<ObstacleKind> kind;
@@ -150,7 +81,7 @@ class FaultReader {
     if (spot && kind) out.obstacles.push_back({spot->first, spot->second, *kind});
   }
 
-  void danger(Fields& f, FaultScenario& out) {
+  void danger(JsonFields& f, FaultScenario& out) {
     if (f.has("pipe") || !f.has("manhole")) {
       f.warn_unknown({"pipe", "offset_m"});
       if (auto spot = pipe_spot(f)) out.danger_spots.push_back({spot->first, spot->second});
@@ -158,8 +89,8 @@ class FaultReader {
     }
     f.warn_unknown({"manhole", "from_slot", "to_slot"});
     std::optional<std::string> name = f.string("manhole");
-    std::optional<std::uint32_t> from = f.count("from_slot", 1);
-    std::optional<std::uint32_t> to = f.count("to_slot", 1);
+    std::optional<std::uint32_t> from = count(f, "from_slot", 1);
+    std::optional<std::uint32_t> to = count(f, "to_slot", 1);
     if (!name) return;
     std::optional<ManholeId> manhole = map_.find_manhole(*name);
     if (!manhole) {
@@ -184,7 +115,7 @@ class FaultReader {
                                       SlotIndex{static_cast<std::uint16_t>(*to - 1)}});
   }
 
-  void malfunction(Fields& f, FaultScenario& out) {
+  void malfunction(JsonFields& f, FaultScenario& out) {
     f.warn_unknown({"at_job", "at_time_s", "kind"});
     std::optional<MalfunctionKind> kind;
     if (auto name = f.string("kind")) {
@@ -196,7 +127,7 @@ class FaultReader {
     if (f.has("at_job") == f.has("at_time_s")) {
       f.error("", "give exactly one of at_job and at_time_s");
     } else if (f.has("at_job")) {
-      if (auto index = f.count("at_job", 0)) when = AtJob{*index};
+      if (auto index = count(f, "at_job", 0)) when = AtJob{*index};
     } else if (auto time_s = f.number("at_time_s")) {
       if (std::isfinite(*time_s) && *time_s >= 0) {
         when = AtTime{*time_s};
@@ -218,18 +149,9 @@ class FaultReader {
 Result<FaultScenario> read_faults_json(std::string_view text, const std::string& file_name,
                                        const SewerMap& map, Diagnostics& diagnostics) {
   const Diagnostics::Mark before = diagnostics.mark();
-  json doc;
-  try {
-    doc = json::parse(text.begin(), text.end());
-  } catch (const nlohmann::json::parse_error& e) {
-    report_json_syntax_error(text, file_name, e.byte, e.what(), diagnostics);
-    return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
-  } catch (const nlohmann::json::exception& e) {
-    // A number too large for any type (found by fuzz/faults_json_fuzz.cc).
-    diagnostics.error(file_name, std::string("JSON error: ") + e.what());
-    return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
-  }
-  Fields root(doc, "$", file_name, diagnostics);
+  const std::optional<JsonDocument> doc = JsonDocument::parse(text, file_name, diagnostics);
+  if (!doc) return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
+  JsonFields root(doc->root(), "$", file_name, diagnostics);
   if (auto format = root.string("format"); format && *format != kFaultsJsonFormat) {
     root.error("format",
                "expected \"" + std::string(kFaultsJsonFormat) + "\", got \"" + *format + "\"");
@@ -243,10 +165,10 @@ Result<FaultScenario> read_faults_json(std::string_view text, const std::string&
   root.warn_unknown({"format", "version", "obstacles", "danger", "malfunctions", "battery_wh"});
   FaultReader reader(map, file_name, diagnostics);
   FaultScenario scenario;
-  reader.each(root, "obstacles", [&](Fields& f) { reader.obstacle(f, scenario); });
-  reader.each(root, "danger", [&](Fields& f) { reader.danger(f, scenario); });
-  reader.each(root, "malfunctions", [&](Fields& f) { reader.malfunction(f, scenario); });
-  if (auto battery_wh = root.number("battery_wh", false)) {
+  reader.each(root, "obstacles", [&](JsonFields& f) { reader.obstacle(f, scenario); });
+  reader.each(root, "danger", [&](JsonFields& f) { reader.danger(f, scenario); });
+  reader.each(root, "malfunctions", [&](JsonFields& f) { reader.malfunction(f, scenario); });
+  if (auto battery_wh = root.number("battery_wh", JsonFields::Need::kOptional)) {
     if (std::isfinite(*battery_wh) && *battery_wh >= 0) {
       scenario.battery_wh = *battery_wh;
     } else {

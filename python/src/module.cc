@@ -31,20 +31,15 @@ constexpr bool kHasGis = true;
 constexpr bool kHasGis = false;
 #endif
 
-// The reader the sewerplan command uses for `path` (gis/map_source.h); without GIS, core's, which
-// answers a GIS source with an error that says so.
+// The reader the sewerplan command uses for `path` (gis/map_source.h); without GIS, the same
+// fallback as the command's (core/map_io.h: read_map_without_gis).
 Result<SewerMap> read_any_map(const std::filesystem::path& path,
                               const std::optional<std::filesystem::path>& gis_fields,
                               Diagnostics& diagnostics) {
 #ifdef SEWERPLAN_WITH_GIS
   return gis::read_map_source(path, diagnostics, gis_fields);
 #else
-  if (gis_fields) {
-    return Error{ErrorCode::kUnsupportedFormat,
-                 gis_fields->string() + ": a GIS field mapping, but this sewerplan is built " +
-                     "without GIS support (SEWERPLAN_WITH_GIS)"};
-  }
-  return read_map(path, diagnostics);
+  return read_map_without_gis(path, diagnostics, gis_fields);
 #endif
 }
 

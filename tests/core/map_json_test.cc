@@ -260,6 +260,39 @@ TEST(MapIo, NamesAMissingFileAndTheReason) {
   EXPECT_THAT(map.error().message, HasSubstr("cannot read no/such/map.json: No such file"));
 }
 
+TEST(MapIo, TellsAGisSourceByItsPath) {
+  EXPECT_TRUE(is_gis_source_path("a/net.GPKG"));
+  EXPECT_TRUE(is_gis_source_path("net.shp"));
+  EXPECT_TRUE(is_gis_source_path(std::filesystem::temp_directory_path()));
+  EXPECT_FALSE(is_gis_source_path("net.json"));
+  EXPECT_FALSE(is_gis_source_path("no/such/directory"));
+  Diagnostics d;
+  Result<SewerMap> refused = read_map("net.gpkg", d);
+  ASSERT_FALSE(refused.has_value());
+  EXPECT_EQ(refused.error().code, ErrorCode::kUnsupportedFormat);
+  EXPECT_THAT(refused.error().message, HasSubstr("net.gpkg: a GIS source"));
+}
+
+TEST(MapIo, WithoutGisRefusesGisSourcesAndMappingsAndReadsTheRest) {
+  Diagnostics d;
+  Result<SewerMap> source = read_map_without_gis("exports/net.shp", d);
+  ASSERT_FALSE(source.has_value());
+  EXPECT_EQ(source.error().code, ErrorCode::kUnsupportedFormat);
+  EXPECT_THAT(source.error().message,
+              HasSubstr("exports/net.shp: a GIS source (GeoPackage, Shapefile or a directory of "
+                        "them), but this sewerplan is built without GIS support"));
+  const std::string ais = testing::dataset_path("ais-testbed/map.json").string();
+  Result<SewerMap> mapping = read_map_without_gis(ais, d, std::filesystem::path("town.json"));
+  ASSERT_FALSE(mapping.has_value());
+  EXPECT_EQ(mapping.error().code, ErrorCode::kUnsupportedFormat);
+  EXPECT_THAT(mapping.error().message,
+              HasSubstr("town.json: a GIS field mapping, but this sewerplan is built without GIS "
+                        "support"));
+  Result<SewerMap> map = read_map_without_gis(ais, d);
+  ASSERT_TRUE(map.has_value()) << map.error().message;
+  EXPECT_EQ(map->manhole_count(), read_map(ais, d)->manhole_count());
+}
+
 TEST(MapIo, DetectsTheFormatFromContentWhenTheExtensionIsUnknown) {
   EXPECT_EQ(*detect_map_format("x.txt", "  {\"format\": 1}"), MapFormat::kJson);
   EXPECT_EQ(*detect_map_format("x.db", "# comment\nsewerdb 1\n"), MapFormat::kAscii);

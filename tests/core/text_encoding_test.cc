@@ -3,10 +3,21 @@
 
 #include <gtest/gtest.h>
 
+#include "sewerplan/core/ascii_case.h"
 #include "sewerplan/core/text_file.h"
 
 namespace sewerplan {
 namespace {
+
+TEST(AsciiCase, LowersAsciiLettersOnlyAndKeepsUtf8) {
+  EXPECT_EQ(ascii_lower("Vw_QGEP_Reach.GPKG"), "vw_qgep_reach.gpkg");
+  EXPECT_EQ(ascii_lower("@[`{09"), "@[`{09");  // the neighbours of 'A'..'Z' and 'a'..'z'
+  EXPECT_EQ(ascii_lower("STRA\xc3\x9f"
+                        "E \xc3\x84"),
+            "stra\xc3\x9f"
+            "e \xc3\x84");  // STRAßE Ä: the UTF-8 bytes unchanged
+  EXPECT_EQ(ascii_lower(""), "");
+}
 
 TEST(TextEncoding, TellsValidUtf8FromEverythingElse) {
   EXPECT_TRUE(is_valid_utf8(""));

@@ -65,6 +65,23 @@ TEST(Learnt, ErrorsNameTheFileAndThePath) {
       {R"({"format": "sewerplan-learnt", "version": 2})", "learnt.json:$.version"},
       {R"({"format": "sewerplan-learnt", "version": 1, "bogus": []})", "learnt.json:$.bogus"},
       {"{\n  \"format\": ", "learnt.json:2:"},
+      // Wrong types name the field and the value found.
+      {R"({"format": "sewerplan-learnt", "version": 1, "blockages": [{"pipe": 5, "offset_m": 1}]})",
+       "learnt.json:$.blockages[0].pipe: error: expected a string, got 5"},
+      {R"({"format": "sewerplan-learnt", "version": 1, "danger": [{"pipe": "P4", "offset_m": "1"}]})",
+       "learnt.json:$.danger[0].offset_m: error: expected a number, got \"1\""},
+      {R"({"format": "sewerplan-learnt", "version": 1, "danger": [3]})",
+       "learnt.json:$.danger[0]: error: expected an object, got 3"},
+      {R"({"format": "sewerplan-learnt", "version": 1, "blockages": {}})",
+       "learnt.json:$.blockages: error: expected an array, got an object"},
+      {R"({"format": "sewerplan-learnt", "version": 1,
+           "closed_passages": [{"manhole": "M8", "from_slot": 1.5, "to_slot": 2}]})",
+       "learnt.json:$.closed_passages[0].from_slot: error: expected a slot of manhole M8"},
+      {R"({"format": "sewerplan-learnt", "version": 1, "blockages": [{"offset_m": 1}]})",
+       "learnt.json:$.blockages[0]: error: missing required field 'pipe'"},
+      {R"({"format": "sewerplan-faults", "version": 1})", "learnt.json:$.format: error: expected"},
+      {"[]", "learnt.json:$: error: expected an object, got an array"},
+      {"{\"version\": 1" + std::string(400, '4') + "}", "number overflow"},
   };
   for (const auto& [text, where] : bad) {
     Diagnostics d;

@@ -274,11 +274,7 @@ TEST_F(GdalImport, WhatGdalCannotOpenIsAnErrorNotACrash) {
   ASSERT_FALSE(no_shapefiles.has_value());
 }
 
-TEST(GisSource, IsAShapefileAGeoPackageOrADirectory) {
-  EXPECT_TRUE(is_gis_source("a/net.GPKG"));
-  EXPECT_TRUE(is_gis_source("net.shp"));
-  EXPECT_TRUE(is_gis_source(fs::temp_directory_path()));
-  EXPECT_FALSE(is_gis_source("net.json"));
+TEST(GisSource, HasItsFieldMappingBesideIt) {
   EXPECT_EQ(field_mapping_sidecar("a/net.gpkg"), fs::path("a/net.fields.json"));
 }
 

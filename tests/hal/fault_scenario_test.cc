@@ -230,6 +230,21 @@ TEST_F(FaultScenarioTest, WrongTypesAndUnknownFieldsAreReported) {
   EXPECT_THAT(f.error().message, HasSubstr("f.json:$.malfunctions[0].at_job: error: expected a "
                                            "whole number"));
   EXPECT_EQ(diagnostics_.warning_count(), 1U);
+  std::ostringstream all;
+  for (const Diagnostic& d : diagnostics_.all()) all << d << '\n';
+  EXPECT_THAT(all.str(), HasSubstr("f.json:$.colour: warning: unknown field"));
+}
+
+TEST_F(FaultScenarioTest, WrongTypesNameTheValueFound) {
+  Result<FaultScenario> f = read(R"({"format": "sewerplan-faults", "version": 1,
+    "obstacles": [{"pipe": 5, "offset_m": "3", "kind": "permanent"}, 7],
+    "danger": [{"manhole": "M6", "to_slot": 2}]})");
+  ASSERT_FALSE(f.has_value());
+  const std::string& m = f.error().message;
+  EXPECT_THAT(m, HasSubstr("f.json:$.obstacles[0].pipe: error: expected a string, got 5"));
+  EXPECT_THAT(m, HasSubstr("f.json:$.obstacles[0].offset_m: error: expected a number, got \"3\""));
+  EXPECT_THAT(m, HasSubstr("f.json:$.obstacles[1]: error: expected an object, got 7"));
+  EXPECT_THAT(m, HasSubstr("f.json:$.danger[0]: error: missing required field 'from_slot'"));
 }
 
 TEST_F(FaultScenarioTest, TheTestBedsFaultFilesLoad) {

@@ -6,7 +6,9 @@
 // ISYBAU XML (map_isybau.h, ".xml"), read only. A file with another extension is recognised by its
 // content: '{' opens a JSON map, a "sewerdb" line an ASCII database, a "[SECTION]" line a SWMM
 // file, '<' an ISYBAU file. GIS sources (a GeoPackage, a Shapefile, a directory) need GDAL: they
-// are read by gis::read_gis_map (gis/gdal_import.h), and read_map says so.
+// are read by gis::read_gis_map (gis/gdal_import.h), and read_map says so. is_gis_source_path is
+// the one test of what a GIS source is, and read_map_without_gis the one reader of a build without
+// GDAL (SEWERPLAN_WITH_GIS off), for the sewerplan command and the Python module alike.
 //
 //   Diagnostics diagnostics;
 //   Result<SewerMap> map = read_map("datasets/ais-testbed/map.json", diagnostics);
@@ -46,7 +48,19 @@ Result<MapFormat> detect_map_format(const std::filesystem::path& path, std::stri
 Result<SewerMap> parse_map(std::string_view text, const std::string& file_name, MapFormat format,
                            Diagnostics& diagnostics);
 
+// A GIS source (see is_gis_source_path) is a kUnsupportedFormat error that names gis::read_gis_map.
 Result<SewerMap> read_map(const std::filesystem::path& path, Diagnostics& diagnostics);
+
+// Whether `path` is a GIS source, by its name alone (no file is read): a ".shp" or ".gpkg"
+// extension, in any case, or a directory (that exists).
+bool is_gis_source_path(const std::filesystem::path& path);
+
+// The map reader of a build without GIS support, where gis::read_map_source (gis/map_source.h) is
+// absent: a field mapping file (`field_mapping`, docs/formats/gis-layers.md) or a GIS source is a
+// kUnsupportedFormat error saying that this build has no GIS support; any other path is read_map's.
+Result<SewerMap> read_map_without_gis(
+    const std::filesystem::path& path, Diagnostics& diagnostics,
+    const std::optional<std::filesystem::path>& field_mapping = std::nullopt);
 
 // Without a format, the extension decides (an unknown extension is an error). A read-only format
 // is a kUnsupportedFormat error, and nothing is written.

@@ -2,7 +2,8 @@
 // GIS sewer layers in: a Shapefile directory or a GeoPackage read through GDAL as a SewerMap.
 //
 // A source is a GeoPackage (".gpkg"), a Shapefile (".shp": read with the other Shapefiles of its
-// directory, its own layer preferred) or a directory of Shapefiles. Of its layers, one of points
+// directory, its own layer preferred) or a directory of Shapefiles (core's is_gis_source_path,
+// core/map_io.h, tells one by its path). Of its layers, one of points
 // becomes the manholes and one of lines the pipes (core/map_features.h: choose_gis_layers), their
 // fields read through the field mapping: the defaults (QGEP/TEKSI, sewerplan's GeoJSON, common
 // municipal names), or a mapping file, by default the "sidecar" beside the source (net.gpkg:
@@ -23,9 +24,6 @@
 #include "sewerplan/core/sewer_map.h"
 
 namespace sewerplan::gis {
-
-// ".shp" or ".gpkg" (any case), or a directory.
-bool is_gis_source(const std::filesystem::path& path);
 
 // Where the default mapping file of `source` is (it need not exist).
 std::filesystem::path field_mapping_sidecar(const std::filesystem::path& source);

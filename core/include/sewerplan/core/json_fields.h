@@ -1,13 +1,16 @@
 // SPDX-License-Identifier: MIT
 // Reading sewerplan's JSON files: a parsed document, and the fields of its objects by JSON path.
 //
-// Private to core. Every JSON reader (map, mission, profile) parses with JsonDocument and reads
-// objects through JsonFields, so that a wrong type, a missing required field or an unknown
-// (misspelt) field is reported as "file:$.pipes[3].length_m: ..." and reading goes on.
+// The one JSON reader of sewerplan's files: every reader (map, mission, profile, fault file,
+// learnt knowledge, ...) parses with JsonDocument and reads objects through JsonFields, so that a
+// wrong type, a missing required field or an unknown (misspelt) field is reported alike, as
+// "file:$.pipes[3].length_m: ...", and reading goes on. Writers may build their text otherwise.
 //
 // Parsing uses simdjson, which reads a 100,000-manhole map (42 MB) in about 0.14 s where
 // nlohmann::json's document tree took 0.76 s (bench/core/map_load_bench.cc); nlohmann is still
-// used on the error path, for the line and column of a syntax error, and for writing.
+// used on the error path, for the line and column of a syntax error (and for what a number too
+// large for a double is), and for writing. simdjson is part of this interface: a library that
+// reads through it links simdjson too (sewerplan::core does so publicly).
 //
 //   Diagnostics d;
 //   auto doc = JsonDocument::parse(text, "map.json", d);
@@ -27,7 +30,7 @@
 
 #include <simdjson.h>
 
-namespace sewerplan::detail {
+namespace sewerplan {
 
 using JsonElement = simdjson::dom::element;
 using JsonArray = simdjson::dom::array;
@@ -58,10 +61,18 @@ class JsonFields {
   std::optional<JsonArray> array(std::string_view key, Need need = Need::kRequired);
   std::optional<JsonElement> member(std::string_view key, Need need = Need::kRequired);
   bool has(std::string_view key) const;
+  // False if the value was not an object (reported when constructed).
+  bool is_object() const { return is_object_; }
 
   // Warns about members not in `known` (likely misspelt), naming each.
   void warn_unknown(std::initializer_list<std::string_view> known);
   void warn_unknown(const std::function<bool(std::string_view)>& is_known);
+  // An error for each member not in `known`: for files sewerplan writes and reads back itself
+  // (learnt knowledge), where an unknown member means the file is not what it claims.
+  void reject_unknown(std::initializer_list<std::string_view> known);
+
+  // A problem the caller found with the field `key` (empty: with the object), at where(key).
+  void error(std::string_view key, const std::string& message);
 
   // "file:$.path.key"
   std::string where(std::string_view key = {}) const;
@@ -94,4 +105,4 @@ inline std::string indexed(const std::string& path, std::size_t i) {
   return path + "[" + std::to_string(i) + "]";
 }
 
-}  // namespace sewerplan::detail
+}  // namespace sewerplan
