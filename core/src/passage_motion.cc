@@ -132,7 +132,11 @@ PassageMotionTable::PassageMotionTable(std::string map_fingerprint, std::string 
     : map_fingerprint_(std::move(map_fingerprint)),
       profile_fingerprint_(std::move(profile_fingerprint)),
       entries_(std::move(entries)) {
-  std::sort(entries_.begin(), entries_.end(), key_less);
+  // The precompute gives them in order: then one pass, not a sort (issue 14: the sort was part of
+  // a stretch without a stop check at the precompute's end).
+  if (!std::is_sorted(entries_.begin(), entries_.end(), key_less)) {
+    std::sort(entries_.begin(), entries_.end(), key_less);
+  }
   for (std::size_t i = 1; i < entries_.size(); ++i) {
     SEWER_CHECK(key_less(entries_[i - 1], entries_[i]), "passage motion table: duplicate passage");
   }

@@ -74,7 +74,19 @@ Result<PrecomputeResult> precompute_passage_motion(const SewerMap& map, const Ro
   const double start_s = clock.now_s();
   PassageMotionCache cache(ManholeTurnPlanner(robot_body(profile), profile, options.planner));
   PrecomputeStatistics stats;
+  // Sized once (issue 14): a vector doubling copied every entry into fresh memory between two stop
+  // checks (up to 1.8 ms on 1,000 manholes); counted with a check per manhole.
+  std::size_t passages = 0;
+  for (ManholeId m : map.manhole_ids()) {
+    if (auto stopped = options.stop.interrupted()) {
+      return stopped_error(*stopped, "the motion precompute");
+    }
+    std::size_t fitting = 0;
+    for (const Slot& slot : map.slots(m)) fitting += fits(profile, map.pipe(slot.pipe).diameter_m);
+    passages += fitting * (fitting > 0 ? fitting - 1 : 0);
+  }
   std::vector<PassageMotion> entries;
+  entries.reserve(passages);
   for (ManholeId m : map.manhole_ids()) {
     const auto slots = map.slots(m);
     for (std::uint16_t i = 0; i < slots.size(); ++i) {
@@ -114,6 +126,10 @@ Result<PrecomputeResult> precompute_passage_motion(const SewerMap& map, const Ro
       }
     }
     if (options.progress) options.progress(m.index() + 1, map.manhole_count());
+  }
+  // The table's assembly (the map's fingerprint, the entries' order) is a stretch of its own.
+  if (auto stopped = options.stop.interrupted()) {
+    return stopped_error(*stopped, "the motion precompute");
   }
   stats.distinct_geometries = cache.size();
   stats.time_s = clock.now_s() - start_s;

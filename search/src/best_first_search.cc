@@ -48,21 +48,32 @@ void BestFirstSearch::watch(const StopCondition* stop) {
   heuristic_.watch(stop);
 }
 
-void BestFirstSearch::initialize() {
+std::optional<SearchStatus> BestFirstSearch::initialize() {
   result_ = SearchResult{};
   const auto [id, added] = registry_.insert(task_.initial_state());
   info_.resize(registry_.size());
+  if (task_.is_goal(task_.initial_state())) {
+    // The empty plan, with nothing to evaluate (a step() would expand it and find the same).
+    ++result_.statistics.generated;
+    open(id, {0, 0, id, ActionId{0}, Status::kNew});
+    update_memory();
+    result_.status = SearchStatus::kSolved;
+    return result_.status;
+  }
   const Cost h = heuristic_.evaluate(task_.initial_state(), nullptr);
-  if (h == Heuristic::kInterrupted) return;  // search() reports the stop
+  if (h == Heuristic::kInterrupted) return std::nullopt;  // search() reports the stop
   ++result_.statistics.evaluated;
   ++result_.statistics.generated;
   if (h == Heuristic::kDeadEnd) {
     info_[id.index()].status = Status::kDeadEnd;
     ++result_.statistics.dead_ends;
-    return;
+    update_memory();
+    result_.status = SearchStatus::kUnsolvable;
+    return result_.status;
   }
   open(id, {0, h, id, ActionId{0}, Status::kNew});
   update_memory();
+  return std::nullopt;
 }
 
 std::optional<SearchStatus> BestFirstSearch::step() {

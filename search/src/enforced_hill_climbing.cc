@@ -11,7 +11,7 @@ EnforcedHillClimbing::EnforcedHillClimbing(const domain::CompiledTask& task, Heu
     : task_(task), heuristic_(heuristic), registry_(task) {}
 
 EnforcedHillClimbing::Visit& EnforcedHillClimbing::visit(StateId id) {
-  if (visits_.size() <= id.index()) visits_.resize(registry_.size());
+  visits_.grow_to(registry_.size());
   return visits_[id.index()];
 }
 
@@ -21,26 +21,36 @@ void EnforcedHillClimbing::watch(const StopCondition* stop) {
   if (fallback_) fallback_->watch(stop);
 }
 
-void EnforcedHillClimbing::initialize() {
+std::optional<SearchStatus> EnforcedHillClimbing::initialize() {
   result_ = SearchResult{};
   fallback_.reset();
   plan_.clear();
   const auto [id, added] = registry_.insert(task_.initial_state());
+  current_g_ = 0;
+  if (task_.is_goal(task_.initial_state())) {
+    // The empty plan, with nothing to evaluate (a step() would find the same).
+    ++result_.statistics.generated;
+    restart_from(id, 0, {});
+    result_.status = SearchStatus::kSolved;
+    result_.statistics.stored = registry_.size();
+    return result_.status;
+  }
   std::vector<ActionId> helpful;
   const Cost h = heuristic_.evaluate(task_.initial_state(), &helpful);
-  if (h == Heuristic::kInterrupted) return;  // search() reports the stop
+  if (h == Heuristic::kInterrupted) return std::nullopt;  // search() reports the stop
   ++result_.statistics.evaluated;
   ++result_.statistics.generated;
-  current_g_ = 0;
   if (h == Heuristic::kDeadEnd) {
     ++result_.statistics.dead_ends;
     result_.status = SearchStatus::kUnsolvable;
+    result_.statistics.stored = registry_.size();
     queue_.clear();
     current_ = id;
     current_h_ = h;
-    return;
+    return result_.status;
   }
   restart_from(id, h, std::move(helpful));
+  return std::nullopt;
 }
 
 void EnforcedHillClimbing::restart_from(StateId state, Cost h, std::vector<ActionId> helpful) {
@@ -75,8 +85,7 @@ std::optional<SearchStatus> EnforcedHillClimbing::step() {
   if (queue_.empty()) {  // enforced hill-climbing failed: FF falls back to best-first search
     fallback_ = std::make_unique<BestFirstSearch>(task_, heuristic_, BestFirstSearch::greedy());
     fallback_->watch(watched());
-    fallback_->initialize();
-    return std::nullopt;
+    return fallback_->initialize();
   }
   const StateId s = queue_.front();
   queue_.pop_front();

@@ -271,7 +271,13 @@ std::optional<SearchResult> exact_tour_search(const domain::CompiledTask& task,
   const SteadyClock steady;
   const Clock& time = clock != nullptr ? *clock : steady;
   const double start_s = time.now_s();
-  std::optional<Shape> shape = detail::read_shape(task);
+  std::optional<Shape> shape = detail::read_shape(task, &stop);
+  if (auto stopped = stop.interrupted(); stopped && !shape) {
+    SearchResult r;
+    r.status = *stopped;
+    r.statistics.time_s = time.now_s() - start_s;
+    return r;
+  }
   if (!shape || shape->goals.size() > kMaxExactGoals) return std::nullopt;
   for (const auto& g : shape->goals) {
     if (g.options.size() > 0xff) return std::nullopt;

@@ -25,12 +25,13 @@ void accumulate(SearchStatistics& total, const SearchStatistics& more) {
 SearchResult SearchEngine::search(const StopCondition& stop, const Clock& clock) {
   const double start_s = clock.now_s();
   watch(&stop);
-  initialize();
-  // The first evaluation may have been interrupted (the expansion limit is for step()s).
-  std::optional<SearchStatus> stopped = stop.interrupted();
-  while (!stopped && !step()) {
-    stopped = stop.check(statistics().expanded);
-    if (stopped) break;
+  // A result the initial state decides (a goal, a dead end) stands even if the stop fires as it
+  // is found (issue 14); otherwise the first evaluation may have been interrupted (the expansion
+  // limit is for step()s).
+  std::optional<SearchStatus> stopped;
+  if (!initialize()) {
+    stopped = stop.interrupted();
+    while (!stopped && !step()) stopped = stop.check(statistics().expanded);
   }
   watch(nullptr);
   SearchResult r = result();

@@ -297,6 +297,8 @@ class Tour {
           full.erase(full.begin() + static_cast<std::ptrdiff_t>(i));
           full.insert(full.begin() + static_cast<std::ptrdiff_t>(j), g);
           better = true;
+          // Each accepted move re-prices the whole order: a row may accept many (issue 14).
+          if (check_stop()) return write_back(full, order);
           prepare(full);
           moved(i, n, moved_costs);
         }
@@ -310,6 +312,7 @@ class Tour {
           std::reverse(full.begin() + static_cast<std::ptrdiff_t>(i),
                        full.begin() + static_cast<std::ptrdiff_t>(j));
           better = true;
+          if (check_stop()) return write_back(full, order);
           prepare(full);
         }
       }
@@ -342,14 +345,14 @@ std::optional<SearchResult> tour_search(const CompiledTask& task, const StopCond
   TourReport& out = report != nullptr ? *report : unused;
   out = {};
   const double start_s = time.now_s();
-  std::optional<Shape> shape = read_shape(task);
-  if (!shape) return std::nullopt;
-  out.has_shape = true;
-  // Reading the shape goes over every action: checked before the first tour too (issue 14).
+  std::optional<Shape> shape = read_shape(task, &stop);
+  // Reading the shape goes over every action, and asks the stop condition (issue 14).
   if (auto stopped = stop.interrupted()) {
     out.stopped = stopped;
     return std::nullopt;
   }
+  if (!shape) return std::nullopt;
+  out.has_shape = true;
   std::vector<std::size_t> goals(shape->goals.size());
   for (std::size_t i = 0; i < goals.size(); ++i) goals[i] = i;
   Tour tour(*shape, stop);

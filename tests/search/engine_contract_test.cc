@@ -35,6 +35,17 @@ CompiledTask collect_task(domain::Cost bound = domain::kInfiniteCost, bool reach
   return std::move(b).build();
 }
 
+// Positions 0 and 1, the robot already at the goal position 1.
+CompiledTask at_goal_task() {
+  CompiledTask::Builder b;
+  const VarId pos = b.add_variable(2, "pos");
+  b.add_action({{pos, 0}}, {{pos, 1}}, 1, "0->1");
+  b.add_action({{pos, 1}}, {{pos, 0}}, 1, "1->0");
+  b.set_initial({1});
+  b.add_goal({pos, 1});
+  return std::move(b).build();
+}
+
 struct EngineConfig {
   Algorithm algorithm;
   HeuristicKind heuristic;
@@ -145,6 +156,38 @@ TEST_P(SearchEngineContract, StopsWithinAnExpansionWhenCancelledBetweenEvaluatio
   stop.with_cancel(cancel);
   EXPECT_EQ(engine->search(stop).status, SearchStatus::kCancelled);
   EXPECT_EQ(h.evaluations(), 2);
+}
+
+// Issue 14: a result that the initial state decides (a goal, a dead end) is the answer even when
+// the stop fires as initialize() finishes it: here the initial state's evaluation sets the cancel
+// flag (and completes). The stop used to replace the result.
+TEST_P(SearchEngineContract, AStopAsTheInitialStateDecidesTheSearchLeavesItsResult) {
+  const CompiledTask at_goal = at_goal_task();
+  const CompiledTask dead_end = collect_task(domain::kInfiniteCost, false);
+  for (const CompiledTask* task : {&at_goal, &dead_end}) {
+    const bool goal = task == &at_goal;
+    if (!goal &&
+        make_heuristic(GetParam().heuristic, *task)->evaluate(task->initial_state(), nullptr) !=
+            Heuristic::kDeadEnd) {
+      continue;  // a heuristic that does not see the dead end (blind)
+    }
+    std::atomic<bool> cancel{false};
+    CancellingHeuristic h(make_heuristic(GetParam().heuristic, *task), cancel, 1);
+    auto engine = make_engine(GetParam().algorithm, *task, h, 2.0);
+    StopCondition stop;
+    stop.with_cancel(cancel);
+    const SearchResult r = engine->search(stop);
+    if (goal) {
+      EXPECT_EQ(r.status, SearchStatus::kSolved);
+      EXPECT_TRUE(r.plan.empty());
+      EXPECT_EQ(r.cost, 0);
+      EXPECT_EQ(r.statistics.expanded, 0U);
+    } else {
+      EXPECT_EQ(h.evaluations(), 1);
+      EXPECT_TRUE(cancel);
+      EXPECT_EQ(r.status, SearchStatus::kUnsolvable);
+    }
+  }
 }
 
 TEST_P(SearchEngineContract, IsDeterministic) {

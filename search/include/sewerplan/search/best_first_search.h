@@ -42,7 +42,7 @@ class BestFirstSearch final : public SearchEngine {
   BestFirstSearch(const domain::CompiledTask& task, Heuristic& heuristic, Ordering ordering,
                   Cost cost_bound = domain::kInfiniteCost);
 
-  void initialize() override;
+  std::optional<SearchStatus> initialize() override;
   std::optional<SearchStatus> step() override;
   void watch(const StopCondition* stop) override;
   SearchResult result() const override { return result_; }

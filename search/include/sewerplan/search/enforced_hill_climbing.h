@@ -19,6 +19,7 @@
 #include <memory>
 #include <vector>
 
+#include "sewerplan/domain/segmented_vector.h"
 #include "sewerplan/domain/state_registry.h"
 #include "sewerplan/search/best_first_search.h"
 #include "sewerplan/search/heuristic.h"
@@ -32,7 +33,7 @@ class EnforcedHillClimbing final : public SearchEngine {
   // (FF does); without them every applicable action is tried.
   EnforcedHillClimbing(const domain::CompiledTask& task, Heuristic& heuristic);
 
-  void initialize() override;
+  std::optional<SearchStatus> initialize() override;
   std::optional<SearchStatus> step() override;
   void watch(const StopCondition* stop) override;
   SearchResult result() const override;
@@ -57,7 +58,7 @@ class EnforcedHillClimbing final : public SearchEngine {
   const domain::CompiledTask& task_;
   Heuristic& heuristic_;
   domain::StateRegistry registry_;
-  std::vector<Visit> visits_;
+  domain::SegmentedVector<Visit> visits_;  // grows without moving (issue 14)
   std::deque<domain::StateId> queue_;
   std::uint64_t iteration_ = 0;
   domain::StateId current_{0};

@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: MIT
 // SearchEngine: the common face of sewerplan's heuristic search algorithms.
 //
-// An engine searches a domain::CompiledTask for a plan: initialize(), then step() (one expansion)
-// until it returns a final status, then result(). search() runs that loop under a StopCondition
-// (core/stop_condition.h), checked at every step, so a time limit or a cancel from another thread
-// is honoured within one expansion (and, inside an expansion, between heuristic evaluations).
-// Engines: BestFirstSearch (A*, weighted A*, greedy best-first, by configuration) and
-// EnforcedHillClimbing (FF's). Modelled on Fast Downward's SearchAlgorithm (Helmert 2006).
+// An engine searches a domain::CompiledTask for a plan: initialize(), then (unless the initial
+// state decided it) step() (one expansion) until it returns a final status, then result(). search()
+// runs that loop under a StopCondition (core/stop_condition.h), checked at every step, so a time
+// limit or a cancel from another thread is honoured within one expansion (and, inside an expansion,
+// between heuristic evaluations). Engines: BestFirstSearch (A*, weighted A*, greedy best-first, by
+// configuration) and EnforcedHillClimbing (FF's). Modelled on Fast Downward's SearchAlgorithm
+// (Helmert 2006).
 //
 //   BestFirstSearch astar(task, heuristic, BestFirstSearch::astar());
 //   SearchResult r = astar.search(StopCondition::after_seconds(clock, 1.0));
@@ -69,7 +70,11 @@ class SearchEngine {
   SearchResult search(const StopCondition& stop, const Clock& clock);
   SearchResult search(const StopCondition& stop);  // on a SteadyClock
 
-  virtual void initialize() = 0;
+  // Stores and evaluates the initial state. Returns the final status when the initial state
+  // decides the search (kSolved: it is a goal, the plan is empty; kUnsolvable: a dead end), which
+  // result() then holds and search() reports even if the stop fires at that moment; nullopt while
+  // the search goes on, or if the evaluation was interrupted.
+  virtual std::optional<SearchStatus> initialize() = 0;
   // One expansion. Returns nullopt while the search goes on, else its final status.
   virtual std::optional<SearchStatus> step() = 0;
   virtual SearchResult result() const = 0;
