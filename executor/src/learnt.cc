@@ -113,10 +113,13 @@ Result<Learnt> read_learnt_json(std::string_view text, const std::string& file_n
   JsonFields root(doc->root(), "$", file_name, diagnostics);
   if (!root.is_object()) return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
   root.reject_unknown({"format", "version", "blockages", "danger", "closed_passages"});
-  if (root.string("format", Need::kOptional) != std::string(kLearntJsonFormat)) {
+  // Absent or another value: one error each (a value of the wrong type is JsonFields' error).
+  const std::optional<std::string> format = root.string("format", Need::kOptional);
+  if (format ? *format != kLearntJsonFormat : !root.has("format")) {
     root.error("format", "expected \"" + std::string(kLearntJsonFormat) + "\"");
   }
-  if (root.number("version", Need::kOptional) != static_cast<double>(kLearntJsonVersion)) {
+  const std::optional<double> version = root.number("version", Need::kOptional);
+  if (version ? *version != static_cast<double>(kLearntJsonVersion) : !root.has("version")) {
     root.error("version", "expected " + std::to_string(kLearntJsonVersion));
   }
   LearntReader reader(map, file_name, diagnostics);

@@ -35,6 +35,7 @@ struct CampaignService::Running {
   campaign::CampaignSpec spec;
   std::size_t jobs = 1;          // asked for
   std::size_t running_jobs = 1;  // run with (campaign::campaign_jobs)
+  double timeout_s = 60;         // before a guarded run counts as hung
   std::atomic<bool> cancel{false};
   // Guarded by the service's mutex: what the campaign's thread hands to the stream's.
   Json progress;             // the last "progress" event
@@ -48,7 +49,7 @@ struct CampaignService::Finished {
   Mission mission;
   campaign::CampaignSpec spec;
   std::vector<campaign::RunRecord> records;
-  Json document;  // {"state", "map", "summary", "runs"}
+  Json document;  // {"state", "map", "summary", "runs"}, or {"state": "error", "error"}
 };
 
 namespace {
@@ -57,15 +58,16 @@ namespace {
 // far, so the newest says all): a stalled browser costs bounded memory, and holds up no run.
 constexpr std::size_t kMaxPending = 256;
 
-constexpr std::array<std::string_view, 9> kFields = {"mission",
-                                                     "runs",
-                                                     "seed",
-                                                     "fault_rates",
-                                                     "jobs",
-                                                     "allow_push",
-                                                     "planner_time_limit_s",
-                                                     "risk",
-                                                     "faults_from_condition"};
+constexpr std::array<std::string_view, 10> kFields = {"mission",
+                                                      "runs",
+                                                      "seed",
+                                                      "fault_rates",
+                                                      "jobs",
+                                                      "allow_push",
+                                                      "planner_time_limit_s",
+                                                      "risk",
+                                                      "faults_from_condition",
+                                                      "timeout_s"};
 constexpr double kMaxPlannerTimeLimitS = 86400;  // as the CLI's --planner-time-limit
 constexpr std::array<std::string_view, 6> kRateNames = {"obstacles",    "danger",    "passages",
                                                         "malfunctions", "permanent", "transient"};
@@ -78,6 +80,7 @@ struct CampaignRequest {
   std::size_t jobs = 1;
   bool push_allowed = false;
   double planner_time_limit_s = 0;  // 0: none
+  double timeout_s = 60;            // as the CLI's --timeout
   RiskMode risk = RiskMode::kImpassable;
   std::string risk_name = "impassable";
   bool faults_from_condition = false;
@@ -184,6 +187,16 @@ Result<CampaignRequest> read_request(const Json& body, const CampaignLimits& lim
     }
     r.planner_time_limit_s = s;
   }
+  if (body.contains("timeout_s")) {
+    const Json& v = body["timeout_s"];
+    const double s = v.is_number() ? v.get<double>() : -1;
+    if (!(s > 0 && s <= kMaxPlannerTimeLimitS)) {
+      return field_error(
+          "timeout_s: expected the seconds before a run counts as hung, over 0 up "
+          "to 86400");
+    }
+    r.timeout_s = s;
+  }
   if (body.contains("risk")) {
     const Json& v = body["risk"];
     const std::optional<RiskMode> mode =
@@ -249,6 +262,7 @@ campaign::CampaignOptions campaign_options(CampaignService::Running& running, bo
   campaign::CampaignOptions options;
   options.jobs = running.jobs;
   options.guard = guard;
+  options.timeout_s = running.timeout_s;
   options.stop = StopCondition().with_cancel(running.cancel);
   return options;
 }
@@ -285,6 +299,12 @@ std::shared_ptr<CampaignService::Running> CampaignService::begin(
     bad_request(res, request.error().message);
     return nullptr;
   }
+  // Refused before the findings are weighed (a pass over the whole map), and again below when
+  // the slot is taken.
+  if (const std::optional<Error> busy = refusal(); busy) {
+    send_error(res, kConflict, *busy);
+    return nullptr;
+  }
   // As `sewerplan campaign`: every policy plans with what the map's findings close; drawing
   // obstacles from the condition data needs its possible blockages (as hazards).
   const RiskMode planning = request->faults_from_condition && request->risk != RiskMode::kAvoid
@@ -301,6 +321,7 @@ std::shared_ptr<CampaignService::Running> CampaignService::begin(
   auto running = std::make_shared<Running>();
   running->map = std::move(map);
   running->jobs = request->jobs;
+  running->timeout_s = request->timeout_s;
   campaign::CampaignSpec& spec = running->spec;
   spec.map_name = map_id;
   spec.mission_name = mission.name;
@@ -318,15 +339,8 @@ std::shared_ptr<CampaignService::Running> CampaignService::begin(
   running->running_jobs = campaign::campaign_jobs(spec, campaign_options(*running, limits_.guard));
   {
     const std::lock_guard lock(mutex_);
-    if (shut_down_) {
-      send_error(res, kConflict, Error{ErrorCode::kInvalidArgument, "the station is stopping"});
-      return nullptr;
-    }
-    if (running_) {
-      send_error(res, kConflict,
-                 Error{ErrorCode::kInvalidArgument,
-                       "a campaign is running (one at a time): cancel it (POST "
-                       "/api/campaign/cancel) or wait for its summary"});
+    if (const std::optional<Error> busy = refusal_locked(); busy) {
+      send_error(res, kConflict, *busy);
       return nullptr;
     }
     running_ = running;
@@ -363,14 +377,23 @@ void CampaignService::stream(const std::shared_ptr<Running>& running,
       running->pending.push_back(std::move(j));
       running->changed.notify_all();
     };
-    std::vector<campaign::RunRecord> records =
-        campaign::run_campaign(*running->map, running->mission, running->spec, options);
     auto finished = std::make_shared<Finished>();
     finished->map = running->map;
     finished->mission = running->mission;
     finished->spec = running->spec;
-    finished->document = finished_json(running->spec, records, running->cancel.load());
-    finished->records = std::move(records);
+    // Nothing thrown here may end the station (a thread that cannot be started, memory): the
+    // stream ends with the error instead of waiting for a summary that never comes.
+    try {
+      std::vector<campaign::RunRecord> records =
+          campaign::run_campaign(*running->map, running->mission, running->spec, options);
+      finished->document = finished_json(running->spec, records, running->cancel.load());
+      finished->records = std::move(records);
+    } catch (const std::exception& e) {
+      finished->document = {{"state", "error"},
+                            {"map", running->spec.map_name},
+                            {"total", running->spec.runs},
+                            {"error", {{"message", std::string("campaign failed: ") + e.what()}}}};
+    }
     finish(running, std::move(finished));
   });
   const campaign::CampaignSpec& spec = running->spec;
@@ -381,7 +404,8 @@ void CampaignService::stream(const std::shared_ptr<Running>& running,
                  {"fault_rates", campaign::format_fault_rates(spec.rates)},
                  {"planner_time_limit_s", spec.planner_time_limit_s},
                  {"risk", spec.risk},
-                 {"faults_from_condition", spec.faults_from_condition}});
+                 {"faults_from_condition", spec.faults_from_condition},
+                 {"timeout_s", running->timeout_s}});
   std::shared_ptr<const Finished> finished;
   while (!finished) {
     std::deque<Json> events;
@@ -395,7 +419,22 @@ void CampaignService::stream(const std::shared_ptr<Running>& running,
     for (const Json& e : events) send("progress", e);
   }
   campaign_thread.join();
-  send("summary", finished->document);
+  send(finished->document["state"] == "error" ? "error" : "summary", finished->document);
+}
+
+std::optional<Error> CampaignService::refusal() const {
+  const std::lock_guard lock(mutex_);
+  return refusal_locked();
+}
+
+std::optional<Error> CampaignService::refusal_locked() const {
+  if (shut_down_) return Error{ErrorCode::kInvalidArgument, "the station is stopping"};
+  if (running_) {
+    return Error{ErrorCode::kInvalidArgument,
+                 "a campaign is running (one at a time): cancel it (POST /api/campaign/cancel) "
+                 "or wait for its summary"};
+  }
+  return std::nullopt;
 }
 
 void CampaignService::finish(const std::shared_ptr<Running>& running,

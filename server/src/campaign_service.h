@@ -7,7 +7,9 @@
 // field, a 409 while another campaign runs, or a stream of server-sent events: "start", one
 // "progress" per finished run (runs done of the total, crashes, our outcomes and tasks so far),
 // and "summary" at the end (the summary.json document, from the campaign library's own writer, and
-// each run's runs.jsonl line). cancel() (or a closed stream, or the server stopping) stops the
+// each run's runs.jsonl line), or "error" if the campaign could not run (a thread that could not
+// start, memory). A guarded run still going after the request's timeout_s (default 60, the CLI's
+// --timeout) counts as hung. cancel() (or a closed stream, or the server stopping) stops the
 // campaign through its stop condition: no run starts after it, and running children are killed.
 // The last finished (or cancelled) campaign stays: status() gives its summary, and run_events()
 // simulates one of its runs again from its seed (campaign::replay_execution) for the page's
@@ -23,6 +25,10 @@
 // newest 256 kept: each carries the totals so far), not the campaign; a cancel stops the campaign
 // at once, and its summary (status()) and the station's one slot do not wait for the reader.
 //
+// Guarded campaigns fork while the stream's thread allocates; with an allocator that is not
+// fork-safe (LLVM 14's sanitizer allocators) a child can hang until its timeout, so sanitizer
+// builds test the station's campaigns unguarded (CampaignLimits::guard).
+//
 // Thread safety: every member may be called from any of the server's threads; one mutex guards
 // the running and the last campaign, which are shared with the stream and the campaign's thread.
 #pragma once
@@ -31,10 +37,12 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <string_view>
 
 #include "sewerplan/core/mission.h"
+#include "sewerplan/core/result.h"
 #include "sewerplan/core/sewer_map.h"
 #include "sewerplan/server/documents.h"
 
@@ -85,6 +93,9 @@ class CampaignService {
 
  private:
   void finish(const std::shared_ptr<Running>& running, std::shared_ptr<const Finished> finished);
+  // Why a new campaign cannot start now (the station stops, or one runs), if it cannot.
+  std::optional<Error> refusal() const;
+  std::optional<Error> refusal_locked() const;  // with mutex_ held
 
   CampaignLimits limits_;
   mutable std::mutex mutex_;

@@ -91,6 +91,18 @@ TEST(Learnt, ErrorsNameTheFileAndThePath) {
   }
 }
 
+// A header of the wrong type, or none, is one error, not two.
+TEST(Learnt, AWrongOrMissingHeaderIsOneError) {
+  const auto ais = testing::load_ais_testbed();
+  for (const std::string text :
+       {R"({"format": 5, "version": 1})", R"({"version": 1})",
+        R"({"format": "sewerplan-learnt", "version": "1"})", R"({"format": "sewerplan-learnt"})"}) {
+    Diagnostics d;
+    ASSERT_FALSE(read_learnt_json(text, "learnt.json", ais.map, d).has_value()) << text;
+    EXPECT_EQ(d.error_count(), 1u) << text;
+  }
+}
+
 TEST(Learnt, AReplannerRefusesKnowledgeThatDoesNotFitItsMap) {
   const auto ais = testing::load_ais_testbed();
   Replanner replanner(ais.map, ais.mission);

@@ -226,6 +226,9 @@ TEST_F(CampaignApiTest, RefusesHostileRequestsWithA400NamingTheField) {
   refused({{"planner_time_limit_s", -1}}, "planner_time_limit_s");
   refused({{"planner_time_limit_s", 1e9}}, "planner_time_limit_s");
   refused({{"planner_time_limit_s", "soon"}}, "planner_time_limit_s");
+  refused({{"timeout_s", 0}}, "timeout_s");
+  refused({{"timeout_s", 1e9}}, "timeout_s");
+  refused({{"timeout_s", "later"}}, "timeout_s");
   refused({{"risk", "reckless"}}, "risk");
   refused({{"risk", 1}}, "risk");
   refused({{"faults_from_condition", 1}}, "faults_from_condition");
@@ -351,7 +354,8 @@ TEST_F(CampaignApiTest, ManualRunsWithConditionDataRiskAndAPlannerTimeLimit) {
                {"seed", 5},
                {"risk", "expected"},
                {"faults_from_condition", true},
-               {"planner_time_limit_s", 20}};
+               {"planner_time_limit_s", 20},
+               {"timeout_s", 300}};
   // Before the findings: nothing to draw faults from.
   auto [refused, why] = post("/api/maps/swmmio-state-plane/campaign", body.dump());
   EXPECT_EQ(refused, 400);
@@ -376,6 +380,7 @@ TEST_F(CampaignApiTest, ManualRunsWithConditionDataRiskAndAPlannerTimeLimit) {
   EXPECT_EQ(stream.front().second["risk"], "expected");
   EXPECT_EQ(stream.front().second["faults_from_condition"], true);
   EXPECT_EQ(stream.front().second["planner_time_limit_s"], 20);
+  EXPECT_EQ(stream.front().second["timeout_s"], 300);
   const json done = stream.back().second;
   ASSERT_EQ(done["runs"].size(), 2u);
   for (const json& run : done["runs"]) EXPECT_TRUE(run.contains("risk_aware")) << run.dump();

@@ -149,6 +149,8 @@ export class CampaignPanel {
         `${o.stranded} stranded; ${data.tasks} tasks of the oracle's ${data.oracle_tasks}`;
     } else if (type === 'summary') {
       this.show(data);
+    } else if (type === 'error') {
+      $('campaign-status').textContent = data.error.message;
     }
   }
 
