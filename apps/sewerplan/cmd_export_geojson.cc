@@ -14,7 +14,6 @@
 #include "sewerplan/core/text_file.h"
 #include "sewerplan/domain/plan_text.h"
 #include "sewerplan/gis/geojson.h"
-#include "sewerplan/gis/wgs84_projection.h"
 #include "sewerplan/render/event_trace.h"
 #include "sewerplan/search/planner.h"
 
@@ -22,6 +21,7 @@
 #include "condition_options.h"
 #include "crs_option.h"
 #include "driveability_option.h"
+#include "gis_module.h"
 #include "json_output.h"
 #include "map_input.h"
 
@@ -131,8 +131,8 @@ int run(const ExportOptions& o, Context& c) {
                             "placed on the earth; give it with --crs EPSG:NNNN (e.g. EPSG:25832 "
                             "for ETRS89 / UTM 32N)"});
     }
-    Result<gis::Wgs84Projection> wgs84 = gis::Wgs84Projection::create(*map->crs());
-    if (!wgs84.has_value()) return failed(wgs84.error());
+    Result<const gis::ModuleTable*> module = gis_module("export-geojson");
+    if (!module.has_value()) return failed(module.error());
     const gis::GeoJsonInput input{
         .map = &*map,
         .mission = mission ? &*mission : nullptr,
@@ -140,7 +140,7 @@ int run(const ExportOptions& o, Context& c) {
         .driven = trace ? &trace->driven : nullptr,
         .blocked = trace ? std::span<const Blockage>(trace->blocked) : std::span<const Blockage>(),
         .driveability = *driveability ? &**driveability : nullptr};
-    Result<std::string> text = gis::to_geojson(input, *wgs84);
+    Result<std::string> text = (*module)->to_geojson(input);
     if (!text.has_value()) return failed(text.error());
     if (Result<void> w = write_text_file(o.out, *text); !w.has_value()) return failed(w.error());
     report["wrote"] = o.out;
@@ -153,7 +153,10 @@ int run(const ExportOptions& o, Context& c) {
     const gis::MapXY origin = o.nav2_origin.empty()
                                   ? gis::MapXY{}
                                   : gis::MapXY{.x = o.nav2_origin[0], .y = o.nav2_origin[1]};
-    if (Result<void> w = write_text_file(o.nav2, gis::to_nav2_route_graph(*map, origin));
+    Result<const gis::ModuleTable*> module = gis_module("export-geojson --nav2");
+    if (!module.has_value()) return failed(module.error());
+    if (Result<void> w =
+            write_text_file(o.nav2, (*module)->to_nav2_route_graph(*map, origin, "map"));
         !w.has_value()) {
       return failed(w.error());
     }

@@ -8,7 +8,7 @@
 
 #include "sewerplan/core/map_io.h"
 #ifdef SEWERPLAN_WITH_GIS
-#include "sewerplan/gis/map_source.h"
+#include "gis_module.h"
 #endif
 
 namespace sewerplan::cli {
@@ -29,7 +29,12 @@ Result<SewerMap> read_input_map(const MapSource& source, Diagnostics& diagnostic
     fields = source.gis_fields;
   }
 #ifdef SEWERPLAN_WITH_GIS
-  return gis::read_map_source(source.path, diagnostics, fields);
+  // Only a GIS source (or a field mapping, whose misuse gis::read_map_source explains) loads the
+  // GIS module; every other map is core's.
+  if (!is_gis_source_path(source.path) && !fields) return read_map(source.path, diagnostics);
+  Result<const gis::ModuleTable*> module = gis_module("reading " + source.path);
+  if (!module.has_value()) return module.error();
+  return (*module)->read_map_source(source.path, diagnostics, fields);
 #else
   return read_map_without_gis(source.path, diagnostics, fields);
 #endif

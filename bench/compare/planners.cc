@@ -6,6 +6,8 @@
 #include <iostream>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "sewerplan/core/map_io.h"
 #include "sewerplan/core/text_file.h"
 #include "sewerplan/domain/pddl.h"
@@ -102,6 +104,27 @@ bool export_to(const Instance& instance, const fs::path& dir, bool action_costs,
   return true;
 }
 
+// Labels a failed sewerplan run by what it said (native_child's {"error": {"code", "message"}}):
+// "no plan" when it proved none, "timeout" at its time limit, "no plan found" when it stopped
+// without a plan and without a proof.
+void label_planner_error(const std::string& said, Outcome& o) {
+  const nlohmann::json doc = nlohmann::json::parse(said, nullptr, false);
+  if (doc.is_discarded() || !doc.contains("error") || !doc["error"].is_object()) return;
+  const nlohmann::json& error = doc["error"];
+  const std::string code = error.value("code", "");
+  const std::string message = error.value("message", "");
+  if (code == "no-plan") {
+    o.status = "no plan";
+  } else if (code == "search-limit") {
+    o.status = message.find("time limit") != std::string::npos ? "timeout" : "no plan found";
+  } else {
+    o.status = "failed";
+  }
+  std::string detail = code + ": " + message;
+  for (char& c : detail) c = c == '\n' ? ' ' : c;
+  o.detail = detail.substr(0, 160);
+}
+
 }  // namespace
 
 Outcome run_sewerplan(const Instance& instance, const PlannerPaths& paths,
@@ -122,8 +145,12 @@ Outcome run_sewerplan(const Instance& instance, const PlannerPaths& paths,
   o.peak_mb = run.peak_mb;
   if (!run.started || run.timed_out || run.signal != 0 || run.exit_code != 0) {
     classify_failure(run, o);
-    if (run.exit_code == 4) o.status = "no plan";
-    if (run.exit_code == 5) o.status = "timeout";
+    // What the planner said, not its exit code: exit 5 is a search that stopped at its time limit
+    // as well as one that found no plan and proved none (the tour search's battery check).
+    Result<std::string> said = read_text_file(l.stdout_path);
+    if (run.started && !run.timed_out && run.signal == 0 && said.has_value()) {
+      label_planner_error(*said, o);
+    }
     return o;
   }
   std::ifstream out(l.stdout_path);
@@ -206,7 +233,11 @@ int native_child(const std::string& map_path, const std::string& mission_path,
   const double elapsed =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!outcome.has_value()) {
-    std::cerr << outcome.error().message << '\n';
+    // As the CLI's plan --json says it (docs/cli.md), for label_planner_error.
+    std::cout << nlohmann::json{{"error",
+                                 {{"code", to_string(outcome.error().code)},
+                                  {"message", outcome.error().message}}}}
+              << '\n';
     return outcome.error().code == ErrorCode::kNoPlan ? 4 : 5;
   }
   if (!write_text(plan_out, domain::format_plan(outcome->plan, *map, *mission))) return 3;

@@ -50,8 +50,9 @@ Outcome run_ff(const Instance& instance, const PlannerPaths& paths, const RunLim
 Outcome run_fd(const Instance& instance, const PlannerPaths& paths, const RunLimits& limits);
 
 // The child side of run_sewerplan: loads, plans and writes the plan; prints
-// "load_and_plan_s cost_s" on success. Returns the sewerplan CLI's exit codes (0, 4 no plan,
-// 5 search limit, 1 invalid input).
+// "load_and_plan_s cost_s" on success, the planner's error as plan --json does ({"error": {"code",
+// "message"}}) on failure. Returns the sewerplan CLI's exit codes (0, 4 no plan, 5 search limit,
+// 1 invalid input).
 int native_child(const std::string& map, const std::string& mission, const std::string& plan_out,
                  double time_limit_s);
 

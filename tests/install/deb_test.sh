@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: MIT
 # The Debian package: `cpack -G DEB` in the release tree builds sewerplan_<version>_amd64.deb;
 # unpacked into a scratch root (dpkg -x, never into /), its sewerplan prints the project's version
-# and plans the AIS test environment from the example data it ships, its man page and bash
+# and plans the AIS test environment from the example data it ships, writes GeoJSON through its GIS
+# module (lib/sewerplan/sewerplan_gis.so, when built with GIS), its man page and bash
 # completion are there, its binaries carry no debug info, its control file lists dependencies, and
 # a project outside the tree builds against its CMake package (find_package(sewerplan)); with the
 # Python module (SEWERPLAN_PYTHON), Debian's python3 imports it from the root's dist-packages and
@@ -30,6 +31,14 @@ sp="$root/usr/bin/sewerplan"
 data="$root/usr/share/sewerplan/datasets/ais-testbed"
 "$sp" plan --map "$data/map.json" --mission "$data/missions/paper.json" -q > "$work/paper.plan"
 cmp "$work/paper.plan" "$data/plans/paper-corrected.plan" || { echo "FAIL: the installed plan differs"; exit 1; }
+# The GIS module (docs/gis.md), found from the installed executable: export-geojson loads it.
+if [ -f "$build/lib/sewerplan/sewerplan_gis.so" ]; then
+  test -f "$root/usr/lib/sewerplan/sewerplan_gis.so" || { echo "FAIL: no GIS module"; exit 1; }
+  "$sp" convert --map "$data/map.json" --crs EPSG:25832 -o "$work/crs.json" > /dev/null
+  "$sp" export-geojson --map "$work/crs.json" -o "$work/net.geojson" > /dev/null
+  grep -q '"FeatureCollection"' "$work/net.geojson" || { echo "FAIL: the installed export-geojson"; exit 1; }
+  gis_ok=", GIS module"
+fi
 if [ -x "$build/bench/sewerplan-compare" ]; then
   test -x "$root/usr/bin/sewerplan-compare" || { echo "FAIL: no sewerplan-compare"; exit 1; }
 fi
@@ -37,7 +46,7 @@ test -f "$root/usr/share/man/man1/sewerplan.1.gz" || { echo "FAIL: no man page s
 test -f "$root/usr/share/bash-completion/completions/sewerplan" || { echo "FAIL: no completion"; exit 1; }
 test -f "$root/usr/share/doc/sewerplan/cli.md" || { echo "FAIL: no docs"; exit 1; }
 test -f "$root/usr/include/sewerplan/version.h" || { echo "FAIL: no version.h"; exit 1; }
-for f in "$sp" "$root"/usr/lib/libsewerplan_*.a; do
+for f in "$sp" "$root"/usr/lib/libsewerplan_*.a "$root"/usr/lib/sewerplan/*.so; do
   if objdump -h "$f" 2>/dev/null | grep -q '\.debug_info'; then echo "FAIL: $f has debug info"; exit 1; fi
 done
 if ls "$build"/python/sewerplan/_sewerplan*.so > /dev/null 2>&1; then
@@ -60,4 +69,4 @@ cmake -S "$src/tests/consumer" -B "$work/consumer" -G Ninja -DCMAKE_PREFIX_PATH=
 cmake --build "$work/consumer" > /dev/null
 out=$("$work/consumer/consumer" "$data/map.json")
 [ "$out" = "ais-testbed: 12 manholes, 14 pipes" ] || { echo "FAIL: consumer said '$out'"; exit 1; }
-echo "deb: installed into a scratch root, --version, plan, man page, completion, consumer${python_ok:-}: ok"
+echo "deb: installed into a scratch root, --version, plan${gis_ok:-}, man page, completion, consumer${python_ok:-}: ok"

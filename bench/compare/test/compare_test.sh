@@ -48,5 +48,15 @@ check '^\| ais-testbed-paper \| 12 \| 3 \| solved' "$tmp/out/results.md" "the Ma
   --out "$tmp/out2" 2> /dev/null
 check '^g10-t3-s1,10,3,ff,crashed,.*signal 11' "$tmp/out2/results.csv" "a crash"
 
+# A sewerplan run without a plan is labelled by what the planner said (its error code and message),
+# not by its exit code: the paper's mission with 95 % of the battery held back is proven impossible
+# ("no plan", with the planner's reason).
+sed 's/"battery_reserve": 0.2/"battery_reserve": 0.95/' \
+  "$src/datasets/ais-testbed/missions/paper.json" > "$tmp/tight.json"
+"$compare" --dataset "$src/datasets/ais-testbed/map.json:$tmp/tight.json" --time-limit 5 \
+  --out "$tmp/out3" 2> /dev/null
+check '^[^,]*tight[^,]*,12,3,sewerplan,no plan,.*no-plan: the mission cannot be completed: .*no plan does all 3' \
+  "$tmp/out3/results.csv" "a proven no plan, in the planner's words"
+
 [ "$failures" -eq 0 ] && echo "compare: all checks passed"
 [ "$failures" -eq 0 ]

@@ -1,0 +1,33 @@
+// SPDX-License-Identifier: MIT
+// The GIS module's one exported symbol (sewerplan/gis/module.h): the table of the gis library's
+// entry points, built into sewerplan_gis.so with everything else hidden.
+#include "sewerplan/gis/map_source.h"
+#include "sewerplan/gis/module.h"
+#include "sewerplan/gis/wgs84_projection.h"
+
+namespace sewerplan::gis {
+namespace {
+
+Result<std::string> project_to_geojson(const GeoJsonInput& input) {
+  if (input.map == nullptr) return Error{ErrorCode::kInvalidArgument, "to_geojson: no map"};
+  if (!input.map->crs()) {
+    return Error{ErrorCode::kInvalidArgument,
+                 "to_geojson: the map names no coordinate reference system"};
+  }
+  Result<Wgs84Projection> wgs84 = Wgs84Projection::create(*input.map->crs());
+  if (!wgs84.has_value()) return wgs84.error();
+  return to_geojson(input, *wgs84);
+}
+
+const ModuleTable kTable{.version = SEWERPLAN_GIS_MODULE_VERSION,
+                         .read_map_source = &read_map_source,
+                         .to_geojson = &project_to_geojson,
+                         .to_nav2_route_graph = &to_nav2_route_graph};
+
+}  // namespace
+}  // namespace sewerplan::gis
+
+extern "C" __attribute__((visibility("default"))) const sewerplan::gis::ModuleTable*
+sewerplan_gis_module() {
+  return &sewerplan::gis::kTable;
+}

@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# The GIS module is loaded only by the commands that need it (sewerplan/gis/module.h): `--version`,
+# `plan` and `validate` on a JSON map never load GDAL or PROJ (the dynamic loader's own trace,
+# LD_DEBUG=files), export-geojson does, and writes its file. A sewerplan whose module is missing (the
+# executable copied alone) still plans, and its export-geojson is an error naming the missing module
+# with the usage of a failed command (exit 1, no crash).
+# Usage: lazy_gis_test.sh PATH_TO_SEWERPLAN SOURCE_DIR
+set -euo pipefail
+sp=$1
+src=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+data=$src/datasets/ais-testbed
+plan=(plan --map "$data/map.json" --mission "$data/missions/paper.json" -q)
+
+# loaded OUT COMMAND...: run COMMAND under the loader's trace, its trace to OUT.
+loaded() {
+  local out=$1
+  shift
+  LD_DEBUG=files LD_DEBUG_OUTPUT="$out" "$@" > /dev/null
+  cat "$out".* > "$out" && rm -f "$out".*
+}
+for run in version plan validate; do
+  case $run in
+    version) args=(--version) ;;
+    plan) args=("${plan[@]}") ;;
+    validate) args=(validate --map "$data/map.json") ;;
+  esac
+  loaded "$tmp/$run.trace" "$sp" "${args[@]}"
+  grep -q 'file=libc\.so' "$tmp/$run.trace" || { echo "FAIL: no loader trace for $run"; exit 1; }
+  if grep -Eq 'file=.*(libgdal|libproj|sewerplan_gis)' "$tmp/$run.trace"; then
+    echo "FAIL: sewerplan $run loaded GDAL, PROJ or the GIS module:"
+    grep -E 'file=.*(libgdal|libproj|sewerplan_gis)' "$tmp/$run.trace" | head -5
+    exit 1
+  fi
+done
+
+"$sp" convert --map "$data/map.json" --crs EPSG:25832 -o "$tmp/map.json" > /dev/null
+loaded "$tmp/export.trace" "$sp" export-geojson --map "$tmp/map.json" -o "$tmp/net.geojson"
+grep -q 'file=.*sewerplan_gis\.so' "$tmp/export.trace" || {
+  echo "FAIL: export-geojson did not load the GIS module"; exit 1; }
+grep -q 'file=.*libgdal' "$tmp/export.trace" || { echo "FAIL: export-geojson did not load GDAL"; exit 1; }
+grep -q '"FeatureCollection"' "$tmp/net.geojson" || { echo "FAIL: no GeoJSON written"; exit 1; }
+
+# The executable alone, without its lib/sewerplan/sewerplan_gis.so.
+mkdir -p "$tmp/alone/bin"
+cp "$sp" "$tmp/alone/bin/sewerplan"
+"$tmp/alone/bin/sewerplan" "${plan[@]}" > "$tmp/alone.plan"
+cmp -s "$tmp/alone.plan" <("$sp" "${plan[@]}") || { echo "FAIL: the plan differs without the module"; exit 1; }
+status=0
+"$tmp/alone/bin/sewerplan" export-geojson --map "$tmp/map.json" -o "$tmp/alone.geojson" \
+  2> "$tmp/alone.err" || status=$?
+[ "$status" -eq 1 ] || { echo "FAIL: export-geojson without the module exited $status, want 1"; cat "$tmp/alone.err"; exit 1; }
+grep -q "export-geojson needs GDAL and PROJ, but the GIS module .*/lib/sewerplan/sewerplan_gis.so is missing" \
+  "$tmp/alone.err" || { echo "FAIL: unclear error:"; cat "$tmp/alone.err"; exit 1; }
+echo "lazy GIS: ok"
