@@ -12,14 +12,13 @@ constexpr Node kNoParent = 0xffffffffU;
 
 bool GraphSearch::grow(SearchScratch& scratch, std::size_t nodes, const StopCondition* stop) {
   constexpr std::size_t kSlice = 16384;  // nodes between two checks: well under 0.1 ms
-  if (scratch.dist.size() >= nodes) return true;
-  scratch.dist.reserve(nodes);
-  scratch.parent.reserve(nodes);
-  while (scratch.dist.size() < nodes) {
+  if (scratch.settled.size() >= nodes) return true;
+  // Distances and parents grow without being written (zeroed_array.h); the bits in slices.
+  scratch.dist_left.grow(nodes);
+  scratch.parent_plus_one.grow(nodes);
+  while (scratch.settled.size() < nodes) {
     if (stop != nullptr && stop->interrupted()) return false;
-    const std::size_t size = std::min(nodes, scratch.dist.size() + kSlice);
-    scratch.dist.resize(size, kInfiniteCost);
-    scratch.parent.resize(size, kNoParent);
+    const std::size_t size = std::min(nodes, scratch.settled.size() + kSlice);
     scratch.settled.resize(size, false);
     scratch.is_target.resize(size, false);
   }
@@ -29,15 +28,15 @@ bool GraphSearch::grow(SearchScratch& scratch, std::size_t nodes, const StopCond
 GraphSearch::GraphSearch(const PositionGraph& graph, SearchScratch* scratch)
     : graph_(graph),
       scratch_(scratch != nullptr ? *scratch : own_),
-      dist_(scratch_.dist),
-      parent_(scratch_.parent),
+      dist_left_(scratch_.dist_left),
+      parent_plus_one_(scratch_.parent_plus_one),
       settled_(scratch_.settled),
       is_target_(scratch_.is_target),
       touched_(scratch_.touched),
       heap_(scratch_.heap) {
-  if (dist_.size() < graph.size()) {
-    dist_.resize(graph.size(), kInfiniteCost);
-    parent_.resize(graph.size(), kNoParent);
+  if (settled_.size() < graph.size()) {
+    dist_left_.grow(graph.size());
+    parent_plus_one_.grow(graph.size());
     settled_.resize(graph.size(), false);
     is_target_.resize(graph.size(), false);
   }
@@ -47,8 +46,8 @@ GraphSearch::~GraphSearch() { reset(); }
 
 void GraphSearch::reset() {
   for (Node n : touched_) {
-    dist_[n] = kInfiniteCost;
-    parent_[n] = kNoParent;
+    set_distance(n, kInfiniteCost);
+    set_parent(n, kNoParent);
     settled_[n] = false;
   }
   touched_.clear();
@@ -61,11 +60,12 @@ std::optional<Node> GraphSearch::settle(Cost bound, Direction direction, Done&& 
   const auto later = std::greater<std::pair<Cost, Node>>();
   std::make_heap(heap_.begin(), heap_.end(), later);
   auto relax = [&](Node from, Node to, Cost cost) {
-    const Cost d = dist_[from] + cost;
-    if (d < dist_[to] && d <= bound) {
-      if (dist_[to] == kInfiniteCost) touched_.push_back(to);
-      dist_[to] = d;
-      parent_[to] = from;
+    const Cost d = distance(from) + cost;
+    const Cost old = distance(to);
+    if (d < old && d <= bound) {
+      if (old == kInfiniteCost) touched_.push_back(to);
+      set_distance(to, d);
+      set_parent(to, from);
       heap_.emplace_back(d, to);
       std::push_heap(heap_.begin(), heap_.end(), later);
     }
@@ -77,7 +77,7 @@ std::optional<Node> GraphSearch::settle(Cost bound, Direction direction, Done&& 
     const Cost d = heap_.back().first;
     const Node n = heap_.back().second;
     heap_.pop_back();
-    if (settled_[n] || d != dist_[n]) continue;
+    if (settled_[n] || d != distance(n)) continue;
     settled_[n] = true;
     ++settled_total_;
     if ((settled_total_ & 255U) == 0 && interrupt_ && interrupt_()) {
@@ -96,7 +96,7 @@ std::optional<Node> GraphSearch::settle(Cost bound, Direction direction, Done&& 
   }
   // Nodes reached but not settled may have a distance that is not yet the shortest.
   for (Node n : touched_) {
-    if (!settled_[n]) dist_[n] = kInfiniteCost;
+    if (!settled_[n]) set_distance(n, kInfiniteCost);
   }
   return stopped_at;
 }
@@ -111,8 +111,8 @@ std::optional<Node> GraphSearch::run(std::span<const Node> sources, std::span<co
     is_target_[t] = true;
   }
   for (Node s : sources) {
-    if (dist_[s] == 0) continue;
-    dist_[s] = 0;
+    if (distance(s) == 0) continue;
+    set_distance(s, 0);
     touched_.push_back(s);
     heap_.emplace_back(0, s);
   }
@@ -133,7 +133,7 @@ std::optional<Node> GraphSearch::run(std::span<const Node> sources, std::span<co
 std::optional<Node> GraphSearch::run_to_nearest(Node source, const std::vector<bool>& goal,
                                                 Cost bound) {
   reset();
-  dist_[source] = 0;
+  set_distance(source, 0);
   touched_.push_back(source);
   heap_.emplace_back(0, source);
   return settle(bound, Direction::kForward, [&](Node n) { return goal[n]; });
@@ -145,9 +145,9 @@ void GraphSearch::path(Node n, std::vector<Node>& out) const {
 }
 
 void GraphSearch::append_path(Node n, std::vector<Node>& out) const {
-  if (dist_[n] == kInfiniteCost) return;
+  if (distance(n) == kInfiniteCost) return;
   const std::size_t begin = out.size();
-  for (Node at = n; at != kNoParent; at = parent_[at]) out.push_back(at);
+  for (Node at = n; at != kNoParent; at = parent(at)) out.push_back(at);
   if (direction_ == Direction::kForward) {
     std::reverse(out.begin() + static_cast<std::ptrdiff_t>(begin), out.end());
   }

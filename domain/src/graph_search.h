@@ -26,9 +26,10 @@ class GraphSearch {
   // `scratch`: arrays to use (clean, see SearchScratch; they are left clean), or null for own.
   // Arrays smaller than the graph are grown here at once: see grow().
   explicit GraphSearch(const PositionGraph& graph, SearchScratch* scratch = nullptr);
-  // Grows clean `scratch` arrays to `nodes` entries in slices, asking `stop` (if not null) between
-  // them (issue 14: filling them for a 100,000-manhole map took milliseconds without a check);
-  // false if it fired first (the arrays stay clean; the next call goes on).
+  // Grows clean `scratch` arrays to `nodes` entries: distances and parents at once, as nothing is
+  // written (zeroed_array.h), the bits in slices asking `stop` (if not null) between them (issue
+  // 14: filling the arrays for a 100,000-manhole map took milliseconds without a check); false if
+  // it fired first (the arrays stay clean; the next call goes on).
   static bool grow(SearchScratch& scratch, std::size_t nodes, const StopCondition* stop);
   GraphSearch(const GraphSearch&) = delete;
   GraphSearch& operator=(const GraphSearch&) = delete;
@@ -44,7 +45,7 @@ class GraphSearch {
   // is reached within the bound.
   std::optional<Node> run_to_nearest(Node source, const std::vector<bool>& goal, Cost bound);
   // kInfiniteCost if not reached in the last run.
-  Cost distance(Node n) const { return dist_[n]; }
+  Cost distance(Node n) const { return kInfiniteCost - dist_left_[n]; }
   // Forward: the nodes from the source to n. Backward: from n to its nearest source.
   void path(Node n, std::vector<Node>& out) const;
   // The same, appended to `out` (which keeps what it held).
@@ -59,8 +60,13 @@ class GraphSearch {
   const PositionGraph& graph_;
   SearchScratch own_;
   SearchScratch& scratch_;
-  std::vector<Cost>& dist_;
-  std::vector<Node>& parent_;
+  // The scratch's encodings (SearchScratch): clean is zero.
+  void set_distance(Node n, Cost d) { dist_left_[n] = kInfiniteCost - d; }
+  Node parent(Node n) const { return parent_plus_one_[n] - 1U; }  // kNoParent: none
+  void set_parent(Node n, Node p) { parent_plus_one_[n] = p + 1U; }
+
+  ZeroedArray<Cost>& dist_left_;
+  ZeroedArray<Node>& parent_plus_one_;
   std::vector<bool>& settled_;
   std::vector<bool>& is_target_;
   std::vector<Node>& touched_;

@@ -38,15 +38,19 @@
 #include "sewerplan/domain/plan.h"
 #include "sewerplan/domain/robot_state.h"
 
+#include "zeroed_array.h"
+
 namespace sewerplan::domain::detail {
 
 using Node = std::uint32_t;
 
 // A route search's arrays over every node (graph_search.h), kept clean between runs: every
 // distance infinite, no parent, nothing settled or targeted, so a search can start at once.
+// Distances and parents are stored so that clean is zero (zeroed_array.h: a search touches only
+// the pages it reaches, issue 16): kInfiniteCost - distance, and parent + 1.
 struct SearchScratch {
-  std::vector<Cost> dist;
-  std::vector<Node> parent;
+  ZeroedArray<Cost> dist_left;
+  ZeroedArray<Node> parent_plus_one;
   std::vector<bool> settled;
   std::vector<bool> is_target;
   std::vector<Node> touched;
