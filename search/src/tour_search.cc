@@ -95,7 +95,7 @@ class Evaluator {
   };
 
   void add_move(std::int32_t a, std::int32_t b, std::vector<ActionId>& plan) const {
-    if (a != b) plan.push_back(s_.moves.at(static_cast<std::int64_t>(a) * s_.places + b).second);
+    if (a != b) plan.push_back(s_.move_action(a, b));
   }
 
   void reconstruct(const std::vector<std::size_t>& order, std::int32_t p,
