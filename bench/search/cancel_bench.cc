@@ -119,8 +119,9 @@ BENCHMARK(BM_CancelLatency)
 void BM_StopCheckGap(benchmark::State& state) {
   const int which = static_cast<int>(state.range(0));
   const bool exact = which == 6 || which == 7;
-  const bench::Instance& instance = bench::spread_instance(
-      static_cast<std::size_t>(state.range(1)), exact ? 12 : 50, domain::MissionSpread::kUniform);
+  const bench::Instance& instance =
+      bench::spread_instance(static_cast<std::size_t>(state.range(1)),
+                             exact ? 12 : (which == 9 ? 200 : 50), domain::MissionSpread::kUniform);
   const auto progress = domain::initial_progress(instance.mission, instance.map);
   auto compiled =
       domain::compile_sewer_task(instance.map, instance.mission, progress, {.select_goals = true});
@@ -154,6 +155,7 @@ void BM_StopCheckGap(benchmark::State& state) {
             .search(StopCondition(stop).with_max_expansions(200'000), clock);
         break;
       case 4:
+      case 9:
         tour_search(task, stop, &clock);
         break;
       case 6:
@@ -174,7 +176,7 @@ void BM_StopCheckGap(benchmark::State& state) {
 }
 BENCHMARK(BM_StopCheckGap)
     ->ArgNames({"algorithm", "manholes"})
-    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6, 7, 8}, {10000, 100000}})
+    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6, 7, 8, 9}, {10000, 100000}})
     ->Iterations(3)
     ->Unit(benchmark::kMillisecond);
 
