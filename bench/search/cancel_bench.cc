@@ -16,7 +16,8 @@
 // which a free core adds to a cancel's latency. Counters: checks, p50, p99 and the largest gap
 // (max_gap_us: the acceptance is under 1,000). Each run is cut at 0.5 s of CPU time. Arguments: the
 // algorithm as above plus 6 the exact tour search (on 12 tasks), 7 plan_mission with --algorithm
-// exact, and the manholes (10,000 and 100,000 for every algorithm).
+// exact, 9 the tour search on 200 tasks (cut by the stop: the gap from it to the return), and the
+// manholes (10,000 and 100,000 for every algorithm).
 //
 //   build/release/bench/sewerplan_search_bench --benchmark_filter='StopCheckGap|CancelLatency'
 
