@@ -82,7 +82,8 @@ struct PrecomputeOptions {
   // Called after each manhole with (manholes done, manholes in the map).
   std::function<void(std::size_t, std::size_t)> progress;
   // Its cancel flag and time limit end the precompute (core/stop_condition.h): asked before each
-  // passage and at every RRT iteration.
+  // passage, at every RRT iteration, and while the table is assembled (the map's fingerprint, the
+  // plans' release), with no check-free stretch after the last passage.
   StopCondition stop;
 };
 
