@@ -52,10 +52,11 @@ std::optional<Shape> read_shape(const CompiledTask& task, const StopCondition* s
       s.move_matrix[a * n + a] = 0;
       s.move_actions.insert(s.move_actions.end(), n, Shape::kNoAction);
     }
+    if (!s.moves.reserve(n, stop)) return std::nullopt;  // the moves that stay in place
   } else {
     // Sized once: rehashing every move at once as the map grew took 6 to 14 ms on 200 tasks
     // between two checks (issue 14). At most one move per action.
-    s.moves.reserve(task.action_count());
+    if (!s.moves.reserve(task.action_count(), stop)) return std::nullopt;
   }
   if (fired(stop, 0)) return std::nullopt;
   for (ActionId a : task.action_ids()) {
@@ -98,9 +99,9 @@ std::optional<Shape> read_shape(const CompiledTask& task, const StopCondition* s
         }
         chosen = s.move_actions[i] == a;
       } else {
-        auto [it, added] = s.moves.try_emplace(key, task.cost(a), a);
-        if (!added && task.cost(a) < it->second.first) it->second = {task.cost(a), a};
-        chosen = it->second.second == a;
+        auto [move, added] = s.moves.try_emplace(key, {task.cost(a), a});
+        if (!added && task.cost(a) < move->cost) *move = {task.cost(a), a};
+        chosen = move->action == a;
       }
       if (chosen) {
         if (task.reserve(a) > 0) {
