@@ -16,7 +16,8 @@
 // which a free core adds to a cancel's latency. Counters: checks, p50, p99 and the largest gap
 // (max_gap_us: the acceptance is under 1,000). Each run is cut at 0.5 s of CPU time. Arguments: the
 // algorithm as above plus 6 the exact tour search (on 12 tasks), 7 plan_mission with --algorithm
-// exact, and the manholes (10,000 and 100,000 for every algorithm).
+// exact, 9 the tour search on 200 tasks (cut by the stop: the gap from it to the return), and the
+// manholes (10,000 and 100,000 for every algorithm).
 //
 //   build/release/bench/sewerplan_search_bench --benchmark_filter='StopCheckGap|CancelLatency'
 
@@ -119,8 +120,9 @@ BENCHMARK(BM_CancelLatency)
 void BM_StopCheckGap(benchmark::State& state) {
   const int which = static_cast<int>(state.range(0));
   const bool exact = which == 6 || which == 7;
-  const bench::Instance& instance = bench::spread_instance(
-      static_cast<std::size_t>(state.range(1)), exact ? 12 : 50, domain::MissionSpread::kUniform);
+  const bench::Instance& instance =
+      bench::spread_instance(static_cast<std::size_t>(state.range(1)),
+                             exact ? 12 : (which == 9 ? 200 : 50), domain::MissionSpread::kUniform);
   const auto progress = domain::initial_progress(instance.mission, instance.map);
   auto compiled =
       domain::compile_sewer_task(instance.map, instance.mission, progress, {.select_goals = true});
@@ -154,6 +156,7 @@ void BM_StopCheckGap(benchmark::State& state) {
             .search(StopCondition(stop).with_max_expansions(200'000), clock);
         break;
       case 4:
+      case 9:
         tour_search(task, stop, &clock);
         break;
       case 6:
@@ -174,7 +177,7 @@ void BM_StopCheckGap(benchmark::State& state) {
 }
 BENCHMARK(BM_StopCheckGap)
     ->ArgNames({"algorithm", "manholes"})
-    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6, 7, 8}, {10000, 100000}})
+    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6, 7, 8, 9}, {10000, 100000}})
     ->Iterations(3)
     ->Unit(benchmark::kMillisecond);
 

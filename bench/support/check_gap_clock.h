@@ -29,11 +29,15 @@ namespace sewerplan::bench {
 class CheckGapClock final : public Clock {
  public:
   double now_s() const override {
-    timespec ts{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    const double t = static_cast<double>(ts.tv_sec) + static_cast<double>(ts.tv_nsec) * 1e-9;
-    if (last_s_ >= 0) gaps_s_.push_back(t - last_s_);
-    last_s_ = t;
+    const double t = thread_cpu_s();
+    if (last_s_ < 0) {
+      last_s_ = t;
+      return t;
+    }
+    gaps_s_.push_back(t - last_s_);
+    // The next gap starts after this bookkeeping: gaps_s_ doubling (at 2^k checks: 1.1, 2.9 and
+    // 3.1 ms at 32,770 and 65,538 in traced GBFS runs) is the clock's work, not the algorithm's.
+    last_s_ = thread_cpu_s();
     return t;
   }
   std::size_t checks() const { return gaps_s_.size(); }
@@ -50,6 +54,12 @@ class CheckGapClock final : public Clock {
   }
 
  private:
+  static double thread_cpu_s() {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return static_cast<double>(ts.tv_sec) + static_cast<double>(ts.tv_nsec) * 1e-9;
+  }
+
   mutable std::vector<double> gaps_s_;
   mutable double last_s_ = -1;
 };

@@ -12,6 +12,7 @@
 
 #include "sewerplan/core/check.h"
 #include "sewerplan/core/json_fields.h"
+#include "sewerplan/core/map_fingerprint.h"
 #include "sewerplan/core/map_queries.h"
 #include "sewerplan/core/text_file.h"
 
@@ -153,9 +154,16 @@ const PassageMotion* PassageMotionTable::find(ManholeId manhole, SlotIndex from,
 }
 
 std::string map_geometry_fingerprint(const SewerMap& map) {
+  return *map_geometry_fingerprint(map, StopCondition{});
+}
+
+std::optional<std::string> map_geometry_fingerprint(const SewerMap& map,
+                                                    const StopCondition& stop) {
+  constexpr std::size_t kCheckEvery = 64;
   Fingerprint f;
   f.add(std::to_string(map.manhole_count()));
   for (ManholeId m : map.manhole_ids()) {
+    if (m.index() % kCheckEvery == 0 && stop.interrupted()) return std::nullopt;
     const Manhole& manhole = map.manhole(m);
     f.add(manhole.name);
     f.add(manhole.diameter_m);

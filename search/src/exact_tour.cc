@@ -154,9 +154,7 @@ class SubsetProgramme {
   static std::int32_t leave(const detail::Option& o) { return o.to == kStays ? o.at : o.to; }
 
   void add_move(std::int32_t a, std::int32_t b, std::vector<ActionId>& reversed) const {
-    if (a != b) {
-      reversed.push_back(s_.moves.at(static_cast<std::int64_t>(a) * s_.places + b).second);
-    }
+    if (a != b) reversed.push_back(s_.move_action(a, b));
   }
 
   // A goal that needs all others first ends the plan: nothing follows it (the others are done

@@ -39,9 +39,25 @@ std::optional<Shape> read_shape(const CompiledTask& task, const StopCondition* s
   for (std::size_t v = 1; v < goal_var.size(); ++v) {
     if (!goal_var[v]) return std::nullopt;
   }
-  // Sized once: rehashing every move at once as the map grew took 6 to 14 ms on 200 tasks
-  // between two checks (issue 14). At most one move per action.
-  s.moves.reserve(task.action_count());
+  const bool dense = s.places > 0 && s.places <= Shape::kDensePlaces;
+  const auto n = static_cast<std::size_t>(s.places);
+  if (dense) {
+    // Filled a row at a time with a check between rows: the whole matrix at once was fresh memory
+    // of 7.5 ms to touch on 200 tasks (issue 14).
+    s.move_matrix.reserve(n * n);
+    s.move_actions.reserve(n * n);
+    for (std::size_t a = 0; a < n; ++a) {
+      if (fired(stop, 0)) return std::nullopt;
+      s.move_matrix.insert(s.move_matrix.end(), n, kInfiniteCost);
+      s.move_matrix[a * n + a] = 0;
+      s.move_actions.insert(s.move_actions.end(), n, Shape::kNoAction);
+    }
+    if (!s.moves.reserve(n, stop)) return std::nullopt;  // the moves that stay in place
+  } else {
+    // Sized once: rehashing every move at once as the map grew took 6 to 14 ms on 200 tasks
+    // between two checks (issue 14). At most one move per action.
+    if (!s.moves.reserve(task.action_count(), stop)) return std::nullopt;
+  }
   if (fired(stop, 0)) return std::nullopt;
   for (ActionId a : task.action_ids()) {
     if (fired(stop, a.index())) return std::nullopt;
@@ -73,9 +89,21 @@ std::optional<Shape> read_shape(const CompiledTask& task, const StopCondition* s
     if (!goal) {  // a move
       if (!at || !to || others != 0 || eff.size() != 1) return std::nullopt;
       auto key = static_cast<std::int64_t>(*at) * s.places + *to;
-      auto [it, added] = s.moves.try_emplace(key, task.cost(a), a);
-      if (!added && task.cost(a) < it->second.first) it->second = {task.cost(a), a};
-      if (it->second.second == a) {
+      // The first move between two places, or a cheaper one later.
+      bool chosen = false;
+      if (dense && *at != *to) {
+        const auto i = static_cast<std::size_t>(key);
+        if (s.move_actions[i] == Shape::kNoAction || task.cost(a) < s.move_matrix[i]) {
+          s.move_matrix[i] = task.cost(a);
+          s.move_actions[i] = a;
+        }
+        chosen = s.move_actions[i] == a;
+      } else {
+        auto [move, added] = s.moves.try_emplace(key, {task.cost(a), a});
+        if (!added && task.cost(a) < move->cost) *move = {task.cost(a), a};
+        chosen = move->action == a;
+      }
+      if (chosen) {
         if (task.reserve(a) > 0) {
           s.move_reserves[key] = task.reserve(a);
         } else {
@@ -95,25 +123,6 @@ std::optional<Shape> read_shape(const CompiledTask& task, const StopCondition* s
       continue;
     }
     g.options.push_back({*at, to.value_or(kStays), task.cost(a), a, task.reserve(a)});
-  }
-  if (s.places > 0 && s.places <= Shape::kDensePlaces) {
-    const auto n = static_cast<std::size_t>(s.places);
-    // Filled a row at a time with a check between rows: the whole matrix at once was fresh memory
-    // of 7.5 ms to touch on 200 tasks (issue 14).
-    s.move_matrix.clear();
-    s.move_matrix.reserve(n * n);
-    for (std::size_t a = 0; a < n; ++a) {
-      if (fired(stop, 0)) return std::nullopt;
-      s.move_matrix.insert(s.move_matrix.end(), n, kInfiniteCost);
-      s.move_matrix[a * n + a] = 0;
-    }
-    std::size_t i = 0;
-    for (const auto& [key, move] : s.moves) {
-      if (fired(stop, ++i)) return std::nullopt;
-      const auto a = static_cast<std::size_t>(key / s.places);
-      const auto b = static_cast<std::size_t>(key % s.places);
-      if (a != b) s.move_matrix[a * n + b] = move.first;
-    }
   }
   return s;
 }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <unordered_map>
 #include <utility>
@@ -11,6 +12,8 @@
 
 #include "sewerplan/core/stop_condition.h"
 #include "sewerplan/domain/compiled_task.h"
+
+#include "move_map.h"
 
 namespace sewerplan::search::detail {
 
@@ -40,16 +43,22 @@ struct Shape {
   std::int32_t places = 0;
   std::int32_t start = 0;
   std::optional<std::int32_t> end;  // a position the goal asks for
-  std::unordered_map<std::int64_t, std::pair<Cost, ActionId>> moves;
-  // The same costs as a places x places matrix (0 on the diagonal) where places <= kDensePlaces:
-  // the tour search reads a move's cost in its innermost loop, and a hash lookup there took half
-  // its time (issue 16: 50 tasks on 1,000 manholes).
+  // The cheapest move between two places, its cost and action. Where places <= kDensePlaces they
+  // are two places x places matrices (cost 0 on the diagonal), and `moves` holds only the moves
+  // that stay in place: the tour search reads a move's cost in its innermost loop, and a hash
+  // lookup there took half its time (issue 16: 50 tasks on 1,000 manholes); and a hash map's nodes
+  // are freed one by one, 3.5 to 5.4 ms for 200 tasks' 160,000 moves between a stop and the
+  // return (issue 14), a matrix at once. Beyond kDensePlaces, `moves` holds them all, in one flat
+  // table (move_map.h) for the same reason.
+  MoveMap moves;
   std::vector<Cost> move_matrix;
-  std::vector<Goal> goals;                               // goal i is variable i + 1
-  Cost bound = kInfiniteCost;                            // the task's cost bound
+  std::vector<ActionId> move_actions;  // beside move_matrix; kNoAction where there is no move
+  std::vector<Goal> goals;             // goal i is variable i + 1
+  Cost bound = kInfiniteCost;          // the task's cost bound
   std::unordered_map<std::int64_t, Cost> move_reserves;  // the moves' nonzero reserves
 
-  static constexpr std::int32_t kDensePlaces = 2048;  // 32 MB at most
+  static constexpr std::int32_t kDensePlaces = 2048;  // 48 MB at most
+  static constexpr ActionId kNoAction{std::numeric_limits<ActionId::rep_type>::max()};
 
   Cost move_cost(std::int32_t a, std::int32_t b) const {
     if (!move_matrix.empty()) {
@@ -57,8 +66,16 @@ struct Shape {
                          static_cast<std::size_t>(b)];
     }
     if (a == b) return 0;
-    auto it = moves.find(static_cast<std::int64_t>(a) * places + b);
-    return it == moves.end() ? kInfiniteCost : it->second.first;
+    const MoveMap::Move* m = moves.find(static_cast<std::int64_t>(a) * places + b);
+    return m == nullptr ? kInfiniteCost : m->cost;
+  }
+  // The action of the cheapest move from a to b (a != b); precondition: there is one.
+  ActionId move_action(std::int32_t a, std::int32_t b) const {
+    if (!move_actions.empty()) {
+      return move_actions[static_cast<std::size_t>(a) * static_cast<std::size_t>(places) +
+                          static_cast<std::size_t>(b)];
+    }
+    return moves.find(static_cast<std::int64_t>(a) * places + b)->action;
   }
   // Whether any move or option keeps a contingency reserve: then whether a move fits depends on
   // what was spent before it, not only on costs.

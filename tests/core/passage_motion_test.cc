@@ -3,11 +3,14 @@
 // rule that decides a passage with or without it.
 #include "sewerplan/core/passage_motion.h"
 
+#include <atomic>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include <gtest/gtest.h>
+
+#include "sewerplan/core/map_fingerprint.h"
 
 #include "support/small_map.h"
 
@@ -52,6 +55,13 @@ class PassageMotionTest : public ::testing::Test {
   }
   Diagnostics diagnostics_;
 };
+
+// Issue 14: the fingerprint under a stop condition is the same one, or nothing once it fired.
+TEST_F(PassageMotionTest, TheMapFingerprintUnderAStopIsTheSameOrNothing) {
+  EXPECT_EQ(map_geometry_fingerprint(map_, StopCondition{}), map_geometry_fingerprint(map_));
+  const std::atomic<bool> cancel{true};
+  EXPECT_FALSE(map_geometry_fingerprint(map_, StopCondition().with_cancel(cancel)).has_value());
+}
 
 TEST_F(PassageMotionTest, RoundTripsThroughJson) {
   std::ostringstream out;

@@ -81,6 +81,40 @@ TEST_F(PassagePrecomputeTest, StopsOnTheCancelFlagAndAtTheDeadline) {
   EXPECT_EQ(ticking.reads(), 3);
 }
 
+// Issue 14: after the last passage, the map's fingerprint and the release of the plans ask the
+// stop too, and the table is made only after the last check: a deadline at the run's last clock
+// read ends it without a table, one read later lets it finish.
+TEST_F(PassagePrecomputeTest, AsksTheStopWhileAssemblingAndReleasing) {
+  testing::TickingClock counting(1.0);
+  ASSERT_TRUE(precompute_passage_motion(
+                  map_, profile_, {.stop = StopCondition::at_deadline(counting, 1e12)}, clock_)
+                  .has_value());
+  const double reads = counting.reads();
+  testing::TickingClock at_last(1.0);
+  Result<PrecomputeResult> late = precompute_passage_motion(
+      map_, profile_, {.stop = StopCondition::at_deadline(at_last, reads)}, clock_);
+  ASSERT_FALSE(late.has_value());
+  EXPECT_EQ(late.error().code, ErrorCode::kSearchLimit);
+  testing::TickingClock after_last(1.0);
+  Result<PrecomputeResult> done = precompute_passage_motion(
+      map_, profile_, {.stop = StopCondition::at_deadline(after_last, reads + 1)}, clock_);
+  ASSERT_TRUE(done.has_value()) << done.error();
+  EXPECT_EQ(done->table.size(), 12U);
+}
+
+TEST_F(PassagePrecomputeTest, TheCacheReleasesItsPlansInSlices) {
+  PassageMotionCache cache(ManholeTurnPlanner(robot_body(profile_), profile_));
+  for (double turn : {0.0, 45.0, 90.0}) {
+    ASSERT_TRUE(cache.plan(PassageGeometry{.turn_deg = turn}).has_value());
+  }
+  EXPECT_EQ(cache.size(), 3U);
+  EXPECT_TRUE(cache.release(2));
+  EXPECT_EQ(cache.size(), 1U);
+  EXPECT_FALSE(cache.release(2));
+  EXPECT_EQ(cache.size(), 0U);
+  EXPECT_FALSE(cache.release(1));
+}
+
 TEST_F(PassagePrecomputeTest, WaypointsAreInTheManholesFrame) {
   Result<PrecomputeResult> r = precompute_passage_motion(map_, profile_, {}, clock_);
   ASSERT_TRUE(r.has_value()) << r.error();

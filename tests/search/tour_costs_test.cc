@@ -18,6 +18,8 @@
 namespace sewerplan::search::detail {
 namespace {
 
+using domain::VarId;
+
 Cost whole(const Shape& shape, const std::vector<std::size_t>& order) {
   OrderCosts costs(shape);
   costs.prepare(order);
@@ -72,6 +74,50 @@ TEST(OrderCosts, TrialOrdersCostWhatTheyCostWhole) {
     }
   }
   EXPECT_GE(shapes, 2);
+}
+
+// Moves are kept in matrices up to Shape::kDensePlaces places and in a hash map beyond (issue 14:
+// the map's nodes took milliseconds to free after a stop): both keep the first move between two
+// places unless a later one is cheaper, and a move that stays in place on the side.
+CompiledTask moves_task(std::int32_t places) {
+  CompiledTask::Builder b;
+  const VarId pos = b.add_variable(places, "position");
+  const VarId done = b.add_variable(2, "done");
+  b.add_action({{pos, 0}}, {{pos, 1}}, 500, "go 0->1");
+  b.add_action({{pos, 0}}, {{pos, 1}}, 500, "go 0->1 again, no cheaper");
+  b.add_action({{pos, 1}}, {{pos, 2}}, 900, "go 1->2");
+  b.add_action({{pos, 1}}, {{pos, 2}}, 700, "go 1->2, cheaper");
+  b.add_action({{pos, 2}}, {{pos, 2}}, 100, "stay at 2");
+  b.add_action({{pos, 2}, {done, 0}}, {{done, 1}}, 300, "inspect at 2");
+  b.add_action({{pos, 2}}, {{pos, 0}}, 1000, "go 2->0");
+  b.set_initial(std::vector<std::int32_t>{0, 0});
+  b.add_goal({done, 1});
+  return std::move(b).build();
+}
+
+TEST(ReadShape, DenseAndSparseMovesAgree) {
+  const CompiledTask dense_task = moves_task(3);
+  const CompiledTask sparse_task = moves_task(Shape::kDensePlaces + 1);
+  const std::optional<Shape> dense = read_shape(dense_task);
+  const std::optional<Shape> sparse = read_shape(sparse_task);
+  ASSERT_TRUE(dense.has_value());
+  ASSERT_TRUE(sparse.has_value());
+  EXPECT_EQ(dense->move_matrix.size(), 9U);
+  EXPECT_TRUE(dense->moves.size() == 1 && dense->moves.contains(2 * 3 + 2));  // the stay
+  EXPECT_TRUE(sparse->move_matrix.empty());
+  EXPECT_EQ(sparse->moves.size(), 4U);
+  for (const Shape* s : {&*dense, &*sparse}) {
+    EXPECT_EQ(s->move_cost(0, 1), 500);
+    EXPECT_EQ(s->move_action(0, 1), ActionId{0});
+    EXPECT_EQ(s->move_cost(1, 2), 700);
+    EXPECT_EQ(s->move_action(1, 2), ActionId{3});
+    EXPECT_EQ(s->move_cost(2, 0), 1000);
+    EXPECT_EQ(s->move_action(2, 0), ActionId{6});
+    EXPECT_EQ(s->move_cost(2, 2), 0);
+    EXPECT_EQ(s->move_cost(1, 0), kInfiniteCost);
+    ASSERT_EQ(s->goals.size(), 1U);
+    EXPECT_EQ(s->goals[0].options.size(), 1U);
+  }
 }
 
 }  // namespace
