@@ -7,12 +7,13 @@
 #      suite (unit, CLI and its --json, pytest and the Python example, install: the CMake package
 #      and the Debian package in a scratch root, layering);
 #   4. builds with clang, AddressSanitizer and UndefinedBehaviorSanitizer and runs the suite again;
+#      the libFuzzer targets are built in the same tree;
 #   5. builds the concurrent tests with ThreadSanitizer and runs them (scripts/tsan.sh);
-#   6. fuzzes every parser for a short time (scripts/fuzz.sh, 10 s per target).
+#   6. fuzzes every parser for a short time (scripts/fuzz.sh in the ASan tree, 10 s per target).
 # Each stage prints its wall time, so the CI budget (45 minutes) can be watched stage by stage.
-# Build trees go to build/release, build/asan, build/tsan and build/fuzz. Set SEWERPLAN_SKIP_ASAN=1
-# to skip step 4 locally, SEWERPLAN_SKIP_TSAN=1 step 5, SEWERPLAN_SKIP_FUZZ=1 step 6
-# (SEWERPLAN_FUZZ_SECONDS sets its time).
+# Build trees go to build/release, build/asan and build/tsan (build/fuzz if step 4 is skipped). Set
+# SEWERPLAN_SKIP_ASAN=1 to skip step 4 locally, SEWERPLAN_SKIP_TSAN=1 step 5, SEWERPLAN_SKIP_FUZZ=1
+# step 6 (SEWERPLAN_FUZZ_SECONDS sets its time).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc)
@@ -42,9 +43,11 @@ stage_done "release build and tests"
 
 if [ "${SEWERPLAN_SKIP_ASAN:-0}" != 1 ]; then
   echo "== ASan + UBSan build and tests (clang)"
+  # The fuzz targets share this tree: the libraries compile once, those the parsers live in with
+  # coverage feedback (fuzz/CMakeLists.txt), which leaves the planner's hot loops uninstrumented.
   CXX=clang++ cmake -S . -B build/asan -G Ninja -DCMAKE_BUILD_TYPE=Debug \
     -DCMAKE_CXX_FLAGS_DEBUG="-O1 -gline-tables-only" -DSEWERPLAN_SANITIZE=ON \
-    -DSEWERPLAN_BUILD_BENCH=OFF -DSEWERPLAN_FUZZ=OFF
+    -DSEWERPLAN_BUILD_BENCH=OFF -DSEWERPLAN_FUZZ=$([ "${SEWERPLAN_SKIP_FUZZ:-0}" = 1 ] && echo OFF || echo ON)
   cmake --build build/asan -j "$jobs"
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     LSAN_OPTIONS="suppressions=$PWD/scripts/lsan.supp" \
@@ -58,9 +61,8 @@ if [ "${SEWERPLAN_SKIP_TSAN:-0}" != 1 ]; then
 fi
 if [ "${SEWERPLAN_SKIP_FUZZ:-0}" != 1 ]; then
   echo "== libFuzzer on every parser (clang)"
-  # Its own tree (build/fuzz, core and domain only): coverage instrumentation would slow the ASan
-  # suite's planner tests, some of which run against a time limit.
-  bash scripts/fuzz.sh "${SEWERPLAN_FUZZ_SECONDS:-10}"
+  # The targets were built with the ASan tree; without it fuzz.sh builds a tree of its own.
+  SEWERPLAN_FUZZ_BUILD=build/asan bash scripts/fuzz.sh "${SEWERPLAN_FUZZ_SECONDS:-10}"
   stage_done "fuzzing"
 fi
 echo "== all tests passed"
