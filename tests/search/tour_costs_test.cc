@@ -5,6 +5,7 @@
 #include "tour_costs.h"
 
 #include <algorithm>
+#include <atomic>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -118,6 +119,44 @@ TEST(ReadShape, DenseAndSparseMovesAgree) {
     ASSERT_EQ(s->goals.size(), 1U);
     EXPECT_EQ(s->goals[0].options.size(), 1U);
   }
+}
+
+// The flat table beyond kDensePlaces (move_map.h): keys that share a home slot are all found, a
+// key is added once, and a stop that has fired leaves it empty and unusable rather than half laid
+// out.
+TEST(MoveMap, FindsEveryKeyItHolds) {
+  MoveMap map;
+  ASSERT_TRUE(map.reserve(1000, nullptr));
+  EXPECT_EQ(map.find(7), nullptr);
+  for (std::int64_t k = 0; k < 1000; ++k) {
+    const auto [move, added] =
+        map.try_emplace(k * 4099, {k, ActionId{static_cast<std::uint32_t>(k)}});
+    EXPECT_TRUE(added);
+    EXPECT_EQ(move->cost, k);
+  }
+  const auto [again, added] = map.try_emplace(5 * 4099, {1, ActionId{1}});
+  EXPECT_FALSE(added);
+  EXPECT_EQ(again->cost, 5);  // the first one kept: the caller decides whether to replace it
+  EXPECT_EQ(map.size(), 1000U);
+  for (std::int64_t k = 0; k < 1000; ++k) {
+    const MoveMap::Move* m = map.find(k * 4099);
+    ASSERT_NE(m, nullptr) << k;
+    EXPECT_EQ(m->action, ActionId{static_cast<std::uint32_t>(k)});
+    EXPECT_FALSE(map.contains(k * 4099 + 1));
+  }
+}
+
+TEST(MoveMap, AFiredStopLeavesItEmpty) {
+  std::atomic<bool> cancel{true};
+  StopCondition stop;
+  stop.with_cancel(cancel);
+  MoveMap map;
+  EXPECT_FALSE(map.reserve(100'000, &stop));
+  EXPECT_EQ(map.size(), 0U);
+  EXPECT_FALSE(map.contains(0));
+  // And the sparse shape is given up, not read with a table that has no room.
+  const CompiledTask task = moves_task(Shape::kDensePlaces + 1);
+  EXPECT_FALSE(read_shape(task, &stop).has_value());
 }
 
 }  // namespace
