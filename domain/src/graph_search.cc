@@ -14,8 +14,8 @@ bool GraphSearch::grow(SearchScratch& scratch, std::size_t nodes, const StopCond
   constexpr std::size_t kSlice = 16384;  // nodes between two checks: well under 0.1 ms
   if (scratch.settled.size() >= nodes) return true;
   // Distances and parents grow without being written (zeroed_array.h); the bits in slices.
-  scratch.dist_left.grow(nodes);
-  scratch.parent_plus_one.grow(nodes);
+  scratch.dist_left.grow_clean(nodes);
+  scratch.parent_plus_one.grow_clean(nodes);
   while (scratch.settled.size() < nodes) {
     if (stop != nullptr && stop->interrupted()) return false;
     const std::size_t size = std::min(nodes, scratch.settled.size() + kSlice);
@@ -35,8 +35,8 @@ GraphSearch::GraphSearch(const PositionGraph& graph, SearchScratch* scratch)
       touched_(scratch_.touched),
       heap_(scratch_.heap) {
   if (settled_.size() < graph.size()) {
-    dist_left_.grow(graph.size());
-    parent_plus_one_.grow(graph.size());
+    dist_left_.grow_clean(graph.size());
+    parent_plus_one_.grow_clean(graph.size());
     settled_.resize(graph.size(), false);
     is_target_.resize(graph.size(), false);
   }

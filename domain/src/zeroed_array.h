@@ -24,6 +24,7 @@
 #include <memory>
 #include <new>
 #include <type_traits>
+#include <utility>
 
 namespace sewerplan::domain::detail {
 
@@ -32,6 +33,18 @@ class ZeroedArray {
   static_assert(std::is_trivially_copyable_v<T>, "entries are copied and zeroed as bytes");
 
  public:
+  ZeroedArray() = default;
+  ZeroedArray(ZeroedArray&& other) noexcept
+      : data_(std::move(other.data_)),
+        size_(std::exchange(other.size_, 0)),
+        capacity_(std::exchange(other.capacity_, 0)) {}
+  ZeroedArray& operator=(ZeroedArray&& other) noexcept {
+    data_ = std::move(other.data_);
+    size_ = std::exchange(other.size_, 0);
+    capacity_ = std::exchange(other.capacity_, 0);
+    return *this;
+  }
+
   std::size_t size() const { return size_; }
   T& operator[](std::size_t i) { return data_.get()[i]; }
   const T& operator[](std::size_t i) const { return data_.get()[i]; }
@@ -47,6 +60,21 @@ class ZeroedArray {
       if (size_ > 0) std::memcpy(data.get(), data_.get(), size_ * sizeof(T));
       data_ = std::move(data);
       capacity_ = capacity;
+    }
+    size_ = n;
+  }
+  // The same for an array whose every entry is zero again (its user restored them): a larger block
+  // is taken fresh, with nothing copied, so growing a clean array never touches its pages.
+  void grow_clean(std::size_t n) {
+    if (n <= size_) return;
+    if (n > capacity_) {
+      data_.reset();  // first: the old block is not needed for the new one
+      data_.reset(static_cast<T*>(std::calloc(n, sizeof(T))));
+      if (!data_) {
+        size_ = capacity_ = 0;
+        throw std::bad_alloc();
+      }
+      capacity_ = n;
     }
     size_ = n;
   }

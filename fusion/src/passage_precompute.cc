@@ -141,7 +141,9 @@ Result<PrecomputeResult> precompute_passage_motion(const SewerMap& map, const Ro
   // manholes): the map's fingerprint (1.3 ms) asks the stop as it goes, and the plans are freed in
   // slices (2 ms at once), each after a check; what is left, the entries' order, is one pass.
   const auto stopped = [&] {
-    return stopped_error(*options.stop.interrupted(), "the motion precompute");
+    // Asked again: the check that fired does not say why. A flag cleared since reads as a cancel.
+    return stopped_error(options.stop.interrupted().value_or(SearchStatus::kCancelled),
+                         "the motion precompute");
   };
   std::optional<std::string> map_fingerprint = map_geometry_fingerprint(map, options.stop);
   if (!map_fingerprint) return stopped();

@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "sewerplan/core/check.h"
 #include "sewerplan/core/stop_condition.h"
 #include "sewerplan/domain/compiled_task.h"
 
@@ -59,6 +60,8 @@ class MoveMap {
   // The move under `key`, added as `move` if there was none (then the bool is true). The map
   // must have room: at most the reserved number of keys.
   std::pair<Move*, bool> try_emplace(std::int64_t key, Move move) {
+    // read_shape reserves a slot pair per action, and each action adds at most one move.
+    SEWER_CHECK(2 * (size_ + 1) <= slots_.size(), "MoveMap: more keys than reserved");
     for (std::size_t i = home(key);; i = (i + 1) & mask_) {
       Slot& s = slots_[i];
       if (s.key == key) return {&s.move, false};

@@ -2,6 +2,7 @@
 #include "zeroed_array.h"
 
 #include <cstdint>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -22,10 +23,13 @@ TEST(ZeroedArray, GrowsWithZerosAndKeepsWhatWasWritten) {
   for (std::size_t i = 0; i < 3; ++i) EXPECT_EQ(a[i], 0);
   a[0] = -7;
   a[2] = 42;
-  a.grow(5);  // within the room taken at the first growth (twice 3 would be 6; 3 was asked)
+  a.grow(5);  // past the 3 asked first: a new block, with room for 6
   a.grow(2);  // never shrinks
   ASSERT_EQ(a.size(), 5U);
   a[4] = 9;
+  a.grow(6);  // within that room
+  EXPECT_EQ(a[4], 9);
+  EXPECT_EQ(a[5], 0);
   a.grow(1000);  // a new block
   ASSERT_EQ(a.size(), 1000U);
   EXPECT_EQ(a[0], -7);
@@ -34,6 +38,27 @@ TEST(ZeroedArray, GrowsWithZerosAndKeepsWhatWasWritten) {
   EXPECT_EQ(a[3], 0);
   EXPECT_EQ(a[4], 9);
   for (std::size_t i = 5; i < 1000; ++i) ASSERT_EQ(a[i], 0) << i;
+}
+
+// A clean array (every entry zero) grows without a copy and reads zero; a moved-from array is
+// empty and grows again like a new one.
+TEST(ZeroedArray, GrowsCleanAndMovesOut) {
+  ZeroedArray<std::uint32_t> a;
+  a.grow_clean(4);
+  ASSERT_EQ(a.size(), 4U);
+  a[3] = 5;
+  a[3] = 0;  // restored, as a search restores what it touched
+  a.grow_clean(100000);
+  ASSERT_EQ(a.size(), 100000U);
+  for (std::size_t i = 0; i < a.size(); ++i) ASSERT_EQ(a[i], 0U) << i;
+  a[99999] = 1;
+  ZeroedArray<std::uint32_t> b = std::move(a);
+  EXPECT_EQ(b.size(), 100000U);
+  EXPECT_EQ(b[99999], 1U);
+  EXPECT_EQ(a.size(), 0U);  // NOLINT(bugprone-use-after-move): the moved-from state is the test
+  a.grow(3);
+  ASSERT_EQ(a.size(), 3U);
+  EXPECT_EQ(a[2], 0U);
 }
 
 // A search on a shared scratch leaves it clean (zero: every distance infinite, no parent), so the
