@@ -140,12 +140,13 @@ async function largeMap(page, canvas, shot) {
   check(!id.startsWith('epa'), `the large map is ${id}`);
   await page.selectOption('#map', id);
   await page.waitForFunction((i) => document.body.dataset.opened === i, id, { timeout: 180000 });
+  const drawnAfter = Date.now() - t2;
+  await page.waitForFunction((i) => document.body.dataset.driveability === i, id, { timeout: 180000 });
   const timings = await page.evaluate(() => window.station.state.timings);
-  console.log(`large map ${id}: open and first draw ${Date.now() - t2} ms; in the page: geometry fetched and parsed ` +
-              `${timings.geometry_ms} ms, turned into pipes and manholes ${timings.load_geometry_ms} ms, ` +
-              `the profile's driveability asked ${timings.driveability_ms} ms, then drawn ` +
-              `${timings.open_map_ms - timings.geometry_ms - timings.load_geometry_ms - timings.driveability_ms} ms ` +
-              `(load ${loadavg()})`);
+  console.log(`large map ${id}: open and first draw ${drawnAfter} ms; in the page: geometry fetched ` +
+              `${timings.geometry_ms} ms, read into columns ${timings.load_geometry_ms} ms, then drawn ` +
+              `${timings.open_map_ms - timings.geometry_ms - timings.load_geometry_ms} ms; after it, the profile's ` +
+              `driveability asked, come and drawn ${timings.driveability_ms} ms (load ${loadavg()})`);
   await shot('8-large.png');
   const box = await canvas.boundingBox();
   const around = (n) => Array.from({ length: n }, (_, i) => [box.width / 2 + 9 * i - 45, box.height / 2 + 5 * i - 25]);

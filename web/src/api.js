@@ -38,7 +38,15 @@ const risk = (path) => `${path}${path.includes('?') ? '&' : '?'}risk=${encodeURI
 export const listMaps = () => call('api/maps');
 export const uploadMap = (name, text) =>
   call(`api/maps?name=${encodeURIComponent(name)}`, { method: 'POST', body: text });
-export const mapGeometry = (id) => call(map(id));
+// The map's compact geometry (typed arrays, geometry.js's readGeometry) as an ArrayBuffer.
+export async function mapGeometry(id) {
+  const response = await fetch(`${map(id)}/geometry`, { headers });
+  if (!response.ok) {
+    const body = await response.json();
+    throw Object.assign(new Error(body.error?.message ?? response.statusText), { body });
+  }
+  return response.arrayBuffer();
+}
 export const uploadCondition = (id, name, text) =>
   call(`${map(id)}/condition?name=${encodeURIComponent(name)}`, { method: 'POST', body: text });
 export const driveability = (id, profile) =>

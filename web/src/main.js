@@ -5,7 +5,7 @@
 import * as api from './api.js';
 import { CampaignPanel } from './campaign.js';
 import { clickFault, isEmpty, newFaults, renderFaults } from './faults.js';
-import { loadGeometry, offsetOf, pipesOfSteps, placePoint } from './geometry.js';
+import { offsetOf, pipesOfSteps, placePoint, readGeometry } from './geometry.js';
 import { createMapView } from './map-view.js';
 import { clickMission, describePlace, download, newMission, renderTasks } from './mission.js';
 import { renderPlan } from './plan-view.js';
@@ -64,29 +64,32 @@ function faultsChanged() {
   draw();
 }
 
+// Opens a map: its geometry drawn first, then the profile's driveability asked and drawn when it
+// comes (on a 100,000-manhole map the server works on it for seconds: the map is not kept waiting).
 async function openMap(id) {
   const t0 = performance.now();
-  // The profile's report is asked at once: the server works on it while the page reads the map.
-  const report = api.driveability(id, $('profile').value);
-  report.catch(() => {});  // awaited below, where a failure is reported
-  const geometry = await api.mapGeometry(id);
-  state.timings.geometry_ms = Math.round(performance.now() - t0);  // fetched and parsed
-  state.map = loadGeometry(geometry);
+  const buffer = await api.mapGeometry(id);
+  state.timings.geometry_ms = Math.round(performance.now() - t0);  // fetched
+  state.map = readGeometry(buffer, id);
   state.timings.load_geometry_ms = Math.round(performance.now() - t0) - state.timings.geometry_ms;
+  state.blocked = new Map();
+  $('driveability').textContent = 'driveability: asking the server';
   state.mission = newMission($('profile').value);
   state.faults = newFaults();
   $('condition').textContent = '';
   clearRun();
   state.route = new Set();
   view.fit(state.map.bounds);
-  const t1 = performance.now();
-  await loadDriveability(report);
-  state.timings.driveability_ms = Math.round(performance.now() - t1);  // waited for the profile's report
   missionChanged();
   faultsChanged();
   await afterDraw();
   state.timings.open_map_ms = Math.round(performance.now() - t0);
   document.body.dataset.opened = id;
+  const t1 = performance.now();
+  await loadDriveability();
+  await afterDraw();
+  state.timings.driveability_ms = Math.round(performance.now() - t1);  // asked, come and drawn
+  if (state.map.id === id) document.body.dataset.driveability = id;
 }
 
 // Resolves after the map view has drawn the current layers (and the network's image, lod.js).
@@ -96,15 +99,18 @@ const afterDraw = () => view.whenDrawn();
 // With the map's motion table (unless unticked), as `info --profile`; the manhole passages the
 // robot cannot take are counted beside the profile, those the table rejects apart.
 async function loadDriveability(report = api.driveability(state.map.id, $('profile').value)) {
+  const map = state.map;
   let r;
   try {
     r = await report;
   } catch (e) {
+    if (state.map !== map) return;
     $('driveability').textContent = e.message;
     state.blocked = new Map();
     draw();
     return;
   }
+  if (state.map !== map) return;  // another map was opened meanwhile
   const byTable = r.passages.filter((p) => p.motion_reason).length;
   $('driveability').textContent = `${r.passages.length} of ${r.passages_checked} manhole passages not drivable` +
     (r.motion_table ? ` (${byTable} by the motion table)` : '');
