@@ -118,6 +118,13 @@ async function hovers(page, canvas, what, points) {
   return shown;
 }
 
+// The page's performance marks of opening map `id` (main.js's openMap), in ms after the map was asked.
+const marks = (page, id) => page.evaluate((i) => {
+  const m = performance.getEntriesByType('mark').filter((e) => e.name.startsWith(`${i}: `));
+  const t0 = m.find((e) => e.name === `${i}: asked`)?.startTime ?? 0;
+  return m.map((e) => `${e.name.slice(i.length + 2)} ${Math.round(e.startTime - t0)}`).join(', ');
+}, id);
+
 // The pipe (with two manholes, at least 40 pixels long on the screen, so that its middle is clear
 // of their circles) whose middle is nearest the view's centre, and that middle on the screen.
 const nearestPipe = (page) => page.evaluate(() => {
@@ -141,12 +148,14 @@ async function largeMap(page, canvas, shot) {
   await page.selectOption('#map', id);
   await page.waitForFunction((i) => document.body.dataset.opened === i, id, { timeout: 180000 });
   const drawnAfter = Date.now() - t2;
-  await page.waitForFunction((i) => document.body.dataset.driveability === i, id, { timeout: 180000 });
+  await page.waitForFunction(() => window.station.state.timings.driveability_drawn_ms, null, { timeout: 180000 });
   const timings = await page.evaluate(() => window.station.state.timings);
   console.log(`large map ${id}: open and first draw ${drawnAfter} ms; in the page: geometry fetched ` +
               `${timings.geometry_ms} ms, read into columns ${timings.load_geometry_ms} ms, then drawn ` +
-              `${timings.open_map_ms - timings.geometry_ms - timings.load_geometry_ms} ms; after it, the profile's ` +
-              `driveability asked, come and drawn ${timings.driveability_ms} ms (load ${loadavg()})`);
+              `${timings.open_map_ms - timings.geometry_ms - timings.load_geometry_ms} ms; the profile's ` +
+              `driveability (asked with the geometry) applied ${timings.driveability_ms} ms and drawn ` +
+              `${timings.driveability_drawn_ms} ms after the map was asked (load ${loadavg()})`);
+  console.log(`large map ${id}, the page's marks: ${await marks(page, id)}`);
   await shot('8-large.png');
   const box = await canvas.boundingBox();
   const around = (n) => Array.from({ length: n }, (_, i) => [box.width / 2 + 9 * i - 45, box.height / 2 + 5 * i - 25]);
@@ -197,6 +206,7 @@ try {
   check(inUrl.status === 401, `?token= in a URL answered ${inUrl.status}, not 401`);
   console.log(`page load and first draw (AIS map): ${Date.now() - t0} ms; in the page:`,
               await page.evaluate(() => window.station.state.timings));
+  console.log(`AIS map, the page's marks: ${await marks(page, 'map')} (load ${loadavg()})`);
   await shot('1-map.png');
 
   // Clicks a pipe at `fraction` of its length (where the page's view projects it) in `mode`.
