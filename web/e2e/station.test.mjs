@@ -148,7 +148,8 @@ async function largeMap(page, canvas, shot) {
   await page.selectOption('#map', id);
   await page.waitForFunction((i) => document.body.dataset.opened === i, id, { timeout: 180000 });
   const drawnAfter = Date.now() - t2;
-  await page.waitForFunction(() => window.station.state.timings.driveability_drawn_ms, null, { timeout: 180000 });
+  await page.waitForFunction((i) => document.body.dataset.driveability === i &&
+                             window.station.state.timings.driveability_drawn_ms, id, { timeout: 180000 });
   const timings = await page.evaluate(() => window.station.state.timings);
   console.log(`large map ${id}: open and first draw ${drawnAfter} ms; in the page: geometry fetched ` +
               `${timings.geometry_ms} ms, read into columns ${timings.load_geometry_ms} ms, then drawn ` +

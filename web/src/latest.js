@@ -6,14 +6,15 @@
 export function latestOnly() {
   let last = 0;
   return {
-    // Starts tracking `promise` as the latest request. Resolves with {value} when it answers while
-    // still the latest, with null when a later request was started or drop() was called meanwhile;
-    // rejects with its error only while it is the latest.
+    // Starts tracking `promise` as the latest request. Resolves with {value, latest} when it
+    // answers while still the latest (latest(): whether it still is, for work done after), with
+    // null when a later request was started or drop() was called meanwhile; rejects with its
+    // error only while it is the latest.
     async run(promise) {
       const n = ++last;
       try {
         const value = await promise;
-        return n === last ? { value } : null;
+        return n === last ? { value, latest: () => n === last } : null;
       } catch (e) {
         if (n !== last) return null;
         throw e;

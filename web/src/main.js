@@ -72,6 +72,8 @@ function faultsChanged() {
 async function openMap(id) {
   const t0 = performance.now();
   performance.mark(`${id}: asked`);
+  delete state.timings.driveability_ms;  // the last map's
+  delete state.timings.driveability_drawn_ms;
   const report = askDriveability(id);
   const buffer = await api.mapGeometry(id);
   performance.mark(`${id}: geometry come`);
@@ -116,19 +118,20 @@ const askDriveability = (id) => driveabilityRequests.run(api.driveability(id, $(
 // With the map's motion table (unless unticked), as `info --profile`; the manhole passages the
 // robot cannot take are counted beside the profile, those the table rejects apart.
 async function showDriveability(id, report) {
-  let answer;
+  let r, answer = null;
   try {
     answer = await report;
+    if (!answer || state.map?.id !== id) return;  // a later request, or another map opened meanwhile
+    performance.mark(`${id}: driveability come`);
+    r = await answer.value();  // its JSON read now, not while the map was drawn
+    if (!answer.latest()) return;
   } catch (e) {
-    if (state.map?.id !== id) return;
+    if (state.map?.id !== id || (answer && !answer.latest())) return;
     $('driveability').textContent = e.message;
     state.blocked = new Map();
     draw();
     return;
   }
-  if (!answer || state.map?.id !== id) return;  // a later request, or another map opened meanwhile
-  performance.mark(`${id}: driveability come`);
-  const r = answer.value;
   const byTable = r.passages.filter((p) => p.motion_reason).length;
   $('driveability').textContent = `${r.passages.length} of ${r.passages_checked} manhole passages not drivable` +
     (r.motion_table ? ` (${byTable} by the motion table)` : '');

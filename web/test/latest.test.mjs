@@ -14,15 +14,19 @@ function deferred() {
   return [promise, resolve, reject];
 }
 
-test('an older answer that comes last does not overwrite the newer one', async () => {
+test('an older answer that comes last does not overwrite the newer one; latest() says when one is no more', async () => {
   const requests = latestOnly();
   const [slow, answerSlow] = deferred(), [fast, answerFast] = deferred();
   const first = requests.run(slow);   // the profile first selected
   const second = requests.run(fast);  // then another one, answered first
   answerFast('profile B');
   answerSlow('profile A');
-  assert.deepEqual(await second, { value: 'profile B' });
+  const answer = await second;
+  assert.equal(answer.value, 'profile B');
   assert.equal(await first, null);
+  assert.ok(answer.latest());
+  requests.run(new Promise(() => {}));  // a third, while the second's answer is read
+  assert.equal(answer.latest(), false);
 });
 
 test('the latest answer is used whichever order they come in', async () => {
@@ -32,7 +36,7 @@ test('the latest answer is used whichever order they come in', async () => {
   answerA(1);
   assert.equal(await first, null);
   answerB(2);
-  assert.deepEqual(await second, { value: 2 });
+  assert.equal((await second).value, 2);
 });
 
 test('an error is thrown only for the latest request; drop() drops what is under way', async () => {
