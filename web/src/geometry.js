@@ -7,10 +7,12 @@
 // read in place, and objects only for the pipes and manholes the page names or clicks:
 //   {id, bounds, manholeCount, pipeCount, columns (lod.js's grid reads them: each pipe's ends and
 //    diameter, each manhole's position, exit flag and slot count), openEnd [pipe],
-//    pipe(i), manhole(i), pipes, manholes, pipeByName, manholeByName}
+//    pipe(i), manhole(i), pipes, manholes, pipeIndex(name), pipeByName, manholeByName}
 // pipe(i) is {i, name, from, to, openEnd, length_m, diameter_m}, manhole(i) {i, name, position,
-// slots, exit}; the arrays and the maps by name are built at their first use (a 100,000-manhole
-// map is drawn without them). A pipe with an open end (no manhole at one side) is drawn as a short
+// slots, exit}; the arrays are built at their first use (a 100,000-manhole map is drawn without
+// them). pipeIndex(name) is a pipe's index (undefined if none); pipeByName and manholeByName
+// answer has(name) and get(name) (the object, a new one each time): the names are decoded and
+// indexed by name at the first look-up, without building any object. A pipe with an open end (no manhole at one side) is drawn as a short
 // stub from its one manhole, a tenth of its length long; one with no manhole at either end (no map
 // format makes one) as a point at the bounds' lower corner.
 
@@ -42,12 +44,24 @@ export function readGeometry(buffer, id) {
   const positions = take(Float64Array, 2 * m), lengths = take(Float64Array, p), diameters = take(Float64Array, p);
   const from = take(Uint32Array, p), to = take(Uint32Array, p), offsets = take(Uint32Array, m + p + 1);
   const slots = take(Uint8Array, m), exits = take(Uint8Array, m), names = take(Uint8Array, nameBytes);
-  // The names decoded at once; by byte offset when all are ASCII (a character a byte), else each.
-  let text = null;
+  // The names decoded at once, in one pass, and cut at their offsets: a name's first character
+  // is the count of UTF-16 units before its first byte (a byte starting a character counts one,
+  // a 4-byte one two), found with one pass over the bytes when not all are ASCII.
+  let text = null, units = offsets;
+  const decode = () => {
+    text = new TextDecoder().decode(names);
+    if (text.length === nameBytes) return;
+    units = new Uint32Array(m + p + 1);
+    let k = 0, u = 0;
+    for (let b = 0; b <= nameBytes; ++b) {
+      while (k <= m + p && offsets[k] === b) units[k++] = u;
+      const c = names[b];
+      if ((c & 0xc0) !== 0x80) u += c >= 0xf0 ? 2 : 1;
+    }
+  };
   const nameOf = (k) => {
-    text ??= new TextDecoder().decode(names);
-    return text.length === nameBytes ? text.slice(offsets[k], offsets[k + 1])
-      : new TextDecoder().decode(names.subarray(offsets[k], offsets[k + 1]));
+    if (text === null) decode();
+    return text.slice(units[k], units[k + 1]);
   };
   return makeMap({ id, bounds, positions, lengths, diameters, from, to, slots, exits,
                    manholeName: (i) => nameOf(i), pipeName: (i) => nameOf(m + i) });
@@ -87,8 +101,19 @@ function makeMap(c) {
   const once = (make) => { let v = null; return () => (v ??= make()); };
   const pipes = once(() => Array.from({ length: p }, (_, i) => pipe(i)));
   const manholes = once(() => Array.from({ length: m }, (_, i) => manhole(i)));
-  const pipeByName = once(() => new Map(pipes().map((x) => [x.name, x])));
-  const manholeByName = once(() => new Map(manholes().map((x) => [x.name, x])));
+  // name -> index, read from the name table the first time a name is looked up (no object made);
+  // byName's get(name) makes the one object asked for.
+  const indexOf = (count, nameOf) => once(() => {
+    const index = new Map();
+    for (let i = 0; i < count; ++i) index.set(nameOf(i), i);
+    return index;
+  });
+  const pipeIndex = indexOf(p, c.pipeName), manholeIndex = indexOf(m, c.manholeName);
+  const byName = (index, make) => ({
+    has: (name) => index().has(name),
+    get: (name) => { const i = index().get(name); return i === undefined ? undefined : make(i); },
+  });
+  const pipeByName = byName(pipeIndex, pipe), manholeByName = byName(manholeIndex, manhole);
   return {
     id: c.id, bounds: c.bounds, manholeCount: m, pipeCount: p, openEnd,
     columns: { ends, diameters: c.diameters, positions: pos, exits: c.exits, slots: c.slots },
@@ -96,8 +121,9 @@ function makeMap(c) {
     manhole,
     get pipes() { return pipes(); },
     get manholes() { return manholes(); },
-    get pipeByName() { return pipeByName(); },
-    get manholeByName() { return manholeByName(); },
+    pipeIndex: (name) => pipeIndex().get(name),
+    pipeByName,
+    manholeByName,
   };
 }
 

@@ -150,8 +150,8 @@ export function pipeClasses(map, blocked) {
   const classes = Uint8Array.from(map.openEnd, (open) => (open ? kOpenEnd : kNormal));
   if (blocked.size === 0) return classes;
   for (const name of blocked.keys()) {
-    const p = map.pipeByName.get(name);
-    if (p) classes[p.i] = kBlocked;
+    const i = map.pipeIndex(name);
+    if (i !== undefined) classes[i] = kBlocked;
   }
   return classes;
 }

@@ -174,6 +174,7 @@ function geometryBinary(g, { version = 1, magic = 'SPGM' } = {}) {
 test('the compact geometry reads as the JSON: columns, open ends, names (not ASCII too)', () => {
   const g = gridDocument(6);
   g.manholes.name[3] = 'Schacht-Ü3';  // a name of more bytes than characters
+  g.pipes.name[2] = 'Haltung-𝄞2';     // and one of two UTF-16 units for one character
   const json = loadGeometry(g), binary = readGeometry(geometryBinary(g), 'grid');
   assert.deepEqual(binary.columns, json.columns);
   assert.deepEqual(binary.openEnd, json.openEnd);
@@ -183,6 +184,13 @@ test('the compact geometry reads as the JSON: columns, open ends, names (not ASC
   assert.deepEqual(binary.manholes, json.manholes);
   assert.equal(binary.manholeByName.get('Schacht-Ü3').i, 3);
   assert.equal(binary.pipe(5).name, 'P5');
+  // Looked up by name: every pipe's and manhole's index, the names after the wide ones too.
+  g.pipes.name.forEach((name, i) => assert.equal(binary.pipeIndex(name), i));
+  g.manholes.name.forEach((name, i) => assert.equal(binary.manholeByName.get(name).i, i));
+  assert.equal(binary.pipeByName.get('Haltung-𝄞2').i, 2);
+  assert.equal(binary.pipeIndex('P99'), undefined);
+  assert.equal(binary.pipeByName.has('P99'), false);
+  assert.equal(json.pipeIndex('Haltung-𝄞2'), 2);
   assert.throws(() => readGeometry(geometryBinary(g, { version: 2 }), 'grid'), /format 2, this page reads 1/);
   assert.throws(() => readGeometry(geometryBinary(g, { magic: 'JSON' }), 'grid'), /not sewerplan geometry/);
   assert.throws(() => readGeometry(geometryBinary(g).slice(0, 200), 'grid'), /200 bytes for 36 manholes/);
