@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: MIT
-// The latest request only (src/latest.js): an answer that comes after a later request was started
-// is dropped, whichever order the answers come in; errors likewise.
+// Requests about the open map (src/latest.js): the answer used is the latest request's, for the map
+// being opened or open, and only once that map is drawn; whichever order the answers come in, an
+// older one's answer or error is dropped.
 //
 //   node --test test/
 import assert from 'node:assert/strict';
 import { test } from 'node:test';
-import { latestOnly } from '../src/latest.js';
+import { mapRequests } from '../src/latest.js';
 
 // A promise settled by hand: [promise, resolve, reject].
 function deferred() {
@@ -14,42 +15,71 @@ function deferred() {
   return [promise, resolve, reject];
 }
 
+// ask(id) answers with the promise given for that call; asked lists the ids asked.
+function server(...answers) {
+  const asked = [];
+  return { asked, ask: (id) => { asked.push(id); return answers[asked.length - 1]; } };
+}
+
 test('an older answer that comes last does not overwrite the newer one; latest() says when one is no more', async () => {
-  const requests = latestOnly();
+  const requests = mapRequests();
+  requests.opening('a')();
   const [slow, answerSlow] = deferred(), [fast, answerFast] = deferred();
-  const first = requests.run(slow);   // the profile first selected
-  const second = requests.run(fast);  // then another one, answered first
+  const s = server(slow, fast, new Promise(() => {}));
+  const first = requests.run(s.ask);   // the profile first selected
+  const second = requests.run(s.ask);  // then another one, answered first
   answerFast('profile B');
   answerSlow('profile A');
   const answer = await second;
-  assert.equal(answer.value, 'profile B');
+  assert.deepEqual([answer.id, answer.value], ['a', 'profile B']);
   assert.equal(await first, null);
   assert.ok(answer.latest());
-  requests.run(new Promise(() => {}));  // a third, while the second's answer is read
+  requests.run(s.ask);  // a third, while the second's answer is read
   assert.equal(answer.latest(), false);
 });
 
-test('the latest answer is used whichever order they come in', async () => {
-  const requests = latestOnly();
-  const [a, answerA] = deferred(), [b, answerB] = deferred();
-  const first = requests.run(a), second = requests.run(b);
-  answerA(1);
-  assert.equal(await first, null);
-  answerB(2);
-  assert.equal((await second).value, 2);
-});
-
-test('an error is thrown only for the latest request; drop() drops what is under way', async () => {
-  const requests = latestOnly();
+test('an error is thrown only for the latest request', async () => {
+  const requests = mapRequests();
+  requests.opening('a')();
   const [a, , failA] = deferred(), [b, , failB] = deferred();
-  const first = requests.run(a), second = requests.run(b);
+  const s = server(a, b);
+  const first = requests.run(s.ask), second = requests.run(s.ask);
   failA(new Error('old'));
   failB(new Error('new'));
   assert.equal(await first, null);
   await assert.rejects(second, /new/);
-  const [c, answerC] = deferred();
-  const third = requests.run(c);
-  requests.drop();  // the map was closed
-  answerC('late');
-  assert.equal(await third, null);
+});
+
+test('a request made while a map opens is for that map, and answered once it is drawn', async () => {
+  const requests = mapRequests();
+  requests.opening('old')();
+  const drawn = requests.opening('new');  // its geometry not read yet
+  assert.equal(requests.id, 'new');
+  const [withMap, answerWithMap] = deferred(), [changed, answerChanged] = deferred();
+  const s = server(withMap, changed);
+  const asked = requests.run(s.ask);   // with the geometry
+  const profile = requests.run(s.ask);  // the profile changed before the geometry came
+  assert.deepEqual(s.asked, ['new', 'new']);
+  answerChanged('profile B');
+  answerWithMap('profile A');
+  assert.equal(await asked, null);
+  let answer = null;
+  profile.then((a) => { answer = a; });
+  await new Promise((resolve) => setTimeout(resolve, 0));
+  assert.equal(answer, null, 'answered before the map was drawn');
+  drawn();
+  assert.deepEqual([(await profile).id, (await profile).value], ['new', 'profile B']);
+});
+
+test("another map opened drops the last map's requests, answered or failing", async () => {
+  const requests = mapRequests();
+  requests.opening('a')();
+  const [a, answerA] = deferred(), [b, , failB] = deferred();
+  const s = server(a, b);
+  const first = requests.run(s.ask), second = requests.run(s.ask);
+  requests.opening('b')();
+  answerA(1);
+  failB(new Error('gone'));
+  assert.equal(await first, null);
+  assert.equal(await second, null);
 });
