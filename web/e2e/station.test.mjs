@@ -344,6 +344,34 @@ try {
   check((await page.locator('#map option').count()) === (large ? 3 : 2), 'the uploaded map is not listed');
   await shot('7-uploaded-map.png');
 
+  // Another profile chosen while a map opens (its geometry held back): the driveability is asked
+  // for the map being opened, and the latest answer, the new profile's, is shown once it is drawn.
+  const aisId = await page.locator('#map option').first().getAttribute('value');
+  const profiles = await page.locator('#profile option').evaluateAll((os) => os.map((o) => o.value));
+  const otherProfile = profiles.find((p) => p !== profiles[0]);
+  let releaseGeometry;
+  const geometryHeld = new Promise((resolve) => { releaseGeometry = resolve; });
+  await page.route('**/geometry', async (route) => { await geometryHeld; await route.continue(); });
+  await page.selectOption('#profile', profiles[0]);
+  await page.evaluate(() => { delete document.body.dataset.driveability; });
+  const asked = [];
+  const onRequest = (r) => { if (r.url().includes('/driveability')) asked.push(r.url()); };
+  page.on('request', onRequest);
+  await page.selectOption('#map', aisId);
+  await page.selectOption('#profile', otherProfile);
+  releaseGeometry();
+  await page.waitForFunction((i) => document.body.dataset.driveability === i && document.body.dataset.opened === i,
+                             aisId, { timeout: 30000 });
+  await page.unroute('**/geometry');
+  page.off('request', onRequest);
+  const line = await page.locator('#driveability').textContent();
+  check(asked.length === 2 && asked.every((u) => u.includes(`/maps/${aisId}/`)) &&
+        asked[1].includes(`profile=${encodeURIComponent(otherProfile)}`),
+        `a profile changed while the map opened asked ${asked.join(', ')}`);
+  check(/manhole passages not drivable/.test(line), `the driveability line after a profile change while opening: ${line}`);
+  console.log(`profile changed while ${aisId} opened: driveability asked ${asked.length} times for it, shown: ${line}`);
+  await page.selectOption('#profile', profiles[0]);
+
   if (large) await largeMap(page, canvas, shot);
   console.log(`station e2e: ok in ${Date.now() - started} ms, of which screenshots ${shotsMs} ms`);
 } catch (e) {
