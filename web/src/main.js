@@ -69,7 +69,8 @@ function faultsChanged() {
 // on it while the page reads and draws the map), and applied when both it and the first draw are
 // there: the map is not kept waiting for it (a 100,000-manhole map's takes the server seconds). A
 // profile changed while the map opens asks for this map too (latest.js); the latest answer wins.
-// Performance marks (`ID: ...`) time each phase for the browser test (e2e/).
+// Performance marks (`ID: ...`) time each phase for the browser test (e2e/), the driveability's
+// too (come, read: its JSON, applied: the pipes classed, drawn).
 async function openMap(id) {
   const t0 = performance.now();
   performance.mark(`${id}: asked`);
@@ -129,6 +130,7 @@ async function showDriveability() {
     performance.mark(`${answer.id}: driveability come`);
     r = await answer.value();  // its JSON read now, not while the map was drawn
     if (!answer.latest()) return;
+    performance.mark(`${answer.id}: driveability read`);
   } catch (e) {
     if (answer && !answer.latest()) return;
     $('driveability').textContent = e.message;
@@ -148,6 +150,7 @@ async function showDriveability() {
   ]);
   draw();
   const id = answer.id;
+  performance.mark(`${id}: driveability applied`);
   document.body.dataset.driveability = id;
   if (state.timings.driveability_ms !== undefined) return;
   const t0 = mapAskedAt;
