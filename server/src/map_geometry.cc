@@ -2,30 +2,104 @@
 #include "map_geometry.h"
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <limits>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 namespace sewerplan::server {
 
+namespace {
+
+// The map's bounds: [min_x, min_y, max_x, max_y] of its manholes, zeros for none.
+std::array<double, 4> bounds_of(const SewerMap& map) {
+  double min_x = std::numeric_limits<double>::infinity(), min_y = min_x;
+  double max_x = -min_x, max_y = -min_x;
+  for (const Manhole& m : map.manholes()) {
+    min_x = std::min(min_x, m.position.x_m);
+    min_y = std::min(min_y, m.position.y_m);
+    max_x = std::max(max_x, m.position.x_m);
+    max_y = std::max(max_y, m.position.y_m);
+  }
+  if (map.manhole_count() == 0) return {0, 0, 0, 0};
+  return {min_x, min_y, max_x, max_y};
+}
+
+// Appends little-endian values whatever the host's byte order.
+class LittleEndian {
+ public:
+  explicit LittleEndian(std::string& out) : out_(out) {}
+  void u8(std::uint8_t v) { out_.push_back(static_cast<char>(v)); }
+  void u32(std::uint32_t v) {
+    for (int shift = 0; shift < 32; shift += 8) u8(static_cast<std::uint8_t>(v >> shift));
+  }
+  void f64(double v) {
+    const auto bits = std::bit_cast<std::uint64_t>(v);
+    for (int shift = 0; shift < 64; shift += 8) u8(static_cast<std::uint8_t>(bits >> shift));
+  }
+
+ private:
+  std::string& out_;
+};
+
+}  // namespace
+
+std::string map_geometry_binary(const SewerMap& map) {
+  std::string names;
+  std::vector<std::uint32_t> offsets{0};
+  offsets.reserve(map.manhole_count() + map.pipe_count() + 1);
+  const auto add_name = [&](const std::string& name) {
+    names += name;
+    offsets.push_back(static_cast<std::uint32_t>(names.size()));
+  };
+  for (const Manhole& m : map.manholes()) add_name(m.name);
+  for (const Pipe& p : map.pipes()) add_name(p.name);
+  std::string out;
+  out.reserve(56 + 16 * map.manhole_count() + 28 * map.pipe_count() + 4 * offsets.size() +
+              2 * map.manhole_count() + names.size());
+  LittleEndian w(out);
+  out += "SPGM";
+  w.u32(kGeometryFormatVersion);
+  w.u32(static_cast<std::uint32_t>(map.manhole_count()));
+  w.u32(static_cast<std::uint32_t>(map.pipe_count()));
+  for (double b : bounds_of(map)) w.f64(b);
+  w.u32(static_cast<std::uint32_t>(names.size()));
+  w.u32(0);
+  for (const Manhole& m : map.manholes()) {
+    w.f64(m.position.x_m);
+    w.f64(m.position.y_m);
+  }
+  for (const Pipe& p : map.pipes()) w.f64(p.length_m);
+  for (const Pipe& p : map.pipes()) w.f64(p.diameter_m);
+  for (std::size_t end = 0; end < 2; ++end) {
+    for (const Pipe& p : map.pipes()) {
+      const auto& m = p.ends[end].manhole;
+      w.u32(m ? static_cast<std::uint32_t>(m->value()) : kNoManhole);
+    }
+  }
+  for (std::uint32_t o : offsets) w.u32(o);
+  for (const Manhole& m : map.manholes()) {
+    w.u8(static_cast<std::uint8_t>(std::min<std::size_t>(m.slot_count, 255)));
+  }
+  for (const Manhole& m : map.manholes()) w.u8(m.exit ? 1 : 0);
+  out += names;
+  return out;
+}
+
 std::string map_geometry_json(const SewerMap& map, const std::string& id) {
   using Json = nlohmann::ordered_json;
   Json names = Json::array(), xs = Json::array(), ys = Json::array(), slots = Json::array(),
        exits = Json::array();
-  double min_x = std::numeric_limits<double>::infinity(), min_y = min_x;
-  double max_x = -min_x, max_y = -min_x;
   for (const Manhole& m : map.manholes()) {
     names.push_back(m.name);
     xs.push_back(m.position.x_m);
     ys.push_back(m.position.y_m);
     slots.push_back(m.slot_count);
     exits.push_back(m.exit ? 1 : 0);
-    min_x = std::min(min_x, m.position.x_m);
-    min_y = std::min(min_y, m.position.y_m);
-    max_x = std::max(max_x, m.position.x_m);
-    max_y = std::max(max_y, m.position.y_m);
   }
-  if (map.manhole_count() == 0) min_x = min_y = max_x = max_y = 0;
+  const auto [min_x, min_y, max_x, max_y] = bounds_of(map);
   Json pipe_names = Json::array(), from = Json::array(), to = Json::array(),
        lengths = Json::array(), diameters = Json::array();
   for (const Pipe& p : map.pipes()) {

@@ -9,8 +9,25 @@
 //    "points": [{"name", "pipe", "offset_m"}]}
 //
 // A pipe end without a manhole (an open end) is -1; the page draws such a pipe from its one end.
+//
+// The same geometry for the page, compact (GET /api/maps/ID/geometry, "application/octet-stream"):
+// typed arrays the page reads in place (no parse, no object per feature), little-endian, each
+// section at an offset aligned to its element size, in this order:
+//
+//   header, 56 bytes: "SPGM", u32 format version (kGeometryFormatVersion), u32 manholes M,
+//     u32 pipes P, f64 bounds [4] (min_x, min_y, max_x, max_y), u32 name bytes N, u32 zero
+//   f64 positions [2M]      each manhole's x, y (metres)
+//   f64 length_m [P], f64 diameter_m [P]
+//   u32 from [P], u32 to [P] each pipe's end manholes (kNoManhole: an open end)
+//   u32 name_offsets [M + P + 1]  byte offsets into names: manhole i is [i, i + 1), pipe j is
+//                                 [M + j, M + j + 1)
+//   u8 slots [M] (at most 255), u8 exit [M] (0 | 1)
+//   u8 names [N]            the names, UTF-8, one after another
+//
+// Inspection points are not in it (the JSON has them). Values are the JSON's, bit for bit.
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include "sewerplan/core/sewer_map.h"
@@ -19,5 +36,11 @@ namespace sewerplan::server {
 
 // Runtime: O(manholes + pipes + points).
 std::string map_geometry_json(const SewerMap& map, const std::string& id);
+
+inline constexpr std::uint32_t kGeometryFormatVersion = 1;
+inline constexpr std::uint32_t kNoManhole = 0xffffffff;
+
+// Runtime: O(manholes + pipes + the names' bytes).
+std::string map_geometry_binary(const SewerMap& map);
 
 }  // namespace sewerplan::server

@@ -53,6 +53,7 @@ struct LoadedMap {
   std::string id;
   SewerMap map;
   std::string geometry;                // map_geometry_json, computed once
+  std::string geometry_binary;         // map_geometry_binary (the page's), computed once
   std::filesystem::path motion_table;  // MAP.motion.json beside the map, if there is one
   // The map as given, when `map` has condition data joined by an upload (a later upload replaces
   // it); null otherwise.
@@ -243,8 +244,9 @@ void StationServer::Impl::upload_map(const httplib::Request& req, httplib::Respo
   }
   const std::string id = unique_id(file.stem().string(), taken_ids);
   std::string geometry = map_geometry_json(*map, id);
+  std::string binary = map_geometry_binary(*map);
   auto loaded = std::make_shared<const LoadedMap>(
-      LoadedMap{id, std::move(*map), std::move(geometry), {}, nullptr, {}});
+      LoadedMap{id, std::move(*map), std::move(geometry), std::move(binary), {}, nullptr, {}});
   maps.push_back(loaded);
   send_json(res,
             {{"id", id},
@@ -271,8 +273,8 @@ void StationServer::Impl::upload_condition(const httplib::Request& req, httplib:
   Diagnostics diagnostics;
   Result<SewerMap> joined = read_condition_isybau(*as_given, req.body, name, diagnostics);
   if (!joined.has_value()) return send_error(res, kUnprocessable, joined.error(), diagnostics);
-  auto loaded = std::make_shared<const LoadedMap>(
-      LoadedMap{m->id, std::move(*joined), m->geometry, m->motion_table, as_given, name});
+  auto loaded = std::make_shared<const LoadedMap>(LoadedMap{
+      m->id, std::move(*joined), m->geometry, m->geometry_binary, m->motion_table, as_given, name});
   const std::lock_guard lock(maps_mutex);
   for (auto& slot : maps) {
     if (slot->id == loaded->id) slot = loaded;
@@ -497,6 +499,12 @@ void StationServer::Impl::routes() {
   http.Get(R"(/api/maps/([^/]+))", [this](const Req& req, Res& res) {
     if (const auto m = find_map(req, res)) res.set_content(m->geometry, kJsonType);
   });
+  // The page's geometry (map_geometry.h): typed arrays, not compressed by httplib (not text).
+  http.Get(R"(/api/maps/([^/]+)/geometry)", [this](const Req& req, Res& res) {
+    if (const auto m = find_map(req, res)) {
+      res.set_content(m->geometry_binary, "application/octet-stream");
+    }
+  });
   http.Post(R"(/api/maps/([^/]+)/condition)",
             [this](const Req& req, Res& res) { upload_condition(req, res); });
   http.Get(R"(/api/maps/([^/]+)/driveability)",
@@ -537,11 +545,17 @@ Result<std::unique_ptr<StationServer>> StationServer::create(const ServerOptions
     if (!map.has_value()) return map.error();
     const std::string id = unique_id(path.stem().string(), impl->taken_ids);
     std::string geometry = map_geometry_json(*map, id);
+    std::string binary = map_geometry_binary(*map);
     std::filesystem::path motion = default_motion_path(path);
     std::error_code ec;
     if (!std::filesystem::exists(motion, ec)) motion.clear();
-    impl->maps.push_back(std::make_shared<const LoadedMap>(
-        LoadedMap{id, std::move(*map), std::move(geometry), std::move(motion), nullptr, {}}));
+    impl->maps.push_back(std::make_shared<const LoadedMap>(LoadedMap{id,
+                                                                     std::move(*map),
+                                                                     std::move(geometry),
+                                                                     std::move(binary),
+                                                                     std::move(motion),
+                                                                     nullptr,
+                                                                     {}}));
   }
   if (!options.web_root.empty() && !std::filesystem::is_directory(options.web_root)) {
     return Error{ErrorCode::kIo, options.web_root.string() + ": no such directory (the page)"};

@@ -6,9 +6,12 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -50,6 +53,111 @@ TEST_F(StationServerTest, GivesAMapsGeometryAsColumnsOfNamesAndCoordinates) {
   EXPECT_NE(std::find(j["pipes"]["name"].begin(), j["pipes"]["name"].end(), "P6"),
             j["pipes"]["name"].end());
   EXPECT_EQ(j["bounds"].size(), 4u);
+}
+
+// The page's compact geometry (GET /api/maps/ID/geometry, map_geometry.h), read as the page reads
+// it: little-endian sections after a 56-byte header.
+struct BinaryGeometry {
+  std::uint32_t version = 0, manholes = 0, pipes = 0;
+  std::vector<double> bounds, positions, lengths, diameters;
+  std::vector<long long> from, to;  // -1: an open end, as the JSON
+  std::vector<int> slots, exits;
+  std::vector<std::string> names;  // manholes', then pipes'
+};
+BinaryGeometry decode_geometry(const std::string& body) {
+  BinaryGeometry g;
+  std::size_t at = 0;
+  const auto bytes = [&](std::size_t n) {
+    if (at + n > body.size())
+      throw std::runtime_error("geometry: truncated at " + std::to_string(at));
+    std::uint64_t v = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      v |= static_cast<std::uint64_t>(static_cast<unsigned char>(body[at + k])) << (8 * k);
+    }
+    at += n;
+    return v;
+  };
+  const auto u32 = [&] { return static_cast<std::uint32_t>(bytes(4)); };
+  const auto f64 = [&] { return std::bit_cast<double>(bytes(8)); };
+  if (body.substr(0, 4) != "SPGM") throw std::runtime_error("geometry: no magic");
+  at = 4;
+  g.version = u32();
+  g.manholes = u32();
+  g.pipes = u32();
+  for (int k = 0; k < 4; ++k) g.bounds.push_back(f64());
+  const std::uint32_t name_bytes = u32();
+  u32();
+  for (std::uint32_t i = 0; i < 2 * g.manholes; ++i) g.positions.push_back(f64());
+  for (std::uint32_t i = 0; i < g.pipes; ++i) g.lengths.push_back(f64());
+  for (std::uint32_t i = 0; i < g.pipes; ++i) g.diameters.push_back(f64());
+  for (auto* ends : {&g.from, &g.to}) {
+    for (std::uint32_t i = 0; i < g.pipes; ++i) {
+      const std::uint32_t m = u32();
+      ends->push_back(m == 0xffffffff ? -1 : static_cast<long long>(m));
+    }
+  }
+  std::vector<std::uint32_t> offsets;
+  for (std::uint32_t i = 0; i <= g.manholes + g.pipes; ++i) offsets.push_back(u32());
+  for (std::uint32_t i = 0; i < g.manholes; ++i) g.slots.push_back(static_cast<int>(bytes(1)));
+  for (std::uint32_t i = 0; i < g.manholes; ++i) g.exits.push_back(static_cast<int>(bytes(1)));
+  const std::size_t names_at = at;
+  if (names_at + name_bytes != body.size()) throw std::runtime_error("geometry: wrong size");
+  for (std::size_t i = 0; i + 1 < offsets.size(); ++i) {
+    g.names.push_back(body.substr(names_at + offsets[i], offsets[i + 1] - offsets[i]));
+  }
+  return g;
+}
+
+// The binary geometry holds the JSON's values bit for bit: on the AIS map and on a SWMM map
+// uploaded.
+TEST_F(StationServerTest, GivesThePageTheSameGeometryAsTypedArrays) {
+  auto [up, uploaded] =
+      post("/api/maps?name=epa-example1.inp", read(kSource / "datasets/swmm/epa-example1.inp"));
+  ASSERT_EQ(up, 201);
+  for (const std::string& id : {std::string("map"), uploaded["id"].get<std::string>()}) {
+    SCOPED_TRACE(id);
+    auto [status, j] = get("/api/maps/" + id);
+    ASSERT_EQ(status, 200);
+    auto r = client_->Get(("/api/maps/" + id + "/geometry").c_str());
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->status, 200);
+    EXPECT_EQ(r->get_header_value("Content-Type"), "application/octet-stream");
+    const BinaryGeometry g = decode_geometry(r->body);
+    EXPECT_EQ(g.version, 1u);
+    const json& m = j["manholes"];
+    const json& p = j["pipes"];
+    ASSERT_EQ(g.manholes, m["name"].size());
+    ASSERT_EQ(g.pipes, p["name"].size());
+    EXPECT_EQ(g.bounds, j["bounds"].get<std::vector<double>>());
+    for (std::size_t i = 0; i < g.manholes; ++i) {
+      EXPECT_EQ(g.names[i], m["name"][i]);
+      EXPECT_EQ(g.positions[2 * i], m["x"][i].get<double>());
+      EXPECT_EQ(g.positions[2 * i + 1], m["y"][i].get<double>());
+      EXPECT_EQ(g.slots[i], m["slots"][i]);
+      EXPECT_EQ(g.exits[i], m["exit"][i]);
+    }
+    for (std::size_t i = 0; i < g.pipes; ++i) {
+      EXPECT_EQ(g.names[g.manholes + i], p["name"][i]);
+      EXPECT_EQ(g.from[i], p["from"][i]);
+      EXPECT_EQ(g.to[i], p["to"][i]);
+      EXPECT_EQ(g.lengths[i], p["length_m"][i].get<double>());
+      EXPECT_EQ(g.diameters[i], p["diameter_m"][i].get<double>());
+    }
+  }
+  auto [status, j] = get("/api/maps/nowhere/geometry");
+  EXPECT_EQ(status, 404);
+  EXPECT_EQ(j["error"]["message"], "no map 'nowhere'");
+}
+
+TEST_F(StationServerTest, WithATokenRefusesTheBinaryGeometryWithoutIt) {
+  TearDown();
+  start({.token = "s3cret"});
+  EXPECT_EQ(get("/api/maps/map/geometry").first, 401);
+  client_->set_bearer_token_auth("s3cret");
+  auto r = client_->Get("/api/maps/map/geometry");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200);
+  EXPECT_EQ(decode_geometry(r->body).manholes, 12u);
 }
 
 TEST_F(StationServerTest, PlansThePapersMissionIn14StepsWithItsFusedActions) {

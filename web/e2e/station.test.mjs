@@ -118,6 +118,13 @@ async function hovers(page, canvas, what, points) {
   return shown;
 }
 
+// The page's performance marks of opening map `id` (main.js's openMap), in ms after the map was asked.
+const marks = (page, id) => page.evaluate((i) => {
+  const m = performance.getEntriesByType('mark').filter((e) => e.name.startsWith(`${i}: `));
+  const t0 = m.find((e) => e.name === `${i}: asked`)?.startTime ?? 0;
+  return m.map((e) => `${e.name.slice(i.length + 2)} ${Math.round(e.startTime - t0)}`).join(', ');
+}, id);
+
 // The pipe (with two manholes, at least 40 pixels long on the screen, so that its middle is clear
 // of their circles) whose middle is nearest the view's centre, and that middle on the screen.
 const nearestPipe = (page) => page.evaluate(() => {
@@ -140,12 +147,16 @@ async function largeMap(page, canvas, shot) {
   check(!id.startsWith('epa'), `the large map is ${id}`);
   await page.selectOption('#map', id);
   await page.waitForFunction((i) => document.body.dataset.opened === i, id, { timeout: 180000 });
+  const drawnAfter = Date.now() - t2;
+  await page.waitForFunction((i) => document.body.dataset.driveability === i &&
+                             window.station.state.timings.driveability_drawn_ms, id, { timeout: 180000 });
   const timings = await page.evaluate(() => window.station.state.timings);
-  console.log(`large map ${id}: open and first draw ${Date.now() - t2} ms; in the page: geometry fetched and parsed ` +
-              `${timings.geometry_ms} ms, turned into pipes and manholes ${timings.load_geometry_ms} ms, ` +
-              `the profile's driveability asked ${timings.driveability_ms} ms, then drawn ` +
-              `${timings.open_map_ms - timings.geometry_ms - timings.load_geometry_ms - timings.driveability_ms} ms ` +
-              `(load ${loadavg()})`);
+  console.log(`large map ${id}: open and first draw ${drawnAfter} ms; in the page: geometry fetched ` +
+              `${timings.geometry_ms} ms, read into columns ${timings.load_geometry_ms} ms, then drawn ` +
+              `${timings.open_map_ms - timings.geometry_ms - timings.load_geometry_ms} ms; the profile's ` +
+              `driveability (asked with the geometry) applied ${timings.driveability_ms} ms and drawn ` +
+              `${timings.driveability_drawn_ms} ms after the map was asked (load ${loadavg()})`);
+  console.log(`large map ${id}, the page's marks: ${await marks(page, id)}`);
   await shot('8-large.png');
   const box = await canvas.boundingBox();
   const around = (n) => Array.from({ length: n }, (_, i) => [box.width / 2 + 9 * i - 45, box.height / 2 + 5 * i - 25]);
@@ -196,6 +207,7 @@ try {
   check(inUrl.status === 401, `?token= in a URL answered ${inUrl.status}, not 401`);
   console.log(`page load and first draw (AIS map): ${Date.now() - t0} ms; in the page:`,
               await page.evaluate(() => window.station.state.timings));
+  console.log(`AIS map, the page's marks: ${await marks(page, 'map')} (load ${loadavg()})`);
   await shot('1-map.png');
 
   // Clicks a pipe at `fraction` of its length (where the page's view projects it) in `mode`.
@@ -331,6 +343,34 @@ try {
   await page.waitForFunction(() => document.body.dataset.opened === 'epa-example1', null, { timeout: 30000 });
   check((await page.locator('#map option').count()) === (large ? 3 : 2), 'the uploaded map is not listed');
   await shot('7-uploaded-map.png');
+
+  // Another profile chosen while a map opens (its geometry held back): the driveability is asked
+  // for the map being opened, and the latest answer, the new profile's, is shown once it is drawn.
+  const aisId = await page.locator('#map option').first().getAttribute('value');
+  const profiles = await page.locator('#profile option').evaluateAll((os) => os.map((o) => o.value));
+  const otherProfile = profiles.find((p) => p !== profiles[0]);
+  let releaseGeometry;
+  const geometryHeld = new Promise((resolve) => { releaseGeometry = resolve; });
+  await page.route('**/geometry', async (route) => { await geometryHeld; await route.continue(); });
+  await page.selectOption('#profile', profiles[0]);
+  await page.evaluate(() => { delete document.body.dataset.driveability; });
+  const asked = [];
+  const onRequest = (r) => { if (r.url().includes('/driveability')) asked.push(r.url()); };
+  page.on('request', onRequest);
+  await page.selectOption('#map', aisId);
+  await page.selectOption('#profile', otherProfile);
+  releaseGeometry();
+  await page.waitForFunction((i) => document.body.dataset.driveability === i && document.body.dataset.opened === i,
+                             aisId, { timeout: 30000 });
+  await page.unroute('**/geometry');
+  page.off('request', onRequest);
+  const line = await page.locator('#driveability').textContent();
+  check(asked.length === 2 && asked.every((u) => u.includes(`/maps/${aisId}/`)) &&
+        asked[1].includes(`profile=${encodeURIComponent(otherProfile)}`),
+        `a profile changed while the map opened asked ${asked.join(', ')}`);
+  check(/manhole passages not drivable/.test(line), `the driveability line after a profile change while opening: ${line}`);
+  console.log(`profile changed while ${aisId} opened: driveability asked ${asked.length} times for it, shown: ${line}`);
+  await page.selectOption('#profile', profiles[0]);
 
   if (large) await largeMap(page, canvas, shot);
   console.log(`station e2e: ok in ${Date.now() - started} ms, of which screenshots ${shotsMs} ms`);

@@ -38,11 +38,28 @@ const risk = (path) => `${path}${path.includes('?') ? '&' : '?'}risk=${encodeURI
 export const listMaps = () => call('api/maps');
 export const uploadMap = (name, text) =>
   call(`api/maps?name=${encodeURIComponent(name)}`, { method: 'POST', body: text });
-export const mapGeometry = (id) => call(map(id));
+// The map's compact geometry (typed arrays, geometry.js's readGeometry) as an ArrayBuffer.
+export async function mapGeometry(id) {
+  const response = await fetch(`${map(id)}/geometry`, { headers });
+  if (!response.ok) {
+    const body = await response.json();
+    throw Object.assign(new Error(body.error?.message ?? response.statusText), { body });
+  }
+  return response.arrayBuffer();
+}
 export const uploadCondition = (id, name, text) =>
   call(`${map(id)}/condition?name=${encodeURIComponent(name)}`, { method: 'POST', body: text });
-export const driveability = (id, profile) =>
-  call(motion(`${map(id)}/driveability?profile=${encodeURIComponent(profile)}`));
+// The profile's driveability, in two steps: the promise resolves when the answer has come, with a
+// function that reads its JSON (and throws the server's error). A large answer asked early is
+// parsed only when the page has time for it: main.js reads it after the map's first draw.
+export async function driveability(id, profile) {
+  const response = await fetch(motion(`${map(id)}/driveability?profile=${encodeURIComponent(profile)}`), { headers });
+  return async () => {
+    const body = await response.json();
+    if (!response.ok) throw Object.assign(new Error(body.error?.message ?? response.statusText), { body });
+    return body;
+  };
+}
 export const validate = (id, mission) => call(`${map(id)}/validate`, { method: 'POST', body: JSON.stringify(mission) });
 export const plan = (id, mission, timeLimit) =>
   call(risk(motion(`${map(id)}/plan?time_limit=${timeLimit}`)), { method: 'POST', body: JSON.stringify(mission) });

@@ -1,26 +1,130 @@
 // SPDX-License-Identifier: MIT
-// The map as the page draws it: the server's geometry document (columns, the map's own metres)
-// turned into one object per pipe and manhole, and points along a pipe.
+// The map as the page draws it (the server's geometry, in the map's own metres) and points along a
+// pipe.
 
-// Columns -> {manholes, pipes, pipeByName, manholeByName}. A pipe with an open end (no manhole at
-// one side) is drawn as a short stub from its one manhole, a tenth of its length long.
+// The map as the page holds it, from the server's compact geometry (readGeometry, GET
+// /api/maps/ID/geometry) or its JSON document of columns (loadGeometry): columns of typed arrays,
+// read in place, and objects only for the pipes and manholes the page names or clicks:
+//   {id, bounds, manholeCount, pipeCount, columns (lod.js's grid reads them: each pipe's ends and
+//    diameter, each manhole's position, exit flag and slot count), openEnd [pipe],
+//    pipe(i), manhole(i), pipes, manholes, pipeIndex(name), pipeByName, manholeByName}
+// pipe(i) is {i, name, from, to, openEnd, length_m, diameter_m}, manhole(i) {i, name, position,
+// slots, exit}; the arrays are built at their first use (a 100,000-manhole map is drawn without
+// them). pipeIndex(name) is a pipe's index (undefined if none); pipeByName and manholeByName
+// answer has(name) and get(name) (the object, a new one each time): the names are decoded and
+// indexed by name at the first look-up, without building any object. A pipe with an open end (no manhole at one side) is drawn as a short
+// stub from its one manhole, a tenth of its length long; one with no manhole at either end (no map
+// format makes one) as a point at the bounds' lower corner.
+
+const kNone = 0xffffffff;                 // a pipe end without a manhole (map_geometry.h)
+export const kGeometryFormatVersion = 1;  // the compact geometry's format this page reads
+
+// The server's compact geometry (server/src/map_geometry.h: a 56-byte header, then little-endian
+// sections) as typed arrays over the buffer, no copy (on a little-endian machine, as every
+// browser's is); a wrong magic, version or size throws.
+export function readGeometry(buffer, id) {
+  const head = new DataView(buffer);
+  const fail = (why) => { throw new Error(`the map's geometry: ${why}`); };
+  if (buffer.byteLength < 56) fail(`${buffer.byteLength} bytes, no header`);
+  if (String.fromCharCode(...new Uint8Array(buffer, 0, 4)) !== 'SPGM') fail('not sewerplan geometry');
+  const version = head.getUint32(4, true);
+  if (version !== kGeometryFormatVersion) fail(`format ${version}, this page reads ${kGeometryFormatVersion}`);
+  const m = head.getUint32(8, true), p = head.getUint32(12, true);
+  const bounds = [0, 1, 2, 3].map((k) => head.getFloat64(16 + 8 * k, true));
+  const nameBytes = head.getUint32(48, true);
+  let at = 56;
+  const take = (Type, n) => {
+    const a = new Type(buffer, at, n);
+    at += n * Type.BYTES_PER_ELEMENT;
+    return a;
+  };
+  if (56 + 16 * m + 24 * p + 4 * (m + p + 1) + 2 * m + nameBytes !== buffer.byteLength) {
+    fail(`${buffer.byteLength} bytes for ${m} manholes and ${p} pipes`);
+  }
+  const positions = take(Float64Array, 2 * m), lengths = take(Float64Array, p), diameters = take(Float64Array, p);
+  const from = take(Uint32Array, p), to = take(Uint32Array, p), offsets = take(Uint32Array, m + p + 1);
+  const slots = take(Uint8Array, m), exits = take(Uint8Array, m), names = take(Uint8Array, nameBytes);
+  // The names decoded at once, in one pass, and cut at their offsets: a name's first character
+  // is the count of UTF-16 units before its first byte (a byte starting a character counts one,
+  // a 4-byte one two), found with one pass over the bytes when not all are ASCII.
+  let text = null, units = offsets;
+  const decode = () => {
+    text = new TextDecoder().decode(names);
+    if (text.length === nameBytes) return;
+    units = new Uint32Array(m + p + 1);
+    let k = 0, u = 0;
+    for (let b = 0; b <= nameBytes; ++b) {
+      while (k <= m + p && offsets[k] === b) units[k++] = u;
+      const c = names[b];
+      if ((c & 0xc0) !== 0x80) u += c >= 0xf0 ? 2 : 1;
+    }
+  };
+  const nameOf = (k) => {
+    if (text === null) decode();
+    return text.slice(units[k], units[k + 1]);
+  };
+  return makeMap({ id, bounds, positions, lengths, diameters, from, to, slots, exits,
+                   manholeName: (i) => nameOf(i), pipeName: (i) => nameOf(m + i) });
+}
+
+// The server's JSON document of columns (map_geometry.h) as the same map.
 export function loadGeometry(g) {
-  const m = g.manholes;
-  const manholes = m.name.map((name, i) => ({ i, name, position: [m.x[i], m.y[i]], slots: m.slots[i],
-                                              exit: m.exit[i] === 1 }));
-  const p = g.pipes;
-  const pipes = [];
-  p.name.forEach((name, i) => {
-    const a = p.from[i], b = p.to[i];
-    if (a < 0 && b < 0) return;
-    const known = manholes[a >= 0 ? a : b].position;
-    const stub = [known[0] + Math.max(p.length_m[i] / 10, 0.5), known[1]];
-    pipes.push({ i, name, from: a >= 0 ? known : stub, to: b >= 0 ? manholes[b].position : stub,
-                 openEnd: a < 0 || b < 0, length_m: p.length_m[i], diameter_m: p.diameter_m[i] });
+  const mh = g.manholes, pp = g.pipes, n = mh.name.length;
+  const positions = new Float64Array(2 * n);
+  for (let i = 0; i < n; ++i) { positions[2 * i] = mh.x[i]; positions[2 * i + 1] = mh.y[i]; }
+  const end = (a) => Uint32Array.from(a, (x) => (x < 0 ? kNone : x));
+  return makeMap({ id: g.id, bounds: g.bounds, positions, lengths: Float64Array.from(pp.length_m),
+                   diameters: Float64Array.from(pp.diameter_m), from: end(pp.from), to: end(pp.to),
+                   slots: Uint8Array.from(mh.slots, (s) => Math.min(s, 255)), exits: Uint8Array.from(mh.exit),
+                   manholeName: (i) => mh.name[i], pipeName: (i) => pp.name[i] });
+}
+
+function makeMap(c) {
+  const m = c.exits.length, p = c.lengths.length;
+  const ends = new Float64Array(4 * p), openEnd = new Uint8Array(p);
+  const pos = c.positions;
+  for (let i = 0; i < p; ++i) {
+    const a = c.from[i], b = c.to[i];
+    const known = a !== kNone ? a : b;
+    const kx = known !== kNone ? pos[2 * known] : c.bounds[0], ky = known !== kNone ? pos[2 * known + 1] : c.bounds[1];
+    const sx = kx + Math.max(c.lengths[i] / 10, 0.5);  // an open end's stub
+    ends[4 * i] = a !== kNone ? pos[2 * a] : known !== kNone ? sx : kx;
+    ends[4 * i + 1] = a !== kNone ? pos[2 * a + 1] : ky;
+    ends[4 * i + 2] = b !== kNone ? pos[2 * b] : known !== kNone ? sx : kx;
+    ends[4 * i + 3] = b !== kNone ? pos[2 * b + 1] : ky;
+    openEnd[i] = a === kNone || b === kNone ? 1 : 0;
+  }
+  const pipe = (i) => ({ i, name: c.pipeName(i), from: [ends[4 * i], ends[4 * i + 1]], to: [ends[4 * i + 2], ends[4 * i + 3]],
+                         openEnd: openEnd[i] === 1, length_m: c.lengths[i], diameter_m: c.diameters[i] });
+  const manhole = (i) => ({ i, name: c.manholeName(i), position: [pos[2 * i], pos[2 * i + 1]], slots: c.slots[i],
+                            exit: c.exits[i] === 1 });
+  const once = (make) => { let v = null; return () => (v ??= make()); };
+  const pipes = once(() => Array.from({ length: p }, (_, i) => pipe(i)));
+  const manholes = once(() => Array.from({ length: m }, (_, i) => manhole(i)));
+  // name -> index, read from the name table the first time a name is looked up (no object made);
+  // byName's get(name) makes the one object asked for.
+  const indexOf = (count, nameOf) => once(() => {
+    const index = new Map();
+    for (let i = 0; i < count; ++i) index.set(nameOf(i), i);
+    return index;
   });
-  return { id: g.id, name: g.name, bounds: g.bounds, manholes, pipes,
-           pipeByName: new Map(pipes.map((x) => [x.name, x])),
-           manholeByName: new Map(manholes.map((x) => [x.name, x])) };
+  const pipeIndex = indexOf(p, c.pipeName), manholeIndex = indexOf(m, c.manholeName);
+  const byName = (index, make) => ({
+    has: (name) => index().has(name),
+    get: (name) => { const i = index().get(name); return i === undefined ? undefined : make(i); },
+  });
+  const pipeByName = byName(pipeIndex, pipe), manholeByName = byName(manholeIndex, manhole);
+  return {
+    id: c.id, bounds: c.bounds, manholeCount: m, pipeCount: p, openEnd,
+    columns: { ends, diameters: c.diameters, positions: pos, exits: c.exits, slots: c.slots },
+    pipe,
+    manhole,
+    get pipes() { return pipes(); },
+    get manholes() { return manholes(); },
+    pipeIndex: (name) => pipeIndex().get(name),
+    pipeByName,
+    manholeByName,
+  };
 }
 
 // The point `offset` metres from the pipe's `from` end (its middle without an offset).

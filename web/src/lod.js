@@ -33,23 +33,9 @@ const kExitColor = [20, 150, 60, 255], kManholeColor = [90, 90, 90, 255];
 export const pipeWidthPx = (diameter) => 1 + 4 * Math.min(diameter, 1);
 export const manholeRadiusPx = (exit, slots) => (exit ? 6 : 3 + Math.min(slots, 4) * 0.5);
 
-// The map as columns (what the worker is sent): each pipe's ends (x0, y0, x1, y1) and diameter,
-// each manhole's position (x, y), exit flag and slot count.
-export function mapColumns(map) {
-  const ends = new Float64Array(4 * map.pipes.length), diameters = new Float32Array(map.pipes.length);
-  map.pipes.forEach((p, i) => {
-    ends.set([p.from[0], p.from[1], p.to[0], p.to[1]], 4 * i);
-    diameters[i] = p.diameter_m;
-  });
-  const n = map.manholes.length;
-  const positions = new Float64Array(2 * n), exits = new Uint8Array(n), slots = new Uint8Array(n);
-  map.manholes.forEach((m, i) => {
-    positions.set(m.position, 2 * i);
-    exits[i] = m.exit ? 1 : 0;
-    slots[i] = Math.min(m.slots, 255);
-  });
-  return { ends, diameters, positions, exits, slots };
-}
+// The map as columns (what the worker is sent; geometry.js reads them from the server's): each
+// pipe's ends (x0, y0, x1, y1) and diameter, each manhole's position (x, y), exit flag and slot count.
+export const mapColumns = (map) => map.columns;
 
 // The pipes and manholes (mapColumns) in a uniform grid of about 8 a cell, in compressed rows:
 // the pipes of cell c are pipeItems[pipeStart[c] .. pipeStart[c + 1]), each pipe in every cell its
@@ -159,9 +145,14 @@ export class GridIndex {
 }
 
 // Each pipe's class (kNormal, kOpenEnd, kBlocked) for a profile's blocked pipes (name -> reason).
+// O(pipes + blocked): no pipe's name is read but the blocked ones'.
 export function pipeClasses(map, blocked) {
-  const classes = new Uint8Array(map.pipes.length);
-  map.pipes.forEach((p, i) => { classes[i] = blocked.has(p.name) ? kBlocked : p.openEnd ? kOpenEnd : kNormal; });
+  const classes = Uint8Array.from(map.openEnd, (open) => (open ? kOpenEnd : kNormal));
+  if (blocked.size === 0) return classes;
+  for (const name of blocked.keys()) {
+    const i = map.pipeIndex(name);
+    if (i !== undefined) classes[i] = kBlocked;
+  }
   return classes;
 }
 

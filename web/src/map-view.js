@@ -145,7 +145,7 @@ export function createMapView(parent, { onClick, onHover }) {
     const hit = pick(index, key.mode === 'overview', info.coordinate, viewState.zoom);
     if (!hit) return { ...info, layer: null, object: null };
     const pipe = hit.kind === 'pipe';
-    return { ...info, layer: { id: pipe ? 'pipes' : 'manholes' }, object: pipe ? map.pipes[hit.index] : map.manholes[hit.index] };
+    return { ...info, layer: { id: pipe ? 'pipes' : 'manholes' }, object: pipe ? map.pipe(hit.index) : map.manhole(hit.index) };
   }
 
   function overlayLayers(s) {
@@ -181,7 +181,7 @@ export function createMapView(parent, { onClick, onHover }) {
       id: 'failures', data: s.failures, getPosition: (f) => f, radiusUnits: 'pixels', getRadius: 10,
       filled: false, stroked: true, getLineColor: [220, 0, 0], lineWidthUnits: 'pixels', getLineWidth: 3,
     }));
-    if (map.manholes.length <= kNamesUpTo) {
+    if (map.manholeCount <= kNamesUpTo) {
       layers.push(new TextLayer({ id: 'names', data: map.manholes, getPosition: (m) => m.position,
                                   getText: (m) => m.name, getSize: 11, getPixelOffset: [0, -12],
                                   characterSet: 'auto', fontFamily: 'monospace' }));

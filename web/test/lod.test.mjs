@@ -6,14 +6,14 @@
 //   node --test test/
 import assert from 'node:assert/strict';
 import { test } from 'node:test';
-import { loadGeometry } from '../src/geometry.js';
+import { loadGeometry, readGeometry } from '../src/geometry.js';
 import { GridIndex, kBlocked, keyServes, kNormal, kOpenEnd, kVectorBudget, lodKey, mapColumns, pick,
          pipeClasses, vectorData } from '../src/lod.js';
 
 // A seeded street grid of `side` x `side` manholes 30 m apart (jittered by up to 10 m), each joined to
 // its right neighbour and, every other column, to the one above; every 7th manhole an exit, and one
 // pipe with an open end.
-function gridMap(side, seed = 1) {
+function gridDocument(side, seed = 1) {
   let s = seed;
   const rnd = () => (s = (s * 1103515245 + 12345) % 2147483648) / 2147483648;
   const g = { id: 'grid', name: 'grid', bounds: [0, 0, side * 30, side * 30],
@@ -39,8 +39,9 @@ function gridMap(side, seed = 1) {
     if (i + side < side * side && i % 2 === 0) join(i, i + side);
   }
   join(0, -1);
-  return loadGeometry(g);
+  return g;
 }
+const gridMap = (side, seed = 1) => loadGeometry(gridDocument(side, seed));
 
 const inRect = ([x0, y0, x1, y1], x, y) => x >= x0 && x <= x1 && y >= y0 && y <= y1;
 // The view of a screen of 1000 x 800 pixels centred on (x, y) at `zoom` (2^zoom pixels a metre).
@@ -143,4 +144,54 @@ test("a vector window's layers hold its pipes and manholes, coloured by class", 
   assert.deepEqual([...colors.slice(4 * p3, 4 * p3 + 3)], [200, 40, 40]);
   const positions = data.manholes.attributes.getPosition.value;
   assert.ok(positions instanceof Float64Array, 'positions keep double precision');
+});
+
+// The server's compact geometry (server/src/map_geometry.h) of a JSON document, written here as
+// map_geometry_binary writes it: little-endian sections after a 56-byte header.
+function geometryBinary(g, { version = 1, magic = 'SPGM' } = {}) {
+  const mh = g.manholes, pp = g.pipes, m = mh.name.length, p = pp.name.length;
+  const names = new TextEncoder().encode([...mh.name, ...pp.name].join(''));
+  const offsets = [0];
+  for (const name of [...mh.name, ...pp.name]) offsets.push(offsets.at(-1) + new TextEncoder().encode(name).length);
+  const size = 56 + 16 * m + 24 * p + 4 * (m + p + 1) + 2 * m + names.length;
+  const buffer = new ArrayBuffer(size), v = new DataView(buffer);
+  [...magic].forEach((c, k) => v.setUint8(k, c.charCodeAt(0)));
+  v.setUint32(4, version, true); v.setUint32(8, m, true); v.setUint32(12, p, true);
+  g.bounds.forEach((b, k) => v.setFloat64(16 + 8 * k, b, true));
+  v.setUint32(48, names.length, true);
+  let at = 56;
+  const f64 = (x) => { v.setFloat64(at, x, true); at += 8; };
+  const u32 = (x) => { v.setUint32(at, x, true); at += 4; };
+  const u8 = (x) => { v.setUint8(at, x); at += 1; };
+  for (let i = 0; i < m; ++i) { f64(mh.x[i]); f64(mh.y[i]); }
+  pp.length_m.forEach(f64); pp.diameter_m.forEach(f64);
+  pp.from.forEach((a) => u32(a < 0 ? 0xffffffff : a)); pp.to.forEach((b) => u32(b < 0 ? 0xffffffff : b));
+  offsets.forEach(u32); mh.slots.forEach(u8); mh.exit.forEach(u8);
+  new Uint8Array(buffer, at).set(names);
+  return buffer;
+}
+
+test('the compact geometry reads as the JSON: columns, open ends, names (not ASCII too)', () => {
+  const g = gridDocument(6);
+  g.manholes.name[3] = 'Schacht-Ü3';  // a name of more bytes than characters
+  g.pipes.name[2] = 'Haltung-𝄞2';     // and one of two UTF-16 units for one character
+  const json = loadGeometry(g), binary = readGeometry(geometryBinary(g), 'grid');
+  assert.deepEqual(binary.columns, json.columns);
+  assert.deepEqual(binary.openEnd, json.openEnd);
+  assert.equal(binary.openEnd.reduce((a, b) => a + b, 0), 1);
+  assert.deepEqual(binary.bounds, json.bounds);
+  assert.deepEqual(binary.pipes, json.pipes);
+  assert.deepEqual(binary.manholes, json.manholes);
+  assert.equal(binary.manholeByName.get('Schacht-Ü3').i, 3);
+  assert.equal(binary.pipe(5).name, 'P5');
+  // Looked up by name: every pipe's and manhole's index, the names after the wide ones too.
+  g.pipes.name.forEach((name, i) => assert.equal(binary.pipeIndex(name), i));
+  g.manholes.name.forEach((name, i) => assert.equal(binary.manholeByName.get(name).i, i));
+  assert.equal(binary.pipeByName.get('Haltung-𝄞2').i, 2);
+  assert.equal(binary.pipeIndex('P99'), undefined);
+  assert.equal(binary.pipeByName.has('P99'), false);
+  assert.equal(json.pipeIndex('Haltung-𝄞2'), 2);
+  assert.throws(() => readGeometry(geometryBinary(g, { version: 2 }), 'grid'), /format 2, this page reads 1/);
+  assert.throws(() => readGeometry(geometryBinary(g, { magic: 'JSON' }), 'grid'), /not sewerplan geometry/);
+  assert.throws(() => readGeometry(geometryBinary(g).slice(0, 200), 'grid'), /200 bytes for 36 manholes/);
 });
