@@ -7,6 +7,7 @@
 #include <functional>
 #include <optional>
 #include <sstream>
+#include <tuple>
 
 #include "sewerplan/core/check.h"
 #include "sewerplan/core/limits.h"
@@ -36,11 +37,35 @@ bool is_valid_name(std::string_view name) {
   });
 }
 
-// Indices of `records` sorted by name; reports empty, malformed and duplicate names.
-template <class Record>
-std::vector<std::uint32_t> sorted_names(const std::vector<Record>& records, std::string_view kind,
-                                        Kind ref_kind, const Locator& locate,
-                                        Diagnostics& diagnostics) {
+// The names of records of one kind, by index: names[i] is record i's name, names.line(i) its line,
+// names.record(i) where it lies (to fetch ahead).
+template <class Record, class NameOf>
+class RecordNames {
+ public:
+  RecordNames(const std::vector<Record>& records, NameOf name_of)
+      : records_(&records), name_of_(name_of) {}
+  std::size_t size() const { return records_->size(); }
+  std::string_view operator[](std::size_t i) const { return name_of_((*records_)[i]); }
+  std::uint32_t line(std::size_t i) const { return (*records_)[i].line; }
+  const void* record(std::size_t i) const { return &(*records_)[i]; }
+
+ private:
+  const std::vector<Record>* records_;
+  NameOf name_of_;
+};
+
+struct OwnName {
+  template <class Record>
+  std::string_view operator()(const Record& r) const {
+    return r.name;
+  }
+};
+
+// Indices of the records named by `names` sorted by name; reports empty, malformed and duplicate
+// names.
+template <class Names>
+std::vector<std::uint32_t> sorted_names(const Names& names, std::string_view kind, Kind ref_kind,
+                                        const Locator& locate, Diagnostics& diagnostics) {
   // Sorted by the names' first 8 bytes held beside the index, the full names compared only where
   // those are equal: comparing through the index to a million names scattered in memory was a
   // quarter of reading a 1,000,000-manhole map (issue 16). The order is the same: a smaller
@@ -50,10 +75,10 @@ std::vector<std::uint32_t> sorted_names(const std::vector<Record>& records, std:
     std::uint32_t index;
   };
   std::vector<Key> keys;
-  detail::reserve_huge(keys, records.size());
-  for (std::uint32_t i = 0; i < records.size(); ++i) {
+  detail::reserve_huge(keys, names.size());
+  for (std::uint32_t i = 0; i < names.size(); ++i) {
     std::uint64_t prefix = 0;
-    const std::string& name = records[i].name;
+    const std::string_view name = names[i];
     for (std::size_t k = 0; k < 8; ++k) {
       prefix = (prefix << 8U) | (k < name.size() ? static_cast<unsigned char>(name[k]) : 0U);
     }
@@ -61,27 +86,26 @@ std::vector<std::uint32_t> sorted_names(const std::vector<Record>& records, std:
   }
   std::sort(keys.begin(), keys.end(), [&](const Key& a, const Key& b) {
     if (a.prefix != b.prefix) return a.prefix < b.prefix;
-    const std::string& x = records[a.index].name;
-    const std::string& y = records[b.index].name;
+    const std::string_view x = names[a.index];
+    const std::string_view y = names[b.index];
     return x < y || (x == y && a.index < b.index);
   });
   std::vector<std::uint32_t> order;
-  detail::reserve_huge(order, records.size());
+  detail::reserve_huge(order, names.size());
   for (const Key& k : keys) order.push_back(k.index);
   std::vector<Key>().swap(keys);
   for (std::size_t k = 0; k < order.size(); ++k) {
-    const Record& r = records[order[k]];
-    RecordRef ref{ref_kind, order[k], 0, r.line};
-    if (!is_valid_name(r.name)) {
+    const std::string_view name = names[order[k]];
+    RecordRef ref{ref_kind, order[k], 0, names.line(order[k])};
+    if (!is_valid_name(name)) {
       diagnostics.error(locate(ref, "name"),
-                        std::string(kind) + " name '" + to_utf8_lossy(r.name) +
+                        std::string(kind) + " name '" + to_utf8_lossy(name) +
                             "' is empty, contains white space or is not valid UTF-8");
-    } else if (k > 0 && records[order[k - 1]].name == r.name) {
-      const Record& first = records[order[k - 1]];
-      RecordRef first_ref{ref_kind, order[k - 1], 0, first.line};
-      diagnostics.error(locate(ref, "name"), "duplicate " + std::string(kind) + " name '" + r.name +
-                                                 "' (first defined at " + locate(first_ref, "") +
-                                                 ")");
+    } else if (k > 0 && names[order[k - 1]] == name) {
+      RecordRef first_ref{ref_kind, order[k - 1], 0, names.line(order[k - 1])};
+      diagnostics.error(locate(ref, "name"), "duplicate " + std::string(kind) + " name '" +
+                                                 std::string(name) + "' (first defined at " +
+                                                 locate(first_ref, "") + ")");
     }
   }
   return order;
@@ -90,19 +114,20 @@ std::vector<std::uint32_t> sorted_names(const std::vector<Record>& records, std:
 // Names to the first record of that name (by index; a repeated name is an error): open addressing
 // over record indices, so a reference resolves with one or two probes where a binary search over a
 // million sorted names touched some twenty records far apart. 4 bytes per slot, at most half full.
-template <class Record>
+template <class Names>
 class NameIndex {
  public:
-  explicit NameIndex(const std::vector<Record>& records) : records_(records) {
+  explicit NameIndex(Names names) : names_(names) {
     std::size_t capacity = 16;
-    while (capacity < 2 * records.size()) capacity <<= 1U;
+    while (capacity < 2 * names.size()) capacity <<= 1U;
     mask_ = capacity - 1;
     detail::reserve_huge(slots_, capacity);
     slots_.assign(capacity, kEmpty);
-    for (std::uint32_t i = 0; i < records.size(); ++i) {
-      std::size_t h = std::hash<std::string_view>{}(records[i].name) & mask_;
+    for (std::uint32_t i = 0; i < names.size(); ++i) {
+      const std::string_view name = names[i];
+      std::size_t h = std::hash<std::string_view>{}(name)&mask_;
       for (; slots_[h] != kEmpty; h = (h + 1) & mask_) {
-        if (records[slots_[h]].name == records[i].name) break;
+        if (names[slots_[h]] == name) break;
       }
       if (slots_[h] == kEmpty) slots_[h] = i;
     }
@@ -113,10 +138,10 @@ class NameIndex {
   }
 
   // find(name_of(i)) for every i < n, handed to found(i, result) in the order of i. The look-ups'
-  // memory reads overlap: a name's table slot is fetched kAhead names before it is probed and its
-  // record kAhead / 2 names before (issue 16: two million look-ups in a table and records far
-  // larger than the caches, each waiting for memory in turn, were a tenth of reading a
-  // 1,000,000-manhole map). The same results as find().
+  // memory reads overlap: a name's table slot is fetched kAhead names before it is probed, its
+  // record kAhead / 2 names before and the record's name kAhead / 4 before (issue 16: two million
+  // look-ups in a table and records far larger than the caches, each waiting for memory in turn,
+  // were a tenth of reading a 1,000,000-manhole map). The same results as find().
   template <class NameOf, class Found>
   void find_each(std::size_t n, NameOf name_of, Found found) const {
     constexpr std::size_t kAhead = 16;
@@ -128,14 +153,20 @@ class NameIndex {
     };
     auto fetch_record = [&](std::size_t i) {
       const std::uint32_t r = slots_[hashes[i % kAhead]];
-      if (r != kEmpty) __builtin_prefetch(&records_[r]);
+      if (r != kEmpty) __builtin_prefetch(names_.record(r));
+    };
+    auto fetch_name = [&](std::size_t i) {
+      const std::uint32_t r = slots_[hashes[i % kAhead]];
+      if (r != kEmpty) __builtin_prefetch(names_[r].data());
     };
     for (std::size_t i = 0; i < n && i < kAhead; ++i) fetch_slot(i);
     for (std::size_t i = 0; i < n && i < kAhead / 2; ++i) fetch_record(i);
+    for (std::size_t i = 0; i < n && i < kAhead / 4; ++i) fetch_name(i);
     for (std::size_t i = 0; i < n; ++i) {
       const std::size_t h = hashes[i % kAhead];
       if (i + kAhead < n) fetch_slot(i + kAhead);
       if (i + kAhead / 2 < n) fetch_record(i + kAhead / 2);
+      if (i + kAhead / 4 < n) fetch_name(i + kAhead / 4);
       found(i, probe(name_of(i), h));
     }
   }
@@ -143,13 +174,13 @@ class NameIndex {
  private:
   std::optional<std::uint32_t> probe(std::string_view name, std::size_t h) const {
     for (; slots_[h] != kEmpty; h = (h + 1) & mask_) {
-      if (records_[slots_[h]].name == name) return slots_[h];
+      if (names_[slots_[h]] == name) return slots_[h];
     }
     return std::nullopt;
   }
 
   static constexpr std::uint32_t kEmpty = 0xffffffffU;
-  const std::vector<Record>& records_;
+  Names names_;
   std::vector<std::uint32_t> slots_;
   std::size_t mask_ = 0;
 };
@@ -165,25 +196,63 @@ Locator line_locator(std::string file) {
 MapBuilder::MapBuilder(std::string map_name, Locator locator)
     : name_(to_utf8_lossy(map_name)), locator_(std::move(locator)) {}
 
+MapBuilder::Name MapBuilder::keep(std::string_view name) {
+  SEWER_CHECK(name.size() < Name::kNone && names_.size() <= Name::kNone - name.size(),
+              "a map's names take more than 4 GiB");
+  const Name n{static_cast<std::uint32_t>(names_.size()), static_cast<std::uint32_t>(name.size())};
+  names_.append(name);
+  return n;
+}
+
 void MapBuilder::add_manhole(ManholeRecord record) {
-  for (SlotRecord& slot : record.slots) slots_.push_back(std::move(slot));
-  std::vector<SlotRecord>().swap(record.slots);
+  StoredManhole m{.name = keep(record.name),
+                  .position = record.position,
+                  .diameter_m = record.diameter_m,
+                  .shaft_length_m = record.shaft_length_m.value_or(0),
+                  .shaft_width_m = record.shaft_width_m.value_or(0),
+                  .depth_m = record.depth_m.value_or(0),
+                  .line = record.line,
+                  .exit = record.exit,
+                  .variant = record.variant.value_or('\0'),
+                  .given = 0};
+  if (record.variant) m.given |= kVariant;
+  if (record.shaft_length_m) m.given |= kShaftLength;
+  if (record.shaft_width_m) m.given |= kShaftWidth;
+  if (record.depth_m) m.given |= kDepth;
+  manholes_.push_back(m);
   slot_end_.push_back(static_cast<std::uint32_t>(slots_.size()));
-  manholes_.push_back(std::move(record));
+  for (SlotRecord& slot : record.slots) add_slot(std::move(slot));
 }
 
 void MapBuilder::add_slot(SlotRecord slot) {
   SEWER_CHECK(!manholes_.empty(), "add_slot before any add_manhole");
-  slots_.push_back(std::move(slot));
+  slots_.push_back({.pipe = keep(slot.pipe),
+                    .azimuth_deg = slot.azimuth_deg,
+                    .invert_z_m = slot.invert_z_m,
+                    .line = slot.line});
   slot_end_.back() = static_cast<std::uint32_t>(slots_.size());
 }
 
-std::span<const SlotRecord> MapBuilder::slots_of(std::size_t manhole) const {
+std::span<const MapBuilder::StoredSlot> MapBuilder::slots_of(std::size_t manhole) const {
   const std::uint32_t begin = manhole == 0 ? 0 : slot_end_[manhole - 1];
-  return std::span<const SlotRecord>(slots_).subspan(begin, slot_end_[manhole] - begin);
+  return std::span<const StoredSlot>(slots_).subspan(begin, slot_end_[manhole] - begin);
 }
 
-void MapBuilder::add_pipe(PipeRecord record) { pipes_.push_back(std::move(record)); }
+void MapBuilder::add_pipe(PipeRecord record) {
+  StoredPipe p{.name = keep(record.name),
+               .from = record.from ? keep(*record.from) : Name{},
+               .to = record.to ? keep(*record.to) : Name{},
+               .length_m = record.length_m,
+               .diameter_m = record.diameter_m,
+               .height_m = record.height_m.value_or(0),
+               .blockage_risk = record.blockage_risk.value_or(0),
+               .line = record.line,
+               .shape = record.shape,
+               .given = 0};
+  if (record.height_m) p.given |= kHeight;
+  if (record.blockage_risk) p.given |= kBlockageRisk;
+  pipes_.push_back(p);
+}
 void MapBuilder::add_point(PointRecord record) { points_.push_back(std::move(record)); }
 void MapBuilder::add_finding(FindingRecord record) { findings_.push_back(std::move(record)); }
 void MapBuilder::set_name(std::string map_name) { name_ = to_utf8_lossy(map_name); }
@@ -243,6 +312,12 @@ void MapBuilder::reserve(std::size_t manholes, std::size_t pipes, std::size_t sl
   detail::reserve_huge(pipes_, pipes);
 }
 
+void MapBuilder::reserve_names(std::size_t bytes) {
+  if (names_.capacity() >= bytes) return;
+  names_.reserve(bytes);
+  detail::advise_huge_pages(names_.data(), names_.capacity());
+}
+
 // The checks of build(), one function per concern so that each stays readable.
 class MapBuilder::Validation {
  public:
@@ -252,12 +327,14 @@ class MapBuilder::Validation {
     SewerMap map;
     map.name_ = std::move(b_.name_);
     map.crs_ = std::move(b_.crs_);
-    map.manholes_by_name_ = sorted_names(b_.manholes_, "manhole", Kind::kManhole, b_.locator_, d_);
-    map.pipes_by_name_ = sorted_names(b_.pipes_, "pipe", Kind::kPipe, b_.locator_, d_);
-    map.points_by_name_ =
-        sorted_names(b_.points_, "inspection point", Kind::kPoint, b_.locator_, d_);
+    map.manholes_by_name_ =
+        sorted_names(manhole_names(), "manhole", Kind::kManhole, b_.locator_, d_);
+    map.pipes_by_name_ =
+        sorted_names(RecordNames(b_.pipes_, StoredName{&b_}), "pipe", Kind::kPipe, b_.locator_, d_);
+    map.points_by_name_ = sorted_names(RecordNames(b_.points_, OwnName{}), "inspection point",
+                                       Kind::kPoint, b_.locator_, d_);
     check_numbers();
-    manhole_index_.emplace(b_.manholes_);
+    manhole_index_.emplace(manhole_names());
     build_pipes(map);
     manhole_index_.reset();
     match_slots_from_pipes(map);
@@ -274,6 +351,18 @@ class MapBuilder::Validation {
   }
 
  private:
+  // A stored record's name.
+  struct StoredName {
+    const MapBuilder* b;
+    template <class Record>
+    std::string_view operator()(const Record& r) const {
+      return b->name(r.name);
+    }
+  };
+  using ManholeNames = RecordNames<StoredManhole, StoredName>;
+  ManholeNames manhole_names() const { return {b_.manholes_, StoredName{&b_}}; }
+  std::string name(Name n) const { return std::string(b_.name(n)); }
+
   std::string at(Kind kind, std::uint32_t index, std::uint32_t line, std::string_view field,
                  std::uint32_t slot = 0) const {
     return b_.locator_(RecordRef{kind, index, slot, line}, field);
@@ -323,8 +412,8 @@ class MapBuilder::Validation {
   }
 
   void check_manhole_numbers(std::uint32_t i) {
-    const ManholeRecord& m = b_.manholes_[i];
-    auto object = [&] { return "manhole " + m.name; };
+    const StoredManhole& m = b_.manholes_[i];
+    auto object = [&] { return "manhole " + name(m.name); };
     require_positive(m.diameter_m, "diameter", object, {Kind::kManhole, i, m.line, "diameter_m"});
     require_finite(m.position.x_m, "x", object, {Kind::kManhole, i, m.line, "x_m"});
     require_finite(m.position.y_m, "y", object, {Kind::kManhole, i, m.line, "y_m"});
@@ -337,13 +426,13 @@ class MapBuilder::Validation {
                     {Kind::kManhole, i, m.line, "y_m"});
     require_at_most(m.position.z_m, kMaxCoordinate_m, "z", object,
                     {Kind::kManhole, i, m.line, "z_m"});
-    if (m.variant && (*m.variant < 'A' || *m.variant > 'Z')) {
+    if ((m.given & kVariant) != 0 && (m.variant < 'A' || m.variant > 'Z')) {
       d_.error(at(Kind::kManhole, i, m.line, "variant"),
                object() + ": variant must be one capital letter A..Z");
     }
-    const std::span<const SlotRecord> slots = b_.slots_of(i);
+    const std::span<const StoredSlot> slots = b_.slots_of(i);
     for (std::uint32_t s = 0; s < slots.size(); ++s) {
-      const SlotRecord& slot = slots[s];
+      const StoredSlot& slot = slots[s];
       auto slot_object = [&] { return object() + " slot " + std::to_string(s + 1); };
       require_finite(slot.azimuth_deg, "azimuth", slot_object,
                      {Kind::kSlot, i, slot.line, "azimuth_deg", s});
@@ -352,10 +441,11 @@ class MapBuilder::Validation {
       require_at_most(slot.invert_z_m, kMaxCoordinate_m, "invert", slot_object,
                       {Kind::kSlot, i, slot.line, "invert_m", s});
     }
-    for (auto [v, field] :
-         {std::pair{m.shaft_length_m, "shaft_length_m"},
-          std::pair{m.shaft_width_m, "shaft_width_m"}, std::pair{m.depth_m, "depth_m"}}) {
-      if (v) require_positive(*v, field, object, {Kind::kManhole, i, m.line, field});
+    for (auto [v, bit, field] : {std::tuple{m.shaft_length_m, kShaftLength, "shaft_length_m"},
+                                 std::tuple{m.shaft_width_m, kShaftWidth, "shaft_width_m"},
+                                 std::tuple{m.depth_m, kDepth, "depth_m"}}) {
+      if ((m.given & bit) != 0)
+        require_positive(v, field, object, {Kind::kManhole, i, m.line, field});
     }
     if (slots.size() > 0xffff) {
       d_.error(at(Kind::kManhole, i, m.line, "slots"), object() + ": more than 65535 slots");
@@ -363,35 +453,35 @@ class MapBuilder::Validation {
   }
 
   void check_pipe_numbers(std::uint32_t i) {
-    const PipeRecord& p = b_.pipes_[i];
-    auto object = [&] { return "pipe " + p.name; };
+    const StoredPipe& p = b_.pipes_[i];
+    auto object = [&] { return "pipe " + name(p.name); };
     require_positive(p.length_m, "length", object, {Kind::kPipe, i, p.line, "length_m"});
     require_positive(p.diameter_m, "diameter", object, {Kind::kPipe, i, p.line, "diameter_m"});
     require_at_most(p.length_m, kMaxLength_m, "length", object,
                     {Kind::kPipe, i, p.line, "length_m"});
     require_at_most(p.diameter_m, kMaxDiameter_m, "diameter", object,
                     {Kind::kPipe, i, p.line, "diameter_m"});
-    if (p.height_m) {
-      require_positive(*p.height_m, "height", object, {Kind::kPipe, i, p.line, "height_m"});
-      require_at_most(*p.height_m, kMaxDiameter_m, "height", object,
+    if ((p.given & kHeight) != 0) {
+      require_positive(p.height_m, "height", object, {Kind::kPipe, i, p.line, "height_m"});
+      require_at_most(p.height_m, kMaxDiameter_m, "height", object,
                       {Kind::kPipe, i, p.line, "height_m"});
     }
-    if (p.blockage_risk && !(*p.blockage_risk >= 0 && *p.blockage_risk <= 1)) {
+    if ((p.given & kBlockageRisk) != 0 && !(p.blockage_risk >= 0 && p.blockage_risk <= 1)) {
       d_.error(at(Kind::kPipe, i, p.line, "blockage_risk"),
                object() + ": blockage_risk must be between 0 and 1, got " +
-                   format_number(*p.blockage_risk));
+                   format_number(p.blockage_risk));
     }
   }
 
   // `m`: the manhole named `name`, if any (looked up before).
-  std::optional<ManholeId> resolve_end(const std::optional<std::string>& name,
-                                       std::optional<std::uint32_t> m, std::uint32_t pipe,
+  std::optional<ManholeId> resolve_end(Name end, std::optional<std::uint32_t> m, std::uint32_t pipe,
                                        std::string_view field) {
-    if (!name) return std::nullopt;
-    const PipeRecord& p = b_.pipes_[pipe];
+    if (!end.given()) return std::nullopt;
+    const StoredPipe& p = b_.pipes_[pipe];
     if (!m) {
-      d_.error(at(Kind::kPipe, pipe, p.line, field), "pipe " + p.name + ": " + std::string(field) +
-                                                         " names unknown manhole '" + *name + "'");
+      d_.error(at(Kind::kPipe, pipe, p.line, field),
+               "pipe " + name(p.name) + ": " + std::string(field) + " names unknown manhole '" +
+                   name(end) + "'");
       return std::nullopt;
     }
     return ManholeId{*m};
@@ -403,28 +493,26 @@ class MapBuilder::Validation {
     detail::reserve_huge(ends, 2 * b_.pipes_.size());
     manhole_index_->find_each(
         2 * b_.pipes_.size(),
-        [&](std::size_t k) -> std::string_view {
-          const std::optional<std::string>& name =
-              k % 2 == 0 ? b_.pipes_[k / 2].from : b_.pipes_[k / 2].to;
-          return name ? std::string_view(*name) : std::string_view();
+        [&](std::size_t k) {
+          return b_.name(k % 2 == 0 ? b_.pipes_[k / 2].from : b_.pipes_[k / 2].to);
         },
         [&](std::size_t, std::optional<std::uint32_t> m) { ends.push_back(m); });
     detail::reserve_huge(map.pipes_, b_.pipes_.size());
     for (std::uint32_t i = 0; i < b_.pipes_.size(); ++i) {
-      PipeRecord& r = b_.pipes_[i];
+      const StoredPipe& r = b_.pipes_[i];
       Pipe p;
       p.ends[0].manhole = resolve_end(r.from, ends[2 * std::size_t{i}], i, "from");
       p.ends[1].manhole = resolve_end(r.to, ends[2 * std::size_t{i} + 1], i, "to");
       if (p.ends[0].manhole && p.ends[0].manhole == p.ends[1].manhole) {
         d_.error(at(Kind::kPipe, i, r.line, "to"),
-                 "pipe " + r.name + ": joins manhole " + *r.from + " to itself");
+                 "pipe " + name(r.name) + ": joins manhole " + name(r.from) + " to itself");
       }
       p.length_m = r.length_m;
       p.diameter_m = r.diameter_m;
       p.shape = r.shape;
-      p.height_m = r.height_m.value_or(r.diameter_m);
-      p.blockage_risk = r.blockage_risk;
-      p.name = std::move(r.name);
+      p.height_m = (r.given & kHeight) != 0 ? r.height_m : r.diameter_m;
+      if ((r.given & kBlockageRisk) != 0) p.blockage_risk = r.blockage_risk;
+      p.name = name(r.name);
       map.pipes_.push_back(std::move(p));
     }
     slot_seen_.assign(2 * map.pipes_.size(), false);
@@ -445,7 +533,7 @@ class MapBuilder::Validation {
         const std::size_t m = end.manhole->index();
         const std::uint32_t first = m == 0 ? 0 : b_.slot_end_[m - 1];
         for (std::uint32_t s = first; s < b_.slot_end_[m]; ++s) {
-          if (slot_pipe_[s] == kNoPipe && b_.slots_[s].pipe == p.name) {
+          if (slot_pipe_[s] == kNoPipe && b_.name(b_.slots_[s].pipe) == p.name) {
             slot_pipe_[s] = i;
             break;
           }
@@ -459,7 +547,7 @@ class MapBuilder::Validation {
                                          std::size_t flat) {
     if (flat < slot_pipe_.size() && slot_pipe_[flat] != kNoPipe) return slot_pipe_[flat];
     // Built only when needed: map.pipes_ is complete, its names stay where they are.
-    if (!pipe_index_) pipe_index_.emplace(map.pipes_);
+    if (!pipe_index_) pipe_index_.emplace(RecordNames(map.pipes_, OwnName{}));
     return pipe_index_->find(name);
   }
 
@@ -467,15 +555,15 @@ class MapBuilder::Validation {
     detail::reserve_huge(map.manholes_, b_.manholes_.size());
     detail::reserve_huge(map.slots_, b_.slots_.size());
     for (std::uint32_t i = 0; i < b_.manholes_.size(); ++i) {
-      ManholeRecord& r = b_.manholes_[i];
+      const StoredManhole& r = b_.manholes_[i];
       Manhole m;
       m.position = r.position;
       m.diameter_m = r.diameter_m;
       m.exit = r.exit;
-      m.variant = r.variant;
-      m.shaft_length_m = r.shaft_length_m;
-      m.shaft_width_m = r.shaft_width_m;
-      m.depth_m = r.depth_m;
+      if ((r.given & kVariant) != 0) m.variant = r.variant;
+      if ((r.given & kShaftLength) != 0) m.shaft_length_m = r.shaft_length_m;
+      if ((r.given & kShaftWidth) != 0) m.shaft_width_m = r.shaft_width_m;
+      if ((r.given & kDepth) != 0) m.depth_m = r.depth_m;
       m.first_slot = static_cast<std::uint32_t>(map.slots_.size());
       m.slot_count =
           static_cast<std::uint16_t>(std::min<std::size_t>(b_.slots_of(i).size(), 0xffff));
@@ -484,26 +572,25 @@ class MapBuilder::Validation {
       }
       map.manholes_.push_back(std::move(m));
     }
-    // Names move only now: slot diagnostics above may name any manhole.
     for (std::size_t i = 0; i < b_.manholes_.size(); ++i) {
-      map.manholes_[i].name = std::move(b_.manholes_[i].name);
+      map.manholes_[i].name = name(b_.manholes_[i].name);
     }
   }
 
   Slot build_slot(SewerMap& map, ManholeId manhole, SlotIndex index) {
-    const ManholeRecord& r = b_.manholes_[manhole.index()];
-    const SlotRecord& rs = b_.slots_of(manhole.index())[index.index()];
+    const StoredManhole& r = b_.manholes_[manhole.index()];
+    const StoredSlot& rs = b_.slots_of(manhole.index())[index.index()];
     const auto flat = static_cast<std::size_t>(&rs - b_.slots_.data());
     Slot slot;
     slot.azimuth_deg = rs.azimuth_deg;
     slot.invert_z_m = rs.invert_z_m;
     auto where = [&] { return at(Kind::kSlot, manhole.value(), rs.line, "pipe", index.value()); };
     auto object = [&] {
-      return "manhole " + r.name + " slot " + std::to_string(index.value() + 1);
+      return "manhole " + name(r.name) + " slot " + std::to_string(index.value() + 1);
     };
-    auto pipe = find_pipe(map, rs.pipe, flat);
+    auto pipe = find_pipe(map, b_.name(rs.pipe), flat);
     if (!pipe) {
-      d_.error(where(), object() + " names unknown pipe '" + rs.pipe + "'");
+      d_.error(where(), object() + " names unknown pipe '" + name(rs.pipe) + "'");
       return slot;
     }
     Pipe& p = map.pipes_[*pipe];
@@ -526,11 +613,11 @@ class MapBuilder::Validation {
   }
 
   std::string describe_ends(const Pipe& p) const {
-    auto name = [&](const PipeEnd& e) {
-      return e.manhole ? "manhole " + b_.manholes_[e.manhole->index()].name
+    auto end = [&](const PipeEnd& e) {
+      return e.manhole ? "manhole " + name(b_.manholes_[e.manhole->index()].name)
                        : std::string("a blind end");
     };
-    return "joins " + name(p.ends[0]) + " and " + name(p.ends[1]);
+    return "joins " + end(p.ends[0]) + " and " + end(p.ends[1]);
   }
 
   void check_unmatched_pipe_ends(const SewerMap& map) {
@@ -597,8 +684,8 @@ class MapBuilder::Validation {
   std::vector<bool> slot_seen_;  // per pipe end: 2 * pipe + end
   static constexpr std::uint32_t kNoPipe = 0xffffffffU;
   std::vector<std::uint32_t> slot_pipe_;  // per slot of b_.slots_: its pipe, or kNoPipe
-  std::optional<NameIndex<ManholeRecord>> manhole_index_;
-  std::optional<NameIndex<Pipe>> pipe_index_;
+  std::optional<NameIndex<ManholeNames>> manhole_index_;
+  std::optional<NameIndex<RecordNames<Pipe, OwnName>>> pipe_index_;
 };
 
 Result<SewerMap> MapBuilder::build(Diagnostics& diagnostics) && {

@@ -242,7 +242,10 @@ void write_pipe(std::ostream& out, const SewerMap& map, const Pipe& p) {
 class FastReader {
  public:
   FastReader(std::string_view text, const std::string& file_name)
-      : scan_(text), file_name_(file_name), builder_("", json_locator(file_name)) {}
+      : scan_(text), file_name_(file_name), builder_("", json_locator(file_name)) {
+    // The names are the text's strings, unescaped: they take at most its size.
+    builder_.reserve_names(text.size());
+  }
 
   std::optional<MapBuilder> read() && {
     if (!root() || !scan_.at_end() || !format_ || !version_ || !manholes_ || !pipes_) {
