@@ -197,8 +197,10 @@ MapBuilder::MapBuilder(std::string map_name, Locator locator)
     : name_(to_utf8_lossy(map_name)), locator_(std::move(locator)) {}
 
 MapBuilder::Name MapBuilder::keep(std::string_view name) {
-  SEWER_CHECK(name.size() < Name::kNone && names_.size() <= Name::kNone - name.size(),
-              "a map's names take more than 4 GiB");
+  if (name.size() >= Name::kNone || names_.size() > Name::kNone - name.size()) {
+    names_overflow_ = true;  // build() says so; the name is not kept
+    return Name{0, 0};
+  }
   const Name n{static_cast<std::uint32_t>(names_.size()), static_cast<std::uint32_t>(name.size())};
   names_.append(name);
   return n;
@@ -689,6 +691,12 @@ class MapBuilder::Validation {
 };
 
 Result<SewerMap> MapBuilder::build(Diagnostics& diagnostics) && {
+  if (names_overflow_) {
+    const std::string message =
+        "the names of the map's records take more than 4 GiB, more than sewerplan reads";
+    diagnostics.error(name_, message);
+    return Error{ErrorCode::kInvalidMap, name_ + ": " + message};
+  }
   return Validation(*this, diagnostics).run();
 }
 

@@ -195,7 +195,8 @@ class MapBuilder {
   std::string name_;
   std::optional<Crs> crs_;
   Locator locator_;
-  std::string names_;  // every record's name, one after the other
+  std::string names_;            // every record's name, one after the other
+  bool names_overflow_ = false;  // names_ would pass 4 GiB: build() refuses the map
   // The manholes as added, their slots in one store: manhole i's slots are
   // slots_[slot_end_[i - 1] .. slot_end_[i]) (from 0 for the first).
   std::vector<StoredManhole> manholes_;
