@@ -694,8 +694,9 @@ Result<SewerMap> MapBuilder::build(Diagnostics& diagnostics) && {
   if (names_overflow_) {
     const std::string message =
         "the names of the map's records take more than 4 GiB, more than sewerplan reads";
-    diagnostics.error(name_, message);
-    return Error{ErrorCode::kInvalidMap, name_ + ": " + message};
+    const std::string where = locator_ ? locator_(RecordRef{}, "") : name_;  // the file, as a rule
+    diagnostics.error(where, message);
+    return Error{ErrorCode::kInvalidMap, where + ": " + message};
   }
   return Validation(*this, diagnostics).run();
 }

@@ -23,8 +23,9 @@ export const kGeometryFormatVersion = 1;  // the compact geometry's format this 
 // sections) as typed arrays over the buffer, no copy (on a little-endian machine, as every
 // browser's is); a wrong magic, version or size throws.
 export function readGeometry(buffer, id) {
+  if (new Uint8Array(new Uint16Array([1]).buffer)[0] !== 1) throw new Error('the page reads the map geometry on little-endian machines only');
   const head = new DataView(buffer);
-  const fail = (why) => { throw new Error(`the map's geometry: ${why}`); };
+  const fail = (why) => { throw new Error(`map '${id}' geometry: ${why}`); };
   if (buffer.byteLength < 56) fail(`${buffer.byteLength} bytes, no header`);
   if (String.fromCharCode(...new Uint8Array(buffer, 0, 4)) !== 'SPGM') fail('not sewerplan geometry');
   const version = head.getUint32(4, true);
@@ -44,12 +45,22 @@ export function readGeometry(buffer, id) {
   const positions = take(Float64Array, 2 * m), lengths = take(Float64Array, p), diameters = take(Float64Array, p);
   const from = take(Uint32Array, p), to = take(Uint32Array, p), offsets = take(Uint32Array, m + p + 1);
   const slots = take(Uint8Array, m), exits = take(Uint8Array, m), names = take(Uint8Array, nameBytes);
+  // What the arrays say, checked once: a wrong pipe end or name offset would draw nonsense quietly.
+  for (let j = 0; j < p; ++j) {
+    for (const [end, v] of [['from', from[j]], ['to', to[j]]]) {
+      if (v !== kNone && v >= m) fail(`pipe ${j}'s ${end} is manhole ${v}, the map has ${m} manholes`);
+    }
+  }
+  if (offsets[0] !== 0 || offsets[m + p] !== nameBytes) fail(`the name offsets do not span the ${nameBytes} bytes of names`);
+  for (let k = 0; k < m + p; ++k) {
+    if (offsets[k + 1] < offsets[k]) fail(`name ${k + 1}'s offset ${offsets[k + 1]} is before name ${k}'s`);
+  }
   // The names decoded at once, in one pass, and cut at their offsets: a name's first character
   // is the count of UTF-16 units before its first byte (a byte starting a character counts one,
   // a 4-byte one two), found with one pass over the bytes when not all are ASCII.
   let text = null, units = offsets;
   const decode = () => {
-    text = new TextDecoder().decode(names);
+    text = new TextDecoder('utf-8', { ignoreBOM: true }).decode(names);  // a name may start with U+FEFF
     if (text.length === nameBytes) return;
     units = new Uint32Array(m + p + 1);
     let k = 0, u = 0;

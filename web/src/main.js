@@ -84,9 +84,15 @@ async function openMap(id) {
   try {
     buffer = await api.mapGeometry(id);
   } catch (e) {
-    if (driveabilityRequests.id === id && previous) driveabilityRequests.opening(previous.id)();  // still the last map
+    if (driveabilityRequests.id === id && previous) {  // the last map stays open, as the selector says
+      driveabilityRequests.opening(previous.id)();
+      $('map').value = previous.id;
+      showDriveability();  // its answer pending, if any, was dropped with the request for this map
+    }
     throw e;
   }
+  // Another map asked for meanwhile is the one to open: this one's geometry came too late.
+  if (driveabilityRequests.id !== id) return;
   performance.mark(`${id}: geometry come`);
   state.timings.geometry_ms = Math.round(performance.now() - t0);  // fetched
   state.map = readGeometry(buffer, id);
@@ -102,6 +108,7 @@ async function openMap(id) {
   missionChanged();
   faultsChanged();
   await afterDraw();
+  if (driveabilityRequests.id !== id) return;  // another map is opening: it reports, not this one
   performance.mark(`${id}: first draw`);
   state.timings.open_map_ms = Math.round(performance.now() - t0);
   document.body.dataset.opened = id;
@@ -383,7 +390,7 @@ async function start() {
   $('profile').replaceChildren(...profiles.map((p) => new Option(p, p)));
   $('map-upload').onchange = (e) => e.target.files[0] && uploadMap(e.target.files[0]);
   $('condition-upload').onchange = (e) => e.target.files[0] && uploadCondition(e.target.files[0]);
-  $('map').onchange = () => openMap($('map').value);
+  $('map').onchange = () => openMap($('map').value).catch((e) => { $('messages').textContent = e.message; });
   $('profile').onchange = () => { loadDriveability(); missionChanged(); };
   $('motion').onchange = () => { api.settings.motion = $('motion').checked; loadDriveability(); };
   $('risk').onchange = () => { api.settings.risk = $('risk').value; };

@@ -195,3 +195,25 @@ test('the compact geometry reads as the JSON: columns, open ends, names (not ASC
   assert.throws(() => readGeometry(geometryBinary(g, { magic: 'JSON' }), 'grid'), /not sewerplan geometry/);
   assert.throws(() => readGeometry(geometryBinary(g).slice(0, 200), 'grid'), /200 bytes for 36 manholes/);
 });
+
+test('a name that starts with a byte-order mark keeps it, and every later name stays in place', () => {
+  const g = gridDocument(3);
+  g.manholes.name[0] = '\uFEFFM0';
+  const map = readGeometry(geometryBinary(g), 'grid');
+  assert.equal(map.manhole(0).name, '\uFEFFM0');
+  g.manholes.name.forEach((name, i) => assert.equal(map.manholeByName.get(name).i, i));
+  g.pipes.name.forEach((name, i) => assert.equal(map.pipeIndex(name), i));
+});
+
+test('a geometry whose pipe ends or name offsets are out of range is refused, naming the map', () => {
+  const g = gridDocument(3);
+  const bad = geometryBinary(g), v = new DataView(bad);
+  const m = g.manholes.name.length, p = g.pipes.name.length;
+  const fromAt = 56 + 16 * m + 16 * p;  // after positions, lengths and diameters
+  v.setUint32(fromAt + 4, m, true);     // pipe 1 from manhole m: one past the last
+  assert.throws(() => readGeometry(bad, 'grid'), /map 'grid' geometry: pipe 1's from is manhole 9, the map has 9 manholes/);
+  const names = geometryBinary(g), w = new DataView(names);
+  const offsetsAt = 56 + 16 * m + 24 * p;
+  w.setUint32(offsetsAt + 4 * 2, 0, true);  // name 2 before name 1
+  assert.throws(() => readGeometry(names, 'grid'), /name 2's offset 0 is before name 1's/);
+});

@@ -4,8 +4,9 @@
 // numbers takes 1.3 ms on 1,000 manholes, so this asks `stop` every 64 manholes.
 //
 //   std::optional<std::string> fp = map_geometry_fingerprint(map, options.stop);
-//   if (!fp) return stopped_error(options.stop.interrupted().value_or(SearchStatus::kCancelled),
-//   ...);
+//   if (!fp) {
+//     return stopped_error(options.stop.interrupted().value_or(SearchStatus::kCancelled), ...);
+//   }
 //
 // Declared beside, not in, passage_motion.h only because nearly every file includes that one; the
 // fingerprint itself is defined once, in passage_motion.cc. Thread safety: a pure function.
