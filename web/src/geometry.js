@@ -13,8 +13,10 @@
 // them). pipeIndex(name) is a pipe's index (undefined if none); pipeByName and manholeByName
 // answer has(name) and get(name) (the object, a new one each time): the names are decoded and
 // indexed by name at the first look-up, without building any object. A pipe with an open end (no manhole at one side) is drawn as a short
-// stub from its one manhole, a tenth of its length long; one with no manhole at either end (no map
-// format makes one) as a point at the bounds' lower corner.
+// stub from its one manhole, a tenth of its length long (at least 0.5 m). One with no manhole at
+// either end (a JSON map's `"from": null, "to": null` or an ASCII map's `-`/`-`: the builder
+// accepts it) has no place of its own: it is drawn as a short stub at the bounds' lower corner,
+// where it can still be hovered and named, not dropped unseen.
 
 const kNone = 0xffffffff;                 // a pipe end without a manhole (map_geometry.h)
 export const kGeometryFormatVersion = 1;  // the compact geometry's format this page reads
