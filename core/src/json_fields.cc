@@ -2,7 +2,10 @@
 #include "sewerplan/core/json_fields.h"
 
 #include <algorithm>
+#include <array>
 #include <charconv>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -41,11 +44,62 @@ std::optional<JsonDocument> JsonDocument::parse(std::string_view text, std::stri
   return doc;
 }
 
+JsonLineParser::JsonLineParser() : parser_(std::make_unique<simdjson::dom::parser>()) {}
+
+std::optional<JsonElement> JsonLineParser::parse(std::string_view text) {
+  JsonElement root;
+  if (parser_->parse(text.data(), text.size()).get(root) != simdjson::SUCCESS) return std::nullopt;
+  return root;
+}
+
 JsonFields::JsonFields(JsonElement json, std::string path, std::string_view file,
                        Diagnostics& diagnostics)
     : path_(std::move(path)), file_(file), diagnostics_(diagnostics) {
   is_object_ = json.get_object().get(object_) == simdjson::SUCCESS;
-  if (!is_object_) diagnostics_.error(where(), "expected an object, got " + describe_json(json));
+  if (!is_object_) {
+    diagnostics_.error(where(), "expected an object, got " + describe_json(json));
+    return;
+  }
+  report_duplicate_keys();
+}
+
+// simdjson finds a key's first occurrence, so a second one would be silently ignored; which of the
+// two the writer meant cannot be known, so it is an error. Most objects have a handful of members,
+// compared pairwise; a large one (a dictionary) is sorted instead.
+void JsonFields::report_duplicate_keys() {
+  constexpr std::size_t kPairwise = 16;
+  std::vector<std::size_t> repeated;  // positions of second and later occurrences, in order
+  std::array<std::string_view, kPairwise> small;
+  std::vector<std::pair<std::string_view, std::size_t>> large;  // key, position
+  std::size_t n = 0;
+  for (simdjson::dom::key_value_pair field : object_) {
+    if (n < kPairwise) small[n] = field.key;
+    if (n == kPairwise) {
+      for (std::size_t i = 0; i < kPairwise; ++i) large.emplace_back(small[i], i);
+    }
+    if (n >= kPairwise) large.emplace_back(field.key, n);
+    ++n;
+  }
+  if (n <= kPairwise) {
+    for (std::size_t i = 1; i < n; ++i) {
+      if (std::find(small.begin(), small.begin() + i, small[i]) != small.begin() + i) {
+        repeated.push_back(i);
+      }
+    }
+  } else {
+    std::vector<std::pair<std::string_view, std::size_t>> sorted = large;
+    std::sort(sorted.begin(), sorted.end());
+    for (std::size_t i = 1; i < sorted.size(); ++i) {
+      if (sorted[i].first == sorted[i - 1].first) repeated.push_back(sorted[i].second);
+    }
+    std::sort(repeated.begin(), repeated.end());
+  }
+  for (std::size_t i : repeated) {
+    const std::string key(n <= kPairwise ? small[i] : large[i].first);
+    diagnostics_.error(where(key), "field '" + key +
+                                       "' given twice in one object: which value is meant is "
+                                       "unclear");
+  }
 }
 
 std::string JsonFields::where(std::string_view key) const {

@@ -9,12 +9,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "sewerplan/core/json_fields.h"
+
 #include "event_fields.h"
 
 namespace sewerplan::executor {
 namespace {
-
-using Json = nlohmann::json;
 
 // Mission times beyond this (about 31,700 years) are no robot's: errors.
 constexpr double kMaxTime_s = 1e12;
@@ -49,101 +49,82 @@ std::optional<RecoveryPhase> parse_phase(std::string_view name) {
   return std::nullopt;
 }
 
-// Reads the fields of one line's object; a field that is missing keeps its value, one of the wrong
-// type or with a name not ours sets `error` (the first only).
+// The fields of one line's object, read through the one JSON reader (JsonFields): a field that is
+// missing keeps its value (older logs lack newer fields); one of the wrong type, out of range or
+// with a name not ours is an error at "file:line:$.field".
 class FieldReader {
  public:
-  explicit FieldReader(const Json& object) : j_(object) {}
+  explicit FieldReader(JsonFields& fields) : f_(fields) {}
 
-  bool has(const char* key) const { return j_.contains(key); }
-  const std::optional<std::string>& error() const { return error_; }
-  void fail(std::string what) {
-    if (!error_) error_ = std::move(what);
-  }
+  bool has(std::string_view key) const { return f_.has(key); }
+  void error(std::string_view key, const std::string& message) { f_.error(key, message); }
 
-  void get(const char* key, std::string& out) {
-    if (const Json* v = field(key, &Json::is_string, "a string")) out = v->get<std::string>();
+  void get(std::string_view key, std::string& out) {
+    if (auto v = f_.string(key, kOptional)) out = std::move(*v);
   }
-  void get(const char* key, double& out) {
-    const Json* v = field(key, &Json::is_number, "a number");
-    if (v == nullptr) return;
-    const auto d = v->get<double>();
-    if (!std::isfinite(d)) {
-      fail(std::string("\"") + key + "\" is out of range");
-      return;
-    }
-    out = d;
+  void get(std::string_view key, double& out) {
+    if (auto v = f_.number(key, kOptional)) out = *v;
   }
-  void get(const char* key, bool& out) {
-    if (const Json* v = field(key, &Json::is_boolean, "true or false")) out = v->get<bool>();
+  void get(std::string_view key, bool& out) {
+    if (auto v = f_.boolean(key, kOptional)) out = *v;
   }
-  void get(const char* key, std::size_t& out) {
-    const Json* v = field(key, &Json::is_number_unsigned, "a count");
-    if (v == nullptr) return;
-    const auto n = v->get<std::uint64_t>();
-    if (n > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) {
-      fail(std::string("\"") + key + "\" is out of range");
-      return;
-    }
-    out = static_cast<std::size_t>(n);
+  void get(std::string_view key, std::size_t& out) {
+    if (auto v = whole(key, kMaxCount)) out = static_cast<std::size_t>(*v);
   }
-  void get(const char* key, int& out) {
-    const Json* v = field(key, &Json::is_number_integer, "a whole number");
-    if (v == nullptr) return;
-    const auto i = v->get<std::int64_t>();
-    if (i < 0 || i > std::numeric_limits<int>::max()) {
-      fail(std::string("\"") + key + "\" is out of range");
-      return;
-    }
-    out = static_cast<int>(i);
+  void get(std::string_view key, int& out) {
+    if (auto v = whole(key, std::numeric_limits<int>::max())) out = static_cast<int>(*v);
   }
-  void get(const char* key, std::vector<std::string>& out) {
-    const Json* v = field(key, &Json::is_array, "a list of strings");
-    if (v == nullptr) return;
+  void get(std::string_view key, std::vector<std::string>& out) {
+    const std::optional<JsonArray> items = f_.array(key, kOptional);
+    if (!items) return;
     out.clear();
-    for (const Json& item : *v) {
-      if (!item.is_string()) {
-        fail(std::string("\"") + key + "\" is not a list of strings");
-        return;
+    std::size_t i = 0;
+    for (JsonElement item : *items) {
+      if (auto name = string_element(item, indexed(f_.where(key), i++), f_.diagnostics())) {
+        out.push_back(std::move(*name));
       }
-      out.push_back(item.get<std::string>());
     }
   }
   // A name of ours, read with `parse`.
   template <class Enum>
-  void get(const char* key, Enum& out,
+  void get(std::string_view key, Enum& out,
            const std::function<std::optional<Enum>(std::string_view)>& parse) {
-    std::string name;
-    if (!has(key)) return;
-    get(key, name);
-    if (error_) return;
-    if (std::optional<Enum> value = parse(name)) {
+    const std::optional<std::string> name = f_.string(key, kOptional);
+    if (!name) return;
+    if (std::optional<Enum> value = parse(*name)) {
       out = *value;
     } else {
-      fail(std::string("\"") + key + "\": unknown '" + name + "'");
+      f_.error(key, "unknown " + std::string(key) + " '" + *name + "'");
     }
   }
 
  private:
-  const Json* field(const char* key, bool (Json::*is)() const noexcept, const char* what) {
-    const auto it = j_.find(key);
-    if (it == j_.end()) return nullptr;
-    if (!((*it).*is)()) {
-      fail(std::string("\"") + key + "\" is not " + what);
-      return nullptr;
+  static constexpr JsonFields::Need kOptional = JsonFields::Need::kOptional;
+  // Counts beyond this are no run's (and a double holds every whole number up to it exactly).
+  static constexpr double kMaxCount = 9007199254740992.0;  // 2^53
+
+  // A whole number from 0 to `max`.
+  std::optional<double> whole(std::string_view key, double max) {
+    const std::optional<double> v = f_.number(key, kOptional);
+    if (!v) return std::nullopt;
+    if (*v < 0 || *v > max || std::floor(*v) != *v) {
+      f_.error(key, "expected a whole number from 0 to " + format_double(max) + ", got " +
+                        format_double(*v));
+      return std::nullopt;
     }
-    return &*it;
+    return v;
   }
 
-  const Json& j_;
-  std::optional<std::string> error_;
+  JsonFields& f_;
 };
 
 // The event of one object of a known type; empty for another type.
 std::optional<Event> event_of(const std::string& type, FieldReader& r) {
   Event e;
   r.get("t_s", e.t_s);
-  if (std::abs(e.t_s) > kMaxTime_s) r.fail("\"t_s\" is out of range");
+  if (std::abs(e.t_s) > kMaxTime_s) {
+    r.error("t_s", "out of range: a mission time within " + format_double(kMaxTime_s) + " s");
+  }
   e.t_s = std::round(e.t_s * 1000) / 1000;  // as written: to the millisecond
   if (type == "plan" || type == "replan") {
     PlanEvent p{.replan = type == "replan"};
@@ -249,6 +230,7 @@ std::vector<LoggedEvent> read_event_log_lines(std::string_view text, const std::
                                               Diagnostics& diagnostics) {
   std::vector<LoggedEvent> events;
   std::size_t line_number = 0;
+  JsonLineParser parser;
   while (!text.empty()) {
     ++line_number;
     const std::size_t newline = text.find('\n');
@@ -256,22 +238,22 @@ std::vector<LoggedEvent> read_event_log_lines(std::string_view text, const std::
     text = newline == std::string_view::npos ? std::string_view{} : text.substr(newline + 1);
     if (line.find_first_not_of(" \t\r") == std::string_view::npos) continue;
     const std::string where = file_name + ":" + std::to_string(line_number);
-    const Json j = Json::parse(line, nullptr, false);
-    if (j.is_discarded() || !j.is_object()) {
+    const std::optional<JsonElement> j = parser.parse(line);
+    if (!j || !j->is_object()) {
       diagnostics.error(where, "not a JSON object");
       continue;
     }
-    const auto type = j.find("type");
-    if (type == j.end() || !type->is_string()) {
+    const std::size_t errors_before = diagnostics.error_count();
+    JsonFields fields(*j, "$", where, diagnostics);
+    if (!fields.has("type")) {
       diagnostics.error(where, "no \"type\"");
       continue;
     }
-    FieldReader reader(j);
-    std::optional<Event> event = event_of(type->get<std::string>(), reader);
-    if (reader.error()) {
-      diagnostics.error(where, type->get<std::string>() + ": " + *reader.error());
-      continue;
-    }
+    const std::optional<std::string> type = fields.string("type");
+    if (!type) continue;
+    FieldReader reader(fields);
+    std::optional<Event> event = event_of(*type, reader);
+    if (diagnostics.error_count() > errors_before) continue;
     if (event) events.push_back({std::move(*event), line_number});
   }
   return events;

@@ -161,6 +161,37 @@ TEST(MapJson, WarnsAboutMisspeltFields) {
   EXPECT_THAT(d.all()[0].message, HasSubstr("unknown field 'blockage_rsik' ignored"));
 }
 
+// simdjson would take a key's first value and drop the second without a word; which one the
+// writer meant is unknown, so a field given twice is an error at its JSON path.
+TEST(MapJson, AFieldGivenTwiceIsAnError) {
+  std::string text(kSmallMap);
+  text.replace(text.find(R"("length_m": 7.5)"), 15, R"("length_m": 7.5, "length_m": 75)");
+  Diagnostics d;
+  Result<SewerMap> map = read(text, d);
+  ASSERT_FALSE(map.has_value());
+  EXPECT_THAT(map.error().message,
+              HasSubstr("t.json:$.pipes[1].length_m: error: field 'length_m' given twice"));
+  EXPECT_EQ(d.error_count(), 1U) << map.error().message;
+}
+
+// A large object is checked by sorting its keys; every repeat is reported, in the object's order.
+TEST(MapJson, FieldsGivenTwiceInALargeObjectAreEachReported) {
+  std::string extra;
+  for (int i = 0; i < 20; ++i) extra += "\"x" + std::to_string(i) + "\": 1, ";
+  std::string text(kSmallMap);
+  text.replace(text.find(R"("name": "small")"), 15,
+               R"("name": "small", )" + extra + R"("x3": 2, "name": "big", "x3": 3)");
+  Diagnostics d;
+  Result<SewerMap> map = read(text, d);
+  ASSERT_FALSE(map.has_value());
+  ASSERT_EQ(d.error_count(), 3U) << map.error().message;
+  std::vector<std::string> where;
+  for (const Diagnostic& e : d.all()) {
+    if (e.severity == Severity::kError) where.push_back(e.where);
+  }
+  EXPECT_EQ(where, (std::vector<std::string>{"t.json:$.x3", "t.json:$.name", "t.json:$.x3"}));
+}
+
 TEST(MapJson, RejectsAnotherFormatOrVersion) {
   std::string text(kSmallMap);
   text.replace(text.find("\"version\": 1"), 12, "\"version\": 7");

@@ -90,6 +90,14 @@ TEST_F(MissionTest, NamesEveryUnknownObjectByJsonPath) {
   EXPECT_THAT(e, ::testing::Not(HasSubstr("the mission has no exit")));
 }
 
+TEST_F(MissionTest, AFieldGivenTwiceIsAnError) {
+  Result<Mission> m = read(R"({"format": "sewerplan-mission", "version": 1,
+    "start": {"pipe": "P12", "pipe": "P4"},
+    "tasks": [{"type": "inspect_pipe", "pipe": "P4"}]})");
+  ASSERT_FALSE(m.has_value());
+  EXPECT_THAT(m.error().message, HasSubstr("m.json:$.start.pipe: error: field 'pipe' given twice"));
+}
+
 TEST_F(MissionTest, RejectsInconsistentMissions) {
   Result<Mission> m = read(R"({"format": "sewerplan-mission", "version": 1,
     "start": {"manhole": "M1"}, "exits": [],

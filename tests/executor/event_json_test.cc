@@ -119,18 +119,30 @@ TEST(EventLog, BadLinesAreNamedByFileAndLineAndOtherTypesSkipped) {
       "{\"t_s\":1.0,\"type\":\"job\",\"ok\":\"yes\"}\n"
       "{\"t_s\":1.0,\"type\":\"plan\",\"decision\":\"maybe\"}\n"
       "{\"t_s\":1.0,\"type\":\"from_a_newer_version\",\"x\":1}\n"
-      "{\"t_s\":1.0}\n";
+      "{\"t_s\":1.0}\n"
+      "{\"t_s\":1.0,\"type\":\"task_done\",\"task\":\"a\",\"task\":\"b\"}\n"
+      "{\"t_s\":1.0,\"type\":\"plan\",\"steps\":2.5,\"goals\":[\"a\",7]}\n";
   Diagnostics d;
   EXPECT_FALSE(read_event_log(text, "run.jsonl", d).has_value());
   const std::string errors = d.error_summary();
   EXPECT_NE(errors.find("run.jsonl:2: error: not a JSON object"), std::string::npos) << errors;
-  EXPECT_NE(errors.find("run.jsonl:4: error: job: \"ok\" is not true or false"), std::string::npos)
+  EXPECT_NE(errors.find("run.jsonl:4:$.ok: error: expected true or false, got \"yes\""),
+            std::string::npos)
       << errors;
-  EXPECT_NE(errors.find("run.jsonl:5: error: plan: \"decision\": unknown 'maybe'"),
+  EXPECT_NE(errors.find("run.jsonl:5:$.decision: error: unknown decision 'maybe'"),
             std::string::npos)
       << errors;
   EXPECT_NE(errors.find("run.jsonl:7: error: no \"type\""), std::string::npos) << errors;
   EXPECT_EQ(errors.find("run.jsonl:6"), std::string::npos) << errors;
+  // simdjson alone would keep the first "task" and drop the second without a word.
+  EXPECT_NE(errors.find("run.jsonl:8:$.task: error: field 'task' given twice"), std::string::npos)
+      << errors;
+  EXPECT_NE(errors.find("run.jsonl:9:$.steps: error: expected a whole number from 0 to "),
+            std::string::npos)
+      << errors;
+  EXPECT_NE(errors.find("run.jsonl:9:$.goals[1]: error: expected a name (a string), got 7"),
+            std::string::npos)
+      << errors;
 
   Diagnostics fine;
   const std::vector<LoggedEvent> skipped = read_event_log_lines(
