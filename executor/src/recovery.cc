@@ -1,60 +1,58 @@
 // SPDX-License-Identifier: MIT
 #include "sewerplan/executor/recovery.h"
 
-#include <nlohmann/json.hpp>
+#include <cmath>
+
+#include "sewerplan/core/json_fields.h"
 
 namespace sewerplan::executor {
+namespace {
+
+constexpr auto kOptional = JsonFields::Need::kOptional;
+
+// Tries of a recovery phase; more than this is no robot's.
+constexpr double kMaxCount = 1000;
+// Backing off or backing up farther than this is no recovery move.
+constexpr double kMaxDistance_m = 10;
+
+void read_count(JsonFields& f, std::string_view key, int& field) {
+  const std::optional<double> v = f.number(key, kOptional);
+  if (!v) return;
+  if (*v < 0 || *v > kMaxCount || std::floor(*v) != *v) {
+    f.error(key, "expected a count from 0 to 1000, got " + format_double(*v));
+    return;
+  }
+  field = static_cast<int>(*v);
+}
+
+void read_distance(JsonFields& f, std::string_view key, double& field) {
+  const std::optional<double> v = f.number(key, kOptional);
+  if (!v) return;
+  if (*v < 0 || *v > kMaxDistance_m) {
+    f.error(key, "expected metres from 0 to 10, got " + format_double(*v));
+    return;
+  }
+  field = *v;
+}
+
+}  // namespace
 
 Result<RecoveryConfig> read_recovery_json(std::string_view text, const std::string& file_name) {
-  const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
-  if (j.is_discarded() || !j.is_object()) {
-    return Error{ErrorCode::kParse, file_name + ": not a JSON object"};
-  }
+  Diagnostics diagnostics;
+  std::optional<JsonDocument> doc = JsonDocument::parse(text, file_name, diagnostics);
+  if (!doc) return Error{ErrorCode::kParse, diagnostics.error_summary()};
+  JsonFields f(doc->root(), "$", file_name, diagnostics);
   RecoveryConfig c;
-  for (const auto& item : j.items()) {
-    // Not a structured binding: clang 14 cannot capture one in the lambdas below.
-    const std::string& key = item.key();
-    const nlohmann::json& value = item.value();
-    const std::string where = file_name + ": \"" + key + "\"";
-    auto count = [&](int& field) -> std::optional<Error> {
-      if (!value.is_number_integer() || value.get<long long>() < 0 ||
-          value.get<long long>() > 1000) {
-        return Error{ErrorCode::kParse, where + " must be a count from 0 to 1000"};
-      }
-      field = value.get<int>();
-      return std::nullopt;
-    };
-    auto distance = [&](double& field) -> std::optional<Error> {
-      if (!value.is_number() || value.get<double>() < 0 || value.get<double>() > 10) {
-        return Error{ErrorCode::kParse, where + " must be metres from 0 to 10"};
-      }
-      field = value.get<double>();
-      return std::nullopt;
-    };
-    std::optional<Error> error;
-    if (key == "backup_retries") {
-      error = count(c.backup_retries);
-    } else if (key == "backup_m") {
-      error = distance(c.backup_m);
-    } else if (key == "lift_retries") {
-      error = count(c.lift_retries);
-    } else if (key == "push_retries") {
-      error = count(c.push_retries);
-    } else if (key == "danger_backoff_m") {
-      error = distance(c.danger_backoff_m);
-    } else if (key == "max_reboots") {
-      error = count(c.max_reboots);
-    } else if (key == "push_allowed") {
-      if (!value.is_boolean()) {
-        error = Error{ErrorCode::kParse, where + " must be true or false"};
-      } else {
-        c.push_allowed = value.get<bool>();
-      }
-    } else {
-      error = Error{ErrorCode::kParse, where + " is not a recovery setting"};
-    }
-    if (error) return *error;
-  }
+  f.reject_unknown({"backup_retries", "backup_m", "lift_retries", "push_retries",
+                    "danger_backoff_m", "max_reboots", "push_allowed"});
+  read_count(f, "backup_retries", c.backup_retries);
+  read_distance(f, "backup_m", c.backup_m);
+  read_count(f, "lift_retries", c.lift_retries);
+  read_count(f, "push_retries", c.push_retries);
+  read_distance(f, "danger_backoff_m", c.danger_backoff_m);
+  read_count(f, "max_reboots", c.max_reboots);
+  if (std::optional<bool> push = f.boolean("push_allowed", kOptional)) c.push_allowed = *push;
+  if (diagnostics.has_errors()) return Error{ErrorCode::kParse, diagnostics.error_summary()};
   return c;
 }
 

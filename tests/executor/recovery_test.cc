@@ -64,5 +64,38 @@ TEST(RecoveryTable, TheBlockageStagesAreTriedInTheTablesOrder) {
   EXPECT_EQ(std::vector<RecoveryPhase>(tried.begin(), tried.begin() + 3), expected);
 }
 
+TEST(RecoverySettings, ReadsEveryFieldAndKeepsTheDefaultsOfTheRest) {
+  Result<RecoveryConfig> c = read_recovery_json(
+      R"({"backup_retries": 3, "backup_m": 0.1, "push_allowed": true, "max_reboots": 0})",
+      "r.json");
+  ASSERT_TRUE(c.has_value()) << c.error();
+  EXPECT_EQ(c->backup_retries, 3);
+  EXPECT_DOUBLE_EQ(c->backup_m, 0.1);
+  EXPECT_TRUE(c->push_allowed);
+  EXPECT_EQ(c->max_reboots, 0);
+  EXPECT_EQ(c->lift_retries, RecoveryConfig{}.lift_retries);
+}
+
+TEST(RecoverySettings, NamesEveryBadFieldByJsonPath) {
+  Result<RecoveryConfig> c = read_recovery_json(
+      R"({"backup_retries": 2.5, "backup_m": 11, "lift_retries": -1, "push_allowed": "yes",
+          "max_reboot": 2, "max_reboots": 1, "max_reboots": 3})",
+      "r.json");
+  ASSERT_FALSE(c.has_value());
+  const std::string& e = c.error().message;
+  for (const char* expected :
+       {"r.json:$.backup_retries: error: expected a count from 0 to 1000, got 2.5",
+        "r.json:$.backup_m: error: expected metres from 0 to 10, got 11",
+        "r.json:$.lift_retries: error: expected a count from 0 to 1000, got -1",
+        "r.json:$.push_allowed: error: expected true or false, got \"yes\"",
+        "r.json:$.max_reboot: error: unknown field 'max_reboot'",
+        "r.json:$.max_reboots: error: field 'max_reboots' given twice"}) {
+    EXPECT_NE(e.find(expected), std::string::npos) << expected << "\n" << e;
+  }
+  Result<RecoveryConfig> syntax = read_recovery_json("{\"backup_m\": }", "r.json");
+  ASSERT_FALSE(syntax.has_value());
+  EXPECT_NE(syntax.error().message.find("r.json:1:"), std::string::npos) << syntax.error();
+}
+
 }  // namespace
 }  // namespace sewerplan::executor
