@@ -2,11 +2,15 @@
 // Run records and campaign specs as JSON (record.h).
 #include "sewerplan/campaign/record.h"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <utility>
 
 #include <nlohmann/json.hpp>
+
+#include "sewerplan/core/json_fields.h"
 
 namespace sewerplan::campaign {
 namespace {
@@ -33,86 +37,114 @@ Json planning_json(const Execution& e) {
   return list;
 }
 
-// Field access that reports the path of what is missing or of the wrong type.
-class Reader {
- public:
-  Reader(std::string where) : where_(std::move(where)) {}
+constexpr auto kOptional = JsonFields::Need::kOptional;
+// Counts beyond this are no campaign's (a double holds every whole number up to it exactly).
+constexpr std::uint64_t kMaxCount = std::uint64_t{1} << 53;
 
-  const Json& at(const Json& j, const char* key, const std::string& path) {
-    if (!j.is_object() || !j.contains(key))
-      throw Bad{where_ + ": " + path + "." + key + ": missing"};
-    return j.at(key);
+// The fields of an object inside `parent`, reported under its JSON path; nullopt if it is missing
+// or not an object (reported).
+std::optional<JsonFields> object_in(JsonFields& parent, std::string_view key,
+                                    std::string_view file) {
+  const std::optional<JsonElement> e = parent.member(key);
+  if (!e) return std::nullopt;
+  JsonFields f(*e, parent.path() + "." + std::string(key), file, parent.diagnostics());
+  if (!f.is_object()) return std::nullopt;
+  return f;
+}
+
+// Seeds are written as text: JSON numbers lose digits past 2^53.
+std::uint64_t read_seed(JsonFields& f) {
+  const std::optional<std::string> text = f.string("seed");
+  if (!text) return 0;
+  std::uint64_t v = 0;
+  const char* end = text->data() + text->size();
+  const auto [stop, ec] = std::from_chars(text->data(), end, v);
+  if (text->empty() || ec != std::errc{} || stop != end) {
+    f.error("seed", "expected an unsigned integer (as text), got '" + *text + "'");
   }
-  template <class T>
-  T get(const Json& j, const char* key, const std::string& path) {
-    const Json& v = at(j, key, path);
-    bool ok = false;
-    if constexpr (std::is_same_v<T, std::size_t>) {
-      ok = v.is_number_unsigned();
-    } else if constexpr (std::is_same_v<T, double>) {
-      ok = v.is_number();
-    } else if constexpr (std::is_same_v<T, bool>) {
-      ok = v.is_boolean();
+  return v;
+}
+
+Execution read_execution(JsonFields& run, std::string_view key, std::string_view file) {
+  Execution x;
+  std::optional<JsonFields> f = object_in(run, key, file);
+  if (!f) return x;
+  x.tasks = f->count("tasks", kMaxCount).value_or(0);
+  if (const std::optional<std::string> name = f->string("outcome")) {
+    if (const std::optional<Outcome> outcome = outcome_from_string(*name)) {
+      x.outcome = *outcome;
     } else {
-      ok = v.is_string();
+      f->error("outcome", "unknown outcome '" + *name + "'");
     }
-    if (!ok) throw Bad{where_ + ": " + path + "." + key + ": wrong type"};
-    return v.get<T>();
   }
-  std::uint64_t seed(const Json& j, const std::string& path) {
-    const std::string text = get<std::string>(j, "seed", path);
-    std::uint64_t v = 0;
-    std::size_t used = 0;
-    try {
-      v = std::stoull(text, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != text.size() || text[0] == '-') {
-      throw Bad{where_ + ": " + path + ".seed: not an unsigned integer"};
-    }
-    return v;
-  }
-  Execution execution(const Json& j, const char* key) {
-    const Json& e = at(j, key, "$");
-    const std::string path = std::string("$.") + key;
-    Execution x;
-    x.tasks = get<std::size_t>(e, "tasks", path);
-    const auto outcome = outcome_from_string(get<std::string>(e, "outcome", path));
-    if (!outcome) throw Bad{where_ + ": " + path + ".outcome: unknown outcome"};
-    x.outcome = *outcome;
-    x.end = get<std::string>(e, "end", path);
-    x.reserve_kept = get<bool>(e, "reserve_kept", path);
-    x.replans = get<std::size_t>(e, "replans", path);
-    x.time_s = get<double>(e, "time_s", path);
-    x.energy_wh = get<double>(e, "energy_wh", path);
-    x.disabled = get<bool>(e, "disabled", path);
-    // Records written before beacons had causes have none.
-    if (e.contains("beacon_cause")) {
-      const auto cause = executor::parse_beacon_cause(get<std::string>(e, "beacon_cause", path));
-      if (!cause) throw Bad{where_ + ": " + path + ".beacon_cause: unknown cause"};
+  x.end = f->string("end").value_or("");
+  x.reserve_kept = f->boolean("reserve_kept").value_or(false);
+  x.replans = f->count("replans", kMaxCount).value_or(0);
+  x.time_s = f->number("time_s").value_or(0);
+  x.energy_wh = f->number("energy_wh").value_or(0);
+  x.disabled = f->boolean("disabled").value_or(false);
+  // Records written before beacons had causes have none.
+  if (const std::optional<std::string> name = f->string("beacon_cause", kOptional)) {
+    if (const auto cause = executor::parse_beacon_cause(*name)) {
       x.beacon_cause = *cause;
+    } else {
+      f->error("beacon_cause", "unknown cause '" + *name + "'");
     }
-    return x;
   }
-  std::vector<double> times(const Json& j, const char* key) {
-    const Json& list = at(j, key, "$.measured");
-    if (!list.is_array()) throw Bad{where_ + ": $.measured." + key + ": not a list"};
-    std::vector<double> out;
-    for (const Json& v : list) {
-      if (!v.is_number()) throw Bad{where_ + ": $.measured." + key + ": not a number"};
-      out.push_back(v.get<double>() / 1e3);
+  return x;
+}
+
+// Planning times, written in milliseconds.
+std::vector<double> read_times_s(JsonFields& measured, std::string_view key) {
+  std::vector<double> out;
+  const std::optional<JsonArray> list = measured.array(key);
+  if (!list) return out;
+  std::size_t i = 0;
+  for (JsonElement v : *list) {
+    double ms_value = 0;
+    if (v.get_double().get(ms_value) != simdjson::SUCCESS) {
+      measured.diagnostics().error(indexed(measured.where(key), i),
+                                   "expected a number, got " + describe_json(v));
     }
-    return out;
+    out.push_back(ms_value / 1e3);
+    ++i;
   }
+  return out;
+}
 
-  struct Bad {
-    std::string message;
-  };
-
- private:
-  std::string where_;
-};
+RunResult read_result(const RunRecord& r, JsonFields& f, JsonFields& measured,
+                      std::string_view file) {
+  RunResult x;
+  x.index = r.index;
+  x.seed = r.seed;
+  x.wall_s = r.wall_s;
+  x.tasks = f.count("tasks", kMaxCount).value_or(0);
+  if (std::optional<JsonFields> faults = object_in(f, "faults", file)) {
+    FaultCounts& c = x.faults;
+    for (auto [key, field] : {std::pair{"obstacles", &c.obstacles},
+                              {"permanent_obstacles", &c.permanent_obstacles},
+                              {"danger_spots", &c.danger_spots},
+                              {"dangerous_passages", &c.dangerous_passages},
+                              {"malfunctions", &c.malfunctions},
+                              {"permanent_malfunctions", &c.permanent_malfunctions}}) {
+      *field = faults->count(key, kMaxCount).value_or(0);
+    }
+  }
+  if (std::optional<JsonFields> oracle = object_in(f, "oracle", file)) {
+    x.oracle_tasks = oracle->count("tasks", kMaxCount).value_or(0);
+    x.oracle_can_end = oracle->boolean("can_end").value_or(false);
+  }
+  x.could_reach_exit = f.boolean("could_reach_exit").value_or(false);
+  x.ours = read_execution(f, "ours", file);
+  x.baseline = read_execution(f, "baseline", file);
+  x.ours.planning_times_s = read_times_s(measured, "planning_ms");
+  x.baseline.planning_times_s = read_times_s(measured, "baseline_planning_ms");
+  if (f.has("risk_aware")) {
+    x.risk_aware = read_execution(f, "risk_aware", file);
+    x.risk_aware->planning_times_s = read_times_s(measured, "risk_aware_planning_ms");
+  }
+  return x;
+}
 
 }  // namespace
 
@@ -160,60 +192,32 @@ std::string run_json_line(const RunRecord& record) {
 Result<RunRecord> parse_run_line(std::string_view line, const std::string& file_name,
                                  std::size_t line_number) {
   const std::string where = file_name + ":" + std::to_string(line_number);
-  const Json j = Json::parse(line, nullptr, false);
-  if (j.is_discarded() || !j.is_object()) {
-    return Error{ErrorCode::kParse, where + ": not a JSON object"};
-  }
-  Reader in(where);
-  try {
-    RunRecord r;
-    r.index = in.get<std::size_t>(j, "run", "$");
-    r.seed = in.seed(j, "$");
-    const std::string status = in.get<std::string>(j, "status", "$");
-    if (status == "ok") {
+  JsonLineParser parser;
+  const std::optional<JsonElement> j = parser.parse(line);
+  if (!j || !j->is_object()) return Error{ErrorCode::kParse, where + ": not a JSON object"};
+  Diagnostics d;
+  JsonFields f(*j, "$", where, d);
+  RunRecord r;
+  r.index = f.count("run", kMaxCount).value_or(0);
+  r.seed = read_seed(f);
+  if (const std::optional<std::string> status = f.string("status")) {
+    if (*status == "ok") {
       r.status = RunRecord::Status::kOk;
-    } else if (status == "crash") {
+    } else if (*status == "crash") {
       r.status = RunRecord::Status::kCrash;
-    } else if (status == "hang") {
+    } else if (*status == "hang") {
       r.status = RunRecord::Status::kHang;
     } else {
-      throw Reader::Bad{where + ": $.status: unknown status '" + status + "'"};
+      f.error("status", "unknown status '" + *status + "'");
     }
-    if (j.contains("detail")) r.detail = in.get<std::string>(j, "detail", "$");
-    const Json& measured = in.at(j, "measured", "$");
-    r.wall_s = in.get<double>(measured, "wall_s", "$.measured");
-    if (r.status == RunRecord::Status::kOk) {
-      RunResult x;
-      x.index = r.index;
-      x.seed = r.seed;
-      x.wall_s = r.wall_s;
-      x.tasks = in.get<std::size_t>(j, "tasks", "$");
-      const Json& f = in.at(j, "faults", "$");
-      x.faults.obstacles = in.get<std::size_t>(f, "obstacles", "$.faults");
-      x.faults.permanent_obstacles = in.get<std::size_t>(f, "permanent_obstacles", "$.faults");
-      x.faults.danger_spots = in.get<std::size_t>(f, "danger_spots", "$.faults");
-      x.faults.dangerous_passages = in.get<std::size_t>(f, "dangerous_passages", "$.faults");
-      x.faults.malfunctions = in.get<std::size_t>(f, "malfunctions", "$.faults");
-      x.faults.permanent_malfunctions =
-          in.get<std::size_t>(f, "permanent_malfunctions", "$.faults");
-      const Json& o = in.at(j, "oracle", "$");
-      x.oracle_tasks = in.get<std::size_t>(o, "tasks", "$.oracle");
-      x.oracle_can_end = in.get<bool>(o, "can_end", "$.oracle");
-      x.could_reach_exit = in.get<bool>(j, "could_reach_exit", "$");
-      x.ours = in.execution(j, "ours");
-      x.baseline = in.execution(j, "baseline");
-      x.ours.planning_times_s = in.times(measured, "planning_ms");
-      x.baseline.planning_times_s = in.times(measured, "baseline_planning_ms");
-      if (j.contains("risk_aware")) {
-        x.risk_aware = in.execution(j, "risk_aware");
-        x.risk_aware->planning_times_s = in.times(measured, "risk_aware_planning_ms");
-      }
-      r.result = std::move(x);
-    }
-    return r;
-  } catch (const Reader::Bad& bad) {
-    return Error{ErrorCode::kParse, bad.message};
   }
+  r.detail = f.string("detail", kOptional).value_or("");
+  if (std::optional<JsonFields> measured = object_in(f, "measured", where)) {
+    r.wall_s = measured->number("wall_s").value_or(0);
+    if (r.status == RunRecord::Status::kOk) r.result = read_result(r, f, *measured, where);
+  }
+  if (d.has_errors()) return Error{ErrorCode::kParse, d.error_summary()};
+  return r;
 }
 
 bool CampaignSpec::same_campaign(const CampaignSpec& o) const {
@@ -262,54 +266,57 @@ std::string campaign_json(const CampaignSpec& s) {
 }
 
 Result<CampaignSpec> parse_campaign_json(std::string_view text, const std::string& file_name) {
-  const Json j = Json::parse(text, nullptr, false);
-  if (j.is_discarded() || !j.is_object()) {
-    return Error{ErrorCode::kParse, file_name + ": not a JSON object"};
+  Diagnostics d;
+  std::optional<JsonDocument> doc = JsonDocument::parse(text, file_name, d);
+  if (!doc) return Error{ErrorCode::kParse, d.error_summary()};
+  JsonFields f(doc->root(), "$", file_name, d);
+  if (!f.is_object()) return Error{ErrorCode::kParse, d.error_summary()};
+  if (const auto format = f.string("format"); format && *format != kCampaignJsonFormat) {
+    f.error("format", "expected '" + std::string(kCampaignJsonFormat) + "', got '" + *format + "'");
   }
-  Reader in(file_name);
-  try {
-    if (in.get<std::string>(j, "format", "$") != kCampaignJsonFormat) {
-      throw Reader::Bad{file_name + ": $.format: not '" + std::string(kCampaignJsonFormat) + "'"};
-    }
-    if (in.get<std::size_t>(j, "version", "$") != kCampaignJsonVersion) {
-      throw Reader::Bad{file_name + ": $.version: unsupported version"};
-    }
-    CampaignSpec s;
-    s.map_name = in.get<std::string>(j, "map", "$");
-    s.mission_name = in.get<std::string>(j, "mission", "$");
-    s.map_fingerprint = in.get<std::string>(j, "map_fingerprint", "$");
-    s.mission_fingerprint = in.get<std::string>(j, "mission_fingerprint", "$");
-    s.seed = in.seed(j, "$");
-    s.runs = in.get<std::size_t>(j, "runs", "$");
-    const Json& r = in.at(j, "fault_rates", "$");
-    s.rates.obstacles_per_km = in.get<double>(r, "obstacles", "$.fault_rates");
-    s.rates.danger_per_km = in.get<double>(r, "danger", "$.fault_rates");
-    s.rates.passage_share = in.get<double>(r, "passages", "$.fault_rates");
-    s.rates.malfunctions_per_hour = in.get<double>(r, "malfunctions", "$.fault_rates");
-    s.rates.permanent_share = in.get<double>(r, "permanent", "$.fault_rates");
-    s.rates.transient_share = in.get<double>(r, "transient", "$.fault_rates");
-    s.push_allowed = in.get<bool>(j, "push_allowed", "$");
-    if (j.contains("planner_time_limit_s")) {
-      s.planner_time_limit_s = in.get<double>(j, "planner_time_limit_s", "$");
-    }
-    if (j.contains("condition")) {
-      s.condition_name = in.get<std::string>(j, "condition", "$");
-      s.condition_fingerprint = in.get<std::string>(j, "condition_fingerprint", "$");
-    }
-    if (j.contains("risk")) s.risk = in.get<std::string>(j, "risk", "$");
-    if (j.contains("faults_from_condition")) {
-      s.faults_from_condition = in.get<bool>(j, "faults_from_condition", "$");
-    }
-    const Json& shard = in.at(j, "shard", "$");
-    s.shard_index = in.get<std::size_t>(shard, "index", "$.shard");
-    s.shard_count = in.get<std::size_t>(shard, "count", "$.shard");
-    if (s.shard_count == 0 || s.shard_index >= s.shard_count) {
-      throw Reader::Bad{file_name + ": $.shard: index must be below count"};
-    }
-    return s;
-  } catch (const Reader::Bad& bad) {
-    return Error{ErrorCode::kParse, bad.message};
+  if (const auto version = f.count("version", kMaxCount);
+      version && *version != kCampaignJsonVersion) {
+    f.error("version", "unsupported version " + std::to_string(*version) +
+                           " (this sewerplan reads " + std::to_string(kCampaignJsonVersion) + ")");
   }
+  if (d.has_errors()) return Error{ErrorCode::kParse, d.error_summary()};
+  CampaignSpec s;
+  s.map_name = f.string("map").value_or("");
+  s.mission_name = f.string("mission").value_or("");
+  s.map_fingerprint = f.string("map_fingerprint").value_or("");
+  s.mission_fingerprint = f.string("mission_fingerprint").value_or("");
+  s.seed = read_seed(f);
+  s.runs = f.count("runs", kMaxCount).value_or(0);
+  if (std::optional<JsonFields> r = object_in(f, "fault_rates", file_name)) {
+    FaultRates& rates = s.rates;
+    for (auto [key, field] : {std::pair{"obstacles", &rates.obstacles_per_km},
+                              {"danger", &rates.danger_per_km},
+                              {"passages", &rates.passage_share},
+                              {"malfunctions", &rates.malfunctions_per_hour},
+                              {"permanent", &rates.permanent_share},
+                              {"transient", &rates.transient_share}}) {
+      *field = r->number(key).value_or(0);
+    }
+  }
+  s.push_allowed = f.boolean("push_allowed").value_or(false);
+  s.planner_time_limit_s = f.number("planner_time_limit_s", kOptional).value_or(0);
+  if (f.has("condition")) {
+    s.condition_name = f.string("condition").value_or("");
+    s.condition_fingerprint = f.string("condition_fingerprint").value_or("");
+  }
+  if (const auto risk = f.string("risk", kOptional)) s.risk = *risk;
+  s.faults_from_condition = f.boolean("faults_from_condition", kOptional).value_or(false);
+  if (std::optional<JsonFields> shard = object_in(f, "shard", file_name)) {
+    const std::optional<std::uint64_t> index = shard->count("index", kMaxCount);
+    const std::optional<std::uint64_t> count = shard->count("count", kMaxCount);
+    if (index && count && (*count == 0 || *index >= *count)) {
+      f.error("shard", "index must be below count");
+    }
+    s.shard_index = index.value_or(0);
+    s.shard_count = count.value_or(1);
+  }
+  if (d.has_errors()) return Error{ErrorCode::kParse, d.error_summary()};
+  return s;
 }
 
 Result<std::pair<std::size_t, std::size_t>> parse_shard(std::string_view text) {

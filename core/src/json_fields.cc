@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <cmath>
 #include <utility>
 #include <vector>
 
@@ -148,6 +149,17 @@ std::optional<double> JsonFields::number(std::string_view key, Need need) {
     return std::nullopt;
   }
   return d;
+}
+
+std::optional<std::uint64_t> JsonFields::count(std::string_view key, std::uint64_t max, Need need) {
+  const std::optional<double> v = number(key, need);
+  if (!v) return std::nullopt;
+  if (!(*v >= 0 && *v <= static_cast<double>(max) && std::floor(*v) == *v)) {
+    error(key, "expected a whole number from 0 to " + std::to_string(max) + ", got " +
+                   format_double(*v));
+    return std::nullopt;
+  }
+  return static_cast<std::uint64_t>(*v);
 }
 
 std::optional<std::string> JsonFields::string(std::string_view key, Need need) {

@@ -69,10 +69,12 @@ class FieldReader {
     if (auto v = f_.boolean(key, kOptional)) out = *v;
   }
   void get(std::string_view key, std::size_t& out) {
-    if (auto v = whole(key, kMaxCount)) out = static_cast<std::size_t>(*v);
+    if (auto v = f_.count(key, kMaxCount, kOptional)) out = static_cast<std::size_t>(*v);
   }
   void get(std::string_view key, int& out) {
-    if (auto v = whole(key, std::numeric_limits<int>::max())) out = static_cast<int>(*v);
+    if (auto v = f_.count(key, std::numeric_limits<int>::max(), kOptional)) {
+      out = static_cast<int>(*v);
+    }
   }
   void get(std::string_view key, std::vector<std::string>& out) {
     const std::optional<JsonArray> items = f_.array(key, kOptional);
@@ -101,19 +103,7 @@ class FieldReader {
  private:
   static constexpr JsonFields::Need kOptional = JsonFields::Need::kOptional;
   // Counts beyond this are no run's (and a double holds every whole number up to it exactly).
-  static constexpr double kMaxCount = 9007199254740992.0;  // 2^53
-
-  // A whole number from 0 to `max`.
-  std::optional<double> whole(std::string_view key, double max) {
-    const std::optional<double> v = f_.number(key, kOptional);
-    if (!v) return std::nullopt;
-    if (*v < 0 || *v > max || std::floor(*v) != *v) {
-      f_.error(key, "expected a whole number from 0 to " + format_double(max) + ", got " +
-                        format_double(*v));
-      return std::nullopt;
-    }
-    return v;
-  }
+  static constexpr std::uint64_t kMaxCount = std::uint64_t{1} << 53;
 
   JsonFields& f_;
 };

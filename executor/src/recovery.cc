@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "sewerplan/executor/recovery.h"
 
-#include <cmath>
+#include <cstdint>
 
 #include "sewerplan/core/json_fields.h"
 
@@ -11,18 +11,14 @@ namespace {
 constexpr auto kOptional = JsonFields::Need::kOptional;
 
 // Tries of a recovery phase; more than this is no robot's.
-constexpr double kMaxCount = 1000;
+constexpr std::uint64_t kMaxCount = 1000;
 // Backing off or backing up farther than this is no recovery move.
 constexpr double kMaxDistance_m = 10;
 
 void read_count(JsonFields& f, std::string_view key, int& field) {
-  const std::optional<double> v = f.number(key, kOptional);
-  if (!v) return;
-  if (*v < 0 || *v > kMaxCount || std::floor(*v) != *v) {
-    f.error(key, "expected a count from 0 to 1000, got " + format_double(*v));
-    return;
+  if (const std::optional<std::uint64_t> v = f.count(key, kMaxCount, kOptional)) {
+    field = static_cast<int>(*v);
   }
-  field = static_cast<int>(*v);
 }
 
 void read_distance(JsonFields& f, std::string_view key, double& field) {

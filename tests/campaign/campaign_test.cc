@@ -431,13 +431,64 @@ TEST(Campaign, RecordsReadBackAndBadLinesNameFileLineAndField) {
   }
   Result<RunRecord> bad = parse_run_line("{\"run\": 1}", "runs.jsonl", 7);
   ASSERT_FALSE(bad.has_value());
-  EXPECT_EQ(bad.error().message, "runs.jsonl:7: $.seed: missing");
+  EXPECT_EQ(bad.error().message,
+            "runs.jsonl:7:$: error: missing required field 'seed'\n"
+            "runs.jsonl:7:$: error: missing required field 'status'\n"
+            "runs.jsonl:7:$: error: missing required field 'measured'");
   bad = parse_run_line("[1", "runs.jsonl", 2);
   ASSERT_FALSE(bad.has_value());
   EXPECT_EQ(bad.error().message, "runs.jsonl:2: not a JSON object");
   bad = parse_run_line(R"({"run": -1, "seed": "1"})", "r", 1);
   ASSERT_FALSE(bad.has_value());
-  EXPECT_EQ(bad.error().message, "r:1: $.run: wrong type");
+  EXPECT_THAT(bad.error().message,
+              ::testing::StartsWith(
+                  "r:1:$.run: error: expected a whole number from 0 to 9007199254740992, got -1"));
+  // A record's field given twice is refused, not read as one of the two.
+  std::string twice = run_json_line(records[0]);
+  twice.insert(twice.find("\"status\""), "\"status\":\"crash\",");
+  bad = parse_run_line(twice, "runs.jsonl", 3);
+  ASSERT_FALSE(bad.has_value());
+  EXPECT_THAT(bad.error().message,
+              ::testing::HasSubstr("runs.jsonl:3:$.status: error: field 'status' given twice"));
+  std::string nested = run_json_line(records[0]);
+  nested.replace(nested.find("\"outcome\":\""), 11, "\"outcome\":\"x");
+  bad = parse_run_line(nested, "runs.jsonl", 4);
+  ASSERT_FALSE(bad.has_value());
+  EXPECT_THAT(bad.error().message, ::testing::HasSubstr("runs.jsonl:4:$.ours.outcome: error: "
+                                                        "unknown outcome 'x"));
+}
+
+TEST(Campaign, ABadCampaignFileNamesEveryBadFieldByJsonPath) {
+  CampaignSpec spec = ais_spec(4);
+  spec.shard_index = 1;
+  spec.shard_count = 2;
+  const std::string good = campaign_json(spec);
+  Result<CampaignSpec> back = parse_campaign_json(good, "campaign.json");
+  ASSERT_TRUE(back.has_value()) << back.error().message;
+  EXPECT_TRUE(back->same_campaign(spec));
+  EXPECT_EQ(back->shard_index, 1U);
+
+  auto edited = [](std::string text, const std::string& from, const std::string& to) {
+    text.replace(text.find(from), from.size(), to);
+    return text;
+  };
+  std::string bad = edited(good, "\"runs\": 4", "\"runs\": 4.5");
+  bad = edited(bad, "\"index\": 1", "\"index\": 2");
+  bad = edited(bad, "\"seed\": \"", "\"seed\": \"-");
+  Result<CampaignSpec> refused = parse_campaign_json(bad, "campaign.json");
+  ASSERT_FALSE(refused.has_value());
+  const std::string& e = refused.error().message;
+  EXPECT_THAT(e, ::testing::HasSubstr("campaign.json:$.runs: error: expected a whole number"));
+  EXPECT_THAT(e, ::testing::HasSubstr("campaign.json:$.shard: error: index must be below count"));
+  EXPECT_THAT(e, ::testing::HasSubstr("campaign.json:$.seed: error: expected an unsigned integer"));
+
+  refused = parse_campaign_json(edited(good, "\"version\": 1", "\"version\": 9"), "campaign.json");
+  ASSERT_FALSE(refused.has_value());
+  EXPECT_THAT(refused.error().message,
+              ::testing::HasSubstr("campaign.json:$.version: error: unsupported version 9"));
+  refused = parse_campaign_json("{\"format\": ", "campaign.json");
+  ASSERT_FALSE(refused.has_value());
+  EXPECT_THAT(refused.error().message, ::testing::HasSubstr("campaign.json:1:"));
 }
 
 TEST(Campaign, APlannerTimeLimitIsPartOfTheCampaignAndNoRunCallsTheBeaconForIt) {

@@ -228,7 +228,7 @@ expect 1 'cut.json' -- "$sp" simulate --map "$ais" --mission "$mission" --faults
 echo '{"format": "sewerplan-faults", "version": 1, "malfunctions": [{"at_job": 2, "kind": "permanent"}]}' > "$tmp/stuck.json"
 expect 4 'beacon on: the robot cannot move' -- "$sp" simulate --map "$ais" --mission "$mission" --faults "$tmp/stuck.json" -q
 echo '{"max_reboots": -1}' > "$tmp/recovery.json"
-expect 1 'recovery.json:\$\.max_reboots: error: expected a count from 0 to 1000, got -1' -- "$sp" simulate --map "$ais" --mission "$mission" --recovery "$tmp/recovery.json" -q
+expect 1 'recovery.json:\$\.max_reboots: error: expected a whole number from 0 to 1000, got -1' -- "$sp" simulate --map "$ais" --mission "$mission" --recovery "$tmp/recovery.json" -q
 expect 2 'random-faults' -- "$sp" simulate --map "$ais" --mission "$mission" --faults "$tmp/stuck.json" --random-faults 3
 # A fault file with a bad value is invalid input (1), as the docs say, not a usage error.
 echo '{"format": "sewerplan-faults", "version": 1, "obstacles": [{"pipe": "P99", "offset_m": 1}]}' > "$tmp/bad-faults.json"

@@ -84,9 +84,9 @@ TEST(RecoverySettings, NamesEveryBadFieldByJsonPath) {
   ASSERT_FALSE(c.has_value());
   const std::string& e = c.error().message;
   for (const char* expected :
-       {"r.json:$.backup_retries: error: expected a count from 0 to 1000, got 2.5",
+       {"r.json:$.backup_retries: error: expected a whole number from 0 to 1000, got 2.5",
         "r.json:$.backup_m: error: expected metres from 0 to 10, got 11",
-        "r.json:$.lift_retries: error: expected a count from 0 to 1000, got -1",
+        "r.json:$.lift_retries: error: expected a whole number from 0 to 1000, got -1",
         "r.json:$.push_allowed: error: expected true or false, got \"yes\"",
         "r.json:$.max_reboot: error: unknown field 'max_reboot'",
         "r.json:$.max_reboots: error: field 'max_reboots' given twice"}) {

@@ -20,6 +20,7 @@
 //   f.warn_unknown({"name", "length_m"});
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <initializer_list>
 #include <memory>
@@ -69,6 +70,10 @@ class JsonFields {
   JsonFields(JsonElement json, std::string path, std::string_view file, Diagnostics& diagnostics);
 
   std::optional<double> number(std::string_view key, Need need = Need::kRequired);
+  // A whole number from 0 to `max` (a count, an index); `max` at most 2^53, which a double holds
+  // exactly.
+  std::optional<std::uint64_t> count(std::string_view key, std::uint64_t max,
+                                     Need need = Need::kRequired);
   std::optional<std::string> string(std::string_view key, Need need = Need::kRequired);
   std::optional<bool> boolean(std::string_view key, Need need = Need::kRequired);
   std::optional<JsonArray> array(std::string_view key, Need need = Need::kRequired);
