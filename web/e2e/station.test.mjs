@@ -187,7 +187,38 @@ async function largeMap(page, canvas, shot) {
   const shown = await nearestPipe(page);
   await hovers(page, canvas, `on pipe ${shown.name}`, [shown.at]);
   await shot('9-large-zoom.png');
+  await leaveVector(page);
   return id;
+}
+
+// Zoomed in until the window is drawn as deck.gl's layers ('vector'), then back out to the image's
+// level: until the new image comes, the picture is those layers alone, not an older image (of this
+// level or another) under them. Reads the canvas under deck.gl's two frames after the zoom out.
+async function leaveVector(page) {
+  const r = await page.evaluate(async () => {
+    const { view } = window.station;
+    const out = view.viewState();
+    let levels = 0;
+    while (view.stats.lod.at(-1).mode !== 'vector' && levels < 10) {
+      await window.station.zoomAndWait(1);
+      ++levels;
+    }
+    const vector = view.stats.lod.at(-1);
+    const lod = view.stats.lod.length;
+    view.setView({ target: view.viewState().target, zoom: out.zoom });
+    await new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve)));
+    const came = view.stats.lod.slice(lod).some((x) => x.mode !== 'vector');
+    const under = document.querySelector('#view canvas');
+    const px = under.getContext('2d').getImageData(0, 0, under.width, under.height).data;
+    let painted = 0;
+    for (let k = 3; k < px.length; k += 4) if (px[k] !== 0) ++painted;
+    await window.station.zoomAndWait(0);  // the image comes
+    return { levels, vector: vector.mode === 'vector' ? vector.drawn : null, came, painted };
+  });
+  console.log(`large map, out of a vector window (${r.vector}, ${r.levels} levels in): the image under the layers ` +
+              `before the new one came: ${r.came ? 'not measured (it came within two frames)' : `${r.painted} pixels painted`}`);
+  check(r.vector !== null, `no vector window ${r.levels} levels in`);
+  check(r.came || r.painted === 0, `an older image (${r.painted} pixels) shown under the vector layers after leaving them`);
 }
 
 // The large map on a screen of device pixel ratio 2 (a new page): the image under deck.gl's canvas

@@ -11,6 +11,7 @@ import { Deck, OrthographicView } from '@deck.gl/core';
 import { LineLayer, ScatterplotLayer, TextLayer } from '@deck.gl/layers';
 import { placePoint, pointOnPipe } from './geometry.js';
 import { GridIndex, keyServes, lodKey, mapColumns, pick, pipeClasses, vectorData, workerColumns } from './lod.js';
+import { NetworkPicture } from './network-picture.js';
 
 const kNamesUpTo = 2000;  // manhole names at every zoom only on maps this small
 
@@ -59,8 +60,7 @@ export function createMapView(parent, { onClick, onHover }) {
   let index = null;    // the map's grid (lod.js)
   let classes = null;  // each pipe's class for the scene's profile
   let key = null;      // the window and level drawn
-  let network = [];    // the pipe and manhole layers of a 'vector' key
-  let image = null;    // the last image of a window: {image, bounds, key}
+  const picture = new NetworkPicture();  // a 'vector' key's layers or the last image of a window
   let overlay = [];    // the routes, then the marks: change with the mission, the faults or a plan
   let drawnBlocked = null;
   let robotLayers = [];
@@ -72,15 +72,12 @@ export function createMapView(parent, { onClick, onHover }) {
   worker.onmessage = ({ data }) => {
     busy = false;
     if (data.id === requestId && key?.mode !== 'vector') {
-      image?.image.close();
-      image = data;
-      image.arrived = performance.now();
+      const hadLayers = picture.layers.length > 0;  // a 'vector' key's stay until the image replaces them
+      picture.showImage(data);
+      data.arrived = performance.now();
       stats.lod.push({ ms: data.ms, mode: data.key.mode, level: data.key.level,
                        drawn: `${data.recoloured ? 'recoloured' : 'an image of'} ${data.image.width}x${data.image.height}` });
-      if (network.length > 0) {  // a 'vector' key's layers stay until the image replaces them
-        network = [];
-        setLayers();
-      }
+      if (hadLayers) setLayers();
     } else {
       data.image.close();
     }
@@ -101,8 +98,10 @@ export function createMapView(parent, { onClick, onHover }) {
   }
 
   // Bottom to top: pipes, routes, manholes, then the mission's marks and the robot.
-  const setLayers = () => deck.setProps({ layers: [network[0], overlay[0], network[1], ...overlay.slice(1), ...robotLayers]
-    .filter(Boolean) });
+  const setLayers = () => {
+    const network = picture.layers;
+    deck.setProps({ layers: [network[0], overlay[0], network[1], ...overlay.slice(1), ...robotLayers].filter(Boolean) });
+  };
 
   // The view's rectangle in metres (2^zoom CSS pixels a metre) and the screen's pixel ratio.
   function viewOf(v) {
@@ -112,14 +111,16 @@ export function createMapView(parent, { onClick, onHover }) {
   }
 
   // Shows the window's image where the view has it (each frame: a 2-D canvas blit, milliseconds).
-  // A new image replaces the last in one blit: the last stays shown, scaled, until it comes.
+  // A new image replaces the last in one blit: the last stays shown, scaled, until it comes. None
+  // is shown while a vector window's layers are (NetworkPicture).
   function blit() {
     const dpr = devicePixelRatio;
     const width = Math.round(parent.clientWidth * dpr), height = Math.round(parent.clientHeight * dpr);
     if (under.width !== width || under.height !== height) Object.assign(under, { width, height });
     const g = under.getContext('2d');
     g.clearRect(0, 0, width, height);
-    if (!image || key?.mode === 'vector' && network.length > 0) return;
+    const image = picture.image;
+    if (!image) return;
     const { rect, zoom } = viewOf(viewState), s = 2 ** zoom * dpr;
     const [x0, y0, x1, y1] = image.bounds;
     const t0 = performance.now();
@@ -143,10 +144,10 @@ export function createMapView(parent, { onClick, onHover }) {
     }
     const t0 = performance.now();
     const data = vectorData(index, key, classes);
-    network = [
+    picture.showLayers([
       new LineLayer({ id: 'pipes', data: data.pipes, widthUnits: 'pixels' }),
       new ScatterplotLayer({ id: 'manholes', data: data.manholes, radiusUnits: 'pixels' }),
-    ];
+    ]);
     stats.lod.push({ ms: performance.now() - t0, mode: key.mode, level: key.level,
                      drawn: `${data.pipes.length} lines, ${data.manholes.length} circles` });
     setLayers();
@@ -220,11 +221,9 @@ export function createMapView(parent, { onClick, onHover }) {
         index = new GridIndex(mapColumns(map));
         const { columns, transfer } = workerColumns(map);
         worker.postMessage({ map: columns }, transfer);
-        image?.image.close();
-        image = null;
+        picture.clear();
         ++requestId;  // an image of the last map still being drawn is not shown
         key = null;
-        network = [];
         drawnBlocked = null;
       }
       if (s.blocked !== drawnBlocked) {
