@@ -70,7 +70,7 @@ async function motion(page, what, { frames = 60, pan = [0, 0], zoom = 0 }) {
   const r = await page.evaluate(async ([n, [px, py], dz]) => {
     const view = window.station.view;
     const v0 = view.viewState();
-    const renders = view.stats.renders, lod = view.stats.lod.length;
+    const renders = view.stats.renders, lod = view.stats.lod.length, images = (view.stats.images ?? []).length;
     const stamps = [];
     let target = [...v0.target];
     await new Promise((resolve) => {
@@ -84,14 +84,18 @@ async function motion(page, what, { frames = 60, pan = [0, 0], zoom = 0 }) {
       };
       requestAnimationFrame(step);
     });
-    return { stamps, renders: view.stats.renders - renders, lod: view.stats.lod.slice(lod) };
+    return { stamps, renders: view.stats.renders - renders, lod: view.stats.lod.slice(lod),
+             images: (view.stats.images ?? []).slice(images) };
   }, [frames, pan, zoom]);
   const dt = r.stamps.slice(1).map((t, i) => t - r.stamps[i]);
   const f = quantiles(dt);
   const fps = (dt.length * 1000) / (r.stamps.at(-1) - r.stamps[0]);
   const lod = r.lod.map((x) => `${x.mode} at level ${x.level}, ${x.drawn}, in ${ms(x.ms)}`);
+  // The main thread's part of each new image: its first blit, and from its message to that blit.
+  const images = r.images.map((x) => `first blit ${ms(x.first_blit_ms)} (${ms(x.message_to_blit_ms)} after it came)`);
   console.log(`large map, ${what}: ${f.count} frames, frame time p50 ${ms(f.p50)}, p95 ${ms(f.p95)}, max ${ms(f.max)}, ` +
-              `${fps.toFixed(1)} fps, ${r.renders} drawn; LOD rebuilds: ${lod.join('; ') || 'none'} (load ${loadavg()})`);
+              `${fps.toFixed(1)} fps, ${r.renders} drawn; LOD rebuilds: ${lod.join('; ') || 'none'}; ` +
+              `images shown: ${images.join('; ') || 'none'} (load ${loadavg()})`);
   return f;
 }
 
@@ -157,6 +161,9 @@ async function largeMap(page, canvas, shot) {
               `driveability (asked with the geometry) applied ${timings.driveability_ms} ms and drawn ` +
               `${timings.driveability_drawn_ms} ms after the map was asked (load ${loadavg()})`);
   console.log(`large map ${id}, the page's marks: ${await marks(page, id)}`);
+  const opened = await page.evaluate(() => window.station.view.stats.lod.slice(-2));
+  console.log(`large map ${id}: its first image and the driveability's: ` +
+              opened.map((x) => `${x.mode} at level ${x.level}, ${x.drawn}, in ${ms(x.ms)}`).join('; '));
   await shot('8-large.png');
   const box = await canvas.boundingBox();
   const around = (n) => Array.from({ length: n }, (_, i) => [box.width / 2 + 9 * i - 45, box.height / 2 + 5 * i - 25]);
@@ -180,6 +187,66 @@ async function largeMap(page, canvas, shot) {
   const shown = await nearestPipe(page);
   await hovers(page, canvas, `on pipe ${shown.name}`, [shown.at]);
   await shot('9-large-zoom.png');
+  await leaveVector(page);
+  return id;
+}
+
+// Zoomed in until the window is drawn as deck.gl's layers ('vector'), then back out to the image's
+// level: until the new image comes, the picture is those layers alone, not an older image (of this
+// level or another) under them. Reads the canvas under deck.gl's two frames after the zoom out.
+async function leaveVector(page) {
+  const r = await page.evaluate(async () => {
+    const { view } = window.station;
+    const out = view.viewState();
+    let levels = 0;
+    while (view.stats.lod.at(-1).mode !== 'vector' && levels < 10) {
+      await window.station.zoomAndWait(1);
+      ++levels;
+    }
+    const vector = view.stats.lod.at(-1);
+    const lod = view.stats.lod.length;
+    view.setView({ target: view.viewState().target, zoom: out.zoom });
+    await new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve)));
+    const came = view.stats.lod.slice(lod).some((x) => x.mode !== 'vector');
+    const under = document.querySelector('#view canvas');
+    const px = under.getContext('2d').getImageData(0, 0, under.width, under.height).data;
+    let painted = 0;
+    for (let k = 3; k < px.length; k += 4) if (px[k] !== 0) ++painted;
+    await window.station.zoomAndWait(0);  // the image comes
+    return { levels, vector: vector.mode === 'vector' ? vector.drawn : null, came, painted };
+  });
+  console.log(`large map, out of a vector window (${r.vector}, ${r.levels} levels in): the image under the layers ` +
+              `before the new one came: ${r.came ? 'not measured (it came within two frames)' : `${r.painted} pixels painted`}`);
+  check(r.vector !== null, `no vector window ${r.levels} levels in`);
+  check(r.came || r.painted === 0, `an older image (${r.painted} pixels) shown under the vector layers after leaving them`);
+}
+
+// The large map on a screen of device pixel ratio 2 (a new page): the image under deck.gl's canvas
+// is in device pixels, and the worker's image of the window as sharp as the screen, twice as wide
+// and high as at ratio 1 (within its cap of 12 million pixels).
+async function largeMapAtRatio2(id) {
+  const imageOf = (p) => p.evaluate(() => {
+    const last = window.station.view.stats.lod.findLast((x) => x.mode !== 'vector');
+    const [w, h] = /(\d+)x(\d+)/.exec(last.drawn).slice(1).map(Number);
+    const under = document.querySelector('#view canvas'), box = document.querySelector('#view');
+    return { w, h, under: [under.width, under.height], css: [box.clientWidth, box.clientHeight], level: last.level };
+  });
+  const sizes = [];
+  for (const deviceScaleFactor of [1, 2]) {
+    const p = await browser.newPage({ viewport: { width: 1280, height: 900 }, deviceScaleFactor });
+    await p.goto(url);
+    await p.waitForSelector('body[data-ready=true]', { timeout: 90000 });
+    await p.selectOption('#map', id);
+    await p.waitForFunction((i) => document.body.dataset.opened === i, id, { timeout: 180000 });
+    sizes.push(await imageOf(p));
+    await p.close();
+  }
+  const [one, two] = sizes;
+  console.log(`large map at pixel ratio 1 and 2: images ${one.w}x${one.h} and ${two.w}x${two.h} of the same window ` +
+              `(level ${one.level}, ${two.level}); the canvas under deck.gl's ${two.under.join('x')} for ${two.css.join('x')} CSS pixels`);
+  check(two.under[0] === 2 * two.css[0] && two.under[1] === 2 * two.css[1], 'the image is not drawn in device pixels at ratio 2');
+  check(one.level === two.level && (Math.abs(two.w - 2 * one.w) <= 2 || two.w * two.h > 11.9e6) && two.w > 1.7 * one.w,
+        `at ratio 2 the image is ${two.w}x${two.h}, at 1 ${one.w}x${one.h}`);
 }
 
 const browser = await launching;
@@ -372,7 +439,7 @@ try {
   console.log(`profile changed while ${aisId} opened: driveability asked ${asked.length} times for it, shown: ${line}`);
   await page.selectOption('#profile', profiles[0]);
 
-  if (large) await largeMap(page, canvas, shot);
+  if (large) await largeMapAtRatio2(await largeMap(page, canvas, shot));
   console.log(`station e2e: ok in ${Date.now() - started} ms, of which screenshots ${shotsMs} ms`);
 } catch (e) {
   failed = true;

@@ -51,9 +51,10 @@ export const uploadCondition = (id, name, text) =>
   call(`${map(id)}/condition?name=${encodeURIComponent(name)}`, { method: 'POST', body: text });
 // The profile's driveability, in two steps: the promise resolves when the answer has come, with a
 // function that reads its JSON (and throws the server's error). A large answer asked early is
-// parsed only when the page has time for it: main.js reads it after the map's first draw.
-export async function driveability(id, profile) {
-  const response = await fetch(motion(`${map(id)}/driveability?profile=${encodeURIComponent(profile)}`), { headers });
+// parsed only when the page has time for it: main.js reads it after the map's first draw. An
+// aborted `signal` (a later request made this one outdated) stops the request or its body's read.
+export async function driveability(id, profile, signal) {
+  const response = await fetch(motion(`${map(id)}/driveability?profile=${encodeURIComponent(profile)}`), { headers, signal });
   return async () => {
     const body = await response.json();
     if (!response.ok) throw Object.assign(new Error(body.error?.message ?? response.statusText), { body });

@@ -7,8 +7,10 @@
 //  - 'vector': the window's pipes and manholes as deck.gl layers, when it holds at most
 //    kVectorBudget of them (small maps, deep zoom);
 //  - 'detail': else the window drawn once into an image (canvas 2D, in a worker: raster-worker.js)
-//    at the level's resolution, each pipe and manhole; the view shows it in a 2-D canvas under
-//    deck.gl's, moved and scaled at each frame. Up to kDetailBudget pipes in the window;
+//    at the level's resolution times the screen's device pixel ratio (imageSize), each pipe and
+//    manhole; the view shows it in a 2-D canvas under deck.gl's, moved and scaled at each frame.
+//    Another profile repaints the image from its layers (WindowImage), not the window's pipes
+//    one by one. Up to kDetailBudget pipes in the window;
 //  - 'overview': else the same image of the window merged: manholes closer than kMergePx on the
 //    screen merge (their cell's mean position), pipes become one line per pair of merged cells and
 //    vanish inside one cell; only exits are drawn as circles, small ones.
@@ -23,6 +25,7 @@ export const kDetailBudget = 30000;  // pipes in a window drawn one by one into 
 export const kMergePx = 4;           // the overview's cell, in screen pixels at the level's zoom
 const kMarginShare = 0.25;           // the window: the view and this share of its size each side
 const kMaxImagePx = 4096;            // the image's largest side
+const kMaxImagePixels = 12e6;        // its pixels (48 MB)
 const kPickPx = 4;                   // how far from a line the pointer still picks it, in pixels
 const kOverviewExitPx = 2.5;         // an exit's radius in the overview
 
@@ -33,9 +36,17 @@ const kExitColor = [20, 150, 60, 255], kManholeColor = [90, 90, 90, 255];
 export const pipeWidthPx = (diameter) => 1 + 4 * Math.min(diameter, 1);
 export const manholeRadiusPx = (exit, slots) => (exit ? 6 : 3 + Math.min(slots, 4) * 0.5);
 
-// The map as columns (what the worker is sent; geometry.js reads them from the server's): each
-// pipe's ends (x0, y0, x1, y1) and diameter, each manhole's position (x, y), exit flag and slot count.
-export const mapColumns = (map) => map.columns;
+// The map as columns (geometry.js reads them from the server's): each pipe's ends (x0, y0, x1, y1),
+// diameter and open-end flag, each manhole's position (x, y), exit flag and slot count.
+export const mapColumns = (map) => ({ ...map.columns, openEnd: map.openEnd });
+
+// The same columns for the worker, with the buffers to transfer to it: a copy of each column alone
+// (a column read in place from the server's geometry is a view of the whole buffer, which
+// postMessage would copy whole, once for each column), made once a map.
+export function workerColumns(map) {
+  const columns = Object.fromEntries(Object.entries(mapColumns(map)).map(([name, a]) => [name, a.slice()]));
+  return { columns, transfer: Object.values(columns).map((a) => a.buffer) };
+}
 
 // The pipes and manholes (mapColumns) in a uniform grid of about 8 a cell, in compressed rows:
 // the pipes of cell c are pipeItems[pipeStart[c] .. pipeStart[c + 1]), each pipe in every cell its
@@ -156,8 +167,9 @@ export function pipeClasses(map, blocked) {
   return classes;
 }
 
-// The view as the LOD sees it: {rect: [x0, y0, x1, y1] in metres, zoom} (zoom z: 2^z pixels a
-// metre). Its key: the level (the zoom rounded), the window and how it is drawn.
+// The view as the LOD sees it: {rect: [x0, y0, x1, y1] in metres, zoom (z: 2^z CSS pixels a
+// metre), dpr (the screen's device pixels a CSS pixel; 1 if not given)}. Its key: the level (the zoom
+// rounded), the window, how it is drawn and the pixel ratio its image is drawn for.
 export function lodKey(index, view) {
   const level = Math.round(view.zoom);
   const [x0, y0, x1, y1] = view.rect;
@@ -165,12 +177,12 @@ export function lodKey(index, view) {
   const window = index.snap([x0 - mx, y0 - my, x1 + mx, y1 + my]);
   const n = index.counts(window);
   const mode = n.pipes + n.manholes <= kVectorBudget ? 'vector' : n.pipes <= kDetailBudget ? 'detail' : 'overview';
-  return { level, window, mode };
+  return { level, window, mode, dpr: view.dpr ?? 1 };
 }
 
-// Whether `key` still serves the view: the same level and the view inside its window.
+// Whether `key` still serves the view: the same level and pixel ratio, the view inside its window.
 export function keyServes(key, view) {
-  if (!key || key.level !== Math.round(view.zoom)) return false;
+  if (!key || key.level !== Math.round(view.zoom) || key.dpr !== (view.dpr ?? 1)) return false;
   const [x0, y0, x1, y1] = view.rect, w = key.window;
   return x0 >= w[0] && y0 >= w[1] && x1 <= w[2] && y1 <= w[3];
 }
@@ -207,70 +219,140 @@ export function vectorData(index, key, classes) {
   return { pipes, manholes };
 }
 
-// The window of a 'detail' or 'overview' key drawn into an image at the level's resolution (the
-// worker's job): {image (an ImageBitmap), bounds: [x0, y0, x1, y1] (metres)}.
-export function rasterize(index, key, classes) {
-  const [x0, y0, x1, y1] = key.window;
-  const res = Math.min(2 ** key.level, kMaxImagePx / Math.max(x1 - x0, y1 - y0, 1e-9));  // pixels a metre
-  const width = Math.max(1, Math.round((x1 - x0) * res)), height = Math.max(1, Math.round((y1 - y0) * res));
-  const canvas = new OffscreenCanvas(width, height);
-  const g = canvas.getContext('2d');
-  const px = (x) => (x - x0) * res, py = (y) => (y1 - y) * res;  // y up on the map, down in the image
-  const rgb = (c) => `rgb(${c[0]},${c[1]},${c[2]})`;
-  // One path per class and width: a few strokes whatever the count.
-  const strokes = new Map();
-  const line = (cls, w, ax, ay, bx, by) => {
-    const k = cls * 1000 + w;
-    let s = strokes.get(k);
-    if (!s) strokes.set(k, (s = { cls, w, path: new Path2D() }));
-    s.path.moveTo(px(ax), py(ay));
-    s.path.lineTo(px(bx), py(by));
-  };
-  let manholes;
-  if (key.mode === 'detail') {
-    const e = index.ends;
-    for (const i of index.pipesIn(key.window)) {
-      line(classes[i], Math.round(2 * pipeWidthPx(index.diameters[i])) / 2, e[4 * i], e[4 * i + 1], e[4 * i + 2], e[4 * i + 3]);
-    }
-    manholes = index.manholesIn(key.window);
-  } else {
-    const { ends, cls } = mergedLines(index, key, classes);
-    for (let k = 0; k < cls.length; ++k) {
-      line(cls[k], cls[k] === kBlocked ? 2 : 1, ends[4 * k], ends[4 * k + 1], ends[4 * k + 2], ends[4 * k + 3]);
-    }
-    manholes = index.manholesIn(key.window).filter((m) => index.exits[m]);
-  }
-  g.lineCap = 'round';
-  for (const cls of [kNormal, kOpenEnd, kBlocked]) {  // blocked on top
-    for (const s of strokes.values()) {
-      if (s.cls !== cls) continue;
-      g.strokeStyle = rgb(kClassColor[cls]);
-      g.lineWidth = s.w;
-      g.stroke(s.path);
-    }
-  }
-  const fills = new Map();
-  for (const m of manholes) {
-    const exit = index.exits[m], r = key.mode === 'overview' ? kOverviewExitPx : index.radius(m);
-    const k = exit * 1000 + r;
-    let f = fills.get(k);
-    if (!f) fills.set(k, (f = { color: exit ? kExitColor : kManholeColor, path: new Path2D() }));
-    const x = px(index.positions[2 * m]), y = py(index.positions[2 * m + 1]);
-    f.path.moveTo(x + r, y);
-    f.path.arc(x, y, r, 0, 2 * Math.PI);
-  }
-  for (const f of fills.values()) {
-    g.fillStyle = rgb(f.color);
-    g.fill(f.path);
-  }
-  return { image: canvas.transferToImageBitmap(), bounds: [x0, y0, x1, y1] };
+// The image of a window at a level: its size in pixels and its resolution (pixels a metre): the
+// level's zoom times the screen's device pixel ratio (so that the image is as sharp as the screen
+// at that zoom), within kMaxImagePx a side and kMaxImagePixels in all (the worker holds three
+// images of this size and the page one: at most 4 x 48 MB). scale: image pixels a CSS pixel at the
+// level's zoom (the device pixel ratio, or less where the caps bind): widths and radii, given in
+// CSS pixels, are drawn times this.
+export function imageSize([x0, y0, x1, y1], level, dpr = 1) {
+  const w = x1 - x0, h = y1 - y0;
+  const res = Math.min(2 ** level * dpr, kMaxImagePx / Math.max(w, h, 1e-9),
+                       Math.sqrt(kMaxImagePixels / Math.max(w * h, 1e-18)));
+  return { res, scale: res / 2 ** level,
+           width: Math.max(1, Math.round(w * res)), height: Math.max(1, Math.round(h * res)) };
 }
 
+// The image of a 'detail' or 'overview' key's window (the worker's job), in layers, so that
+// another profile's classes repaint only what they change: the pipes in their classes without
+// a profile (normal or open end) and the manholes are drawn once for the window, each into a
+// bitmap; the image is the pipes' bitmap, the blocked pipes over it in red, then the manholes'
+// bitmap (blocked pipes on top of the others, manholes on top of all). compose(classes) makes the
+// image: two blits and the blocked pipes' strokes, from coordinates projected once.
+export class WindowImage {
+  constructor(index, key) {
+    this.key = key;
+    const [x0, , , y1] = key.window;
+    const { res, scale, width, height } = imageSize(key.window, key.level, key.dpr);
+    Object.assign(this, { width, height, bounds: key.window });
+    const px = (x) => (x - x0) * res, py = (y) => (y1 - y) * res;  // y up on the map, down in the image
+    const e = index.ends;
+    // The lines drawn: their ends in pixels and widths, and what makes one blocked. In detail each
+    // pipe of the window (line k is pipe pipes[k]); in the overview the merged lines, line
+    // lineOf[k] standing for pipes[k] (-1: none, the pipe is inside one cell).
+    let pipes, lineOf, ends, base, widths, blockedWidth = null, manholes, radius;
+    if (key.mode === 'detail') {
+      pipes = Uint32Array.from(index.pipesIn(key.window));
+      ends = new Float32Array(4 * pipes.length);
+      base = new Uint8Array(pipes.length);
+      widths = new Float32Array(pipes.length);
+      pipes.forEach((i, k) => {
+        ends.set([px(e[4 * i]), py(e[4 * i + 1]), px(e[4 * i + 2]), py(e[4 * i + 3])], 4 * k);
+        base[k] = index.openEnd[i] ? kOpenEnd : kNormal;
+        widths[k] = Math.max(0.5, Math.round(2 * pipeWidthPx(index.diameters[i]) * scale) / 2);
+      });
+      manholes = index.manholesIn(key.window);
+      radius = (m) => index.radius(m) * scale;
+    } else {
+      const merged = mergedLines(index, key);
+      ({ pipes, lineOf } = merged);
+      ends = merged.ends.map((v, k) => (k % 2 === 0 ? px(v) : py(v)));
+      base = merged.base;
+      widths = new Float32Array(base.length).fill(scale);
+      blockedWidth = 2 * scale;
+      manholes = index.manholesIn(key.window).filter((m) => index.exits[m]);
+      radius = () => kOverviewExitPx * scale;
+    }
+    Object.assign(this, { pipes, lineOf, ends, widths, blockedWidth });
+    this.canvas = new OffscreenCanvas(width, height);
+    const g = this.canvas.getContext('2d');
+    g.lineCap = 'round';
+    for (const cls of [kNormal, kOpenEnd]) this.#stroke(g, kClassColor[cls], (k) => base[k] === cls);
+    this.pipesLayer = this.canvas.transferToImageBitmap();
+    const fills = new Map();
+    for (const m of manholes) {
+      const exit = index.exits[m], r = radius(m);
+      const k = exit * 1000 + r;
+      let f = fills.get(k);
+      if (!f) fills.set(k, (f = { color: exit ? kExitColor : kManholeColor, path: new Path2D() }));
+      const x = px(index.positions[2 * m]), y = py(index.positions[2 * m + 1]);
+      f.path.moveTo(x + r, y);
+      f.path.arc(x, y, r, 0, 2 * Math.PI);
+    }
+    for (const f of fills.values()) {
+      g.fillStyle = rgb(f.color);
+      g.fill(f.path);
+    }
+    this.manholesLayer = this.canvas.transferToImageBitmap();
+  }
+
+  // Whether this image is the one `key` asks for (the same window, level, mode and pixel ratio).
+  serves(key) {
+    const k = this.key;
+    return key.level === k.level && key.mode === k.mode && key.dpr === k.dpr && key.window.every((v, i) => v === k.window[i]);
+  }
+
+  // The image for the pipes' classes (each pipe's: kNormal, kOpenEnd, kBlocked), an ImageBitmap.
+  compose(classes) {
+    const g = this.canvas.getContext('2d');
+    g.drawImage(this.pipesLayer, 0, 0);
+    let blocked;
+    if (this.lineOf) {  // a merged line is blocked if any of its pipes is
+      blocked = new Uint8Array(this.widths.length);
+      this.pipes.forEach((i, k) => { if (classes[i] === kBlocked && this.lineOf[k] >= 0) blocked[this.lineOf[k]] = 1; });
+    } else {
+      blocked = Uint8Array.from(this.pipes, (i) => (classes[i] === kBlocked ? 1 : 0));
+    }
+    g.lineCap = 'round';
+    this.#stroke(g, kClassColor[kBlocked], (k) => blocked[k] === 1, this.blockedWidth);
+    g.drawImage(this.manholesLayer, 0, 0);
+    return this.canvas.transferToImageBitmap();
+  }
+
+  close() {
+    this.pipesLayer.close();
+    this.manholesLayer.close();
+  }
+
+  // Strokes the lines k with drawn(k) in `color`: one path per width, a few strokes whatever the
+  // count; at `width` if given, else each line's own.
+  #stroke(g, color, drawn, width = null) {
+    const paths = new Map();
+    const a = this.ends;
+    for (let k = 0; k < this.widths.length; ++k) {
+      if (!drawn(k)) continue;
+      const w = width ?? this.widths[k];
+      let path = paths.get(w);
+      if (!path) paths.set(w, (path = new Path2D()));
+      path.moveTo(a[4 * k], a[4 * k + 1]);
+      path.lineTo(a[4 * k + 2], a[4 * k + 3]);
+    }
+    g.strokeStyle = rgb(color);
+    for (const [w, path] of paths) {
+      g.lineWidth = w;
+      g.stroke(path);
+    }
+  }
+}
+
+const rgb = (c) => `rgb(${c[0]},${c[1]},${c[2]})`;
+
 // Pipes merged by cells of kMergePx pixels at the level's zoom: one line per pair of cells that a
-// pipe joins, between the cells' mean end positions, blocked if any of its pipes is (a profile's
-// limits stay visible), else of its first pipe's class: {ends: [x0, y0, x1, y1, ...], cls}.
-// O(pipes in the window).
-function mergedLines(index, key, classes) {
+// pipe joins, between the cells' mean end positions, in its first pipe's class without a profile
+// (normal or open end; WindowImage draws it blocked if any of its pipes is, so a profile's limits
+// stay visible): {ends: [x0, y0, x1, y1, ...], base, pipes (the window's), lineOf (each of those
+// pipes' line, -1 inside one cell)}. O(pipes in the window).
+function mergedLines(index, key) {
   const e = index.ends;
   const [wx0, wy0, wx1, wy1] = key.window;
   const size = kMergePx * 2 ** -key.level;
@@ -278,31 +360,31 @@ function mergedLines(index, key, classes) {
   const cellOf = (x, y) => Math.min(nx - 1, Math.max(0, Math.floor((x - wx0) / size))) +
                            nx * Math.min(ny - 1, Math.max(0, Math.floor((y - wy0) / size)));
   const sums = new Map();   // cell -> [sum x, sum y, count]
-  const edges = new Map();  // a * cells + b (a < b) -> [a, b, class]
+  const edges = new Map();  // a * cells + b (a < b) -> [a, b, class, line]
   const cells = nx * ny;
   const add = (cell, x, y) => {
     const s = sums.get(cell);
     if (s) { s[0] += x; s[1] += y; ++s[2]; } else sums.set(cell, [x, y, 1]);
   };
-  for (const i of index.pipesIn(key.window)) {
+  const pipes = Uint32Array.from(index.pipesIn(key.window)), lineOf = new Int32Array(pipes.length).fill(-1);
+  pipes.forEach((i, k) => {
     const ax = e[4 * i], ay = e[4 * i + 1], bx = e[4 * i + 2], by = e[4 * i + 3];
     const a = cellOf(ax, ay), b = cellOf(bx, by);
     add(a, ax, ay);
     add(b, bx, by);
-    if (a === b) continue;  // within a cell: not drawn
-    const k = Math.min(a, b) * cells + Math.max(a, b);
-    const edge = edges.get(k);
-    if (!edge) edges.set(k, [a, b, classes[i]]);
-    else if (classes[i] === kBlocked) edge[2] = kBlocked;
-  }
-  const ends = new Float64Array(4 * edges.size), cls = new Uint8Array(edges.size);
-  let k = 0;
-  for (const [a, b, c] of edges.values()) {
+    if (a === b) return;  // within a cell: not drawn
+    const key = Math.min(a, b) * cells + Math.max(a, b);
+    let edge = edges.get(key);
+    if (!edge) edges.set(key, (edge = [a, b, index.openEnd[i] ? kOpenEnd : kNormal, edges.size]));
+    lineOf[k] = edge[3];
+  });
+  const ends = new Float64Array(4 * edges.size), base = new Uint8Array(edges.size);
+  for (const [a, b, c, line] of edges.values()) {
     const sa = sums.get(a), sb = sums.get(b);
-    ends.set([sa[0] / sa[2], sa[1] / sa[2], sb[0] / sb[2], sb[1] / sb[2]], 4 * k);
-    cls[k++] = c;
+    ends.set([sa[0] / sa[2], sa[1] / sa[2], sb[0] / sb[2], sb[1] / sb[2]], 4 * line);
+    base[line] = c;
   }
-  return { ends, cls };
+  return { ends, base, pipes, lineOf };
 }
 
 // The drawn feature at `at` (a point in metres) when the view's zoom is `zoom`: a manhole drawn

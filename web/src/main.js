@@ -132,7 +132,7 @@ let mapAskedAt = 0;
 async function showDriveability() {
   let r, answer = null;
   try {
-    answer = await driveabilityRequests.run((id) => api.driveability(id, $('profile').value));
+    answer = await driveabilityRequests.run((id, signal) => api.driveability(id, $('profile').value, signal));
     if (!answer) return;  // a later request, or another map opened meanwhile
     performance.mark(`${answer.id}: driveability come`);
     r = await answer.value();  // its JSON read now, not while the map was drawn

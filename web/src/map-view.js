@@ -10,7 +10,8 @@
 import { Deck, OrthographicView } from '@deck.gl/core';
 import { LineLayer, ScatterplotLayer, TextLayer } from '@deck.gl/layers';
 import { placePoint, pointOnPipe } from './geometry.js';
-import { GridIndex, keyServes, lodKey, mapColumns, pick, pipeClasses, vectorData } from './lod.js';
+import { GridIndex, keyServes, lodKey, mapColumns, pick, pipeClasses, vectorData, workerColumns } from './lod.js';
+import { NetworkPicture } from './network-picture.js';
 
 const kNamesUpTo = 2000;  // manhole names at every zoom only on maps this small
 
@@ -19,10 +20,12 @@ const kNamesUpTo = 2000;  // manhole names at every zoom only on maps this small
 export function createMapView(parent, { onClick, onHover }) {
   let viewState = { target: [0, 0, 0], zoom: 0 };
   let hovering = false;
-  // What the browser test reads (web/e2e): frames drawn, LOD rebuilds and picks, timed.
-  const stats = { renders: 0, lod: [], picks: [] };
+  // What the browser test reads (web/e2e): frames drawn, LOD rebuilds and picks, timed; the
+  // main thread's part of each image shown (images: from its message to its first blit).
+  const stats = { renders: 0, lod: [], picks: [], images: [] };
   const drawn = [];  // resolves of whenDrawn()
-  // The window's image, under deck.gl's canvas (which is transparent where nothing is drawn).
+  // The window's image, under deck.gl's canvas (which is transparent where nothing is drawn), in
+  // device pixels, as deck.gl's.
   const under = document.createElement('canvas');
   Object.assign(under.style, { position: 'absolute', left: '0', top: '0', width: '100%', height: '100%' });
   parent.prepend(under);
@@ -57,8 +60,7 @@ export function createMapView(parent, { onClick, onHover }) {
   let index = null;    // the map's grid (lod.js)
   let classes = null;  // each pipe's class for the scene's profile
   let key = null;      // the window and level drawn
-  let network = [];    // the pipe and manhole layers of a 'vector' key
-  let image = null;    // the last image of a window: {image, bounds, key}
+  const picture = new NetworkPicture();  // a 'vector' key's layers or the last image of a window
   let overlay = [];    // the routes, then the marks: change with the mission, the faults or a plan
   let drawnBlocked = null;
   let robotLayers = [];
@@ -70,12 +72,12 @@ export function createMapView(parent, { onClick, onHover }) {
   worker.onmessage = ({ data }) => {
     busy = false;
     if (data.id === requestId && key?.mode !== 'vector') {
-      image?.image.close();
-      image = data;
-      network = [];  // a 'vector' key's layers stay until the image replaces them
+      const hadLayers = picture.layers.length > 0;  // a 'vector' key's stay until the image replaces them
+      picture.showImage(data);
+      data.arrived = performance.now();
       stats.lod.push({ ms: data.ms, mode: data.key.mode, level: data.key.level,
-                       drawn: `an image of ${data.image.width}x${data.image.height}` });
-      setLayers();
+                       drawn: `${data.recoloured ? 'recoloured' : 'an image of'} ${data.image.width}x${data.image.height}` });
+      if (hadLayers) setLayers();
     } else {
       data.image.close();
     }
@@ -96,25 +98,37 @@ export function createMapView(parent, { onClick, onHover }) {
   }
 
   // Bottom to top: pipes, routes, manholes, then the mission's marks and the robot.
-  const setLayers = () => deck.setProps({ layers: [network[0], overlay[0], network[1], ...overlay.slice(1), ...robotLayers]
-    .filter(Boolean) });
+  const setLayers = () => {
+    const network = picture.layers;
+    deck.setProps({ layers: [network[0], overlay[0], network[1], ...overlay.slice(1), ...robotLayers].filter(Boolean) });
+  };
 
-  // The view's rectangle in metres (2^zoom pixels a metre).
+  // The view's rectangle in metres (2^zoom CSS pixels a metre) and the screen's pixel ratio.
   function viewOf(v) {
     const half = 2 ** -v.zoom / 2, w = parent.clientWidth * half, h = parent.clientHeight * half;
-    return { zoom: v.zoom, rect: [v.target[0] - w, v.target[1] - h, v.target[0] + w, v.target[1] + h] };
+    return { zoom: v.zoom, rect: [v.target[0] - w, v.target[1] - h, v.target[0] + w, v.target[1] + h],
+             dpr: devicePixelRatio };
   }
 
   // Shows the window's image where the view has it (each frame: a 2-D canvas blit, milliseconds).
+  // A new image replaces the last in one blit: the last stays shown, scaled, until it comes. None
+  // is shown while a vector window's layers are (NetworkPicture).
   function blit() {
-    const width = parent.clientWidth, height = parent.clientHeight;
+    const dpr = devicePixelRatio;
+    const width = Math.round(parent.clientWidth * dpr), height = Math.round(parent.clientHeight * dpr);
     if (under.width !== width || under.height !== height) Object.assign(under, { width, height });
     const g = under.getContext('2d');
     g.clearRect(0, 0, width, height);
-    if (!image || key?.mode === 'vector' && network.length > 0) return;
-    const { rect, zoom } = viewOf(viewState), s = 2 ** zoom;
+    const image = picture.image;
+    if (!image) return;
+    const { rect, zoom } = viewOf(viewState), s = 2 ** zoom * dpr;
     const [x0, y0, x1, y1] = image.bounds;
+    const t0 = performance.now();
     g.drawImage(image.image, (x0 - rect[0]) * s, (rect[3] - y1) * s, (x1 - x0) * s, (y1 - y0) * s);
+    if (image.arrived !== undefined) {
+      stats.images.push({ first_blit_ms: performance.now() - t0, message_to_blit_ms: performance.now() - image.arrived });
+      delete image.arrived;
+    }
   }
 
   // Rebuilds the network's layers, or asks for the window's image, when the view left the window
@@ -130,10 +144,10 @@ export function createMapView(parent, { onClick, onHover }) {
     }
     const t0 = performance.now();
     const data = vectorData(index, key, classes);
-    network = [
+    picture.showLayers([
       new LineLayer({ id: 'pipes', data: data.pipes, widthUnits: 'pixels' }),
       new ScatterplotLayer({ id: 'manholes', data: data.manholes, radiusUnits: 'pixels' }),
-    ];
+    ]);
     stats.lod.push({ ms: performance.now() - t0, mode: key.mode, level: key.level,
                      drawn: `${data.pipes.length} lines, ${data.manholes.length} circles` });
     setLayers();
@@ -204,23 +218,27 @@ export function createMapView(parent, { onClick, onHover }) {
       if (!s.map) return;
       if (s.map !== map) {
         map = s.map;
-        const columns = mapColumns(map);
-        index = new GridIndex(columns);
-        worker.postMessage({ map: columns });
-        image?.image.close();
-        image = null;
+        index = new GridIndex(mapColumns(map));
+        const { columns, transfer } = workerColumns(map);
+        worker.postMessage({ map: columns }, transfer);
+        picture.clear();
         ++requestId;  // an image of the last map still being drawn is not shown
+        key = null;
         drawnBlocked = null;
       }
       if (s.blocked !== drawnBlocked) {
         classes = pipeClasses(map, s.blocked);
-        worker.postMessage({ classes });
+        const copy = classes.slice();
+        worker.postMessage({ classes: copy }, [copy.buffer]);
         drawnBlocked = s.blocked;
-        key = null;
+        // An image's window is asked again: the worker recolours the one it has. A vector
+        // window's layers are rebuilt (a few hundred pipes).
+        if (key?.mode === 'vector') key = null;
+        else if (key) request(key);
       }
       overlay = overlayLayers(s);
-      if (key) setLayers();
-      else refresh();
+      if (!key) refresh();
+      setLayers();
     },
     // Moves the robot only: one small layer per animation frame.
     drawRobot(robot, beacon) {

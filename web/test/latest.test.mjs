@@ -83,3 +83,34 @@ test("another map opened drops the last map's requests, answered or failing", as
   assert.equal(await first, null);
   assert.equal(await second, null);
 });
+
+test('a request made outdated is aborted: by a later request, or by another map opened', async () => {
+  const requests = mapRequests();
+  requests.opening('a')();
+  const signals = [];
+  const ask = (id, signal) => {
+    signals.push(signal);
+    return new Promise((resolve, reject) => signal.addEventListener('abort', () => reject(signal.reason)));
+  };
+  const first = requests.run(ask);
+  assert.equal(signals[0].aborted, false, 'the latest request is not aborted');
+  const second = requests.run(ask);  // another profile chosen
+  assert.equal(signals[0].aborted, true, "the older request's fetch goes on");
+  assert.equal(signals[1].aborted, false);
+  requests.opening('b');  // another map
+  assert.equal(signals[1].aborted, true, "the last map's request goes on");
+  assert.equal(await first, null);
+  assert.equal(await second, null);
+});
+
+test('an answered request is not aborted while it is the latest, so its body can be read', async () => {
+  const requests = mapRequests();
+  requests.opening('a')();
+  let signal = null;
+  const answer = await requests.run((id, s) => { signal = s; return Promise.resolve('body'); });
+  assert.equal(answer.value, 'body');
+  assert.equal(signal.aborted, false);
+  requests.run(() => new Promise(() => {}));
+  assert.equal(signal.aborted, true, 'a later request aborts the reading of the last one');
+  assert.equal(answer.latest(), false);
+});

@@ -7,8 +7,8 @@
 import assert from 'node:assert/strict';
 import { test } from 'node:test';
 import { loadGeometry, readGeometry } from '../src/geometry.js';
-import { GridIndex, kBlocked, keyServes, kNormal, kOpenEnd, kVectorBudget, lodKey, mapColumns, pick,
-         pipeClasses, vectorData } from '../src/lod.js';
+import { GridIndex, imageSize, kBlocked, keyServes, kNormal, kOpenEnd, kVectorBudget, lodKey, mapColumns, pick,
+         pipeClasses, vectorData, WindowImage, workerColumns } from '../src/lod.js';
 
 // A seeded street grid of `side` x `side` manholes 30 m apart (jittered by up to 10 m), each joined to
 // its right neighbour and, every other column, to the one above; every 7th manhole an exit, and one
@@ -44,10 +44,11 @@ function gridDocument(side, seed = 1) {
 const gridMap = (side, seed = 1) => loadGeometry(gridDocument(side, seed));
 
 const inRect = ([x0, y0, x1, y1], x, y) => x >= x0 && x <= x1 && y >= y0 && y <= y1;
-// The view of a screen of 1000 x 800 pixels centred on (x, y) at `zoom` (2^zoom pixels a metre).
-const viewAt = (x, y, zoom) => {
+// The view of a screen of 1000 x 800 CSS pixels centred on (x, y) at `zoom` (2^zoom pixels a metre),
+// at a device pixel ratio.
+const viewAt = (x, y, zoom, dpr = 1) => {
   const w = 500 * 2 ** -zoom, h = 400 * 2 ** -zoom;
-  return { zoom, rect: [x - w, y - h, x + w, y + h] };
+  return { zoom, rect: [x - w, y - h, x + w, y + h], dpr };
 };
 
 test('the grid lists every pipe and manhole of a rectangle, each pipe once', () => {
@@ -124,6 +125,25 @@ test('a window is rebuilt only when the view leaves it or the zoom rounds to ano
   assert.ok(!keyServes(key, viewAt(1500, 1500, 0.6)), 'a zoom to the next level');
   assert.ok(!keyServes(key, viewAt(2500, 1500, 0)), 'a pan of a whole view');
   assert.ok(!keyServes(null, viewAt(1500, 1500, 0)));
+  assert.ok(!keyServes(key, viewAt(1500, 1500, 0, 2)), 'the screen moved to a pixel ratio of 2');
+  assert.equal(lodKey(index, viewAt(1500, 1500, 0, 2)).dpr, 2);
+});
+
+test("a window's image is as sharp as the screen: the level's zoom times the pixel ratio, within its caps", () => {
+  const window = [0, 0, 1500, 1200];  // a screen of 1000 x 800 CSS pixels and its margins, at level 0
+  assert.deepEqual(imageSize(window, 0, 1), { res: 1, scale: 1, width: 1500, height: 1200 });
+  assert.deepEqual(imageSize(window, 0, 2), { res: 2, scale: 2, width: 3000, height: 2400 });
+  assert.deepEqual(imageSize([0, 0, 375, 300], 2, 2), { res: 8, scale: 2, width: 3000, height: 2400 });
+  assert.deepEqual(imageSize(window, 0), imageSize(window, 0, 1), 'no ratio given: 1');
+  // At a ratio of 3 the image would be 4,500 x 3,600 (16 million pixels, 65 MB): it keeps to 12
+  // million, with widths drawn as much thinner as the image is coarser.
+  const three = imageSize(window, 0, 3);
+  assert.ok(three.width * three.height <= 12e6 && three.width * three.height > 11.9e6, `${three.width}x${three.height}`);
+  assert.ok(three.scale < 3 && three.scale > 2.5 && three.width === Math.round(1500 * three.res));
+  // A long window keeps to 4,096 pixels a side.
+  const long = imageSize([0, 0, 10000, 10], 0, 2);
+  assert.equal(long.width, 4096);
+  assert.equal(long.height, 4);
 });
 
 test("a vector window's layers hold its pipes and manholes, coloured by class", () => {
@@ -194,6 +214,81 @@ test('the compact geometry reads as the JSON: columns, open ends, names (not ASC
   assert.throws(() => readGeometry(geometryBinary(g, { version: 2 }), 'grid'), /format 2, this page reads 1/);
   assert.throws(() => readGeometry(geometryBinary(g, { magic: 'JSON' }), 'grid'), /not sewerplan geometry/);
   assert.throws(() => readGeometry(geometryBinary(g).slice(0, 200), 'grid'), /200 bytes for 36 manholes/);
+});
+
+test("the worker's columns are each its own buffer, the values the map's: nothing else is copied to it", () => {
+  const g = gridDocument(6);
+  const buffer = geometryBinary(g), map = readGeometry(buffer, 'grid');
+  assert.equal(map.columns.positions.buffer, buffer, 'read in place, a view of the whole geometry');
+  const { columns, transfer } = workerColumns(map);
+  assert.deepEqual(Object.keys(columns).sort(), ['diameters', 'ends', 'exits', 'openEnd', 'positions', 'slots']);
+  for (const [name, column] of Object.entries(columns)) {
+    assert.equal(column.buffer.byteLength, column.byteLength, `${name} carries more than its own bytes`);
+    assert.deepEqual(column, mapColumns(map)[name]);
+    assert.ok(transfer.includes(column.buffer), `${name} is not transferred`);
+  }
+  assert.equal(transfer.length, 6);
+});
+
+// A 2-D canvas that records what is drawn (node has no OffscreenCanvas): each stroke's colour,
+// width and lines, each image drawn.
+class RecordingPath {
+  constructor() { this.lines = []; this.arcs = 0; }
+  moveTo(x, y) { this.at = [x, y]; }
+  lineTo(x, y) { this.lines.push([...this.at, x, y]); }
+  arc() { ++this.arcs; }
+}
+class RecordingCanvas {
+  constructor(width, height) {
+    Object.assign(this, { width, height, drawn: [], bitmaps: 0 });
+    const drawn = this.drawn;
+    this.context = {
+      stroke(path) { drawn.push({ stroke: this.strokeStyle, width: this.lineWidth, lines: path.lines }); },
+      fill(path) { drawn.push({ fill: this.fillStyle, circles: path.arcs }); },
+      drawImage(image) { drawn.push({ image: image.layer }); },
+    };
+  }
+  getContext() { return this.context; }
+  transferToImageBitmap() { return { layer: this.bitmaps++, close() {} }; }
+}
+
+test("another profile's classes recolour a window's image: its layers blitted, only the blocked pipes stroked", () => {
+  Object.assign(globalThis, { OffscreenCanvas: RecordingCanvas, Path2D: RecordingPath });
+  try {
+    const big = gridMap(200);
+    const index = new GridIndex(mapColumns(big));
+    // Two pipes in the middle of the windows below, far apart (not merged into one line).
+    const [p, q] = [[300, 300], [420, 360]].map(([x, y]) => big.pipe(index.pipesIn([x, y, x + 1, y + 1])[0]).name);
+    const blocked = new Map([[p, 'too narrow'], [q, 'too wide']]);
+    const classes = pipeClasses(big, blocked);
+    for (const [zoom, mode] of [[-1, 'detail'], [-3, 'overview']]) {
+      const key = lodKey(index, viewAt(300, 300, zoom, 2));
+      assert.equal(key.mode, mode);
+      const image = new WindowImage(index, key);
+      const size = imageSize(key.window, key.level, 2);
+      assert.deepEqual([image.canvas.width, image.canvas.height], [size.width, size.height]);
+      const layers = image.canvas.drawn.slice();  // the pipes' and manholes' layers
+      assert.ok(layers.some((d) => d.stroke === 'rgb(60,90,160)') && layers.some((d) => d.fill), `${mode}: no pipes or manholes`);
+      const red = image.canvas.drawn.filter((d) => d.stroke === 'rgb(200,40,40)');
+      assert.equal(red.length, 0, 'a blocked pipe in the layers without a profile');
+      image.canvas.drawn.length = 0;
+      image.compose(classes);
+      const drawn = image.canvas.drawn;
+      assert.deepEqual(drawn[0], { image: 0 }, 'the pipes first');
+      assert.deepEqual(drawn.at(-1), { image: 1 }, 'the manholes last');
+      const strokes = drawn.slice(1, -1);
+      assert.ok(strokes.every((d) => d.stroke === 'rgb(200,40,40)'), `${mode}: another colour repainted`);
+      const lines = strokes.flatMap((d) => d.lines);
+      assert.ok(lines.length === 2, `${mode}: ${lines.length} lines repainted for 2 blocked pipes`);
+      if (mode === 'detail') assert.ok(strokes.every((d) => d.width >= 2), 'widths at the pixel ratio');
+      image.canvas.drawn.length = 0;
+      image.compose(pipeClasses(big, new Map()));
+      assert.equal(image.canvas.drawn.length, 2, 'no profile: the two layers, nothing stroked');
+    }
+  } finally {
+    delete globalThis.OffscreenCanvas;
+    delete globalThis.Path2D;
+  }
 });
 
 test('a name that starts with a byte-order mark keeps it, and every later name stays in place', () => {
