@@ -19,7 +19,7 @@
 // where it can still be hovered and named, not dropped unseen.
 
 const kNone = 0xffffffff;                 // a pipe end without a manhole (map_geometry.h)
-export const kGeometryFormatVersion = 1;  // the compact geometry's format this page reads
+export const kGeometryFormatVersion = 2;  // the compact geometry's format this page reads
 
 // The server's compact geometry (server/src/map_geometry.h: a 56-byte header, then little-endian
 // sections) as typed arrays over the buffer, no copy (on a little-endian machine, as every
@@ -31,7 +31,10 @@ export function readGeometry(buffer, id) {
   if (buffer.byteLength < 56) fail(`${buffer.byteLength} bytes, no header`);
   if (String.fromCharCode(...new Uint8Array(buffer, 0, 4)) !== 'SPGM') fail('not sewerplan geometry');
   const version = head.getUint32(4, true);
-  if (version !== kGeometryFormatVersion) fail(`format ${version}, this page reads ${kGeometryFormatVersion}`);
+  if (version !== kGeometryFormatVersion) {
+    fail(`format ${version}, this page reads format ${kGeometryFormatVersion}: the page and the server are of ` +
+         'different versions (reload the page; if it stays, install them together)');
+  }
   const m = head.getUint32(8, true), p = head.getUint32(12, true);
   const bounds = [0, 1, 2, 3].map((k) => head.getFloat64(16 + 8 * k, true));
   const nameBytes = head.getUint32(48, true);
@@ -41,12 +44,12 @@ export function readGeometry(buffer, id) {
     at += n * Type.BYTES_PER_ELEMENT;
     return a;
   };
-  if (56 + 16 * m + 24 * p + 4 * (m + p + 1) + 2 * m + nameBytes !== buffer.byteLength) {
+  if (56 + 16 * m + 24 * p + 4 * (m + p + 1) + 3 * m + nameBytes !== buffer.byteLength) {
     fail(`${buffer.byteLength} bytes for ${m} manholes and ${p} pipes`);
   }
   const positions = take(Float64Array, 2 * m), lengths = take(Float64Array, p), diameters = take(Float64Array, p);
   const from = take(Uint32Array, p), to = take(Uint32Array, p), offsets = take(Uint32Array, m + p + 1);
-  const slots = take(Uint8Array, m), exits = take(Uint8Array, m), names = take(Uint8Array, nameBytes);
+  const slots = take(Uint16Array, m), exits = take(Uint8Array, m), names = take(Uint8Array, nameBytes);
   // What the arrays say, checked once: a wrong pipe end or name offset would draw nonsense quietly.
   for (let j = 0; j < p; ++j) {
     for (const [end, v] of [['from', from[j]], ['to', to[j]]]) {
@@ -88,7 +91,7 @@ export function loadGeometry(g) {
   const end = (a) => Uint32Array.from(a, (x) => (x < 0 ? kNone : x));
   return makeMap({ id: g.id, bounds: g.bounds, positions, lengths: Float64Array.from(pp.length_m),
                    diameters: Float64Array.from(pp.diameter_m), from: end(pp.from), to: end(pp.to),
-                   slots: Uint8Array.from(mh.slots, (s) => Math.min(s, 255)), exits: Uint8Array.from(mh.exit),
+                   slots: Uint16Array.from(mh.slots), exits: Uint8Array.from(mh.exit),
                    manholeName: (i) => mh.name[i], pipeName: (i) => pp.name[i] });
 }
 
