@@ -6,7 +6,7 @@
 //   node --test test/
 import assert from 'node:assert/strict';
 import { test } from 'node:test';
-import { loadGeometry, readGeometry } from '../src/geometry.js';
+import { loadGeometry, placePoint, readGeometry } from '../src/geometry.js';
 import { GridIndex, kBlocked, keyServes, kNormal, kOpenEnd, kVectorBudget, lodKey, mapColumns, pick,
          pipeClasses, vectorData } from '../src/lod.js';
 
@@ -222,4 +222,33 @@ test('a geometry whose pipe ends or name offsets are out of range is refused, na
   const offsetsAt = 56 + 16 * m + 24 * p;
   w.setUint32(offsetsAt + 4 * 2, 0, true);  // name 2 before name 1
   assert.throws(() => readGeometry(names, 'grid'), /name 2's offset 0 is before name 1's/);
+});
+
+test('a pipe with no manhole at either end has no position: listed, never drawn or picked', () => {
+  const g = gridDocument(6);
+  g.pipes.name.push('Stumpf');  // as a JSON map's "from": null, "to": null
+  g.pipes.from.push(-1);
+  g.pipes.to.push(-1);
+  g.pipes.length_m.push(4.5);
+  g.pipes.diameter_m.push(0.3);
+  const stub = g.pipes.name.length - 1;
+  for (const map of [loadGeometry(g), readGeometry(geometryBinary(g), 'grid')]) {
+    assert.deepEqual([...map.placeless], [stub]);
+    assert.equal(map.pipe(stub).placeless, true);
+    assert.equal(map.pipe(0).placeless, false);
+    assert.ok(map.pipe(stub).from.every(Number.isNaN));
+    assert.equal(map.pipeIndex('Stumpf'), stub);  // still named: the page can list it
+    assert.equal(placePoint(map, { pipe: 'Stumpf', offset_m: 1 }), null);
+    const index = new GridIndex(mapColumns(map));
+    assert.ok(Number.isFinite(index.x0) && Number.isFinite(index.cell), 'the grid spans the placed pipes only');
+    const everywhere = [-1e9, -1e9, 1e9, 1e9];
+    const listed = index.pipesIn(everywhere);
+    assert.equal(listed.length, map.pipeCount - 1);
+    assert.ok(!listed.includes(stub));
+    // Where a stub at the bounds' lower corner was drawn before: the manhole there, not the pipe.
+    const hit = pick(index, false, [g.bounds[0], g.bounds[1]], 2);
+    assert.ok(!(hit?.kind === 'pipe' && hit.index === stub), 'the pipe is picked where it is not');
+    const data = vectorData(index, { window: everywhere }, pipeClasses(map, new Map()));
+    assert.ok(!data.pipes.attributes.getSourcePosition.value.some(Number.isNaN));
+  }
 });
