@@ -32,6 +32,9 @@ class LittleEndian {
  public:
   explicit LittleEndian(std::string& out) : out_(out) {}
   void u8(std::uint8_t v) { out_.push_back(static_cast<char>(v)); }
+  void u16(std::uint16_t v) {
+    for (int shift = 0; shift < 16; shift += 8) u8(static_cast<std::uint8_t>(v >> shift));
+  }
   void u32(std::uint32_t v) {
     for (int shift = 0; shift < 32; shift += 8) u8(static_cast<std::uint8_t>(v >> shift));
   }
@@ -46,8 +49,24 @@ class LittleEndian {
 
 }  // namespace
 
-std::string map_geometry_binary(const SewerMap& map) {
+Result<std::string> map_geometry_binary(const SewerMap& map) {
+  constexpr std::uint64_t kMaxU32 = std::numeric_limits<std::uint32_t>::max();
+  const auto too_large = [&](std::uint64_t count, std::uint64_t limit, const std::string& what) {
+    return Error{ErrorCode::kInvalidArgument,
+                 "map '" + map.name() + "': " + std::to_string(count) + " " + what +
+                     ", the compact geometry holds at most " + std::to_string(limit)};
+  };
+  // A manhole's index is never kNoManhole, the open end's mark.
+  if (map.manhole_count() >= kNoManhole) {
+    return too_large(map.manhole_count(), kNoManhole - 1, "manholes");
+  }
+  if (map.pipe_count() > kMaxU32) return too_large(map.pipe_count(), kMaxU32, "pipes");
+  std::uint64_t name_bytes = 0;
+  for (const Manhole& m : map.manholes()) name_bytes += m.name.size();
+  for (const Pipe& p : map.pipes()) name_bytes += p.name.size();
+  if (name_bytes > kMaxU32) return too_large(name_bytes, kMaxU32, "bytes of names");
   std::string names;
+  names.reserve(name_bytes);
   std::vector<std::uint32_t> offsets{0};
   offsets.reserve(map.manhole_count() + map.pipe_count() + 1);
   const auto add_name = [&](const std::string& name) {
@@ -57,8 +76,8 @@ std::string map_geometry_binary(const SewerMap& map) {
   for (const Manhole& m : map.manholes()) add_name(m.name);
   for (const Pipe& p : map.pipes()) add_name(p.name);
   std::string out;
-  out.reserve(56 + 16 * map.manhole_count() + 28 * map.pipe_count() + 4 * offsets.size() +
-              2 * map.manhole_count() + names.size());
+  out.reserve(56 + 16 * map.manhole_count() + 24 * map.pipe_count() + 4 * offsets.size() +
+              3 * map.manhole_count() + names.size());
   LittleEndian w(out);
   out += "SPGM";
   w.u32(kGeometryFormatVersion);
@@ -80,9 +99,7 @@ std::string map_geometry_binary(const SewerMap& map) {
     }
   }
   for (std::uint32_t o : offsets) w.u32(o);
-  for (const Manhole& m : map.manholes()) {
-    w.u8(static_cast<std::uint8_t>(std::min<std::size_t>(m.slot_count, 255)));
-  }
+  for (const Manhole& m : map.manholes()) w.u16(m.slot_count);
   for (const Manhole& m : map.manholes()) w.u8(m.exit ? 1 : 0);
   out += names;
   return out;

@@ -21,15 +21,20 @@
 //   u32 from [P], u32 to [P] each pipe's end manholes (kNoManhole: an open end)
 //   u32 name_offsets [M + P + 1]  byte offsets into names: manhole i is [i, i + 1), pipe j is
 //                                 [M + j, M + j + 1)
-//   u8 slots [M] (at most 255), u8 exit [M] (0 | 1)
+//   u16 slots [M], u8 exit [M] (0 | 1)
 //   u8 names [N]            the names, UTF-8, one after another
 //
-// Inspection points are not in it (the JSON has them). Values are the JSON's, bit for bit.
+// Inspection points and the map's name are not in it (the JSON has them). Every value is the
+// JSON's, bit for bit: coordinates, lengths and diameters are the map's doubles (the JSON writes
+// each with the digits that read back to the same double); a slot count is the map's 16 bits
+// (format 1 cut it at 255). No field is narrowed: a map with more than 4,294,967,294 manholes,
+// 4,294,967,295 pipes or 4 GiB of names has no compact geometry (an error naming the limit).
 #pragma once
 
 #include <cstdint>
 #include <string>
 
+#include "sewerplan/core/result.h"
 #include "sewerplan/core/sewer_map.h"
 
 namespace sewerplan::server {
@@ -37,10 +42,11 @@ namespace sewerplan::server {
 // Runtime: O(manholes + pipes + points).
 std::string map_geometry_json(const SewerMap& map, const std::string& id);
 
-inline constexpr std::uint32_t kGeometryFormatVersion = 1;
+inline constexpr std::uint32_t kGeometryFormatVersion = 2;
 inline constexpr std::uint32_t kNoManhole = 0xffffffff;
 
-// Runtime: O(manholes + pipes + the names' bytes).
-std::string map_geometry_binary(const SewerMap& map);
+// The compact geometry, or a kInvalidArgument error when a count or the names' bytes pass what
+// its 32-bit fields hold. Runtime: O(manholes + pipes + the names' bytes).
+Result<std::string> map_geometry_binary(const SewerMap& map);
 
 }  // namespace sewerplan::server

@@ -49,17 +49,45 @@
 namespace sewerplan::server {
 namespace {
 
+// A map's geometry as the page reads it (map_geometry.h), built once from the map as given: every
+// request sends these bytes without a copy, and the map with condition data joined shares them
+// (findings change no geometry).
+struct Geometry {
+  std::string json;    // map_geometry_json
+  std::string binary;  // map_geometry_binary
+};
+
+// The geometry of `map` under `id`, or the reason the compact form cannot hold it.
+Result<std::shared_ptr<const Geometry>> build_geometry(const SewerMap& map, const std::string& id) {
+  Result<std::string> binary = map_geometry_binary(map);
+  if (!binary.has_value()) return binary.error();
+  return std::make_shared<const Geometry>(Geometry{map_geometry_json(map, id), std::move(*binary)});
+}
+
+// One map of the station. Its parts are immutable and shared: a condition upload makes a new
+// LoadedMap that shares the map as given and the geometry with the one it replaces, and a request
+// that started on the old one keeps it.
 struct LoadedMap {
   std::string id;
-  SewerMap map;
-  std::string geometry;                // map_geometry_json, computed once
-  std::string geometry_binary;         // map_geometry_binary (the page's), computed once
+  std::shared_ptr<const SewerMap> given;  // the map as given
+  // What requests plan on: `given`, or a copy of it with an uploaded condition joined (a later
+  // upload joins to `given` again, replacing it).
+  std::shared_ptr<const SewerMap> map;
+  std::shared_ptr<const Geometry> geometry;
   std::filesystem::path motion_table;  // MAP.motion.json beside the map, if there is one
-  // The map as given, when `map` has condition data joined by an upload (a later upload replaces
-  // it); null otherwise.
-  std::shared_ptr<const SewerMap> as_given;
-  std::string condition_name;  // the uploaded condition file's name
+  std::string condition_name;          // the uploaded condition file's name
 };
+
+// Answers with `body`, an immutable part of `owner`, without copying it: httplib reads it while it
+// writes the response, and the response holds `owner` until then.
+void send_shared(httplib::Response& res, std::shared_ptr<const void> owner, const std::string& body,
+                 const char* content_type) {
+  res.set_content_provider(body.size(), content_type,
+                           [owner = std::move(owner), &body](std::size_t offset, std::size_t length,
+                                                             httplib::DataSink& sink) {
+                             return sink.write(body.data() + offset, length);
+                           });
+}
 
 // The request's time limit: ?time_limit=S, at most `max_s` (default 10 s).
 std::optional<double> time_limit(const httplib::Request& req, double max_s) {
@@ -103,8 +131,11 @@ struct StationServer::Impl {
   ServerOptions options;
   // The maps given at the start and uploaded since; never removed, so a map a simulation runs on
   // stays while it runs. Guarded by maps_mutex: uploads come while other requests read.
+  // IDs given to maps listed and to uploads not yet listed; `uploading` counts the latter, so that
+  // the limit of maps holds while their geometry is built outside the lock.
   std::vector<std::shared_ptr<const LoadedMap>> maps;
   std::set<std::string> taken_ids;
+  std::size_t uploading = 0;
   mutable std::mutex maps_mutex;
   // Declared before `http`, so that it outlives the requests that use it.
   std::unique_ptr<CampaignService> campaigns;
@@ -141,7 +172,7 @@ struct StationServer::Impl {
   static bool attach_motion(const LoadedMap& m, const httplib::Request& req, Mission& mission,
                             httplib::Response& res) {
     if (m.motion_table.empty() || req.get_param_value("motion") == "0") return true;
-    Result<PassageMotionTable> table = load_passage_motion(m.motion_table, m.map, mission.profile);
+    Result<PassageMotionTable> table = load_passage_motion(m.motion_table, *m.map, mission.profile);
     if (!table.has_value()) {
       Error error = table.error();
       error.message += " (plan with ?motion=0 to use the angle and step rules)";
@@ -169,11 +200,53 @@ struct StationServer::Impl {
       bad_request(res, "risk: expected ignore, impassable, avoid or expected, not '" + name + "'");
       return std::nullopt;
     }
-    return AppliedRisk{*mode, name, close_findings(m.map, mission, *mode, default_risk_table())};
+    return AppliedRisk{*mode, name, close_findings(*m.map, mission, *mode, default_risk_table())};
   }
   static domain::RiskCosts risk_costs(RiskMode mode) {
     return mode == RiskMode::kExpected ? domain::kDefaultRiskCosts : domain::RiskCosts{};
   }
+
+  // An upload's place among the maps, from reserve() (its ID, counted against the limit) to
+  // list(): the geometry is built between the two, with the maps unlocked. One that is never
+  // listed (a failure, an exception) gives its ID and its place back.
+  class Upload {
+   public:
+    explicit Upload(Impl& impl) : impl_(impl) {}
+    Upload(const Upload&) = delete;
+    Upload& operator=(const Upload&) = delete;
+    ~Upload() {
+      if (!reserved_) return;
+      const std::lock_guard lock(impl_.maps_mutex);
+      --impl_.uploading;
+      if (!listed_) impl_.taken_ids.erase(id_);
+    }
+    // Reserves an ID from the file's stem, or says why the station takes no more maps.
+    std::optional<Error> reserve(const std::string& stem) {
+      const std::lock_guard lock(impl_.maps_mutex);
+      const std::size_t held = impl_.maps.size() + impl_.uploading;
+      if (held >= impl_.options.max_maps) {
+        return Error{ErrorCode::kInvalidArgument,
+                     "the station holds " + std::to_string(held) +
+                         " maps (with those being uploaded), its limit: no more uploads"};
+      }
+      id_ = unique_id(stem, impl_.taken_ids);
+      ++impl_.uploading;
+      reserved_ = true;
+      return std::nullopt;
+    }
+    const std::string& id() const { return id_; }
+    void list(std::shared_ptr<const LoadedMap> loaded) {
+      const std::lock_guard lock(impl_.maps_mutex);
+      impl_.maps.push_back(std::move(loaded));
+      listed_ = true;
+    }
+
+   private:
+    Impl& impl_;
+    std::string id_;
+    bool reserved_ = false;
+    bool listed_ = false;
+  };
 
   void routes();
   void list_maps(httplib::Response& res) const;
@@ -208,10 +281,10 @@ void StationServer::Impl::list_maps(httplib::Response& res) const {
   const std::lock_guard lock(maps_mutex);
   for (const auto& m : maps) {
     list.push_back({{"id", m->id},
-                    {"name", m->map.name()},
-                    {"manholes", m->map.manhole_count()},
-                    {"pipes", m->map.pipe_count()},
-                    {"findings", m->map.finding_count()},
+                    {"name", m->map->name()},
+                    {"manholes", m->map->manhole_count()},
+                    {"pipes", m->map->pipe_count()},
+                    {"findings", m->map->finding_count()},
                     {"motion_table", !m->motion_table.empty()}});
   }
   send_json(res, {{"maps", list}, {"profiles", builtin_profile_names()}});
@@ -235,24 +308,24 @@ void StationServer::Impl::upload_map(const httplib::Request& req, httplib::Respo
   Diagnostics diagnostics;
   Result<SewerMap> map = parse_map(req.body, file.string(), *format, diagnostics);
   if (!map.has_value()) return send_error(res, kUnprocessable, map.error(), diagnostics);
-  const std::lock_guard lock(maps_mutex);
-  if (maps.size() >= options.max_maps) {
-    return send_error(
-        res, kConflict,
-        Error{ErrorCode::kInvalidArgument, "the station holds " + std::to_string(maps.size()) +
-                                               " maps, its limit: no more uploads"});
+  Upload upload(*this);
+  if (const std::optional<Error> full = upload.reserve(file.stem().string())) {
+    return send_error(res, kConflict, *full);
   }
-  const std::string id = unique_id(file.stem().string(), taken_ids);
-  std::string geometry = map_geometry_json(*map, id);
-  std::string binary = map_geometry_binary(*map);
+  // The geometry is built with the maps unlocked: a 100,000-manhole map takes a second, and every
+  // other request needs the maps.
+  auto given = std::make_shared<const SewerMap>(std::move(*map));
+  Result<std::shared_ptr<const Geometry>> geometry = build_geometry(*given, upload.id());
+  if (!geometry.has_value()) return send_error(res, kUnprocessable, geometry.error());
+  if (options.on_geometry_built) options.on_geometry_built(upload.id());
   auto loaded = std::make_shared<const LoadedMap>(
-      LoadedMap{id, std::move(*map), std::move(geometry), std::move(binary), {}, nullptr, {}});
-  maps.push_back(loaded);
+      LoadedMap{upload.id(), given, given, std::move(*geometry), {}, {}});
+  upload.list(loaded);
   send_json(res,
-            {{"id", id},
-             {"name", loaded->map.name()},
-             {"manholes", loaded->map.manhole_count()},
-             {"pipes", loaded->map.pipe_count()},
+            {{"id", upload.id()},
+             {"name", loaded->map->name()},
+             {"manholes", loaded->map->manhole_count()},
+             {"pipes", loaded->map->pipe_count()},
              {"warnings", diagnostics_json(diagnostics, Severity::kWarning)}},
             201);
 }
@@ -268,20 +341,20 @@ void StationServer::Impl::upload_condition(const httplib::Request& req, httplib:
       std::filesystem::path(req.has_param("name") ? req.get_param_value("name") : "condition.xml")
           .filename()
           .string();
-  const std::shared_ptr<const SewerMap> as_given =
-      m->as_given ? m->as_given : std::make_shared<const SewerMap>(m->map);
   Diagnostics diagnostics;
-  Result<SewerMap> joined = read_condition_isybau(*as_given, req.body, name, diagnostics);
+  // The one copy: the joined map owns its findings. The map as given and the geometry are shared.
+  Result<SewerMap> joined = read_condition_isybau(*m->given, req.body, name, diagnostics);
   if (!joined.has_value()) return send_error(res, kUnprocessable, joined.error(), diagnostics);
-  auto loaded = std::make_shared<const LoadedMap>(LoadedMap{
-      m->id, std::move(*joined), m->geometry, m->geometry_binary, m->motion_table, as_given, name});
+  auto loaded = std::make_shared<const LoadedMap>(
+      LoadedMap{m->id, m->given, std::make_shared<const SewerMap>(std::move(*joined)), m->geometry,
+                m->motion_table, name});
   const std::lock_guard lock(maps_mutex);
   for (auto& slot : maps) {
     if (slot->id == loaded->id) slot = loaded;
   }
   send_json(res, {{"id", loaded->id},
                   {"condition", name},
-                  {"findings", loaded->map.finding_count()},
+                  {"findings", loaded->map->finding_count()},
                   {"warnings", diagnostics_json(diagnostics, Severity::kWarning)}});
 }
 
@@ -300,11 +373,11 @@ void StationServer::Impl::driveability(const httplib::Request& req, httplib::Res
   with_motion.profile = *profile;
   if (!attach_motion(*m, req, with_motion, res)) return;
   const RiskTable table = default_risk_table();
-  const std::vector<ManholeId> starts = domain::default_starts(m->map);
+  const std::vector<ManholeId> starts = domain::default_starts(*m->map);
   const domain::DriveabilityReport report =
-      analyse_profile(m->map, *profile, starts, with_motion.passage_motion.get(), table);
-  Json j = driveability_json(report, m->map, *profile);
-  j["closed_by_findings"] = closed_by_findings_json(m->map, *profile, table);
+      analyse_profile(*m->map, *profile, starts, with_motion.passage_motion.get(), table);
+  Json j = driveability_json(report, *m->map, *profile);
+  j["closed_by_findings"] = closed_by_findings_json(*m->map, *profile, table);
   j["motion_table"] = with_motion.passage_motion != nullptr;
   res.set_content(j.dump(), kJsonType);
 }
@@ -313,7 +386,7 @@ void StationServer::Impl::validate(const httplib::Request& req, httplib::Respons
   const auto m = find_map(req, res);
   if (!m) return;
   Diagnostics diagnostics;
-  Result<Mission> mission = read_mission_json(req.body, "mission.json", m->map, diagnostics);
+  Result<Mission> mission = read_mission_json(req.body, "mission.json", *m->map, diagnostics);
   Json j = {{"valid", mission.has_value()},
             {"errors", diagnostics_json(diagnostics, Severity::kError)},
             {"warnings", diagnostics_json(diagnostics, Severity::kWarning)}};
@@ -328,7 +401,7 @@ void StationServer::Impl::plan(const httplib::Request& req, httplib::Response& r
   if (!m) return;
   const std::optional<double> limit = time_limit(req, options.max_plan_time_s);
   if (!limit) return bad_request(res, "time_limit: expected seconds > 0");
-  std::optional<Mission> mission = read_body_mission(req.body, m->map, res);
+  std::optional<Mission> mission = read_body_mission(req.body, *m->map, res);
   if (!mission || !attach_motion(*m, req, *mission, res)) return;
   const std::optional<AppliedRisk> risk = apply_risk(*m, req, *mission, res);
   if (!risk) return;
@@ -336,30 +409,30 @@ void StationServer::Impl::plan(const httplib::Request& req, httplib::Response& r
   planner.time_limit_s = *limit;
   planner.risk = risk_costs(risk->mode);
   planner.select_goals = req.get_param_value("select_goals") == "1";
-  domain::MissionProgress start = domain::initial_progress(*mission, m->map);
+  domain::MissionProgress start = domain::initial_progress(*mission, *m->map);
   const SteadyClock clock;
   const double started_s = clock.now_s();
-  Result<search::PlanOutcome> outcome = search::plan_mission(m->map, *mission, start, planner);
+  Result<search::PlanOutcome> outcome = search::plan_mission(*m->map, *mission, start, planner);
   if (!outcome.has_value()) {
     return send_error(res, kUnprocessable, outcome.error(), {},
-                      plan_failure_json(m->map, *mission, planner, clock.now_s() - started_s));
+                      plan_failure_json(*m->map, *mission, planner, clock.now_s() - started_s));
   }
   const domain::MissionProgress fuse_start = start;
   for (const auto& d : outcome->dropped) start.done[d.task.index()] = true;
   const domain::ValidationReport report =
-      domain::validate_plan(outcome->plan, m->map, *mission, start);
-  Json j = plan_json(*outcome, report, m->map, *mission);
-  j["text"] = domain::format_plan(outcome->plan, m->map, *mission);
+      domain::validate_plan(outcome->plan, *m->map, *mission, start);
+  Json j = plan_json(*outcome, report, *m->map, *mission);
+  j["text"] = domain::format_plan(outcome->plan, *m->map, *mission);
   j["motion_table"] = mission->passage_motion != nullptr;
   j["risk"] = {{"mode", risk->name},
                {"closed_by_findings", risk->closed},
                {"possible_blockages", mission->hazards.size()}};
   Json actions = Json::array();
-  if (Result<fusion::FusedPlan> fused = fusion::fuse(outcome->plan, m->map, *mission, fuse_start);
+  if (Result<fusion::FusedPlan> fused = fusion::fuse(outcome->plan, *m->map, *mission, fuse_start);
       fused.has_value()) {
     for (const fusion::RobotAction& action : fused->actions) {
-      Json a = Json::parse(fusion::write_action_json(action, m->map, *mission));
-      a["text"] = fusion::describe(action, m->map, *mission);
+      Json a = Json::parse(fusion::write_action_json(action, *m->map, *mission));
+      a["text"] = fusion::describe(action, *m->map, *mission);
       actions.push_back(std::move(a));
     }
   }
@@ -377,20 +450,20 @@ void StationServer::Impl::simulate(const httplib::Request& req, httplib::Respons
   if (!body.contains("mission") || !body["mission"].is_object()) {
     return bad_request(res, "\"mission\": expected the mission's JSON object");
   }
-  std::optional<Mission> mission = read_body_mission(dump(body["mission"]), m->map, res);
+  std::optional<Mission> mission = read_body_mission(dump(body["mission"]), *m->map, res);
   if (!mission || !attach_motion(*m, req, *mission, res)) return;
   const std::optional<AppliedRisk> risk = apply_risk(*m, req, *mission, res);
   if (!risk) return;
   Diagnostics diagnostics;
   Result<hal::FaultScenario> faults = hal::FaultScenario{};
   if (body.contains("faults")) {
-    faults = hal::read_faults_json(dump(body["faults"]), "faults.json", m->map, diagnostics);
+    faults = hal::read_faults_json(dump(body["faults"]), "faults.json", *m->map, diagnostics);
   } else if (body.contains("random_faults")) {
     if (!body["random_faults"].is_string()) {
       return bad_request(res, "\"random_faults\": expected \"SEED[,RATE]\"");
     }
     faults =
-        faults_for("", body["random_faults"].get<std::string>(), m->map, *mission, diagnostics);
+        faults_for("", body["random_faults"].get<std::string>(), *m->map, *mission, diagnostics);
   }
   if (!faults.has_value()) {
     const int status =
@@ -405,7 +478,7 @@ void StationServer::Impl::simulate(const httplib::Request& req, httplib::Respons
     domain::RiskCosts risk;
   };
   auto run = std::make_shared<Run>(
-      Run{m, &m->map, std::move(*mission), std::move(*faults), risk_costs(risk->mode)});
+      Run{m, m->map.get(), std::move(*mission), std::move(*faults), risk_costs(risk->mode)});
   res.set_header("Cache-Control", "no-cache");
   res.set_chunked_content_provider(
       "text/event-stream", [run](std::size_t, httplib::DataSink& sink) {
@@ -457,11 +530,10 @@ void StationServer::Impl::campaign(const httplib::Request& req, httplib::Respons
   if (!body.contains("mission") || !body["mission"].is_object()) {
     return bad_request(res, "\"mission\": expected the mission's JSON object");
   }
-  std::optional<Mission> mission = read_body_mission(dump(body["mission"]), m->map, res);
+  std::optional<Mission> mission = read_body_mission(dump(body["mission"]), *m->map, res);
   if (!mission || !attach_motion(*m, req, *mission, res)) return;
   // The map stays while the campaign runs and while its runs can be replayed.
-  campaigns->start(body, std::shared_ptr<const SewerMap>(m, &m->map), m->id, std::move(*mission),
-                   res);
+  campaigns->start(body, m->map, m->id, std::move(*mission), res);
 }
 
 void StationServer::Impl::routes() {
@@ -497,12 +569,13 @@ void StationServer::Impl::routes() {
   http.Get("/api/maps", [this](const Req&, Res& res) { list_maps(res); });
   http.Post("/api/maps", [this](const Req& req, Res& res) { upload_map(req, res); });
   http.Get(R"(/api/maps/([^/]+))", [this](const Req& req, Res& res) {
-    if (const auto m = find_map(req, res)) res.set_content(m->geometry, kJsonType);
+    if (const auto m = find_map(req, res))
+      send_shared(res, m->geometry, m->geometry->json, kJsonType);
   });
   // The page's geometry (map_geometry.h): typed arrays, not compressed by httplib (not text).
   http.Get(R"(/api/maps/([^/]+)/geometry)", [this](const Req& req, Res& res) {
     if (const auto m = find_map(req, res)) {
-      res.set_content(m->geometry_binary, "application/octet-stream");
+      send_shared(res, m->geometry, m->geometry->binary, "application/octet-stream");
     }
   });
   http.Post(R"(/api/maps/([^/]+)/condition)",
@@ -544,18 +617,16 @@ Result<std::unique_ptr<StationServer>> StationServer::create(const ServerOptions
                                                  : read_map(path, diagnostics);
     if (!map.has_value()) return map.error();
     const std::string id = unique_id(path.stem().string(), impl->taken_ids);
-    std::string geometry = map_geometry_json(*map, id);
-    std::string binary = map_geometry_binary(*map);
+    auto given = std::make_shared<const SewerMap>(std::move(*map));
+    Result<std::shared_ptr<const Geometry>> geometry = build_geometry(*given, id);
+    if (!geometry.has_value()) {
+      return Error{ErrorCode::kInvalidArgument, path.string() + ": " + geometry.error().message};
+    }
     std::filesystem::path motion = default_motion_path(path);
     std::error_code ec;
     if (!std::filesystem::exists(motion, ec)) motion.clear();
-    impl->maps.push_back(std::make_shared<const LoadedMap>(LoadedMap{id,
-                                                                     std::move(*map),
-                                                                     std::move(geometry),
-                                                                     std::move(binary),
-                                                                     std::move(motion),
-                                                                     nullptr,
-                                                                     {}}));
+    impl->maps.push_back(std::make_shared<const LoadedMap>(
+        LoadedMap{id, given, given, std::move(*geometry), std::move(motion), {}}));
   }
   if (!options.web_root.empty() && !std::filesystem::is_directory(options.web_root)) {
     return Error{ErrorCode::kIo, options.web_root.string() + ": no such directory (the page)"};

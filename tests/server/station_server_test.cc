@@ -13,6 +13,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <vector>
 
@@ -55,8 +56,8 @@ TEST_F(StationServerTest, GivesAMapsGeometryAsColumnsOfNamesAndCoordinates) {
   EXPECT_EQ(j["bounds"].size(), 4u);
 }
 
-// The page's compact geometry (GET /api/maps/ID/geometry, map_geometry.h), read as the page reads
-// it: little-endian sections after a 56-byte header.
+// The page's compact geometry (GET /api/maps/ID/geometry, map_geometry.h, format 2), read as the
+// page reads it: little-endian sections after a 56-byte header.
 struct BinaryGeometry {
   std::uint32_t version = 0, manholes = 0, pipes = 0;
   std::vector<double> bounds, positions, lengths, diameters;
@@ -98,7 +99,7 @@ BinaryGeometry decode_geometry(const std::string& body) {
   }
   std::vector<std::uint32_t> offsets;
   for (std::uint32_t i = 0; i <= g.manholes + g.pipes; ++i) offsets.push_back(u32());
-  for (std::uint32_t i = 0; i < g.manholes; ++i) g.slots.push_back(static_cast<int>(bytes(1)));
+  for (std::uint32_t i = 0; i < g.manholes; ++i) g.slots.push_back(static_cast<int>(bytes(2)));
   for (std::uint32_t i = 0; i < g.manholes; ++i) g.exits.push_back(static_cast<int>(bytes(1)));
   const std::size_t names_at = at;
   if (names_at + name_bytes != body.size()) throw std::runtime_error("geometry: wrong size");
@@ -123,7 +124,7 @@ TEST_F(StationServerTest, GivesThePageTheSameGeometryAsTypedArrays) {
     EXPECT_EQ(r->status, 200);
     EXPECT_EQ(r->get_header_value("Content-Type"), "application/octet-stream");
     const BinaryGeometry g = decode_geometry(r->body);
-    EXPECT_EQ(g.version, 1u);
+    EXPECT_EQ(g.version, 2u);
     const json& m = j["manholes"];
     const json& p = j["pipes"];
     ASSERT_EQ(g.manholes, m["name"].size());
@@ -147,6 +148,188 @@ TEST_F(StationServerTest, GivesThePageTheSameGeometryAsTypedArrays) {
   auto [status, j] = get("/api/maps/nowhere/geometry");
   EXPECT_EQ(status, 404);
   EXPECT_EQ(j["error"]["message"], "no map 'nowhere'");
+}
+
+// A map of what the compact geometry must carry whole (written here, uploaded as JSON): names of
+// 2- and 4-byte UTF-8 characters, a pipe with an open end, one with no manhole at either end,
+// a manhole of 300 slots (format 1 cut its count at 255), coordinates in national grid metres with
+// all of a double's digits, a length that is no short decimal.
+std::string awkward_map() {
+  json hub_slots = json::array();
+  json manholes = json::array();
+  json pipes = json::array();
+  for (int k = 0; k < 300; ++k) {
+    const std::string pipe = "Zweig-" + std::to_string(k);
+    const double azimuth = 360.0 * k / 300;
+    hub_slots.push_back({{"pipe", pipe}, {"azimuth_deg", azimuth}, {"invert_m", 0}});
+    manholes.push_back({{"name", "Blatt-" + std::to_string(k)},
+                        {"x_m", 3512300.0 + k},
+                        {"y_m", 5612300.0},
+                        {"z_m", 0},
+                        {"diameter_m", 1.0},
+                        {"slots",
+                         {{{"pipe", pipe},
+                           {"azimuth_deg", azimuth < 180 ? azimuth + 180 : azimuth - 180},
+                           {"invert_m", 0}}}}});
+    pipes.push_back({{"name", pipe},
+                     {"from", "Zentrum-\xF0\x9D\x84\x9E"},  // U+1D11E, four bytes
+                     {"to", "Blatt-" + std::to_string(k)},
+                     {"length_m", 10.0 + k},
+                     {"diameter_m", 0.3}});
+  }
+  manholes.push_back({{"name", "Zentrum-\xF0\x9D\x84\x9E"},
+                      {"x_m", 3512345.678901234},
+                      {"y_m", 5612345.123456789},
+                      {"z_m", 0},
+                      {"diameter_m", 3.0},
+                      {"exit", true},
+                      {"slots", hub_slots}});
+  manholes.push_back(
+      {{"name",
+        "Sch\xC3\xA4"
+        "cht-\xC3\x84"
+        "1"},  // "Schächt-Ä1"
+       {"x_m", 3512400.25},
+       {"y_m", 5612400.5},
+       {"z_m", 0},
+       {"diameter_m", 1.0},
+       {"slots", {{{"pipe", "Rohr-\xC3\xB6"}, {"azimuth_deg", 0}, {"invert_m", 0}}}}});
+  pipes.push_back({{"name", "Rohr-\xC3\xB6"},  // "Rohr-ö": an open end downstream
+                   {"from",
+                    "Sch\xC3\xA4"
+                    "cht-\xC3\x84"
+                    "1"},
+                   {"to", nullptr},
+                   {"length_m", 0.1 + 0.2},
+                   {"diameter_m", 0.25}});
+  pipes.push_back({{"name", "Stumpf-\xF0\x9F\x98\x80"},  // U+1F600: no manhole at either end
+                   {"from", nullptr},
+                   {"to", nullptr},
+                   {"length_m", 4.5},
+                   {"diameter_m", 0.2}});
+  return json{{"format", "sewerplan-map"},
+              {"version", 1},
+              {"name", "awkward"},
+              {"manholes", manholes},
+              {"pipes", pipes}}
+      .dump();
+}
+
+// Value for value against the JSON endpoint, on a map of every case a narrower field or a wrong
+// offset would lose: the 300 slots, the open and the placeless pipes' ends, the wide names.
+TEST_F(StationServerTest, GivesTheJsonsValuesWholeInTheBinaryForWideNamesOpenEndsAndManySlots) {
+  auto [up, uploaded] = post("/api/maps?name=awkward.json", awkward_map());
+  ASSERT_EQ(up, 201) << uploaded.dump();
+  auto [status, j] = get("/api/maps/awkward");
+  ASSERT_EQ(status, 200);
+  auto r = client_->Get("/api/maps/awkward/geometry");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200);
+  const BinaryGeometry g = decode_geometry(r->body);
+  const json& m = j["manholes"];
+  const json& p = j["pipes"];
+  ASSERT_EQ(g.manholes, 302u);
+  ASSERT_EQ(g.pipes, 302u);
+  EXPECT_EQ(g.bounds, j["bounds"].get<std::vector<double>>());
+  for (std::size_t i = 0; i < g.manholes; ++i) {
+    EXPECT_EQ(g.names[i], m["name"][i].get<std::string>());
+    EXPECT_EQ(g.positions[2 * i], m["x"][i].get<double>());
+    EXPECT_EQ(g.positions[2 * i + 1], m["y"][i].get<double>());
+    EXPECT_EQ(g.slots[i], m["slots"][i].get<int>());
+    EXPECT_EQ(g.exits[i], m["exit"][i].get<int>());
+  }
+  for (std::size_t i = 0; i < g.pipes; ++i) {
+    EXPECT_EQ(g.names[g.manholes + i], p["name"][i].get<std::string>());
+    EXPECT_EQ(g.from[i], p["from"][i].get<long long>());
+    EXPECT_EQ(g.to[i], p["to"][i].get<long long>());
+    EXPECT_EQ(g.lengths[i], p["length_m"][i].get<double>());
+    EXPECT_EQ(g.diameters[i], p["diameter_m"][i].get<double>());
+  }
+  // The cases themselves, so that the loops above compare what they should.
+  const auto manhole = [&](const std::string& name) {
+    return std::find(g.names.begin(), g.names.begin() + g.manholes, name) - g.names.begin();
+  };
+  const auto pipe = [&](const std::string& name) {
+    return std::find(g.names.begin() + g.manholes, g.names.end(), name) - g.names.begin() -
+           g.manholes;
+  };
+  const auto hub = static_cast<std::size_t>(manhole("Zentrum-\xF0\x9D\x84\x9E"));
+  ASSERT_LT(hub, g.manholes);
+  EXPECT_EQ(g.slots[hub], 300);
+  EXPECT_EQ(g.positions[2 * hub], 3512345.678901234);  // the double the map read, every digit
+  EXPECT_EQ(g.positions[2 * hub + 1], 5612345.123456789);
+  const auto open = static_cast<std::size_t>(pipe("Rohr-\xC3\xB6"));
+  ASSERT_LT(open, g.pipes);
+  EXPECT_EQ(g.from[open], manhole("Sch\xC3\xA4"
+                                  "cht-\xC3\x84"
+                                  "1"));
+  EXPECT_EQ(g.to[open], -1);
+  EXPECT_EQ(g.lengths[open], 0.1 + 0.2);
+  const auto placeless = static_cast<std::size_t>(pipe("Stumpf-\xF0\x9F\x98\x80"));
+  ASSERT_LT(placeless, g.pipes);
+  EXPECT_EQ(g.from[placeless], -1);
+  EXPECT_EQ(g.to[placeless], -1);
+}
+
+// An upload's geometry is built with the maps unlocked: held in the hook after its geometry is
+// built and before it is listed, the upload waits for requests to another map, the list and
+// another upload, and all are answered. Were the maps locked, they would wait for the upload that
+// waits for them, until the client's timeout fails the test (no time is measured). The upload
+// being held counts against the limit of maps; it is listed once it is let go.
+TEST_F(StationServerTest, ManualAnswersOtherRequestsWhileAnUploadsGeometryIsBuilt) {
+  std::vector<int> statuses;
+  std::size_t listed_meanwhile = 0;
+  std::string held;
+  ServerOptions options{.max_maps = 2};
+  options.on_geometry_built = [&](const std::string& id) {
+    held = id;
+    httplib::Client c("127.0.0.1", port_);
+    c.set_read_timeout(30, 0);
+    for (const char* path : {"/api/maps/map/geometry", "/api/maps/map", "/api/maps"}) {
+      auto r = c.Get(path);
+      statuses.push_back(r ? r->status : 0);
+      if (r && r->status == 200 && std::string_view(path) == "/api/maps") {
+        listed_meanwhile = json::parse(r->body)["maps"].size();
+      }
+    }
+    auto r = c.Post("/api/maps?name=second.json", read(kAis / "map.json"), "application/json");
+    statuses.push_back(r ? r->status : 0);
+  };
+  start(options);
+  auto [status, uploaded] = post("/api/maps?name=first.json", read(kAis / "map.json"));
+  ASSERT_EQ(status, 201) << uploaded.dump();
+  EXPECT_EQ(held, "first");
+  EXPECT_EQ(statuses, (std::vector<int>{200, 200, 200, 409}));
+  EXPECT_EQ(listed_meanwhile, 1u);  // the upload is not listed before its geometry is whole
+  const json maps = get("/api/maps").second["maps"];
+  ASSERT_EQ(maps.size(), 2u);
+  EXPECT_EQ(maps[1]["id"], "first");
+  EXPECT_EQ(get("/api/maps/first").first, 200);
+}
+
+// A condition upload changes the findings, not the geometry: both forms are the same bytes after
+// it, each answer whole (its Content-Length its body's).
+TEST_F(StationServerTest, ManualKeepsAMapsGeometryWhenItsConditionIsUploaded) {
+  const std::filesystem::path condition = kSource / "datasets/condition/swmm-state-plane";
+  start({.maps = {kSource / "datasets/swmm/swmmio-state-plane.inp"}});
+  const std::string map = "/api/maps/swmmio-state-plane";
+  std::vector<std::string> before;
+  for (const std::string& path : {map, map + "/geometry"}) {
+    auto r = client_->Get(path.c_str());
+    ASSERT_TRUE(r);
+    ASSERT_EQ(r->status, 200);
+    EXPECT_EQ(r->get_header_value("Content-Length"), std::to_string(r->body.size()));
+    before.push_back(r->body);
+  }
+  for (int upload = 0; upload < 2; ++upload) {
+    auto [status, joined] =
+        post(map + "/condition?name=zustand.xml", read(condition / "zustand.xml"));
+    ASSERT_EQ(status, 200) << joined.dump();
+    EXPECT_GT(joined["findings"].get<int>(), 0);
+    EXPECT_EQ(get(map + "/geometry").first, 200);
+    EXPECT_EQ(client_->Get(map.c_str())->body, before[0]);
+    EXPECT_EQ(client_->Get((map + "/geometry").c_str())->body, before[1]);
+  }
 }
 
 TEST_F(StationServerTest, WithATokenRefusesTheBinaryGeometryWithoutIt) {

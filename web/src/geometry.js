@@ -7,19 +7,22 @@
 // read in place, and objects only for the pipes and manholes the page names or clicks:
 //   {id, bounds, manholeCount, pipeCount, columns (lod.js's grid reads them: each pipe's ends and
 //    diameter, each manhole's position, exit flag and slot count), openEnd [pipe],
-//    pipe(i), manhole(i), pipes, manholes, pipeIndex(name), pipeByName, manholeByName}
-// pipe(i) is {i, name, from, to, openEnd, length_m, diameter_m}, manhole(i) {i, name, position,
+//    placeless [pipe index], pipe(i), manhole(i), pipes, manholes, pipeIndex(name), pipeByName,
+//    manholeByName}
+// pipe(i) is {i, name, from, to, openEnd, placeless, length_m, diameter_m}, manhole(i) {i, name, position,
 // slots, exit}; the arrays are built at their first use (a 100,000-manhole map is drawn without
 // them). pipeIndex(name) is a pipe's index (undefined if none); pipeByName and manholeByName
 // answer has(name) and get(name) (the object, a new one each time): the names are decoded and
-// indexed by name at the first look-up, without building any object. A pipe with an open end (no manhole at one side) is drawn as a short
-// stub from its one manhole, a tenth of its length long (at least 0.5 m). One with no manhole at
-// either end (a JSON map's `"from": null, "to": null` or an ASCII map's `-`/`-`: the builder
-// accepts it) has no place of its own: it is drawn as a short stub at the bounds' lower corner,
-// where it can still be hovered and named, not dropped unseen.
+// indexed by name at the first look-up, without building any object. A pipe with an open end (no
+// manhole at one side) is drawn as a short stub from its one manhole, a tenth of its length long
+// (at least 0.5 m). One with no manhole at either end (a JSON map's `"from": null, "to": null` or
+// an ASCII map's `-`/`-`: the builder accepts it) has no position: the map has no geometry of its
+// own for a pipe, only its manholes'. It is not drawn: its ends are NaN in the columns (lod.js's
+// grid leaves it out), its object says placeless: true, and `placeless` lists the indices of all
+// such pipes, for the page to name them; a task or fault placed in one has no point on the map.
 
 const kNone = 0xffffffff;                 // a pipe end without a manhole (map_geometry.h)
-export const kGeometryFormatVersion = 1;  // the compact geometry's format this page reads
+export const kGeometryFormatVersion = 2;  // the compact geometry's format this page reads
 
 // The server's compact geometry (server/src/map_geometry.h: a 56-byte header, then little-endian
 // sections) as typed arrays over the buffer, no copy (on a little-endian machine, as every
@@ -31,7 +34,10 @@ export function readGeometry(buffer, id) {
   if (buffer.byteLength < 56) fail(`${buffer.byteLength} bytes, no header`);
   if (String.fromCharCode(...new Uint8Array(buffer, 0, 4)) !== 'SPGM') fail('not sewerplan geometry');
   const version = head.getUint32(4, true);
-  if (version !== kGeometryFormatVersion) fail(`format ${version}, this page reads ${kGeometryFormatVersion}`);
+  if (version !== kGeometryFormatVersion) {
+    fail(`format ${version}, this page reads format ${kGeometryFormatVersion}: the page and the server are of ` +
+         'different versions (reload the page; if it stays, install them together)');
+  }
   const m = head.getUint32(8, true), p = head.getUint32(12, true);
   const bounds = [0, 1, 2, 3].map((k) => head.getFloat64(16 + 8 * k, true));
   const nameBytes = head.getUint32(48, true);
@@ -41,12 +47,12 @@ export function readGeometry(buffer, id) {
     at += n * Type.BYTES_PER_ELEMENT;
     return a;
   };
-  if (56 + 16 * m + 24 * p + 4 * (m + p + 1) + 2 * m + nameBytes !== buffer.byteLength) {
+  if (56 + 16 * m + 24 * p + 4 * (m + p + 1) + 3 * m + nameBytes !== buffer.byteLength) {
     fail(`${buffer.byteLength} bytes for ${m} manholes and ${p} pipes`);
   }
   const positions = take(Float64Array, 2 * m), lengths = take(Float64Array, p), diameters = take(Float64Array, p);
   const from = take(Uint32Array, p), to = take(Uint32Array, p), offsets = take(Uint32Array, m + p + 1);
-  const slots = take(Uint8Array, m), exits = take(Uint8Array, m), names = take(Uint8Array, nameBytes);
+  const slots = take(Uint16Array, m), exits = take(Uint8Array, m), names = take(Uint8Array, nameBytes);
   // What the arrays say, checked once: a wrong pipe end or name offset would draw nonsense quietly.
   for (let j = 0; j < p; ++j) {
     for (const [end, v] of [['from', from[j]], ['to', to[j]]]) {
@@ -88,27 +94,33 @@ export function loadGeometry(g) {
   const end = (a) => Uint32Array.from(a, (x) => (x < 0 ? kNone : x));
   return makeMap({ id: g.id, bounds: g.bounds, positions, lengths: Float64Array.from(pp.length_m),
                    diameters: Float64Array.from(pp.diameter_m), from: end(pp.from), to: end(pp.to),
-                   slots: Uint8Array.from(mh.slots, (s) => Math.min(s, 255)), exits: Uint8Array.from(mh.exit),
+                   slots: Uint16Array.from(mh.slots), exits: Uint8Array.from(mh.exit),
                    manholeName: (i) => mh.name[i], pipeName: (i) => pp.name[i] });
 }
 
 function makeMap(c) {
   const m = c.exits.length, p = c.lengths.length;
-  const ends = new Float64Array(4 * p), openEnd = new Uint8Array(p);
+  const ends = new Float64Array(4 * p), openEnd = new Uint8Array(p), placeless = [];
   const pos = c.positions;
   for (let i = 0; i < p; ++i) {
     const a = c.from[i], b = c.to[i];
-    const known = a !== kNone ? a : b;
-    const kx = known !== kNone ? pos[2 * known] : c.bounds[0], ky = known !== kNone ? pos[2 * known + 1] : c.bounds[1];
-    const sx = kx + Math.max(c.lengths[i] / 10, 0.5);  // an open end's stub
-    ends[4 * i] = a !== kNone ? pos[2 * a] : known !== kNone ? sx : kx;
-    ends[4 * i + 1] = a !== kNone ? pos[2 * a + 1] : ky;
-    ends[4 * i + 2] = b !== kNone ? pos[2 * b] : known !== kNone ? sx : kx;
-    ends[4 * i + 3] = b !== kNone ? pos[2 * b + 1] : ky;
     openEnd[i] = a === kNone || b === kNone ? 1 : 0;
+    if (a === kNone && b === kNone) {  // no position: not drawn
+      ends.fill(NaN, 4 * i, 4 * i + 4);
+      placeless.push(i);
+      continue;
+    }
+    const known = a !== kNone ? a : b;
+    const sx = pos[2 * known] + Math.max(c.lengths[i] / 10, 0.5);  // an open end's stub
+    ends[4 * i] = a !== kNone ? pos[2 * a] : sx;
+    ends[4 * i + 1] = pos[2 * (a !== kNone ? a : known) + 1];
+    ends[4 * i + 2] = b !== kNone ? pos[2 * b] : sx;
+    ends[4 * i + 3] = pos[2 * (b !== kNone ? b : known) + 1];
   }
+  const isPlaceless = (i) => c.from[i] === kNone && c.to[i] === kNone;
   const pipe = (i) => ({ i, name: c.pipeName(i), from: [ends[4 * i], ends[4 * i + 1]], to: [ends[4 * i + 2], ends[4 * i + 3]],
-                         openEnd: openEnd[i] === 1, length_m: c.lengths[i], diameter_m: c.diameters[i] });
+                         openEnd: openEnd[i] === 1, placeless: isPlaceless(i), length_m: c.lengths[i],
+                         diameter_m: c.diameters[i] });
   const manhole = (i) => ({ i, name: c.manholeName(i), position: [pos[2 * i], pos[2 * i + 1]], slots: c.slots[i],
                             exit: c.exits[i] === 1 });
   const once = (make) => { let v = null; return () => (v ??= make()); };
@@ -128,7 +140,7 @@ function makeMap(c) {
   });
   const pipeByName = byName(pipeIndex, pipe), manholeByName = byName(manholeIndex, manhole);
   return {
-    id: c.id, bounds: c.bounds, manholeCount: m, pipeCount: p, openEnd,
+    id: c.id, bounds: c.bounds, manholeCount: m, pipeCount: p, openEnd, placeless: Uint32Array.from(placeless),
     columns: { ends, diameters: c.diameters, positions: pos, exits: c.exits, slots: c.slots },
     pipe,
     manhole,
@@ -156,7 +168,10 @@ export function offsetOf(pipe, [x, y]) {
 // The place of a mission (docs/formats/mission-json.md) as a point on the map, or null.
 export function placePoint(map, place) {
   if (!place) return null;
-  if (place.pipe && map.pipeByName.has(place.pipe)) return pointOnPipe(map.pipeByName.get(place.pipe), place.offset_m);
+  if (place.pipe && map.pipeByName.has(place.pipe)) {
+    const pipe = map.pipeByName.get(place.pipe);
+    return pipe.placeless ? null : pointOnPipe(pipe, place.offset_m);
+  }
   if (place.manhole && map.manholeByName.has(place.manhole)) return map.manholeByName.get(place.manhole).position;
   return null;
 }

@@ -59,6 +59,7 @@ export class GridIndex {
     const pipes = this.diameters.length, manholes = this.exits.length;
     let x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
     for (let k = 0; k < e.length; k += 2) {
+      if (Number.isNaN(e[k])) continue;  // a pipe with no position (geometry.js): in no cell
       x0 = Math.min(x0, e[k]); x1 = Math.max(x1, e[k]); y0 = Math.min(y0, e[k + 1]); y1 = Math.max(y1, e[k + 1]);
     }
     for (let k = 0; k < p.length; k += 2) {
@@ -71,6 +72,7 @@ export class GridIndex {
     this.nx = Math.ceil((x1 - x0) / this.cell) + 1;
     this.ny = Math.ceil((y1 - y0) / this.cell) + 1;
     [this.pipeStart, this.pipeItems] = this.#rows(pipes, (i, visit) => {
+      if (Number.isNaN(e[4 * i])) return;
       this.#cells(Math.min(e[4 * i], e[4 * i + 2]), Math.min(e[4 * i + 1], e[4 * i + 3]),
                   Math.max(e[4 * i], e[4 * i + 2]), Math.max(e[4 * i + 1], e[4 * i + 3]), visit);
     });

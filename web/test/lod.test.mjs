@@ -6,7 +6,7 @@
 //   node --test test/
 import assert from 'node:assert/strict';
 import { test } from 'node:test';
-import { loadGeometry, readGeometry } from '../src/geometry.js';
+import { loadGeometry, placePoint, readGeometry } from '../src/geometry.js';
 import { GridIndex, imageSize, kBlocked, keyServes, kNormal, kOpenEnd, kVectorBudget, lodKey, mapColumns, pick,
          pipeClasses, vectorData, WindowImage, workerColumns } from '../src/lod.js';
 
@@ -167,13 +167,13 @@ test("a vector window's layers hold its pipes and manholes, coloured by class", 
 });
 
 // The server's compact geometry (server/src/map_geometry.h) of a JSON document, written here as
-// map_geometry_binary writes it: little-endian sections after a 56-byte header.
-function geometryBinary(g, { version = 1, magic = 'SPGM' } = {}) {
+// map_geometry_binary writes it (format 2): little-endian sections after a 56-byte header.
+function geometryBinary(g, { version = 2, magic = 'SPGM' } = {}) {
   const mh = g.manholes, pp = g.pipes, m = mh.name.length, p = pp.name.length;
   const names = new TextEncoder().encode([...mh.name, ...pp.name].join(''));
   const offsets = [0];
   for (const name of [...mh.name, ...pp.name]) offsets.push(offsets.at(-1) + new TextEncoder().encode(name).length);
-  const size = 56 + 16 * m + 24 * p + 4 * (m + p + 1) + 2 * m + names.length;
+  const size = 56 + 16 * m + 24 * p + 4 * (m + p + 1) + 3 * m + names.length;
   const buffer = new ArrayBuffer(size), v = new DataView(buffer);
   [...magic].forEach((c, k) => v.setUint8(k, c.charCodeAt(0)));
   v.setUint32(4, version, true); v.setUint32(8, m, true); v.setUint32(12, p, true);
@@ -182,11 +182,12 @@ function geometryBinary(g, { version = 1, magic = 'SPGM' } = {}) {
   let at = 56;
   const f64 = (x) => { v.setFloat64(at, x, true); at += 8; };
   const u32 = (x) => { v.setUint32(at, x, true); at += 4; };
+  const u16 = (x) => { v.setUint16(at, x, true); at += 2; };
   const u8 = (x) => { v.setUint8(at, x); at += 1; };
   for (let i = 0; i < m; ++i) { f64(mh.x[i]); f64(mh.y[i]); }
   pp.length_m.forEach(f64); pp.diameter_m.forEach(f64);
   pp.from.forEach((a) => u32(a < 0 ? 0xffffffff : a)); pp.to.forEach((b) => u32(b < 0 ? 0xffffffff : b));
-  offsets.forEach(u32); mh.slots.forEach(u8); mh.exit.forEach(u8);
+  offsets.forEach(u32); mh.slots.forEach(u16); mh.exit.forEach(u8);
   new Uint8Array(buffer, at).set(names);
   return buffer;
 }
@@ -194,6 +195,7 @@ function geometryBinary(g, { version = 1, magic = 'SPGM' } = {}) {
 test('the compact geometry reads as the JSON: columns, open ends, names (not ASCII too)', () => {
   const g = gridDocument(6);
   g.manholes.name[3] = 'Schacht-Ü3';  // a name of more bytes than characters
+  g.manholes.slots[4] = 300;          // more than a byte holds (format 1 cut it at 255)
   g.pipes.name[2] = 'Haltung-𝄞2';     // and one of two UTF-16 units for one character
   const json = loadGeometry(g), binary = readGeometry(geometryBinary(g), 'grid');
   assert.deepEqual(binary.columns, json.columns);
@@ -203,6 +205,8 @@ test('the compact geometry reads as the JSON: columns, open ends, names (not ASC
   assert.deepEqual(binary.pipes, json.pipes);
   assert.deepEqual(binary.manholes, json.manholes);
   assert.equal(binary.manholeByName.get('Schacht-Ü3').i, 3);
+  assert.equal(binary.manhole(4).slots, 300);
+  assert.equal(json.manhole(4).slots, 300);
   assert.equal(binary.pipe(5).name, 'P5');
   // Looked up by name: every pipe's and manhole's index, the names after the wide ones too.
   g.pipes.name.forEach((name, i) => assert.equal(binary.pipeIndex(name), i));
@@ -211,7 +215,9 @@ test('the compact geometry reads as the JSON: columns, open ends, names (not ASC
   assert.equal(binary.pipeIndex('P99'), undefined);
   assert.equal(binary.pipeByName.has('P99'), false);
   assert.equal(json.pipeIndex('Haltung-𝄞2'), 2);
-  assert.throws(() => readGeometry(geometryBinary(g, { version: 2 }), 'grid'), /format 2, this page reads 1/);
+  assert.throws(() => readGeometry(geometryBinary(g, { version: 1 }), 'grid'),
+                /map 'grid' geometry: format 1, this page reads format 2: the page and the server are of different versions/);
+  assert.throws(() => readGeometry(geometryBinary(g, { version: 3 }), 'grid'), /format 3, this page reads format 2/);
   assert.throws(() => readGeometry(geometryBinary(g, { magic: 'JSON' }), 'grid'), /not sewerplan geometry/);
   assert.throws(() => readGeometry(geometryBinary(g).slice(0, 200), 'grid'), /200 bytes for 36 manholes/);
 });
@@ -311,4 +317,33 @@ test('a geometry whose pipe ends or name offsets are out of range is refused, na
   const offsetsAt = 56 + 16 * m + 24 * p;
   w.setUint32(offsetsAt + 4 * 2, 0, true);  // name 2 before name 1
   assert.throws(() => readGeometry(names, 'grid'), /name 2's offset 0 is before name 1's/);
+});
+
+test('a pipe with no manhole at either end has no position: listed, never drawn or picked', () => {
+  const g = gridDocument(6);
+  g.pipes.name.push('Stumpf');  // as a JSON map's "from": null, "to": null
+  g.pipes.from.push(-1);
+  g.pipes.to.push(-1);
+  g.pipes.length_m.push(4.5);
+  g.pipes.diameter_m.push(0.3);
+  const stub = g.pipes.name.length - 1;
+  for (const map of [loadGeometry(g), readGeometry(geometryBinary(g), 'grid')]) {
+    assert.deepEqual([...map.placeless], [stub]);
+    assert.equal(map.pipe(stub).placeless, true);
+    assert.equal(map.pipe(0).placeless, false);
+    assert.ok(map.pipe(stub).from.every(Number.isNaN));
+    assert.equal(map.pipeIndex('Stumpf'), stub);  // still named: the page can list it
+    assert.equal(placePoint(map, { pipe: 'Stumpf', offset_m: 1 }), null);
+    const index = new GridIndex(mapColumns(map));
+    assert.ok(Number.isFinite(index.x0) && Number.isFinite(index.cell), 'the grid spans the placed pipes only');
+    const everywhere = [-1e9, -1e9, 1e9, 1e9];
+    const listed = index.pipesIn(everywhere);
+    assert.equal(listed.length, map.pipeCount - 1);
+    assert.ok(!listed.includes(stub));
+    // Where a stub at the bounds' lower corner was drawn before: the manhole there, not the pipe.
+    const hit = pick(index, false, [g.bounds[0], g.bounds[1]], 2);
+    assert.ok(!(hit?.kind === 'pipe' && hit.index === stub), 'the pipe is picked where it is not');
+    const data = vectorData(index, { window: everywhere }, pipeClasses(map, new Map()));
+    assert.ok(!data.pipes.attributes.getSourcePosition.value.some(Number.isNaN));
+  }
 });

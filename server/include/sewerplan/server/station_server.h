@@ -71,6 +71,10 @@ struct ServerOptions {
   // between runs; for an allocator that is not safe to fork under while other threads allocate
   // (ASan before LLVM 17, campaign.h), as the sanitizer build's tests have.
   bool campaign_guard = true;
+  // Called on an upload's thread (POST /api/maps) when the uploaded map's geometry is built, before
+  // the map is listed under `id`; the maps are not locked then, so other requests are answered
+  // meanwhile (a test holds an upload here and asks for another map). Empty: nothing.
+  std::function<void(const std::string& id)> on_geometry_built;
 };
 
 class StationServer {
