@@ -37,30 +37,50 @@ std::optional<std::size_t> end_in_manhole(const SewerMap& map, PipeId pipe, Manh
   return std::nullopt;
 }
 
+namespace {
+
+// The root of `m`'s set: the smallest manhole of it, as union() links the larger root under the
+// smaller. Halves the path on the way.
+std::uint32_t find_root(std::vector<std::uint32_t>& parent, std::uint32_t m) {
+  while (parent[m] != m) {
+    parent[m] = parent[parent[m]];
+    m = parent[m];
+  }
+  return m;
+}
+
+}  // namespace
+
+// Union-find over the pipes, read in order, then the parts numbered by their smallest manhole:
+// the numbering of a walk from each unseen manhole in index order, at a fraction of its cost. The
+// walk read a pipe far away for every slot and each manhole's slots in turn; on a
+// 1,000,000-manhole map it was a twelfth of reading it (issue 16). A pipe joins its two ends'
+// parts; a valid map's slots are the pipes' ends, so the parts are the same.
 Components connected_components(const SewerMap& map) {
-  constexpr std::uint32_t kUnseen = std::numeric_limits<std::uint32_t>::max();
-  Components result;
-  result.component_of.assign(map.manhole_count(), kUnseen);
-  std::vector<ManholeId> stack;
-  for (ManholeId root : map.manhole_ids()) {
-    if (result.component_of[root.index()] != kUnseen) continue;
-    const std::uint32_t c = result.count++;
-    std::uint32_t size = 0;
-    result.component_of[root.index()] = c;
-    stack.push_back(root);
-    while (!stack.empty()) {
-      const ManholeId m = stack.back();
-      stack.pop_back();
-      ++size;
-      for (const Slot& slot : map.slots(m)) {
-        const PipeEnd& far = opposite_end(map, slot.pipe, slot.pipe_end);
-        if (far.manhole && result.component_of[far.manhole->index()] == kUnseen) {
-          result.component_of[far.manhole->index()] = c;
-          stack.push_back(*far.manhole);
-        }
-      }
+  const auto n = static_cast<std::uint32_t>(map.manhole_count());
+  std::vector<std::uint32_t> parent(n);
+  for (std::uint32_t m = 0; m < n; ++m) parent[m] = m;
+  for (const Pipe& pipe : map.pipes()) {
+    if (!pipe.ends[0].manhole || !pipe.ends[1].manhole) continue;
+    const std::uint32_t a = find_root(parent, pipe.ends[0].manhole->value());
+    const std::uint32_t b = find_root(parent, pipe.ends[1].manhole->value());
+    if (a < b) {
+      parent[b] = a;
+    } else if (b < a) {
+      parent[a] = b;
     }
-    result.sizes.push_back(size);
+  }
+  Components result;
+  result.component_of.resize(n);
+  for (std::uint32_t m = 0; m < n; ++m) {
+    const std::uint32_t root = find_root(parent, m);
+    if (root == m) {
+      result.component_of[m] = result.count++;
+      result.sizes.push_back(0);
+    } else {
+      result.component_of[m] = result.component_of[root];  // root < m: numbered already
+    }
+    ++result.sizes[result.component_of[m]];
   }
   return result;
 }

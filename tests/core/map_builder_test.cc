@@ -116,6 +116,42 @@ TEST(MapBuilder, WarnsAboutDisconnectedParts) {
   EXPECT_THAT(d.all()[0].message, HasSubstr("2 disconnected parts (sizes 3 2 manholes)"));
 }
 
+// Parts are numbered in the order of their first manhole, whatever order the pipes join them in:
+// M0..M7 with the part {2, 5, 6, 7} joined from its far end (7-5, 2-7, 6-2) and a blind pipe.
+TEST(MapBuilder, NumbersDisconnectedPartsByTheirFirstManhole) {
+  const std::vector<std::pair<int, int>> pipes{{5, 7}, {2, 7}, {1, 4}, {6, 2}, {0, 3}, {3, -1}};
+  MapBuilder b("parts");
+  for (int m = 0; m < 8; ++m) {
+    std::vector<SlotRecord> slots;
+    for (std::size_t p = 0; p < pipes.size(); ++p) {
+      if (pipes[p].first == m || pipes[p].second == m) {
+        slots.push_back({.pipe = "P" + std::to_string(p)});
+      }
+    }
+    b.add_manhole({.name = "M" + std::to_string(m),
+                   .position = {10.0 * m, 0, 0},
+                   .diameter_m = 1.0,
+                   .slots = slots});
+  }
+  for (std::size_t p = 0; p < pipes.size(); ++p) {
+    PipeRecord pipe{.name = "P" + std::to_string(p),
+                    .from = "M" + std::to_string(pipes[p].first),
+                    .length_m = 5,
+                    .diameter_m = 0.4};
+    if (pipes[p].second >= 0) pipe.to = "M" + std::to_string(pipes[p].second);
+    b.add_pipe(pipe);
+  }
+  Diagnostics d;
+  Result<SewerMap> map = std::move(b).build(d);
+  ASSERT_TRUE(map.has_value()) << map.error().message;
+  const Components parts = connected_components(*map);
+  EXPECT_EQ(parts.count, 3U);
+  EXPECT_EQ(parts.component_of, (std::vector<std::uint32_t>{0, 1, 2, 0, 1, 2, 2, 2}));
+  EXPECT_EQ(parts.sizes, (std::vector<std::uint32_t>{2, 2, 4}));
+  ASSERT_EQ(d.warning_count(), 1U);
+  EXPECT_THAT(d.all()[0].message, HasSubstr("3 disconnected parts (sizes 4 2 2 manholes)"));
+}
+
 // Names are sorted by their first 8 bytes first (map_builder.cc): names that share them, or are
 // prefixes of each other, are still found, and a repeated long name is still reported.
 TEST(MapBuilder, FindsNamesThatShareTheirFirstEightBytes) {
