@@ -15,7 +15,6 @@
 
 #include "compile_reasons.h"
 #include "graph_search.h"
-#include "pipe_key_routes.h"
 #include "position_graph.h"
 #include "route_store.h"
 
@@ -23,7 +22,6 @@ namespace sewerplan::domain {
 
 using detail::GraphSearch;
 using detail::Node;
-using detail::PipeKeyRoutes;
 using detail::PositionGraph;
 using detail::RouteRef;
 
@@ -258,16 +256,14 @@ class SewerTaskCompiler {
     }
     result_.graph_->set_risk_weight(options_.risk.blockage_s);
     // From the start first: only the keys it reaches within the bound take part after.
-    const auto found = search.run(std::span<const Node>(keys_.data(), 1), targets, bound_,
-                                  GraphSearch::Direction::kForward, exits);
-    ++result_.statistics_.route_searches;
+    auto found = search.run(std::span<const Node>(keys_.data(), 1), targets, bound_,
+                            GraphSearch::Direction::kForward, exits);
     store_routes(search, 0, found);
     if (needs_unbounded_diagnosis()) {
       // Some task is out of reach within the battery: find out whether it is out of reach at all,
       // so that the reason given is the right one.
       search.run(std::span<const Node>(keys_.data(), 1), targets, kInfiniteCost,
                  GraphSearch::Direction::kForward);
-      ++result_.statistics_.route_searches;
       store_routes(search, 0, std::nullopt);
     }
     // Issue 14: sized once from the start's routes (route_store.h).
@@ -276,84 +272,23 @@ class SewerTaskCompiler {
     for (Node n : targets) {
       if (dist_[key_of_.at(n)] <= bound_) reachable.push_back(n);
     }
-    // A task's spot is reached by the task's action, not by a route: always route from it. So is
-    // a pipe end a task leaves the robot at: when no route from the start reaches it within the
-    // bound (a go-to at the far end of a pipe entered from its other end), route from it within
-    // the whole bound (issue 14: it was a dead end, and a feasible go-to "no plan").
-    std::vector<PipeKeyRoutes::Key> searched;  // the keys to route from, with their bounds
-    std::vector<bool> whole_bound(k(), false);
-    for (std::size_t a = 1; a < k(); ++a) {
-      whole_bound[a] = landing(a) && (result_.graph_->is_extra_spot(keys_[a]) || dist_[a] > bound_);
-      if (!whole_bound[a] && dist_[a] > bound_) continue;
-      searched.push_back({a, whole_bound[a] ? bound_ : bound_ - dist_[a]});
+    for (std::size_t a = 1; a < k() && !search.interrupted(); ++a) {
+      // A task's spot is reached by the task's action, not by a route: always route from it. So
+      // is a pipe end a task leaves the robot at: when no route from the start reaches it within
+      // the bound (a go-to at the far end of a pipe entered from its other end), route from it
+      // within the whole bound (issue 14: it was a dead end, and a feasible go-to "no plan").
+      const bool spot =
+          landing(a) && (result_.graph_->is_extra_spot(keys_[a]) || dist_[a] > bound_);
+      if (!spot && dist_[a] > bound_) continue;
+      found =
+          search.run(std::span<const Node>(&keys_[a], 1), reachable,
+                     spot ? bound_ : bound_ - dist_[a], GraphSearch::Direction::kForward, exits);
+      store_routes(search, a, found);
     }
-    route_from_keys(search, searched, whole_bound, reachable, reachable.size() == targets.size(),
-                    exits);
+    result_.statistics_.route_searches = k();
     result_.graph_->set_risk_weight(options_.risk.return_s);
     if (ends_at_exit_ && !search.interrupted()) route_to_exits(search, targets);
     result_.graph_->set_risk_weight(0);
-  }
-
-  // The routes from each key of `searched` (in order) to the `reachable` keys and (with `exits`)
-  // its nearest exit. Keys in one pipe take them from searches of the pipe's end slots where
-  // that gives the same routes with fewer searches (pipe_key_routes.h); the others, and those
-  // where two slots tie, from a search of their own. `all_reached`: the start reaches every key a
-  // move enters within the bound (`whole_bound`: the keys searched within the whole bound).
-  void route_from_keys(GraphSearch& search, std::span<const PipeKeyRoutes::Key> searched,
-                       const std::vector<bool>& whole_bound, std::span<const Node> reachable,
-                       bool all_reached, const std::vector<bool>* exits) {
-    PipeKeyRoutes pipe_routes(*result_.graph_, keys_);
-    pipe_routes.reserve(route_store_.size());
-    std::vector<bool> routed(k(), false);
-    auto search_from = [&](const PipeKeyRoutes::Key& key) {
-      const auto found = search.run(std::span<const Node>(&keys_[key.index], 1), reachable,
-                                    key.bound, GraphSearch::Direction::kForward, exits);
-      ++result_.statistics_.route_searches;
-      store_routes(search, key.index, found);
-    };
-    std::vector<PipeKeyRoutes::Key> group;
-    for (std::size_t i = 0; i < searched.size() && !search.interrupted(); ++i) {
-      if (routed[searched[i].index]) continue;
-      group = pipe_group(searched.subspan(i), routed);
-      const bool only_targets_entered =
-          all_reached || std::none_of(group.begin(), group.end(),
-                                      [&](const auto& key) { return whole_bound[key.index]; });
-      if (!pipe_routes.usable(group, only_targets_entered)) group.assign(1, searched[i]);
-      if (group.size() > 1 && !pipe_routes.search(search, group, reachable, exits)) break;
-      for (const PipeKeyRoutes::Key& key : group) {
-        routed[key.index] = true;
-        if (group.size() == 1 || !keep_row(pipe_routes, key)) search_from(key);
-      }
-    }
-    result_.statistics_.route_searches += pipe_routes.searches();
-  }
-  // The keys of `searched` not yet routed in the pipe of its first key (that key alone if it is
-  // not in a pipe).
-  std::vector<PipeKeyRoutes::Key> pipe_group(std::span<const PipeKeyRoutes::Key> searched,
-                                             const std::vector<bool>& routed) const {
-    const PositionGraph& graph = *result_.graph_;
-    const std::optional<PipeId> pipe = graph.pipe_of(keys_[searched.front().index]);
-    std::vector<PipeKeyRoutes::Key> group{searched.front()};
-    for (const PipeKeyRoutes::Key& key : searched.subspan(1)) {
-      if (pipe && !routed[key.index] && graph.pipe_of(keys_[key.index]) == pipe) {
-        group.push_back(key);
-      }
-    }
-    return group;
-  }
-  // The row of `key` from the pipe's slot searches; false on a tie (PipeKeyRoutes::row).
-  bool keep_row(const PipeKeyRoutes& pipe_routes, const PipeKeyRoutes::Key& key) {
-    PipeKeyRoutes::Exit exit;
-    const std::size_t at = key.index * k();
-    if (!pipe_routes.row(key, std::span<Cost>(dist_).subspan(at, k()),
-                         std::span<RouteRef>(routes_).subspan(at, k()), route_store_, exit)) {
-      return false;
-    }
-    if (exit.cost != kInfiniteCost) {
-      exit_dist_[key.index] = exit.cost;
-      exit_routes_[key.index] = exit.route;
-    }
-    return true;
   }
 
   // Marks the mission's exits in the core's exit marks (unmarking the last compile's, unless they

@@ -10,17 +10,6 @@ void RouteStore::reserve_rows(std::size_t keys) {
   nodes_.reserve(std::min(wanted, std::max(kMaxReservedNodes, nodes_.size())));
 }
 
-void RouteStore::reserve(std::size_t nodes) {
-  nodes_.reserve(std::min(nodes, std::max(kMaxReservedNodes, nodes_.size())));
-}
-
-RouteRef RouteStore::keep_after(Node first, std::span<const Node> rest) {
-  const std::size_t begin = nodes_.size();
-  nodes_.push_back(first);
-  nodes_.insert(nodes_.end(), rest.begin(), rest.end());
-  return {begin, nodes_.size() - begin};
-}
-
 RouteRef RouteStore::keep(const GraphSearch& search, Node n) {
   const std::size_t begin = nodes_.size();
   search.append_path(n, nodes_);

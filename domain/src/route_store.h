@@ -48,14 +48,8 @@ class RouteStore {
   // kMaxReservedNodes.
   void reserve_rows(std::size_t keys);
 
-  // Reserves room for `nodes` nodes in all, at most kMaxReservedNodes.
-  void reserve(std::size_t nodes);
-
   // Appends the last run of `search`'s path to `n` (GraphSearch::append_path).
   RouteRef keep(const GraphSearch& search, Node n);
-
-  // Appends the route `first`, then `rest` (not a stretch of this store).
-  RouteRef keep_after(Node first, std::span<const Node> rest);
 
   std::span<const Node> route(RouteRef r) const { return {nodes_.data() + r.begin, r.size}; }
 
