@@ -1,9 +1,14 @@
 // SPDX-License-Identifier: MIT
-// The GIS module's one exported symbol (sewerplan/gis/module.h): the table of the gis library's
-// entry points, built into sewerplan_gis.so with everything else hidden.
+// The GIS module's two exported symbols (sewerplan/gis/module.h): its ABI stamp and the table of
+// the gis library's entry points, built into sewerplan_gis.so with everything else hidden.
+#include <string>
+
 #include "sewerplan/gis/map_source.h"
 #include "sewerplan/gis/module.h"
 #include "sewerplan/gis/wgs84_projection.h"
+#include "sewerplan/version.h"
+
+#include "sewerplan_gis_build_id.h"
 
 namespace sewerplan::gis {
 namespace {
@@ -19,13 +24,18 @@ Result<std::string> project_to_geojson(const GeoJsonInput& input) {
   return to_geojson(input, *wgs84);
 }
 
-const ModuleTable kTable{.version = SEWERPLAN_GIS_MODULE_VERSION,
-                         .read_map_source = &read_map_source,
+const ModuleTable kTable{.read_map_source = &read_map_source,
                          .to_geojson = &project_to_geojson,
                          .to_nav2_route_graph = &to_nav2_route_graph};
 
 }  // namespace
 }  // namespace sewerplan::gis
+
+extern "C" __attribute__((visibility("default"))) const char* sewerplan_gis_module_stamp() {
+  static const std::string stamp =
+      sewerplan::gis::module_abi_stamp(sewerplan::kVersion, SEWERPLAN_GIS_BUILD_ID);
+  return stamp.c_str();
+}
 
 extern "C" __attribute__((visibility("default"))) const sewerplan::gis::ModuleTable*
 sewerplan_gis_module() {
