@@ -49,6 +49,19 @@
 namespace sewerplan::server {
 namespace {
 
+// Why a body was refused as too large. httplib caps form-encoded bodies (the type curl's --data
+// sends by default) at CPPHTTPLIB_FORM_URL_ENCODED_PAYLOAD_MAX_LENGTH whatever our own limit, so a
+// 1 MB file sent that way would read as over our 16 MB limit: say what to send instead.
+std::string body_over_limit(const httplib::Request& req, std::size_t limit) {
+  if (req.get_header_value("Content-Type").starts_with("application/x-www-form-urlencoded")) {
+    return "a form-encoded body (Content-Type: application/x-www-form-urlencoded) is limited to " +
+           std::to_string(CPPHTTPLIB_FORM_URL_ENCODED_PAYLOAD_MAX_LENGTH) +
+           " bytes: send the file as it is, with its own Content-Type (application/json, "
+           "application/xml, text/plain; curl: --data-binary @FILE -H 'Content-Type: ...')";
+  }
+  return "the request body is over the size limit of " + std::to_string(limit) + " bytes";
+}
+
 // A map's geometry as the page reads it (map_geometry.h), built once from the map as given: every
 // request sends these bytes without a copy, and the map with condition data joined shares them
 // (findings change no geometry).
@@ -551,9 +564,10 @@ void StationServer::Impl::routes() {
     return httplib::Server::HandlerResponse::Unhandled;
   });
   // A status without a body of ours (no route, a body over the limit, a bad request line): JSON.
-  http.set_error_handler([](const httplib::Request& req, httplib::Response& res) {
+  http.set_error_handler([limit = options.max_body_bytes](const httplib::Request& req,
+                                                          httplib::Response& res) {
     if (!res.body.empty()) return;
-    const std::string message = res.status == 413   ? "the request body is over the size limit"
+    const std::string message = res.status == 413   ? body_over_limit(req, limit)
                                 : res.status == 404 ? "nothing at " + req.path
                                                     : "bad request";
     send_json(res,

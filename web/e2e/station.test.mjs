@@ -439,6 +439,24 @@ try {
   console.log(`profile changed while ${aisId} opened: driveability asked ${asked.length} times for it, shown: ${line}`);
   await page.selectOption('#profile', profiles[0]);
 
+  // A map with a pipe that has no manhole at either end: it has no position, so it is not drawn,
+  // and the page names it instead of leaving it unseen.
+  const loose = {
+    format: 'sewerplan-map', version: 1, name: 'loose',
+    manholes: [{ name: 'A', x_m: 0, y_m: 0, z_m: 1.5, diameter_m: 1, exit: true, slots: [{ pipe: 'P1', azimuth_deg: 0 }] },
+               { name: 'B', x_m: 10, y_m: 0, z_m: 1.4, diameter_m: 1, exit: true, slots: [{ pipe: 'P1', azimuth_deg: 180 }] }],
+    pipes: [{ name: 'P1', from: 'A', to: 'B', length_m: 10, diameter_m: 0.4 },
+            { name: 'LOOSE', from: null, to: null, length_m: 5, diameter_m: 0.3 }],
+  };
+  await page.setInputFiles('#map-upload', { name: 'loose.json', mimeType: 'application/json',
+                                            buffer: Buffer.from(JSON.stringify(loose)) });
+  await page.waitForFunction(() => document.body.dataset.opened === 'loose', null, { timeout: 30000 });
+  const placeless = await page.locator('#placeless').textContent();
+  check(placeless === '1 pipe with no manhole at either end, not drawn: LOOSE', `the placeless pipe's note: ${placeless}`);
+  await page.selectOption('#map', aisId);
+  await page.waitForFunction((i) => document.body.dataset.opened === i, aisId, { timeout: 30000 });
+  check((await page.locator('#placeless').textContent()) === '', 'the placeless note stays on another map');
+
   if (large) await largeMapAtRatio2(await largeMap(page, canvas, shot));
   console.log(`station e2e: ok in ${Date.now() - started} ms, of which screenshots ${shotsMs} ms`);
 } catch (e) {

@@ -102,6 +102,7 @@ async function openMap(id) {
   state.mission = newMission($('profile').value);
   state.faults = newFaults();
   $('condition').textContent = '';
+  $('placeless').textContent = placelessNote(state.map);
   clearRun();
   state.route = new Set();
   view.fit(state.map.bounds);
@@ -113,6 +114,16 @@ async function openMap(id) {
   state.timings.open_map_ms = Math.round(performance.now() - t0);
   document.body.dataset.opened = id;
   drawn();  // the driveability asked meanwhile is applied now or when it comes (not awaited)
+}
+
+// A pipe with no manhole at either end has no position on the map (geometry.js): it is not drawn,
+// so the page names such pipes (the first few) rather than leave them unseen.
+function placelessNote(map) {
+  const n = map.placeless.length;
+  if (n === 0) return '';
+  const shown = Array.from(map.placeless.subarray(0, 5), (i) => map.pipe(i).name);
+  return `${n} pipe${n === 1 ? '' : 's'} with no manhole at either end, not drawn: ` +
+         `${shown.join(', ')}${n > shown.length ? ', ...' : ''}`;
 }
 
 // Resolves after the map view has drawn the current layers (and the network's image, lod.js).
