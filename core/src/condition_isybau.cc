@@ -57,7 +57,6 @@ class ConditionReader {
   }
 
   std::optional<bool> against_flow(XmlNode inspection, const std::string& object);
-  std::optional<bool> from_manhole_centre(XmlNode inspection, const std::string& object);
 
   const std::string& file_;
   Diagnostics& d_;
@@ -79,21 +78,6 @@ std::optional<bool> ConditionReader::against_flow(XmlNode inspection, const std:
   if (t == "U" || t == "u" || t.starts_with("gegen") || t.starts_with("Gegen")) return true;
   d_.error(at(n), object +
                       ": Inspektionsrichtung must be O (with the flow) or U (against it), got " +
-                      ascii_syntax::quoted(t));
-  return std::nullopt;
-}
-
-// BezugspunktLage, where the stations are measured from: 1 the centre of the manhole the
-// inspection began at, 2 the pipe's start at its wall. None given: the pipe's start.
-std::optional<bool> ConditionReader::from_manhole_centre(XmlNode inspection,
-                                                         const std::string& object) {
-  const XmlNode n = xml::descend(inspection, {"Rohrleitung", "BezugspunktLage"});
-  const std::string_view t = xml::text(n);
-  if (t.empty() || t == "2") return false;
-  if (t == "1") return true;
-  d_.error(at(n), object +
-                      ": BezugspunktLage must be 1 (the manhole's centre) or 2 (the pipe's "
-                      "start), got " +
                       ascii_syntax::quoted(t));
   return std::nullopt;
 }
@@ -134,8 +118,7 @@ void ConditionReader::run(std::span<const XmlNode> inspected, std::vector<Findin
   for (const Latest& l : latest) {
     const std::string object = "inspection of " + l.name;
     const std::optional<bool> against = against_flow(l.inspection, object);
-    const std::optional<bool> from_centre = from_manhole_centre(l.inspection, object);
-    if (!against || !from_centre) continue;
+    if (!against) continue;
     std::vector<XmlNode> records;
     collect(l.inspection, "RZustand", records);
     for (XmlNode r : records) {
@@ -154,7 +137,6 @@ void ConditionReader::run(std::span<const XmlNode> inspected, std::vector<Findin
                                std::string(xml::text(xml::child(r, "Charakterisierung2"))),
            .station_m = *station,
            .against_flow = *against,
-           .from_manhole_centre = *from_centre,
            .quantity1 = number(r, "Quantifizierung1Numerisch", object, false),
            .quantity2 = number(r, "Quantifizierung2Numerisch", object, false),
            .line = static_cast<std::uint32_t>(elements.size())});

@@ -294,16 +294,8 @@ SewerMap MapBuilder::add_findings(SewerMap map, std::vector<FindingRecord> findi
       if (unknown++ == 0) first_unknown = r.pipe;
       continue;
     }
-    const Pipe& p = map.pipe(*pipe);
-    const double length = p.length_m;
-    double station = r.station_m;
-    if (r.from_manhole_centre) {
-      // The inspection began at the upstream manhole, or against the flow at the downstream one.
-      if (const std::optional<ManholeId> start = p.ends[r.against_flow ? 1 : 0].manhole) {
-        station -= map.manhole(*start).diameter_m / 2;
-      }
-    }
-    double offset = r.against_flow ? length - station : station;
+    const double length = map.pipe(*pipe).length_m;
+    double offset = r.against_flow ? length - r.station_m : r.station_m;
     if (!(offset >= 0 && offset <= length)) {
       const double clamped = std::clamp(std::isfinite(offset) ? offset : 0.0, 0.0, length);
       diagnostics.warning(locator(RecordRef{Kind::kFinding, i, 0, r.line}, "station"),

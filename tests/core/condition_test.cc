@@ -129,36 +129,6 @@ TEST(Condition, RefusesFilesWithoutFindingsAndOtherFormats) {
                                               "Station is not a number: '7,50'"));
 }
 
-// ISYBAU's BezugspunktLage 1: the stations count from the centre of the manhole the inspection
-// began at (upstream with the flow, downstream against it), so its radius comes off; 2 (the
-// samples' and the default) counts from the pipe's start at the wall.
-TEST(Condition, StationsFromTheManholeCentreLoseItsRadius) {
-  std::string z = zustand();
-  const std::string with_flow = "<Inspektionsrichtung>O</Inspektionsrichtung>";
-  const std::string against = "<Inspektionsrichtung>U</Inspektionsrichtung>";
-  z.replace(z.find(with_flow), with_flow.size(),
-            with_flow + "<BezugspunktLage>1</BezugspunktLage>");
-  z.replace(z.find(against), against.size(), against + "<BezugspunktLage>1</BezugspunktLage>");
-  Diagnostics d;
-  Result<SewerMap> map = read_condition_isybau(street(d), z, "z.xml", d);
-  ASSERT_TRUE(map.has_value()) << map.error().message;
-  const Pipe& s1 = map->pipe(*map->find_pipe("S1"));
-  const double upstream_radius = map->manhole(*s1.ends[0].manhole).diameter_m / 2;
-  ASSERT_GT(upstream_radius, 0);
-  EXPECT_DOUBLE_EQ(find(*map, "S1", "BBA")->offset_m, 7.5 - upstream_radius);
-  const Pipe& s3 = map->pipe(*map->find_pipe("S3"));
-  const double downstream_radius = map->manhole(*s3.ends[1].manhole).diameter_m / 2;
-  EXPECT_NEAR(find(*map, "S3", "BAA")->offset_m, 44.72 - (4.72 - downstream_radius), 1e-9);
-  // S2's inspection gives 2 by default: unchanged.
-  EXPECT_DOUBLE_EQ(find(*map, "S2", "BAC")->offset_m, 18.0);
-
-  std::string bad = zustand();
-  bad.replace(bad.find(with_flow), with_flow.size(),
-              with_flow + "<BezugspunktLage>3</BezugspunktLage>");
-  EXPECT_THAT(condition_error(bad),
-              HasSubstr("inspection of S1: BezugspunktLage must be 1 (the manhole's centre) or 2"));
-}
-
 TEST(Condition, RefusesAnUnknownInspectionDirection) {
   std::string bad = zustand();
   bad.replace(bad.find("<Inspektionsrichtung>O"), 22, "<Inspektionsrichtung>X");

@@ -86,10 +86,6 @@ struct FindingRecord {
   std::string characterisation;
   double station_m = 0;
   bool against_flow = false;
-  // The station is measured from the centre of the manhole where the inspection began (ISYBAU
-  // BezugspunktLage 1), not from the pipe's start at that manhole's wall: the builder takes the
-  // manhole's radius off.
-  bool from_manhole_centre = false;
   std::optional<double> quantity1;
   std::optional<double> quantity2;
   std::uint32_t line = 0;
