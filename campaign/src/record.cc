@@ -38,6 +38,20 @@ Json planning_json(const Execution& e) {
 }
 
 constexpr auto kOptional = JsonFields::Need::kOptional;
+// Durations beyond this (about 31,700 years) are no run's: errors, also so that the writer's
+// rounding (x 1e4, x 1e6) stays finite and a record reads back as written.
+constexpr double kMaxDuration_s = 1e12;
+
+// A duration in seconds, 0 to kMaxDuration_s.
+std::optional<double> read_duration(JsonFields& f, std::string_view key) {
+  const std::optional<double> v = f.number(key);
+  if (!v) return std::nullopt;
+  if (!(*v >= 0 && *v <= kMaxDuration_s)) {
+    f.error(key, "out of range: a duration of 0 to 1e12 s, got " + format_double(*v));
+    return std::nullopt;
+  }
+  return *v;
+}
 // Counts beyond this are no campaign's (a double holds every whole number up to it exactly).
 constexpr std::uint64_t kMaxCount = std::uint64_t{1} << 53;
 
@@ -105,6 +119,10 @@ std::vector<double> read_times_s(JsonFields& measured, std::string_view key) {
     if (v.get_double().get(ms_value) != simdjson::SUCCESS) {
       measured.diagnostics().error(indexed(measured.where(key), i),
                                    "expected a number, got " + describe_json(v));
+    } else if (!(ms_value >= 0 && ms_value / 1e3 <= kMaxDuration_s)) {
+      measured.diagnostics().error(
+          indexed(measured.where(key), i),
+          "out of range: a duration of 0 to 1e15 ms, got " + format_double(ms_value));
     }
     out.push_back(ms_value / 1e3);
     ++i;
@@ -213,7 +231,7 @@ Result<RunRecord> parse_run_line(std::string_view line, const std::string& file_
   }
   r.detail = f.string("detail", kOptional).value_or("");
   if (std::optional<JsonFields> measured = object_in(f, "measured", where)) {
-    r.wall_s = measured->number("wall_s").value_or(0);
+    r.wall_s = read_duration(*measured, "wall_s").value_or(0);
     if (r.status == RunRecord::Status::kOk) r.result = read_result(r, f, *measured, where);
   }
   if (d.has_errors()) return Error{ErrorCode::kParse, d.error_summary()};

@@ -31,15 +31,24 @@ void report_syntax_error(std::string_view text, std::string_view file, std::stri
   diagnostics.error(std::string(file), "JSON syntax error: " + std::string(fallback));
 }
 
+// A UTF-8 byte order mark (Windows editors write one) starts no JSON value; simdjson would call it
+// a syntax error where nlohmann, which locates errors, skips it and finds none.
+std::string_view without_bom(std::string_view text) {
+  if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
+  return text;
+}
+
 }  // namespace
 
 std::optional<JsonDocument> JsonDocument::parse(std::string_view text, std::string_view file,
                                                 Diagnostics& diagnostics) {
+  const std::string_view full = text;
+  text = without_bom(text);
   JsonDocument doc;
   doc.parser_ = std::make_unique<simdjson::dom::parser>();
   const simdjson::error_code error = doc.parser_->parse(text.data(), text.size()).get(doc.root_);
   if (error != simdjson::SUCCESS) {
-    report_syntax_error(text, file, simdjson::error_message(error), diagnostics);
+    report_syntax_error(full, file, simdjson::error_message(error), diagnostics);
     return std::nullopt;
   }
   return doc;
@@ -48,6 +57,7 @@ std::optional<JsonDocument> JsonDocument::parse(std::string_view text, std::stri
 JsonLineParser::JsonLineParser() : parser_(std::make_unique<simdjson::dom::parser>()) {}
 
 std::optional<JsonElement> JsonLineParser::parse(std::string_view text) {
+  text = without_bom(text);
   JsonElement root;
   if (parser_->parse(text.data(), text.size()).get(root) != simdjson::SUCCESS) return std::nullopt;
   return root;
@@ -152,14 +162,23 @@ std::optional<double> JsonFields::number(std::string_view key, Need need) {
 }
 
 std::optional<std::uint64_t> JsonFields::count(std::string_view key, std::uint64_t max, Need need) {
-  const std::optional<double> v = number(key, need);
+  const std::optional<JsonElement> v = find(key, need);
   if (!v) return std::nullopt;
-  if (!(*v >= 0 && *v <= static_cast<double>(max) && std::floor(*v) == *v)) {
-    error(key, "expected a whole number from 0 to " + std::to_string(max) + ", got " +
-                   format_double(*v));
-    return std::nullopt;
+  std::uint64_t whole = 0;
+  double d = 0;
+  if (v->get_uint64().get(whole) == simdjson::SUCCESS) {  // exact, also beyond 2^53
+    if (whole <= max) return whole;
+  } else if (v->is_number() && v->get_double().get(d) == simdjson::SUCCESS && d >= 0 &&
+             d <= static_cast<double>(max) && std::floor(d) == d) {
+    return static_cast<std::uint64_t>(d);  // 3.0 or 1e2
   }
-  return static_cast<std::uint64_t>(*v);
+  if (!v->is_number()) {
+    wrong_type(key, "a whole number", *v);
+  } else {
+    error(key, "expected a whole number from 0 to " + std::to_string(max) + ", got " +
+                   describe_json(*v));
+  }
+  return std::nullopt;
 }
 
 std::optional<std::string> JsonFields::string(std::string_view key, Need need) {

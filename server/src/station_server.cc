@@ -228,10 +228,10 @@ struct StationServer::Impl {
     Upload(const Upload&) = delete;
     Upload& operator=(const Upload&) = delete;
     ~Upload() {
-      if (!reserved_) return;
+      if (!reserved_ || listed_) return;
       const std::lock_guard lock(impl_.maps_mutex);
       --impl_.uploading;
-      if (!listed_) impl_.taken_ids.erase(id_);
+      impl_.taken_ids.erase(id_);
     }
     // Reserves an ID from the file's stem, or says why the station takes no more maps.
     std::optional<Error> reserve(const std::string& stem) {
@@ -251,6 +251,7 @@ struct StationServer::Impl {
     void list(std::shared_ptr<const LoadedMap> loaded) {
       const std::lock_guard lock(impl_.maps_mutex);
       impl_.maps.push_back(std::move(loaded));
+      --impl_.uploading;  // counted once, as a map, from here: not twice while the reply is sent
       listed_ = true;
     }
 

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "sewerplan/core/map_io.h"
+#include "sewerplan/core/text_file.h"
 
 #include "support/paths.h"
 
@@ -96,6 +97,16 @@ TEST_F(MissionTest, AFieldGivenTwiceIsAnError) {
     "tasks": [{"type": "inspect_pipe", "pipe": "P4"}]})");
   ASSERT_FALSE(m.has_value());
   EXPECT_THAT(m.error().message, HasSubstr("m.json:$.start.pipe: error: field 'pipe' given twice"));
+}
+
+// Windows editors start a UTF-8 file with a byte order mark; it is no JSON value, but no error.
+TEST_F(MissionTest, ReadsAFileThatStartsWithAByteOrderMark) {
+  Result<std::string> text =
+      read_text_file(testing::dataset_path("ais-testbed/missions/paper.json"));
+  ASSERT_TRUE(text.has_value());
+  Result<Mission> m = read("\xEF\xBB\xBF" + *text);
+  ASSERT_TRUE(m.has_value()) << m.error();
+  EXPECT_EQ(m->tasks.size(), 3U);
 }
 
 TEST_F(MissionTest, RejectsInconsistentMissions) {

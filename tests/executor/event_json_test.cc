@@ -144,6 +144,17 @@ TEST(EventLog, BadLinesAreNamedByFileAndLineAndOtherTypesSkipped) {
             std::string::npos)
       << errors;
 
+  // Counts are read exactly: one past 2^53 is not rounded down into range.
+  Diagnostics big;
+  EXPECT_FALSE(read_event_log("{\"t_s\":1.0,\"type\":\"plan\",\"steps\":9007199254740993}\n",
+                              "big.jsonl", big)
+                   .has_value());
+  EXPECT_NE(
+      big.error_summary().find("big.jsonl:1:$.steps: error: expected a whole number from 0 to "
+                               "9007199254740992, got 9007199254740993"),
+      std::string::npos)
+      << big.error_summary();
+
   Diagnostics fine;
   const std::vector<LoggedEvent> skipped = read_event_log_lines(
       "\n{\"t_s\":1.0,\"type\":\"from_a_newer_version\"}\n{\"type\":\"beacon\"}\n", "x", fine);

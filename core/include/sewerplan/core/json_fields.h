@@ -40,7 +40,8 @@ using JsonArray = simdjson::dom::array;
 // A parsed JSON text. Elements refer into it: keep it alive while reading them.
 class JsonDocument {
  public:
-  // A syntax error is reported as "file:line:column: JSON syntax error: ..." and gives nullopt.
+  // A syntax error is reported as "file:line:column: JSON syntax error: ..." and gives nullopt. A
+  // leading UTF-8 byte order mark (Windows editors write one) is skipped.
   static std::optional<JsonDocument> parse(std::string_view text, std::string_view file,
                                            Diagnostics& diagnostics);
   JsonElement root() const { return root_; }
