@@ -224,6 +224,20 @@ class SubsetProgramme {
       if (least[g] >= kInfiniteCost) least[g] = 0;  // not wanted anyway; keep the sums finite
       if (tail[g] >= kInfiniteCost) tail[g] = 0;
     }
+    // By goal g: the other goals, nearest first (pair[h][g] ascending), so that the nearest still
+    // outside a subset is found in a step or two.
+    std::vector<std::uint32_t> nearest;
+    nearest.reserve(k * k);
+    for (std::size_t g = 0; g < k; ++g) {
+      const auto first = static_cast<std::ptrdiff_t>(nearest.size());
+      for (std::uint32_t h = 0; h < k; ++h) {
+        if (h != g) nearest.push_back(h);
+      }
+      std::stable_sort(
+          nearest.begin() + first, nearest.end(),
+          [&](std::uint32_t x, std::uint32_t y) { return pair[x * k + g] < pair[y * k + g]; });
+    }
+    const std::size_t others = k == 0 ? 0 : k - 1;
     const std::size_t subsets = std::size_t{1} << k;
     rest_bound_.assign(subsets, 0);
     const auto all = static_cast<std::uint32_t>(subsets - 1);
@@ -238,8 +252,11 @@ class SubsetProgramme {
       for (std::uint32_t gs = outside; gs != 0; gs &= gs - 1) {
         const auto g = static_cast<std::size_t>(std::countr_zero(gs));
         Cost into = kInfiniteCost;
-        for (std::uint32_t hs = outside & ~(1U << g); hs != 0; hs &= hs - 1) {
-          into = std::min(into, pair[static_cast<std::size_t>(std::countr_zero(hs)) * k + g]);
+        for (std::size_t i = g * others; i < (g + 1) * others; ++i) {
+          if ((outside & (1U << nearest[i])) != 0) {
+            into = pair[nearest[i] * k + g];
+            break;
+          }
         }
         into = std::max(least[g], into >= kInfiniteCost ? least[g] : into);
         sum += into;
