@@ -12,6 +12,7 @@
 #include <bit>
 #include <cstdint>
 #include <limits>
+#include <memory>
 
 #include "sewerplan/search/tour_search.h"
 
@@ -194,53 +195,94 @@ class SubsetProgramme {
 
   // With an upper bound U on plans doing every goal (issue 16: the tour search's plan, when it
   // forgoes none), an entry for S costing c can only lead to a wanted plan if c plus the least
-  // the goals outside S still cost stays within U. That least, per goal: its cheapest option,
-  // with the cheapest move into the place that option needs (from anywhere else). Summed per
-  // subset over the goals outside it.
-  // Returns the stop condition's reason if it fired (2^k subsets: checked every 2^14).
+  // the goals outside S (call them O) still cost stays within U. Every goal of O is done by one
+  // of its options after a move into the place it needs: the first from where the robot is (at
+  // least least[g]: from the start or where any other goal leaves it), each later one from where
+  // another goal of O left it (at least into[g]: pair[h][g] over h in O). So the rest costs at
+  // least the sum of into[g] over O, less the largest into[f] - least[f] (f done first), plus
+  // the cheapest way to the end from where a goal of O leaves the robot. Pruning with it keeps
+  // every entry of a plan within U, and so the same plan.
+  // Returns the stop condition's reason if it fired (2^k subsets: checked every 2^10).
   std::optional<SearchStatus> fill_rest_bounds(const StopCondition& stop) {
     const std::size_t k = s_.goals.size();
-    const auto places = static_cast<std::size_t>(s_.places);
     std::vector<Cost> least(k, kInfiniteCost);
+    std::vector<Cost> tail(k, kInfiniteCost);
+    std::vector<Cost> pair(k * k, kInfiniteCost);  // [h * k + g]: from h's leave places into g
     for (std::size_t g = 0; g < k; ++g) {
       for (const detail::Option& o : s_.goals[g].options) {
-        Cost in = kInfiniteCost;
-        for (std::size_t a = 0; a < places; ++a) {
-          if (static_cast<std::int32_t>(a) == o.at) {
-            if (static_cast<std::int32_t>(a) == s_.start) in = 0;
-            continue;
-          }
-          in = std::min(in, moves_[a * places + static_cast<std::size_t>(o.at)]);
-        }
-        // Two goals may share a place: the move into it may then be none.
-        in = std::min(in, shared_place_move(g, o.at));
+        const Cost in = least_move_into(g, o.at);
         if (in < kInfiniteCost) least[g] = std::min(least[g], in + o.cost);
+        tail[g] = std::min(tail[g], s_.end ? move(leave(o), *s_.end) : Cost{0});
+        for (std::size_t h = 0; h < k; ++h) {
+          if (h == g) continue;
+          for (std::uint32_t e = leave_begin_[h]; e < leave_begin_[h + 1]; ++e) {
+            const Cost d = move(leave_place_[e], o.at);
+            if (d < kInfiniteCost) pair[h * k + g] = std::min(pair[h * k + g], d + o.cost);
+          }
+        }
       }
       if (least[g] >= kInfiniteCost) least[g] = 0;  // not wanted anyway; keep the sums finite
+      if (tail[g] >= kInfiniteCost) tail[g] = 0;
     }
+    // By goal g: the other goals, nearest first (pair[h][g] ascending), so that the nearest still
+    // outside a subset is found in a step or two.
+    std::vector<std::uint32_t> nearest;
+    nearest.reserve(k * k);
+    for (std::size_t g = 0; g < k; ++g) {
+      const auto first = static_cast<std::ptrdiff_t>(nearest.size());
+      for (std::uint32_t h = 0; h < k; ++h) {
+        if (h != g) nearest.push_back(h);
+      }
+      std::stable_sort(
+          nearest.begin() + first, nearest.end(),
+          [&](std::uint32_t x, std::uint32_t y) { return pair[x * k + g] < pair[y * k + g]; });
+    }
+    const std::size_t others = k == 0 ? 0 : k - 1;
     const std::size_t subsets = std::size_t{1} << k;
     rest_bound_.assign(subsets, 0);
     const auto all = static_cast<std::uint32_t>(subsets - 1);
-    for (std::uint32_t set = all; set-- > 0;) {  // from the larger subsets down
-      if ((set & 0x3fffU) == 0) {
+    for (std::uint32_t set = 0; set < all; ++set) {
+      if ((set & 0x3ffU) == 0) {
         if (auto why = stop.interrupted()) return why;
       }
       const std::uint32_t outside = all & ~set;
-      if (outside == 0) continue;
-      const auto g = static_cast<std::size_t>(std::countr_zero(outside));
-      rest_bound_[set] = rest_bound_[set | (1U << g)] + least[g];
+      Cost sum = 0;
+      Cost first_gain = 0;  // the largest into[f] - least[f]
+      Cost last = kInfiniteCost;
+      for (std::uint32_t gs = outside; gs != 0; gs &= gs - 1) {
+        const auto g = static_cast<std::size_t>(std::countr_zero(gs));
+        Cost into = kInfiniteCost;
+        for (std::size_t i = g * others; i < (g + 1) * others; ++i) {
+          if ((outside & (1U << nearest[i])) != 0) {
+            into = pair[nearest[i] * k + g];
+            break;
+          }
+        }
+        into = std::max(least[g], into >= kInfiniteCost ? least[g] : into);
+        sum += into;
+        first_gain = std::max(first_gain, into - least[g]);
+        last = std::min(last, tail[g]);
+      }
+      rest_bound_[set] = sum - first_gain + last;
     }
     return std::nullopt;
   }
-  // 0 if another goal leaves the robot at `at` (a move of none into it), else kInfiniteCost.
-  Cost shared_place_move(std::size_t goal, std::int32_t at) const {
+  // The cheapest move into `at` from where the robot can be before doing `goal`: the start or a
+  // place another goal leaves it at (none if it is there already).
+  Cost least_move_into(std::size_t goal, std::int32_t at) const {
+    Cost in = move(s_.start, at);
     for (std::size_t h = 0; h < s_.goals.size(); ++h) {
       if (h == goal) continue;
-      for (const detail::Option& o : s_.goals[h].options) {
-        if (leave(o) == at) return 0;
+      for (std::uint32_t e = leave_begin_[h]; e < leave_begin_[h + 1]; ++e) {
+        in = std::min(in, move(leave_place_[e], at));
       }
     }
-    return kInfiniteCost;
+    return in;
+  }
+  Cost move(std::int32_t a, std::int32_t b) const {
+    return a == b ? 0
+                  : moves_[static_cast<std::size_t>(a) * static_cast<std::size_t>(s_.places) +
+                           static_cast<std::size_t>(b)];
   }
 
   const Shape& s_;
