@@ -79,7 +79,7 @@ JsonFields::JsonFields(JsonElement json, std::string path, std::string_view file
 // compared pairwise; a large one (a dictionary) is sorted instead.
 void JsonFields::report_duplicate_keys() {
   constexpr std::size_t kPairwise = 16;
-  std::vector<std::size_t> repeated;  // positions of second and later occurrences, in order
+  std::vector<std::pair<std::size_t, std::string_view>> repeated;  // position, key: the 2nd, 3rd..
   std::array<std::string_view, kPairwise> small;
   std::vector<std::pair<std::string_view, std::size_t>> large;  // key, position
   std::size_t n = 0;
@@ -94,19 +94,19 @@ void JsonFields::report_duplicate_keys() {
   if (n <= kPairwise) {
     for (std::size_t i = 1; i < n; ++i) {
       if (std::find(small.begin(), small.begin() + i, small[i]) != small.begin() + i) {
-        repeated.push_back(i);
+        repeated.emplace_back(i, small[i]);
       }
     }
   } else {
-    std::vector<std::pair<std::string_view, std::size_t>> sorted = large;
-    std::sort(sorted.begin(), sorted.end());
-    for (std::size_t i = 1; i < sorted.size(); ++i) {
-      if (sorted[i].first == sorted[i - 1].first) repeated.push_back(sorted[i].second);
+    std::sort(large.begin(), large.end());  // equal keys together, each run in the object's order
+    for (std::size_t i = 1; i < large.size(); ++i) {
+      if (large[i].first == large[i - 1].first)
+        repeated.emplace_back(large[i].second, large[i].first);
     }
-    std::sort(repeated.begin(), repeated.end());
+    std::sort(repeated.begin(), repeated.end());  // reported in the object's order
   }
-  for (std::size_t i : repeated) {
-    const std::string key(n <= kPairwise ? small[i] : large[i].first);
+  for (const auto& [position, key_view] : repeated) {
+    const std::string key(key_view);
     diagnostics_.error(where(key), "field '" + key +
                                        "' given twice in one object: which value is meant is "
                                        "unclear");
