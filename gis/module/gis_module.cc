@@ -1,14 +1,12 @@
 // SPDX-License-Identifier: MIT
-// The GIS module's two exported symbols (sewerplan/gis/module.h): its ABI stamp and the table of
-// the gis library's entry points, built into sewerplan_gis.so with everything else hidden.
+// The GIS module's two exported symbols (sewerplan/gis/module.h, sewerplan/core/module.h): its ABI
+// stamp and the table of the gis library's entry points, built into sewerplan_gis.so with
+// everything else hidden.
 #include <string>
 
 #include "sewerplan/gis/map_source.h"
 #include "sewerplan/gis/module.h"
 #include "sewerplan/gis/wgs84_projection.h"
-#include "sewerplan/version.h"
-
-#include "sewerplan_gis_build_id.h"
 
 namespace sewerplan::gis {
 namespace {
@@ -32,12 +30,10 @@ const ModuleTable kTable{.read_map_source = &read_map_source,
 }  // namespace sewerplan::gis
 
 extern "C" __attribute__((visibility("default"))) const char* sewerplan_gis_module_stamp() {
-  static const std::string stamp =
-      sewerplan::gis::module_abi_stamp(sewerplan::kVersion, SEWERPLAN_GIS_BUILD_ID);
+  static const std::string stamp = sewerplan::gis::module_stamp();
   return stamp.c_str();
 }
 
-extern "C" __attribute__((visibility("default"))) const sewerplan::gis::ModuleTable*
-sewerplan_gis_module() {
+extern "C" __attribute__((visibility("default"))) const void* sewerplan_gis_module() {
   return &sewerplan::gis::kTable;
 }

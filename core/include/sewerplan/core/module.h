@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: MIT
+// A module: a part of sewerplan built as a shared object of its own (sewerplan_NAME.so) that a
+// program loads with dlopen the first time it needs it. A dependency that is costly to load lives
+// in a module (OMPL with Boost, cairo with fontconfig and X11, httplib with OpenSSL, GDAL and
+// PROJ): linked into a program, every run paid for mapping and relocating its libraries, most of a
+// small plan's process (docs/benchmarks.md); behind a module only the runs that need it do.
+//
+// A module exports two C symbols:
+//   extern "C" const char* sewerplan_NAME_module_stamp();  // its ABI stamp, a plain C string
+//   extern "C" const void* sewerplan_NAME_module();        // its table of entry points
+// The table is a struct of function pointers over sewerplan's own C++ types, so the module and the
+// program must come from the same build: same sources, compiler and flags. The stamp says which:
+// the version, the build id (a hash of every library's public headers and of the compiler and
+// flags, cmake/module_build_id.cmake) and the size of every type that crosses the table
+// (module_abi_stamp). load_module reads the stamp before it touches the table and refuses a module
+// whose stamp is not the program's.
+//
+//   Result<const OmplTable*> table = load_module_table<OmplTable>("ompl", ompl_stamp());
+//   if (!table.has_value()) return Error{table.error().code, "a turn needs OMPL, but " + ...};
+//
+// Where (module_search_dirs): the directory SEWERPLAN_MODULE_DIR names, if it is set, and only it.
+// Else from the directory of the binary this code is linked into (the program, or a shared object
+// such as the Python module): where an install puts the modules (CMAKE_INSTALL_LIBDIR/sewerplan
+// relative to CMAKE_INSTALL_BINDIR), then where the build tree does (lib/sewerplan, one level up
+// from bin/, tests/ and bench/); last the install's own directory, for a program elsewhere that
+// links sewerplan's libraries. The first that holds the file is used: a module there that does not
+// load, or is of another build, is an error naming the file and why, never a crash.
+//
+// Thread safety: load_module may be called from any thread. Each module is loaded once per process
+// (under a lock) and never unloaded; a failure is remembered too, so every later call gets the same
+// answer.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "sewerplan/core/result.h"
+
+namespace sewerplan {
+
+// One type that crosses a module's table, by name and size.
+struct ModuleType {
+  std::string_view name;
+  std::size_t size = 0;
+};
+
+// This build's ABI stamp for a table crossed by `types`, e.g.
+// "sewerplan 0.1.0 build 3f09c2a1d4e5b6a7; sizes Table 24 SewerMap 1096 ...".
+std::string module_abi_stamp(std::span<const ModuleType> types);
+
+// Where load_module looks, in order (see above).
+std::vector<std::filesystem::path> module_search_dirs();
+
+// The table of module `name` (file sewerplan_NAME.so), loaded on the first call, if its stamp is
+// `stamp`. Otherwise kUnsupportedFormat, the message naming the module's file (or where it was
+// looked for) and why: missing, not loadable (dlerror's words), without the entry symbols, or of
+// another build (both stamps). `name`: lower case letters, digits and '_'.
+Result<const void*> load_module(std::string_view name, const std::string& stamp);
+
+template <class Table>
+Result<const Table*> load_module_table(std::string_view name, const std::string& stamp) {
+  Result<const void*> table = load_module(name, stamp);
+  if (!table.has_value()) return table.error();
+  return static_cast<const Table*>(*table);
+}
+
+}  // namespace sewerplan

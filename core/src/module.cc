@@ -1,0 +1,146 @@
+// SPDX-License-Identifier: MIT
+#include "sewerplan/core/module.h"
+
+#include <cstdlib>
+#include <map>
+#include <mutex>
+#include <system_error>
+
+#include "sewerplan_module_build_id.h"
+#include <dlfcn.h>
+#include <link.h>
+
+namespace sewerplan {
+namespace {
+
+struct Loaded {
+  const void* table = nullptr;
+  std::string error;  // why not, when table is null
+};
+
+// The directory of the binary this code is linked into: the program's (/proc/self/exe), or that
+// of the shared object holding it (its link map names it as it was loaded).
+std::filesystem::path own_directory() {
+  static const char anchor = 0;
+  Dl_info info{};
+  link_map* map = nullptr;
+  if (dladdr1(&anchor, &info, reinterpret_cast<void**>(&map), RTLD_DL_LINKMAP) != 0 &&
+      map != nullptr && map->l_name != nullptr && map->l_name[0] != '\0') {
+    std::error_code ec;
+    const std::filesystem::path object = std::filesystem::canonical(map->l_name, ec);
+    if (!ec) return object.parent_path();
+  }
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? std::filesystem::path{} : exe.parent_path();
+}
+
+bool valid_name(std::string_view name) {
+  if (name.empty()) return false;
+  for (const char c : name) {
+    if (!((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_')) return false;
+  }
+  return true;
+}
+
+// The module in `file`, if it loads and its stamp is `stamp`.
+Loaded load_file(const std::filesystem::path& file, const std::string& name,
+                 const std::string& stamp) {
+  const std::string what = "the " + name + " module " + file.string();
+  // RTLD_LOCAL: the module's libraries stay out of the program's symbol lookups.
+  void* handle = dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (handle == nullptr) {
+    const char* why = dlerror();
+    return {.error = what + " cannot be loaded: " + (why != nullptr ? why : "unknown reason")};
+  }
+  // dlsym's void* to a function pointer: POSIX guarantees the conversion. The stamp is a plain C
+  // string, read before anything of the table's C++ types is touched.
+  const std::string stamp_symbol = "sewerplan_" + name + "_module_stamp";
+  using StampEntry = const char* (*)();
+  const auto stamp_entry = reinterpret_cast<StampEntry>(dlsym(handle, stamp_symbol.c_str()));
+  if (stamp_entry == nullptr) {
+    return {.error = what + " has no ABI stamp (" + stamp_symbol + "): it is of another sewerplan"};
+  }
+  const char* theirs = stamp_entry();
+  if (theirs == nullptr || stamp != theirs) {
+    return {.error =
+                what + " is of another build or configuration of sewerplan (its ABI stamp: \"" +
+                (theirs != nullptr ? theirs : "") + "\", this sewerplan's: \"" + stamp + "\")"};
+  }
+  const std::string table_symbol = "sewerplan_" + name + "_module";
+  using TableEntry = const void* (*)();
+  const auto entry = reinterpret_cast<TableEntry>(dlsym(handle, table_symbol.c_str()));
+  const void* table = entry != nullptr ? entry() : nullptr;
+  if (table == nullptr) return {.error = what + " has no table (" + table_symbol + ")"};
+  return {.table = table};  // never unloaded: a library inside may have registered atexit handlers
+}
+
+Loaded load(const std::string& name, const std::string& stamp) {
+  const std::string file = "sewerplan_" + name + ".so";
+  const std::vector<std::filesystem::path> dirs = module_search_dirs();
+  std::error_code ec;
+  for (const std::filesystem::path& dir : dirs) {
+    if (std::filesystem::exists(dir / file, ec)) return load_file(dir / file, name, stamp);
+  }
+  std::string where;
+  for (const std::filesystem::path& dir : dirs) {
+    where += (where.empty() ? "" : ", ") + (dir / file).string();
+  }
+  return {.error = "the " + name + " module is missing (looked for " + where + ")"};
+}
+
+}  // namespace
+
+std::string module_abi_stamp(std::span<const ModuleType> types) {
+  std::string stamp =
+      "sewerplan " SEWERPLAN_MODULE_VERSION " build " SEWERPLAN_MODULE_BUILD_ID "; sizes";
+  for (const ModuleType& t : types) {
+    stamp += ' ';
+    stamp += t.name;
+    stamp += ' ';
+    stamp += std::to_string(t.size);
+  }
+  return stamp;
+}
+
+std::vector<std::filesystem::path> module_search_dirs() {
+  // getenv: read when a module is first looked for; nothing in sewerplan sets the environment.
+  if (const char* dir = std::getenv("SEWERPLAN_MODULE_DIR"); dir != nullptr && dir[0] != '\0') {
+    return {std::filesystem::path(dir)};
+  }
+  std::vector<std::filesystem::path> dirs;
+  auto add = [&](const std::filesystem::path& dir) {
+    const std::filesystem::path normal = dir.lexically_normal();
+    for (const std::filesystem::path& d : dirs) {
+      if (d == normal) return;
+    }
+    dirs.push_back(normal);
+  };
+  const std::filesystem::path own = own_directory();
+  if (!own.empty()) {
+    add(own / SEWERPLAN_MODULE_INSTALL_RELATIVE);
+    add(own / ".." / "lib" / "sewerplan");
+  }
+  add(SEWERPLAN_MODULE_INSTALL_DIR);
+  return dirs;
+}
+
+Result<const void*> load_module(std::string_view name, const std::string& stamp) {
+  if (!valid_name(name)) {
+    return Error{ErrorCode::kInvalidArgument,
+                 "load_module: \"" + std::string(name) +
+                     "\" is not a module name (lower case letters, digits and '_')"};
+  }
+  static std::mutex mutex;
+  static std::map<std::string, Loaded, std::less<>> loaded;
+  const std::lock_guard lock(mutex);
+  auto it = loaded.find(name);
+  if (it == loaded.end()) {
+    const std::string key(name);
+    it = loaded.emplace(key, load(key, stamp)).first;
+  }
+  if (it->second.table == nullptr) return Error{ErrorCode::kUnsupportedFormat, it->second.error};
+  return it->second.table;
+}
+
+}  // namespace sewerplan
