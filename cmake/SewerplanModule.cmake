@@ -41,9 +41,15 @@ function(sewerplan_module_build_id)
     list(APPEND headers ${lib_headers})
   endforeach()
   string(TOUPPER "${CMAKE_BUILD_TYPE}" build_type)
+  # The flags without the path maps (dpkg-buildflags adds -ffile-prefix-map=<build dir>=.): they
+  # change file names in debug information, never a type's layout, and would give the same sources
+  # built in two directories two ids.
+  string(REGEX REPLACE "-f(file|debug|macro)-prefix-map=[^ ]*" "" flags
+         "${CMAKE_CXX_FLAGS} ${CMAKE_CXX_FLAGS_${build_type}}")
+  string(REGEX REPLACE " +" " " flags "${flags}")
+  string(STRIP "${flags}" flags)
   string(JOIN " " config ${PROJECT_VERSION} ${CMAKE_CXX_COMPILER_ID} ${CMAKE_CXX_COMPILER_VERSION}
-         ${CMAKE_CXX_STANDARD} "${CMAKE_CXX_FLAGS}" "${CMAKE_CXX_FLAGS_${build_type}}"
-         sanitize=${SEWERPLAN_SANITIZE})
+         ${CMAKE_CXX_STANDARD} "${flags}" sanitize=${SEWERPLAN_SANITIZE})
   set(dir ${PROJECT_BINARY_DIR}/generated/module_build_id)
   string(JOIN "\n" header_list ${headers})
   file(CONFIGURE OUTPUT ${dir}/headers.txt CONTENT "${header_list}")
