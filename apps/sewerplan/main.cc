@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: MIT
 // sewerplan: plan and replan missions of sewer-inspection robots from the command line.
 #include <iostream>
+#include <span>
 #include <string>
 #include <string_view>
 
 #include <CLI/CLI.hpp>
 
+#include "sewerplan/core/check.h"
 #include "sewerplan/version.h"
 
 #include "command.h"
@@ -38,6 +40,31 @@ constexpr const char* kFooter =
     "  5  the search stopped at its time or expansion limit without a plan\n"
     "  6  campaign: not clean (a crash, hang, missed exit, stranded robot, reserve violation)";
 
+struct CommandEntry {
+  std::string_view name;  // as registered by `add`
+  void (*add)(CLI::App& app, sewerplan::cli::Context& context);
+};
+
+constexpr CommandEntry kCommands[] = {
+    {"validate", &sewerplan::cli::add_validate_command},
+    {"info", &sewerplan::cli::add_info_command},
+    {"generate", &sewerplan::cli::add_generate_command},
+    {"convert", &sewerplan::cli::add_convert_command},
+    {"plan", &sewerplan::cli::add_plan_command},
+    {"check", &sewerplan::cli::add_check_command},
+    {"export-pddl", &sewerplan::cli::add_export_pddl_command},
+    {"import-plan", &sewerplan::cli::add_import_plan_command},
+    {"simulate", &sewerplan::cli::add_simulate_command},
+    {"sim-node", &sewerplan::cli::add_sim_node_command},
+    {"campaign", &sewerplan::cli::add_campaign_command},
+    {"render", &sewerplan::cli::add_render_command},
+    {"motion", &sewerplan::cli::add_motion_command},
+#ifdef SEWERPLAN_WITH_GIS
+    {"export-geojson", &sewerplan::cli::add_export_geojson_command},
+#endif
+    {"serve", &sewerplan::cli::add_serve_command},
+};
+
 bool wants_json(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     if (std::string_view(argv[i]) == "--json") return true;
@@ -54,23 +81,25 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "sewerplan " + std::string(sewerplan::kVersion));
   app.footer(kFooter);
   Context context{std::cout, std::cerr};
-  add_validate_command(app, context);
-  add_info_command(app, context);
-  add_generate_command(app, context);
-  add_convert_command(app, context);
-  add_plan_command(app, context);
-  add_check_command(app, context);
-  add_export_pddl_command(app, context);
-  add_import_plan_command(app, context);
-  add_simulate_command(app, context);
-  add_sim_node_command(app, context);
-  add_campaign_command(app, context);
-  add_render_command(app, context);
-  add_motion_command(app, context);
-#ifdef SEWERPLAN_WITH_GIS
-  add_export_geojson_command(app, context);
-#endif
-  add_serve_command(app, context);
+  // Only the command argv names first is registered, when it names one: CLI11 builds every option
+  // of every command it is given (strings, validators, callbacks), 2.8 M instructions for all of
+  // them, more than a 10-manhole plan takes. Help, --version, an option or an unknown word first:
+  // all, in this order (the order of --help).
+  const std::span<const CommandEntry> commands = kCommands;
+  const CommandEntry* named = nullptr;
+  for (const CommandEntry& c : commands) {
+    if (argc > 1 && std::string_view(argv[1]) == c.name) named = &c;
+  }
+  if (named != nullptr) {
+    named->add(app, context);
+  } else {
+    for (std::size_t i = 0; i < commands.size(); ++i) {
+      commands[i].add(app, context);
+      // The table's name is the one the command registers, or that command would never be alone.
+      SEWER_CHECK(app.get_subcommand(static_cast<int>(i))->get_name() == commands[i].name,
+                  "main.cc: kCommands names a command other than the one it adds");
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
