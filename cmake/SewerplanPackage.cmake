@@ -44,7 +44,7 @@ set(CPACK_GENERATOR DEB)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)  # sewerplan_<version>_<arch>.deb
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
-set(sewerplan_dev_depends "nlohmann-json3-dev (>= 3.10), libeigen3-dev (>= 3.3), libsimdjson-dev, libpugixml-dev, libcairo2-dev")
+set(sewerplan_dev_depends "nlohmann-json3-dev (>= 3.10), libeigen3-dev (>= 3.3), libsimdjson-dev, libpugixml-dev")
 if(SEWERPLAN_WITH_OMPL)
   string(APPEND sewerplan_dev_depends ", libompl-dev")
 endif()

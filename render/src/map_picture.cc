@@ -6,14 +6,17 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <optional>
+#include <string>
 #include <unordered_set>
 #include <vector>
 
+#include "sewerplan/core/module.h"
 #include "sewerplan/core/overloaded.h"
 #include "sewerplan/domain/route_geometry.h"
+#include "sewerplan/render/png_module.h"
 
-#include "png_canvas.h"
 #include "svg_canvas.h"
 
 namespace sewerplan::render {
@@ -673,8 +676,13 @@ std::string render_map_svg(const RenderInput& input) {
 }
 
 Result<std::string> render_map_png(const RenderInput& input) {
-  PngCanvas png;
-  return draw_map(input, png);
+  static const std::string stamp = png_module_stamp();
+  Result<const PngModuleTable*> table = load_module_table<PngModuleTable>(kPngModuleName, stamp);
+  if (!table.has_value()) {
+    return Error{table.error().code, "a PNG picture needs cairo, but " + table.error().message};
+  }
+  const std::unique_ptr<Canvas> png = (*table)->make_png_canvas();
+  return draw_map(input, *png);
 }
 
 }  // namespace sewerplan::render

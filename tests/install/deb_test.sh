@@ -39,6 +39,13 @@ if [ -f "$build/lib/sewerplan/sewerplan_gis.so" ]; then
   grep -q '"FeatureCollection"' "$work/net.geojson" || { echo "FAIL: the installed export-geojson"; exit 1; }
   gis_ok=", GIS module"
 fi
+# The PNG module (docs/cli.md, render), found from the installed executable; cairo, which only it
+# links, is in Depends through shlibdeps.
+test -f "$root/usr/lib/sewerplan/sewerplan_png.so" || { echo "FAIL: no PNG module"; exit 1; }
+dpkg-deb --field "$deb" Depends | grep -q 'libcairo2' || { echo "FAIL: no libcairo2 dependency"; exit 1; }
+"$sp" render --map "$data/map.json" --mission "$data/missions/paper.json" -o "$work/paper.png" > /dev/null
+[ "$(head -c 8 "$work/paper.png" | od -An -tx1 | tr -d ' \n')" = 89504e470d0a1a0a ] || {
+  echo "FAIL: the installed render wrote no PNG"; exit 1; }
 if [ -x "$build/bench/sewerplan-compare" ]; then
   test -x "$root/usr/bin/sewerplan-compare" || { echo "FAIL: no sewerplan-compare"; exit 1; }
 fi
@@ -69,4 +76,4 @@ cmake -S "$src/tests/consumer" -B "$work/consumer" -G Ninja -DCMAKE_PREFIX_PATH=
 cmake --build "$work/consumer" > /dev/null
 out=$("$work/consumer/consumer" "$data/map.json")
 [ "$out" = "ais-testbed: 12 manholes, 14 pipes" ] || { echo "FAIL: consumer said '$out'"; exit 1; }
-echo "deb: installed into a scratch root, --version, plan${gis_ok:-}, man page, completion, consumer${python_ok:-}: ok"
+echo "deb: installed into a scratch root, --version, plan, PNG module${gis_ok:-}, man page, completion, consumer${python_ok:-}: ok"

@@ -61,7 +61,9 @@ struct RenderInput {
 Result<std::string> draw_map(const RenderInput& input, Canvas& canvas);
 
 std::string render_map_svg(const RenderInput& input);
-// PNG bytes; an error (kInvalidArgument) for a picture too large for one (png_canvas.h).
+// PNG bytes, drawn by cairo in the PNG module (png_module.h), loaded on the first call: an error
+// (kInvalidArgument) for a picture too large for one; kUnsupportedFormat, naming the module and
+// why, when the module is missing or of another build.
 Result<std::string> render_map_png(const RenderInput& input);
 
 }  // namespace sewerplan::render

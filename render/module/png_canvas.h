@@ -4,7 +4,8 @@
 // Why cairo: it draws exactly the SVG primitives a map picture uses (anti-aliased lines with caps,
 // dashes, circles, paths, clipping, text through fontconfig), writes PNG itself, is in Debian 12
 // as a small, long-maintained C library (libcairo2, already on most systems through GTK), and
-// stays private to render: no cairo type is in a header. Tags are ignored.
+// stays private to the PNG module (sewerplan/render/png_module.h): no cairo type is in a header,
+// and only the runs that draw a PNG load it. Tags are ignored.
 #pragma once
 
 #include <memory>
