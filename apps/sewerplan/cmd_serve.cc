@@ -1,17 +1,17 @@
 // SPDX-License-Identifier: MIT
 // sewerplan serve [--map FILE ...] [--host 127.0.0.1] [--port 8080] [--token T] [--web DIR]
-// The operator station (docs/operator-station.md): the server of server/station_server.h, and the
-// page.
+// The operator station (docs/operator-station.md): the server of server/station_server.h, loaded
+// from the server module (sewerplan/server/module.h), and the page.
 #include <algorithm>
-#include <csignal>
 #include <filesystem>
 #include <ostream>
-#include <thread>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
 #include "sewerplan/core/map_io.h"
-#include "sewerplan/server/station_server.h"
+#include "sewerplan/core/module.h"
+#include "sewerplan/server/module.h"
 
 #include "command.h"
 #include "json_output.h"
@@ -53,6 +53,16 @@ int run(const ServeOptions& o, Context& c) {
                            ": none of the maps is a GIS source (GeoPackage, Shapefile or a "
                            "directory of them)");
   }
+  // The station, with cpp-httplib and OpenSSL, is a module (sewerplan/server/module.h): loaded by
+  // this command only.
+  static const std::string stamp = server::module_stamp();
+  const Result<const server::ModuleTable*> module =
+      load_module_table<server::ModuleTable>(server::kModuleName, stamp);
+  if (!module.has_value()) {
+    return fail(c, false,
+                Error{module.error().code,
+                      "serve needs cpp-httplib and OpenSSL, but " + module.error().message});
+  }
   server::ServerOptions options{.host = o.host, .port = o.port, .token = o.token};
   for (const std::string& m : o.maps) options.maps.emplace_back(m);
   options.read_map_with = [fields = o.gis_fields](const std::filesystem::path& path,
@@ -69,30 +79,13 @@ int run(const ServeOptions& o, Context& c) {
           << ", reachable from other machines" << (o.token.empty() ? " without a --token" : "")
           << '\n';
   }
-  Result<std::unique_ptr<server::StationServer>> created = server::StationServer::create(options);
-  if (!created.has_value()) return fail(c, false, created.error());
-  server::StationServer& station = **created;
-  // SIGINT and SIGTERM stop the server from a thread of ours, not from a signal handler.
-  sigset_t signals;
-  sigemptyset(&signals);
-  sigaddset(&signals, SIGINT);
-  sigaddset(&signals, SIGTERM);
-  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
-  const Result<int> port = station.bind();
-  if (!port.has_value()) return fail(c, false, port.error());
-  // The token in the fragment, which the browser keeps to itself: never in a request's URL, so in
-  // no server's or proxy's log (the page sends it as a header, web/src/api.js).
-  c.out << "sewerplan serve: http://" << o.host << ':' << *port << '/'
-        << (o.token.empty() ? "" : "#token=" + o.token) << std::endl;
-  std::thread waiter([&] {
-    int signal = 0;
-    sigwait(&signals, &signal);
-    station.stop();
+  Result<void> served = (*module)->serve_until_signal(options, [&](int port) {
+    // The token in the fragment, which the browser keeps to itself: never in a request's URL, so
+    // in no server's or proxy's log (the page sends it as a header, web/src/api.js).
+    c.out << "sewerplan serve: http://" << o.host << ':' << port << '/'
+          << (o.token.empty() ? "" : "#token=" + o.token) << std::endl;
   });
-  station.run();
-  // Stopped by a signal: the waiter has returned. Otherwise wake it so it can be joined.
-  pthread_kill(waiter.native_handle(), SIGTERM);
-  waiter.join();
+  if (!served.has_value()) return fail(c, false, served.error());
   return kExitOk;
 }
 

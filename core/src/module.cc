@@ -18,9 +18,14 @@ struct Loaded {
   std::string error;  // why not, when table is null
 };
 
-// The directory of the binary this code is linked into: the program's (/proc/self/exe), or that
-// of the shared object holding it (its link map names it as it was loaded).
-std::filesystem::path own_directory() {
+// The binary this code is linked into: the program (/proc/self/exe), or the shared object holding
+// it (its link map names it as it was loaded), such as a module or the Python module.
+struct OwnBinary {
+  std::filesystem::path directory;  // empty if unknown
+  bool shared_object = false;
+};
+
+OwnBinary own_binary() {
   static const char anchor = 0;
   Dl_info info{};
   link_map* map = nullptr;
@@ -28,11 +33,11 @@ std::filesystem::path own_directory() {
       map != nullptr && map->l_name != nullptr && map->l_name[0] != '\0') {
     std::error_code ec;
     const std::filesystem::path object = std::filesystem::canonical(map->l_name, ec);
-    if (!ec) return object.parent_path();
+    if (!ec) return {.directory = object.parent_path(), .shared_object = true};
   }
   std::error_code ec;
   const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  return ec ? std::filesystem::path{} : exe.parent_path();
+  return {.directory = ec ? std::filesystem::path{} : exe.parent_path()};
 }
 
 bool valid_name(std::string_view name) {
@@ -116,10 +121,13 @@ std::vector<std::filesystem::path> module_search_dirs() {
     }
     dirs.push_back(normal);
   };
-  const std::filesystem::path own = own_directory();
-  if (!own.empty()) {
-    add(own / SEWERPLAN_MODULE_INSTALL_RELATIVE);
-    add(own / ".." / "lib" / "sewerplan");
+  const OwnBinary own = own_binary();
+  if (!own.directory.empty()) {
+    add(own.directory / SEWERPLAN_MODULE_INSTALL_RELATIVE);
+    add(own.directory / ".." / "lib" / "sewerplan");
+    // Code in a module (lib/sewerplan/sewerplan_x.so) that loads another, as the station's
+    // planning does (fusion's OMPL): the modules beside it, wherever the install was moved.
+    if (own.shared_object) add(own.directory);
   }
   add(SEWERPLAN_MODULE_INSTALL_DIR);
   return dirs;

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cctype>
 #include <chrono>
+#include <csignal>
 #include <exception>
 #include <map>
 #include <memory>
@@ -679,6 +680,32 @@ void StationServer::stop() {
   impl_->campaigns->shut_down();  // httplib waits for the requests that run, a campaign's too
   while (impl_->running && !impl_->http.is_running()) std::this_thread::yield();
   impl_->http.stop();
+}
+
+Result<void> serve_until_signal(const ServerOptions& options,
+                                const std::function<void(int port)>& on_listening) {
+  Result<std::unique_ptr<StationServer>> created = StationServer::create(options);
+  if (!created.has_value()) return created.error();
+  StationServer& station = **created;
+  // SIGINT and SIGTERM stop the server from a thread of ours, not from a signal handler.
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+  const Result<int> port = station.bind();
+  if (!port.has_value()) return port.error();
+  on_listening(*port);
+  std::thread waiter([&] {
+    int signal = 0;
+    sigwait(&signals, &signal);
+    station.stop();
+  });
+  station.run();
+  // Stopped by a signal: the waiter has returned. Otherwise wake it so it can be joined.
+  pthread_kill(waiter.native_handle(), SIGTERM);
+  waiter.join();
+  return {};
 }
 
 }  // namespace sewerplan::server

@@ -22,9 +22,11 @@
 // Else from the directory of the binary this code is linked into (the program, or a shared object
 // such as the Python module): where an install puts the modules (CMAKE_INSTALL_LIBDIR/sewerplan
 // relative to CMAKE_INSTALL_BINDIR), then where the build tree does (lib/sewerplan, one level up
-// from bin/, tests/ and bench/); last the install's own directory, for a program elsewhere that
-// links sewerplan's libraries. The first that holds the file is used: a module there that does not
-// load, or is of another build, is an error naming the file and why, never a crash.
+// from bin/, tests/ and bench/); for code in a shared object, its own directory next (a module
+// that loads another finds its siblings, moved install or build tree); last the install's own
+// directory, for a program elsewhere that links sewerplan's libraries. The first that holds the
+// file is used: a module there that does not load, or is of another build, is an error naming the
+// file and why, never a crash.
 //
 // Thread safety: load_module may be called from any thread. Each module is loaded once per process
 // (under a lock) and never unloaded; a failure is remembered too, so every later call gets the same

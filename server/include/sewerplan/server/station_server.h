@@ -33,6 +33,9 @@
 //   Result<int> port = (*s)->bind();   // port 0: any free port
 //   (*s)->run();                       // until stop(), from another thread or a signal
 //
+// or, as `sewerplan serve` does (through the server module, sewerplan/server/module.h), all of it
+// until SIGINT or SIGTERM: serve_until_signal(options, on_listening).
+//
 // Thread safety: a map is read-only once loaded, and the list of maps is guarded (uploads come
 // while other requests read); each request plans or simulates on its own copies, on the server's
 // worker threads. stop() may be called from any thread.
@@ -96,5 +99,14 @@ class StationServer {
   explicit StationServer(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;
 };
+
+// Creates the station of `options`, binds it, calls on_listening with the port bound, and serves
+// until the process gets SIGINT or SIGTERM; then returns. An error if the station cannot be created
+// (a map that does not read) or bind (kIo). Blocks SIGINT and SIGTERM in the calling thread (the
+// threads it starts inherit that) and waits for them in a thread of its own, never in a signal
+// handler. Call it from the main thread, before any other thread is started, or with both signals
+// blocked in every thread; it is meant to be the whole of a program's run.
+Result<void> serve_until_signal(const ServerOptions& options,
+                                const std::function<void(int port)>& on_listening);
 
 }  // namespace sewerplan::server
