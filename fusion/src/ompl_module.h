@@ -2,9 +2,10 @@
 // The OMPL module: plan_head_path and head_space_sanity with OMPL (head_path.h), behind one table
 // in a shared module (sewerplan_ompl.so, fusion/module/ompl_module.cc) that fusion loads with
 // dlopen the first time a manhole motion is planned. OMPL brings Boost.Serialization,
-// Boost.Filesystem, ODE and libccd: linked into fusion, every run of every program paid about 9 ms
-// of CPU time mapping and relocating them (docs/benchmarks.md), though most never plan a motion.
-// Behind the module only the runs that plan one load them (head_path_module.cc).
+// Boost.Filesystem, ODE and libccd: linked into fusion, every run of every program paid for
+// mapping, relocating and initialising them, about half the instructions of `sewerplan --version`
+// or of a 12-manhole `plan` (docs/benchmarks.md), though most never plan a motion. Behind the
+// module only the runs that plan one load them (head_path_module.cc).
 //
 // A module of sewerplan (sewerplan/core/module.h), named "ompl": it exports
 // sewerplan_ompl_module_stamp, its ABI stamp (ompl_module_stamp() below as built into it), and
