@@ -45,9 +45,8 @@ set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)  # sewerplan_<version>_<arch>.deb
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(sewerplan_dev_depends "nlohmann-json3-dev (>= 3.10), libeigen3-dev (>= 3.3), libsimdjson-dev, libpugixml-dev")
-if(SEWERPLAN_WITH_OMPL)
-  string(APPEND sewerplan_dev_depends ", libompl-dev")
-endif()
+# No libompl-dev or libcairo2-dev: OMPL and cairo are linked by their modules only
+# (docs/modules.md), whose runtime dependencies (libompl16, libcairo2) dpkg-shlibdeps finds.
 if(TARGET sewerplan_python)  # built for one python3 version (python/CMakeLists.txt)
   string(APPEND sewerplan_dev_depends ", ${SEWERPLAN_PYTHON_DEB_DEPENDS}")
 endif()

@@ -38,12 +38,8 @@ int precompute(const PrecomputeOptions& o, Context& c) {
   const std::optional<std::string> path =
       map_path(o.map, o.map_positional, "motion precompute", c, o.json, exit_code);
   if (!path) return exit_code;
-  if (!fusion::motion_planning_available()) {
-    return fail(c, o.json,
-                Error{ErrorCode::kUnsupportedFormat,
-                      "motion precompute: this build of sewerplan has no OMPL (built with "
-                      "SEWERPLAN_WITH_OMPL=OFF), so it cannot plan manhole motions; planning "
-                      "uses the angle and step rules"});
+  if (Result<void> ok = fusion::motion_planning_support(); !ok.has_value()) {
+    return fail(c, o.json, Error{ok.error().code, "motion precompute: " + ok.error().message});
   }
   Diagnostics diagnostics;
   Result<SewerMap> map = read_input_map({*path, o.gis_fields}, diagnostics);

@@ -35,7 +35,7 @@ const SewerMap& map_for(std::int64_t manholes) {
 // Argument: manholes (0: the AIS test environment).
 void BM_PassagePrecompute(benchmark::State& state) {
   if (!motion_planning_available()) {
-    state.SkipWithError("built without OMPL");
+    state.SkipWithError("no motion planning: built without OMPL, or its module does not load");
     return;
   }
   const SewerMap& map = map_for(state.range(0));
@@ -66,7 +66,7 @@ BENCHMARK(BM_PassagePrecompute)->Arg(0)->Arg(1000)->Unit(benchmark::kMillisecond
 
 void BM_PrecomputeStopCheckGap(benchmark::State& state) {
   if (!motion_planning_available()) {
-    state.SkipWithError("built without OMPL");
+    state.SkipWithError("no motion planning: built without OMPL, or its module does not load");
     return;
   }
   const SewerMap& map = map_for(state.range(0));
@@ -117,7 +117,7 @@ BENCHMARK(BM_PassageRules)->Arg(0)->Arg(1000)->Unit(benchmark::kMillisecond);
 // planner's full iteration budget).
 void BM_ManholeTurnPlan(benchmark::State& state) {
   if (!motion_planning_available()) {
-    state.SkipWithError("built without OMPL");
+    state.SkipWithError("no motion planning: built without OMPL, or its module does not load");
     return;
   }
   const RobotProfile profile = *builtin_profile("makro-1.1");

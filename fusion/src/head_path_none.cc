@@ -4,17 +4,21 @@
 
 namespace sewerplan::fusion::detail {
 
+Result<void> head_path_support() {
+  return Error{ErrorCode::kUnsupportedFormat,
+               "this build of sewerplan has no OMPL (built with SEWERPLAN_WITH_OMPL=OFF): it "
+               "cannot plan manhole motions; the angle and step rules apply"};
+}
+
 bool head_path_available() { return false; }
 
 Result<void> head_space_sanity(const HeadPathProblem&, const TurnPlannerOptions&) {
-  return Error{ErrorCode::kUnsupportedFormat, "this build of sewerplan has no OMPL"};
+  return head_path_support().error();
 }
 
 Result<HeadPath> plan_head_path(const HeadPathProblem&, const TurnPlannerOptions&,
                                 const StopCondition&) {
-  return Error{ErrorCode::kUnsupportedFormat,
-               "this build of sewerplan has no OMPL (built with SEWERPLAN_WITH_OMPL=OFF): it "
-               "cannot plan manhole motions; the angle and step rules apply"};
+  return head_path_support().error();
 }
 
 }  // namespace sewerplan::fusion::detail

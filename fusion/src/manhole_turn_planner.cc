@@ -223,6 +223,8 @@ Polyline whole_path(const Pose2& start, const std::vector<Pose2>& head, double r
 
 }  // namespace
 
+Result<void> motion_planning_support() { return detail::head_path_support(); }
+
 bool motion_planning_available() { return detail::head_path_available(); }
 
 ManholeTurnPlanner::ManholeTurnPlanner(RobotBody body, const RobotProfile& profile,
@@ -244,7 +246,7 @@ Result<TurnPlan> ManholeTurnPlanner::plan(const PassageGeometry& geometry,
                                           const StopCondition& stop) const {
   const PassageGeometry g = quantised(geometry);
   if (Result<void> ok = check_numbers(g); !ok.has_value()) return ok.error();
-  if (!motion_planning_available()) return detail::plan_head_path({}, options_).error();
+  if (Result<void> ok = detail::head_path_support(); !ok.has_value()) return ok.error();
   const double w = body_.width_m;
   if (g.from_diameter_m < w || g.to_diameter_m < w) {
     return infeasible("the " + std::string(g.from_diameter_m < w ? "from" : "to") + "-pipe (" +

@@ -76,11 +76,7 @@ Result<PrecomputeResult> precompute_passage_motion(const SewerMap& map, const Ro
                                                    const PrecomputeOptions& options,
                                                    const Clock& clock) {
   if (Result<void> valid = validate_profile(profile); !valid.has_value()) return valid.error();
-  if (!motion_planning_available()) {
-    return Error{ErrorCode::kUnsupportedFormat,
-                 "this build of sewerplan has no OMPL (built with SEWERPLAN_WITH_OMPL=OFF): it "
-                 "cannot plan manhole motions"};
-  }
+  if (Result<void> ok = motion_planning_support(); !ok.has_value()) return ok.error();
   const double start_s = clock.now_s();
   PassageMotionCache cache(ManholeTurnPlanner(robot_body(profile), profile, options.planner));
   PrecomputeStatistics stats;

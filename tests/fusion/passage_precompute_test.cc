@@ -23,8 +23,12 @@ using testing::SmallMap;
 
 class PassagePrecomputeTest : public ::testing::Test {
  protected:
+  // Built with OMPL, its module must load (from the build tree's lib/sewerplan).
   void SetUp() override {
-    if (!motion_planning_available()) GTEST_SKIP() << "built without OMPL";
+    if (!SEWERPLAN_TEST_WITH_OMPL) GTEST_SKIP() << "built without OMPL";
+    Result<void> ok = motion_planning_support();
+    ASSERT_TRUE(ok.has_value()) << ok.error();
+    ASSERT_TRUE(motion_planning_available());
   }
   // M2 has a straight way (P1 -> P3), a right angle (P1 -> P2) and, into P4, a 0.40 m step.
   SewerMap map_ = SmallMap()

@@ -21,8 +21,10 @@
 // a time), and the path is shortened greedily rather than by random shortcuts. The same geometry
 // and seed give the same bits. A caller's deadline or cancel (the StopCondition of every
 // sewerplan algorithm) does not change a plan: it ends the planning with an error instead. OMPL
-// stays in head_path_ompl.cc; a build without OMPL (SEWERPLAN_WITH_OMPL=OFF) has this header, and
-// plan() then fails with kUnsupportedFormat ("this build has no OMPL").
+// stays in a module of its own (sewerplan_ompl.so, loaded the first time a motion is planned, so
+// that a program that plans none never loads OMPL and Boost); a build without OMPL
+// (SEWERPLAN_WITH_OMPL=OFF) has this header, and plan() then fails with kUnsupportedFormat ("this
+// build has no OMPL"), as it does, naming the module and why, when the module does not load.
 //
 //   ManholeTurnPlanner planner(robot_body(profile), profile);
 //   Result<TurnPlan> plan = planner.plan(passage_geometry(map, m, from, to));
@@ -45,8 +47,12 @@
 
 namespace sewerplan::fusion {
 
-// Whether this build plans motions (it was built with OMPL).
-bool motion_planning_available();
+// Whether motions can be planned: this build has OMPL and its module loads (on the first call;
+// sewerplan/core/module.h says where from). Otherwise kUnsupportedFormat, the message saying why
+// (no OMPL in this build; the module missing, not loadable or of another build, and the loader's
+// reason) and that the angle and step rules apply.
+Result<void> motion_planning_support();
+bool motion_planning_available();  // motion_planning_support() holds
 
 struct TurnPlannerOptions {
   std::uint32_t seed = 1;

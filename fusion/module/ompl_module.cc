@@ -1,6 +1,10 @@
 // SPDX-License-Identifier: MIT
-// plan_head_path with OMPL: the head's pose in the Dubins space, RRT, a seeded sampler.
-// The only file of sewerplan that includes OMPL (STYLE.md, fusion/).
+// The OMPL module's two exported symbols (fusion/src/ompl_module.h, sewerplan/core/module.h): its
+// ABI stamp and the table of plan_head_path and head_space_sanity with OMPL: the head's pose in
+// the Dubins space, RRT, a seeded sampler. Built into sewerplan_ompl.so with everything else
+// hidden; the only file of sewerplan that includes OMPL (STYLE.md, fusion/).
+#include "ompl_module.h"
+
 #include <cmath>
 #include <cstdlib>
 #include <memory>
@@ -22,8 +26,6 @@
 #include <ompl/util/Console.h>
 #include <ompl/util/Exception.h>
 #include <ompl/util/RandomNumbers.h>
-
-#include "head_path.h"
 
 namespace sewerplan::fusion::detail {
 namespace {
@@ -128,11 +130,8 @@ std::shared_ptr<ob::DubinsStateSpace> head_space(const HeadPathProblem& problem,
   return space;
 }
 
-}  // namespace
-
-bool head_path_available() { return true; }
-
-Result<void> head_space_sanity(const HeadPathProblem& problem, const TurnPlannerOptions& options) {
+Result<void> ompl_head_space_sanity(const HeadPathProblem& problem,
+                                    const TurnPlannerOptions& options) {
   ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
   try {
     head_space(problem, options)->sanityChecks();
@@ -142,8 +141,8 @@ Result<void> head_space_sanity(const HeadPathProblem& problem, const TurnPlanner
   return {};
 }
 
-Result<HeadPath> plan_head_path(const HeadPathProblem& problem, const TurnPlannerOptions& options,
-                                const StopCondition& stop) {
+Result<HeadPath> ompl_plan_head_path(const HeadPathProblem& problem,
+                                     const TurnPlannerOptions& options, const StopCondition& stop) {
   ompl::msg::setLogLevel(std::getenv("SEWERPLAN_OMPL_DEBUG") ? ompl::msg::LOG_DEBUG
                                                              : ompl::msg::LOG_ERROR);
   const PassageGeometry g = problem.geometry;
@@ -230,4 +229,17 @@ Result<HeadPath> plan_head_path(const HeadPathProblem& problem, const TurnPlanne
   return result;
 }
 
+const OmplModuleTable kTable{.head_space_sanity = &ompl_head_space_sanity,
+                             .plan_head_path = &ompl_plan_head_path};
+
+}  // namespace
 }  // namespace sewerplan::fusion::detail
+
+extern "C" __attribute__((visibility("default"))) const char* sewerplan_ompl_module_stamp() {
+  static const std::string stamp = sewerplan::fusion::detail::ompl_module_stamp();
+  return stamp.c_str();
+}
+
+extern "C" __attribute__((visibility("default"))) const void* sewerplan_ompl_module() {
+  return &sewerplan::fusion::detail::kTable;
+}
