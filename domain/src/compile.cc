@@ -3,11 +3,14 @@
 #include "sewerplan/domain/compile.h"
 
 #include <algorithm>
+#include <array>
+#include <charconv>
 #include <iomanip>
 #include <map>
 #include <mutex>
 #include <span>
 #include <sstream>
+#include <string_view>
 #include <tuple>
 #include <unordered_map>
 
@@ -385,9 +388,9 @@ class SewerTaskCompiler {
   // `risk`: the part of `cost` that is the expected cost of stops (RiskCosts). The action's
   // contingency reserve follows from its route and `need` (the battery a task action's own
   // drive needs when it starts: in_pipe_need).
-  ActionId add_action(std::vector<Fact> pre, std::vector<Fact> eff, Cost cost, std::string name,
-                      std::span<const Node> route, std::optional<PlanStep> step, Cost risk = 0,
-                      Cost need = 0);
+  ActionId add_action(std::span<const Fact> pre, std::span<const Fact> eff, Cost cost,
+                      std::string name, std::span<const Node> route, std::optional<PlanStep> step,
+                      Cost risk = 0, Cost need = 0);
 
   // Contingency-aware battery planning (CompileOptions::contingency). A pipe with a hazard may
   // turn out blocked, and so may one more on the way out after it: two levels, each a plain
@@ -509,9 +512,26 @@ class SewerTaskCompiler {
 }  // namespace sewerplan::domain
 
 namespace sewerplan::domain {
+namespace {
 
-ActionId SewerTaskCompiler::add_action(std::vector<Fact> pre, std::vector<Fact> eff, Cost cost,
-                                       std::string name, std::span<const Node> route,
+// The name of a move between keys ("go key 3 -> 7", "exit from key 3"), written into one buffer
+// (issue 16: k^2 such names, each joined by operator+ from std::to_string's, were a sixth of
+// building a 10-manhole task).
+std::string key_name(std::string_view head, std::uint32_t a, std::string_view middle = {},
+                     std::optional<std::uint32_t> b = std::nullopt) {
+  std::array<char, 64> text;  // the heads are short words, the numbers 10 digits at most
+  SEWER_CHECK(head.size() + middle.size() + 20 <= text.size(), "key_name: a head too long");
+  char* end = std::copy(head.begin(), head.end(), text.data());
+  end = std::to_chars(end, text.data() + text.size(), a).ptr;
+  end = std::copy(middle.begin(), middle.end(), end);
+  if (b) end = std::to_chars(end, text.data() + text.size(), *b).ptr;
+  return std::string(text.data(), end);
+}
+
+}  // namespace
+
+ActionId SewerTaskCompiler::add_action(std::span<const Fact> pre, std::span<const Fact> eff,
+                                       Cost cost, std::string name, std::span<const Node> route,
                                        std::optional<PlanStep> step, Cost risk, Cost need) {
   const ActionId id = builder_.add_action(pre, eff, cost, std::move(name));
   need = std::max(need, route_need(route));
@@ -542,12 +562,13 @@ void SewerTaskCompiler::add_task_actions(std::size_t index, VarId pos) {
   const VarId var = task_vars_[index];
   const RobotProfile& profile = mission_.profile;
   const std::string label = "'" + task.name + "' from key ";
+  const Fact done[] = {{var, 1}};
   for (std::uint32_t y = 0; y < k(); ++y) {
     if (const auto* m = std::get_if<ManholeId>(&task.place)) {
       if (manhole_of(graph.position(keys_[y])) != *m) continue;
       std::optional<PlanStep> step;
       if (!task.final) step = GoToManhole{*m, t};
-      add_action(task_preconditions(index, pos, y), {{var, 1}}, 0,
+      add_action(task_preconditions(index, pos, y), done, 0,
                  (task.final ? "finish " : "go-to ") + label + std::to_string(y), {}, step);
       continue;
     }
@@ -573,7 +594,7 @@ void SewerTaskCompiler::add_task_actions(std::size_t index, VarId pos) {
       }
       case TaskKind::kGoTo: {
         if (task.final && !spot.offset_m) {
-          add_action(pre, {{var, 1}}, 0, "finish " + label + std::to_string(y), {}, std::nullopt);
+          add_action(pre, done, 0, "finish " + label + std::to_string(y), {}, std::nullopt);
           break;
         }
         const double x = spot.offset_m.value_or(at);
@@ -594,7 +615,8 @@ void SewerTaskCompiler::add_task_actions(std::size_t index, VarId pos) {
           // The inspection drives the whole pipe, past every hazard in it.
           const Cost risk =
               graph.risk_cost(spot.pipe, -1.0, pipe.length_m + 1.0, options_.risk.blockage_s);
-          add_action(pre, {{var, 1}, {pos, static_cast<std::int32_t>(key_of_.at(finish))}},
+          const Fact eff[] = {{var, 1}, {pos, static_cast<std::int32_t>(key_of_.at(finish))}};
+          add_action(pre, eff,
                      to_cost(std::abs(at - start_end) / profile.speed_mps +
                              pipe.length_m / profile.inspection_speed_mps) +
                          risk,
@@ -629,14 +651,25 @@ void SewerTaskCompiler::build_task() {
   for (const RouteRef& r : exit_routes_) nodes += r.size;
   result_.route_nodes_.reserve(nodes + nodes / 8 + 4096);  // and the tasks' own
   result_.route_begin_.reserve(routes_.size() + exit_routes_.size() + 1);
+  // The actions' arrays sized once too: the moves and exits within the bound, the forgo actions
+  // and (a guess, they may grow) two actions per task, two facts each.
+  std::size_t actions = 2 * pending_.size() + (options_.select_goals ? pending_.size() : 0);
+  for (std::uint32_t a = 0; a < k(); ++a) {
+    for (std::uint32_t b = 0; b < k(); ++b) actions += a != b && dist_[a * k() + b] <= bound_;
+    actions += ends_at_exit_ && exit_dist_[a] <= bound_;
+  }
+  builder_.reserve(actions, 2 * actions);
+  result_.risk_.reserve(actions);
+  result_.task_step_.reserve(actions);
   for (std::uint32_t a = 0; a < k(); ++a) {
     for (std::uint32_t b = 0; b < k(); ++b) {
       const Cost d = dist_[a * k() + b];
       if (a == b || d > bound_) continue;
       if (build_interrupted()) return;
       const std::span<const Node> route = this->route(routes_[a * k() + b]);
-      add_action({{pos, static_cast<std::int32_t>(a)}}, {{pos, static_cast<std::int32_t>(b)}}, d,
-                 "go key " + std::to_string(a) + " -> " + std::to_string(b), route, std::nullopt,
+      const Fact pre[] = {{pos, static_cast<std::int32_t>(a)}};
+      const Fact eff[] = {{pos, static_cast<std::int32_t>(b)}};
+      add_action(pre, eff, d, key_name("go key ", a, " -> ", b), route, std::nullopt,
                  result_.graph_->route_risk(route, options_.risk.blockage_s));
     }
   }
@@ -664,15 +697,18 @@ void SewerTaskCompiler::build_task() {
       }
       result_.forgo_actions_.emplace_back(
           ActionId{static_cast<std::uint32_t>(result_.task_step_.size())}, pending_[i]);
-      add_action({{task_vars_[i], 0}}, {{task_vars_[i], 1}}, penalty, "forgo '" + task.name + "'",
-                 {}, std::nullopt);
+      const Fact pre[] = {{task_vars_[i], 0}};
+      const Fact eff[] = {{task_vars_[i], 1}};
+      add_action(pre, eff, penalty, "forgo '" + task.name + "'", {}, std::nullopt);
     }
   }
   for (std::uint32_t a = 0; ends_at_exit_ && a < k(); ++a) {
     if (exit_dist_[a] > bound_) continue;
     if (build_interrupted()) return;
-    add_action({{pos, static_cast<std::int32_t>(a)}}, {{pos, exit_value}}, exit_dist_[a],
-               "exit from key " + std::to_string(a), route(exit_routes_[a]), std::nullopt,
+    const Fact pre[] = {{pos, static_cast<std::int32_t>(a)}};
+    const Fact eff[] = {{pos, exit_value}};
+    add_action(pre, eff, exit_dist_[a], key_name("exit from key ", a), route(exit_routes_[a]),
+               std::nullopt,
                result_.graph_->route_risk(route(exit_routes_[a]), options_.risk.return_s));
   }
   result_.task_ = std::move(builder_).build();

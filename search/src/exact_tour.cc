@@ -7,7 +7,10 @@
 // index). Each entry extends by every goal not in S and every action that does it; an entry
 // beyond the bound is dropped (costs are not negative). The optimum is then the best S (all
 // goals, or with optional goals the most that fit and then the cheapest) closed by the move to
-// the end position. Memory: 2^K x (leave places) x 12 bytes; time: that x K x options.
+// the end position. The table holds for each S only the leave places of the goals in S (issue
+// 16: the others are never reached, and a table twice the size cost a fifth of the whole
+// process's page faults on 10 manholes). Memory: 2^(K-1) x (leave places) x 12 bytes; time:
+// that x K x options.
 #include <algorithm>
 #include <bit>
 #include <cstdint>
@@ -30,6 +33,7 @@ constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
 class SubsetProgramme {
  public:
   // `upper`: only plans doing every goal within this cost are wanted (kInfiniteCost: any).
+  // Reads the goals' leave places only: run() allocates the rest (memory_bytes()).
   SubsetProgramme(const Shape& shape, Cost bound, Cost upper)
       : s_(shape), bound_(bound), upper_(upper) {
     const std::size_t k = s_.goals.size();
@@ -44,59 +48,62 @@ class SubsetProgramme {
         }
       }
       leave_begin_.push_back(static_cast<std::uint32_t>(leave_place_.size()));
+      leave_count_.push_back(leave_begin_[g + 1] - leave_begin_[g]);
     }
     width_ = leave_place_.size();
-    // Each option's leave index, found once rather than at every entry it extends.
-    for (std::size_t g = 0; g < k; ++g) {
-      option_begin_.push_back(static_cast<std::uint32_t>(option_slot_.size()));
-      for (const detail::Option& o : s_.goals[g].options) {
-        std::uint32_t slot = leave_begin_[g];
-        while (leave_place_[slot] != leave(o)) ++slot;
-        option_slot_.push_back(slot);
-      }
-    }
+    for (std::size_t g = 0; g < k; ++g) options_ += s_.goals[g].options.size();
     all_ = k == 0 ? 0U : static_cast<std::uint32_t>((std::uint64_t{1} << k) - 1);
-    reserves_ = s_.has_reserves();
     for (std::size_t g = 0; g < k; ++g) {
       if (s_.goals[g].last) last_mask_ |= 1U << g;
     }
-    const auto places = static_cast<std::size_t>(s_.places);
-    moves_.assign(places * places, kInfiniteCost);
-    for (std::size_t a = 0; a < places; ++a) {
-      for (std::size_t b = 0; b < places; ++b) {
-        moves_[a * places + b] =
-            s_.move_cost(static_cast<std::int32_t>(a), static_cast<std::int32_t>(b));
-      }
-    }
   }
 
-  static std::size_t memory_bytes(const Shape& shape) {
-    std::size_t leaves = 0;
-    for (const auto& g : shape.goals) leaves += g.options.size();
-    // The table (a cost and a parent per subset and leaf), and the bounds by subset.
-    return (std::size_t{1} << shape.goals.size()) *
-           (leaves * (sizeof(Cost) + sizeof(std::uint32_t)) + sizeof(Cost));
+  // What run() allocates: the table (a cost and a parent for each subset and leave place of a
+  // goal in it: each leave place is in half the subsets), the table's offsets, the limits and
+  // marks by subset, the moves between places and the steps (one per leave place or the start,
+  // and option).
+  std::size_t memory_bytes() const {
+    const std::size_t subsets = std::size_t{1} << s_.goals.size();
+    const auto places = static_cast<std::size_t>(s_.places);
+    return subsets / 2 * width_ * (sizeof(Cost) + sizeof(std::uint32_t)) +
+           (subsets + 1) * sizeof(std::size_t) + subsets * (sizeof(Cost) + sizeof(std::uint8_t)) +
+           places * places * sizeof(Cost) + (width_ + 1) * options_ * sizeof(Step) +
+           ((width_ + 1) * s_.goals.size() + 1) * sizeof(std::uint32_t);
   }
 
   // Fills the table; returns the stop condition's reason if it fired.
   std::optional<SearchStatus> run(const StopCondition& stop, std::uint64_t* entries) {
+    fill_moves();
+    const std::size_t subsets = std::size_t{1} << s_.goals.size();
     if (upper_ < kInfiniteCost) {
       if (auto why = fill_rest_bounds(stop)) return why;
+    } else {
+      limit_.assign(subsets, bound_);
     }
-    const std::size_t k = s_.goals.size();
-    const std::size_t subsets = std::size_t{1} << k;
-    cost_.assign(subsets * width_, kInfiniteCost);
-    parent_.assign(subsets * width_, kNone);
-    extend(0, s_.start, kNone, 0);
+    fill_steps();
+    fill_offsets();
+    reached_.assign(subsets, 0);
+    cost_.assign(offset_.back(), kInfiniteCost);
+    // A parent is written with its entry's cost and read only where that is finite: left as the
+    // allocator gives it, the pages of entries never reached are never touched.
+    parent_ = std::make_unique_for_overwrite<std::uint32_t[]>(offset_.back());
+    extend(0, width_, kNone, 0);
     for (std::uint32_t set = 1; set < subsets; ++set) {
       if ((set & 0xffU) == 1) {
         if (auto why = stop.interrupted()) return why;
       }
-      for (std::size_t e = 0; e < width_; ++e) {
-        const Cost c = cost_[set * width_ + e];
-        if (c >= kInfiniteCost) continue;
-        ++*entries;
-        extend(set, leave_place_[e], static_cast<std::uint32_t>(e), c);
+      if (reached_[set] == 0) continue;           // no entry of it
+      const bool last = (set & last_mask_) != 0;  // nothing follows a last goal
+      // The entries of `set`: its goals' leave places, in order.
+      std::size_t index = offset_[set];
+      for (std::uint32_t in = set; in != 0; in &= in - 1) {
+        const auto g = static_cast<std::size_t>(std::countr_zero(in));
+        for (std::uint32_t e = leave_begin_[g]; e < leave_begin_[g + 1]; ++e, ++index) {
+          const Cost c = cost_[index];
+          if (c >= kInfiniteCost) continue;
+          ++*entries;
+          if (!last) extend(set, e, e, c);
+        }
       }
     }
     return std::nullopt;
@@ -118,14 +125,18 @@ class SubsetProgramme {
     }
     Cost best = kInfiniteCost;
     std::uint32_t from = kNone;
-    for (std::size_t e = 0; e < width_; ++e) {
-      const Cost c = cost_[set * width_ + e];
-      const Cost t = tail(leave_place_[e]);
-      if (c >= kInfiniteCost || t >= kInfiniteCost || c + t > bound_) continue;
-      if (!s_.fits(c, t, reserve(leave_place_[e]))) continue;
-      if (c + t < best) {
-        best = c + t;
-        from = static_cast<std::uint32_t>(e);
+    std::size_t index = offset_[set];
+    for (std::uint32_t in = set; in != 0; in &= in - 1) {
+      const auto g = static_cast<std::size_t>(std::countr_zero(in));
+      for (std::uint32_t e = leave_begin_[g]; e < leave_begin_[g + 1]; ++e, ++index) {
+        const Cost c = cost_[index];
+        const Cost t = tail(leave_place_[e]);
+        if (c >= kInfiniteCost || t >= kInfiniteCost || c + t > bound_) continue;
+        if (!s_.fits(c, t, reserve(leave_place_[e]))) continue;
+        if (c + t < best) {
+          best = c + t;
+          from = e;
+        }
       }
     }
     return {best, from};
@@ -136,7 +147,7 @@ class SubsetProgramme {
     std::vector<ActionId> reversed;
     std::int32_t after = s_.end.value_or(e == kNone ? s_.start : leave_place_[e]);
     while (e != kNone) {
-      const std::uint32_t packed = parent_[set * width_ + e];
+      const std::uint32_t packed = parent_[entry(set, e)];
       const std::uint32_t g = leave_goal_[e];
       const detail::Option& o = s_.goals[g].options[packed & 0xffU];
       const std::uint32_t prev = packed >> 8U;
@@ -152,47 +163,138 @@ class SubsetProgramme {
   }
 
  private:
+  // One way to do a goal from where the robot is (a leave place or the start): the move to the
+  // option's place and the option. Sorted cheapest first, so extend() stops at the first beyond
+  // its limit.
+  struct Step {
+    Cost cost = 0;  // the move's and the option's
+    // The most that may be spent before it for its reserves (and the move's) to fit the battery
+    // (Shape::fits); the largest Cost where there are none.
+    Cost most_spent = 0;
+    std::uint32_t slot = 0;    // the option's leave index
+    std::uint32_t option = 0;  // the option's index in its goal
+  };
+
   static std::int32_t leave(const detail::Option& o) { return o.to == kStays ? o.at : o.to; }
 
   void add_move(std::int32_t a, std::int32_t b, std::vector<ActionId>& reversed) const {
     if (a != b) reversed.push_back(s_.move_action(a, b));
   }
 
-  // A goal that needs all others first ends the plan: nothing follows it (the others are done
-  // or forgone, and forgo actions come first).
-  void extend(std::uint32_t set, std::int32_t at, std::uint32_t e, Cost c) {
-    if ((set & last_mask_) != 0) return;
-    const Cost* row =
-        moves_.data() + static_cast<std::size_t>(at) * static_cast<std::size_t>(s_.places);
-    const std::uint32_t from = (e == kNone ? (kNone >> 8U) : e) << 8U;
-    // The goals outside `set`, lowest first (as a loop over every goal skipping those in it).
-    for (std::uint32_t outside = all_ & ~set; outside != 0; outside &= outside - 1) {
-      const auto g = static_cast<std::size_t>(std::countr_zero(outside));
-      const std::uint32_t next = set | (1U << g);
-      const Cost limit =
-          rest_bound_.empty() ? bound_ : std::min(bound_, upper_ - rest_bound_[next]);
-      const detail::Option* options = s_.goals[g].options.data();
-      const std::size_t n = s_.goals[g].options.size();
-      const std::uint32_t* slots = option_slot_.data() + option_begin_[g];
-      for (std::size_t o = 0; o < n; ++o) {
-        const detail::Option& opt = options[o];
-        const Cost d = row[static_cast<std::size_t>(opt.at)];
-        if (d >= kInfiniteCost) continue;
-        if (reserves_ && (!s_.fits(c, d, s_.move_reserve(at, opt.at)) ||
-                          !s_.fits(c + d, opt.cost, opt.reserve))) {
-          continue;
-        }
-        const Cost nc = c + d + opt.cost;
-        if (nc > limit) continue;
-        const std::size_t index = next * width_ + slots[o];
-        if (nc < cost_[index]) {
-          cost_[index] = nc;
-          parent_[index] = from | static_cast<std::uint32_t>(o);
-        }
+  // Where the table holds leave index `e` of `set` (its goal in `set`): after the leave places of
+  // the goals of `set` before it.
+  std::size_t entry(std::uint32_t set, std::uint32_t e) const {
+    const std::uint32_t g = leave_goal_[e];
+    std::size_t index = offset_[set] + (e - leave_begin_[g]);
+    for (std::uint32_t before = set & ((1U << g) - 1U); before != 0; before &= before - 1) {
+      const auto h = static_cast<std::size_t>(std::countr_zero(before));
+      index += leave_count_[h];
+    }
+    return index;
+  }
+
+  void fill_moves() {
+    const auto places = static_cast<std::size_t>(s_.places);
+    moves_.assign(places * places, kInfiniteCost);
+    for (std::size_t a = 0; a < places; ++a) {
+      for (std::size_t b = 0; b < places; ++b) {
+        moves_[a * places + b] =
+            s_.move_cost(static_cast<std::int32_t>(a), static_cast<std::int32_t>(b));
       }
     }
   }
 
+  // offset_[set]: where the entries of `set` begin (each of its goals' leave places, in order).
+  void fill_offsets() {
+    const std::size_t subsets = std::size_t{1} << s_.goals.size();
+    offset_.assign(subsets + 1, 0);
+    for (std::size_t set = 0; set < subsets; ++set) {
+      std::size_t n = 0;
+      for (auto in = static_cast<std::uint32_t>(set); in != 0; in &= in - 1) {
+        const auto g = static_cast<std::size_t>(std::countr_zero(in));
+        n += leave_count_[g];
+      }
+      offset_[set + 1] = offset_[set] + n;
+    }
+  }
+
+  // The steps from each leave place (and from the start, row width_) to each goal. A step no
+  // entry can take (no move, beyond the bound, reserves that never fit) is left out; what
+  // extend() read from the moves and the reserves at each entry is read here once.
+  void fill_steps() {
+    const std::size_t k = s_.goals.size();
+    const bool reserves = s_.has_reserves();
+    step_begin_.assign(1, 0);
+    steps_.clear();
+    steps_.reserve((width_ + 1) * options_);
+    for (std::size_t row = 0; row <= width_; ++row) {
+      const std::int32_t at = row == width_ ? s_.start : leave_place_[row];
+      for (std::size_t g = 0; g < k; ++g) {
+        const std::size_t first = steps_.size();
+        const auto& options = s_.goals[g].options;
+        for (std::size_t o = 0; o < options.size(); ++o) {
+          const detail::Option& opt = options[o];
+          const Cost d = move(at, opt.at);
+          if (d >= kInfiniteCost || d + opt.cost > bound_) continue;
+          Step step{.cost = d + opt.cost,
+                    .most_spent = std::numeric_limits<Cost>::max(),
+                    .slot = slot(g, opt),
+                    .option = static_cast<std::uint32_t>(o)};
+          if (reserves && s_.bound < kInfiniteCost) {
+            if (const Cost r = s_.move_reserve(at, opt.at); r > 0) {
+              step.most_spent = std::min(step.most_spent, s_.bound - d - r);
+            }
+            if (opt.reserve > 0) {
+              step.most_spent = std::min(step.most_spent, s_.bound - step.cost - opt.reserve);
+            }
+            if (step.most_spent < 0) continue;  // nothing spent is less than 0
+          }
+          steps_.push_back(step);
+        }
+        // Cheapest first; of equal costs the lower option first, as a loop over the options
+        // would find them (the first of equal costs is kept: the same plan).
+        std::stable_sort(steps_.begin() + static_cast<std::ptrdiff_t>(first), steps_.end(),
+                         [](const Step& a, const Step& b) { return a.cost < b.cost; });
+        step_begin_.push_back(static_cast<std::uint32_t>(steps_.size()));
+      }
+    }
+  }
+  std::uint32_t slot(std::size_t g, const detail::Option& o) const {
+    std::uint32_t slot = leave_begin_[g];
+    while (leave_place_[slot] != leave(o)) ++slot;
+    return slot;
+  }
+
+  // Extends the entry of `set` at leave index `row` (width_: the start, for the empty set), of
+  // cost `c`, by every goal outside `set`. A goal that needs all others first ends the plan:
+  // nothing follows it (the others are done or forgone, and forgo actions come first).
+  void extend(std::uint32_t set, std::size_t row, std::uint32_t e, Cost c) {
+    const std::uint32_t from = (e == kNone ? (kNone >> 8U) : e) << 8U;
+    const std::uint32_t* begin = step_begin_.data() + row * s_.goals.size();
+    // The goals outside `set`, lowest first (as a loop over every goal skipping those in it).
+    // `skipped`: the leave places of the goals outside `set` before g, which the entries of
+    // set | g do not hold (entry()).
+    std::size_t skipped = 0;
+    for (std::uint32_t outside = all_ & ~set; outside != 0; outside &= outside - 1) {
+      const auto g = static_cast<std::size_t>(std::countr_zero(outside));
+      const std::uint32_t next = set | (1U << g);
+      const Cost limit = limit_[next];
+      Cost* costs = cost_.data() + (offset_[next] - skipped);
+      std::uint32_t* parents = parent_.get() + (offset_[next] - skipped);
+      skipped += leave_count_[g];
+      const Step* end = steps_.data() + begin[g + 1];
+      for (const Step* step = steps_.data() + begin[g]; step != end; ++step) {
+        const Cost nc = c + step->cost;
+        if (nc > limit) break;  // and every step after it
+        if (c > step->most_spent) continue;
+        if (nc < costs[step->slot]) {
+          costs[step->slot] = nc;
+          parents[step->slot] = from | step->option;
+          reached_[next] = 1;
+        }
+      }
+    }
+  }
   // With an upper bound U on plans doing every goal (issue 16: the tour search's plan, when it
   // forgoes none), an entry for S costing c can only lead to a wanted plan if c plus the least
   // the goals outside S (call them O) still cost stays within U. Every goal of O is done by one
@@ -201,7 +303,7 @@ class SubsetProgramme {
   // another goal of O left it (at least into[g]: pair[h][g] over h in O). So the rest costs at
   // least the sum of into[g] over O, less the largest into[f] - least[f] (f done first), plus
   // the cheapest way to the end from where a goal of O leaves the robot. Pruning with it keeps
-  // every entry of a plan within U, and so the same plan.
+  // every entry of a plan within U, and so the same plan. Fills limit_ with U less that bound.
   // Returns the stop condition's reason if it fired (2^k subsets: checked every 2^10).
   std::optional<SearchStatus> fill_rest_bounds(const StopCondition& stop) {
     const std::size_t k = s_.goals.size();
@@ -239,7 +341,7 @@ class SubsetProgramme {
     }
     const std::size_t others = k == 0 ? 0 : k - 1;
     const std::size_t subsets = std::size_t{1} << k;
-    rest_bound_.assign(subsets, 0);
+    limit_.assign(subsets, std::min(bound_, upper_));  // all goals done: nothing rests
     const auto all = static_cast<std::uint32_t>(subsets - 1);
     for (std::uint32_t set = 0; set < all; ++set) {
       if ((set & 0x3ffU) == 0) {
@@ -263,7 +365,7 @@ class SubsetProgramme {
         first_gain = std::max(first_gain, into - least[g]);
         last = std::min(last, tail[g]);
       }
-      rest_bound_[set] = sum - first_gain + last;
+      limit_[set] = std::min(bound_, upper_ - (sum - first_gain + last));
     }
     return std::nullopt;
   }
@@ -288,19 +390,24 @@ class SubsetProgramme {
   const Shape& s_;
   Cost bound_;
   Cost upper_;
-  std::vector<Cost> rest_bound_;  // by subset, with an upper bound: see fill_rest_bounds()
-  std::vector<std::uint32_t> option_begin_;  // by goal, into option_slot_
-  std::vector<std::uint32_t> option_slot_;   // each option's leave index
-  std::uint32_t all_ = 0;                    // every goal's bit
-  bool reserves_ = false;                    // Shape::has_reserves()
-  std::vector<std::uint32_t> leave_begin_;   // by goal, into leave_place_
-  std::vector<std::int32_t> leave_place_;    // flattened leave places
-  std::vector<std::uint32_t> leave_goal_;    // the goal of each
+  // By subset: the most an entry of it may cost (bound_; with an upper bound, less what the goals
+  // outside it cost at least: fill_rest_bounds()).
+  std::vector<Cost> limit_;
+  std::vector<std::uint8_t> reached_;       // by subset: whether an entry of it was written
+  std::uint32_t all_ = 0;                   // every goal's bit
+  std::vector<std::uint32_t> leave_begin_;  // by goal, into leave_place_
+  std::vector<std::int32_t> leave_place_;   // flattened leave places
+  std::vector<std::uint32_t> leave_goal_;   // the goal of each
+  std::vector<std::uint32_t> leave_count_;  // by goal
   std::size_t width_ = 0;
+  std::size_t options_ = 0;  // all goals' options
   std::uint32_t last_mask_ = 0;
-  std::vector<Cost> moves_;            // places x places
-  std::vector<Cost> cost_;             // subsets x width_
-  std::vector<std::uint32_t> parent_;  // (previous leave index << 8) | option
+  std::vector<Cost> moves_;                  // places x places
+  std::vector<Step> steps_;                  // by row (leave index, then the start) and goal
+  std::vector<std::uint32_t> step_begin_;    // [row * goals + goal], into steps_
+  std::vector<std::size_t> offset_;          // by subset, into the table (fill_offsets())
+  std::vector<Cost> cost_;                   // the table's costs
+  std::unique_ptr<std::uint32_t[]> parent_;  // beside cost_: (previous leave index << 8) | option
 };
 
 }  // namespace
@@ -322,10 +429,10 @@ std::optional<SearchResult> exact_tour_search(const domain::CompiledTask& task,
   for (const auto& g : shape->goals) {
     if (g.options.size() > 0xff) return std::nullopt;
   }
-  if (SubsetProgramme::memory_bytes(*shape) > max_bytes) return std::nullopt;
   const Cost bound =
       task.cost_bound() >= domain::kInfiniteCost ? domain::kInfiniteCost / 2 : task.cost_bound();
   SubsetProgramme programme(*shape, bound, upper);
+  if (programme.memory_bytes() > max_bytes) return std::nullopt;
   SearchResult result;
   if (auto why = programme.run(stop, &result.statistics.expanded)) {
     result.status = *why;

@@ -160,8 +160,9 @@ std::size_t exact_bytes(const domain::CompiledTask& task,
   if (k > kMaxExactGoals) return 0;
   const std::size_t bytes =
       std::min(kAutoExactBytes, kExactBytesPerSettled * compile.settled_nodes);
-  // At least one leave place per goal, 12 bytes each: a table surely too large is not even read.
-  return (std::size_t{1} << k) * k * 12 <= bytes ? bytes : 0;
+  // At least one leave place per goal, each in half the subsets, 12 bytes an entry: a table
+  // surely too large is not even read.
+  return (std::size_t{1} << k) / 2 * k * 12 <= bytes ? bytes : 0;
 }
 
 // Anytime improvement: each search may only return plans cheaper than the best so far. One that

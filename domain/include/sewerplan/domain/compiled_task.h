@@ -137,6 +137,9 @@ class CompiledTask::Builder {
                       std::span<const Fact>(effects.begin(), effects.size()), cost,
                       std::move(name));
   }
+  // Room for `actions` more actions with `facts` facts in all (conditions and effects), so that
+  // adding them does not grow the arrays step by step.
+  void reserve(std::size_t actions, std::size_t facts);
   void set_initial(std::vector<std::int32_t> values);
   void add_goal(Fact fact);
   void set_cost_bound(Cost bound);
