@@ -43,6 +43,7 @@
 
 #include "campaign_service.h"
 #include "http_reply.h"
+#include "json_body.h"
 #include "map_geometry.h"
 #include "plan_route.h"
 #include <httplib.h>
@@ -458,10 +459,11 @@ void StationServer::Impl::plan(const httplib::Request& req, httplib::Response& r
 void StationServer::Impl::simulate(const httplib::Request& req, httplib::Response& res) const {
   const auto m = find_map(req, res);
   if (!m) return;
-  const Json body = Json::parse(req.body, nullptr, false);
-  if (body.is_discarded() || !body.is_object()) {
+  const Result<Json> parsed = parse_json_body(req.body);
+  if (!parsed.has_value()) return bad_request(res, parsed.error().message);
+  const Json& body = *parsed;
+  if (!body.is_object())
     return bad_request(res, "expected a JSON object {\"mission\", \"faults\" | \"random_faults\"}");
-  }
   if (!body.contains("mission") || !body["mission"].is_object()) {
     return bad_request(res, "\"mission\": expected the mission's JSON object");
   }
@@ -538,10 +540,11 @@ void StationServer::Impl::replay(const httplib::Request& req, httplib::Response&
 void StationServer::Impl::campaign(const httplib::Request& req, httplib::Response& res) {
   const auto m = find_map(req, res);
   if (!m) return;
-  const Json body = Json::parse(req.body, nullptr, false);
-  if (body.is_discarded() || !body.is_object()) {
+  const Result<Json> parsed = parse_json_body(req.body);
+  if (!parsed.has_value()) return bad_request(res, parsed.error().message);
+  const Json& body = *parsed;
+  if (!body.is_object())
     return bad_request(res, "expected a JSON object {\"mission\", \"runs\", \"seed\", ...}");
-  }
   if (!body.contains("mission") || !body["mission"].is_object()) {
     return bad_request(res, "\"mission\": expected the mission's JSON object");
   }

@@ -495,6 +495,41 @@ TEST_F(StationServerTest, AnswersBadRequestsWithA4xxJsonError) {
   EXPECT_EQ(post("/api/maps/map/replay", "not a log\n").first, 422);
 }
 
+// nlohmann keeps the last of two equal keys; the station's file readers refuse them (JsonFields),
+// and so do /simulate and /campaign, whose mission comes inside a larger object: before, the second
+// "start" (or "runs") silently won.
+TEST_F(StationServerTest, RefusesAKeyGivenTwiceInASimulateOrCampaignBody) {
+  const std::string mission = read(kAis / "missions/paper.json");
+  const std::size_t brace = mission.find('{');
+  ASSERT_NE(brace, std::string::npos);
+  // The mission with its first key repeated at its start: {"id": ..., <the mission's members>}.
+  const json parsed = json::parse(mission);
+  const std::string first_key = parsed.begin().key();
+  const std::string twice =
+      "{\"" + first_key + "\": " + parsed.begin().value().dump() + ", " + mission.substr(brace + 1);
+  auto [status, j] = post("/api/maps/map/simulate", "{\"mission\": " + twice + "}");
+  EXPECT_EQ(status, 400);
+  EXPECT_EQ(j["error"]["message"], "$.mission." + first_key + ": error: field '" + first_key +
+                                       "' given twice in one object: which value is meant is "
+                                       "unclear");
+  auto [campaign_status, c] =
+      post("/api/maps/map/campaign", R"({"mission": )" + mission + R"(, "runs": 2, "runs": 3})");
+  EXPECT_EQ(campaign_status, 400);
+  EXPECT_EQ(c["error"]["message"],
+            "$.runs: error: field 'runs' given twice in one object: which value is meant is "
+            "unclear");
+  // Within an array, by index; every repeat, one a line.
+  auto [array_status, a] =
+      post("/api/maps/map/simulate", R"({"faults": [{"at": 1}, {"at": 2, "at": 3}], "mission": )" +
+                                         mission + R"(, "faults": []})");
+  EXPECT_EQ(array_status, 400);
+  EXPECT_EQ(a["error"]["message"],
+            "$.faults[1].at: error: field 'at' given twice in one object: which value is meant is "
+            "unclear\n$.faults: error: field 'faults' given twice in one object: which value is "
+            "meant is unclear");
+  EXPECT_EQ(post("/api/maps/map/simulate", "{\"mission\": ").first, 400);
+}
+
 TEST_F(StationServerTest, RefusesABodyOverTheSizeLimit) {
   TearDown();
   start({.max_body_bytes = 1000});
