@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "sewerplan/campaign/summary.h"
+#include "sewerplan/core/json_fields.h"
 #include "sewerplan/core/text_file.h"
 
 namespace sewerplan::campaign {
@@ -23,9 +24,10 @@ Result<MergedCampaign> read_campaign_dir(const std::filesystem::path& dir) {
   MergedCampaign out{*spec, {}};
   std::istringstream lines(*runs_text);
   std::string line;
+  JsonLineParser parser;  // one for every line: it keeps its buffers
   for (std::size_t n = 1; std::getline(lines, line); ++n) {
     if (line.empty()) continue;
-    Result<RunRecord> r = parse_run_line(line, runs_path.string(), n);
+    Result<RunRecord> r = parse_run_line(line, runs_path.string(), n, parser);
     if (!r.has_value()) return r.error();
     if (r->index >= spec->runs || !spec->in_shard(r->index)) {
       return Error{ErrorCode::kInvalidArgument,

@@ -209,8 +209,13 @@ std::string run_json_line(const RunRecord& record) {
 
 Result<RunRecord> parse_run_line(std::string_view line, const std::string& file_name,
                                  std::size_t line_number) {
-  const std::string where = file_name + ":" + std::to_string(line_number);
   JsonLineParser parser;
+  return parse_run_line(line, file_name, line_number, parser);
+}
+
+Result<RunRecord> parse_run_line(std::string_view line, const std::string& file_name,
+                                 std::size_t line_number, JsonLineParser& parser) {
+  const std::string where = file_name + ":" + std::to_string(line_number);
   const std::optional<JsonElement> j = parser.parse(line);
   if (!j || !j->is_object()) return Error{ErrorCode::kParse, where + ": not a JSON object"};
   Diagnostics d;

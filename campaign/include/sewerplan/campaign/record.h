@@ -23,6 +23,10 @@
 #include "sewerplan/campaign/run.h"
 #include "sewerplan/core/result.h"
 
+namespace sewerplan {
+class JsonLineParser;  // sewerplan/core/json_fields.h
+}  // namespace sewerplan
+
 namespace sewerplan::campaign {
 
 struct RunRecord {
@@ -40,9 +44,12 @@ std::string_view to_string(RunRecord::Status status);
 
 // One line of JSON (no line break): {"run":..,"seed":"..","status":"ok",...,"measured":{...}}.
 std::string run_json_line(const RunRecord& record);
-// Reads a line written by run_json_line; an error names file:line and the field.
+// Reads a line written by run_json_line; an error names file:line and the field. A reader of many
+// lines passes one `parser` for all of them (it keeps its buffers between lines).
 Result<RunRecord> parse_run_line(std::string_view line, const std::string& file_name,
                                  std::size_t line_number);
+Result<RunRecord> parse_run_line(std::string_view line, const std::string& file_name,
+                                 std::size_t line_number, JsonLineParser& parser);
 
 inline constexpr std::string_view kCampaignJsonFormat = "sewerplan-campaign";
 inline constexpr int kCampaignJsonVersion = 1;
