@@ -12,6 +12,15 @@
 #   sewerplan_uses_modules(my_program)   # builds every module before my_program
 
 set(SEWERPLAN_MODULE_BUILD_DIR ${PROJECT_BINARY_DIR}/lib/sewerplan CACHE INTERNAL "")
+# The Debian package installs under /usr whatever prefix the tree was configured for
+# (cmake/SewerplanPackage.cmake): the loader's last place to look, for a program built against the
+# package's libraries.
+set(SEWERPLAN_PACKAGE_PREFIX /usr)
+if(IS_ABSOLUTE "${CMAKE_INSTALL_LIBDIR}")
+  set(SEWERPLAN_MODULE_PACKAGE_DIR "${CMAKE_INSTALL_LIBDIR}/sewerplan")
+else()
+  set(SEWERPLAN_MODULE_PACKAGE_DIR "${SEWERPLAN_PACKAGE_PREFIX}/${CMAKE_INSTALL_LIBDIR}/sewerplan")
+endif()
 
 # sewerplan_module_install_relative(OUT PREFIX BINDIR LIBDIR): the modules' directory relative to
 # the command's directory in an install with that prefix and those directories (relative to PREFIX
@@ -31,13 +40,14 @@ function(sewerplan_module_install_relative out prefix bindir libdir)
 endfunction()
 
 # The build id in every module's ABI stamp, the same for a program and the modules of one build: a
-# hash of the libraries' public headers and of the compiler and flags, regenerated when a header
-# changes (cmake/module_build_id.cmake), as SEWERPLAN_MODULE_BUILD_ID in sewerplan_module_build_id.h
+# hash of the libraries' headers, public and private (a table may pass a type from a library's
+# src/, as the OMPL module's does), and of the compiler and flags, regenerated when a header changes
+# (cmake/module_build_id.cmake), as SEWERPLAN_MODULE_BUILD_ID in sewerplan_module_build_id.h
 # (included by core/src/module.cc only). Call once, before the libraries.
 function(sewerplan_module_build_id)
   set(headers)
   foreach(lib IN ITEMS core domain search fusion hal executor campaign render server gis)
-    file(GLOB_RECURSE lib_headers CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/${lib}/include/*.h)
+    file(GLOB_RECURSE lib_headers CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/${lib}/*.h)
     list(APPEND headers ${lib_headers})
   endforeach()
   string(TOUPPER "${CMAKE_BUILD_TYPE}" build_type)

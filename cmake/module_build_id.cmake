@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: MIT
 # The modules' build id (sewerplan/core/module.h), run at build time by `cmake -P`: a hash of what
-# fixes the layout of the types that cross a module's table, namely the libraries' public headers
-# (their paths relative to the source tree and their contents) and the compiler and flags (CONFIG).
+# fixes the layout of the types that cross a module's table, namely the libraries' headers, public
+# and private (their paths relative to the source tree and their contents), and the compiler and
+# flags (CONFIG).
 # A program and the modules of one build include the same id; a module from another commit or
 # configuration has another, and the program refuses it. The same sources and configuration give
 # the same id (the Debian package stays reproducible).

@@ -5,6 +5,7 @@
 #include <map>
 #include <mutex>
 #include <system_error>
+#include <utility>
 
 #include "sewerplan_module_build_id.h"
 #include <dlfcn.h>
@@ -64,29 +65,43 @@ Loaded load_file(const std::filesystem::path& file, const std::string& name,
   using StampEntry = const char* (*)();
   const auto stamp_entry = reinterpret_cast<StampEntry>(dlsym(handle, stamp_symbol.c_str()));
   if (stamp_entry == nullptr) {
+    dlclose(handle);
     return {.error = what + " has no ABI stamp (" + stamp_symbol + "): it is of another sewerplan"};
   }
   const char* theirs = stamp_entry();
   if (theirs == nullptr || stamp != theirs) {
-    return {.error =
-                what + " is of another build or configuration of sewerplan (its ABI stamp: \"" +
-                (theirs != nullptr ? theirs : "") + "\", this sewerplan's: \"" + stamp + "\")"};
+    std::string error =
+        what + " is of another build or configuration of sewerplan (its ABI stamp: \"" +
+        (theirs != nullptr ? theirs : "") + "\", this sewerplan's: \"" + stamp + "\")";
+    dlclose(handle);  // after copying its stamp, which lives in it
+    return {.error = std::move(error)};
   }
   const std::string table_symbol = "sewerplan_" + name + "_module";
   using TableEntry = const void* (*)();
   const auto entry = reinterpret_cast<TableEntry>(dlsym(handle, table_symbol.c_str()));
   const void* table = entry != nullptr ? entry() : nullptr;
-  if (table == nullptr) return {.error = what + " has no table (" + table_symbol + ")"};
+  if (table == nullptr) {
+    dlclose(handle);
+    return {.error = what + " has no table (" + table_symbol + ")"};
+  }
   return {.table = table};  // never unloaded: a library inside may have registered atexit handlers
 }
 
+// The first file in the search directories that loads with this stamp; else why the first one that
+// exists did not (a stale module of another install earlier on the path does not hide a good one
+// later), or where it was looked for.
 Loaded load(const std::string& name, const std::string& stamp) {
   const std::string file = "sewerplan_" + name + ".so";
   const std::vector<std::filesystem::path> dirs = module_search_dirs();
   std::error_code ec;
+  Loaded first_failure;
   for (const std::filesystem::path& dir : dirs) {
-    if (std::filesystem::exists(dir / file, ec)) return load_file(dir / file, name, stamp);
+    if (!std::filesystem::exists(dir / file, ec)) continue;
+    Loaded loaded = load_file(dir / file, name, stamp);
+    if (loaded.table != nullptr) return loaded;
+    if (first_failure.error.empty()) first_failure = std::move(loaded);
   }
+  if (!first_failure.error.empty()) return first_failure;
   std::string where;
   for (const std::filesystem::path& dir : dirs) {
     where += (where.empty() ? "" : ", ") + (dir / file).string();
@@ -123,13 +138,16 @@ std::vector<std::filesystem::path> module_search_dirs() {
   };
   const OwnBinary own = own_binary();
   if (!own.directory.empty()) {
+    // Code in a module (lib/sewerplan/sewerplan_x.so) that loads another, as the station's
+    // planning does (fusion's OMPL): the modules beside it first, wherever the install was moved.
+    if (own.shared_object) add(own.directory);
     add(own.directory / SEWERPLAN_MODULE_INSTALL_RELATIVE);
     add(own.directory / ".." / "lib" / "sewerplan");
-    // Code in a module (lib/sewerplan/sewerplan_x.so) that loads another, as the station's
-    // planning does (fusion's OMPL): the modules beside it, wherever the install was moved.
-    if (own.shared_object) add(own.directory);
   }
+  // For a program elsewhere that links sewerplan's libraries: the install this tree was configured
+  // for, then the Debian package's (cpack installs under /usr, whatever the configured prefix).
   add(SEWERPLAN_MODULE_INSTALL_DIR);
+  add(SEWERPLAN_MODULE_PACKAGE_DIR);
   return dirs;
 }
 
@@ -139,13 +157,14 @@ Result<const void*> load_module(std::string_view name, const std::string& stamp)
                  "load_module: \"" + std::string(name) +
                      "\" is not a module name (lower case letters, digits and '_')"};
   }
-  static std::mutex mutex;
-  static std::map<std::string, Loaded, std::less<>> loaded;
-  const std::lock_guard lock(mutex);
-  auto it = loaded.find(name);
-  if (it == loaded.end()) {
+  // Never destroyed: a thread may still ask while the process exits, and the modules stay loaded.
+  static auto* const mutex = new std::mutex;
+  static auto* const loaded = new std::map<std::string, Loaded, std::less<>>;
+  const std::lock_guard lock(*mutex);
+  auto it = loaded->find(name);
+  if (it == loaded->end()) {
     const std::string key(name);
-    it = loaded.emplace(key, load(key, stamp)).first;
+    it = loaded->emplace(key, load(key, stamp)).first;
   }
   if (it->second.table == nullptr) return Error{ErrorCode::kUnsupportedFormat, it->second.error};
   return it->second.table;

@@ -7,6 +7,8 @@
 #include <cstdlib>
 #include <fstream>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -35,6 +37,21 @@ TEST_F(ModuleTest, LoadsAModuleOfThisBuildOnceAndCallsItsTable) {
       load_module_table<test::FixtureTable>("fixture", test::fixture_stamp());
   ASSERT_TRUE(again.has_value());
   EXPECT_EQ(*again, *table);
+}
+
+// The header promises any thread may ask: eight at once get the one table, loaded once.
+TEST_F(ModuleTest, ThreadsAskingAtOnceGetTheSameTable) {
+  std::vector<const void*> tables(8, nullptr);
+  std::vector<std::thread> threads;
+  for (std::size_t i = 0; i < tables.size(); ++i) {
+    threads.emplace_back([&tables, i] {
+      Result<const void*> t = load_module("fixture", test::fixture_stamp());
+      if (t.has_value()) tables[i] = *t;
+    });
+  }
+  for (std::thread& t : threads) t.join();
+  ASSERT_NE(tables[0], nullptr);
+  for (const void* t : tables) EXPECT_EQ(t, tables[0]);
 }
 
 TEST_F(ModuleTest, RefusesAModuleOfAnotherBuildNamingBothStamps) {

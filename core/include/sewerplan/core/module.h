@@ -10,23 +10,24 @@
 //   extern "C" const void* sewerplan_NAME_module();        // its table of entry points
 // The table is a struct of function pointers over sewerplan's own C++ types, so the module and the
 // program must come from the same build: same sources, compiler and flags. The stamp says which:
-// the version, the build id (a hash of every library's public headers and of the compiler and
-// flags, cmake/module_build_id.cmake) and the size of every type that crosses the table
-// (module_abi_stamp). load_module reads the stamp before it touches the table and refuses a module
-// whose stamp is not the program's.
+// the version, the build id (a hash of every library's headers, public and private, and of the
+// compiler and flags, cmake/module_build_id.cmake) and the size of every type that crosses the
+// table (module_abi_stamp). load_module reads the stamp before it touches the table and refuses a
+// module whose stamp is not the program's.
 //
 //   Result<const OmplTable*> table = load_module_table<OmplTable>("ompl", ompl_stamp());
 //   if (!table.has_value()) return Error{table.error().code, "a turn needs OMPL, but " + ...};
 //
 // Where (module_search_dirs): the directory SEWERPLAN_MODULE_DIR names, if it is set, and only it.
-// Else from the directory of the binary this code is linked into (the program, or a shared object
-// such as the Python module): where an install puts the modules (CMAKE_INSTALL_LIBDIR/sewerplan
-// relative to CMAKE_INSTALL_BINDIR), then where the build tree does (lib/sewerplan, one level up
-// from bin/, tests/ and bench/); for code in a shared object, its own directory next (a module
-// that loads another finds its siblings, moved install or build tree); last the install's own
-// directory, for a program elsewhere that links sewerplan's libraries. The first that holds the
-// file is used: a module there that does not load, or is of another build, is an error naming the
-// file and why, never a crash.
+// Else, for code in a shared object (a module that loads another, as the station's planning loads
+// OMPL's), its own directory first; then from the directory of the binary this code is linked into
+// (the program, or that shared object): where an install puts the modules
+// (CMAKE_INSTALL_LIBDIR/sewerplan relative to CMAKE_INSTALL_BINDIR), then where the build tree does
+// (lib/sewerplan, one level up from bin/, tests/ and bench/); last the absolute directories of the
+// install this tree was configured for and of the Debian package (/usr), for a program elsewhere
+// that links sewerplan's libraries. The first file that loads with this build's stamp is used; if
+// none does, the error names the first one found and why (not loadable, of another build), or every
+// place looked in: never a crash. A refused module is closed again.
 //
 // Thread safety: load_module may be called from any thread. Each module is loaded once per process
 // (under a lock) and never unloaded; a failure is remembered too, so every later call gets the same

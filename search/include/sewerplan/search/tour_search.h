@@ -53,12 +53,13 @@ std::optional<SearchResult> tour_search(const domain::CompiledTask& task,
 // (goal selection: the most goals that fit, then the cheapest). kSolved: the plan is optimal;
 // kUnsolvable: proven that no plan fits the bound; kTimeLimit / kCancelled: stopped (checked
 // every 256 subsets). Empty when the task is not of the shape, has more than kMaxExactGoals
-// goals, or the table would take more than `max_bytes` (2^(goals - 1) x leave places x 12 bytes
-// and 17 bytes a subset: 20 goals of 2 leave places take 257 MB). `upper`: a known plan doing every
-// goal costs this much (real cost; kInfiniteCost: none known): only plans doing every goal within
-// it are then looked for, and subsets that cannot be completed within it are dropped early (the
-// planner's improvement after the tour search). bench/search/exact_bench.cc has its speed and the
-// default planner's gap to it.
+// goals, or its memory would exceed `max_bytes`: the table, 2^(goals - 1) x leave places x 12
+// bytes, and 17 bytes a subset (20 goals of 2 leave places take 257 MB), plus the move matrix
+// (places^2 x 8 bytes) and the steps ((leave places + 1) x options x 24 bytes). `upper`: a known
+// plan doing every goal costs this much (real cost; kInfiniteCost: none known): only plans doing
+// every goal within it are then looked for, and subsets that cannot be completed within it are
+// dropped early (the planner's improvement after the tour search). bench/search/exact_bench.cc has
+// its speed and the default planner's gap to it.
 inline constexpr std::size_t kMaxExactGoals = 20;
 std::optional<SearchResult> exact_tour_search(const domain::CompiledTask& task,
                                               const StopCondition& stop = {},
