@@ -418,7 +418,15 @@ std::optional<SearchResult> exact_tour_search(const domain::CompiledTask& task,
   const SteadyClock steady;
   const Clock& time = clock != nullptr ? *clock : steady;
   const double start_s = time.now_s();
-  std::optional<Shape> shape = detail::read_shape(task, &stop);
+  return detail::exact_tour_search(task, detail::read_shape(task, &stop), stop, time, start_s,
+                                   max_bytes, upper);
+}
+
+std::optional<SearchResult> detail::exact_tour_search(const domain::CompiledTask& task,
+                                                      const std::optional<Shape>& shape,
+                                                      const StopCondition& stop, const Clock& time,
+                                                      double start_s, std::size_t max_bytes,
+                                                      Cost upper) {
   if (auto stopped = stop.interrupted(); stopped && !shape) {
     SearchResult r;
     r.status = *stopped;
