@@ -205,15 +205,15 @@ class SubsetProgramme {
   }
 
   // offset_[set]: where the entries of `set` begin (each of its goals' leave places, in order).
+  // A set holds the entries of itself without its lowest goal (a smaller set, counted already)
+  // and that goal's leave places.
   void fill_offsets() {
     const std::size_t subsets = std::size_t{1} << s_.goals.size();
     offset_.assign(subsets + 1, 0);
-    for (std::size_t set = 0; set < subsets; ++set) {
-      std::size_t n = 0;
-      for (auto in = static_cast<std::uint32_t>(set); in != 0; in &= in - 1) {
-        const auto g = static_cast<std::size_t>(std::countr_zero(in));
-        n += leave_count_[g];
-      }
+    for (std::size_t set = 1; set < subsets; ++set) {
+      const std::size_t rest = set & (set - 1);
+      const std::size_t n = offset_[rest + 1] - offset_[rest] +
+                            leave_count_[static_cast<std::size_t>(std::countr_zero(set))];
       offset_[set + 1] = offset_[set] + n;
     }
   }
@@ -418,7 +418,15 @@ std::optional<SearchResult> exact_tour_search(const domain::CompiledTask& task,
   const SteadyClock steady;
   const Clock& time = clock != nullptr ? *clock : steady;
   const double start_s = time.now_s();
-  std::optional<Shape> shape = detail::read_shape(task, &stop);
+  return detail::exact_tour_search(task, detail::read_shape(task, &stop), stop, time, start_s,
+                                   max_bytes, upper);
+}
+
+std::optional<SearchResult> detail::exact_tour_search(const domain::CompiledTask& task,
+                                                      const std::optional<Shape>& shape,
+                                                      const StopCondition& stop, const Clock& time,
+                                                      double start_s, std::size_t max_bytes,
+                                                      Cost upper) {
   if (auto stopped = stop.interrupted(); stopped && !shape) {
     SearchResult r;
     r.status = *stopped;

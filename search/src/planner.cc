@@ -12,6 +12,8 @@
 #include "sewerplan/search/enforced_hill_climbing.h"
 #include "sewerplan/search/tour_search.h"
 
+#include "tour_shape.h"
+
 namespace sewerplan::search {
 
 std::string_view to_string(Algorithm algorithm) {
@@ -155,7 +157,7 @@ constexpr std::size_t kAutoExactBytes = std::size_t{32} << 20U;
 
 std::size_t exact_bytes(const domain::CompiledTask& task,
                         const domain::CompileStatistics& compile) {
-  if (exact_fits(task, compile)) return std::size_t{600} << 20U;  // exact_tour_search's default
+  if (exact_fits(task, compile)) return kExactDefaultBytes;
   const std::size_t k = task.variable_count() - 1;
   if (k > kMaxExactGoals) return 0;
   const std::size_t bytes =
@@ -252,6 +254,11 @@ Result<PlanOutcome> plan_once(const SewerMap& map, const Mission& mission,
   // kAuto beyond exhaustive A*: the tour search's first plan, where the task has its shape.
   std::optional<SearchResult> tour;
   bool exact = false;
+  // The tour search's reading of the task's shape, for the exact searches after it.
+  std::optional<detail::Shape> shape;
+  auto exact_after_tour = [&](std::size_t max_bytes, Cost upper) {
+    return detail::exact_tour_search(task, shape, stop, clock, clock.now_s(), max_bytes, upper);
+  };
   if (algorithm == Algorithm::kExact) {
     tour = exact_tour_search(task, stop, &clock);
     exact = tour.has_value();
@@ -260,7 +267,9 @@ Result<PlanOutcome> plan_once(const SewerMap& map, const Mission& mission,
     }
   } else if (options.algorithm == Algorithm::kAuto && algorithm != Algorithm::kAstar) {
     TourReport report;
-    tour = tour_search(task, stop, &clock, &report);
+    const double start_s = clock.now_s();
+    shape = detail::read_shape(task, &stop);
+    tour = detail::tour_search(task, shape, stop, clock, start_s, report);
     if (report.stopped) return search_failure(*report.stopped, mission, progress, task);
     if (!tour && report.has_shape && task.penalty_unit() == 0 &&
         report.cheapest_order != domain::kInfiniteCost &&
@@ -268,7 +277,7 @@ Result<PlanOutcome> plan_once(const SewerMap& map, const Mission& mission,
       // Issue 14: a mission that does not fit the battery sent the fallback search through the
       // whole state space until the time limit. Prove it where the exact search can; else say
       // so at once (not a proof: exit 5, not 4).
-      tour = exact_tour_search(task, stop, &clock);
+      tour = exact_after_tour(kExactDefaultBytes, domain::kInfiniteCost);
       exact = tour.has_value();
       if (!tour) return battery_exceeded(mission, task, report.cheapest_order);
       if (tour->status != SearchStatus::kSolved) {
@@ -288,8 +297,9 @@ Result<PlanOutcome> plan_once(const SewerMap& map, const Mission& mission,
       options.adaptive_improvement && exact_table > 0) {
     // A first plan doing every task bounds the optimum, which then does every task too.
     const bool all_done = task.penalty_unit() == 0 || result.cost < task.penalty_unit();
-    std::optional<SearchResult> best = exact_tour_search(
-        task, stop, &clock, exact_table, all_done ? result.cost : domain::kInfiniteCost);
+    // `tour` is the tour search's (an exact search's plan is optimal): the shape is read.
+    std::optional<SearchResult> best =
+        exact_after_tour(exact_table, all_done ? result.cost : domain::kInfiniteCost);
     if (best && best->status == SearchStatus::kSolved) {
       if (best->cost < result.cost) ++outcome.improvements;
       best->statistics.time_s += result.statistics.time_s;

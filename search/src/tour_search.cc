@@ -360,10 +360,16 @@ std::optional<SearchResult> tour_search(const CompiledTask& task, const StopCond
   const SteadyClock steady;
   const Clock& time = clock != nullptr ? *clock : steady;
   TourReport unused;
-  TourReport& out = report != nullptr ? *report : unused;
-  out = {};
   const double start_s = time.now_s();
-  std::optional<Shape> shape = read_shape(task, &stop);
+  return detail::tour_search(task, read_shape(task, &stop), stop, time, start_s,
+                             report != nullptr ? *report : unused);
+}
+
+std::optional<SearchResult> detail::tour_search(const CompiledTask& task,
+                                                const std::optional<Shape>& shape,
+                                                const StopCondition& stop, const Clock& time,
+                                                double start_s, TourReport& out) {
+  out = {};
   // Reading the shape goes over every action, and asks the stop condition (issue 14).
   if (auto stopped = stop.interrupted()) {
     out.stopped = stopped;

@@ -11,8 +11,10 @@
 #include <vector>
 
 #include "sewerplan/core/check.h"
+#include "sewerplan/core/clock.h"
 #include "sewerplan/core/stop_condition.h"
 #include "sewerplan/domain/compiled_task.h"
+#include "sewerplan/search/tour_search.h"
 
 #include "move_map.h"
 
@@ -108,5 +110,16 @@ struct Shape {
 // between slices of the move map (issue 14: 200 tasks have 160,000 moves, 59 ms of reading), so a
 // caller given nothing asks `stop` why.
 std::optional<Shape> read_shape(const CompiledTask& task, const StopCondition* stop = nullptr);
+
+// The tour search and the exact search (tour_search.h) on the shape read_shape() gave for `task`
+// (`shape`, read since `start_s` on `clock`): the planner reads it once for both (reading it
+// costs as much as a fifth of the exact search on 10 manholes and 10 tasks).
+std::optional<SearchResult> tour_search(const CompiledTask& task, const std::optional<Shape>& shape,
+                                        const StopCondition& stop, const Clock& clock,
+                                        double start_s, TourReport& report);
+std::optional<SearchResult> exact_tour_search(const CompiledTask& task,
+                                              const std::optional<Shape>& shape,
+                                              const StopCondition& stop, const Clock& clock,
+                                              double start_s, std::size_t max_bytes, Cost upper);
 
 }  // namespace sewerplan::search::detail

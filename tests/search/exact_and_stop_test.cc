@@ -118,6 +118,35 @@ TEST(ExactTourSearch, AnUpperBoundKeepsTheOptimumAndPrunes) {
   EXPECT_GE(compared, 2);
 }
 
+// Issue 16: the bound on what the goals outside a subset still cost must never exceed what they
+// do cost, or an entry of the optimal plan is dropped. With the upper bound at the optimum itself
+// there is no slack: every entry of the optimal plan sits exactly at its subset's limit or below,
+// so a bound one unit too high on any of them loses the plan. Small random maps of each spread,
+// where the plain search (no upper bound) gives the optimum.
+TEST(ExactTourSearch, AnUpperBoundAtTheOptimumStillFindsIt) {
+  int compared = 0;
+  for (const auto spread : {domain::MissionSpread::kUniform, domain::MissionSpread::kClustered,
+                            domain::MissionSpread::kNearExit}) {
+    for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+      auto g = generated(60 + 40 * seed, 7, seed, spread);
+      if (!g) continue;
+      const domain::SewerTask task = compiled_task(*g, true);
+      auto plain = exact_tour_search(task.task());
+      ASSERT_TRUE(plain) << "seed " << seed;
+      if (plain->status != SearchStatus::kSolved) continue;
+      if (task.task().real_cost(plain->cost) != plain->cost) continue;  // forgoes a task
+      auto tight = exact_tour_search(task.task(), {}, nullptr, kExactDefaultBytes, plain->cost);
+      ASSERT_TRUE(tight) << "seed " << seed;
+      ASSERT_EQ(tight->status, SearchStatus::kSolved) << "seed " << seed;
+      EXPECT_EQ(tight->cost, plain->cost) << "seed " << seed;
+      EXPECT_EQ(tight->plan, plain->plan) << "seed " << seed;
+      EXPECT_LE(tight->statistics.expanded, plain->statistics.expanded) << "seed " << seed;
+      ++compared;
+    }
+  }
+  EXPECT_GE(compared, 10);
+}
+
 // Issue 16: the search skips the subsets of goals no entry of its table reached. With a battery
 // that fits some of the tasks many are never reached; the plan is still A*'s optimum, with as many
 // tasks, from fewer entries than with the whole battery.

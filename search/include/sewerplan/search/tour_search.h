@@ -61,10 +61,11 @@ std::optional<SearchResult> tour_search(const domain::CompiledTask& task,
 // dropped early (the planner's improvement after the tour search). bench/search/exact_bench.cc has
 // its speed and the default planner's gap to it.
 inline constexpr std::size_t kMaxExactGoals = 20;
+inline constexpr std::size_t kExactDefaultBytes = std::size_t{600} << 20U;  // 600 MB
 std::optional<SearchResult> exact_tour_search(const domain::CompiledTask& task,
                                               const StopCondition& stop = {},
                                               const Clock* clock = nullptr,
-                                              std::size_t max_bytes = std::size_t{600} << 20U,
+                                              std::size_t max_bytes = kExactDefaultBytes,
                                               Cost upper = domain::kInfiniteCost);
 
 }  // namespace sewerplan::search
