@@ -65,7 +65,6 @@ Loaded load_file(const std::filesystem::path& file, const std::string& name,
   using StampEntry = const char* (*)();
   const auto stamp_entry = reinterpret_cast<StampEntry>(dlsym(handle, stamp_symbol.c_str()));
   if (stamp_entry == nullptr) {
-    dlclose(handle);
     return {.error = what + " has no ABI stamp (" + stamp_symbol + "): it is of another sewerplan"};
   }
   const char* theirs = stamp_entry();
@@ -73,7 +72,6 @@ Loaded load_file(const std::filesystem::path& file, const std::string& name,
     std::string error =
         what + " is of another build or configuration of sewerplan (its ABI stamp: \"" +
         (theirs != nullptr ? theirs : "") + "\", this sewerplan's: \"" + stamp + "\")";
-    dlclose(handle);  // after copying its stamp, which lives in it
     return {.error = std::move(error)};
   }
   const std::string table_symbol = "sewerplan_" + name + "_module";
@@ -81,10 +79,11 @@ Loaded load_file(const std::filesystem::path& file, const std::string& name,
   const auto entry = reinterpret_cast<TableEntry>(dlsym(handle, table_symbol.c_str()));
   const void* table = entry != nullptr ? entry() : nullptr;
   if (table == nullptr) {
-    dlclose(handle);
     return {.error = what + " has no table (" + table_symbol + ")"};
   }
-  return {.table = table};  // never unloaded: a library inside may have registered atexit handlers
+  // Never unloaded, nor is a refused one: its libraries' constructors have run (RTLD_NOW), and one
+  // may have registered atexit handlers or threads that an unload would leave dangling.
+  return {.table = table};
 }
 
 // The first file in the search directories that loads with this stamp; else why the first one that
@@ -126,7 +125,15 @@ std::string module_abi_stamp(std::span<const ModuleType> types) {
 std::vector<std::filesystem::path> module_search_dirs() {
   // getenv: read when a module is first looked for; nothing in sewerplan sets the environment.
   if (const char* dir = std::getenv("SEWERPLAN_MODULE_DIR"); dir != nullptr && dir[0] != '\0') {
-    return {std::filesystem::path(dir)};
+    std::vector<std::filesystem::path> dirs;  // a list, as PATH: DIR[:DIR...]
+    std::string_view rest(dir);
+    while (!rest.empty()) {
+      const std::size_t colon = rest.find(':');
+      const std::string_view one = rest.substr(0, colon);
+      if (!one.empty()) dirs.emplace_back(one);
+      rest = colon == std::string_view::npos ? std::string_view{} : rest.substr(colon + 1);
+    }
+    return dirs;
   }
   std::vector<std::filesystem::path> dirs;
   auto add = [&](const std::filesystem::path& dir) {

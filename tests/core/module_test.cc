@@ -90,6 +90,34 @@ TEST_F(ModuleTest, AFileThatIsNoSharedObjectIsAnErrorWithTheLoadersReason) {
                                            HasSubstr("sewerplan_broken.so")));
 }
 
+// A stale module of another install earlier on the path (here: a file without this name's entry
+// symbols) does not hide the right one later.
+TEST_F(ModuleTest, AStaleModuleEarlierOnThePathDoesNotHideTheRightOne) {
+  const std::string stale = ::testing::TempDir() + "sewerplan_module_stale";
+  std::filesystem::create_directories(stale);
+  std::filesystem::copy_file(std::string(SEWERPLAN_TEST_MODULE_DIR) + "/sewerplan_fixture.so",
+                             stale + "/sewerplan_fixture_late.so",
+                             std::filesystem::copy_options::overwrite_existing);
+  setenv("SEWERPLAN_MODULE_DIR", (stale + ":" + SEWERPLAN_TEST_MODULE_DIR).c_str(), 1);
+  Result<const test::FixtureTable*> table =
+      load_module_table<test::FixtureTable>("fixture_late", test::fixture_stamp());
+  ASSERT_TRUE(table.has_value()) << table.error().message;
+  EXPECT_EQ((*table)->answer(), 42);
+}
+
+// When none loads, the error is the first one found's, not "missing".
+TEST_F(ModuleTest, WhenNoneLoadsTheErrorIsTheFirstFoundsReason) {
+  const std::string broken = ::testing::TempDir() + "sewerplan_module_first";
+  std::filesystem::create_directories(broken);
+  std::ofstream(broken + "/sewerplan_fixture_bad.so") << "not an ELF file\n";
+  setenv("SEWERPLAN_MODULE_DIR", (broken + ":" + SEWERPLAN_TEST_MODULE_DIR).c_str(), 1);
+  Result<const void*> table = load_module("fixture_bad", "any");
+  ASSERT_FALSE(table.has_value());
+  EXPECT_THAT(table.error().message, HasSubstr("the fixture_bad module " + broken +
+                                               "/sewerplan_fixture_bad.so cannot be "
+                                               "loaded: "));
+}
+
 TEST_F(ModuleTest, RefusesANameThatIsNoModuleName) {
   for (const char* name : {"", "../fixture", "Fixture", "a b"}) {
     Result<const void*> table = load_module(name, "any");
@@ -111,6 +139,8 @@ TEST(ModuleSearch, LooksWhereTheBuildTreeAndTheInstallPutModules) {
   EXPECT_EQ(dirs.back().filename(), "sewerplan");
   setenv("SEWERPLAN_MODULE_DIR", "/somewhere/else", 1);
   EXPECT_EQ(module_search_dirs(), std::vector<std::filesystem::path>{"/somewhere/else"});
+  setenv("SEWERPLAN_MODULE_DIR", "/a::/b:", 1);  // a list, as PATH; empty entries skipped
+  EXPECT_EQ(module_search_dirs(), (std::vector<std::filesystem::path>{"/a", "/b"}));
   unsetenv("SEWERPLAN_MODULE_DIR");
 }
 

@@ -527,7 +527,29 @@ TEST_F(StationServerTest, RefusesAKeyGivenTwiceInASimulateOrCampaignBody) {
             "$.faults[1].at: error: field 'at' given twice in one object: which value is meant is "
             "unclear\n$.faults: error: field 'faults' given twice in one object: which value is "
             "meant is unclear");
-  EXPECT_EQ(post("/api/maps/map/simulate", "{\"mission\": ").first, 400);
+  auto [syntax_status, syntax] = post("/api/maps/map/simulate", "{\"mission\": ");
+  EXPECT_EQ(syntax_status, 400);
+  EXPECT_EQ(syntax["error"]["message"].get<std::string>().rfind(
+                "the body is not JSON: parse error at line 1, column 13", 0),
+            0u)
+      << syntax;
+}
+
+// A hostile body: thousands of repeats are answered with the first 20 and a count, not with many
+// times the body's size; nesting beyond 256 levels is refused before it is read.
+TEST_F(StationServerTest, BoundsWhatItSaysOfAHostileBody) {
+  std::string repeats = "{";
+  for (int i = 0; i < 5000; ++i) repeats += "\"a\": 0, ";
+  repeats += "\"a\": 0}";
+  auto [status, j] = post("/api/maps/map/campaign", repeats);
+  EXPECT_EQ(status, 400);
+  const std::string message = j["error"]["message"];
+  EXPECT_EQ(std::count(message.begin(), message.end(), '\n'), 20);
+  EXPECT_NE(message.find("(4980 more fields given twice)"), std::string::npos) << message;
+  EXPECT_LT(message.size(), 2000u);
+  auto [deep_status, deep] = post("/api/maps/map/simulate", std::string(100000, '['));
+  EXPECT_EQ(deep_status, 400);
+  EXPECT_EQ(deep["error"]["message"], "the body is nested deeper than 256 levels");
 }
 
 TEST_F(StationServerTest, RefusesABodyOverTheSizeLimit) {

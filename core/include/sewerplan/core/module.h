@@ -18,7 +18,8 @@
 //   Result<const OmplTable*> table = load_module_table<OmplTable>("ompl", ompl_stamp());
 //   if (!table.has_value()) return Error{table.error().code, "a turn needs OMPL, but " + ...};
 //
-// Where (module_search_dirs): the directory SEWERPLAN_MODULE_DIR names, if it is set, and only it.
+// Where (module_search_dirs): the directories SEWERPLAN_MODULE_DIR lists (DIR[:DIR...], as PATH),
+// if it is set, and only they.
 // Else, for code in a shared object (a module that loads another, as the station's planning loads
 // OMPL's), its own directory first; then from the directory of the binary this code is linked into
 // (the program, or that shared object): where an install puts the modules
@@ -27,7 +28,8 @@
 // install this tree was configured for and of the Debian package (/usr), for a program elsewhere
 // that links sewerplan's libraries. The first file that loads with this build's stamp is used; if
 // none does, the error names the first one found and why (not loadable, of another build), or every
-// place looked in: never a crash. A refused module is closed again.
+// place looked in: never a crash. A refused module stays loaded too (its libraries' constructors
+// have run).
 //
 // Thread safety: load_module may be called from any thread. Each module is loaded once per process
 // (under a lock) and never unloaded; a failure is remembered too, so every later call gets the same
