@@ -18,13 +18,7 @@ cp "$data/map.json" "$tmp/motion/map.json"
 plan=(plan --map "$data/map.json" --mission "$data/missions/paper.json" -q)
 heavy='file=.*(libompl|libboost_serialization|libode|libccd|sewerplan_ompl)'
 
-# loaded OUT COMMAND...: run COMMAND under the loader's trace, its trace to OUT.
-loaded() {
-  local out=$1
-  shift
-  LD_DEBUG=files LD_DEBUG_OUTPUT="$out" "$@" > /dev/null
-  cat "$out".* > "$out" && rm -f "$out".*
-}
+source "$(dirname "$0")/loader_trace.sh"  # loaded OUT COMMAND...
 
 loaded "$tmp/precompute.trace" "$sp" motion precompute --map "$tmp/motion/map.json" -q
 grep -q 'file=.*sewerplan_ompl\.so' "$tmp/precompute.trace" || {

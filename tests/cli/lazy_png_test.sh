@@ -18,13 +18,7 @@ plan=(plan --map "$data/map.json" --mission "$data/missions/paper.json" -q)
 render=(render --map "$data/map.json" --mission "$data/missions/paper.json")
 cairo='file=.*(libcairo|sewerplan_png)'
 
-# loaded OUT COMMAND...: run COMMAND under the loader's trace, its trace to OUT.
-loaded() {
-  local out=$1
-  shift
-  LD_DEBUG=files LD_DEBUG_OUTPUT="$out" "$@" > /dev/null
-  cat "$out".* > "$out" && rm -f "$out".*
-}
+source "$(dirname "$0")/loader_trace.sh"  # loaded OUT COMMAND...
 for run in version plan validate svg; do
   case $run in
     version) args=(--version) ;;

@@ -15,26 +15,28 @@ trap 'rm -rf "$tmp"' EXIT
 data=$src/datasets/ais-testbed
 allowed='^(libsimdjson\.so\.[0-9]+|libpugixml\.so\.[0-9]+|libstdc\+\+\.so\.6|libm\.so\.6|libgcc_s\.so\.1|libc\.so\.6|lib(asan|ubsan|tsan|clang_rt)[^ ]*)$'
 
-# loaded NAME COMMAND...: the files COMMAND loads, one a line, into $tmp/NAME.files.
-loaded() {
+source "$(dirname "$0")/loader_trace.sh"
+
+# files NAME COMMAND...: the files COMMAND loads, one a line, into $tmp/NAME.files.
+files() {
   local name=$1
   shift
-  LD_DEBUG=files LD_DEBUG_OUTPUT="$tmp/$name.trace" "$@" > /dev/null
-  cat "$tmp/$name.trace".* | sed -n 's/.*file=\([^ ]*\) \[.*/\1/p' | sort -u > "$tmp/$name.files"
+  loaded "$tmp/$name.trace" "$@"
+  sed -n 's/.*file=\([^ ]*\) \[.*/\1/p' "$tmp/$name.trace" | sort -u > "$tmp/$name.files"
   grep -q '^libc\.so' "$tmp/$name.files" || { echo "FAIL: no loader trace for $name"; exit 1; }
 }
 
 "$sp" plan --map "$data/map.json" --mission "$data/missions/paper.json" -q -o "$tmp/paper.plan"
-loaded version "$sp" --version
-loaded validate "$sp" validate --map "$data/map.json"
-loaded info "$sp" info --map "$data/map.json"
-loaded plan "$sp" plan --map "$data/map.json" --mission "$data/missions/paper.json" -q
-loaded check "$sp" check --map "$data/map.json" --mission "$data/missions/paper.json" \
+files version "$sp" --version
+files validate "$sp" validate --map "$data/map.json"
+files info "$sp" info --map "$data/map.json"
+files plan "$sp" plan --map "$data/map.json" --mission "$data/missions/paper.json" -q
+files check "$sp" check --map "$data/map.json" --mission "$data/missions/paper.json" \
   "$tmp/paper.plan"
-loaded export "$sp" export-pddl --map "$data/map.json" --mission "$data/missions/paper.json" \
+files export "$sp" export-pddl --map "$data/map.json" --mission "$data/missions/paper.json" \
   --out "$tmp/pddl"
-loaded generate "$sp" generate --manholes 30 --seed 1 -o "$tmp/g.json"
-loaded convert "$sp" convert --map "$data/map.json" -o "$tmp/map.sewer"
+files generate "$sp" generate --manholes 30 --seed 1 -o "$tmp/g.json"
+files convert "$sp" convert --map "$data/map.json" -o "$tmp/map.sewer"
 status=0
 for f in "$tmp"/*.files; do
   name=$(basename "$f" .files)
