@@ -135,4 +135,20 @@ std::optional<double> number(pugi::xml_node parent, std::string_view name,
   return v;
 }
 
+std::optional<double> optional_number(pugi::xml_node parent, std::string_view name,
+                                      const std::string& object, const std::string& file,
+                                      Diagnostics& diagnostics) {
+  const pugi::xml_node n = child(parent, name);
+  const std::string_view t = text(n);
+  if (t.empty()) return std::nullopt;
+  double v = 0;
+  if (ascii_syntax::parse_number(t, v) != ascii_syntax::NumberError::kNone) {
+    diagnostics.warning(file + ":" + path(n), object + ": " + std::string(name) +
+                                                  " is not a number: " + ascii_syntax::quoted(t) +
+                                                  ": ignored");
+    return std::nullopt;
+  }
+  return v;
+}
+
 }  // namespace sewerplan::xml

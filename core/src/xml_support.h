@@ -43,6 +43,13 @@ std::optional<double> number(pugi::xml_node parent, std::string_view name,
                              const std::string& object, bool required, const std::string& file,
                              Diagnostics& diagnostics);
 
+// The number in element `name` of `parent`, for a value a reader can do without (it has a
+// fallback): missing or empty is none; not a number is a warning at the element ("... is not a
+// number: '3OO': ignored") and none. Real exports write such values by hand.
+std::optional<double> optional_number(pugi::xml_node parent, std::string_view name,
+                                      const std::string& object, const std::string& file,
+                                      Diagnostics& diagnostics);
+
 // The line of byte `offset` in `text`, from 1.
 std::uint32_t line_of_offset(std::string_view text, std::ptrdiff_t offset);
 
