@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -111,9 +112,9 @@ class IsybauReader {
     for (XmlNode object : objects) read_object(object);
     net_.crs = detail::read_isybau_crs(root, file_, d_);
     detail::strip_utm_zone_prefix(net_, file_, d_);
-    detail::read_condition_records(inspected, file_, d_, net_.findings, finding_elements_);
     if (d_.has_errors_since(before)) return Error{ErrorCode::kParse, d_.error_summary(before)};
     resolve_pending_edges();
+    read_findings(inspected);
     check_not_empty(inspected.size(), objects.size());
     if (d_.has_errors_since(before)) return Error{ErrorCode::kParse, d_.error_summary(before)};
     drop_connection_point_ends();
@@ -185,6 +186,7 @@ class IsybauReader {
   void drop_connection_point_ends();
   void resolve_pending_edges();
   void check_not_empty(std::size_t inspected, std::size_t objects);
+  void read_findings(std::span<const XmlNode> inspected);
   void report_fallbacks();
 
   // What a Haltung left open, settled once every node is read.
@@ -479,6 +481,18 @@ void IsybauReader::resolve_pending_edges() {
   }
   net_.links = std::move(kept);
   link_elements_ = std::move(kept_elements);
+}
+
+// The Zustandsdaten in the map's own file, placed along the Haltungen as read.
+void IsybauReader::read_findings(std::span<const XmlNode> inspected) {
+  std::unordered_map<std::string_view, double> lengths;
+  for (const ImportLink& link : net_.links) lengths.emplace(link.name, link.length_m);
+  const detail::PipeLength pipe_length = [&](const std::string& name) -> std::optional<double> {
+    auto it = lengths.find(name);
+    return it == lengths.end() ? std::nullopt : std::optional(it->second);
+  };
+  detail::read_condition_records(inspected, file_, d_, pipe_length, net_.findings,
+                                 finding_elements_);
 }
 
 // A file without a single Haltung holds no sewer: an error that says what the file holds instead.
