@@ -21,9 +21,15 @@
 #     or too wide, passages beyond the limits, what is reachable from the exits);
 #  4. the Zustandsdaten joined to the 2013 Stammdaten (convert --condition) put every finding on
 #     its pipe at its position: the findings are counted again here, from the XML, independently
-#     of sewerplan's reader (the latest optical inspection of each Haltung, Anlagentyp 1; station
-#     from where the inspection began, so offset = station with the flow (O), length - station
-#     against it (U)), and the two lists must be equal to 1 cm.
+#     of sewerplan's reader (every optical inspection of each Haltung, Anlagentyp 1, covers a
+#     stretch from where it began to its farthest station or Inspektionslaenge, the whole pipe if
+#     it reached the far node, BCE, without BDC; a finding stands unless a later inspection, by
+#     Inspektionsdatum and Uhrzeit, covered its place; station from where the inspection began,
+#     so offset = station with the flow (O), length - station against it (U)), and the two lists
+#     must be equal to 1 cm;
+#  5. every manhole's shaft size is the one its Schacht gives in metres (Unterteil
+#     LaengeUnterteil, BreiteUnterteil; else Aufbau LaengeAufbau, BreiteAufbau; issue 31), read
+#     again here from the XML.
 set -euo pipefail
 
 dir=${1:?usage: check-isybau-samples.sh DIR (the folder with the official ISYBAU samples)}
@@ -64,7 +70,7 @@ else
   echo "check-isybau-samples: note: $z13 not found: findings not checked" >&2
 fi
 
-python3 - "$out" "$tolerance" "$z13" "$joined" <<'PY'
+python3 - "$out" "$tolerance" "$z13" "$joined" "$s13" "$s17" <<'PY'
 import json, sys, xml.etree.ElementTree as ET
 out, tolerance, z13, joined = sys.argv[1], float(sys.argv[2]), sys.argv[3], sys.argv[4]
 problems = []
@@ -120,6 +126,37 @@ def reach(i):
 print(f"driveable (makro-plus): reachable {reach(i13)} (2013), {reach(i17)} (2017); "
       f"{len(i13['too_narrow'])} pipes too narrow; {len(passages(i13))} passages beyond the limits")
 
+# 5. Shaft sizes, read again from the XML: the smaller of the Unterteil's (else the Aufbau's)
+# length and width, in metres.
+def lnx(e): return e.tag.rsplit("}", 1)[-1]
+def sub(e, name):
+    return next((c for c in e if lnx(c) == name), None) if e is not None else None
+def num(e, name):
+    c = sub(e, name)
+    try:
+        return float((c.text or "").strip()) if c is not None else None
+    except ValueError:
+        return None
+for v, m in (("13", m13), ("17", m17)):
+    expected_sizes = {}
+    for obj in ET.parse(sys.argv[5 if v == "13" else 6]).getroot().iter():
+        if lnx(obj) != "AbwassertechnischeAnlage" or sub(obj, "Knoten") is None:
+            continue
+        schacht = sub(sub(obj, "Knoten"), "Schacht")
+        for part, l, w in (("Unterteil", "LaengeUnterteil", "BreiteUnterteil"),
+                           ("Aufbau", "LaengeAufbau", "BreiteAufbau")):
+            sizes = [x for x in (num(sub(schacht, part), l), num(sub(schacht, part), w)) if x and x > 0]
+            if sizes:
+                expected_sizes[(sub(obj, "Objektbezeichnung").text or "").strip()] = min(sizes)
+                break
+    got_sizes = {h["name"]: h["diameter_m"] for h in m["manholes"]}
+    wrong = [n for n, d in expected_sizes.items() if n in got_sizes and abs(got_sizes[n] - d) > 1e-9]
+    for n in wrong[:10]:
+        problems.append(f"20{v}: manhole {n}: diameter {got_sizes[n]} m, its Schacht gives {expected_sizes[n]} m")
+    sizes = sorted({d for n, d in got_sizes.items() if n in expected_sizes})
+    print(f"shafts (20{v}): {len(expected_sizes)} manholes give a size, "
+          f"{len(expected_sizes) - len(wrong)} read so; sizes {', '.join(f'{d:g}' for d in sizes)} m")
+
 # 4. Findings, counted again from the XML.
 if joined:
     mj = json.load(open(joined, encoding="utf-8"))
@@ -130,7 +167,7 @@ if joined:
     def text(e, name):
         c = child(e, name) if e is not None else None
         return (c.text or "").strip() if c is not None else ""
-    latest_of = {}  # Haltung -> its latest inspection, across every entry of that name
+    inspections = {}  # Haltung -> its inspections, across every entry of that name, in file order
     for obj in ET.parse(z13).getroot().iter():
         if ln(obj) != "InspizierteAbwassertechnischeAnlage":
             continue
@@ -138,19 +175,33 @@ if joined:
             continue
         pipe = text(obj, "Objektbezeichnung")
         for i in (c for c in obj if ln(c) == "OptischeInspektion"):
-            if pipe not in latest_of or text(i, "Inspektionsdatum") >= text(latest_of[pipe], "Inspektionsdatum"):
-                latest_of[pipe] = i
+            rohr = child(i, "Rohrleitung")
+            against = text(rohr, "Inspektionsrichtung") == "U"
+            found = [(text(r, "InspektionsKode"), float(text(r, "Station"))) for r in i.iter()
+                     if ln(r) == "RZustand"]
+            reached = max([s for _, s in found] + [float(text(rohr, "Inspektionslaenge") or 0)])
+            codes = {c for c, _ in found}
+            if pipe in lengths and "BCE" in codes and "BDC" not in codes:
+                reached = max(reached, lengths[pipe])
+            inspections.setdefault(pipe, []).append(
+                (text(i, "Inspektionsdatum") + "T" + text(i, "Uhrzeit"), against, reached, found))
     expected = []
-    for pipe, latest in latest_of.items():
+    for pipe, history in inspections.items():
         if pipe not in lengths:
             continue
-        against = text(child(latest, "Rohrleitung"), "Inspektionsrichtung") == "U"
-        for r in latest.iter():
-            if ln(r) != "RZustand":
-                continue
-            station = float(text(r, "Station"))
-            offset = lengths[pipe] - station if against else station
-            expected.append((pipe, text(r, "InspektionsKode"), min(max(offset, 0.0), lengths[pipe])))
+        L = lengths[pipe]
+        def at(against, station): return L - station if against else station
+        for k, (when, against, _, found) in enumerate(history):
+            for code, station in found:
+                offset = at(against, station)
+                def covers(j):
+                    w, a, reached, _ = history[j]
+                    if j == k or w < when or (w == when and (a != against or j < k)):
+                        return False
+                    lo, hi = sorted((at(a, 0), at(a, reached)))
+                    return lo - 0.01 <= offset <= hi + 0.01
+                if not any(covers(j) for j in range(len(history))):
+                    expected.append((pipe, code, min(max(offset, 0.0), L)))
     got = [(f["pipe"], f["code"], f["offset_m"]) for f in mj.get("findings", [])]
     def key(t): return (t[0], t[1], round(t[2], 2))
     e, g = sorted(map(key, expected)), sorted(map(key, got))

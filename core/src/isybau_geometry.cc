@@ -160,9 +160,15 @@ void read_isybau_line(XmlNode object, const std::string& file, Diagnostics& d, I
   const std::string what = "pipe " + link.name;
   link.vertices_include_ends = true;
   for (std::size_t i = 0; i < points.size(); ++i) {
-    const std::optional<double> x = xml::number(points[i], "Rechtswert", what, true, file, d);
-    const std::optional<double> y = xml::number(points[i], "Hochwert", what, true, file, d);
-    if (x && y) link.vertices.push_back({*x, *y});
+    const std::optional<double> x = xml::optional_number(points[i], "Rechtswert", what, file, d);
+    const std::optional<double> y = xml::optional_number(points[i], "Hochwert", what, file, d);
+    if (x && y) {
+      link.vertices.push_back({*x, *y});
+    } else {
+      d.warning(
+          file + ":" + xml::path(points[i]),
+          what + ": a point of its line without Rechtswert and Hochwert: left out of the line");
+    }
   }
 }
 

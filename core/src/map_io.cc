@@ -161,7 +161,18 @@ Result<SewerMap> read_map(const std::filesystem::path& path, Diagnostics& diagno
     if (!text.has_value()) return text.error();
     read = std::move(*text);
   }
-  const std::string_view text = mapped ? mapped->text() : std::string_view(read);
+  std::string_view text = mapped ? mapped->text() : std::string_view(read);
+  // A byte-order mark (read_text_file's files are without one already): UTF-8's is skipped,
+  // UTF-16 and UTF-32 text decoded.
+  if (const ByteOrderMark mark = byte_order_mark(text); mark.encoding == "UTF-8") {
+    text.remove_prefix(mark.size);
+  } else if (mark.size > 0) {
+    Result<std::string> decoded = without_byte_order_mark(text, path.string());
+    if (!decoded.has_value()) return decoded.error();
+    read = std::move(*decoded);
+    mapped.reset();
+    text = read;
+  }
   Result<MapFormat> format = detect_map_format(path, text);
   if (!format.has_value()) return format.error();
   if (*format == MapFormat::kJson) {

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -35,6 +36,7 @@ constexpr double kMetresPerMillimetre = 1e-3;
 struct Fallbacks {
   std::size_t default_diameter = 0;
   std::size_t shaft_from_unterteil = 0;
+  std::size_t shaft_from_aufbau = 0;   // no Unterteil size: the rising shaft's (Aufbau)
   std::size_t size_from_height = 0;    // a profile given by its height only
   std::size_t size_from_one_side = 0;  // a non-circular profile given by one dimension
   std::size_t without_size = 0;        // no Profilbreite or Profilhoehe: left out
@@ -45,9 +47,24 @@ struct Fallbacks {
   std::size_t without_xy = 0;
   std::size_t without_z = 0;
   std::size_t connection_points = 0;
-  std::size_t other_edges = 0;    // laterals and channels
-  std::size_t other_objects = 0;  // neither node nor edge
+  std::size_t other_edges = 0;       // laterals and channels
+  std::size_t other_objects = 0;     // neither node nor edge
+  std::size_t objects_left_out = 0;  // no name, no Knoten or Kante, a Haltung without its nodes
 };
+
+// A value written for "unknown" by the exports that have no empty element for it: all nines
+// of three digits or more (999, 9999, 999.99): no real Haltung is 9999 m long, no shaft 999 m deep.
+bool is_nines(std::string_view t) {
+  if (t.starts_with('+')) t.remove_prefix(1);
+  const std::size_t point = t.find('.');
+  const std::string_view whole = t.substr(0, point);
+  const std::string_view fraction =
+      point == std::string_view::npos ? std::string_view() : t.substr(point + 1);
+  const auto all = [](std::string_view v, std::string_view of) {
+    return v.find_first_not_of(of) == std::string_view::npos;
+  };
+  return whole.size() >= 3 && all(whole, "9") && all(fraction, "09");
+}
 
 // Every AbwassertechnischeAnlage of the document, in document order, and every
 // InspizierteAbwassertechnischeAnlage (Zustandsdaten) into `inspected`.
@@ -95,9 +112,9 @@ class IsybauReader {
     for (XmlNode object : objects) read_object(object);
     net_.crs = detail::read_isybau_crs(root, file_, d_);
     detail::strip_utm_zone_prefix(net_, file_, d_);
-    detail::read_condition_records(inspected, file_, d_, net_.findings, finding_elements_);
     if (d_.has_errors_since(before)) return Error{ErrorCode::kParse, d_.error_summary(before)};
     resolve_pending_edges();
+    read_findings(inspected);
     check_not_empty(inspected.size(), objects.size());
     if (d_.has_errors_since(before)) return Error{ErrorCode::kParse, d_.error_summary(before)};
     drop_connection_point_ends();
@@ -120,18 +137,40 @@ class IsybauReader {
  private:
   std::string at(XmlNode n) const { return file_ + ":" + xml::path(n); }
 
-  // The number in element `name` of `parent`; an error naming the element if it is missing or
-  // empty (when required) or not a number. Real exports write empty optional elements.
-  std::optional<double> number(XmlNode parent, std::string_view name, const std::string& object,
-                               bool required = true) {
-    return xml::number(parent, name, object, required, file_, d_);
+  // The number in element `name` of `parent`, for a value with a fallback: missing or empty is
+  // none (real exports write empty optional elements); not a number is a warning and none.
+  std::optional<double> number(XmlNode parent, std::string_view name, const std::string& object) {
+    return xml::optional_number(parent, name, object, file_, d_);
   }
+
+  // A size, depth or length of `object` (> 0 when known): as number(), and a value that plainly
+  // means "unknown" (0, a negative one, all nines: 9999) is a warning at the element and none, so
+  // that the object's fallback applies instead of the network being refused.
+  std::optional<double> measure(XmlNode parent, std::string_view name, const std::string& object) {
+    const std::optional<double> v = number(parent, name, object);
+    if (!v) return std::nullopt;
+    const std::string_view t = xml::text(xml::child(parent, name));
+    if (*v > 0 && !is_nines(t)) return v;
+    d_.warning(at(xml::child(parent, name)),
+               object + ": " + std::string(name) + " " + std::string(t) +
+                   " stands for unknown (a measure must be positive): ignored");
+    return std::nullopt;
+  }
+
+  struct ShaftSize {
+    std::optional<double> length_m;
+    std::optional<double> width_m;
+  };
+  ShaftSize shaft_size(XmlNode part, std::string_view length, std::string_view width,
+                       const std::string& object);
+  std::optional<double> shaft_measure(XmlNode part, std::string_view name,
+                                      const std::string& object);
 
   std::optional<std::string> name(XmlNode parent, std::string_view element,
                                   const std::string& object) {
     const std::string_view t = xml::text(xml::child(parent, element));
     if (t.empty()) {
-      d_.error(at(parent), object + ": no " + std::string(element));
+      d_.warning(at(parent), object + ": no " + std::string(element) + ": left out");
       return std::nullopt;
     }
     return std::string(t);
@@ -141,12 +180,13 @@ class IsybauReader {
   void read_object(XmlNode object);
   void read_node(XmlNode object, XmlNode knoten, const std::string& name);
   void read_shaft(XmlNode knoten, ImportNode& node);
-  void read_node_geometry(XmlNode object, XmlNode knoten, ImportNode& node);
+  void read_node_geometry(XmlNode object, ImportNode& node);
   void read_edge(XmlNode object, XmlNode kante, const std::string& name);
   bool read_profile(XmlNode kante, ImportLink& link);
   void drop_connection_point_ends();
   void resolve_pending_edges();
   void check_not_empty(std::size_t inspected, std::size_t objects);
+  void read_findings(std::span<const XmlNode> inspected);
   void report_fallbacks();
 
   // What a Haltung left open, settled once every node is read.
@@ -190,14 +230,21 @@ bool IsybauReader::check_root(XmlNode root) {
 void IsybauReader::read_object(XmlNode object) {
   const std::optional<std::string> object_name = name(object, "Objektbezeichnung", "object");
   const std::string_view kind = xml::text(xml::child(object, "Objektart"));
-  if (!object_name) return;
+  if (!object_name) {
+    ++fallbacks_.objects_left_out;
+    return;
+  }
   if (kind == "2") {
     if (XmlNode knoten = xml::child(object, "Knoten"))
       return read_node(object, knoten, *object_name);
-    d_.error(at(object), "node " + *object_name + ": Objektart 2 without a Knoten element");
+    ++fallbacks_.objects_left_out;
+    d_.warning(at(object),
+               "node " + *object_name + ": Objektart 2 without a Knoten element: left out");
   } else if (kind == "1") {
     if (XmlNode kante = xml::child(object, "Kante")) return read_edge(object, kante, *object_name);
-    d_.error(at(object), "edge " + *object_name + ": Objektart 1 without a Kante element");
+    ++fallbacks_.objects_left_out;
+    d_.warning(at(object),
+               "edge " + *object_name + ": Objektart 1 without a Kante element: left out");
   } else {
     ++fallbacks_.other_objects;
   }
@@ -211,47 +258,87 @@ void IsybauReader::read_node(XmlNode object, XmlNode knoten, const std::string& 
     return;
   }
   if (type != "0" && type != "2") {
-    d_.error(at(xml::child(knoten, "KnotenTyp") ? xml::child(knoten, "KnotenTyp") : knoten),
-             "node " + name +
-                 ": KnotenTyp must be 0 (Schacht), 1 (Anschlusspunkt) or 2 "
-                 "(Bauwerk), got " +
-                 ascii_syntax::quoted(type));
-    return;
+    // Pipes name the node: it stays, as a structure that need not have a usable cover.
+    d_.warning(at(xml::child(knoten, "KnotenTyp") ? xml::child(knoten, "KnotenTyp") : knoten),
+               "node " + name +
+                   ": KnotenTyp should be 0 (Schacht), 1 (Anschlusspunkt) or 2 (Bauwerk), got " +
+                   ascii_syntax::quoted(type) + ": read as a Bauwerk (not an exit)");
   }
   ImportNode node{.name = name,
                   .diameter_m = options_.manhole_diameter_m,
                   .exit = type == "0",  // a manhole has a cover; a structure may not
                   .line = static_cast<std::uint32_t>(node_elements_.size() + 1)};
   read_shaft(knoten, node);
-  read_node_geometry(object, knoten, node);
+  read_node_geometry(object, node);
   node_elements_.push_back(object);
   net_.nodes.push_back(std::move(node));
 }
 
-// The shaft's floor plan from Schacht/Unterteil (Laenge, Breite in millimetres: a round shaft
-// gives its diameter as Laenge), and its depth (Schachttiefe, metres).
+// A shaft size (metres in every ISYBAU version). A value of 100 or more, which the schema does not
+// allow (decimal, under 100), is millimetres written into the metre field: read as such, with a
+// warning at the element, rather than as a shaft 1 km wide.
+std::optional<double> IsybauReader::shaft_measure(XmlNode part, std::string_view name,
+                                                  const std::string& object) {
+  const std::optional<double> v = measure(part, name, object);
+  if (!v || *v < 100) return v;
+  const double metres = *v * kMetresPerMillimetre;
+  if (metres >= 100) {
+    d_.warning(at(xml::child(part, name)),
+               object + ": " + std::string(name) + " " +
+                   std::string(xml::text(xml::child(part, name))) +
+                   " is no shaft size, in metres or millimetres: ignored");
+    return std::nullopt;
+  }
+  d_.warning(at(xml::child(part, name)),
+             object + ": " + std::string(name) + " " +
+                 std::string(xml::text(xml::child(part, name))) +
+                 " is not in metres (ISYBAU gives shaft sizes in metres, under 100): read as "
+                 "millimetres, " +
+                 detail::metres_text(metres));
+  return metres;
+}
+
+IsybauReader::ShaftSize IsybauReader::shaft_size(XmlNode part, std::string_view length,
+                                                 std::string_view width,
+                                                 const std::string& object) {
+  return {.length_m = shaft_measure(part, length, object),
+          .width_m = shaft_measure(part, width, object)};
+}
+
+// The shaft's floor plan, in metres in every ISYBAU version (2013 and 2017 only add to 2006):
+// Schacht/Unterteil LaengeUnterteil, BreiteUnterteil (the floor where pipes meet; a round shaft
+// gives its diameter as the Laenge). Without them, Schacht/Aufbau LaengeAufbau, BreiteAufbau: the
+// rising shaft of rings between the cover and the floor, which real exports often give alone; a
+// standard manhole's rings and floor share their nominal size (DIN 4034-1), and where they
+// differ the floor is the wider, so the rising shaft's size never overstates the room to turn.
+// Schachttiefe (metres) is the depth.
 void IsybauReader::read_shaft(XmlNode knoten, ImportNode& node) {
   const std::string what = "node " + node.name;
   const XmlNode schacht = xml::child(knoten, "Schacht");
-  node.depth_m = number(schacht, "Schachttiefe", what, false);
-  const XmlNode unterteil = xml::child(schacht, "Unterteil");
-  const std::optional<double> length = number(unterteil, "Laenge", what, false);
-  const std::optional<double> width = number(unterteil, "Breite", what, false);
-  if (!length) {
+  node.depth_m = measure(schacht, "Schachttiefe", what);
+  ShaftSize size =
+      shaft_size(xml::child(schacht, "Unterteil"), "LaengeUnterteil", "BreiteUnterteil", what);
+  if (!size.length_m && !size.width_m) {
+    size = shaft_size(xml::child(schacht, "Aufbau"), "LaengeAufbau", "BreiteAufbau", what);
+    if (size.length_m || size.width_m) ++fallbacks_.shaft_from_aufbau;
+  }
+  if (!size.length_m && !size.width_m) {
     ++fallbacks_.default_diameter;
     return;
   }
   ++fallbacks_.shaft_from_unterteil;
-  node.diameter_m = std::min(*length, width.value_or(*length)) * kMetresPerMillimetre;
-  if (width && *width != *length) {
-    node.shaft_length_m = *length * kMetresPerMillimetre;
-    node.shaft_width_m = *width * kMetresPerMillimetre;
+  const double length = size.length_m.value_or(*size.width_m);
+  const double width = size.width_m.value_or(length);
+  node.diameter_m = std::min(length, width);
+  if (width != length) {
+    node.shaft_length_m = length;
+    node.shaft_width_m = width;
   }
 }
 
 // Position from the node's first Punkt; the floor's height from its SMP point (Sohle), else its
 // cover (DMP, or the first point) less the Schachttiefe.
-void IsybauReader::read_node_geometry(XmlNode object, XmlNode knoten, ImportNode& node) {
+void IsybauReader::read_node_geometry(XmlNode object, ImportNode& node) {
   const XmlNode points = xml::descend(object, {"Geometrie", "Geometriedaten", "Knoten"});
   const std::string what = "node " + node.name;
   XmlNode first;
@@ -272,15 +359,14 @@ void IsybauReader::read_node_geometry(XmlNode object, XmlNode knoten, ImportNode
   const std::optional<double> x = number(first, "Rechtswert", what);
   const std::optional<double> y = number(first, "Hochwert", what);
   node.has_xy = x && y;
-  node.position.x_m = x.value_or(0);
-  node.position.y_m = y.value_or(0);
-  const std::optional<double> depth =
-      number(xml::child(knoten, "Schacht"), "Schachttiefe", what, false);
+  if (!node.has_xy) ++fallbacks_.without_xy;
+  node.position.x_m = node.has_xy ? *x : 0;
+  node.position.y_m = node.has_xy ? *y : 0;
+  const std::optional<double> depth = node.depth_m;
   if (const std::optional<double> bottom =
-          floor ? number(floor, "Punkthoehe", what, false) : std::nullopt) {
+          floor ? number(floor, "Punkthoehe", what) : std::nullopt) {
     node.position.z_m = *bottom;
-  } else if (const std::optional<double> top =
-                 number(cover ? cover : first, "Punkthoehe", what, false);
+  } else if (const std::optional<double> top = number(cover ? cover : first, "Punkthoehe", what);
              top && depth) {
     node.position.z_m = *top - *depth;
   } else {
@@ -298,13 +384,17 @@ void IsybauReader::read_edge(XmlNode object, XmlNode kante, const std::string& n
   const std::size_t errors_before = d_.error_count();
   link.from = this->name(kante, "KnotenZulauf", what);
   link.to = this->name(kante, "KnotenAblauf", what);
-  PendingEdge pending{.from_z = number(kante, "SohlhoeheZulauf", what, false),
-                      .to_z = number(kante, "SohlhoeheAblauf", what, false),
-                      .length = number(kante, "Laenge", what, false)};
+  if (!link.from || !link.to) {  // where it leads is unknown: the robot must not enter it
+    ++fallbacks_.objects_left_out;
+    return;
+  }
+  PendingEdge pending{.from_z = number(kante, "SohlhoeheZulauf", what),
+                      .to_z = number(kante, "SohlhoeheAblauf", what),
+                      .length = measure(kante, "Laenge", what)};
   for (std::string_view other : {"Rohrlaenge", "DMPLaenge"}) {
     if (pending.length) break;
     if (const XmlNode n = find_below(kante, other)) {
-      pending.length = number(n.parent(), other, what, false);
+      pending.length = measure(n.parent(), other, what);
       if (pending.length) ++fallbacks_.length_from_other;
     }
   }
@@ -332,11 +422,9 @@ bool IsybauReader::read_profile(XmlNode kante, ImportLink& link) {
                : kind == "1" || kind == "6" ? PipeShape::kEgg
                : kind == "3" || kind == "5" ? PipeShape::kRectangular
                                             : PipeShape::kOther;
-  std::optional<double> width = number(profil, "Profilbreite", what, false);
-  std::optional<double> height = number(profil, "Profilhoehe", what, false);
   // Real exports write 0 for a size nobody measured (special profiles, tanks): not a size.
-  if (width && *width <= 0) width.reset();
-  if (height && *height <= 0) height.reset();
+  std::optional<double> width = measure(profil, "Profilbreite", what);
+  std::optional<double> height = measure(profil, "Profilhoehe", what);
   if (!width && !height) return false;
   if (!width || !height) {
     const double given = width ? *width : *height;
@@ -395,6 +483,18 @@ void IsybauReader::resolve_pending_edges() {
   link_elements_ = std::move(kept_elements);
 }
 
+// The Zustandsdaten in the map's own file, placed along the Haltungen as read.
+void IsybauReader::read_findings(std::span<const XmlNode> inspected) {
+  std::unordered_map<std::string_view, double> lengths;
+  for (const ImportLink& link : net_.links) lengths.emplace(link.name, link.length_m);
+  const detail::PipeLength pipe_length = [&](const std::string& name) -> std::optional<double> {
+    auto it = lengths.find(name);
+    return it == lengths.end() ? std::nullopt : std::optional(it->second);
+  };
+  detail::read_condition_records(inspected, file_, d_, pipe_length, net_.findings,
+                                 finding_elements_);
+}
+
 // A file without a single Haltung holds no sewer: an error that says what the file holds instead.
 void IsybauReader::check_not_empty(std::size_t inspected, std::size_t objects) {
   if (!net_.links.empty()) return;
@@ -428,7 +528,12 @@ void IsybauReader::report_fallbacks() {
   };
   const std::string diameter = detail::metres_text(options_.manhole_diameter_m);
   warn(f.default_diameter,
-       "manholes have no shaft size (Schacht/Unterteil Laenge): diameter " + diameter + " assumed");
+       "manholes have no shaft size (Schacht/Unterteil LaengeUnterteil, BreiteUnterteil, or "
+       "Schacht/Aufbau LaengeAufbau, BreiteAufbau): diameter " +
+           diameter + " assumed");
+  warn(f.shaft_from_aufbau,
+       "manholes give no floor size (Unterteil), only the rising shaft's (Aufbau LaengeAufbau, "
+       "BreiteAufbau): taken for the floor's");
   warn(f.size_from_height, "circular profiles are given by their height only (Profilhoehe)");
   warn(f.size_from_one_side,
        "non-circular profiles are given by one dimension only: an egg's other one from the "
@@ -450,6 +555,9 @@ void IsybauReader::report_fallbacks() {
        "connection points (Anschlusspunkt) are not manholes: pipes end blind there");
   warn(f.other_edges, "laterals or channels (KantenTyp 1, 2) are not drivable: left out");
   warn(f.other_objects, "objects are neither nodes nor edges (Objektart 1, 2): ignored");
+  warn(f.objects_left_out,
+       "objects are left out for what they lack (a name, their Knoten or Kante, a Haltung's "
+       "nodes): each is named in a warning above");
 }
 
 }  // namespace

@@ -363,12 +363,11 @@ Result<SewerMap> read_map_swmm(std::string_view text, const std::string& file_na
     return Error{ErrorCode::kInvalidArgument, "SWMM import: manhole diameter must be positive"};
   }
   const Diagnostics::Mark before = diagnostics.mark();
-  TextConversion conversion = TextConversion::kNone;
-  const std::string utf8 = text_to_utf8(text, "", conversion);
-  if (conversion != TextConversion::kNone) {
-    diagnostics.warning(file_name, "not UTF-8: read as Windows-1252 (Latin-1)");
-  }
-  const detail::SwmmSections sections = detail::split_swmm_sections(utf8, file_name, diagnostics);
+  TextDecoding how;
+  Result<std::string> utf8 = text_to_utf8(text, "", file_name, how);
+  if (!utf8.has_value()) return utf8.error();
+  warn_about_decoding(how, file_name, diagnostics);
+  const detail::SwmmSections sections = detail::split_swmm_sections(*utf8, file_name, diagnostics);
   if (!sections.header_line("JUNCTIONS") && !sections.header_line("OUTFALLS") &&
       !sections.header_line("STORAGE") && !sections.header_line("DIVIDERS") &&
       !diagnostics.has_errors_since(before)) {

@@ -1,27 +1,33 @@
 // SPDX-License-Identifier: MIT
 #include "sewerplan/core/text_file.h"
 
+#include <algorithm>
+#include <array>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <system_error>
+#include <utility>
 
 #include "sewerplan/core/ascii_case.h"
+#include "sewerplan/core/check.h"
+
+#include <iconv.h>
 
 namespace sewerplan {
 
-Result<std::string> read_text_file(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    return Error{ErrorCode::kIo, "cannot read " + path.string() + ": it is a directory"};
-  }
+namespace {
+
+Result<std::string> read_bytes(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     return Error{ErrorCode::kIo, "cannot read " + path.string() + ": " + std::strerror(errno)};
   }
   // A regular file is read at once into a string of its size (a stream would grow and copy a
   // 430 MB map several times); anything else (a pipe) through the stream.
+  std::error_code ec;
   const std::uintmax_t size = std::filesystem::is_regular_file(path, ec)
                                   ? std::filesystem::file_size(path, ec)
                                   : static_cast<std::uintmax_t>(-1);
@@ -47,6 +53,19 @@ Result<std::string> read_text_file(const std::filesystem::path& path) {
     return Error{ErrorCode::kIo, "cannot read " + path.string() + ": read error"};
   }
   return std::move(text).str();
+}
+
+}  // namespace
+
+Result<std::string> read_text_file(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    return Error{ErrorCode::kIo, "cannot read " + path.string() + ": it is a directory"};
+  }
+  Result<std::string> bytes = read_bytes(path);
+  if (!bytes.has_value()) return bytes;
+  if (byte_order_mark(*bytes).size == 0) return bytes;
+  return without_byte_order_mark(*bytes, path.string());
 }
 
 Result<void> write_text_file(const std::filesystem::path& path, std::string_view text) {
@@ -105,51 +124,184 @@ bool is_valid_utf8(std::string_view text) {
   return true;
 }
 
-std::string windows1252_to_utf8(std::string_view text) {
-  // 0x80..0x9F in Windows-1252; 0xFFFD where it assigns nothing.
-  static constexpr char32_t kC1[32] = {
-      0x20AC, 0xFFFD, 0x201A, 0x0192, 0x201E, 0x2026, 0x2020, 0x2021, 0x02C6, 0x2030, 0x0160,
-      0x2039, 0x0152, 0xFFFD, 0x017D, 0xFFFD, 0xFFFD, 0x2018, 0x2019, 0x201C, 0x201D, 0x2022,
-      0x2013, 0x2014, 0x02DC, 0x2122, 0x0161, 0x203A, 0x0153, 0xFFFD, 0x017E, 0x0178};
-  std::string out;
-  out.reserve(text.size() + text.size() / 8);
-  for (const char ch : text) {
-    const auto c = static_cast<unsigned char>(ch);
-    const char32_t u = c < 0x80 ? c : c < 0xA0 ? kC1[c - 0x80] : c;
-    if (u < 0x80) {
-      out += static_cast<char>(u);
-    } else if (u < 0x800) {
-      out += static_cast<char>(0xC0 | (u >> 6));
-      out += static_cast<char>(0x80 | (u & 0x3F));
-    } else {
-      out += static_cast<char>(0xE0 | (u >> 12));
-      out += static_cast<char>(0x80 | ((u >> 6) & 0x3F));
-      out += static_cast<char>(0x80 | (u & 0x3F));
+namespace {
+
+// Code units of an encoding: where iconv meets a byte sequence that is no character, decoding
+// goes on this many bytes later.
+std::size_t unit_size(std::string_view encoding) {
+  const std::string e = ascii_lower(encoding);
+  if (e.starts_with("utf-32") || e.starts_with("ucs-4")) return 4;
+  if (e.starts_with("utf-16") || e.starts_with("ucs-2")) return 2;
+  return 1;
+}
+
+// What decode() did.
+struct Decoded {
+  std::string text;
+  std::size_t replaced = 0;           // bytes that are no character: U+FFFD each unit
+  std::size_t first_replaced_at = 0;  // the byte offset of the first
+};
+
+// `text` in `encoding`, decoded to UTF-8 with iconv; none if iconv does not know the encoding.
+// Bytes that are no character in it become U+FFFD, counted.
+std::optional<Decoded> decode(std::string_view text, std::string_view encoding) {
+  iconv_t cd = iconv_open("UTF-8", std::string(encoding).c_str());
+  if (cd == reinterpret_cast<iconv_t>(-1)) return std::nullopt;
+  const std::size_t unit = unit_size(encoding);
+  Decoded out;
+  out.text.resize(text.size() + text.size() / 2 + 16);
+  // iconv's interface takes char* for its input, which it does not change.
+  char* in = const_cast<char*>(text.data());  // NOLINT(cppcoreguidelines-pro-type-const-cast)
+  std::size_t in_left = text.size();
+  std::size_t used = 0;
+  while (in_left > 0) {
+    char* to = out.text.data() + used;
+    std::size_t to_left = out.text.size() - used;
+    const std::size_t done = iconv(cd, &in, &in_left, &to, &to_left);
+    used = out.text.size() - to_left;
+    if (done != static_cast<std::size_t>(-1)) break;
+    if (errno == E2BIG) {
+      out.text.resize(out.text.size() * 2);
+      continue;
     }
+    // EILSEQ (no character here) or EINVAL (cut off at the end): U+FFFD, and on.
+    if (out.replaced++ == 0) out.first_replaced_at = text.size() - in_left;
+    const std::size_t skip = std::min(unit, in_left);
+    in += skip;
+    in_left -= skip;
+    out.text.resize(std::max(out.text.size(), used + 3));
+    out.text.replace(used, 3, "\xEF\xBF\xBD");
+    used += 3;
+    iconv(cd, nullptr, nullptr, nullptr, nullptr);  // back to the initial shift state
   }
+  iconv_close(cd);
+  out.text.resize(used);
   return out;
+}
+
+// Undeclared UTF-16: the first characters of a sewer file (a '<', '[', '{', a letter) are ASCII,
+// which UTF-16 writes with a NUL byte beside each.
+std::string_view undeclared_utf16(std::string_view text) {
+  if (text.size() < 4) return {};
+  if (text[0] != '\0' && text[1] == '\0' && text[2] != '\0' && text[3] == '\0') return "UTF-16LE";
+  if (text[0] == '\0' && text[1] != '\0' && text[2] == '\0' && text[3] != '\0') return "UTF-16BE";
+  return {};
+}
+
+}  // namespace
+
+std::string windows1252_to_utf8(std::string_view text) {
+  std::optional<Decoded> decoded = decode(text, "WINDOWS-1252");
+  SEWER_CHECK(decoded.has_value(), "iconv has no Windows-1252");
+  return std::move(decoded->text);
 }
 
 std::string to_utf8_lossy(std::string_view text) {
   return is_valid_utf8(text) ? std::string(text) : windows1252_to_utf8(text);
 }
 
-std::string text_to_utf8(std::string_view text, std::string_view declared_encoding,
-                         TextConversion& conversion) {
-  const std::string declared = ascii_lower(declared_encoding);
-  for (std::string_view latin1 : {"iso-8859-1", "iso8859-1", "latin1", "latin-1", "l1",
-                                  "iso-8859-15", "windows-1252", "cp1252"}) {
-    if (declared == latin1) {
-      conversion = TextConversion::kDeclaredLatin1;
-      return windows1252_to_utf8(text);
+ByteOrderMark byte_order_mark(std::string_view text) {
+  // UTF-32LE's mark begins as UTF-16LE's: look at it first.
+  static constexpr std::array<std::pair<std::string_view, std::string_view>, 5> kMarks{{
+      {"\xEF\xBB\xBF", "UTF-8"},
+      {std::string_view("\xFF\xFE\0\0", 4), "UTF-32LE"},
+      {std::string_view("\0\0\xFE\xFF", 4), "UTF-32BE"},
+      {"\xFF\xFE", "UTF-16LE"},
+      {"\xFE\xFF", "UTF-16BE"},
+  }};
+  for (const auto& [mark, encoding] : kMarks) {
+    if (text.starts_with(mark)) return {.encoding = encoding, .size = mark.size()};
+  }
+  return {};
+}
+
+Result<std::string> without_byte_order_mark(std::string_view text, const std::string& file) {
+  const ByteOrderMark mark = byte_order_mark(text);
+  text.remove_prefix(mark.size);
+  if (mark.size == 0 || mark.encoding == "UTF-8") return std::string(text);
+  std::optional<Decoded> decoded = decode(text, mark.encoding);
+  SEWER_CHECK(decoded.has_value(), "iconv has no UTF-16 or UTF-32");
+  if (decoded->replaced > 0) {
+    return Error{ErrorCode::kParse,
+                 file + ": begins with the byte-order mark of " + std::string(mark.encoding) +
+                     " but is not " + std::string(mark.encoding) + " at byte " +
+                     std::to_string(decoded->first_replaced_at + mark.size) +
+                     (decoded->replaced > 1
+                          ? " (and " + std::to_string(decoded->replaced - 1) + " more places)"
+                          : std::string())};
+  }
+  return std::move(decoded->text);
+}
+
+Result<std::string> text_to_utf8(std::string_view text, std::string_view declared_encoding,
+                                 const std::string& file, TextDecoding& how) {
+  how = TextDecoding{.declared = std::string(declared_encoding)};
+  std::string encoding;
+  if (const ByteOrderMark mark = byte_order_mark(text); mark.size > 0) {
+    text.remove_prefix(mark.size);
+    encoding = mark.encoding;
+    how.conversion = TextConversion::kDeclared;
+  } else if (!declared_encoding.empty()) {
+    const std::string declared = ascii_lower(declared_encoding);
+    encoding = declared_encoding;
+    how.conversion = TextConversion::kDeclared;
+    if (declared == "iso-8859-1" || declared == "iso8859-1" || declared == "iso_8859-1" ||
+        declared == "latin1" || declared == "latin-1" || declared == "l1") {
+      encoding = "WINDOWS-1252";
+    } else if (declared.starts_with("utf-16") || declared.starts_with("utf-32")) {
+      // Declared so, but its first bytes are single-byte ASCII: decoded before (read_text_file
+      // decodes a UTF-16 file with a byte-order mark), or never UTF-16; UTF-8 as it is.
+      if (!text.empty() && text.front() != '\0' && (text.size() < 2 || text[1] != '\0'))
+        encoding = "UTF-8";
     }
   }
-  if (is_valid_utf8(text)) {
-    conversion = TextConversion::kNone;
-    return std::string(text);
+  if (encoding.empty()) {
+    // UTF-16's NUL bytes are valid UTF-8: look for them first.
+    const std::string_view utf16 = undeclared_utf16(text);
+    if (utf16.empty() && is_valid_utf8(text)) {
+      how.encoding = "UTF-8";
+      return std::string(text);
+    }
+    encoding = utf16.empty() ? "WINDOWS-1252" : utf16;
+    how.conversion = TextConversion::kAssumed;
   }
-  conversion = TextConversion::kUndeclaredLatin1;
-  return windows1252_to_utf8(text);
+  const std::string lower = ascii_lower(encoding);
+  if (lower == "utf-8" || lower == "utf8" || lower == "us-ascii" || lower == "ascii") {
+    if (is_valid_utf8(text)) {
+      how.conversion = TextConversion::kNone;
+      how.encoding = "UTF-8";
+      return std::string(text);
+    }
+    // Declared UTF-8 but is not: the usual mislabelled Windows-1252 export.
+    encoding = "WINDOWS-1252";
+    how.conversion = TextConversion::kAssumed;
+  }
+  std::optional<Decoded> decoded = decode(text, encoding);
+  if (!decoded) {
+    return Error{ErrorCode::kUnsupportedFormat,
+                 file + ": declares the text encoding '" + to_utf8_lossy(declared_encoding) +
+                     "', which sewerplan does not know (iconv has no such encoding): save the "
+                     "file in UTF-8, or declare its encoding by a name iconv knows "
+                     "(ISO-8859-15, WINDOWS-1250, ...)"};
+  }
+  how.encoding = encoding;
+  how.replaced = decoded->replaced;
+  return std::move(decoded->text);
+}
+
+void warn_about_decoding(const TextDecoding& how, const std::string& file,
+                         Diagnostics& diagnostics) {
+  const std::string as = how.encoding == "WINDOWS-1252" ? "Windows-1252 (Latin-1)" : how.encoding;
+  if (how.conversion == TextConversion::kAssumed) {
+    diagnostics.warning(
+        file, how.declared.empty()
+                  ? "not UTF-8, and no encoding declared: read as " + as
+                  : "declared " + to_utf8_lossy(how.declared) + " but is not: read as " + as);
+  }
+  if (how.replaced > 0) {
+    diagnostics.warning(file, std::to_string(how.replaced) + " bytes are no character in " + as +
+                                  ": read as U+FFFD");
+  }
 }
 
 }  // namespace sewerplan

@@ -82,19 +82,19 @@ std::string_view declared_encoding(std::string_view text) {
 
 bool load_utf8(pugi::xml_document& doc, std::string_view text, const std::string& file_name,
                Diagnostics& diagnostics) {
-  const bool utf16 = text.starts_with("\xFF\xFE") || text.starts_with("\xFE\xFF");
-  TextConversion conversion = TextConversion::kNone;
-  const std::string utf8 =
-      utf16 ? std::string(text) : text_to_utf8(text, declared_encoding(text), conversion);
-  if (conversion == TextConversion::kUndeclaredLatin1) {
-    diagnostics.warning(file_name,
-                        "not UTF-8, and no encoding declared: read as Windows-1252 (Latin-1)");
+  TextDecoding how;
+  Result<std::string> utf8 = text_to_utf8(text, declared_encoding(text), file_name, how);
+  if (!utf8.has_value()) {
+    std::string_view message = utf8.error().message;
+    if (message.starts_with(file_name + ": ")) message.remove_prefix(file_name.size() + 2);
+    diagnostics.error(file_name, std::string(message));
+    return false;
   }
+  warn_about_decoding(how, file_name, diagnostics);
   const pugi::xml_parse_result parsed =
-      doc.load_buffer(utf8.data(), utf8.size(), pugi::parse_default,
-                      utf16 ? pugi::encoding_auto : pugi::encoding_utf8);
+      doc.load_buffer(utf8->data(), utf8->size(), pugi::parse_default, pugi::encoding_utf8);
   if (!parsed) {
-    diagnostics.error(file_name + ":" + std::to_string(line_of_offset(utf8, parsed.offset)),
+    diagnostics.error(file_name + ":" + std::to_string(line_of_offset(*utf8, parsed.offset)),
                       std::string("XML is not well-formed: ") + parsed.description());
     return false;
   }
@@ -130,6 +130,22 @@ std::optional<double> number(pugi::xml_node parent, std::string_view name,
   if (ascii_syntax::parse_number(t, v) != ascii_syntax::NumberError::kNone) {
     diagnostics.error(file + ":" + path(n), object + ": " + std::string(name) +
                                                 " is not a number: " + ascii_syntax::quoted(t));
+    return std::nullopt;
+  }
+  return v;
+}
+
+std::optional<double> optional_number(pugi::xml_node parent, std::string_view name,
+                                      const std::string& object, const std::string& file,
+                                      Diagnostics& diagnostics) {
+  const pugi::xml_node n = child(parent, name);
+  const std::string_view t = text(n);
+  if (t.empty()) return std::nullopt;
+  double v = 0;
+  if (ascii_syntax::parse_number(t, v) != ascii_syntax::NumberError::kNone) {
+    diagnostics.warning(file + ":" + path(n), object + ": " + std::string(name) +
+                                                  " is not a number: " + ascii_syntax::quoted(t) +
+                                                  ": ignored");
     return std::nullopt;
   }
   return v;

@@ -43,16 +43,24 @@ std::optional<double> number(pugi::xml_node parent, std::string_view name,
                              const std::string& object, bool required, const std::string& file,
                              Diagnostics& diagnostics);
 
+// The number in element `name` of `parent`, for a value a reader can do without (it has a
+// fallback): missing or empty is none; not a number is a warning at the element ("... is not a
+// number: '3OO': ignored") and none. Real exports write such values by hand.
+std::optional<double> optional_number(pugi::xml_node parent, std::string_view name,
+                                      const std::string& object, const std::string& file,
+                                      Diagnostics& diagnostics);
+
 // The line of byte `offset` in `text`, from 1.
 std::uint32_t line_of_offset(std::string_view text, std::ptrdiff_t offset);
 
 // The encoding named by the XML declaration at the start of `text` ("ISO-8859-1"); empty if none.
 std::string_view declared_encoding(std::string_view text);
 
-// Parses `text` into `doc` in UTF-8. Text in Latin-1 or Windows-1252 (declared so, or undeclared
-// and not valid UTF-8: then a warning) is converted first, so names keep their letters and an
-// error's line is the line in the file. XML that is not well-formed is an error at its line:
-// false.
+// Parses `text` into `doc` in UTF-8. The text is decoded first by its byte-order mark or declared
+// encoding (text_to_utf8, text_file.h: any encoding iconv knows; undeclared text that is not
+// UTF-8 with a warning naming the encoding assumed), so names keep their letters and an error's
+// line is the line in the file. An unknown declared encoding, or XML that is not well-formed
+// (at its line), is an error: false.
 bool load_utf8(pugi::xml_document& doc, std::string_view text, const std::string& file_name,
                Diagnostics& diagnostics);
 

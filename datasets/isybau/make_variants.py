@@ -20,14 +20,17 @@ def sub(text, old, new):
 # --- optional elements ----------------------------------------------------------------------
 t = base
 t = sub(t, "ISYBAU 2017-07 dialect;", "ISYBAU 2017-07 dialect, optional elements left out;")
-# S1: a round shaft of 1000 mm; S2: a rectangular one, 1200 x 800 mm.
+# S1: a round shaft of 1.00 m; S2: a rectangular one, 1.20 x 0.80 m (LaengeUnterteil and
+# BreiteUnterteil, in metres, as every ISYBAU version writes them).
 t = sub(t, "<Schachttiefe>2.5</Schachttiefe>\n",
         "<Schachttiefe>2.5</Schachttiefe>\n            <Unterteil>\n"
-        "              <Laenge>1000</Laenge>\n            </Unterteil>\n")
+        "              <Unterteilform>R</Unterteilform>\n"
+        "              <LaengeUnterteil>1.00</LaengeUnterteil>\n            </Unterteil>\n")
 t = re.sub(r"(<Objektbezeichnung>S2</Objektbezeichnung>\s*<Objektart>2</Objektart>\s*<Knoten>\s*"
            r"<KnotenTyp>0</KnotenTyp>\s*<Schacht>\s*<Schachttiefe>[\d.]+</Schachttiefe>\n)",
-           lambda m: m.group(1) + "            <Unterteil>\n              <Laenge>1200</Laenge>\n"
-           "              <Breite>800</Breite>\n            </Unterteil>\n", t, count=1)
+           lambda m: m.group(1) + "            <Unterteil>\n              <Unterteilform>E</Unterteilform>\n"
+           "              <LaengeUnterteil>1.20</LaengeUnterteil>\n"
+           "              <BreiteUnterteil>0.80</BreiteUnterteil>\n            </Unterteil>\n", t, count=1)
 # Pipe S1: circular by its height only, no SohlhoeheZulauf (from S1's floor, 47.50).
 t = sub(t, "<SohlhoeheZulauf>47.50</SohlhoeheZulauf>\n          ", "")
 t = sub(t, "<Profilbreite>300</Profilbreite>", "<Profilhoehe>300</Profilhoehe>")

@@ -3,6 +3,8 @@
 
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -78,7 +80,7 @@ TEST(Condition, JoinsEveryFindingToItsPipeAtItsPosition) {
   EXPECT_EQ(find(*map, "S1", "BBC"), nullptr);  // the 2015 inspection is superseded
   EXPECT_TRUE(has_warning(d, "1 findings name no pipe of the map (the first: 'X9')"));
   EXPECT_TRUE(has_warning(d, "1 inspected objects are laterals or manholes"));
-  EXPECT_TRUE(has_warning(d, "1 earlier inspections of an object are superseded"));
+  EXPECT_TRUE(has_warning(d, "1 findings are superseded by a later inspection"));
 }
 
 // Inline Zustandsdaten, in the map's own file, give the same findings as a second file.
@@ -133,6 +135,107 @@ TEST(Condition, RefusesAnUnknownInspectionDirection) {
   std::string bad = zustand();
   bad.replace(bad.find("<Inspektionsrichtung>O"), 22, "<Inspektionsrichtung>X");
   EXPECT_THAT(condition_error(bad), HasSubstr("Inspektionsrichtung must be O"));
+}
+
+std::string complementary() {
+  Result<std::string> text =
+      read_text_file(testing::test_data_path("isybau/complementary-zustand.xml"));
+  EXPECT_TRUE(text.has_value());
+  return text.has_value() ? *text : std::string();
+}
+
+std::vector<std::pair<std::string, double>> findings_of(const SewerMap& map,
+                                                        std::string_view pipe) {
+  std::vector<std::pair<std::string, double>> out;
+  for (const Finding& f : map.findings(*map.find_pipe(pipe))) out.emplace_back(f.code, f.offset_m);
+  return out;
+}
+
+// Issue 31: one pipe inspected from both ends at one date and time (the camera could not pass),
+// as in the official ISYBAU 2013 sample: both halves stand, each placed from its own end. Only
+// the later entry was kept, and with it a BBE obstacle (a likely blockage) was lost.
+TEST(Condition, Issue31InspectionsFromBothEndsComplementEachOther) {
+  Diagnostics d;
+  Result<SewerMap> map = read_condition_isybau(street(d), complementary(), "z.xml", d);
+  ASSERT_TRUE(map.has_value()) << map.error().message;
+  using F = std::pair<std::string, double>;
+  // Sorted by offset: from S1 (O) BCD 0, BAJ 3, BDC 9.9; from S2 (U, 30 m less the station):
+  // BBE and BDC at 10.2, BAJ 26, BCD 30.
+  const std::vector<F> found = findings_of(*map, "S1");
+  ASSERT_EQ(found.size(), 7U);
+  EXPECT_EQ(found[0], F("BCD", 0.0));
+  EXPECT_EQ(found[1], F("BAJ", 3.0));
+  EXPECT_EQ(found[2], F("BDC", 9.9));
+  EXPECT_EQ(found[3].first, "BBE");
+  EXPECT_NEAR(found[3].second, 30 - 19.8, 1e-9);
+  EXPECT_NEAR(found[5].second, 30 - 4.0, 1e-9);
+  EXPECT_EQ(found[6], F("BCD", 30.0));
+  EXPECT_FALSE(has_warning(d, "superseded"));
+  // In the map's own file alike.
+  Result<std::string> stamm = read_text_file(testing::dataset_path("isybau/street-2017.xml"));
+  ASSERT_TRUE(stamm.has_value());
+  const std::string z = complementary();
+  const std::size_t from = z.find("    <Zustandsdatenkollektiv>");
+  const std::size_t to = z.find("  </Datenkollektive>");
+  std::string both = *stamm;
+  both.insert(both.find("  </Datenkollektive>"), z.substr(from, to - from));
+  Diagnostics d2;
+  Result<SewerMap> inline_map = read_map_isybau(both, "street.xml", d2);
+  ASSERT_TRUE(inline_map.has_value()) << inline_map.error().message;
+  EXPECT_EQ(findings_of(*inline_map, "S1"), found);
+}
+
+// A later inspection supersedes the earlier findings only on the stretch it covered: a complete
+// one (it reached the far node, BCE) all of them; one abandoned at 8 m those up to 8 m.
+TEST(Condition, Issue31ALaterInspectionSupersedesOnlyTheStretchItCovered) {
+  const std::string later_from_s1 =
+      "      <InspizierteAbwassertechnischeAnlage>\n"
+      "        <Objektbezeichnung>S1</Objektbezeichnung>\n"
+      "        <Anlagentyp>1</Anlagentyp>\n"
+      "        <OptischeInspektion>\n"
+      "          <Inspektionsdatum>2021-06-01</Inspektionsdatum>\n"
+      "          <Uhrzeit>09:00:00</Uhrzeit>\n"
+      "          <Rohrleitung>\n"
+      "            <Inspektionsrichtung>O</Inspektionsrichtung>\n"
+      "            <Inspektionsdaten>\n"
+      "              <RZustand><Station>0.00</Station><InspektionsKode>BCD</InspektionsKode>"
+      "</RZustand>\n"
+      "              <RZustand><Station>END</Station><InspektionsKode>LAST</InspektionsKode>"
+      "</RZustand>\n"
+      "            </Inspektionsdaten>\n"
+      "          </Rohrleitung>\n"
+      "        </OptischeInspektion>\n"
+      "      </InspizierteAbwassertechnischeAnlage>\n";
+  auto with_later = [&](std::string_view station, std::string_view code) {
+    std::string later = later_from_s1;
+    later.replace(later.find("END"), 3, station);
+    later.replace(later.find("LAST"), 4, code);
+    std::string text = complementary();
+    text.insert(text.find("    </Zustandsdatenkollektiv>"), later);
+    Diagnostics d;
+    Result<SewerMap> map = read_condition_isybau(street(d), text, "z.xml", d);
+    EXPECT_TRUE(map.has_value());
+    return std::pair(
+        map.has_value() ? findings_of(*map, "S1") : std::vector<std::pair<std::string, double>>{},
+        d);
+  };
+  using F = std::pair<std::string, double>;
+  {
+    const auto [found, d] = with_later("30.00", "BCE");
+    EXPECT_EQ(found, (std::vector<F>{{"BCD", 0.0}, {"BCE", 30.0}}));
+    EXPECT_TRUE(has_warning(d, "7 findings are superseded by a later inspection"));
+  }
+  {
+    // Abandoned at 8 m: the earlier BCD and BAJ from S1 are superseded; the BDC at 9.9 m and
+    // everything seen from S2 (the BBE at 10.2 m) still stand.
+    const auto [found, d] = with_later("8.00", "BDC");
+    ASSERT_EQ(found.size(), 7U);
+    EXPECT_EQ(found[0], F("BCD", 0.0));
+    EXPECT_EQ(found[1], F("BDC", 8.0));
+    EXPECT_EQ(found[2], F("BDC", 9.9));
+    EXPECT_EQ(found[3].first, "BBE");
+    EXPECT_TRUE(has_warning(d, "2 findings are superseded by a later inspection"));
+  }
 }
 
 // The default table, for MAKRO (body width 0.22 m): a collapse and a deformation leaving 0.2 m

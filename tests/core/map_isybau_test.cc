@@ -120,17 +120,75 @@ TEST(MapIsybau, ReportsTruncatedXmlWithItsLine) {
               HasSubstr("net.xml:1: error: XML is not well-formed"));
 }
 
-TEST(MapIsybau, NamesTheElementOfABadField) {
-  EXPECT_THAT(error_text(replaced(fixture(), "<Laenge>30.00", "<Laenge>30,00")),
-              HasSubstr(std::string(kObjects) +
-                        "[6]/Kante/Laenge: error: pipe S1: Laenge is not a number: '30,00'"));
-  EXPECT_THAT(error_text(replaced(fixture(), "<Profilbreite>300</Profilbreite>",
-                                  "<Profilbreite>3OO</Profilbreite>")),
-              HasSubstr(std::string(kObjects) +
-                        "[6]/Kante/Profil/Profilbreite: error: pipe S1: Profilbreite is not a "
-                        "number: '3OO'"));
-  EXPECT_THAT(error_text(replaced(fixture(), "<KnotenTyp>0", "<KnotenTyp>7")),
-              HasSubstr("node S1: KnotenTyp must be 0 (Schacht)"));
+// What the whole file is read for: the value is a warning at its element, naming the object.
+bool warned(const Diagnostics& d, const std::string& where_ends, const std::string& what) {
+  for (const Diagnostic& x : d.all()) {
+    if (x.severity == Severity::kWarning && x.where.ends_with(where_ends) &&
+        x.message.find(what) != std::string::npos) {
+      return true;
+    }
+  }
+  return false;
+}
+
+SewerMap read_ok(const std::string& text, Diagnostics& d) {
+  Result<SewerMap> map = read_map_isybau(text, "net.xml", d);
+  EXPECT_TRUE(map.has_value()) << map.error().message;
+  return map.has_value() ? std::move(*map) : SewerMap{};
+}
+
+// Issue 31: a value with a fallback that is no number is a warning at its element, not a refusal
+// of the network: the length then comes from the line; a pipe with no size left is left out.
+TEST(MapIsybau, Issue31ABadValueIsAWarningAtItsElement) {
+  Diagnostics d;
+  SewerMap map = read_ok(replaced(fixture(), "<Laenge>30.00", "<Laenge>30,00"), d);
+  EXPECT_TRUE(warned(d, std::string(kObjects).substr(8) + "[6]/Kante/Laenge",
+                     "pipe S1: Laenge is not a number: '30,00': ignored"));
+  EXPECT_NEAR(map.pipe(*map.find_pipe("S1")).length_m, 30.0, 1e-9);  // its line's
+  Diagnostics d2;
+  SewerMap without = read_ok(
+      replaced(fixture(), "<Profilbreite>300</Profilbreite>", "<Profilbreite>3OO</Profilbreite>"),
+      d2);
+  EXPECT_TRUE(warned(d2, "[6]/Kante/Profil/Profilbreite",
+                     "pipe S1: Profilbreite is not a number: '3OO': ignored"));
+  EXPECT_FALSE(without.find_pipe("S1").has_value());
+  EXPECT_EQ(without.pipe_count(), 3U);
+}
+
+// Issue 31: a real 2006 export (INGRADA, 68 manholes) was refused whole for one Schachttiefe
+// 0.00. Values that plainly mean "unknown" (0, negative, all nines) are a warning on their object
+// and its fallback, for every measure of the reader: depths, shaft sizes, lengths, profiles.
+TEST(MapIsybau, Issue31UnknownValuesAreWarningsNotRefusals) {
+  Diagnostics d;
+  std::string text =
+      replaced(fixture(), "<Schachttiefe>2.5</Schachttiefe>", "<Schachttiefe>0.00</Schachttiefe>");
+  text = replaced(text, "<Laenge>30.00", "<Laenge>9999.00");
+  text = replaced(text, "<Laenge>44.72", "<Laenge>-1");
+  SewerMap map = read_ok(text, d);
+  const Manhole& s1 = map.manhole(*map.find_manhole("S1"));
+  EXPECT_FALSE(s1.depth_m.has_value());
+  EXPECT_TRUE(warned(d, "[1]/Knoten/Schacht/Schachttiefe",
+                     "node S1: Schachttiefe 0.00 stands for unknown"));
+  // Lengths from the lines: not a 9999 m pipe.
+  EXPECT_NEAR(map.pipe(*map.find_pipe("S1")).length_m, 30.0, 1e-9);
+  EXPECT_NEAR(map.pipe(*map.find_pipe("S3")).length_m, 2 * std::hypot(10.0, 20.0), 1e-9);
+  EXPECT_TRUE(warned(d, "[6]/Kante/Laenge", "pipe S1: Laenge 9999.00 stands for unknown"));
+  EXPECT_TRUE(has_warning(d, "2 Haltungen have no Laenge, Rohrlaenge or DMPLaenge"));
+  EXPECT_EQ(d.error_count(), 0U);
+}
+
+// Issue 31: objects that lack what the network needs of them are left out, each named, and the
+// rest is read: a node of an unknown KnotenTyp stays (pipes name it) as a structure, not an exit.
+TEST(MapIsybau, Issue31ObjectsLackingWhatTheyNeedAreLeftOutNotTheFile) {
+  Diagnostics d;
+  SewerMap map = read_ok(replaced(fixture(), "<KnotenTyp>0", "<KnotenTyp>7"), d);
+  EXPECT_FALSE(map.manhole(*map.find_manhole("S1")).exit);
+  EXPECT_TRUE(has_warning(d, "node S1: KnotenTyp should be 0 (Schacht)"));
+  Diagnostics d2;
+  SewerMap without = read_ok(replaced(fixture(), "<KnotenAblauf>S4</KnotenAblauf>", ""), d2);
+  EXPECT_FALSE(without.find_pipe("S2").has_value());
+  EXPECT_TRUE(has_warning(d2, "pipe S2: no KnotenAblauf: left out"));
+  EXPECT_TRUE(has_warning(d2, "1 objects are left out for what they lack"));
 }
 
 TEST(MapIsybau, ReportsBrokenReferencesAndDuplicatesAtTheirObjects) {
@@ -289,6 +347,101 @@ TEST(MapIsybau, Issue15NamesDwaM150AndInterlisFiles) {
   EXPECT_THAT(error_text("<?xml version=\"1.0\"?>\n<TRANSFER xmlns=\"http://www.interlis.ch/"
                          "INTERLIS2.3\"><HEADERSECTION/></TRANSFER>"),
               HasSubstr("an INTERLIS transfer file (root <TRANSFER>: SIA405"));
+}
+
+// Issue 31: a file declared ISO-8859-15 keeps its letters (0xA6 is Š there, not Latin-1's broken
+// bar); one declaring an encoding nobody knows is refused naming the file and the encoding.
+TEST(MapIsybau, Issue31ReadsTheDeclaredEncoding) {
+  std::string text = replaced(fixture(), "encoding=\"UTF-8\"", "encoding=\"ISO-8859-15\"");
+  for (std::size_t at = text.find(">S3<"); at != std::string::npos; at = text.find(">S3<")) {
+    text.replace(at, 4,
+                 ">\xa6"
+                 "3<");
+  }
+  Diagnostics d;
+  SewerMap map = read_ok(text, d);
+  EXPECT_TRUE(map.find_manhole("\u0160"
+                               "3")
+                  .has_value());
+  EXPECT_TRUE(map.find_pipe("\u0160"
+                            "3")
+                  .has_value());
+  EXPECT_THAT(error_text(replaced(fixture(), "encoding=\"UTF-8\"", "encoding=\"x-klingon\"")),
+              HasSubstr("net.xml: error: declares the text encoding 'x-klingon'"));
+}
+
+// A node's Schacht as the official 2013 and 2017 samples write it: cover, rising shaft (Aufbau),
+// lower zone and floor (Unterteil), sizes in metres.
+std::string sample_schacht(std::string_view depth, std::string_view aufbau,
+                           std::string_view unterteil) {
+  return "<Schacht>\n<SchachtFunktion>1</SchachtFunktion>\n<Schachttiefe>" + std::string(depth) +
+         "</Schachttiefe>\n<Abdeckung>\n<Deckelform>R</Deckelform>\n"
+         "<LaengeDeckel>0.68</LaengeDeckel>\n<BreiteDeckel>0.68</BreiteDeckel>\n</Abdeckung>\n"
+         "<Aufbau>\n<Aufbauform>R</Aufbauform>\n<Konus>0</Konus>\n" +
+         std::string(aufbau) +
+         "<MaterialAufbau>B</MaterialAufbau>\n</Aufbau>\n<UntereSchachtzone>\n"
+         "<Uebergangsplatte>0</Uebergangsplatte>\n</UntereSchachtzone>\n<Unterteil>\n" +
+         std::string(unterteil) + "<Gerinneform>0</Gerinneform>\n</Unterteil>\n</Schacht>";
+}
+
+// Issue 31: the official ISYBAU 2013 and 2017 samples give a shaft's floor as
+// Unterteil/LaengeUnterteil, BreiteUnterteil in metres (as 2006 does); the reader looked for
+// Laenge, Breite in millimetres and gave every manhole the 1.0 m default. Real exports that give
+// only the rising shaft (Aufbau/LaengeAufbau) have it taken for the floor's size.
+TEST(MapIsybau, Issue31ReadsShaftSizesAsTheSamplesWriteThem) {
+  std::string text = replaced(
+      fixture(), "<Schacht>\n            <Schachttiefe>2.5</Schachttiefe>\n          </Schacht>",
+      sample_schacht("2.50",
+                     "<LaengeAufbau>1.00</LaengeAufbau>\n<BreiteAufbau>1.00</BreiteAufbau>\n",
+                     "<Unterteilform>R</Unterteilform>\n<LaengeUnterteil>1.50</LaengeUnterteil>\n"
+                     "<BreiteUnterteil>1.50</BreiteUnterteil>\n"
+                     "<HoeheUnterteil>0.60</HoeheUnterteil>\n"));
+  // S2: the rising shaft only, the floor left empty (as a real 2017 export writes it).
+  text = replaced(
+      text, "<Schacht>\n            <Schachttiefe>2.9</Schachttiefe>\n          </Schacht>",
+      sample_schacht("2.90",
+                     "<LaengeAufbau>0.80</LaengeAufbau>\n<BreiteAufbau>0.80</BreiteAufbau>\n", ""));
+  // S3: a rectangular floor, 2.00 x 1.20 m.
+  text = replaced(
+      text, "<Schacht>\n            <Schachttiefe>3.0</Schachttiefe>\n          </Schacht>",
+      sample_schacht("3.00", "",
+                     "<Unterteilform>E</Unterteilform>\n<LaengeUnterteil>2.00</LaengeUnterteil>\n"
+                     "<BreiteUnterteil>1.20</BreiteUnterteil>\n"));
+  Diagnostics d;
+  SewerMap map = read_ok(text, d);
+  const Manhole& s1 = map.manhole(*map.find_manhole("S1"));
+  EXPECT_DOUBLE_EQ(s1.diameter_m, 1.5);
+  EXPECT_FALSE(s1.shaft_length_m.has_value());
+  EXPECT_DOUBLE_EQ(*s1.depth_m, 2.5);
+  EXPECT_DOUBLE_EQ(map.manhole(*map.find_manhole("S2")).diameter_m, 0.8);
+  const Manhole& s3 = map.manhole(*map.find_manhole("S3"));
+  EXPECT_DOUBLE_EQ(s3.diameter_m, 1.2);
+  EXPECT_DOUBLE_EQ(*s3.shaft_length_m, 2.0);
+  EXPECT_DOUBLE_EQ(*s3.shaft_width_m, 1.2);
+  EXPECT_TRUE(has_warning(d, "1 manholes give no floor size (Unterteil), only the rising"));
+  EXPECT_TRUE(has_warning(d, "1 manholes have no shaft size"));  // S4, a Bauwerk without one
+  EXPECT_EQ(d.error_count(), 0U);
+}
+
+// Issue 31: a shaft size plainly in the wrong unit (1200 in the metre field) is read as the
+// millimetres it is, with a warning at its element, never as a shaft 1.2 km wide; one that is no
+// size in either unit is ignored, with a warning.
+TEST(MapIsybau, Issue31AShaftSizeInTheWrongUnitIsAWarning) {
+  std::string text = replaced(
+      fixture(), "<Schachttiefe>2.5</Schachttiefe>",
+      "<Schachttiefe>2.5</Schachttiefe>\n<Unterteil><LaengeUnterteil>1200</LaengeUnterteil>"
+      "</Unterteil>");
+  text = replaced(text, "<Schachttiefe>2.9</Schachttiefe>",
+                  "<Schachttiefe>2.9</Schachttiefe>\n<Unterteil><LaengeUnterteil>250000"
+                  "</LaengeUnterteil></Unterteil>");
+  Diagnostics d;
+  SewerMap map = read_ok(text, d);
+  EXPECT_DOUBLE_EQ(map.manhole(*map.find_manhole("S1")).diameter_m, 1.2);
+  EXPECT_TRUE(warned(d, "[1]/Knoten/Schacht/Unterteil/LaengeUnterteil",
+                     "node S1: LaengeUnterteil 1200 is not in metres (ISYBAU gives shaft sizes "
+                     "in metres, under 100): read as millimetres, 1.2 m"));
+  EXPECT_DOUBLE_EQ(map.manhole(*map.find_manhole("S2")).diameter_m, 1.0);  // the default
+  EXPECT_TRUE(has_warning(d, "node S2: LaengeUnterteil 250000 is no shaft size"));
 }
 
 }  // namespace

@@ -300,7 +300,7 @@ TEST(MapSwmm, Issue15ReadsWindows1252Names) {
   EXPECT_TRUE(map->find_pipe("C\u00e4"
                              "3")
                   .has_value());
-  EXPECT_TRUE(has_warning(d, "not UTF-8: read as Windows-1252"));
+  EXPECT_TRUE(has_warning(d, "not UTF-8, and no encoding declared: read as Windows-1252"));
 }
 
 TEST(MapSwmm, IsNotWrittenButDetectedByContent) {

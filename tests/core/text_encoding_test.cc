@@ -1,4 +1,6 @@
 // SPDX-License-Identifier: MIT
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -45,18 +47,78 @@ TEST(TextEncoding, ReadsWindows1252AsUtf8) {
   EXPECT_TRUE(is_valid_utf8(windows1252_to_utf8(std::string(256, '\xff'))));
 }
 
+std::string utf8_of(std::string_view text, std::string_view declared, TextDecoding& how) {
+  Result<std::string> utf8 = text_to_utf8(text, declared, "net.xml", how);
+  EXPECT_TRUE(utf8.has_value()) << utf8.error().message;
+  return utf8.has_value() ? *utf8 : std::string();
+}
+
 TEST(TextEncoding, ConvertsWhatIsDeclaredOrNotUtf8AndKeepsLines) {
-  TextConversion how = TextConversion::kNone;
-  EXPECT_EQ(text_to_utf8("a\n\xfc\nb", "ISO-8859-1", how), "a\n\xc3\xbc\nb");
-  EXPECT_EQ(how, TextConversion::kDeclaredLatin1);
-  EXPECT_EQ(text_to_utf8("a\n\xfc\nb", "", how), "a\n\xc3\xbc\nb");
-  EXPECT_EQ(how, TextConversion::kUndeclaredLatin1);
-  EXPECT_EQ(text_to_utf8("S\xc3\xbc"
-                         "d",
-                         "utf-8", how),
+  TextDecoding how;
+  EXPECT_EQ(utf8_of("a\n\xfc\nb", "ISO-8859-1", how), "a\n\xc3\xbc\nb");
+  EXPECT_EQ(how.conversion, TextConversion::kDeclared);
+  EXPECT_EQ(utf8_of("a\n\xfc\nb", "", how), "a\n\xc3\xbc\nb");
+  EXPECT_EQ(how.conversion, TextConversion::kAssumed);
+  EXPECT_EQ(how.encoding, "WINDOWS-1252");
+  EXPECT_EQ(utf8_of("S\xc3\xbc"
+                    "d",
+                    "utf-8", how),
             "S\xc3\xbc"
             "d");
-  EXPECT_EQ(how, TextConversion::kNone);
+  EXPECT_EQ(how.conversion, TextConversion::kNone);
+}
+
+// Issue 31: ISO-8859-15 was read as Latin-1 (its 0xA6 is Š, Latin-1's the broken bar); every
+// encoding a declaration can name is decoded by iconv.
+TEST(TextEncoding, Issue31DecodesTheDeclaredEncodingWithIconv) {
+  TextDecoding how;
+  EXPECT_EQ(utf8_of("\xa6"
+                    "koda \xa4",
+                    "ISO-8859-15", how),
+            "\xc5\xa0koda \xe2\x82\xac");  // Škoda €
+  EXPECT_EQ(how.encoding, "ISO-8859-15");
+  EXPECT_EQ(utf8_of("\x8a\xb9", "windows-1250", how), "\xc5\xa0\xc4\x85");  // Šą
+  EXPECT_EQ(utf8_of("\xe8\n", "ISO-8859-2", how), "\xc4\x8d\n");            // č
+  EXPECT_EQ(utf8_of("\xc0", "KOI8-R", how), "\xd1\x8e");                    // ю
+}
+
+TEST(TextEncoding, Issue31AnUnknownDeclaredEncodingIsAnErrorNamingIt) {
+  TextDecoding how;
+  Result<std::string> utf8 = text_to_utf8("abc", "x-mac-klingon", "net.xml", how);
+  ASSERT_FALSE(utf8.has_value());
+  EXPECT_NE(utf8.error().message.find("net.xml: declares the text encoding 'x-mac-klingon', "
+                                      "which sewerplan does not know"),
+            std::string::npos)
+      << utf8.error().message;
+}
+
+// Issue 31: a byte-order mark decides (UTF-8's is skipped, UTF-16's decoded); UTF-16 without a
+// mark and without a declaration is told by its NUL bytes, and said to be assumed.
+TEST(TextEncoding, Issue31ByteOrderMarksAndUndeclaredUtf16) {
+  TextDecoding how;
+  EXPECT_EQ(utf8_of("\xEF\xBB\xBF[TITLE]\n", "", how), "[TITLE]\n");
+  EXPECT_EQ(utf8_of(std::string("\xFF\xFE[\0T\0\n\0\xFC\0", 10), "", how), "[T\n\xc3\xbc");
+  EXPECT_EQ(how.conversion, TextConversion::kDeclared);
+  EXPECT_EQ(utf8_of(std::string("\xFE\xFF\0[\0T", 6), "", how), "[T");
+  EXPECT_EQ(utf8_of(std::string("<\0?\0x\0", 6), "", how), "<?x");
+  EXPECT_EQ(how.conversion, TextConversion::kAssumed);
+  EXPECT_EQ(how.encoding, "UTF-16LE");
+  Diagnostics d;
+  warn_about_decoding(how, "net.xml", d);
+  ASSERT_EQ(d.all().size(), 1U);
+  EXPECT_EQ(d.all()[0].message, "not UTF-8, and no encoding declared: read as UTF-16LE");
+  // Decoded before (read_text_file): a declaration of UTF-16 on single-byte text is stale.
+  EXPECT_EQ(utf8_of("<?xml version=\"1.0\" encoding=\"UTF-16\"?><a/>", "UTF-16", how),
+            "<?xml version=\"1.0\" encoding=\"UTF-16\"?><a/>");
+}
+
+TEST(TextEncoding, Issue31ReadTextFileSkipsAUtf8MarkAndDecodesUtf16) {
+  const auto path = std::filesystem::temp_directory_path() / "sewerplan-text-encoding-test.txt";
+  std::ofstream(path, std::ios::binary) << "\xEF\xBB\xBF{}\n";
+  EXPECT_EQ(*read_text_file(path), "{}\n");
+  std::ofstream(path, std::ios::binary) << std::string("\xFF\xFE{\0}\0", 6);
+  EXPECT_EQ(*read_text_file(path), "{}");
+  std::filesystem::remove(path);
 }
 
 }  // namespace

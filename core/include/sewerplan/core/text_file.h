@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: MIT
 // Whole-file text I/O with errors that name the file and the system's reason, and the text
-// encodings that sewer files come in.
+// encodings that sewer files come in. Every text file is read through read_text_file, which
+// skips a UTF-8 byte-order mark and decodes UTF-16 and UTF-32 with one, so that every reader
+// (JSON maps and missions, SWMM, ISYBAU, the ASCII database, plans, risk tables, mappings) gets
+// UTF-8 without a mark.
 //
 // sewerplan works in UTF-8 throughout: every name in a map may end up in JSON output, which must
 // be UTF-8. Sewer databases are often exported in Latin-1 (ISO 8859-1) or Windows-1252, so the
@@ -15,14 +18,18 @@
 // file at once).
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
 #include <string>
 #include <string_view>
 
+#include "sewerplan/core/diagnostics.h"
 #include "sewerplan/core/result.h"
 
 namespace sewerplan {
 
+// The file's text, without a byte-order mark (without_byte_order_mark): a UTF-16 file with one is
+// UTF-8 here.
 Result<std::string> read_text_file(const std::filesystem::path& path);
 
 // Writes through a temporary file renamed into place, so a failed write leaves no half file.
@@ -40,14 +47,46 @@ std::string windows1252_to_utf8(std::string_view text);
 // `text` unchanged if it is valid UTF-8, else read as Windows-1252: for names in messages.
 std::string to_utf8_lossy(std::string_view text);
 
-// What text_to_utf8 did.
-enum class TextConversion { kNone, kDeclaredLatin1, kUndeclaredLatin1 };
+// The byte-order mark `text` begins with: its encoding ("UTF-8", "UTF-16LE", "UTF-16BE",
+// "UTF-32LE", "UTF-32BE") and its size in bytes; none: an empty encoding and size 0.
+struct ByteOrderMark {
+  std::string_view encoding;
+  std::size_t size = 0;
+};
+ByteOrderMark byte_order_mark(std::string_view text);
 
-// A sewer file's text in UTF-8. `declared_encoding` is the encoding the file names (an XML
-// declaration's, lower or upper case; empty if none): ISO-8859-1, Latin-1 and Windows-1252 are
-// converted. Otherwise text that is not valid UTF-8 is taken for Windows-1252 and converted
-// (kUndeclaredLatin1: the caller warns). Line breaks are kept, so line numbers stay right.
-std::string text_to_utf8(std::string_view text, std::string_view declared_encoding,
-                         TextConversion& conversion);
+// `text` (read from `file`, for messages) in UTF-8 without its byte-order mark: UTF-8's is
+// skipped, UTF-16 and UTF-32 text is decoded (iconv); without a mark, `text` unchanged. An error
+// naming the file and the byte where the text is not what its mark says.
+Result<std::string> without_byte_order_mark(std::string_view text, const std::string& file);
+
+// How text_to_utf8 read a text.
+enum class TextConversion {
+  kNone,      // UTF-8 (or ASCII) as it is
+  kDeclared,  // in the encoding the file declares, or its byte-order mark says
+  kAssumed,   // not UTF-8 and nothing declared: `encoding` assumed (the caller warns)
+};
+struct TextDecoding {
+  TextConversion conversion = TextConversion::kNone;
+  std::string declared;      // what the file declared (empty if nothing)
+  std::string encoding;      // what the text was read as: "UTF-8", "ISO-8859-15", "UTF-16LE", ...
+  std::size_t replaced = 0;  // bytes that are no character in `encoding`: U+FFFD (the caller warns)
+};
+
+// A sewer file's text in UTF-8, decoded with iconv (glibc). A byte-order mark decides first
+// (UTF-8's is skipped; UTF-16 and UTF-32 are decoded). Else `declared_encoding`, the encoding the
+// file names (an XML declaration's, any case; empty if none): any encoding iconv knows
+// (ISO-8859-1 to -16, Windows-1250 to -1258, UTF-16, ...; ISO-8859-1 and Latin-1 are read as
+// Windows-1252, their superset of printable characters, as real exports labelled Latin-1 hold
+// euro signs); one it does not know is an error naming `file` and the encoding. Undeclared text
+// that is not valid UTF-8 is read as UTF-16 if its first characters are ASCII with NUL bytes
+// between them, else as Windows-1252 (kAssumed). Line breaks are kept, so line numbers stay right.
+Result<std::string> text_to_utf8(std::string_view text, std::string_view declared_encoding,
+                                 const std::string& file, TextDecoding& how);
+
+// The warnings of a reader for `how`, at `file`: the encoding assumed, and bytes that were no
+// character.
+void warn_about_decoding(const TextDecoding& how, const std::string& file,
+                         Diagnostics& diagnostics);
 
 }  // namespace sewerplan
