@@ -22,6 +22,7 @@ namespace sewerplan {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 constexpr std::string_view kSmallMap = R"({
   "format": "sewerplan-map", "version": 1, "name": "small",
@@ -102,6 +103,26 @@ TEST(MapJson, ReportsSyntaxErrorsWithLineAndColumn) {
   ASSERT_FALSE(map.has_value());
   EXPECT_EQ(map.error().code, ErrorCode::kParse);
   EXPECT_THAT(map.error().message, HasSubstr("t.json:3:16: error: JSON syntax error"));
+}
+
+// Issue 31: a number beyond a double (1e999) was reported without a line, in the parser's words
+// ("JSON error: [json.exception.out_of_range.406] number overflow parsing '1e999'").
+TEST(MapJson, Issue31NamesTheLineOfANumberBeyondADouble) {
+  Diagnostics d;
+  Result<SewerMap> map = read(
+      "{\n  \"format\": \"sewerplan-map\",\n  \"note\": \"1e999\",\n  \"version\": -2e999\n}", d);
+  ASSERT_FALSE(map.has_value());
+  EXPECT_EQ(map.error().code, ErrorCode::kParse);
+  EXPECT_THAT(map.error().message,
+              HasSubstr("t.json:4:14: error: number -2e999 is out of range: no number beyond about "
+                        "1.8e308 can be read"));
+  EXPECT_THAT(map.error().message, Not(HasSubstr("json.exception")));
+  // Nested deeper than the parser goes: said in our words, not simdjson's.
+  Diagnostics deep;
+  Result<SewerMap> nested = read(std::string(2000, '[') + std::string(2000, ']'), deep);
+  ASSERT_FALSE(nested.has_value());
+  EXPECT_THAT(nested.error().message, HasSubstr("t.json: error: the JSON nests arrays and objects "
+                                                "more than 1024 levels deep"));
 }
 
 // A pipe of 1e16 m passed validation and then stopped `plan` on an internal check: every number

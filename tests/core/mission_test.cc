@@ -91,6 +91,15 @@ TEST_F(MissionTest, NamesEveryUnknownObjectByJsonPath) {
   EXPECT_THAT(e, ::testing::Not(HasSubstr("the mission has no exit")));
 }
 
+// Issue 31: a number beyond a double in a mission is named by file, line and column.
+TEST_F(MissionTest, Issue31NamesTheLineOfANumberBeyondADouble) {
+  Result<Mission> m = read(
+      "{\"format\": \"sewerplan-mission\", \"version\": 1,\n"
+      " \"battery_wh\": 1e999}");
+  ASSERT_FALSE(m.has_value());
+  EXPECT_THAT(m.error().message, HasSubstr("m.json:2:16: error: number 1e999 is out of range"));
+}
+
 TEST_F(MissionTest, AFieldGivenTwiceIsAnError) {
   Result<Mission> m = read(R"({"format": "sewerplan-mission", "version": 1,
     "start": {"pipe": "P12", "pipe": "P4"},
