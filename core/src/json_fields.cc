@@ -182,8 +182,8 @@ void JsonFields::report_duplicate_keys() {
   }
   for (const auto& [position, key_view] : repeated) {
     const std::string key(key_view);
-    diagnostics_.error(where(key), "field '" + key +
-                                       "' given twice in one object: which value is meant is "
+    diagnostics_.error(where(key), "field " + input_quoted(key) +
+                                       " given twice in one object: which value is meant is "
                                        "unclear");
   }
 }
@@ -194,7 +194,7 @@ std::string JsonFields::where(std::string_view key) const {
   w += path_;
   if (!key.empty()) {
     w += '.';
-    w += key;
+    w += input_text(key);  // a key of the file's may hold anything
   }
   return w;
 }
@@ -304,7 +304,7 @@ void JsonFields::warn_unknown(const std::function<bool(std::string_view)>& is_kn
   for (simdjson::dom::key_value_pair field : object_) {
     if (!is_known(field.key)) {
       diagnostics_.warning(where(field.key),
-                           "unknown field '" + std::string(field.key) + "' ignored");
+                           "unknown field " + input_quoted(field.key) + " ignored");
     }
   }
 }
@@ -313,7 +313,7 @@ void JsonFields::reject_unknown(std::initializer_list<std::string_view> known) {
   if (!is_object_) return;
   for (simdjson::dom::key_value_pair field : object_) {
     if (std::find(known.begin(), known.end(), field.key) == known.end()) {
-      diagnostics_.error(where(field.key), "unknown field '" + std::string(field.key) + "'");
+      diagnostics_.error(where(field.key), "unknown field " + input_quoted(field.key));
     }
   }
 }

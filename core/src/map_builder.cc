@@ -383,7 +383,8 @@ class MapBuilder::Validation {
   };
   using ManholeNames = RecordNames<StoredManhole, StoredName>;
   ManholeNames manhole_names() const { return {b_.manholes_, StoredName{&b_}}; }
-  std::string name(Name n) const { return std::string(b_.name(n)); }
+  // A record's name as a message shows it (control characters escaped: message_text.h).
+  std::string name(Name n) const { return input_text(b_.name(n)); }
 
   std::string at(Kind kind, std::uint32_t index, std::uint32_t line, std::string_view field,
                  std::uint32_t slot = 0) const {
@@ -504,7 +505,7 @@ class MapBuilder::Validation {
     if (!m) {
       d_.error(at(Kind::kPipe, pipe, p.line, field),
                "pipe " + name(p.name) + ": " + std::string(field) + " names unknown manhole " +
-                   input_quoted(name(end)));
+                   "'" + name(end) + "'");
       return std::nullopt;
     }
     return ManholeId{*m};
@@ -535,7 +536,7 @@ class MapBuilder::Validation {
       p.shape = r.shape;
       p.height_m = (r.given & kHeight) != 0 ? r.height_m : r.diameter_m;
       if ((r.given & kBlockageRisk) != 0) p.blockage_risk = r.blockage_risk;
-      p.name = name(r.name);
+      p.name = b_.name(r.name);
       map.pipes_.push_back(std::move(p));
     }
     slot_seen_.assign(2 * map.pipes_.size(), false);
@@ -596,7 +597,7 @@ class MapBuilder::Validation {
       map.manholes_.push_back(std::move(m));
     }
     for (std::size_t i = 0; i < b_.manholes_.size(); ++i) {
-      map.manholes_[i].name = name(b_.manholes_[i].name);
+      map.manholes_[i].name = b_.name(b_.manholes_[i].name);
     }
   }
 
@@ -613,7 +614,7 @@ class MapBuilder::Validation {
     };
     auto pipe = find_pipe(map, b_.name(rs.pipe), flat);
     if (!pipe) {
-      d_.error(where(), object() + " names unknown pipe " + input_quoted(name(rs.pipe)));
+      d_.error(where(), object() + " names unknown pipe " + "'" + name(rs.pipe) + "'");
       return slot;
     }
     Pipe& p = map.pipes_[*pipe];
@@ -621,13 +622,13 @@ class MapBuilder::Validation {
     if (joins_itself(p)) return slot;  // build_pipes said so: one error, not three
     int end = p.ends[0].manhole == manhole ? 0 : p.ends[1].manhole == manhole ? 1 : -1;
     if (end < 0) {
-      d_.error(where(),
-               object() + " names pipe " + p.name + ", but " + p.name + " " + describe_ends(p));
+      d_.error(where(), object() + " names pipe " + input_text(p.name) + ", but " +
+                            input_text(p.name) + " " + describe_ends(p));
       return slot;
     }
     auto e = static_cast<std::size_t>(end);
     if (slot_seen_[2 * pipe.value() + e]) {
-      d_.error(where(), object() + " names pipe " + p.name + " a second time");
+      d_.error(where(), object() + " names pipe " + input_text(p.name) + " a second time");
       return slot;
     }
     slot_seen_[2 * pipe.value() + e] = true;
@@ -655,10 +656,10 @@ class MapBuilder::Validation {
       const Pipe& p = map.pipes_[i];
       for (std::size_t e = 0; e < 2; ++e) {
         if (p.ends[e].manhole && !slot_seen_[2 * i + e] && !joins_itself(p)) {
-          const std::string& m = map.manholes_[p.ends[e].manhole->index()].name;
-          d_.error(
-              at(Kind::kPipe, i, b_.pipes_[i].line, e == 0 ? "from" : "to"),
-              "pipe " + p.name + " ends in manhole " + m + ", but " + m + " has no slot for it");
+          const std::string m = input_text(map.manholes_[p.ends[e].manhole->index()].name);
+          d_.error(at(Kind::kPipe, i, b_.pipes_[i].line, e == 0 ? "from" : "to"),
+                   "pipe " + input_text(p.name) + " ends in manhole " + m + ", but " + m +
+                       " has no slot for it");
         }
       }
     }
@@ -695,7 +696,7 @@ class MapBuilder::Validation {
     for (ManholeId m : map.manhole_ids()) {
       if (map.manhole(m).slot_count == 0) {
         d_.warning(at(Kind::kManhole, m.value(), b_.manholes_[m.index()].line, ""),
-                   "manhole " + map.manhole(m).name + " has no pipes");
+                   "manhole " + input_text(map.manhole(m).name) + " has no pipes");
       }
     }
     const Components components = connected_components(map);

@@ -115,4 +115,20 @@ LimitText limit_text(double value, double limit, int min_digits) {
   return t;
 }
 
+LimitText limit_text_fixed(double value, double limit, int decimals) {
+  constexpr int kMaxDecimals = 17;
+  auto fixed = [](double v, int d) {
+    std::array<char, 400> buffer{};
+    char* const first = buffer.data();
+    return std::string(
+        first, std::to_chars(first, first + buffer.size(), v, std::chars_format::fixed, d).ptr);
+  };
+  LimitText t{fixed(value, decimals), fixed(limit, decimals)};
+  while (value != limit && t.value == t.limit && decimals < kMaxDecimals) {
+    ++decimals;
+    t = {fixed(value, decimals), fixed(limit, decimals)};
+  }
+  return t;
+}
+
 }  // namespace sewerplan

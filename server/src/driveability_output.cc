@@ -31,11 +31,11 @@ std::string describe(const domain::PassageLimit& p, const SewerMap& map,
     << map.pipe(map.slot(p.manhole, p.from).pipe).name << ", "
     << map.pipe(map.slot(p.manhole, p.to).pipe).name << "):";
   if (p.turn_exceeded) {
-    const LimitText t = limit_text(p.turn_deg, profile.max_turn_deg);
+    const LimitText t = limit_text_fixed(p.turn_deg, profile.max_turn_deg);
     s << " turn " << t.value << " deg > " << t.limit;
   }
   if (p.step_exceeded) {
-    const LimitText t = limit_text(std::abs(p.step_m), profile.max_step_m);
+    const LimitText t = limit_text_fixed(std::abs(p.step_m), profile.max_step_m);
     s << " step " << t.value << " m > " << t.limit;
   }
   if (!p.motion_reason.empty()) s << " no motion: " << p.motion_reason;

@@ -68,7 +68,7 @@ cat > "$tmp/map.json" <<'JSON'
 JSON
 
 # The step of 0.3048 m was shown as "step 0.30 m > 0.30".
-expect 0 'step 0\.305 m > 0\.3$' -- "$sp" info --map "$tmp/map.json" --profile makro-1.1
+expect 0 'step 0\.305 m > 0\.300$' -- "$sp" info --map "$tmp/map.json" --profile makro-1.1
 # What the findings close: P1 as before; P2 apart, since the robot cannot enter it anyway.
 "$sp" info --map "$tmp/map.json" --profile makro-1.1 > "$tmp/info.txt" 2>&1
 expect 0 'ok' -- python3 -c "

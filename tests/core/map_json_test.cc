@@ -125,6 +125,34 @@ TEST(MapJson, Issue31NamesTheLineOfANumberBeyondADouble) {
                                                 "more than 1024 levels deep"));
 }
 
+// Issue 31: text of the file quoted in a message (a name, a shape, a key) holding control
+// characters (JSON's \u0000, \u001b) is shown escaped, never as raw bytes.
+TEST(MapJson, Issue31EscapesControlCharactersOfQuotedText) {
+  std::string text(kSmallMap);
+  std::string named(kSmallMap);
+  named.replace(named.find(R"("name": "P1")"), 12, R"("name": "P\u0000")");
+  Diagnostics names;
+  Result<SewerMap> invalid = read(named, names);
+  ASSERT_FALSE(invalid.has_value());
+  EXPECT_THAT(invalid.error().message,
+              HasSubstr("pipe name 'P\\x00' is empty, contains white space or control"));
+  EXPECT_EQ(invalid.error().message.find('\0'), std::string::npos);
+  text.replace(text.find(R"("shape": "egg")"), 14, R"("shape": "e\u001b[2Jgg")");
+  text.replace(text.find(R"("length_m": 1.1)"), 15, R"("length_m": 1.1, "n\u0007": 1)");
+  Diagnostics d;
+  Result<SewerMap> map = read(text, d);
+  ASSERT_FALSE(map.has_value());
+  const std::string& m = map.error().message;
+  EXPECT_THAT(m, HasSubstr("unknown shape 'e\\x1B[2Jgg'"));
+  EXPECT_EQ(m.find('\x1b'), std::string::npos);
+  bool key_escaped = false;
+  for (const Diagnostic& x : d.all()) {
+    EXPECT_EQ(x.where.find('\a'), std::string::npos) << x.where;
+    key_escaped = key_escaped || x.message.find("unknown field 'n\\x07'") != std::string::npos;
+  }
+  EXPECT_TRUE(key_escaped);
+}
+
 // A pipe of 1e16 m passed validation and then stopped `plan` on an internal check: every number
 // beyond core/limits.h is a validation error naming the field.
 TEST(MapJson, NumbersBeyondTheLimitsLaterStagesHoldAreErrors) {

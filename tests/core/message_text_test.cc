@@ -26,6 +26,15 @@ TEST(MessageText, Issue31ShowsAValueApartFromTheLimitItBreaks) {
   EXPECT_NE(limit_text(next, 0.3).value, limit_text(next, 0.3).limit);
 }
 
+// Reports with fixed decimals keep them, and add what it takes to tell the two apart.
+TEST(MessageText, Issue31FixedDecimalsAddWhatTellsAValueFromItsLimit) {
+  EXPECT_EQ(limit_text_fixed(0.3048, 0.3).value, "0.305");
+  EXPECT_EQ(limit_text_fixed(0.3048, 0.3).limit, "0.300");
+  EXPECT_EQ(limit_text_fixed(116.5651, 90).value, "116.57");
+  EXPECT_EQ(limit_text_fixed(116.5651, 90).limit, "90.00");
+  EXPECT_EQ(limit_text_fixed(90.0000001, 90).value, "90.0000001");
+}
+
 TEST(MessageText, NumbersInPlainDecimalsWithinAUsualRange) {
   EXPECT_EQ(number_text(0), "0");
   EXPECT_EQ(number_text(-0.0), "0");

@@ -40,4 +40,8 @@ struct LimitText {
 };
 LimitText limit_text(double value, double limit, int min_digits = 3);
 
+// The same in fixed notation, for reports printed with `decimals` decimals: more where those would
+// show the two alike ("step 0.305 m > 0.300" for 0.3048 against 0.3, where 2 give "0.30 > 0.30").
+LimitText limit_text_fixed(double value, double limit, int decimals = 2);
+
 }  // namespace sewerplan
