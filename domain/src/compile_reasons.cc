@@ -53,9 +53,9 @@ std::string CompileReasons::unreachable(const Task& task) const {
       }
     }
     if (!graph_.pipe_drivable(spot->pipe)) {
-      const LimitText t = limit_text(pipe.diameter_m, pipe.diameter_m < p.min_pipe_diameter_m
-                                                          ? p.min_pipe_diameter_m
-                                                          : p.max_pipe_diameter_m);
+      const LimitText t = limit_text_fixed(pipe.diameter_m, pipe.diameter_m < p.min_pipe_diameter_m
+                                                                ? p.min_pipe_diameter_m
+                                                                : p.max_pipe_diameter_m);
       const bool narrow = pipe.diameter_m < p.min_pipe_diameter_m;
       return "pipe " + pipe.name + " is " + t.value + " m, outside " + p.name + "'s " +
              (narrow ? t.limit : fixed(p.min_pipe_diameter_m, 2)) + "-" +
