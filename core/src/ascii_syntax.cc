@@ -8,6 +8,8 @@
 #include <limits>
 #include <system_error>
 
+#include "sewerplan/core/message_text.h"
+
 namespace sewerplan::ascii_syntax {
 namespace {
 
@@ -87,15 +89,7 @@ std::string_view name_problem(std::string_view name) {
 
 std::string quoted(std::string_view text) {
   constexpr std::size_t kMaxShown = 40;
-  std::string out = "'";
-  if (text.size() <= kMaxShown) {
-    out.append(text);
-  } else {
-    out.append(text.substr(0, kMaxShown));
-    out.append("...");
-  }
-  out.push_back('\'');
-  return out;
+  return input_quoted(text, kMaxShown);
 }
 
 }  // namespace sewerplan::ascii_syntax

@@ -64,7 +64,7 @@ void append_number(std::string& out, float value);
 std::string_view name_problem(std::string_view name);
 
 // `text` in single quotes, shortened to its first few dozen characters if long (the text may be
-// arbitrary input).
+// arbitrary input: control characters escaped, message_text.h's input_quoted).
 std::string quoted(std::string_view text);
 
 }  // namespace sewerplan::ascii_syntax

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "sewerplan/core/message_text.h"
+
 namespace sewerplan {
 namespace {
 
@@ -15,13 +17,6 @@ const RiskRule* match(const RiskTable& table, const Finding& f) {
     }
   }
   return nullptr;
-}
-
-std::string metres(double v) {
-  std::ostringstream out;
-  out.precision(3);
-  out << v << " m";
-  return out.str();
 }
 
 }  // namespace
@@ -114,8 +109,8 @@ std::vector<FindingRisk> assess_findings(const SewerMap& map, const RobotProfile
       const double left = map.pipe(f.pipe).diameter_m * (1 - std::clamp(q, 0.0, 100.0) / 100);
       if (left < profile.body_width_m) {
         risk.effect = RiskEffect::kImpassable;
-        risk.reason +=
-            " leaves " + metres(left) + ", less than the robot's " + metres(profile.body_width_m);
+        const LimitText t = limit_text(left, profile.body_width_m);
+        risk.reason += " leaves " + t.value + " m, less than the robot's " + t.limit + " m";
       }
     }
     switch (risk.effect) {

@@ -5,30 +5,105 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
+#include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "sewerplan/core/message_text.h"
+
 namespace sewerplan {
 namespace {
 
+// A number of the text that no double holds (1e999: beyond 1.8e308), as `token` at byte `offset`.
+struct OutOfRangeNumber {
+  std::size_t offset = 0;
+  std::string_view token;
+};
+
+// The first number outside a string that is too large for a double. A well-formed document with one
+// is refused by both parsers in their own words and without a place (nlohmann: "number overflow
+// parsing '1e999'"; simdjson: "Problem while parsing a number"); this finds it to say where.
+std::optional<OutOfRangeNumber> find_out_of_range_number(std::string_view text) {
+  for (std::size_t i = 0; i < text.size();) {
+    const char c = text[i];
+    if (c == '"') {  // skip the string, escapes included
+      for (++i; i < text.size() && text[i] != '"'; ++i) {
+        if (text[i] == '\\') ++i;
+      }
+      ++i;
+      continue;
+    }
+    if (c != '-' && (c < '0' || c > '9')) {
+      ++i;
+      continue;
+    }
+    const std::size_t start = i;
+    while (i < text.size() &&
+           (std::string_view("0123456789+-.eE").find(text[i]) != std::string_view::npos)) {
+      ++i;
+    }
+    const std::string token(text.substr(start, i - start));
+    char* end = nullptr;
+    const double v = std::strtod(token.c_str(), &end);
+    if (end == token.c_str() + token.size() && std::isinf(v)) {
+      return OutOfRangeNumber{start, text.substr(start, i - start)};
+    }
+  }
+  return std::nullopt;
+}
+
+// "file:line:column" of byte `offset` (0-based) of `text`.
+std::string place_of(std::string_view text, std::string_view file, std::size_t offset) {
+  const std::string_view before = text.substr(0, std::min(offset, text.size()));
+  const auto line = 1 + static_cast<std::size_t>(std::count(before.begin(), before.end(), '\n'));
+  const std::size_t line_start = before.rfind('\n');
+  const std::size_t column =
+      line_start == std::string_view::npos ? offset + 1 : offset - line_start;
+  return std::string(file) + ":" + std::to_string(line) + ":" + std::to_string(column);
+}
+
+// simdjson's errors for a document nlohmann reads, in our words. None of them names a place.
+std::string describe_simdjson_error(simdjson::error_code error) {
+  switch (error) {
+    case simdjson::DEPTH_ERROR:
+      return "the JSON nests arrays and objects more than " +
+             std::to_string(simdjson::DEFAULT_MAX_DEPTH) + " levels deep";
+    case simdjson::NUMBER_ERROR:
+      return "a number sewerplan cannot read (beyond the range of a double)";
+    case simdjson::CAPACITY:
+      return "the JSON file is larger than the 4 GiB sewerplan reads";
+    case simdjson::UTF8_ERROR:
+      return "the JSON text is not valid UTF-8";
+    case simdjson::UNESCAPED_CHARS:
+      return "a string holds a control character (such as a line break or a NUL) that JSON "
+             "allows only escaped";
+    default:
+      return "not valid JSON (" + std::string(simdjson::error_message(error)) + ")";
+  }
+}
+
 // simdjson does not say where a syntax error is; nlohmann does. Used only on the error path.
-void report_syntax_error(std::string_view text, std::string_view file, std::string_view fallback,
+void report_syntax_error(std::string_view text, std::string_view file, simdjson::error_code error,
                          Diagnostics& diagnostics) {
+  if (const std::optional<OutOfRangeNumber> n = find_out_of_range_number(text)) {
+    diagnostics.error(place_of(text, file, n->offset),
+                      "number " + input_text(n->token) +
+                          " is out of range: no number beyond about 1.8e308 can be read");
+    return;
+  }
   try {
     [[maybe_unused]] const nlohmann::json parsed = nlohmann::json::parse(text.begin(), text.end());
   } catch (const nlohmann::json::parse_error& e) {
     report_json_syntax_error(text, file, e.byte, e.what(), diagnostics);
     return;
-  } catch (const nlohmann::json::exception& e) {
-    // Well-formed but not readable: a number too large for a double ("number overflow").
-    diagnostics.error(std::string(file), std::string("JSON error: ") + e.what());
-    return;
   } catch (const std::exception&) {
-    // Fall through to simdjson's own message.
+    // Refused for a reason other than syntax: simdjson's reason, in our words, below.
   }
-  diagnostics.error(std::string(file), "JSON syntax error: " + std::string(fallback));
+  diagnostics.error(std::string(file), describe_simdjson_error(error));
 }
 
 // A UTF-8 byte order mark (Windows editors write one) starts no JSON value; simdjson would call it
@@ -48,7 +123,7 @@ std::optional<JsonDocument> JsonDocument::parse(std::string_view text, std::stri
   doc.parser_ = std::make_unique<simdjson::dom::parser>();
   const simdjson::error_code error = doc.parser_->parse(text.data(), text.size()).get(doc.root_);
   if (error != simdjson::SUCCESS) {
-    report_syntax_error(full, file, simdjson::error_message(error), diagnostics);
+    report_syntax_error(full, file, error, diagnostics);
     return std::nullopt;
   }
   return doc;
@@ -107,8 +182,8 @@ void JsonFields::report_duplicate_keys() {
   }
   for (const auto& [position, key_view] : repeated) {
     const std::string key(key_view);
-    diagnostics_.error(where(key), "field '" + key +
-                                       "' given twice in one object: which value is meant is "
+    diagnostics_.error(where(key), "field " + input_quoted(key) +
+                                       " given twice in one object: which value is meant is "
                                        "unclear");
   }
 }
@@ -119,7 +194,7 @@ std::string JsonFields::where(std::string_view key) const {
   w += path_;
   if (!key.empty()) {
     w += '.';
-    w += key;
+    w += input_text(key);  // a key of the file's may hold anything
   }
   return w;
 }
@@ -229,7 +304,7 @@ void JsonFields::warn_unknown(const std::function<bool(std::string_view)>& is_kn
   for (simdjson::dom::key_value_pair field : object_) {
     if (!is_known(field.key)) {
       diagnostics_.warning(where(field.key),
-                           "unknown field '" + std::string(field.key) + "' ignored");
+                           "unknown field " + input_quoted(field.key) + " ignored");
     }
   }
 }
@@ -238,7 +313,7 @@ void JsonFields::reject_unknown(std::initializer_list<std::string_view> known) {
   if (!is_object_) return;
   for (simdjson::dom::key_value_pair field : object_) {
     if (std::find(known.begin(), known.end(), field.key) == known.end()) {
-      diagnostics_.error(where(field.key), "unknown field '" + std::string(field.key) + "'");
+      diagnostics_.error(where(field.key), "unknown field " + input_quoted(field.key));
     }
   }
 }

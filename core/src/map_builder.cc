@@ -12,6 +12,7 @@
 #include "sewerplan/core/check.h"
 #include "sewerplan/core/limits.h"
 #include "sewerplan/core/map_queries.h"
+#include "sewerplan/core/message_text.h"
 #include "sewerplan/core/text_file.h"
 
 #include "huge_pages.h"
@@ -21,11 +22,7 @@ namespace {
 
 using Kind = RecordRef::Kind;
 
-std::string format_number(double v) {
-  std::ostringstream out;
-  out << v;
-  return out.str();
-}
+std::string format_number(double v) { return number_text(v); }
 
 // No white space or control characters, and valid UTF-8: every name may end up in JSON output
 // (readers convert Latin-1 input to UTF-8 first: text_file.h).
@@ -115,8 +112,9 @@ SortedNames sorted_names(const Names& names, std::string_view kind, Kind ref_kin
     RecordRef ref{ref_kind, order[k], 0, names.line(order[k])};
     if (!is_valid_name(name)) {
       diagnostics.error(locate(ref, "name"),
-                        std::string(kind) + " name '" + to_utf8_lossy(name) +
-                            "' is empty, contains white space or is not valid UTF-8");
+                        std::string(kind) + " name " + input_quoted(name) +
+                            " is empty, contains white space or control characters, or is not "
+                            "valid UTF-8");
     } else if (k > 0 && names[order[k - 1]] == name) {
       RecordRef first_ref{ref_kind, order[k - 1], 0, names.line(order[k - 1])};
       diagnostics.error(locate(ref, "name"), "duplicate " + std::string(kind) + " name '" +
@@ -298,11 +296,12 @@ SewerMap MapBuilder::add_findings(SewerMap map, std::vector<FindingRecord> findi
     double offset = r.against_flow ? length - r.station_m : r.station_m;
     if (!(offset >= 0 && offset <= length)) {
       const double clamped = std::clamp(std::isfinite(offset) ? offset : 0.0, 0.0, length);
+      const LimitText t = limit_text(r.station_m, r.station_m < 0 ? 0.0 : length);
       diagnostics.warning(locator(RecordRef{Kind::kFinding, i, 0, r.line}, "station"),
-                          "finding " + r.code + " in pipe " + r.pipe + ": station " +
-                              format_number(r.station_m) + " m lies off the pipe (0 to " +
-                              format_number(length) + " m): placed at " + format_number(clamped) +
-                              " m");
+                          "finding " + input_text(r.code) + " in pipe " + input_text(r.pipe) +
+                              ": station " + t.value + " m lies off the pipe (0 to " +
+                              limit_text(length, r.station_m).value + " m): placed at " +
+                              format_number(clamped) + " m");
       offset = clamped;
     }
     map.findings_.push_back({.pipe = *pipe,
@@ -314,9 +313,8 @@ SewerMap MapBuilder::add_findings(SewerMap map, std::vector<FindingRecord> findi
   }
   if (unknown > 0) {
     diagnostics.warning(locator(RecordRef{}, ""),
-                        std::to_string(unknown) +
-                            " findings name no pipe of the map (the first: '" +
-                            to_utf8_lossy(first_unknown) + "'): left out");
+                        std::to_string(unknown) + " findings name no pipe of the map (the first: " +
+                            input_quoted(first_unknown) + "): left out");
   }
   std::stable_sort(map.findings_.begin(), map.findings_.end(),
                    [](const Finding& a, const Finding& b) {
@@ -385,7 +383,8 @@ class MapBuilder::Validation {
   };
   using ManholeNames = RecordNames<StoredManhole, StoredName>;
   ManholeNames manhole_names() const { return {b_.manholes_, StoredName{&b_}}; }
-  std::string name(Name n) const { return std::string(b_.name(n)); }
+  // A record's name as a message shows it (control characters escaped: message_text.h).
+  std::string name(Name n) const { return input_text(b_.name(n)); }
 
   std::string at(Kind kind, std::uint32_t index, std::uint32_t line, std::string_view field,
                  std::uint32_t slot = 0) const {
@@ -425,8 +424,9 @@ class MapBuilder::Validation {
   void require_at_most(double v, double limit, std::string_view what, const Object& object,
                        const FieldRef& f) {
     if (std::isfinite(v) && std::abs(v) > limit) {
+      const LimitText t = limit_text(v, v < 0 ? -limit : limit);
       d_.error(at(f), object() + ": " + std::string(what) + " must be at most " +
-                          format_number(limit) + " m, got " + format_number(v));
+                          limit_text(limit, std::abs(v)).value + " m, got " + t.value);
     }
   }
 
@@ -493,7 +493,7 @@ class MapBuilder::Validation {
     if ((p.given & kBlockageRisk) != 0 && !(p.blockage_risk >= 0 && p.blockage_risk <= 1)) {
       d_.error(at(Kind::kPipe, i, p.line, "blockage_risk"),
                object() + ": blockage_risk must be between 0 and 1, got " +
-                   format_number(p.blockage_risk));
+                   limit_text(p.blockage_risk, p.blockage_risk < 0 ? 0.0 : 1.0).value);
     }
   }
 
@@ -504,8 +504,8 @@ class MapBuilder::Validation {
     const StoredPipe& p = b_.pipes_[pipe];
     if (!m) {
       d_.error(at(Kind::kPipe, pipe, p.line, field),
-               "pipe " + name(p.name) + ": " + std::string(field) + " names unknown manhole '" +
-                   name(end) + "'");
+               "pipe " + name(p.name) + ": " + std::string(field) + " names unknown manhole " +
+                   "'" + name(end) + "'");
       return std::nullopt;
     }
     return ManholeId{*m};
@@ -536,7 +536,7 @@ class MapBuilder::Validation {
       p.shape = r.shape;
       p.height_m = (r.given & kHeight) != 0 ? r.height_m : r.diameter_m;
       if ((r.given & kBlockageRisk) != 0) p.blockage_risk = r.blockage_risk;
-      p.name = name(r.name);
+      p.name = b_.name(r.name);
       map.pipes_.push_back(std::move(p));
     }
     slot_seen_.assign(2 * map.pipes_.size(), false);
@@ -597,7 +597,7 @@ class MapBuilder::Validation {
       map.manholes_.push_back(std::move(m));
     }
     for (std::size_t i = 0; i < b_.manholes_.size(); ++i) {
-      map.manholes_[i].name = name(b_.manholes_[i].name);
+      map.manholes_[i].name = b_.name(b_.manholes_[i].name);
     }
   }
 
@@ -614,26 +614,33 @@ class MapBuilder::Validation {
     };
     auto pipe = find_pipe(map, b_.name(rs.pipe), flat);
     if (!pipe) {
-      d_.error(where(), object() + " names unknown pipe '" + name(rs.pipe) + "'");
+      d_.error(where(), object() + " names unknown pipe " + "'" + name(rs.pipe) + "'");
       return slot;
     }
     Pipe& p = map.pipes_[*pipe];
     slot.pipe = PipeId{*pipe};
+    if (joins_itself(p)) return slot;  // build_pipes said so: one error, not three
     int end = p.ends[0].manhole == manhole ? 0 : p.ends[1].manhole == manhole ? 1 : -1;
     if (end < 0) {
-      d_.error(where(),
-               object() + " names pipe " + p.name + ", but " + p.name + " " + describe_ends(p));
+      d_.error(where(), object() + " names pipe " + input_text(p.name) + ", but " +
+                            input_text(p.name) + " " + describe_ends(p));
       return slot;
     }
     auto e = static_cast<std::size_t>(end);
     if (slot_seen_[2 * pipe.value() + e]) {
-      d_.error(where(), object() + " names pipe " + p.name + " a second time");
+      d_.error(where(), object() + " names pipe " + input_text(p.name) + " a second time");
       return slot;
     }
     slot_seen_[2 * pipe.value() + e] = true;
     slot.pipe_end = static_cast<std::uint8_t>(end);
     p.ends[e].slot = index;
     return slot;
+  }
+
+  // A pipe from a manhole to itself: an error of its own (build_pipes), whose slots are not
+  // checked, since no slot could be right.
+  static bool joins_itself(const Pipe& p) {
+    return p.ends[0].manhole && p.ends[0].manhole == p.ends[1].manhole;
   }
 
   std::string describe_ends(const Pipe& p) const {
@@ -648,11 +655,11 @@ class MapBuilder::Validation {
     for (std::uint32_t i = 0; i < map.pipes_.size(); ++i) {
       const Pipe& p = map.pipes_[i];
       for (std::size_t e = 0; e < 2; ++e) {
-        if (p.ends[e].manhole && !slot_seen_[2 * i + e]) {
-          const std::string& m = map.manholes_[p.ends[e].manhole->index()].name;
-          d_.error(
-              at(Kind::kPipe, i, b_.pipes_[i].line, e == 0 ? "from" : "to"),
-              "pipe " + p.name + " ends in manhole " + m + ", but " + m + " has no slot for it");
+        if (p.ends[e].manhole && !slot_seen_[2 * i + e] && !joins_itself(p)) {
+          const std::string m = input_text(map.manholes_[p.ends[e].manhole->index()].name);
+          d_.error(at(Kind::kPipe, i, b_.pipes_[i].line, e == 0 ? "from" : "to"),
+                   "pipe " + input_text(p.name) + " ends in manhole " + m + ", but " + m +
+                       " has no slot for it");
         }
       }
     }
@@ -666,15 +673,18 @@ class MapBuilder::Validation {
       point.offset_m = r.offset_m;
       auto pipe = find_pipe(map, r.pipe, kNoPipe);
       if (!pipe) {
-        d_.error(at(Kind::kPoint, i, r.line, "pipe"),
-                 "inspection point " + r.name + " names unknown pipe '" + r.pipe + "'");
+        d_.error(at(Kind::kPoint, i, r.line, "pipe"), "inspection point " + input_text(r.name) +
+                                                          " names unknown pipe " +
+                                                          input_quoted(r.pipe));
       } else {
         point.pipe = PipeId{*pipe};
         const double length = map.pipes_[*pipe].length_m;
         if (!(r.offset_m >= 0 && r.offset_m <= length)) {
+          const LimitText t = limit_text(r.offset_m, r.offset_m < 0 ? 0.0 : length);
           d_.error(at(Kind::kPoint, i, r.line, "offset_m"),
-                   "inspection point " + r.name + ": offset " + format_number(r.offset_m) +
-                       " m is outside pipe " + r.pipe + " (0 to " + format_number(length) + " m)");
+                   "inspection point " + input_text(r.name) + ": offset " + t.value +
+                       " m is outside pipe " + r.pipe + " (0 to " +
+                       limit_text(length, r.offset_m).value + " m)");
         }
       }
       point.name = std::move(r.name);
@@ -686,7 +696,7 @@ class MapBuilder::Validation {
     for (ManholeId m : map.manhole_ids()) {
       if (map.manhole(m).slot_count == 0) {
         d_.warning(at(Kind::kManhole, m.value(), b_.manholes_[m.index()].line, ""),
-                   "manhole " + map.manhole(m).name + " has no pipes");
+                   "manhole " + input_text(map.manhole(m).name) + " has no pipes");
       }
     }
     const Components components = connected_components(map);

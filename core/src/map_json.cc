@@ -10,6 +10,7 @@
 
 #include "sewerplan/core/json_fields.h"
 #include "sewerplan/core/map_builder.h"
+#include "sewerplan/core/message_text.h"
 
 #include "json_scan.h"
 #include "map_json_fast.h"
@@ -57,7 +58,7 @@ std::optional<char> read_variant(JsonFields& f) {
   if (!v) return std::nullopt;
   if (v->size() != 1) {
     f.diagnostics().error(f.where("variant"),
-                          "variant must be one capital letter, got \"" + *v + "\"");
+                          "variant must be one capital letter, got " + input_quoted(*v));
     return std::nullopt;
   }
   return (*v)[0];
@@ -129,8 +130,9 @@ PipeRecord read_pipe(JsonElement j, std::size_t index, std::string_view file, Di
     if (auto s = pipe_shape_from_string(*shape)) {
       p.shape = *s;
     } else {
-      d.error(f.where("shape"), "pipe " + p.name + ": unknown shape \"" + *shape +
-                                    "\" (circular, rectangular, egg or other)");
+      d.error(f.where("shape"), "pipe " + input_text(p.name) + ": unknown shape " +
+                                    input_quoted(*shape) +
+                                    " (circular, rectangular, egg or other)");
     }
   }
   p.height_m = f.number("height_m", Need::kOptional);
@@ -171,7 +173,7 @@ void check_header(JsonFields& f) {
   auto format = f.string("format");
   if (format && *format != kMapJsonFormat) {
     f.diagnostics().error(f.where("format"), "expected \"" + std::string(kMapJsonFormat) +
-                                                 "\", got \"" + *format + "\"");
+                                                 "\", got " + input_quoted(*format));
   }
   auto version = f.number("version");
   if (version && *version != kMapJsonVersion) {

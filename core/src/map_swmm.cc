@@ -3,6 +3,8 @@
 #include "sewerplan/core/map_swmm.h"
 
 #include <algorithm>
+#include <array>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <numbers>
@@ -10,7 +12,9 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "sewerplan/core/limits.h"
 #include "sewerplan/core/map_builder.h"
+#include "sewerplan/core/message_text.h"
 #include "sewerplan/core/text_file.h"
 
 #include "network_import.h"
@@ -37,6 +41,13 @@ struct Fallbacks {
   std::size_t multi_barrel = 0;
   std::size_t without_xy = 0;
   std::size_t stray_geometry = 0;
+  std::size_t bad_barrels = 0;
+};
+
+// A [STORAGE] unit wider than any manhole (kMaxDiameter_m): a pond or a treatment tank, which no
+// robot enters. It is left out of the map; the conduits that end in it end blind there.
+struct LeftOutStorage {
+  double invert_z_m = 0;
 };
 
 class SwmmReader {
@@ -57,6 +68,7 @@ class SwmmReader {
     read_xsections();
     read_conduits();
     read_vertices();
+    fit_schematic();
     count_other_links();
     if (net_.links.empty() && !d_.has_errors_since(before)) {
       d_.error(file_, std::to_string(net_.nodes.size()) +
@@ -76,8 +88,8 @@ class SwmmReader {
   std::optional<double> number(const SwmmRow& row, std::size_t k, std::string_view what) {
     const std::optional<double> v = parse_swmm_number(row.fields[k]);
     if (!v) {
-      d_.error(at(row), std::string(row.fields[0]) + ": " + std::string(what) +
-                            " is not a number: '" + std::string(row.fields[k]) + "'");
+      d_.error(at(row), input_text(row.fields[0]) + ": " + std::string(what) +
+                            " is not a number: " + input_quoted(row.fields[k]));
     }
     return v;
   }
@@ -85,8 +97,8 @@ class SwmmReader {
   bool has_fields(const SwmmRow& row, std::size_t n, std::string_view section,
                   std::string_view expected) {
     if (row.fields.size() >= n) return true;
-    d_.error(at(row), "[" + std::string(section) + "] row '" + std::string(row.fields[0]) +
-                          "': too few fields, expected " + std::string(expected));
+    d_.error(at(row), "[" + std::string(section) + "] row " + input_quoted(row.fields[0]) +
+                          ": too few fields, expected " + std::string(expected));
     return false;
   }
 
@@ -99,6 +111,8 @@ class SwmmReader {
   void read_conduits();
   std::optional<double> end_invert(const SwmmRow& row, std::size_t k, const std::string& node);
   void read_vertices();
+  void fit_schematic();
+  std::optional<std::string> link_end(const SwmmRow& row, std::size_t k);
   void count_other_links();
   void report_fallbacks();
 
@@ -115,6 +129,8 @@ class SwmmReader {
   std::unordered_map<std::string_view, detail::PipeProfile> profile_of_;
   std::unordered_map<std::string_view, std::uint32_t> xsection_line_;  // every [XSECTIONS] row
   std::unordered_map<std::string_view, std::uint32_t> coordinate_line_;
+  std::unordered_map<std::string_view, LeftOutStorage> left_out_storage_;
+  std::optional<std::uint32_t> schematic_line_;  // [MAP] UNITS NONE
   Fallbacks fallbacks_;
 };
 
@@ -136,8 +152,8 @@ void SwmmReader::read_options() {
       } else if (value == "CMS" || value == "LPS" || value == "MLD") {
         metres_per_unit_ = 1.0;
       } else {
-        d_.error(at(row), "unknown FLOW_UNITS '" + std::string(row.fields[1]) +
-                              "' (CFS, GPM, MGD, CMS, LPS or MLD)");
+        d_.error(at(row), "unknown FLOW_UNITS " + input_quoted(row.fields[1]) +
+                              " (CFS, GPM, MGD, CMS, LPS or MLD)");
         continue;
       }
       flow_units = value;
@@ -145,7 +161,7 @@ void SwmmReader::read_options() {
     } else if (key == "LINK_OFFSETS") {
       if (value != "DEPTH" && value != "ELEVATION") {
         d_.error(at(row),
-                 "unknown LINK_OFFSETS '" + std::string(row.fields[1]) + "' (DEPTH or ELEVATION)");
+                 "unknown LINK_OFFSETS " + input_quoted(row.fields[1]) + " (DEPTH or ELEVATION)");
       }
       offsets_are_elevations_ = value == "ELEVATION";
     }
@@ -169,6 +185,8 @@ void SwmmReader::read_map_units() {
       d_.warning(at(row),
                  "[MAP] UNITS DEGREES: positions are kept in degrees, not metres; "
                  "azimuths are only approximate");
+    } else if (value == "NONE") {
+      schematic_line_ = row.line;
     }
   }
 }
@@ -183,6 +201,14 @@ void SwmmReader::read_nodes(std::string_view section, bool exit) {
     if (!diameter) {
       diameter = options_.manhole_diameter_m;
       ++fallbacks_.default_diameter;
+    } else if (*diameter > kMaxDiameter_m) {
+      const LimitText t = limit_text(*diameter, kMaxDiameter_m);
+      d_.warning(at(row), "storage unit " + input_text(row.fields[0]) + " is " + t.value +
+                              " m across, more than the " + t.limit +
+                              " m of the widest manhole: a pond or tank no robot enters; left "
+                              "out, its conduits end blind there");
+      left_out_storage_.emplace(row.fields[0], LeftOutStorage{*invert * metres_per_unit_});
+      continue;
     }
     node_of_.emplace(row.fields[0], net_.nodes.size());
     net_.nodes.push_back({.name = std::string(row.fields[0]),
@@ -221,12 +247,12 @@ void SwmmReader::read_coordinates() {
     if (!has_fields(row, 3, "COORDINATES", "node, x, y")) continue;
     auto node = node_of_.find(row.fields[0]);
     if (node == node_of_.end()) {
-      ++fallbacks_.stray_geometry;
+      if (!left_out_storage_.contains(row.fields[0])) ++fallbacks_.stray_geometry;
       continue;
     }
     auto [first, inserted] = coordinate_line_.emplace(row.fields[0], row.line);
     if (!inserted) {
-      d_.error(at(row), "node " + std::string(row.fields[0]) +
+      d_.error(at(row), "node " + input_text(row.fields[0]) +
                             ": coordinates given twice (first at line " +
                             std::to_string(first->second) + ")");
       continue;
@@ -246,7 +272,7 @@ void SwmmReader::read_xsections() {
   for (const SwmmRow& row : s_.rows("XSECTIONS")) {
     auto [first, inserted] = xsection_line_.emplace(row.fields[0], row.line);
     if (!inserted) {
-      d_.error(at(row), "link " + std::string(row.fields[0]) +
+      d_.error(at(row), "link " + input_text(row.fields[0]) +
                             ": cross-section given twice (first at line " +
                             std::to_string(first->second) + ")");
       continue;
@@ -256,7 +282,7 @@ void SwmmReader::read_xsections() {
       if (p.error().code == ErrorCode::kUnsupportedFormat) {
         ++fallbacks_.undimensioned;
       } else {
-        d_.error(at(row), "link " + std::string(row.fields[0]) + ": " + p.error().message);
+        d_.error(at(row), "link " + input_text(row.fields[0]) + ": " + p.error().message);
       }
       continue;
     }
@@ -264,6 +290,7 @@ void SwmmReader::read_xsections() {
       ++fallbacks_.no_clear_size;
       continue;
     }
+    if (!p->barrels_read) ++fallbacks_.bad_barrels;
     profile_of_.emplace(row.fields[0], *p);
   }
 }
@@ -271,7 +298,10 @@ void SwmmReader::read_xsections() {
 std::optional<double> SwmmReader::end_invert(const SwmmRow& row, std::size_t k,
                                              const std::string& node) {
   auto it = node_of_.find(node);
-  const double node_invert = it == node_of_.end() ? 0.0 : net_.nodes[it->second].position.z_m;
+  auto storage = left_out_storage_.find(node);
+  const double node_invert = it != node_of_.end() ? net_.nodes[it->second].position.z_m
+                             : storage != left_out_storage_.end() ? storage->second.invert_z_m
+                                                                  : 0.0;
   if (row.fields[k] == "*") return node_invert;
   const std::optional<double> offset = number(row, k, k == 5 ? "inlet offset" : "outlet offset");
   if (!offset) return std::nullopt;
@@ -288,21 +318,35 @@ void SwmmReader::read_conduits() {
     auto profile = profile_of_.find(row.fields[0]);
     if (profile == profile_of_.end()) {
       if (!xsection_line_.contains(row.fields[0])) {
-        d_.error(at(row), "conduit " + std::string(row.fields[0]) + ": no [XSECTIONS] row");
+        d_.error(at(row), "conduit " + input_text(row.fields[0]) + ": no [XSECTIONS] row");
       }
       continue;  // an undimensioned shape (counted) or a bad row (reported)
     }
+    if (profile->second.diameter_m > kMaxDiameter_m) {
+      const LimitText t = limit_text(profile->second.diameter_m, kMaxDiameter_m);
+      d_.warning(at(row), "conduit " + input_text(row.fields[0]) + " is " + t.value +
+                              " m wide and high, more than the " + t.limit +
+                              " m of the largest pipe: a channel no robot drives; left out");
+      continue;
+    }
     const std::optional<double> length = number(row, 3, "length");
+    const std::optional<std::string> from = link_end(row, 1);
+    const std::optional<std::string> to = link_end(row, 2);
+    if (!from && !to) {
+      d_.warning(at(row), "conduit " + input_text(row.fields[0]) +
+                              " joins two storage units that are left out: left out too");
+      continue;
+    }
     ImportLink link{.name = std::string(row.fields[0]),
-                    .from = std::string(row.fields[1]),
-                    .to = std::string(row.fields[2]),
+                    .from = from,
+                    .to = to,
                     .length_m = length.value_or(0) * metres_per_unit_,
                     .diameter_m = profile->second.diameter_m,
                     .height_m = profile->second.height_m,
                     .shape = profile->second.shape,
                     .line = row.line};
-    const std::optional<double> in = end_invert(row, 5, *link.from);
-    const std::optional<double> out = end_invert(row, 6, *link.to);
+    const std::optional<double> in = end_invert(row, 5, std::string(row.fields[1]));
+    const std::optional<double> out = end_invert(row, 6, std::string(row.fields[2]));
     if (!length || !in || !out) continue;
     link.from_invert_z_m = *in;
     link.to_invert_z_m = *out;
@@ -324,13 +368,76 @@ void SwmmReader::read_vertices() {
   }
 }
 
+// A conduit's end node (field `k` of its row), or none where it is a storage unit left out.
+std::optional<std::string> SwmmReader::link_end(const SwmmRow& row, std::size_t k) {
+  if (left_out_storage_.contains(row.fields[k])) return std::nullopt;
+  return std::string(row.fields[k]);
+}
+
+// [MAP] UNITS NONE: the coordinates are a drawing (a schematic of the network), not a survey. The
+// map has no coordinate system; pipe lengths come from [CONDUITS] as always; the positions are
+// kept only as the drawing, which gives the pipes' directions in each manhole. A drawing may lie
+// anywhere on its canvas: one beyond kMaxCoordinate_m is moved, and shrunk if it is wider than
+// that, to fit, keeping its shape and so every direction.
+void SwmmReader::fit_schematic() {
+  if (!schematic_line_) return;
+  std::array<double, 2> low{0, 0};
+  std::array<double, 2> high{0, 0};
+  bool any = false;
+  auto extend = [&](double x, double y) {
+    low = any ? std::array{std::min(low[0], x), std::min(low[1], y)} : std::array{x, y};
+    high = any ? std::array{std::max(high[0], x), std::max(high[1], y)} : std::array{x, y};
+    any = true;
+  };
+  for (const ImportNode& n : net_.nodes) {
+    if (n.has_xy) extend(n.position.x_m, n.position.y_m);
+  }
+  for (const ImportLink& l : net_.links) {
+    for (const std::array<double, 2>& v : l.vertices) extend(v[0], v[1]);
+  }
+  const std::string where = file_ + ":" + std::to_string(*schematic_line_);
+  const std::string what =
+      "[MAP] UNITS NONE: the coordinates are a schematic drawing, not a survey: no coordinate "
+      "system, pipe lengths from [CONDUITS], positions kept only as the drawing";
+  const double reach =
+      std::max({std::abs(low[0]), std::abs(low[1]), std::abs(high[0]), std::abs(high[1])});
+  if (!any || reach <= kMaxCoordinate_m) {
+    d_.warning(where, what);
+    return;
+  }
+  const double extent = std::max(high[0] - low[0], high[1] - low[1]);
+  const double scale = extent > kMaxCoordinate_m ? kMaxCoordinate_m / extent : 1.0;
+  auto fit = [&](double& x, double& y) {
+    x = (x - low[0]) * scale;
+    y = (y - low[1]) * scale;
+  };
+  for (ImportNode& n : net_.nodes) {
+    if (n.has_xy) fit(n.position.x_m, n.position.y_m);
+  }
+  for (ImportLink& l : net_.links) {
+    for (std::array<double, 2>& v : l.vertices) fit(v[0], v[1]);
+  }
+  const LimitText t = limit_text(reach, kMaxCoordinate_m);
+  d_.warning(where, what + "; the drawing reaches " + t.value + " m, beyond the " + t.limit +
+                        " m a map may, so it is moved to start at (0, 0)" +
+                        (scale < 1 ? " and shrunk by a factor of " + number_text(1 / scale)
+                                   : std::string()));
+}
+
 void SwmmReader::count_other_links() {
   for (std::string_view section : {"PUMPS", "ORIFICES", "WEIRS", "OUTLETS"}) {
+    std::string kind(section.substr(0, section.size() - 1));
+    std::transform(kind.begin(), kind.end(), kind.begin(),
+                   [](char c) { return static_cast<char>(std::tolower(c)); });
     for (const SwmmRow& row : s_.rows(section)) {
       ++fallbacks_.other_links;
       if (link_of_.contains(row.fields[0])) {
         d_.error(at(row),
-                 "duplicate link name '" + std::string(row.fields[0]) + "': also a conduit");
+                 "duplicate link name " + input_quoted(row.fields[0]) + ": also a conduit");
+      } else if (row.fields.size() >= 3 && row.fields[1] == row.fields[2]) {
+        d_.warning(at(row), kind + " " + input_text(row.fields[0]) + " joins node " +
+                                input_text(row.fields[1]) +
+                                " to itself (it is left out like every " + kind + ")");
       }
     }
   }
@@ -353,6 +460,9 @@ void SwmmReader::report_fallbacks() {
   warn(f.multi_barrel, "conduits have several barrels: each imported as one pipe");
   warn(f.without_xy, "nodes have no [COORDINATES]: placed at x = y = 0");
   warn(f.stray_geometry, "[COORDINATES] rows name no node: ignored");
+  warn(f.bad_barrels,
+       "conduits have a Barrels field that is not a whole number from 1 to 100: one barrel "
+       "assumed (each conduit is imported as one pipe anyway)");
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <set>
 
 #include "sewerplan/core/json_fields.h"
+#include "sewerplan/core/message_text.h"
 #include "sewerplan/core/mission.h"
 #include "sewerplan/core/text_file.h"
 
@@ -22,13 +23,13 @@ class MissionReader {
 
   std::optional<ManholeId> manhole_named(const std::string& name, const std::string& where) {
     auto id = map_.find_manhole(name);
-    if (!id) d_.error(where, "unknown manhole '" + name + "'");
+    if (!id) d_.error(where, "unknown manhole " + input_quoted(name));
     return id;
   }
 
   std::optional<PipeId> pipe_named(const std::string& name, const std::string& where) {
     auto id = map_.find_pipe(name);
-    if (!id) d_.error(where, "unknown pipe '" + name + "'");
+    if (!id) d_.error(where, "unknown pipe " + input_quoted(name));
     return id;
   }
 
@@ -109,7 +110,7 @@ class MissionReader {
     if (!name || !offset) return;
     const auto id = map_.find_pipe(*name);
     if (!id) {
-      d_.error(f.where("pipe"), "unknown pipe '" + *name + "'");
+      d_.error(f.where("pipe"), "unknown pipe " + input_quoted(*name));
       return;
     }
     const double length = map_.pipe(*id).length_m;
@@ -156,7 +157,7 @@ class MissionReader {
     if (!name) return std::nullopt;
     auto id = map_.find_point(*name);
     if (!id) {
-      d_.error(f.where("point"), "unknown inspection point '" + *name + "'");
+      d_.error(f.where("point"), "unknown inspection point " + input_quoted(*name));
       return std::nullopt;
     }
     const InspectionPoint& p = map_.point(*id);
@@ -196,8 +197,8 @@ class MissionReader {
             {name + "/" + map_.pipe(id).name, TaskKind::kInspectPipe, PipeSpot{id, {}, {}}, false});
       }
     } else {
-      d_.error(f.where("type"), "unknown task type \"" + *type +
-                                    "\" (go_to, inspect_pipe, inspect_area, take_water_sample)");
+      d_.error(f.where("type"), "unknown task type " + input_quoted(*type) +
+                                    " (go_to, inspect_pipe, inspect_area, take_water_sample)");
     }
   }
 
@@ -230,7 +231,7 @@ void check_tasks(const Mission& m, const std::string& file, bool exits_unreadabl
   std::size_t finals = 0;
   for (std::size_t i = 0; i < m.tasks.size(); ++i) {
     if (!names.insert(m.tasks[i].name).second) {
-      d.error(file + ":$.tasks", "duplicate task name '" + m.tasks[i].name + "'");
+      d.error(file + ":$.tasks", "duplicate task name " + input_quoted(m.tasks[i].name));
     }
     finals += m.tasks[i].final ? 1U : 0U;
   }
@@ -295,7 +296,7 @@ Result<Mission> read_mission_json(std::string_view text, const std::string& file
                      "battery_reserve", "closed"});
   if (auto format = root.string("format"); format && *format != kMissionJsonFormat) {
     diagnostics.error(root.where("format"), "expected \"" + std::string(kMissionJsonFormat) +
-                                                "\", got \"" + *format + "\"");
+                                                "\", got " + input_quoted(*format));
   }
   if (auto version = root.number("version"); version && *version != kMissionJsonVersion) {
     diagnostics.error(root.where("version"), "unsupported version " + format_double(*version));

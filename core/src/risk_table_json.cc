@@ -4,6 +4,7 @@
 
 #include "sewerplan/core/condition_risk.h"
 #include "sewerplan/core/json_fields.h"
+#include "sewerplan/core/message_text.h"
 #include "sewerplan/core/text_file.h"
 
 namespace sewerplan {
@@ -65,7 +66,7 @@ Result<RiskTable> read_risk_table_json(std::string_view text, const std::string&
   root.warn_unknown({"format", "version", "rules"});
   if (auto format = root.string("format"); format && *format != kRiskTableJsonFormat) {
     diagnostics.error(root.where("format"), "expected \"" + std::string(kRiskTableJsonFormat) +
-                                                "\", got \"" + *format + "\"");
+                                                "\", got " + input_quoted(*format));
   }
   if (auto version = root.number("version"); version && *version != kRiskTableJsonVersion) {
     diagnostics.error(root.where("version"), "unsupported version " + format_double(*version));

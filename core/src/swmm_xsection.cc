@@ -5,6 +5,8 @@
 #include <array>
 #include <optional>
 
+#include "sewerplan/core/message_text.h"
+
 #include "swmm_sections.h"
 
 namespace sewerplan::detail {
@@ -57,7 +59,7 @@ Result<PipeProfile> swmm_profile(std::span<const std::string_view> fields, doubl
   const std::string name = to_upper(fields[1]);
   const auto spec = std::find_if(kShapes.begin(), kShapes.end(),
                                  [&](const ShapeSpec& s) { return s.name == name; });
-  if (spec == kShapes.end()) return bad("unknown cross-section shape '" + name + "'");
+  if (spec == kShapes.end()) return bad("unknown cross-section shape " + input_quoted(fields[1]));
   if (spec->width == Width::kNone) {
     return Error{ErrorCode::kUnsupportedFormat,
                  "shape " + name + " has no dimensions in [XSECTIONS]"};
@@ -66,8 +68,7 @@ Result<PipeProfile> swmm_profile(std::span<const std::string_view> fields, doubl
     if (fields.size() <= k + 1) return bad("missing Geom" + std::to_string(k));
     const std::optional<double> v = parse_swmm_number(fields[k + 1]);
     if (!v)
-      return bad("Geom" + std::to_string(k) + " is not a number: '" + std::string(fields[k + 1]) +
-                 "'");
+      return bad("Geom" + std::to_string(k) + " is not a number: " + input_quoted(fields[k + 1]));
     return *v * metres_per_unit;
   };
   Result<double> height = geom(1);
@@ -95,14 +96,15 @@ Result<PipeProfile> swmm_profile(std::span<const std::string_view> fields, doubl
       break;
   }
   p.diameter_m = std::min(width, p.height_m);
-  if (p.diameter_m < 0) return bad("negative size: " + std::to_string(p.diameter_m) + " m");
+  if (p.diameter_m < 0) return bad("negative size: " + number_text(p.diameter_m) + " m");
   p.no_clear_size = !(p.diameter_m > 0);  // also NaN
   if (fields.size() > 6) {
     const std::optional<double> barrels = parse_swmm_number(fields[6]);
-    if (!barrels || *barrels < 1 || *barrels > 100 || *barrels != static_cast<int>(*barrels)) {
-      return bad("Barrels must be a whole number from 1, got '" + std::string(fields[6]) + "'");
+    if (!barrels || !(*barrels >= 1 && *barrels <= 100) || *barrels != static_cast<int>(*barrels)) {
+      p.barrels_read = false;
+    } else {
+      p.barrels = static_cast<int>(*barrels);
     }
-    p.barrels = static_cast<int>(*barrels);
   }
   return p;
 }

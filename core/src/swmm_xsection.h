@@ -24,6 +24,9 @@ struct PipeProfile {
   double diameter_m = 0;  // clear size
   double height_m = 0;
   int barrels = 1;
+  // False where the Barrels field is not a whole number from 1 to 100: `barrels` is then 1. No plan
+  // needs the count (parallel barrels are imported as one pipe); the reader warns.
+  bool barrels_read = true;
   // A shape of no clear size (a V-shaped trapezoid, bottom width 0; a zero Geom): valid in SWMM,
   // no room for a robot. The reader leaves the conduit out with a warning.
   bool no_clear_size = false;
@@ -32,7 +35,7 @@ struct PipeProfile {
 // The profile of an [XSECTIONS] row: fields[0] the link, [1] the shape, [2..5] Geom1..4, [6]
 // barrels. kUnsupportedFormat for shapes whose size is not a number (IRREGULAR, CUSTOM, STREET,
 // DUMMY: the conduit is left out); kParse, with a message naming the field, for a negative size or
-// anything else wrong.
+// anything else wrong but the Barrels field (barrels_read).
 Result<PipeProfile> swmm_profile(std::span<const std::string_view> fields, double metres_per_unit);
 
 }  // namespace sewerplan::detail

@@ -5,6 +5,8 @@
 #include <iomanip>
 #include <sstream>
 
+#include "sewerplan/core/message_text.h"
+
 namespace sewerplan::domain::detail {
 namespace {
 
@@ -51,8 +53,13 @@ std::string CompileReasons::unreachable(const Task& task) const {
       }
     }
     if (!graph_.pipe_drivable(spot->pipe)) {
-      return "pipe " + pipe.name + " is " + fixed(pipe.diameter_m, 2) + " m, outside " + p.name +
-             "'s " + fixed(p.min_pipe_diameter_m, 2) + "-" + fixed(p.max_pipe_diameter_m, 2) + " m";
+      const LimitText t = limit_text_fixed(pipe.diameter_m, pipe.diameter_m < p.min_pipe_diameter_m
+                                                                ? p.min_pipe_diameter_m
+                                                                : p.max_pipe_diameter_m);
+      const bool narrow = pipe.diameter_m < p.min_pipe_diameter_m;
+      return "pipe " + pipe.name + " is " + t.value + " m, outside " + p.name + "'s " +
+             (narrow ? t.limit : fixed(p.min_pipe_diameter_m, 2)) + "-" +
+             (narrow ? fixed(p.max_pipe_diameter_m, 2) : t.limit) + " m";
     }
   }
   return "no route from the start (" + start + ") reaches " + describe(task.place, map) +

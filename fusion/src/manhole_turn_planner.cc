@@ -10,6 +10,8 @@
 #include <optional>
 #include <sstream>
 
+#include "sewerplan/core/message_text.h"
+
 #include "head_path.h"
 #include "plan_numbers.h"
 
@@ -249,14 +251,15 @@ Result<TurnPlan> ManholeTurnPlanner::plan(const PassageGeometry& geometry,
   if (Result<void> ok = detail::head_path_support(); !ok.has_value()) return ok.error();
   const double w = body_.width_m;
   if (g.from_diameter_m < w || g.to_diameter_m < w) {
+    const LimitText t = limit_text_fixed(std::min(g.from_diameter_m, g.to_diameter_m), w);
     return infeasible("the " + std::string(g.from_diameter_m < w ? "from" : "to") + "-pipe (" +
-                      metres(std::min(g.from_diameter_m, g.to_diameter_m)) +
-                      ") is narrower than the body (" + metres(w) + ")");
+                      t.value + " m) is narrower than the body (" + t.limit + " m)");
   }
   const double h = std::abs(g.step_m);
   if (h > body_.max_climb_m() + 1e-9) {
     std::ostringstream out;
-    out << "the step of " << metres(h) << " exceeds the " << metres(body_.max_climb_m())
+    const LimitText t = limit_text_fixed(h, body_.max_climb_m());
+    out << "the step of " << t.value << " m exceeds the " << t.limit << " m"
         << " that two lifted segments reach (joint pitch <= " << body_.pitch_max_deg << " deg)";
     return infeasible(out.str());
   }
@@ -285,13 +288,15 @@ Result<TurnPlan> ManholeTurnPlanner::plan(const PassageGeometry& geometry,
   // The body must fit where it cannot bend: the straight runs at both mouths.
   for (double t = 0; t <= 1.0; t += 0.05) {
     if (!in_free_space(g, -r + t * run_from, 0, clearance, pipe_clearance)) {
-      return infeasible("no room to bend leaving the from-pipe (" + metres(g.from_diameter_m) +
-                        "): the body needs " + metres(2 * clearance));
+      const LimitText n = limit_text_fixed(g.from_diameter_m, 2 * clearance);
+      return infeasible("no room to bend leaving the from-pipe (" + n.value +
+                        " m): the body needs " + n.limit + " m");
     }
     const double d = r - run_to * t;
     if (!in_free_space(g, d * cx, d * cy, clearance, pipe_clearance)) {
-      return infeasible("no room to bend entering the to-pipe (" + metres(g.to_diameter_m) +
-                        "): the body needs " + metres(2 * clearance));
+      const LimitText n = limit_text_fixed(g.to_diameter_m, 2 * clearance);
+      return infeasible("no room to bend entering the to-pipe (" + n.value +
+                        " m): the body needs " + n.limit + " m");
     }
   }
   // First with the pipes' room relaxed; if the body then touches a wall, once more with the

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "sewerplan/core/message_text.h"
+
 namespace sewerplan::server {
 namespace {
 
@@ -28,8 +30,14 @@ std::string describe(const domain::PassageLimit& p, const SewerMap& map,
     << to_paper_number(p.from) << "<->" << to_paper_number(p.to) << " ("
     << map.pipe(map.slot(p.manhole, p.from).pipe).name << ", "
     << map.pipe(map.slot(p.manhole, p.to).pipe).name << "):";
-  if (p.turn_exceeded) s << " turn " << p.turn_deg << " deg > " << profile.max_turn_deg;
-  if (p.step_exceeded) s << " step " << std::abs(p.step_m) << " m > " << profile.max_step_m;
+  if (p.turn_exceeded) {
+    const LimitText t = limit_text_fixed(p.turn_deg, profile.max_turn_deg);
+    s << " turn " << t.value << " deg > " << t.limit;
+  }
+  if (p.step_exceeded) {
+    const LimitText t = limit_text_fixed(std::abs(p.step_m), profile.max_step_m);
+    s << " step " << t.value << " m > " << t.limit;
+  }
   if (!p.motion_reason.empty()) s << " no motion: " << p.motion_reason;
   return s.str();
 }

@@ -22,6 +22,7 @@ namespace sewerplan {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 constexpr std::string_view kSmallMap = R"({
   "format": "sewerplan-map", "version": 1, "name": "small",
@@ -102,6 +103,54 @@ TEST(MapJson, ReportsSyntaxErrorsWithLineAndColumn) {
   ASSERT_FALSE(map.has_value());
   EXPECT_EQ(map.error().code, ErrorCode::kParse);
   EXPECT_THAT(map.error().message, HasSubstr("t.json:3:16: error: JSON syntax error"));
+}
+
+// Issue 31: a number beyond a double (1e999) was reported without a line, in the parser's words
+// ("JSON error: [json.exception.out_of_range.406] number overflow parsing '1e999'").
+TEST(MapJson, Issue31NamesTheLineOfANumberBeyondADouble) {
+  Diagnostics d;
+  Result<SewerMap> map = read(
+      "{\n  \"format\": \"sewerplan-map\",\n  \"note\": \"1e999\",\n  \"version\": -2e999\n}", d);
+  ASSERT_FALSE(map.has_value());
+  EXPECT_EQ(map.error().code, ErrorCode::kParse);
+  EXPECT_THAT(map.error().message,
+              HasSubstr("t.json:4:14: error: number -2e999 is out of range: no number beyond about "
+                        "1.8e308 can be read"));
+  EXPECT_THAT(map.error().message, Not(HasSubstr("json.exception")));
+  // Nested deeper than the parser goes: said in our words, not simdjson's.
+  Diagnostics deep;
+  Result<SewerMap> nested = read(std::string(2000, '[') + std::string(2000, ']'), deep);
+  ASSERT_FALSE(nested.has_value());
+  EXPECT_THAT(nested.error().message, HasSubstr("t.json: error: the JSON nests arrays and objects "
+                                                "more than 1024 levels deep"));
+}
+
+// Issue 31: text of the file quoted in a message (a name, a shape, a key) holding control
+// characters (JSON's \u0000, \u001b) is shown escaped, never as raw bytes.
+TEST(MapJson, Issue31EscapesControlCharactersOfQuotedText) {
+  std::string text(kSmallMap);
+  std::string named(kSmallMap);
+  named.replace(named.find(R"("name": "P1")"), 12, R"("name": "P\u0000")");
+  Diagnostics names;
+  Result<SewerMap> invalid = read(named, names);
+  ASSERT_FALSE(invalid.has_value());
+  EXPECT_THAT(invalid.error().message,
+              HasSubstr("pipe name 'P\\x00' is empty, contains white space or control"));
+  EXPECT_EQ(invalid.error().message.find('\0'), std::string::npos);
+  text.replace(text.find(R"("shape": "egg")"), 14, R"("shape": "e\u001b[2Jgg")");
+  text.replace(text.find(R"("length_m": 1.1)"), 15, R"("length_m": 1.1, "n\u0007": 1)");
+  Diagnostics d;
+  Result<SewerMap> map = read(text, d);
+  ASSERT_FALSE(map.has_value());
+  const std::string& m = map.error().message;
+  EXPECT_THAT(m, HasSubstr("unknown shape 'e\\x1B[2Jgg'"));
+  EXPECT_EQ(m.find('\x1b'), std::string::npos);
+  bool key_escaped = false;
+  for (const Diagnostic& x : d.all()) {
+    EXPECT_EQ(x.where.find('\a'), std::string::npos) << x.where;
+    key_escaped = key_escaped || x.message.find("unknown field 'n\\x07'") != std::string::npos;
+  }
+  EXPECT_TRUE(key_escaped);
 }
 
 // A pipe of 1e16 m passed validation and then stopped `plan` on an internal check: every number

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "sewerplan/core/map_swmm.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -319,6 +320,126 @@ TEST(MapSwmm, IsNotWrittenButDetectedByContent) {
 TEST(MapSwmm, RejectsAFileWithoutNodes) {
   EXPECT_THAT(error_text("[TITLE]\nnothing\n"), HasSubstr("not a SWMM network"));
   EXPECT_THAT(error_text(""), HasSubstr("not a SWMM network"));
+}
+
+std::size_t error_count(const Diagnostics& d) {
+  return static_cast<std::size_t>(
+      std::count_if(d.all().begin(), d.all().end(),
+                    [](const Diagnostic& x) { return x.severity == Severity::kError; }));
+}
+
+// Issue 31: a schematic model ([MAP] Units None, as SWMM's GUI writes for a drawing on a canvas)
+// whose drawing lies beyond 1e7 was refused whole. Its coordinates are no survey: the map is read
+// with a warning, lengths from [CONDUITS], the drawing moved and shrunk to fit with its shape kept.
+TEST(MapSwmm, Issue31ReadsASchematicDrawingBeyondTheCoordinateLimit) {
+  const std::string schematic =
+      replaced(replaced(kSmall, "[COORDINATES]\nA    0  0\nB   20  0\nOUT 20 -15\n",
+                        "[COORDINATES]\nA    15000000  30000000\nB   35000000  30000000\n"
+                        "OUT 35000000 10000000\n[VERTICES]\nC2 34000000 20000000\n"),
+               "[Polygons]", "[MAP]\nDIMENSIONS 0 0 40000000 40000000\nUnits None\n[Polygons]");
+  Diagnostics d;
+  Result<SewerMap> map = parse(schematic, d);
+  ASSERT_TRUE(map.has_value()) << map.error().message;
+  EXPECT_TRUE(has_warning(d, "[MAP] UNITS NONE: the coordinates are a schematic drawing"));
+  EXPECT_TRUE(has_warning(d, "the drawing reaches 35000000 m, beyond the 10000000 m"));
+  EXPECT_EQ(map->crs(), std::nullopt);
+  const Manhole& a = map->manhole(*map->find_manhole("A"));
+  const Manhole& b = map->manhole(*map->find_manhole("B"));
+  const Manhole& out = map->manhole(*map->find_manhole("OUT"));
+  // Moved to start at (0, 0) and shrunk by 2 (the drawing is 2e7 wide and high).
+  EXPECT_DOUBLE_EQ(a.position.x_m, 0);
+  EXPECT_DOUBLE_EQ(a.position.y_m, 1e7);
+  EXPECT_DOUBLE_EQ(b.position.x_m, 1e7);
+  EXPECT_DOUBLE_EQ(out.position.y_m, 0);
+  // Lengths from [CONDUITS], not from the drawing; directions as drawn (C2 through its vertex).
+  EXPECT_DOUBLE_EQ(map->pipe(*map->find_pipe("C1")).length_m, 20);
+  EXPECT_DOUBLE_EQ(slot_of(*map, *map->find_manhole("A"), "C1").azimuth_deg, 0);
+  EXPECT_NEAR(slot_of(*map, *map->find_manhole("B"), "C2").azimuth_deg, deg(-1, -10), 1e-9);
+  // Within the limit, the drawing stays where it is, with the same warning.
+  Diagnostics d2;
+  ASSERT_TRUE(
+      parse(replaced(kSmall, "[Polygons]", "[MAP]\nUnits None\n[Polygons]"), d2).has_value());
+  EXPECT_TRUE(has_warning(d2, "[MAP] UNITS NONE: the coordinates are a schematic drawing"));
+  // Surveyed coordinates (Units Meters) beyond the limit are still an error: they would be wrong.
+  EXPECT_THAT(error_text(replaced(schematic, "Units None", "Units Meters")),
+              HasSubstr("x must be at most 10000000 m, got 15000000"));
+}
+
+// Issue 31: a storage unit wider than any manhole (a pond, a treatment tank) refused the model
+// whole. No robot enters it: it is left out, naming it, and its conduits end blind there.
+TEST(MapSwmm, Issue31LeavesOutAStorageUnitWiderThanAnyManhole) {
+  // FUNCTIONAL, constant area 20000 m2 (A2 = 0): a pond 159.6 m across.
+  Diagnostics d;
+  Result<SewerMap> map = parse(
+      replaced(kSmall, "S  9.8  4  0  CYLINDRICAL 1.2 1.5 0", "S  9.8  4  0  FUNCTIONAL 20000 0 0"),
+      d);
+  ASSERT_TRUE(map.has_value()) << map.error().message;
+  EXPECT_FALSE(map->find_manhole("S").has_value());
+  EXPECT_TRUE(has_warning(d, "storage unit S is 160 m across, more than the 100 m"));
+  const Pipe& c3 = map->pipe(*map->find_pipe("C3"));
+  EXPECT_FALSE(c3.ends[0].manhole.has_value());  // blind where the pond was
+  EXPECT_EQ(map->manhole(*c3.ends[1].manhole).name, "B");
+  EXPECT_DOUBLE_EQ(slot_of(*map, *map->find_manhole("B"), "C3").invert_z_m, 9.9);
+  // A conduit between two such ponds has nowhere to lead: left out, named.
+  Diagnostics d2;
+  Result<SewerMap> two = parse(
+      replaced(
+          replaced(replaced(kSmall, "S  9.8  4  0  CYLINDRICAL 1.2 1.5 0",
+                            "S  9.8  4  0  CYLINDRICAL 120 150 0\nT 9 4 0 CYLINDRICAL 200 200"),
+                   "C3  S  B   12  0.013  *     9.9\n",
+                   "C3  S  B   12  0.013  *     9.9\nC4 S T 50 0.013 * *\n"),
+          "C3  CIRCULAR     0.5\n", "C3  CIRCULAR     0.5\nC4 CIRCULAR 1\n"),
+      d2);
+  ASSERT_TRUE(two.has_value()) << two.error().message;
+  EXPECT_TRUE(has_warning(d2, "storage unit S is 120 m across"));
+  EXPECT_TRUE(has_warning(d2, "conduit C4 joins two storage units that are left out"));
+  EXPECT_FALSE(two->find_pipe("C4").has_value());
+}
+
+// Issue 31, the same class: a channel wider and higher than any pipe, and a Barrels count no plan
+// needs, are warnings on the conduit, not a refusal.
+TEST(MapSwmm, Issue31WarnsOnChannelsBeyondAnyPipeAndOnBadBarrels) {
+  Diagnostics d;
+  Result<SewerMap> map =
+      parse(replaced(replaced(kSmall, "C3  CIRCULAR     0.5", "C3  RECT_OPEN  120  150"),
+                     "C2  RECT_CLOSED  0.6  0.4  0  0  2", "C2  RECT_CLOSED  0.6  0.4  0  0  0.5"),
+            d);
+  ASSERT_TRUE(map.has_value()) << map.error().message;
+  EXPECT_FALSE(map->find_pipe("C3").has_value());
+  EXPECT_TRUE(has_warning(d, "conduit C3 is 120 m wide and high, more than the 100 m"));
+  EXPECT_TRUE(has_warning(d, "1 conduits have a Barrels field that is not a whole number"));
+  EXPECT_DOUBLE_EQ(map->pipe(*map->find_pipe("C2")).diameter_m, 0.4);
+}
+
+// Issue 31: a conduit from a node to itself gave three errors, two of them contradicting the
+// first ("names pipe C4 a second time", "has no slot for it"): now one, at its row.
+TEST(MapSwmm, Issue31AConduitFromANodeToItselfIsOneError) {
+  Diagnostics d;
+  Result<SewerMap> map =
+      parse(replaced(replaced(kSmall, "C3  S  B   12  0.013  *     9.9\n",
+                              "C3  S  B   12  0.013  *     9.9\nC4  A  A  5  0.013  10.0  10.0\n"),
+                     "C3  CIRCULAR     0.5\n", "C3  CIRCULAR     0.5\nC4  CIRCULAR 0.5\n"),
+            d);
+  ASSERT_FALSE(map.has_value());
+  EXPECT_EQ(error_count(d), 1U) << map.error().message;
+  EXPECT_THAT(map.error().message,
+              HasSubstr("net.inp:19: error: pipe C4: joins manhole A to itself"));
+  // A pump (weir, ...) from a node to itself is left out like every pump, with a warning naming it.
+  Diagnostics d2;
+  ASSERT_TRUE(parse(replaced(kSmall, "P1  OUT  A", "P1  OUT  OUT"), d2).has_value());
+  EXPECT_TRUE(has_warning(d2, "pump P1 joins node OUT to itself"));
+}
+
+// Issue 31: control characters of the input (a NUL in a name) are escaped in messages.
+TEST(MapSwmm, Issue31EscapesControlCharactersInMessages) {
+  const std::string nul("\0", 1);
+  const std::string message =
+      error_text(replaced(replaced(kSmall, "C3  S  B", "C" + nul + "3  S  B"), "C3  CIRCULAR",
+                          "C" + nul + "3  CIRCULAR"));
+  EXPECT_THAT(message, HasSubstr("pipe name 'C\\x003' is empty, contains white space or control"));
+  EXPECT_EQ(message.find('\0'), std::string::npos);
+  const std::string bell = error_text(replaced(kSmall, "B  9.5 ", "B  9\a5 "));
+  EXPECT_THAT(bell, HasSubstr("invert elevation is not a number: '9\\x075'"));
 }
 
 }  // namespace

@@ -85,10 +85,19 @@ TEST_F(MissionTest, NamesEveryUnknownObjectByJsonPath) {
   const std::string& e = m.error().message;
   EXPECT_THAT(e, HasSubstr("m.json:$.start.pipe: error: unknown pipe 'P99'"));
   EXPECT_THAT(e, HasSubstr("m.json:$.tasks[0].at.point: error: unknown inspection point 'W7'"));
-  EXPECT_THAT(e, HasSubstr("m.json:$.tasks[2].type: error: unknown task type \"fly\""));
+  EXPECT_THAT(e, HasSubstr("m.json:$.tasks[2].type: error: unknown task type 'fly'"));
   EXPECT_THAT(e, HasSubstr("m.json:$.exits[0]: error: unknown manhole 'M77'"));
   // A follow-on "no exit" error would only repeat the unknown name.
   EXPECT_THAT(e, ::testing::Not(HasSubstr("the mission has no exit")));
+}
+
+// Issue 31: a number beyond a double in a mission is named by file, line and column.
+TEST_F(MissionTest, Issue31NamesTheLineOfANumberBeyondADouble) {
+  Result<Mission> m = read(
+      "{\"format\": \"sewerplan-mission\", \"version\": 1,\n"
+      " \"battery_wh\": 1e999}");
+  ASSERT_FALSE(m.has_value());
+  EXPECT_THAT(m.error().message, HasSubstr("m.json:2:16: error: number 1e999 is out of range"));
 }
 
 TEST_F(MissionTest, AFieldGivenTwiceIsAnError) {
