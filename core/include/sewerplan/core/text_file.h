@@ -19,14 +19,12 @@
 #include <string>
 #include <string_view>
 
+#include "sewerplan/core/output_file.h"  // write_text_file: the one writer
 #include "sewerplan/core/result.h"
 
 namespace sewerplan {
 
 Result<std::string> read_text_file(const std::filesystem::path& path);
-
-// Writes through a temporary file renamed into place, so a failed write leaves no half file.
-Result<void> write_text_file(const std::filesystem::path& path, std::string_view text);
 
 // Whether `text` is well-formed UTF-8 (no overlong forms, surrogates or code points above
 // U+10FFFF). Runtime: O(size).
