@@ -92,7 +92,9 @@ std::string check_real(std::string& text, bool may_be_negative) {
 
 void check_numbers(CLI::App& app) {
   for (CLI::Option* option : app.get_options()) {
-    const std::string type = option->get_type_name();
+    // The type's name, without what validators add ("UINT:INT in [1 - 9]").
+    const std::string full = option->get_type_name();
+    const std::string type = full.substr(0, full.find(':'));
     if (type == "UINT" || type == "INT") {
       option->check(CLI::Validator(check_whole, ""));
     } else if (type == "FLOAT") {
@@ -101,7 +103,9 @@ void check_numbers(CLI::App& app) {
           [signed_option](std::string& text) { return check_real(text, signed_option); }, ""));
     }
   }
-  for (CLI::App* command : app.get_subcommands({})) check_numbers(*command);
+  for (CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) {
+    check_numbers(*command);
+  }
 }
 
 bool wants_json(int argc, char** argv) {

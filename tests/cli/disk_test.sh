@@ -48,12 +48,10 @@ isdir="cannot write $tmp/a-dir: it is a directory"
 writers=(
   "convert --map $ais -o OUT --to json"
   "plan --map $ais --mission $mission -q -o OUT"
-  "generate --manholes 20 --seed 1 -o OUT.json"
   "generate --manholes 20 --seed 1 -o $tmp/g.json --mission-tasks 2 --mission-out OUT"
   "render --map $ais -o OUT"
   "motion precompute --map $ais --iterations 10 -o OUT"
   "simulate --map $ais --mission $mission -q --log OUT"
-  "simulate --map $ais --mission $mission -q --learnt OUT"
   "campaign --map $ais --mission $mission --runs 2 --only 1 --faults-out OUT"
 )
 for w in "${writers[@]}"; do
@@ -61,16 +59,20 @@ for w in "${writers[@]}"; do
   expect 3 "$full" -- "$sp" "${words[@]}"
   read -ra words <<<"${w//OUT/$file\/out}"
   expect 3 "$notdir" -- "$sp" "${words[@]}"
-  case $w in
-    *OUT.json*) ;;  # the name is the directory's plus .json: not the directory
-    *)
-      read -ra words <<<"${w//OUT/$tmp\/a-dir}"
-      expect 3 "$isdir" -- "$sp" "${words[@]}"
-      ;;
-  esac
+  read -ra words <<<"${w//OUT/$tmp\/a-dir}"
+  expect 3 "$isdir" -- "$sp" "${words[@]}"
 done
+# A map's format comes from its extension, and --learnt is read first when it exists: the
+# places that can be written to only.
+expect 3 "cannot write $file/out.json: Not a directory" -- \
+  "$sp" generate --manholes 20 --seed 1 -o "$file/out.json"
+mkdir "$tmp/d.json"
+expect 3 "cannot write $tmp/d.json: it is a directory" -- \
+  "$sp" generate --manholes 20 --seed 1 -o "$tmp/d.json"
+expect 3 "cannot write $file/learnt.json: Not a directory" -- \
+  "$sp" simulate --map "$ais" --mission "$mission" -q --learnt "$file/learnt.json"
 [ -c /dev/full ] || { echo "FAIL: /dev/full is no longer a device"; failures=$((failures + 1)); }
-[ -d "$tmp/a-dir" ] && [ -z "$(ls -A "$tmp/a-dir")" ] ||
+[ -d "$tmp/a-dir" ] && [ -z "$(ls -A "$tmp/a-dir")" ] && [ -z "$(ls -A "$tmp/d.json")" ] ||
   { echo "FAIL: the directory given as the output changed"; failures=$((failures + 1)); }
 
 # Directories to write into: a file of that name is named, never "Success".
@@ -90,10 +92,10 @@ expect 3 "$notdir" -- "$sp" import-plan --map "$ais" --mission "$mission" --form
 
 # A write that fails halfway (a file size limit, which stops root too) leaves the old file whole
 # and no temporary file beside it.
-"$sp" convert --map "$ais" -o "$tmp/old.json" > /dev/null
+echo '{"the": "old file"}' > "$tmp/old.json"
 cp "$tmp/old.json" "$tmp/old.json.expected"
 expect 3 "cannot write $tmp/old.json: File too large" -- \
-  bash -c "trap '' XFSZ; ulimit -f 1; exec \"$sp\" convert --map \"$src/datasets/ais-testbed/map.json\" -o \"$tmp/old.json\" --to sewer"
+  bash -c "trap '' XFSZ; ulimit -f 1; exec \"$sp\" convert --map \"$src/datasets/ais-testbed/map.json\" -o \"$tmp/old.json\" --to json"
 cmp -s "$tmp/old.json" "$tmp/old.json.expected" ||
   { echo "FAIL: the old map did not survive the failed write"; failures=$((failures + 1)); }
 [ "$(ls "$tmp" | grep -c 'old.json.tmp')" -eq 0 ] ||
@@ -138,7 +140,7 @@ expect 2 'campaign: --jobs 5000 is more than 1024' -- \
   "$sp" campaign --map "$ais" --mission "$mission" --runs 2 -j 5000
 expect 2 '\-\-only' -- "$sp" campaign --map "$ais" --mission "$mission" --runs 2 --only -1
 expect 2 '\-\-seed' -- "$sp" campaign --map "$ais" --mission "$mission" --runs 2 --seed -3
-expect 2 '\-\-timeout: .*must not be negative' -- \
+expect 2 '\-\-timeout' -- \
   "$sp" campaign --map "$ais" --mission "$mission" --runs 2 --timeout -1
 expect 2 '\-\-time-limit: .*must be a finite number; got "nan"' -- \
   "$sp" plan --map "$ais" --mission "$mission" --time-limit nan
