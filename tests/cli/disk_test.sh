@@ -76,13 +76,14 @@ expect 3 "cannot write $file/learnt.json: Not a directory" -- \
   { echo "FAIL: the directory given as the output changed"; failures=$((failures + 1)); }
 
 # Directories to write into: a file of that name is named, never "Success".
-expect 3 "cannot write $file: it exists and is not a directory" -- \
+expect 3 "cannot write $file: Not a directory" -- \
   "$sp" campaign --map "$ais" --mission "$mission" --runs 2 -q -o "$file"
 expect 3 "cannot write $file/sub: Not a directory" -- \
   "$sp" campaign --map "$ais" --mission "$mission" --runs 2 -q -o "$file/sub"
-expect 3 "cannot write $file: it exists and is not a directory" -- \
+expect 3 "cannot write $file: Not a directory" -- \
   "$sp" export-pddl --map "$ais" --mission "$mission" --out "$file"
-expect 3 "$full" -- "$sp" export-pddl --map "$ais" --mission "$mission" --out /dev/full
+expect 3 "cannot write /dev/full: Not a directory" -- \
+  "$sp" export-pddl --map "$ais" --mission "$mission" --out /dev/full
 tr '[:upper:]' '[:lower:]' < "$src/datasets/ais-testbed/plans/paper-corrected.plan" | grep -v '^[;#]' |
   sed -E 's/^(.+)$/(\1)/' > "$tmp/sas_plan"
 expect 3 "$full" -- "$sp" import-plan --map "$ais" --mission "$mission" --format fd \
