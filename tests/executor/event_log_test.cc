@@ -30,16 +30,16 @@ struct PaperMission {
                                   hal::Heading::kTowardsEnd1}};
 };
 
-struct Run {
+struct LoggedRun {
   MissionReport report;
   std::string lines;  // every event as a JSON line, as seen by an observer
   std::size_t events = 0;
 };
 
-Run run_mission(LogFile* log) {
+LoggedRun run_mission(LogFile* log) {
   PaperMission m;
   Executor executor(m.ais.map, m.replanner, m.robot);
-  Run run;
+  LoggedRun run;
   executor.subscribe([&run](const Event& e) {
     run.lines += to_json_line(e) + '\n';
     ++run.events;
@@ -54,7 +54,7 @@ TEST(ExecutorLog, TheLogHoldsEveryEventAsALine) {
                                      ("sewerplan_events_" + std::to_string(::getpid()) + ".jsonl");
   Result<LogFile> log = LogFile::open(path);
   ASSERT_TRUE(log.has_value()) << log.error().message;
-  const Run run = run_mission(&*log);
+  const LoggedRun run = run_mission(&*log);
   ASSERT_TRUE(log->close().has_value());
   std::ifstream in(path);
   std::ostringstream text;
@@ -65,10 +65,10 @@ TEST(ExecutorLog, TheLogHoldsEveryEventAsALine) {
 }
 
 TEST(ExecutorLog, AFailingLogIsReportedAndTheMissionGoesOn) {
-  const Run without = run_mission(nullptr);
+  const LoggedRun without = run_mission(nullptr);
   Result<LogFile> log = LogFile::open("/dev/full");
   ASSERT_TRUE(log.has_value()) << log.error().message;
-  const Run with = run_mission(&*log);
+  const LoggedRun with = run_mission(&*log);
   // The same mission, to the same end.
   EXPECT_EQ(with.report.outcome, without.report.outcome);
   EXPECT_EQ(with.report.end, without.report.end);
