@@ -46,11 +46,10 @@ Result<std::unique_ptr<CanLink>> CanLink::open(const CanLinkOptions& options) {
   link->bus_ = std::move(*bus);
   hal::CanBus* robot_bus = link->bus_.get();
   if (!options.log.empty()) {
-    link->log_.open(options.log);
-    if (!link->log_) {
-      return Error{ErrorCode::kIo, options.log + ": cannot write the candump log"};
-    }
-    link->recording_.emplace(*link->bus_, link->log_, link->wall_);
+    Result<LogFile> log = LogFile::open(options.log);
+    if (!log.has_value()) return log.error();
+    link->log_.emplace(std::move(*log));
+    link->recording_.emplace(*link->bus_, *link->log_, link->wall_);
     robot_bus = &*link->recording_;
   }
   link->robot_.emplace(*robot_bus);
@@ -63,6 +62,11 @@ void CanLink::write_summary(std::ostream& out) const {
   out << "CAN link " << bus_->name() << ": " << s.retries << " retries, " << s.timeouts
       << " timeouts, " << s.bad_input << " bad inputs, " << s.bus_errors << " bus errors, "
       << s.link_failures << " link failures\n";
+}
+
+Result<void> CanLink::close_log() {
+  if (!log_) return {};
+  return log_->close();
 }
 
 }  // namespace sewerplan::cli

@@ -4,13 +4,13 @@
 // candump log, with a CanRobot on it that has asked the node for its status.
 #pragma once
 
-#include <fstream>
 #include <memory>
 #include <optional>
 #include <ostream>
 #include <string>
 
 #include "sewerplan/core/clock.h"
+#include "sewerplan/core/output_file.h"
 #include "sewerplan/core/result.h"
 #include "sewerplan/hal/can/can_bus.h"
 #include "sewerplan/hal/can/can_robot.h"
@@ -38,12 +38,14 @@ class CanLink {
   hal::CanRobot& robot() { return *robot_; }
   // "CAN link slcan:/dev/pts/3: 0 retries, 0 timeouts, 0 bad inputs, 0 bus errors".
   void write_summary(std::ostream& out) const;
+  // Closes the candump log (--can-log): an error naming it if a frame could not be written.
+  Result<void> close_log();
 
  private:
   CanLink() = default;
   WallClock wall_;
   std::unique_ptr<hal::CanBus> bus_;
-  std::ofstream log_;
+  std::optional<LogFile> log_;
   std::optional<hal::RecordingCanBus> recording_;
   std::optional<hal::CanRobot> robot_;
 };

@@ -31,6 +31,9 @@
 namespace sewerplan::cli {
 namespace {
 
+constexpr std::size_t kMaxRuns = 10'000'000;
+constexpr std::size_t kMaxJobs = 1024;
+
 struct CampaignCliOptions {
   std::string map;
   std::string gis_fields;  // --gis-fields
@@ -144,6 +147,18 @@ int run(const CampaignCliOptions& o, Context& c) {
   if (o.runs == 0 || (o.only && *o.only >= o.runs)) {
     return usage_error(c, o.json, "campaign: --runs must be at least 1 and --only below it");
   }
+  // Each run keeps a record in memory until the summary: a bound well above any real campaign
+  // (35,000 runs were the largest tried) and well below what exhausts a machine.
+  if (o.runs > kMaxRuns) {
+    return usage_error(c, o.json,
+                       "campaign: --runs " + std::to_string(o.runs) + " is more than " +
+                           std::to_string(kMaxRuns) + "; run a bigger campaign as shards");
+  }
+  if (o.jobs > kMaxJobs) {
+    return usage_error(c, o.json,
+                       "campaign: --jobs " + std::to_string(o.jobs) + " is more than " +
+                           std::to_string(kMaxJobs) + " threads");
+  }
   Result<std::string> mission_text = read_text_file(o.mission);
   Diagnostics diagnostics;
   Result<std::string> condition_text =
@@ -231,12 +246,11 @@ int run(const CampaignCliOptions& o, Context& c) {
   if (o.only && !o.faults_out.empty()) {
     const campaign::RunSettings settings = campaign::run_settings(spec);
     Result<hal::FaultScenario> faults = campaign::run_faults(*map, *mission, settings, *o.only);
-    std::ofstream out(o.faults_out);
-    if (faults.has_value()) hal::write_faults_json(*faults, *map, out);
-    out.close();
-    if (!faults.has_value() || !out) {
-      return fail(c, o.json,
-                  Error{ErrorCode::kIo, o.faults_out + ": cannot write the run's faults"});
+    if (!faults.has_value()) return fail(c, o.json, faults.error());
+    std::ostringstream text;
+    hal::write_faults_json(*faults, *map, text);
+    if (Result<void> w = write_text_file(o.faults_out, text.str()); !w.has_value()) {
+      return fail(c, o.json, w.error());
     }
   }
   if (o.only) {

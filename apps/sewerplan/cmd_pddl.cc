@@ -2,7 +2,6 @@
 // sewerplan export-pddl --map MAP --mission MISSION --out DIR [--action-costs]
 // sewerplan import-plan --format ff|fd --map MAP --mission MISSION FILE [-o PLAN] [--json]
 #include <filesystem>
-#include <fstream>
 #include <ostream>
 
 #include <CLI/CLI.hpp>
@@ -42,14 +41,6 @@ std::optional<Inputs> load(const MapSource& map_source, const std::string& missi
   return Inputs{std::move(*map), std::move(*mission)};
 }
 
-Result<void> write_file(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  out.close();
-  if (!out) return Error{ErrorCode::kIo, path.string() + ": cannot write the file"};
-  return {};
-}
-
 struct ExportOptions {
   std::string map;
   std::string gis_fields;  // --gis-fields
@@ -65,16 +56,13 @@ int run_export(const ExportOptions& o, Context& c) {
   Result<domain::PddlFiles> files =
       domain::export_pddl(in->map, in->mission, {.action_costs = o.action_costs});
   if (!files.has_value()) return fail(c, o.json, files.error());
-  std::error_code ec;
-  std::filesystem::create_directories(o.out, ec);
-  if (ec) {
-    return fail(c, o.json,
-                Error{ErrorCode::kIo, o.out + ": cannot create the directory: " + ec.message()});
+  if (Result<void> made = create_output_directory(o.out); !made.has_value()) {
+    return fail(c, o.json, made.error());
   }
   const std::filesystem::path dir(o.out);
   for (const auto& [name, text] :
        {std::pair{"domain.pddl", &files->domain}, std::pair{"problem.pddl", &files->problem}}) {
-    Result<void> written = write_file(dir / name, *text);
+    Result<void> written = write_text_file(dir / name, *text);
     if (!written.has_value()) return fail(c, o.json, written.error());
   }
   if (o.json) {
@@ -114,7 +102,7 @@ int run_import(const ImportOptions& o, Context& c) {
   if (!plan.has_value()) return fail(c, o.json, plan.error(), diagnostics);
   print_diagnostics(diagnostics, c.err);
   if (!o.out.empty()) {
-    Result<void> written = write_file(o.out, domain::format_plan(*plan, in->map, in->mission));
+    Result<void> written = write_text_file(o.out, domain::format_plan(*plan, in->map, in->mission));
     if (!written.has_value()) return fail(c, o.json, written.error());
   }
   const domain::ValidationReport report = domain::validate_plan(*plan, in->map, in->mission);

@@ -2,7 +2,6 @@
 // sewerplan render --map MAP [--mission MISSION] [--plan PLAN] [--log EVENTS] [--faults FAULTS]
 //                  [--profile P] [--title T] [--width PX] [--focus] -o FILE.svg|FILE.png
 #include <filesystem>
-#include <fstream>
 #include <ostream>
 
 #include <CLI/CLI.hpp>
@@ -92,10 +91,7 @@ int run(const RenderOptions& o, Context& c) {
   Result<std::string> picture =
       png ? render::render_map_png(input) : Result<std::string>(render::render_map_svg(input));
   if (!picture.has_value()) return failed(picture.error());
-  std::ofstream out(o.out, std::ios::binary);
-  out << *picture;
-  out.close();
-  if (!out) return fail(c, o.json, Error{ErrorCode::kIo, o.out + ": cannot write"});
+  if (Result<void> w = write_text_file(o.out, *picture); !w.has_value()) return failed(w.error());
   if (o.json) {
     print_json(c.out, {{"wrote", o.out},
                        {"format", png ? "png" : "svg"},

@@ -6,8 +6,8 @@
 #include <cerrno>
 #include <csignal>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
+#include <optional>
 #include <ostream>
 #include <thread>
 
@@ -138,12 +138,11 @@ int run(const SimulateOptions& o, Context& c) {
     options.recovery = *recovery;
   }
   if (o.allow_push) options.recovery.push_allowed = true;
-  std::ofstream log_file;
+  std::optional<LogFile> log_file;
   if (!o.log.empty()) {
-    log_file.open(o.log);
-    if (!log_file) {
-      return fail(c, o.json, Error{ErrorCode::kIo, o.log + ": cannot write the event log"});
-    }
+    Result<LogFile> opened = LogFile::open(o.log);
+    if (!opened.has_value()) return fail(c, o.json, opened.error());
+    log_file.emplace(std::move(*opened));
   }
   executor::ReplannerOptions replanner_options;
   replanner_options.planner.risk = o.risk.costs();
@@ -164,7 +163,16 @@ int run(const SimulateOptions& o, Context& c) {
   hal::SimRobot sim(map, mission.profile, start_pose(replanner.progress().position), faults);
   hal::Robot& robot = can ? static_cast<hal::Robot&>(can->robot()) : sim;
   executor::Executor executor(map, replanner, robot, options);
-  if (!o.log.empty()) executor.subscribe(executor::json_lines_writer(log_file));
+  if (log_file) {
+    executor.subscribe_log(*log_file);
+    // Said once, when the log first fails; the mission goes on and the report names the log.
+    executor.subscribe([&log_file, &c, warned = false](const executor::Event&) mutable {
+      if (warned || !log_file->first_error()) return;
+      warned = true;
+      c.err << "sewerplan simulate: warning: " << *log_file->first_error()
+            << "; the mission goes on without its log\n";
+    });
+  }
   // With --json, standard output is the report alone: the live log goes to standard error.
   if (!o.quiet) executor.subscribe(executor::readable_writer(o.json ? c.err : c.out));
   const executor::MissionReport report = [&] {
@@ -181,12 +189,28 @@ int run(const SimulateOptions& o, Context& c) {
     c.out << '\n';
   }
   if (can) can->write_summary(c.err);
+  bool log_lost = false;
+  if (can) {
+    if (Result<void> closed = can->close_log(); !closed.has_value()) {
+      c.err << "sewerplan simulate: " << closed.error().message << '\n';
+      log_lost = true;
+    }
+  }
+  // A log that lost events, or whose close failed, is a failed write: exit 3 after the report
+  // (which names it), whatever the mission's outcome.
+  if (log_file) {
+    if (Result<void> closed = log_file->close(); !closed.has_value()) {
+      c.err << "sewerplan simulate: " << closed.error().message << '\n';
+      log_lost = true;
+    }
+  }
   if (!o.learnt.empty()) {
     if (auto written = write_text_file(o.learnt, executor::learnt_json(replanner.learnt(), map));
         !written.has_value()) {
       return fail(c, false, written.error());  // the report is out already
     }
   }
+  if (log_lost) return kExitIo;
   return report.outcome == executor::MissionReport::Outcome::kEnded ? kExitOk : kExitNoPlan;
 }
 

@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: MIT
 // sewerplan: plan and replan missions of sewer-inspection robots from the command line.
+#include <charconv>
+#include <cmath>
 #include <iostream>
 #include <span>
 #include <string>
@@ -65,6 +67,47 @@ constexpr CommandEntry kCommands[] = {
     {"serve", &sewerplan::cli::add_serve_command},
 };
 
+// Every number on the command line is checked before a command sees it: CLI11 reads "-5" into an
+// unsigned option as 2^64 - 5 (a campaign of 2^64 runs, -j of 2^64 threads), and "nan" or "inf"
+// into a double. A whole number must be digits only (no sign, no exponent) and fit its type; a
+// real must be finite and not negative. The one signed option, a coordinate, is exempt from the
+// sign. A failed check is a usage error (exit 2) naming the option.
+std::string check_whole(std::string& text) {
+  if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos) {
+    return "must be a whole number, 0 or more; got \"" + text + "\"";
+  }
+  return {};
+}
+
+std::string check_real(std::string& text, bool may_be_negative) {
+  double value = 0;
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+  if (ec != std::errc() || ptr != end || !std::isfinite(value)) {
+    return "must be a finite number; got \"" + text + "\"";
+  }
+  if (value < 0 && !may_be_negative) return "must not be negative; got " + text;
+  return {};
+}
+
+void check_numbers(CLI::App& app) {
+  for (CLI::Option* option : app.get_options()) {
+    // The type's name, without what validators add ("UINT:INT in [1 - 9]").
+    const std::string full = option->get_type_name();
+    const std::string type = full.substr(0, full.find(':'));
+    if (type == "UINT" || type == "INT") {
+      option->check(CLI::Validator(check_whole, ""));
+    } else if (type == "FLOAT") {
+      const bool signed_option = option->check_lname("nav2-origin");
+      option->check(CLI::Validator(
+          [signed_option](std::string& text) { return check_real(text, signed_option); }, ""));
+    }
+  }
+  for (CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) {
+    check_numbers(*command);
+  }
+}
+
 bool wants_json(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     if (std::string_view(argv[i]) == "--json") return true;
@@ -101,6 +144,7 @@ int main(int argc, char** argv) {
                   "main.cc: kCommands names a command other than the one it adds");
     }
   }
+  check_numbers(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

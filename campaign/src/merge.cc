@@ -119,9 +119,7 @@ Result<MergedCampaign> merge_shards(const std::vector<std::filesystem::path>& di
 
 Result<void> write_campaign_dir(const std::filesystem::path& dir, const CampaignSpec& spec,
                                 const std::vector<RunRecord>& records) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) return Error{ErrorCode::kIo, dir.string() + ": cannot create: " + ec.message()};
+  if (Result<void> made = create_output_directory(dir); !made.has_value()) return made;
   if (auto r = write_text_file(dir / "campaign.json", campaign_json(spec)); !r.has_value())
     return r;
   std::string lines;

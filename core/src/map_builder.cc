@@ -471,8 +471,11 @@ class MapBuilder::Validation {
       if ((m.given & bit) != 0)
         require_positive(v, field, object, {Kind::kManhole, i, m.line, field});
     }
-    if (slots.size() > 0xffff) {
-      d_.error(at(Kind::kManhole, i, m.line, "slots"), object() + ": more than 65535 slots");
+    if (slots.size() > kMaxSlotsPerManhole) {
+      d_.error(at(Kind::kManhole, i, m.line, "slots"),
+               object() + ": " + std::to_string(slots.size()) +
+                   " pipe ends (slots); a manhole has at most " +
+                   std::to_string(kMaxSlotsPerManhole));
     }
   }
 
@@ -693,6 +696,12 @@ class MapBuilder::Validation {
   }
 
   void warn_about_topology(const SewerMap& map) {
+    if (map.manhole_count() == 0) {
+      // Nothing to plan on: not an error for a library that builds maps piece by piece, but no
+      // network (`validate --strict` fails on it).
+      d_.warning(at(Kind::kMap, 0, 0, ""), "the network is empty: no manholes and no pipes");
+      return;
+    }
     for (ManholeId m : map.manhole_ids()) {
       if (map.manhole(m).slot_count == 0) {
         d_.warning(at(Kind::kManhole, m.value(), b_.manholes_[m.index()].line, ""),

@@ -12,7 +12,9 @@ namespace sewerplan::detail {
 
 std::optional<MappedFile> MappedFile::open(const std::filesystem::path& path,
                                            std::size_t min_bytes) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  // Without blocking: a FIFO that nobody writes to would block open() forever (it is not mapped
+  // anyway; the caller reads it as text).
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) return std::nullopt;
   struct stat st {};
   void* data = MAP_FAILED;

@@ -5,92 +5,83 @@
 #include <array>
 #include <cerrno>
 #include <cstring>
-#include <fstream>
 #include <optional>
-#include <sstream>
-#include <system_error>
+#include <string>
 #include <utility>
 
 #include "sewerplan/core/ascii_case.h"
 #include "sewerplan/core/check.h"
 
+#include <fcntl.h>
 #include <iconv.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 namespace sewerplan {
 
 namespace {
 
+Error read_error(const std::filesystem::path& path, const std::string& why) {
+  return Error{ErrorCode::kIo, "cannot read " + path.string() + ": " + why};
+}
+
+const char* file_kind(mode_t mode) {
+  if (S_ISDIR(mode)) return "it is a directory";
+  if (S_ISCHR(mode)) return "it is a character device, not a file";
+  if (S_ISBLK(mode)) return "it is a block device, not a file";
+  if (S_ISSOCK(mode)) return "it is a socket, not a file";
+  return "it is not a regular file";
+}
+
 Result<std::string> read_bytes(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    return Error{ErrorCode::kIo, "cannot read " + path.string() + ": " + std::strerror(errno)};
+  // Opened without blocking: a FIFO that nobody writes to would block open() forever.
+  int fd = -1;
+  do {
+    fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  } while (fd < 0 && errno == EINTR);
+  if (fd < 0) return read_error(path, std::strerror(errno));
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) return read_error(path, std::strerror(errno));
+  const bool fifo = S_ISFIFO(st.st_mode);
+  // A device (/dev/zero, a terminal) or a socket may never end: refused. A pipe (a shell's
+  // `<(...)`, a FIFO with a writer) is read to its end.
+  if (!S_ISREG(st.st_mode) && !fifo) return read_error(path, file_kind(st.st_mode));
+  if (::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK) != 0) {
+    return read_error(path, std::strerror(errno));
   }
-  // A regular file is read at once into a string of its size (a stream would grow and copy a
-  // 430 MB map several times); anything else (a pipe) through the stream.
-  std::error_code ec;
-  const std::uintmax_t size = std::filesystem::is_regular_file(path, ec)
-                                  ? std::filesystem::file_size(path, ec)
-                                  : static_cast<std::uintmax_t>(-1);
-  if (!ec && size != static_cast<std::uintmax_t>(-1)) {
-    std::string text(static_cast<std::size_t>(size), '\0');
-    in.read(text.data(), static_cast<std::streamsize>(size));
-    const auto got = static_cast<std::size_t>(in.gcount());
-    if (in.bad()) {
-      return Error{ErrorCode::kIo, "cannot read " + path.string() + ": read error"};
+  // A regular file is read at once into a string of its size (a 430 MB map is not grown and
+  // copied); it may have grown since, so reading goes on to the end.
+  std::string text;
+  text.resize(S_ISREG(st.st_mode) ? static_cast<std::size_t>(st.st_size) + 1 : 64 * 1024);
+  std::size_t got = 0;
+  while (true) {
+    if (got == text.size()) text.resize(text.size() * 2);
+    const ssize_t n = ::read(fd, text.data() + got, text.size() - got);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return read_error(path, std::strerror(errno));
     }
-    text.resize(got);
-    if (got == size) {
-      // The file may have grown since: take the rest too.
-      std::ostringstream rest;
-      rest << in.rdbuf();
-      text += std::move(rest).str();
-    }
-    return text;
+    if (n == 0) break;
+    got += static_cast<std::size_t>(n);
   }
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) {
-    return Error{ErrorCode::kIo, "cannot read " + path.string() + ": read error"};
+  text.resize(got);
+  if (fifo && got == 0) {
+    return read_error(path, "it is a FIFO (named pipe) and nothing was written to it");
   }
-  return std::move(text).str();
+  return text;
 }
 
 }  // namespace
 
 Result<std::string> read_text_file(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    return Error{ErrorCode::kIo, "cannot read " + path.string() + ": it is a directory"};
-  }
   Result<std::string> bytes = read_bytes(path);
   if (!bytes.has_value()) return bytes;
   if (byte_order_mark(*bytes).size == 0) return bytes;
   return without_byte_order_mark(*bytes, path.string());
-}
-
-Result<void> write_text_file(const std::filesystem::path& path, std::string_view text) {
-  std::filesystem::path tmp = path;
-  tmp += ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) {
-      return Error{ErrorCode::kIo, "cannot write " + path.string() + ": " + std::strerror(errno)};
-    }
-    out.write(text.data(), static_cast<std::streamsize>(text.size()));
-    out.flush();
-    if (!out) {
-      std::error_code ignored;
-      std::filesystem::remove(tmp, ignored);
-      return Error{ErrorCode::kIo, "cannot write " + path.string() + ": write error"};
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::filesystem::remove(tmp, ec);
-    return Error{ErrorCode::kIo, "cannot write " + path.string() + ": " + ec.message()};
-  }
-  return {};
 }
 
 bool is_valid_utf8(std::string_view text) {

@@ -11,6 +11,7 @@
 
 #include "sewerplan/domain/plan_text.h"
 #include "sewerplan/domain/validator.h"
+#include "sewerplan/executor/event_json.h"
 #include "sewerplan/fusion/action_text.h"
 #include "sewerplan/fusion/jobs.h"
 #include "sewerplan/fusion/robot_action.h"
@@ -58,6 +59,7 @@ std::ostream& operator<<(std::ostream& os, const MissionReport& r) {
     os << ')';
   }
   os << "\nbattery reserve " << (r.battery_reserve_kept ? "kept" : "NOT kept") << '\n';
+  for (const std::string& e : r.log_errors) os << "log not written: " << e << '\n';
   return os;
 }
 
@@ -69,6 +71,11 @@ void Executor::subscribe(EventObserver observer) { observers_.push_back(std::mov
 
 void Executor::subscribe_plans(PlanObserver observer) {
   plan_observers_.push_back(std::move(observer));
+}
+
+void Executor::subscribe_log(LogFile& log) {
+  logs_.push_back(&log);
+  observers_.push_back([&log](const Event& event) { log.append(to_json_line(event) + '\n'); });
 }
 
 void Executor::halt() {
@@ -85,6 +92,7 @@ class Executor::Run {
         options_(e.options_),
         observers_(e.observers_),
         plan_observers_(e.plan_observers_),
+        logs_(e.logs_),
         halt_(e.halt_),
         tracker_(e.map_, e.replanner_.progress().position, e.replanner_.heading_end()),
         recovery_(
@@ -381,6 +389,12 @@ class Executor::Run {
                          .replans = report_.replans,
                          .decision = report_.decision,
                          .beacon_cause = report_.beacon_cause});
+    for (const LogFile* log : logs_) {
+      if (log->failed_appends() == 0) continue;
+      report_.log_errors.push_back(*log->first_error() + " (" +
+                                   std::to_string(log->failed_appends()) + " of " +
+                                   std::to_string(log->appends()) + " events lost)");
+    }
     return report_;
   }
 
@@ -390,6 +404,7 @@ class Executor::Run {
   const ExecutorOptions& options_;
   const std::vector<EventObserver>& observers_;
   const std::vector<PlanObserver>& plan_observers_;
+  const std::vector<LogFile*>& logs_;
   const std::atomic<bool>& halt_;
   detail::DeadReckoning tracker_;
   detail::StagedRecovery recovery_;

@@ -383,7 +383,8 @@ void bind_simulate(py::module_& m) {
       .def_readonly("planning_times_s", &ex::MissionReport::planning_times_s)
       .def_readonly("jobs", &ex::MissionReport::jobs)
       .def_readonly("recoveries", &ex::MissionReport::recoveries)
-      .def_readonly("battery_reserve_kept", &ex::MissionReport::battery_reserve_kept);
+      .def_readonly("battery_reserve_kept", &ex::MissionReport::battery_reserve_kept)
+      .def_readonly("log_errors", &ex::MissionReport::log_errors);
   py::class_<Simulation>(m, "Simulation", "simulate()'s answer: the report and every event.")
       .def_readonly("report", &Simulation::report)
       .def_readonly("events", &Simulation::events);

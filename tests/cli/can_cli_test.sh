@@ -91,6 +91,11 @@ strip_planning "$tmp/replay.out" > "$tmp/c"
 same "reports in process and over SLCAN" "$tmp/a" "$tmp/b"
 same "reports in process and replayed" "$tmp/a" "$tmp/c"
 expect 0 '^\([0-9]{10}\.[0-9]{6}\) can0 [0-9A-F]{8}#[0-9A-F]*$' -- head -1 "$tmp/run.log"
+# A candump log that cannot be written: the replayed mission still ends, the log is named, exit 3.
+expect 3 'cannot write /dev/full: No space left on device \([0-9]+ of [0-9]+ writes lost\)' -- \
+  "$sp" simulate --map "$ais" --mission "$mission" --replay "$tmp/run.log" --can-log /dev/full -q
+expect 3 'mission ended at pipe P9' -- \
+  "$sp" simulate --map "$ais" --mission "$mission" --replay "$tmp/run.log" --can-log /dev/full -q
 
 # A node that falls silent for three requests: a malfunction, a reboot over the bus, and on.
 start_node --bus-faults 'silence=5+3'
@@ -132,7 +137,7 @@ expect 3 'slcan:/dev/no-such-tty: cannot open' -- \
   "$sp" simulate --map "$ais" --mission "$mission" --can slcan:/dev/no-such-tty
 expect 3 'socketcan:nosuchcan0: (this kernel has no CAN support|no such network interface)' -- \
   "$sp" simulate --map "$ais" --mission "$mission" --can socketcan:nosuchcan0
-expect 3 'missing.log: cannot read the candump log' -- \
+expect 3 'cannot read [^ ]*missing.log: No such file or directory' -- \
   "$sp" simulate --map "$ais" --mission "$mission" --replay "$tmp/missing.log"
 printf '(1.000000) can0 123#00\n(2.000000) can0 123#0\n' > "$tmp/bad.log"
 expect 1 'bad.log:2: expected 0 to 8 data bytes' -- \

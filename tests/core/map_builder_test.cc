@@ -4,6 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "sewerplan/core/limits.h"
 #include "sewerplan/core/map_queries.h"
 
 namespace sewerplan {
@@ -187,6 +188,51 @@ TEST(MapBuilder, AcceptsBlindPipeEnds) {
   Result<SewerMap> map = std::move(b).build(d);
   ASSERT_TRUE(map.has_value()) << map.error();
   EXPECT_FALSE(map->pipe(*map->find_pipe("S1")).ends[1].manhole.has_value());
+}
+
+// Issue 30: a manhole's passages are the pairs of its slots, so a manhole with 10,000 slots made
+// every per-manhole listing 10^8 long. Beyond kMaxSlotsPerManhole it is an error naming it.
+TEST(MapBuilder, RefusesAManholeWithMoreSlotsThanAnyRealOne) {
+  auto hub = [](std::size_t n) {
+    MapBuilder b("hub");
+    ManholeRecord centre{.name = "HUB", .diameter_m = 1.0};
+    for (std::size_t i = 0; i < n; ++i) {
+      centre.slots.push_back(
+          {.pipe = "P" + std::to_string(i),
+           .azimuth_deg = 360.0 * static_cast<double>(i) / static_cast<double>(n)});
+    }
+    b.add_manhole(std::move(centre));
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::string name = "M" + std::to_string(i);
+      b.add_manhole({.name = name,
+                     .position = {20, static_cast<double>(i), 0},
+                     .diameter_m = 1.0,
+                     .exit = true,
+                     .slots = {{.pipe = "P" + std::to_string(i), .azimuth_deg = 180}}});
+      b.add_pipe({.name = "P" + std::to_string(i),
+                  .from = "HUB",
+                  .to = name,
+                  .length_m = 20,
+                  .diameter_m = 0.6});
+    }
+    return b;
+  };
+  Diagnostics ok;
+  EXPECT_TRUE(hub(kMaxSlotsPerManhole).build(ok).has_value());
+  Diagnostics d;
+  Result<SewerMap> map = hub(kMaxSlotsPerManhole + 1).build(d);
+  ASSERT_FALSE(map.has_value());
+  ASSERT_EQ(d.error_count(), 1U);
+  EXPECT_THAT(d.all().front().message,
+              HasSubstr("manhole HUB: 101 pipe ends (slots); a manhole has at most 100"));
+}
+
+TEST(MapBuilder, AnEmptyNetworkIsAWarning) {
+  Diagnostics d;
+  Result<SewerMap> map = MapBuilder("nothing").build(d);
+  ASSERT_TRUE(map.has_value());
+  ASSERT_EQ(d.warning_count(), 1U);
+  EXPECT_THAT(d.all().front().message, HasSubstr("the network is empty: no manholes and no pipes"));
 }
 
 }  // namespace

@@ -63,7 +63,7 @@ TEST(Candump, ReaderErrorsNameTheFileAndLine) {
     EXPECT_THAT(read.error().message, HasSubstr(message)) << line;
   }
   EXPECT_THAT(read_candump_file("/no/such.log").error().message,
-              HasSubstr("/no/such.log: cannot read"));
+              HasSubstr("cannot read /no/such.log: No such file or directory"));
 }
 
 TEST(Candump, TheRecorderWritesBothDirections) {

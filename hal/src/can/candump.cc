@@ -3,8 +3,9 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <sstream>
 
+#include "sewerplan/core/text_file.h"
 #include "sewerplan/hal/can/job_protocol.h"
 
 #include "can_text.h"
@@ -105,17 +106,28 @@ Result<std::vector<CandumpRecord>> read_candump(std::istream& in, const std::str
 }
 
 Result<std::vector<CandumpRecord>> read_candump_file(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) return Error{ErrorCode::kIo, path.string() + ": cannot read the candump log"};
+  // The one reader of input files (core/text_file.h): a FIFO or a device is refused, not waited on.
+  Result<std::string> text = read_text_file(path);
+  if (!text.has_value()) return text.error();
+  std::istringstream in(std::move(*text));
   return read_candump(in, path.string());
 }
 
 RecordingCanBus::RecordingCanBus(CanBus& inner, std::ostream& out, const Clock& clock,
                                  std::string interface)
-    : inner_(inner), out_(out), clock_(clock), interface_(std::move(interface)) {}
+    : inner_(inner), out_(&out), clock_(clock), interface_(std::move(interface)) {}
+
+RecordingCanBus::RecordingCanBus(CanBus& inner, LogFile& log, const Clock& clock,
+                                 std::string interface)
+    : inner_(inner), log_(&log), clock_(clock), interface_(std::move(interface)) {}
 
 void RecordingCanBus::write(const CanFrame& frame) {
-  out_ << candump_line(CandumpRecord{clock_.now_s(), interface_, frame, 0}) << '\n';
+  const std::string line = candump_line(CandumpRecord{clock_.now_s(), interface_, frame, 0});
+  if (log_ != nullptr) {
+    log_->append(line + '\n');
+  } else {
+    *out_ << line << '\n';
+  }
 }
 
 Result<void> RecordingCanBus::send(const CanFrame& frame) {

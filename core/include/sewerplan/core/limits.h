@@ -17,7 +17,11 @@ namespace sewerplan {
 inline constexpr double kMaxLength_m = 100'000;         // a pipe: 100 km (real ones: metres to km)
 inline constexpr double kMaxDiameter_m = 100;           // a pipe's or manhole's diameter, height
 inline constexpr double kMaxCoordinate_m = 10'000'000;  // |x|, |y|, |z|, inverts: 10,000 km
-inline constexpr double kMinSpeed_mps = 0.001;          // a profile's speeds: 1 mm/s
+// Pipe ends (slots) at one manhole: a real manhole has a few dozen connections at most. The
+// passages through a manhole are its ordered pairs of slots, so this bounds a manhole's passages
+// (9,900) and keeps every per-manhole listing small; 10,000 slots made it 10^8.
+inline constexpr unsigned kMaxSlotsPerManhole = 100;
+inline constexpr double kMinSpeed_mps = 0.001;  // a profile's speeds: 1 mm/s
 inline constexpr double kMaxSpeed_mps = 100;
 inline constexpr double kMaxBattery_wh = 1'000'000;  // 1 MWh
 inline constexpr double kMinPower_w = 0.001;

@@ -24,6 +24,7 @@
 #include <string_view>
 
 #include "sewerplan/core/diagnostics.h"
+#include "sewerplan/core/output_file.h"  // write_text_file: the one writer
 #include "sewerplan/core/result.h"
 
 namespace sewerplan {
@@ -31,9 +32,6 @@ namespace sewerplan {
 // The file's text, without a byte-order mark (without_byte_order_mark): a UTF-16 file with one is
 // UTF-8 here.
 Result<std::string> read_text_file(const std::filesystem::path& path);
-
-// Writes through a temporary file renamed into place, so a failed write leaves no half file.
-Result<void> write_text_file(const std::filesystem::path& path, std::string_view text);
 
 // Whether `text` is well-formed UTF-8 (no overlong forms, surrogates or code points above
 // U+10FFFF). Runtime: O(size).

@@ -14,7 +14,7 @@
 //   SimRobot robot(map, mission.profile, start_pose, faults);
 //   Replanner replanner(map, mission);
 //   Executor executor(map, replanner, robot);
-//   executor.subscribe(json_lines_writer(events_file));
+//   executor.subscribe_log(events_file);  // a LogFile (core/output_file.h)
 //   executor.subscribe(readable_writer(std::cout));
 //   MissionReport report = executor.run();
 //
@@ -37,6 +37,7 @@
 #include <string_view>
 #include <vector>
 
+#include "sewerplan/core/output_file.h"
 #include "sewerplan/core/sewer_map.h"
 #include "sewerplan/domain/compile.h"
 #include "sewerplan/executor/events.h"
@@ -64,6 +65,9 @@ struct MissionReport {
   std::size_t jobs = 0;
   std::size_t recoveries = 0;  // errors cleared by recovery, without a replan
   bool battery_reserve_kept = true;
+  // Logs (subscribe_log) that lost events: "cannot write events.jsonl: No space left on device
+  // (12 of 340 events lost)". The mission goes on when a log fails; the report says so.
+  std::vector<std::string> log_errors;
 };
 
 std::ostream& operator<<(std::ostream& os, const MissionReport& report);
@@ -87,6 +91,10 @@ class Executor {
   // Before run() only.
   using PlanObserver = std::function<void(const PlanResponse&)>;
   void subscribe_plans(PlanObserver observer);
+  // Appends every event of run() to `log` as a JSON line (event_json.h), one write per event. A
+  // failed write does not stop the mission: the report's log_errors names the log, the first
+  // reason and how many events were lost. `log` must outlive run(). Before run() only.
+  void subscribe_log(LogFile& log);
 
   // Runs the mission to its end, the beacon, or a halt. Once per Executor.
   MissionReport run();
@@ -105,6 +113,7 @@ class Executor {
   ExecutorOptions options_;
   std::vector<EventObserver> observers_;
   std::vector<PlanObserver> plan_observers_;
+  std::vector<LogFile*> logs_;
   std::atomic<bool> halt_{false};
 };
 

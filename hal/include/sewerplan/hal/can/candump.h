@@ -10,8 +10,8 @@
 // controller sends what the log says it sent (its heartbeats aside, which follow the wall clock).
 // A CanRobot and an Executor run on a replay give the event log of the recorded run.
 //
-//   std::ofstream out("run.log");
-//   RecordingCanBus recording(*bus, out, clock, "can0");
+//   Result<LogFile> out = LogFile::open("run.log");
+//   RecordingCanBus recording(*bus, *out, clock, "can0");
 //   ...
 //   Result<std::vector<CandumpRecord>> log = read_candump_file("run.log");
 //   ReplayCanBus replay(*log);
@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "sewerplan/core/clock.h"
+#include "sewerplan/core/output_file.h"
 #include "sewerplan/core/result.h"
 #include "sewerplan/hal/can/can_bus.h"
 #include "sewerplan/hal/can/can_frame.h"
@@ -58,6 +59,9 @@ class RecordingCanBus final : public CanBus {
   // All must outlive the recorder.
   RecordingCanBus(CanBus& inner, std::ostream& out, const Clock& clock,
                   std::string interface = "can0");
+  // Appends each frame's line to `log` as it passes (one write a frame, so a crash keeps every
+  // frame before it); a failed write does not stop the bus: `log` counts it (output_file.h).
+  RecordingCanBus(CanBus& inner, LogFile& log, const Clock& clock, std::string interface = "can0");
   Result<void> send(const CanFrame& frame) override;
   Result<std::optional<CanFrame>> receive(double timeout_s) override;
   Result<void> recover() override { return inner_.recover(); }
@@ -66,7 +70,8 @@ class RecordingCanBus final : public CanBus {
  private:
   void write(const CanFrame& frame);
   CanBus& inner_;
-  std::ostream& out_;
+  std::ostream* out_ = nullptr;  // one of the two
+  LogFile* log_ = nullptr;
   const Clock& clock_;
   std::string interface_;
 };
