@@ -4,9 +4,11 @@
 #include "sewerplan/core/map_features.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <unordered_map>
@@ -33,7 +35,8 @@ std::optional<Field> resolve(const GisLayer& layer, const std::vector<GisFieldCa
   for (const GisFieldCandidate& c : wanted) {
     const std::string want = ascii_lower(c.field);
     for (std::size_t i = 0; i < layer.fields.size(); ++i) {
-      if (ascii_lower(layer.fields[i]) == want) return Field{i, c.to_metres, layer.fields[i]};
+      if (ascii_lower(layer.fields[i]) == want)
+        return Field{i, c.to_metres.value_or(layer.unit_m), layer.fields[i]};
     }
     if (want.size() <= kShapefileFieldChars) continue;
     std::optional<std::size_t> cut;
@@ -45,7 +48,7 @@ std::optional<Field> resolve(const GisLayer& layer, const std::vector<GisFieldCa
         ++hits;
       }
     }
-    if (hits == 1) return Field{*cut, c.to_metres, layer.fields[*cut]};
+    if (hits == 1) return Field{*cut, c.to_metres.value_or(layer.unit_m), layer.fields[*cut]};
   }
   return std::nullopt;
 }
@@ -371,6 +374,8 @@ class PipeReader {
     to_level_ = resolve(layer, m[PipeField::kToLevel]);
     shape_ = resolve(layer, m[PipeField::kShape]);
     length_ = resolve(layer, m[PipeField::kLength]);
+    azimuth_[0] = resolve(layer, m[PipeField::kFromAzimuth]);
+    azimuth_[1] = resolve(layer, m[PipeField::kToAzimuth]);
   }
 
   bool usable() const { return name_ && (height_ || width_); }
@@ -427,6 +432,15 @@ class PipeReader {
     link.to_invert_z_m = invert(to_level_, b, false);
     for (std::size_t i = 1; i + 1 < points.size(); ++i) {
       link.vertices.push_back({points[i][0], points[i][1]});
+    }
+    for (std::size_t end = 0; end < 2; ++end) {
+      link.azimuth_deg[end] = ff_.number(f, azimuth_[end]);
+      if (link.azimuth_deg[end] &&
+          (*link.azimuth_deg[end] <= -360 || *link.azimuth_deg[end] >= 360)) {
+        d_.error(where_, "pipe " + *n + ": field " + azimuth_[end]->name + ": azimuth " +
+                             number_text(*link.azimuth_deg[end]) +
+                             " is not an angle in degrees (-360..360)");
+      }
     }
     if (d_.error_count() > errors) return std::nullopt;
     return link;
@@ -501,6 +515,7 @@ class PipeReader {
   FeatureFields ff_;
   NearestManhole nearest_;
   std::optional<Field> name_, height_, width_, from_, to_, from_level_, to_level_, shape_, length_;
+  std::array<std::optional<Field>, 2> azimuth_;
   std::string where_;
 };
 
@@ -523,11 +538,34 @@ std::vector<std::string> read_pipes(const GisLayer& layer, const GisFieldMapping
   return wheres;
 }
 
+// The layer's points in metres: x, y and z scaled by its CRS's linear unit (GisLayer::unit_m).
+GisLayer in_metres(const GisLayer& layer) {
+  GisLayer out = layer;
+  for (GisFeature& f : out.features) {
+    for (std::array<double, 3>& p : f.points) {
+      for (double& c : p) c *= layer.unit_m;
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
-Result<SewerMap> map_from_gis_layers(const GisLayer& manholes, const GisLayer& pipes,
+Result<SewerMap> map_from_gis_layers(const GisLayer& manholes_in, const GisLayer& pipes_in,
                                      const GisFieldMapping& mapping, const std::string& source,
                                      std::string map_name, Diagnostics& diagnostics) {
+  for (const GisLayer* l : {&manholes_in, &pipes_in}) {
+    if (!(l->unit_m > 0) || !std::isfinite(l->unit_m)) {
+      return Error{ErrorCode::kInvalidMap, source + ":" + l->name + ": the unit of its CRS (" +
+                                               number_text(l->unit_m) +
+                                               " m) is not a positive length"};
+    }
+  }
+  std::optional<GisLayer> scaled_manholes, scaled_pipes;
+  if (manholes_in.unit_m != 1) scaled_manholes = in_metres(manholes_in);
+  if (pipes_in.unit_m != 1) scaled_pipes = in_metres(pipes_in);
+  const GisLayer& manholes = scaled_manholes ? *scaled_manholes : manholes_in;
+  const GisLayer& pipes = scaled_pipes ? *scaled_pipes : pipes_in;
   detail::NetworkImport net;
   net.crs = manholes.crs;
   if (manholes.crs && pipes.crs && *manholes.crs != *pipes.crs) {

@@ -128,9 +128,12 @@ Result<SewerMap> assemble_network(NetworkImport network, std::string map_name, L
                       .invert_z_m = end == 0 ? link.from_invert_z_m : link.to_invert_z_m,
                       .line = link.line};
       const std::optional<Direction> p =
-          node.has_xy ? next_point(link, end, node, find(end == 0 ? link.to : link.from))
-                      : std::nullopt;
-      if (p) {
+          node.has_xy && !link.azimuth_deg[end]
+              ? next_point(link, end, node, find(end == 0 ? link.to : link.from))
+              : std::nullopt;
+      if (link.azimuth_deg[end]) {
+        slot.azimuth_deg = *link.azimuth_deg[end];
+      } else if (p) {
         slot.azimuth_deg = azimuth_deg(p->origin[0], p->origin[1], p->point[0], p->point[1]);
         if (p->skipped_inside) ++inside;
       } else {

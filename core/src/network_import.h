@@ -65,6 +65,9 @@ struct ImportLink {
   // wall), when the line marks it: the slot's direction is the pipe's axis from there, not the
   // channel in the manhole's floor that leads to it. The vertices then begin and end there.
   std::array<bool, 2> starts_at_mouth{false, false};
+  // The slot's azimuth at each end when the source gives it (a GIS layer that carries the
+  // map's own slot directions, as export-geojson writes them): it wins over the line's direction.
+  std::array<std::optional<double>, 2> azimuth_deg;
   std::uint32_t line = 0;
 };
 

@@ -56,6 +56,10 @@ struct GisLayer {
   std::vector<GisFeature> features;
   std::optional<Crs> crs;
   std::string unnamed_crs;  // a CRS the source has but with no AUTHORITY:CODE: its name
+  // Metres per unit of the CRS's axes (PROJ's linear unit: 0.3048006096 for US survey feet, as in
+  // EPSG:2229): the points' x, y and z, and every field measured "in the CRS's unit", are scaled by
+  // it, so that the map is in metres whatever the source's unit (docs/gis.md, "Units").
+  double unit_m = 1;
 };
 
 // What a source holds, to choose the two layers before reading their features.
@@ -87,20 +91,31 @@ enum class PipeField {
   kTo,
   kFromLevel,  // the pipe's invert at its from end, metres; else the line's z, else the manhole's
   kToLevel,
-  kHeight,  // clear height; required with kWidth: one of them
-  kWidth,   // clear width
-  kShape,   // sewerplan's names: circular, rectangular, egg, other
-  kLength,  // metres; else the line's length
+  kHeight,       // clear height; required with kWidth: one of them
+  kWidth,        // clear width
+  kShape,        // sewerplan's names: circular, rectangular, egg, other
+  kLength,       // metres; else the line's length
+  kFromAzimuth,  // degrees counter-clockwise from east: the slot's direction at the from end;
+  kToAzimuth,    // else the line's direction there (export-geojson writes both)
 };
-inline constexpr std::size_t kPipeFieldCount = 9;
+inline constexpr std::size_t kPipeFieldCount = 11;
 
 std::string_view to_string(ManholeField field);  // the mapping file's key: "cover_level"
 std::string_view to_string(PipeField field);
 
+// A field name and its unit, as metres per unit of the field's values (0.001 for millimetres,
+// 0.0254 for inches; 1 for degrees, an azimuth field's only unit). Empty: the layer's CRS's own
+// linear unit (GisLayer::unit_m), the default of levels, depths and lengths whose field name does
+// not say "_m".
 struct GisFieldCandidate {
   std::string field;
-  double to_metres = 1;  // 0.001 for a field in millimetres
+  std::optional<double> to_metres = 1.0;
 };
+
+// Metres per unit of a mapping file's unit name: "mm", "cm", "m", "inch" ("in"), "foot" ("ft",
+// the international foot, 0.3048 m), "us_survey_foot" ("ftUS", 1200/3937 m); nullopt for any
+// other name.
+std::optional<double> gis_unit_to_metres(std::string_view unit);
 
 struct GisFieldMapping {
   std::string manhole_layer;  // empty: chosen by geometry type and name (choose_gis_layers)
