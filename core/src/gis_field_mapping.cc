@@ -18,11 +18,11 @@ constexpr double kMm = 0.001;
 constexpr std::optional<double> kCrsUnit = std::nullopt;
 
 constexpr std::array<std::string_view, kManholeFieldCount> kManholeKeys = {
-    "id",           "name",  "type",       "exit",      "cover_level",
-    "invert_level", "depth", "dimension1", "dimension2"};
+    "id",           "name",  "type",       "exit",       "cover_level",
+    "invert_level", "depth", "dimension1", "dimension2", "variant"};
 constexpr std::array<std::string_view, kPipeFieldCount> kPipeKeys = {
-    "name",  "from",  "to",     "from_level",   "to_level",  "height",
-    "width", "shape", "length", "from_azimuth", "to_azimuth"};
+    "name",  "from",  "to",     "from_level",   "to_level",   "height",
+    "width", "shape", "length", "from_azimuth", "to_azimuth", "blockage_risk"};
 
 // Sizes (shaft dimensions, pipe profiles) are in millimetres in a mapping file unless it says so;
 // azimuths in degrees; levels, depths and lengths in the unit of the layers' CRS (metres when
@@ -238,6 +238,7 @@ GisFieldMapping GisFieldMapping::defaults() {
                                    {"dimension1", kMm},
                                    {"diameter", kMm}};
   mh(ManholeField::kDimension2) = {{"ma_dimension2", kMm}, {"shaft_w_m", 1.0}, {"dimension2", kMm}};
+  mh(ManholeField::kVariant) = names({"variant"});
   pp(PipeField::kName) = names({"identifier", "name", "pipe_id", "reach_id", "haltung_nr", "id"});
   pp(PipeField::kFrom) = names({"rp_from_fk_wastewater_networkelement", "from", "from_node",
                                 "node_from", "us_node", "upstream", "von_schacht"});
@@ -259,6 +260,7 @@ GisFieldMapping GisFieldMapping::defaults() {
       {"length_effective", kCrsUnit}, {"length_m", 1.0}, {"length", kCrsUnit}};
   pp(PipeField::kFromAzimuth) = names({"from_az"});
   pp(PipeField::kToAzimuth) = names({"to_az"});
+  pp(PipeField::kBlockageRisk) = names({"blockage_risk"});
   m.exit_types = {"manhole", "schacht", "normschacht", "mh"};
   return m;
 }
@@ -302,6 +304,14 @@ Result<GisFieldMapping> parse_gis_field_mapping(std::string_view text, const std
         return k == "layer" || std::ranges::find(kPipeKeys, k) != kPipeKeys.end();
       });
     }
+    for (auto [key, layer] : {std::pair{"inspection_points", &m.point_layer},
+                              std::pair{"findings", &m.finding_layer}}) {
+      if (auto e = root.member(key, Need::kOptional)) {
+        JsonFields f(*e, std::string("$.") + key, file, diagnostics);
+        if (auto name = f.string("layer", Need::kOptional)) *layer = *name;
+        f.warn_unknown({"layer"});
+      }
+    }
     if (auto t = root.number("tolerance_m", Need::kOptional)) {
       if (*t >= 0) {
         m.tolerance_m = *t;
@@ -309,7 +319,7 @@ Result<GisFieldMapping> parse_gis_field_mapping(std::string_view text, const std
         diagnostics.error(root.where("tolerance_m"), "must not be negative");
       }
     }
-    root.warn_unknown({"manholes", "pipes", "tolerance_m"});
+    root.warn_unknown({"manholes", "pipes", "inspection_points", "findings", "tolerance_m"});
   }
   if (diagnostics.has_errors()) {
     return Error{ErrorCode::kParse, diagnostics.error_summary()};
@@ -334,6 +344,30 @@ Result<GisLayerChoice> choose_gis_layers(const std::vector<GisLayerInfo>& layers
       choose(layers, GisGeometry::kLine, mapping.pipe_layer, source, preferred);
   if (!pipes.has_value()) return pipes.error();
   return GisLayerChoice{*manholes, *pipes};
+}
+
+Result<std::optional<std::size_t>> choose_gis_place_layer(const std::vector<GisLayerInfo>& layers,
+                                                          const GisFieldMapping& mapping,
+                                                          GisPlaceLayer which, std::size_t manholes,
+                                                          const std::string& source) {
+  const bool points = which == GisPlaceLayer::kInspectionPoints;
+  const std::string& named = points ? mapping.point_layer : mapping.finding_layer;
+  const std::string_view one = points ? "inspection_point" : "finding";
+  for (std::size_t i = 0; i < layers.size(); ++i) {
+    if (i == manholes || layers[i].geometry != GisGeometry::kPoint) continue;
+    const std::string n = ascii_lower(layers[i].name);
+    if (named.empty() ? n == one || n == std::string(one) + "s" : n == ascii_lower(named)) {
+      return std::optional(i);
+    }
+  }
+  if (!named.empty()) {
+    return Error{ErrorCode::kInvalidMap,
+                 source + ": no point layer '" + named + "' (the " +
+                     (points ? "inspection points'" : "findings'") +
+                     " layer of the field mapping) other than the manholes'; the source has " +
+                     list(layers)};
+  }
+  return std::optional<std::size_t>();
 }
 
 }  // namespace sewerplan

@@ -168,6 +168,7 @@ Result<SewerMap> assemble_network(NetworkImport network, std::string map_name, L
                          .position = n.position,
                          .diameter_m = n.diameter_m,
                          .exit = n.exit,
+                         .variant = n.variant,
                          .shaft_length_m = n.shaft_length_m,
                          .shaft_width_m = n.shaft_width_m,
                          .depth_m = n.depth_m,
@@ -182,9 +183,11 @@ Result<SewerMap> assemble_network(NetworkImport network, std::string map_name, L
                       .diameter_m = l.diameter_m,
                       .shape = l.shape,
                       .height_m = l.height_m,
+                      .blockage_risk = l.blockage_risk,
                       .line = l.line});
   }
   for (FindingRecord& f : network.findings) builder.add_finding(std::move(f));
+  for (PointRecord& p : network.points) builder.add_point(std::move(p));
   return std::move(builder).build(diagnostics);
 }
 

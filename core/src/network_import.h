@@ -44,7 +44,8 @@ struct ImportNode {
   std::optional<double> shaft_length_m;  // a rectangular shaft
   std::optional<double> shaft_width_m;
   std::optional<double> depth_m;
-  std::uint32_t line = 0;  // for the Locator
+  std::optional<char> variant;  // the paper's TYPE_B: 'A'..'Z'
+  std::uint32_t line = 0;       // for the Locator
 };
 
 struct ImportLink {
@@ -68,6 +69,7 @@ struct ImportLink {
   // The slot's azimuth at each end when the source gives it (a GIS layer that carries the
   // map's own slot directions, as export-geojson writes them): it wins over the line's direction.
   std::array<std::optional<double>, 2> azimuth_deg;
+  std::optional<float> blockage_risk;
   std::uint32_t line = 0;
 };
 
@@ -75,6 +77,7 @@ struct NetworkImport {
   std::vector<ImportNode> nodes;
   std::vector<ImportLink> links;
   std::vector<FindingRecord> findings;  // inspection findings, by pipe name
+  std::vector<PointRecord> points;      // inspection points, by pipe name
   std::optional<Crs> crs;               // the coordinate reference system, if the file names one
 };
 

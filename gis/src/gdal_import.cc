@@ -375,6 +375,17 @@ Result<SewerMap> read_gis_map(const std::filesystem::path& source, Diagnostics& 
   auto layer_of = [&](std::size_t i) { return geojson ? layers.front() : layers[i]; };
   GisLayer manholes = geojson ? split[choice->manholes] : read_layer(layers[choice->manholes]);
   GisLayer pipes = geojson ? split[choice->pipes] : read_layer(layers[choice->pipes]);
+  // Inspection points and findings, when the source has their layers.
+  std::array<std::optional<GisLayer>, 2> places;
+  for (GisPlaceLayer which : {GisPlaceLayer::kInspectionPoints, GisPlaceLayer::kFindings}) {
+    Result<std::optional<std::size_t>> chosen =
+        choose_gis_place_layer(infos, mapping, which, choice->manholes, name);
+    if (!chosen.has_value()) return chosen.error();
+    if (*chosen) {
+      places[static_cast<std::size_t>(which)] =
+          geojson ? split[**chosen] : read_layer(layers[**chosen]);
+    }
+  }
   // Longitude and latitude: projected to the map's own CRS (sewerplan's GeoJSON names it), else
   // to the UTM zone the network lies in.
   OGRSpatialReferenceH srs = OGR_L_GetSpatialRef(layer_of(choice->manholes));
@@ -401,7 +412,8 @@ Result<SewerMap> read_gis_map(const std::filesystem::path& source, Diagnostics& 
   }
   std::string map_name = source.stem().string();
   if (map_name.empty() || map_name == ".") map_name = std::filesystem::absolute(source).filename();
-  return map_from_gis_layers(manholes, pipes, mapping, name, to_utf8_lossy(map_name), diagnostics);
+  return map_from_gis_layers(manholes, pipes, mapping, name, to_utf8_lossy(map_name), diagnostics,
+                             places[0] ? &*places[0] : nullptr, places[1] ? &*places[1] : nullptr);
 }
 
 }  // namespace sewerplan::gis

@@ -75,15 +75,17 @@ Json optional_number(const std::optional<double>& v) { return v ? Json(*v) : Jso
 void network(const SewerMap& map, const domain::DriveabilityReport* driveability, Writer& w) {
   for (ManholeId id : map.manhole_ids()) {
     const Manhole& m = map.manhole(id);
-    w.point(manhole_point(map, id), {{"layer", "manhole"},
-                                     {"name", m.name},
-                                     {"type", m.slot_count},
-                                     {"diameter_m", m.diameter_m},
-                                     {"shaft_l_m", m.shaft_length_m.value_or(m.diameter_m)},
-                                     {"shaft_w_m", m.shaft_width_m.value_or(m.diameter_m)},
-                                     {"z_m", m.position.z_m},
-                                     {"depth_m", optional_number(m.depth_m)},
-                                     {"exit", m.exit}});
+    w.point(manhole_point(map, id),
+            {{"layer", "manhole"},
+             {"name", m.name},
+             {"type", m.slot_count},
+             {"diameter_m", m.diameter_m},
+             {"shaft_l_m", m.shaft_length_m.value_or(m.diameter_m)},
+             {"shaft_w_m", m.shaft_width_m.value_or(m.diameter_m)},
+             {"variant", m.variant ? Json(std::string(1, *m.variant)) : Json()},
+             {"z_m", m.position.z_m},
+             {"depth_m", optional_number(m.depth_m)},
+             {"exit", m.exit}});
   }
   for (PipeId id : map.pipe_ids()) {
     const Pipe& p = map.pipe(id);
@@ -134,7 +136,9 @@ void network(const SewerMap& map, const domain::DriveabilityReport* driveability
                     {"code", f.code},
                     {"characterisation", f.characterisation},
                     {"pipe", map.pipe(f.pipe).name},
-                    {"offset_m", f.offset_m}});
+                    {"offset_m", f.offset_m},
+                    {"quantity1", optional_number(f.quantity1)},
+                    {"quantity2", optional_number(f.quantity2)}});
     }
   }
 }

@@ -82,8 +82,9 @@ enum class ManholeField {
   kDepth,        // metres
   kDimension1,   // shaft diameter or length
   kDimension2,   // shaft width (a rectangular shaft)
+  kVariant,      // the geometric variant of its type, one letter A..Z (the paper's TYPE_B)
 };
-inline constexpr std::size_t kManholeFieldCount = 9;
+inline constexpr std::size_t kManholeFieldCount = 10;
 
 enum class PipeField {
   kName,  // required
@@ -91,14 +92,15 @@ enum class PipeField {
   kTo,
   kFromLevel,  // the pipe's invert at its from end, metres; else the line's z, else the manhole's
   kToLevel,
-  kHeight,       // clear height; required with kWidth: one of them
-  kWidth,        // clear width
-  kShape,        // sewerplan's names: circular, rectangular, egg, other
-  kLength,       // metres; else the line's length
-  kFromAzimuth,  // degrees counter-clockwise from east: the slot's direction at the from end;
-  kToAzimuth,    // else the line's direction there (export-geojson writes both)
+  kHeight,        // clear height; required with kWidth: one of them
+  kWidth,         // clear width
+  kShape,         // sewerplan's names: circular, rectangular, egg, other
+  kLength,        // metres; else the line's length
+  kFromAzimuth,   // degrees counter-clockwise from east: the slot's direction at the from end;
+  kToAzimuth,     // else the line's direction there (export-geojson writes both)
+  kBlockageRisk,  // the likelihood (0..1) that the pipe is blocked
 };
-inline constexpr std::size_t kPipeFieldCount = 11;
+inline constexpr std::size_t kPipeFieldCount = 12;
 
 std::string_view to_string(ManholeField field);  // the mapping file's key: "cover_level"
 std::string_view to_string(PipeField field);
@@ -120,6 +122,12 @@ std::optional<double> gis_unit_to_metres(std::string_view unit);
 struct GisFieldMapping {
   std::string manhole_layer;  // empty: chosen by geometry type and name (choose_gis_layers)
   std::string pipe_layer;
+  // The inspection points' layer (fields name, pipe, offset_m, as export-geojson writes them);
+  // empty: a point layer named inspection_point or inspection_points, if the source has one.
+  std::string point_layer;
+  // The findings' layer (fields pipe, code, characterisation, offset_m, quantity1, quantity2);
+  // empty: a point layer named finding or findings, if the source has one.
+  std::string finding_layer;
   std::array<std::vector<GisFieldCandidate>, kManholeFieldCount> manhole;
   std::array<std::vector<GisFieldCandidate>, kPipeFieldCount> pipe;
   std::vector<std::string> exit_types;  // type values (case-insensitive) of exit manholes
@@ -156,9 +164,22 @@ Result<GisLayerChoice> choose_gis_layers(const std::vector<GisLayerInfo>& layers
                                          const GisFieldMapping& mapping, const std::string& source,
                                          std::string_view preferred = {});
 
-// The map, named `map_name`, with the manhole layer's CRS (the pipe layer's must agree).
+// The inspection points' (findings') layer among `layers` (not `manholes`): the one the mapping
+// names (an error if there is none such), else a point layer named inspection_point(s)
+// (finding(s)); nullopt: none.
+enum class GisPlaceLayer { kInspectionPoints, kFindings };
+Result<std::optional<std::size_t>> choose_gis_place_layer(const std::vector<GisLayerInfo>& layers,
+                                                          const GisFieldMapping& mapping,
+                                                          GisPlaceLayer which, std::size_t manholes,
+                                                          const std::string& source);
+
+// The map, named `map_name`, with the manhole layer's CRS (the pipe layer's must agree), the
+// inspection points of `points` (fields name, pipe and offset_m, metres from the pipe's from end)
+// and the findings of `findings` (pipe, code, characterisation, offset_m, quantity1, quantity2).
 Result<SewerMap> map_from_gis_layers(const GisLayer& manholes, const GisLayer& pipes,
                                      const GisFieldMapping& mapping, const std::string& source,
-                                     std::string map_name, Diagnostics& diagnostics);
+                                     std::string map_name, Diagnostics& diagnostics,
+                                     const GisLayer* points = nullptr,
+                                     const GisLayer* findings = nullptr);
 
 }  // namespace sewerplan
