@@ -305,9 +305,10 @@ TEST(MapFeatures, SlotAzimuthFieldsWinOverTheLinesDirection) {
   Diagnostics bad;
   Result<SewerMap> refused = build(manholes, pipes, bad);
   ASSERT_FALSE(refused.has_value());
-  EXPECT_THAT(refused.error().message,
-              HasSubstr("net.gpkg:pipes: feature 3: pipe P: field from_az: azimuth 400 is not an "
-                        "angle in degrees (-360..360)"));
+  EXPECT_THAT(
+      refused.error().message,
+      HasSubstr("net.gpkg:pipes: feature 3: error: pipe P: field from_az: azimuth 400 is not an "
+                "angle in degrees (-360..360)"));
 }
 
 TEST(MapFeatures, TheLayersAreChosenByGeometryThenByName) {

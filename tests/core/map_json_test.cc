@@ -343,8 +343,8 @@ TEST(MapIo, WithoutGisRefusesGisSourcesAndMappingsAndReadsTheRest) {
   ASSERT_FALSE(source.has_value());
   EXPECT_EQ(source.error().code, ErrorCode::kUnsupportedFormat);
   EXPECT_THAT(source.error().message,
-              HasSubstr("exports/net.shp: a GIS source (GeoPackage, Shapefile or a directory of "
-                        "them), but this sewerplan is built without GIS support"));
+              HasSubstr("exports/net.shp: a GIS source (GeoJSON, GeoPackage, Shapefile or a "
+                        "directory of them), but this sewerplan is built without GIS support"));
   const std::string ais = testing::dataset_path("ais-testbed/map.json").string();
   Result<SewerMap> mapping = read_map_without_gis(ais, d, std::filesystem::path("town.json"));
   ASSERT_FALSE(mapping.has_value());
