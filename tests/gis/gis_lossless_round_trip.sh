@@ -3,7 +3,7 @@
 # Acceptance (issue 31): a GIS round trip changes nothing the planner uses. The ISYBAU 2017 sample
 # (with its findings) and the AIS testbed go export-geojson -> GDAL (a GeoPackage, Shapefiles, and
 # the GeoJSON itself given as --map, also under a .json name) -> convert, and the map that comes
-# back is compared with the original field by field: every manhole (position within 5 mm, invert,
+# back is compared with the original field by field: every manhole (position within 1 cm, invert,
 # diameter, shaft length and width, depth, exit, variant, and its slots in order: pipe, azimuth,
 # pipe-end invert), every pipe (ends, length, sizes, shape, blockage risk), the inspection points,
 # the findings and the CRS.
@@ -40,7 +40,7 @@ def same(x, y, path):
         for i, (u, v) in enumerate(zip(x, y)):
             same(u, v, f"{path}[{i}]")
     elif isinstance(x, (int, float)) and isinstance(y, (int, float)) and not isinstance(x, bool):
-        tol = 0.005 if path.endswith((".x_m", ".y_m")) else 1e-6
+        tol = 0.01 if path.endswith((".x_m", ".y_m")) else 1e-6
         if not math.isclose(x, y, rel_tol=0, abs_tol=tol):
             problems.append(f"{path}: {x} != {y}")
     elif x != y:
@@ -100,12 +100,20 @@ round_trip "AIS testbed" --map "$src/datasets/ais-testbed/map.json"
 "$sp" export-geojson --map "$isy/street-2017.xml" --crs "$crs" -o "$tmp/street.geojson" > /dev/null
 "$sp" info --map "$tmp/street.geojson" --profile makro-plus --json > "$tmp/info-b.json"
 /usr/bin/python3 - "$tmp/info-a.json" "$tmp/info-b.json" <<'PY'
-import json, sys
-a, b = (json.load(open(p)) for p in sys.argv[1:3])
-for key in ("driveability", "passages", "reachable"):
-    if key in a and a[key] != b.get(key):
-        sys.exit(f"FAIL info --profile makro-plus: {key} changed: {a[key]} != {b.get(key)}")
-print("ISYBAU 2017: the same passages drivable after the round trip")
+import json, math, sys
+a, b = (json.load(open(p))["driveability"] for p in sys.argv[1:3])
+def same(x, y):
+    if isinstance(x, dict):
+        return isinstance(y, dict) and x.keys() == y.keys() and all(same(x[k], y[k]) for k in x)
+    if isinstance(x, list):
+        return isinstance(y, list) and len(x) == len(y) and all(map(same, x, y))
+    if isinstance(x, float) or isinstance(y, float):
+        return math.isclose(x, y, rel_tol=0, abs_tol=1e-9)
+    return x == y
+assert a["passages"], "the sample has a passage the robot cannot drive"
+if not same(a, b):
+    sys.exit(f"FAIL info --profile makro-plus after the round trip:\n{a}\n!=\n{b}")
+print(f"ISYBAU 2017: the same {len(a['passages'])} undrivable passages after the round trip")
 PY
 
 # Units: a SWMM network in feet (CFS) whose coordinates are EPSG:2229 (US survey feet).
