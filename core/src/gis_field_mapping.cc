@@ -21,8 +21,8 @@ constexpr std::array<std::string_view, kManholeFieldCount> kManholeKeys = {
     "id",           "name",  "type",       "exit",       "cover_level",
     "invert_level", "depth", "dimension1", "dimension2", "variant"};
 constexpr std::array<std::string_view, kPipeFieldCount> kPipeKeys = {
-    "name",  "from",  "to",     "from_level",   "to_level",   "height",
-    "width", "shape", "length", "from_azimuth", "to_azimuth", "blockage_risk"};
+    "name",  "from",   "to",           "from_level", "to_level",      "height",    "width",
+    "shape", "length", "from_azimuth", "to_azimuth", "blockage_risk", "from_slot", "to_slot"};
 
 // Sizes (shaft dimensions, pipe profiles) are in millimetres in a mapping file unless it says so;
 // azimuths in degrees; levels, depths and lengths in the unit of the layers' CRS (metres when
@@ -261,6 +261,8 @@ GisFieldMapping GisFieldMapping::defaults() {
   pp(PipeField::kFromAzimuth) = names({"from_az"});
   pp(PipeField::kToAzimuth) = names({"to_az"});
   pp(PipeField::kBlockageRisk) = names({"blockage_risk"});
+  pp(PipeField::kFromSlot) = names({"from_slot"});
+  pp(PipeField::kToSlot) = names({"to_slot"});
   m.exit_types = {"manhole", "schacht", "normschacht", "mh"};
   return m;
 }

@@ -386,6 +386,8 @@ class PipeReader {
     azimuth_[0] = resolve(layer, m[PipeField::kFromAzimuth]);
     azimuth_[1] = resolve(layer, m[PipeField::kToAzimuth]);
     risk_ = resolve(layer, m[PipeField::kBlockageRisk]);
+    slot_[0] = resolve(layer, m[PipeField::kFromSlot]);
+    slot_[1] = resolve(layer, m[PipeField::kToSlot]);
   }
 
   bool usable() const { return name_ && (height_ || width_); }
@@ -444,6 +446,7 @@ class PipeReader {
       link.vertices.push_back({points[i][0], points[i][1]});
     }
     for (std::size_t end = 0; end < 2; ++end) {
+      link.slot_index[end] = ff_.number(f, slot_[end]);
       link.azimuth_deg[end] = ff_.number(f, azimuth_[end]);
       if (link.azimuth_deg[end] &&
           (*link.azimuth_deg[end] <= -360 || *link.azimuth_deg[end] >= 360)) {
@@ -530,6 +533,7 @@ class PipeReader {
   std::optional<Field> name_, height_, width_, from_, to_, from_level_, to_level_, shape_, length_;
   std::array<std::optional<Field>, 2> azimuth_;
   std::optional<Field> risk_;
+  std::array<std::optional<Field>, 2> slot_;
   std::string where_;
 };
 

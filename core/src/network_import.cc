@@ -110,6 +110,7 @@ Result<SewerMap> assemble_network(NetworkImport network, std::string map_name, L
                        i);  // a duplicate keeps the first; MapBuilder says so
   }
   std::vector<std::vector<SlotRecord>> slots(network.nodes.size());
+  std::vector<std::vector<std::optional<double>>> slot_order(network.nodes.size());
   std::vector<PendingSlot> pending;
   std::size_t inside = 0;  // pipe ends whose line begins inside the manhole
   auto find = [&](const std::optional<std::string>& name) -> const ImportNode* {
@@ -140,8 +141,44 @@ Result<SewerMap> assemble_network(NetworkImport network, std::string map_name, L
         pending.push_back({it->second, slots[it->second].size()});
       }
       slots[it->second].push_back(std::move(slot));
+      slot_order[it->second].push_back(link.slot_index[end]);
     }
   }
+  // Slots numbered by the source: in that order when the numbers are 0..k-1, each once.
+  std::size_t misnumbered = 0;
+  for (std::size_t i = 0; i < slots.size(); ++i) {
+    const std::vector<std::optional<double>>& order = slot_order[i];
+    if (std::ranges::none_of(order, [](const auto& o) { return o.has_value(); })) continue;
+    std::vector<std::optional<std::size_t>> at(order.size());
+    bool valid = true;
+    for (std::size_t s = 0; s < order.size() && valid; ++s) {
+      const std::optional<double>& o = order[s];
+      valid = o && *o >= 0 && *o < static_cast<double>(order.size()) && *o == std::floor(*o) &&
+              !at[static_cast<std::size_t>(*o)];
+      if (valid) at[static_cast<std::size_t>(*o)] = s;
+    }
+    if (!valid) {
+      ++misnumbered;
+      continue;
+    }
+    std::vector<SlotRecord> sorted;
+    sorted.reserve(order.size());
+    for (const std::optional<std::size_t>& s : at) sorted.push_back(std::move(slots[i][*s]));
+    // The pending fallbacks refer to positions in the old order.
+    for (PendingSlot& p : pending) {
+      if (p.node != i) continue;
+      for (std::size_t k = 0; k < at.size(); ++k) {
+        if (*at[k] == p.slot) {
+          p.slot = k;
+          break;
+        }
+      }
+    }
+    slots[i] = std::move(sorted);
+  }
+  warn_counted(diagnostics, where, misnumbered,
+               "manholes have slot numbers that are not 0..k-1, each once: their slots are in the "
+               "order of the pipes");
   // Fallback: spread each manhole's slots of unknown direction evenly around it.
   std::vector<std::uint32_t> unknown(network.nodes.size(), 0);
   for (const PendingSlot& s : pending) ++unknown[s.node];

@@ -69,6 +69,10 @@ struct ImportLink {
   // The slot's azimuth at each end when the source gives it (a GIS layer that carries the
   // map's own slot directions, as export-geojson writes them): it wins over the line's direction.
   std::array<std::optional<double>, 2> azimuth_deg;
+  // The slot's number in its manhole at each end (0 first), when the source gives it (a GIS layer
+  // from export-geojson): a manhole whose every slot has one, each once, keeps that order (the
+  // planner's slot numbers); else its slots are in the order of the links.
+  std::array<std::optional<double>, 2> slot_index;
   std::optional<float> blockage_risk;
   std::uint32_t line = 0;
 };

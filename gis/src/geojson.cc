@@ -105,6 +105,8 @@ void network(const SewerMap& map, const domain::DriveabilityReport* driveability
                        {"to_lvl_m", slot_value(1, &Slot::invert_z_m)},
                        {"from_az", slot_value(0, &Slot::azimuth_deg)},
                        {"to_az", slot_value(1, &Slot::azimuth_deg)},
+                       {"from_slot", p.ends[0].manhole ? Json(p.ends[0].slot.value()) : Json()},
+                       {"to_slot", p.ends[1].manhole ? Json(p.ends[1].slot.value()) : Json()},
                        {"length_m", p.length_m},
                        {"diameter_m", p.diameter_m},
                        {"shape", std::string(to_string(p.shape))},

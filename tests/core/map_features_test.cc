@@ -287,6 +287,31 @@ TEST(MapFeatures, ALayerInFeetIsReadInMetresThroughItsCrsUnit) {
   EXPECT_NEAR(map->pipe(*map->find_pipe("P")).diameter_m, 0.3, 1e-12);  // mm: not the CRS's
 }
 
+// The planner's slot numbers (the paper's DRIVE_MANHOLE_TYPE_3_FROM_1_TO_3) come back in the order
+// the slot fields give, not in the order of the pipes; numbers that are not 0..k-1, each once, are
+// a warning and the pipes' order.
+TEST(MapFeatures, SlotNumberFieldsKeepTheSlotOrder) {
+  GisLayer manholes{.name = "manholes", .fields = {"name"}};
+  manholes.features = {point(1, 0, 0, {"A"}), point(2, 10, 0, {"B"}), point(3, 0, 10, {"C"})};
+  GisLayer pipes{.name = "pipes",
+                 .fields = {"name", "from", "to", "height_m", "from_slot", "to_slot"}};
+  pipes.features = {line(4, {{0, 0, 0}, {10, 0, 0}}, {"P", "A", "B", 0.3, 1.0, 0.0}),
+                    line(5, {{0, 0, 0}, {0, 10, 0}}, {"Q", "A", "C", 0.3, 0.0, 0.0})};
+  Diagnostics d;
+  Result<SewerMap> map = build(manholes, pipes, d);
+  ASSERT_TRUE(map.has_value()) << map.error().message;
+  const ManholeId a = *map->find_manhole("A");
+  EXPECT_EQ(map->pipe(map->slot(a, SlotIndex{0}).pipe).name, "Q");
+  EXPECT_EQ(map->pipe(map->slot(a, SlotIndex{1}).pipe).name, "P");
+  EXPECT_DOUBLE_EQ(map->slot(a, SlotIndex{0}).azimuth_deg, 90.0);
+  pipes.features[1].values[4] = 1.0;  // two slots numbered 1
+  Diagnostics twice;
+  Result<SewerMap> kept = build(manholes, pipes, twice);
+  ASSERT_TRUE(kept.has_value()) << kept.error().message;
+  EXPECT_EQ(kept->pipe(kept->slot(a, SlotIndex{0}).pipe).name, "P");
+  EXPECT_TRUE(has_warning(twice, "slot numbers that are not 0..k-1"));
+}
+
 TEST(MapFeatures, SlotAzimuthFieldsWinOverTheLinesDirection) {
   GisLayer manholes{.name = "manholes", .fields = {"name"}};
   manholes.features = {point(1, 0, 0, {"A"}), point(2, 10, 0, {"B"})};

@@ -65,10 +65,10 @@ PY
 # split FORMAT OUT: the GeoJSON's layers as layers of OUT, back in the map's CRS.
 split() {
   local format=$1 out=$2 update=()
-  for layer in manhole pipe inspection_point finding; do
+  for layer in manhole pipe inspection_point finding; do  # (-q: no notes on Shapefile names)
     "$ogr2ogr" -f "$format" "${update[@]}" "$out" "$tmp/net.geojson" -t_srs "$crs" \
       -where "layer = '$layer'" -nln "${layer}s"
-    [ "$format" = GPKG ] && update=(-update)
+    if [ "$format" = GPKG ]; then update=(-update); fi
   done
 }
 

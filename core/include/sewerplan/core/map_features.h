@@ -99,8 +99,10 @@ enum class PipeField {
   kFromAzimuth,   // degrees counter-clockwise from east: the slot's direction at the from end;
   kToAzimuth,     // else the line's direction there (export-geojson writes both)
   kBlockageRisk,  // the likelihood (0..1) that the pipe is blocked
+  kFromSlot,      // the slot's number (0 first) in the from (to) manhole, which keeps the
+  kToSlot,        // planner's slot numbers through a GIS round trip (export-geojson writes them)
 };
-inline constexpr std::size_t kPipeFieldCount = 12;
+inline constexpr std::size_t kPipeFieldCount = 14;
 
 std::string_view to_string(ManholeField field);  // the mapping file's key: "cover_level"
 std::string_view to_string(PipeField field);
