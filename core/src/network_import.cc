@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "network_import.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <optional>
