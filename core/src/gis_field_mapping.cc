@@ -2,6 +2,7 @@
 // The field mapping of GIS sewer layers: its defaults, its JSON file, and the choice of the layers.
 #include <algorithm>
 #include <initializer_list>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -14,20 +15,29 @@ namespace sewerplan {
 namespace {
 
 constexpr double kMm = 0.001;
+constexpr std::optional<double> kCrsUnit = std::nullopt;
 
 constexpr std::array<std::string_view, kManholeFieldCount> kManholeKeys = {
-    "id",           "name",  "type",       "exit",      "cover_level",
-    "invert_level", "depth", "dimension1", "dimension2"};
+    "id",           "name",  "type",       "exit",       "cover_level",
+    "invert_level", "depth", "dimension1", "dimension2", "variant"};
 constexpr std::array<std::string_view, kPipeFieldCount> kPipeKeys = {
-    "name", "from", "to", "from_level", "to_level", "height", "width", "shape", "length"};
+    "name",  "from",   "to",           "from_level", "to_level",      "height",    "width",
+    "shape", "length", "from_azimuth", "to_azimuth", "blockage_risk", "from_slot", "to_slot"};
 
 // Sizes (shaft dimensions, pipe profiles) are in millimetres in a mapping file unless it says so;
-// levels and lengths in metres.
+// azimuths in degrees; levels, depths and lengths in the unit of the layers' CRS (metres when
+// they have none).
 bool is_size(std::string_view key) {
   return key == "dimension1" || key == "dimension2" || key == "height" || key == "width";
 }
+bool is_angle(std::string_view key) { return key == "from_azimuth" || key == "to_azimuth"; }
+bool is_measure(std::string_view key) {
+  return key == "cover_level" || key == "invert_level" || key == "depth" || key == "from_level" ||
+         key == "to_level" || key == "length" || is_size(key);
+}
 
-std::vector<GisFieldCandidate> names(std::initializer_list<const char*> fields, double scale = 1) {
+std::vector<GisFieldCandidate> names(std::initializer_list<const char*> fields,
+                                     std::optional<double> scale = 1.0) {
   std::vector<GisFieldCandidate> out;
   for (const char* f : fields) out.push_back({f, scale});
   return out;
@@ -39,7 +49,9 @@ std::optional<std::vector<GisFieldCandidate>> read_field(JsonFields& f, std::str
   std::optional<JsonElement> e = f.member(key, JsonFields::Need::kOptional);
   if (!e) return std::nullopt;
   if (e->is_null()) return std::vector<GisFieldCandidate>{};
-  const double unit = is_size(key) ? kMm : 1.0;
+  const std::optional<double> unit = is_size(key)      ? std::optional(kMm)
+                                     : is_measure(key) ? kCrsUnit
+                                                       : std::optional(1.0);
   if (e->is_string())
     return std::vector<GisFieldCandidate>{{std::string(e->get_string().value()), unit}};
   JsonFields spec(*e, f.path() + "." + std::string(key), file, f.diagnostics());
@@ -47,16 +59,25 @@ std::optional<std::vector<GisFieldCandidate>> read_field(JsonFields& f, std::str
   std::optional<std::string> unit_name = spec.string("unit", JsonFields::Need::kOptional);
   spec.warn_unknown({"field", "unit"});
   if (!field) return std::nullopt;
-  double scale = unit;
+  std::optional<double> scale = unit;
   if (unit_name) {
-    if (*unit_name == "m") {
-      scale = 1;
-    } else if (*unit_name == "cm") {
-      scale = 0.01;
-    } else if (*unit_name == "mm") {
-      scale = kMm;
+    if (is_angle(key)) {
+      if (*unit_name != "deg") {
+        f.diagnostics().error(
+            spec.where("unit"),
+            "field " + std::string(key) + ": an azimuth's unit is deg, not '" + *unit_name + "'");
+        return std::nullopt;
+      }
+    } else if (!is_measure(key)) {
+      f.diagnostics().error(spec.where("unit"),
+                            "field " + std::string(key) + " is not a measure: it takes no unit");
+      return std::nullopt;
+    } else if (std::optional<double> metres = gis_unit_to_metres(*unit_name)) {
+      scale = metres;
     } else {
-      f.diagnostics().error(spec.where("unit"), "unknown unit '" + *unit_name + "' (m, cm or mm)");
+      f.diagnostics().error(spec.where("unit"), "field " + std::string(key) + ": unknown unit '" +
+                                                    *unit_name +
+                                                    "' (mm, cm, m, inch, foot or us_survey_foot)");
       return std::nullopt;
     }
   }
@@ -170,6 +191,26 @@ Result<std::size_t> choose(const std::vector<GisLayerInfo>& layers, GisGeometry 
 
 }  // namespace
 
+std::optional<double> gis_unit_to_metres(std::string_view unit) {
+  struct Unit {
+    std::string_view name;
+    double metres;
+  };
+  static constexpr Unit kUnits[] = {{"mm", 0.001},
+                                    {"cm", 0.01},
+                                    {"m", 1.0},
+                                    {"inch", 0.0254},
+                                    {"in", 0.0254},
+                                    {"foot", 0.3048},
+                                    {"ft", 0.3048},
+                                    {"us_survey_foot", 1200.0 / 3937.0},
+                                    {"ftUS", 1200.0 / 3937.0}};
+  for (const Unit& u : kUnits) {
+    if (u.name == unit) return u.metres;
+  }
+  return std::nullopt;
+}
+
 std::string_view to_string(ManholeField field) {
   return kManholeKeys[static_cast<std::size_t>(field)];
 }
@@ -185,28 +226,43 @@ GisFieldMapping GisFieldMapping::defaults() {
   mh(ManholeField::kType) = names({"ws_type", "manhole_type", "mh_type", "schachtart"});
   mh(ManholeField::kExit) = names({"exit", "is_exit"});
   mh(ManholeField::kCoverLevel) =
-      names({"co_level", "cover_level", "rim_level", "rim_elev", "deckelhoehe"});
-  mh(ManholeField::kInvertLevel) =
-      names({"wn_bottom_level", "bottom_level", "invert_level", "invert_elev", "sohlhoehe", "z_m"});
-  mh(ManholeField::kDepth) = names({"_depth", "depth_m", "depth"});
-  mh(ManholeField::kDimension1) = {
-      {"ma_dimension1", kMm}, {"diameter_m", 1}, {"dimension1", kMm}, {"diameter", kMm}};
-  mh(ManholeField::kDimension2) = names({"ma_dimension2", "dimension2"}, kMm);
+      names({"co_level", "cover_level", "rim_level", "rim_elev", "deckelhoehe"}, kCrsUnit);
+  mh(ManholeField::kInvertLevel) = names(
+      {"wn_bottom_level", "bottom_level", "invert_level", "invert_elev", "sohlhoehe"}, kCrsUnit);
+  mh(ManholeField::kInvertLevel).push_back({"z_m", 1.0});
+  mh(ManholeField::kDepth) = {{"_depth", kCrsUnit}, {"depth_m", 1.0}, {"depth", kCrsUnit}};
+  // sewerplan's GeoJSON writes a shaft's length and width (equal for a round one) in metres.
+  mh(ManholeField::kDimension1) = {{"ma_dimension1", kMm},
+                                   {"shaft_l_m", 1.0},
+                                   {"diameter_m", 1.0},
+                                   {"dimension1", kMm},
+                                   {"diameter", kMm}};
+  mh(ManholeField::kDimension2) = {{"ma_dimension2", kMm}, {"shaft_w_m", 1.0}, {"dimension2", kMm}};
+  mh(ManholeField::kVariant) = names({"variant"});
   pp(PipeField::kName) = names({"identifier", "name", "pipe_id", "reach_id", "haltung_nr", "id"});
   pp(PipeField::kFrom) = names({"rp_from_fk_wastewater_networkelement", "from", "from_node",
                                 "node_from", "us_node", "upstream", "von_schacht"});
   pp(PipeField::kTo) = names({"rp_to_fk_wastewater_networkelement", "to", "to_node", "node_to",
                               "ds_node", "downstream", "bis_schacht"});
+  // sewerplan's GeoJSON: from_lvl_m and to_lvl_m, metres (10 characters, for a Shapefile).
   pp(PipeField::kFromLevel) =
-      names({"rp_from_level", "from_level", "from_invert", "us_invert", "invert_from"});
+      names({"rp_from_level", "from_level", "from_invert", "us_invert", "invert_from"}, kCrsUnit);
+  pp(PipeField::kFromLevel).insert(pp(PipeField::kFromLevel).begin(), {"from_lvl_m", 1.0});
   pp(PipeField::kToLevel) =
-      names({"rp_to_level", "to_level", "to_invert", "ds_invert", "invert_to"});
+      names({"rp_to_level", "to_level", "to_invert", "ds_invert", "invert_to"}, kCrsUnit);
+  pp(PipeField::kToLevel).insert(pp(PipeField::kToLevel).begin(), {"to_lvl_m", 1.0});
   pp(PipeField::kHeight) = {{"clear_height", kMm}, {"height_m", 1}, {"height", kMm},
                             {"profil_hoehe", kMm}, {"dn", kMm},     {"diameter", kMm}};
   pp(PipeField::kWidth) = {
       {"width", kMm}, {"diameter_m", 1}, {"clear_width", kMm}, {"profil_breite", kMm}};
   pp(PipeField::kShape) = names({"shape"});
-  pp(PipeField::kLength) = names({"length_effective", "length_m", "length"});
+  pp(PipeField::kLength) = {
+      {"length_effective", kCrsUnit}, {"length_m", 1.0}, {"length", kCrsUnit}};
+  pp(PipeField::kFromAzimuth) = names({"from_az"});
+  pp(PipeField::kToAzimuth) = names({"to_az"});
+  pp(PipeField::kBlockageRisk) = names({"blockage_risk"});
+  pp(PipeField::kFromSlot) = names({"from_slot"});
+  pp(PipeField::kToSlot) = names({"to_slot"});
   m.exit_types = {"manhole", "schacht", "normschacht", "mh"};
   return m;
 }
@@ -250,6 +306,14 @@ Result<GisFieldMapping> parse_gis_field_mapping(std::string_view text, const std
         return k == "layer" || std::ranges::find(kPipeKeys, k) != kPipeKeys.end();
       });
     }
+    for (auto [key, layer] : {std::pair{"inspection_points", &m.point_layer},
+                              std::pair{"findings", &m.finding_layer}}) {
+      if (auto e = root.member(key, Need::kOptional)) {
+        JsonFields f(*e, std::string("$.") + key, file, diagnostics);
+        if (auto name = f.string("layer", Need::kOptional)) *layer = *name;
+        f.warn_unknown({"layer"});
+      }
+    }
     if (auto t = root.number("tolerance_m", Need::kOptional)) {
       if (*t >= 0) {
         m.tolerance_m = *t;
@@ -257,7 +321,7 @@ Result<GisFieldMapping> parse_gis_field_mapping(std::string_view text, const std
         diagnostics.error(root.where("tolerance_m"), "must not be negative");
       }
     }
-    root.warn_unknown({"manholes", "pipes", "tolerance_m"});
+    root.warn_unknown({"manholes", "pipes", "inspection_points", "findings", "tolerance_m"});
   }
   if (diagnostics.has_errors()) {
     return Error{ErrorCode::kParse, diagnostics.error_summary()};
@@ -282,6 +346,30 @@ Result<GisLayerChoice> choose_gis_layers(const std::vector<GisLayerInfo>& layers
       choose(layers, GisGeometry::kLine, mapping.pipe_layer, source, preferred);
   if (!pipes.has_value()) return pipes.error();
   return GisLayerChoice{*manholes, *pipes};
+}
+
+Result<std::optional<std::size_t>> choose_gis_place_layer(const std::vector<GisLayerInfo>& layers,
+                                                          const GisFieldMapping& mapping,
+                                                          GisPlaceLayer which, std::size_t manholes,
+                                                          const std::string& source) {
+  const bool points = which == GisPlaceLayer::kInspectionPoints;
+  const std::string& named = points ? mapping.point_layer : mapping.finding_layer;
+  const std::string_view one = points ? "inspection_point" : "finding";
+  for (std::size_t i = 0; i < layers.size(); ++i) {
+    if (i == manholes || layers[i].geometry != GisGeometry::kPoint) continue;
+    const std::string n = ascii_lower(layers[i].name);
+    if (named.empty() ? n == one || n == std::string(one) + "s" : n == ascii_lower(named)) {
+      return std::optional(i);
+    }
+  }
+  if (!named.empty()) {
+    return Error{ErrorCode::kInvalidMap,
+                 source + ": no point layer '" + named + "' (the " +
+                     (points ? "inspection points'" : "findings'") +
+                     " layer of the field mapping) other than the manholes'; the source has " +
+                     list(layers)};
+  }
+  return std::optional<std::size_t>();
 }
 
 }  // namespace sewerplan

@@ -4,9 +4,11 @@
 #include "sewerplan/core/map_features.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <unordered_map>
@@ -33,7 +35,8 @@ std::optional<Field> resolve(const GisLayer& layer, const std::vector<GisFieldCa
   for (const GisFieldCandidate& c : wanted) {
     const std::string want = ascii_lower(c.field);
     for (std::size_t i = 0; i < layer.fields.size(); ++i) {
-      if (ascii_lower(layer.fields[i]) == want) return Field{i, c.to_metres, layer.fields[i]};
+      if (ascii_lower(layer.fields[i]) == want)
+        return Field{i, c.to_metres.value_or(layer.unit_m), layer.fields[i]};
     }
     if (want.size() <= kShapefileFieldChars) continue;
     std::optional<std::size_t> cut;
@@ -45,7 +48,7 @@ std::optional<Field> resolve(const GisLayer& layer, const std::vector<GisFieldCa
         ++hits;
       }
     }
-    if (hits == 1) return Field{*cut, c.to_metres, layer.fields[*cut]};
+    if (hits == 1) return Field{*cut, c.to_metres.value_or(layer.unit_m), layer.fields[*cut]};
   }
   return std::nullopt;
 }
@@ -218,10 +221,11 @@ struct ManholeFields {
         invert(resolve(layer, m[ManholeField::kInvertLevel])),
         depth(resolve(layer, m[ManholeField::kDepth])),
         dim1(resolve(layer, m[ManholeField::kDimension1])),
-        dim2(resolve(layer, m[ManholeField::kDimension2])) {
+        dim2(resolve(layer, m[ManholeField::kDimension2])),
+        variant(resolve(layer, m[ManholeField::kVariant])) {
     for (const std::string& t : m.exit_types) exit_types.push_back(ascii_lower(t));
   }
-  std::optional<Field> id, type, exit, cover, invert, depth, dim1, dim2;
+  std::optional<Field> id, type, exit, cover, invert, depth, dim1, dim2, variant;
   std::vector<std::string> exit_types;  // lower case
 };
 
@@ -310,6 +314,14 @@ Manholes read_manholes(const GisLayer& layer, const GisFieldMapping& m, const st
     read_levels(ff, f, fields, where, node, counts, d);
     read_shaft(ff, f, fields, m.default_manhole_diameter_m, where, node, counts, d);
     node.exit = is_exit(ff, f, fields);
+    if (const std::optional<std::string> v = ff.text(f, fields.variant)) {
+      if (v->size() == 1 && (*v)[0] >= 'A' && (*v)[0] <= 'Z') {
+        node.variant = (*v)[0];
+      } else {
+        d.error(where, "manhole " + node.name + ": field " + fields.variant->name + ": '" + *v +
+                           "' is no variant (one letter A..Z)");
+      }
+    }
     if (d.error_count() > errors) {
       out.rejected.insert(key);
       continue;
@@ -371,6 +383,11 @@ class PipeReader {
     to_level_ = resolve(layer, m[PipeField::kToLevel]);
     shape_ = resolve(layer, m[PipeField::kShape]);
     length_ = resolve(layer, m[PipeField::kLength]);
+    azimuth_[0] = resolve(layer, m[PipeField::kFromAzimuth]);
+    azimuth_[1] = resolve(layer, m[PipeField::kToAzimuth]);
+    risk_ = resolve(layer, m[PipeField::kBlockageRisk]);
+    slot_[0] = resolve(layer, m[PipeField::kFromSlot]);
+    slot_[1] = resolve(layer, m[PipeField::kToSlot]);
   }
 
   bool usable() const { return name_ && (height_ || width_); }
@@ -427,6 +444,19 @@ class PipeReader {
     link.to_invert_z_m = invert(to_level_, b, false);
     for (std::size_t i = 1; i + 1 < points.size(); ++i) {
       link.vertices.push_back({points[i][0], points[i][1]});
+    }
+    for (std::size_t end = 0; end < 2; ++end) {
+      link.slot_index[end] = ff_.number(f, slot_[end]);
+      link.azimuth_deg[end] = ff_.number(f, azimuth_[end]);
+      if (link.azimuth_deg[end] &&
+          (*link.azimuth_deg[end] <= -360 || *link.azimuth_deg[end] >= 360)) {
+        d_.error(where_, "pipe " + *n + ": field " + azimuth_[end]->name + ": azimuth " +
+                             number_text(*link.azimuth_deg[end]) +
+                             " is not an angle in degrees (-360..360)");
+      }
+    }
+    if (const std::optional<double> risk = ff_.number(f, risk_)) {
+      link.blockage_risk = static_cast<float>(*risk);  // MapBuilder checks 0..1
     }
     if (d_.error_count() > errors) return std::nullopt;
     return link;
@@ -501,6 +531,9 @@ class PipeReader {
   FeatureFields ff_;
   NearestManhole nearest_;
   std::optional<Field> name_, height_, width_, from_, to_, from_level_, to_level_, shape_, length_;
+  std::array<std::optional<Field>, 2> azimuth_;
+  std::optional<Field> risk_;
+  std::array<std::optional<Field>, 2> slot_;
   std::string where_;
 };
 
@@ -523,11 +556,96 @@ std::vector<std::string> read_pipes(const GisLayer& layer, const GisFieldMapping
   return wheres;
 }
 
+// The inspection points: a name, the pipe's name and the offset from its from end, in metres.
+std::vector<std::string> read_points(const GisLayer& layer, const std::string& source,
+                                     detail::NetworkImport& net, Diagnostics& d) {
+  std::vector<std::string> wheres;
+  FeatureFields ff(layer, source, d);
+  const std::optional<Field> name = ff.require({{"name", 1.0}}, "inspection point name");
+  const std::optional<Field> pipe = ff.require({{"pipe", 1.0}}, "inspection point's pipe");
+  const std::optional<Field> offset = ff.require({{"offset_m", 1.0}}, "inspection point's offset");
+  if (!name || !pipe || !offset) return wheres;
+  for (const GisFeature& f : layer.features) {
+    const std::string where = ff.where(f);
+    std::optional<std::string> n = ff.text(f, name);
+    std::optional<std::string> p = ff.text(f, pipe);
+    std::optional<double> o = ff.number(f, offset);
+    if (!n || !p || !o) {
+      d.error(where, "an inspection point needs a name, a pipe and an offset_m");
+      continue;
+    }
+    wheres.push_back(where);
+    net.points.push_back({.name = std::move(*n),
+                          .pipe = std::move(*p),
+                          .offset_m = *o,
+                          .line = static_cast<std::uint32_t>(wheres.size())});
+  }
+  return wheres;
+}
+
+// The findings: the pipe's name, the code, its characterisation and quantities, and the offset
+// from the pipe's from end, in metres.
+std::vector<std::string> read_findings(const GisLayer& layer, const std::string& source,
+                                       detail::NetworkImport& net, Diagnostics& d) {
+  std::vector<std::string> wheres;
+  FeatureFields ff(layer, source, d);
+  const std::optional<Field> pipe = ff.require({{"pipe", 1.0}}, "finding's pipe");
+  const std::optional<Field> code = ff.require({{"code", 1.0}}, "finding's code");
+  const std::optional<Field> offset = ff.require({{"offset_m", 1.0}}, "finding's offset");
+  const std::optional<Field> characterisation = resolve(layer, {{"characterisation", 1.0}});
+  const std::optional<Field> q1 = resolve(layer, {{"quantity1", 1.0}});
+  const std::optional<Field> q2 = resolve(layer, {{"quantity2", 1.0}});
+  if (!pipe || !code || !offset) return wheres;
+  for (const GisFeature& f : layer.features) {
+    const std::string where = ff.where(f);
+    std::optional<std::string> p = ff.text(f, pipe);
+    std::optional<std::string> c = ff.text(f, code);
+    std::optional<double> o = ff.number(f, offset);
+    if (!p || !c || !o) {
+      d.error(where, "a finding needs a pipe, a code and an offset_m");
+      continue;
+    }
+    wheres.push_back(where);
+    net.findings.push_back({.pipe = std::move(*p),
+                            .code = std::move(*c),
+                            .characterisation = ff.text(f, characterisation).value_or(""),
+                            .station_m = *o,
+                            .quantity1 = ff.number(f, q1),
+                            .quantity2 = ff.number(f, q2),
+                            .line = static_cast<std::uint32_t>(wheres.size())});
+  }
+  return wheres;
+}
+
+// The layer's points in metres: x, y and z scaled by its CRS's linear unit (GisLayer::unit_m).
+GisLayer in_metres(const GisLayer& layer) {
+  GisLayer out = layer;
+  for (GisFeature& f : out.features) {
+    for (std::array<double, 3>& p : f.points) {
+      for (double& c : p) c *= layer.unit_m;
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
-Result<SewerMap> map_from_gis_layers(const GisLayer& manholes, const GisLayer& pipes,
+Result<SewerMap> map_from_gis_layers(const GisLayer& manholes_in, const GisLayer& pipes_in,
                                      const GisFieldMapping& mapping, const std::string& source,
-                                     std::string map_name, Diagnostics& diagnostics) {
+                                     std::string map_name, Diagnostics& diagnostics,
+                                     const GisLayer* points, const GisLayer* findings) {
+  for (const GisLayer* l : {&manholes_in, &pipes_in}) {
+    if (!(l->unit_m > 0) || !std::isfinite(l->unit_m)) {
+      return Error{ErrorCode::kInvalidMap, source + ":" + l->name + ": the unit of its CRS (" +
+                                               number_text(l->unit_m) +
+                                               " m) is not a positive length"};
+    }
+  }
+  std::optional<GisLayer> scaled_manholes, scaled_pipes;
+  if (manholes_in.unit_m != 1) scaled_manholes = in_metres(manholes_in);
+  if (pipes_in.unit_m != 1) scaled_pipes = in_metres(pipes_in);
+  const GisLayer& manholes = scaled_manholes ? *scaled_manholes : manholes_in;
+  const GisLayer& pipes = scaled_pipes ? *scaled_pipes : pipes_in;
   detail::NetworkImport net;
   net.crs = manholes.crs;
   if (manholes.crs && pipes.crs && *manholes.crs != *pipes.crs) {
@@ -546,6 +664,10 @@ Result<SewerMap> map_from_gis_layers(const GisLayer& manholes, const GisLayer& p
   Manholes m = read_manholes(manholes, mapping, source, net, counts, diagnostics);
   std::vector<std::string> pipe_where =
       read_pipes(pipes, mapping, source, m, net, counts, diagnostics);
+  std::vector<std::string> point_where;
+  if (points != nullptr) point_where = read_points(*points, source, net, diagnostics);
+  std::vector<std::string> finding_where;
+  if (findings != nullptr) finding_where = read_findings(*findings, source, net, diagnostics);
   if (diagnostics.has_errors()) return Error{ErrorCode::kInvalidMap, diagnostics.error_summary()};
   const std::string& at = source;
   detail::warn_counted(diagnostics, at, counts.default_diameter,
@@ -557,11 +679,13 @@ Result<SewerMap> map_from_gis_layers(const GisLayer& manholes, const GisLayer& p
   detail::warn_counted(diagnostics, at, counts.reversed,
                        "pipe lines run from their to manhole to their from manhole: read reversed");
   Locator locator = [manhole_where = std::move(m.where), pipe_where = std::move(pipe_where),
+                     point_where = std::move(point_where), finding_where = std::move(finding_where),
                      source](const RecordRef& r, std::string_view) -> std::string {
-    const std::vector<std::string>& w =
-        r.kind == RecordRef::Kind::kManhole ? manhole_where : pipe_where;
-    const bool located = r.kind == RecordRef::Kind::kManhole || r.kind == RecordRef::Kind::kSlot ||
-                         r.kind == RecordRef::Kind::kPipe;
+    const std::vector<std::string>& w = r.kind == RecordRef::Kind::kManhole   ? manhole_where
+                                        : r.kind == RecordRef::Kind::kPoint   ? point_where
+                                        : r.kind == RecordRef::Kind::kFinding ? finding_where
+                                                                              : pipe_where;
+    const bool located = r.kind != RecordRef::Kind::kMap;
     if (located && r.line > 0 && r.line <= w.size()) return w[r.line - 1];
     return source;
   };

@@ -1,8 +1,12 @@
 // SPDX-License-Identifier: MIT
 #include "sewerplan/core/map_io.h"
 
+#include <algorithm>
+#include <cstddef>
+#include <fstream>
 #include <optional>
 #include <sstream>
+#include <string>
 #include <string_view>
 
 #include "sewerplan/core/ascii_case.h"
@@ -121,11 +125,30 @@ Result<SewerMap> parse_map(std::string_view text, const std::string& file_name, 
   return Error{ErrorCode::kUnsupportedFormat, file_name + ": unknown format"};
 }
 
+bool looks_like_geojson(std::string_view head) {
+  if (head.starts_with("\xEF\xBB\xBF")) head.remove_prefix(3);
+  const std::size_t open = head.find_first_not_of(" \t\r\n");
+  if (open == std::string_view::npos || head[open] != '{') return false;
+  // A sewerplan map names its format first; a GeoJSON object's "type" is a FeatureCollection or
+  // a Feature (RFC 7946 3.2, 3.3), wherever in the object it stands: the features' own "type":
+  // "Feature" and "geometry" show it too when the collection's "type" comes after them.
+  if (head.find("\"format\"") != std::string_view::npos) return false;
+  if (head.find("\"FeatureCollection\"") != std::string_view::npos) return true;
+  return head.find("\"Feature\"") != std::string_view::npos &&
+         head.find("\"geometry\"") != std::string_view::npos;
+}
+
 bool is_gis_source_path(const std::filesystem::path& path) {
   const std::string ext = ascii_lower(path.extension().string());
-  if (ext == ".shp" || ext == ".gpkg") return true;
+  if (ext == ".shp" || ext == ".gpkg" || ext == ".geojson") return true;
   std::error_code ec;
-  return std::filesystem::is_directory(path, ec);
+  if (std::filesystem::is_directory(path, ec)) return true;
+  if (!std::filesystem::is_regular_file(path, ec)) return false;
+  std::ifstream in(path, std::ios::binary);
+  std::string head(kGeoJsonSniffBytes, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(std::max<std::streamsize>(0, in.gcount())));
+  return looks_like_geojson(head);
 }
 
 Result<SewerMap> read_map_without_gis(const std::filesystem::path& path, Diagnostics& diagnostics,
@@ -139,8 +162,8 @@ Result<SewerMap> read_map_without_gis(const std::filesystem::path& path, Diagnos
   if (is_gis_source_path(path)) {
     return Error{ErrorCode::kUnsupportedFormat,
                  path.string() +
-                     ": a GIS source (GeoPackage, Shapefile or a directory of them), but this "
-                     "sewerplan is built without GIS support (SEWERPLAN_WITH_GIS)"};
+                     ": a GIS source (GeoJSON, GeoPackage, Shapefile or a directory of them), "
+                     "but this sewerplan is built without GIS support (SEWERPLAN_WITH_GIS)"};
   }
   return read_map(path, diagnostics);
 }
@@ -150,7 +173,7 @@ Result<SewerMap> read_map(const std::filesystem::path& path, Diagnostics& diagno
     return Error{
         ErrorCode::kUnsupportedFormat,
         path.string() +
-            ": a GIS source (GeoPackage, Shapefile or a directory of them): read it with "
+            ": a GIS source (GeoJSON, GeoPackage, Shapefile or a directory of them): read it with "
             "gis::read_gis_map (docs/formats/gis-layers.md), as the sewerplan command does"};
   }
   // A regular file is read where the page cache holds it (mapped_file.h); anything else as text.

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "network_import.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -110,6 +111,7 @@ Result<SewerMap> assemble_network(NetworkImport network, std::string map_name, L
                        i);  // a duplicate keeps the first; MapBuilder says so
   }
   std::vector<std::vector<SlotRecord>> slots(network.nodes.size());
+  std::vector<std::vector<std::optional<double>>> slot_order(network.nodes.size());
   std::vector<PendingSlot> pending;
   std::size_t inside = 0;  // pipe ends whose line begins inside the manhole
   auto find = [&](const std::optional<std::string>& name) -> const ImportNode* {
@@ -128,17 +130,56 @@ Result<SewerMap> assemble_network(NetworkImport network, std::string map_name, L
                       .invert_z_m = end == 0 ? link.from_invert_z_m : link.to_invert_z_m,
                       .line = link.line};
       const std::optional<Direction> p =
-          node.has_xy ? next_point(link, end, node, find(end == 0 ? link.to : link.from))
-                      : std::nullopt;
-      if (p) {
+          node.has_xy && !link.azimuth_deg[end]
+              ? next_point(link, end, node, find(end == 0 ? link.to : link.from))
+              : std::nullopt;
+      if (link.azimuth_deg[end]) {
+        slot.azimuth_deg = *link.azimuth_deg[end];
+      } else if (p) {
         slot.azimuth_deg = azimuth_deg(p->origin[0], p->origin[1], p->point[0], p->point[1]);
         if (p->skipped_inside) ++inside;
       } else {
         pending.push_back({it->second, slots[it->second].size()});
       }
       slots[it->second].push_back(std::move(slot));
+      slot_order[it->second].push_back(link.slot_index[end]);
     }
   }
+  // Slots numbered by the source: in that order when the numbers are 0..k-1, each once.
+  std::size_t misnumbered = 0;
+  for (std::size_t i = 0; i < slots.size(); ++i) {
+    const std::vector<std::optional<double>>& order = slot_order[i];
+    if (std::ranges::none_of(order, [](const auto& o) { return o.has_value(); })) continue;
+    std::vector<std::optional<std::size_t>> at(order.size());
+    bool valid = true;
+    for (std::size_t s = 0; s < order.size() && valid; ++s) {
+      const std::optional<double>& o = order[s];
+      valid = o && *o >= 0 && *o < static_cast<double>(order.size()) && *o == std::floor(*o) &&
+              !at[static_cast<std::size_t>(*o)];
+      if (valid) at[static_cast<std::size_t>(*o)] = s;
+    }
+    if (!valid) {
+      ++misnumbered;
+      continue;
+    }
+    std::vector<SlotRecord> sorted;
+    sorted.reserve(order.size());
+    for (const std::optional<std::size_t>& s : at) sorted.push_back(std::move(slots[i][*s]));
+    // The pending fallbacks refer to positions in the old order.
+    for (PendingSlot& p : pending) {
+      if (p.node != i) continue;
+      for (std::size_t k = 0; k < at.size(); ++k) {
+        if (*at[k] == p.slot) {
+          p.slot = k;
+          break;
+        }
+      }
+    }
+    slots[i] = std::move(sorted);
+  }
+  warn_counted(diagnostics, where, misnumbered,
+               "manholes have slot numbers that are not 0..k-1, each once: their slots are in the "
+               "order of the pipes");
   // Fallback: spread each manhole's slots of unknown direction evenly around it.
   std::vector<std::uint32_t> unknown(network.nodes.size(), 0);
   for (const PendingSlot& s : pending) ++unknown[s.node];
@@ -165,6 +206,7 @@ Result<SewerMap> assemble_network(NetworkImport network, std::string map_name, L
                          .position = n.position,
                          .diameter_m = n.diameter_m,
                          .exit = n.exit,
+                         .variant = n.variant,
                          .shaft_length_m = n.shaft_length_m,
                          .shaft_width_m = n.shaft_width_m,
                          .depth_m = n.depth_m,
@@ -179,9 +221,11 @@ Result<SewerMap> assemble_network(NetworkImport network, std::string map_name, L
                       .diameter_m = l.diameter_m,
                       .shape = l.shape,
                       .height_m = l.height_m,
+                      .blockage_risk = l.blockage_risk,
                       .line = l.line});
   }
   for (FindingRecord& f : network.findings) builder.add_finding(std::move(f));
+  for (PointRecord& p : network.points) builder.add_point(std::move(p));
   return std::move(builder).build(diagnostics);
 }
 

@@ -44,7 +44,8 @@ struct ImportNode {
   std::optional<double> shaft_length_m;  // a rectangular shaft
   std::optional<double> shaft_width_m;
   std::optional<double> depth_m;
-  std::uint32_t line = 0;  // for the Locator
+  std::optional<char> variant;  // the paper's TYPE_B: 'A'..'Z'
+  std::uint32_t line = 0;       // for the Locator
 };
 
 struct ImportLink {
@@ -65,6 +66,14 @@ struct ImportLink {
   // wall), when the line marks it: the slot's direction is the pipe's axis from there, not the
   // channel in the manhole's floor that leads to it. The vertices then begin and end there.
   std::array<bool, 2> starts_at_mouth{false, false};
+  // The slot's azimuth at each end when the source gives it (a GIS layer that carries the
+  // map's own slot directions, as export-geojson writes them): it wins over the line's direction.
+  std::array<std::optional<double>, 2> azimuth_deg;
+  // The slot's number in its manhole at each end (0 first), when the source gives it (a GIS layer
+  // from export-geojson): a manhole whose every slot has one, each once, keeps that order (the
+  // planner's slot numbers); else its slots are in the order of the links.
+  std::array<std::optional<double>, 2> slot_index;
+  std::optional<float> blockage_risk;
   std::uint32_t line = 0;
 };
 
@@ -72,6 +81,7 @@ struct NetworkImport {
   std::vector<ImportNode> nodes;
   std::vector<ImportLink> links;
   std::vector<FindingRecord> findings;  // inspection findings, by pipe name
+  std::vector<PointRecord> points;      // inspection points, by pipe name
   std::optional<Crs> crs;               // the coordinate reference system, if the file names one
 };
 

@@ -53,9 +53,14 @@ class Writer {
                          {"properties", std::move(properties)}});
   }
 
-  Result<std::string> finish(const std::string& name) {
+  // `crs`: the map's own, as the foreign member "sewerplan_crs" (RFC 7946 6.1), so that reading
+  // the file back (gdal_import.h) projects it into the CRS it came from.
+  Result<std::string> finish(const std::string& name, const Crs& crs) {
     if (error_) return *error_;
-    Json doc = {{"type", "FeatureCollection"}, {"name", name}, {"features", std::move(features_)}};
+    Json doc = {{"type", "FeatureCollection"},
+                {"name", name},
+                {"sewerplan_crs", crs.to_string()},
+                {"features", std::move(features_)}};
     return doc.dump(1, ' ', false, Json::error_handler_t::replace) + "\n";
   }
 
@@ -70,23 +75,38 @@ Json optional_number(const std::optional<double>& v) { return v ? Json(*v) : Jso
 void network(const SewerMap& map, const domain::DriveabilityReport* driveability, Writer& w) {
   for (ManholeId id : map.manhole_ids()) {
     const Manhole& m = map.manhole(id);
-    w.point(manhole_point(map, id), {{"layer", "manhole"},
-                                     {"name", m.name},
-                                     {"type", m.slot_count},
-                                     {"diameter_m", m.diameter_m},
-                                     {"z_m", m.position.z_m},
-                                     {"depth_m", optional_number(m.depth_m)},
-                                     {"exit", m.exit}});
+    w.point(manhole_point(map, id),
+            {{"layer", "manhole"},
+             {"name", m.name},
+             {"type", m.slot_count},
+             {"diameter_m", m.diameter_m},
+             {"shaft_l_m", m.shaft_length_m.value_or(m.diameter_m)},
+             {"shaft_w_m", m.shaft_width_m.value_or(m.diameter_m)},
+             {"variant", m.variant ? Json(std::string(1, *m.variant)) : Json()},
+             {"z_m", m.position.z_m},
+             {"depth_m", optional_number(m.depth_m)},
+             {"exit", m.exit}});
   }
   for (PipeId id : map.pipe_ids()) {
     const Pipe& p = map.pipe(id);
     const auto end_name = [&](std::size_t e) {
       return p.ends[e].manhole ? Json(map.manhole(*p.ends[e].manhole).name) : Json();
     };
+    // The slot at an end: its invert and azimuth (what the planner's steps and turns come from).
+    const auto slot_value = [&](std::size_t e, double Slot::*member) {
+      return p.ends[e].manhole ? Json(map.slot(*p.ends[e].manhole, p.ends[e].slot).*member)
+                               : Json();
+    };
     Json properties = {{"layer", "pipe"},
                        {"name", p.name},
                        {"from", end_name(0)},
                        {"to", end_name(1)},
+                       {"from_lvl_m", slot_value(0, &Slot::invert_z_m)},
+                       {"to_lvl_m", slot_value(1, &Slot::invert_z_m)},
+                       {"from_az", slot_value(0, &Slot::azimuth_deg)},
+                       {"to_az", slot_value(1, &Slot::azimuth_deg)},
+                       {"from_slot", p.ends[0].manhole ? Json(p.ends[0].slot.value()) : Json()},
+                       {"to_slot", p.ends[1].manhole ? Json(p.ends[1].slot.value()) : Json()},
                        {"length_m", p.length_m},
                        {"diameter_m", p.diameter_m},
                        {"shape", std::string(to_string(p.shape))},
@@ -118,7 +138,9 @@ void network(const SewerMap& map, const domain::DriveabilityReport* driveability
                     {"code", f.code},
                     {"characterisation", f.characterisation},
                     {"pipe", map.pipe(f.pipe).name},
-                    {"offset_m", f.offset_m}});
+                    {"offset_m", f.offset_m},
+                    {"quantity1", optional_number(f.quantity1)},
+                    {"quantity2", optional_number(f.quantity2)}});
     }
   }
 }
@@ -171,7 +193,7 @@ Result<std::string> to_geojson(const GeoJsonInput& in, const Wgs84Projection& wg
               {{"layer", "blocked"}, {"pipe", map.pipe(b.pipe).name}, {"offset_m", b.offset_m}});
     }
   }
-  return w.finish(map.name());
+  return w.finish(map.name(), wgs84.crs());
 }
 
 std::string to_nav2_route_graph(const SewerMap& map, MapXY origin, std::string_view frame) {

@@ -8,10 +8,38 @@
 
 namespace sewerplan::gis {
 
+// Metres per unit of a projected CRS's axes (PROJ's unit_conv_factor of its first axis:
+// 0.3048006096 for US survey feet); 1 for any other CRS (a geographic one's degrees are not
+// scaled).
+Result<double> linear_unit(PJ_CONTEXT* context, const std::string& name) {
+  PJ* crs = proj_create(context, name.c_str());
+  if (crs == nullptr) {
+    return Error{ErrorCode::kInvalidArgument, "CRS " + name + ": PROJ does not know it"};
+  }
+  double factor = 1;
+  const PJ_TYPE type = proj_get_type(crs);
+  if (type == PJ_TYPE_PROJECTED_CRS || type == PJ_TYPE_COMPOUND_CRS) {
+    PJ* horizontal = type == PJ_TYPE_COMPOUND_CRS ? proj_crs_get_sub_crs(context, crs, 0) : nullptr;
+    PJ* cs = proj_crs_get_coordinate_system(context, horizontal != nullptr ? horizontal : crs);
+    double conv = 0;
+    if (cs != nullptr && proj_cs_get_type(context, cs) == PJ_CS_TYPE_CARTESIAN &&
+        proj_cs_get_axis_info(context, cs, 0, nullptr, nullptr, nullptr, &conv, nullptr, nullptr,
+                              nullptr) != 0 &&
+        conv > 0) {
+      factor = conv;
+    }
+    if (cs != nullptr) proj_destroy(cs);
+    if (horizontal != nullptr) proj_destroy(horizontal);
+  }
+  proj_destroy(crs);
+  return factor;
+}
+
 struct Wgs84Projection::Impl {
   Crs crs;
   PJ_CONTEXT* context = nullptr;
   PJ* transform = nullptr;
+  double metres_per_unit = 1;  // the CRS's linear unit: a map's metres are divided by it
 
   ~Impl() {
     if (transform != nullptr) proj_destroy(transform);
@@ -19,7 +47,10 @@ struct Wgs84Projection::Impl {
   }
 
   Result<LonLat> apply(double x, double y, PJ_DIRECTION direction) const {
-    const PJ_COORD out = proj_trans(transform, direction, proj_coord(x, y, 0, 0));
+    const PJ_COORD out =
+        proj_trans(transform, direction,
+                   direction == PJ_FWD ? proj_coord(x / metres_per_unit, y / metres_per_unit, 0, 0)
+                                       : proj_coord(x, y, 0, 0));
     if (!std::isfinite(out.xy.x) || !std::isfinite(out.xy.y)) {
       return Error{ErrorCode::kInvalidArgument, "(" + std::to_string(x) + ", " + std::to_string(y) +
                                                     ") lies outside what " + crs.to_string() +
@@ -42,6 +73,9 @@ Result<Wgs84Projection> Wgs84Projection::create(const Crs& crs) {
   proj_context_set_enable_network(impl->context, 0);
   proj_log_level(impl->context, PJ_LOG_NONE);
   const std::string source = crs.to_string();
+  Result<double> unit = linear_unit(impl->context, source);
+  if (!unit.has_value()) return unit.error();
+  impl->metres_per_unit = *unit;
   PJ* raw = proj_create_crs_to_crs(impl->context, source.c_str(), "EPSG:4326", nullptr);
   if (raw == nullptr) {
     const int code = proj_context_errno(impl->context);
@@ -65,7 +99,8 @@ Result<LonLat> Wgs84Projection::to_wgs84(double x, double y) const {
 Result<MapXY> Wgs84Projection::from_wgs84(double lon_deg, double lat_deg) const {
   Result<LonLat> xy = impl_->apply(lon_deg, lat_deg, PJ_INV);
   if (!xy.has_value()) return xy.error();
-  return MapXY{.x = xy->lon_deg, .y = xy->lat_deg};
+  return MapXY{.x = xy->lon_deg * impl_->metres_per_unit,
+               .y = xy->lat_deg * impl_->metres_per_unit};
 }
 
 const Crs& Wgs84Projection::crs() const { return impl_->crs; }

@@ -4,7 +4,7 @@
 # `plan` and `validate` on a JSON map never load GDAL or PROJ (the dynamic loader's own trace,
 # LD_DEBUG=files), export-geojson does, and writes its file. A sewerplan whose module is missing (the
 # executable copied alone) still plans, and its export-geojson is an error naming the missing module
-# with the usage of a failed command (exit 1, no crash).
+# with the usage of a failed command (exit 1, no crash); so is a GeoJSON given as --map.
 # Usage: lazy_gis_test.sh PATH_TO_SEWERPLAN SOURCE_DIR
 set -euo pipefail
 sp=$1
@@ -48,4 +48,14 @@ status=0
 [ "$status" -eq 1 ] || { echo "FAIL: export-geojson without the module exited $status, want 1"; cat "$tmp/alone.err"; exit 1; }
 grep -q "export-geojson needs GDAL and PROJ, but the gis module is missing (looked for .*/lib/sewerplan/sewerplan_gis.so" \
   "$tmp/alone.err" || { echo "FAIL: unclear error:"; cat "$tmp/alone.err"; exit 1; }
+# A GeoJSON given as --map (issue 31) is a GIS source, whatever its name: without the module, an
+# error that says what is missing, not "missing required field 'format'".
+cp "$tmp/net.geojson" "$tmp/exported.json"
+for geojson in "$tmp/net.geojson" "$tmp/exported.json"; do
+  status=0
+  "$tmp/alone/bin/sewerplan" info --map "$geojson" > "$tmp/alone.out" 2>&1 || status=$?
+  [ "$status" -ne 0 ] || { echo "FAIL: info on $geojson without the module succeeded"; exit 1; }
+  grep -q "reading $geojson needs GDAL and PROJ, but the gis module is missing" "$tmp/alone.out" ||
+    { echo "FAIL: unclear error for $geojson:"; cat "$tmp/alone.out"; exit 1; }
+done
 echo "lazy GIS: ok"

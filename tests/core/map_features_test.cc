@@ -201,11 +201,139 @@ TEST(MapFeatures, AMappingFileRenamesFieldsWithTheirUnitsAndExitTypes) {
 TEST(MapFeatures, ABadMappingFileIsAnErrorAtItsJsonPath) {
   Diagnostics d;
   Result<GisFieldMapping> mapping = parse_gis_field_mapping(
-      R"({"pipes": {"height": {"field": "DN", "unit": "inch"}}, "tolerance": 1})", "f.json", d);
+      R"({"pipes": {"height": {"field": "DN", "unit": "furlong"}}, "tolerance": 1})", "f.json", d);
   ASSERT_FALSE(mapping.has_value());
   EXPECT_THAT(mapping.error().message,
-              HasSubstr("f.json:$.pipes.height.unit: error: unknown unit 'inch' (m, cm or mm)"));
+              HasSubstr("f.json:$.pipes.height.unit: error: field height: unknown unit 'furlong' "
+                        "(mm, cm, m, inch, foot or us_survey_foot)"));
   EXPECT_TRUE(has_warning(d, "tolerance"));
+}
+
+TEST(MapFeatures, AUnitOnAFieldThatIsNoMeasureOrAnAzimuthInAnotherUnitIsAnError) {
+  Diagnostics d;
+  Result<GisFieldMapping> mapping = parse_gis_field_mapping(
+      R"({"manholes": {"name": {"field": "N", "unit": "m"}},
+          "pipes": {"from_azimuth": {"field": "AZ", "unit": "grad"}}})",
+      "f.json", d);
+  ASSERT_FALSE(mapping.has_value());
+  EXPECT_THAT(mapping.error().message,
+              HasSubstr("f.json:$.manholes.name.unit: error: field name is not a measure"));
+  EXPECT_THAT(mapping.error().message,
+              HasSubstr("f.json:$.pipes.from_azimuth.unit: error: field from_azimuth: an "
+                        "azimuth's unit is deg, not 'grad'"));
+}
+
+TEST(MapFeatures, EveryMeasuredFieldTakesItsUnitFromTheMappingFile) {
+  EXPECT_DOUBLE_EQ(*gis_unit_to_metres("inch"), 0.0254);
+  EXPECT_DOUBLE_EQ(*gis_unit_to_metres("ft"), 0.3048);
+  EXPECT_NEAR(*gis_unit_to_metres("us_survey_foot"), 0.3048006096, 1e-10);
+  EXPECT_FALSE(gis_unit_to_metres("Inch").has_value());
+  // A US layer: diameters in inches, lengths and levels in feet, the shaft in cm.
+  Diagnostics d;
+  Result<GisFieldMapping> mapping = parse_gis_field_mapping(
+      R"({"manholes": {"name": "MH", "invert_level": {"field": "INV", "unit": "foot"},
+                       "dimension1": {"field": "DIA", "unit": "cm"}},
+          "pipes": {"from": "US", "to": "DS", "height": {"field": "DIAM", "unit": "inch"},
+                    "length": {"field": "LEN", "unit": "foot"},
+                    "from_level": {"field": "UP", "unit": "foot"},
+                    "to_level": {"field": "DN", "unit": "foot"}}})",
+      "us.fields.json", d);
+  ASSERT_TRUE(mapping.has_value()) << mapping.error().message;
+  GisLayer manholes{.name = "manholes", .fields = {"MH", "INV", "DIA"}};
+  manholes.features = {point(1, 0, 0, {"A", 100.0, 120.0}), point(2, 30, 0, {"B", 99.0, 120.0})};
+  GisLayer pipes{.name = "pipes", .fields = {"identifier", "US", "DS", "DIAM", "LEN", "UP", "DN"}};
+  pipes.features = {line(5, {{0, 0, 0}, {30, 0, 0}}, {"P", "A", "B", 12.0, 100.0, 100.5, 99.5})};
+  Result<SewerMap> map = build(manholes, pipes, d, *mapping);
+  ASSERT_TRUE(map.has_value()) << map.error().message;
+  const Manhole& a = map->manhole(*map->find_manhole("A"));
+  EXPECT_NEAR(a.position.z_m, 30.48, 1e-9);
+  EXPECT_NEAR(a.diameter_m, 1.2, 1e-9);
+  const Pipe& p = map->pipe(*map->find_pipe("P"));
+  EXPECT_NEAR(p.diameter_m, 0.3048, 1e-9);
+  EXPECT_NEAR(p.length_m, 30.48, 1e-9);
+  EXPECT_NEAR(map->slot(*map->find_manhole("A"), SlotIndex{0}).invert_z_m, 100.5 * 0.3048, 1e-9);
+}
+
+// A layer in US survey feet (EPSG:2229, as a Los Angeles sewer layer): its points, its z and the
+// fields measured in the CRS's unit come in metres; fields whose name says "_m" stay metres.
+TEST(MapFeatures, ALayerInFeetIsReadInMetresThroughItsCrsUnit) {
+  constexpr double kFtUs = 1200.0 / 3937.0;
+  GisLayer manholes{.name = "manholes",
+                    .fields = {"name", "rim_elev", "invert_elev", "depth_m"},
+                    .crs = Crs{"EPSG", 2229},
+                    .unit_m = kFtUs};
+  manholes.features = {point(1, 6500000, 1800000, {"A", 110.0, 100.0, {}}),
+                       point(2, 6500100, 1800000, {"B", 110.0, 99.0, 3.5})};
+  GisLayer pipes{.name = "pipes",
+                 .fields = {"name", "from", "to", "diameter", "length"},
+                 .crs = Crs{"EPSG", 2229},
+                 .unit_m = kFtUs};
+  pipes.features = {
+      line(7, {{6500000, 1800000, 0}, {6500100, 1800000, 0}}, {"P", "A", "B", 300.0, {}}),
+      line(8, {{6500100, 1800000, 0}, {6500100, 1800050, 0}}, {"Q", "B", {}, 300.0, 50.0})};
+  Diagnostics d;
+  Result<SewerMap> map = build(manholes, pipes, d);
+  ASSERT_TRUE(map.has_value()) << map.error().message;
+  EXPECT_EQ(map->crs(), (Crs{"EPSG", 2229}));
+  const Manhole& a = map->manhole(*map->find_manhole("A"));
+  EXPECT_NEAR(a.position.x_m, 6500000 * kFtUs, 1e-6);
+  EXPECT_NEAR(a.position.y_m, 1800000 * kFtUs, 1e-6);
+  EXPECT_NEAR(a.position.z_m, 100 * kFtUs, 1e-9);
+  EXPECT_NEAR(*a.depth_m, 10 * kFtUs, 1e-9);  // rim less invert, both in feet
+  EXPECT_NEAR(*map->manhole(*map->find_manhole("B")).depth_m, 3.5, 1e-12);  // depth_m: metres
+  // A 100 ft line is 30.48 m, not 100 m; a length field in the CRS's unit likewise.
+  EXPECT_NEAR(map->pipe(*map->find_pipe("P")).length_m, 100 * kFtUs, 1e-9);
+  EXPECT_NEAR(map->pipe(*map->find_pipe("Q")).length_m, 50 * kFtUs, 1e-9);
+  EXPECT_NEAR(map->pipe(*map->find_pipe("P")).diameter_m, 0.3, 1e-12);  // mm: not the CRS's
+}
+
+// The planner's slot numbers (the paper's DRIVE_MANHOLE_TYPE_3_FROM_1_TO_3) come back in the order
+// the slot fields give, not in the order of the pipes; numbers that are not 0..k-1, each once, are
+// a warning and the pipes' order.
+TEST(MapFeatures, SlotNumberFieldsKeepTheSlotOrder) {
+  GisLayer manholes{.name = "manholes", .fields = {"name"}};
+  manholes.features = {point(1, 0, 0, {"A"}), point(2, 10, 0, {"B"}), point(3, 0, 10, {"C"})};
+  GisLayer pipes{.name = "pipes",
+                 .fields = {"name", "from", "to", "height_m", "from_slot", "to_slot"}};
+  pipes.features = {line(4, {{0, 0, 0}, {10, 0, 0}}, {"P", "A", "B", 0.3, 1.0, 0.0}),
+                    line(5, {{0, 0, 0}, {0, 10, 0}}, {"Q", "A", "C", 0.3, 0.0, 0.0})};
+  Diagnostics d;
+  Result<SewerMap> map = build(manholes, pipes, d);
+  ASSERT_TRUE(map.has_value()) << map.error().message;
+  const ManholeId a = *map->find_manhole("A");
+  EXPECT_EQ(map->pipe(map->slot(a, SlotIndex{0}).pipe).name, "Q");
+  EXPECT_EQ(map->pipe(map->slot(a, SlotIndex{1}).pipe).name, "P");
+  EXPECT_DOUBLE_EQ(map->slot(a, SlotIndex{0}).azimuth_deg, 90.0);
+  pipes.features[1].values[4] = 1.0;  // two slots numbered 1
+  Diagnostics twice;
+  Result<SewerMap> kept = build(manholes, pipes, twice);
+  ASSERT_TRUE(kept.has_value()) << kept.error().message;
+  EXPECT_EQ(kept->pipe(kept->slot(a, SlotIndex{0}).pipe).name, "P");
+  EXPECT_TRUE(has_warning(twice, "slot numbers that are not 0..k-1"));
+}
+
+TEST(MapFeatures, SlotAzimuthFieldsWinOverTheLinesDirection) {
+  GisLayer manholes{.name = "manholes", .fields = {"name"}};
+  manholes.features = {point(1, 0, 0, {"A"}), point(2, 10, 0, {"B"})};
+  GisLayer pipes{.name = "pipes", .fields = {"name", "from", "to", "height_m", "from_az", "to_az"}};
+  pipes.features = {line(3, {{0, 0, 0}, {10, 0, 0}}, {"P", "A", "B", 0.3, 12.5, -170.0}),
+                    line(4, {{10, 0, 0}, {0, 0, 0}}, {"Q", "B", "A", 0.3, {}, {}})};
+  Diagnostics d;
+  Result<SewerMap> map = build(manholes, pipes, d);
+  ASSERT_TRUE(map.has_value()) << map.error().message;
+  const ManholeId a = *map->find_manhole("A");
+  const ManholeId b = *map->find_manhole("B");
+  EXPECT_DOUBLE_EQ(map->slot(a, SlotIndex{0}).azimuth_deg, 12.5);
+  EXPECT_DOUBLE_EQ(map->slot(b, SlotIndex{0}).azimuth_deg, -170.0);
+  EXPECT_DOUBLE_EQ(map->slot(b, SlotIndex{1}).azimuth_deg, 180.0);  // no field value: the line
+  pipes.features[0].values[4] = 400.0;
+  Diagnostics bad;
+  Result<SewerMap> refused = build(manholes, pipes, bad);
+  ASSERT_FALSE(refused.has_value());
+  EXPECT_THAT(
+      refused.error().message,
+      HasSubstr("net.gpkg:pipes: feature 3: error: pipe P: field from_az: azimuth 400 is not an "
+                "angle in degrees (-360..360)"));
 }
 
 TEST(MapFeatures, TheLayersAreChosenByGeometryThenByName) {

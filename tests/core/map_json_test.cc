@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "sewerplan/core/map_json.h"
 
+#include <filesystem>
+#include <fstream>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -353,14 +355,45 @@ TEST(MapIo, TellsAGisSourceByItsPath) {
   EXPECT_THAT(refused.error().message, HasSubstr("net.gpkg: a GIS source"));
 }
 
+// A GeoJSON file is a GIS source by its content, whatever its name (export-geojson -o net.json),
+// and core's read_map refuses it as one rather than as a JSON map without "format".
+TEST(MapIo, TellsAGeoJsonFileByItsContent) {
+  EXPECT_TRUE(is_gis_source_path("no/such/net.GeoJSON"));
+  EXPECT_TRUE(
+      looks_like_geojson("\xEF\xBB\xBF {\n \"type\": \"FeatureCollection\", \"features\": []}"));
+  EXPECT_TRUE(looks_like_geojson(
+      R"({"features": [{"type": "Feature", "geometry": {"type": "Point"}, "properties": {}}],)"));
+  EXPECT_FALSE(looks_like_geojson(R"({"format": "sewerplan-map", "version": 1, "manholes": [)"));
+  EXPECT_FALSE(looks_like_geojson(R"([{"type": "FeatureCollection"}])"));
+  EXPECT_FALSE(looks_like_geojson("[TITLE]\n"));
+  const std::filesystem::path dir = std::filesystem::temp_directory_path();
+  const std::filesystem::path geojson = dir / "sewerplan_map_io_geojson_test.json";
+  const std::filesystem::path native = dir / "sewerplan_map_io_native_test.json";
+  std::ofstream(geojson) << R"({"type": "FeatureCollection", "name": "net", "features": []})";
+  std::ofstream(native)
+      << R"({"format": "sewerplan-map", "version": 1, "name": "FeatureCollection"})";
+  EXPECT_TRUE(is_gis_source_path(geojson));
+  EXPECT_FALSE(is_gis_source_path(native));
+  Diagnostics d;
+  Result<SewerMap> refused = read_map(geojson, d);
+  ASSERT_FALSE(refused.has_value());
+  EXPECT_EQ(refused.error().code, ErrorCode::kUnsupportedFormat);
+  EXPECT_THAT(refused.error().message, HasSubstr("a GIS source (GeoJSON,"));
+  Result<SewerMap> without_gis = read_map_without_gis(geojson, d);
+  ASSERT_FALSE(without_gis.has_value());
+  EXPECT_THAT(without_gis.error().message, HasSubstr("built without GIS support"));
+  std::filesystem::remove(geojson);
+  std::filesystem::remove(native);
+}
+
 TEST(MapIo, WithoutGisRefusesGisSourcesAndMappingsAndReadsTheRest) {
   Diagnostics d;
   Result<SewerMap> source = read_map_without_gis("exports/net.shp", d);
   ASSERT_FALSE(source.has_value());
   EXPECT_EQ(source.error().code, ErrorCode::kUnsupportedFormat);
   EXPECT_THAT(source.error().message,
-              HasSubstr("exports/net.shp: a GIS source (GeoPackage, Shapefile or a directory of "
-                        "them), but this sewerplan is built without GIS support"));
+              HasSubstr("exports/net.shp: a GIS source (GeoJSON, GeoPackage, Shapefile or a "
+                        "directory of them), but this sewerplan is built without GIS support"));
   const std::string ais = testing::dataset_path("ais-testbed/map.json").string();
   Result<SewerMap> mapping = read_map_without_gis(ais, d, std::filesystem::path("town.json"));
   ASSERT_FALSE(mapping.has_value());

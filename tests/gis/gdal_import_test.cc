@@ -266,12 +266,102 @@ TEST_F(GdalImport, WhatGdalCannotOpenIsAnErrorNotACrash) {
   Result<SewerMap> text = read_gis_map(dir_ / "text.gpkg", d);
   ASSERT_FALSE(text.has_value());
   EXPECT_EQ(text.error().code, ErrorCode::kParse);
-  EXPECT_THAT(text.error().message, HasSubstr("text.gpkg: not a GeoPackage or Shapefile"));
+  EXPECT_THAT(text.error().message, HasSubstr("text.gpkg: not a GeoJSON, GeoPackage or Shapefile"));
   Result<SewerMap> missing = read_gis_map(dir_ / "missing.gpkg", d);
   ASSERT_FALSE(missing.has_value());
   EXPECT_EQ(missing.error().code, ErrorCode::kIo);
   Result<SewerMap> no_shapefiles = read_gis_map(dir_, d);  // a directory without Shapefiles
   ASSERT_FALSE(no_shapefiles.has_value());
+}
+
+// A Los Angeles layer in US survey feet (EPSG:2229): 100 ft of pipe is 30.48 m, not 100 m, and
+// the positions are metres too (docs/gis.md, "Units").
+TEST_F(GdalImport, ALayerInUsSurveyFeetIsReadInMetres) {
+  constexpr double kFtUs = 1200.0 / 3937.0;
+  const Layer manholes{
+      .name = "manholes",
+      .type = wkbPoint,
+      .srs = "EPSG:2229",
+      .fields = {{"name", OFTString}, {"rim_elev", OFTReal}, {"invert_elev", OFTReal}},
+      .rows = {{"POINT (6480000 1840000)", {"A", "300", "290"}},
+               {"POINT (6480100 1840000)", {"B", "299", "289"}}}};
+  const Layer pipes{
+      .name = "pipes",
+      .type = wkbLineString,
+      .srs = "EPSG:2229",
+      .fields = {{"name", OFTString},
+                 {"from", OFTString},
+                 {"to", OFTString},
+                 {"diameter", OFTReal}},
+      .rows = {{"LINESTRING (6480000 1840000,6480100 1840000)", {"P", "A", "B", "300"}}}};
+  write(dir_ / "la.gpkg", "GPKG", {manholes, pipes});
+  Diagnostics d;
+  Result<SewerMap> map = read_gis_map(dir_ / "la.gpkg", d);
+  ASSERT_TRUE(map.has_value()) << map.error().message;
+  EXPECT_EQ(map->crs(), (Crs{"EPSG", 2229}));
+  EXPECT_NEAR(map->pipe(*map->find_pipe("P")).length_m, 100 * kFtUs, 1e-6);
+  const Manhole& a = map->manhole(*map->find_manhole("A"));
+  EXPECT_NEAR(a.position.x_m, 6480000 * kFtUs, 1e-4);
+  EXPECT_NEAR(a.position.z_m, 290 * kFtUs, 1e-9);
+  EXPECT_NEAR(*a.depth_m, 10 * kFtUs, 1e-9);
+  // The same through a Shapefile and its .prj.
+  fs::create_directories(dir_ / "shp");
+  write(dir_ / "shp", "ESRI Shapefile", {manholes, pipes});
+  Result<SewerMap> shp = read_gis_map(dir_ / "shp", d);
+  ASSERT_TRUE(shp.has_value()) << shp.error().message;
+  EXPECT_NEAR(shp->pipe(*shp->find_pipe("P")).length_m, 100 * kFtUs, 1e-6);
+}
+
+// A GeoJSON of points and lines (WGS84, as RFC 7946 has it), by any name: read through GDAL's
+// GeoJSON driver, its layer split by geometry, projected to the UTM zone it lies in.
+TEST_F(GdalImport, APlainGeoJsonIsProjectedToItsUtmZone) {
+  std::ofstream(dir_ / "plain.json") << R"({"type": "FeatureCollection", "features": [
+    {"type": "Feature", "geometry": {"type": "Point", "coordinates": [9.0, 52.0]},
+     "properties": {"name": "A", "invert_level": 50.0, "diameter": 1000}},
+    {"type": "Feature", "geometry": {"type": "Point", "coordinates": [9.001, 52.0]},
+     "properties": {"name": "B", "invert_level": 49.9, "diameter": 1000}},
+    {"type": "Feature", "geometry": {"type": "LineString",
+                                     "coordinates": [[9.0, 52.0], [9.001, 52.0]]},
+     "properties": {"name": "P", "diameter": 300}}]})";
+  Diagnostics d;
+  Result<SewerMap> map = read_gis_map(dir_ / "plain.json", d);
+  ASSERT_TRUE(map.has_value()) << map.error().message;
+  EXPECT_EQ(map->crs(), (Crs{"EPSG", 32632}));
+  EXPECT_TRUE(has_warning(d, "projected to EPSG:32632"));
+  // 0.001 degrees of longitude at 52 degrees north: about 68.6 m (not 0.001).
+  EXPECT_NEAR(map->pipe(*map->find_pipe("P")).length_m, 68.6, 0.5);
+  EXPECT_DOUBLE_EQ(map->manhole(*map->find_manhole("B")).position.z_m, 49.9);
+}
+
+// sewerplan's own GeoJSON names the map's CRS ("sewerplan_crs"): it is read back into it.
+TEST_F(GdalImport, SewerplansGeoJsonIsReadBackIntoTheCrsItNames) {
+  std::ofstream(dir_ / "net.geojson") << R"({"type": "FeatureCollection", "name": "net",
+    "sewerplan_crs": "EPSG:25832", "features": [
+    {"type": "Feature", "geometry": {"type": "Point", "coordinates": [9.0, 52.0]},
+     "properties": {"layer": "manhole", "name": "A", "diameter_m": 1.0, "shaft_l_m": 1.0,
+                    "shaft_w_m": 1.0, "z_m": 50.0, "exit": true}},
+    {"type": "Feature", "geometry": {"type": "Point", "coordinates": [9.001, 52.0]},
+     "properties": {"layer": "manhole", "name": "B", "diameter_m": 0.8, "shaft_l_m": 1.2,
+                    "shaft_w_m": 0.8, "z_m": 49.0, "exit": false}},
+    {"type": "Feature", "geometry": {"type": "Point", "coordinates": [9.0005, 52.0]},
+     "properties": {"layer": "inspection_point", "name": "W1", "pipe": "P", "offset_m": 30}},
+    {"type": "Feature", "geometry": {"type": "LineString",
+                                     "coordinates": [[9.0, 52.0], [9.001, 52.0]]},
+     "properties": {"layer": "pipe", "name": "P", "from": "A", "to": "B", "length_m": 70.0,
+                    "diameter_m": 0.3, "height_m": 0.3, "shape": "circular",
+                    "from_lvl_m": 49.9, "to_lvl_m": 49.66, "from_az": 1.5, "to_az": -178.5}}]})";
+  Diagnostics d;
+  Result<SewerMap> map = read_gis_map(dir_ / "net.geojson", d);
+  ASSERT_TRUE(map.has_value()) << map.error().message;
+  EXPECT_EQ(map->crs(), (Crs{"EPSG", 25832}));
+  EXPECT_FALSE(has_warning(d, "projected"));
+  const ManholeId b = *map->find_manhole("B");
+  EXPECT_EQ(map->manhole(b).shaft_length_m, 1.2);
+  EXPECT_EQ(map->manhole(b).shaft_width_m, 0.8);
+  EXPECT_DOUBLE_EQ(map->slot(b, SlotIndex{0}).invert_z_m, 49.66);
+  EXPECT_DOUBLE_EQ(map->slot(b, SlotIndex{0}).azimuth_deg, -178.5);
+  EXPECT_DOUBLE_EQ(map->pipe(*map->find_pipe("P")).length_m, 70.0);
+  EXPECT_GT(map->manhole(b).position.x_m, 500000);  // UTM 32 eastings, not degrees
 }
 
 TEST(GisSource, HasItsFieldMappingBesideIt) {

@@ -59,6 +59,26 @@ TEST(Wgs84Projection, GaussKruegerZone3RoundTripsAndLiesWhereTheZoneSays) {
   }
 }
 
+// A map's x and y are metres; EPSG:2229 counts US survey feet: the projection converts, so a
+// point 1000 m east of another lies 1000 m east on the globe, not 304.8 m.
+TEST(Wgs84Projection, ACrsInFeetTakesTheMapsMetres) {
+  Result<Wgs84Projection> feet = Wgs84Projection::create(epsg(2229));
+  ASSERT_TRUE(feet.has_value()) << feet.error().message;
+  constexpr double kFtUs = 1200.0 / 3937.0;
+  const double x_m = 6480000 * kFtUs, y_m = 1840000 * kFtUs;
+  Result<LonLat> a = feet->to_wgs84(x_m, y_m);
+  Result<LonLat> b = feet->to_wgs84(x_m + 1000, y_m);
+  ASSERT_TRUE(a.has_value() && b.has_value());
+  // About 34 degrees north: a degree of longitude is about 92.4 km.
+  const double east_m =
+      (b->lon_deg - a->lon_deg) * 111320 * std::cos(a->lat_deg * std::numbers::pi / 180);
+  EXPECT_NEAR(east_m, 1000, 5);
+  Result<MapXY> back = feet->from_wgs84(a->lon_deg, a->lat_deg);
+  ASSERT_TRUE(back.has_value());
+  EXPECT_NEAR(back->x, x_m, 1e-3);
+  EXPECT_NEAR(back->y, y_m, 1e-3);
+}
+
 TEST(Wgs84Projection, AnUnknownCodeIsAnErrorNamingIt) {
   Result<Wgs84Projection> none = Wgs84Projection::create(epsg(999999));
   ASSERT_FALSE(none.has_value());

@@ -56,6 +56,10 @@ struct GisLayer {
   std::vector<GisFeature> features;
   std::optional<Crs> crs;
   std::string unnamed_crs;  // a CRS the source has but with no AUTHORITY:CODE: its name
+  // Metres per unit of the CRS's axes (PROJ's linear unit: 0.3048006096 for US survey feet, as in
+  // EPSG:2229): the points' x, y and z, and every field measured "in the CRS's unit", are scaled by
+  // it, so that the map is in metres whatever the source's unit (docs/gis.md, "Units").
+  double unit_m = 1;
 };
 
 // What a source holds, to choose the two layers before reading their features.
@@ -78,8 +82,9 @@ enum class ManholeField {
   kDepth,        // metres
   kDimension1,   // shaft diameter or length
   kDimension2,   // shaft width (a rectangular shaft)
+  kVariant,      // the geometric variant of its type, one letter A..Z (the paper's TYPE_B)
 };
-inline constexpr std::size_t kManholeFieldCount = 9;
+inline constexpr std::size_t kManholeFieldCount = 10;
 
 enum class PipeField {
   kName,  // required
@@ -87,24 +92,44 @@ enum class PipeField {
   kTo,
   kFromLevel,  // the pipe's invert at its from end, metres; else the line's z, else the manhole's
   kToLevel,
-  kHeight,  // clear height; required with kWidth: one of them
-  kWidth,   // clear width
-  kShape,   // sewerplan's names: circular, rectangular, egg, other
-  kLength,  // metres; else the line's length
+  kHeight,        // clear height; required with kWidth: one of them
+  kWidth,         // clear width
+  kShape,         // sewerplan's names: circular, rectangular, egg, other
+  kLength,        // metres; else the line's length
+  kFromAzimuth,   // degrees counter-clockwise from east: the slot's direction at the from end;
+  kToAzimuth,     // else the line's direction there (export-geojson writes both)
+  kBlockageRisk,  // the likelihood (0..1) that the pipe is blocked
+  kFromSlot,      // the slot's number (0 first) in the from (to) manhole, which keeps the
+  kToSlot,        // planner's slot numbers through a GIS round trip (export-geojson writes them)
 };
-inline constexpr std::size_t kPipeFieldCount = 9;
+inline constexpr std::size_t kPipeFieldCount = 14;
 
 std::string_view to_string(ManholeField field);  // the mapping file's key: "cover_level"
 std::string_view to_string(PipeField field);
 
+// A field name and its unit, as metres per unit of the field's values (0.001 for millimetres,
+// 0.0254 for inches; 1 for degrees, an azimuth field's only unit). Empty: the layer's CRS's own
+// linear unit (GisLayer::unit_m), the default of levels, depths and lengths whose field name does
+// not say "_m".
 struct GisFieldCandidate {
   std::string field;
-  double to_metres = 1;  // 0.001 for a field in millimetres
+  std::optional<double> to_metres = 1.0;
 };
+
+// Metres per unit of a mapping file's unit name: "mm", "cm", "m", "inch" ("in"), "foot" ("ft",
+// the international foot, 0.3048 m), "us_survey_foot" ("ftUS", 1200/3937 m); nullopt for any
+// other name.
+std::optional<double> gis_unit_to_metres(std::string_view unit);
 
 struct GisFieldMapping {
   std::string manhole_layer;  // empty: chosen by geometry type and name (choose_gis_layers)
   std::string pipe_layer;
+  // The inspection points' layer (fields name, pipe, offset_m, as export-geojson writes them);
+  // empty: a point layer named inspection_point or inspection_points, if the source has one.
+  std::string point_layer;
+  // The findings' layer (fields pipe, code, characterisation, offset_m, quantity1, quantity2);
+  // empty: a point layer named finding or findings, if the source has one.
+  std::string finding_layer;
   std::array<std::vector<GisFieldCandidate>, kManholeFieldCount> manhole;
   std::array<std::vector<GisFieldCandidate>, kPipeFieldCount> pipe;
   std::vector<std::string> exit_types;  // type values (case-insensitive) of exit manholes
@@ -141,9 +166,22 @@ Result<GisLayerChoice> choose_gis_layers(const std::vector<GisLayerInfo>& layers
                                          const GisFieldMapping& mapping, const std::string& source,
                                          std::string_view preferred = {});
 
-// The map, named `map_name`, with the manhole layer's CRS (the pipe layer's must agree).
+// The inspection points' (findings') layer among `layers` (not `manholes`): the one the mapping
+// names (an error if there is none such), else a point layer named inspection_point(s)
+// (finding(s)); nullopt: none.
+enum class GisPlaceLayer { kInspectionPoints, kFindings };
+Result<std::optional<std::size_t>> choose_gis_place_layer(const std::vector<GisLayerInfo>& layers,
+                                                          const GisFieldMapping& mapping,
+                                                          GisPlaceLayer which, std::size_t manholes,
+                                                          const std::string& source);
+
+// The map, named `map_name`, with the manhole layer's CRS (the pipe layer's must agree), the
+// inspection points of `points` (fields name, pipe and offset_m, metres from the pipe's from end)
+// and the findings of `findings` (pipe, code, characterisation, offset_m, quantity1, quantity2).
 Result<SewerMap> map_from_gis_layers(const GisLayer& manholes, const GisLayer& pipes,
                                      const GisFieldMapping& mapping, const std::string& source,
-                                     std::string map_name, Diagnostics& diagnostics);
+                                     std::string map_name, Diagnostics& diagnostics,
+                                     const GisLayer* points = nullptr,
+                                     const GisLayer* findings = nullptr);
 
 }  // namespace sewerplan

@@ -51,9 +51,17 @@ Result<SewerMap> parse_map(std::string_view text, const std::string& file_name, 
 // A GIS source (see is_gis_source_path) is a kUnsupportedFormat error that names gis::read_gis_map.
 Result<SewerMap> read_map(const std::filesystem::path& path, Diagnostics& diagnostics);
 
-// Whether `path` is a GIS source, by its name alone (no file is read): a ".shp" or ".gpkg"
-// extension, in any case, or a directory (that exists).
+// Whether `path` is a GIS source: a ".shp", ".gpkg" or ".geojson" extension, in any case, a
+// directory (that exists), or a regular file whose first kGeoJsonSniffBytes are GeoJSON
+// (looks_like_geojson): sewerplan's own export-geojson output, whatever its name, is read through
+// the GIS path, not as a native JSON map.
 bool is_gis_source_path(const std::filesystem::path& path);
+
+// Whether the opening of a file is a GeoJSON object (RFC 7946): after an optional UTF-8 BOM and
+// white space a '{', no "format" member (a sewerplan map's first), and a "FeatureCollection", or
+// a "Feature" with a "geometry".
+bool looks_like_geojson(std::string_view head);
+inline constexpr std::size_t kGeoJsonSniffBytes = 4096;
 
 // The map reader of a build without GIS support, where gis::read_map_source (gis/map_source.h) is
 // absent: a field mapping file (`field_mapping`, docs/formats/gis-layers.md) or a GIS source is a

@@ -9,6 +9,10 @@
 // axis order is always x = easting (or longitude), y = northing (or latitude), whatever the EPSG
 // definition says (proj_normalize_for_visualization).
 //
+// A map's x and y are metres whatever its CRS's unit (docs/gis.md, "Units"): to_wgs84 divides
+// them by the CRS's linear unit, as PROJ defines it (0.3048006096 for the US survey feet of
+// EPSG:2229), before transforming, and from_wgs84 multiplies by it.
+//
 //   Result<Wgs84Projection> wgs84 = Wgs84Projection::create(*map.crs());
 //   Result<LonLat> p = wgs84->to_wgs84(manhole.position.x_m, manhole.position.y_m);
 //
@@ -43,7 +47,8 @@ class Wgs84Projection {
   Wgs84Projection& operator=(Wgs84Projection&&) noexcept;
   ~Wgs84Projection();
 
-  // A point outside the CRS's domain (PROJ answers infinity) is a kInvalidArgument error.
+  // x, y in metres. A point outside the CRS's domain (PROJ answers infinity) is a
+  // kInvalidArgument error.
   Result<LonLat> to_wgs84(double x, double y) const;
   // The inverse, for round trips and tests.
   Result<MapXY> from_wgs84(double lon_deg, double lat_deg) const;
