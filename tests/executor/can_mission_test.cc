@@ -258,7 +258,7 @@ TEST(CanMission, AJobWhoseResultTheLinkLostGoesOnFromTheNodesOwnReport) {
   const auto ais = testing::load_ais_testbed();
   const CanRun local = in_process(ais, {});
   const std::size_t jobs = local.mission.jobs;
-  ASSERT_GT(jobs, 20U);
+  ASSERT_GE(jobs, 10U);
   std::size_t recovered = 0;
   for (std::size_t job = 0; job < jobs; ++job) {
     const std::string spec = "lose-result=" + std::to_string(job);
