@@ -100,7 +100,7 @@ void add_sim_node_command(CLI::App& app, Context& context) {
       ->excludes(faults);
   cmd->add_option("--bus-faults", options->bus_faults,
                   "Bus faults: drop=N,..;drop-rate=P;seed=S;garbage=N,..;silence=R+K;bus-off=R;"
-                  "late-ack=J@S (docs/can.md)");
+                  "late-ack=J@S;lose-result=J,.. (docs/can.md)");
   cmd->callback([options, &context] { context.exit_code = run(*options, context); });
 }
 

@@ -184,7 +184,8 @@ int run(const SimulateOptions& o, Context& c) {
   } else {
     c.out << '\n' << report << "decision " << executor::to_string(report.decision);
     if (report.outcome == executor::MissionReport::Outcome::kBeacon) {
-      c.out << " (beacon: " << executor::to_string(report.beacon_cause) << ')';
+      c.out << " (beacon: " << executor::to_string(report.beacon_cause) << ", "
+            << hal::to_string(report.beacon) << ')';
     }
     c.out << '\n';
   }

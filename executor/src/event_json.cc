@@ -180,6 +180,7 @@ std::optional<Event> event_of(const std::string& type, FieldReader& r) {
   } else if (type == "beacon") {
     BeaconEvent b;
     r.get("reason", b.reason);
+    r.get<hal::BeaconState>("state", b.state, hal::parse_beacon_state);
     e.what = std::move(b);
   } else if (type == "mission_end") {
     MissionEndEvent m;
@@ -190,6 +191,7 @@ std::optional<Event> event_of(const std::string& type, FieldReader& r) {
     r.get("replans", m.replans);
     r.get<PlanResponse::Decision>("decision", m.decision, parse_logged_decision);
     r.get<BeaconCause>("beacon_cause", m.beacon_cause, parse_beacon_cause);
+    r.get<hal::BeaconState>("beacon", m.beacon, hal::parse_beacon_state);
     e.what = std::move(m);
   } else {
     return std::nullopt;

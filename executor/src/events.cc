@@ -126,16 +126,21 @@ Fields fields_of(const Event& event) {
                    return {{"task", e.task}, {"reason", e.reason}};
                  },
                  [](const BeaconEvent& e) -> Fields {
-                   return {{"reason", e.reason}};
+                   return {{"reason", e.reason}, {"state", text(hal::to_string(e.state))}};
                  },
                  [](const MissionEndEvent& e) -> Fields {
-                   return {{"outcome", text(to_string(e.outcome))},
-                           {"end", e.end},
-                           {"tasks_done", e.tasks_done},
-                           {"energy_wh", e.energy_wh},
-                           {"replans", static_cast<I>(e.replans)},
-                           {"decision", text(to_string(e.decision))},
-                           {"beacon_cause", text(to_string(e.beacon_cause))}};
+                   Fields f{{"outcome", text(to_string(e.outcome))},
+                            {"end", e.end},
+                            {"tasks_done", e.tasks_done},
+                            {"energy_wh", e.energy_wh},
+                            {"replans", static_cast<I>(e.replans)},
+                            {"decision", text(to_string(e.decision))},
+                            {"beacon_cause", text(to_string(e.beacon_cause))}};
+                   // Absent when no beacon was asked for: the logs before it read the same.
+                   if (e.beacon != hal::BeaconState::kNone) {
+                     f.emplace_back("beacon", text(hal::to_string(e.beacon)));
+                   }
+                   return f;
                  }},
       event.what);
 }

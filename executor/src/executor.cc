@@ -38,7 +38,18 @@ std::ostream& operator<<(std::ostream& os, const MissionReport& r) {
       os << "mission ended at ";
       break;
     case MissionReport::Outcome::kBeacon:
-      os << "beacon on: ";
+      switch (r.beacon) {
+        case hal::BeaconState::kNone:
+        case hal::BeaconState::kConfirmed:
+          os << "beacon on: ";
+          break;
+        case hal::BeaconState::kUnconfirmed:
+          os << "beacon requested, unconfirmed (the robot did not answer): ";
+          break;
+        case hal::BeaconState::kNotSent:
+          os << "beacon NOT on (the request could not be sent): ";
+          break;
+      }
       break;
     case MissionReport::Outcome::kHalted:
       os << "halted ";
@@ -99,6 +110,10 @@ class Executor::Run {
             e.map_, e.options_.recovery, e.replanner_.mission().profile.speed_mps, tracker_,
             {.execute_job = [this](const Job& job) { return execute_job(job); },
              .reboot = [this] { return reboot(); },
+             .recovered_report =
+                 [this](const Job& job, const hal::JobReport& heard) {
+                   return recovered_report(job, heard);
+                 },
              .log_recovery = [this](RecoveryPhase phase, bool ok) { log_recovery(phase, ok); }}),
         done_(e.replanner_.progress().done) {}
 
@@ -359,6 +374,24 @@ class Executor::Run {
     return robot_.reboot();
   }
 
+  // The robot's own report of `job`, whose report `heard` the link lost (hal::Robot::
+  // recovered_report), logged as the job's; the tracking moves on from what was heard to it. A
+  // turn or a drive the robot finished, tracked where the controller last heard of it, was sent
+  // again from there and refused as a malfunction: two reboots later a healthy robot was stuck.
+  std::optional<hal::JobReport> recovered_report(const Job& job, const hal::JobReport& heard) {
+    std::optional<hal::JobReport> own = robot_.recovered_report();
+    if (!own) return std::nullopt;
+    hal::JobReport rest = *own;
+    rest.progress_m = std::max(0.0, own->progress_m - std::max(0.0, heard.progress_m));
+    tracker_.advance(job, rest);
+    emit(JobEvent{.job = detail::job_text(job), .progress_m = own->progress_m, .ok = own->ok()});
+    if (!own->ok()) {
+      emit(ErrorEvent{
+          .kind = own->error->kind, .reason = own->error->reason, .where = tracker_.describe()});
+    }
+    return own;
+  }
+
   void log_recovery(RecoveryPhase phase, bool ok) {
     if (!halted()) emit(RecoveryEvent{phase, ok});
   }
@@ -367,8 +400,8 @@ class Executor::Run {
   MissionReport finish(MissionReport::Outcome outcome, std::string end) {
     if (outcome == MissionReport::Outcome::kHalted) end = tracker_.describe();
     if (outcome == MissionReport::Outcome::kBeacon) {
-      robot_.activate_beacon();
-      emit(BeaconEvent{end});
+      report_.beacon = robot_.activate_beacon();
+      emit(BeaconEvent{end, report_.beacon});
     }
     const hal::RobotStatus status = robot_.status();
     const RobotProfile& p = mission().profile;
@@ -388,7 +421,8 @@ class Executor::Run {
                          .energy_wh = report_.energy_wh,
                          .replans = report_.replans,
                          .decision = report_.decision,
-                         .beacon_cause = report_.beacon_cause});
+                         .beacon_cause = report_.beacon_cause,
+                         .beacon = report_.beacon});
     for (const LogFile* log : logs_) {
       if (log->failed_appends() == 0) continue;
       report_.log_errors.push_back(*log->first_error() + " (" +

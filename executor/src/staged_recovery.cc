@@ -42,6 +42,10 @@ class RebootBudget {
   int total_ = 0;
 };
 
+bool is_malfunction(const hal::JobReport& r) {
+  return !r.ok() && r.error->kind == hal::RobotErrorKind::kMalfunction;
+}
+
 }  // namespace
 
 // What the blockage stages came to.
@@ -76,6 +80,9 @@ std::optional<Failure> StagedRecovery::run_job(const Job& job, const fusion::Rob
                        .detail = r.error->reason + "; " + rebooted.error().message};
       }
       ++cleared_;
+      // The job's own report, when the link lost it: done, or its own error, handled as such;
+      // a malfunction of its own is the one just rebooted through, and its rest goes on.
+      if (take_recovered(current, r) && !is_malfunction(r)) continue;
       if (auto rest = rest_of(current, r.progress_m)) current = *rest;
       r = host_.execute_job(current);
       continue;
@@ -116,12 +123,24 @@ hal::JobReport StagedRecovery::recovery_job(const Job& job) {
     host_.log_recovery(RecoveryPhase::kReboot, rebooted.has_value());
     if (!rebooted.has_value()) break;
     ++cleared_;
+    const double heard_m = r.progress_m;
+    if (take_recovered(current, r)) {
+      progress_m += r.progress_m - heard_m;
+      if (!is_malfunction(r)) break;
+    }
     if (auto rest = rest_of(current, r.progress_m)) current = *rest;
     r = host_.execute_job(current);
     progress_m += r.progress_m;
   }
   r.progress_m = progress_m;
   return r;
+}
+
+bool StagedRecovery::take_recovered(const Job& job, hal::JobReport& r) {
+  std::optional<hal::JobReport> own = host_.recovered_report(job, r);
+  if (!own) return false;
+  r = std::move(*own);
+  return true;
 }
 
 StagedRecovery::Cleared StagedRecovery::clear_blockage(Job rest) {

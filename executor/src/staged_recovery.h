@@ -35,6 +35,10 @@ namespace sewerplan::executor::detail {
 struct RecoveryHost {
   std::function<hal::JobReport(const Job&)> execute_job;
   std::function<Result<void>()> reboot;
+  // After a reboot: the robot's own report of `job` when the one heard (`heard`) was the link's
+  // (hal::Robot::recovered_report), logged, and the tracking moved on to it; else empty.
+  std::function<std::optional<hal::JobReport>(const Job& job, const hal::JobReport& heard)>
+      recovered_report;
   std::function<void(RecoveryPhase phase, bool ok)> log_recovery;
 };
 
@@ -59,6 +63,9 @@ class StagedRecovery {
  private:
   struct Cleared;
   hal::JobReport recovery_job(const Job& job);
+  // After a reboot for the malfunction `r` of `job`: true when `r` was the link's (the job's
+  // result was lost) and is now the robot's own report of the job.
+  bool take_recovered(const Job& job, hal::JobReport& r);
   Cleared clear_blockage(Job rest);
   std::optional<Failure> danger(const Job& job, const fusion::RobotAction& action,
                                 const hal::JobReport& r);

@@ -179,6 +179,7 @@ Json report_json(const executor::MissionReport& r) {
   return {{"outcome", executor::to_string(r.outcome)},
           {"decision", executor::to_string(r.decision)},
           {"beacon_cause", executor::to_string(r.beacon_cause)},
+          {"beacon", hal::to_string(r.beacon)},
           {"end", r.end},
           {"tasks_done", r.tasks_done},
           {"dropped", dropped},

@@ -1,8 +1,12 @@
 // SPDX-License-Identifier: MIT
-// Acceptance of the CAN issue (#7): a whole mission of the AIS test environment runs over SLCAN
-// through a pseudo-terminal against the simulated node with the outcome and event log of the
+// Acceptance of the CAN issues (#7, #30): a whole mission of the AIS test environment runs over
+// SLCAN through a pseudo-terminal against the simulated node with the outcome and event log of the
 // in-process simulated robot; each injected bus fault ends in the handling docs/can-protocol.md
-// documents; and the candump log of a run replays to the same event log.
+// documents; the candump log of a run replays to the same event log; and lost frames - at random
+// (1, 5 and 20 %), each frame of a turn, a drive, a sample and a reboot alone, every copy of a
+// job's result - end the mission as the loss-free run does (the same tasks, the same end).
+#include <map>
+#include <set>
 #include <sstream>
 
 #include <gmock/gmock.h>
@@ -178,6 +182,162 @@ TEST(CanMission, ANodeThatFallsSilentForGoodEndsWithTheBeacon) {
   const CanRun bus = over_can(ais, {}, "silence=4+100000");
   EXPECT_EQ(bus.mission.outcome, MissionOutcome::kBeacon) << bus.report;
   EXPECT_THAT(bus.json_lines, HasSubstr("reboot failed: no answer over CAN"));
+  // The node never answered the beacon request: the report does not say the beacon is on, and the
+  // cause is the link.
+  EXPECT_EQ(bus.mission.beacon, hal::BeaconState::kUnconfirmed);
+  EXPECT_EQ(bus.mission.beacon_cause, BeaconCause::kLink);
+  EXPECT_THAT(bus.report, HasSubstr("beacon requested, unconfirmed (the robot did not answer)"));
+  EXPECT_THAT(bus.report, ::testing::Not(HasSubstr("beacon on")));
+  EXPECT_THAT(bus.json_lines, HasSubstr(R"("state":"unconfirmed")"));
+  EXPECT_THAT(bus.json_lines, HasSubstr(R"("beacon_cause":"link","beacon":"unconfirmed")"));
+}
+
+// The controller's end of a bus, with every frame it sent and received kept.
+class Tap final : public hal::CanBus {
+ public:
+  explicit Tap(hal::CanBus& bus) : bus_(bus) {}
+  Result<void> send(const hal::CanFrame& frame) override {
+    sent.push_back(frame);
+    return bus_.send(frame);
+  }
+  Result<std::optional<hal::CanFrame>> receive(double timeout_s) override {
+    Result<std::optional<hal::CanFrame>> in = bus_.receive(timeout_s);
+    if (in.has_value() && in->has_value()) received.push_back(**in);
+    return in;
+  }
+  Result<void> recover() override { return bus_.recover(); }
+  std::string name() const override { return bus_.name(); }
+  std::vector<hal::CanFrame> sent;
+  std::vector<hal::CanFrame> received;
+
+ private:
+  hal::CanBus& bus_;
+};
+
+// The frames the controller sent and received.
+struct Traffic {
+  std::vector<hal::CanFrame> sent;
+  std::vector<hal::CanFrame> received;
+};
+
+// Over the in-memory bus with short timeouts, so that many faulty runs stay quick (a timeout that
+// a loaded machine makes expire early only adds a retry); `traffic` gets the frames when given.
+CanRun over_memory(const testing::AisTestbed& ais, const hal::FaultScenario& faults,
+                   const std::string& bus_faults, Traffic* traffic = nullptr) {
+  ManualClock clock;
+  Replanner probe(ais.map, ais.mission, {.clock = &clock});
+  Result<hal::BusFaults> parsed = hal::parse_bus_faults(bus_faults);
+  EXPECT_TRUE(parsed.has_value()) << bus_faults;
+  testing::CanNodeThread node(ais.map, ais.mission.profile, start_of(probe), faults, *parsed,
+                              testing::Transport::kMemory, 0.05);
+  Tap recording(node.controller_bus());
+  hal::CanRobot robot(recording,
+                      {.ack_timeout_s = 0.05, .link_timeout_s = 0.1, .heartbeat_s = 0.05});
+  const Result<void> up = robot.connect();
+  EXPECT_TRUE(up.has_value()) << bus_faults << ": " << up.error().message;
+  CanRun run = run_on(ais.map, ais.mission, robot, clock);
+  run.link = robot.stats();
+  if (traffic != nullptr) *traffic = {recording.sent, recording.received};
+  return run;
+}
+
+// The mission outcome: how it ended, where, and the tasks done.
+void expect_same_outcome(const CanRun& bus, const CanRun& local, const std::string& what) {
+  EXPECT_EQ(bus.mission.outcome, local.mission.outcome) << what << "\n" << bus.report;
+  EXPECT_EQ(bus.mission.end, local.mission.end) << what;
+  EXPECT_EQ(bus.mission.tasks_done, local.mission.tasks_done) << what;
+  EXPECT_EQ(bus.mission.dropped, local.mission.dropped) << what;
+}
+
+// Every copy of one job's PROGRESS and RESULT is lost until the reboot that follows. The node did
+// the job; the controller, which had not heard how far, sent it again from where it last heard of
+// the robot: the node refused the turn ("not at slot 1 of a manhole") or the drive ("cannot drive
+// forward into manhole ..."), the refusal counted as a malfunction, and two reboots later the
+// healthy robot called for recovery (stuck). Each job of the mission in turn.
+TEST(CanMission, AJobWhoseResultTheLinkLostGoesOnFromTheNodesOwnReport) {
+  const auto ais = testing::load_ais_testbed();
+  const CanRun local = in_process(ais, {});
+  const std::size_t jobs = local.mission.jobs;
+  ASSERT_GE(jobs, 10U);
+  std::size_t recovered = 0;
+  for (std::size_t job = 0; job < jobs; ++job) {
+    const std::string spec = "lose-result=" + std::to_string(job);
+    const CanRun bus = over_memory(ais, {}, spec);
+    expect_same_outcome(bus, local, spec);
+    EXPECT_THAT(bus.json_lines, HasSubstr("CAN link: no result of job")) << spec;
+    EXPECT_THAT(bus.json_lines, ::testing::Not(HasSubstr("stuck"))) << spec;
+    recovered += bus.mission.recoveries;
+  }
+  EXPECT_EQ(recovered, jobs);  // one reboot each
+}
+
+// 1 %, 5 % and 20 % of the node's frames lost at random, three seeds each.
+TEST(CanMission, RandomFrameLossEndsTheMissionAsTheLossFreeRun) {
+  const auto ais = testing::load_ais_testbed();
+  const CanRun local = in_process(ais, {});
+  for (const char* rate : {"0.01", "0.05", "0.2"}) {
+    for (int seed = 1; seed <= 3; ++seed) {
+      const std::string spec = std::string("drop-rate=") + rate + ";seed=" + std::to_string(seed);
+      const CanRun bus = over_memory(ais, {}, spec);
+      expect_same_outcome(bus, local, spec);
+    }
+  }
+}
+
+// Each frame the node sends for the first turn, drive and sample of the mission, and for the
+// reboot after a transient malfunction, lost alone. Frames are numbered as the node counts them
+// (its frames but heartbeats), read from the loss-free run's traffic.
+TEST(CanMission, EachFrameOfATurnADriveASampleAndARebootLostAloneChangesNoOutcome) {
+  const auto ais = testing::load_ais_testbed();
+  for (const hal::FaultScenario& faults :
+       {hal::FaultScenario{}, malfunction(ais.map, "transient")}) {
+    const CanRun local = in_process(ais, faults);
+    Traffic clean;
+    const CanRun loss_free = over_memory(ais, faults, "", &clean);
+    expect_same_outcome(loss_free, local, "no loss");
+    // The job kind of each sequence number.
+    std::map<std::uint8_t, std::size_t> kind_of;
+    hal::MessageDecoder decoder;
+    for (const hal::CanFrame& f : clean.sent) {
+      if (std::optional<hal::Decoded> d = decoder.push(f)) {
+        if (const auto* m = std::get_if<hal::Message>(&*d)) {
+          if (const auto* job = std::get_if<hal::JobCommand>(m))
+            kind_of[job->seq] = job->job.index();
+        }
+      }
+    }
+    // The node's frames of the first job of each kind wanted, and of the first reboot.
+    const std::set<std::size_t> kinds{Job{TurnInManhole{}}.index(), Job{DriveForward{}}.index(),
+                                      Job{TakeSample{}}.index()};
+    constexpr std::size_t kReboot = std::variant_size_v<Job>;
+    std::map<std::size_t, std::uint8_t> first_seq;  // job kind (or kReboot) -> its first seq
+    std::vector<std::uint64_t> targets;
+    std::uint64_t index = 0;
+    for (const hal::CanFrame& f : clean.received) {
+      const std::optional<hal::FrameId> id = hal::frame_id(f);
+      if (!id || id->type == hal::MessageType::kNodeHeartbeat) continue;
+      const std::uint64_t at = index++;
+      std::size_t key = 0;
+      if (id->type == hal::MessageType::kRebootResult) {
+        key = kReboot;
+      } else if (id->type == hal::MessageType::kAck || id->type == hal::MessageType::kProgress ||
+                 id->type == hal::MessageType::kResult) {
+        const auto kind = kind_of.find(id->seq);
+        if (kind == kind_of.end() || !kinds.contains(kind->second)) continue;
+        key = kind->second;
+      } else {
+        continue;
+      }
+      const auto [it, first] = first_seq.emplace(key, id->seq);
+      if (it->second == id->seq) targets.push_back(at);
+    }
+    EXPECT_EQ(first_seq.size(), faults.malfunctions.empty() ? 3U : 4U);
+    ASSERT_GE(targets.size(), 30U);
+    for (const std::uint64_t frame : targets) {
+      const std::string spec = "drop=" + std::to_string(frame);
+      expect_same_outcome(over_memory(ais, faults, spec), local, spec);
+    }
+  }
 }
 
 TEST(CanMission, TheCandumpLogOfARunReplaysToTheSameEventLog) {

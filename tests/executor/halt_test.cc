@@ -100,7 +100,7 @@ class JobUntilStopped final : public hal::Robot {
   }
   hal::RobotStatus status() const override { return robot_.status(); }
   Result<void> reboot() override { return robot_.reboot(); }
-  void activate_beacon() override { robot_.activate_beacon(); }
+  hal::BeaconState activate_beacon() override { return robot_.activate_beacon(); }
   void emergency_stop() override {
     robot_.emergency_stop();
     const std::lock_guard lock(mutex_);

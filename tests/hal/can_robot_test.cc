@@ -184,6 +184,82 @@ TEST_P(CanRobotTest, SilenceIsAMalfunctionThatARebootOverTheBusClears) {
   EXPECT_TRUE(robot.execute(jobs_[0]).ok());
 }
 
+// The link loses a job's PROGRESS and RESULT, every copy, until the reboot (lose-result): the
+// node did the job, the controller does not know how far. The reboot asks the node before
+// anything else is sent, and recovered_report() is the node's own report of the job: the turn
+// done, the drive to its end. Sent again from where the controller last heard of the robot, the
+// turn was refused ("not at slot 1 of a manhole"), as a malfunction, until the robot was stuck.
+TEST_P(CanRobotTest, AJobWhoseResultTheLinkLostIsReportedByTheNodeAfterTheReboot) {
+  for (const std::size_t lost : {std::size_t{4}, std::size_t{5}}) {  // the drive, the turn
+    SimRobot local(map_, profile_, start());
+    auto n = node(faults("lose-result=" + std::to_string(lost)));
+    CanRobot robot(n->controller_bus(), fast());
+    ASSERT_TRUE(robot.connect().has_value());
+    for (std::size_t i = 0; i < jobs_.size(); ++i) {
+      const JobReport own = local.execute(jobs_[i]);
+      if (i != lost) {
+        EXPECT_EQ(robot.execute(jobs_[i]), own) << jobs_[i];
+        continue;
+      }
+      const JobReport heard = robot.execute(jobs_[i]);
+      ASSERT_FALSE(heard.ok());
+      EXPECT_THAT(heard.error->reason, HasSubstr("CAN link: no result of job"));
+      EXPECT_EQ(heard.progress_m, 0);  // the PROGRESS was lost too
+      EXPECT_FALSE(robot.recovered_report());
+      ASSERT_TRUE(robot.reboot().has_value());
+      ASSERT_TRUE(local.reboot().has_value());
+      EXPECT_EQ(robot.recovered_report(), std::optional(own)) << jobs_[i];
+      EXPECT_FALSE(robot.recovered_report());  // taken once
+      EXPECT_EQ(robot.status(), local.status());
+    }
+    n->stop();
+    EXPECT_EQ(n->node().stats().jobs_run, jobs_.size()) << "a job ran twice";
+  }
+}
+
+// A job that never reached the node (its frames lost into a silence): after the reboot the node
+// says it does not know it (ACK kUnknown), and the report says so, with no progress.
+TEST_P(CanRobotTest, AJobThatNeverReachedTheNodeIsReportedSoAfterTheReboot) {
+  auto n = node(faults("silence=1+3"));
+  CanRobot robot(n->controller_bus(), fast());
+  ASSERT_TRUE(robot.connect().has_value());
+  const JobReport heard = robot.execute(jobs_[0]);
+  ASSERT_FALSE(heard.ok());
+  EXPECT_THAT(heard.error->reason, HasSubstr("the node does not know job 2"));
+  ASSERT_TRUE(robot.reboot().has_value());
+  const std::optional<JobReport> own = robot.recovered_report();
+  ASSERT_TRUE(own);
+  ASSERT_FALSE(own->ok());
+  EXPECT_THAT(own->error->reason, HasSubstr("job 2 never reached the node"));
+  EXPECT_EQ(own->progress_m, 0);
+}
+
+// The beacon is reported as the node answered: on (its STATUS says so), requested but unconfirmed
+// (a silent node), or not sent at all (a bus that refuses every frame). It was "on" in every case.
+TEST_P(CanRobotTest, TheBeaconIsConfirmedOnlyByTheNodesAnswer) {
+  {
+    auto n = node();
+    CanRobot robot(n->controller_bus(), fast());
+    ASSERT_TRUE(robot.connect().has_value());
+    EXPECT_EQ(robot.activate_beacon(), BeaconState::kConfirmed);
+    EXPECT_TRUE(robot.status().beacon_on);
+  }
+  {
+    auto n = node(faults("silence=1+100"));
+    CanRobot robot(n->controller_bus(), fast());
+    ASSERT_TRUE(robot.connect().has_value());
+    EXPECT_EQ(robot.activate_beacon(), BeaconState::kUnconfirmed);
+    EXPECT_FALSE(robot.status().beacon_on);
+  }
+  {
+    auto n = node(faults("bus-off=1"));  // at the job: the adapter refuses all that follows
+    CanRobot robot(n->controller_bus(), fast());
+    ASSERT_TRUE(robot.connect().has_value());
+    EXPECT_FALSE(robot.execute(jobs_[0]).ok());
+    EXPECT_EQ(robot.activate_beacon(), BeaconState::kNotSent);
+  }
+}
+
 TEST_P(CanRobotTest, BusOffIsAMalfunctionThatARebootOverTheBusClears) {
   auto n = node(faults("bus-off=1"));
   CanRobot robot(n->controller_bus(), fast());
@@ -372,9 +448,10 @@ TEST(CanRobot, AMalformedResultIsNamedInTheMalfunction) {
 
 TEST(BusFaults, TheSpecificationIsReadAndNamedWhenWrong) {
   Result<BusFaults> f =
-      parse_bus_faults("drop=3,7;garbage=2;silence=10+3;bus-off=12;late-ack=4@1.5");
+      parse_bus_faults("drop=3,7;garbage=2;silence=10+3;bus-off=12;late-ack=4@1.5;lose-result=5");
   ASSERT_TRUE(f.has_value()) << f.error().message;
   EXPECT_EQ(f->drop_frames, (std::vector<std::uint64_t>{3, 7}));
+  EXPECT_EQ(f->lose_results, (std::vector<std::uint64_t>{5}));
   EXPECT_EQ(f->silence, (Silence{10, 3}));
   EXPECT_EQ(f->late_ack, (LateAck{4, 1.5}));
   std::ostringstream os;

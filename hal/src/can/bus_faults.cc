@@ -60,10 +60,12 @@ Result<BusFaults> parse_bus_faults(std::string_view spec) {
     if (eq == std::string_view::npos) return bad(item, "expected NAME=VALUE");
     const std::string_view name = item.substr(0, eq);
     const std::string_view value = item.substr(eq + 1);
-    if (name == "drop" || name == "garbage") {
+    if (name == "drop" || name == "garbage" || name == "lose-result") {
       Result<std::vector<std::uint64_t>> list = counts_of(item, value);
       if (!list.has_value()) return list.error();
-      (name == "drop" ? faults.drop_frames : faults.garbage_before) = *list;
+      (name == "drop"      ? faults.drop_frames
+       : name == "garbage" ? faults.garbage_before
+                           : faults.lose_results) = *list;
     } else if (name == "drop-rate") {
       const std::optional<double> rate = number_of(value);
       if (!rate || *rate < 0 || *rate > 1) return bad(item, "expected a probability in [0, 1]");
@@ -96,7 +98,8 @@ Result<BusFaults> parse_bus_faults(std::string_view spec) {
       faults.late_ack = LateAck{*job, *delay};
     } else {
       return bad(item,
-                 "unknown fault (drop, drop-rate, seed, garbage, silence, bus-off, late-ack)");
+                 "unknown fault (drop, drop-rate, seed, garbage, silence, bus-off, late-ack, "
+                 "lose-result)");
     }
   }
   return faults;
@@ -112,6 +115,7 @@ std::ostream& operator<<(std::ostream& os, const BusFaults& faults) {
   };
   list("drop", faults.drop_frames);
   list("garbage", faults.garbage_before);
+  list("lose-result", faults.lose_results);
   if (faults.drop_rate > 0) {
     os << sep << "drop-rate=" << faults.drop_rate << ";seed=" << faults.seed;
     sep = ";";

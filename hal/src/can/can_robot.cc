@@ -25,7 +25,8 @@ std::string seconds_text(double s) {
 
 CanRobot::CanRobot(CanBus& bus, CanRobotOptions options)
     : bus_(bus), options_(options), clock_(options.clock != nullptr ? options.clock : &steady_) {
-  SEWER_CHECK(options_.attempts >= 1, "CanRobot: attempts must be >= 1");
+  SEWER_CHECK(options_.attempts >= 1 && options_.max_resends >= 0,
+              "CanRobot: attempts must be >= 1, max_resends >= 0");
   SEWER_CHECK(options_.ack_timeout_s > 0 && options_.link_timeout_s > 0 &&
                   options_.job_timeout_s > 0 && options_.heartbeat_s > 0,
               "CanRobot: timeouts must be > 0");
@@ -38,6 +39,7 @@ Result<void> CanRobot::send(const Message& message) {
       return sent;
     }
   }
+  ++messages_sent_;
   return {};
 }
 
@@ -106,10 +108,20 @@ std::optional<Message> CanRobot::await(double timeout_s,
       problem = "flooded with " + std::to_string(frames) + " frames without an answer";
       return std::nullopt;
     }
+    if (const std::optional<FrameId> id = frame_id(**in);
+        id && awaited_seq_ && id->seq == *awaited_seq_ && sent_by_node(id->type) &&
+        id->type != MessageType::kNodeHeartbeat && id->type != MessageType::kEmergencyStopAck) {
+      heard_ = true;  // a frame of the answer, whole or not
+    }
     std::optional<Decoded> decoded = decoder_.push(**in);
     if (!decoded) continue;
     if (const auto* bad_message = std::get_if<Malformed>(&*decoded)) {
       if (!tolerate_bad_input("malformed " + bad_message->reason)) return std::nullopt;
+      // The answer arrived damaged: ask again now (the decoder keeps what arrived) rather than
+      // wait out the timeout.
+      if (awaited_seq_ && bad_message->seq == *awaited_seq_ && sent_by_node(bad_message->type)) {
+        return std::nullopt;
+      }
       continue;
     }
     Message& message = std::get<Message>(*decoded);
@@ -128,23 +140,33 @@ std::optional<Message> CanRobot::await(double timeout_s,
   }
 }
 
-std::optional<Message> CanRobot::exchange(const Message& request, double timeout_s,
+std::optional<Message> CanRobot::exchange(const Request& request, double timeout_s,
                                           const std::function<Verdict(const Message&)>& judge,
                                           std::string& problem, bool stoppable) {
-  for (int attempt = 0; attempt < options_.attempts; ++attempt) {
-    if (attempt > 0) ++stats_.retries;
+  awaited_seq_ = request.seq;
+  // Sends that nothing of an answer came back to count against `attempts`; those whose answer
+  // arrived damaged against max_resends as well.
+  int unanswered = 0;
+  int sends = 0;
+  std::optional<Message> answer;
+  while (!answer && unanswered < options_.attempts &&
+         sends < options_.attempts + options_.max_resends) {
+    if (sends++ > 0) ++stats_.retries;
     if (Result<void> sent = send(request); !sent.has_value()) {
       problem = sent.error().message;
-      return std::nullopt;
+      break;
     }
     bool bus_failed = false;
-    if (std::optional<Message> answer = await(timeout_s, judge, problem, bus_failed, stoppable)) {
-      return answer;
-    }
-    if (bus_failed) return std::nullopt;
+    heard_ = false;
+    answer = await(timeout_s, judge, problem, bus_failed, stoppable);
+    if (bus_failed) break;
+    if (!answer && !heard_) ++unanswered;
   }
-  problem += " (" + std::to_string(options_.attempts) + " attempts)";
-  return std::nullopt;
+  awaited_seq_.reset();
+  if (!answer && unanswered == options_.attempts) {
+    problem += " (" + std::to_string(sends) + " attempts)";
+  }
+  return answer;
 }
 
 JobReport CanRobot::link_failure(const std::string& what, double progress_m) {
@@ -211,13 +233,21 @@ JobReport CanRobot::execute(const Job& job) {
   const std::uint8_t seq = next_seq();
   const std::string name = "job " + std::to_string(seq);
   last_bad_input_.clear();
+  recovered_.reset();
+  // Sent, and its result never came: the node may have run it, all or part. The next reboot asks.
+  const auto lost = [&](const std::string& what, double progress_m) {
+    lost_job_ = seq;
+    awaited_seq_.reset();
+    return link_failure(what, progress_m);
+  };
+  awaited_seq_ = seq;
   std::string problem;
   std::optional<JobResult> result;
   bool accepted = false;
   for (int attempt = 0; attempt < options_.attempts && !accepted && !result; ++attempt) {
     if (attempt > 0) ++stats_.retries;
     if (Result<void> sent = send(JobCommand{seq, job}); !sent.has_value()) {
-      return link_failure("cannot send " + name + ": " + sent.error().message, 0);
+      return lost("cannot send " + name + ": " + sent.error().message, 0);
     }
     bool bus_failed = false;
     std::optional<Message> answer = await(
@@ -229,7 +259,7 @@ JobReport CanRobot::execute(const Job& job) {
           return ours ? Verdict::kTake : Verdict::kIgnore;
         },
         problem, bus_failed, true);
-    if (bus_failed) return stop_requested_.load() ? stopped(0) : link_failure(problem, 0);
+    if (bus_failed) return stop_requested_.load() ? stopped(0) : lost(problem, 0);
     if (!answer) continue;
     if (auto* r = std::get_if<JobResult>(&*answer)) {
       result = std::move(*r);  // the acknowledgement was lost, the result was not
@@ -245,6 +275,9 @@ JobReport CanRobot::execute(const Job& job) {
         break;
       case AckCode::kCorrupt:
         problem = "the node could not read " + name;
+        break;
+      case AckCode::kUnknown:  // the answer to a result request of an earlier wait: send again
+        problem = "the node does not know " + name;
         break;
       case AckCode::kRefused: {
         JobReport report;
@@ -262,19 +295,30 @@ JobReport CanRobot::execute(const Job& job) {
                                  : "no acknowledgement of " + name + ": " + problem + " (" +
                                        std::to_string(options_.attempts) + " attempts)";
   double progress_m = 0;
-  for (int attempt = 0; attempt < options_.attempts && !result; ++attempt) {
-    if (attempt > 0) {
+  // As exchange(): waits that heard nothing of the result count against `attempts`, and waits
+  // that heard a damaged one against max_resends too.
+  int unanswered = 0;
+  for (int wait = 0;
+       !result && unanswered < options_.attempts && wait < options_.attempts + options_.max_resends;
+       ++wait) {
+    if (wait > 0) {
       ++stats_.retries;
       if (Result<void> sent = send(Request{RequestKind::kResult, seq}); !sent.has_value()) {
-        return link_failure("cannot ask for the result of " + name + ": " + sent.error().message,
-                            progress_m);
+        return lost("cannot ask for the result of " + name + ": " + sent.error().message,
+                    progress_m);
       }
     }
     bool bus_failed = false;
+    heard_ = false;
     std::optional<Message> answer = await(
         options_.link_timeout_s,
         [seq, &progress_m](const Message& m) {
           if (const auto* r = std::get_if<JobResult>(&m); r != nullptr && r->seq == seq) {
+            return Verdict::kTake;
+          }
+          // The node does not know the job (it never arrived): no result will come.
+          if (const auto* a = std::get_if<JobAck>(&m);
+              a != nullptr && a->seq == seq && a->code == AckCode::kUnknown) {
             return Verdict::kTake;
           }
           if (const auto* p = std::get_if<JobProgress>(&m); p != nullptr && p->seq == seq) {
@@ -289,16 +333,26 @@ JobReport CanRobot::execute(const Job& job) {
         },
         problem, bus_failed, true);
     if (bus_failed) {
-      return stop_requested_.load() ? stopped(progress_m) : link_failure(problem, progress_m);
+      return stop_requested_.load() ? stopped(progress_m) : lost(problem, progress_m);
     }
-    if (answer) result = std::move(std::get<JobResult>(*answer));
+    if (answer && std::holds_alternative<JobAck>(*answer)) {
+      const std::string unknown = "the node does not know " + name;
+      return lost(no_ack.empty() ? unknown : no_ack + "; " + unknown, progress_m);
+    }
+    if (answer) {
+      result = std::move(std::get<JobResult>(*answer));
+    } else if (!heard_) {
+      ++unanswered;
+    }
   }
+  awaited_seq_.reset();
   if (!result) {
-    if (!no_ack.empty()) return link_failure(no_ack, progress_m);
-    return link_failure("no result of " + name + ": " + problem + " (" +
-                            std::to_string(options_.attempts) + " attempts)",
-                        progress_m);
+    if (!no_ack.empty()) return lost(no_ack, progress_m);
+    return lost("no result of " + name + ": " + problem + " (" + std::to_string(options_.attempts) +
+                    " attempts)",
+                progress_m);
   }
+  lost_job_.reset();
   status_ = result->status;
   return result->report;
 }
@@ -324,14 +378,68 @@ Result<void> CanRobot::reboot() {
   status_ = r.status;
   // The node's words, as the simulated robot's: "reboot failed: ...".
   if (r.failure) return Error{ErrorCode::kIo, *r.failure};
+  return settle_lost_job();
+}
+
+// The node keeps the results of its last jobs (kKeptJobs) over a reboot: asked for the one the
+// link lost, it gives the job's own report, or ACK kUnknown when the job never reached it. Until
+// the answer comes nothing else is sent: a job sent from where the controller last heard of the
+// robot (a turn it has made, a drive it has finished) would be refused, as a malfunction.
+Result<void> CanRobot::settle_lost_job() {
+  if (!lost_job_) return {};
+  const std::uint8_t seq = *lost_job_;
+  const std::string name = "job " + std::to_string(seq);
+  std::string problem;
+  std::optional<Message> answer = exchange(
+      Request{RequestKind::kResult, seq}, options_.link_timeout_s,
+      [seq](const Message& m) {
+        const auto* r = std::get_if<JobResult>(&m);
+        const auto* ack = std::get_if<JobAck>(&m);
+        const bool ours = (r != nullptr && r->seq == seq) ||
+                          (ack != nullptr && ack->seq == seq && ack->code == AckCode::kUnknown);
+        return ours ? Verdict::kTake : Verdict::kIgnore;
+      },
+      problem, true);
+  if (!answer && stop_requested_.load()) {
+    ++stats_.emergency_stops;
+    static_cast<void>(send(EmergencyStop{StopReason::kController}));
+    return Error{ErrorCode::kCancelled, "reboot stopped: emergency stop"};
+  }
+  if (!answer) {
+    return Error{ErrorCode::kCanTimeout,
+                 "reboot failed: no answer over CAN to what became of " + name + ": " + problem};
+  }
+  lost_job_.reset();
+  if (const auto* r = std::get_if<JobResult>(&*answer)) {
+    recovered_ = r->report;  // the status stays the reboot's, which is newer
+  } else {
+    JobReport never;
+    never.error =
+        RobotError{RobotErrorKind::kMalfunction, "CAN link: " + name + " never reached the node"};
+    recovered_ = never;
+  }
   return {};
 }
 
-void CanRobot::activate_beacon() {
+std::optional<JobReport> CanRobot::recovered_report() {
+  std::optional<JobReport> taken = std::move(recovered_);
+  recovered_.reset();
+  return taken;
+}
+
+BeaconState CanRobot::activate_beacon() {
   std::string problem;
+  const std::size_t sent_before = messages_sent_;
+  const std::size_t bus_errors_before = stats_.bus_errors;
   std::optional<StatusReply> answer =
       ask<StatusReply>(RequestKind::kBeacon, options_.ack_timeout_s, problem);
-  if (answer) status_ = answer->status;
+  if (!answer) {
+    // The bus refused the request (a failed send; SLCAN: the adapter's BEL, a closed line).
+    const bool refused = messages_sent_ == sent_before || stats_.bus_errors > bus_errors_before;
+    return refused ? BeaconState::kNotSent : BeaconState::kUnconfirmed;
+  }
+  status_ = answer->status;
+  return status_.beacon_on ? BeaconState::kConfirmed : BeaconState::kUnconfirmed;
 }
 
 }  // namespace sewerplan::hal

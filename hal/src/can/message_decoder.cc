@@ -206,7 +206,7 @@ Decoded decode_single(MessageType type, std::uint8_t seq, const CanFrame& f) {
       break;
     case MessageType::kAck: {
       const CanFrame& c = r.frame(0, 3);
-      if (r.ok() && c.data[0] > 3) r.fail("unknown acknowledgement code");
+      if (r.ok() && c.data[0] > 4) r.fail("unknown acknowledgement code");
       decoded = Message{JobAck{seq, static_cast<AckCode>(c.data[0]), u16_of(c, 1)}};
       break;
     }
@@ -286,52 +286,65 @@ std::optional<Decoded> MessageDecoder::push(const CanFrame& frame) {
                        what + ": a one-frame message with index " + std::to_string(id->index)};
     return decode_single(id->type, id->seq, frame);
   }
+  Partial& p = partial_[id->type];
   if (id->index != kEndFrameIndex) {
     if (id->index >= kMaxDataFrames) {
       return Malformed{id->type, id->seq,
                        what + ": frame index " + std::to_string(id->index) + " out of range"};
     }
-    Partial& p = partial_[id->type];
-    if (p.seq != id->seq || p.frames.empty()) p = Partial{id->seq, {}};
+    if (p.seq != id->seq || (p.frames.empty() && !p.end)) p = Partial{id->seq, {}, {}};
     p.frames[id->index] = frame;
-    return std::nullopt;
+    // A frame that an earlier copy missed completes the message its end frame announced.
+    if (!p.end || p.frames.size() < u16_of(*p.end, 0)) return std::nullopt;
+    return finish(id->type, what);
   }
-  const auto it = partial_.find(id->type);
-  if (it == partial_.end() || it->second.seq != id->seq || it->second.frames.empty()) {
+  if (p.seq != id->seq || p.frames.empty()) {
+    if (p.frames.empty()) partial_.erase(id->type);
     return Malformed{id->type, id->seq, what + ": end frame without data frames"};
   }
-  const Partial p = std::move(it->second);
-  partial_.erase(it);
   if (frame.dlc != 6) {
+    partial_.erase(id->type);
     return Malformed{id->type, id->seq,
                      what + ": end frame has " + std::to_string(frame.dlc) + " bytes, expected 6"};
   }
-  const std::uint16_t count = u16_of(frame, 0);
+  p.end = frame;
+  return finish(id->type, what);
+}
+
+std::optional<Decoded> MessageDecoder::finish(MessageType type, const std::string& what) {
+  Partial& p = partial_[type];
+  const std::uint8_t seq = p.seq;
+  const CanFrame& end = *p.end;
+  const std::uint16_t count = u16_of(end, 0);
   std::uint32_t crc = 0;
-  for (std::size_t i = 0; i < 4; ++i) crc |= std::uint32_t{frame.data[2 + i]} << (8 * i);
-  std::vector<CanFrame> frames;
-  std::vector<std::uint8_t> all;
+  for (std::size_t i = 0; i < 4; ++i) crc |= std::uint32_t{end.data[2 + i]} << (8 * i);
   for (std::uint16_t i = 0; i < count; ++i) {
-    const auto f = p.frames.find(i);
-    if (f == p.frames.end()) {
+    if (!p.frames.contains(i)) {
+      // Kept: a copy of the message sent again (a retry, the same sequence number) fills the gap.
       return Malformed{
-          id->type, id->seq,
+          type, seq,
           what + ": frame " + std::to_string(i) + " of " + std::to_string(count) + " missing"};
     }
-    frames.push_back(f->second);
-    all.insert(all.end(), f->second.bytes().begin(), f->second.bytes().end());
   }
-  if (p.frames.size() != count) {
-    return Malformed{id->type, id->seq,
-                     what + ": " + std::to_string(p.frames.size()) +
+  const Partial whole = std::move(p);
+  partial_.erase(type);
+  if (whole.frames.size() != count) {
+    return Malformed{type, seq,
+                     what + ": " + std::to_string(whole.frames.size()) +
                          " data frames, the end frame says " + std::to_string(count)};
   }
+  std::vector<CanFrame> frames;
+  std::vector<std::uint8_t> all;
+  for (const auto& [index, f] : whole.frames) {
+    frames.push_back(f);
+    all.insert(all.end(), f.bytes().begin(), f.bytes().end());
+  }
   if (crc32(all) != crc) {
-    return Malformed{id->type, id->seq,
+    return Malformed{type, seq,
                      what + ": CRC mismatch (0x" + hex_text(crc32(all), 8) + " computed, 0x" +
                          hex_text(crc, 8) + " sent)"};
   }
-  return decode_message(id->type, id->seq, frames);
+  return decode_message(type, seq, frames);
 }
 
 }  // namespace sewerplan::hal

@@ -71,7 +71,7 @@ void SimNode::heartbeat_if_due() {
   const NodeState state = estop_latched_ ? NodeState::kStopped
                           : late_job_    ? NodeState::kBusy
                                          : NodeState::kIdle;
-  const std::uint8_t last = last_job_ ? last_job_->seq : 0;
+  const std::uint8_t last = kept_.empty() ? 0 : kept_.back().command.seq;
   for (const CanFrame& f : encode(Heartbeat{true, state, heartbeat_counter_++, last})) {
     static_cast<void>(bus_.send(f));
   }
@@ -123,10 +123,31 @@ void SimNode::handle(const Message& message) {
              message);
 }
 
+const SimNode::Kept* SimNode::kept(std::uint8_t seq) const {
+  const auto it = std::find_if(kept_.rbegin(), kept_.rend(),
+                               [seq](const Kept& k) { return k.command.seq == seq; });
+  return it == kept_.rend() ? nullptr : &*it;
+}
+
+void SimNode::answer(const Kept& job, bool result_only) {
+  const bool losing = contains(losing_, job.number);
+  for (std::size_t i = result_only ? job.answer.size() - 1 : 0; i < job.answer.size(); ++i) {
+    const Message& m = job.answer[i];
+    if (losing && !std::holds_alternative<JobAck>(m)) {
+      // Sent, and lost on the way: counted as node frames, so that drop=N keeps its meaning.
+      const std::size_t frames = encode(m).size();
+      frames_sent_ += frames;
+      stats_.frames_dropped += frames;
+      continue;
+    }
+    send(m);
+  }
+}
+
 void SimNode::handle_job(const JobCommand& command) {
-  if (last_job_ && *last_job_ == command) {
+  if (const Kept* k = kept(command.seq); k != nullptr && k->command == command) {
     ++stats_.repeats;
-    for (const Message& m : last_job_answer_) send(m);
+    answer(*k, false);
     return;
   }
   // The late job sent again: its answers are still held back.
@@ -148,13 +169,18 @@ void SimNode::handle_job(const JobCommand& command) {
 }
 
 void SimNode::run_job(const JobCommand& command) {
-  ++stats_.jobs_run;
+  const std::uint64_t number = stats_.jobs_run++;
   const JobReport report = robot_.execute(command.job);
-  last_job_ = command;
-  last_job_answer_ = {JobAck{command.seq, AckCode::kAccepted, 0},
-                      JobProgress{command.seq, report.progress_m},
-                      JobResult{command.seq, report, robot_.status()}};
-  for (const Message& m : last_job_answer_) send(m);
+  // A number used again (after a wrap) names the new job.
+  std::erase_if(kept_, [&](const Kept& k) { return k.command.seq == command.seq; });
+  kept_.push_back(
+      Kept{command,
+           {JobAck{command.seq, AckCode::kAccepted, 0}, JobProgress{command.seq, report.progress_m},
+            JobResult{command.seq, report, robot_.status()}},
+           number});
+  if (kept_.size() > kKeptJobs) kept_.erase(kept_.begin());
+  if (contains(options_.faults.lose_results, number)) losing_.push_back(number);
+  answer(kept_.back(), false);
 }
 
 void SimNode::handle_request(const Request& request) {
@@ -163,10 +189,14 @@ void SimNode::handle_request(const Request& request) {
       send(StatusReply{request.seq, robot_.status()});
       return;
     case RequestKind::kResult:
-      if (last_job_ && last_job_->seq == request.seq) {
+      if (const Kept* k = kept(request.seq)) {
         ++stats_.repeats;
-        send(last_job_answer_.back());
+        answer(*k, true);
+        return;
       }
+      // A job held back by a late-ack fault is still to run: its result comes when it has.
+      if (late_job_ && late_job_->command.seq == request.seq) return;
+      send(JobAck{request.seq, AckCode::kUnknown, 0});
       return;
     case RequestKind::kReboot: {
       if (last_reboot_ && last_reboot_->seq == request.seq) {
@@ -175,6 +205,7 @@ void SimNode::handle_request(const Request& request) {
         return;
       }
       late_job_.reset();  // a restarted node has forgotten it
+      losing_.clear();    // the link that lost results came back with the reboot
       const Result<void> rebooted = robot_.reboot();
       if (rebooted.has_value()) estop_latched_ = false;
       last_reboot_ = RebootResult{
@@ -185,7 +216,7 @@ void SimNode::handle_request(const Request& request) {
       return;
     }
     case RequestKind::kBeacon:
-      robot_.activate_beacon();
+      static_cast<void>(robot_.activate_beacon());  // the STATUS says whether it is on
       send(StatusReply{request.seq, robot_.status()});
       return;
   }

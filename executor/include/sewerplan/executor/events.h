@@ -130,9 +130,10 @@ struct TaskDroppedEvent {
   friend bool operator==(const TaskDroppedEvent&, const TaskDroppedEvent&) = default;
 };
 
-// "beacon": switched on.
+// "beacon": asked for, and whether the robot confirmed it (hal::BeaconState).
 struct BeaconEvent {
   std::string reason;
+  hal::BeaconState state = hal::BeaconState::kConfirmed;
   friend bool operator==(const BeaconEvent&, const BeaconEvent&) = default;
 };
 
@@ -145,6 +146,7 @@ struct MissionEndEvent {
   std::size_t replans = 0;
   PlanResponse::Decision decision = PlanResponse::Decision::kFollowPlan;  // the Replanner's last
   BeaconCause beacon_cause = BeaconCause::kNone;
+  hal::BeaconState beacon = hal::BeaconState::kNone;  // written when not kNone
   friend bool operator==(const MissionEndEvent&, const MissionEndEvent&) = default;
 };
 

@@ -55,6 +55,9 @@ struct MissionReport {
   // "stuck"; the event log's mission_end and every --json output carry it.
   PlanResponse::Decision decision = PlanResponse::Decision::kFollowPlan;
   BeaconCause beacon_cause = BeaconCause::kNone;
+  // Whether the robot confirmed the beacon (kNone: none was asked for); the text says "beacon on"
+  // only when it did.
+  hal::BeaconState beacon = hal::BeaconState::kNone;
   std::string end;  // "exit M4", why the beacon is on, or where the robot was halted
   std::vector<std::string> tasks_done;                       // in the order done
   std::vector<std::pair<std::string, std::string>> dropped;  // task name, reason

@@ -37,6 +37,15 @@ struct RobotError {
   friend bool operator==(const RobotError&, const RobotError&) = default;
 };
 
+// What became of a request to switch the locator beacon on: the robot says it is on, or the
+// request went out and no answer confirmed it (it may be on), or it could not even be sent (the
+// line is closed: most likely off). kNone: no beacon was asked for.
+enum class BeaconState { kNone, kConfirmed, kUnconfirmed, kNotSent };
+
+// "none", "confirmed", "unconfirmed", "not-sent"; and back (empty for any other text).
+std::string_view to_string(BeaconState state);
+std::optional<BeaconState> parse_beacon_state(std::string_view name);
+
 struct JobReport {
   std::optional<RobotError> error;  // empty: the job was done
   double progress_m = 0;            // distance driven by this job (drives and scans)
@@ -66,8 +75,14 @@ class Robot {
   // Restarts the robot's control software; the error, if the fault was permanent, reads
   // "reboot failed: why".
   virtual Result<void> reboot() = 0;
-  // Switches on the locator beacon, so that the robot can be found and recovered.
-  virtual void activate_beacon() = 0;
+  // The report of the last job when the one execute() returned was not the robot's own: a link
+  // that lost the job's result (CanRobot: a MALFUNCTION "CAN link: ..." with the progress last
+  // heard) asks the robot for it when it reboots, so that the job goes on from where the robot
+  // really is. Empty otherwise (every in-process robot), and after it was taken once.
+  virtual std::optional<JobReport> recovered_report() { return std::nullopt; }
+  // Switches on the locator beacon, so that the robot can be found and recovered; says whether the
+  // robot confirmed it.
+  virtual BeaconState activate_beacon() = 0;
   // Stops the robot where it is: the job running ends early (its report, a MALFUNCTION
   // "emergency stop", says how far it got), and every job after it fails the same way, the robot
   // not moving, until reboot() clears the stop. Thread-safe (above); returns at once.

@@ -104,7 +104,10 @@ class SimRobot final : public Robot {
   JobReport execute(const Job& job) override;
   RobotStatus status() const override { return status_; }
   Result<void> reboot() override;
-  void activate_beacon() override { status_.beacon_on = true; }
+  BeaconState activate_beacon() override {
+    status_.beacon_on = true;
+    return BeaconState::kConfirmed;
+  }
   void emergency_stop() override { stopped_.store(true); }
   bool emergency_stopped() const { return stopped_.load(); }
 

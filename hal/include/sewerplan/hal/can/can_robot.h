@@ -42,10 +42,13 @@
 namespace sewerplan::hal {
 
 struct CanRobotOptions {
-  double ack_timeout_s = 0.5;      // for an acknowledgement, a status or a reboot result
-  double link_timeout_s = 2.0;     // the longest silence from the node while a job runs
-  double job_timeout_s = 3600.0;   // the longest job
-  int attempts = 3;                // sends of a message before giving up (>= 1)
+  double ack_timeout_s = 0.5;     // for an acknowledgement, a status or a reboot result
+  double link_timeout_s = 2.0;    // the longest silence from the node while a job runs
+  double job_timeout_s = 3600.0;  // the longest job
+  int attempts = 3;               // sends of a message unanswered before giving up (>= 1)
+  // Further sends of a message whose answer arrives damaged (some of its frames heard, not all):
+  // the node is there, and each copy it sends again fills the gaps the last one left.
+  int max_resends = 16;
   double heartbeat_s = 0.5;        // the controller's heartbeat period while it waits
   std::size_t max_bad_input = 16;  // garbled or malformed frames tolerated in one exchange
   const Clock* clock = nullptr;    // for timeouts; empty: a SteadyClock
@@ -73,8 +76,14 @@ class CanRobot final : public Robot {
   JobReport execute(const Job& job) override;
   // The status that came with the node's last answer.
   RobotStatus status() const override { return status_; }
+  // Recovers the bus, restarts the node and, when the last job's result was lost, asks the node
+  // for it (RESULT_REQUEST) before anything else is sent: recovered_report() then has it.
   Result<void> reboot() override;
-  void activate_beacon() override;
+  std::optional<JobReport> recovered_report() override;
+  // kConfirmed when the node's STATUS says the beacon is on; kUnconfirmed when the request went
+  // out and no answer (or one without the beacon) came; kNotSent when the bus refused it (a send
+  // failed, or the bus reported an error: bus-off, a closed line).
+  BeaconState activate_beacon() override;
   void emergency_stop() override { stop_requested_.store(true); }
 
   const CanLinkStats& stats() const { return stats_; }
@@ -89,8 +98,9 @@ class CanRobot final : public Robot {
                                const std::function<Verdict(const Message&)>& judge,
                                std::string& problem, bool& bus_failed, bool stoppable = false);
   Result<void> send(const Message& message);
-  // Sends `request` until `judge` takes an answer, at most options_.attempts times.
-  std::optional<Message> exchange(const Message& request, double timeout_s,
+  // Sends `request` until `judge` takes an answer: at most options_.attempts sends that nothing of
+  // an answer came back to, and options_.max_resends more whose answer arrived damaged.
+  std::optional<Message> exchange(const Request& request, double timeout_s,
                                   const std::function<Verdict(const Message&)>& judge,
                                   std::string& problem, bool stoppable = false);
   // Sends a request of `kind` with a new sequence number and takes the first `Reply` to it.
@@ -103,6 +113,8 @@ class CanRobot final : public Robot {
   JobReport stopped(double progress_m);
   void heartbeat_if_due();
   std::uint8_t next_seq() { return ++seq_; }
+  // After a reboot: what became of the job whose result was lost (recovered_), from the node.
+  Result<void> settle_lost_job();
 
   CanBus& bus_;
   CanRobotOptions options_;
@@ -116,6 +128,15 @@ class CanRobot final : public Robot {
   std::string last_bad_input_;  // in the current job, for its failure's reason
   double last_heartbeat_s_ = -1e300;
   std::atomic<bool> stop_requested_{false};  // emergency_stop(), until reboot()
+  // The exchange a wait belongs to: a frame of a node message with this sequence number counts as
+  // its answer heard (heard_), though perhaps not whole; a malformed one ends the wait at once,
+  // so that the request goes again without waiting for the timeout.
+  std::optional<std::uint8_t> awaited_seq_;
+  bool heard_ = false;
+  // The sequence number of a job sent whose result never came: settled by the next reboot().
+  std::optional<std::uint8_t> lost_job_;
+  std::optional<JobReport> recovered_;
+  std::size_t messages_sent_ = 0;  // whole, by send()
 };
 
 }  // namespace sewerplan::hal

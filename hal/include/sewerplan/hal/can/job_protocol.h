@@ -83,7 +83,12 @@ enum class AckCode : std::uint8_t {
   kIncomplete = 1,  // frames are missing: send again
   kCorrupt = 2,     // a frame's content is wrong: send again
   kRefused = 3,     // the node will not run it: emergency stop latched, or a fault
+  kUnknown = 4,     // the answer to a RESULT_REQUEST for a job the node never ran (or forgot)
 };
+// How many jobs' answers the node keeps, by sequence number, to answer a job sent again or a
+// RESULT_REQUEST from memory (also after a reboot). Fewer than the 255 sequence numbers a wrap
+// takes, so that no two kept jobs share a number.
+inline constexpr std::size_t kKeptJobs = 16;
 enum class StopReason : std::uint8_t { kController = 0, kLinkLost = 1, kProtocolError = 2 };
 enum class NodeState : std::uint8_t { kIdle = 0, kBusy = 1, kStopped = 2, kFaulted = 3 };
 
@@ -161,8 +166,10 @@ struct Malformed {
 using Decoded = std::variant<Message, Malformed>;
 
 // Assembles frames into messages. Keeps at most one partial message per type (a new sequence
-// number drops the old one), so memory is bounded whatever arrives. Frames of other protocols are
-// counted and ignored.
+// number drops the old one), so memory is bounded whatever arrives. A message whose end frame
+// arrived with data frames missing is reported malformed and kept: the frames of a copy sent
+// again with the same sequence number fill the gaps, so a retry repairs a loss without every
+// frame having to cross in one copy. Frames of other protocols are counted and ignored.
 class MessageDecoder {
  public:
   // A complete message, a malformed one, or nothing yet.
@@ -173,7 +180,10 @@ class MessageDecoder {
   struct Partial {
     std::uint8_t seq = 0;
     std::map<std::uint16_t, CanFrame> frames;
+    std::optional<CanFrame> end;  // once it arrived
   };
+  // Decodes the partial of `type` once its end frame and every data frame are there.
+  std::optional<Decoded> finish(MessageType type, const std::string& what);
   std::map<MessageType, Partial> partial_;
   std::size_t foreign_frames_ = 0;
 };

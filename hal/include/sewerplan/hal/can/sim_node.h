@@ -6,11 +6,12 @@
 // job, runs it on the simulated robot, sends progress and the result with the robot's status,
 // answers status, result, reboot and beacon requests, latches an emergency stop until a reboot,
 // and sends heartbeats. A job or reboot sent again with the same sequence number is answered from
-// memory, not run twice. BusFaults inject what a real bus does: lost frames (listed, or at a rate
-// drawn from a seed), garbage on the line, silence (requests ignored), bus-off, a late
-// acknowledgement. Faults are counted in protocol frames and requests, not in time, so a faulty
-// run is as repeatable as a clean one. The node runs on its own thread in tests and in
-// `sewerplan sim-node`.
+// memory, not run twice; the answers of the last kKeptJobs jobs are kept (over a reboot too), so a
+// RESULT_REQUEST for any of them is answered, and one for a job never run gets ACK kUnknown.
+// BusFaults inject what a real bus does: lost frames (listed, or at a rate drawn from a seed),
+// garbage on the line, silence (requests ignored), bus-off, a late acknowledgement. Faults are
+// counted in protocol frames and requests, not in time, so a faulty run is as repeatable as a clean
+// one. The node runs on its own thread in tests and in `sewerplan sim-node`.
 //
 //   SimRobot robot(map, profile, start, faults);
 //   Pty pty = *open_pty();
@@ -64,11 +65,16 @@ struct BusFaults {
   std::optional<Silence> silence;
   std::optional<std::uint64_t> bus_off_at;  // the request at which the node's side goes bus-off
   std::optional<LateAck> late_ack;
+  // The answers after the acknowledgement (PROGRESS and RESULT) of these jobs (counted from 0, as
+  // jobs run) are lost, every copy, until the node's next reboot: a link that fails while the job
+  // runs and comes back with the reboot.
+  std::vector<std::uint64_t> lose_results;
   bool empty() const { return *this == BusFaults{}; }
   friend bool operator==(const BusFaults&, const BusFaults&) = default;
 };
 
-// "drop=3,7;drop-rate=0.01;seed=5;garbage=2;silence=10+3;bus-off=12;late-ack=4@1.5" (any subset,
+// "drop=3,7;drop-rate=0.01;seed=5;garbage=2;silence=10+3;bus-off=12;late-ack=4@1.5;lose-result=6"
+// (any subset,
 // in any order; docs/can.md). The error names the bad item.
 Result<BusFaults> parse_bus_faults(std::string_view spec);
 std::ostream& operator<<(std::ostream& os, const BusFaults& faults);
@@ -82,7 +88,7 @@ struct SimNodeOptions {
 struct SimNodeStats {
   std::size_t requests = 0;
   std::size_t jobs_run = 0;
-  std::size_t repeats = 0;         // jobs and reboots answered from memory
+  std::size_t repeats = 0;         // jobs, results and reboots answered from memory
   std::size_t malformed = 0;       // messages that could not be read
   std::size_t ignored = 0;         // requests dropped by a silence or a bus-off
   std::size_t frames_dropped = 0;  // node frames lost by fault injection
@@ -124,8 +130,18 @@ class SimNode {
   SimNodeStats stats_;
   std::uint64_t frames_sent_ = 0;
   bool estop_latched_ = false;
-  std::optional<JobCommand> last_job_;
-  std::vector<Message> last_job_answer_;
+  // The last kKeptJobs jobs run, with their answers (ACK, PROGRESS, RESULT), oldest first; kept
+  // over a reboot.
+  struct Kept {
+    JobCommand command;
+    std::vector<Message> answer;
+    std::uint64_t number = 0;  // counted from 0, as jobs run
+  };
+  const Kept* kept(std::uint8_t seq) const;
+  // Sends the kept answers of a job, but those a lose-result fault loses.
+  void answer(const Kept& job, bool result_only);
+  std::vector<Kept> kept_;
+  std::vector<std::uint64_t> losing_;  // lose-result jobs whose answers are lost until a reboot
   std::optional<RebootResult> last_reboot_;
   // The job whose acknowledgement a late-ack fault holds back, and when it is run and answered.
   struct LateJob {
