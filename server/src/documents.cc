@@ -188,7 +188,8 @@ Json report_json(const executor::MissionReport& r) {
           {"planning_times_s", r.planning_times_s},
           {"jobs", r.jobs},
           {"recoveries", r.recoveries},
-          {"battery_reserve_kept", r.battery_reserve_kept}};
+          {"battery_reserve_kept", r.battery_reserve_kept},
+          {"exit_on_reserve", r.exit_on_reserve}};
 }
 
 }  // namespace sewerplan::server
