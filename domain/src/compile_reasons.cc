@@ -117,8 +117,11 @@ std::string CompileReasons::fatal(const std::vector<Cost>& exit_dist, bool ends_
   if (mission_.exits.size() > 8) names += ", ...";
   if (exit_dist[0] == kInfiniteCost) {
     // The route searches stop at the battery, so "not found" covers both: name both.
+    // On the reserve itself (the Replanner's last way out) there is no reserve to be above.
+    const bool reserve = mission_.battery_reserve_fraction > 0;
     return "\n  - no exit (" + names + ") can be reached from " + origin() + " on the " +
-           energy(bound_) + " left above the reserve, within " + limits();
+           energy(bound_) + (reserve ? " left above the reserve" : " left") + ", within " +
+           limits();
   }
   if (exit_dist[0] > bound_) {
     return "\n  - reaching the nearest exit needs at least " + energy(exit_dist[0]) + ", but " +

@@ -90,11 +90,11 @@ TEST(TrueCauseFromHere, NoRouteFromHereWhenTheRobotIsNotAtTheStartIssue30) {
   auto mission = read_mission(testing::dataset_path("ais-testbed/missions/paper.json"), *map, d);
   ASSERT_TRUE(mission.has_value());
   // The robot has driven to P4 and is shut in there, P4 blocked on both sides of it.
+  mission->tasks.clear();
   domain::MissionProgress progress = domain::initial_progress(*mission, *map);
   progress.position = domain::InPipe{*map->find_pipe("P4"), 4.0};
   progress.energy_used_wh = 5;
   mission->blockages = {{*map->find_pipe("P4"), 3.0}, {*map->find_pipe("P4"), 5.0}};
-  mission->tasks.clear();
   const Result<PlanOutcome> outcome = plan_mission(*map, *mission, progress, {});
   ASSERT_FALSE(outcome.has_value());
   EXPECT_THAT(outcome.error().message, HasSubstr("can be reached from here (in pipe P4 at 4 m)"));
