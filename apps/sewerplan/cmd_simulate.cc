@@ -7,6 +7,7 @@
 #include <csignal>
 #include <filesystem>
 #include <iostream>
+#include <mutex>
 #include <optional>
 #include <ostream>
 #include <thread>
@@ -55,7 +56,10 @@ struct SimulateOptions {
 
 // Ctrl-C (SIGINT) and SIGTERM halt the mission (Executor::halt: the robot's emergency stop, the
 // log closed, exit 4) instead of killing the process with the robot driving. The handler only
-// writes a byte to a pipe (async-signal-safe); a watcher thread reads it and calls halt().
+// writes a byte to a pipe (async-signal-safe); a watcher thread reads it and calls halt(). It is
+// installed before the map is read: a signal that comes before the executor exists (while the map
+// loads) halts it as soon as it is attached, so the report and the log are still written. A halt
+// while a plan is computed cancels the planner (Executor::halt is its cancel flag).
 int g_signal_pipe_write = -1;
 
 extern "C" void on_halt_signal(int) {
@@ -69,7 +73,7 @@ extern "C" void on_halt_signal(int) {
 
 class HaltOnSignal {
  public:
-  explicit HaltOnSignal(executor::Executor& executor) {
+  HaltOnSignal() {
     if (::pipe(fds_) != 0) return;
     g_signal_pipe_write = fds_[1];
     struct sigaction action {};
@@ -77,7 +81,7 @@ class HaltOnSignal {
     sigemptyset(&action.sa_mask);
     sigaction(SIGINT, &action, &old_int_);
     sigaction(SIGTERM, &action, &old_term_);
-    watcher_ = std::thread([this, &executor] {
+    watcher_ = std::thread([this] {
       pollfd fd{.fd = fds_[0], .events = POLLIN, .revents = 0};
       while (true) {
         if (::poll(&fd, 1, -1) < 0) {
@@ -86,9 +90,22 @@ class HaltOnSignal {
         }
         char byte = 0;
         if (::read(fds_[0], &byte, 1) != 1 || byte == 'q') return;
-        executor.halt();
+        const std::lock_guard lock(mutex_);
+        signalled_ = true;
+        if (executor_ != nullptr) executor_->halt();
       }
     });
+  }
+  // From now on a signal halts `executor`; one that came before halts it now.
+  void attach(executor::Executor& executor) {
+    const std::lock_guard lock(mutex_);
+    executor_ = &executor;
+    if (signalled_) executor.halt();
+  }
+  // Before the executor is destroyed.
+  void detach() {
+    const std::lock_guard lock(mutex_);
+    executor_ = nullptr;
   }
   HaltOnSignal(const HaltOnSignal&) = delete;
   HaltOnSignal& operator=(const HaltOnSignal&) = delete;
@@ -106,12 +123,16 @@ class HaltOnSignal {
 
  private:
   int fds_[2] = {-1, -1};
+  std::mutex mutex_;
+  bool signalled_ = false;                  // under mutex_
+  executor::Executor* executor_ = nullptr;  // under mutex_
   struct sigaction old_int_ {};
   struct sigaction old_term_ {};
   std::thread watcher_;
 };
 
 int run(const SimulateOptions& o, Context& c) {
+  HaltOnSignal halt_on_signal;
   Diagnostics diagnostics;
   Result<SimWorld> world = read_sim_world({o.map, o.gis_fields}, o.mission, o.faults,
                                           o.random_faults, diagnostics, o.condition);
@@ -175,10 +196,9 @@ int run(const SimulateOptions& o, Context& c) {
   }
   // With --json, standard output is the report alone: the live log goes to standard error.
   if (!o.quiet) executor.subscribe(executor::readable_writer(o.json ? c.err : c.out));
-  const executor::MissionReport report = [&] {
-    HaltOnSignal halt_on_signal(executor);
-    return executor.run();
-  }();
+  halt_on_signal.attach(executor);
+  const executor::MissionReport report = executor.run();
+  halt_on_signal.detach();
   if (o.json) {
     print_json(c.out, report_json(report));
   } else {

@@ -20,15 +20,18 @@ using Json = nlohmann::ordered_json;
 double ms(double seconds) { return std::round(seconds * 1e6) / 1e3; }
 
 Json execution_json(const Execution& e) {
-  return Json{{"tasks", e.tasks},
-              {"outcome", std::string(to_string(e.outcome))},
-              {"end", e.end},
-              {"reserve_kept", e.reserve_kept},
-              {"replans", e.replans},
-              {"time_s", e.time_s},
-              {"energy_wh", e.energy_wh},
-              {"disabled", e.disabled},
-              {"beacon_cause", std::string(executor::to_string(e.beacon_cause))}};
+  Json j{{"tasks", e.tasks},
+         {"outcome", std::string(to_string(e.outcome))},
+         {"end", e.end},
+         {"reserve_kept", e.reserve_kept}};
+  // Only when true, so records of runs that never needed it stay as they were.
+  if (e.exit_on_reserve) j["exit_on_reserve"] = true;
+  j["replans"] = e.replans;
+  j["time_s"] = e.time_s;
+  j["energy_wh"] = e.energy_wh;
+  j["disabled"] = e.disabled;
+  j["beacon_cause"] = std::string(executor::to_string(e.beacon_cause));
+  return j;
 }
 
 Json planning_json(const Execution& e) {
@@ -93,6 +96,7 @@ Execution read_execution(JsonFields& run, std::string_view key, std::string_view
   }
   x.end = f->string("end").value_or("");
   x.reserve_kept = f->boolean("reserve_kept").value_or(false);
+  x.exit_on_reserve = f->boolean("exit_on_reserve", kOptional).value_or(false);
   x.replans = f->count("replans", kMaxCount).value_or(0);
   x.time_s = f->number("time_s").value_or(0);
   x.energy_wh = f->number("energy_wh").value_or(0);

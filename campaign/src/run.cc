@@ -87,6 +87,7 @@ Execution execute(const SewerMap& map, const Mission& mission, const hal::FaultS
   e.tasks = report.tasks_done.size();
   e.end = report.end;
   e.reserve_kept = report.battery_reserve_kept;
+  e.exit_on_reserve = report.exit_on_reserve;
   e.replans = report.replans;
   e.time_s = report.time_s;
   e.energy_wh = report.energy_wh;

@@ -55,7 +55,8 @@ void figures(const std::vector<const RunResult*>& runs, const Execution RunResul
     if (r->could_reach_exit && e.outcome != Outcome::kExit && e.outcome != Outcome::kEndPoint) {
       ++f.missed_exits;
     }
-    if (!e.reserve_kept) ++f.reserve_violations;
+    if (e.exit_on_reserve) ++f.exits_on_reserve;
+    if (!e.reserve_kept && !e.exit_on_reserve) ++f.reserve_violations;
     replans += static_cast<double>(e.replans);
     f.replans_max = std::max(f.replans_max, e.replans);
     for (double t : e.planning_times_s) planning_ms.push_back(t * 1000);
@@ -102,6 +103,7 @@ Json policy_json(const PolicyFigures& f) {
               {"beacons_by_cause", causes},
               {"beacons_ended_otherwise_by_cause", otherwise_causes},
               {"reserve_violations", f.reserve_violations},
+              {"exits_on_reserve", f.exits_on_reserve},
               {"replans_mean", f.replans_mean},
               {"replans_max", f.replans_max},
               {"planning_ms_p50", f.planning_p50_ms},
@@ -326,6 +328,8 @@ void write_summary_markdown(const Summary& s, std::ostream& out) {
       << s.baseline.missed_exits << " |\n";
   out << "| battery-reserve violations | " << s.ours.reserve_violations << " | "
       << s.baseline.reserve_violations << " |\n";
+  out << "| sent out on the reserve (no exit above it) | " << s.ours.exits_on_reserve << " | "
+      << s.baseline.exits_on_reserve << " |\n";
   out << "| replans per mission, mean / max | " << num(s.ours.replans_mean) << " / "
       << s.ours.replans_max << " | " << num(s.baseline.replans_mean) << " / "
       << s.baseline.replans_max << " |\n";

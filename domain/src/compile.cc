@@ -101,6 +101,14 @@ class SewerTaskCompiler {
     }
     build_task();
     if (build_stopped_) return stopped_error(*build_stopped_, "the compile");
+    // Issue 30: a task cut off by a blockage or a closure is named with its cause before any
+    // search, rather than the search's "no plan within the battery" blaming the battery.
+    if (auto why = undoable_reasons(); !why.empty()) {
+      return Error{ErrorCode::kNoPlan,
+                   (options_.select_goals ? "the mission cannot be ended:"
+                                          : "the mission cannot be completed:") +
+                       why};
+    }
     if (contingency_search_ && contingency_search_->interrupted()) return stop_error();
     result_.statistics_.keys = keys_.size();
     result_.statistics_.graph_nodes = graph.size();
@@ -381,7 +389,7 @@ class SewerTaskCompiler {
         }
       }
     }
-    return "the robot's limits and the mission's closures";
+    return "no way there within the robot's limits, the mission's closures and the battery left";
   }
 
   void build_task();
@@ -466,14 +474,27 @@ class SewerTaskCompiler {
     }
     return need;
   }
+  // The task's actions from each key, each recorded in task_moves_.
   void add_task_actions(std::size_t index, VarId pos);
+  void add_task_actions_from(std::size_t index, VarId pos, std::uint32_t y);
+  // The pending tasks none of whose actions starts at a key the robot can get to: from where it
+  // is within the battery, or from where another task's action (that it can get to) leaves it,
+  // and on from there. Runtime: O(rounds x moves x k), on the keys only.
+  std::vector<std::size_t> cut_off_tasks() const;
+  // "\n  - task 'x' (kind): reason" for each task no action can do from where the robot can get
+  // (undoable_); with goal selection only the final task's (the others are dropped).
+  std::string undoable_reasons() const;
   std::vector<Fact> task_preconditions(std::size_t index, VarId pos, std::uint32_t key) const;
 
   const SewerMap& map_;
   const Mission& mission_;
   const MissionProgress& progress_;
   const CompileOptions& options_;
-  std::vector<std::size_t> undoable_;  // pending tasks without an action (goal selection)
+  // Pending tasks (indices into pending_) no action can do from where the robot can get: a
+  // blockage or a closure in the way, found before any search.
+  std::vector<std::size_t> undoable_;
+  // Per pending task: its actions as (key it starts at, key it leaves the robot at).
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> task_moves_;
   SewerTask result_;
   CompiledTask::Builder builder_;
   std::vector<TaskId> pending_;
@@ -556,6 +577,53 @@ std::vector<Fact> SewerTaskCompiler::task_preconditions(std::size_t index, VarId
 }
 
 void SewerTaskCompiler::add_task_actions(std::size_t index, VarId pos) {
+  if (task_moves_.size() <= index) task_moves_.resize(index + 1);
+  for (std::uint32_t y = 0; y < k(); ++y) add_task_actions_from(index, pos, y);
+}
+
+std::vector<std::size_t> SewerTaskCompiler::cut_off_tasks() const {
+  std::vector<bool> reached(k(), false);
+  const auto reach_from = [&](std::uint32_t from) {
+    for (std::uint32_t b = 0; b < k(); ++b) {
+      if (dist_[from * k() + b] <= bound_) reached[b] = true;
+    }
+  };
+  reached[0] = true;
+  reach_from(0);
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (const auto& moves : task_moves_) {
+      for (const auto& [from, to] : moves) {
+        if (!reached[from] || reached[to]) continue;
+        reached[to] = true;
+        reach_from(to);
+        grew = true;
+      }
+    }
+  }
+  std::vector<std::size_t> cut_off;
+  for (std::size_t i = 0; i < task_moves_.size(); ++i) {
+    const auto& moves = task_moves_[i];
+    if (std::none_of(moves.begin(), moves.end(), [&](const auto& m) { return reached[m.first]; })) {
+      cut_off.push_back(i);
+    }
+  }
+  return cut_off;
+}
+
+std::string SewerTaskCompiler::undoable_reasons() const {
+  std::string out;
+  for (std::size_t i : undoable_) {
+    const Task& task = mission_.task(pending_[i]);
+    if (options_.select_goals && !task.final) continue;
+    out += "\n  - " + std::string(task.final ? "the final task '" : "task '") + task.name + "' (" +
+           std::string(to_string(task.kind)) +
+           "): no position the robot can reach lets it do the task: " + blocked_reason(task);
+  }
+  return out;
+}
+
+void SewerTaskCompiler::add_task_actions_from(std::size_t index, VarId pos, std::uint32_t y) {
   PositionGraph& graph = *result_.graph_;
   const TaskId t = pending_[index];
   const Task& task = mission_.task(t);
@@ -563,72 +631,75 @@ void SewerTaskCompiler::add_task_actions(std::size_t index, VarId pos) {
   const RobotProfile& profile = mission_.profile;
   const std::string label = "'" + task.name + "' from key ";
   const Fact done[] = {{var, 1}};
-  for (std::uint32_t y = 0; y < k(); ++y) {
-    if (const auto* m = std::get_if<ManholeId>(&task.place)) {
-      if (manhole_of(graph.position(keys_[y])) != *m) continue;
-      std::optional<PlanStep> step;
-      if (!task.final) step = GoToManhole{*m, t};
-      add_action(task_preconditions(index, pos, y), done, 0,
-                 (task.final ? "finish " : "go-to ") + label + std::to_string(y), {}, step);
-      continue;
+  auto& moves = task_moves_[index];
+  if (const auto* m = std::get_if<ManholeId>(&task.place)) {
+    if (manhole_of(graph.position(keys_[y])) != *m) return;
+    std::optional<PlanStep> step;
+    if (!task.final) step = GoToManhole{*m, t};
+    add_action(task_preconditions(index, pos, y), done, 0,
+               (task.final ? "finish " : "go-to ") + label + std::to_string(y), {}, step);
+    moves.emplace_back(y, y);
+    return;
+  }
+  const auto& spot = std::get<PipeSpot>(task.place);
+  if (graph.pipe_of(keys_[y]) != spot.pipe) return;
+  const double at = graph.offset_of(keys_[y]);
+  const auto pre = task_preconditions(index, pos, y);
+  auto blocked = [&](double x) { return graph.blocked_between(spot.pipe, at, x); };
+  auto move_to = [&](double x, std::vector<Fact> eff) {
+    const std::uint32_t to = x != at ? key_of_.at(graph.spot(spot.pipe, x)) : y;
+    if (x != at) eff.push_back({pos, static_cast<std::int32_t>(to)});
+    moves.emplace_back(y, to);
+    return eff;
+  };
+  switch (task.kind) {
+    case TaskKind::kTakeWaterSample: {
+      const double x = spot.offset_m.value_or(at);
+      if (blocked(x)) break;
+      add_action(pre, move_to(x, {{var, 1}}),
+                 to_cost(std::abs(x - at) / profile.speed_mps + profile.sample_s),
+                 "sample " + label + std::to_string(y), {}, TakeWaterSample{spot.pipe, t}, 0,
+                 in_pipe_need(spot.pipe, keys_[y], at, x, 0, profile.speed_mps));
+      break;
     }
-    const auto& spot = std::get<PipeSpot>(task.place);
-    if (graph.pipe_of(keys_[y]) != spot.pipe) continue;
-    const double at = graph.offset_of(keys_[y]);
-    const auto pre = task_preconditions(index, pos, y);
-    auto blocked = [&](double x) { return graph.blocked_between(spot.pipe, at, x); };
-    auto move_to = [&](double x, std::vector<Fact> eff) {
-      if (x != at)
-        eff.push_back({pos, static_cast<std::int32_t>(key_of_.at(graph.spot(spot.pipe, x)))});
-      return eff;
-    };
-    switch (task.kind) {
-      case TaskKind::kTakeWaterSample: {
-        const double x = spot.offset_m.value_or(at);
-        if (blocked(x)) break;
-        add_action(pre, move_to(x, {{var, 1}}),
-                   to_cost(std::abs(x - at) / profile.speed_mps + profile.sample_s),
-                   "sample " + label + std::to_string(y), {}, TakeWaterSample{spot.pipe, t}, 0,
-                   in_pipe_need(spot.pipe, keys_[y], at, x, 0, profile.speed_mps));
+    case TaskKind::kGoTo: {
+      if (task.final && !spot.offset_m) {
+        add_action(pre, done, 0, "finish " + label + std::to_string(y), {}, std::nullopt);
+        moves.emplace_back(y, y);
         break;
       }
-      case TaskKind::kGoTo: {
-        if (task.final && !spot.offset_m) {
-          add_action(pre, done, 0, "finish " + label + std::to_string(y), {}, std::nullopt);
-          break;
-        }
-        const double x = spot.offset_m.value_or(at);
-        if (blocked(x)) break;
-        add_action(pre, move_to(x, {{var, 1}}), to_cost(std::abs(x - at) / profile.speed_mps),
-                   "go-to " + label + std::to_string(y), {}, GoToPoint{spot.pipe, t}, 0,
-                   in_pipe_need(spot.pipe, keys_[y], at, x, 0, profile.speed_mps));
-        break;
+      const double x = spot.offset_m.value_or(at);
+      if (blocked(x)) break;
+      add_action(pre, move_to(x, {{var, 1}}), to_cost(std::abs(x - at) / profile.speed_mps),
+                 "go-to " + label + std::to_string(y), {}, GoToPoint{spot.pipe, t}, 0,
+                 in_pipe_need(spot.pipe, keys_[y], at, x, 0, profile.speed_mps));
+      break;
+    }
+    case TaskKind::kInspectPipe: {
+      const Pipe& pipe = map_.pipe(spot.pipe);
+      if (!graph.fully_open(spot.pipe)) break;
+      for (std::uint8_t e = 0; e < 2; ++e) {
+        const double start_end = end_offset_m(pipe, 1U - e);
+        const Node finish = graph.pipe_end(spot.pipe, e);
+        std::optional<std::uint8_t> finish_end;
+        if (keys_[y] != graph.pipe_end(spot.pipe, 1U - e)) finish_end = e;
+        // The inspection drives the whole pipe, past every hazard in it.
+        const Cost risk =
+            graph.risk_cost(spot.pipe, -1.0, pipe.length_m + 1.0, options_.risk.blockage_s);
+        const Fact eff[] = {{var, 1}, {pos, static_cast<std::int32_t>(key_of_.at(finish))}};
+        moves.emplace_back(y, key_of_.at(finish));
+        add_action(pre, eff,
+                   to_cost(std::abs(at - start_end) / profile.speed_mps +
+                           pipe.length_m / profile.inspection_speed_mps) +
+                       risk,
+                   "inspect " + label + std::to_string(y) + " to end " + std::to_string(e), {},
+                   InspectPipe{spot.pipe, t, finish_end}, risk,
+                   in_pipe_need(spot.pipe, graph.pipe_end(spot.pipe, 1U - e), start_end,
+                                end_offset_m(pipe, e),
+                                to_cost(std::abs(at - start_end) / profile.speed_mps),
+                                profile.inspection_speed_mps));
       }
-      case TaskKind::kInspectPipe: {
-        const Pipe& pipe = map_.pipe(spot.pipe);
-        if (!graph.fully_open(spot.pipe)) break;
-        for (std::uint8_t e = 0; e < 2; ++e) {
-          const double start_end = end_offset_m(pipe, 1U - e);
-          const Node finish = graph.pipe_end(spot.pipe, e);
-          std::optional<std::uint8_t> finish_end;
-          if (keys_[y] != graph.pipe_end(spot.pipe, 1U - e)) finish_end = e;
-          // The inspection drives the whole pipe, past every hazard in it.
-          const Cost risk =
-              graph.risk_cost(spot.pipe, -1.0, pipe.length_m + 1.0, options_.risk.blockage_s);
-          const Fact eff[] = {{var, 1}, {pos, static_cast<std::int32_t>(key_of_.at(finish))}};
-          add_action(pre, eff,
-                     to_cost(std::abs(at - start_end) / profile.speed_mps +
-                             pipe.length_m / profile.inspection_speed_mps) +
-                         risk,
-                     "inspect " + label + std::to_string(y) + " to end " + std::to_string(e), {},
-                     InspectPipe{spot.pipe, t, finish_end}, risk,
-                     in_pipe_need(spot.pipe, graph.pipe_end(spot.pipe, 1U - e), start_end,
-                                  end_offset_m(pipe, e),
-                                  to_cost(std::abs(at - start_end) / profile.speed_mps),
-                                  profile.inspection_speed_mps));
-        }
-        break;
-      }
+      break;
     }
   }
 }
@@ -675,14 +746,12 @@ void SewerTaskCompiler::build_task() {
   }
   for (std::size_t i = 0; i < pending_.size(); ++i) {
     if (build_interrupted()) return;
-    const std::size_t before = result_.task_step_.size();
+    // A task that no action can do from where the robot can get (a blockage in the way) is
+    // dropped with that reason (goal selection) or named as the cause (issue 30), rather than
+    // forgone or failed as if for the battery.
     add_task_actions(i, pos);
-    // With goal selection, a task that no action can do (a blockage in the way) is dropped with
-    // that reason rather than forgone as if for the battery.
-    if (options_.select_goals && result_.task_step_.size() == before) {
-      undoable_.push_back(i);
-    }
   }
+  undoable_ = cut_off_tasks();
   if (options_.select_goals) {
     // Forgoing a task costs more than any plan within the bound (CompiledTask::penalty_unit()).
     const Cost penalty = 2 * (bound_ + 1);

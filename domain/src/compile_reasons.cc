@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "sewerplan/core/message_text.h"
+#include "sewerplan/domain/robot_state.h"
 
 namespace sewerplan::domain::detail {
 namespace {
@@ -29,6 +30,14 @@ std::string CompileReasons::limits() const {
          " deg, steps <= " + fixed(p.max_step_m, 2) + " m) and the mission's closures";
 }
 
+std::string CompileReasons::origin() const {
+  const SewerMap& map = graph_.map();
+  // Issue 30: after the robot has moved, "from the start" named the wrong place.
+  const bool at_start = !(progress_.energy_used_wh > 0) &&
+                        progress_.position == initial_progress(mission_, map).position;
+  return (at_start ? "the start (" : "here (") + describe(progress_.position, map) + ")";
+}
+
 bool CompileReasons::at_task(const Task& task, Node n) const {
   if (const auto* m = std::get_if<ManholeId>(&task.place)) {
     return manhole_of(graph_.position(n)) == *m;
@@ -38,7 +47,6 @@ bool CompileReasons::at_task(const Task& task, Node n) const {
 
 std::string CompileReasons::unreachable(const Task& task) const {
   const SewerMap& map = graph_.map();
-  const std::string start = describe(progress_.position, map);
   if (const auto* spot = std::get_if<PipeSpot>(&task.place)) {
     const Pipe& pipe = map.pipe(spot->pipe);
     const RobotProfile& p = mission_.profile;
@@ -62,8 +70,8 @@ std::string CompileReasons::unreachable(const Task& task) const {
              (narrow ? fixed(p.max_pipe_diameter_m, 2) : t.limit) + " m";
     }
   }
-  return "no route from the start (" + start + ") reaches " + describe(task.place, map) +
-         " within " + limits();
+  return "no route from " + origin() + " reaches " + describe(task.place, map) + " within " +
+         limits();
 }
 
 std::string CompileReasons::task_reason(const Task& task, const std::vector<Node>& keys,
@@ -115,9 +123,11 @@ std::string CompileReasons::fatal(const std::vector<Cost>& exit_dist, bool ends_
   if (mission_.exits.size() > 8) names += ", ...";
   if (exit_dist[0] == kInfiniteCost) {
     // The route searches stop at the battery, so "not found" covers both: name both.
-    return "\n  - no exit (" + names + ") can be reached from the start (" +
-           describe(progress_.position, map) + ") on the " + energy(bound_) +
-           " left above the reserve, within " + limits();
+    // On the reserve itself (the Replanner's last way out) there is no reserve to be above.
+    const bool reserve = mission_.battery_reserve_fraction > 0;
+    return "\n  - no exit (" + names + ") can be reached from " + origin() + " on the " +
+           energy(bound_) + (reserve ? " left above the reserve" : " left") + ", within " +
+           limits();
   }
   if (exit_dist[0] > bound_) {
     return "\n  - reaching the nearest exit needs at least " + energy(exit_dist[0]) + ", but " +

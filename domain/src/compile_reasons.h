@@ -38,6 +38,9 @@ class CompileReasons {
   std::string unreachable(const Task& task) const;
   std::string energy(Cost cost) const;
   std::string limits() const;
+  // "the start (place)" when the robot is where the mission starts and has used no energy, else
+  // "here (place)".
+  std::string origin() const;
   bool at_task(const Task& task, Node n) const;
 
   const PositionGraph& graph_;

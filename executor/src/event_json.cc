@@ -177,6 +177,13 @@ std::optional<Event> event_of(const std::string& type, FieldReader& r) {
     r.get("task", t.task);
     r.get("reason", t.reason);
     e.what = std::move(t);
+  } else if (type == "reserve") {
+    ReserveEvent x;
+    r.get("end", x.end);
+    r.get("energy_wh", x.energy_wh);
+    r.get("left_wh", x.left_wh);
+    r.get("reserve_wh", x.reserve_wh);
+    e.what = std::move(x);
   } else if (type == "beacon") {
     BeaconEvent b;
     r.get("reason", b.reason);

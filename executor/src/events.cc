@@ -69,6 +69,7 @@ std::string_view type_name(const Event& event) {
           [](const FailureEvent&) -> std::string_view { return "failure"; },
           [](const TaskDoneEvent&) -> std::string_view { return "task_done"; },
           [](const TaskDroppedEvent&) -> std::string_view { return "task_dropped"; },
+          [](const ReserveEvent&) -> std::string_view { return "reserve"; },
           [](const BeaconEvent&) -> std::string_view { return "beacon"; },
           [](const MissionEndEvent&) -> std::string_view { return "mission_end"; }},
       event.what);
@@ -124,6 +125,12 @@ Fields fields_of(const Event& event) {
                  },
                  [](const TaskDroppedEvent& e) -> Fields {
                    return {{"task", e.task}, {"reason", e.reason}};
+                 },
+                 [](const ReserveEvent& e) -> Fields {
+                   return {{"end", e.end},
+                           {"energy_wh", e.energy_wh},
+                           {"left_wh", e.left_wh},
+                           {"reserve_wh", e.reserve_wh}};
                  },
                  [](const BeaconEvent& e) -> Fields {
                    return {{"reason", e.reason}, {"state", text(hal::to_string(e.state))}};

@@ -69,7 +69,9 @@ std::ostream& operator<<(std::ostream& os, const MissionReport& r) {
     for (double t : r.planning_times_s) os << ' ' << t * 1000 << " ms";
     os << ')';
   }
-  os << "\nbattery reserve " << (r.battery_reserve_kept ? "kept" : "NOT kept") << '\n';
+  os << "\nbattery reserve " << (r.battery_reserve_kept ? "kept" : "NOT kept");
+  if (r.exit_on_reserve) os << " (the way out was on the reserve: no exit above it)";
+  os << '\n';
   for (const std::string& e : r.log_errors) os << "log not written: " << e << '\n';
   return os;
 }
@@ -119,7 +121,9 @@ class Executor::Run {
 
   MissionReport go() {
     if (halted()) return finish(MissionReport::Outcome::kHalted, "");
-    PlanResponse response = replanner_.plan("start");
+    std::optional<PlanResponse> first = plan_unless_halted(std::nullopt, "start");
+    if (!first) return finish(MissionReport::Outcome::kHalted, "");
+    PlanResponse response = std::move(*first);
     log_plan(false, response);
     std::optional<Failure> last_failure;
     for (;;) {
@@ -147,8 +151,9 @@ class Executor::Run {
       ++report_.replans;
       last_failure = replan->failure;
       if (replan->failure) log_failure(*replan->failure);
-      response = replan->failure ? replanner_.report_failure(*replan->failure)
-                                 : replanner_.plan(replan->reason);
+      std::optional<PlanResponse> next = plan_unless_halted(replan->failure, replan->reason);
+      if (!next) return finish(MissionReport::Outcome::kHalted, "");
+      response = std::move(*next);
       log_plan(true, response);
     }
   }
@@ -160,6 +165,16 @@ class Executor::Run {
   };
 
   double now() const { return robot_.status().elapsed_s; }
+
+  // The Replanner's answer to `failure` (or a plan for `reason`), cancelled by a halt: the halt
+  // flag is the cancel of the planner's StopCondition, so a halt while a plan is computed takes
+  // effect within the planner's next check, not after the plan. Empty when halted.
+  std::optional<PlanResponse> plan_unless_halted(const std::optional<Failure>& failure,
+                                                 const std::string& reason) {
+    Result<PlanResponse> r = replanner_.plan_cancellable(failure, reason, halt_);
+    if (!r.has_value() || halted()) return std::nullopt;
+    return std::move(*r);
+  }
 
   bool halted() const { return halt_.load(); }
 
@@ -217,6 +232,14 @@ class Executor::Run {
                    .steps = r.plan.steps.size(),
                    .cost_s = r.cost_s});
     for (const PlanObserver& observer : plan_observers_) observer(r);
+    if (r.decision == PlanResponse::Decision::kExitOnReserve) {
+      report_.exit_on_reserve = true;
+      const RobotProfile& p = mission().profile;
+      emit(ReserveEvent{.end = r.end,
+                        .energy_wh = r.energy_wh,
+                        .left_wh = robot_.status().battery_wh,
+                        .reserve_wh = p.battery_wh * replanner_.reserve_fraction()});
+    }
   }
 
   // What the Replanner is told: a blocked pipe, a closed passage, or a robot that cannot move.
@@ -337,7 +360,8 @@ class Executor::Run {
     if (needed <= available + 1e-9) return std::nullopt;
     std::ostringstream out;
     out << std::fixed << std::setprecision(1) << "battery low: the plan left needs " << needed
-        << " Wh, " << available << " Wh are left above the reserve";
+        << " Wh, " << available << " Wh are left"
+        << (replanner_.on_reserve() ? " (on the reserve)" : " above the reserve");
     return out.str();
   }
 
@@ -408,13 +432,25 @@ class Executor::Run {
     report_.outcome = outcome;
     report_.recoveries = recovery_.cleared();
     report_.end = end;
+    std::vector<bool> accounted = done_;
     for (const auto& d : replanner_.dropped()) {
       report_.dropped.emplace_back(mission().task(d.task).name, d.reason);
+      accounted[d.task.index()] = true;
+    }
+    // Issue 30: a mission that ends with the beacon or a halt leaves tasks neither done nor
+    // dropped by a plan; they are not done either, and the report counts them.
+    if (outcome != MissionReport::Outcome::kEnded) {
+      const std::string why = outcome == MissionReport::Outcome::kBeacon
+                                  ? "not done: the robot called for recovery (" + end + ")"
+                                  : "not done: the mission was halted";
+      for (TaskId t : mission().task_ids()) {
+        if (!accounted[t.index()]) report_.dropped.emplace_back(mission().task(t).name, why);
+      }
     }
     report_.time_s = status.elapsed_s;
     report_.energy_wh = p.battery_wh - status.battery_wh;
     report_.battery_reserve_kept =
-        status.battery_wh + 1e-9 >= p.battery_wh * mission().battery_reserve_fraction;
+        status.battery_wh + 1e-9 >= p.battery_wh * replanner_.reserve_fraction();
     emit(MissionEndEvent{.outcome = outcome,
                          .end = end,
                          .tasks_done = report_.tasks_done,

@@ -70,6 +70,8 @@ std::string_view to_string(PlanResponse::Decision decision) {
       return "follow-plan";
     case PlanResponse::Decision::kDegraded:
       return "degraded";
+    case PlanResponse::Decision::kExitOnReserve:
+      return "exit-on-reserve";
     case PlanResponse::Decision::kCallForRecovery:
       return "call-for-recovery";
     case PlanResponse::Decision::kStuck:
@@ -82,8 +84,8 @@ std::string_view to_string(PlanResponse::Decision decision) {
 
 std::optional<PlanResponse::Decision> parse_decision(std::string_view name) {
   for (auto d : {PlanResponse::Decision::kFollowPlan, PlanResponse::Decision::kDegraded,
-                 PlanResponse::Decision::kCallForRecovery, PlanResponse::Decision::kStuck,
-                 PlanResponse::Decision::kInvalidReport}) {
+                 PlanResponse::Decision::kExitOnReserve, PlanResponse::Decision::kCallForRecovery,
+                 PlanResponse::Decision::kStuck, PlanResponse::Decision::kInvalidReport}) {
     if (to_string(d) == name) return d;
   }
   return std::nullopt;
@@ -91,7 +93,8 @@ std::optional<PlanResponse::Decision> parse_decision(std::string_view name) {
 
 bool has_plan(PlanResponse::Decision decision) {
   return decision == PlanResponse::Decision::kFollowPlan ||
-         decision == PlanResponse::Decision::kDegraded;
+         decision == PlanResponse::Decision::kDegraded ||
+         decision == PlanResponse::Decision::kExitOnReserve;
 }
 
 bool calls_beacon(PlanResponse::Decision decision) {
@@ -103,7 +106,8 @@ Replanner::Replanner(const SewerMap& map, Mission mission, ReplannerOptions opti
     : map_(map),
       mission_(std::move(mission)),
       options_(options),
-      progress_(domain::initial_progress(mission_, map)) {
+      progress_(domain::initial_progress(mission_, map)),
+      reserve_fraction_(mission_.battery_reserve_fraction) {
   options_.planner.select_goals = true;
 }
 
@@ -265,6 +269,25 @@ Result<search::PlanOutcome> Replanner::exit_from_here(const std::string& why) {
   return outcome;
 }
 
+Result<search::PlanOutcome> Replanner::exit_on_reserve(const std::string& why) {
+  const Error none{ErrorCode::kNoPlan, why};
+  if (on_reserve_ || !(mission_.battery_reserve_fraction > 0) ||
+      options_.goals == ReplannerOptions::Goals::kPaperBaseline) {
+    return none;
+  }
+  const double fraction = mission_.battery_reserve_fraction;
+  mission_.battery_reserve_fraction = 0;
+  auto outcome = exit_from_here("no exit can be reached above the battery reserve: " + why);
+  if (!outcome.has_value()) {
+    mission_.battery_reserve_fraction = fraction;
+    if (outcome.error().code != ErrorCode::kNoPlan) return outcome;
+    return Error{ErrorCode::kNoPlan,
+                 why + "; not even on the battery reserve: " + one_line(outcome.error().message)};
+  }
+  on_reserve_ = true;
+  return outcome;
+}
+
 PlanResponse Replanner::plan(const std::string& reason) {
   const double start_s = clock().now_s();
   const double deadline_s = options_.planner.time_limit_s > 0
@@ -294,10 +317,14 @@ PlanResponse Replanner::plan(const std::string& reason) {
       cut_short = true;
     }
   }
+  if (!outcome.has_value() && outcome.error().code == ErrorCode::kNoPlan) {
+    // No exit above the reserve: the reserve is the last way out.
+    outcome = exit_on_reserve(one_line(outcome.error().message));
+  }
   const double seconds = clock().now_s() - start_s;
   if (!outcome.has_value()) {
     PlanResponse r;
-    // kNoPlan: the search proved that no exit can be reached.
+    // kNoPlan: the search proved that no exit can be reached, not even on the reserve.
     r.decision = PlanResponse::Decision::kCallForRecovery;
     r.reason = reason + "; no way to end the mission: " + one_line(outcome.error().message);
     r.planning_time_s = seconds;
@@ -313,6 +340,16 @@ PlanResponse Replanner::plan(const std::string& reason) {
   if (r.decision == PlanResponse::Decision::kFollowPlan &&
       (cut_short || !r.newly_dropped.empty())) {
     r.decision = PlanResponse::Decision::kDegraded;
+  }
+  if (on_reserve_ && has_plan(r.decision)) {
+    r.decision = PlanResponse::Decision::kExitOnReserve;
+    const double left_wh = mission_.profile.battery_wh - progress_.energy_used_wh;
+    const double reserve_wh = mission_.profile.battery_wh * reserve_fraction_;
+    std::ostringstream out;
+    out << std::fixed << std::setprecision(1)
+        << "; no exit can be reached above the battery reserve: " << r.end << " on the reserve ("
+        << r.energy_wh << " Wh of the " << left_wh << " Wh left; reserve " << reserve_wh << " Wh)";
+    r.reason += out.str();
   }
   if (has_plan(r.decision)) {
     last_steps_ = r.plan.steps;

@@ -315,6 +315,7 @@ void bind_replanner(py::module_& m) {
   py::enum_<Decision>(m, "Decision", "The Replanner's answer: what the robot does with it.")
       .value("FOLLOW_PLAN", Decision::kFollowPlan)
       .value("DEGRADED", Decision::kDegraded)
+      .value("EXIT_ON_RESERVE", Decision::kExitOnReserve)
       .value("CALL_FOR_RECOVERY", Decision::kCallForRecovery)
       .value("STUCK", Decision::kStuck)
       .value("INVALID_REPORT", Decision::kInvalidReport)

@@ -257,6 +257,11 @@ void bind_events(py::module_& m) {
   py::class_<ex::TaskDroppedEvent>(m, "TaskDroppedEvent")
       .def_readonly("task", &ex::TaskDroppedEvent::task)
       .def_readonly("reason", &ex::TaskDroppedEvent::reason);
+  py::class_<ex::ReserveEvent>(m, "ReserveEvent")
+      .def_readonly("end", &ex::ReserveEvent::end)
+      .def_readonly("energy_wh", &ex::ReserveEvent::energy_wh)
+      .def_readonly("left_wh", &ex::ReserveEvent::left_wh)
+      .def_readonly("reserve_wh", &ex::ReserveEvent::reserve_wh);
   py::class_<ex::BeaconEvent>(m, "BeaconEvent").def_readonly("reason", &ex::BeaconEvent::reason);
   py::class_<ex::MissionEndEvent>(m, "MissionEndEvent")
       .def_property_readonly("outcome",
@@ -384,7 +389,8 @@ void bind_simulate(py::module_& m) {
       .def_readonly("jobs", &ex::MissionReport::jobs)
       .def_readonly("recoveries", &ex::MissionReport::recoveries)
       .def_readonly("battery_reserve_kept", &ex::MissionReport::battery_reserve_kept)
-      .def_readonly("log_errors", &ex::MissionReport::log_errors);
+      .def_readonly("log_errors", &ex::MissionReport::log_errors)
+      .def_readonly("exit_on_reserve", &ex::MissionReport::exit_on_reserve);
   py::class_<Simulation>(m, "Simulation", "simulate()'s answer: the report and every event.")
       .def_readonly("report", &Simulation::report)
       .def_readonly("events", &Simulation::events);

@@ -190,7 +190,8 @@ Json report_json(const executor::MissionReport& r) {
           {"jobs", r.jobs},
           {"recoveries", r.recoveries},
           {"battery_reserve_kept", r.battery_reserve_kept},
-          {"log_errors", r.log_errors}};
+          {"log_errors", r.log_errors},
+          {"exit_on_reserve", r.exit_on_reserve}};
 }
 
 }  // namespace sewerplan::server

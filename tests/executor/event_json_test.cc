@@ -74,6 +74,7 @@ TEST(EventLog, EveryKindOfEventReadsBackEqual) {
       {5, FailureEvent{Failure::Kind::kStuck, std::monostate{}, "motor"}},
       {6, TaskDoneEvent{"sample"}},
       {6, TaskDroppedEvent{"inspect", "cut off"}},
+      {6.5, ReserveEvent{"exit M4", 3.25, 5.5, 6}},
       {7, BeaconEvent{"no exit"}},
       {8, MissionEndEvent{.outcome = MissionOutcome::kHalted,
                           .tasks_done = {"sample"},

@@ -3,6 +3,7 @@
 // an observer on run()'s thread and from another thread while a job runs. Part of the concurrent
 // tests (sewerplan_concurrency_tests, run under ThreadSanitizer by scripts/tsan.sh).
 #include <condition_variable>
+#include <functional>
 #include <future>
 #include <mutex>
 #include <sstream>
@@ -147,6 +148,54 @@ TEST(ExecutorHalt, AnotherThreadHaltsAMissionWhileAJobRuns) {
   const auto* end = std::get_if<MissionEndEvent>(&m.events.back().what);
   ASSERT_NE(end, nullptr);
   EXPECT_EQ(end->outcome, MissionOutcome::kHalted);
+}
+
+// A clock that, the first time the Replanner reads it (as a plan starts), lets `on_plan` run and
+// waits until it returns: a halt from another thread lands, deterministically, while the plan is
+// being computed.
+class PlanStartHook final : public Clock {
+ public:
+  explicit PlanStartHook(std::function<void()> on_plan) : on_plan_(std::move(on_plan)) {}
+  double now_s() const override {
+    std::call_once(once_, [this] {
+      std::future<void> done = std::async(std::launch::async, on_plan_);
+      done.wait();
+    });
+    return 0;
+  }
+
+ private:
+  std::function<void()> on_plan_;
+  mutable std::once_flag once_;
+};
+
+// Issue 30: a halt while a plan is computed waited for the plan (12.75 s on a 5,000-manhole
+// network with 300 tasks). The halt is the cancel of the planner's StopCondition: the plan is cut
+// short, no plan is answered or logged, and the mission ends halted before its first job.
+TEST(ExecutorHalt, AHaltFromAnotherThreadCancelsThePlanBeingComputedIssue30) {
+  testing::AisTestbed ais = testing::load_ais_testbed();
+  Executor* executor_seen = nullptr;
+  PlanStartHook clock([&] { executor_seen->halt(); });  // on another thread (std::async)
+  Replanner replanner{ais.map, ais.mission, {.clock = &clock}};
+  hal::SimRobot robot{ais.map, ais.mission.profile,
+                      hal::InPipe{std::get<domain::InPipe>(replanner.progress().position).pipe,
+                                  std::get<domain::InPipe>(replanner.progress().position).offset_m,
+                                  hal::Heading::kTowardsEnd1}};
+  Executor executor(ais.map, replanner, robot);
+  executor_seen = &executor;
+  std::vector<Event> events;
+  executor.subscribe([&](const Event& e) { events.push_back(e); });
+  const MissionReport report = executor.run();
+
+  EXPECT_EQ(report.outcome, MissionReport::Outcome::kHalted) << report;
+  EXPECT_EQ(report.jobs, 0U);
+  EXPECT_EQ(count<PlanEvent>(events), 0U);  // the plan was cancelled, not waited for
+  ASSERT_EQ(events.size(), 1U);
+  EXPECT_TRUE(std::holds_alternative<MissionEndEvent>(events.back().what));
+  // Every task is accounted for: none done, each "not done" for the halt.
+  EXPECT_EQ(report.dropped.size(), ais.mission.tasks.size()) << report;
+  // The Replanner is usable after the cancel: the next plan is a whole one.
+  EXPECT_EQ(replanner.plan().decision, PlanResponse::Decision::kFollowPlan);
 }
 
 }  // namespace

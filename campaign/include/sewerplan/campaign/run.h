@@ -97,6 +97,9 @@ struct Execution {
   Outcome outcome = Outcome::kExit;
   std::string end;  // the executor's words: "exit M4", or why the beacon is on
   bool reserve_kept = true;
+  // The Replanner sent the robot out on its reserve (no exit above it: exit-on-reserve); a
+  // reserve spent so is not a violation.
+  bool exit_on_reserve = false;
   std::size_t replans = 0;
   double time_s = 0;  // mission time and energy, simulated (deterministic)
   double energy_wh = 0;

@@ -41,7 +41,9 @@ struct PolicyFigures {
   // robot can be recovered; issue 14).
   std::array<std::size_t, 6> beacon_causes{};
   std::array<std::size_t, 6> ended_otherwise_beacon_causes{};
+  // Runs that ended below the reserve without the Replanner's exit-on-reserve.
   std::size_t reserve_violations = 0;
+  std::size_t exits_on_reserve = 0;  // runs the Replanner sent out on the reserve
   double replans_mean = 0;
   std::size_t replans_max = 0;
   double planning_p50_ms = 0;  // measured

@@ -3,7 +3,8 @@
 //
 // The Executor (executor.h) calls its observers with every event, in order, on run()'s thread:
 // a plan or replan, each action and job, a robot's error, a recovery stage tried, a failure told
-// to the Replanner, a task done or dropped, the beacon, and the mission's end. Each `Event` is the
+// to the Replanner, a task done or dropped, a way out on the battery reserve, the beacon, and the
+// mission's end. Each `Event` is the
 // mission time `t_s` (the robot's clock) and one of these structs; switch on it with std::visit.
 // Names (of tasks, pipes, manholes) are the map's and the mission's, so an event means the same
 // without them: the JSON-lines log (event_json.h) and the readable live log (event_text.h) are
@@ -130,6 +131,17 @@ struct TaskDroppedEvent {
   friend bool operator==(const TaskDroppedEvent&, const TaskDroppedEvent&) = default;
 };
 
+// "reserve": the Replanner sends the robot out on its battery reserve (kExitOnReserve): a
+// search proved that no exit can be reached above the reserve, and `end` can be reached on the
+// charge left. Right after the plan or replan event of that answer.
+struct ReserveEvent {
+  std::string end;        // the exit it heads for: "exit M4"
+  double energy_wh = 0;   // what the way out needs
+  double left_wh = 0;     // the charge the robot reports left
+  double reserve_wh = 0;  // the operator's reserve (Mission::battery_reserve_fraction)
+  friend bool operator==(const ReserveEvent&, const ReserveEvent&) = default;
+};
+
 // "beacon": asked for, and whether the robot confirmed it (hal::BeaconState).
 struct BeaconEvent {
   std::string reason;
@@ -153,13 +165,13 @@ struct MissionEndEvent {
 struct Event {
   double t_s = 0;  // mission time, the robot's clock
   std::variant<PlanEvent, ActionEvent, JobEvent, ErrorEvent, RecoveryEvent, FailureEvent,
-               TaskDoneEvent, TaskDroppedEvent, BeaconEvent, MissionEndEvent>
+               TaskDoneEvent, TaskDroppedEvent, ReserveEvent, BeaconEvent, MissionEndEvent>
       what;
   friend bool operator==(const Event&, const Event&) = default;
 };
 
 // The event's type as the log names it: "plan", "replan", "action", "job", "error", "recovery",
-// "failure", "task_done", "task_dropped", "beacon", "mission_end".
+// "failure", "task_done", "task_dropped", "reserve", "beacon", "mission_end".
 std::string_view type_name(const Event& event);
 
 // Called with every event of a run, in order, on run()'s thread.

@@ -51,8 +51,8 @@ struct MissionReport {
   using Outcome = MissionOutcome;             // kEnded, kBeacon, kHalted (events.h)
   using BeaconCause = executor::BeaconCause;  // why the beacon is on (events.h)
   Outcome outcome = Outcome::kEnded;
-  // The Replanner's last decision (replanner.h): "follow-plan", "degraded", "call-for-recovery",
-  // "stuck"; the event log's mission_end and every --json output carry it.
+  // The Replanner's last decision (replanner.h): "follow-plan", "degraded", "exit-on-reserve",
+  // "call-for-recovery", "stuck"; the event log's mission_end and every --json output carry it.
   PlanResponse::Decision decision = PlanResponse::Decision::kFollowPlan;
   BeaconCause beacon_cause = BeaconCause::kNone;
   // Whether the robot confirmed the beacon (kNone: none was asked for); the text says "beacon on"
@@ -67,10 +67,14 @@ struct MissionReport {
   std::vector<double> planning_times_s;  // the first plan's and each replan's
   std::size_t jobs = 0;
   std::size_t recoveries = 0;  // errors cleared by recovery, without a replan
+  // Whether the battery left is at least the operator's reserve.
   bool battery_reserve_kept = true;
   // Logs (subscribe_log) that lost events: "cannot write events.jsonl: No space left on device
   // (12 of 340 events lost)". The mission goes on when a log fails; the report says so.
   std::vector<std::string> log_errors;
+  // Whether the Replanner sent the robot out on its reserve (kExitOnReserve: no exit could be
+  // reached above it): the reserve was spent on purpose, as the last way out.
+  bool exit_on_reserve = false;
 };
 
 std::ostream& operator<<(std::ostream& os, const MissionReport& report);

@@ -12,9 +12,12 @@
 // instead. The answer is anytime: when the time limit or a cancel stops the search first, it is the
 // safe one: the rest of the current plan if it still holds (the robot is at a state it passed
 // through, and what was learnt since and the battery left do not break the rest; kFollowPlan, as
-// it does every task it did), else the nearest reachable exit (kDegraded). The beacon
-// (kCallForRecovery) is only the answer when a search proved that no exit can be reached, or the
-// robot cannot move (kStuck); a limit never calls it. Tasks done stay done; tasks dropped stay
+// it does every task it did), else the nearest reachable exit (kDegraded). The battery reserve is
+// the last way out, not a wall: when a search proved that no exit can be reached above the
+// reserve, the answer is the nearest exit the robot can reach on the charge it has left
+// (kExitOnReserve, every task left dropped). The beacon (kCallForRecovery) is only the answer when
+// a search proved that not even that exit can be reached, or the robot cannot move (kStuck); a
+// limit never calls it. Tasks done stay done; tasks dropped stay
 // dropped, each with its reason.
 //
 //   Replanner replanner(map, mission);
@@ -72,13 +75,17 @@ struct PlanResponse {
   // What the caller does with the answer; switch on it. The names (to_string, parse_decision)
   // are stable: the event log and every CLI --json output carry them.
   enum class Decision {
-    kFollowPlan,  // "follow-plan": carry out `fused` (empty when the mission is already ended);
-                  // also when the time ran out and the rest of the current plan still holds
-                  // (`reason` says so): it does every task the robot was doing
-    kDegraded,    // "degraded": carry out `fused`; it does less than asked (tasks dropped,
-                  // the end point given up, or the time ran out and it heads for an exit)
-    kCallForRecovery,  // "call-for-recovery": a search proved that no exit can be reached:
-                       // activate the beacon and wait
+    kFollowPlan,     // "follow-plan": carry out `fused` (empty when the mission is already ended);
+                     // also when the time ran out and the rest of the current plan still holds
+                     // (`reason` says so): it does every task the robot was doing
+    kDegraded,       // "degraded": carry out `fused`; it does less than asked (tasks dropped,
+                     // the end point given up, or the time ran out and it heads for an exit)
+    kExitOnReserve,  // "exit-on-reserve": carry out `fused`: a search proved that no exit can
+                     // be reached above the battery reserve, so it heads for the nearest exit
+                     // the robot can reach on what is left, into the reserve; every task left
+                     // is dropped. Every later plan of the mission is on the reserve too.
+    kCallForRecovery,  // "call-for-recovery": a search proved that no exit can be reached, not
+                       // even on the battery reserve: activate the beacon and wait
     kStuck,            // "stuck": the robot cannot move: activate the beacon and wait
     kInvalidReport,    // "invalid-report": the report was rejected (`reason` says why) and the
                        // world model is unchanged; the robot's last plan stands
@@ -104,11 +111,12 @@ Result<void> check_failure(const Failure& failure, const SewerMap& map);
 Result<void> check_progress(const domain::MissionProgress& progress, std::uint8_t heading_end,
                             const SewerMap& map, const Mission& mission);
 
-// The stable name of a decision ("follow-plan", "degraded", "call-for-recovery", "stuck",
-// "invalid-report") and back; parse_decision is empty for any other text.
+// The stable name of a decision ("follow-plan", "degraded", "exit-on-reserve",
+// "call-for-recovery", "stuck", "invalid-report") and back; parse_decision is empty for any other
+// text.
 std::string_view to_string(PlanResponse::Decision decision);
 std::optional<PlanResponse::Decision> parse_decision(std::string_view name);
-// kFollowPlan and kDegraded: there is a plan to carry out.
+// kFollowPlan, kDegraded and kExitOnReserve: there is a plan to carry out.
 bool has_plan(PlanResponse::Decision decision);
 // kCallForRecovery and kStuck: the robot switches its locator beacon on.
 bool calls_beacon(PlanResponse::Decision decision);
@@ -133,7 +141,8 @@ struct ReplannerOptions {
   // with goal selection. kPaperBaseline, the paper-era behaviour that fault campaigns compare
   // against (docs/campaign.md): the first plan selects its goals as kReselect does; after a failure
   // (or a low battery) the same goal list is planned again without goal selection, and if that
-  // fails, every task left is dropped and the robot goes to the nearest exit of the map.
+  // fails, every task left is dropped and the robot goes to the nearest exit of the map. The
+  // baseline keeps its reserve as a wall: it never answers kExitOnReserve.
   enum class Goals { kReselect, kPaperBaseline };
   Goals goals = Goals::kReselect;
 };
@@ -174,6 +183,11 @@ class Replanner {
                                         const std::string& reason, const std::atomic<bool>& cancel);
   const std::vector<domain::DroppedTask>& dropped() const { return dropped_; }
   std::uint8_t heading_end() const { return heading_end_; }
+  // The share of the battery the operator's mission keeps in reserve. Once the robot heads out on
+  // the reserve (on_reserve(), kExitOnReserve), mission() plans with none, so this is where the
+  // operator's share stays.
+  double reserve_fraction() const { return reserve_fraction_; }
+  bool on_reserve() const { return on_reserve_; }
 
  private:
   const Clock& clock() const;
@@ -185,6 +199,11 @@ class Replanner {
   // The safe answer: the nearest exit the robot can reach, every task left dropped for `why`.
   // One optimal search over the robot's places, without a time limit or a cancel.
   Result<search::PlanOutcome> exit_from_here(const std::string& why);
+  // The last way out, after a search proved that no exit can be reached above the reserve
+  // (`why`, the planner's words): the nearest exit on the charge left, the reserve included,
+  // every task left dropped. kNoPlan when not even that exit can be reached, when the robot is
+  // already on the reserve, when the mission keeps none, or for the paper-era baseline.
+  Result<search::PlanOutcome> exit_on_reserve(const std::string& why);
   // The rest of the plan answered last, from where the robot is now, if it still holds: the
   // robot's place and tasks done are a state that plan passed through, and the steps after it
   // replay on the world model as it is now (with what was learnt since) to the mission's end
@@ -206,6 +225,10 @@ class Replanner {
   const std::atomic<bool>* background_cancel_ = nullptr;
   bool cancelled_ = false;
   bool planned_ = false;  // a first plan was made
+  // The operator's battery reserve, and whether the robot is heading out on it (then
+  // mission_.battery_reserve_fraction is 0).
+  double reserve_fraction_ = 0;
+  bool on_reserve_ = false;
   // The steps of the last plan answered: after a failure, the plan that failed.
   std::vector<domain::PlanStep> last_steps_;
   // Where that plan began (the tasks dropped by then counted as done); empty when the last answer
