@@ -10,6 +10,7 @@
 #include "sewerplan/core/rng.h"
 #include "sewerplan/domain/robot_state.h"
 #include "sewerplan/executor/executor.h"
+#include "sewerplan/executor/recovery.h"
 #include "sewerplan/executor/replanner.h"
 #include "sewerplan/hal/sim_robot.h"
 
@@ -50,13 +51,23 @@ bool disabled(const hal::FaultScenario& faults, const hal::SimRobot& robot) {
                      });
 }
 
-// The mission as the oracle knows it: every fault no recovery clears, in advance.
-Mission clairvoyant(const Mission& mission, const hal::FaultScenario& faults, bool push_allowed) {
+// The staged recovery of ours and the baseline.
+executor::RecoveryConfig recovery_of(const RunSettings& settings) {
+  executor::RecoveryConfig recovery;
+  recovery.push_allowed = settings.push_allowed;
+  return recovery;
+}
+
+// The mission as the oracle knows it: every fault no recovery clears, in advance. Which
+// obstacles those are is the recovery's own table (executor::recovery_clears), so the oracle and
+// the action controller agree on every obstacle, met either way.
+Mission clairvoyant(const Mission& mission, const hal::FaultScenario& faults,
+                    const executor::RecoveryConfig& recovery) {
   Mission known = mission;
   for (const hal::Obstacle& o : faults.obstacles) {
-    const bool stays = o.kind == hal::ObstacleKind::kPermanent ||
-                       (o.kind == hal::ObstacleKind::kTransientPush && !push_allowed);
-    if (stays) known.blockages.push_back({o.pipe, o.offset_m});
+    if (!executor::recovery_clears(recovery, o.kind)) {
+      known.blockages.push_back({o.pipe, o.offset_m});
+    }
   }
   for (const hal::DangerSpot& d : faults.danger_spots)
     known.blockages.push_back({d.pipe, d.offset_m});
@@ -78,7 +89,7 @@ Execution execute(const SewerMap& map, const Mission& mission, const hal::FaultS
   executor::Replanner replanner(map, mission, replanner_options);
   hal::SimRobot robot(map, mission.profile, start_pose(replanner.progress().position), faults);
   executor::ExecutorOptions options;
-  options.recovery.push_allowed = settings.push_allowed;
+  options.recovery = recovery_of(settings);
   executor::Executor executor(map, replanner, robot, options);
   if (observers.on_event) executor.subscribe(observers.on_event);
   if (observers.on_plan) executor.subscribe_plans(observers.on_plan);
@@ -118,8 +129,31 @@ Execution execute(const SewerMap& map, const Mission& mission, const hal::FaultS
 
 }  // namespace
 
+std::optional<FaultRates> fault_rate_profile(std::string_view name) {
+  for (const FaultRateProfile& p : kFaultRateProfiles) {
+    if (p.name == name) return p.rates;
+  }
+  return std::nullopt;
+}
+
 Result<FaultRates> parse_fault_rates(std::string_view text) {
   FaultRates r;
+  // A profile first, then rates of its own.
+  if (const std::string_view first = text.substr(0, text.find(','));
+      !first.empty() && first.find('=') == std::string_view::npos) {
+    const std::optional<FaultRates> profile = fault_rate_profile(first);
+    if (!profile) {
+      std::string known;
+      for (const FaultRateProfile& p : kFaultRateProfiles) {
+        known += (known.empty() ? "" : ", ") + std::string(p.name);
+      }
+      return Error{
+          ErrorCode::kInvalidArgument,
+          "--fault-rates: unknown profile '" + std::string(first) + "' (known: " + known + ")"};
+    }
+    r = *profile;
+    text = first.size() == text.size() ? std::string_view{} : text.substr(first.size() + 1);
+  }
   while (!text.empty()) {
     const std::size_t comma = text.find(',');
     const std::string_view item = text.substr(0, comma);
@@ -254,7 +288,7 @@ Result<RunResult> run_one(const SewerMap& map, const Mission& mission, const Run
   // The oracle knows which hazards stop the robot: it keeps no battery for the others.
   executor::ReplannerOptions oracle_options{.clock = &no_time};
   oracle_options.planner.contingency = false;
-  executor::Replanner oracle(map, clairvoyant(mission, *faults, settings.push_allowed),
+  executor::Replanner oracle(map, clairvoyant(mission, *faults, recovery_of(settings)),
                              oracle_options);
   const executor::PlanResponse plan = oracle.plan("oracle");
   r.oracle_can_end = executor::has_plan(plan.decision);

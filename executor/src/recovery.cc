@@ -33,6 +33,35 @@ void read_distance(JsonFields& f, std::string_view key, double& field) {
 
 }  // namespace
 
+int stage_tries(const RecoveryConfig& config, RecoveryPhase phase) {
+  switch (phase) {
+    case RecoveryPhase::kReboot:
+      return config.max_reboots;
+    case RecoveryPhase::kBackUpAndRetry:
+      return config.backup_retries;
+    case RecoveryPhase::kLiftHeadAndRetry:
+      return config.lift_retries;
+    case RecoveryPhase::kPush:
+      return config.push_allowed ? config.push_retries : 0;
+    case RecoveryPhase::kBackOffToSafety:
+    case RecoveryPhase::kBackOutOfManhole:
+      return 1;
+  }
+  return 0;
+}
+
+bool recovery_clears(const RecoveryConfig& config, hal::ObstacleKind kind) {
+  const hal::Clearing needed = hal::cleared_by(kind);
+  if (needed == hal::Clearing::kNothing) return false;
+  for (const RecoveryStage& stage : kRecoveryTable) {
+    if (stage.error == hal::RobotErrorKind::kBlockage && stage.clears == needed &&
+        stage_tries(config, stage.phase) > 0) {
+      return true;
+    }
+  }
+  return false;
+}
+
 Result<RecoveryConfig> read_recovery_json(std::string_view text, const std::string& file_name) {
   Diagnostics diagnostics;
   std::optional<JsonDocument> doc = JsonDocument::parse(text, file_name, diagnostics);

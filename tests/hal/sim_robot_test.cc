@@ -169,6 +169,20 @@ TEST_F(SimRobotTest, APushClearsATransientPushObstacle) {
   EXPECT_TRUE(std::holds_alternative<AtSlot>(r.pose()));
 }
 
+// Issue 30: the controller met a push-only obstacle while backing and could not push it.
+TEST_F(SimRobotTest, APushBackwardClearsATransientPushObstacleBehindTheRobot) {
+  SimRobot r = robot(InPipe{pipe("P1"), 15.0, Heading::kTowardsEnd1},
+                     obstacle_in_p1(ObstacleKind::kTransientPush));
+  EXPECT_FALSE(r.execute(DriveBackward{.speed_mps = 0.3, .distance_m = 10}).ok());
+  EXPECT_NEAR(std::get<InPipe>(r.pose()).offset_m, 12.35, 1e-9);
+  JobReport push = r.execute(Push{.speed_mps = 0.1, .distance_m = 1, .backward = true});
+  EXPECT_TRUE(push.ok());
+  EXPECT_NEAR(std::get<InPipe>(r.pose()).offset_m, 11.35, 1e-9);
+  EXPECT_TRUE(r.remaining_obstacles().empty());
+  // The robot still faces end 1: it pushed with its rear.
+  EXPECT_EQ(std::get<InPipe>(r.pose()).heading, Heading::kTowardsEnd1);
+}
+
 TEST_F(SimRobotTest, StopsBeforeADangerSpotWithDanger) {
   FaultScenario faults;
   faults.danger_spots.push_back({pipe("P1"), 10.0});

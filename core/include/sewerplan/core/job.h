@@ -37,10 +37,12 @@ struct DriveBackward {
   friend bool operator==(const DriveBackward&, const DriveBackward&) = default;
 };
 
-// Drive forward against an obstacle to move it (recovery phase 3; risky in a real sewer).
+// Drive against an obstacle to move it (recovery phase 3; risky in a real sewer): forward, or
+// backward (the rear against it: an obstacle met while backing).
 struct Push {
   double speed_mps = 0;
   double distance_m = 0;
+  bool backward = false;
   friend bool operator==(const Push&, const Push&) = default;
 };
 
