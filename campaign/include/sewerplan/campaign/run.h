@@ -26,6 +26,7 @@
 // and simulated robot and only reads the map and mission, so runs may go on in parallel.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -54,7 +55,49 @@ struct FaultRates {
   friend bool operator==(const FaultRates&, const FaultRates&) = default;
 };
 
-// Reads "name=value,..." (any subset, the others keep their defaults). An error names the bad item.
+// A named set of fault rates. Obstacle and danger rates are per kilometre of pipe the robot can
+// drive (a Poisson count per pipe), so a robot meets that many on each kilometre it drives,
+// whatever the network's size; passages are a share of the passages, malfunctions per hour of
+// mission time (docs/campaign.md, "Fault-rate profiles", with the oracle's measured task share).
+struct FaultRateProfile {
+  std::string_view name;
+  FaultRates rates;
+  std::string_view meant_for;
+};
+
+inline constexpr std::array<FaultRateProfile, 4> kFaultRateProfiles{{
+    {"default", FaultRates{}, "the AIS test bed's campaigns since issue 14"},
+    {"realistic",
+     FaultRates{.obstacles_per_km = 2,
+                .danger_per_km = 0.5,
+                .passage_share = 0.002,
+                .malfunctions_per_hour = 0.25,
+                .permanent_share = 0.05,
+                .transient_share = 0.5},
+     "a real sewer: the tour, most tasks still possible"},
+    {"moderate",
+     FaultRates{.obstacles_per_km = 40,
+                .danger_per_km = 10,
+                .passage_share = 0.05,
+                .malfunctions_per_hour = 2,
+                .permanent_share = 0.1,
+                .transient_share = 0.5},
+     "the way out, on large networks"},
+    {"harsh",
+     FaultRates{.obstacles_per_km = 80,
+                .danger_per_km = 20,
+                .passage_share = 0.1,
+                .malfunctions_per_hour = 3,
+                .permanent_share = 0.05,
+                .transient_share = 0.5},
+     "the way out: nearly every pipe holds a fault"},
+}};
+
+// The profile of that name, or none.
+std::optional<FaultRates> fault_rate_profile(std::string_view name);
+
+// Reads "[PROFILE,]name=value,..." (any subset; the others keep the profile's rates, or the
+// defaults). An error names the bad item, or the unknown profile and the known ones.
 Result<FaultRates> parse_fault_rates(std::string_view text);
 std::string format_fault_rates(const FaultRates& rates);
 
