@@ -10,7 +10,7 @@
 #include "sewerplan/core/rng.h"
 #include "sewerplan/domain/robot_state.h"
 #include "sewerplan/executor/executor.h"
-#include "sewerplan/executor/recovery.h"
+#include "sewerplan/executor/recovery_clears.h"
 #include "sewerplan/executor/replanner.h"
 #include "sewerplan/hal/sim_robot.h"
 
@@ -58,16 +58,24 @@ executor::RecoveryConfig recovery_of(const RunSettings& settings) {
   return recovery;
 }
 
+// Which obstacles the oracle takes for blockages.
+enum class Known {
+  kUnclearable,      // those recovery clears from neither side: the bound on tasks
+  kNotFromBothSides  // and those it clears from one side only: a way out however they are met
+};
+
 // The mission as the oracle knows it: every fault no recovery clears, in advance. Which
-// obstacles those are is the recovery's own table (executor::recovery_clears), so the oracle and
-// the action controller agree on every obstacle, met either way.
+// obstacles those are is the recovery's own answer (executor::recovery_clears, from hal's table),
+// so the oracle and the action controller agree on every obstacle, met either way.
 Mission clairvoyant(const Mission& mission, const hal::FaultScenario& faults,
-                    const executor::RecoveryConfig& recovery) {
+                    const executor::RecoveryConfig& recovery, Known known_as_blocked) {
   Mission known = mission;
   for (const hal::Obstacle& o : faults.obstacles) {
-    if (!executor::recovery_clears(recovery, o.kind)) {
-      known.blockages.push_back({o.pipe, o.offset_m});
-    }
+    const bool front = executor::recovery_clears(recovery, o.kind, hal::Approach::kFront);
+    const bool rear = executor::recovery_clears(recovery, o.kind, hal::Approach::kRear);
+    const bool blocked =
+        known_as_blocked == Known::kUnclearable ? !front && !rear : !front || !rear;
+    if (blocked) known.blockages.push_back({o.pipe, o.offset_m});
   }
   for (const hal::DangerSpot& d : faults.danger_spots)
     known.blockages.push_back({d.pipe, d.offset_m});
@@ -288,11 +296,18 @@ Result<RunResult> run_one(const SewerMap& map, const Mission& mission, const Run
   // The oracle knows which hazards stop the robot: it keeps no battery for the others.
   executor::ReplannerOptions oracle_options{.clock = &no_time};
   oracle_options.planner.contingency = false;
-  executor::Replanner oracle(map, clairvoyant(mission, *faults, recovery_of(settings)),
-                             oracle_options);
+  const executor::RecoveryConfig recovery = recovery_of(settings);
+  const Mission bound = clairvoyant(mission, *faults, recovery, Known::kUnclearable);
+  executor::Replanner oracle(map, bound, oracle_options);
   const executor::PlanResponse plan = oracle.plan("oracle");
   r.oracle_can_end = executor::has_plan(plan.decision);
   r.oracle_tasks = r.oracle_can_end ? plan.goals.size() : 0;
+  r.oracle_can_end_either_way = r.oracle_can_end;
+  if (Mission either_way = clairvoyant(mission, *faults, recovery, Known::kNotFromBothSides);
+      r.oracle_can_end && either_way.blockages.size() != bound.blockages.size()) {
+    executor::Replanner sure(map, either_way, oracle_options);
+    r.oracle_can_end_either_way = executor::has_plan(sure.plan("oracle, either way").decision);
+  }
 
   r.ours = execute(map, mission, *faults, settings, executor::ReplannerOptions::Goals::kReselect);
   r.baseline =
@@ -301,7 +316,7 @@ Result<RunResult> run_one(const SewerMap& map, const Mission& mission, const Run
     r.risk_aware = execute(map, mission, *faults, settings,
                            executor::ReplannerOptions::Goals::kReselect, settings.risk);
   }
-  r.could_reach_exit = r.oracle_can_end && !r.ours.disabled;
+  r.could_reach_exit = r.oracle_can_end_either_way && !r.ours.disabled;
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   return r;
 }

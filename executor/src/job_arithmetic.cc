@@ -17,7 +17,7 @@ std::optional<Job> rest_of(const Job& job, double done_m) {
                    return DriveBackward{j.speed_mps, std::max(0.0, j.distance_m - done_m)};
                  },
                  [&](const Push& j) -> std::optional<Job> {
-                   return Push{j.speed_mps, std::max(0.0, j.distance_m - done_m), j.backward};
+                   return Push{j.speed_mps, std::max(0.0, j.distance_m - done_m)};
                  },
                  [&](const Scan& j) -> std::optional<Job> {
                    return Scan{j.speed_mps, std::max(0.0, j.distance_m - done_m), j.backward};
@@ -43,10 +43,6 @@ Job back_off(const Job& job, double distance_m) {
                                  if (j.backward) return DriveForward{j.speed_mps, distance_m};
                                  return DriveBackward{j.speed_mps, distance_m};
                                },
-                               [&](const Push& j) -> Job {
-                                 if (j.backward) return DriveForward{j.speed_mps, distance_m};
-                                 return DriveBackward{j.speed_mps, distance_m};
-                               },
                                [&](const auto& j) -> Job {
                                  if constexpr (requires { j.speed_mps; }) {
                                    return DriveBackward{j.speed_mps, distance_m};
@@ -57,18 +53,12 @@ Job back_off(const Job& job, double distance_m) {
 }
 
 std::optional<Job> push_for(const Job& job) {
-  return std::visit(Overloaded{[](const DriveForward& j) -> std::optional<Job> {
-                                 return Push{j.speed_mps, j.distance_m, false};
-                               },
-                               [](const DriveBackward& j) -> std::optional<Job> {
-                                 return Push{j.speed_mps, j.distance_m, true};
-                               },
-                               [](const Push& j) -> std::optional<Job> { return j; },
-                               [](const Scan& j) -> std::optional<Job> {
-                                 return Push{j.speed_mps, j.distance_m, j.backward};
-                               },
-                               [](const auto&) -> std::optional<Job> { return std::nullopt; }},
-                    job);
+  if (const auto* d = std::get_if<DriveForward>(&job)) return Push{d->speed_mps, d->distance_m};
+  if (const auto* p = std::get_if<Push>(&job)) return *p;
+  if (const auto* s = std::get_if<Scan>(&job); s && !s->backward) {
+    return Push{s->speed_mps, s->distance_m};
+  }
+  return std::nullopt;
 }
 
 std::string job_text(const Job& job) {

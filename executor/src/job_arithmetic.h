@@ -22,8 +22,8 @@ Job lengthened(const Job& job, double extra_m);
 // A drive of `distance_m` the other way, at the job's speed.
 Job back_off(const Job& job, double distance_m);
 
-// A push over the rest of a drive, the way the drive goes (an obstacle met while backing is
-// pushed backward: hal::cleared_by); none for a job that does not drive.
+// A push over the rest of a forward drive; none for a backward one (the robot pushes with its
+// head).
 std::optional<Job> push_for(const Job& job);
 
 // The job as the event log writes it.

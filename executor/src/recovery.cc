@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "sewerplan/core/json_fields.h"
+#include "sewerplan/executor/recovery_clears.h"
 
 namespace sewerplan::executor {
 namespace {
@@ -33,6 +34,21 @@ void read_distance(JsonFields& f, std::string_view key, double& field) {
 
 }  // namespace
 
+hal::Clearing manoeuvre_of(RecoveryPhase phase) {
+  switch (phase) {
+    case RecoveryPhase::kLiftHeadAndRetry:
+      return hal::Clearing::kLiftHead;
+    case RecoveryPhase::kPush:
+      return hal::Clearing::kPush;
+    case RecoveryPhase::kReboot:
+    case RecoveryPhase::kBackUpAndRetry:
+    case RecoveryPhase::kBackOffToSafety:
+    case RecoveryPhase::kBackOutOfManhole:
+      return hal::Clearing::kNothing;
+  }
+  return hal::Clearing::kNothing;
+}
+
 int stage_tries(const RecoveryConfig& config, RecoveryPhase phase) {
   switch (phase) {
     case RecoveryPhase::kReboot:
@@ -50,11 +66,11 @@ int stage_tries(const RecoveryConfig& config, RecoveryPhase phase) {
   return 0;
 }
 
-bool recovery_clears(const RecoveryConfig& config, hal::ObstacleKind kind) {
-  const hal::Clearing needed = hal::cleared_by(kind);
-  if (needed == hal::Clearing::kNothing) return false;
+bool recovery_clears(const RecoveryConfig& config, hal::ObstacleKind kind, hal::Approach approach) {
+  if (!hal::clears_from(kind, approach)) return false;
   for (const RecoveryStage& stage : kRecoveryTable) {
-    if (stage.error == hal::RobotErrorKind::kBlockage && stage.clears == needed &&
+    if (stage.error == hal::RobotErrorKind::kBlockage &&
+        manoeuvre_of(stage.phase) == hal::cleared_by(kind) &&
         stage_tries(config, stage.phase) > 0) {
       return true;
     }

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 
+#include "sewerplan/executor/recovery_clears.h"
+
 #include "job_arithmetic.h"
 
 namespace sewerplan::executor::detail {
@@ -159,8 +161,8 @@ StagedRecovery::Cleared StagedRecovery::clear_blockage(Job rest) {
     if (auto done = retry(rest, RecoveryPhase::kLiftHeadAndRetry, 0)) return *done;
   }
   for (int i = 0; i < stage_tries(c, RecoveryPhase::kPush); ++i) {
-    const std::optional<Job> push_job = push_for(rest);  // the way the drive goes
-    if (!push_job) break;
+    const std::optional<Job> push_job = push_for(rest);
+    if (!push_job) break;  // the robot pushes with its head only (hal/obstacle_clearing.h)
     hal::JobReport push = host_.execute_job(*push_job);
     host_.log_recovery(RecoveryPhase::kPush, push.ok());
     if (push.ok()) return Cleared{Cleared::How::kDone};

@@ -10,6 +10,7 @@
 #include "sewerplan/core/check.h"
 #include "sewerplan/core/map_queries.h"
 #include "sewerplan/core/overloaded.h"
+#include "sewerplan/hal/obstacle_clearing.h"
 
 namespace sewerplan::hal {
 namespace {
@@ -185,9 +186,7 @@ JobReport SimRobot::run(const Job& job) {
       Overloaded{
           [&](const DriveForward& j) { return drive(j.speed_mps, j.distance_m, +1, false); },
           [&](const DriveBackward& j) { return drive(j.speed_mps, j.distance_m, -1, false); },
-          [&](const Push& j) {
-            return drive(j.speed_mps, j.distance_m, j.backward ? -1 : +1, true);
-          },
+          [&](const Push& j) { return drive(j.speed_mps, j.distance_m, +1, true); },
           [&](const Scan& j) {
             return drive(j.speed_mps, j.distance_m, j.backward ? -1 : +1, false);
           },
@@ -271,7 +270,7 @@ JobReport SimRobot::drive_in_pipe(const InPipe& from, double speed_mps, double d
   report.progress_m = stop ? std::min(move.distance_m, stop->after_s * speed_mps) : move.distance_m;
   report.duration_s = stop ? stop->after_s : move.distance_m / speed_mps;
   if (push) {
-    // A push, either way, moves every obstacle a push clears (cleared_by) it reaches.
+    // A push (with the head: forward) moves every obstacle a push clears (cleared_by) it reaches.
     for (std::size_t i = 0; i < faults_.obstacles.size(); ++i) {
       const Obstacle& o = faults_.obstacles[i];
       if (o.pipe != from.pipe || cleared_by(o.kind) != Clearing::kPush) continue;

@@ -52,7 +52,6 @@ TEST(JobProtocol, EveryJobKindRoundTripsBitForBit) {
       DriveForward{0.3, 12.345678901234567},
       DriveBackward{0.25, 1e-9},
       Push{0.1, 0.5},
-      Push{0.1, 0.5, true},
       TurnInManhole{2, 3, -94.5, -0.1, 1.0, 20.25, {}},
       TurnInManhole{0,
                     65535,

@@ -37,12 +37,10 @@ struct DriveBackward {
   friend bool operator==(const DriveBackward&, const DriveBackward&) = default;
 };
 
-// Drive against an obstacle to move it (recovery phase 3; risky in a real sewer): forward, or
-// backward (the rear against it: an obstacle met while backing).
+// Drive forward against an obstacle to move it (recovery phase 3; risky in a real sewer).
 struct Push {
   double speed_mps = 0;
   double distance_m = 0;
-  bool backward = false;
   friend bool operator==(const Push&, const Push&) = default;
 };
 

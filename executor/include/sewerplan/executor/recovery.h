@@ -23,7 +23,6 @@
 #include <string_view>
 
 #include "sewerplan/core/result.h"
-#include "sewerplan/hal/fault_scenario.h"
 #include "sewerplan/hal/robot.h"
 
 namespace sewerplan::executor {
@@ -49,13 +48,11 @@ enum class RecoveryPhase : std::uint8_t {
   kBackOutOfManhole,  // DANGER in a manhole: back into the pipe the robot came by
 };
 
-// One row of the table: for `error`, the manoeuvre, what kind of obstacle it moves out of the way
-// (hal::cleared_by: the same table the simulated robot and the campaign's oracle read), how often
-// (a RecoveryConfig field), and what happens when every try has failed.
+// One row of the table: for `error`, the manoeuvre, how often (a RecoveryConfig field), and what
+// happens when every try has failed.
 struct RecoveryStage {
   hal::RobotErrorKind error;
   RecoveryPhase phase;
-  hal::Clearing clears;
   std::string_view logged;    // the "recovery" event's `phase` (docs/executor.md)
   std::string_view tries;     // the RecoveryConfig field that bounds it
   std::string_view gives_up;  // after the last try
@@ -63,20 +60,18 @@ struct RecoveryStage {
 
 // The staged recovery table, in the order the stages are tried for each error.
 inline constexpr std::array<RecoveryStage, 6> kRecoveryTable{{
-    {hal::RobotErrorKind::kMalfunction, RecoveryPhase::kReboot, hal::Clearing::kNothing, "reboot",
-     "max_reboots", "stuck: the Replanner is told the robot cannot move (beacon)"},
-    {hal::RobotErrorKind::kBlockage, RecoveryPhase::kBackUpAndRetry, hal::Clearing::kNothing,
-     "1: back up and retry", "backup_retries",
-     "on to stage 2 (at once when there is no room to back up)"},
-    {hal::RobotErrorKind::kBlockage, RecoveryPhase::kLiftHeadAndRetry, hal::Clearing::kLiftHead,
-     "2: lift the head and retry", "lift_retries", "on to stage 3"},
-    {hal::RobotErrorKind::kBlockage, RecoveryPhase::kPush, hal::Clearing::kPush, "3: push",
-     "push_retries", "blockage 1 mm ahead of the robot: the Replanner disconnects the pipe there"},
-    {hal::RobotErrorKind::kDanger, RecoveryPhase::kBackOffToSafety, hal::Clearing::kNothing,
-     "back off to safety", "1",
+    {hal::RobotErrorKind::kMalfunction, RecoveryPhase::kReboot, "reboot", "max_reboots",
+     "stuck: the Replanner is told the robot cannot move (beacon)"},
+    {hal::RobotErrorKind::kBlockage, RecoveryPhase::kBackUpAndRetry, "1: back up and retry",
+     "backup_retries", "on to stage 2 (at once when there is no room to back up)"},
+    {hal::RobotErrorKind::kBlockage, RecoveryPhase::kLiftHeadAndRetry, "2: lift the head and retry",
+     "lift_retries", "on to stage 3"},
+    {hal::RobotErrorKind::kBlockage, RecoveryPhase::kPush, "3: push", "push_retries",
+     "blockage 1 mm ahead of the robot: the Replanner disconnects the pipe there"},
+    {hal::RobotErrorKind::kDanger, RecoveryPhase::kBackOffToSafety, "back off to safety", "1",
      "danger 1 mm ahead of where the robot stopped: the Replanner disconnects the pipe there"},
-    {hal::RobotErrorKind::kDanger, RecoveryPhase::kBackOutOfManhole, hal::Clearing::kNothing,
-     "back out of the manhole", "1", "the passage is closed both ways"},
+    {hal::RobotErrorKind::kDanger, RecoveryPhase::kBackOutOfManhole, "back out of the manhole", "1",
+     "the passage is closed both ways"},
 }};
 
 // The stage's name as logged ("1: back up and retry").
@@ -86,16 +81,6 @@ constexpr std::string_view logged_name(RecoveryPhase phase) {
   }
   return "?";
 }
-
-// How often `config` lets the stage of `phase` be tried (0: the stage is skipped; the push
-// stage is tried only with push_allowed).
-int stage_tries(const RecoveryConfig& config, RecoveryPhase phase);
-
-// Whether staged recovery with `config` clears an obstacle of `kind` wherever it is met, driving
-// forward or backward: a blockage stage it tries moves that kind (hal::cleared_by). The campaign's
-// oracle knows in advance exactly the obstacles for which this is false, so the two agree on
-// every obstacle (tests/executor/obstacle_clearing_test.cc drives into each kind both ways).
-bool recovery_clears(const RecoveryConfig& config, hal::ObstacleKind kind);
 
 // {"backup_retries": 2, "backup_m": 0.05, "lift_retries": 1, "push_allowed": false,
 //  "push_retries": 1, "danger_backoff_m": 0.3, "max_reboots": 2}; every field optional. Unknown

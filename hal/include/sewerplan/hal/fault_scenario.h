@@ -45,31 +45,6 @@ enum class ObstacleKind : std::uint8_t {
   kPermanent,      // never clears
 };
 
-// What clears an obstacle: the manoeuvre of the robot that moves it out of the way.
-enum class Clearing : std::uint8_t {
-  kNothing,   // nothing the robot does: the pipe is blocked there
-  kLiftHead,  // lifting the head within lift reach of it, on either side
-  kPush,      // pushing against it, driving forward or backward
-};
-
-// The one table of what clears each kind of obstacle. The simulated robot (sim_robot.h) clears
-// obstacles by it, the action controller's staged recovery (executor/recovery.h) tries the
-// manoeuvres it names, and the campaign's oracle knows in advance the obstacles that nothing the
-// recovery does clears (executor::recovery_clears). Every manoeuvre works in either direction:
-// MAKRO drives both ways, and an obstacle met while backing is lifted or pushed as one met
-// driving forward (a push backward drives the rear against it: core/job.h, Push::backward).
-constexpr Clearing cleared_by(ObstacleKind kind) {
-  switch (kind) {
-    case ObstacleKind::kTransientLift:
-      return Clearing::kLiftHead;
-    case ObstacleKind::kTransientPush:
-      return Clearing::kPush;
-    case ObstacleKind::kPermanent:
-      return Clearing::kNothing;
-  }
-  return Clearing::kNothing;
-}
-
 // "transient_lift", "transient_push", "permanent".
 std::string_view to_string(ObstacleKind kind);
 std::optional<ObstacleKind> obstacle_kind_from_string(std::string_view name);
