@@ -152,7 +152,7 @@ RunResult read_result(const RunRecord& r, JsonFields& f, JsonFields& measured,
     x.oracle_tasks = oracle->count("tasks", kMaxCount).value_or(0);
     x.oracle_can_end = oracle->boolean("can_end").value_or(false);
     x.oracle_can_end_either_way =
-        oracle->boolean("can_end_either_way").value_or(x.oracle_can_end);
+        oracle->boolean("can_end_either_way", kOptional).value_or(x.oracle_can_end);
   }
   x.could_reach_exit = f.boolean("could_reach_exit").value_or(false);
   x.ours = read_execution(f, "ours", file);
