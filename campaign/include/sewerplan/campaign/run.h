@@ -15,10 +15,11 @@
 //     when pushing is not allowed), every danger spot and every dangerous passage. With pushing
 //     allowed, a push-only obstacle is cleared only when met front first; a second plan that takes
 //     those for blockages tells whether a way out is there however they are met
-//     (oracle_can_end_either_way), which is what a missed exit is judged by. It is counted, not driven: it has the whole battery,
-//     no malfunction and no detour, so its task count bounds what any policy could do on the same
-//     faults (exactly so where the planner is optimal, docs/campaign.md); and when it finds no way
-//     to end the mission, no policy could have reached an exit.
+//     (oracle_can_end_either_way), which is what a missed exit is judged by. It is counted, not
+//     driven: it has the whole battery, no malfunction and no detour, so its task count bounds what
+//     any policy could do on the same faults (exactly so where the planner is optimal,
+//     docs/campaign.md); and when it finds no way to end the mission, no policy could have reached
+//     an exit.
 // Everything in a RunResult but `measured` is the same on every machine for the same inputs.
 //
 //   RunResult r = *run_one(map, mission, {.rates = {}, .campaign_seed = 7}, 12);
