@@ -295,7 +295,8 @@ void add_campaign_command(CLI::App& app, Context& context) {
   cmd->add_option("--runs", options->runs, "Number of runs")->capture_default_str();
   cmd->add_option("--seed", options->seed, "Campaign seed")->capture_default_str();
   cmd->add_option("--fault-rates", options->fault_rates,
-                  "NAME=VALUE,...: obstacles=20 (per km), danger=5 (per km), passages=0.01 "
+                  "[PROFILE,]NAME=VALUE,...: a profile (default, realistic, moderate, harsh), "
+                  "then obstacles=20 (per km of pipe), danger=5 (per km), passages=0.01 "
                   "(share), malfunctions=0.5 (per hour), permanent=0.1, transient=0.5 (shares)");
   cmd->add_option("-j,--jobs", options->jobs, "Runs in parallel")->capture_default_str();
   cmd->add_option("--shard", options->shard, "I/N: only the runs with index % N == I")

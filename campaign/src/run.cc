@@ -10,6 +10,7 @@
 #include "sewerplan/core/rng.h"
 #include "sewerplan/domain/robot_state.h"
 #include "sewerplan/executor/executor.h"
+#include "sewerplan/executor/recovery_clears.h"
 #include "sewerplan/executor/replanner.h"
 #include "sewerplan/hal/sim_robot.h"
 
@@ -50,13 +51,31 @@ bool disabled(const hal::FaultScenario& faults, const hal::SimRobot& robot) {
                      });
 }
 
-// The mission as the oracle knows it: every fault no recovery clears, in advance.
-Mission clairvoyant(const Mission& mission, const hal::FaultScenario& faults, bool push_allowed) {
+// The staged recovery of ours and the baseline.
+executor::RecoveryConfig recovery_of(const RunSettings& settings) {
+  executor::RecoveryConfig recovery;
+  recovery.push_allowed = settings.push_allowed;
+  return recovery;
+}
+
+// Which obstacles the oracle takes for blockages.
+enum class Known {
+  kUnclearable,      // those recovery clears from neither side: the bound on tasks
+  kNotFromBothSides  // and those it clears from one side only: a way out however they are met
+};
+
+// The mission as the oracle knows it: every fault no recovery clears, in advance. Which
+// obstacles those are is the recovery's own answer (executor::recovery_clears, from hal's table),
+// so the oracle and the action controller agree on every obstacle, met either way.
+Mission clairvoyant(const Mission& mission, const hal::FaultScenario& faults,
+                    const executor::RecoveryConfig& recovery, Known known_as_blocked) {
   Mission known = mission;
   for (const hal::Obstacle& o : faults.obstacles) {
-    const bool stays = o.kind == hal::ObstacleKind::kPermanent ||
-                       (o.kind == hal::ObstacleKind::kTransientPush && !push_allowed);
-    if (stays) known.blockages.push_back({o.pipe, o.offset_m});
+    const bool front = executor::recovery_clears(recovery, o.kind, hal::Approach::kFront);
+    const bool rear = executor::recovery_clears(recovery, o.kind, hal::Approach::kRear);
+    const bool blocked =
+        known_as_blocked == Known::kUnclearable ? !front && !rear : !front || !rear;
+    if (blocked) known.blockages.push_back({o.pipe, o.offset_m});
   }
   for (const hal::DangerSpot& d : faults.danger_spots)
     known.blockages.push_back({d.pipe, d.offset_m});
@@ -78,7 +97,7 @@ Execution execute(const SewerMap& map, const Mission& mission, const hal::FaultS
   executor::Replanner replanner(map, mission, replanner_options);
   hal::SimRobot robot(map, mission.profile, start_pose(replanner.progress().position), faults);
   executor::ExecutorOptions options;
-  options.recovery.push_allowed = settings.push_allowed;
+  options.recovery = recovery_of(settings);
   executor::Executor executor(map, replanner, robot, options);
   if (observers.on_event) executor.subscribe(observers.on_event);
   if (observers.on_plan) executor.subscribe_plans(observers.on_plan);
@@ -119,8 +138,31 @@ Execution execute(const SewerMap& map, const Mission& mission, const hal::FaultS
 
 }  // namespace
 
+std::optional<FaultRates> fault_rate_profile(std::string_view name) {
+  for (const FaultRateProfile& p : kFaultRateProfiles) {
+    if (p.name == name) return p.rates;
+  }
+  return std::nullopt;
+}
+
 Result<FaultRates> parse_fault_rates(std::string_view text) {
   FaultRates r;
+  // A profile first, then rates of its own.
+  if (const std::string_view first = text.substr(0, text.find(','));
+      !first.empty() && first.find('=') == std::string_view::npos) {
+    const std::optional<FaultRates> profile = fault_rate_profile(first);
+    if (!profile) {
+      std::string known;
+      for (const FaultRateProfile& p : kFaultRateProfiles) {
+        known += (known.empty() ? "" : ", ") + std::string(p.name);
+      }
+      return Error{
+          ErrorCode::kInvalidArgument,
+          "--fault-rates: unknown profile '" + std::string(first) + "' (known: " + known + ")"};
+    }
+    r = *profile;
+    text = first.size() == text.size() ? std::string_view{} : text.substr(first.size() + 1);
+  }
   while (!text.empty()) {
     const std::size_t comma = text.find(',');
     const std::string_view item = text.substr(0, comma);
@@ -255,11 +297,18 @@ Result<RunResult> run_one(const SewerMap& map, const Mission& mission, const Run
   // The oracle knows which hazards stop the robot: it keeps no battery for the others.
   executor::ReplannerOptions oracle_options{.clock = &no_time};
   oracle_options.planner.contingency = false;
-  executor::Replanner oracle(map, clairvoyant(mission, *faults, settings.push_allowed),
-                             oracle_options);
+  const executor::RecoveryConfig recovery = recovery_of(settings);
+  const Mission bound = clairvoyant(mission, *faults, recovery, Known::kUnclearable);
+  executor::Replanner oracle(map, bound, oracle_options);
   const executor::PlanResponse plan = oracle.plan("oracle");
   r.oracle_can_end = executor::has_plan(plan.decision);
   r.oracle_tasks = r.oracle_can_end ? plan.goals.size() : 0;
+  r.oracle_can_end_either_way = r.oracle_can_end;
+  if (Mission either_way = clairvoyant(mission, *faults, recovery, Known::kNotFromBothSides);
+      r.oracle_can_end && either_way.blockages.size() != bound.blockages.size()) {
+    executor::Replanner sure(map, either_way, oracle_options);
+    r.oracle_can_end_either_way = executor::has_plan(sure.plan("oracle, either way").decision);
+  }
 
   r.ours = execute(map, mission, *faults, settings, executor::ReplannerOptions::Goals::kReselect);
   r.baseline =
@@ -268,7 +317,7 @@ Result<RunResult> run_one(const SewerMap& map, const Mission& mission, const Run
     r.risk_aware = execute(map, mission, *faults, settings,
                            executor::ReplannerOptions::Goals::kReselect, settings.risk);
   }
-  r.could_reach_exit = r.oracle_can_end && !r.ours.disabled;
+  r.could_reach_exit = r.oracle_can_end_either_way && !r.ours.disabled;
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   return r;
 }

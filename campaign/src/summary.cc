@@ -33,7 +33,6 @@ void figures(const std::vector<const RunResult*>& runs, const Execution RunResul
   double tasks = 0;
   double vs = 0;
   double replans = 0;
-  std::size_t compared = 0;
   for (const RunResult* r : runs) {
     const Execution& e = r->*policy;
     tasks += static_cast<double>(e.tasks);
@@ -41,19 +40,27 @@ void figures(const std::vector<const RunResult*>& runs, const Execution RunResul
     // robot may do tasks before it finds itself cut off.
     if (r->oracle_can_end) {
       const double s = share(e.tasks, r->oracle_tasks);
-      ++compared;
+      ++f.compared;
       vs += s;
-      if (s < f.vs_oracle_worst) {
+      if (f.compared == 1 || s < f.vs_oracle_worst) {
         f.vs_oracle_worst = s;
         f.worst_run = r->index;
       }
-      ++f.vs_oracle_histogram[std::min<std::size_t>(10, static_cast<std::size_t>(s * 10 + 1e-9))];
+      std::size_t bin = std::min<std::size_t>(10, static_cast<std::size_t>(s * 10 + 1e-9));
+      if (e.tasks > r->oracle_tasks) {
+        ++f.above_oracle;
+        bin = 11;
+      }
+      ++f.vs_oracle_histogram[bin];
     }
     ++f.outcomes[static_cast<std::size_t>(e.outcome)];
     const auto cause = static_cast<std::size_t>(e.beacon_cause);
     ++(e.outcome == Outcome::kBeacon ? f.beacon_causes : f.ended_otherwise_beacon_causes)[cause];
-    if (r->could_reach_exit && e.outcome != Outcome::kExit && e.outcome != Outcome::kEndPoint) {
-      ++f.missed_exits;
+    // Each policy's own robot: a permanent malfunction that stopped the baseline's robot is no
+    // missed exit of the baseline's, whatever ours met.
+    if (r->oracle_can_end_either_way && !e.disabled) {
+      ++f.could_reach_exit;
+      if (e.outcome != Outcome::kExit && e.outcome != Outcome::kEndPoint) ++f.missed_exits;
     }
     if (e.exit_on_reserve) ++f.exits_on_reserve;
     if (!e.reserve_kept && !e.exit_on_reserve) ++f.reserve_violations;
@@ -63,7 +70,7 @@ void figures(const std::vector<const RunResult*>& runs, const Execution RunResul
   }
   const double n = std::max<double>(1, static_cast<double>(runs.size()));
   f.tasks_mean = tasks / n;
-  f.vs_oracle_mean = compared == 0 ? 0 : vs / static_cast<double>(compared);
+  f.vs_oracle_mean = f.compared == 0 ? 0 : vs / static_cast<double>(f.compared);
   f.replans_mean = replans / n;
   std::sort(planning_ms.begin(), planning_ms.end());
   f.planning_p50_ms = percentile(planning_ms, 0.50);
@@ -82,6 +89,19 @@ std::string num(double v, int digits = 2) {
   return out.str();
 }
 
+constexpr std::string_view kNoneCompared = "none: the oracle could end no run";
+
+// "99.1 %", or that no run could be compared.
+std::string vs_mean(const PolicyFigures& f) {
+  return f.compared == 0 ? std::string(kNoneCompared) : pct(f.vs_oracle_mean);
+}
+
+// "0.0 % (run 337)", or that no run could be compared.
+std::string vs_worst(const PolicyFigures& f) {
+  if (f.compared == 0) return std::string(kNoneCompared);
+  return pct(f.vs_oracle_worst) + " (run " + std::to_string(f.worst_run) + ")";
+}
+
 Json policy_json(const PolicyFigures& f) {
   Json outcomes;
   for (std::size_t o = 0; o < f.outcomes.size(); ++o) {
@@ -94,11 +114,16 @@ Json policy_json(const PolicyFigures& f) {
     causes[name] = f.beacon_causes[c];
     otherwise_causes[name] = f.ended_otherwise_beacon_causes[c];
   }
+  // Nothing to compare when the oracle can end no run: no mean, no worst run (null).
+  const bool compared = f.compared > 0;
   return Json{{"tasks_mean", f.tasks_mean},
-              {"tasks_vs_oracle_mean", f.vs_oracle_mean},
-              {"tasks_vs_oracle_worst", f.vs_oracle_worst},
-              {"worst_run", f.worst_run},
+              {"compared_with_oracle", f.compared},
+              {"tasks_vs_oracle_mean", compared ? Json(f.vs_oracle_mean) : Json()},
+              {"tasks_vs_oracle_worst", compared ? Json(f.vs_oracle_worst) : Json()},
+              {"worst_run", compared ? Json(f.worst_run) : Json()},
+              {"runs_above_oracle", f.above_oracle},
               {"outcomes", outcomes},
+              {"could_reach_exit", f.could_reach_exit},
               {"missed_exits", f.missed_exits},
               {"beacons_by_cause", causes},
               {"beacons_ended_otherwise_by_cause", otherwise_causes},
@@ -136,14 +161,29 @@ std::string xml_escape(std::string_view s) {
 
 }  // namespace
 
-bool Summary::clean() const {
+std::vector<std::string> verdict_faults(const Summary& s) {
   using Cause = executor::MissionReport::BeaconCause;
-  return failed.empty() && ours.missed_exits == 0 &&
-         ours.beacon_causes[static_cast<std::size_t>(Cause::kLimit)] == 0 &&
-         ours.ended_otherwise_beacon_causes[static_cast<std::size_t>(Cause::kLimit)] == 0 &&
-         ours.outcomes[static_cast<std::size_t>(Outcome::kStranded)] == 0 &&
-         ours.reserve_violations == 0;
+  std::vector<std::string> faults;
+  const auto add = [&](std::size_t n, const std::string& what) {
+    if (n > 0) faults.push_back(std::to_string(n) + " " + what);
+  };
+  const auto crashes = static_cast<std::size_t>(std::count_if(
+      s.failed.begin(), s.failed.end(), [](const FailedRun& f) { return f.status == "crash"; }));
+  add(crashes, crashes == 1 ? "crash" : "crashes");
+  add(s.failed.size() - crashes, s.failed.size() - crashes == 1 ? "hang" : "hangs");
+  add(s.ours.missed_exits, s.ours.missed_exits == 1 ? "missed exit" : "missed exits");
+  const std::size_t stranded = s.ours.outcomes[static_cast<std::size_t>(Outcome::kStranded)];
+  add(stranded, stranded == 1 ? "stranded robot" : "stranded robots");
+  add(s.ours.reserve_violations,
+      s.ours.reserve_violations == 1 ? "reserve violation" : "reserve violations");
+  const auto limit = static_cast<std::size_t>(Cause::kLimit);
+  const std::size_t limits =
+      s.ours.beacon_causes[limit] + s.ours.ended_otherwise_beacon_causes[limit];
+  add(limits, limits == 1 ? "beacon caused by a limit" : "beacons caused by a limit");
+  return faults;
 }
+
+bool Summary::clean() const { return verdict_faults(*this).empty(); }
 
 namespace {
 
@@ -195,7 +235,8 @@ Summary summarize(const CampaignSpec& spec, const std::vector<RunRecord>& record
     runs.push_back(&x);
     oracle += static_cast<double>(x.oracle_tasks);
     if (x.could_reach_exit) ++s.could_reach_exit;
-    if (x.oracle_can_end && x.ours.tasks > x.oracle_tasks) ++s.oracle_below_ours;
+    if (x.oracle_can_end) ++s.oracle_can_end;
+    if (x.oracle_can_end ? x.ours.tasks > x.oracle_tasks : ended(x.ours)) ++s.oracle_below_ours;
     if (x.ours.tasks > x.baseline.tasks) {
       ++s.better_than_baseline;
     } else if (x.ours.tasks == x.baseline.tasks) {
@@ -233,6 +274,7 @@ void write_summary_json(const Summary& s, std::ostream& out) {
                                  [](const FailedRun& f) { return f.status == "hang"; })},
          {"failed_runs", failed},
          {"could_reach_exit", s.could_reach_exit},
+         {"oracle_can_end", s.oracle_can_end},
          {"oracle_tasks_mean", s.oracle_tasks_mean},
          {"oracle_below_ours", s.oracle_below_ours},
          {"ours", policy_json(s.ours)},
@@ -269,8 +311,7 @@ void write_risk_aware_markdown(const Summary& s, std::ostream& out) {
       << ":\n\n| | risk-blind (ours) | risk-aware |\n|---|---|---|\n";
   out << "| tasks done per run (oracle: " << num(s.oracle_tasks_mean) << ") | "
       << num(s.ours.tasks_mean) << " | " << num(a.tasks_mean) << " |\n";
-  out << "| tasks vs oracle, mean | " << pct(s.ours.vs_oracle_mean) << " | "
-      << pct(a.vs_oracle_mean) << " |\n";
+  out << "| tasks vs oracle, mean | " << vs_mean(s.ours) << " | " << vs_mean(a) << " |\n";
   out << "| ended at an exit or the end point | " << ended_runs(s.ours) << " | " << ended_runs(a)
       << " |\n";
   out << "| could reach an exit but did not | " << s.ours.missed_exits << " | " << a.missed_exits
@@ -302,11 +343,11 @@ void write_summary_markdown(const Summary& s, std::ostream& out) {
   out << "| | ours | baseline |\n|---|---|---|\n";
   out << "| tasks done per run (oracle: " << num(s.oracle_tasks_mean) << ") | "
       << num(s.ours.tasks_mean) << " | " << num(s.baseline.tasks_mean) << " |\n";
-  out << "| tasks vs oracle, mean | " << pct(s.ours.vs_oracle_mean) << " | "
-      << pct(s.baseline.vs_oracle_mean) << " |\n";
-  out << "| tasks vs oracle, worst run | " << pct(s.ours.vs_oracle_worst) << " (run "
-      << s.ours.worst_run << ") | " << pct(s.baseline.vs_oracle_worst) << " (run "
-      << s.baseline.worst_run << ") |\n";
+  out << "| tasks vs oracle, mean | " << vs_mean(s.ours) << " | " << vs_mean(s.baseline) << " |\n";
+  out << "| tasks vs oracle, worst run | " << vs_worst(s.ours) << " | " << vs_worst(s.baseline)
+      << " |\n";
+  out << "| runs with more tasks than the oracle | " << s.ours.above_oracle << " | "
+      << s.baseline.above_oracle << " |\n";
   for (Outcome o : {Outcome::kExit, Outcome::kEndPoint, Outcome::kBeacon, Outcome::kStranded}) {
     out << "| ended: " << to_string(o) << " | " << outcome(s.ours, o) << " | "
         << outcome(s.baseline, o) << " |\n";
@@ -324,6 +365,8 @@ void write_summary_markdown(const Summary& s, std::ostream& out) {
   };
   out << "| beacon called, run ended otherwise | " << ended_otherwise(s.ours) << " | "
       << ended_otherwise(s.baseline) << " |\n";
+  out << "| could reach an exit (oracle can end, robot could move) | " << s.ours.could_reach_exit
+      << " | " << s.baseline.could_reach_exit << " |\n";
   out << "| could reach an exit but did not | " << s.ours.missed_exits << " | "
       << s.baseline.missed_exits << " |\n";
   out << "| battery-reserve violations | " << s.ours.reserve_violations << " | "
@@ -338,32 +381,101 @@ void write_summary_markdown(const Summary& s, std::ostream& out) {
       << num(s.baseline.planning_p99_ms, 3) << " ms |\n\n";
   out << "Ours against the baseline, run by run: " << s.better_than_baseline << " better, "
       << s.equal_to_baseline << " equal, " << s.worse_than_baseline << " worse (tasks done).\n";
-  out << "Runs that could reach an exit (oracle): " << s.could_reach_exit << " of " << s.completed
-      << "; runs where ours did more than the oracle's plan: " << s.oracle_below_ours << ".\n";
+  out << "Runs the oracle can end: " << s.oracle_can_end << " of " << s.completed;
+  if (s.oracle_can_end == 0 && s.completed > 0) {
+    out << " (the oracle could end no run: no policy could reach an exit, and there are no tasks "
+           "to compare)";
+  }
+  out << "; runs that could reach an exit (ours): " << s.could_reach_exit
+      << "; runs where ours did more than the oracle (more tasks than its plan, or ended a "
+         "mission it could not end): "
+      << s.oracle_below_ours << ".\n";
   if (s.risk_aware) write_risk_aware_markdown(s, out);
   out << "Crashes and hangs: " << s.failed.size() << (s.failed.empty() ? ".\n" : ":\n");
   for (const FailedRun& f : s.failed) {
     out << "- run " << f.run << " (seed " << f.seed << "): " << f.status << ", " << f.detail
         << "; reproduce with `" << f.command << "`\n";
   }
-  out << "Verdict: " << (s.clean() ? "clean" : "NOT clean")
-      << " (no crash, hang, missed exit, stranded robot, reserve violation or beacon caused by a "
-         "limit).\n";
+  const std::vector<std::string> faults = verdict_faults(s);
+  if (faults.empty()) {
+    out << "Verdict: clean (no crash, hang, missed exit, stranded robot, reserve violation or "
+           "beacon caused by a limit).\n";
+    return;
+  }
+  out << "Verdict: NOT clean:";
+  for (std::size_t i = 0; i < faults.size(); ++i) out << (i == 0 ? " " : ", ") << faults[i];
+  out << ".\n";
 }
 
-void write_summary_svg(const Summary& s, std::ostream& out) {
-  constexpr int kWidth = 760;
-  constexpr int kHeight = 420;
+namespace {
+
+// What the campaign is run with: the fault rates, the push setting and the planner's limit.
+std::string settings_text(const CampaignSpec& spec) {
+  std::string text = "fault rates " + format_fault_rates(spec.rates) + "; push " +
+                     (spec.push_allowed ? "allowed" : "not allowed") + "; planner time limit ";
+  if (spec.planner_time_limit_s > 0) {
+    std::ostringstream limit;
+    limit << spec.planner_time_limit_s << " s";
+    text += limit.str();
+  } else {
+    text += "none";
+  }
+  return text;
+}
+
+// The SVG's histogram of tasks against the oracle, over the runs it can end.
+void write_histogram_svg(const Summary& s, std::ostream& out) {
   constexpr int kLeft = 60;
-  constexpr int kBottom = 250;
-  constexpr int kTop = 60;
-  constexpr int kBinWidth = 42;
-  const char* ours_colour = "#1f77b4";
-  const char* baseline_colour = "#ff7f0e";
+  constexpr int kBottom = 290;
+  constexpr int kTop = 100;
+  constexpr int kBinWidth = 40;
+  constexpr std::size_t kBins = 12;
   std::size_t max_bin = 1;
-  for (std::size_t b = 0; b < 11; ++b) {
+  for (std::size_t b = 0; b < kBins; ++b) {
     max_bin = std::max({max_bin, s.ours.vs_oracle_histogram[b], s.baseline.vs_oracle_histogram[b]});
   }
+  out << "<text x=\"" << kLeft << "\" y=\"" << kTop - 12
+      << "\">Runs by tasks done as a share of the oracle's (the " << s.oracle_can_end
+      << " runs it can end)</text>\n";
+  out << "<g id=\"histogram\">\n";
+  out << "<line x1=\"" << kLeft << "\" y1=\"" << kBottom << "\" x2=\"" << kLeft + 12 * kBinWidth
+      << "\" y2=\"" << kBottom << "\" stroke=\"black\"/>\n";
+  if (s.oracle_can_end == 0) {
+    out << "<text id=\"no-oracle\" x=\"" << kLeft + 6 * kBinWidth << "\" y=\""
+        << (kTop + kBottom) / 2 << "\" text-anchor=\"middle\">"
+        << xml_escape("The oracle could end no run: nothing to compare") << "</text>\n";
+  }
+  const double scale = static_cast<double>(kBottom - kTop) / static_cast<double>(max_bin);
+  for (std::size_t b = 0; b < kBins; ++b) {
+    const int x = kLeft + static_cast<int>(b) * kBinWidth;
+    const std::size_t counts[2] = {s.ours.vs_oracle_histogram[b],
+                                   s.baseline.vs_oracle_histogram[b]};
+    for (int k = 0; k < 2; ++k) {
+      if (counts[k] == 0) continue;
+      const double h = static_cast<double>(counts[k]) * scale;
+      out << "<rect class=\"" << (k == 0 ? "ours" : "baseline") << "\" x=\"" << x + 3 + k * 17
+          << "\" y=\"" << num(kBottom - h, 1) << "\" width=\"16\" height=\"" << num(h, 1)
+          << "\" fill=\"" << (k == 0 ? "#1f77b4" : "#ff7f0e") << "\"><title>" << counts[k]
+          << " runs</title></rect>\n";
+      out << "<text x=\"" << x + 11 + k * 17 << "\" y=\"" << num(kBottom - h - 3, 1)
+          << "\" text-anchor=\"middle\" font-size=\"9\">" << counts[k] << "</text>\n";
+    }
+    const std::string label =
+        b == 11 ? "more" : (b == 10 ? std::string("100%") : std::to_string(b * 10) + "-");
+    out << "<text x=\"" << x + kBinWidth / 2 << "\" y=\"" << kBottom + 14
+        << "\" text-anchor=\"middle\" font-size=\"10\">" << label << "</text>\n";
+  }
+  out << "</g>\n";
+}
+
+}  // namespace
+
+void write_summary_svg(const Summary& s, std::ostream& out) {
+  constexpr int kWidth = 800;
+  constexpr int kHeight = 500;
+  constexpr int kLeft = 60;
+  constexpr int kBottom = 290;
+  constexpr int kTop = 100;
   out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << kWidth << "\" height=\"" << kHeight
       << "\" viewBox=\"0 0 " << kWidth << ' ' << kHeight
       << "\" font-family=\"sans-serif\" font-size=\"12\">\n";
@@ -377,34 +489,21 @@ void write_summary_svg(const Summary& s, std::ostream& out) {
                     file(s.spec.map_name) + ", " + std::to_string(s.completed) + " runs, seed " +
                     std::to_string(s.spec.seed))
       << "</text>\n";
-  out << "<text x=\"" << kLeft << "\" y=\"" << kTop - 12
-      << "\">Runs by tasks done as a share of the oracle's</text>\n";
-  out << "<g id=\"histogram\">\n";
-  out << "<line x1=\"" << kLeft << "\" y1=\"" << kBottom << "\" x2=\"" << kLeft + 11 * kBinWidth
-      << "\" y2=\"" << kBottom << "\" stroke=\"black\"/>\n";
-  const double scale = static_cast<double>(kBottom - kTop) / static_cast<double>(max_bin);
-  for (std::size_t b = 0; b < 11; ++b) {
-    const int x = kLeft + static_cast<int>(b) * kBinWidth;
-    const std::size_t counts[2] = {s.ours.vs_oracle_histogram[b],
-                                   s.baseline.vs_oracle_histogram[b]};
-    for (int k = 0; k < 2; ++k) {
-      const double h = static_cast<double>(counts[k]) * scale;
-      out << "<rect class=\"" << (k == 0 ? "ours" : "baseline") << "\" x=\"" << x + 3 + k * 18
-          << "\" y=\"" << num(kBottom - h, 1) << "\" width=\"17\" height=\"" << num(h, 1)
-          << "\" fill=\"" << (k == 0 ? ours_colour : baseline_colour) << "\"><title>" << counts[k]
-          << " runs</title></rect>\n";
-      if (counts[k] > 0) {
-        out << "<text x=\"" << x + 11 + k * 18 << "\" y=\"" << num(kBottom - h - 3, 1)
-            << "\" text-anchor=\"middle\" font-size=\"9\">" << counts[k] << "</text>\n";
-      }
-    }
-    out << "<text x=\"" << x + kBinWidth / 2 << "\" y=\"" << kBottom + 14
-        << "\" text-anchor=\"middle\" font-size=\"10\">"
-        << (b == 10 ? std::string("100%") : std::to_string(b * 10) + "-") << "</text>\n";
+  out << "<text id=\"settings\" x=\"" << kWidth / 2
+      << "\" y=\"44\" text-anchor=\"middle\" font-size=\"11\">" << xml_escape(settings_text(s.spec))
+      << "</text>\n";
+  const std::vector<std::string> faults = verdict_faults(s);
+  std::string verdict = "Verdict: clean";
+  if (!faults.empty()) {
+    verdict = "Verdict: NOT clean:";
+    for (std::size_t i = 0; i < faults.size(); ++i) verdict += (i == 0 ? " " : ", ") + faults[i];
   }
-  out << "</g>\n";
+  out << "<text id=\"verdict\" x=\"" << kWidth / 2
+      << "\" y=\"66\" text-anchor=\"middle\" font-size=\"14\" font-weight=\"bold\" fill=\""
+      << (faults.empty() ? "#2ca02c" : "#d62728") << "\">" << xml_escape(verdict) << "</text>\n";
+  write_histogram_svg(s, out);
   // Outcomes: one stacked bar per policy.
-  const int ox = kLeft + 11 * kBinWidth + 40;
+  const int ox = kLeft + 12 * 40 + 50;
   const char* colours[4] = {"#2ca02c", "#98df8a", "#d62728", "#7f7f7f"};
   out << "<text x=\"" << ox << "\" y=\"" << kTop - 12
       << "\">Outcomes</text>\n<g id=\"outcomes\">\n";
@@ -432,17 +531,24 @@ void write_summary_svg(const Summary& s, std::ostream& out) {
         << "</text>\n";
     ly += 18;
   };
-  key(ours_colour, "ours: tasks vs oracle mean " + pct(s.ours.vs_oracle_mean) + ", worst " +
-                       pct(s.ours.vs_oracle_worst));
-  key(baseline_colour, "baseline: mean " + pct(s.baseline.vs_oracle_mean) + ", worst " +
-                           pct(s.baseline.vs_oracle_worst));
+  const auto policy_key = [&](const char* colour, const char* name, const PolicyFigures& f) {
+    key(colour, std::string(name) + ": tasks vs oracle mean " + vs_mean(f) + ", worst " +
+                    vs_worst(f) + "; more than the oracle " + std::to_string(f.above_oracle) +
+                    "; missed exits " + std::to_string(f.missed_exits) + " of " +
+                    std::to_string(f.could_reach_exit));
+  };
+  policy_key("#1f77b4", "ours", s.ours);
+  policy_key("#ff7f0e", "baseline", s.baseline);
   for (std::size_t o = 0; o < 4; ++o) {
     key(colours[o], std::string("ended: ") + std::string(to_string(static_cast<Outcome>(o))) +
                         " (ours " + std::to_string(s.ours.outcomes[o]) + ", baseline " +
                         std::to_string(s.baseline.outcomes[o]) + ")");
   }
-  out << "</g>\n<text x=\"" << kLeft << "\" y=\"" << kHeight - 8 << "\" font-size=\"11\">"
-      << xml_escape("crashes and hangs: " + std::to_string(s.failed.size()) +
+  out << "</g>\n<text id=\"footer\" x=\"" << kLeft << "\" y=\"" << kHeight - 8
+      << "\" font-size=\"11\">"
+      << xml_escape("runs the oracle could not end (not drawn): " +
+                    std::to_string(s.completed - s.oracle_can_end) +
+                    "; crashes and hangs: " + std::to_string(s.failed.size()) +
                     "; reserve violations: " + std::to_string(s.ours.reserve_violations) +
                     "; replanning p50/p99 " + num(s.ours.planning_p50_ms, 2) + "/" +
                     num(s.ours.planning_p99_ms, 2) + " ms (measured)")

@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "sewerplan/core/json_fields.h"
+#include "sewerplan/executor/recovery_clears.h"
 
 namespace sewerplan::executor {
 namespace {
@@ -32,6 +33,50 @@ void read_distance(JsonFields& f, std::string_view key, double& field) {
 }
 
 }  // namespace
+
+hal::Clearing manoeuvre_of(RecoveryPhase phase) {
+  switch (phase) {
+    case RecoveryPhase::kLiftHeadAndRetry:
+      return hal::Clearing::kLiftHead;
+    case RecoveryPhase::kPush:
+      return hal::Clearing::kPush;
+    case RecoveryPhase::kReboot:
+    case RecoveryPhase::kBackUpAndRetry:
+    case RecoveryPhase::kBackOffToSafety:
+    case RecoveryPhase::kBackOutOfManhole:
+      return hal::Clearing::kNothing;
+  }
+  return hal::Clearing::kNothing;
+}
+
+int stage_tries(const RecoveryConfig& config, RecoveryPhase phase) {
+  switch (phase) {
+    case RecoveryPhase::kReboot:
+      return config.max_reboots;
+    case RecoveryPhase::kBackUpAndRetry:
+      return config.backup_retries;
+    case RecoveryPhase::kLiftHeadAndRetry:
+      return config.lift_retries;
+    case RecoveryPhase::kPush:
+      return config.push_allowed ? config.push_retries : 0;
+    case RecoveryPhase::kBackOffToSafety:
+    case RecoveryPhase::kBackOutOfManhole:
+      return 1;
+  }
+  return 0;
+}
+
+bool recovery_clears(const RecoveryConfig& config, hal::ObstacleKind kind, hal::Approach approach) {
+  if (!hal::clears_from(kind, approach)) return false;
+  for (const RecoveryStage& stage : kRecoveryTable) {
+    if (stage.error == hal::RobotErrorKind::kBlockage &&
+        manoeuvre_of(stage.phase) == hal::cleared_by(kind) &&
+        stage_tries(config, stage.phase) > 0) {
+      return true;
+    }
+  }
+  return false;
+}
 
 Result<RecoveryConfig> read_recovery_json(std::string_view text, const std::string& file_name) {
   Diagnostics diagnostics;

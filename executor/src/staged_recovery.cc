@@ -4,6 +4,8 @@
 
 #include <algorithm>
 
+#include "sewerplan/executor/recovery_clears.h"
+
 #include "job_arithmetic.h"
 
 namespace sewerplan::executor::detail {
@@ -15,6 +17,9 @@ namespace {
 // be reached from this side (a fault campaign found the robot replanning the same unreachable
 // sample a hundred times when the margin was 5 cm).
 constexpr double kAhead_m = 0.001;
+
+// A recovery drive that got farther than this got past where the robot was stopped.
+constexpr double kMoved_m = 0.001;
 
 // How many reboots one job may take. A reboot that lets the robot work again (the job after it
 // runs for a while before the next malfunction, or to its end) shows the fault was transient, so
@@ -157,7 +162,7 @@ StagedRecovery::Cleared StagedRecovery::clear_blockage(Job rest) {
     if (auto left = rest_of(job, r.progress_m)) rest = *left;
     return std::nullopt;
   };
-  for (int i = 0; i < c.backup_retries; ++i) {
+  for (int i = 0; i < stage_tries(c, RecoveryPhase::kBackUpAndRetry); ++i) {
     const hal::JobReport back = recovery_job(back_off(rest, c.backup_m));
     if (!back.ok()) {
       if (back.error->kind == hal::RobotErrorKind::kMalfunction) return {Cleared::How::kStuck};
@@ -168,20 +173,24 @@ StagedRecovery::Cleared StagedRecovery::clear_blockage(Job rest) {
       return *done;
     }
   }
-  for (int i = 0; i < c.lift_retries; ++i) {
+  for (int i = 0; i < stage_tries(c, RecoveryPhase::kLiftHeadAndRetry); ++i) {
     if (!recovery_job(LiftHead{}).ok() || !recovery_job(LowerHead{}).ok()) {
       return Cleared{Cleared::How::kStuck};
     }
     if (auto done = retry(rest, RecoveryPhase::kLiftHeadAndRetry, 0)) return *done;
   }
-  for (int i = 0; c.push_allowed && i < c.push_retries; ++i) {
+  for (int i = 0; i < stage_tries(c, RecoveryPhase::kPush); ++i) {
     const std::optional<Job> push_job = push_for(rest);
-    if (!push_job) break;  // the robot pushes with its head only
+    if (!push_job) break;  // the robot pushes with its head only (hal/obstacle_clearing.h)
     hal::JobReport push = host_.execute_job(*push_job);
     host_.log_recovery(RecoveryPhase::kPush, push.ok());
     if (push.ok()) return Cleared{Cleared::How::kDone};
-    if (push.error->kind != hal::RobotErrorKind::kBlockage) {
-      return Cleared{Cleared::How::kOtherError, *push_job, std::move(push)};
+    // A push that got on and was stopped again moved the obstacle it met: what stopped it lies
+    // further on (another obstacle, a danger spot). That is the drive's own error, with recovery
+    // of its own and its own words and place, as is a malfunction; the rest of the drive is
+    // driven, not pushed. (A second obstacle was reported with the first one's text, issue 30.)
+    if (push.error->kind != hal::RobotErrorKind::kBlockage || push.progress_m > kMoved_m) {
+      return Cleared{Cleared::How::kOtherError, rest, std::move(push)};
     }
   }
   return Cleared{Cleared::How::kStays};

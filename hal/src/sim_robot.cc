@@ -10,6 +10,7 @@
 #include "sewerplan/core/check.h"
 #include "sewerplan/core/map_queries.h"
 #include "sewerplan/core/overloaded.h"
+#include "sewerplan/hal/obstacle_clearing.h"
 
 namespace sewerplan::hal {
 namespace {
@@ -252,7 +253,7 @@ SimRobot::Move SimRobot::plan_move(const InPipe& from, double distance_m, int si
   };
   for (std::size_t i = 0; i < faults_.obstacles.size(); ++i) {
     const Obstacle& o = faults_.obstacles[i];
-    if (obstacle_cleared_[i] || (push && o.kind == ObstacleKind::kTransientPush)) continue;
+    if (obstacle_cleared_[i] || (push && cleared_by(o.kind) == Clearing::kPush)) continue;
     consider(o.pipe, o.offset_m, Move::Why::kObstacle);
   }
   for (const DangerSpot& d : faults_.danger_spots) consider(d.pipe, d.offset_m, Move::Why::kDanger);
@@ -269,10 +270,10 @@ JobReport SimRobot::drive_in_pipe(const InPipe& from, double speed_mps, double d
   report.progress_m = stop ? std::min(move.distance_m, stop->after_s * speed_mps) : move.distance_m;
   report.duration_s = stop ? stop->after_s : move.distance_m / speed_mps;
   if (push) {
-    // A push moves every transient_push obstacle it reaches out of the way.
+    // A push (with the head: forward) moves every obstacle a push clears (cleared_by) it reaches.
     for (std::size_t i = 0; i < faults_.obstacles.size(); ++i) {
       const Obstacle& o = faults_.obstacles[i];
-      if (o.pipe != from.pipe || o.kind != ObstacleKind::kTransientPush) continue;
+      if (o.pipe != from.pipe || cleared_by(o.kind) != Clearing::kPush) continue;
       const double ahead_m = (o.offset_m - from.offset_m) * sign;
       if (ahead_m > 0 && ahead_m - options_.clearance_m <= report.progress_m) {
         obstacle_cleared_[i] = true;
@@ -384,7 +385,7 @@ JobReport SimRobot::set_head(bool lifted) {
   if (!where) return report;
   for (std::size_t i = 0; i < faults_.obstacles.size(); ++i) {
     const Obstacle& o = faults_.obstacles[i];
-    if (o.pipe == where->pipe && o.kind == ObstacleKind::kTransientLift &&
+    if (o.pipe == where->pipe && cleared_by(o.kind) == Clearing::kLiftHead &&
         std::abs(o.offset_m - where->offset_m) <= options_.lift_reach_m + kLengthTolerance_m) {
       obstacle_cleared_[i] = true;
     }

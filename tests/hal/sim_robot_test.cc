@@ -4,6 +4,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "sewerplan/hal/obstacle_clearing.h"
+
 #include "support/ais_testbed.h"
 #include "support/paths.h"
 #include "support/small_map.h"
@@ -167,6 +169,33 @@ TEST_F(SimRobotTest, APushClearsATransientPushObstacle) {
   EXPECT_TRUE(r.remaining_obstacles().empty());
   EXPECT_TRUE(r.execute(kDrive15).ok());
   EXPECT_TRUE(std::holds_alternative<AtSlot>(r.pose()));
+}
+
+// The simulated robot clears obstacles as hal's one table says (obstacle_clearing.h), met front
+// or rear first: lifting the head on either side, pushing with the head only.
+TEST_F(SimRobotTest, ClearsEachObstacleAsTheClearingTableSaysFromEitherSide) {
+  for (const ObstacleKind kind :
+       {ObstacleKind::kTransientLift, ObstacleKind::kTransientPush, ObstacleKind::kPermanent}) {
+    for (const Approach approach : {Approach::kFront, Approach::kRear}) {
+      const bool front = approach == Approach::kFront;
+      // At 15 m facing end 1: the obstacle at 12.3 m is behind the robot.
+      SimRobot r = robot(InPipe{pipe("P1"), front ? 10.0 : 15.0, Heading::kTowardsEnd1},
+                         obstacle_in_p1(kind));
+      const Job drive = front ? Job{DriveForward{.speed_mps = 0.3, .distance_m = 4}}
+                              : Job{DriveBackward{.speed_mps = 0.3, .distance_m = 4}};
+      ASSERT_FALSE(r.execute(drive).ok());
+      // Every manoeuvre the robot has, where it stopped: the head, then a push the only way it
+      // can push (forward).
+      EXPECT_TRUE(r.execute(LiftHead{}).ok());
+      EXPECT_TRUE(r.execute(LowerHead{}).ok());
+      if (front) static_cast<void>(r.execute(Push{.speed_mps = 0.1, .distance_m = 0.1}));
+      EXPECT_EQ(r.remaining_obstacles().empty(), clears_from(kind, approach))
+          << to_string(kind) << (front ? " front" : " rear");
+    }
+  }
+  static_assert(cleared_by(ObstacleKind::kTransientPush) == Clearing::kPush);
+  static_assert(!clears_from(ObstacleKind::kTransientPush, Approach::kRear));
+  static_assert(clears_from(ObstacleKind::kTransientLift, Approach::kRear));
 }
 
 TEST_F(SimRobotTest, StopsBeforeADangerSpotWithDanger) {

@@ -56,7 +56,7 @@ export function summaryCharts(s) {
   const both = (f) => [{ name: 'ours', colour: COLOURS.ours, values: f(s.ours) },
                        { name: 'baseline', colour: COLOURS.baseline, values: f(s.baseline) }];
   const causes = Object.keys(s.ours.beacons_by_cause);
-  const bins = [...Array(10).keys()].map((b) => `${b * 10}-`).concat(['100%']);
+  const bins = [...Array(10).keys()].map((b) => `${b * 10}-`).concat(['100%', 'more']);
   const fixed = (v) => v.toFixed(2);
   return [
     barChart({ id: 'chart-outcomes', title: `How the ${s.completed} runs ended`,

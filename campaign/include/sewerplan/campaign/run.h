@@ -11,12 +11,15 @@
 //     (ReplannerOptions::Goals::kPaperBaseline: after a failure, the same goal list without goal
 //     selection, else the nearest exit);
 //   - the oracle: one plan, with goal selection, from a mission that knows in advance every
-//   obstacle
-//     no recovery can clear (permanent ones, and push-only ones when pushing is not allowed), every
-//     danger spot and every dangerous passage. It is counted, not driven: it has the whole battery,
-//     no malfunction and no detour, so its task count bounds what any policy could do on the same
-//     faults (exactly so where the planner is optimal, docs/campaign.md); and when it finds no way
-//     to end the mission, no policy could have reached an exit.
+//     obstacle no recovery can clear (executor::recovery_clears: permanent ones, and push-only ones
+//     when pushing is not allowed), every danger spot and every dangerous passage. With pushing
+//     allowed, a push-only obstacle is cleared only when met front first; a second plan that takes
+//     those for blockages tells whether a way out is there however they are met
+//     (oracle_can_end_either_way), which is what a missed exit is judged by. It is counted, not
+//     driven: it has the whole battery, no malfunction and no detour, so its task count bounds what
+//     any policy could do on the same faults (exactly so where the planner is optimal,
+//     docs/campaign.md); and when it finds no way to end the mission, no policy could have reached
+//     an exit.
 // Everything in a RunResult but `measured` is the same on every machine for the same inputs.
 //
 //   RunResult r = *run_one(map, mission, {.rates = {}, .campaign_seed = 7}, 12);
@@ -26,6 +29,7 @@
 // and simulated robot and only reads the map and mission, so runs may go on in parallel.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -54,7 +58,49 @@ struct FaultRates {
   friend bool operator==(const FaultRates&, const FaultRates&) = default;
 };
 
-// Reads "name=value,..." (any subset, the others keep their defaults). An error names the bad item.
+// A named set of fault rates. Obstacle and danger rates are per kilometre of pipe the robot can
+// drive (a Poisson count per pipe), so a robot meets that many on each kilometre it drives,
+// whatever the network's size; passages are a share of the passages, malfunctions per hour of
+// mission time (docs/campaign.md, "Fault-rate profiles", with the oracle's measured task share).
+struct FaultRateProfile {
+  std::string_view name;
+  FaultRates rates;
+  std::string_view meant_for;
+};
+
+inline constexpr std::array<FaultRateProfile, 4> kFaultRateProfiles{{
+    {"default", FaultRates{}, "the AIS test bed's campaigns since issue 14"},
+    {"realistic",
+     FaultRates{.obstacles_per_km = 2,
+                .danger_per_km = 0.5,
+                .passage_share = 0.002,
+                .malfunctions_per_hour = 0.25,
+                .permanent_share = 0.05,
+                .transient_share = 0.5},
+     "a real sewer: the tour, most tasks still possible"},
+    {"moderate",
+     FaultRates{.obstacles_per_km = 40,
+                .danger_per_km = 10,
+                .passage_share = 0.05,
+                .malfunctions_per_hour = 2,
+                .permanent_share = 0.1,
+                .transient_share = 0.5},
+     "the way out, on large networks"},
+    {"harsh",
+     FaultRates{.obstacles_per_km = 80,
+                .danger_per_km = 20,
+                .passage_share = 0.1,
+                .malfunctions_per_hour = 3,
+                .permanent_share = 0.05,
+                .transient_share = 0.5},
+     "the way out: nearly every pipe holds a fault"},
+}};
+
+// The profile of that name, or none.
+std::optional<FaultRates> fault_rate_profile(std::string_view name);
+
+// Reads "[PROFILE,]name=value,..." (any subset; the others keep the profile's rates, or the
+// defaults). An error names the bad item, or the unknown profile and the known ones.
 Result<FaultRates> parse_fault_rates(std::string_view text);
 std::string format_fault_rates(const FaultRates& rates);
 
@@ -127,8 +173,13 @@ struct RunResult {
   FaultCounts faults;
   std::size_t oracle_tasks = 0;
   bool oracle_can_end = false;  // the oracle found a way to end the mission
-  // The oracle can end the mission and no permanent malfunction stopped our robot: a run in which
-  // the robot must end at an exit or the end point.
+  // The oracle can end the mission even if every obstacle that recovery clears from one side only
+  // (hal/obstacle_clearing.h: a push-only one, with pushing allowed) is met from the other: a way
+  // out that no way of meeting the obstacles closes. Equal to oracle_can_end without such
+  // obstacles.
+  bool oracle_can_end_either_way = false;
+  // The oracle can end the mission either way and no permanent malfunction stopped our robot: a
+  // run in which the robot must end at an exit or the end point.
   bool could_reach_exit = false;
   Execution ours;
   Execution baseline;

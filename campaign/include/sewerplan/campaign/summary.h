@@ -3,10 +3,14 @@
 //
 // Tasks are compared per run as a share of the oracle's (run.h; a run whose oracle does no task
 // counts as 1), then averaged over the runs in which the oracle can end the mission (elsewhere no
-// policy can, and the oracle does nothing); the worst run is named. Ours is compared with the
-// baseline run by run (better, equal, worse). Outcomes are counted as the robot's true pose shows
-// them; a run that could reach an exit but did not is a "missed exit". Planning times are measured,
-// so only they (and wall times) differ between two machines.
+// policy can, and the oracle does nothing); the worst run is named. When the oracle can end no
+// run there is nothing to compare: `compared` is 0 and the writers say so (no mean, no worst run).
+// A run where a policy did more than the oracle's plan is counted (`above_oracle`, its own bin of
+// the histogram), never folded into 100 %. Ours is compared with the baseline run by run (better,
+// equal, worse). Outcomes are counted as the robot's true pose shows them; a run in which the
+// oracle can end the mission and no permanent malfunction stopped that policy's robot, which did
+// not end at an exit or the end point, is that policy's "missed exit". Planning times are
+// measured, so only they (and wall times) differ between two machines.
 //
 //   Summary s = summarize(spec, records);
 //   write_summary_markdown(s, std::cout);
@@ -30,11 +34,14 @@ namespace sewerplan::campaign {
 
 struct PolicyFigures {
   double tasks_mean = 0;      // tasks done per run
-  double vs_oracle_mean = 0;  // share of the oracle's tasks, mean over runs
+  std::size_t compared = 0;   // runs compared with the oracle: those it can end
+  double vs_oracle_mean = 0;  // share of the oracle's tasks, mean over those runs (0 if none)
   double vs_oracle_worst = 1;
   std::size_t worst_run = 0;
+  std::size_t above_oracle = 0;  // compared runs where it did more tasks than the oracle's plan
   std::array<std::size_t, 4> outcomes{};  // by Outcome
-  std::size_t missed_exits = 0;           // could reach an exit, did not
+  std::size_t could_reach_exit = 0;       // the oracle can end it, and this robot could move
+  std::size_t missed_exits = 0;           // of those, not ended at an exit or the end point
   // By executor::MissionReport::BeaconCause, over the runs that end with the beacon (outcome
   // beacon: they sum to it), and over the runs that called for recovery yet ended otherwise,
   // whatever their outcome (most often a breakdown at an exit manhole: outcome exit, where the
@@ -48,7 +55,8 @@ struct PolicyFigures {
   std::size_t replans_max = 0;
   double planning_p50_ms = 0;  // measured
   double planning_p99_ms = 0;
-  std::array<std::size_t, 11> vs_oracle_histogram{};  // [0,10%), ..., [90%,100%), 100% and more
+  // [0,10%), ..., [90%,100%), 100 %, more than the oracle (over the compared runs).
+  std::array<std::size_t, 12> vs_oracle_histogram{};
 };
 
 struct FailedRun {
@@ -61,11 +69,14 @@ struct FailedRun {
 
 struct Summary {
   CampaignSpec spec;
-  std::size_t runs = 0;       // records summarized
-  std::size_t completed = 0;  // with a result
-  std::size_t could_reach_exit = 0;
+  std::size_t runs = 0;              // records summarized
+  std::size_t completed = 0;         // with a result
+  std::size_t could_reach_exit = 0;  // by ours (PolicyFigures::could_reach_exit)
+  std::size_t oracle_can_end = 0;    // runs whose oracle can end the mission
   double oracle_tasks_mean = 0;
-  std::size_t oracle_below_ours = 0;  // runs the oracle can end where ours did more than it
+  // Runs where ours did more than the oracle: more tasks than its plan, or ended (an exit, the
+  // end point) a mission the oracle could not end. Each one shows the oracle is no bound there.
+  std::size_t oracle_below_ours = 0;
   PolicyFigures ours;
   PolicyFigures baseline;
   std::size_t better_than_baseline = 0;  // runs, by tasks done
@@ -90,9 +101,15 @@ struct Summary {
 
 Summary summarize(const CampaignSpec& spec, const std::vector<RunRecord>& records);
 
+// What makes the campaign not clean, one item a kind ("3 missed exits", "1 hang"); empty when it
+// is clean. The Markdown and the SVG give the verdict with these.
+std::vector<std::string> verdict_faults(const Summary& summary);
+
 void write_summary_json(const Summary& summary, std::ostream& out);
 void write_summary_markdown(const Summary& summary, std::ostream& out);
-// A chart: tasks against the oracle (histogram, ours and baseline) and the outcomes.
+// A chart: the verdict, the fault rates and limits, tasks against the oracle over the runs it
+// can end (histogram, ours and baseline; runs above the oracle in a bin of their own), the
+// outcomes, missed exits, and how many runs the oracle could not end (not drawn).
 void write_summary_svg(const Summary& summary, std::ostream& out);
 
 }  // namespace sewerplan::campaign
