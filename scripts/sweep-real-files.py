@@ -6,10 +6,11 @@ For every map file under the given directories (SWMM .inp, ISYBAU .xml, JSON map
 database .sewer, GeoPackages, Shapefiles, GeoJSON), it runs
   1. `sewerplan info --map FILE --json`: imported, refused (by error code and reason), crashed
      (killed by a signal, or an exit code sewerplan never uses) or hung (over the time limit);
-  2. for an imported file, the GIS round trip a user makes through QGIS:
+  2. for an imported file, the GIS round trips a user makes through QGIS:
      `convert` to a JSON map (A), `export-geojson` (a map without a CRS is placed with
-     `--crs EPSG:25832`), GDAL's `ogr2ogr` to a GeoPackage, `convert` of that back to a JSON map (B),
-     and compares A with B field by field: every manhole, slot, pipe, inspection point and finding,
+     `--crs EPSG:25832`); that GeoJSON read back as `--map`, and GDAL's `ogr2ogr` to a GeoPackage
+     of one layer per kind of feature in the map's CRS, read back: each JSON map (B) is compared
+     with A field by field: every manhole, slot, pipe, inspection point and finding,
      each number within the precision GeoJSON's WGS84 coordinates keep (1 cm for positions, 0.01 degrees
      for azimuths, 1 mm for everything else).
 It prints a Markdown report (the one for the shipped files is docs/formats/sweep.md) and exits 1 if
@@ -154,20 +155,41 @@ def round_trip(sewerplan, ogr2ogr, path, timeout, work):
     if status != "ok":
         return [f"convert failed ({status} {code}): {err.strip()[:200]}"]
     a = json.loads(a_json.read_text(encoding="utf-8"))
-    crs = [] if a.get("crs") else ["--crs", "EPSG:25832"]
+    crs_name = a.get("crs") or "EPSG:25832"
+    crs = [] if a.get("crs") else ["--crs", crs_name]
     status, code, out, err = run([sewerplan, "export-geojson", "--map", str(a_json), *crs,
                                   "-o", str(geojson)], timeout)
     if status != "ok":
         return [f"export-geojson failed ({status} {code}): {err.strip()[:200]}"]
-    status, code, out, err = run([ogr2ogr, "-f", "GPKG", str(gpkg), str(geojson)], timeout)
-    if status not in ("ok",):
-        return [f"ogr2ogr failed: {err.strip()[:200]}"]
-    status, code, out, err = run([sewerplan, "convert", "--map", str(gpkg), *crs,
-                                  "-o", str(b_json)], timeout)
+    changes = []
+    # The GeoJSON itself as --map, then the GeoPackage a QGIS user saves: each kind of feature
+    # its own layer, back in the map's CRS.
+    status, code, out, err = run([sewerplan, "convert", "--map", str(geojson), "-o", str(b_json)],
+                                 timeout)
     if status != "ok":
-        return [f"convert of the GeoPackage failed ({status} {code}): {err.strip()[:200]}"]
+        changes.append(f"convert of the GeoJSON failed ({status} {code}): {err.strip()[:200]}")
+    else:
+        b = json.loads(b_json.read_text(encoding="utf-8"))
+        if not a.get("crs"):
+            b.pop("crs", None)
+        changes += ["GeoJSON: " + c for c in compare_maps(a, b)]
+    update = []
+    for layer in ("manhole", "pipe", "inspection_point", "finding"):
+        status, code, out, err = run([ogr2ogr, "-f", "GPKG", *update, str(gpkg), str(geojson),
+                                      "-t_srs", crs_name, "-where", f"layer = '{layer}'",
+                                      "-nln", layer + "s"], timeout)
+        if status != "ok":
+            return changes + [f"ogr2ogr failed: {err.strip()[:200]}"]
+        update = ["-update"]
+    status, code, out, err = run([sewerplan, "convert", "--map", str(gpkg), "-o", str(b_json)],
+                                 timeout)
+    if status != "ok":
+        return changes + [f"convert of the GeoPackage failed ({status} {code}): "
+                          f"{err.strip()[:200]}"]
     b = json.loads(b_json.read_text(encoding="utf-8"))
-    changes = compare_maps(a, b)
+    if not a.get("crs"):
+        b.pop("crs", None)
+    changes += ["GeoPackage: " + c for c in compare_maps(a, b)]
     return changes or None
 
 
