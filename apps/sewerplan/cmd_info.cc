@@ -48,35 +48,6 @@ std::map<std::string, std::size_t> findings_by_code(const SewerMap& map) {
   return counts;
 }
 
-// A closing finding's pipe, when the robot could not enter it even without the findings (too
-// narrow or too wide for it, or out of reach from the starts): why; else empty.
-std::string_view undrivable_anyway(const SewerMap& map, const FindingRisk& r,
-                                   const domain::DriveabilityReport& report) {
-  const std::string_view why = domain::why_not_driveable(map.findings()[r.finding].pipe, report);
-  return why == "cut off by a closure" ? std::string_view() : why;
-}
-
-// What the findings close for the robot, split: the places it could otherwise drive to, and those
-// in pipes it cannot enter anyway (a closure there changes nothing for a plan).
-struct Closures {
-  std::vector<FindingRisk> enterable;
-  std::vector<std::pair<FindingRisk, std::string_view>> undrivable;  // with why
-};
-
-Closures split_closures(const SewerMap& map, const RobotProfile& profile, const RiskTable& table,
-                        const domain::DriveabilityReport& report) {
-  Closures c;
-  for (FindingRisk& r : server::closing_findings(map, profile, table)) {
-    const std::string_view why = undrivable_anyway(map, r, report);
-    if (why.empty()) {
-      c.enterable.push_back(std::move(r));
-    } else {
-      c.undrivable.emplace_back(std::move(r), why);
-    }
-  }
-  return c;
-}
-
 void print_findings(const SewerMap& map, const RobotProfile* profile, const RiskTable& table,
                     const domain::DriveabilityReport* report, std::ostream& out) {
   if (map.finding_count() == 0) return;
@@ -88,7 +59,7 @@ void print_findings(const SewerMap& map, const RobotProfile* profile, const Risk
   }
   out << '\n';
   if (profile == nullptr || report == nullptr) return;
-  const Closures closed = split_closures(map, *profile, table, *report);
+  const server::Closures closed = server::split_closures(map, *profile, table, *report);
   auto place = [&](const FindingRisk& r) {
     const Finding& f = map.findings()[r.finding];
     return "  pipe " + map.pipe(f.pipe).name + " at " + metres(f.offset_m) + ": " + r.reason;
@@ -101,26 +72,6 @@ void print_findings(const SewerMap& map, const RobotProfile* profile, const Risk
   for (const auto& [r, why] : closed.undrivable) {
     out << place(r) << " (the pipe is " << why << ")\n";
   }
-}
-
-nlohmann::json closures_json(const SewerMap& map, const Closures& closed) {
-  auto entry = [&](const FindingRisk& r) {
-    const Finding& f = map.findings()[r.finding];
-    return nlohmann::json{{"pipe", map.pipe(f.pipe).name},
-                          {"offset_m", f.offset_m},
-                          {"code", f.code},
-                          {"reason", r.reason}};
-  };
-  nlohmann::json enterable = nlohmann::json::array();
-  for (const FindingRisk& r : closed.enterable) enterable.push_back(entry(r));
-  nlohmann::json undrivable = nlohmann::json::array();
-  for (const auto& [r, why] : closed.undrivable) {
-    nlohmann::json e = entry(r);
-    e["pipe_not_driveable"] = why;
-    undrivable.push_back(std::move(e));
-  }
-  return {{"closed_by_findings", std::move(enterable)},
-          {"closed_by_findings_in_undrivable_pipes", std::move(undrivable)}};
 }
 
 std::vector<std::string> exit_names(const SewerMap& map) {
@@ -238,7 +189,7 @@ int run(const InfoOptions& o, Context& c) {
     if (report) {
       j["driveability"] = server::driveability_json(*report, *map, *profile);
       j["driveability"].update(
-          closures_json(*map, split_closures(*map, *profile, *table, *report)));
+          server::closures_json(*map, server::split_closures(*map, *profile, *table, *report)));
     }
     print_json(c.out, j);
   } else {

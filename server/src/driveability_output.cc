@@ -60,17 +60,50 @@ domain::DriveabilityReport analyse_profile(const SewerMap& map, const RobotProfi
   return domain::analyse_driveability(map, profile, starts, motion, closures);
 }
 
-nlohmann::json closed_by_findings_json(const SewerMap& map, const RobotProfile& profile,
-                                       const RiskTable& table) {
-  nlohmann::json list = nlohmann::json::array();
-  for (const FindingRisk& r : closing_findings(map, profile, table)) {
-    const Finding& f = map.findings()[r.finding];
-    list.push_back({{"pipe", map.pipe(f.pipe).name},
-                    {"offset_m", f.offset_m},
-                    {"code", f.code},
-                    {"reason", r.reason}});
+namespace {
+
+// A closing finding's pipe, when the robot could not enter it even without the findings: why;
+// else empty.
+std::string_view undrivable_anyway(const SewerMap& map, const FindingRisk& r,
+                                   const domain::DriveabilityReport& report) {
+  const std::string_view why = domain::why_not_driveable(map.findings()[r.finding].pipe, report);
+  return why == "cut off by a closure" ? std::string_view() : why;
+}
+
+}  // namespace
+
+Closures split_closures(const SewerMap& map, const RobotProfile& profile, const RiskTable& table,
+                        const domain::DriveabilityReport& report) {
+  Closures c;
+  for (FindingRisk& r : closing_findings(map, profile, table)) {
+    const std::string_view why = undrivable_anyway(map, r, report);
+    if (why.empty()) {
+      c.enterable.push_back(std::move(r));
+    } else {
+      c.undrivable.emplace_back(std::move(r), why);
+    }
   }
-  return list;
+  return c;
+}
+
+nlohmann::json closures_json(const SewerMap& map, const Closures& closed) {
+  auto entry = [&](const FindingRisk& r) {
+    const Finding& f = map.findings()[r.finding];
+    return nlohmann::json{{"pipe", map.pipe(f.pipe).name},
+                          {"offset_m", f.offset_m},
+                          {"code", f.code},
+                          {"reason", r.reason}};
+  };
+  nlohmann::json enterable = nlohmann::json::array();
+  for (const FindingRisk& r : closed.enterable) enterable.push_back(entry(r));
+  nlohmann::json undrivable = nlohmann::json::array();
+  for (const auto& [r, why] : closed.undrivable) {
+    nlohmann::json e = entry(r);
+    e["pipe_not_driveable"] = why;
+    undrivable.push_back(std::move(e));
+  }
+  return {{"closed_by_findings", std::move(enterable)},
+          {"closed_by_findings_in_undrivable_pipes", std::move(undrivable)}};
 }
 
 void print_driveability(const domain::DriveabilityReport& r, const SewerMap& map,

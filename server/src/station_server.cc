@@ -393,7 +393,7 @@ void StationServer::Impl::driveability(const httplib::Request& req, httplib::Res
   const domain::DriveabilityReport report =
       analyse_profile(*m->map, *profile, starts, with_motion.passage_motion.get(), table);
   Json j = driveability_json(report, *m->map, *profile);
-  j["closed_by_findings"] = closed_by_findings_json(*m->map, *profile, table);
+  j.update(closures_json(*m->map, split_closures(*m->map, *profile, table, report)));
   j["motion_table"] = with_motion.passage_motion != nullptr;
   res.set_content(j.dump(), kJsonType);
 }

@@ -8,6 +8,8 @@
 
 #include <ostream>
 #include <span>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -31,10 +33,21 @@ domain::DriveabilityReport analyse_profile(const SewerMap& map, const RobotProfi
                                            const PassageMotionTable* motion,
                                            const RiskTable& table);
 
-// closing_findings as [{"pipe", "offset_m", "code", "reason"}]: `info --json`'s
-// "closed_by_findings".
-nlohmann::json closed_by_findings_json(const SewerMap& map, const RobotProfile& profile,
-                                       const RiskTable& table);
+// What the findings close for the robot, split: the places it could otherwise drive to, and those
+// in pipes it cannot enter anyway (too narrow or too wide for it, or out of reach from the starts:
+// a closure there changes nothing for a plan), each with why.
+struct Closures {
+  std::vector<FindingRisk> enterable;
+  std::vector<std::pair<FindingRisk, std::string_view>> undrivable;
+};
+
+// closing_findings, split by `report` (analyse_profile's, with the same table).
+Closures split_closures(const SewerMap& map, const RobotProfile& profile, const RiskTable& table,
+                        const domain::DriveabilityReport& report);
+
+// `info --json`'s and the station's {"closed_by_findings": [{"pipe", "offset_m", "code",
+// "reason"}], "closed_by_findings_in_undrivable_pipes": [... and "pipe_not_driveable"]}.
+nlohmann::json closures_json(const SewerMap& map, const Closures& closed);
 
 void print_driveability(const domain::DriveabilityReport& report, const SewerMap& map,
                         const RobotProfile& profile, std::ostream& out);
