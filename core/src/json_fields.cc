@@ -86,12 +86,21 @@ std::string describe_simdjson_error(simdjson::error_code error) {
   }
 }
 
+// A number token short enough to read in a message: its first and last digits around the count
+// of those left out ("1444444444...4444 (400 characters)").
+std::string abbreviated_number(std::string_view token) {
+  constexpr std::size_t kShown = 24;
+  if (token.size() <= kShown) return input_text(token);
+  return input_text(token.substr(0, 12)) + "..." + input_text(token.substr(token.size() - 8)) +
+         " (" + std::to_string(token.size()) + " characters)";
+}
+
 // simdjson does not say where a syntax error is; nlohmann does. Used only on the error path.
 void report_syntax_error(std::string_view text, std::string_view file, simdjson::error_code error,
                          Diagnostics& diagnostics) {
   if (const std::optional<OutOfRangeNumber> n = find_out_of_range_number(text)) {
     diagnostics.error(place_of(text, file, n->offset),
-                      "number " + input_text(n->token) +
+                      "number " + abbreviated_number(n->token) +
                           " is out of range: no number beyond about 1.8e308 can be read");
     return;
   }

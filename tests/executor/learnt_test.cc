@@ -81,7 +81,7 @@ TEST(Learnt, ErrorsNameTheFileAndThePath) {
        "learnt.json:$.blockages[0]: error: missing required field 'pipe'"},
       {R"({"format": "sewerplan-faults", "version": 1})", "learnt.json:$.format: error: expected"},
       {"[]", "learnt.json:$: error: expected an object, got an array"},
-      {"{\"version\": 1" + std::string(400, '4') + "}", "number overflow"},
+      {"{\"version\": 1" + std::string(400, '4') + "}", "learnt.json:1:13: error: number 1444"},
   };
   for (const auto& [text, where] : bad) {
     Diagnostics d;

@@ -210,7 +210,8 @@ TEST_F(FaultScenarioTest, AHugeNumberIsAParseErrorNotAnException) {
   ASSERT_FALSE(f.has_value());
   EXPECT_EQ(f.error().code, ErrorCode::kParse);
   EXPECT_THAT(f.error().message, HasSubstr("f.json"));
-  EXPECT_THAT(f.error().message, HasSubstr("number overflow"));
+  EXPECT_THAT(f.error().message, HasSubstr("is out of range"));
+  EXPECT_LT(f.error().message.size(), 200U);  // the number shortened, not echoed whole
 }
 
 TEST_F(FaultScenarioTest, AnotherFormatIsAParseError) {

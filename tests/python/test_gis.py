@@ -78,7 +78,7 @@ def test_a_bad_field_mapping_names_its_file(gis_source, tmp_path):
         sewerplan.read_map(str(gpkg), gis_fields=str(tmp_path / "missing.json"))
     assert error.value.code == "io" and "missing.json" in error.value.message
     bad = tmp_path / "bad.json"
-    bad.write_text('{"pipes": {"height": {"field": "dn", "unit": "inch"}}}')
+    bad.write_text('{"pipes": {"height": {"field": "dn", "unit": "furlong"}}}')
     with pytest.raises(sewerplan.Error) as error:
         sewerplan.read_map(str(gpkg), gis_fields=str(bad))
     assert error.value.code == "parse"

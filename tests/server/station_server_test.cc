@@ -21,6 +21,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "sewerplan/core/limits.h"
 #include "sewerplan/core/map_io.h"
 #include "sewerplan/core/passage_motion.h"
 #include "sewerplan/core/robot_profile.h"
@@ -153,15 +154,17 @@ TEST_F(StationServerTest, GivesThePageTheSameGeometryAsTypedArrays) {
 
 // A map of what the compact geometry must carry whole (written here, uploaded as JSON): names of
 // 2- and 4-byte UTF-8 characters, a pipe with an open end, one with no manhole at either end,
-// a manhole of 300 slots (format 1 cut its count at 255), coordinates in national grid metres with
+// a manhole of as many slots as a map may give one (kMaxSlotsPerManhole, 100: more than a byte's
+// worth of passages), coordinates in national grid metres with
 // all of a double's digits, a length that is no short decimal.
 std::string awkward_map() {
   json hub_slots = json::array();
   json manholes = json::array();
   json pipes = json::array();
-  for (int k = 0; k < 300; ++k) {
+  constexpr int kHub = static_cast<int>(sewerplan::kMaxSlotsPerManhole);
+  for (int k = 0; k < kHub; ++k) {
     const std::string pipe = "Zweig-" + std::to_string(k);
-    const double azimuth = 360.0 * k / 300;
+    const double azimuth = 360.0 * k / kHub;
     hub_slots.push_back({{"pipe", pipe}, {"azimuth_deg", azimuth}, {"invert_m", 0}});
     manholes.push_back({{"name", "Blatt-" + std::to_string(k)},
                         {"x_m", 3512300.0 + k},
@@ -217,7 +220,7 @@ std::string awkward_map() {
 }
 
 // Value for value against the JSON endpoint, on a map of every case a narrower field or a wrong
-// offset would lose: the 300 slots, the open and the placeless pipes' ends, the wide names.
+// offset would lose: the hub's many slots, the open and the placeless pipes' ends, the wide names.
 TEST_F(StationServerTest, GivesTheJsonsValuesWholeInTheBinaryForWideNamesOpenEndsAndManySlots) {
   auto [up, uploaded] = post("/api/maps?name=awkward.json", awkward_map());
   ASSERT_EQ(up, 201) << uploaded.dump();
@@ -229,8 +232,8 @@ TEST_F(StationServerTest, GivesTheJsonsValuesWholeInTheBinaryForWideNamesOpenEnd
   const BinaryGeometry g = decode_geometry(r->body);
   const json& m = j["manholes"];
   const json& p = j["pipes"];
-  ASSERT_EQ(g.manholes, 302u);
-  ASSERT_EQ(g.pipes, 302u);
+  ASSERT_EQ(g.manholes, sewerplan::kMaxSlotsPerManhole + 2);
+  ASSERT_EQ(g.pipes, sewerplan::kMaxSlotsPerManhole + 2);
   EXPECT_EQ(g.bounds, j["bounds"].get<std::vector<double>>());
   for (std::size_t i = 0; i < g.manholes; ++i) {
     EXPECT_EQ(g.names[i], m["name"][i].get<std::string>());
@@ -256,7 +259,7 @@ TEST_F(StationServerTest, GivesTheJsonsValuesWholeInTheBinaryForWideNamesOpenEnd
   };
   const auto hub = static_cast<std::size_t>(manhole("Zentrum-\xF0\x9D\x84\x9E"));
   ASSERT_LT(hub, g.manholes);
-  EXPECT_EQ(g.slots[hub], 300);
+  EXPECT_EQ(g.slots[hub], static_cast<int>(sewerplan::kMaxSlotsPerManhole));
   EXPECT_EQ(g.positions[2 * hub], 3512345.678901234);  // the double the map read, every digit
   EXPECT_EQ(g.positions[2 * hub + 1], 5612345.123456789);
   const auto open = static_cast<std::size_t>(pipe("Rohr-\xC3\xB6"));
