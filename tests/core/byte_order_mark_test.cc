@@ -25,15 +25,16 @@ using ::testing::HasSubstr;
 // `utf8` (code points below U+10000) in UTF-16LE, with its byte-order mark.
 std::string utf16le(std::string_view utf8) {
   std::string out("\xFF\xFE", 2);
+  auto byte = [&](std::size_t k) { return static_cast<unsigned char>(utf8[k]); };
   for (std::size_t i = 0; i < utf8.size();) {
-    const auto c = static_cast<unsigned char>(utf8[i]);
+    const auto c = byte(i);
     char32_t u = c;
     std::size_t n = 1;
     if (c >= 0xE0) {
-      u = ((c & 0x0Fu) << 12) | ((utf8[i + 1] & 0x3Fu) << 6) | (utf8[i + 2] & 0x3Fu);
+      u = ((c & 0x0Fu) << 12) | ((byte(i + 1) & 0x3Fu) << 6) | (byte(i + 2) & 0x3Fu);
       n = 3;
     } else if (c >= 0xC0) {
-      u = ((c & 0x1Fu) << 6) | (utf8[i + 1] & 0x3Fu);
+      u = ((c & 0x1Fu) << 6) | (byte(i + 1) & 0x3Fu);
       n = 2;
     }
     out += static_cast<char>(u & 0xFF);
