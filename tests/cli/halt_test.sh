@@ -50,7 +50,15 @@ echo "halt during the plan: exited $(echo "$(date +%s.%N) - $start" | bc) s afte
 "$sp" simulate --map "$tmp/m.json" --mission "$tmp/mission.json" -q --log "$tmp/load.jsonl" \
   > "$tmp/load.out" 2> "$tmp/load.err" &
 sim_pid=$!
-sleep 0.05
+# A background job of a script starts with SIGINT ignored, so the signal is sent once the command
+# has put its handler in place (the first thing `simulate` does, before it reads the map): the
+# handler's bit in /proc/PID/status SigCgt (SIGINT is signal 2: mask 0x2). A sanitizer build starts
+# slowly, so no fixed sleep would do.
+for _ in $(seq 1 5000); do
+  caught=$(awk '/^SigCgt:/ {print $2}' "/proc/$sim_pid/status" 2> /dev/null)
+  [ -n "$caught" ] && [ $((0x$caught & 2)) -ne 0 ] && break
+  sleep 0.001
+done
 kill -INT "$sim_pid"
 check load
 
