@@ -1,0 +1,92 @@
+// SPDX-License-Identifier: MIT
+// ManholeSignature: what a robot sees of a manhole when it arrives in it, and what the map says it
+// should see.
+//
+// A robot in a sewer has no compass and no GPS. What it can tell of a manhole it drives into is
+// relative to the pipe it came out of: how many pipe mouths (slots) the shaft has, the direction
+// of each relative to the one it came from, the height of each mouth's invert relative to the one
+// it came from (the step it would climb), each pipe's clear size, and the shaft's size. That is a
+// manhole's signature; the paper's robot "has to find and identify manholes and junctions" by it.
+// Slots are listed counter-clockwise (seen from above) from the arrival slot, which is slots[0]
+// with a relative direction of 0: the robot's own numbering, not the map's.
+//
+// expected_signature() is the signature the map predicts for an arrival through a given slot;
+// compare() scores an observation against it (a log-likelihood under a noise model, for the
+// localisation filter) and says whether it matches and, if not, why (for manhole verification).
+//
+//   ManholeSignature seen = report.observation->signature;
+//   ManholeSignature want = expected_signature(map, m, arrival_slot);
+//   SignatureMatch match = compare(want, seen, SignatureNoise{});
+//   if (!match.matches) ... match.reason: "3 slots seen, M6 has 4"
+//
+// Thread safety: plain value types and pure functions.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sewerplan/core/result.h"
+#include "sewerplan/core/sewer_map.h"
+
+namespace sewerplan {
+
+// One pipe mouth as the robot sees it from the arrival slot.
+struct SlotSighting {
+  double relative_deg = 0;  // direction relative to the arrival slot's, counter-clockwise, [0, 360)
+  double step_m = 0;        // this mouth's invert minus the arrival mouth's (negative: lower)
+  double diameter_m = 0;    // the pipe's clear size
+  friend bool operator==(const SlotSighting&, const SlotSighting&) = default;
+};
+
+struct ManholeSignature {
+  std::vector<SlotSighting> slots;  // counter-clockwise from the arrival slot (slots[0])
+  double shaft_diameter_m = 0;      // the shaft's smaller floor dimension
+  friend bool operator==(const ManholeSignature&, const ManholeSignature&) = default;
+};
+
+// The signature of `manhole` for a robot arriving through `arrival` (one of its slots), from the
+// map. Runtime: O(slots log slots).
+ManholeSignature expected_signature(const SewerMap& map, ManholeId manhole, SlotIndex arrival);
+
+// The map's slot of `manhole` that each of the expected signature's slots stands for (the same
+// order as expected_signature(map, manhole, arrival).slots).
+std::vector<SlotIndex> signature_slot_order(const SewerMap& map, ManholeId manhole,
+                                            SlotIndex arrival);
+
+// Whether a signature is one a robot could have seen: at least one slot, slots[0] at 0 degrees,
+// every number finite, directions in [0, 360) and increasing, sizes > 0. The error names the
+// first problem ("slot 3: direction 400 is not in [0, 360)").
+Result<void> check_signature(const ManholeSignature& signature);
+
+// The standard deviations of the robot's measurements (the sensing model's, docs/simulation.md).
+struct SignatureNoise {
+  double direction_deg = 8;
+  double step_m = 0.03;
+  double diameter_m = 0.03;
+  double shaft_m = 0.1;
+  // The largest differences still taken as the same manhole: beyond any of them, compare() says
+  // it does not match.
+  double max_direction_deg = 30;
+  double max_step_m = 0.15;
+  double max_diameter_m = 0.12;
+  double max_shaft_m = 0.5;
+};
+
+struct SignatureMatch {
+  bool matches = false;
+  // The log-likelihood of `observed` given `expected` under the noise (Gaussian per measurement;
+  // a different slot count costs kSlotCountLogPenalty per slot). Comparable across manholes.
+  double log_likelihood = 0;
+  std::string
+      reason;  // why not, when !matches: "3 slots seen, 4 expected"; "slot 2 at 75°, 20° expected"
+};
+
+inline constexpr double kSlotCountLogPenalty = -12.0;
+
+// How well `observed` fits `expected`. Slots are paired in order; a differing slot count never
+// matches. Runtime: O(slots).
+SignatureMatch compare(const ManholeSignature& expected, const ManholeSignature& observed,
+                       const SignatureNoise& noise = {});
+
+}  // namespace sewerplan

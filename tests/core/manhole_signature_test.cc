@@ -1,0 +1,112 @@
+// SPDX-License-Identifier: MIT
+#include "sewerplan/core/manhole_signature.h"
+
+#include <cmath>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "sewerplan/core/map_discrepancy.h"
+
+#include "support/small_map.h"
+
+namespace sewerplan {
+namespace {
+
+using testing::SmallMap;
+
+// A cross at M0: pipes east (P1), north (P2), west (P3, 0.3 m) and south (P4, its invert 0.2 m up).
+SewerMap cross() {
+  return SmallMap()
+      .manhole("M0", 0, 0)
+      .manhole("E", 10, 0)
+      .manhole("N", 0, 10)
+      .manhole("W", -10, 0)
+      .manhole("S", 0, -10)
+      .pipe("P1", "M0", "E")
+      .pipe("P2", "M0", "N")
+      .pipe("P3", "M0", "W", 0.3)
+      .pipe("P4", "M0", "S")
+      .invert("M0", "P4", 0.2)
+      .build();
+}
+
+TEST(ManholeSignature, ListsSlotsCounterClockwiseFromTheArrival) {
+  const SewerMap map = cross();
+  const ManholeId m0 = *map.find_manhole("M0");
+  // Arriving from the west (slot 3, P3): then south (90° ccw), east (180°), north (270°).
+  const ManholeSignature s = expected_signature(map, m0, SlotIndex{2});
+  ASSERT_EQ(s.slots.size(), 4u);
+  EXPECT_DOUBLE_EQ(s.slots[0].relative_deg, 0);
+  EXPECT_DOUBLE_EQ(s.slots[0].diameter_m, 0.3);
+  EXPECT_NEAR(s.slots[1].relative_deg, 90, 1e-9);
+  EXPECT_DOUBLE_EQ(s.slots[1].step_m, 0.2);
+  EXPECT_NEAR(s.slots[2].relative_deg, 180, 1e-9);
+  EXPECT_NEAR(s.slots[3].relative_deg, 270, 1e-9);
+  const std::vector<SlotIndex> order = signature_slot_order(map, m0, SlotIndex{2});
+  EXPECT_EQ(order,
+            (std::vector<SlotIndex>{SlotIndex{2}, SlotIndex{3}, SlotIndex{0}, SlotIndex{1}}));
+  EXPECT_TRUE(check_signature(s).has_value());
+}
+
+TEST(ManholeSignature, MatchesWithinNoiseAndSaysWhyNot) {
+  const SewerMap map = cross();
+  const ManholeId m0 = *map.find_manhole("M0");
+  const ManholeSignature want = expected_signature(map, m0, SlotIndex{0});
+  ManholeSignature seen = want;
+  seen.slots[1].relative_deg += 12;
+  const SignatureMatch close = compare(want, seen);
+  EXPECT_TRUE(close.matches) << close.reason;
+
+  ManholeSignature off = want;
+  off.slots[2].relative_deg += 45;
+  const SignatureMatch wrong = compare(want, off);
+  EXPECT_FALSE(wrong.matches);
+  EXPECT_NE(wrong.reason.find("slot 3"), std::string::npos) << wrong.reason;
+  EXPECT_LT(wrong.log_likelihood, close.log_likelihood);
+
+  ManholeSignature fewer = want;
+  fewer.slots.pop_back();
+  const SignatureMatch count = compare(want, fewer);
+  EXPECT_FALSE(count.matches);
+  EXPECT_EQ(count.reason, "3 slots seen, 4 expected");
+}
+
+TEST(ManholeSignature, ImpossibleObservationsAreErrors) {
+  ManholeSignature none;
+  none.shaft_diameter_m = 1;
+  EXPECT_FALSE(check_signature(none).has_value());
+  ManholeSignature bad{.slots = {{0, 0, 0.3}, {400, 0, 0.3}}, .shaft_diameter_m = 1};
+  ASSERT_FALSE(check_signature(bad).has_value());
+  EXPECT_NE(check_signature(bad).error().message.find("slot 2"), std::string::npos);
+  bad.slots[1].relative_deg = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(check_signature(bad).has_value());
+  bad.slots[1].relative_deg = 90;
+  bad.shaft_diameter_m = std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(check_signature(bad).has_value());
+}
+
+TEST(MapDiscrepancy, NamesRoundTripAndSameDifferenceIgnoresValues) {
+  for (auto kind : {Discrepancy::Kind::kLengthOff, Discrepancy::Kind::kDirectionOff,
+                    Discrepancy::Kind::kPositionOff, Discrepancy::Kind::kDiameterSmaller,
+                    Discrepancy::Kind::kUnmappedJunction, Discrepancy::Kind::kUnmappedLateral,
+                    Discrepancy::Kind::kMissingLateral}) {
+    EXPECT_EQ(parse_discrepancy_kind(to_string(kind)), kind);
+  }
+  EXPECT_FALSE(parse_discrepancy_kind("wrong").has_value());
+  const SewerMap map = cross();
+  const Discrepancy a{.kind = Discrepancy::Kind::kUnmappedJunction,
+                      .pipe = map.find_pipe("P1"),
+                      .offset_m = 4,
+                      .value = 3};
+  Discrepancy b = a;
+  b.offset_m = 7;
+  b.value = 4;
+  EXPECT_TRUE(same_difference(a, b));
+  b.offset_m = 12;
+  EXPECT_FALSE(same_difference(a, b));
+  EXPECT_EQ(describe(a, map), "P1: a manhole the map lacks at 4.00 m, with 3 slots");
+}
+
+}  // namespace
+}  // namespace sewerplan
