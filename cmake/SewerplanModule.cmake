@@ -46,7 +46,7 @@ endfunction()
 # (included by core/src/module.cc only). Call once, before the libraries.
 function(sewerplan_module_build_id)
   set(headers)
-  foreach(lib IN ITEMS core domain search fusion hal executor campaign render server gis)
+  foreach(lib IN ITEMS core domain search fusion localisation hal executor campaign render server gis)
     file(GLOB_RECURSE lib_headers CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/${lib}/*.h)
     list(APPEND headers ${lib_headers})
   endforeach()

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # Checks the one-way dependencies between the libraries by their includes:
-#   core <- domain <- search; fusion on core and domain; hal on core; executor on all;
+#   core <- domain <- search; fusion and localisation on core and domain; hal on core; executor on all;
 #   campaign on all (with executor); render on core, domain, hal and executor (the typed events of
 #   the logs it draws); nothing includes campaign except apps, tests, bench, the Python module
 #   (python/) and the operator station's server (server/, its campaigns) (and campaign itself).
@@ -13,11 +13,12 @@ declare -A allowed=(
   [search]="core domain search"
   [fusion]="core domain fusion"
   [hal]="core hal"
-  [executor]="core domain search fusion hal executor"
-  [campaign]="core domain search fusion hal executor campaign"
+  [executor]="core domain search fusion localisation hal executor"
+  [campaign]="core domain search fusion localisation hal executor campaign"
   [render]="core domain hal executor render"
   [gis]="core domain gis"
-  [server]="core domain search fusion hal executor campaign server"
+  [localisation]="core domain localisation"
+  [server]="core domain search fusion localisation hal executor campaign server"
 )
 status=0
 for lib in "${!allowed[@]}"; do

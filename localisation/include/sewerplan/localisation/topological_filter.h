@@ -1,0 +1,285 @@
+// SPDX-License-Identifier: MIT
+// TopologicalFilter: where on the sewer network the robot is, as a Bayes filter over places.
+//
+// A robot in a sewer knows its place only by counting wheel turns (odometry that drifts with the
+// distance driven) and by the manholes it stops in, each seen as a signature relative to the pipe
+// it came from (core/manhole_signature.h). The map it was given is itself wrong: pipe lengths off
+// by up to about 20 %, junctions it lacks. The filter holds a small set of weighted hypotheses
+// about the robot's place: in a pipe (which pipe, which end it faces, how far from the end it
+// entered by, with the variance of that distance), at a mapped manhole's mouth, at a manhole the
+// map lacks (an unmapped junction in a pipe), or in a manhole at the start. Each hypothesis may
+// also carry what it had to assume about the map or the sensing: an unmapped junction in pipe P
+// at d m, a manhole driven through without being seen, a detection that was no manhole.
+//
+// Updates follow the robot's own actions and what it sensed (docs/localisation.md):
+//   reset(pose)                  a known start;
+//   enter(slot)                  out of the start manhole into a slot's pipe;
+//   drive(odometry, dir, sigma)  a drive, its odometry and the odometry's standard deviation;
+//   arrive(signature)            the drive ended at a detected manhole (signature if observed):
+//                                every hypothesis is scored at the mapped mouths ahead (the next
+//                                one, or the one after a missed manhole), at an unmapped junction
+//                                where it is, and as a false detection; each by the odometry's
+//                                distance to the mouth and by compare()'s log-likelihood;
+//   turn(relative_deg) / pass()  the robot left a manhole through a mouth;
+//   no_manhole_within(d)         the last d m were driven without detecting a manhole.
+// An update touches only the hypotheses and the pipes and manholes near them: its cost does not
+// depend on the network's size (bench/localisation/topological_filter_bench.cc).
+//
+// The model is the discrete-continuous multi-hypothesis tracker of topological localisation
+// (a Bayes filter over a graph's places, e.g. Kuipers and Byun 1991, "A robot exploration and
+// mapping strategy based on a semantic hierarchy of spatial representations"; and for pipes
+// Kirchner and Hertzberg 1997, "A prototype study of an autonomous robot platform for sewerage
+// system maintenance"), with Gaussian odometry along a pipe. It is deterministic: no sampling.
+//
+//   auto filter = TopologicalFilter::create(map);
+//   filter->reset({.position = domain::AtSlot{m1, SlotIndex{0}}});
+//   filter->pass(m1, SlotIndex{0}, SlotIndex{1});
+//   filter->drive(report.odometry_m, DriveDirection::kForward, 0.03 * report.odometry_m);
+//   filter->arrive(report.observation);
+//   Verification v = *filter->verify_arrival(m2, SlotIndex{0}, report.observation);
+//   if (!v.matches) ... v.kind, v.reason
+//
+// Thread safety: a filter is a plain value; one thread updates it at a time. The map must outlive
+// it and is only read.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "sewerplan/core/manhole_signature.h"
+#include "sewerplan/core/result.h"
+#include "sewerplan/core/sewer_map.h"
+#include "sewerplan/domain/robot_state.h"
+
+namespace sewerplan::localisation {
+
+// The priors and limits of the filter. Every rate is a number the campaign's error profile can
+// set (docs/localisation.md explains each).
+struct LocalisationOptions {
+  // Standard deviation of a map pipe's length, as a fraction of it: 0.10 puts lengths off by 20 %
+  // at two standard deviations.
+  double length_sd_fraction = 0.10;
+  // Probability that the robot drives through a mapped manhole without detecting it.
+  double miss_probability = 0.05;
+  // Manholes the map lacks, per metre of pipe (an unmapped junction ahead of a mapped mouth).
+  double unmapped_junctions_per_m = 0.002;
+  // Detections where there is no manhole, per metre driven.
+  double false_detections_per_m = 0.0002;
+  // Consecutive missed manholes an arrival may explain (0: none).
+  int max_misses = 2;
+  // A manhole can be driven through unseen, or a false detection or an unmapped junction passed,
+  // only straight on: a mouth within this many degrees of straight ahead.
+  double straight_through_deg = 30;
+  // Hypotheses below this fraction of the most likely are dropped, and at most max_hypotheses
+  // kept.
+  double prune_ratio = 1e-6;
+  std::size_t max_hypotheses = 64;
+  // Hypotheses in the same pipe, facing the same way, closer than this are merged.
+  double merge_distance_m = 1.0;
+  // The belief is ambiguous when two or more places each have at least this probability.
+  double ambiguity_probability = 0.05;
+  // verify_arrival() says "matches" only when the expected mouth has at least this probability.
+  double verify_probability = 0.9;
+  // The measurement noise of the signatures (what compare() scores with).
+  SignatureNoise noise;
+};
+
+// Every option finite and in range; the error names the option.
+Result<void> check_options(const LocalisationOptions& options);
+
+enum class DriveDirection : std::uint8_t { kForward, kBackward };
+
+// A place on the map as the planner names it (domain::RobotPosition), plus the end of the pipe the
+// robot faces (the end a forward drive approaches) when it is in a pipe.
+struct Pose {
+  domain::RobotPosition position;
+  std::optional<std::uint8_t> heading_end;  // 0 or 1, in a pipe only
+  // The robot is at a manhole the map lacks, at position (an InPipe).
+  bool at_unmapped_junction = false;
+  friend bool operator==(const Pose&, const Pose&) = default;
+};
+
+// "in pipe P3 at 12.40 m facing M4", "at M6 slot 3 (P5)", "at an unmapped junction in P3 at 12.40
+// m"
+std::string describe(const Pose& pose, const SewerMap& map);
+
+// What a hypothesis had to assume to explain what the robot sensed.
+struct Assumption {
+  enum class Kind : std::uint8_t {
+    kUnmappedJunction,  // a manhole the map lacks in `pipe` at `offset_m` (from its ends[0])
+    kMissedManhole,     // the robot drove through `manhole` without detecting it
+    kFalseDetection,    // a detection in `pipe` at `offset_m` where there was no manhole
+  };
+  Kind kind = Kind::kUnmappedJunction;
+  std::optional<PipeId> pipe;
+  std::optional<ManholeId> manhole;
+  double offset_m = 0;
+  friend bool operator==(const Assumption&, const Assumption&) = default;
+};
+
+// "unmapped-junction", "missed-manhole", "false-detection".
+std::string_view to_string(Assumption::Kind kind);
+
+struct Hypothesis {
+  Pose pose;
+  double probability = 0;
+  // Standard deviation of the place along its pipe (0 at a mouth or in a manhole).
+  double sd_m = 0;
+  // The latest assumptions first; at most kMaxAssumptions.
+  std::vector<Assumption> assumptions;
+  friend bool operator==(const Hypothesis&, const Hypothesis&) = default;
+};
+
+inline constexpr std::size_t kMaxAssumptions = 8;
+
+struct Estimate {
+  // Empty when the filter is lost (every hypothesis ruled out: reset() it).
+  std::vector<Hypothesis> hypotheses;  // most likely first
+  bool ambiguous = false;              // two or more hypotheses above ambiguity_probability
+  bool lost() const { return hypotheses.empty(); }
+  // The most likely hypothesis; precondition: !lost().
+  const Hypothesis& best() const { return hypotheses.front(); }
+};
+
+// The outcome of checking an arrival against the manhole the plan expected.
+struct Verification {
+  enum class Kind : std::uint8_t {
+    kMatches,           // the expected manhole, through the expected slot
+    kWrongManhole,      // another mapped manhole (or mouth)
+    kUnmappedJunction,  // a manhole the map lacks
+    kMissedManhole,     // a later manhole: the robot drove through one unseen
+    kFalseDetection,    // no manhole at all
+    kSignatureDiffers,  // the expected manhole by the odometry, but it looks unlike its map
+  };
+  Kind kind = Kind::kMatches;
+  bool matches() const { return kind == Kind::kMatches; }
+  double probability = 0;        // of the expected mouth
+  std::string reason;            // empty when it matches
+  std::optional<Pose> believed;  // the most likely place, when the robot is not lost
+};
+
+// "matches", "wrong-manhole", "unmapped-junction", "missed-manhole", "false-detection",
+// "signature-differs".
+std::string_view to_string(Verification::Kind kind);
+
+// One passage through a manhole on the way to a distinguishing manhole.
+struct Passage {
+  ManholeId manhole{0};
+  SlotIndex from{0};
+  SlotIndex to{0};
+  friend bool operator==(const Passage&, const Passage&) = default;
+};
+
+// A manhole the robot can drive to that tells the likely hypotheses apart: under the most likely
+// hypothesis the route reaches `manhole` through `arrival`; under each other likely hypothesis the
+// same drives and turns reach a manhole whose signature differs (or no manhole at all).
+struct DistinguishingManhole {
+  ManholeId manhole{0};
+  SlotIndex arrival{0};
+  std::vector<Passage> route;  // under the most likely hypothesis, from its next mouth
+  double distance_m = 0;       // driven from the robot's most likely place
+  std::size_t separated = 0;   // other likely hypotheses it tells apart from the most likely
+  friend bool operator==(const DistinguishingManhole&, const DistinguishingManhole&) = default;
+};
+
+class TopologicalFilter {
+ public:
+  // A filter on `map` (which must outlive it), lost until reset(). Error: an option out of range.
+  static Result<TopologicalFilter> create(const SewerMap& map, LocalisationOptions options = {});
+
+  // The robot is at `pose`, certainly. Error: an unknown manhole, pipe or slot, an offset outside
+  // the pipe, a pose in a pipe without heading_end. Runtime: O(1).
+  Result<void> reset(const Pose& pose);
+
+  // Out of the start manhole (reset() to an InManhole) into the pipe of `slot`. Error: not in a
+  // manhole, no such slot. Runtime: O(hypotheses).
+  Result<void> enter(SlotIndex slot);
+
+  // The robot drove `odometry_m` (>= 0) with a standard deviation of `sigma_m` (>= 0; the
+  // sensing model's drift, proportional to the distance). Forward: away from the mouth it
+  // entered by; at a manhole only backward (back into the pipe it arrived by). Error: a negative
+  // or non-finite number, forward at a manhole, lost. Runtime: O(hypotheses).
+  Result<void> drive(double odometry_m, DriveDirection direction, double sigma_m);
+
+  // The last drive ended at a detected manhole, seen as `observation` (nullopt: detected, but
+  // its signature not observed). Error: a signature check_signature() refuses, not after a drive,
+  // lost. Runtime: O(hypotheses * (max_misses + 1) * slots log slots).
+  Result<void> arrive(const std::optional<ManholeSignature>& observation);
+
+  // The robot left the manhole it arrived at through the mouth `relative_deg` counter-clockwise
+  // from its arrival mouth (its own view, as in a signature). Hypotheses at a mouth take the slot
+  // nearest that direction (none within noise.max_direction_deg: ruled out); at an unmapped
+  // junction or a false detection only straight on continues. Error: not at a manhole, a
+  // direction outside [0, 360), lost. Runtime: O(hypotheses * slots).
+  Result<void> turn(double relative_deg);
+
+  // As turn(), from the plan's passage: hypotheses at `manhole`'s slot `from` take slot `to`,
+  // the others the direction of `to` relative to `from`. Error: an unknown manhole or slot, from
+  // equal to to, not at a manhole.
+  Result<void> pass(ManholeId manhole, SlotIndex from, SlotIndex to);
+
+  // The robot drove its last `distance_m` (> 0) without detecting a manhole: hypotheses that
+  // would have passed a mouth there now carry a missed manhole, or stay before their mouth.
+  // Error: not in a pipe, a negative or non-finite distance, lost.
+  Result<void> no_manhole_within(double distance_m);
+
+  // The belief. Runtime: O(hypotheses).
+  Estimate estimate() const;
+
+  // Checks the arrival that arrive() just scored against the manhole and arrival slot the plan
+  // expected. Error: an unknown manhole or slot, a bad signature, not at a manhole.
+  Result<Verification> verify_arrival(ManholeId expected, SlotIndex arrival,
+                                      const std::optional<ManholeSignature>& observation) const;
+
+  // Manholes within `max_passes` passages of the most likely hypothesis's next mouth that tell
+  // the likely hypotheses apart, those separating the most first, then the nearest; at most
+  // `max_results`. Empty when the belief is not ambiguous. Runtime: O(likely hypotheses *
+  // slots^max_passes).
+  std::vector<DistinguishingManhole> distinguishing_manholes(std::size_t max_passes = 3,
+                                                             std::size_t max_results = 8) const;
+
+  const LocalisationOptions& options() const { return options_; }
+  const SewerMap& map() const { return *map_; }
+
+  // One hypothesis as the filter keeps it (public for the implementation's helpers; use
+  // estimate()).
+  struct Track {
+    enum class Kind : std::uint8_t { kInManhole, kAtMouth, kInPipe, kAtJunction };
+    Kind kind = Kind::kInPipe;
+    // In a pipe, at a junction, and at a mouth (the pipe it arrived by):
+    PipeId pipe{0};
+    std::uint8_t heading_end = 1;  // the end the robot faces
+    std::uint8_t moving_end = 1;   // the end the last drive went towards
+    double travelled_m = 0;        // from the end opposite heading_end
+    double odometry_var_m2 = 0;    // variance of travelled_m
+    double length_var_m2 = 0;      // variance of the map's distance left to the heading mouth
+    double cleared_m = 0;          // no mouth was detected up to here (travelled coordinate)
+    // At a mouth or in a manhole:
+    ManholeId manhole{0};
+    SlotIndex slot{0};
+    double log_weight = 0;
+    std::vector<Assumption> assumptions;  // latest first
+    // How the latest arrival was explained (for verify_arrival).
+    std::uint8_t arrival_misses = 0;
+  };
+
+ private:
+  enum class Mode : std::uint8_t { kLost, kInManhole, kAtManhole, kInPipe };
+
+  TopologicalFilter(const SewerMap& map, LocalisationOptions options)
+      : map_(&map), options_(std::move(options)) {}
+  Result<void> usable() const;
+  void normalise_and_prune();
+
+  const SewerMap* map_;  // never null
+  LocalisationOptions options_;
+  Mode mode_ = Mode::kLost;
+  std::vector<Track> tracks_;
+  std::vector<Track> scratch_;  // reused between updates
+};
+
+}  // namespace sewerplan::localisation

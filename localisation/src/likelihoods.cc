@@ -1,0 +1,77 @@
+// SPDX-License-Identifier: MIT
+#include "likelihoods.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "sewerplan/core/map_queries.h"
+
+namespace sewerplan::localisation::detail {
+namespace {
+
+// The ranges of what is unknown: a direction anywhere in 360 degrees, a step within a metre, a
+// pipe of 0.1-1.1 m, a shaft of 0.8-2.8 m (docs/localisation.md).
+constexpr double kDirectionRangeDeg = 360.0;
+constexpr double kStepRangeM = 1.0;
+constexpr double kDiameterRangeM = 1.0;
+constexpr double kShaftRangeM = 2.0;
+
+double unknown(double range) { return -std::log(range) + kLogSqrtTwoPi; }
+
+double unknown_slot() {
+  return unknown(kDirectionRangeDeg) + unknown(kStepRangeM) + unknown(kDiameterRangeM);
+}
+
+}  // namespace
+
+double log_normal(double x, double mean, double var) {
+  const double v = std::max(var, kMinVarianceM2);
+  const double d = x - mean;
+  return -0.5 * d * d / v - 0.5 * std::log(v) - kLogSqrtTwoPi;
+}
+
+double log_phi(double z) {
+  if (z > -30) return std::log(0.5 * std::erfc(-z / std::sqrt(2.0)));
+  // Mills' ratio: Phi(z) ~ phi(z) / |z| far in the lower tail.
+  return -0.5 * z * z - std::log(-z) - kLogSqrtTwoPi;
+}
+
+double log1m_exp(double a) {
+  if (a >= 0) return kNegativeInfinity;
+  return a > -0.693 ? std::log(-std::expm1(a)) : std::log1p(-std::exp(a));
+}
+
+double log_add(double a, double b) {
+  if (a == kNegativeInfinity) return b;
+  if (b == kNegativeInfinity) return a;
+  const double hi = std::max(a, b);
+  return hi + std::log1p(std::exp(std::min(a, b) - hi));
+}
+
+double gaussian_term(double difference, double sigma) {
+  const double z = difference / sigma;
+  return -0.5 * z * z - std::log(sigma);
+}
+
+double unmapped_junction_log_likelihood(const ManholeSignature& observed, double pipe_diameter_m,
+                                        const SignatureNoise& noise) {
+  const std::size_t n = observed.slots.size();
+  if (n < 2) return kNegativeInfinity;
+  double best_straight = kNegativeInfinity;
+  for (std::size_t i = 1; i < n; ++i) {
+    const SlotSighting& s = observed.slots[i];
+    const double straight =
+        gaussian_term(normalize_deg(s.relative_deg - 180.0), noise.direction_deg) +
+        unknown(kStepRangeM) + gaussian_term(s.diameter_m - pipe_diameter_m, noise.diameter_m);
+    best_straight = std::max(best_straight, straight);
+  }
+  return gaussian_term(observed.slots[0].diameter_m - pipe_diameter_m, noise.diameter_m) +
+         best_straight + static_cast<double>(n - 2) * unknown_slot() + unknown(kShaftRangeM);
+}
+
+double false_detection_log_likelihood(const ManholeSignature& observed) {
+  const auto n = static_cast<double>(observed.slots.size());
+  return unknown(kDiameterRangeM) + (n - 1) * unknown_slot() + unknown(kShaftRangeM);
+}
+
+}  // namespace sewerplan::localisation::detail

@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: MIT
+// The filter's likelihoods: Gaussians along a pipe, and what a manhole the map lacks, or a
+// detection of nothing, is likely to look like (docs/localisation.md, "Alternatives").
+//
+// compare() (core/manhole_signature.h) scores a signature against the map's as a sum of
+// -z^2/2 - log(sigma) per measurement, leaving out each Gaussian's -log(sqrt(2 pi)). The densities
+// here leave it out the same way, so that their log-likelihoods are comparable with compare()'s:
+// a measurement of which nothing is known is uniform over its range, log(1/range) + log(sqrt(2
+// pi)).
+#pragma once
+
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include "sewerplan/core/manhole_signature.h"
+
+namespace sewerplan::localisation::detail {
+
+inline constexpr double kLogSqrtTwoPi = 0.91893853320467274178;
+inline constexpr double kNegativeInfinity = -std::numeric_limits<double>::infinity();
+// Variances below this are taken as this (a place known to 1 cm), so that a Gaussian stays finite.
+inline constexpr double kMinVarianceM2 = 1e-4;
+
+// log N(x; mean, var), the true density (per metre).
+double log_normal(double x, double mean, double var);
+// log P(X <= x) for X ~ N(0, 1), finite down to far in the tail.
+double log_phi(double z);
+// log(1 - exp(a)) for a <= 0.
+double log1m_exp(double a);
+// log(exp(a) + exp(b)).
+double log_add(double a, double b);
+
+// The Gaussian term compare() uses: -z^2/2 - log(sigma).
+double gaussian_term(double difference, double sigma);
+
+// The log-likelihood of `observed` if it is a manhole the map lacks in a pipe of clear size
+// `pipe_diameter_m`: the arrival mouth and one mouth straight on (within the direction noise) are
+// that pipe's; every other mouth, each step and the shaft are unknown. Needs two mouths or more
+// (a junction in a pipe continues it): kNegativeInfinity with fewer.
+double unmapped_junction_log_likelihood(const ManholeSignature& observed, double pipe_diameter_m,
+                                        const SignatureNoise& noise);
+
+// The log-likelihood of `observed` if the detection saw nothing real: every measurement unknown.
+double false_detection_log_likelihood(const ManholeSignature& observed);
+
+}  // namespace sewerplan::localisation::detail

@@ -1,0 +1,347 @@
+// SPDX-License-Identifier: MIT
+// The filter's updates: reset, enter, drive, arrive, turn, pass, no_manhole_within.
+#include "sewerplan/localisation/topological_filter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <tuple>
+
+#include "sewerplan/core/map_queries.h"
+
+#include "likelihoods.h"
+#include "track_geometry.h"
+
+namespace sewerplan::localisation {
+
+using detail::kNegativeInfinity;
+using Track = TopologicalFilter::Track;
+
+namespace {
+
+Error invalid(std::string message) {
+  return Error{ErrorCode::kInvalidArgument, std::move(message)};
+}
+
+std::string shown(double value) {
+  std::ostringstream os;
+  os << value;
+  return os.str();
+}
+
+bool finite_in(double value, double lo, double hi) {
+  return std::isfinite(value) && value >= lo && value <= hi;
+}
+
+// A hypothesis in `pipe` facing `heading_end`, `travelled_m` from the other end.
+Track in_pipe(const Track& from, PipeId pipe, std::uint8_t heading_end, double travelled_m) {
+  Track t = from;
+  t.kind = Track::Kind::kInPipe;
+  t.pipe = pipe;
+  t.heading_end = heading_end;
+  t.moving_end = heading_end;
+  t.travelled_m = travelled_m;
+  t.cleared_m = travelled_m;
+  t.arrival_misses = 0;
+  return t;
+}
+
+}  // namespace
+
+Result<void> check_options(const LocalisationOptions& o) {
+  auto bad = [](std::string_view name, double value, std::string_view range) {
+    return invalid("localisation option " + std::string(name) + " = " + shown(value) + " is not " +
+                   std::string(range));
+  };
+  if (!finite_in(o.length_sd_fraction, 0, 1))
+    return bad("length_sd_fraction", o.length_sd_fraction, "in [0, 1]");
+  if (!finite_in(o.miss_probability, 0, 0.999))
+    return bad("miss_probability", o.miss_probability, "in [0, 0.999]");
+  if (!finite_in(o.unmapped_junctions_per_m, 0, 1))
+    return bad("unmapped_junctions_per_m", o.unmapped_junctions_per_m, "in [0, 1]");
+  if (!finite_in(o.false_detections_per_m, 0, 1))
+    return bad("false_detections_per_m", o.false_detections_per_m, "in [0, 1]");
+  if (o.max_misses < 0 || o.max_misses > 8) return bad("max_misses", o.max_misses, "in [0, 8]");
+  if (!finite_in(o.straight_through_deg, 0, 90))
+    return bad("straight_through_deg", o.straight_through_deg, "in [0, 90]");
+  if (!finite_in(o.prune_ratio, 0, 0.5)) return bad("prune_ratio", o.prune_ratio, "in [0, 0.5]");
+  if (o.max_hypotheses == 0) return invalid("localisation option max_hypotheses must be > 0");
+  if (!finite_in(o.merge_distance_m, 0, 1000))
+    return bad("merge_distance_m", o.merge_distance_m, "in [0, 1000]");
+  if (!finite_in(o.ambiguity_probability, 0, 1))
+    return bad("ambiguity_probability", o.ambiguity_probability, "in [0, 1]");
+  if (!finite_in(o.verify_probability, 0, 1))
+    return bad("verify_probability", o.verify_probability, "in [0, 1]");
+  const SignatureNoise& n = o.noise;
+  for (auto [name, value] : {std::pair{"noise.direction_deg", n.direction_deg},
+                             {"noise.step_m", n.step_m},
+                             {"noise.diameter_m", n.diameter_m},
+                             {"noise.shaft_m", n.shaft_m},
+                             {"noise.max_direction_deg", n.max_direction_deg},
+                             {"noise.max_step_m", n.max_step_m},
+                             {"noise.max_diameter_m", n.max_diameter_m},
+                             {"noise.max_shaft_m", n.max_shaft_m}}) {
+    if (!std::isfinite(value) || value <= 0) return bad(name, value, "finite and > 0");
+  }
+  return {};
+}
+
+Result<TopologicalFilter> TopologicalFilter::create(const SewerMap& map,
+                                                    LocalisationOptions options) {
+  if (Result<void> ok = check_options(options); !ok.has_value()) return ok.error();
+  return TopologicalFilter(map, std::move(options));
+}
+
+Result<void> TopologicalFilter::usable() const {
+  if (mode_ == Mode::kLost) {
+    return invalid("the localisation is lost (every hypothesis was ruled out): reset() it");
+  }
+  return {};
+}
+
+Result<void> TopologicalFilter::reset(const Pose& pose) {
+  const SewerMap& map = *map_;
+  Track t;
+  Mode mode = Mode::kInPipe;
+  if (const auto* in = std::get_if<domain::InManhole>(&pose.position)) {
+    if (in->manhole.index() >= map.manhole_count())
+      return invalid("reset: no manhole " + shown(in->manhole.value()) + " in the map");
+    t.kind = Track::Kind::kInManhole;
+    t.manhole = in->manhole;
+    mode = Mode::kInManhole;
+  } else if (const auto* at = std::get_if<domain::AtSlot>(&pose.position)) {
+    if (at->manhole.index() >= map.manhole_count())
+      return invalid("reset: no manhole " + shown(at->manhole.value()) + " in the map");
+    const Manhole& m = map.manhole(at->manhole);
+    if (at->slot.value() >= m.slot_count) {
+      return invalid("reset: " + m.name + " has no slot " +
+                     std::to_string(to_paper_number(at->slot)));
+    }
+    const Slot& slot = map.slot(at->manhole, at->slot);
+    t.kind = Track::Kind::kAtMouth;
+    t.manhole = at->manhole;
+    t.slot = at->slot;
+    t.pipe = slot.pipe;
+    t.heading_end = slot.pipe_end;
+    t.moving_end = slot.pipe_end;
+    t.travelled_m = map.pipe(slot.pipe).length_m;
+    t.cleared_m = t.travelled_m;
+    mode = Mode::kAtManhole;
+  } else {
+    const auto& pipe_place = std::get<domain::InPipe>(pose.position);
+    if (pipe_place.pipe.index() >= map.pipe_count())
+      return invalid("reset: no pipe " + shown(pipe_place.pipe.value()) + " in the map");
+    const Pipe& pipe = map.pipe(pipe_place.pipe);
+    if (!finite_in(pipe_place.offset_m, 0, pipe.length_m)) {
+      return invalid("reset: offset " + shown(pipe_place.offset_m) + " m is not in " + pipe.name +
+                     " (0 to " + shown(pipe.length_m) + " m)");
+    }
+    if (!pose.heading_end || *pose.heading_end > 1)
+      return invalid("reset: a pose in pipe " + pipe.name + " needs a heading end, 0 or 1");
+    t.kind = pose.at_unmapped_junction ? Track::Kind::kAtJunction : Track::Kind::kInPipe;
+    t.pipe = pipe_place.pipe;
+    t.heading_end = *pose.heading_end;
+    t.moving_end = t.heading_end;
+    t.travelled_m = t.heading_end == 1 ? pipe_place.offset_m : pipe.length_m - pipe_place.offset_m;
+    t.cleared_m = t.travelled_m;
+    const double left = pipe.length_m - t.travelled_m;
+    t.length_var_m2 = std::pow(options_.length_sd_fraction * left, 2);
+    mode = pose.at_unmapped_junction ? Mode::kAtManhole : Mode::kInPipe;
+  }
+  tracks_.assign(1, std::move(t));
+  mode_ = mode;
+  return {};
+}
+
+Result<void> TopologicalFilter::enter(SlotIndex slot) {
+  if (Result<void> ok = usable(); !ok.has_value()) return ok;
+  if (mode_ != Mode::kInManhole) return invalid("enter: the robot is not in a start manhole");
+  const SewerMap& map = *map_;
+  for (const Track& t : tracks_) {
+    const Manhole& m = map.manhole(t.manhole);
+    if (slot.value() >= m.slot_count) {
+      return invalid("enter: " + m.name + " has no slot " + std::to_string(to_paper_number(slot)));
+    }
+  }
+  for (Track& t : tracks_) {
+    const Slot& s = map.slot(t.manhole, slot);
+    const auto heading = static_cast<std::uint8_t>(1 - s.pipe_end);
+    t = in_pipe(t, s.pipe, heading, 0.0);
+    t.odometry_var_m2 = 0;
+    t.length_var_m2 = std::pow(options_.length_sd_fraction * map.pipe(s.pipe).length_m, 2);
+  }
+  mode_ = Mode::kInPipe;
+  return {};
+}
+
+Result<void> TopologicalFilter::drive(double odometry_m, DriveDirection direction, double sigma_m) {
+  if (!std::isfinite(odometry_m) || odometry_m < 0)
+    return invalid("drive: odometry " + shown(odometry_m) + " m is not a distance >= 0");
+  if (!std::isfinite(sigma_m) || sigma_m < 0)
+    return invalid("drive: odometry sigma " + shown(sigma_m) + " m is not >= 0");
+  if (Result<void> ok = usable(); !ok.has_value()) return ok;
+  if (mode_ == Mode::kInManhole)
+    return invalid("drive: in the start manhole: enter() a pipe first");
+  if (mode_ == Mode::kAtManhole && direction == DriveDirection::kForward) {
+    return invalid("drive: forward from a manhole: turn() or pass() into a pipe first");
+  }
+  const SewerMap& map = *map_;
+  for (Track& t : tracks_) {
+    const double length = map.pipe(t.pipe).length_m;
+    if (t.kind == Track::Kind::kAtMouth) {
+      // Back out of the mouth into the pipe it arrived by.
+      const bool mouth_ahead = map.slot(t.manhole, t.slot).pipe_end == t.heading_end;
+      t.kind = Track::Kind::kInPipe;
+      t.travelled_m = mouth_ahead ? length : 0.0;
+      t.odometry_var_m2 = 0;
+      t.length_var_m2 = 0;
+    }
+    t.kind = Track::Kind::kInPipe;
+    const bool forward = direction == DriveDirection::kForward;
+    t.moving_end = forward ? t.heading_end : static_cast<std::uint8_t>(1 - t.heading_end);
+    t.travelled_m += forward ? odometry_m : -odometry_m;
+    // Backing out past the mouth it entered by is not followed (docs/localisation.md, limits).
+    t.travelled_m = std::max(t.travelled_m, 0.0);
+    if (!forward) t.cleared_m = std::min(t.cleared_m, t.travelled_m);
+    t.odometry_var_m2 += sigma_m * sigma_m;
+  }
+  mode_ = Mode::kInPipe;
+  return {};
+}
+
+Result<void> TopologicalFilter::arrive(const std::optional<ManholeSignature>& observation) {
+  if (observation) {
+    if (Result<void> ok = check_signature(*observation); !ok.has_value()) {
+      return invalid("arrive: the observed signature is not one a robot could see: " +
+                     ok.error().message);
+    }
+  }
+  if (Result<void> ok = usable(); !ok.has_value()) return ok;
+  if (mode_ != Mode::kInPipe) return invalid("arrive: the robot has not driven since it stopped");
+  scratch_.clear();
+  for (const Track& t : tracks_) detail::explain_arrival(*this, t, observation, scratch_);
+  tracks_.swap(scratch_);
+  mode_ = Mode::kAtManhole;
+  normalise_and_prune();
+  return {};
+}
+
+Result<void> TopologicalFilter::no_manhole_within(double distance_m) {
+  if (!std::isfinite(distance_m) || distance_m < 0)
+    return invalid("no_manhole_within: distance " + shown(distance_m) + " m is not >= 0");
+  if (Result<void> ok = usable(); !ok.has_value()) return ok;
+  if (mode_ != Mode::kInPipe) return invalid("no_manhole_within: the robot is not in a pipe");
+  scratch_.clear();
+  for (const Track& t : tracks_) detail::explain_no_arrival(*this, t, distance_m, scratch_);
+  tracks_.swap(scratch_);
+  normalise_and_prune();
+  return {};
+}
+
+Result<void> TopologicalFilter::turn(double relative_deg) {
+  if (!std::isfinite(relative_deg) || relative_deg < 0 || relative_deg >= 360)
+    return invalid("turn: direction " + shown(relative_deg) + " is not in [0, 360)");
+  if (Result<void> ok = usable(); !ok.has_value()) return ok;
+  if (mode_ != Mode::kAtManhole) return invalid("turn: the robot is not at a manhole");
+  scratch_.clear();
+  for (const Track& t : tracks_) {
+    if (std::optional<Track> next = detail::turned(*this, t, relative_deg, std::nullopt))
+      scratch_.push_back(std::move(*next));
+  }
+  tracks_.swap(scratch_);
+  mode_ = Mode::kInPipe;
+  normalise_and_prune();
+  return {};
+}
+
+Result<void> TopologicalFilter::pass(ManholeId manhole, SlotIndex from, SlotIndex to) {
+  const SewerMap& map = *map_;
+  if (manhole.index() >= map.manhole_count())
+    return invalid("pass: no manhole " + shown(manhole.value()) + " in the map");
+  const Manhole& m = map.manhole(manhole);
+  for (SlotIndex s : {from, to}) {
+    if (s.value() >= m.slot_count)
+      return invalid("pass: " + m.name + " has no slot " + std::to_string(to_paper_number(s)));
+  }
+  if (from == to) return invalid("pass: from and to are the same slot of " + m.name);
+  if (Result<void> ok = usable(); !ok.has_value()) return ok;
+  if (mode_ != Mode::kAtManhole) return invalid("pass: the robot is not at a manhole");
+  const double relative =
+      detail::ccw_deg(map.slot(manhole, from).azimuth_deg, map.slot(manhole, to).azimuth_deg);
+  const Passage passage{manhole, from, to};
+  scratch_.clear();
+  for (const Track& t : tracks_) {
+    if (std::optional<Track> next = detail::turned(*this, t, relative, passage))
+      scratch_.push_back(std::move(*next));
+  }
+  tracks_.swap(scratch_);
+  mode_ = Mode::kInPipe;
+  normalise_and_prune();
+  return {};
+}
+
+namespace {
+
+// Hypotheses that are one place: the same mouth, or the same pipe and heading within `merge_m`.
+bool same_place(const Track& a, const Track& b, double merge_m) {
+  if (a.kind != b.kind) return false;
+  switch (a.kind) {
+    case Track::Kind::kInManhole:
+      return a.manhole == b.manhole;
+    case Track::Kind::kAtMouth:
+      return a.manhole == b.manhole && a.slot == b.slot;
+    case Track::Kind::kInPipe:
+    case Track::Kind::kAtJunction:
+      return a.pipe == b.pipe && a.heading_end == b.heading_end &&
+             std::abs(a.travelled_m - b.travelled_m) <= merge_m;
+  }
+  return false;
+}
+
+}  // namespace
+
+void TopologicalFilter::normalise_and_prune() {
+  // Most likely first; ties in a fixed order of place, so that the result is deterministic.
+  std::stable_sort(tracks_.begin(), tracks_.end(),
+                   [](const Track& a, const Track& b) { return a.log_weight > b.log_weight; });
+  // Merge: a later (less likely) hypothesis at the same place adds its weight to the first.
+  std::vector<Track> kept;
+  kept.reserve(tracks_.size());
+  for (Track& t : tracks_) {
+    if (t.log_weight == kNegativeInfinity || std::isnan(t.log_weight)) continue;
+    auto same = std::find_if(kept.begin(), kept.end(), [&](const Track& k) {
+      return same_place(k, t, options_.merge_distance_m);
+    });
+    if (same == kept.end()) {
+      kept.push_back(std::move(t));
+      continue;
+    }
+    const double total = detail::log_add(same->log_weight, t.log_weight);
+    const double wa = std::exp(same->log_weight - total);
+    const double wb = 1 - wa;
+    // The merged place and variance: the mixture's moments.
+    const double mean = wa * same->travelled_m + wb * t.travelled_m;
+    const double spread =
+        wa * std::pow(same->travelled_m - mean, 2) + wb * std::pow(t.travelled_m - mean, 2);
+    same->odometry_var_m2 = wa * same->odometry_var_m2 + wb * t.odometry_var_m2 + spread;
+    same->travelled_m = mean;
+    same->log_weight = total;
+  }
+  if (kept.empty()) {
+    tracks_.clear();
+    mode_ = Mode::kLost;
+    return;
+  }
+  std::stable_sort(kept.begin(), kept.end(),
+                   [](const Track& a, const Track& b) { return a.log_weight > b.log_weight; });
+  const double floor = kept.front().log_weight + std::log(options_.prune_ratio);
+  std::size_t n = 0;
+  while (n < kept.size() && n < options_.max_hypotheses && kept[n].log_weight >= floor) ++n;
+  kept.resize(n);
+  double total = kNegativeInfinity;
+  for (const Track& t : kept) total = detail::log_add(total, t.log_weight);
+  for (Track& t : kept) t.log_weight -= total;
+  tracks_.swap(kept);
+}
+
+}  // namespace sewerplan::localisation

@@ -1,0 +1,297 @@
+// SPDX-License-Identifier: MIT
+#include "track_geometry.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "sewerplan/core/map_queries.h"
+
+#include "likelihoods.h"
+
+namespace sewerplan::localisation::detail {
+namespace {
+
+double log_or_never(double probability) {
+  return probability > 0 ? std::log(probability) : kNegativeInfinity;
+}
+
+double offset_from_start(const Pipe& pipe, std::uint8_t heading_end, double travelled_m) {
+  return heading_end == 1 ? travelled_m : pipe.length_m - travelled_m;
+}
+
+void assume(Track& track, Assumption assumption) {
+  track.assumptions.insert(track.assumptions.begin(), assumption);
+  if (track.assumptions.size() > kMaxAssumptions) track.assumptions.resize(kMaxAssumptions);
+}
+
+// The manholes passed unseen on the way, oldest first, as assumptions on `track`.
+void assume_missed(Track& track, const std::vector<ManholeId>& passed) {
+  for (ManholeId m : passed) {
+    assume(track, {.kind = Assumption::Kind::kMissedManhole, .manhole = m});
+  }
+}
+
+// One pipe of the chain a forward-moving hypothesis may have reached by missing manholes.
+struct ChainStep {
+  PipeId pipe{0};
+  std::uint8_t heading_end = 1;
+  double base_m = 0;        // where this pipe starts, in the hypothesis's travelled coordinate
+  double position_var = 0;  // variance of the robot's place relative to base_m
+  double length_var = 0;    // variance of this pipe's length left ahead
+  double log_pass = 0;      // log P(every earlier mouth passed unseen)
+  std::vector<ManholeId> passed;
+};
+
+// Walks `track`'s chain ahead (up to max_misses manholes passed straight on), calling
+// visit(step, mouth_at_m, sd) for each pipe; stops where the robot cannot have gone.
+template <class Visit>
+void walk_chain(const TopologicalFilter& filter, const Track& track, double lower0_m, Visit visit) {
+  const SewerMap& map = filter.map();
+  const LocalisationOptions& o = filter.options();
+  const double log_miss = log_or_never(o.miss_probability);
+  const double t = track.travelled_m;
+  ChainStep step{.pipe = track.pipe,
+                 .heading_end = track.heading_end,
+                 .position_var = track.odometry_var_m2,
+                 .length_var = track.length_var_m2};
+  for (int k = 0; k <= o.max_misses; ++k) {
+    const Pipe& pipe = map.pipe(step.pipe);
+    const double mouth = step.base_m + pipe.length_m;
+    const double sd = std::sqrt(std::max(step.position_var + step.length_var, kMinVarianceM2));
+    const double lower = k == 0 ? lower0_m : step.base_m;
+    // Known: the mouth lies beyond `lower` (nothing was detected before it).
+    const double log_beyond_lower = log_phi((mouth - lower) / sd);
+    visit(step, mouth, sd, log_beyond_lower);
+    const PipeEnd& far = pipe.ends[step.heading_end];
+    if (!far.manhole || log_miss == kNegativeInfinity) return;
+    if (mouth - 4 * sd > t) return;  // the mouth is well ahead: not passed
+    const std::optional<SlotIndex> next =
+        straight_on(map, *far.manhole, far.slot, o.straight_through_deg);
+    if (!next) return;
+    const double log_passed = log1m_exp(log_phi((mouth - t) / sd) - log_beyond_lower);
+    step.log_pass += log_miss + log_passed;
+    if (step.log_pass == kNegativeInfinity) return;
+    step.passed.push_back(*far.manhole);
+    const Slot& slot = map.slot(*far.manhole, *next);
+    step.pipe = slot.pipe;
+    step.heading_end = static_cast<std::uint8_t>(1 - slot.pipe_end);
+    step.base_m = mouth;
+    step.position_var += step.length_var;
+    step.length_var = std::pow(o.length_sd_fraction * map.pipe(slot.pipe).length_m, 2);
+  }
+}
+
+// `track` moved into the chain step's pipe at `here_m` from its start.
+Track placed(const Track& track, const ChainStep& step, double here_m, bool first) {
+  Track c = track;
+  c.pipe = step.pipe;
+  c.heading_end = step.heading_end;
+  c.moving_end = step.heading_end;
+  c.travelled_m = here_m;
+  c.cleared_m = here_m;
+  if (!first) {
+    c.odometry_var_m2 = step.position_var;
+    c.length_var_m2 = step.length_var;
+  }
+  c.arrival_misses = static_cast<std::uint8_t>(step.passed.size());
+  assume_missed(c, step.passed);
+  return c;
+}
+
+}  // namespace
+
+double ccw_deg(double from_deg, double to_deg) {
+  double a = std::fmod(to_deg - from_deg, 360.0);
+  if (a < 0) a += 360.0;
+  if (a >= 360.0) a -= 360.0;
+  return a;
+}
+
+MouthAhead mouth_ahead(const SewerMap& map, const Track& track) {
+  const Pipe& pipe = map.pipe(track.pipe);
+  const PipeEnd& end = pipe.ends[track.moving_end];
+  return {.manhole = end.manhole,
+          .slot = end.slot,
+          .at_m = track.moving_end == track.heading_end ? pipe.length_m : 0.0};
+}
+
+std::optional<SlotIndex> slot_towards(const SewerMap& map, ManholeId manhole, SlotIndex arrival,
+                                      double relative_deg, double tolerance_deg) {
+  const double base = map.slot(manhole, arrival).azimuth_deg;
+  std::optional<SlotIndex> best;
+  double best_off = tolerance_deg;
+  const std::uint16_t n = map.manhole(manhole).slot_count;
+  for (std::uint16_t s = 0; s < n; ++s) {
+    if (s == arrival.value()) continue;
+    const double off = std::abs(
+        normalize_deg(ccw_deg(base, map.slot(manhole, SlotIndex{s}).azimuth_deg) - relative_deg));
+    if (off <= best_off) {
+      if (best && off == best_off) continue;  // the first of equals
+      best = SlotIndex{s};
+      best_off = off;
+    }
+  }
+  return best;
+}
+
+std::optional<SlotIndex> straight_on(const SewerMap& map, ManholeId manhole, SlotIndex arrival,
+                                     double tolerance_deg) {
+  return slot_towards(map, manhole, arrival, 180.0, tolerance_deg);
+}
+
+void explain_arrival(const TopologicalFilter& filter, const Track& track,
+                     const std::optional<ManholeSignature>& observation, std::vector<Track>& out) {
+  const SewerMap& map = filter.map();
+  const LocalisationOptions& o = filter.options();
+  const double log_detect = std::log1p(-o.miss_probability);
+  const double log_junction = log_or_never(o.unmapped_junctions_per_m);
+  const double log_false = log_or_never(o.false_detections_per_m);
+  const double t = track.travelled_m;
+
+  auto mapped = [&](ManholeId m, SlotIndex slot) {
+    return observation
+               ? compare(expected_signature(map, m, slot), *observation, o.noise).log_likelihood
+               : 0.0;
+  };
+  // The alternatives to a mapped mouth, the robot being `here_m` into `frame`'s pipe with
+  // log-probability `log_here` of not having reached its mouth.
+  auto alternatives = [&](const Track& frame, double log_here) {
+    const Pipe& pipe = map.pipe(frame.pipe);
+    const double offset = offset_from_start(pipe, frame.heading_end, frame.travelled_m);
+    if (log_junction != kNegativeInfinity) {
+      const double fit =
+          observation ? unmapped_junction_log_likelihood(*observation, pipe.diameter_m, o.noise)
+                      : 0.0;
+      Track j = frame;
+      j.kind = Track::Kind::kAtJunction;
+      j.log_weight = track.log_weight + log_here + log_detect + log_junction + fit;
+      assume(j,
+             {.kind = Assumption::Kind::kUnmappedJunction, .pipe = frame.pipe, .offset_m = offset});
+      if (j.log_weight != kNegativeInfinity) out.push_back(std::move(j));
+    }
+    if (log_false != kNegativeInfinity) {
+      const double fit = observation ? false_detection_log_likelihood(*observation) : 0.0;
+      Track f = frame;
+      f.kind = Track::Kind::kInPipe;
+      f.log_weight = track.log_weight + log_here + log_false + fit;
+      assume(f,
+             {.kind = Assumption::Kind::kFalseDetection, .pipe = frame.pipe, .offset_m = offset});
+      out.push_back(std::move(f));
+    }
+  };
+
+  if (track.moving_end != track.heading_end) {
+    // Backing towards the mouth it entered by, at 0: no chain behind it (docs/localisation.md).
+    const MouthAhead mouth = mouth_ahead(map, track);
+    const double var = std::max(track.odometry_var_m2, kMinVarianceM2);
+    if (mouth.manhole) {
+      Track c = track;
+      c.kind = Track::Kind::kAtMouth;
+      c.manhole = *mouth.manhole;
+      c.slot = mouth.slot;
+      c.travelled_m = 0;
+      c.odometry_var_m2 = c.length_var_m2 = 0;
+      c.arrival_misses = 0;
+      c.log_weight = track.log_weight + log_detect + log_normal(t, 0, var) +
+                     mapped(*mouth.manhole, mouth.slot);
+      out.push_back(std::move(c));
+    }
+    Track here = track;
+    here.cleared_m = t;
+    alternatives(here, log_phi(t / std::sqrt(var)));
+    return;
+  }
+
+  walk_chain(filter, track, track.cleared_m,
+             [&](const ChainStep& step, double mouth, double sd, double log_beyond_lower) {
+               const Pipe& pipe = map.pipe(step.pipe);
+               const bool first = step.passed.empty();
+               const PipeEnd& far = pipe.ends[step.heading_end];
+               if (far.manhole) {
+                 Track c = placed(track, step, pipe.length_m, first);
+                 c.kind = Track::Kind::kAtMouth;
+                 c.manhole = *far.manhole;
+                 c.slot = far.slot;
+                 c.odometry_var_m2 = c.length_var_m2 = 0;
+                 c.log_weight = track.log_weight + step.log_pass + log_detect +
+                                log_normal(t, mouth, sd * sd) - log_beyond_lower +
+                                mapped(*far.manhole, far.slot);
+                 out.push_back(std::move(c));
+               }
+               const double here = t - step.base_m;
+               if (!first && here < 0) return;
+               const double log_here = step.log_pass + log_phi((mouth - t) / sd) - log_beyond_lower;
+               alternatives(placed(track, step, std::clamp(here, 0.0, pipe.length_m), first),
+                            log_here);
+             });
+}
+
+void explain_no_arrival(const TopologicalFilter& filter, const Track& track, double distance_m,
+                        std::vector<Track>& out) {
+  const SewerMap& map = filter.map();
+  const double t = track.travelled_m;
+  if (track.moving_end != track.heading_end) {
+    // Backing: still short of the mouth it entered by (passing it is not followed).
+    Track c = track;
+    const double sd = std::sqrt(std::max(track.odometry_var_m2, kMinVarianceM2));
+    c.log_weight += log_phi(t / sd);
+    out.push_back(std::move(c));
+    return;
+  }
+  walk_chain(filter, track, std::max(track.cleared_m, t - distance_m),
+             [&](const ChainStep& step, double mouth, double sd, double log_beyond_lower) {
+               const Pipe& pipe = map.pipe(step.pipe);
+               const bool first = step.passed.empty();
+               const double here = t - step.base_m;
+               if (!first && here < 0) return;
+               Track c = placed(track, step, std::clamp(here, 0.0, pipe.length_m), first);
+               if (first) c.travelled_m = t;  // beyond the mapped length: the pipe is longer
+               c.cleared_m = c.travelled_m;
+               c.log_weight =
+                   track.log_weight + step.log_pass + log_phi((mouth - t) / sd) - log_beyond_lower;
+               out.push_back(std::move(c));
+             });
+}
+
+std::optional<Track> turned(const TopologicalFilter& filter, const Track& track,
+                            double relative_deg, const std::optional<Passage>& passage) {
+  const SewerMap& map = filter.map();
+  const LocalisationOptions& o = filter.options();
+  switch (track.kind) {
+    case Track::Kind::kAtMouth: {
+      std::optional<SlotIndex> to;
+      if (passage && passage->manhole == track.manhole && passage->from == track.slot) {
+        to = passage->to;
+      } else {
+        to = slot_towards(map, track.manhole, track.slot, relative_deg, o.noise.max_direction_deg);
+      }
+      if (!to) return std::nullopt;
+      const Slot& slot = map.slot(track.manhole, *to);
+      Track c = track;
+      c.kind = Track::Kind::kInPipe;
+      c.pipe = slot.pipe;
+      c.heading_end = static_cast<std::uint8_t>(1 - slot.pipe_end);
+      c.moving_end = c.heading_end;
+      c.travelled_m = c.cleared_m = 0;
+      c.odometry_var_m2 = 0;
+      c.length_var_m2 = std::pow(o.length_sd_fraction * map.pipe(slot.pipe).length_m, 2);
+      return c;
+    }
+    case Track::Kind::kAtJunction:
+    case Track::Kind::kInPipe: {
+      // A manhole the map lacks, or no manhole at all: only straight on stays on the map.
+      if (std::abs(normalize_deg(relative_deg - 180.0)) > o.straight_through_deg)
+        return std::nullopt;
+      Track c = track;
+      c.kind = Track::Kind::kInPipe;
+      c.moving_end = c.heading_end;
+      c.cleared_m = c.travelled_m;
+      return c;
+    }
+    case Track::Kind::kInManhole:
+      return std::nullopt;
+  }
+  return std::nullopt;
+}
+
+}  // namespace sewerplan::localisation::detail

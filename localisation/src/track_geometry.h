@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: MIT
+// One hypothesis moved through the network: its explanations of an arrival or of a drive without
+// one, and its turn at a manhole. The filter's updates (topological_filter.cc) apply these to each
+// hypothesis; verification.cc reuses them to look ahead.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "sewerplan/core/manhole_signature.h"
+#include "sewerplan/localisation/topological_filter.h"
+
+namespace sewerplan::localisation::detail {
+
+using Track = TopologicalFilter::Track;
+
+// Counter-clockwise angle from `from_deg` to `to_deg`, in [0, 360).
+double ccw_deg(double from_deg, double to_deg);
+
+// The mouth ahead of a hypothesis moving in a pipe: the end it moves towards.
+struct MouthAhead {
+  std::optional<ManholeId> manhole;  // none: a blind end
+  SlotIndex slot{0};
+  double at_m = 0;  // where the mouth is, in the hypothesis's travelled coordinate
+};
+MouthAhead mouth_ahead(const SewerMap& map, const Track& track);
+
+// The slot of `manhole` to continue straight on from `arrival` (the mouth nearest 180 degrees
+// from it, within `tolerance_deg`), if any. Runtime: O(slots).
+std::optional<SlotIndex> straight_on(const SewerMap& map, ManholeId manhole, SlotIndex arrival,
+                                     double tolerance_deg);
+
+// The slot of `manhole` nearest `relative_deg` counter-clockwise from `arrival` (never `arrival`),
+// if one lies within `tolerance_deg`. Runtime: O(slots).
+std::optional<SlotIndex> slot_towards(const SewerMap& map, ManholeId manhole, SlotIndex arrival,
+                                      double relative_deg, double tolerance_deg);
+
+// Appends to `out` every explanation of "the drive ended at a detected manhole" from `track` (in
+// a pipe): at the mapped mouth ahead or, through up to max_misses manholes missed straight on, a
+// later one; at an unmapped junction where it is; a false detection. Log-weights not normalised.
+void explain_arrival(const TopologicalFilter& filter, const Track& track,
+                     const std::optional<ManholeSignature>& observation, std::vector<Track>& out);
+
+// Appends to `out` every explanation of "the last `distance_m` passed no detected manhole": still
+// before the mouth ahead, or past it (missed) in the pipe straight on.
+void explain_no_arrival(const TopologicalFilter& filter, const Track& track, double distance_m,
+                        std::vector<Track>& out);
+
+// `track` (at a manhole) after leaving through the mouth `relative_deg` from its arrival mouth, or
+// through `passage` when it is at that passage's manhole and slot; nothing when it cannot.
+std::optional<Track> turned(const TopologicalFilter& filter, const Track& track,
+                            double relative_deg, const std::optional<Passage>& passage);
+
+}  // namespace sewerplan::localisation::detail
