@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <tuple>
 
 #include "sewerplan/core/map_queries.h"
 #include "sewerplan/localisation/topological_filter.h"
@@ -203,51 +204,68 @@ namespace {
 
 using Mouth = std::optional<std::pair<ManholeId, SlotIndex>>;
 
-// The mouth a hypothesis reaches next driving forward (itself, at a mouth), and how far it is.
-std::pair<Mouth, double> next_mouth(const SewerMap& map, const Track& t) {
-  switch (t.kind) {
-    case Track::Kind::kAtMouth:
-      return {std::pair{t.manhole, t.slot}, 0.0};
-    case Track::Kind::kInPipe:
-    case Track::Kind::kAtJunction: {
-      const Pipe& pipe = map.pipe(t.pipe);
-      const PipeEnd& far = pipe.ends[t.heading_end];
-      if (!far.manhole) return {std::nullopt, 0.0};
-      return {std::pair{*far.manhole, far.slot}, std::max(pipe.length_m - t.travelled_m, 0.0)};
-    }
-    case Track::Kind::kInManhole:
-      return {std::nullopt, 0.0};
-  }
-  return {std::nullopt, 0.0};
-}
+// A hypothesis on a route planned under another: at a mapped mouth, at a manhole the map lacks in
+// a pipe (or a false detection there), or off the map (neither).
+struct Virtual {
+  Mouth mouth;
+  std::optional<PipeId> pipe;
+  std::uint8_t heading_end = 1;
+};
 
-// Through `mouth`'s manhole into the slot `relative_deg` from it, to the far end of that pipe.
-Mouth through(const SewerMap& map, const Mouth& mouth, double relative_deg, double tolerance_deg) {
-  if (!mouth) return std::nullopt;
-  const std::optional<SlotIndex> to =
-      detail::slot_towards(map, mouth->first, mouth->second, relative_deg, tolerance_deg);
-  if (!to) return std::nullopt;
-  const Slot& slot = map.slot(mouth->first, *to);
-  const PipeEnd& far = map.pipe(slot.pipe).ends[1 - slot.pipe_end];
+// The mouth at the end of a pipe, entered at `end`'s other end.
+Mouth far_mouth(const SewerMap& map, PipeId pipe, std::size_t end) {
+  const PipeEnd& far = map.pipe(pipe).ends[end];
   if (!far.manhole) return std::nullopt;
   return std::pair{*far.manhole, far.slot};
 }
 
+// The mouth a hypothesis in a pipe reaches driving on, and how far it is.
+std::pair<Mouth, double> next_mouth(const SewerMap& map, const Track& t) {
+  const Pipe& pipe = map.pipe(t.pipe);
+  return {far_mouth(map, t.pipe, t.heading_end), std::max(pipe.length_m - t.travelled_m, 0.0)};
+}
+
+// A hypothesis at a manhole as a Virtual.
+Virtual at_manhole(const Track& t) {
+  if (t.kind == Track::Kind::kAtMouth) return {.mouth = std::pair{t.manhole, t.slot}};
+  if (t.kind == Track::Kind::kInManhole) return {};
+  return {.pipe = t.pipe, .heading_end = t.heading_end};
+}
+
+// Where `v` gets leaving its manhole through the mouth `relative_deg` from its arrival mouth and
+// driving to the next manhole.
+Mouth leave(const SewerMap& map, const Virtual& v, double relative_deg,
+            const LocalisationOptions& o) {
+  if (v.mouth) {
+    const std::optional<SlotIndex> to = detail::slot_towards(
+        map, v.mouth->first, v.mouth->second, relative_deg, o.noise.max_direction_deg);
+    if (!to) return std::nullopt;
+    const Slot& slot = map.slot(v.mouth->first, *to);
+    return far_mouth(map, slot.pipe, 1 - slot.pipe_end);
+  }
+  if (v.pipe && std::abs(normalize_deg(relative_deg - 180.0)) <= o.straight_through_deg)
+    return far_mouth(map, *v.pipe, v.heading_end);
+  return std::nullopt;
+}
+
 struct Search {
   const SewerMap& map;
-  const SignatureNoise& noise;
+  const LocalisationOptions& options;
   std::size_t max_passes;
   std::vector<DistinguishingManhole>& found;
 
-  void visit(const std::pair<ManholeId, SlotIndex>& best, const std::vector<Mouth>& others,
+  // The robot arrives at `best` (under the most likely hypothesis), the others at theirs.
+  void visit(const std::pair<ManholeId, SlotIndex>& best, const std::vector<Virtual>& others,
              std::vector<Passage>& route, double distance_m) {
     const ManholeSignature seen = expected_signature(map, best.first, best.second);
     std::size_t separated = 0;
-    for (const Mouth& o : others) {
-      if (!o) {
+    for (const Virtual& o : others) {
+      if (!o.mouth) {
         ++separated;
-      } else if (o->first != best.first &&
-                 !compare(seen, expected_signature(map, o->first, o->second), noise).matches) {
+      } else if (o.mouth->first != best.first &&
+                 !compare(seen, expected_signature(map, o.mouth->first, o.mouth->second),
+                          options.noise)
+                      .matches) {
         ++separated;
       }
     }
@@ -258,6 +276,12 @@ struct Search {
                        .distance_m = distance_m,
                        .separated = separated});
     }
+    expand(best, others, route, distance_m);
+  }
+
+  // Every way on from `best` through another of its mouths.
+  void expand(const std::pair<ManholeId, SlotIndex>& best, const std::vector<Virtual>& others,
+              std::vector<Passage>& route, double distance_m) {
     if (route.size() >= max_passes) return;
     const Manhole& m = map.manhole(best.first);
     const double base = map.slot(best.first, best.second).azimuth_deg;
@@ -265,16 +289,15 @@ struct Search {
       const SlotIndex to{s};
       if (to == best.second) continue;
       const Slot& slot = map.slot(best.first, to);
-      const Pipe& pipe = map.pipe(slot.pipe);
-      const PipeEnd& far = pipe.ends[1 - slot.pipe_end];
-      if (!far.manhole) continue;
+      const Mouth next = far_mouth(map, slot.pipe, 1 - slot.pipe_end);
+      if (!next) continue;
       const double relative = detail::ccw_deg(base, slot.azimuth_deg);
-      std::vector<Mouth> next_others;
+      std::vector<Virtual> next_others;
       next_others.reserve(others.size());
-      for (const Mouth& o : others)
-        next_others.push_back(through(map, o, relative, noise.max_direction_deg));
+      for (const Virtual& o : others)
+        next_others.push_back({.mouth = leave(map, o, relative, options)});
       route.push_back({best.first, best.second, to});
-      visit({*far.manhole, far.slot}, next_others, route, distance_m + pipe.length_m);
+      visit(*next, next_others, route, distance_m + map.pipe(slot.pipe).length_m);
       route.pop_back();
     }
   }
@@ -285,16 +308,31 @@ struct Search {
 std::vector<DistinguishingManhole> TopologicalFilter::distinguishing_manholes(
     std::size_t max_passes, std::size_t max_results) const {
   std::vector<DistinguishingManhole> found;
-  if (!estimate().ambiguous) return found;
-  const auto [best, distance] = next_mouth(*map_, tracks_.front());
-  if (!best) return found;
-  std::vector<Mouth> others;
+  if (mode_ == Mode::kLost || mode_ == Mode::kInManhole || !estimate().ambiguous) return found;
+  const Track& best = tracks_.front();
+  std::vector<const Track*> others;
   for (std::size_t i = 1; i < tracks_.size(); ++i) {
-    if (std::exp(tracks_[i].log_weight) < options_.ambiguity_probability) continue;
-    others.push_back(next_mouth(*map_, tracks_[i]).first);
+    if (std::exp(tracks_[i].log_weight) >= options_.ambiguity_probability)
+      others.push_back(&tracks_[i]);
   }
+  Search search{*map_, options_, max_passes, found};
   std::vector<Passage> route;
-  Search{*map_, options_.noise, max_passes, found}.visit(*best, others, route, distance);
+  std::vector<Virtual> virtuals;
+  if (mode_ == Mode::kInPipe) {
+    // Driving on, every hypothesis reaches the mouth ahead of it.
+    const auto [mouth, distance] = next_mouth(*map_, best);
+    for (const Track* t : others) virtuals.push_back({.mouth = next_mouth(*map_, *t).first});
+    if (mouth) search.visit(*mouth, virtuals, route, distance);
+  } else if (best.kind == Track::Kind::kAtMouth) {
+    for (const Track* t : others) virtuals.push_back(at_manhole(*t));
+    search.expand({best.manhole, best.slot}, virtuals, route, 0.0);
+  } else {
+    // At a manhole the map lacks (or none): the map goes on only straight ahead.
+    const auto [mouth, distance] = next_mouth(*map_, best);
+    for (const Track* t : others)
+      virtuals.push_back({.mouth = leave(*map_, at_manhole(*t), 180.0, options_)});
+    if (mouth) search.visit(*mouth, virtuals, route, distance);
+  }
   std::stable_sort(found.begin(), found.end(),
                    [](const DistinguishingManhole& a, const DistinguishingManhole& b) {
                      return std::tie(b.separated, a.distance_m) <

@@ -125,7 +125,7 @@ Result<void> TopologicalFilter::reset(const Pose& pose) {
     t.heading_end = slot.pipe_end;
     t.moving_end = slot.pipe_end;
     t.travelled_m = map.pipe(slot.pipe).length_m;
-    t.cleared_m = t.travelled_m;
+    t.cleared_m = t.anchor_m = t.travelled_m;
     mode = Mode::kAtManhole;
   } else {
     const auto& pipe_place = std::get<domain::InPipe>(pose.position);
@@ -144,12 +144,12 @@ Result<void> TopologicalFilter::reset(const Pose& pose) {
     t.moving_end = t.heading_end;
     t.travelled_m = t.heading_end == 1 ? pipe_place.offset_m : pipe.length_m - pipe_place.offset_m;
     t.cleared_m = t.travelled_m;
-    const double left = pipe.length_m - t.travelled_m;
-    t.length_var_m2 = std::pow(options_.length_sd_fraction * left, 2);
+    t.anchor_m = t.travelled_m;
     mode = pose.at_unmapped_junction ? Mode::kAtManhole : Mode::kInPipe;
   }
   tracks_.assign(1, std::move(t));
   mode_ = mode;
+  arrived_by_ = last_drive_ = DriveDirection::kForward;
   return {};
 }
 
@@ -168,7 +168,7 @@ Result<void> TopologicalFilter::enter(SlotIndex slot) {
     const auto heading = static_cast<std::uint8_t>(1 - s.pipe_end);
     t = in_pipe(t, s.pipe, heading, 0.0);
     t.odometry_var_m2 = 0;
-    t.length_var_m2 = std::pow(options_.length_sd_fraction * map.pipe(s.pipe).length_m, 2);
+    t.anchor_m = 0;
   }
   mode_ = Mode::kInPipe;
   return {};
@@ -182,8 +182,10 @@ Result<void> TopologicalFilter::drive(double odometry_m, DriveDirection directio
   if (Result<void> ok = usable(); !ok.has_value()) return ok;
   if (mode_ == Mode::kInManhole)
     return invalid("drive: in the start manhole: enter() a pipe first");
-  if (mode_ == Mode::kAtManhole && direction == DriveDirection::kForward) {
-    return invalid("drive: forward from a manhole: turn() or pass() into a pipe first");
+  if (mode_ == Mode::kAtManhole && direction == arrived_by_) {
+    return invalid(std::string("drive: ") +
+                   (direction == DriveDirection::kForward ? "forward" : "backward") +
+                   " at a manhole goes into it: turn() or pass() into a pipe first");
   }
   const SewerMap& map = *map_;
   for (Track& t : tracks_) {
@@ -194,7 +196,7 @@ Result<void> TopologicalFilter::drive(double odometry_m, DriveDirection directio
       t.kind = Track::Kind::kInPipe;
       t.travelled_m = mouth_ahead ? length : 0.0;
       t.odometry_var_m2 = 0;
-      t.length_var_m2 = 0;
+      t.anchor_m = t.travelled_m;
     }
     t.kind = Track::Kind::kInPipe;
     const bool forward = direction == DriveDirection::kForward;
@@ -206,6 +208,7 @@ Result<void> TopologicalFilter::drive(double odometry_m, DriveDirection directio
     t.odometry_var_m2 += sigma_m * sigma_m;
   }
   mode_ = Mode::kInPipe;
+  last_drive_ = direction;
   return {};
 }
 
@@ -222,6 +225,7 @@ Result<void> TopologicalFilter::arrive(const std::optional<ManholeSignature>& ob
   for (const Track& t : tracks_) detail::explain_arrival(*this, t, observation, scratch_);
   tracks_.swap(scratch_);
   mode_ = Mode::kAtManhole;
+  arrived_by_ = last_drive_;
   normalise_and_prune();
   return {};
 }

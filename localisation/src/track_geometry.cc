@@ -31,6 +31,12 @@ void assume_missed(Track& track, const std::vector<ManholeId>& passed) {
   }
 }
 
+// The variance of the robot's distance to the mouth behind it (at 0, the end opposite its heading).
+double behind_var(const LocalisationOptions& o, const Track& track) {
+  return std::max(track.odometry_var_m2 + std::pow(o.length_sd_fraction * track.anchor_m, 2),
+                  kMinVarianceM2);
+}
+
 // One pipe of the chain a forward-moving hypothesis may have reached by missing manholes.
 struct ChainStep {
   PipeId pipe{0};
@@ -53,7 +59,8 @@ void walk_chain(const TopologicalFilter& filter, const Track& track, double lowe
   ChainStep step{.pipe = track.pipe,
                  .heading_end = track.heading_end,
                  .position_var = track.odometry_var_m2,
-                 .length_var = track.length_var_m2};
+                 .length_var = std::pow(
+                     o.length_sd_fraction * (map.pipe(track.pipe).length_m - track.anchor_m), 2)};
   for (int k = 0; k <= o.max_misses; ++k) {
     const Pipe& pipe = map.pipe(step.pipe);
     const double mouth = step.base_m + pipe.length_m;
@@ -91,7 +98,7 @@ Track placed(const Track& track, const ChainStep& step, double here_m, bool firs
   c.cleared_m = here_m;
   if (!first) {
     c.odometry_var_m2 = step.position_var;
-    c.length_var_m2 = step.length_var;
+    c.anchor_m = 0;
   }
   c.arrival_misses = static_cast<std::uint8_t>(step.passed.size());
   assume_missed(c, step.passed);
@@ -183,14 +190,14 @@ void explain_arrival(const TopologicalFilter& filter, const Track& track,
   if (track.moving_end != track.heading_end) {
     // Backing towards the mouth it entered by, at 0: no chain behind it (docs/localisation.md).
     const MouthAhead mouth = mouth_ahead(map, track);
-    const double var = std::max(track.odometry_var_m2, kMinVarianceM2);
+    const double var = behind_var(o, track);
     if (mouth.manhole) {
       Track c = track;
       c.kind = Track::Kind::kAtMouth;
       c.manhole = *mouth.manhole;
       c.slot = mouth.slot;
-      c.travelled_m = 0;
-      c.odometry_var_m2 = c.length_var_m2 = 0;
+      c.travelled_m = c.anchor_m = 0;
+      c.odometry_var_m2 = 0;
       c.arrival_misses = 0;
       c.log_weight = track.log_weight + log_detect + log_normal(t, 0, var) +
                      mapped(*mouth.manhole, mouth.slot);
@@ -212,7 +219,8 @@ void explain_arrival(const TopologicalFilter& filter, const Track& track,
                  c.kind = Track::Kind::kAtMouth;
                  c.manhole = *far.manhole;
                  c.slot = far.slot;
-                 c.odometry_var_m2 = c.length_var_m2 = 0;
+                 c.odometry_var_m2 = 0;
+                 c.anchor_m = c.travelled_m;
                  c.log_weight = track.log_weight + step.log_pass + log_detect +
                                 log_normal(t, mouth, sd * sd) - log_beyond_lower +
                                 mapped(*far.manhole, far.slot);
@@ -233,7 +241,7 @@ void explain_no_arrival(const TopologicalFilter& filter, const Track& track, dou
   if (track.moving_end != track.heading_end) {
     // Backing: still short of the mouth it entered by (passing it is not followed).
     Track c = track;
-    const double sd = std::sqrt(std::max(track.odometry_var_m2, kMinVarianceM2));
+    const double sd = std::sqrt(behind_var(filter.options(), track));
     c.log_weight += log_phi(t / sd);
     out.push_back(std::move(c));
     return;
@@ -274,7 +282,7 @@ std::optional<Track> turned(const TopologicalFilter& filter, const Track& track,
       c.moving_end = c.heading_end;
       c.travelled_m = c.cleared_m = 0;
       c.odometry_var_m2 = 0;
-      c.length_var_m2 = std::pow(o.length_sd_fraction * map.pipe(slot.pipe).length_m, 2);
+      c.anchor_m = 0;
       return c;
     }
     case Track::Kind::kAtJunction:

@@ -65,8 +65,10 @@ struct LocalisationOptions {
   double length_sd_fraction = 0.10;
   // Probability that the robot drives through a mapped manhole without detecting it.
   double miss_probability = 0.05;
-  // Manholes the map lacks, per metre of pipe (an unmapped junction ahead of a mapped mouth).
-  double unmapped_junctions_per_m = 0.002;
+  // Manholes the map lacks, per metre of pipe (an unmapped junction ahead of a mapped mouth):
+  // one per kilometre, about 4 % of the manholes where they are 40 m apart (the realistic error
+  // profile of issue 29 has 3 % of junctions missing from the map).
+  double unmapped_junctions_per_m = 0.001;
   // Detections where there is no manhole, per metre driven.
   double false_detections_per_m = 0.0002;
   // Consecutive missed manholes an arrival may explain (0: none).
@@ -201,8 +203,9 @@ class TopologicalFilter {
 
   // The robot drove `odometry_m` (>= 0) with a standard deviation of `sigma_m` (>= 0; the
   // sensing model's drift, proportional to the distance). Forward: away from the mouth it
-  // entered by; at a manhole only backward (back into the pipe it arrived by). Error: a negative
-  // or non-finite number, forward at a manhole, lost. Runtime: O(hypotheses).
+  // entered by. At a manhole only back into the pipe it arrived by: backward after a forward
+  // arrival, forward after a backward one. Error: a negative or non-finite number, into the
+  // manhole, lost. Runtime: O(hypotheses).
   Result<void> drive(double odometry_m, DriveDirection direction, double sigma_m);
 
   // The last drive ended at a detected manhole, seen as `observation` (nullopt: detected, but
@@ -256,8 +259,10 @@ class TopologicalFilter {
     std::uint8_t moving_end = 1;   // the end the last drive went towards
     double travelled_m = 0;        // from the end opposite heading_end
     double odometry_var_m2 = 0;    // variance of travelled_m
-    double length_var_m2 = 0;      // variance of the map's distance left to the heading mouth
-    double cleared_m = 0;          // no mouth was detected up to here (travelled coordinate)
+    // Where the place was last known on the map (a mouth, a reset), in the travelled coordinate:
+    // the map's distance from here to a mouth is off by length_sd_fraction of it.
+    double anchor_m = 0;
+    double cleared_m = 0;  // no mouth was detected up to here (travelled coordinate)
     // At a mouth or in a manhole:
     ManholeId manhole{0};
     SlotIndex slot{0};
@@ -278,6 +283,10 @@ class TopologicalFilter {
   const SewerMap* map_;  // never null
   LocalisationOptions options_;
   Mode mode_ = Mode::kLost;
+  DriveDirection last_drive_ = DriveDirection::kForward;
+  // How the drive that ended at the manhole went: at a manhole, only the other way is a drive
+  // (back into the pipe it arrived by).
+  DriveDirection arrived_by_ = DriveDirection::kForward;
   std::vector<Track> tracks_;
   std::vector<Track> scratch_;  // reused between updates
 };
