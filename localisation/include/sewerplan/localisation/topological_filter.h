@@ -25,11 +25,10 @@
 // An update touches only the hypotheses and the pipes and manholes near them: its cost does not
 // depend on the network's size (bench/localisation/topological_filter_bench.cc).
 //
-// The model is the discrete-continuous multi-hypothesis tracker of topological localisation
-// (a Bayes filter over a graph's places, e.g. Kuipers and Byun 1991, "A robot exploration and
-// mapping strategy based on a semantic hierarchy of spatial representations"; and for pipes
-// Kirchner and Hertzberg 1997, "A prototype study of an autonomous robot platform for sewerage
-// system maintenance"), with Gaussian odometry along a pipe. It is deterministic: no sampling.
+// The model is a Bayes filter over the places of a graph (topological localisation, as in Kuipers
+// and Byun 1991, "A robot exploration and mapping strategy based on a semantic hierarchy of spatial
+// representations"), kept as a short list of hypotheses, each with a Gaussian for the distance
+// along its pipe. It is deterministic: no sampling.
 //
 //   auto filter = TopologicalFilter::create(map);
 //   filter->reset({.position = domain::AtSlot{m1, SlotIndex{0}}});
@@ -238,10 +237,10 @@ class TopologicalFilter {
   Result<Verification> verify_arrival(ManholeId expected, SlotIndex arrival,
                                       const std::optional<ManholeSignature>& observation) const;
 
-  // Manholes within `max_passes` passages of the most likely hypothesis's next mouth that tell
-  // the likely hypotheses apart, those separating the most first, then the nearest; at most
-  // `max_results`. Empty when the belief is not ambiguous. Runtime: O(likely hypotheses *
-  // slots^max_passes).
+  // Manholes that tell the likely hypotheses apart, reached from the robot's place by at most
+  // `max_passes` passages under the most likely hypothesis (driving on first, in a pipe); those
+  // separating the most first, then the nearest; at most `max_results`. Empty when the belief is
+  // not ambiguous. Runtime: O(likely hypotheses * slots^max_passes).
   std::vector<DistinguishingManhole> distinguishing_manholes(std::size_t max_passes = 3,
                                                              std::size_t max_results = 8) const;
 
