@@ -170,7 +170,8 @@ Result<Verification> TopologicalFilter::verify_arrival(
   // The most likely explanation that is not the expected mouth.
   auto alt = std::find_if(tracks_.begin(), tracks_.end(),
                           [&](const Track& t) { return !at_mouth(t, expected, arrival); });
-  const Track& other = *alt;  // exists: the expected mouth alone would have matched
+  if (alt == tracks_.end()) return v;  // every hypothesis is the expected mouth
+  const Track& other = *alt;
   const Pose pose = hypothesis_of(map, other).pose;
   const std::string odds = " (" + probability_text(std::exp(other.log_weight)) + "; " + want + " " +
                            probability_text(v.probability) + ")";

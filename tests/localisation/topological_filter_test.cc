@@ -192,11 +192,16 @@ TEST(TopologicalFilter, UnmappedJunctionGivesTwoHypothesesAndADistinctiveManhole
   // Verification says so: not M3 as the map has it.
   Result<Verification> v = f.verify_arrival(s.manhole("M3"), s.slot("M3", "P2"), junction);
   ASSERT_TRUE(v.has_value());
-  EXPECT_FALSE(v->matches());
+  EXPECT_EQ(v->kind, Verification::Kind::kUnmappedJunction) << v->reason;
+  EXPECT_NE(v->reason.find("P2"), std::string::npos) << v->reason;
   // Straight on, M3 (two-way) under one hypothesis, M4 (three-way) under the other.
   const std::vector<DistinguishingManhole> tell = f.distinguishing_manholes();
   ASSERT_FALSE(tell.empty());
   EXPECT_EQ(tell.front().separated, 1u);
+  EXPECT_EQ(tell.front().manhole, s.manhole("M3"));
+  EXPECT_EQ(tell.front().arrival, s.slot("M3", "P2"));
+  EXPECT_TRUE(tell.front().route.empty());  // straight on through the junction
+  EXPECT_NEAR(tell.front().distance_m, 4, 0.5);
 
   ASSERT_TRUE(f.turn(180).has_value());
   ASSERT_TRUE(f.drive(4, DriveDirection::kForward, 0.12).has_value());
