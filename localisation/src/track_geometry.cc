@@ -146,23 +146,40 @@ std::optional<SlotIndex> straight_on(const SewerMap& map, ManholeId manhole, Slo
   return slot_towards(map, manhole, arrival, 180.0, tolerance_deg);
 }
 
-void explain_arrival(const TopologicalFilter& filter, const Track& track,
-                     const std::optional<ManholeSignature>& observation, std::vector<Track>& out) {
-  const SewerMap& map = filter.map();
-  const LocalisationOptions& o = filter.options();
-  const double log_detect = std::log1p(-o.miss_probability);
-  const double log_junction = log_or_never(o.unmapped_junctions_per_m);
-  const double log_false = log_or_never(o.false_detections_per_m);
-  const double t = track.travelled_m;
+namespace {
 
-  auto mapped = [&](ManholeId m, SlotIndex slot) {
+// The explanations of one hypothesis's arrival, appended to `out`.
+struct ArrivalExplainer {
+  const SewerMap& map;
+  const LocalisationOptions& o;
+  const Track& track;
+  const std::optional<ManholeSignature>& observation;
+  std::vector<Track>& out;
+  double log_detect = std::log1p(-o.miss_probability);
+  double log_junction = log_or_never(o.unmapped_junctions_per_m);
+  double log_false = log_or_never(o.false_detections_per_m);
+
+  // How well the observation fits the map's manhole `m` entered through `slot`.
+  double mapped_fit(ManholeId m, SlotIndex slot) const {
     return observation
                ? compare(expected_signature(map, m, slot), *observation, o.noise).log_likelihood
                : 0.0;
-  };
-  // The alternatives to a mapped mouth, the robot being `here_m` into `frame`'s pipe with
-  // log-probability `log_here` of not having reached its mouth.
-  auto alternatives = [&](const Track& frame, double log_here) {
+  }
+
+  // At the mouth of `m`'s `slot`, `log_place` the odometry's and the misses' part of the weight.
+  void at_mouth(Track c, ManholeId m, SlotIndex slot, double log_place) {
+    c.kind = Track::Kind::kAtMouth;
+    c.manhole = m;
+    c.slot = slot;
+    c.odometry_var_m2 = 0;
+    c.anchor_m = c.cleared_m = c.travelled_m;
+    c.log_weight = track.log_weight + log_detect + log_place + mapped_fit(m, slot);
+    out.push_back(std::move(c));
+  }
+
+  // The alternatives to a mapped mouth, the robot being at `frame`'s place, with log-probability
+  // `log_here` of not having reached the mouth ahead: an unmapped junction, a false detection.
+  void alternatives(const Track& frame, double log_here) {
     const Pipe& pipe = map.pipe(frame.pipe);
     const double offset = offset_from_start(pipe, frame.heading_end, frame.travelled_m);
     if (log_junction != kNegativeInfinity) {
@@ -185,52 +202,50 @@ void explain_arrival(const TopologicalFilter& filter, const Track& track,
              {.kind = Assumption::Kind::kFalseDetection, .pipe = frame.pipe, .offset_m = offset});
       out.push_back(std::move(f));
     }
-  };
+  }
 
-  if (track.moving_end != track.heading_end) {
-    // Backing towards the mouth it entered by, at 0: no chain behind it (docs/localisation.md).
+  // Backing towards the mouth it entered by, at 0: no chain behind it (docs/localisation.md).
+  void backing() {
+    const double t = track.travelled_m;
     const MouthAhead mouth = mouth_ahead(map, track);
     const double var = behind_var(o, track);
     if (mouth.manhole) {
       Track c = track;
-      c.kind = Track::Kind::kAtMouth;
-      c.manhole = *mouth.manhole;
-      c.slot = mouth.slot;
-      c.travelled_m = c.anchor_m = 0;
-      c.odometry_var_m2 = 0;
+      c.travelled_m = 0;
       c.arrival_misses = 0;
-      c.log_weight = track.log_weight + log_detect + log_normal(t, 0, var) +
-                     mapped(*mouth.manhole, mouth.slot);
-      out.push_back(std::move(c));
+      at_mouth(std::move(c), *mouth.manhole, mouth.slot, log_normal(t, 0, var));
     }
     Track here = track;
     here.cleared_m = t;
     alternatives(here, log_phi(t / std::sqrt(var)));
+  }
+};
+
+}  // namespace
+
+void explain_arrival(const TopologicalFilter& filter, const Track& track,
+                     const std::optional<ManholeSignature>& observation, std::vector<Track>& out) {
+  const SewerMap& map = filter.map();
+  ArrivalExplainer explain{map, filter.options(), track, observation, out};
+  if (track.moving_end != track.heading_end) {
+    explain.backing();
     return;
   }
-
+  const double t = track.travelled_m;
   walk_chain(filter, track, track.cleared_m,
              [&](const ChainStep& step, double mouth, double sd, double log_beyond_lower) {
                const Pipe& pipe = map.pipe(step.pipe);
                const bool first = step.passed.empty();
                const PipeEnd& far = pipe.ends[step.heading_end];
                if (far.manhole) {
-                 Track c = placed(track, step, pipe.length_m, first);
-                 c.kind = Track::Kind::kAtMouth;
-                 c.manhole = *far.manhole;
-                 c.slot = far.slot;
-                 c.odometry_var_m2 = 0;
-                 c.anchor_m = c.travelled_m;
-                 c.log_weight = track.log_weight + step.log_pass + log_detect +
-                                log_normal(t, mouth, sd * sd) - log_beyond_lower +
-                                mapped(*far.manhole, far.slot);
-                 out.push_back(std::move(c));
+                 explain.at_mouth(placed(track, step, pipe.length_m, first), *far.manhole, far.slot,
+                                  step.log_pass + log_normal(t, mouth, sd * sd) - log_beyond_lower);
                }
                const double here = t - step.base_m;
                if (!first && here < 0) return;
                const double log_here = step.log_pass + log_phi((mouth - t) / sd) - log_beyond_lower;
-               alternatives(placed(track, step, std::clamp(here, 0.0, pipe.length_m), first),
-                            log_here);
+               explain.alternatives(
+                   placed(track, step, std::clamp(here, 0.0, pipe.length_m), first), log_here);
              });
 }
 
