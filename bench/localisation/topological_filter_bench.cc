@@ -99,6 +99,41 @@ void BM_TopologicalFilterObservationUnpruned(benchmark::State& state) {
   run_legs(state, 0.15, {.max_misses = 8, .prune_ratio = 0});
 }
 
+// The worst case: a belief full of hypotheses (max_hypotheses, 64), built by arrivals without a
+// signature far from any mouth with odometry as uncertain as the pipes are long, nothing pruned,
+// half the manholes missed, up to eight in a row. Each observation (turn, drive, arrive) then
+// explains 64 hypotheses in up to 27 ways each and merges them. The copy of the belief it starts
+// from is timed too.
+void BM_TopologicalFilterObservationFullBelief(benchmark::State& state) {
+  const Instance& in = instance(static_cast<std::size_t>(state.range(0)));
+  const LocalisationOptions options{.miss_probability = 0.5,
+                                    .unmapped_junctions_per_m = 0.01,
+                                    .false_detections_per_m = 0.01,
+                                    .max_misses = 8,
+                                    .prune_ratio = 0};
+  TopologicalFilter full = *TopologicalFilter::create(in.map, options);
+  const Leg& l = in.legs[0];
+  (void)full.reset({.position = domain::AtSlot{l.from, l.arrival}});
+  (void)full.pass(l.from, l.arrival, l.to);
+  for (int i = 0; i < 2; ++i) {
+    if (i > 0) (void)full.turn(180);
+    (void)full.drive(l.length_m * 2.5, DriveDirection::kForward, l.length_m);
+    (void)full.arrive(std::nullopt);
+  }
+  std::size_t hypotheses = 0;
+  for (auto _ : state) {
+    TopologicalFilter filter = full;
+    (void)filter.turn(180);
+    (void)filter.drive(l.length_m * 1.5, DriveDirection::kForward, l.length_m);
+    (void)filter.arrive(l.seen);
+    hypotheses += filter.estimate().hypotheses.size();
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["hypotheses_before"] = static_cast<double>(full.estimate().hypotheses.size());
+  state.counters["hypotheses"] =
+      static_cast<double>(hypotheses) / static_cast<double>(state.iterations());
+}
+
 // The naive baseline: the signature scored at every mouth of the network.
 void BM_GlobalSignatureScan(benchmark::State& state) {
   const Instance& in = instance(static_cast<std::size_t>(state.range(0)));
@@ -129,6 +164,11 @@ BENCHMARK(BM_TopologicalFilterObservationDrifting)
     ->Arg(100000)
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_TopologicalFilterObservationUnpruned)
+    ->Arg(1000)
+    ->Arg(10000)
+    ->Arg(100000)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_TopologicalFilterObservationFullBelief)
     ->Arg(1000)
     ->Arg(10000)
     ->Arg(100000)
