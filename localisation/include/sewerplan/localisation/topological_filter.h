@@ -36,7 +36,7 @@
 //   filter->drive(report.odometry_m, DriveDirection::kForward, 0.03 * report.odometry_m);
 //   filter->arrive(report.observation);
 //   Verification v = *filter->verify_arrival(m2, SlotIndex{0}, report.observation);
-//   if (!v.matches) ... v.kind, v.reason
+//   if (!v.matches()) ... v.kind, v.reason
 //
 // Thread safety: a filter is a plain value; one thread updates it at a time. The map must outlive
 // it and is only read.
@@ -47,6 +47,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "sewerplan/core/manhole_signature.h"
