@@ -28,6 +28,11 @@ class DeadReckoning {
   // After a plan step whose position agrees with this one, the validator's is exact; the heading
   // is kept.
   void set_position(const domain::RobotPosition& p) { position_ = p; }
+  // Where the robot was found to be (manhole verification): its place and, in a pipe, heading.
+  void set_pose(const domain::RobotPosition& p, std::uint8_t heading_end) {
+    position_ = p;
+    heading_end_ = heading_end;
+  }
 
   const domain::RobotPosition& position() const { return position_; }
   std::uint8_t heading_end() const { return heading_end_; }

@@ -184,6 +184,16 @@ std::optional<Event> event_of(const std::string& type, FieldReader& r) {
     r.get("left_wh", x.left_wh);
     r.get("reserve_wh", x.reserve_wh);
     e.what = std::move(x);
+  } else if (type == "arrival") {
+    ArrivalEvent a;
+    r.get("expected", a.expected);
+    r.get("check", a.check);
+    r.get("probability", a.probability);
+    r.get("believed", a.believed);
+    r.get("manhole", a.manhole);
+    r.get("observed", a.observed);
+    r.get("reason", a.reason);
+    e.what = std::move(a);
   } else if (type == "beacon") {
     BeaconEvent b;
     r.get("reason", b.reason);

@@ -70,6 +70,7 @@ std::string_view type_name(const Event& event) {
           [](const TaskDoneEvent&) -> std::string_view { return "task_done"; },
           [](const TaskDroppedEvent&) -> std::string_view { return "task_dropped"; },
           [](const ReserveEvent&) -> std::string_view { return "reserve"; },
+          [](const ArrivalEvent&) -> std::string_view { return "arrival"; },
           [](const BeaconEvent&) -> std::string_view { return "beacon"; },
           [](const MissionEndEvent&) -> std::string_view { return "mission_end"; }},
       event.what);
@@ -80,75 +81,81 @@ namespace detail {
 Fields fields_of(const Event& event) {
   using I = std::int64_t;
   return std::visit(
-      Overloaded{[](const PlanEvent& e) -> Fields {
-                   return {{"reason", e.reason},
-                           {"planning_ms", e.planning_ms},
-                           {"decision", text(to_string(e.decision))},
-                           {"goals", e.goals},
-                           {"dropped", e.dropped},
-                           {"end", e.end},
-                           {"steps", static_cast<I>(e.steps)},
-                           {"cost_s", e.cost_s}};
-                 },
-                 [](const ActionEvent& e) -> Fields {
-                   return {{"step", e.step},
-                           {"kind", e.kind},
-                           {"duration_s", e.duration_s},
-                           {"parameters", e.parameters}};
-                 },
-                 [](const JobEvent& e) -> Fields {
-                   return {{"job", e.job}, {"progress_m", e.progress_m}, {"ok", e.ok}};
-                 },
-                 [](const ErrorEvent& e) -> Fields {
-                   return {{"kind", text(hal::to_string(e.kind))},
-                           {"reason", e.reason},
-                           {"where", e.where}};
-                 },
-                 [](const RecoveryEvent& e) -> Fields {
-                   return {{"phase", text(logged_name(e.phase))}, {"ok", e.ok}};
-                 },
-                 [](const FailureEvent& e) -> Fields {
-                   Fields f{{"kind", text(to_string(e.kind))}};
-                   if (const auto* in = std::get_if<FailureEvent::InPipe>(&e.where)) {
-                     f.emplace_back("pipe", in->pipe);
-                     f.emplace_back("offset_m", in->offset_m);
-                   } else if (const auto* p = std::get_if<FailureEvent::Passage>(&e.where)) {
-                     f.emplace_back("manhole", p->manhole);
-                     f.emplace_back("from_slot", static_cast<I>(p->from_slot));
-                     f.emplace_back("to_slot", static_cast<I>(p->to_slot));
-                   }
-                   f.emplace_back("detail", e.detail);
-                   return f;
-                 },
-                 [](const TaskDoneEvent& e) -> Fields {
-                   return {{"task", e.task}};
-                 },
-                 [](const TaskDroppedEvent& e) -> Fields {
-                   return {{"task", e.task}, {"reason", e.reason}};
-                 },
-                 [](const ReserveEvent& e) -> Fields {
-                   return {{"end", e.end},
-                           {"energy_wh", e.energy_wh},
-                           {"left_wh", e.left_wh},
-                           {"reserve_wh", e.reserve_wh}};
-                 },
-                 [](const BeaconEvent& e) -> Fields {
-                   return {{"reason", e.reason}, {"state", text(hal::to_string(e.state))}};
-                 },
-                 [](const MissionEndEvent& e) -> Fields {
-                   Fields f{{"outcome", text(to_string(e.outcome))},
-                            {"end", e.end},
-                            {"tasks_done", e.tasks_done},
-                            {"energy_wh", e.energy_wh},
-                            {"replans", static_cast<I>(e.replans)},
-                            {"decision", text(to_string(e.decision))},
-                            {"beacon_cause", text(to_string(e.beacon_cause))}};
-                   // Absent when no beacon was asked for: the logs before it read the same.
-                   if (e.beacon != hal::BeaconState::kNone) {
-                     f.emplace_back("beacon", text(hal::to_string(e.beacon)));
-                   }
-                   return f;
-                 }},
+      Overloaded{
+          [](const PlanEvent& e) -> Fields {
+            return {{"reason", e.reason},
+                    {"planning_ms", e.planning_ms},
+                    {"decision", text(to_string(e.decision))},
+                    {"goals", e.goals},
+                    {"dropped", e.dropped},
+                    {"end", e.end},
+                    {"steps", static_cast<I>(e.steps)},
+                    {"cost_s", e.cost_s}};
+          },
+          [](const ActionEvent& e) -> Fields {
+            return {{"step", e.step},
+                    {"kind", e.kind},
+                    {"duration_s", e.duration_s},
+                    {"parameters", e.parameters}};
+          },
+          [](const JobEvent& e) -> Fields {
+            return {{"job", e.job}, {"progress_m", e.progress_m}, {"ok", e.ok}};
+          },
+          [](const ErrorEvent& e) -> Fields {
+            return {
+                {"kind", text(hal::to_string(e.kind))}, {"reason", e.reason}, {"where", e.where}};
+          },
+          [](const RecoveryEvent& e) -> Fields {
+            return {{"phase", text(logged_name(e.phase))}, {"ok", e.ok}};
+          },
+          [](const FailureEvent& e) -> Fields {
+            Fields f{{"kind", text(to_string(e.kind))}};
+            if (const auto* in = std::get_if<FailureEvent::InPipe>(&e.where)) {
+              f.emplace_back("pipe", in->pipe);
+              f.emplace_back("offset_m", in->offset_m);
+            } else if (const auto* p = std::get_if<FailureEvent::Passage>(&e.where)) {
+              f.emplace_back("manhole", p->manhole);
+              f.emplace_back("from_slot", static_cast<I>(p->from_slot));
+              f.emplace_back("to_slot", static_cast<I>(p->to_slot));
+            }
+            f.emplace_back("detail", e.detail);
+            return f;
+          },
+          [](const TaskDoneEvent& e) -> Fields {
+            return {{"task", e.task}};
+          },
+          [](const TaskDroppedEvent& e) -> Fields {
+            return {{"task", e.task}, {"reason", e.reason}};
+          },
+          [](const ReserveEvent& e) -> Fields {
+            return {{"end", e.end},
+                    {"energy_wh", e.energy_wh},
+                    {"left_wh", e.left_wh},
+                    {"reserve_wh", e.reserve_wh}};
+          },
+          [](const ArrivalEvent& e) -> Fields {
+            return {
+                {"expected", e.expected}, {"check", e.check},     {"probability", e.probability},
+                {"believed", e.believed}, {"manhole", e.manhole}, {"observed", e.observed},
+                {"reason", e.reason}};
+          },
+          [](const BeaconEvent& e) -> Fields {
+            return {{"reason", e.reason}, {"state", text(hal::to_string(e.state))}};
+          },
+          [](const MissionEndEvent& e) -> Fields {
+            Fields f{{"outcome", text(to_string(e.outcome))},
+                     {"end", e.end},
+                     {"tasks_done", e.tasks_done},
+                     {"energy_wh", e.energy_wh},
+                     {"replans", static_cast<I>(e.replans)},
+                     {"decision", text(to_string(e.decision))},
+                     {"beacon_cause", text(to_string(e.beacon_cause))}};
+            // Absent when no beacon was asked for: the logs before it read the same.
+            if (e.beacon != hal::BeaconState::kNone) {
+              f.emplace_back("beacon", text(hal::to_string(e.beacon)));
+            }
+            return f;
+          }},
       event.what);
 }
 

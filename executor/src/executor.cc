@@ -18,6 +18,7 @@
 
 #include "dead_reckoning.h"
 #include "job_arithmetic.h"
+#include "localising.h"
 #include "staged_recovery.h"
 
 namespace sewerplan::executor {
@@ -108,6 +109,7 @@ class Executor::Run {
         logs_(e.logs_),
         halt_(e.halt_),
         tracker_(e.map_, e.replanner_.progress().position, e.replanner_.heading_end()),
+        localising_(e.map_, e.options_.odometry_sd_fraction),
         recovery_(
             e.map_, e.options_.recovery, e.replanner_.mission().profile.speed_mps, tracker_,
             {.execute_job = [this](const Job& job) { return execute_job(job); },
@@ -120,6 +122,7 @@ class Executor::Run {
         done_(e.replanner_.progress().done) {}
 
   MissionReport go() {
+    localising_.reset(tracker_.position(), tracker_.heading_end());
     if (halted()) return finish(MissionReport::Outcome::kHalted, "");
     std::optional<PlanResponse> first = plan_unless_halted(std::nullopt, "start");
     if (!first) return finish(MissionReport::Outcome::kHalted, "");
@@ -271,8 +274,12 @@ class Executor::Run {
       for (const Job& job : fusion::expand(action, mission().profile)) {
         std::optional<Failure> failure = recovery_.run_job(job, action);
         if (failure || halted()) {
+          mismatch_.reset();
           sync_progress(replay.progress());
           return Replan{failure, failure ? "" : "halted"};
+        }
+        if (mismatch_) {
+          if (std::optional<Replan> replan = relocalise(replay)) return replan;
         }
       }
       const domain::PlanStep& step = response.plan.steps[fusion::plan_step(action)];
@@ -299,6 +306,53 @@ class Executor::Run {
       sync_progress(replay.progress());
     }
     return std::nullopt;
+  }
+
+  // The robot is not at the manhole the plan drove it to (mismatch_): the controller settles on
+  // the filter's most likely place and plans again from there. At the manhole the odometry
+  // expected, but unlike its map (signature-differs): a discrepancy of the map, the plan goes on.
+  // At a manhole the map lacks: the robot cannot yet pass one, so the pipe is closed there, as
+  // a blockage (docs/localisation.md). Lost: the filter starts again from the tracking's place.
+  std::optional<Replan> relocalise(const domain::PlanReplay& replay) {
+    using Kind = localisation::Verification::Kind;
+    const detail::Arrival arrival = std::move(*mismatch_);
+    mismatch_.reset();
+    const localisation::Verification& v = arrival.verification;
+    if (v.kind == Kind::kSignatureDiffers) return std::nullopt;
+    if (!v.believed) {
+      localising_.reset(tracker_.position(), tracker_.heading_end());
+      return std::nullopt;
+    }
+    const localisation::Pose& believed = *v.believed;
+    tracker_.set_pose(believed.position, believed.heading_end.value_or(tracker_.heading_end()));
+    sync_progress(replay.progress());
+    const auto* in = std::get_if<domain::InPipe>(&believed.position);
+    if ((v.kind == Kind::kUnmappedJunction || believed.at_unmapped_junction) && in != nullptr) {
+      return Replan{Failure{.kind = Failure::Kind::kBlockage,
+                            .pipe = in->pipe,
+                            .offset_m = in->offset_m,
+                            .detail = "a manhole the map lacks: " + v.reason},
+                    ""};
+    }
+    return Replan{std::nullopt, "relocalised: " + v.reason};
+  }
+
+  ArrivalEvent arrival_event(const detail::Arrival& a) const {
+    const localisation::Verification& v = a.verification;
+    ArrivalEvent e{.expected = a.expected ? domain::describe(*a.expected, map_) : "",
+                   .check = std::string(localisation::to_string(v.kind)),
+                   .probability = v.probability,
+                   .reason = v.reason};
+    if (v.believed) {
+      e.believed = localisation::describe(*v.believed, map_);
+      if (!v.believed->at_unmapped_junction) {
+        if (std::optional<ManholeId> m = domain::manhole_of(v.believed->position)) {
+          e.manhole = map_.manhole(*m).name;
+        }
+      }
+    }
+    if (a.observation) e.observed = detail::signature_text(*a.observation);
+    return e;
   }
 
   // The final go-to that no plan step names (to a manhole, or to a whole pipe: the plan ends
@@ -382,6 +436,7 @@ class Executor::Run {
 
   hal::JobReport execute_job(const Job& job) {
     if (halted()) return halted_report();
+    const domain::RobotPosition before = tracker_.position();
     const hal::JobReport r = robot_.execute(job);
     ++report_.jobs;
     tracker_.advance(job, r);
@@ -389,6 +444,11 @@ class Executor::Run {
     if (!r.ok()) {
       emit(ErrorEvent{
           .kind = r.error->kind, .reason = r.error->reason, .where = tracker_.describe()});
+    }
+    if (std::optional<detail::Arrival> a =
+            localising_.follow(job, r, before, tracker_.position())) {
+      if (a->worth_logging()) emit(arrival_event(*a));
+      if (!a->verification.matches()) mismatch_ = std::move(a);
     }
     return r;
   }
@@ -408,6 +468,8 @@ class Executor::Run {
     hal::JobReport rest = *own;
     rest.progress_m = std::max(0.0, own->progress_m - std::max(0.0, heard.progress_m));
     tracker_.advance(job, rest);
+    // The link lost part of the job: the filter starts again from the tracking's place.
+    localising_.reset(tracker_.position(), tracker_.heading_end());
     emit(JobEvent{.job = detail::job_text(job), .progress_m = own->progress_m, .ok = own->ok()});
     if (!own->ok()) {
       emit(ErrorEvent{
@@ -477,6 +539,9 @@ class Executor::Run {
   const std::vector<LogFile*>& logs_;
   const std::atomic<bool>& halt_;
   detail::DeadReckoning tracker_;
+  detail::Localising localising_;
+  // An arrival that did not match the plan's manhole, handled after the job (relocalise()).
+  std::optional<detail::Arrival> mismatch_;
   detail::StagedRecovery recovery_;
   std::vector<bool> done_;  // per task: done by the robot (or before the start)
   MissionReport report_;

@@ -262,6 +262,14 @@ void bind_events(py::module_& m) {
       .def_readonly("energy_wh", &ex::ReserveEvent::energy_wh)
       .def_readonly("left_wh", &ex::ReserveEvent::left_wh)
       .def_readonly("reserve_wh", &ex::ReserveEvent::reserve_wh);
+  py::class_<ex::ArrivalEvent>(m, "ArrivalEvent")
+      .def_readonly("expected", &ex::ArrivalEvent::expected)
+      .def_readonly("check", &ex::ArrivalEvent::check)
+      .def_readonly("probability", &ex::ArrivalEvent::probability)
+      .def_readonly("believed", &ex::ArrivalEvent::believed)
+      .def_readonly("manhole", &ex::ArrivalEvent::manhole)
+      .def_readonly("observed", &ex::ArrivalEvent::observed)
+      .def_readonly("reason", &ex::ArrivalEvent::reason);
   py::class_<ex::BeaconEvent>(m, "BeaconEvent").def_readonly("reason", &ex::BeaconEvent::reason);
   py::class_<ex::MissionEndEvent>(m, "MissionEndEvent")
       .def_property_readonly("outcome",

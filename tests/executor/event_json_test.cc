@@ -75,6 +75,8 @@ TEST(EventLog, EveryKindOfEventReadsBackEqual) {
       {6, TaskDoneEvent{"sample"}},
       {6, TaskDroppedEvent{"inspect", "cut off"}},
       {6.5, ReserveEvent{"exit M4", 3.25, 5.5, 6}},
+      {6.75, ArrivalEvent{"M6 slot 2", "wrong-manhole", 0.125, "at M7 slot 1 (P9)", "M7",
+                          "3 slots at 0, 90, 180°", "M7 fits, M6 not: 3 slots seen, 4 expected"}},
       {7, BeaconEvent{"no exit"}},
       {8, MissionEndEvent{.outcome = MissionOutcome::kHalted,
                           .tasks_done = {"sample"},

@@ -3,8 +3,8 @@
 //
 // The Executor (executor.h) calls its observers with every event, in order, on run()'s thread:
 // a plan or replan, each action and job, a robot's error, a recovery stage tried, a failure told
-// to the Replanner, a task done or dropped, a way out on the battery reserve, the beacon, and the
-// mission's end. Each `Event` is the
+// to the Replanner, a task done or dropped, a way out on the battery reserve, a manhole arrival
+// checked against the plan, the beacon, and the mission's end. Each `Event` is the
 // mission time `t_s` (the robot's clock) and one of these structs; switch on it with std::visit.
 // Names (of tasks, pipes, manholes) are the map's and the mission's, so an event means the same
 // without them: the JSON-lines log (event_json.h) and the readable live log (event_text.h) are
@@ -142,6 +142,23 @@ struct ReserveEvent {
   friend bool operator==(const ReserveEvent&, const ReserveEvent&) = default;
 };
 
+// "arrival": the robot stopped at a manhole, or at what it took for one, and the controller
+// checked its place against the plan's (manhole verification, docs/localisation.md). Logged for
+// every arrival the robot observed (hal::JobReport::observation) and for every one that does not
+// match; a robot that observes nothing (the exact simulated world) logs none.
+struct ArrivalEvent {
+  std::string expected;  // where the plan has the robot: "M6 slot 2"; empty: in a pipe
+  // The check's outcome (localisation::Verification): "matches", "wrong-manhole",
+  // "unmapped-junction", "missed-manhole", "false-detection", "signature-differs".
+  std::string check;
+  double probability = 0;  // that the robot is where the plan has it
+  std::string believed;    // the most likely place: "at M7 slot 1 (P9)"; empty: lost
+  std::string manhole;     // the manhole of that place ("M7"); empty: none on the map
+  std::string observed;    // the signature seen: "4 slots at 0, 92, 181, 268°"; empty: none
+  std::string reason;      // why it does not match; empty when it does
+  friend bool operator==(const ArrivalEvent&, const ArrivalEvent&) = default;
+};
+
 // "beacon": asked for, and whether the robot confirmed it (hal::BeaconState).
 struct BeaconEvent {
   std::string reason;
@@ -165,13 +182,14 @@ struct MissionEndEvent {
 struct Event {
   double t_s = 0;  // mission time, the robot's clock
   std::variant<PlanEvent, ActionEvent, JobEvent, ErrorEvent, RecoveryEvent, FailureEvent,
-               TaskDoneEvent, TaskDroppedEvent, ReserveEvent, BeaconEvent, MissionEndEvent>
+               TaskDoneEvent, TaskDroppedEvent, ReserveEvent, ArrivalEvent, BeaconEvent,
+               MissionEndEvent>
       what;
   friend bool operator==(const Event&, const Event&) = default;
 };
 
 // The event's type as the log names it: "plan", "replan", "action", "job", "error", "recovery",
-// "failure", "task_done", "task_dropped", "reserve", "beacon", "mission_end".
+// "failure", "task_done", "task_dropped", "reserve", "arrival", "beacon", "mission_end".
 std::string_view type_name(const Event& event);
 
 // Called with every event of a run, in order, on run()'s thread.

@@ -82,6 +82,9 @@ std::ostream& operator<<(std::ostream& os, const MissionReport& report);
 struct ExecutorOptions {
   RecoveryConfig recovery;
   std::size_t max_replans = 100;  // a bound against a world that keeps changing
+  // The robot's odometry: its standard deviation per metre driven (wheels slip in wet pipes),
+  // for manhole verification (docs/localisation.md).
+  double odometry_sd_fraction = 0.03;
 };
 
 class Executor {

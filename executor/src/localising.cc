@@ -1,0 +1,150 @@
+// SPDX-License-Identifier: MIT
+#include "localising.h"
+
+#include <cmath>
+#include <sstream>
+#include <utility>
+#include <variant>
+
+namespace sewerplan::executor::detail {
+namespace {
+
+using localisation::DriveDirection;
+using localisation::Verification;
+
+// The direction of a drive as the filter counts it (the robot's own forward and backward), or
+// empty for a job that does not drive.
+std::optional<DriveDirection> drive_direction(const Job& job) {
+  if (std::holds_alternative<DriveForward>(job) || std::holds_alternative<Push>(job)) {
+    return DriveDirection::kForward;
+  }
+  if (std::holds_alternative<DriveBackward>(job)) return DriveDirection::kBackward;
+  if (const auto* scan = std::get_if<Scan>(&job)) {
+    return scan->backward ? DriveDirection::kBackward : DriveDirection::kForward;
+  }
+  return std::nullopt;
+}
+
+bool to_manhole(const Job& job) {
+  if (const auto* f = std::get_if<DriveForward>(&job)) return f->to_manhole;
+  if (const auto* b = std::get_if<DriveBackward>(&job)) return b->to_manhole;
+  return false;
+}
+
+// A check without a manhole to check against (the tracking has the robot in a pipe): the filter's
+// most likely explanation of the stop.
+Verification unexpected_stop(const localisation::Estimate& estimate, const SewerMap& map) {
+  Verification v;
+  v.kind = Verification::Kind::kFalseDetection;
+  if (estimate.lost()) {
+    v.reason = "stopped at a manhole the plan did not drive to, and nothing on the map explains it";
+    return v;
+  }
+  const localisation::Hypothesis& best = estimate.best();
+  v.believed = best.pose;
+  if (!best.assumptions.empty()) {
+    switch (best.assumptions.front().kind) {
+      case localisation::Assumption::Kind::kUnmappedJunction:
+        v.kind = Verification::Kind::kUnmappedJunction;
+        break;
+      case localisation::Assumption::Kind::kMissedManhole:
+        v.kind = Verification::Kind::kMissedManhole;
+        break;
+      case localisation::Assumption::Kind::kFalseDetection:
+        v.kind = Verification::Kind::kFalseDetection;
+        break;
+    }
+  } else if (std::holds_alternative<domain::AtSlot>(best.pose.position)) {
+    v.kind = Verification::Kind::kWrongManhole;
+  }
+  v.reason = "stopped short of where the plan drove: " + localisation::describe(best.pose, map);
+  return v;
+}
+
+}  // namespace
+
+std::string signature_text(const ManholeSignature& signature) {
+  std::ostringstream out;
+  out << signature.slots.size() << (signature.slots.size() == 1 ? " slot" : " slots") << " at ";
+  for (std::size_t i = 0; i < signature.slots.size(); ++i) {
+    out << (i == 0 ? "" : ", ") << std::lround(signature.slots[i].relative_deg);
+  }
+  out << "°";
+  return out.str();
+}
+
+Localising::Localising(const SewerMap& map, double odometry_sd_fraction,
+                       localisation::LocalisationOptions options)
+    : map_(map), odometry_sd_fraction_(odometry_sd_fraction) {
+  Result<localisation::TopologicalFilter> filter =
+      localisation::TopologicalFilter::create(map, std::move(options));
+  if (filter.has_value()) filter_.emplace(std::move(*filter));
+}
+
+void Localising::reset(const domain::RobotPosition& position, std::uint8_t heading_end) {
+  usable_ = false;
+  if (!filter_) return;
+  localisation::Pose pose{.position = position};
+  if (std::holds_alternative<domain::InPipe>(position)) pose.heading_end = heading_end;
+  usable_ = filter_->reset(pose).has_value();
+}
+
+localisation::Estimate Localising::estimate() const {
+  if (!filter_ || !usable_) return {};
+  return filter_->estimate();
+}
+
+std::optional<Arrival> Localising::follow(const Job& job, const hal::JobReport& report,
+                                          const domain::RobotPosition& before,
+                                          const domain::RobotPosition& after) {
+  if (!usable_) return std::nullopt;
+  localisation::TopologicalFilter& filter = *filter_;
+  Result<void> step;
+  if (const auto* turn = std::get_if<TurnInManhole>(&job)) {
+    const auto* at = std::get_if<domain::AtSlot>(&before);
+    if (report.ok() && at != nullptr) {
+      step = filter.pass(at->manhole, SlotIndex{turn->from_slot}, SlotIndex{turn->to_slot});
+    }
+    if (!step.has_value()) usable_ = false;
+    return std::nullopt;
+  }
+  if (const auto* enter = std::get_if<EnterPipeFromManhole>(&job)) {
+    if (report.ok()) step = filter.enter(SlotIndex{enter->slot});
+    if (!step.has_value()) usable_ = false;
+    return std::nullopt;
+  }
+  const std::optional<DriveDirection> direction = drive_direction(job);
+  if (!direction) return std::nullopt;
+  const bool arrived =
+      report.observation.has_value() ||
+      (to_manhole(job) && report.ok() && std::holds_alternative<domain::AtSlot>(after));
+  const double driven = std::max(0.0, report.progress_m);
+  if (driven > 0 || arrived)
+    step = filter.drive(driven, *direction, odometry_sd_fraction_ * driven);
+  if (step.has_value() && arrived) {
+    step = filter.arrive(report.observation);
+  } else if (step.has_value() && driven > 0) {
+    step = filter.no_manhole_within(driven);
+  }
+  if (!step.has_value()) {
+    usable_ = false;
+    return std::nullopt;
+  }
+  if (!arrived) return std::nullopt;
+  Arrival arrival;
+  arrival.observation = report.observation;
+  if (const auto* at = std::get_if<domain::AtSlot>(&after)) {
+    arrival.expected = *at;
+    Result<Verification> checked = filter.verify_arrival(at->manhole, at->slot, report.observation);
+    if (!checked.has_value()) {
+      usable_ = false;
+      return std::nullopt;
+    }
+    arrival.verification = std::move(*checked);
+  } else {
+    arrival.verification = unexpected_stop(filter.estimate(), map_);
+  }
+  return arrival;
+}
+
+}  // namespace sewerplan::executor::detail

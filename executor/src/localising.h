@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: MIT
+// Localising: the action controller's manhole verification, over the topological filter.
+//
+// Private to executor. The controller tracks the robot by the plan and the jobs' reports
+// (DeadReckoning); a robot on a wrong map with slipping wheels may not be where that puts it.
+// Localising feeds every job and its report to a localisation::TopologicalFilter (odometry, turns,
+// arrivals at detected manholes with their signatures) and, when a job ends at a manhole, checks
+// the arrival against the manhole the tracking expects (docs/localisation.md): the arrival
+// matches, or it does not, with the filter's most likely place and why.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "sewerplan/core/job.h"
+#include "sewerplan/core/sewer_map.h"
+#include "sewerplan/domain/robot_state.h"
+#include "sewerplan/hal/robot.h"
+#include "sewerplan/localisation/topological_filter.h"
+
+namespace sewerplan::executor::detail {
+
+// A job's end at a manhole (or at what the robot took for one), checked.
+struct Arrival {
+  // Where the tracking has the robot: a mouth; empty when it has it in a pipe (the robot stopped
+  // short of the manhole the plan drove to).
+  std::optional<domain::AtSlot> expected;
+  localisation::Verification verification;
+  std::optional<ManholeSignature> observation;
+  // Whether the controller should log it: the robot observed the manhole, or the check failed.
+  bool worth_logging() const { return observation.has_value() || !verification.matches(); }
+};
+
+class Localising {
+ public:
+  // `odometry_sd_fraction`: the odometry's standard deviation per metre driven (the robot
+  // profile's: ExecutorOptions::odometry_sd_fraction).
+  Localising(const SewerMap& map, double odometry_sd_fraction,
+             localisation::LocalisationOptions options = {});
+
+  // The robot is at `position` (facing `heading_end` in a pipe), certainly: the mission's start,
+  // or a place the controller settled on.
+  void reset(const domain::RobotPosition& position, std::uint8_t heading_end);
+
+  // Follows `job` and its report; `before` is where the tracking had the robot before the job,
+  // `after` where it has it now. Returns the checked arrival when the job ended at a manhole.
+  std::optional<Arrival> follow(const Job& job, const hal::JobReport& report,
+                                const domain::RobotPosition& before,
+                                const domain::RobotPosition& after);
+
+  // The filter's belief; lost when the filter could explain nothing (then reset()).
+  localisation::Estimate estimate() const;
+
+ private:
+  const SewerMap& map_;
+  double odometry_sd_fraction_;
+  std::optional<localisation::TopologicalFilter> filter_;
+  bool usable_ = false;  // the filter follows the robot (false after an update it refused)
+};
+
+// The signature in a log line: "4 slots at 0, 92, 181, 268°".
+std::string signature_text(const ManholeSignature& signature);
+
+}  // namespace sewerplan::executor::detail
