@@ -308,26 +308,34 @@ class Executor::Run {
     return std::nullopt;
   }
 
-  // The robot is not at the manhole the plan drove it to (mismatch_): the controller settles on
-  // the filter's most likely place and plans again from there. At the manhole the odometry
-  // expected, but unlike its map (signature-differs): a discrepancy of the map, the plan goes on.
-  // At a manhole the map lacks: the robot cannot yet pass one, so the pipe is closed there, as
-  // a blockage (docs/localisation.md). Lost: the filter starts again from the tracking's place.
+  // An arrival that does not match the plan's manhole: the controller settles on the filter's
+  // most likely place at once (so that what observes the job sees it there), and the plan is
+  // made again after the job (relocalise()). At the manhole the odometry expected but unlike its
+  // map (signature-differs): a discrepancy of the map, the plan goes on. Lost: the filter starts
+  // again from the tracking's place.
+  void settle(detail::Arrival arrival) {
+    using Kind = localisation::Verification::Kind;
+    const localisation::Verification& v = arrival.verification;
+    if (v.kind == Kind::kSignatureDiffers) return;
+    if (!v.believed) {
+      localising_.reset(tracker_.position(), tracker_.heading_end());
+      return;
+    }
+    tracker_.set_pose(v.believed->position,
+                      v.believed->heading_end.value_or(tracker_.heading_end()));
+    mismatch_ = std::move(arrival);
+  }
+
+  // The plan again from where the robot was found to be (settle()). At a manhole the map lacks
+  // the robot cannot yet pass: the pipe is closed there, as a blockage (docs/localisation.md).
   std::optional<Replan> relocalise(const domain::PlanReplay& replay) {
     using Kind = localisation::Verification::Kind;
     const detail::Arrival arrival = std::move(*mismatch_);
     mismatch_.reset();
     const localisation::Verification& v = arrival.verification;
-    if (v.kind == Kind::kSignatureDiffers) return std::nullopt;
-    if (!v.believed) {
-      localising_.reset(tracker_.position(), tracker_.heading_end());
-      return std::nullopt;
-    }
-    const localisation::Pose& believed = *v.believed;
-    tracker_.set_pose(believed.position, believed.heading_end.value_or(tracker_.heading_end()));
     sync_progress(replay.progress());
-    const auto* in = std::get_if<domain::InPipe>(&believed.position);
-    if ((v.kind == Kind::kUnmappedJunction || believed.at_unmapped_junction) && in != nullptr) {
+    const auto* in = std::get_if<domain::InPipe>(&v.believed->position);
+    if ((v.kind == Kind::kUnmappedJunction || v.believed->at_unmapped_junction) && in != nullptr) {
       return Replan{Failure{.kind = Failure::Kind::kBlockage,
                             .pipe = in->pipe,
                             .offset_m = in->offset_m,
@@ -448,7 +456,7 @@ class Executor::Run {
     if (std::optional<detail::Arrival> a =
             localising_.follow(job, r, before, tracker_.position())) {
       if (a->worth_logging()) emit(arrival_event(*a));
-      if (!a->verification.matches()) mismatch_ = std::move(a);
+      if (!a->verification.matches()) settle(std::move(*a));
     }
     return r;
   }
