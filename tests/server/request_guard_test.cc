@@ -306,22 +306,26 @@ TEST_F(RequestGuardTest, ManualRefusesACompressedBodyThatDecompressesOverTheLimi
 // Connections that send nothing, or a byte a second and never a whole request, need no token:
 // each holds a worker while it is open. A request of the operator's is still answered.
 TEST_F(RequestGuardTest, AnswersWhileManyConnectionsSitIdleOrTrickle) {
-  std::vector<std::unique_ptr<RawConnection>> idle;
-  for (int i = 0; i < 100; ++i) {
-    idle.push_back(std::make_unique<RawConnection>(port_));
-    ASSERT_TRUE(idle.back()->connected());
-  }
-  // Half of them start a request and add to its headers a byte a second, as long as the test runs.
-  for (std::size_t i = 0; i < idle.size(); i += 2) {
-    ASSERT_TRUE(idle[i]->send("GET /api/maps HTTP/1.1\r\nHost: " + here() + "\r\nX-Slow: "));
-  }
+  // Half of them start a request at once and add to its headers a byte a second, from the start
+  // and as long as the test runs; the other half send nothing.
+  constexpr std::size_t kConnections = 100;
+  std::vector<std::unique_ptr<RawConnection>> idle(kConnections);
+  std::atomic<std::size_t> opened{0};
   std::atomic<bool> done{false};
   std::thread trickle([&] {
     while (!done) {
-      for (std::size_t i = 0; i < idle.size(); i += 2) idle[i]->send("x");
+      for (std::size_t i = 0; i < opened; i += 2) idle[i]->send("x");
       std::this_thread::sleep_for(std::chrono::seconds(1));
     }
   });
+  for (std::size_t i = 0; i < kConnections; ++i) {
+    idle[i] = std::make_unique<RawConnection>(port_);
+    EXPECT_TRUE(idle[i]->connected());
+    if (i % 2 == 0) {
+      EXPECT_TRUE(idle[i]->send("GET /api/maps HTTP/1.1\r\nHost: " + here() + "\r\nX-Slow: "));
+    }
+    ++opened;
+  }
   httplib::Client client("127.0.0.1", port_);
   client.set_read_timeout(60, 0);
   auto r = client.Get("/api/maps");
