@@ -124,11 +124,14 @@ std::optional<Refusal> check_length(const httplib::Request& req, std::size_t lim
     return Refusal{kBadRequest, "http-400", "Content-Length '" + text + "': not a byte count"};
   }
   if (length <= limit) return std::nullopt;
-  return Refusal{kPayloadTooLarge, "http-413",
-                 "the request body is over the size limit of " + std::to_string(limit) + " bytes"};
+  return Refusal{kPayloadTooLarge, "http-413", body_over_limit(limit)};
 }
 
 }  // namespace
+
+std::string body_over_limit(std::size_t limit) {
+  return "the request body is over the size limit of " + std::to_string(limit) + " bytes";
+}
 
 std::string host_name(const std::string& host_header) {
   std::string_view name = host_header;

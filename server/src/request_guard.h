@@ -46,6 +46,9 @@ struct Refusal {
 // The refusal of `req` by the rules above, or nullopt. Reads only the request line and headers.
 std::optional<Refusal> check_request(const httplib::Request& req, const GuardOptions& guard);
 
+// The message of a body refused for its size (413), whether by its Content-Length or as it is read.
+std::string body_over_limit(std::size_t limit);
+
 // The host name of a Host header's value ("[::1]:8080" -> "::1", "Example:80" -> "example"),
 // lower-cased; empty if it is not one.
 std::string host_name(const std::string& host_header);

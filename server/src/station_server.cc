@@ -66,10 +66,6 @@ class HttpServer : public httplib::Server {
 // How long a connection may send nothing: before its request, or between two reads of it.
 constexpr time_t kIdleTimeoutS = 5;
 
-std::string body_over_limit(std::size_t limit) {
-  return "the request body is over the size limit of " + std::to_string(limit) + " bytes";
-}
-
 // A map's geometry as the page reads it (map_geometry.h), built once from the map as given: every
 // request sends these bytes without a copy, and the map with condition data joined shares them
 // (findings change no geometry).
