@@ -22,7 +22,6 @@ RunRecord record(std::size_t index, std::size_t oracle_tasks, bool oracle_can_en
   r.tasks = 4;
   r.oracle_tasks = oracle_tasks;
   r.oracle_can_end = oracle_can_end;
-  r.oracle_can_end_either_way = oracle_can_end;
   r.could_reach_exit = oracle_can_end && !ours.disabled;
   r.ours = std::move(ours);
   r.baseline = std::move(baseline);
