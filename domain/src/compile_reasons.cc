@@ -39,6 +39,14 @@ std::vector<Node> CompileReasons::exit_nodes() const {
   return nodes;
 }
 
+const ReachDiagnoser& CompileReasons::from_origin() const {
+  if (from_origin_ == nullptr) {
+    from_origin_ =
+        std::make_unique<ReachDiagnoser>(graph_, mission_, reachable_from(graph_, {&origin_, 1}));
+  }
+  return *from_origin_;
+}
+
 std::string CompileReasons::energy(Cost cost) const {
   return fixed(mission_.profile.energy_wh(to_seconds(cost)), 1) + " Wh";
 }
@@ -95,7 +103,7 @@ std::string CompileReasons::unreachable(const Task& task, const std::vector<Node
   for (Node n : keys) {
     if (at_task(task, n)) targets.push_back(n);
   }
-  const ReachDiagnosis d = diagnose_reach(graph_, mission_, {&origin_, 1}, targets);
+  const ReachDiagnosis d = from_origin().diagnose(targets);
   if (d.reachable) {
     return "reaching " + describe(task.place, map) + " from " + origin() + " needs more than the " +
            energy(bound_) + " available";
@@ -128,7 +136,8 @@ std::string CompileReasons::task_reason(const Task& task, const std::vector<Node
     for (std::size_t e = 0; e < keys.size(); ++e) {
       if (at_task(task, keys[e]) && dist[e] != kInfiniteCost) from.push_back(keys[e]);
     }
-    const ReachDiagnosis d = diagnose_reach(graph_, mission_, from, exit_nodes());
+    const ReachDiagnosis d =
+        ReachDiagnoser(graph_, mission_, reachable_from(graph_, from)).diagnose(exit_nodes());
     if (d.reachable) {
       return "going to " + place + " and on to an exit needs more than the " + energy(bound_) +
              " available";
@@ -165,7 +174,7 @@ std::string CompileReasons::fatal(const std::vector<Cost>& exit_dist, bool ends_
   if (exit_dist[0] == kInfiniteCost) {
     // The route searches stop at the battery, so "not found" may be either: tell which (issue
     // 30). On the reserve itself (the Replanner's last way out) there is no reserve to be above.
-    const ReachDiagnosis d = diagnose_reach(graph_, mission_, {&origin_, 1}, exit_nodes());
+    const ReachDiagnosis d = from_origin().diagnose(exit_nodes());
     const std::string what = "\n  - no exit (" + names + ") can be reached from " + origin();
     if (!d.reachable) return what + " within " + limits() + in_the_way(d);
     const bool reserve = mission_.battery_reserve_fraction > 0;

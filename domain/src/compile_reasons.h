@@ -8,17 +8,19 @@
 // mission on the edge of what the robot can reach (reach_barriers.h), or the network itself.
 #pragma once
 
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "position_graph.h"
+#include "reach_barriers.h"
 
 namespace sewerplan::domain::detail {
 
 class CompileReasons {
  public:
-  // `origin`: the node the robot is at (the compile's first key).
+  // `origin`: the node the robot is at (the compile's first key). Not thread-safe (a cache).
   CompileReasons(const PositionGraph& graph, const Mission& mission,
                  const MissionProgress& progress, Cost bound, Node origin)
       : graph_(graph), mission_(mission), progress_(progress), bound_(bound), origin_(origin) {}
@@ -44,6 +46,8 @@ class CompileReasons {
   // or, when only the battery is in the way, nothing.
   std::string barriers(std::span<const Node> from, std::span<const Node> to) const;
   std::vector<Node> exit_nodes() const;
+  // The diagnosis from the origin, built on first use: every unreachable task asks it.
+  const ReachDiagnoser& from_origin() const;
   std::string energy(Cost cost) const;
   std::string limits() const;
   // "the start (place)" when the robot is where the mission starts and has used no energy, else
@@ -56,6 +60,7 @@ class CompileReasons {
   const MissionProgress& progress_;
   Cost bound_;
   Node origin_;
+  mutable std::unique_ptr<ReachDiagnoser> from_origin_;
 };
 
 }  // namespace sewerplan::domain::detail

@@ -94,7 +94,8 @@ class Barriers {
     add("blockage:" + text, text);
   }
 
-  std::vector<std::string> take() { return std::move(found_); }
+  // The (key, text) of each barrier found since the last call.
+  std::vector<std::pair<std::string, std::string>> take() { return std::move(found_); }
 
  private:
   std::string passage_name(ManholeId m, SlotIndex i, SlotIndex j) const {
@@ -103,71 +104,69 @@ class Barriers {
            std::to_string(to_paper_number(j)) + " (pipe " + map_.pipe(map_.slot(m, j).pipe).name +
            ")";
   }
-  void add(const std::string& key, std::string text) {
-    if (seen_.insert(key).second) found_.push_back(std::move(text));
+  void add(std::string key, std::string text) {
+    found_.emplace_back(std::move(key), std::move(text));
   }
 
   const PositionGraph& graph_;
   const SewerMap& map_;
   const Mission& mission_;
   const RobotProfile& profile_;
-  std::set<std::string> seen_;
-  std::vector<std::string> found_;
+  std::vector<std::pair<std::string, std::string>> found_;
 };
 
-// Every position from which a target is reached by moves that ignore the limits and the closures
-// (the physical connections of the network) without passing through `reached` (what the robot
-// reaches is not expanded: a way out of it and back in, into a dead end, is no way to a target).
-std::vector<bool> can_reach_ignoring_limits(const PositionGraph& graph,
-                                            std::span<const Node> targets,
-                                            const std::vector<bool>& reached) {
-  const SewerMap& map = graph.map();
-  std::vector<bool> seen(graph.size(), false);
-  std::vector<Node> stack;
-  const auto visit = [&](Node n) {
-    if (seen[n]) return;
-    seen[n] = true;
-    if (!reached[n]) stack.push_back(n);
-  };
-  for (Node t : targets) {
-    visit(t);
-    if (graph.is_extra_spot(t)) {  // a task action reaches it from its pipe's ends
-      const PipeId p = *graph.pipe_of(t);
-      visit(graph.pipe_end(p, 0));
-      visit(graph.pipe_end(p, 1));
+// The parts of the network the robot does not reach, each joined by moves that ignore the limits
+// and the closures without passing through what it reaches (a way out of it and back in, into a
+// dead end, is no way to a target): a union of the positions at each manhole (its slots and the
+// pipe ends there) and of each pipe's positions with the slots at its ends.
+class Parts {
+ public:
+  Parts(const PositionGraph& graph, const std::vector<bool>& reached)
+      : parent_(graph.size()), reached_(reached) {
+    for (Node n = 0; n < parent_.size(); ++n) parent_[n] = n;
+    const SewerMap& map = graph.map();
+    for (ManholeId m : map.manhole_ids()) {
+      std::optional<Node> first;
+      const auto slots = map.slots(m);
+      for (std::uint16_t s = 0; s < slots.size(); ++s) {
+        for (Node n :
+             {graph.at_slot(m, SlotIndex{s}), graph.pipe_end(slots[s].pipe, slots[s].pipe_end)}) {
+          if (reached_[n]) continue;
+          if (first) join(*first, n);
+          first = first.value_or(n);
+        }
+      }
     }
-  }
-  while (!stack.empty()) {
-    const Node n = stack.back();
-    stack.pop_back();
-    const RobotPosition at = graph.position(n);
-    if (const auto* slot = std::get_if<AtSlot>(&at)) {
-      // Out of the slot's pipe, from either end or a spot in it.
-      const PipeId p = map.slot(slot->manhole, slot->slot).pipe;
-      visit(graph.pipe_end(p, 0));
-      visit(graph.pipe_end(p, 1));
-      for (Node s : graph.extra_spots_in(p)) visit(s);
-    } else if (const auto* in = std::get_if<InPipe>(&at); in && !graph.is_extra_spot(n)) {
-      // A pipe's end is entered from its manhole, or from another slot of it.
-      const Pipe& pipe = map.pipe(in->pipe);
-      const std::size_t e = in->offset_m <= 0 ? 0 : 1;
-      if (!pipe.ends[e].manhole) continue;
-      const ManholeId m = *pipe.ends[e].manhole;
-      visit(graph.in_manhole(m));
-      for (std::uint16_t s = 0; s < map.manhole(m).slot_count; ++s) {
-        if (s != pipe.ends[e].slot.value()) visit(graph.at_slot(m, SlotIndex{s}));
+    for (PipeId p : map.pipe_ids()) {
+      const Pipe& pipe = map.pipe(p);
+      std::vector<Node> in_pipe = {graph.pipe_end(p, 0), graph.pipe_end(p, 1)};
+      for (Node spot : graph.extra_spots_in(p)) in_pipe.push_back(spot);
+      for (std::size_t e = 0; e < 2; ++e) {
+        if (!pipe.ends[e].manhole) continue;
+        const Node slot = graph.at_slot(*pipe.ends[e].manhole, pipe.ends[e].slot);
+        for (Node n : in_pipe) join(slot, n);
       }
     }
   }
-  return seen;
-}
+  Node of(Node n) {
+    while (parent_[n] != n) n = parent_[n] = parent_[parent_[n]];
+    return n;
+  }
+
+ private:
+  void join(Node a, Node b) {
+    if (reached_[a] || reached_[b]) return;
+    a = of(a);
+    b = of(b);
+    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+  }
+  std::vector<Node> parent_;
+  const std::vector<bool>& reached_;
+};
 
 }  // namespace
 
-ReachDiagnosis diagnose_reach(const PositionGraph& graph, const Mission& mission,
-                              std::span<const Node> origins, std::span<const Node> targets) {
-  ReachDiagnosis d;
-  // What the robot reaches, with no bound on the battery.
+std::vector<bool> reachable_from(const PositionGraph& graph, std::span<const Node> origins) {
   std::vector<bool> reached(graph.size(), false);
   std::vector<Node> stack;
   for (Node o : origins) {
@@ -183,32 +182,42 @@ ReachDiagnosis diagnose_reach(const PositionGraph& graph, const Mission& mission
       stack.push_back(next);
     });
   }
-  const std::vector<bool> useful = can_reach_ignoring_limits(graph, targets, reached);
-  for (Node t : targets) {
-    if (reached[t]) d.reachable = true;
-    if (graph.is_extra_spot(t)) {
-      const PipeId p = *graph.pipe_of(t);
-      if (reached[graph.pipe_end(p, 0)] || reached[graph.pipe_end(p, 1)]) d.reachable = true;
-    }
-  }
-  if (d.reachable) return d;
-  // The moves out of the reached part into the useful part, and what forbids each.
+  return reached;
+}
+
+ReachDiagnoser::ReachDiagnoser(const PositionGraph& graph, const Mission& mission,
+                               std::vector<bool> reached)
+    : graph_(graph), reached_(std::move(reached)) {
+  // The moves out of the reached part into the rest, what forbids each, and the part it leads to.
   const SewerMap& map = graph.map();
+  Parts parts(graph, reached_);
+  part_.resize(graph.size());
+  for (Node n = 0; n < graph.size(); ++n) part_[n] = parts.of(n);
   Barriers barriers(graph, mission);
+  const auto found = [&](Node next) {
+    for (auto& [key, text] : barriers.take()) {
+      if (seen_.insert({part_[next], key}).second) {
+        found_.push_back({part_[next], std::move(key), std::move(text)});
+      }
+    }
+  };
   for (Node n = 0; n < graph.size(); ++n) {
-    if (!reached[n]) continue;
+    if (!reached_[n]) continue;
     const RobotPosition at = graph.position(n);
     if (const auto* in_manhole = std::get_if<InManhole>(&at)) {
       for (const Slot& s : map.slots(in_manhole->manhole)) {
         const Node next = graph.pipe_end(s.pipe, s.pipe_end);
-        if (!reached[next] && useful[next]) barriers.pipe_entry(s.pipe);
+        if (reached_[next]) continue;
+        barriers.pipe_entry(s.pipe);
+        found(next);
       }
     } else if (const auto* slot = std::get_if<AtSlot>(&at)) {
       const auto slots = map.slots(slot->manhole);
       for (std::uint16_t j = 0; j < slots.size(); ++j) {
         const Node next = graph.pipe_end(slots[j].pipe, slots[j].pipe_end);
-        if (j == slot->slot.value() || reached[next] || !useful[next]) continue;
+        if (j == slot->slot.value() || reached_[next]) continue;
         barriers.passage(slot->manhole, slot->slot, SlotIndex{j});
+        found(next);
       }
     } else {
       const auto& in = std::get<InPipe>(at);
@@ -216,12 +225,34 @@ ReachDiagnosis diagnose_reach(const PositionGraph& graph, const Mission& mission
       for (std::size_t e = 0; e < 2; ++e) {
         if (!pipe.ends[e].manhole) continue;
         const Node next = graph.at_slot(*pipe.ends[e].manhole, pipe.ends[e].slot);
-        if (reached[next] || !useful[next]) continue;
+        if (reached_[next]) continue;
         barriers.drive(in.pipe, in.offset_m, e == 0 ? 0.0 : pipe.length_m);
+        found(next);
       }
     }
   }
-  d.barriers = barriers.take();
+}
+
+ReachDiagnosis ReachDiagnoser::diagnose(std::span<const Node> targets) const {
+  ReachDiagnosis d;
+  std::set<Node> parts;
+  for (Node t : targets) {
+    std::vector<Node> at = {t};
+    if (graph_.is_extra_spot(t)) {  // a task action reaches it from its pipe's ends
+      const PipeId p = *graph_.pipe_of(t);
+      at.push_back(graph_.pipe_end(p, 0));
+      at.push_back(graph_.pipe_end(p, 1));
+    }
+    for (Node n : at) {
+      if (reached_[n]) d.reachable = true;
+      parts.insert(part_[n]);
+    }
+  }
+  if (d.reachable) return d;
+  std::set<std::string> named;
+  for (const Found& f : found_) {
+    if (parts.count(f.part) != 0 && named.insert(f.key).second) d.barriers.push_back(f.text);
+  }
   return d;
 }
 

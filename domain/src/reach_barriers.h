@@ -16,14 +16,18 @@
 // One function for every caller: the compile's reasons (compile_reasons.h) serve `plan`,
 // `simulate`, the Replanner and the station alike.
 //
-//   ReachDiagnosis d = diagnose_reach(graph, mission, {&start, 1}, exit_nodes);
+//   ReachDiagnoser from_start(graph, mission, reachable_from(graph, {&start, 1}));
+//   ReachDiagnosis d = from_start.diagnose(exit_nodes);
 //   if (!d.reachable && !d.barriers.empty()) why += ": in the way: " + barrier_list(d);
 //
-// Runtime: O(positions + moves) of the graph, with each passage judged once (judge_passage).
+// Runtime: O(positions + moves) of the graph once per place, with each passage judged once
+// (judge_passage); then O(barriers + targets) per diagnosis.
 #pragma once
 
+#include <set>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "position_graph.h"
@@ -37,10 +41,31 @@ struct ReachDiagnosis {
   std::vector<std::string> barriers;
 };
 
-// `origins` and `targets`: nodes of `graph` (a target that is an extra spot counts as its pipe's
-// ends, from which a task action reaches it).
-ReachDiagnosis diagnose_reach(const PositionGraph& graph, const Mission& mission,
-                              std::span<const Node> origins, std::span<const Node> targets);
+// Every position the planner's moves reach from `origins`, by node, with no bound on the battery.
+std::vector<bool> reachable_from(const PositionGraph& graph, std::span<const Node> origins);
+
+// The diagnosis from one place, for any number of targets: built once (O(positions + moves)),
+// each diagnosis then costs O(barriers found + targets). Holds `graph` (by reference).
+class ReachDiagnoser {
+ public:
+  // `reached`: reachable_from(graph, origins).
+  ReachDiagnoser(const PositionGraph& graph, const Mission& mission, std::vector<bool> reached);
+  // `targets`: nodes of the graph (a target that is an extra spot counts as its pipe's ends, from
+  // which a task action reaches it).
+  ReachDiagnosis diagnose(std::span<const Node> targets) const;
+
+ private:
+  struct Found {
+    Node part;  // the part of the unreached network the barrier leads into
+    std::string key;
+    std::string text;
+  };
+  const PositionGraph& graph_;
+  std::vector<bool> reached_;
+  std::vector<Node> part_;  // by node
+  std::vector<Found> found_;
+  std::set<std::pair<Node, std::string>> seen_;
+};
 
 // The barriers joined with "; ", at most `shown`, then "and N more".
 std::string barrier_list(const ReachDiagnosis& diagnosis, std::size_t shown = 6);
