@@ -218,21 +218,28 @@ int run(const SimulateOptions& o, Context& c) {
     }
   }
   // A log that lost events, or whose close failed, is a failed write: exit 3 after the report
-  // (which names it), whatever the mission's outcome.
+  // (which names it), unless the mission itself did not end (below).
   if (log_file) {
     if (Result<void> closed = log_file->close(); !closed.has_value()) {
       c.err << "sewerplan simulate: " << closed.error().message << '\n';
       log_lost = true;
     }
   }
+  bool write_failed = log_lost;
   if (!o.learnt.empty()) {
     if (auto written = write_text_file(o.learnt, executor::learnt_json(replanner.learnt(), map));
         !written.has_value()) {
-      return fail(c, false, written.error());  // the report is out already
+      // The report is out already: the failure on standard error.
+      c.err << "sewerplan simulate: " << written.error().message << '\n';
+      write_failed = true;
     }
   }
-  if (log_lost) return kExitIo;
-  return report.outcome == executor::MissionReport::Outcome::kEnded ? kExitOk : kExitNoPlan;
+  // Issue 30, one rule (docs/cli.md, "Exit codes"): the mission's own outcome comes first. A robot
+  // that called for recovery (beacon on) or was halted is exit 4 even when a write failed too (the
+  // failure is in the report and on standard error); a mission that ended is exit 3 when a write
+  // failed, else 0.
+  if (report.outcome != executor::MissionReport::Outcome::kEnded) return kExitNoPlan;
+  return write_failed ? kExitIo : kExitOk;
 }
 
 }  // namespace
