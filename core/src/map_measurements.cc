@@ -224,12 +224,36 @@ class Derivation {
       rhs(a) -= e.differences[k];
     }
     const Eigen::MatrixXd inverse = normal.completeOrthogonalDecomposition().pseudoInverse();
-    const Eigen::VectorXd x = inverse * rhs;
+    Eigen::VectorXd x = inverse * rhs;
+    std::vector<double> sigma(n, 0);
+    std::vector<bool> involved(n, false);
+    const auto flagged = [&](std::size_t s) {
+      return involved[s] &&
+             beyond(x(static_cast<Eigen::Index>(s)), sigma[s], t_.direction_floor_deg);
+    };
     for (std::size_t s = 0; s < n; ++s) {
       const auto i = static_cast<Eigen::Index>(s);
-      if (normal(i, i) <= 0 || inverse(i, i) <= 0) continue;
-      const double sigma = t_.noise.direction_deg * std::sqrt(inverse(i, i));
-      if (!beyond(x(i), sigma, t_.direction_floor_deg)) continue;
+      involved[s] = normal(i, i) > 0 && inverse(i, i) > 0;
+      if (involved[s]) sigma[s] = t_.noise.direction_deg * std::sqrt(inverse(i, i));
+    }
+    // The minimum-norm solution spreads one slot's deviation over all (its mean is zero); any
+    // common rotation fits as well, so take the one that leaves the slots within the thresholds
+    // undeviated on average: one slot off by 25° then reads 25°, not 18.75°.
+    double sum = 0;
+    std::size_t within = 0;
+    for (std::size_t s = 0; s < n; ++s) {
+      if (involved[s] && !flagged(s)) {
+        sum += x(static_cast<Eigen::Index>(s));
+        ++within;
+      }
+    }
+    // Every slot beyond (two slots: a turn off by 20° could be either's): which one is off is
+    // not observable, and none is reported.
+    if (within == 0) return;
+    x.array() -= sum / static_cast<double>(within);
+    for (std::size_t s = 0; s < n; ++s) {
+      if (!flagged(s)) continue;
+      const auto i = static_cast<Eigen::Index>(s);
       const SlotIndex slot{static_cast<std::uint16_t>(s)};
       const double mapped = map_.slot(mm.manhole, slot).azimuth_deg;
       direction_.push_back({{.kind = Discrepancy::Kind::kDirectionOff,
@@ -237,7 +261,7 @@ class Derivation {
                              .slot = slot,
                              .map_value = mapped,
                              .value = wrap360(mapped + x(i)),
-                             .sigma = sigma},
+                             .sigma = sigma[s]},
                             mm.sources});
     }
   }
