@@ -319,7 +319,7 @@ json discrepancy_json(const FoundDiscrepancy& f, const SewerMap& map) {
   if (d.pipe) j["pipe"] = map.pipe(*d.pipe).name;
   if (d.manhole) j["manhole"] = map.manhole(*d.manhole).name;
   if (d.slot) j["slot"] = to_paper_number(*d.slot);
-  if (d.kind == Discrepancy::Kind::kUnmappedJunction) j["offset_m"] = d.offset_m;
+  if (d.kind == Discrepancy::Kind::kUnmappedJunction || d.offset_m != 0) j["offset_m"] = d.offset_m;
   j["value"] = d.value;
   j["map_value"] = d.map_value;
   j["sigma"] = d.sigma;
