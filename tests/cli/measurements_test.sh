@@ -85,6 +85,13 @@ expect 1 "bad.json:\\\$.pipes\[0\].variance_m2" -- "$sp" merge-measurements --ma
 expect 3 "missing.json" -- "$sp" merge-measurements --map "$ais" "$tmp/missing.json" -o "$tmp/x.json"
 expect 2 "required" -- "$sp" merge-measurements --map "$ais" "$tmp/one.json"
 
+# The discrepancies as a GeoJSON layer for GIS (with the GIS module).
+if "$sp" --help | grep -q export-geojson; then
+  expect 0 "wrote" -- "$sp" export-geojson --map "$ais" --crs EPSG:25832 \
+    --measurements "$src/fuzz/corpus/measurements_json/observations.json" -o "$tmp/d.geojson"
+  check "two discrepancy features" test "$(grep -c '"layer": "discrepancy"' "$tmp/d.geojson")" -eq 2
+fi
+
 # Failed writes: exit 3 naming the file.
 expect 3 "/dev/full" -- "$sp" merge-measurements --map "$ais" "$tmp/one.json" -o /dev/full
 expect 3 "/dev/full" -- "$sp" merge-measurements --map "$ais" "$tmp/one.json" -o "$tmp/y.json" \
