@@ -86,6 +86,10 @@ void Executor::subscribe_plans(PlanObserver observer) {
   plan_observers_.push_back(std::move(observer));
 }
 
+void Executor::subscribe_jobs(JobObserver observer) {
+  job_observers_.push_back(std::move(observer));
+}
+
 void Executor::subscribe_log(LogFile& log) {
   logs_.push_back(&log);
   observers_.push_back([&log](const Event& event) { log.append(to_json_line(event) + '\n'); });
@@ -105,6 +109,7 @@ class Executor::Run {
         options_(e.options_),
         observers_(e.observers_),
         plan_observers_(e.plan_observers_),
+        job_observers_(e.job_observers_),
         logs_(e.logs_),
         halt_(e.halt_),
         tracker_(e.map_, e.replanner_.progress().position, e.replanner_.heading_end()),
@@ -384,13 +389,26 @@ class Executor::Run {
     if (halted()) return halted_report();
     const hal::JobReport r = robot_.execute(job);
     ++report_.jobs;
-    tracker_.advance(job, r);
+    advance(job, r);
     emit(JobEvent{.job = detail::job_text(job), .progress_m = r.progress_m, .ok = r.ok()});
     if (!r.ok()) {
       emit(ErrorEvent{
           .kind = r.error->kind, .reason = r.error->reason, .where = tracker_.describe()});
     }
     return r;
+  }
+
+  // The tracking moves on by `report`; the job observers see it with where the robot was and is.
+  void advance(const Job& job, const hal::JobReport& report) {
+    if (job_observers_.empty()) {
+      tracker_.advance(job, report);
+      return;
+    }
+    const domain::RobotPosition before = tracker_.position();
+    const double direction = tracker_.direction_of(job);
+    tracker_.advance(job, report);
+    const JobSeen seen{job, report, before, tracker_.position(), direction};
+    for (const JobObserver& observer : job_observers_) observer(seen);
   }
 
   Result<void> reboot() {
@@ -407,7 +425,7 @@ class Executor::Run {
     if (!own) return std::nullopt;
     hal::JobReport rest = *own;
     rest.progress_m = std::max(0.0, own->progress_m - std::max(0.0, heard.progress_m));
-    tracker_.advance(job, rest);
+    advance(job, rest);
     emit(JobEvent{.job = detail::job_text(job), .progress_m = own->progress_m, .ok = own->ok()});
     if (!own->ok()) {
       emit(ErrorEvent{
@@ -474,6 +492,7 @@ class Executor::Run {
   const ExecutorOptions& options_;
   const std::vector<EventObserver>& observers_;
   const std::vector<PlanObserver>& plan_observers_;
+  const std::vector<JobObserver>& job_observers_;
   const std::vector<LogFile*>& logs_;
   const std::atomic<bool>& halt_;
   detail::DeadReckoning tracker_;
