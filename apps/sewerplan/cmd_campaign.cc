@@ -3,12 +3,14 @@
 //                    [--jobs J] [--shard I/N] [--only RUN] [--out DIR] [--timeout S] [-q]
 //                    [--condition FILE] [--risk MODE] [--risk-table FILE] [--faults-from-condition]
 // sewerplan campaign merge DIR... -o OUT
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -19,6 +21,7 @@
 #include "sewerplan/campaign/summary.h"
 #include "sewerplan/core/map_io.h"
 #include "sewerplan/core/map_json.h"
+#include "sewerplan/core/output_file.h"
 #include "sewerplan/core/text_file.h"
 
 #include "command.h"
@@ -239,9 +242,41 @@ int run(const CampaignCliOptions& o, Context& c) {
   options.only = o.only;
   options.inject = *inject;
   ProgressPrinter printer(c.err);
-  if (!o.quiet && !o.only) options.progress = [&](const campaign::Progress& p) { printer(p); };
+  const bool print_progress = !o.quiet && !o.only;
+  // Issue 30: the runs are written as they finish (appended and flushed per run), beside the
+  // campaign's spec, so that a crash or a halt mid-campaign keeps the runs so far (merge names the
+  // missing ones). The first write that fails stops the campaign: exit 3, naming the file.
+  std::optional<LogFile> runs_log;
+  std::atomic<bool> write_failed{false};
+  if (!o.out.empty() && !o.only) {
+    const std::filesystem::path dir = o.out;
+    Result<void> made = create_output_directory(dir);
+    if (made.has_value())
+      made = write_text_file(dir / "campaign.json", campaign::campaign_json(spec));
+    if (!made.has_value()) return fail(c, o.json, made.error());
+    Result<LogFile> log = LogFile::open(dir / "runs.jsonl");
+    if (!log.has_value()) return fail(c, o.json, log.error());
+    runs_log = std::move(*log);
+    options.stop.with_cancel(write_failed);
+  }
+  if (print_progress || runs_log) {
+    options.progress = [&](const campaign::Progress& p) {
+      if (runs_log && p.last != nullptr && !write_failed.load() &&
+          !runs_log->append(campaign::run_json_line(*p.last) + "\n")) {
+        write_failed.store(true);
+      }
+      if (print_progress) printer(p);
+    };
+  }
   const std::vector<campaign::RunRecord> records =
       campaign::run_campaign(*map, *mission, spec, options);
+  if (runs_log) {
+    if (Result<void> closed = runs_log->close(); !closed.has_value()) {
+      return fail(c, o.json,
+                  Error{ErrorCode::kIo, closed.error().message + "; the campaign stopped after " +
+                                            std::to_string(records.size()) + " runs"});
+    }
+  }
 
   if (o.only && !o.faults_out.empty()) {
     const campaign::RunSettings settings = campaign::run_settings(spec);

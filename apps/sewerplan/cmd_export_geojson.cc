@@ -10,6 +10,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "sewerplan/core/measurements_json.h"
 #include "sewerplan/core/mission.h"
 #include "sewerplan/core/text_file.h"
 #include "sewerplan/domain/plan_text.h"
@@ -37,6 +38,7 @@ struct ExportOptions {
   bool plan_route = false;
   double time_limit_s = 10;
   std::string log;
+  std::string measurements;  // a measurements file: its discrepancies as a layer
   std::string profile;
   std::string condition;
   std::string out;
@@ -117,6 +119,12 @@ int run(const ExportOptions& o, Context& c) {
     if (!t.has_value()) return failed(t.error());
     trace = std::move(*t);
   }
+  std::optional<MapMeasurements> measured;
+  if (!o.measurements.empty()) {
+    Result<MapMeasurements> m = read_measurements(o.measurements, *map, diagnostics);
+    if (!m.has_value()) return failed(m.error());
+    measured = std::move(*m);
+  }
   Result<std::optional<domain::DriveabilityReport>> driveability =
       driveability_for_profile(*map, o.profile);
   if (!driveability.has_value()) return failed(driveability.error());
@@ -139,7 +147,9 @@ int run(const ExportOptions& o, Context& c) {
         .plan = plan ? &*plan : nullptr,
         .driven = trace ? &trace->driven : nullptr,
         .blocked = trace ? std::span<const Blockage>(trace->blocked) : std::span<const Blockage>(),
-        .driveability = *driveability ? &**driveability : nullptr};
+        .driveability = *driveability ? &**driveability : nullptr,
+        .discrepancies = measured ? std::span<const FoundDiscrepancy>(measured->discrepancies)
+                                  : std::span<const FoundDiscrepancy>()};
     Result<std::string> text = (*module)->to_geojson(input);
     if (!text.has_value()) return failed(text.error());
     if (Result<void> w = write_text_file(o.out, *text); !w.has_value()) return failed(w.error());
@@ -186,6 +196,8 @@ void add_export_geojson_command(CLI::App& app, Context& context) {
   cmd->add_option("--time-limit", o->time_limit_s, "With --plan-route: seconds to plan")
       ->capture_default_str();
   cmd->add_option("--log", o->log, "Event log (simulate --log): route driven, blocked pipes");
+  cmd->add_option("--measurements", o->measurements,
+                  "Measurements file (simulate --corrected-map): its discrepancies as a layer");
   cmd->add_option("--profile", o->profile,
                   "Mark each pipe driveable or not for this robot (from the map's exits)");
   add_condition_option(*cmd, o->condition);

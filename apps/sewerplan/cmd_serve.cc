@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 // sewerplan serve [--map FILE ...] [--host 127.0.0.1] [--port 8080] [--token T] [--web DIR]
+//                 [--allow-host NAME ...]
 // The operator station (docs/operator-station.md): the server of server/station_server.h, loaded
 // from the server module (sewerplan/server/module.h), and the page.
 #include <algorithm>
@@ -27,6 +28,7 @@ struct ServeOptions {
   int port = 8080;
   std::string token;
   std::string web;
+  std::vector<std::string> allowed_hosts;
 };
 
 // The built page: --web, else the build tree's (while developing), else the install's
@@ -63,7 +65,8 @@ int run(const ServeOptions& o, Context& c) {
                 Error{module.error().code,
                       "serve needs cpp-httplib and OpenSSL, but " + module.error().message});
   }
-  server::ServerOptions options{.host = o.host, .port = o.port, .token = o.token};
+  server::ServerOptions options{
+      .host = o.host, .port = o.port, .token = o.token, .allowed_hosts = o.allowed_hosts};
   for (const std::string& m : o.maps) options.maps.emplace_back(m);
   options.read_map_with = [fields = o.gis_fields](const std::filesystem::path& path,
                                                   Diagnostics& diagnostics) {
@@ -106,6 +109,9 @@ void add_serve_command(CLI::App& app, Context& context) {
   cmd->add_option("--token", o->token,
                   "Require \"Authorization: Bearer TOKEN\" on the API (the printed address "
                   "carries it in its #fragment, for the page)");
+  cmd->add_option("--allow-host", o->allowed_hosts,
+                  "A name the page may be opened under besides IP addresses, localhost and --host "
+                  "(requests naming another Host are refused: DNS rebinding); repeatable");
   cmd->add_option("--web", o->web, "Serve the page from this directory (default: the built one)");
   cmd->callback([o, &context] { context.exit_code = run(*o, context); });
 }

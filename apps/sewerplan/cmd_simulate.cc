@@ -3,6 +3,7 @@
 //                    [--recovery FILE] [--allow-push] [--log FILE] [--learnt FILE] [--quiet]
 //                    [--can slcan:TTY|socketcan:IFACE | --replay CANDUMP.log] [--can-log FILE]
 //                    [--condition FILE] [--risk MODE] [--risk-table FILE]
+//                    [--corrected-map OUT.json]
 #include <cerrno>
 #include <csignal>
 #include <filesystem>
@@ -15,17 +16,20 @@
 #include <CLI/CLI.hpp>
 
 #include "sewerplan/core/map_io.h"
+#include "sewerplan/core/measurements_json.h"
 #include "sewerplan/core/mission.h"
 #include "sewerplan/core/text_file.h"
 #include "sewerplan/executor/event_json.h"
 #include "sewerplan/executor/event_text.h"
 #include "sewerplan/executor/executor.h"
+#include "sewerplan/executor/measuring.h"
 #include "sewerplan/hal/fault_scenario.h"
 #include "sewerplan/hal/sim_robot.h"
 
 #include "can_link.h"
 #include "command.h"
 #include "condition_options.h"
+#include "corrected_map_output.h"
 #include "json_output.h"
 #include "map_input.h"
 #include "motion_options.h"
@@ -52,6 +56,8 @@ struct SimulateOptions {
   std::string condition;
   RiskOptions risk;
   bool json = false;
+  // The corrected map, and beside it OUT.discrepancies.json and OUT.measurements.json.
+  std::string corrected_map;
 };
 
 // Ctrl-C (SIGINT) and SIGTERM halt the mission (Executor::halt: the robot's emergency stop, the
@@ -196,6 +202,14 @@ int run(const SimulateOptions& o, Context& c) {
   }
   // With --json, standard output is the report alone: the live log goes to standard error.
   if (!o.quiet) executor.subscribe(executor::readable_writer(o.json ? c.err : c.out));
+  std::optional<executor::Measurer> measurer;
+  if (!o.corrected_map.empty()) {
+    measurer.emplace(map,
+                     MeasurementSource{.robot = mission.profile.name,
+                                       .mission = mission.name.empty() ? o.mission : mission.name,
+                                       .date = measurement_date()});
+    executor.subscribe_jobs(measurer->observer());
+  }
   halt_on_signal.attach(executor);
   const executor::MissionReport report = executor.run();
   halt_on_signal.detach();
@@ -218,21 +232,44 @@ int run(const SimulateOptions& o, Context& c) {
     }
   }
   // A log that lost events, or whose close failed, is a failed write: exit 3 after the report
-  // (which names it), whatever the mission's outcome.
+  // (which names it), unless the mission itself did not end (below).
   if (log_file) {
     if (Result<void> closed = log_file->close(); !closed.has_value()) {
       c.err << "sewerplan simulate: " << closed.error().message << '\n';
       log_lost = true;
     }
   }
+  bool write_failed = log_lost;
   if (!o.learnt.empty()) {
     if (auto written = write_text_file(o.learnt, executor::learnt_json(replanner.learnt(), map));
         !written.has_value()) {
-      return fail(c, false, written.error());  // the report is out already
+      // The report is out already: the failure on standard error.
+      c.err << "sewerplan simulate: " << written.error().message << '\n';
+      write_failed = true;
     }
   }
-  if (log_lost) return kExitIo;
-  return report.outcome == executor::MissionReport::Outcome::kEnded ? kExitOk : kExitNoPlan;
+  if (measurer) {
+    MapMeasurements measured = measurer->measurements();
+    for (const std::string& why : measurer->rejected()) {
+      c.err << "sewerplan simulate: warning: a report not measured: " << why << '\n';
+    }
+    Result<void> w = write_corrected_map(o.corrected_map, map, measured, o.json ? c.err : c.out);
+    if (w.has_value()) {
+      w = write_text_file(beside(o.corrected_map, "measurements"),
+                          measurements_json(measured, map));
+    }
+    if (!w.has_value()) {
+      // The report is out already: the failure on standard error.
+      c.err << "sewerplan simulate: " << w.error().message << '\n';
+      write_failed = true;
+    }
+  }
+  // Issue 30, one rule (docs/cli.md, "Exit codes"): the mission's own outcome comes first. A robot
+  // that called for recovery (beacon on) or was halted is exit 4 even when a write failed too (the
+  // failure is in the report and on standard error); a mission that ended is exit 3 when a write
+  // failed, else 0.
+  if (report.outcome != executor::MissionReport::Outcome::kEnded) return kExitNoPlan;
+  return write_failed ? kExitIo : kExitOk;
 }
 
 }  // namespace
@@ -257,6 +294,9 @@ void add_simulate_command(CLI::App& app, Context& context) {
   cmd->add_option("--log", options->log, "Write the event log as JSON lines");
   cmd->add_option("--learnt", options->learnt,
                   "What the robot learnt (JSON): read if it exists, written at the end");
+  cmd->add_option("--corrected-map", options->corrected_map,
+                  "Write the map corrected by what the robot measured (JSON), with "
+                  "OUT.discrepancies.json and OUT.measurements.json beside it");
   cmd->add_flag("-q,--quiet", options->quiet, "Only the final report");
   cmd->add_flag("--json", options->json,
                 "Print the report as JSON (the live log goes to standard error)");

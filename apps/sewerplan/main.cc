@@ -65,6 +65,7 @@ constexpr CommandEntry kCommands[] = {
     {"export-geojson", &sewerplan::cli::add_export_geojson_command},
 #endif
     {"serve", &sewerplan::cli::add_serve_command},
+    {"merge-measurements", &sewerplan::cli::add_merge_measurements_command},
 };
 
 // Every number on the command line is checked before a command sees it: CLI11 reads "-5" into an

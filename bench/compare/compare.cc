@@ -20,6 +20,7 @@
 
 #include "sewerplan/core/generator.h"
 #include "sewerplan/core/map_io.h"
+#include "sewerplan/core/output_file.h"
 #include "sewerplan/domain/mission_generator.h"
 #include "sewerplan/search/planner.h"
 
@@ -71,7 +72,10 @@ std::optional<Instance> generated(std::size_t manholes, std::size_t tasks, std::
                             std::to_string(seed),
                     .seed = std::to_string(seed)};
   instance.directory = root / instance.name;
-  fs::create_directories(instance.directory);
+  if (Result<void> made = create_output_directory(instance.directory); !made.has_value()) {
+    error = made.error().message;
+    return std::nullopt;
+  }
   Result<SewerMap> map =
       generate_network({.manholes = manholes, .seed = seed, .topology = Topology::kMeshed});
   if (!map.has_value()) {
@@ -97,13 +101,17 @@ std::optional<Instance> generated(std::size_t manholes, std::size_t tasks, std::
     error = "eight generated missions without a plan";
     return std::nullopt;
   }
-  if (!write_map(*map, instance.directory / "map.json").has_value()) {
-    error = "cannot write " + (instance.directory / "map.json").string();
+  if (Result<void> w = write_map(*map, instance.directory / "map.json"); !w.has_value()) {
+    error = w.error().message;
     return std::nullopt;
   }
-  std::ofstream out(instance.directory / "mission.json");
+  std::ostringstream out;
   write_mission_json(*mission, *map, out);
-  out.close();
+  if (Result<void> w = write_text_file(instance.directory / "mission.json", out.str());
+      !w.has_value()) {
+    error = w.error().message;
+    return std::nullopt;
+  }
   return load_instance(std::move(instance), error);
 }
 
@@ -118,7 +126,10 @@ std::optional<Instance> dataset(const std::string& spec, const fs::path& root, s
   Instance instance{.name = map.parent_path().filename().string() + "-" + mission.stem().string(),
                     .seed = "-"};
   instance.directory = root / instance.name;
-  fs::create_directories(instance.directory);
+  if (Result<void> made = create_output_directory(instance.directory); !made.has_value()) {
+    error = made.error().message;
+    return std::nullopt;
+  }
   std::error_code ec;
   fs::copy_file(map, instance.directory / "map.json", fs::copy_options::overwrite_existing, ec);
   if (!ec) {
@@ -141,7 +152,10 @@ std::string brief(const Outcome& o) {
 
 int run(const Options& options) {
   const fs::path root = options.out;
-  fs::create_directories(root / "instances");
+  if (Result<void> made = create_output_directory(root / "instances"); !made.has_value()) {
+    std::cerr << "sewerplan-compare: " << made.error().message << '\n';
+    return 3;
+  }
   std::vector<std::string> datasets = options.datasets;
   if (datasets.empty() && !options.no_datasets) {
     // The source tree's copy, or, installed (the Debian package), the one beside the binary.
@@ -161,7 +175,12 @@ int run(const Options& options) {
   std::ostringstream settings;
   settings << "time limit " << options.time_limit_s << " s, memory cap " << options.memory_limit_mb
            << " MiB per run; Fast Downward alias " << options.paths.fd_alias;
-  Report report(root / "results.csv", root / "results.md", settings.str());
+  Result<Report> opened = Report::open(root / "results.csv", root / "results.md", settings.str());
+  if (!opened.has_value()) {
+    std::cerr << "sewerplan-compare: " << opened.error().message << '\n';
+    return 3;
+  }
+  Report& report = *opened;
   std::size_t index = 0;
   auto solve = [&](std::optional<Instance> instance, const std::string& label,
                    const std::string& error) {
@@ -205,7 +224,10 @@ int run(const Options& options) {
       }
     }
   }
-  report.finish();
+  if (Result<void> w = report.finish(); !w.has_value()) {
+    std::cerr << "sewerplan-compare: " << w.error().message << '\n';
+    return 3;
+  }
   std::cerr << "wrote " << (root / "results.csv").string() << " and "
             << (root / "results.md").string() << '\n';
   return 0;

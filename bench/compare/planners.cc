@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sewerplan/core/map_io.h"
+#include "sewerplan/core/output_file.h"
 #include "sewerplan/core/text_file.h"
 #include "sewerplan/domain/pddl.h"
 #include "sewerplan/domain/plan_text.h"
@@ -20,10 +21,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-bool write_text(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  return static_cast<bool>(out);
+// Through core/output_file.h: checked, atomic; the error names the file.
+Result<void> write_text(const fs::path& path, const std::string& text) {
+  return write_text_file(path, text);
 }
 
 // Fills status and detail from how the process ended, when it did not produce a plan.
@@ -92,13 +92,15 @@ void check_plan(const Instance& instance, const fs::path& file,
 // Writes the PDDL export into `dir` (once per instance and variant).
 bool export_to(const Instance& instance, const fs::path& dir, bool action_costs, Outcome& o) {
   if (fs::exists(dir / "problem.pddl")) return true;
-  fs::create_directories(dir);
+  Result<void> written = create_output_directory(dir);
   Result<domain::PddlFiles> files =
       domain::export_pddl(instance.map, instance.mission, {.action_costs = action_costs});
-  if (!files.has_value() || !write_text(dir / "domain.pddl", files->domain) ||
-      !write_text(dir / "problem.pddl", files->problem)) {
+  if (written.has_value()) written = files.has_value() ? Result<void>() : files.error();
+  if (written.has_value()) written = write_text(dir / "domain.pddl", files->domain);
+  if (written.has_value()) written = write_text(dir / "problem.pddl", files->problem);
+  if (!written.has_value()) {
     o.status = "failed";
-    o.detail = "PDDL export failed";
+    o.detail = "PDDL export failed: " + written.error().message;
     return false;
   }
   return true;
@@ -240,7 +242,11 @@ int native_child(const std::string& map_path, const std::string& mission_path,
               << '\n';
     return outcome.error().code == ErrorCode::kNoPlan ? 4 : 5;
   }
-  if (!write_text(plan_out, domain::format_plan(outcome->plan, *map, *mission))) return 3;
+  if (Result<void> w = write_text(plan_out, domain::format_plan(outcome->plan, *map, *mission));
+      !w.has_value()) {
+    std::cerr << w.error().message << '\n';
+    return 3;
+  }
   std::cout << elapsed << ' ' << outcome->cost_s << '\n';
   return 0;
 }

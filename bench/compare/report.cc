@@ -42,24 +42,30 @@ std::string optional_number(const std::optional<double>& v, int precision = 4) {
 
 }  // namespace
 
-Report::Report(const std::filesystem::path& csv, const std::filesystem::path& markdown,
-               std::string settings)
-    : csv_(csv), markdown_(markdown), settings_(std::move(settings)) {
-  csv_ << "instance,manholes,tasks,planner,status,wall_s,load_and_plan_s,cost_s,steps,peak_mb,"
-          "time_ratio,cost_ratio,detail\n";
+Result<Report> Report::open(const std::filesystem::path& csv, const std::filesystem::path& markdown,
+                            std::string settings) {
+  Result<LogFile> file = LogFile::open(csv);
+  if (!file.has_value()) return file.error();
+  Report report(std::move(*file), markdown, std::move(settings));
+  if (!report.csv_.append("instance,manholes,tasks,planner,status,wall_s,load_and_plan_s,cost_s,"
+                          "steps,peak_mb,time_ratio,cost_ratio,detail\n")) {
+    return Error{ErrorCode::kIo, *report.csv_.first_error()};
+  }
+  return report;
 }
 
 void Report::add(const Instance& instance, const std::vector<Outcome>& outcomes) {
   const Outcome& reference = outcomes.front();
+  std::ostringstream csv;
   for (const Outcome& o : outcomes) {
-    csv_ << csv_field(instance.name) << ',' << instance.manholes << ',' << instance.tasks << ','
-         << csv_field(o.planner) << ',' << csv_field(o.status) << ',' << number(o.wall_s, 6) << ','
-         << optional_number(o.load_and_plan_s, 6) << ',' << optional_number(o.cost_s, 7) << ','
-         << (o.steps ? std::to_string(*o.steps) : "") << ',' << number(o.peak_mb, 5) << ','
-         << optional_number(time_ratio(o, reference)) << ','
-         << optional_number(cost_ratio(o, reference)) << ',' << csv_field(o.detail) << '\n';
+    csv << csv_field(instance.name) << ',' << instance.manholes << ',' << instance.tasks << ','
+        << csv_field(o.planner) << ',' << csv_field(o.status) << ',' << number(o.wall_s, 6) << ','
+        << optional_number(o.load_and_plan_s, 6) << ',' << optional_number(o.cost_s, 7) << ','
+        << (o.steps ? std::to_string(*o.steps) : "") << ',' << number(o.peak_mb, 5) << ','
+        << optional_number(time_ratio(o, reference)) << ','
+        << optional_number(cost_ratio(o, reference)) << ',' << csv_field(o.detail) << '\n';
   }
-  csv_.flush();
+  csv_.append(csv.str());  // a failure is kept and reported by finish()
   rows_.push_back({instance.name, instance.manholes, instance.tasks, outcomes});
 }
 
@@ -67,8 +73,15 @@ void Report::skipped(const std::string& label, const std::string& why) {
   skipped_.push_back(label + ": " + why);
 }
 
-void Report::finish() {
-  std::ofstream md(markdown_);
+Result<void> Report::finish() {
+  std::ostringstream md;
+  write_markdown(md);
+  Result<void> table = write_text_file(markdown_, md.str());
+  Result<void> rows = csv_.close();
+  return !rows.has_value() ? rows : table;
+}
+
+void Report::write_markdown(std::ostream& md) const {
   md << "# sewerplan against external planners\n\n" << settings_ << ".\n\n";
   md << "Times are whole-process wall times (sewerplan's own load-and-plan time in brackets); "
         "costs are in seconds by sewerplan's cost model, for plans its validator accepts; "

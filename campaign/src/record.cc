@@ -155,8 +155,6 @@ RunResult read_result(const RunRecord& r, JsonFields& f, JsonFields& measured,
   if (std::optional<JsonFields> oracle = object_in(f, "oracle", file)) {
     x.oracle_tasks = oracle->count("tasks", kMaxCount).value_or(0);
     x.oracle_can_end = oracle->boolean("can_end").value_or(false);
-    x.oracle_can_end_either_way =
-        oracle->boolean("can_end_either_way", kOptional).value_or(x.oracle_can_end);
   }
   x.could_reach_exit = f.boolean("could_reach_exit").value_or(false);
   x.ours = read_execution(f, "ours", file);
@@ -199,11 +197,6 @@ std::string run_json_line(const RunRecord& record) {
         {"danger_spots", f.danger_spots}, {"dangerous_passages", f.dangerous_passages},
         {"malfunctions", f.malfunctions}, {"permanent_malfunctions", f.permanent_malfunctions}};
     j["oracle"] = Json{{"tasks", r->oracle_tasks}, {"can_end", r->oracle_can_end}};
-    // Only where it differs (an obstacle recovery clears from one side only): lines of other
-    // campaigns stay as they were.
-    if (r->oracle_can_end_either_way != r->oracle_can_end) {
-      j["oracle"]["can_end_either_way"] = r->oracle_can_end_either_way;
-    }
     j["could_reach_exit"] = r->could_reach_exit;
     j["ours"] = execution_json(r->ours);
     j["baseline"] = execution_json(r->baseline);

@@ -58,24 +58,33 @@ executor::RecoveryConfig recovery_of(const RunSettings& settings) {
   return recovery;
 }
 
-// Which obstacles the oracle takes for blockages.
-enum class Known {
-  kUnclearable,      // those recovery clears from neither side: the bound on tasks
-  kNotFromBothSides  // and those it clears from one side only: a way out however they are met
-};
+// The oracle plans without knowing which way the robot will meet each obstacle, so it presumes
+// that recovery clears an obstacle from both sides or from neither. hal's table says so for every
+// kind (a push works both ways since issue 30: before, a push-only obstacle met while backing
+// stayed, and a second oracle plan had to judge the way out). A one-sided row makes this fail:
+// then the oracle must learn which way each obstacle is met.
+constexpr bool cleared_from_both_sides_or_neither() {
+  for (const hal::ObstacleClearing& row : hal::kObstacleClearing) {
+    if (hal::clears_from(row.kind, hal::Approach::kFront) !=
+        hal::clears_from(row.kind, hal::Approach::kRear)) {
+      return false;
+    }
+  }
+  return true;
+}
+static_assert(cleared_from_both_sides_or_neither(),
+              "the oracle presumes every obstacle clears from both sides or neither");
 
 // The mission as the oracle knows it: every fault no recovery clears, in advance. Which
 // obstacles those are is the recovery's own answer (executor::recovery_clears, from hal's table),
 // so the oracle and the action controller agree on every obstacle, met either way.
 Mission clairvoyant(const Mission& mission, const hal::FaultScenario& faults,
-                    const executor::RecoveryConfig& recovery, Known known_as_blocked) {
+                    const executor::RecoveryConfig& recovery) {
   Mission known = mission;
   for (const hal::Obstacle& o : faults.obstacles) {
-    const bool front = executor::recovery_clears(recovery, o.kind, hal::Approach::kFront);
-    const bool rear = executor::recovery_clears(recovery, o.kind, hal::Approach::kRear);
-    const bool blocked =
-        known_as_blocked == Known::kUnclearable ? !front && !rear : !front || !rear;
-    if (blocked) known.blockages.push_back({o.pipe, o.offset_m});
+    if (!executor::recovery_clears(recovery, o.kind, hal::Approach::kFront)) {
+      known.blockages.push_back({o.pipe, o.offset_m});
+    }
   }
   for (const hal::DangerSpot& d : faults.danger_spots)
     known.blockages.push_back({d.pipe, d.offset_m});
@@ -298,17 +307,11 @@ Result<RunResult> run_one(const SewerMap& map, const Mission& mission, const Run
   executor::ReplannerOptions oracle_options{.clock = &no_time};
   oracle_options.planner.contingency = false;
   const executor::RecoveryConfig recovery = recovery_of(settings);
-  const Mission bound = clairvoyant(mission, *faults, recovery, Known::kUnclearable);
+  const Mission bound = clairvoyant(mission, *faults, recovery);
   executor::Replanner oracle(map, bound, oracle_options);
   const executor::PlanResponse plan = oracle.plan("oracle");
   r.oracle_can_end = executor::has_plan(plan.decision);
   r.oracle_tasks = r.oracle_can_end ? plan.goals.size() : 0;
-  r.oracle_can_end_either_way = r.oracle_can_end;
-  if (Mission either_way = clairvoyant(mission, *faults, recovery, Known::kNotFromBothSides);
-      r.oracle_can_end && either_way.blockages.size() != bound.blockages.size()) {
-    executor::Replanner sure(map, either_way, oracle_options);
-    r.oracle_can_end_either_way = executor::has_plan(sure.plan("oracle, either way").decision);
-  }
 
   r.ours = execute(map, mission, *faults, settings, executor::ReplannerOptions::Goals::kReselect);
   r.baseline =
@@ -317,7 +320,7 @@ Result<RunResult> run_one(const SewerMap& map, const Mission& mission, const Run
     r.risk_aware = execute(map, mission, *faults, settings,
                            executor::ReplannerOptions::Goals::kReselect, settings.risk);
   }
-  r.could_reach_exit = r.oracle_can_end_either_way && !r.ours.disabled;
+  r.could_reach_exit = r.oracle_can_end && !r.ours.disabled;
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   return r;
 }

@@ -58,7 +58,7 @@ void figures(const std::vector<const RunResult*>& runs, const Execution RunResul
     ++(e.outcome == Outcome::kBeacon ? f.beacon_causes : f.ended_otherwise_beacon_causes)[cause];
     // Each policy's own robot: a permanent malfunction that stopped the baseline's robot is no
     // missed exit of the baseline's, whatever ours met.
-    if (r->oracle_can_end_either_way && !e.disabled) {
+    if (r->oracle_can_end && !e.disabled) {
       ++f.could_reach_exit;
       if (e.outcome != Outcome::kExit && e.outcome != Outcome::kEndPoint) ++f.missed_exits;
     }

@@ -35,7 +35,10 @@ std::ostream& operator<<(std::ostream& os, const Job& job) {
           [&](const DriveBackward& j) {
             os << "DriveBackward(" << j.speed_mps << " m/s, " << j.distance_m << " m)";
           },
-          [&](const Push& j) { os << "Push(" << j.speed_mps << " m/s, " << j.distance_m << " m)"; },
+          [&](const Push& j) {
+            os << "Push(" << j.speed_mps << " m/s, " << j.distance_m << " m"
+               << (j.backward ? ", backward)" : ")");
+          },
           [&](const TurnInManhole& j) {
             os << "TurnInManhole(slot " << j.from_slot + 1 << " -> " << j.to_slot + 1 << ", "
                << std::setprecision(1) << j.turn_deg << " deg, step " << std::setprecision(2)

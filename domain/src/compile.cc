@@ -80,7 +80,7 @@ class SewerTaskCompiler {
     }
     route(search);
     if (search.interrupted()) return stop_error();
-    detail::CompileReasons reasons(graph, mission_, progress_, bound_);
+    detail::CompileReasons reasons(graph, mission_, progress_, bound_, keys_[0]);
     if (options_.select_goals) {
       if (auto why = select_goals(reasons); !why.empty()) {
         return Error{ErrorCode::kNoPlan, "the mission cannot be ended:" + why};

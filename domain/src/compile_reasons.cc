@@ -8,6 +8,8 @@
 #include "sewerplan/core/message_text.h"
 #include "sewerplan/domain/robot_state.h"
 
+#include "reach_barriers.h"
+
 namespace sewerplan::domain::detail {
 namespace {
 
@@ -17,7 +19,33 @@ std::string fixed(double v, int digits) {
   return out.str();
 }
 
+// What the diagnosis found in the way, after a "no route" (empty if only the battery is).
+std::string in_the_way(const ReachDiagnosis& d) {
+  if (d.reachable) return {};
+  if (d.barriers.empty()) return ": the network does not connect them";
+  return ": in the way: " + barrier_list(d);
+}
+
 }  // namespace
+
+std::vector<Node> CompileReasons::exit_nodes() const {
+  std::vector<Node> nodes;
+  for (ManholeId e : mission_.exits) {
+    nodes.push_back(graph_.in_manhole(e));
+    for (std::uint16_t s = 0; s < graph_.map().manhole(e).slot_count; ++s) {
+      nodes.push_back(graph_.at_slot(e, SlotIndex{s}));
+    }
+  }
+  return nodes;
+}
+
+const ReachDiagnoser& CompileReasons::from_origin() const {
+  if (from_origin_ == nullptr) {
+    from_origin_ =
+        std::make_unique<ReachDiagnoser>(graph_, mission_, reachable_from(graph_, {&origin_, 1}));
+  }
+  return *from_origin_;
+}
 
 std::string CompileReasons::energy(Cost cost) const {
   return fixed(mission_.profile.energy_wh(to_seconds(cost)), 1) + " Wh";
@@ -45,7 +73,7 @@ bool CompileReasons::at_task(const Task& task, Node n) const {
   return graph_.pipe_of(n) == std::get<PipeSpot>(task.place).pipe;
 }
 
-std::string CompileReasons::unreachable(const Task& task) const {
+std::string CompileReasons::unreachable(const Task& task, const std::vector<Node>& keys) const {
   const SewerMap& map = graph_.map();
   if (const auto* spot = std::get_if<PipeSpot>(&task.place)) {
     const Pipe& pipe = map.pipe(spot->pipe);
@@ -70,8 +98,18 @@ std::string CompileReasons::unreachable(const Task& task) const {
              (narrow ? fixed(p.max_pipe_diameter_m, 2) : t.limit) + " m";
     }
   }
+  // Issue 30: name what stands in the way, the limit and its object, not only the limits.
+  std::vector<Node> targets;
+  for (Node n : keys) {
+    if (at_task(task, n)) targets.push_back(n);
+  }
+  const ReachDiagnosis d = from_origin().diagnose(targets);
+  if (d.reachable) {
+    return "reaching " + describe(task.place, map) + " from " + origin() + " needs more than the " +
+           energy(bound_) + " available";
+  }
   return "no route from " + origin() + " reaches " + describe(task.place, map) + " within " +
-         limits();
+         limits() + in_the_way(d);
 }
 
 std::string CompileReasons::task_reason(const Task& task, const std::vector<Node>& keys,
@@ -88,12 +126,24 @@ std::string CompileReasons::task_reason(const Task& task, const std::vector<Node
     }
   }
   const std::string place = describe(task.place, graph_.map());
-  if (reach == kInfiniteCost) return unreachable(task);
+  if (reach == kInfiniteCost) return unreachable(task, keys);
   if (reach > bound_) {
     return "reaching " + place + " needs at least " + energy(reach) + ", but " + energy(bound_) +
            " are available";
   }
-  if (ends_at_exit && via == kInfiniteCost) return "no exit can be reached from " + place;
+  if (ends_at_exit && via == kInfiniteCost) {
+    std::vector<Node> from;
+    for (std::size_t e = 0; e < keys.size(); ++e) {
+      if (at_task(task, keys[e]) && dist[e] != kInfiniteCost) from.push_back(keys[e]);
+    }
+    const ReachDiagnosis d =
+        ReachDiagnoser(graph_, mission_, reachable_from(graph_, from)).diagnose(exit_nodes());
+    if (d.reachable) {
+      return "going to " + place + " and on to an exit needs more than the " + energy(bound_) +
+             " available";
+    }
+    return "no exit can be reached from " + place + in_the_way(d);
+  }
   if (ends_at_exit && via > bound_) {
     return "going to " + place + " and on to an exit needs at least " + energy(via) + ", but " +
            energy(bound_) + " are available";
@@ -122,12 +172,14 @@ std::string CompileReasons::fatal(const std::vector<Cost>& exit_dist, bool ends_
   }
   if (mission_.exits.size() > 8) names += ", ...";
   if (exit_dist[0] == kInfiniteCost) {
-    // The route searches stop at the battery, so "not found" covers both: name both.
-    // On the reserve itself (the Replanner's last way out) there is no reserve to be above.
+    // The route searches stop at the battery, so "not found" may be either: tell which (issue
+    // 30). On the reserve itself (the Replanner's last way out) there is no reserve to be above.
+    const ReachDiagnosis d = from_origin().diagnose(exit_nodes());
+    const std::string what = "\n  - no exit (" + names + ") can be reached from " + origin();
+    if (!d.reachable) return what + " within " + limits() + in_the_way(d);
     const bool reserve = mission_.battery_reserve_fraction > 0;
-    return "\n  - no exit (" + names + ") can be reached from " + origin() + " on the " +
-           energy(bound_) + (reserve ? " left above the reserve" : " left") + ", within " +
-           limits();
+    return what + " on the " + energy(bound_) + (reserve ? " left above the reserve" : " left") +
+           ": every route to one needs more";
   }
   if (exit_dist[0] > bound_) {
     return "\n  - reaching the nearest exit needs at least " + energy(exit_dist[0]) + ", but " +

@@ -4,21 +4,26 @@
 // Private to domain. Before any search, a pending task whose pipe or manhole no route reaches,
 // within the robot's limits, the mission's closures and the battery, or (for a mission that ends
 // at an exit) from which no exit is reachable, makes the mission impossible. Each reason names the
-// task and what stands in the way.
+// task and what stands in the way: the battery, or each limit of the robot and closure of the
+// mission on the edge of what the robot can reach (reach_barriers.h), or the network itself.
 #pragma once
 
+#include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "position_graph.h"
+#include "reach_barriers.h"
 
 namespace sewerplan::domain::detail {
 
 class CompileReasons {
  public:
+  // `origin`: the node the robot is at (the compile's first key). Not thread-safe (a cache).
   CompileReasons(const PositionGraph& graph, const Mission& mission,
-                 const MissionProgress& progress, Cost bound)
-      : graph_(graph), mission_(mission), progress_(progress), bound_(bound) {}
+                 const MissionProgress& progress, Cost bound, Node origin)
+      : graph_(graph), mission_(mission), progress_(progress), bound_(bound), origin_(origin) {}
 
   // "\n  - reason" per problem; empty when none is known. `dist` is k x k (row 0: from the
   // start), `exit_dist` per key (empty unless the mission ends at an exit).
@@ -35,7 +40,14 @@ class CompileReasons {
                           bool ends_at_exit) const;
 
  private:
-  std::string unreachable(const Task& task) const;
+  std::string unreachable(const Task& task, const std::vector<Node>& keys) const;
+  // What stands between `from` and `to` when no route joins them (reach_barriers.h): ": in the
+  // way: ..." naming each limit or closure and its object, ": the network does not connect them",
+  // or, when only the battery is in the way, nothing.
+  std::string barriers(std::span<const Node> from, std::span<const Node> to) const;
+  std::vector<Node> exit_nodes() const;
+  // The diagnosis from the origin, built on first use: every unreachable task asks it.
+  const ReachDiagnoser& from_origin() const;
   std::string energy(Cost cost) const;
   std::string limits() const;
   // "the start (place)" when the robot is where the mission starts and has used no energy, else
@@ -47,6 +59,8 @@ class CompileReasons {
   const Mission& mission_;
   const MissionProgress& progress_;
   Cost bound_;
+  Node origin_;
+  mutable std::unique_ptr<ReachDiagnoser> from_origin_;
 };
 
 }  // namespace sewerplan::domain::detail

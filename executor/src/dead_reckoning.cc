@@ -19,8 +19,9 @@ bool to_manhole(const Job& job) {
 
 double DeadReckoning::direction_of(const Job& job) const {
   const double front = heading_end_ == 1 ? 1.0 : -1.0;
-  if (std::holds_alternative<DriveForward>(job) || std::holds_alternative<Push>(job)) return front;
+  if (std::holds_alternative<DriveForward>(job)) return front;
   if (std::holds_alternative<DriveBackward>(job)) return -front;
+  if (const auto* push = std::get_if<Push>(&job)) return push->backward ? -front : front;
   if (const auto* scan = std::get_if<Scan>(&job)) return scan->backward ? -front : front;
   return 0;
 }

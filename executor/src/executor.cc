@@ -87,6 +87,10 @@ void Executor::subscribe_plans(PlanObserver observer) {
   plan_observers_.push_back(std::move(observer));
 }
 
+void Executor::subscribe_jobs(JobObserver observer) {
+  job_observers_.push_back(std::move(observer));
+}
+
 void Executor::subscribe_log(LogFile& log) {
   logs_.push_back(&log);
   observers_.push_back([&log](const Event& event) { log.append(to_json_line(event) + '\n'); });
@@ -106,6 +110,7 @@ class Executor::Run {
         options_(e.options_),
         observers_(e.observers_),
         plan_observers_(e.plan_observers_),
+        job_observers_(e.job_observers_),
         logs_(e.logs_),
         halt_(e.halt_),
         tracker_(e.map_, e.replanner_.progress().position, e.replanner_.heading_end()),
@@ -445,6 +450,7 @@ class Executor::Run {
   hal::JobReport execute_job(const Job& job) {
     if (halted()) return halted_report();
     const domain::RobotPosition before = tracker_.position();
+    const double direction = tracker_.direction_of(job);
     const hal::JobReport r = robot_.execute(job);
     ++report_.jobs;
     tracker_.advance(job, r);
@@ -458,7 +464,17 @@ class Executor::Run {
       if (a->worth_logging()) emit(arrival_event(*a));
       if (!a->verification.matches()) settle(std::move(*a));
     }
+    notify_job_observers(job, r, before, direction);
     return r;
+  }
+
+  // The job observers see `job` with where the robot was before it and where the controller
+  // has it now (after manhole verification settled it).
+  void notify_job_observers(const Job& job, const hal::JobReport& report,
+                            const domain::RobotPosition& before, double direction) {
+    if (job_observers_.empty()) return;
+    const JobSeen seen{job, report, before, tracker_.position(), direction};
+    for (const JobObserver& observer : job_observers_) observer(seen);
   }
 
   Result<void> reboot() {
@@ -475,9 +491,12 @@ class Executor::Run {
     if (!own) return std::nullopt;
     hal::JobReport rest = *own;
     rest.progress_m = std::max(0.0, own->progress_m - std::max(0.0, heard.progress_m));
+    const domain::RobotPosition before = tracker_.position();
+    const double direction = tracker_.direction_of(job);
     tracker_.advance(job, rest);
     // The link lost part of the job: the filter starts again from the tracking's place.
     localising_.reset(tracker_.position(), tracker_.heading_end());
+    notify_job_observers(job, rest, before, direction);
     emit(JobEvent{.job = detail::job_text(job), .progress_m = own->progress_m, .ok = own->ok()});
     if (!own->ok()) {
       emit(ErrorEvent{
@@ -544,6 +563,7 @@ class Executor::Run {
   const ExecutorOptions& options_;
   const std::vector<EventObserver>& observers_;
   const std::vector<PlanObserver>& plan_observers_;
+  const std::vector<JobObserver>& job_observers_;
   const std::vector<LogFile*>& logs_;
   const std::atomic<bool>& halt_;
   detail::DeadReckoning tracker_;

@@ -17,7 +17,7 @@ std::optional<Job> rest_of(const Job& job, double done_m) {
                    return DriveBackward{j.speed_mps, std::max(0.0, j.distance_m - done_m)};
                  },
                  [&](const Push& j) -> std::optional<Job> {
-                   return Push{j.speed_mps, std::max(0.0, j.distance_m - done_m)};
+                   return Push{j.speed_mps, std::max(0.0, j.distance_m - done_m), j.backward};
                  },
                  [&](const Scan& j) -> std::optional<Job> {
                    return Scan{j.speed_mps, std::max(0.0, j.distance_m - done_m), j.backward};
@@ -39,6 +39,10 @@ Job back_off(const Job& job, double distance_m) {
   return std::visit(Overloaded{[&](const DriveBackward& j) -> Job {
                                  return DriveForward{j.speed_mps, distance_m};
                                },
+                               [&](const Push& j) -> Job {
+                                 if (j.backward) return DriveForward{j.speed_mps, distance_m};
+                                 return DriveBackward{j.speed_mps, distance_m};
+                               },
                                [&](const Scan& j) -> Job {
                                  if (j.backward) return DriveForward{j.speed_mps, distance_m};
                                  return DriveBackward{j.speed_mps, distance_m};
@@ -53,12 +57,27 @@ Job back_off(const Job& job, double distance_m) {
 }
 
 std::optional<Job> push_for(const Job& job) {
-  if (const auto* d = std::get_if<DriveForward>(&job)) return Push{d->speed_mps, d->distance_m};
-  if (const auto* p = std::get_if<Push>(&job)) return *p;
-  if (const auto* s = std::get_if<Scan>(&job); s && !s->backward) {
-    return Push{s->speed_mps, s->distance_m};
-  }
-  return std::nullopt;
+  return std::visit(Overloaded{[](const DriveForward& j) -> std::optional<Job> {
+                                 return Push{j.speed_mps, j.distance_m, false};
+                               },
+                               [](const DriveBackward& j) -> std::optional<Job> {
+                                 return Push{j.speed_mps, j.distance_m, true};
+                               },
+                               [](const Push& j) -> std::optional<Job> { return j; },
+                               [](const Scan& j) -> std::optional<Job> {
+                                 return Push{j.speed_mps, j.distance_m, j.backward};
+                               },
+                               [](const auto&) -> std::optional<Job> { return std::nullopt; }},
+                    job);
+}
+
+hal::Approach approach_of(const Job& job) {
+  const bool backward = std::visit(
+      Overloaded{[](const DriveBackward&) { return true; },
+                 [](const Push& j) { return j.backward; }, [](const Scan& j) { return j.backward; },
+                 [](const auto&) { return false; }},
+      job);
+  return backward ? hal::Approach::kRear : hal::Approach::kFront;
 }
 
 std::string job_text(const Job& job) {

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "sewerplan/core/job.h"
+#include "sewerplan/hal/obstacle_clearing.h"
 
 namespace sewerplan::executor::detail {
 
@@ -22,9 +23,13 @@ Job lengthened(const Job& job, double extra_m);
 // A drive of `distance_m` the other way, at the job's speed.
 Job back_off(const Job& job, double distance_m);
 
-// A push over the rest of a forward drive; none for a backward one (the robot pushes with its
-// head).
+// A push over the rest of a drive, the same way (forward with the front head, backward with the
+// rear one); none for a job that is not a drive.
 std::optional<Job> push_for(const Job& job);
+
+// How a drive meets what stops it: front first (forward) or rear first (backward); front for a job
+// that is not a drive.
+hal::Approach approach_of(const Job& job);
 
 // The job as the event log writes it.
 std::string job_text(const Job& job);

@@ -180,8 +180,10 @@ StagedRecovery::Cleared StagedRecovery::clear_blockage(Job rest) {
     if (auto done = retry(rest, RecoveryPhase::kLiftHeadAndRetry, 0)) return *done;
   }
   for (int i = 0; i < stage_tries(c, RecoveryPhase::kPush); ++i) {
+    // The same way the drive went: backing, with the rear head (hal/obstacle_clearing.h says
+    // from which sides a push works).
     const std::optional<Job> push_job = push_for(rest);
-    if (!push_job) break;  // the robot pushes with its head only (hal/obstacle_clearing.h)
+    if (!push_job || !hal::works_from(hal::Clearing::kPush, approach_of(*push_job))) break;
     hal::JobReport push = host_.execute_job(*push_job);
     host_.log_recovery(RecoveryPhase::kPush, push.ok());
     if (push.ok()) return Cleared{Cleared::How::kDone};

@@ -169,6 +169,28 @@ void mission_features(const SewerMap& map, const Mission& mission, Writer& w) {
   }
 }
 
+void discrepancy_feature(const SewerMap& map, const Discrepancy& d, Writer& w) {
+  std::optional<MapXY> at;
+  if (d.manhole) {
+    at = place_point(map, *d.manhole);
+  } else if (d.pipe) {
+    const double offset = d.kind == Discrepancy::Kind::kUnmappedJunction
+                              ? d.offset_m
+                              : map.pipe(*d.pipe).length_m / 2;
+    at = pipe_point(map, *d.pipe, offset);
+  }
+  if (!at) return;
+  w.point(*at, {{"layer", "discrepancy"},
+                {"kind", std::string(to_string(d.kind))},
+                {"description", describe(d, map)},
+                {"value", d.value},
+                {"map_value", d.map_value},
+                {"sigma", d.sigma},
+                {"pipe", d.pipe ? Json(map.pipe(*d.pipe).name) : Json()},
+                {"manhole", d.manhole ? Json(map.manhole(*d.manhole).name) : Json()},
+                {"slot", d.slot ? Json(to_paper_number(*d.slot)) : Json()}});
+}
+
 }  // namespace
 
 Result<std::string> to_geojson(const GeoJsonInput& in, const Wgs84Projection& wgs84) {
@@ -193,6 +215,7 @@ Result<std::string> to_geojson(const GeoJsonInput& in, const Wgs84Projection& wg
               {{"layer", "blocked"}, {"pipe", map.pipe(b.pipe).name}, {"offset_m", b.offset_m}});
     }
   }
+  for (const FoundDiscrepancy& f : in.discrepancies) discrepancy_feature(map, f.discrepancy, w);
   return w.finish(map.name(), wgs84.crs());
 }
 

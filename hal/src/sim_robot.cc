@@ -43,6 +43,12 @@ InPipe pipe_end_pose(const SewerMap& map, ManholeId manhole, SlotIndex slot, boo
   return InPipe{s.pipe, offset_m, towards_end1 ? Heading::kTowardsEnd1 : Heading::kTowardsEnd0};
 }
 
+// Whether a push that meets an obstacle of `kind` with `approach` moves it (the one table,
+// obstacle_clearing.h).
+bool pushed_away(ObstacleKind kind, Approach approach) {
+  return cleared_by(kind) == Clearing::kPush && clears_from(kind, approach);
+}
+
 }  // namespace
 
 // Where a drive stops and why.
@@ -186,7 +192,9 @@ JobReport SimRobot::run(const Job& job) {
       Overloaded{
           [&](const DriveForward& j) { return drive(j.speed_mps, j.distance_m, +1, false); },
           [&](const DriveBackward& j) { return drive(j.speed_mps, j.distance_m, -1, false); },
-          [&](const Push& j) { return drive(j.speed_mps, j.distance_m, +1, true); },
+          [&](const Push& j) {
+            return drive(j.speed_mps, j.distance_m, j.backward ? -1 : +1, true);
+          },
           [&](const Scan& j) {
             return drive(j.speed_mps, j.distance_m, j.backward ? -1 : +1, false);
           },
@@ -230,7 +238,7 @@ JobReport SimRobot::drive(double speed_mps, double distance_m, int direction, bo
 }
 
 SimRobot::Move SimRobot::plan_move(const InPipe& from, double distance_m, int sign,
-                                   bool push) const {
+                                   std::optional<Approach> push) const {
   const Pipe& pipe = map_.pipe(from.pipe);
   const double to_end_m = sign > 0 ? pipe.length_m - from.offset_m : from.offset_m;
   Move move;
@@ -253,7 +261,7 @@ SimRobot::Move SimRobot::plan_move(const InPipe& from, double distance_m, int si
   };
   for (std::size_t i = 0; i < faults_.obstacles.size(); ++i) {
     const Obstacle& o = faults_.obstacles[i];
-    if (obstacle_cleared_[i] || (push && cleared_by(o.kind) == Clearing::kPush)) continue;
+    if (obstacle_cleared_[i] || (push && pushed_away(o.kind, *push))) continue;
     consider(o.pipe, o.offset_m, Move::Why::kObstacle);
   }
   for (const DangerSpot& d : faults_.danger_spots) consider(d.pipe, d.offset_m, Move::Why::kDanger);
@@ -264,16 +272,17 @@ JobReport SimRobot::drive_in_pipe(const InPipe& from, double speed_mps, double d
                                   int direction, bool push) {
   const Pipe& pipe = map_.pipe(from.pipe);
   const int sign = (from.heading == Heading::kTowardsEnd1 ? 1 : -1) * direction;
-  Move move = plan_move(from, distance_m, sign, push);
+  const Approach approach = direction > 0 ? Approach::kFront : Approach::kRear;
+  Move move = plan_move(from, distance_m, sign, push ? std::optional(approach) : std::nullopt);
   JobReport report;
   std::optional<Interrupt> stop = interrupt_within(move.distance_m / speed_mps);
   report.progress_m = stop ? std::min(move.distance_m, stop->after_s * speed_mps) : move.distance_m;
   report.duration_s = stop ? stop->after_s : move.distance_m / speed_mps;
   if (push) {
-    // A push (with the head: forward) moves every obstacle a push clears (cleared_by) it reaches.
+    // A push moves every obstacle a push clears from its side (pushed_away) that it reaches.
     for (std::size_t i = 0; i < faults_.obstacles.size(); ++i) {
       const Obstacle& o = faults_.obstacles[i];
-      if (o.pipe != from.pipe || cleared_by(o.kind) != Clearing::kPush) continue;
+      if (o.pipe != from.pipe || !pushed_away(o.kind, approach)) continue;
       const double ahead_m = (o.offset_m - from.offset_m) * sign;
       if (ahead_m > 0 && ahead_m - options_.clearance_m <= report.progress_m) {
         obstacle_cleared_[i] = true;

@@ -80,6 +80,6 @@ def mission(map, *, start, tasks=(), exits="map", profile="makro-1.1", battery_r
 
 
 def write_mission(mission, path):
-    """Writes a mission in its JSON format."""
-    with open(path, "w", encoding="utf-8") as out:
-        out.write(mission.to_json())
+    """Writes a mission in its JSON format, atomically; a failed write raises Error naming the
+    file (write_text_file, core/output_file.h)."""
+    write_text_file(str(path), mission.to_json())

@@ -12,6 +12,7 @@
 #include "sewerplan/core/generator.h"
 #include "sewerplan/core/map_io.h"
 #include "sewerplan/core/map_json.h"
+#include "sewerplan/core/output_file.h"
 #include "sewerplan/core/robot_profile.h"
 #include "sewerplan/domain/mission_generator.h"
 #ifdef SEWERPLAN_WITH_GIS
@@ -294,6 +295,15 @@ void bind_map(py::module_& m) {
       },
       py::arg("map"), py::arg("path"), py::arg("format") = py::none(),
       "Writes a map as JSON or the ASCII database (the extension decides without format).");
+  m.def(
+      "write_text_file",
+      [](const std::filesystem::path& path, const std::string& text) {
+        const Result<void> written = write_text_file(path, text);
+        if (!written.has_value()) raise_error(written.error());
+      },
+      py::arg("path"), py::arg("text"),
+      "Writes text as a whole file, atomically (core/output_file.h): a failure raises Error "
+      "(code 'io') naming the file and the reason.");
   m.def(
       "generate_network",
       [](std::size_t manholes, std::uint64_t seed, const std::string& topology) {

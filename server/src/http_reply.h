@@ -19,8 +19,12 @@ namespace sewerplan::server {
 
 inline constexpr int kBadRequest = 400;
 inline constexpr int kUnauthorized = 401;
+inline constexpr int kForbidden = 403;  // a Host or Origin not the station's (request_guard.h)
 inline constexpr int kNotFound = 404;
-inline constexpr int kConflict = 409;       // a limit of the station: maps, campaigns at once
+inline constexpr int kMethodNotAllowed = 405;
+inline constexpr int kConflict = 409;  // a limit of the station: maps, campaigns at once
+inline constexpr int kPayloadTooLarge = 413;
+inline constexpr int kUnsupportedMediaType = 415;
 inline constexpr int kUnprocessable = 422;  // well-formed, but not a valid mission, log or plan
 
 // Debian's httplib compresses every "application/json", "application/javascript" and "text/..."

@@ -46,23 +46,25 @@
 #include "json_body.h"
 #include "map_geometry.h"
 #include "plan_route.h"
+#include "request_guard.h"
+#include "worker_pool.h"
 #include <httplib.h>
+#include <sys/socket.h>
 
 namespace sewerplan::server {
 namespace {
 
-// Why a body was refused as too large. httplib caps form-encoded bodies (the type curl's --data
-// sends by default) at CPPHTTPLIB_FORM_URL_ENCODED_PAYLOAD_MAX_LENGTH whatever our own limit, so a
-// 1 MB file sent that way would read as over our 16 MB limit: say what to send instead.
-std::string body_over_limit(const httplib::Request& req, std::size_t limit) {
-  if (req.get_header_value("Content-Type").starts_with("application/x-www-form-urlencoded")) {
-    return "a form-encoded body (Content-Type: application/x-www-form-urlencoded) is limited to " +
-           std::to_string(CPPHTTPLIB_FORM_URL_ENCODED_PAYLOAD_MAX_LENGTH) +
-           " bytes: send the file as it is, with its own Content-Type (application/json, "
-           "application/xml, text/plain; curl: --data-binary @FILE -H 'Content-Type: ...')";
-  }
-  return "the request body is over the size limit of " + std::to_string(limit) + " bytes";
-}
+// httplib's server with room for many connections arriving at once: httplib listens with a backlog
+// of 5, and a connection beyond it waits for its client to try again (after 1 s, 3 s, 7 s, ...):
+// 100 connections opened at once took 11 s to be accepted.
+class HttpServer : public httplib::Server {
+ public:
+  // After a bind: listen() again, with the system's largest backlog.
+  void widen_backlog() { ::listen(svr_sock_, SOMAXCONN); }
+};
+
+// How long a connection may send nothing: before its request, or between two reads of it.
+constexpr time_t kIdleTimeoutS = 5;
 
 // A map's geometry as the page reads it (map_geometry.h), built once from the map as given: every
 // request sends these bytes without a copy, and the map with condition data joined shares them
@@ -154,7 +156,7 @@ struct StationServer::Impl {
   mutable std::mutex maps_mutex;
   // Declared before `http`, so that it outlives the requests that use it.
   std::unique_ptr<CampaignService> campaigns;
-  httplib::Server http;
+  HttpServer http;
   std::atomic<bool> running{false};
   std::atomic<bool> stopping{false};
 
@@ -267,13 +269,14 @@ struct StationServer::Impl {
   void routes();
   void list_maps(httplib::Response& res) const;
   void driveability(const httplib::Request& req, httplib::Response& res) const;
-  void upload_map(const httplib::Request& req, httplib::Response& res);
-  void upload_condition(const httplib::Request& req, httplib::Response& res);
-  void validate(const httplib::Request& req, httplib::Response& res) const;
-  void plan(const httplib::Request& req, httplib::Response& res) const;
-  void simulate(const httplib::Request& req, httplib::Response& res) const;
-  void replay(const httplib::Request& req, httplib::Response& res) const;
-  void campaign(const httplib::Request& req, httplib::Response& res);
+  void upload_map(const httplib::Request& req, const std::string& body, httplib::Response& res);
+  void upload_condition(const httplib::Request& req, const std::string& body,
+                        httplib::Response& res);
+  void validate(const httplib::Request& req, const std::string& body, httplib::Response& res) const;
+  void plan(const httplib::Request& req, const std::string& body, httplib::Response& res) const;
+  void simulate(const httplib::Request& req, const std::string& body, httplib::Response& res) const;
+  void replay(const httplib::Request& req, const std::string& body, httplib::Response& res) const;
+  void campaign(const httplib::Request& req, const std::string& body, httplib::Response& res);
   // Why an /api/ request is refused for its token, if it is.
   std::optional<std::string> unauthorised(const httplib::Request& req) const;
 };
@@ -309,7 +312,8 @@ void StationServer::Impl::list_maps(httplib::Response& res) const {
 // POST /api/maps?name=FILE[&format=F]: the body is a map file in any format read_map reads (the
 // format from ?format=, else the name's extension, else the content), read in memory: nothing
 // is written on the server. Its ID is the name's stem, made unique.
-void StationServer::Impl::upload_map(const httplib::Request& req, httplib::Response& res) {
+void StationServer::Impl::upload_map(const httplib::Request& req, const std::string& body,
+                                     httplib::Response& res) {
   const std::string name = req.has_param("name") ? req.get_param_value("name") : "upload";
   const std::filesystem::path file = std::filesystem::path(name).filename();
   std::optional<MapFormat> format;
@@ -317,12 +321,12 @@ void StationServer::Impl::upload_map(const httplib::Request& req, httplib::Respo
     format = map_format_from_name(req.get_param_value("format"));
     if (!format) return bad_request(res, "format: expected json, ascii, swmm or isybau");
   } else {
-    Result<MapFormat> detected = detect_map_format(file, req.body);
+    Result<MapFormat> detected = detect_map_format(file, body);
     if (!detected.has_value()) return send_error(res, kUnprocessable, detected.error());
     format = *detected;
   }
   Diagnostics diagnostics;
-  Result<SewerMap> map = parse_map(req.body, file.string(), *format, diagnostics);
+  Result<SewerMap> map = parse_map(body, file.string(), *format, diagnostics);
   if (!map.has_value()) return send_error(res, kUnprocessable, map.error(), diagnostics);
   Upload upload(*this);
   if (const std::optional<Error> full = upload.reserve(file.stem().string())) {
@@ -350,7 +354,8 @@ void StationServer::Impl::upload_map(const httplib::Request& req, httplib::Respo
 // Zustandsdaten, as `--condition FILE`), joined to the map as it was given (a later upload
 // replaces them), read in memory. The map keeps its ID; requests already running keep the map
 // they started with.
-void StationServer::Impl::upload_condition(const httplib::Request& req, httplib::Response& res) {
+void StationServer::Impl::upload_condition(const httplib::Request& req, const std::string& body,
+                                           httplib::Response& res) {
   const auto m = find_map(req, res);
   if (!m) return;
   const std::string name =
@@ -359,7 +364,7 @@ void StationServer::Impl::upload_condition(const httplib::Request& req, httplib:
           .string();
   Diagnostics diagnostics;
   // The one copy: the joined map owns its findings. The map as given and the geometry are shared.
-  Result<SewerMap> joined = read_condition_isybau(*m->given, req.body, name, diagnostics);
+  Result<SewerMap> joined = read_condition_isybau(*m->given, body, name, diagnostics);
   if (!joined.has_value()) return send_error(res, kUnprocessable, joined.error(), diagnostics);
   auto loaded = std::make_shared<const LoadedMap>(
       LoadedMap{m->id, m->given, std::make_shared<const SewerMap>(std::move(*joined)), m->geometry,
@@ -398,11 +403,12 @@ void StationServer::Impl::driveability(const httplib::Request& req, httplib::Res
   res.set_content(j.dump(), kJsonType);
 }
 
-void StationServer::Impl::validate(const httplib::Request& req, httplib::Response& res) const {
+void StationServer::Impl::validate(const httplib::Request& req, const std::string& body,
+                                   httplib::Response& res) const {
   const auto m = find_map(req, res);
   if (!m) return;
   Diagnostics diagnostics;
-  Result<Mission> mission = read_mission_json(req.body, "mission.json", *m->map, diagnostics);
+  Result<Mission> mission = read_mission_json(body, "mission.json", *m->map, diagnostics);
   Json j = {{"valid", mission.has_value()},
             {"errors", diagnostics_json(diagnostics, Severity::kError)},
             {"warnings", diagnostics_json(diagnostics, Severity::kWarning)}};
@@ -412,12 +418,13 @@ void StationServer::Impl::validate(const httplib::Request& req, httplib::Respons
   send_json(res, j);
 }
 
-void StationServer::Impl::plan(const httplib::Request& req, httplib::Response& res) const {
+void StationServer::Impl::plan(const httplib::Request& req, const std::string& body,
+                               httplib::Response& res) const {
   const auto m = find_map(req, res);
   if (!m) return;
   const std::optional<double> limit = time_limit(req, options.max_plan_time_s);
   if (!limit) return bad_request(res, "time_limit: expected seconds > 0");
-  std::optional<Mission> mission = read_body_mission(req.body, *m->map, res);
+  std::optional<Mission> mission = read_body_mission(body, *m->map, res);
   if (!mission || !attach_motion(*m, req, *mission, res)) return;
   const std::optional<AppliedRisk> risk = apply_risk(*m, req, *mission, res);
   if (!risk) return;
@@ -456,10 +463,11 @@ void StationServer::Impl::plan(const httplib::Request& req, httplib::Response& r
   send_json(res, j);
 }
 
-void StationServer::Impl::simulate(const httplib::Request& req, httplib::Response& res) const {
+void StationServer::Impl::simulate(const httplib::Request& req, const std::string& text,
+                                   httplib::Response& res) const {
   const auto m = find_map(req, res);
   if (!m) return;
-  const Result<Json> parsed = parse_json_body(req.body);
+  const Result<Json> parsed = parse_json_body(text);
   if (!parsed.has_value()) return bad_request(res, parsed.error().message);
   const Json& body = *parsed;
   if (!body.is_object())
@@ -524,12 +532,13 @@ void StationServer::Impl::simulate(const httplib::Request& req, httplib::Respons
       });
 }
 
-void StationServer::Impl::replay(const httplib::Request& req, httplib::Response& res) const {
+void StationServer::Impl::replay(const httplib::Request& req, const std::string& body,
+                                 httplib::Response& res) const {
   const auto m = find_map(req, res);
   if (!m) return;
   Diagnostics diagnostics;
   Result<std::vector<executor::Event>> events =
-      executor::read_event_log(req.body, "events.jsonl", diagnostics);
+      executor::read_event_log(body, "events.jsonl", diagnostics);
   if (!events.has_value()) return send_error(res, kUnprocessable, events.error(), diagnostics);
   Json list = Json::array();
   for (const executor::Event& e : *events) list.push_back(Json::parse(executor::to_json_line(e)));
@@ -537,10 +546,11 @@ void StationServer::Impl::replay(const httplib::Request& req, httplib::Response&
 }
 
 // POST /api/maps/ID/campaign: the mission read as /simulate reads it, the rest by the service.
-void StationServer::Impl::campaign(const httplib::Request& req, httplib::Response& res) {
+void StationServer::Impl::campaign(const httplib::Request& req, const std::string& text,
+                                   httplib::Response& res) {
   const auto m = find_map(req, res);
   if (!m) return;
-  const Result<Json> parsed = parse_json_body(req.body);
+  const Result<Json> parsed = parse_json_body(text);
   if (!parsed.has_value()) return bad_request(res, parsed.error().message);
   const Json& body = *parsed;
   if (!body.is_object())
@@ -555,24 +565,53 @@ void StationServer::Impl::campaign(const httplib::Request& req, httplib::Respons
 }
 
 void StationServer::Impl::routes() {
+  // Requests with a Content-Length; a body in another transfer encoding (chunked) is read with the
+  // limit by post() below, decompressed bytes counted.
   http.set_payload_max_length(options.max_body_bytes);
-  // A browser keeps idle connections open, each holding a worker for the keep-alive timeout, and
-  // a simulation holds one while it streams: more workers than httplib's default of 8.
-  http.new_task_queue = [] { return new httplib::ThreadPool(32); };
-  http.set_keep_alive_timeout(2);
-  http.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
-    if (!req.path.starts_with("/api/")) return httplib::Server::HandlerResponse::Unhandled;
+  // A browser keeps idle connections open, a simulation holds one while it streams, and any local
+  // program can open many that send nothing: each holds a worker, started when needed, up to
+  // max_connections (worker_pool.h). One request a connection: no connection waits idle between
+  // requests, and no bytes left unread of a refused body are ever read as a request of their own.
+  // A connection that sends nothing for 5 s (before its request, or between two reads) is closed.
+  http.new_task_queue = [n = options.max_connections] { return new WorkerPool(n); };
+  http.set_keep_alive_max_count(1);
+  http.set_keep_alive_timeout(kIdleTimeoutS);
+  http.set_read_timeout(kIdleTimeoutS, 0);
+  http.set_write_timeout(kIdleTimeoutS, 0);
+  // Only SO_REUSEADDR (a restart binds while the last run's connections linger), not httplib's
+  // SO_REUSEPORT, with which a second server binds the same port and takes half the connections.
+  http.set_socket_options([](socket_t sock) {
+    int yes = 1;
+    ::setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  });
+  const GuardOptions guard{options.host, options.allowed_hosts, options.max_body_bytes};
+  // Who may drive the station (request_guard.h), then the token; before the body is read, and
+  // before a client that asks ("Expect: 100-continue", as curl does for a large body) sends it.
+  const auto refused = [this, guard](const httplib::Request& req, httplib::Response& res) {
+    if (const std::optional<Refusal> r = check_request(req, guard)) {
+      send_json(res, {{"error", {{"code", r->code}, {"message", r->message}}}}, r->status);
+      return true;
+    }
+    if (!req.path.starts_with("/api/")) return false;
     if (const std::optional<std::string> why = unauthorised(req)) {
       send_json(res, {{"error", {{"code", "unauthorised"}, {"message", *why}}}}, kUnauthorized);
-      return httplib::Server::HandlerResponse::Handled;
+      return true;
     }
-    return httplib::Server::HandlerResponse::Unhandled;
+    return false;
+  };
+  http.set_pre_routing_handler([refused](const httplib::Request& req, httplib::Response& res) {
+    return refused(req, res) ? httplib::Server::HandlerResponse::Handled
+                             : httplib::Server::HandlerResponse::Unhandled;
   });
+  http.set_expect_100_continue_handler(
+      [refused](const httplib::Request& req, httplib::Response& res) {
+        return refused(req, res) ? res.status : 100;
+      });
   // A status without a body of ours (no route, a body over the limit, a bad request line): JSON.
   http.set_error_handler([limit = options.max_body_bytes](const httplib::Request& req,
                                                           httplib::Response& res) {
     if (!res.body.empty()) return;
-    const std::string message = res.status == 413   ? body_over_limit(req, limit)
+    const std::string message = res.status == 413   ? body_over_limit(limit)
                                 : res.status == 404 ? "nothing at " + req.path
                                                     : "bad request";
     send_json(res,
@@ -585,8 +624,44 @@ void StationServer::Impl::routes() {
       });
   using Req = httplib::Request;
   using Res = httplib::Response;
+  // Every POST reads its body here, whatever its transfer encoding, and stops at the limit: a
+  // chunked body carries no length that httplib's limit could see, and a compressed one is counted
+  // as it is decompressed.
+  const auto post = [this](const std::string& pattern,
+                           std::function<void(const Req&, const std::string&, Res&)> handle) {
+    http.Post(pattern, [this, handle = std::move(handle)](const Req& req, Res& res,
+                                                          const httplib::ContentReader& reader) {
+      const std::size_t limit = options.max_body_bytes;
+      std::string body;
+      bool over = false;
+      const bool read = reader([&](const char* data, std::size_t size) {
+        over = size > limit - body.size();
+        if (!over) body.append(data, size);
+        return !over;
+      });
+      if (over) {
+        return send_json(res,
+                         {{"error", {{"code", "http-413"}, {"message", body_over_limit(limit)}}}},
+                         kPayloadTooLarge);
+      }
+      if (!read) {
+        // httplib's status: 415 for a Content-Encoding it does not decompress, else 400.
+        const std::string message =
+            res.status == kUnsupportedMediaType
+                ? "Content-Encoding '" + req.get_header_value("Content-Encoding") +
+                      "': not one the station reads; send the body as it is"
+                : "the request body could not be read (cut short, or a bad chunk)";
+        const int status = res.status >= 400 ? res.status : kBadRequest;
+        return send_json(
+            res, {{"error", {{"code", "http-" + std::to_string(status)}, {"message", message}}}},
+            status);
+      }
+      handle(req, body, res);
+    });
+  };
   http.Get("/api/maps", [this](const Req&, Res& res) { list_maps(res); });
-  http.Post("/api/maps", [this](const Req& req, Res& res) { upload_map(req, res); });
+  post("/api/maps",
+       [this](const Req& req, const std::string& body, Res& res) { upload_map(req, body, res); });
   http.Get(R"(/api/maps/([^/]+))", [this](const Req& req, Res& res) {
     if (const auto m = find_map(req, res))
       send_shared(res, m->geometry, m->geometry->json, kJsonType);
@@ -597,22 +672,32 @@ void StationServer::Impl::routes() {
       send_shared(res, m->geometry, m->geometry->binary, "application/octet-stream");
     }
   });
-  http.Post(R"(/api/maps/([^/]+)/condition)",
-            [this](const Req& req, Res& res) { upload_condition(req, res); });
+  post(R"(/api/maps/([^/]+)/condition)", [this](const Req& req, const std::string& body, Res& res) {
+    upload_condition(req, body, res);
+  });
   http.Get(R"(/api/maps/([^/]+)/driveability)",
            [this](const Req& req, Res& res) { driveability(req, res); });
-  http.Post(R"(/api/maps/([^/]+)/validate)",
-            [this](const Req& req, Res& res) { validate(req, res); });
-  http.Post(R"(/api/maps/([^/]+)/plan)", [this](const Req& req, Res& res) { plan(req, res); });
-  http.Post(R"(/api/maps/([^/]+)/simulate)",
-            [this](const Req& req, Res& res) { simulate(req, res); });
-  http.Post(R"(/api/maps/([^/]+)/replay)", [this](const Req& req, Res& res) { replay(req, res); });
-  http.Post(R"(/api/maps/([^/]+)/campaign)",
-            [this](const Req& req, Res& res) { campaign(req, res); });
+  post(R"(/api/maps/([^/]+)/validate)",
+       [this](const Req& req, const std::string& body, Res& res) { validate(req, body, res); });
+  post(R"(/api/maps/([^/]+)/plan)",
+       [this](const Req& req, const std::string& body, Res& res) { plan(req, body, res); });
+  post(R"(/api/maps/([^/]+)/simulate)",
+       [this](const Req& req, const std::string& body, Res& res) { simulate(req, body, res); });
+  post(R"(/api/maps/([^/]+)/replay)",
+       [this](const Req& req, const std::string& body, Res& res) { replay(req, body, res); });
+  post(R"(/api/maps/([^/]+)/campaign)",
+       [this](const Req& req, const std::string& body, Res& res) { campaign(req, body, res); });
   http.Get("/api/campaign", [this](const Req&, Res& res) { campaigns->status(res); });
-  http.Post("/api/campaign/cancel", [this](const Req&, Res& res) { campaigns->cancel(res); });
+  post("/api/campaign/cancel",
+       [this](const Req&, const std::string&, Res& res) { campaigns->cancel(res); });
   http.Get(R"(/api/campaign/runs/([^/]+))",
            [this](const Req& req, Res& res) { campaigns->run_events(req, res); });
+  // Any other POST: a 404 without its body read (httplib would read it whole, with no limit if
+  // it is chunked).
+  http.Post(".*", [](const Req& req, Res& res, const httplib::ContentReader&) {
+    send_json(res, {{"error", {{"code", "http-404"}, {"message", "nothing at " + req.path}}}},
+              kNotFound);
+  });
   // The page: httplib refuses paths that climb out of the mount ("..").
   if (!options.web_root.empty()) {
     http.set_mount_point("/", options.web_root.string());
@@ -667,6 +752,7 @@ Result<int> StationServer::bind() {
     return Error{ErrorCode::kIo, "cannot listen on " + impl_->options.host + ":" +
                                      std::to_string(impl_->options.port)};
   }
+  impl_->http.widen_backlog();
   return port;
 }
 

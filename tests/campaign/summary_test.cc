@@ -22,7 +22,6 @@ RunRecord record(std::size_t index, std::size_t oracle_tasks, bool oracle_can_en
   r.tasks = 4;
   r.oracle_tasks = oracle_tasks;
   r.oracle_can_end = oracle_can_end;
-  r.oracle_can_end_either_way = oracle_can_end;
   r.could_reach_exit = oracle_can_end && !ours.disabled;
   r.ours = std::move(ours);
   r.baseline = std::move(baseline);
@@ -126,6 +125,21 @@ TEST(CampaignSummary, TheBaselinesMissedExitsCountOnlyRunsWhereItsRobotCouldMove
   EXPECT_EQ(s.ours.could_reach_exit, 2U);
   EXPECT_EQ(s.ours.missed_exits, 0U);
   EXPECT_TRUE(s.clean());
+}
+
+// A run the oracle cannot end (with the whole battery, knowing every fault, on the reserve as the
+// last way out) is no missed exit of any policy, whatever its robot did; one it can end is, for a
+// robot that could move.
+TEST(CampaignSummary, ARunTheOracleCannotEndIsNoMissedExit) {
+  const Summary s = summarize(
+      spec(),
+      {record(0, 0, false, ended_with(1, Outcome::kBeacon), ended_with(0, Outcome::kBeacon)),
+       record(1, 1, true, ended_with(1, Outcome::kBeacon), ended_with(1))});
+  EXPECT_EQ(s.ours.could_reach_exit, 1U);
+  EXPECT_EQ(s.ours.missed_exits, 1U);
+  EXPECT_EQ(s.baseline.could_reach_exit, 1U);
+  EXPECT_EQ(s.baseline.missed_exits, 0U);
+  EXPECT_FALSE(s.clean());
 }
 
 TEST(CampaignSummary, TheChartShowsTheVerdictMissedExitsRatesAndLimits) {

@@ -80,6 +80,31 @@ expect 3 "cannot write $file: Not a directory" -- \
   "$sp" campaign --map "$ais" --mission "$mission" --runs 2 -q -o "$file"
 expect 3 "cannot write $file/sub: Not a directory" -- \
   "$sp" campaign --map "$ais" --mission "$mission" --runs 2 -q -o "$file/sub"
+# The campaign's runs are written as they finish (issue 30): a runs.jsonl that cannot be written
+# stops the campaign, exit 3 naming it; a campaign killed mid-way keeps the runs so far, each line
+# whole, and merge names the missing ones.
+mkdir "$tmp/camp-full"
+ln -s /dev/full "$tmp/camp-full/runs.jsonl"
+expect 3 "cannot write $tmp/camp-full/runs.jsonl: No space left on device.*the campaign stopped after [0-9]+ runs" -- \
+  "$sp" campaign --map "$ais" --mission "$mission" --runs 50 -j 1 -q -o "$tmp/camp-full"
+"$sp" campaign --map "$ais" --mission "$mission" --runs 100000 -j 1 -q -o "$tmp/camp-kill" \
+  > /dev/null 2>&1 &
+camp_pid=$!
+for _ in $(seq 600); do
+  [ -f "$tmp/camp-kill/runs.jsonl" ] && [ "$(wc -l < "$tmp/camp-kill/runs.jsonl")" -ge 3 ] && break
+  sleep 0.1
+done
+kill -KILL "$camp_pid" 2> /dev/null
+wait "$camp_pid" 2> /dev/null
+kept=$(wc -l < "$tmp/camp-kill/runs.jsonl" 2> /dev/null || echo 0)
+if [ "$kept" -lt 3 ]; then
+  echo "FAIL: a killed campaign kept $kept runs, not the 3 or more it had finished"
+  failures=$((failures + 1))
+else
+  passed=$((passed + 1))
+fi
+expect 1 'merge: [0-9]+ run\(s\) missing: .*an interrupted shard' -- \
+  "$sp" campaign merge "$tmp/camp-kill" -o "$tmp/camp-merged"
 expect 3 "cannot write $file: Not a directory" -- \
   "$sp" export-pddl --map "$ais" --mission "$mission" --out "$file"
 expect 3 "cannot write /dev/full: Not a directory" -- \
@@ -116,6 +141,18 @@ expect 3 '"log_errors": \[' -- "$sp" simulate --map "$ais" --mission "$mission" 
   --log /dev/full --json
 expect 3 '"outcome": "ended"' -- "$sp" simulate --map "$ais" --mission "$mission" \
   --faults "$faults" --log /dev/full --json
+# One rule for two codes (issue 30): a mission that ends on the beacon is exit 4 even when its log or
+# its learnt file cannot be written; the failed write is still in the report and on stderr.
+echo '{"format": "sewerplan-faults", "version": 1, "malfunctions": [{"at_job": 2, "kind": "permanent"}]}' \
+  > "$tmp/stuck.json"
+expect 4 'beacon on: the robot cannot move' -- "$sp" simulate --map "$ais" --mission "$mission" \
+  --faults "$tmp/stuck.json" -q --log /dev/full
+expect 4 'log not written: cannot write /dev/full: No space left on device' -- "$sp" simulate \
+  --map "$ais" --mission "$mission" --faults "$tmp/stuck.json" -q --log /dev/full
+expect 4 '"log_errors": \[' -- "$sp" simulate --map "$ais" --mission "$mission" \
+  --faults "$tmp/stuck.json" --log /dev/full --json
+expect 4 "cannot write $file/learnt.json: Not a directory" -- "$sp" simulate --map "$ais" \
+  --mission "$mission" --faults "$tmp/stuck.json" -q --learnt "$file/learnt.json"
 # A good log holds every event, one a line, and the report has no log errors.
 expect 0 '"log_errors": \[\]' -- "$sp" simulate --map "$ais" --mission "$mission" \
   --faults "$faults" --log "$tmp/events.jsonl" --json

@@ -141,5 +141,31 @@ expect 0 'storage unit POND is 160 m across' -- "$sp" validate --map "$tmp/pond.
 expect 0 'UNITS NONE: the coordinates are a schematic drawing' -- "$sp" validate --map "$tmp/pond.inp"
 expect 0 'valid \(2 manholes, 2 pipes' -- "$sp" validate --map "$tmp/pond.inp"
 
+# Issue 30: a "no plan" on a real SWMM network names the limit and its object, not the battery,
+# also with a 100 kWh battery, with and without --select-goals. On the swmmio state-plane model,
+# lowered into J1-032, the robot cannot get to pipe J1-035.1: at J4-001 the turn into it is
+# 159.14 degrees (and 94.81 into J4-001.1); the other way, J1-194.1, is too narrow.
+cat > "$tmp/turn.json" <<'JSON'
+{"format": "sewerplan-mission", "version": 1,
+ "profile": {"base": "makro-plus", "battery_wh": 100000},
+ "start": {"manhole": "J1-032"},
+ "tasks": [{"name": "scan", "type": "inspect_pipe", "pipe": "J1-035.1"}], "exits": "all"}
+JSON
+state_plane=$2/datasets/swmm/swmmio-state-plane.inp
+expect 4 "in the way: manhole J4-001 from slot 1 \(pipe J1-032\.1\) to slot 2 \(pipe J1-035\.1\) turns 159\.14 deg, beyond makro-plus[-a-z]*.s 90\.00 deg turn limit" -- \
+  "$sp" plan -q --map "$state_plane" --mission "$tmp/turn.json"
+expect 4 "; pipe J1-194\.1 is 0\.20 m, narrower than makro-plus[-a-z]*.s 0\.30 m" -- \
+  "$sp" plan -q --map "$state_plane" --mission "$tmp/turn.json"
+refute 'battery|Wh' -- "$sp" plan -q --map "$state_plane" --mission "$tmp/turn.json"
+expect 0 '"reason": "no route from the start \(in manhole J1-032\) reaches pipe J1-035\.1 .*in the way: ' -- \
+  "$sp" plan -q --json --select-goals --map "$state_plane" --mission "$tmp/turn.json"
+# A step: on the fuzz corpus' small network, C2 lies beyond a 0.90 m step at B.
+cat > "$tmp/step.json" <<'JSON'
+{"format": "sewerplan-mission", "version": 1, "profile": "makro-plus", "start": {"pipe": "C1"},
+ "tasks": [{"type": "inspect_pipe", "pipe": "C2"}], "exits": ["A"]}
+JSON
+expect 4 'in the way: manhole B from slot 1 \(pipe C1\) to slot 2 \(pipe C2\) climbs a step of 0\.90 m, beyond makro-plus.s 0\.30 m step limit' -- \
+  "$sp" plan -q --map "$2/fuzz/corpus/swmm/small-elevation.inp" --mission "$tmp/step.json"
+
 echo "$passed passed, $failures failed"
 [ "$failures" -eq 0 ]

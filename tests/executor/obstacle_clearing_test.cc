@@ -62,9 +62,9 @@ hal::Obstacle obstacle(const testing::AisTestbed& ais, double offset_m, hal::Obs
 }
 
 // Issue 30: with --allow-push the oracle took every push-only obstacle for cleared, but the robot
-// pushes with its head: one met while backing stayed, and 19 of 2,000 AIS runs at harsh rates
-// missed an exit the oracle counted on. Recovery clears exactly what recovery_clears says, for
-// each side, and the oracle asks recovery_clears.
+// pushed with its front head only: one met while backing stayed, and 19 of 2,000 AIS runs at harsh
+// rates missed an exit the oracle counted on. Recovery clears exactly what recovery_clears says,
+// for each side, and the oracle asks recovery_clears.
 TEST(ObstacleClearing, WhatRecoveryClearsIsWhatTheOracleAssumesInBothDirections) {
   const auto ais = testing::load_ais_testbed();
   for (const hal::ObstacleKind kind :
@@ -108,13 +108,38 @@ TEST(ObstacleClearing, WhatRecoveryClearsFollowsTheTableAndTheStagesItTries) {
     EXPECT_FALSE(recovery_clears(push, ObstacleKind::kPermanent, a));
   }
   EXPECT_TRUE(recovery_clears(push, ObstacleKind::kTransientPush, Approach::kFront));
-  EXPECT_FALSE(recovery_clears(push, ObstacleKind::kTransientPush, Approach::kRear));
+  EXPECT_TRUE(recovery_clears(push, ObstacleKind::kTransientPush, Approach::kRear));
   // A stage with no tries clears nothing.
   RecoveryConfig no_lift;
   no_lift.lift_retries = 0;
   EXPECT_FALSE(recovery_clears(no_lift, ObstacleKind::kTransientLift, Approach::kFront));
   push.push_retries = 0;
   EXPECT_FALSE(recovery_clears(push, ObstacleKind::kTransientPush, Approach::kFront));
+}
+
+// Issue 30: a push-only obstacle met while backing (and while scanning backward) is pushed
+// backward, with the rear head, the rest of the drive; the robot ends where the drive would have.
+// Before, staged recovery tried no push for a backward drive and the obstacle stayed.
+TEST(ObstacleClearing, IssueThirtyAPushOnlyObstacleMetWhileBackingIsPushedBackward) {
+  const auto ais = testing::load_ais_testbed();
+  RecoveryConfig config;
+  config.push_allowed = true;
+  for (const Job& drive : {Job{DriveBackward{0.1, 3.0}}, Job{Scan{0.1, 3.0, true}}}) {
+    Bench bench({obstacle(ais, 3.5, hal::ObstacleKind::kTransientPush)}, config);
+    EXPECT_EQ(bench.run(drive), std::nullopt) << drive;
+    EXPECT_NEAR(bench.offset(), 2.0, 1e-9) << drive;
+    EXPECT_TRUE(bench.robot.remaining_obstacles().empty()) << drive;
+    std::vector<Push> pushes;
+    for (const Job& job : bench.jobs) {
+      if (const auto* p = std::get_if<Push>(&job)) pushes.push_back(*p);
+    }
+    ASSERT_EQ(pushes.size(), 1U) << drive;
+    EXPECT_TRUE(pushes[0].backward) << drive;
+    // The controller's dead reckoning follows the push backward.
+    const auto* in = std::get_if<domain::InPipe>(&bench.tracker.position());
+    ASSERT_NE(in, nullptr);
+    EXPECT_NEAR(in->offset_m, 2.0, 1e-9) << drive;
+  }
 }
 
 // Issue 30: a push cleared the first obstacle and was stopped by a second one further on; that

@@ -173,6 +173,37 @@ TEST(GeoJson, DriveabilityMarksEveryPipe) {
   }
 }
 
+TEST(GeoJson, DiscrepanciesAreALayerWhereTheyAre) {
+  const Ais ais = ais_in_utm();
+  Result<Wgs84Projection> wgs84 = Wgs84Projection::create(*ais.map.crs());
+  ASSERT_TRUE(wgs84.has_value());
+  const PipeId p{0};
+  const ManholeId m = *ais.map.pipe(p).ends[1].manhole;
+  const std::vector<FoundDiscrepancy> found = {
+      {{.kind = Discrepancy::Kind::kLengthOff, .pipe = p, .map_value = 5, .value = 6, .sigma = 0.2},
+       {0}},
+      {{.kind = Discrepancy::Kind::kUnmappedLateral, .manhole = m, .value = 45, .sigma = 5}, {0}},
+      {{.kind = Discrepancy::Kind::kUnmappedJunction, .pipe = p, .offset_m = 0, .value = 3}, {0}}};
+  const Json doc =
+      Json::parse(to_geojson({.map = &ais.map, .discrepancies = found}, *wgs84).value());
+  EXPECT_EQ(rfc7946_problem(doc), "");
+  const std::vector<Json> shown = layer(doc, "discrepancy");
+  ASSERT_EQ(shown.size(), 3U);
+  EXPECT_EQ(shown[0]["properties"]["kind"], "length-off");
+  EXPECT_EQ(shown[0]["properties"]["pipe"], ais.map.pipe(p).name);
+  EXPECT_EQ(shown[0]["properties"]["description"], describe(found[0].discrepancy, ais.map));
+  EXPECT_DOUBLE_EQ(shown[0]["properties"]["sigma"].get<double>(), 0.2);
+  // The lateral at its manhole, the junction at its offset (0: the pipe's first manhole).
+  const auto manhole_at = [&](ManholeId id) {
+    for (const Json& f : layer(doc, "manhole")) {
+      if (f["properties"]["name"] == ais.map.manhole(id).name) return f["geometry"]["coordinates"];
+    }
+    return Json();
+  };
+  EXPECT_EQ(shown[1]["geometry"]["coordinates"], manhole_at(m));
+  EXPECT_EQ(shown[2]["geometry"]["coordinates"], manhole_at(*ais.map.pipe(p).ends[0].manhole));
+}
+
 TEST(Nav2RouteGraph, NodesAndTwoDirectedEdgesPerPipeWithUniqueIds) {
   const Ais ais = ais_in_utm();
   const Json doc = Json::parse(to_nav2_route_graph(ais.map, {.x = 1, .y = 2}));

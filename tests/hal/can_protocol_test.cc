@@ -52,6 +52,7 @@ TEST(JobProtocol, EveryJobKindRoundTripsBitForBit) {
       DriveForward{0.3, 12.345678901234567},
       DriveBackward{0.25, 1e-9},
       Push{0.1, 0.5},
+      Push{0.1, 0.5, true},
       TurnInManhole{2, 3, -94.5, -0.1, 1.0, 20.25, {}},
       TurnInManhole{0,
                     65535,
@@ -166,6 +167,28 @@ TEST(JobProtocol, WrongLengthsKindsAndCountsAreMalformed) {
   result[0].data[0] = 9;
   EXPECT_THAT(std::get<Malformed>(decode_message(MessageType::kResult, 4, result)).reason,
               HasSubstr("unknown outcome 9"));
+}
+
+// Issue 30: a push met while backing is pushed backward, with the rear head. The direction is bit
+// 0 of the header's flags byte, as a Scan's; a forward push is the frames it always was, and
+// other bits are refused.
+TEST(JobProtocol, IssueThirtyAPushCarriesItsDirectionInTheFlagsByte) {
+  const std::vector<CanFrame> backward = encode(JobCommand{7, Push{0.1, 0.5, true}});
+  const std::vector<CanFrame> forward = encode(JobCommand{7, Push{0.1, 0.5, false}});
+  ASSERT_EQ(backward.size(), 4U);     // header, speed, distance, end
+  EXPECT_EQ(backward[0].data[0], 3);  // Push
+  EXPECT_EQ(backward[0].data[1], 1);
+  EXPECT_EQ(forward[0].data[1], 0);
+  for (std::size_t i = 1; i + 1 < backward.size(); ++i) EXPECT_EQ(backward[i], forward[i]);
+  const Decoded d = decode_all(backward);
+  ASSERT_TRUE(std::holds_alternative<Message>(d));
+  const auto& command = std::get<JobCommand>(std::get<Message>(d));
+  ASSERT_TRUE(std::holds_alternative<Push>(command.job));
+  EXPECT_TRUE(std::get<Push>(command.job).backward);
+  std::vector<CanFrame> header{backward[0], backward[1], backward[2]};
+  header[0].data[1] = 2;
+  EXPECT_THAT(std::get<Malformed>(decode_message(MessageType::kJob, 7, header)).reason,
+              HasSubstr("unknown push flags"));
 }
 
 TEST(JobProtocol, AnEndFrameAloneOrForAnotherSequenceIsMalformed) {

@@ -171,8 +171,36 @@ TEST_F(SimRobotTest, APushClearsATransientPushObstacle) {
   EXPECT_TRUE(std::holds_alternative<AtSlot>(r.pose()));
 }
 
+// Issue 30: an obstacle only a push clears, met while backing, is pushed backward with the rear
+// head (the robot cannot turn in a pipe). Before, a push drove forward only and it stayed.
+TEST_F(SimRobotTest, IssueThirtyABackwardPushClearsATransientPushObstacleBehindTheRobot) {
+  // At 15 m facing end 1: the obstacle at 12.3 m is behind.
+  SimRobot r = robot(InPipe{pipe("P1"), 15.0, Heading::kTowardsEnd1},
+                     obstacle_in_p1(ObstacleKind::kTransientPush));
+  const Job back = DriveBackward{.speed_mps = 0.3, .distance_m = 4};
+  ASSERT_FALSE(r.execute(back).ok());
+  EXPECT_DOUBLE_EQ(std::get<InPipe>(r.pose()).offset_m, 12.35);
+  // A forward push drives away from it and leaves it there.
+  EXPECT_TRUE(r.execute(Push{.speed_mps = 0.1, .distance_m = 0.5}).ok());
+  EXPECT_EQ(r.remaining_obstacles().size(), 1U);
+  EXPECT_DOUBLE_EQ(std::get<InPipe>(r.pose()).offset_m, 12.85);
+  JobReport push = r.execute(Push{.speed_mps = 0.1, .distance_m = 1.5, .backward = true});
+  EXPECT_TRUE(push.ok());
+  EXPECT_DOUBLE_EQ(push.progress_m, 1.5);
+  EXPECT_TRUE(r.remaining_obstacles().empty());
+  EXPECT_DOUBLE_EQ(std::get<InPipe>(r.pose()).offset_m, 11.35);
+  EXPECT_EQ(std::get<InPipe>(r.pose()).heading, Heading::kTowardsEnd1) << "it backed";
+  // A backward push stops at a permanent obstacle behind, as a drive does.
+  SimRobot p = robot(InPipe{pipe("P1"), 15.0, Heading::kTowardsEnd1},
+                     obstacle_in_p1(ObstacleKind::kPermanent));
+  JobReport blocked = p.execute(Push{.speed_mps = 0.1, .distance_m = 4, .backward = true});
+  ASSERT_FALSE(blocked.ok());
+  EXPECT_EQ(blocked.error->kind, RobotErrorKind::kBlockage);
+  EXPECT_DOUBLE_EQ(blocked.progress_m, 15.0 - 12.35);
+}
+
 // The simulated robot clears obstacles as hal's one table says (obstacle_clearing.h), met front
-// or rear first: lifting the head on either side, pushing with the head only.
+// or rear first: lifting the head on either side, pushing on either side (backward when backing).
 TEST_F(SimRobotTest, ClearsEachObstacleAsTheClearingTableSaysFromEitherSide) {
   for (const ObstacleKind kind :
        {ObstacleKind::kTransientLift, ObstacleKind::kTransientPush, ObstacleKind::kPermanent}) {
@@ -184,17 +212,16 @@ TEST_F(SimRobotTest, ClearsEachObstacleAsTheClearingTableSaysFromEitherSide) {
       const Job drive = front ? Job{DriveForward{.speed_mps = 0.3, .distance_m = 4}}
                               : Job{DriveBackward{.speed_mps = 0.3, .distance_m = 4}};
       ASSERT_FALSE(r.execute(drive).ok());
-      // Every manoeuvre the robot has, where it stopped: the head, then a push the only way it
-      // can push (forward).
+      // Every manoeuvre the robot has, where it stopped: the head, then a push the way it drove.
       EXPECT_TRUE(r.execute(LiftHead{}).ok());
       EXPECT_TRUE(r.execute(LowerHead{}).ok());
-      if (front) static_cast<void>(r.execute(Push{.speed_mps = 0.1, .distance_m = 0.1}));
+      static_cast<void>(r.execute(Push{.speed_mps = 0.1, .distance_m = 0.1, .backward = !front}));
       EXPECT_EQ(r.remaining_obstacles().empty(), clears_from(kind, approach))
           << to_string(kind) << (front ? " front" : " rear");
     }
   }
   static_assert(cleared_by(ObstacleKind::kTransientPush) == Clearing::kPush);
-  static_assert(!clears_from(ObstacleKind::kTransientPush, Approach::kRear));
+  static_assert(clears_from(ObstacleKind::kTransientPush, Approach::kRear));
   static_assert(clears_from(ObstacleKind::kTransientLift, Approach::kRear));
 }
 

@@ -71,6 +71,14 @@ def test_reads_and_writes_mission_json(ais_map, paper, tmp_path):
     assert json.loads(back.to_json())["format"] == "sewerplan-mission"
 
 
+def test_a_mission_that_cannot_be_written_is_an_io_error_naming_the_file(paper):
+    # Issue 30: every write checked, through core/output_file.h.
+    with pytest.raises(sewerplan.Error) as error:
+        sewerplan.write_mission(paper, "/dev/full")
+    assert error.value.code == "io"
+    assert "cannot write /dev/full: No space left on device" in error.value.message
+
+
 def test_builds_a_mission_from_python(ais_map, paper):
     profile = sewerplan.RobotProfile("makro-1.1")
     built = sewerplan.mission(

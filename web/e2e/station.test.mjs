@@ -6,7 +6,7 @@
 // and see the recovery phases, the replan (old and new route) and the dropped inspection on the
 // map and in the log, and the end reached; download the mission, upload it back, replay an event
 // log; run a fault campaign of 20 runs (progress, charts) and replay one of its runs, cancel a
-// long one; upload a map. Saves a screenshot of each step in OUT (docs/operator-station.md uses them) and prints
+// long one; upload a map; a page of another origin and a rebound name refused. Saves a screenshot of each step in OUT (docs/operator-station.md uses them) and prints
 // the figures (page load, first draw, plan round trip, event delay).
 //
 //   node e2e/station.test.mjs SEWERPLAN_BINARY SOURCE_DIR [OUT_DIR] [--large MAP]
@@ -33,7 +33,8 @@ const started = Date.now();
 // The browser starts while the server reads its maps.
 const launching = chromium.launch({
   executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
-  args: ['--no-sandbox'],
+  // evil.example resolves to the station, as a page's name does under DNS rebinding.
+  args: ['--no-sandbox', '--host-resolver-rules=MAP evil.example 127.0.0.1'],
 });
 // With a token, as on a shared machine: every request of the page, the streams too, must carry it in
 // its header (the printed address has it in its #fragment, which the page takes from there).
@@ -249,6 +250,34 @@ async function largeMapAtRatio2(id) {
         `at ratio 2 the image is ${two.w}x${two.h}, at 1 ${one.w}x${one.h}`);
 }
 
+// Nobody else drives the station (docs/operator-station.md, "Who may drive the station"), the
+// token aside (these are refused before it is looked at: 403, not 401): a page of another origin
+// (http://localhost:PORT is not http://127.0.0.1:PORT) posts a map as a "simple" request, which a
+// browser sends without asking; a page under a name rebound to the station is not served.
+async function strangersRefused() {
+  const port = new URL(url).port;
+  const maps = async () => (await (await fetch(new URL('api/maps', url),
+                                               { headers: { Authorization: `Bearer ${token}` } })).json()).maps.length;
+  const before = await maps();
+  const other = await browser.newPage();
+  try {
+    await other.goto(`http://localhost:${port}/api/campaign`);
+    const target = `http://127.0.0.1:${port}/api/maps?name=stranger.json`;
+    const answered = other.waitForResponse((r) => r.url() === target, { timeout: 30000 });
+    const map = readFileSync(join(ais, 'map.json'), 'utf8');
+    await other.evaluate(([to, body]) => fetch(to, { method: 'POST', mode: 'no-cors', body }).catch(() => null),
+                         [target, map]);
+    const status = (await answered).status();
+    check(status === 403, `a cross-origin simple POST of a map answered ${status}, not 403`);
+    const rebound = await other.goto(`http://evil.example:${port}/`);
+    check(rebound.status() === 403, `the page under a rebound name answered ${rebound.status()}, not 403`);
+    check((await maps()) === before, 'a stranger uploaded a map');
+    console.log('strangers refused: a cross-origin POST and a rebound name, 403');
+  } finally {
+    await other.close();
+  }
+}
+
 const browser = await launching;
 console.log(`server and browser up: ${Date.now() - started} ms`);
 let shotsMs = 0;
@@ -272,6 +301,7 @@ try {
   check(!page.url().includes(token), `the token stays in the address bar: ${page.url()}`);
   const inUrl = await fetch(new URL(`api/maps?token=${token}`, url));
   check(inUrl.status === 401, `?token= in a URL answered ${inUrl.status}, not 401`);
+  await strangersRefused();
   console.log(`page load and first draw (AIS map): ${Date.now() - t0} ms; in the page:`,
               await page.evaluate(() => window.station.state.timings));
   console.log(`AIS map, the page's marks: ${await marks(page, 'map')} (load ${loadavg()})`);

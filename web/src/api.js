@@ -19,6 +19,11 @@ function readToken() {
 }
 const token = readToken();
 const headers = token ? { Authorization: `Bearer ${token}` } : {};
+// The server refuses a POST of a type any web page may send to any site unasked (text/plain, a
+// form, none): JSON goes as application/json, a file the operator uploads as it is, as
+// application/octet-stream (docs/operator-station.md, "Who may drive the station").
+const json = { 'Content-Type': 'application/json' };
+const file = { 'Content-Type': 'application/octet-stream' };
 
 async function call(path, options = {}) {
   const response = await fetch(path, { ...options, headers: { ...headers, ...options.headers } });
@@ -37,7 +42,7 @@ const motion = (path) => (settings.motion ? path : `${path}${path.includes('?') 
 const risk = (path) => `${path}${path.includes('?') ? '&' : '?'}risk=${encodeURIComponent(settings.risk)}`;
 export const listMaps = () => call('api/maps');
 export const uploadMap = (name, text) =>
-  call(`api/maps?name=${encodeURIComponent(name)}`, { method: 'POST', body: text });
+  call(`api/maps?name=${encodeURIComponent(name)}`, { method: 'POST', body: text, headers: file });
 // The map's compact geometry (typed arrays, geometry.js's readGeometry) as an ArrayBuffer.
 export async function mapGeometry(id) {
   const response = await fetch(`${map(id)}/geometry`, { headers });
@@ -48,7 +53,7 @@ export async function mapGeometry(id) {
   return response.arrayBuffer();
 }
 export const uploadCondition = (id, name, text) =>
-  call(`${map(id)}/condition?name=${encodeURIComponent(name)}`, { method: 'POST', body: text });
+  call(`${map(id)}/condition?name=${encodeURIComponent(name)}`, { method: 'POST', body: text, headers: file });
 // The profile's driveability, in two steps: the promise resolves when the answer has come, with a
 // function that reads its JSON (and throws the server's error). A large answer asked early is
 // parsed only when the page has time for it: main.js reads it after the map's first draw. An
@@ -61,13 +66,13 @@ export async function driveability(id, profile, signal) {
     return body;
   };
 }
-export const validate = (id, mission) => call(`${map(id)}/validate`, { method: 'POST', body: JSON.stringify(mission) });
+export const validate = (id, mission) => call(`${map(id)}/validate`, { method: 'POST', body: JSON.stringify(mission), headers: json });
 export const plan = (id, mission, timeLimit) =>
-  call(risk(motion(`${map(id)}/plan?time_limit=${timeLimit}`)), { method: 'POST', body: JSON.stringify(mission) });
-export const replay = (id, log) => call(`${map(id)}/replay`, { method: 'POST', body: log });
+  call(risk(motion(`${map(id)}/plan?time_limit=${timeLimit}`)), { method: 'POST', body: JSON.stringify(mission), headers: json });
+export const replay = (id, log) => call(`${map(id)}/replay`, { method: 'POST', body: log, headers: file });
 
 export const campaignStatus = () => call('api/campaign');
-export const cancelCampaign = () => call('api/campaign/cancel', { method: 'POST' });
+export const cancelCampaign = () => call('api/campaign/cancel', { method: 'POST', headers: json });
 export const campaignRun = (index, policy = 'ours') =>
   call(`api/campaign/runs/${index}?policy=${encodeURIComponent(policy)}`);
 
@@ -75,7 +80,7 @@ export const campaignRun = (index, policy = 'ours') =>
 // {wall_ms, received_ms}); wall_ms is the server's clock when it sent the event (if it says),
 // received_ms the page's. A 4xx answer throws its error's message.
 async function stream(path, body, onEvent, signal) {
-  const response = await fetch(path, { method: 'POST', body: JSON.stringify(body), headers, signal });
+  const response = await fetch(path, { method: 'POST', body: JSON.stringify(body), headers: { ...headers, ...json }, signal });
   if (!response.ok) {
     const error = await response.json();
     throw Object.assign(new Error(error.error?.message ?? response.statusText), { body: error });

@@ -3,7 +3,7 @@
 # tests/cli/completion_test.sh), and each command's options as its own --help prints them, so they
 # never go stale. Installed to /usr/share/bash-completion/completions/sewerplan.
 
-_sewerplan_commands="validate info generate convert plan check export-pddl import-plan simulate sim-node campaign render motion export-geojson serve"
+_sewerplan_commands="validate info generate convert plan check export-pddl import-plan simulate sim-node campaign render motion export-geojson serve merge-measurements"
 
 _sewerplan() {
   local cur prev command i

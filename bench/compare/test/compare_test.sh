@@ -58,5 +58,27 @@ sed 's/"battery_reserve": 0.2/"battery_reserve": 0.95/' \
 check '^[^,]*tight[^,]*,12,3,sewerplan,no plan,.*no-plan: the mission cannot be completed: .*no plan does all 3' \
   "$tmp/out3/results.csv" "a proven no plan, in the planner's words"
 
+# Issue 30: every write checked. A results file on a full disk (/dev/full) is exit 3 naming it, the
+# CSV written row by row as much as the Markdown table at the end; so is an output directory that
+# cannot be made.
+for file in results.csv results.md; do
+  mkdir -p "$tmp/full-$file/instances"
+  ln -s /dev/full "$tmp/full-$file/$file"
+  "$compare" --no-datasets --sizes 10 --tasks 3 --seeds 1 --time-limit 5 \
+    --out "$tmp/full-$file" > /dev/null 2> "$tmp/full-$file.err"
+  code=$?
+  if [ "$code" -ne 3 ]; then
+    echo "FAIL: $file on a full disk: exit $code, not 3"
+    failures=$((failures + 1))
+  fi
+  check "cannot write $tmp/full-$file/$file: No space left on device" "$tmp/full-$file.err" \
+    "$file on a full disk named"
+done
+"$compare" --no-datasets --sizes 10 --tasks 3 --seeds 1 --out /dev/full/out > /dev/null \
+  2> "$tmp/nodir.err"
+code=$?
+[ "$code" -eq 3 ] || { echo "FAIL: an output directory under a device: exit $code, not 3"; failures=$((failures + 1)); }
+check 'cannot write /dev/full/out/instances' "$tmp/nodir.err" "the directory that cannot be made"
+
 [ "$failures" -eq 0 ] && echo "compare: all checks passed"
 [ "$failures" -eq 0 ]

@@ -87,6 +87,7 @@ std::vector<CanFrame> encode_job(const JobCommand& c) {
                    numbers = {j.speed_mps, j.distance_m};
                  },
                  [&](const Push& j) {
+                   header[1] = j.backward ? 1 : 0;
                    numbers = {j.speed_mps, j.distance_m};
                  },
                  [&](const Scan& j) {

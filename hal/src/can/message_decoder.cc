@@ -99,7 +99,8 @@ Decoded decode_job(Reader& r, std::uint8_t seq) {
       numbers = 2;
       break;
     case 3:
-      job = Push{n(0), n(1)};
+      if (h.data[1] > 1) r.fail("unknown push flags");
+      job = Push{n(0), n(1), h.data[1] == 1};
       numbers = 2;
       break;
     case 4: {

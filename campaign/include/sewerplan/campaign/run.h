@@ -12,10 +12,8 @@
 //     selection, else the nearest exit);
 //   - the oracle: one plan, with goal selection, from a mission that knows in advance every
 //     obstacle no recovery can clear (executor::recovery_clears: permanent ones, and push-only ones
-//     when pushing is not allowed), every danger spot and every dangerous passage. With pushing
-//     allowed, a push-only obstacle is cleared only when met front first; a second plan that takes
-//     those for blockages tells whether a way out is there however they are met
-//     (oracle_can_end_either_way), which is what a missed exit is judged by. It is counted, not
+//     when pushing is not allowed; recovery clears each kind from both sides or from neither),
+//     every danger spot and every dangerous passage. It is counted, not
 //     driven: it has the whole battery, no malfunction and no detour, so its task count bounds what
 //     any policy could do on the same faults (exactly so where the planner is optimal,
 //     docs/campaign.md); and when it finds no way to end the mission, no policy could have reached
@@ -173,13 +171,8 @@ struct RunResult {
   FaultCounts faults;
   std::size_t oracle_tasks = 0;
   bool oracle_can_end = false;  // the oracle found a way to end the mission
-  // The oracle can end the mission even if every obstacle that recovery clears from one side only
-  // (hal/obstacle_clearing.h: a push-only one, with pushing allowed) is met from the other: a way
-  // out that no way of meeting the obstacles closes. Equal to oracle_can_end without such
-  // obstacles.
-  bool oracle_can_end_either_way = false;
-  // The oracle can end the mission either way and no permanent malfunction stopped our robot: a
-  // run in which the robot must end at an exit or the end point.
+  // The oracle can end the mission and no permanent malfunction stopped our robot: a run in which
+  // the robot must end at an exit or the end point.
   bool could_reach_exit = false;
   Execution ours;
   Execution baseline;

@@ -37,10 +37,13 @@ struct DriveBackward {
   friend bool operator==(const DriveBackward&, const DriveBackward&) = default;
 };
 
-// Drive forward against an obstacle to move it (recovery phase 3; risky in a real sewer).
+// Drive against an obstacle to move it (recovery phase 3; risky in a real sewer): forward, pushing
+// with the front head, or backward, pushing with the rear head (for an obstacle met while backing:
+// the robot cannot turn in a pipe).
 struct Push {
   double speed_mps = 0;
   double distance_m = 0;
+  bool backward = false;
   friend bool operator==(const Push&, const Push&) = default;
 };
 
@@ -109,7 +112,7 @@ using Job = std::variant<DriveForward, DriveBackward, Push, TurnInManhole, Enter
 std::string_view job_kind(const Job& job);
 
 // "DriveForward(0.30 m/s, 12.50 m)", "TurnInManhole(slot 3 -> 4, 45.0 deg, step -0.10 m)" (with
-// ", 31 waypoints" when it has a planned motion), ...
+// ", 31 waypoints" when it has a planned motion), "Push(0.10 m/s, 2.00 m, backward)", ...
 std::ostream& operator<<(std::ostream& os, const Job& job);
 
 }  // namespace sewerplan

@@ -40,6 +40,7 @@
 #include "sewerplan/core/output_file.h"
 #include "sewerplan/core/sewer_map.h"
 #include "sewerplan/domain/compile.h"
+#include "sewerplan/domain/robot_state.h"
 #include "sewerplan/executor/events.h"
 #include "sewerplan/executor/recovery.h"
 #include "sewerplan/executor/replanner.h"
@@ -79,6 +80,18 @@ struct MissionReport {
 
 std::ostream& operator<<(std::ostream& os, const MissionReport& report);
 
+// One job the robot ran, for a job observer (Executor::subscribe_jobs): the job, its report, where
+// the controller had the robot before and after it, and which way it drove along its pipe (+1
+// towards ends[1], -1 towards ends[0], 0: not a drive). The references live for the call only.
+struct JobSeen {
+  const Job& job;
+  const hal::JobReport& report;
+  const domain::RobotPosition& before;
+  const domain::RobotPosition& after;
+  double direction = 0;
+};
+using JobObserver = std::function<void(const JobSeen&)>;
+
 struct ExecutorOptions {
   RecoveryConfig recovery;
   std::size_t max_replans = 100;  // a bound against a world that keeps changing
@@ -101,6 +114,10 @@ class Executor {
   // Before run() only.
   using PlanObserver = std::function<void(const PlanResponse&)>;
   void subscribe_plans(PlanObserver observer);
+  // Adds an observer of every job the robot runs (the map's measuring, executor/measuring.h),
+  // called after the job's report, in the order subscribed; it changes nothing of the run. Before
+  // run() only.
+  void subscribe_jobs(JobObserver observer);
   // Appends every event of run() to `log` as a JSON line (event_json.h), one write per event. A
   // failed write does not stop the mission: the report's log_errors names the log, the first
   // reason and how many events were lost. `log` must outlive run(). Before run() only.
@@ -123,6 +140,7 @@ class Executor {
   ExecutorOptions options_;
   std::vector<EventObserver> observers_;
   std::vector<PlanObserver> plan_observers_;
+  std::vector<JobObserver> job_observers_;
   std::vector<LogFile*> logs_;
   std::atomic<bool> halt_{false};
 };

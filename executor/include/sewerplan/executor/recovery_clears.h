@@ -10,7 +10,7 @@
 //   RecoveryConfig config;
 //   config.push_allowed = true;
 //   recovery_clears(config, hal::ObstacleKind::kTransientPush, hal::Approach::kFront);  // true
-//   recovery_clears(config, hal::ObstacleKind::kTransientPush, hal::Approach::kRear);   // false
+//   recovery_clears(config, hal::ObstacleKind::kTransientPush, hal::Approach::kRear);   // true
 //
 // Thread safety: pure functions.
 #pragma once

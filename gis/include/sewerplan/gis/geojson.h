@@ -16,6 +16,10 @@
 //   planned_route    LineString through the places a plan passes, from the mission's start
 //   driven_route     LineString of the steps an event log says were driven
 //   blocked          Point: where the robot found a pipe blocked
+//   discrepancy      Point: where the sewer differs from its map (core/map_measurements.h): at the
+//                    manhole, at the middle of the pipe (a length or size), or at the offset (a
+//                    junction the map lacks): kind, description, value, map_value, sigma, pipe,
+//                    manhole, slot
 // Pipes are straight between their manholes, as in every sewerplan map. Coordinates keep 8
 // decimals (about a millimetre).
 //
@@ -36,6 +40,7 @@
 #include <string_view>
 #include <vector>
 
+#include "sewerplan/core/map_measurements.h"
 #include "sewerplan/core/mission.h"
 #include "sewerplan/core/result.h"
 #include "sewerplan/core/sewer_map.h"
@@ -52,6 +57,7 @@ struct GeoJsonInput {
   const std::vector<domain::PlanStep>* driven = nullptr;  // the route an event log drove
   std::span<const Blockage> blocked;                      // pipes an event log found blocked
   const domain::DriveabilityReport* driveability = nullptr;
+  std::span<const FoundDiscrepancy> discrepancies;  // measured (merge-measurements, simulate)
 };
 
 // An error (kInvalidArgument) when a point lies outside what the projection transforms.

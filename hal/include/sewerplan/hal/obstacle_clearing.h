@@ -4,14 +4,18 @@
 //
 // MAKRO drives both ways along a pipe, so it meets an obstacle either with its front (driving
 // forward) or with its rear (backing). Lifting the head frees an obstacle within reach on either
-// side of it; pushing is done with the head, so it moves only an obstacle met front first; a
-// permanent obstacle never clears. The simulated robot (sim_robot.h) clears obstacles by this
+// side of it; a push moves an obstacle met either way, with the front head driving forward or the
+// rear head backing (core/job.h, Push::backward: the robot cannot turn in a pipe, so an obstacle
+// met while backing is pushed backward); a permanent obstacle never clears. (Until issue 30 the
+// robot pushed with its front head only, and an obstacle only a push clears, met while backing,
+// stayed.) The simulated robot (sim_robot.h) clears obstacles by this
 // table, the action controller's staged recovery tries the manoeuvres it names
 // (executor/recovery_clears.h), and the campaign's oracle knows in advance which obstacles the
 // recovery clears from both sides, from one side only, or from neither (campaign/run.h): the
 // three agree on every obstacle, met either way.
 //
-//   if (clears_from(ObstacleKind::kTransientPush, Approach::kRear)) ...  // false: no push backward
+//   clears_from(ObstacleKind::kTransientPush, Approach::kRear);  // true: a backward push
+//   clears_from(ObstacleKind::kPermanent, Approach::kFront);     // false
 //
 // Thread safety: constants and pure functions.
 #pragma once
@@ -42,8 +46,8 @@ struct ObstacleClearing {
 
 inline constexpr std::array<ObstacleClearing, 3> kObstacleClearing{{
     {ObstacleKind::kTransientLift, Clearing::kLiftHead, true, true},
-    // The robot pushes with its head (core/job.h, Push): only what it meets front first.
-    {ObstacleKind::kTransientPush, Clearing::kPush, true, false},
+    // The robot pushes with its front head forward, with its rear head backward (core/job.h, Push).
+    {ObstacleKind::kTransientPush, Clearing::kPush, true, true},
     {ObstacleKind::kPermanent, Clearing::kNothing, false, false},
 }};
 
@@ -62,6 +66,15 @@ constexpr bool clears_from(ObstacleKind kind, Approach approach) {
   const ObstacleClearing& row = clearing_of(kind);
   return row.by != Clearing::kNothing &&
          (approach == Approach::kFront ? row.from_front : row.from_rear);
+}
+
+// Whether the manoeuvre `by` clears some kind of obstacle met with `approach`: whether a robot
+// that met an obstacle of a kind it cannot tell that way should try it (staged recovery does).
+constexpr bool works_from(Clearing by, Approach approach) {
+  for (const ObstacleClearing& row : kObstacleClearing) {
+    if (row.by == by && clears_from(row.kind, approach)) return true;
+  }
+  return false;
 }
 
 }  // namespace sewerplan::hal

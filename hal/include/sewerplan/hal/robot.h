@@ -22,6 +22,7 @@
 #include <string_view>
 
 #include "sewerplan/core/job.h"
+#include "sewerplan/core/manhole_signature.h"
 #include "sewerplan/core/result.h"
 
 namespace sewerplan::hal {
@@ -51,6 +52,9 @@ struct JobReport {
   double progress_m = 0;            // distance driven by this job (drives and scans)
   double duration_s = 0;            // time the job took
   double energy_wh = 0;             // energy it used
+  // What the robot saw of the manhole it arrived in when this drive ended at a detected manhole,
+  // relative to the mouth it arrived by (core/manhole_signature.h); empty otherwise.
+  std::optional<ManholeSignature> observation;
   bool ok() const { return !error.has_value(); }
   friend bool operator==(const JobReport&, const JobReport&) = default;
 };

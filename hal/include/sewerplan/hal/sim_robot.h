@@ -40,6 +40,7 @@
 #include "sewerplan/core/robot_profile.h"
 #include "sewerplan/core/sewer_map.h"
 #include "sewerplan/hal/fault_scenario.h"
+#include "sewerplan/hal/obstacle_clearing.h"
 #include "sewerplan/hal/robot.h"
 
 namespace sewerplan::hal {
@@ -131,7 +132,9 @@ class SimRobot final : public Robot {
 
   JobReport run(const Job& job);
   JobReport drive(double speed_mps, double distance_m, int direction, bool push);
-  Move plan_move(const InPipe& from, double distance_m, int sign, bool push) const;
+  // `push`: how a push meets what it drives against; empty for a drive.
+  Move plan_move(const InPipe& from, double distance_m, int sign,
+                 std::optional<Approach> push) const;
   JobReport drive_in_pipe(const InPipe& from, double speed_mps, double distance_m, int direction,
                           bool push);
   JobReport turn(const TurnInManhole& job);

@@ -27,7 +27,9 @@
 // and the page's files from `web_root` on every other GET. Maps are named by their ID (the file's
 // stem), never by a path, so a request reaches no file but the page's own. Every bad request gets
 // a 4xx status with {"error": {...}} (documents.h); with a token, every /api/ request needs
-// "Authorization: Bearer TOKEN" (a ?token= in the URL is a 401: URLs end up in logs).
+// "Authorization: Bearer TOKEN" (a ?token= in the URL is a 401: URLs end up in logs). Whatever
+// the token, a request under another Host, from another Origin or a POST of a type a page may send
+// unasked is refused (server/src/request_guard.h).
 //
 //   Result<std::unique_ptr<StationServer>> s = StationServer::create(options);
 //   Result<int> port = (*s)->bind();   // port 0: any free port
@@ -61,10 +63,16 @@ struct ServerOptions {
   std::vector<std::filesystem::path> maps;  // any format read_map (or read_map_with) reads
   MapReader read_map_with;                  // empty: core's read_map
   std::string host = "127.0.0.1";
-  int port = 8080;                 // 0: any free port (bind() says which)
-  std::string token;               // empty: no token asked; else the API's bearer token
-  std::filesystem::path web_root;  // the built page (share/sewerplan/web); empty: API only
-  std::size_t max_body_bytes = 16u << 20;
+  int port = 8080;    // 0: any free port (bind() says which)
+  std::string token;  // empty: no token asked; else the API's bearer token
+  // Names (besides IP addresses, "localhost" and `host`) the page may be opened under: a request
+  // with another Host is refused (DNS rebinding; docs/operator-station.md). `serve --allow-host`.
+  std::vector<std::string> allowed_hosts;
+  std::filesystem::path web_root;          // the built page (share/sewerplan/web); empty: API only
+  std::size_t max_body_bytes = 16u << 20;  // in any transfer or content encoding
+  // Connections served at once, each on a worker thread started when needed; more wait their
+  // turn. A connection serves one request; one that sends nothing is closed after 5 s.
+  std::size_t max_connections = 256;
   double max_plan_time_s = 60;            // a request's time_limit is capped at this
   std::size_t max_maps = 64;              // the maps given and uploaded (POST /api/maps) at most
   std::size_t max_campaign_runs = 10000;  // a campaign's runs at most

@@ -1,0 +1,577 @@
+// SPDX-License-Identifier: MIT
+#include "sewerplan/core/map_measurements.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <utility>
+
+#include <Eigen/Dense>
+
+#include "sewerplan/core/map_builder.h"
+#include "sewerplan/core/passage_motion.h"
+
+namespace sewerplan {
+namespace {
+
+// `deg` in (-180, 180].
+double wrap180(double deg) {
+  double a = std::fmod(deg, 360.0);
+  if (a <= -180) a += 360;
+  if (a > 180) a -= 360;
+  return a;
+}
+
+// `deg` in [0, 360).
+double wrap360(double deg) {
+  double a = std::fmod(deg, 360.0);
+  if (a < 0) a += 360;
+  if (a >= 360) a -= 360;
+  return a;
+}
+
+void add_source(SourceList& list, std::uint32_t source) {
+  auto it = std::lower_bound(list.begin(), list.end(), source);
+  if (it == list.end() || *it != source) list.insert(it, source);
+}
+
+SourceList joined(SourceList a, const SourceList& b, std::uint32_t b_offset) {
+  for (std::uint32_t s : b) add_source(a, s + b_offset);
+  return a;
+}
+
+template <class T, class Id>
+T& entry(std::vector<T>& v, Id id, Id T::*key) {
+  auto it = std::lower_bound(v.begin(), v.end(), id,
+                             [key](const T& e, Id wanted) { return e.*key < wanted; });
+  if (it == v.end() || (*it).*key != id) {
+    T fresh{};
+    fresh.*key = id;
+    it = v.insert(it, std::move(fresh));
+  }
+  return *it;
+}
+
+PooledValue single(double value, double variance) {
+  return {.mean = value, .variance = variance, .count = 1};
+}
+
+// Pairs the observed slots with the expected ones, in order, the arrival slots with each other:
+// for each observed slot, the expected slot's index, or -1 (a mouth the map lacks). An
+// order-keeping alignment that minimises the summed direction differences, an unpaired slot on
+// either side costing `max_deg` (pairs farther apart than that are never made).
+std::vector<int> align(const ManholeSignature& expected, const ManholeSignature& observed,
+                       double max_deg) {
+  const std::size_t ne = expected.slots.size();
+  const std::size_t no = observed.slots.size();
+  std::vector<int> pairing(no, -1);
+  if (ne == 0 || no == 0) return pairing;
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  // cost[i][j]: expected 1..i and observed 1..j aligned.
+  std::vector<std::vector<double>> cost(ne, std::vector<double>(no, kInf));
+  cost[0][0] = 0;
+  for (std::size_t i = 0; i < ne; ++i) {
+    for (std::size_t j = 0; j < no; ++j) {
+      if (i == 0 && j == 0) continue;
+      double best = kInf;
+      if (i > 0) best = std::min(best, cost[i - 1][j] + max_deg);
+      if (j > 0) best = std::min(best, cost[i][j - 1] + max_deg);
+      if (i > 0 && j > 0) {
+        const double d =
+            std::abs(wrap180(observed.slots[j].relative_deg - expected.slots[i].relative_deg));
+        if (d <= max_deg) best = std::min(best, cost[i - 1][j - 1] + d);
+      }
+      cost[i][j] = best;
+    }
+  }
+  pairing[0] = 0;
+  std::size_t i = ne - 1;
+  std::size_t j = no - 1;
+  while (i > 0 || j > 0) {
+    if (i > 0 && j > 0) {
+      const double d =
+          std::abs(wrap180(observed.slots[j].relative_deg - expected.slots[i].relative_deg));
+      if (d <= max_deg && cost[i][j] == cost[i - 1][j - 1] + d) {
+        pairing[j] = static_cast<int>(i);
+        --i;
+        --j;
+        continue;
+      }
+    }
+    if (i > 0 && cost[i][j] == cost[i - 1][j] + max_deg) {
+      --i;
+    } else {
+      --j;
+    }
+  }
+  return pairing;
+}
+
+// What the observations of one manhole show.
+struct ManholeEvidence {
+  std::vector<bool> seen;                                  // per map slot
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;  // (slot, arrival) with a difference
+  std::vector<double> differences;                         // observed minus mapped, degrees
+  std::vector<double> lateral_azimuths;                    // mouths the map lacks, map frame
+};
+
+struct DiameterEvidence {
+  double sum = 0;
+  std::uint32_t count = 0;
+  SourceList sources;
+};
+
+class Derivation {
+ public:
+  Derivation(const MapMeasurements& m, const SewerMap& map, const DiscrepancyThresholds& t)
+      : m_(m), map_(map), t_(t) {}
+
+  std::vector<FoundDiscrepancy> run() {
+    lengths();
+    for (const ManholeMeasurement& mm : m_.manholes) manhole(mm);
+    diameters();
+    junctions();
+    std::vector<FoundDiscrepancy> all;
+    for (auto* bucket :
+         {&length_, &direction_, &position_, &diameter_, &junction_, &lateral_, &missing_}) {
+      all.insert(all.end(), bucket->begin(), bucket->end());
+    }
+    return all;
+  }
+
+ private:
+  bool beyond(double difference, double sigma, double floor) const {
+    return std::abs(difference) > t_.k_sigma * sigma && std::abs(difference) > floor;
+  }
+
+  void lengths() {
+    for (const PipeMeasurement& p : m_.pipes) {
+      const double mapped = map_.pipe(p.pipe).length_m;
+      const double sigma = std::sqrt(p.length_m.variance);
+      const double floor = std::max(t_.length_floor_m, t_.length_floor_fraction * mapped);
+      if (!beyond(p.length_m.mean - mapped, sigma, floor)) continue;
+      length_.push_back({{.kind = Discrepancy::Kind::kLengthOff,
+                          .pipe = p.pipe,
+                          .map_value = mapped,
+                          .value = p.length_m.mean,
+                          .sigma = sigma},
+                         p.sources});
+    }
+  }
+
+  void manhole(const ManholeMeasurement& mm) {
+    const ManholeId m = mm.manhole;
+    const std::size_t slots = map_.slots(m).size();
+    ManholeEvidence e{.seen = std::vector<bool>(slots, false)};
+    for (const SignatureObservation& o : mm.observations) {
+      if (o.arrival.index() >= slots) continue;
+      const ManholeSignature want = expected_signature(map_, m, o.arrival);
+      const std::vector<SlotIndex> order = signature_slot_order(map_, m, o.arrival);
+      const std::vector<int> pairing = align(want, o.signature, t_.noise.max_direction_deg);
+      for (std::size_t j = 0; j < pairing.size(); ++j) {
+        const SlotSighting& seen = o.signature.slots[j];
+        if (pairing[j] < 0) {
+          e.lateral_azimuths.push_back(
+              wrap360(map_.slot(m, o.arrival).azimuth_deg + seen.relative_deg));
+          continue;
+        }
+        const auto i = static_cast<std::size_t>(pairing[j]);
+        const SlotIndex s = order[i];
+        e.seen[s.index()] = true;
+        DiameterEvidence& d = diameter_seen_[map_.slot(m, s).pipe];
+        d.sum += seen.diameter_m;
+        ++d.count;
+        add_source(d.sources, o.source);
+        if (i == 0) continue;
+        e.pairs.emplace_back(s.index(), o.arrival.index());
+        e.differences.push_back(wrap180(seen.relative_deg - want.slots[i].relative_deg));
+      }
+    }
+    directions(mm, e);
+    laterals(mm, e);
+    if (!mm.observations.empty()) {
+      for (std::size_t s = 0; s < slots; ++s) {
+        if (e.seen[s]) continue;
+        missing_.push_back(
+            {{.kind = Discrepancy::Kind::kMissingLateral,
+              .manhole = m,
+              .slot = SlotIndex{static_cast<std::uint16_t>(s)},
+              .map_value = map_.slot(m, SlotIndex{static_cast<std::uint16_t>(s)}).azimuth_deg},
+             mm.sources});
+      }
+    }
+    if (t_.report_positions && mm.position) position(mm);
+  }
+
+  // Least squares of each slot's deviation from the map, x, from x[slot] - x[arrival] = difference
+  // per paired mouth; the common rotation (unobservable) is removed by taking the minimum-norm
+  // solution (sum of x zero). Covariance: noise² times the pseudo-inverse of the normal matrix.
+  void directions(const ManholeMeasurement& mm, const ManholeEvidence& e) {
+    if (e.pairs.empty()) return;
+    const std::size_t n = e.seen.size();
+    Eigen::MatrixXd normal =
+        Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
+    for (std::size_t k = 0; k < e.pairs.size(); ++k) {
+      const auto s = static_cast<Eigen::Index>(e.pairs[k].first);
+      const auto a = static_cast<Eigen::Index>(e.pairs[k].second);
+      normal(s, s) += 1;
+      normal(a, a) += 1;
+      normal(s, a) -= 1;
+      normal(a, s) -= 1;
+      rhs(s) += e.differences[k];
+      rhs(a) -= e.differences[k];
+    }
+    const Eigen::MatrixXd inverse = normal.completeOrthogonalDecomposition().pseudoInverse();
+    Eigen::VectorXd x = inverse * rhs;
+    std::vector<double> sigma(n, 0);
+    std::vector<bool> involved(n, false);
+    const auto flagged = [&](std::size_t s) {
+      return involved[s] &&
+             beyond(x(static_cast<Eigen::Index>(s)), sigma[s], t_.direction_floor_deg);
+    };
+    for (std::size_t s = 0; s < n; ++s) {
+      const auto i = static_cast<Eigen::Index>(s);
+      involved[s] = normal(i, i) > 0 && inverse(i, i) > 0;
+      if (involved[s]) sigma[s] = t_.noise.direction_deg * std::sqrt(inverse(i, i));
+    }
+    // The minimum-norm solution spreads one slot's deviation over all (its mean is zero); any
+    // common rotation fits as well, so take the one that leaves the slots within the thresholds
+    // undeviated on average: one slot off by 25° then reads 25°, not 18.75°.
+    double sum = 0;
+    std::size_t within = 0;
+    for (std::size_t s = 0; s < n; ++s) {
+      if (involved[s] && !flagged(s)) {
+        sum += x(static_cast<Eigen::Index>(s));
+        ++within;
+      }
+    }
+    // Every slot beyond (two slots: a turn off by 20° could be either's): which one is off is
+    // not observable, and none is reported.
+    if (within == 0) return;
+    x.array() -= sum / static_cast<double>(within);
+    for (std::size_t s = 0; s < n; ++s) {
+      if (!flagged(s)) continue;
+      const auto i = static_cast<Eigen::Index>(s);
+      const SlotIndex slot{static_cast<std::uint16_t>(s)};
+      const double mapped = map_.slot(mm.manhole, slot).azimuth_deg;
+      direction_.push_back({{.kind = Discrepancy::Kind::kDirectionOff,
+                             .manhole = mm.manhole,
+                             .slot = slot,
+                             .map_value = mapped,
+                             .value = wrap360(mapped + x(i)),
+                             .sigma = sigma[s]},
+                            mm.sources});
+    }
+  }
+
+  // Mouths the map lacks, grouped by direction (within max_direction_deg of a group's first).
+  void laterals(const ManholeMeasurement& mm, ManholeEvidence e) {
+    std::sort(e.lateral_azimuths.begin(), e.lateral_azimuths.end());
+    std::vector<bool> used(e.lateral_azimuths.size(), false);
+    for (std::size_t i = 0; i < e.lateral_azimuths.size(); ++i) {
+      if (used[i]) continue;
+      double sx = 0;
+      double sy = 0;
+      std::size_t count = 0;
+      for (std::size_t j = i; j < e.lateral_azimuths.size(); ++j) {
+        if (used[j] || std::abs(wrap180(e.lateral_azimuths[j] - e.lateral_azimuths[i])) >
+                           t_.noise.max_direction_deg) {
+          continue;
+        }
+        used[j] = true;
+        const double rad = e.lateral_azimuths[j] * M_PI / 180;
+        sx += std::cos(rad);
+        sy += std::sin(rad);
+        ++count;
+      }
+      const double share = static_cast<double>(count) / static_cast<double>(mm.observations.size());
+      if (share < t_.lateral_share) continue;
+      lateral_.push_back({{.kind = Discrepancy::Kind::kUnmappedLateral,
+                           .manhole = mm.manhole,
+                           .value = wrap360(std::atan2(sy, sx) * 180 / M_PI),
+                           .sigma = t_.noise.direction_deg / std::sqrt(static_cast<double>(count))},
+                          mm.sources});
+    }
+  }
+
+  void position(const ManholeMeasurement& mm) {
+    const Position& p = map_.manhole(mm.manhole).position;
+    const double distance =
+        std::hypot(mm.position->x_m.mean - p.x_m, mm.position->y_m.mean - p.y_m);
+    const double sigma = std::sqrt(mm.position->x_m.variance);
+    if (!beyond(distance, sigma, t_.position_floor_m)) return;
+    position_.push_back({{.kind = Discrepancy::Kind::kPositionOff,
+                          .manhole = mm.manhole,
+                          .map_value = 0,
+                          .value = distance,
+                          .sigma = sigma},
+                         mm.sources});
+  }
+
+  void diameters() {
+    for (const auto& [pipe, d] : diameter_seen_) {
+      const double mapped = map_.pipe(pipe).diameter_m;
+      const double mean = d.sum / d.count;
+      const double sigma = t_.noise.diameter_m / std::sqrt(static_cast<double>(d.count));
+      if (mean >= mapped || !beyond(mapped - mean, sigma, t_.diameter_floor_m)) continue;
+      diameter_.push_back({{.kind = Discrepancy::Kind::kDiameterSmaller,
+                            .pipe = pipe,
+                            .map_value = mapped,
+                            .value = mean,
+                            .sigma = sigma},
+                           d.sources});
+    }
+  }
+
+  // One unmapped junction per group of sightings in one pipe within 5 m of the group's first.
+  void junctions() {
+    constexpr double kSameJunctionM = 5.0;
+    std::vector<JunctionSighting> s = m_.junctions;
+    std::stable_sort(s.begin(), s.end(), [](const JunctionSighting& a, const JunctionSighting& b) {
+      return a.pipe != b.pipe ? a.pipe < b.pipe : a.offset_m < b.offset_m;
+    });
+    for (std::size_t i = 0; i < s.size();) {
+      std::size_t j = i;
+      double offset = 0;
+      double sigma = 0;
+      SourceList sources;
+      std::map<std::size_t, std::size_t> slot_counts;
+      while (j < s.size() && s[j].pipe == s[i].pipe &&
+             s[j].offset_m - s[i].offset_m <= kSameJunctionM) {
+        offset += s[j].offset_m;
+        sigma += s[j].sigma_m;
+        ++slot_counts[s[j].signature.slots.size()];
+        add_source(sources, s[j].source);
+        ++j;
+      }
+      const double n = static_cast<double>(j - i);
+      const auto most = std::max_element(slot_counts.begin(), slot_counts.end(),
+                                         [](auto a, auto b) { return a.second < b.second; });
+      junction_.push_back({{.kind = Discrepancy::Kind::kUnmappedJunction,
+                            .pipe = s[i].pipe,
+                            .offset_m = offset / n,
+                            .value = static_cast<double>(most->first),
+                            .sigma = sigma / n / std::sqrt(n)},
+                           sources});
+      i = j;
+    }
+  }
+
+  const MapMeasurements& m_;
+  const SewerMap& map_;
+  const DiscrepancyThresholds& t_;
+  std::map<PipeId, DiameterEvidence> diameter_seen_;
+  std::vector<FoundDiscrepancy> length_, direction_, position_, diameter_, junction_, lateral_,
+      missing_;
+};
+
+Result<void> same_map(const MapMeasurements& m, const SewerMap& map) {
+  const std::string fingerprint = map_geometry_fingerprint(map);
+  if (m.map_fingerprint == fingerprint) return {};
+  return Error{ErrorCode::kInvalidArgument, "the measurements are of map '" + m.map_name +
+                                                "' (fingerprint " + m.map_fingerprint +
+                                                "), not of map '" + map.name() + "' (fingerprint " +
+                                                fingerprint + ")"};
+}
+
+}  // namespace
+
+PooledValue pool(const PooledValue& a, const PooledValue& b) {
+  if (a.count == 0) return b;
+  if (b.count == 0) return a;
+  const double wa = 1 / a.variance;
+  const double wb = 1 / b.variance;
+  return {.mean = (wa * a.mean + wb * b.mean) / (wa + wb),
+          .variance = 1 / (wa + wb),
+          .count = a.count + b.count};
+}
+
+MapMeasurements measurements_of(const SewerMap& map, MeasurementSource source) {
+  MapMeasurements m;
+  m.map_name = map.name();
+  m.map_fingerprint = map_geometry_fingerprint(map);
+  m.sources.push_back(std::move(source));
+  return m;
+}
+
+void add_length(MapMeasurements& m, PipeId pipe, double length_m, double variance_m2,
+                std::uint32_t source) {
+  PipeMeasurement& p = entry(m.pipes, pipe, &PipeMeasurement::pipe);
+  p.length_m = pool(p.length_m, single(length_m, variance_m2));
+  add_source(p.sources, source);
+}
+
+void add_observation(MapMeasurements& m, ManholeId manhole, SlotIndex arrival,
+                     ManholeSignature signature, std::uint32_t source) {
+  ManholeMeasurement& mm = entry(m.manholes, manhole, &ManholeMeasurement::manhole);
+  mm.observations.push_back({arrival, std::move(signature), source});
+  add_source(mm.sources, source);
+}
+
+void add_position(MapMeasurements& m, ManholeId manhole, double x_m, double y_m, double variance_m2,
+                  std::uint32_t source) {
+  ManholeMeasurement& mm = entry(m.manholes, manhole, &ManholeMeasurement::manhole);
+  const PositionEstimate here{single(x_m, variance_m2), single(y_m, variance_m2)};
+  mm.position = mm.position ? PositionEstimate{pool(mm.position->x_m, here.x_m),
+                                               pool(mm.position->y_m, here.y_m)}
+                            : here;
+  add_source(mm.sources, source);
+}
+
+Result<MapMeasurements> merge(const MapMeasurements& a, const MapMeasurements& b) {
+  if (a.map_fingerprint != b.map_fingerprint) {
+    return Error{ErrorCode::kInvalidArgument, "cannot merge measurements of different maps: '" +
+                                                  a.map_name + "' (fingerprint " +
+                                                  a.map_fingerprint + ") and '" + b.map_name +
+                                                  "' (fingerprint " + b.map_fingerprint + ")"};
+  }
+  MapMeasurements out = a;
+  out.discrepancies.clear();
+  const auto offset = static_cast<std::uint32_t>(a.sources.size());
+  out.sources.insert(out.sources.end(), b.sources.begin(), b.sources.end());
+  for (const PipeMeasurement& p : b.pipes) {
+    PipeMeasurement& into = entry(out.pipes, p.pipe, &PipeMeasurement::pipe);
+    into.length_m = pool(into.length_m, p.length_m);
+    into.sources = joined(into.sources, p.sources, offset);
+  }
+  for (const ManholeMeasurement& m : b.manholes) {
+    ManholeMeasurement& into = entry(out.manholes, m.manhole, &ManholeMeasurement::manhole);
+    for (SignatureObservation o : m.observations) {
+      o.source += offset;
+      into.observations.push_back(std::move(o));
+    }
+    if (m.position) {
+      into.position = into.position ? PositionEstimate{pool(into.position->x_m, m.position->x_m),
+                                                       pool(into.position->y_m, m.position->y_m)}
+                                    : m.position;
+    }
+    into.sources = joined(into.sources, m.sources, offset);
+  }
+  for (JunctionSighting j : b.junctions) {
+    j.source += offset;
+    out.junctions.push_back(std::move(j));
+  }
+  return out;
+}
+
+std::vector<FoundDiscrepancy> discrepancies(const MapMeasurements& measurements,
+                                            const SewerMap& map,
+                                            const DiscrepancyThresholds& thresholds) {
+  return Derivation(measurements, map, thresholds).run();
+}
+
+Result<CorrectedMap> corrected_map(const SewerMap& map, const MapMeasurements& measurements) {
+  if (Result<void> same = same_map(measurements, map); !same.has_value()) return same.error();
+  CorrectedMap out;
+  std::vector<double> length(map.pipe_count());
+  std::vector<double> diameter(map.pipe_count());
+  for (PipeId p : map.pipe_ids()) {
+    length[p.index()] = map.pipe(p).length_m;
+    diameter[p.index()] = map.pipe(p).diameter_m;
+  }
+  for (const PipeMeasurement& p : measurements.pipes) length[p.pipe.index()] = p.length_m.mean;
+  std::vector<Position> position(map.manhole_count());
+  for (ManholeId m : map.manhole_ids()) position[m.index()] = map.manhole(m).position;
+  std::map<std::pair<std::size_t, std::size_t>, double> azimuth;  // (manhole, slot)
+  for (const FoundDiscrepancy& f : measurements.discrepancies) {
+    const Discrepancy& d = f.discrepancy;
+    bool applied = false;
+    switch (d.kind) {
+      case Discrepancy::Kind::kLengthOff:
+        applied = d.pipe.has_value();  // the measured length, applied above
+        break;
+      case Discrepancy::Kind::kDirectionOff:
+        if (d.manhole && d.slot) {
+          azimuth[{d.manhole->index(), d.slot->index()}] = d.value;
+          applied = true;
+        }
+        break;
+      case Discrepancy::Kind::kDiameterSmaller:
+        if (d.pipe) {
+          diameter[d.pipe->index()] = d.value;
+          applied = true;
+        }
+        break;
+      case Discrepancy::Kind::kPositionOff:
+        for (const ManholeMeasurement& mm : measurements.manholes) {
+          if (d.manhole && mm.manhole == *d.manhole && mm.position) {
+            position[mm.manhole.index()].x_m = mm.position->x_m.mean;
+            position[mm.manhole.index()].y_m = mm.position->y_m.mean;
+            applied = true;
+          }
+        }
+        break;
+      case Discrepancy::Kind::kUnmappedJunction:
+      case Discrepancy::Kind::kUnmappedLateral:
+      case Discrepancy::Kind::kMissingLateral:
+        break;
+    }
+    out.applied.emplace_back(f, applied);
+  }
+
+  MapBuilder builder(map.name(), line_locator("<corrected map of " + map.name() + ">"));
+  builder.set_crs(map.crs());
+  builder.reserve(map.manhole_count(), map.pipe_count(), map.slot_count());
+  for (ManholeId m : map.manhole_ids()) {
+    const Manhole& h = map.manhole(m);
+    ManholeRecord r{.name = h.name,
+                    .position = position[m.index()],
+                    .diameter_m = h.diameter_m,
+                    .exit = h.exit,
+                    .variant = h.variant,
+                    .shaft_length_m = h.shaft_length_m,
+                    .shaft_width_m = h.shaft_width_m,
+                    .depth_m = h.depth_m};
+    const auto slots = map.slots(m);
+    for (std::size_t s = 0; s < slots.size(); ++s) {
+      const auto fixed = azimuth.find({m.index(), s});
+      r.slots.push_back(
+          {.pipe = map.pipe(slots[s].pipe).name,
+           .azimuth_deg = fixed == azimuth.end() ? slots[s].azimuth_deg : fixed->second,
+           .invert_z_m = slots[s].invert_z_m});
+    }
+    builder.add_manhole(std::move(r));
+  }
+  auto end_name = [&](const PipeEnd& e) -> std::optional<std::string> {
+    if (!e.manhole) return std::nullopt;
+    return map.manhole(*e.manhole).name;
+  };
+  for (PipeId p : map.pipe_ids()) {
+    const Pipe& pipe = map.pipe(p);
+    const bool circular_height = pipe.height_m == pipe.diameter_m;
+    builder.add_pipe({.name = pipe.name,
+                      .from = end_name(pipe.ends[0]),
+                      .to = end_name(pipe.ends[1]),
+                      .length_m = length[p.index()],
+                      .diameter_m = diameter[p.index()],
+                      .shape = pipe.shape,
+                      .height_m = circular_height ? std::nullopt : std::optional(pipe.height_m),
+                      .blockage_risk = pipe.blockage_risk});
+  }
+  auto scaled = [&](PipeId p, double offset) {
+    const double old_length = map.pipe(p).length_m;
+    return old_length > 0 ? offset * length[p.index()] / old_length : offset;
+  };
+  for (const InspectionPoint& point : map.points()) {
+    builder.add_point({.name = point.name,
+                       .pipe = map.pipe(point.pipe).name,
+                       .offset_m = scaled(point.pipe, point.offset_m)});
+  }
+  for (const Finding& f : map.findings()) {
+    builder.add_finding({.pipe = map.pipe(f.pipe).name,
+                         .code = f.code,
+                         .characterisation = f.characterisation,
+                         .station_m = scaled(f.pipe, f.offset_m),
+                         .quantity1 = f.quantity1,
+                         .quantity2 = f.quantity2});
+  }
+  Diagnostics diagnostics;
+  Result<SewerMap> built = std::move(builder).build(diagnostics);
+  if (!built.has_value()) return built.error();
+  out.map = std::move(*built);
+  return out;
+}
+
+}  // namespace sewerplan

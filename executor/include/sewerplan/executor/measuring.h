@@ -1,0 +1,96 @@
+// SPDX-License-Identifier: MIT
+// Measurer: turns the jobs a robot ran into measurements of its map (core/map_measurements.h).
+//
+// The paper's robot is to "measure positions of manholes and pipes ... to improve current maps"
+// (section 1). The Measurer watches every job the action controller sends, its report, and where
+// the controller had the robot before and after it (the Executor's dead reckoning, so no position
+// of its own):
+//   - a leg starts when the robot leaves a manhole into a pipe (a turn through the manhole, or
+//     leaving the manhole it was lowered into) and ends when it reaches the pipe's other end; the
+//     signed sum of the drives' odometry between (towards the far end positive: a scan driven
+//     backward counts back) is one length measurement, with sigma = sqrt((fraction x length)^2 +
+//     floor^2) (MeasuringOptions). A leg in which a job failed, a push was made, or a report's
+//     progress was not a number is not measured (recovery moves the robot in ways odometry
+//     does not tell), nor one that came back to the end it started from;
+//   - an arrival with an observation (hal::JobReport::observation) is a signature measurement of
+//     that manhole, relative to the slot arrived through; with a measured leg, also a position
+//     estimate (map_measurements.h);
+//   - an observation in the middle of a pipe is a junction the map lacks, at the odometry's offset
+//     (MapMeasurements::junctions) unless it is the far manhole seen early: the remaining distance
+//     within early_arrival_fraction of the pipe's length and the signature matching that manhole's
+//     (compare()): then the pipe is shorter than mapped, and the leg ends there.
+// Whether an arrival is at the manhole the controller thinks is the localisation's to verify
+// (issue 29); the Measurer takes the controller's positions as given.
+//
+//   Measurer measurer(map, {.robot = "makro", .mission = "paper", .date = "2026-12-06T07:00:00Z"});
+//   executor.subscribe_jobs(measurer.observer());
+//   executor.run();
+//   MapMeasurements m = measurer.measurements();
+//   m.discrepancies = discrepancies(m, map);
+//
+// Thread safety: not thread-safe; the Executor calls it on the thread that runs the mission.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sewerplan/core/job.h"
+#include "sewerplan/core/manhole_signature.h"
+#include "sewerplan/core/map_measurements.h"
+#include "sewerplan/core/sewer_map.h"
+#include "sewerplan/domain/robot_state.h"
+#include "sewerplan/executor/executor.h"
+#include "sewerplan/hal/robot.h"
+
+namespace sewerplan::executor {
+
+struct MeasuringOptions {
+  double odometry_sigma_fraction = 0.03;  // of the distance driven (the issue's drift)
+  double odometry_sigma_floor_m = 0.05;   // the wheels' resolution and the manhole's mouth
+  double early_arrival_fraction = 0.25;   // see the header comment
+  SignatureNoise noise;                   // for telling the far manhole from a junction
+};
+
+class Measurer {
+ public:
+  // `map` must outlive the Measurer.
+  Measurer(const SewerMap& map, MeasurementSource source, MeasuringOptions options = {});
+
+  // One job the robot ran: its report, where the controller had the robot before and after it,
+  // and which way the job drove along the pipe (+1 towards ends[1], -1 towards ends[0], 0: it
+  // does not drive).
+  void observe(const Job& job, const hal::JobReport& report, const domain::RobotPosition& before,
+               const domain::RobotPosition& after, double direction);
+  // observe() as an Executor's job observer (Executor::subscribe_jobs). The Measurer must outlive
+  // the Executor's run.
+  JobObserver observer();
+
+  const MapMeasurements& measurements() const { return measurements_; }
+  // Reports not used, and why: "P5: odometry is not a number", "M6: signature: slot 2: ...".
+  const std::vector<std::string>& rejected() const { return rejected_; }
+
+ private:
+  struct Leg {
+    PipeId pipe{0};
+    std::uint8_t from_end = 0;
+    double driven_m = 0;  // towards the far end
+    bool clean = true;
+  };
+
+  void start_leg(const domain::RobotPosition& after);
+  void drive(const Job& job, const hal::JobReport& report, const domain::RobotPosition& after,
+             double direction);
+  void end_leg(ManholeId manhole, SlotIndex slot);
+  void arrival(ManholeId manhole, SlotIndex slot, const ManholeSignature& seen);
+  double sigma_m(double distance_m) const;
+  bool valid(const ManholeSignature& seen, const std::string& where);
+
+  const SewerMap& map_;
+  MeasuringOptions options_;
+  MapMeasurements measurements_;
+  std::optional<Leg> leg_;
+  std::vector<std::string> rejected_;
+};
+
+}  // namespace sewerplan::executor

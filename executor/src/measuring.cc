@@ -1,0 +1,149 @@
+// SPDX-License-Identifier: MIT
+#include "sewerplan/executor/measuring.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace sewerplan::executor {
+
+Measurer::Measurer(const SewerMap& map, MeasurementSource source, MeasuringOptions options)
+    : map_(map), options_(options), measurements_(measurements_of(map, std::move(source))) {}
+
+JobObserver Measurer::observer() {
+  return [this](const JobSeen& seen) {
+    observe(seen.job, seen.report, seen.before, seen.after, seen.direction);
+  };
+}
+
+double Measurer::sigma_m(double distance_m) const {
+  return std::hypot(options_.odometry_sigma_fraction * distance_m, options_.odometry_sigma_floor_m);
+}
+
+bool Measurer::valid(const ManholeSignature& seen, const std::string& where) {
+  if (Result<void> checked = check_signature(seen); !checked.has_value()) {
+    rejected_.push_back(where + ": signature: " + checked.error().message);
+    return false;
+  }
+  return true;
+}
+
+void Measurer::observe(const Job& job, const hal::JobReport& report,
+                       const domain::RobotPosition& before, const domain::RobotPosition& after,
+                       double direction) {
+  (void)before;
+  if (std::holds_alternative<TurnInManhole>(job) ||
+      std::holds_alternative<EnterPipeFromManhole>(job)) {
+    leg_.reset();
+    if (report.ok()) start_leg(after);
+    return;
+  }
+  if (direction != 0) drive(job, report, after, direction);
+  if (!report.observation) return;
+  if (const auto* at = std::get_if<domain::AtSlot>(&after)) {
+    arrival(at->manhole, at->slot, *report.observation);
+    return;
+  }
+  // In a pipe with no leg to measure from (a drive that started in the pipe): a junction at the
+  // controller's offset, as uncertain as the drive from the nearer end.
+  const auto* in = std::get_if<domain::InPipe>(&after);
+  if (leg_ || in == nullptr) return;
+  const Pipe& pipe = map_.pipe(in->pipe);
+  if (!valid(*report.observation, pipe.name)) return;
+  measurements_.junctions.push_back(
+      {.pipe = in->pipe,
+       .offset_m = in->offset_m,
+       .sigma_m = sigma_m(std::min(in->offset_m, pipe.length_m - in->offset_m)),
+       .signature = *report.observation,
+       .source = 0});
+}
+
+void Measurer::start_leg(const domain::RobotPosition& after) {
+  const auto* in = std::get_if<domain::InPipe>(&after);
+  if (in == nullptr) return;
+  const Pipe& pipe = map_.pipe(in->pipe);
+  for (std::uint8_t e = 0; e < 2; ++e) {
+    if (pipe.ends[e].manhole && std::abs(in->offset_m - domain::end_offset_m(pipe, e)) <= 1e-6) {
+      leg_ = Leg{.pipe = in->pipe, .from_end = e};
+      return;
+    }
+  }
+}
+
+void Measurer::drive(const Job& job, const hal::JobReport& report,
+                     const domain::RobotPosition& after, double direction) {
+  if (!leg_) return;
+  const Pipe& pipe = map_.pipe(leg_->pipe);
+  if (!std::isfinite(report.progress_m) || report.progress_m < 0) {
+    rejected_.push_back(pipe.name + ": odometry " + std::to_string(report.progress_m) +
+                        " is not a distance");
+    leg_->clean = false;
+  } else {
+    // +1 towards ends[1]; the far end is ends[1 - from_end].
+    const double towards_far = leg_->from_end == 0 ? direction : -direction;
+    leg_->driven_m += towards_far * report.progress_m;
+  }
+  if (!report.ok() || std::holds_alternative<Push>(job)) leg_->clean = false;
+
+  if (const auto* at = std::get_if<domain::AtSlot>(&after)) {
+    const Slot& slot = map_.slot(at->manhole, at->slot);
+    if (slot.pipe == leg_->pipe && slot.pipe_end != leg_->from_end) {
+      end_leg(at->manhole, at->slot);
+    } else {
+      leg_.reset();  // back where it started, or somewhere the leg does not lead
+    }
+    return;
+  }
+  const auto* in = std::get_if<domain::InPipe>(&after);
+  if (!report.observation || in == nullptr || in->pipe != leg_->pipe) return;
+  const std::string where = pipe.name + " at " + std::to_string(in->offset_m) + " m";
+  if (!valid(*report.observation, where)) return;
+  const std::uint8_t far = 1 - leg_->from_end;
+  const PipeEnd& far_end = pipe.ends[far];
+  const double remaining = pipe.length_m - leg_->driven_m;
+  if (far_end.manhole && remaining >= 0 &&
+      remaining <= options_.early_arrival_fraction * pipe.length_m &&
+      compare(expected_signature(map_, *far_end.manhole, far_end.slot), *report.observation,
+              options_.noise)
+          .matches) {
+    const ManholeId m = *far_end.manhole;
+    const SlotIndex s = far_end.slot;
+    end_leg(m, s);
+    arrival(m, s, *report.observation);
+    return;
+  }
+  measurements_.junctions.push_back({.pipe = leg_->pipe,
+                                     .offset_m = in->offset_m,
+                                     .sigma_m = sigma_m(std::abs(leg_->driven_m)),
+                                     .signature = *report.observation,
+                                     .source = 0});
+}
+
+void Measurer::end_leg(ManholeId manhole, SlotIndex slot) {
+  (void)slot;
+  const Leg leg = *leg_;
+  leg_.reset();
+  if (!leg.clean || leg.driven_m <= 0) return;
+  const Pipe& pipe = map_.pipe(leg.pipe);
+  const double sigma = sigma_m(leg.driven_m);
+  add_length(measurements_, leg.pipe, leg.driven_m, sigma * sigma, 0);
+  // Position: the manhole left's map position plus the pipe's chord, scaled by measured / mapped
+  // length (map_measurements.h).
+  const std::optional<ManholeId> from = pipe.ends[leg.from_end].manhole;
+  if (!from) return;
+  const Position& a = map_.manhole(*from).position;
+  const Position& b = map_.manhole(manhole).position;
+  const double chord = std::hypot(b.x_m - a.x_m, b.y_m - a.y_m);
+  if (chord <= 0 || pipe.length_m <= 0) return;
+  const double scale = leg.driven_m / pipe.length_m;
+  const double position_sigma = sigma * chord / pipe.length_m;
+  add_position(measurements_, manhole, a.x_m + (b.x_m - a.x_m) * scale,
+               a.y_m + (b.y_m - a.y_m) * scale, position_sigma * position_sigma, 0);
+}
+
+void Measurer::arrival(ManholeId manhole, SlotIndex slot, const ManholeSignature& seen) {
+  if (!valid(seen, map_.manhole(manhole).name)) return;
+  add_observation(measurements_, manhole, slot, seen, 0);
+}
+
+}  // namespace sewerplan::executor

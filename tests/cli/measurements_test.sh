@@ -1,0 +1,104 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# The corrected map out (issue 29; docs/cli.md): simulate --corrected-map on the AIS testbed's exact
+# world writes the corrected map (equal to the map: every measured length is the map's), its
+# discrepancy report (none) and the measurements; merge-measurements pools two missions' files
+# (twice the count, half the variance), refuses a file of another map naming it, and every failed
+# write exits 3 naming the file.
+# Usage: measurements_test.sh PATH_TO_SEWERPLAN SOURCE_DIR
+set -uo pipefail
+sp=$1
+src=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+failures=0
+passed=0
+
+# expect CODE PATTERN -- COMMAND...: runs COMMAND, checks its exit code and that PATTERN (grep -E)
+# occurs in its stdout+stderr.
+expect() {
+  local code=$1 pattern=$2
+  shift 3
+  local out
+  out=$(timeout 60 "$@" 2>&1)
+  local got=$?
+  if [ "$got" -ne "$code" ] || ! grep -qE -- "$pattern" <<<"$out"; then
+    echo "FAIL: $* -> exit $got (want $code), output:"
+    echo "$out" | head -20
+    echo "(wanted /$pattern/)"
+    failures=$((failures + 1))
+  else
+    passed=$((passed + 1))
+  fi
+}
+
+# check DESCRIPTION COMMAND...: the command succeeds.
+check() {
+  local what=$1
+  shift
+  if "$@"; then passed=$((passed + 1)); else echo "FAIL: $what"; failures=$((failures + 1)); fi
+}
+
+ais=$src/datasets/ais-testbed/map.json
+mission=$src/datasets/ais-testbed/missions/paper.json
+export SOURCE_DATE_EPOCH=1765000000
+
+expect 0 "corrected map .*/fixed.json: [1-9][0-9]* pipes measured, 0 discrepancies" -- \
+  "$sp" simulate --map "$ais" --mission "$mission" -q --corrected-map "$tmp/fixed.json"
+check "the three files are written" test -s "$tmp/fixed.json" -a -s "$tmp/fixed.discrepancies.json" \
+  -a -s "$tmp/fixed.measurements.json"
+check "the report lists no discrepancy" grep -q '"discrepancies": \[\]' "$tmp/fixed.discrepancies.json"
+check "the provenance is the profile, the mission and SOURCE_DATE_EPOCH's date" \
+  grep -q '"date": "2025-12-06T05:46:40Z"' "$tmp/fixed.measurements.json"
+# The corrected map of an exact world is the map: the same JSON once both are written by us.
+"$sp" convert --map "$ais" -o "$tmp/ais.json" >/dev/null
+check "the corrected map equals the map" cmp -s "$tmp/ais.json" "$tmp/fixed.json"
+# Same inputs, same files.
+"$sp" simulate --map "$ais" --mission "$mission" -q --corrected-map "$tmp/again.json" >/dev/null
+check "deterministic" cmp -s "$tmp/fixed.measurements.json" "$tmp/again.measurements.json"
+
+# Two missions pooled: twice the measurements of each pipe, half the variance.
+expect 0 "merged 2 files \(2 missions\)" -- "$sp" merge-measurements --map "$ais" \
+  "$tmp/fixed.measurements.json" "$tmp/again.measurements.json" -o "$tmp/merged.json" \
+  --corrected-map "$tmp/merged-map.json"
+check "counts doubled" grep -q '"count": 2' "$tmp/merged.json"
+v1=$(grep -m1 -o '"variance_m2": [0-9.e-]*' "$tmp/fixed.measurements.json" | cut -d' ' -f2)
+v2=$(grep -m1 -o '"variance_m2": [0-9.e-]*' "$tmp/merged.json" | cut -d' ' -f2)
+check "variance halved ($v1 -> $v2)" awk -v a="$v1" -v b="$v2" 'BEGIN { exit !(b > 0 && (a / b - 2) ^ 2 < 1e-9) }'
+check "the merged corrected map equals the map" cmp -s "$tmp/ais.json" "$tmp/merged-map.json"
+expect 0 '"discrepancies": 0' -- "$sp" merge-measurements --map "$ais" \
+  "$tmp/fixed.measurements.json" -o "$tmp/one.json" --json
+
+# A file of another map: an error naming the file and the fingerprint, exit 1.
+python3 - "$ais" "$tmp/other.json" <<'PY'
+import json, sys
+m = json.load(open(sys.argv[1]))
+m["manholes"][0]["diameter_m"] = m["manholes"][0]["diameter_m"] + 0.1
+json.dump(m, open(sys.argv[2], "w"))
+PY
+expect 1 "fixed.measurements.json:\\\$.map.fingerprint: .*not of map" -- "$sp" merge-measurements \
+  --map "$tmp/other.json" "$tmp/fixed.measurements.json" -o "$tmp/x.json"
+# A bad file: the JSON path of the problem.
+sed 's/"variance_m2": [0-9.e-]*/"variance_m2": -1/' "$tmp/fixed.measurements.json" >"$tmp/bad.json"
+expect 1 "bad.json:\\\$.pipes\[0\].variance_m2" -- "$sp" merge-measurements --map "$ais" \
+  "$tmp/bad.json" -o "$tmp/x.json"
+expect 3 "missing.json" -- "$sp" merge-measurements --map "$ais" "$tmp/missing.json" -o "$tmp/x.json"
+expect 2 "required" -- "$sp" merge-measurements --map "$ais" "$tmp/one.json"
+
+# The discrepancies as a GeoJSON layer for GIS (with the GIS module).
+if "$sp" --help | grep -q export-geojson; then
+  expect 0 "wrote" -- "$sp" export-geojson --map "$ais" --crs EPSG:25832 \
+    --measurements "$src/fuzz/corpus/measurements_json/observations.json" -o "$tmp/d.geojson"
+  check "two discrepancy features" test "$(grep -c '"layer": "discrepancy"' "$tmp/d.geojson")" -eq 2
+fi
+
+# Failed writes: exit 3 naming the file.
+expect 3 "/dev/full" -- "$sp" merge-measurements --map "$ais" "$tmp/one.json" -o /dev/full
+expect 3 "/dev/full" -- "$sp" merge-measurements --map "$ais" "$tmp/one.json" -o "$tmp/y.json" \
+  --corrected-map /dev/full
+expect 3 "/dev/full" -- "$sp" simulate --map "$ais" --mission "$mission" -q --corrected-map /dev/full
+expect 3 "$tmp/a-file/x.json" -- bash -c "echo x > '$tmp/a-file'; '$sp' simulate --map '$ais' \
+  --mission '$mission' -q --corrected-map '$tmp/a-file/x.json'"
+
+echo "measurements: $passed passed, $failures failed"
+[ "$failures" -eq 0 ]

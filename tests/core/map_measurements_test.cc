@@ -1,0 +1,265 @@
+// SPDX-License-Identifier: MIT
+#include "sewerplan/core/map_measurements.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "support/small_map.h"
+
+namespace sewerplan {
+namespace {
+
+using testing::SmallMap;
+using Kind = Discrepancy::Kind;
+
+// A cross at M0 (slots: P1 east, P2 north, P3 west, P4 south, each 10 m), with point X1 in P1.
+SewerMap cross(const std::string& name = "cross") {
+  SmallMap m;
+  m.manhole("M0", 0, 0, true).manhole("E", 10, 0).manhole("N", 0, 10).manhole("W", -10, 0);
+  m.manhole("S", 0, -10);
+  m.pipe("P1", "M0", "E").pipe("P2", "M0", "N").pipe("P3", "M0", "W").pipe("P4", "M0", "S");
+  m.point("X1", "P1", 5);
+  SewerMap map = m.build();
+  if (name == "cross") return map;
+  // The same network under another name, with one slot moved: another map.
+  return SmallMap()
+      .manhole("M0", 0, 0, true)
+      .manhole("E", 10, 1)
+      .manhole("N", 0, 10)
+      .pipe("P1", "M0", "E")
+      .pipe("P2", "M0", "N")
+      .build();
+}
+
+MeasurementSource source(const std::string& mission) {
+  return {.robot = "makro", .mission = mission, .date = "2026-12-06T07:00:00Z"};
+}
+
+ManholeId id(const SewerMap& map, const char* name) { return *map.find_manhole(name); }
+PipeId pipe(const SewerMap& map, const char* name) { return *map.find_pipe(name); }
+
+std::vector<Kind> kinds(const std::vector<FoundDiscrepancy>& found) {
+  std::vector<Kind> out;
+  for (const FoundDiscrepancy& f : found) out.push_back(f.discrepancy.kind);
+  return out;
+}
+
+// Arrivals in M0 through every slot but `skip`, each seeing what the map predicts, then changed.
+template <class Change>
+void arrivals(MapMeasurements& m, const SewerMap& map, Change change, int skip = -1) {
+  const ManholeId m0 = id(map, "M0");
+  for (std::uint16_t a = 0; a < 4; ++a) {
+    if (a == skip) continue;
+    ManholeSignature seen = expected_signature(map, m0, SlotIndex{a});
+    change(SlotIndex{a}, seen);
+    add_observation(m, m0, SlotIndex{a}, seen, 0);
+  }
+}
+
+TEST(MapMeasurements, MergeOfTwoMissionsHasLessUncertainty) {
+  const SewerMap map = cross();
+  MapMeasurements a = measurements_of(map, source("one"));
+  MapMeasurements b = measurements_of(map, source("two"));
+  add_length(a, pipe(map, "P1"), 10.2, 0.04, 0);
+  add_length(b, pipe(map, "P1"), 10.0, 0.04, 0);
+  add_length(b, pipe(map, "P2"), 9.0, 0.09, 0);
+  add_position(a, id(map, "E"), 10.2, 0, 0.04, 0);
+  add_position(b, id(map, "E"), 10.0, 0, 0.04, 0);
+  const Result<MapMeasurements> merged = merge(a, b);
+  ASSERT_TRUE(merged.has_value()) << merged.error().message;
+  ASSERT_EQ(merged->sources.size(), 2u);
+  EXPECT_EQ(merged->sources[1].mission, "two");
+  ASSERT_EQ(merged->pipes.size(), 2u);
+  const PipeMeasurement& p1 = merged->pipes[0];
+  EXPECT_NEAR(p1.length_m.mean, 10.1, 1e-12);
+  EXPECT_NEAR(p1.length_m.variance, 0.02, 1e-12);  // half of each
+  EXPECT_EQ(p1.length_m.count, 2u);
+  EXPECT_EQ(p1.sources, (SourceList{0, 1}));
+  EXPECT_EQ(merged->pipes[1].sources, (SourceList{1}));  // b's source 0 is the merged 1
+  ASSERT_EQ(merged->manholes.size(), 1u);
+  EXPECT_NEAR(merged->manholes[0].position->x_m.variance, 0.02, 1e-12);
+  // Unequal variances: the better measurement weighs more.
+  EXPECT_NEAR(pool({10, 0.01, 1}, {11, 0.04, 1}).mean, 10.2, 1e-12);
+}
+
+TEST(MapMeasurements, MergeRefusesMeasurementsOfAnotherMap) {
+  const SewerMap map = cross();
+  const SewerMap other = cross("other");
+  const Result<MapMeasurements> merged =
+      merge(measurements_of(map, source("one")), measurements_of(other, source("two")));
+  ASSERT_FALSE(merged.has_value());
+  EXPECT_EQ(merged.error().code, ErrorCode::kInvalidArgument);
+  EXPECT_NE(merged.error().message.find("different maps"), std::string::npos)
+      << merged.error().message;
+}
+
+TEST(MapMeasurements, NoDiscrepancyForNoiseWithinThresholds) {
+  const SewerMap map = cross();
+  MapMeasurements m = measurements_of(map, source("one"));
+  // Lengths off by one sigma or less (0.3 m); directions by 4° (half the noise); sizes by 1 cm.
+  const double off[] = {0.3, -0.2, 0.1, -0.3};
+  for (int p = 0; p < 4; ++p)
+    add_length(m, PipeId{static_cast<std::uint32_t>(p)}, 10 + off[p], 0.09, 0);
+  arrivals(m, map, [](SlotIndex a, ManholeSignature& s) {
+    for (std::size_t i = 1; i < s.slots.size(); ++i) {
+      s.slots[i].relative_deg += (i + a.value()) % 2 == 0 ? 4 : -4;
+      s.slots[i].diameter_m -= 0.01;
+    }
+  });
+  EXPECT_TRUE(discrepancies(m, map).empty());
+}
+
+TEST(MapMeasurements, ALengthOffBeyondItsSigmaIsFound) {
+  const SewerMap map = cross();
+  MapMeasurements m = measurements_of(map, source("one"));
+  add_length(m, pipe(map, "P2"), 12.0, 0.09, 0);
+  add_length(m, pipe(map, "P3"), 10.4, 0.09, 0);  // 1.3 sigma: noise
+  const auto found = discrepancies(m, map);
+  ASSERT_EQ(found.size(), 1u);
+  const Discrepancy& d = found[0].discrepancy;
+  EXPECT_EQ(d.kind, Kind::kLengthOff);
+  EXPECT_EQ(d.pipe, pipe(map, "P2"));
+  EXPECT_DOUBLE_EQ(d.value, 12.0);
+  EXPECT_DOUBLE_EQ(d.map_value, 10.0);
+  EXPECT_NEAR(d.sigma, 0.3, 1e-12);
+  EXPECT_EQ(found[0].sources, (SourceList{0}));
+  // Beyond k sigma but under the floor (2 % of the length): a well-measured pipe is not nagged.
+  MapMeasurements precise = measurements_of(map, source("one"));
+  add_length(precise, pipe(map, "P2"), 10.1, 1e-4, 0);
+  EXPECT_TRUE(discrepancies(precise, map).empty());
+}
+
+TEST(MapMeasurements, ASlotDirectionOffIsFoundOnItsOwnSlot) {
+  const SewerMap map = cross();
+  MapMeasurements m = measurements_of(map, source("one"));
+  // P2 (north, slot 2) really leaves at 115°: seen 25° further counter-clockwise from every other
+  // arrival slot.
+  arrivals(
+      m, map,
+      [&](SlotIndex a, ManholeSignature& s) {
+        const auto order = signature_slot_order(map, id(map, "M0"), a);
+        for (std::size_t i = 1; i < order.size(); ++i) {
+          if (order[i] == SlotIndex{1}) s.slots[i].relative_deg += 25;
+        }
+      },
+      /*skip=*/1);
+  const auto found = discrepancies(m, map);
+  ASSERT_EQ(kinds(found), std::vector<Kind>{Kind::kDirectionOff});
+  EXPECT_EQ(found[0].discrepancy.slot, SlotIndex{1});
+  EXPECT_NEAR(found[0].discrepancy.value, 115, 1e-6);
+  EXPECT_DOUBLE_EQ(found[0].discrepancy.map_value, 90);
+}
+
+TEST(MapMeasurements, ASmallerPipeIsFound) {
+  const SewerMap map = cross();
+  MapMeasurements m = measurements_of(map, source("one"));
+  arrivals(m, map, [&](SlotIndex a, ManholeSignature& s) {
+    const auto order = signature_slot_order(map, id(map, "M0"), a);
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      if (order[i] == SlotIndex{3}) s.slots[i].diameter_m = 0.35;
+    }
+  });
+  const auto found = discrepancies(m, map);
+  ASSERT_EQ(kinds(found), std::vector<Kind>{Kind::kDiameterSmaller});
+  EXPECT_EQ(found[0].discrepancy.pipe, pipe(map, "P4"));
+  EXPECT_NEAR(found[0].discrepancy.value, 0.35, 1e-12);
+}
+
+TEST(MapMeasurements, AMouthTheMapLacksIsAnUnmappedLateral) {
+  const SewerMap map = cross();
+  MapMeasurements m = measurements_of(map, source("one"));
+  // A lateral at 45° (between east and north), seen from every arrival.
+  arrivals(m, map, [&](SlotIndex a, ManholeSignature& s) {
+    const double base = map.slot(id(map, "M0"), a).azimuth_deg;
+    const double rel = std::fmod(45 - base + 360, 360);
+    const auto at =
+        std::upper_bound(s.slots.begin() + 1, s.slots.end(), rel,
+                         [](double r, const SlotSighting& x) { return r < x.relative_deg; });
+    s.slots.insert(at, SlotSighting{rel, 0, 0.2});
+  });
+  const auto found = discrepancies(m, map);
+  ASSERT_EQ(kinds(found), std::vector<Kind>{Kind::kUnmappedLateral});
+  EXPECT_EQ(found[0].discrepancy.manhole, id(map, "M0"));
+  EXPECT_NEAR(found[0].discrepancy.value, 45, 1e-6);
+}
+
+TEST(MapMeasurements, AMappedSlotNeverSeenIsAMissingLateral) {
+  const SewerMap map = cross();
+  MapMeasurements m = measurements_of(map, source("one"));
+  // The south mouth (slot 4) is not there: never seen from the three other arrivals.
+  arrivals(
+      m, map,
+      [&](SlotIndex a, ManholeSignature& s) {
+        const auto order = signature_slot_order(map, id(map, "M0"), a);
+        for (std::size_t i = 0; i < order.size(); ++i) {
+          if (order[i] == SlotIndex{3}) s.slots.erase(s.slots.begin() + static_cast<long>(i));
+        }
+      },
+      /*skip=*/3);
+  const auto found = discrepancies(m, map);
+  ASSERT_EQ(kinds(found), std::vector<Kind>{Kind::kMissingLateral});
+  EXPECT_EQ(found[0].discrepancy.slot, SlotIndex{3});
+}
+
+TEST(MapMeasurements, AManholeSightedInAPipeIsAnUnmappedJunction) {
+  const SewerMap map = cross();
+  MapMeasurements m = measurements_of(map, source("one"));
+  ManholeSignature three = expected_signature(map, id(map, "M0"), SlotIndex{0});
+  three.slots.pop_back();
+  m.junctions.push_back({pipe(map, "P1"), 4.0, 0.2, three, 0});
+  m.junctions.push_back({pipe(map, "P1"), 4.4, 0.2, three, 0});  // the same one, seen again
+  const auto found = discrepancies(m, map);
+  ASSERT_EQ(kinds(found), std::vector<Kind>{Kind::kUnmappedJunction});
+  EXPECT_NEAR(found[0].discrepancy.offset_m, 4.2, 1e-12);
+  EXPECT_DOUBLE_EQ(found[0].discrepancy.value, 3);
+}
+
+TEST(MapMeasurements, PositionsAreReportedOnlyWhenAsked) {
+  const SewerMap map = cross();
+  MapMeasurements m = measurements_of(map, source("one"));
+  add_position(m, id(map, "E"), 14, 0, 0.25, 0);
+  EXPECT_TRUE(discrepancies(m, map).empty());
+  const auto found = discrepancies(m, map, {.report_positions = true});
+  ASSERT_EQ(kinds(found), std::vector<Kind>{Kind::kPositionOff});
+  EXPECT_NEAR(found[0].discrepancy.value, 4, 1e-12);
+}
+
+TEST(MapMeasurements, TheCorrectedMapCarriesLengthsAndDirections) {
+  const SewerMap map = cross();
+  MapMeasurements m = measurements_of(map, source("one"));
+  add_length(m, pipe(map, "P1"), 12.0, 0.09, 0);
+  add_length(m, pipe(map, "P3"), 10.1, 0.09, 0);  // measured, not a discrepancy: still applied
+  m.discrepancies = discrepancies(m, map);
+  m.discrepancies.push_back({{.kind = Kind::kDirectionOff,
+                              .manhole = id(map, "M0"),
+                              .slot = SlotIndex{1},
+                              .map_value = 90,
+                              .value = 100},
+                             {0}});
+  m.discrepancies.push_back(
+      {{.kind = Kind::kUnmappedLateral, .manhole = id(map, "M0"), .value = 45}, {0}});
+  const Result<CorrectedMap> fixed = corrected_map(map, m);
+  ASSERT_TRUE(fixed.has_value()) << fixed.error().message;
+  EXPECT_DOUBLE_EQ(fixed->map.pipe(pipe(map, "P1")).length_m, 12.0);
+  EXPECT_DOUBLE_EQ(fixed->map.pipe(pipe(map, "P3")).length_m, 10.1);
+  EXPECT_DOUBLE_EQ(fixed->map.pipe(pipe(map, "P2")).length_m, 10.0);
+  EXPECT_DOUBLE_EQ(fixed->map.slot(id(map, "M0"), SlotIndex{1}).azimuth_deg, 100);
+  EXPECT_NEAR(fixed->map.point(*map.find_point("X1")).offset_m, 6.0, 1e-12);  // moved with P1
+  ASSERT_EQ(fixed->applied.size(), 3u);
+  EXPECT_TRUE(fixed->applied[0].second);   // length
+  EXPECT_TRUE(fixed->applied[1].second);   // direction
+  EXPECT_FALSE(fixed->applied[2].second);  // a lateral: listed, not added
+  // Nothing measured: the same map.
+  const Result<CorrectedMap> same = corrected_map(map, measurements_of(map, source("one")));
+  ASSERT_TRUE(same.has_value());
+  EXPECT_EQ(same->map, map);
+  // Measurements of another map are refused.
+  const Result<CorrectedMap> wrong = corrected_map(cross("other"), m);
+  ASSERT_FALSE(wrong.has_value());
+  EXPECT_NE(wrong.error().message.find("not of map"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace sewerplan

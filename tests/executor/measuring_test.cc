@@ -1,0 +1,188 @@
+// SPDX-License-Identifier: MIT
+// The Measurer fed with synthetic job reports (what a robot in a world unlike its map would send),
+// and watching a whole mission of the Executor on the exact simulated world.
+#include "sewerplan/executor/measuring.h"
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "sewerplan/executor/event_json.h"
+#include "sewerplan/hal/sim_robot.h"
+
+#include "support/ais_testbed.h"
+#include "support/small_map.h"
+
+namespace sewerplan::executor {
+namespace {
+
+using testing::SmallMap;
+using Kind = Discrepancy::Kind;
+
+// M1 -P1 (10 m)- M2 -P2 (10 m)- M3, M2 a straight-through manhole.
+SewerMap line() {
+  return SmallMap()
+      .manhole("M1", 0, 0, true)
+      .manhole("M2", 10, 0)
+      .manhole("M3", 20, 0)
+      .pipe("P1", "M1", "M2")
+      .pipe("P2", "M2", "M3")
+      .build();
+}
+
+class MeasurerTest : public ::testing::Test {
+ protected:
+  MeasurerTest()
+      : map_(line()),
+        p1_(*map_.find_pipe("P1")),
+        m1_(*map_.find_manhole("M1")),
+        m2_(*map_.find_manhole("M2")),
+        measurer_(map_, {"makro", "test", "2026-12-06T07:00:00Z"}) {}
+
+  // Lowered into M1, into P1.
+  void enter() {
+    const domain::RobotPosition before = domain::InManhole{m1_};
+    const domain::RobotPosition after = domain::InPipe{p1_, 0};
+    measurer_.observe(EnterPipeFromManhole{0, 5}, hal::JobReport{}, before, after, 0);
+  }
+
+  // A drive of `odometry` metres along P1 from `from_m`, which the controller tracks onto the map
+  // (clamped at its length: at M2's mouth).
+  void drive(double from_m, double odometry, hal::JobReport report = {}, double direction = 1) {
+    report.progress_m = odometry;
+    const double to = std::clamp(from_m + direction * odometry, 0.0, 10.0);
+    const domain::RobotPosition before = domain::InPipe{p1_, from_m};
+    const domain::RobotPosition after =
+        to >= 10.0 && report.ok() ? domain::RobotPosition{domain::AtSlot{m2_, SlotIndex{0}}}
+                                  : domain::RobotPosition{domain::InPipe{p1_, to}};
+    measurer_.observe(DriveForward{0.3, odometry}, report, before, after, direction);
+  }
+
+  ManholeSignature m2_seen() const { return expected_signature(map_, m2_, SlotIndex{0}); }
+
+  SewerMap map_;
+  PipeId p1_;
+  ManholeId m1_;
+  ManholeId m2_;
+  Measurer measurer_;
+};
+
+TEST_F(MeasurerTest, AWholePipeDrivenIsALengthMeasurement) {
+  enter();
+  hal::JobReport arrived;
+  arrived.observation = m2_seen();
+  drive(0, 12.0, arrived);  // the wheels counted 12 m where the map says 10
+  const MapMeasurements& m = measurer_.measurements();
+  ASSERT_EQ(m.pipes.size(), 1u);
+  EXPECT_EQ(m.pipes[0].pipe, p1_);
+  EXPECT_DOUBLE_EQ(m.pipes[0].length_m.mean, 12.0);
+  EXPECT_NEAR(m.pipes[0].length_m.variance, 0.36 * 0.36 + 0.05 * 0.05, 1e-12);
+  ASSERT_EQ(m.manholes.size(), 1u);
+  EXPECT_EQ(m.manholes[0].manhole, m2_);
+  ASSERT_EQ(m.manholes[0].observations.size(), 1u);
+  EXPECT_EQ(m.manholes[0].observations[0].arrival, SlotIndex{0});
+  ASSERT_TRUE(m.manholes[0].position.has_value());
+  EXPECT_NEAR(m.manholes[0].position->x_m.mean, 12.0, 1e-12);  // along P1's chord, scaled
+  const auto found = discrepancies(m, map_);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0].discrepancy.kind, Kind::kLengthOff);
+  EXPECT_EQ(found[0].sources, (SourceList{0}));
+}
+
+TEST_F(MeasurerTest, DrivesBackAndForthAreSummedWithTheirSign) {
+  enter();
+  drive(0, 6.0);
+  drive(6.0, 1.0, {}, -1);  // a scan backward
+  drive(5.0, 5.5);
+  ASSERT_EQ(measurer_.measurements().pipes.size(), 1u);
+  EXPECT_DOUBLE_EQ(measurer_.measurements().pipes[0].length_m.mean, 10.5);
+}
+
+TEST_F(MeasurerTest, ALateralTheMapLacksIsAnUnmappedLateral) {
+  enter();
+  hal::JobReport arrived;
+  ManholeSignature seen = m2_seen();
+  seen.slots.insert(seen.slots.begin() + 1, SlotSighting{90, 0, 0.2});
+  arrived.observation = seen;
+  drive(0, 10.0, arrived);
+  const auto found = discrepancies(measurer_.measurements(), map_);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0].discrepancy.kind, Kind::kUnmappedLateral);
+  EXPECT_EQ(found[0].discrepancy.manhole, m2_);
+  // Arriving from the west (P1 leaves M2 at 180°), 90° counter-clockwise is south: 270°.
+  EXPECT_NEAR(found[0].discrepancy.value, 270, 1e-9);
+}
+
+TEST_F(MeasurerTest, ALegWithAFailedJobOrABadReportIsNotMeasured) {
+  enter();
+  drive(0, 4.0, {.error = hal::RobotError{hal::RobotErrorKind::kBlockage, "obstacle"}});
+  drive(4.0, 6.0);
+  EXPECT_TRUE(measurer_.measurements().pipes.empty());
+  enter();
+  drive(0, std::numeric_limits<double>::quiet_NaN());
+  drive(0, 10.0);
+  EXPECT_TRUE(measurer_.measurements().pipes.empty());
+  ASSERT_EQ(measurer_.rejected().size(), 1u);
+  EXPECT_NE(measurer_.rejected()[0].find("P1: odometry"), std::string::npos);
+  // An observation that is no signature is refused, named.
+  enter();
+  hal::JobReport empty;
+  empty.observation = ManholeSignature{};
+  drive(0, 10.0, empty);
+  EXPECT_TRUE(measurer_.measurements().manholes.empty() ||
+              measurer_.measurements().manholes[0].observations.empty());
+  EXPECT_NE(measurer_.rejected().back().find("M2: signature"), std::string::npos);
+}
+
+TEST_F(MeasurerTest, AManholeSeenInThePipeIsAJunctionOrTheFarOneArrivedEarly) {
+  enter();
+  hal::JobReport junction;
+  ManholeSignature three = m2_seen();
+  three.slots.push_back(SlotSighting{270, 0, 0.3});
+  junction.observation = three;
+  drive(0, 4.0, junction);  // a manhole at 4 m the map lacks: the controller has it in P1
+  ASSERT_EQ(measurer_.measurements().junctions.size(), 1u);
+  EXPECT_DOUBLE_EQ(measurer_.measurements().junctions[0].offset_m, 4.0);
+  EXPECT_TRUE(measurer_.measurements().pipes.empty());
+  // The pipe is 9 m, not 10: M2 seen (its signature) 1 m early ends the leg there.
+  hal::JobReport early;
+  early.observation = m2_seen();
+  drive(4.0, 5.0, early);
+  ASSERT_EQ(measurer_.measurements().pipes.size(), 1u);
+  EXPECT_DOUBLE_EQ(measurer_.measurements().pipes[0].length_m.mean, 9.0);
+  EXPECT_EQ(measurer_.measurements().manholes.at(0).observations.size(), 1u);
+}
+
+// On the exact world of today's simulator, the mission's measurements are the map's: every pipe
+// driven whole measures its map length, and nothing differs.
+TEST(MeasuringMission, AnExactWorldMeasuresTheMapAndChangesNothingOfTheRun) {
+  const testing::AisTestbed ais = testing::load_ais_testbed();
+  auto run = [&](bool measure) {
+    ManualClock clock;
+    Replanner replanner(ais.map, ais.mission, {.clock = &clock});
+    const auto& start = std::get<domain::InPipe>(replanner.progress().position);
+    hal::SimRobot robot(ais.map, ais.mission.profile,
+                        hal::InPipe{start.pipe, start.offset_m, hal::Heading::kTowardsEnd1}, {});
+    Executor executor(ais.map, replanner, robot);
+    std::ostringstream log;
+    executor.subscribe(json_lines_writer(log));
+    Measurer measurer(ais.map, {"makro", "paper", ""});
+    if (measure) executor.subscribe_jobs(measurer.observer());
+    executor.run();
+    return std::pair{log.str(), measurer.measurements()};
+  };
+  const auto [plain_log, nothing] = run(false);
+  const auto [log, m] = run(true);
+  EXPECT_EQ(log, plain_log);
+  EXPECT_TRUE(nothing.pipes.empty());
+  ASSERT_GE(m.pipes.size(), 3u);
+  for (const PipeMeasurement& p : m.pipes) {
+    EXPECT_NEAR(p.length_m.mean, ais.map.pipe(p.pipe).length_m, 1e-9) << ais.map.pipe(p.pipe).name;
+  }
+  EXPECT_TRUE(discrepancies(m, ais.map).empty());
+}
+
+}  // namespace
+}  // namespace sewerplan::executor
