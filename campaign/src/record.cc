@@ -213,6 +213,22 @@ std::string run_json_line(const RunRecord& record) {
       j["risk_aware"] = execution_json(*r->risk_aware);
       measured["risk_aware_planning_ms"] = planning_json(*r->risk_aware);
     }
+    // How the run's true world differs from its map, by the map's object indices (0-based), for a
+    // scorer of the robot's reports (docs/campaign.md). Only with world errors.
+    if (!r->seeded.empty()) {
+      Json seeded = Json::array();
+      for (const Discrepancy& d : r->seeded) {
+        Json one{{"kind", std::string(to_string(d.kind))}};
+        if (d.pipe) one["pipe"] = d.pipe->value();
+        if (d.manhole) one["manhole"] = d.manhole->value();
+        if (d.slot) one["slot"] = d.slot->value();
+        if (d.kind == Discrepancy::Kind::kUnmappedJunction) one["offset_m"] = d.offset_m;
+        if (d.map_value != 0) one["map_value"] = d.map_value;
+        if (d.value != 0) one["value"] = d.value;
+        seeded.push_back(std::move(one));
+      }
+      j["world"] = Json{{"seeded", std::move(seeded)}};
+    }
   }
   j["measured"] = measured;
   return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
@@ -259,7 +275,7 @@ bool CampaignSpec::same_campaign(const CampaignSpec& o) const {
          seed == o.seed && runs == o.runs && rates == o.rates && push_allowed == o.push_allowed &&
          planner_time_limit_s == o.planner_time_limit_s && shard_count == o.shard_count &&
          condition_fingerprint == o.condition_fingerprint && risk == o.risk &&
-         faults_from_condition == o.faults_from_condition;
+         faults_from_condition == o.faults_from_condition && world_errors == o.world_errors;
 }
 
 std::string fingerprint(std::string_view bytes) {
@@ -295,6 +311,7 @@ std::string campaign_json(const CampaignSpec& s) {
   }
   if (s.risk != "impassable") j["risk"] = s.risk;
   if (s.faults_from_condition) j["faults_from_condition"] = true;
+  if (s.world_errors != "none") j["world_errors"] = s.world_errors;
   j["shard"] = Json{{"index", s.shard_index}, {"count", s.shard_count}};
   return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
@@ -340,6 +357,12 @@ Result<CampaignSpec> parse_campaign_json(std::string_view text, const std::strin
   }
   if (const auto risk = f.string("risk", kOptional)) s.risk = *risk;
   s.faults_from_condition = f.boolean("faults_from_condition", kOptional).value_or(false);
+  if (const auto world = f.string("world_errors", kOptional)) {
+    s.world_errors = *world;
+    if (Result<hal::WorldErrorProfile> p = hal::parse_world_errors(*world); !p.has_value()) {
+      f.error("world_errors", p.error().message);
+    }
+  }
   if (std::optional<JsonFields> shard = object_in(f, "shard", file_name)) {
     const std::optional<std::uint64_t> index = shard->count("index", kMaxCount);
     const std::optional<std::uint64_t> count = shard->count("count", kMaxCount);
@@ -382,6 +405,7 @@ std::string reproduce_command(const CampaignSpec& s, std::size_t run) {
   if (!s.condition_name.empty()) out << " --condition " << s.condition_name;
   if (s.risk != "impassable") out << " --risk " << s.risk;
   if (s.faults_from_condition) out << " --faults-from-condition";
+  if (s.world_errors != "none") out << " --world-errors " << s.world_errors;
   out << " --only " << run;
   return out.str();
 }

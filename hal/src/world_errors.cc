@@ -512,6 +512,20 @@ Result<TrueWorld> make_true_world(const SewerMap& map, const WorldErrorProfile& 
   return WorldMaker(map, profile, seed).make(seed);
 }
 
+SensingModel make_sensing(const TrueWorld& truth) {
+  const WorldErrorProfile& p = truth.profile;
+  SensingModel s;
+  s.drift = p.drift;
+  s.wet = truth.wet;
+  s.missed_share = p.missed_share;
+  s.false_per_km = p.false_per_km;
+  s.observe = !(p == WorldErrorProfile{});
+  if (s.observe) s.signature_noise = SignatureNoise{};
+  // A stream apart from the world's draws (splitmix64's constant).
+  s.seed = Rng(truth.seed ^ 0x9e3779b97f4a7c15ULL).next();
+  return s;
+}
+
 WorldSpot world_spot(const SewerMap& map, const TrueWorld& truth, PipeId pipe, double offset_m) {
   const PipeSplit* split = nullptr;
   for (const PipeSplit& s : truth.splits) {

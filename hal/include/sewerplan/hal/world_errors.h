@@ -131,6 +131,12 @@ struct TrueWorld {
 Result<TrueWorld> make_true_world(const SewerMap& map, const WorldErrorProfile& profile,
                                   std::uint64_t seed);
 
+// The simulated robot's sensing in `truth` (hal/sim_robot.h): the profile's drift, wet pipes,
+// missed and false manholes; observations (with SignatureNoise's defaults) whenever the profile has
+// any error at all, none for "none" (the simulator as before, byte for byte). Its own seed, drawn
+// from the world's.
+SensingModel make_sensing(const TrueWorld& truth);
+
 // A place on the map as it lies in the world: an offset along map pipe `pipe` (map metres from its
 // ends[0]) is scaled to the world's length, and lands on the split's rest beyond a junction.
 struct WorldSpot {
