@@ -134,6 +134,41 @@ std::vector<double> read_times_s(JsonFields& measured, std::string_view key) {
   return out;
 }
 
+// The seeded discrepancies of a run's true world ("world": {"seeded": [...]}, run_json_line).
+std::vector<Discrepancy> read_seeded(JsonFields& f, std::string_view file) {
+  std::vector<Discrepancy> out;
+  std::optional<JsonFields> world = object_in(f, "world", file);
+  if (!world) return out;
+  const std::optional<JsonArray> list = world->array("seeded");
+  if (!list) return out;
+  std::size_t i = 0;
+  for (JsonElement e : *list) {
+    JsonFields d(e, world->path() + ".seeded[" + std::to_string(i++) + "]", file, f.diagnostics());
+    Discrepancy x;
+    if (const std::optional<std::string> kind = d.string("kind")) {
+      if (const auto k = parse_discrepancy_kind(*kind)) {
+        x.kind = *k;
+      } else {
+        d.error("kind", "unknown discrepancy '" + *kind + "'");
+      }
+    }
+    if (const auto p = d.count("pipe", 0xffffffffU, kOptional)) {
+      x.pipe = PipeId{static_cast<std::uint32_t>(*p)};
+    }
+    if (const auto m = d.count("manhole", 0xffffffffU, kOptional)) {
+      x.manhole = ManholeId{static_cast<std::uint32_t>(*m)};
+    }
+    if (const auto s = d.count("slot", 0xffffU, kOptional)) {
+      x.slot = SlotIndex{static_cast<std::uint16_t>(*s)};
+    }
+    x.offset_m = d.number("offset_m", kOptional).value_or(0);
+    x.map_value = d.number("map_value", kOptional).value_or(0);
+    x.value = d.number("value", kOptional).value_or(0);
+    out.push_back(x);
+  }
+  return out;
+}
+
 RunResult read_result(const RunRecord& r, JsonFields& f, JsonFields& measured,
                       std::string_view file) {
   RunResult x;
@@ -167,6 +202,7 @@ RunResult read_result(const RunRecord& r, JsonFields& f, JsonFields& measured,
     x.risk_aware = read_execution(f, "risk_aware", file);
     x.risk_aware->planning_times_s = read_times_s(measured, "risk_aware_planning_ms");
   }
+  if (f.has("world")) x.seeded = read_seeded(f, file);
   return x;
 }
 

@@ -56,12 +56,12 @@ class SensingTest : public ::testing::Test {
 
 TEST_F(SensingTest, OdometryErrorIsZeroMeanWithTheDriftAsItsStandardDeviation) {
   SimRobot r = robot(InPipe{pipe("P1"), 5, Heading::kTowardsEnd1}, {.drift = 0.03, .seed = 3});
-  constexpr int kDrives = 2000;
+  constexpr int kDrives = 2000;  // at 10 m/s, within the battery
   double sum = 0, sum2 = 0;
   for (int i = 0; i < kDrives; ++i) {
     const bool forward = i % 2 == 0;
     const JobReport report =
-        forward ? r.execute(DriveForward{0.3, 10}) : r.execute(DriveBackward{0.3, 10});
+        forward ? r.execute(DriveForward{10, 10}) : r.execute(DriveBackward{10, 10});
     ASSERT_TRUE(report.ok());
     const double error = report.progress_m - 10;
     sum += error;
@@ -81,9 +81,10 @@ TEST_F(SensingTest, OdometrySlipsTwiceAsMuchInAWetPipe) {
   SimRobot r =
       robot(InPipe{pipe("P1"), 5, Heading::kTowardsEnd1}, {.drift = 0.03, .wet = wet, .seed = 4});
   double sum2 = 0;
+  // 10 m/s: 2,000 drives within the battery.
   for (int i = 0; i < 2000; ++i) {
     const JobReport report =
-        i % 2 == 0 ? r.execute(DriveForward{0.3, 10}) : r.execute(DriveBackward{0.3, 10});
+        i % 2 == 0 ? r.execute(DriveForward{10, 10}) : r.execute(DriveBackward{10, 10});
     sum2 += (report.progress_m - 10) * (report.progress_m - 10);
   }
   EXPECT_NEAR(std::sqrt(sum2 / 2000), 0.6, 0.06);

@@ -195,7 +195,7 @@ struct RunResult {
   std::optional<Execution> risk_aware;  // with RunSettings::risk
   double wall_s = 0;                    // measured
   // How the run's true world differs from the map, in the map's terms (empty with no world
-  // errors); written to runs.jsonl as "world", not read back.
+  // errors); written to runs.jsonl as "world", and read back.
   std::vector<Discrepancy> seeded;
   friend bool operator==(const RunResult&, const RunResult&) = default;
 };
