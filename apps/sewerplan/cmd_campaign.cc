@@ -44,6 +44,7 @@ struct CampaignCliOptions {
   std::size_t runs = 100;
   std::uint64_t seed = 1;
   std::string fault_rates;
+  std::string world_errors = "none";
   std::size_t jobs = 1;
   std::string shard = "0/1";
   std::optional<std::size_t> only;
@@ -139,6 +140,10 @@ int run(const CampaignCliOptions& o, Context& c) {
                        "OUT)");
   }
   Result<campaign::FaultRates> rates = campaign::parse_fault_rates(o.fault_rates);
+  if (Result<hal::WorldErrorProfile> world = hal::parse_world_errors(o.world_errors);
+      !world.has_value()) {
+    return usage_error(c, o.json, world.error().message);
+  }
   Result<std::pair<std::size_t, std::size_t>> shard = campaign::parse_shard(o.shard);
   const char* inject_env = std::getenv("SEWERPLAN_CAMPAIGN_INJECT");
   auto inject = campaign::parse_injections(inject_env != nullptr ? inject_env : "");
@@ -228,6 +233,7 @@ int run(const CampaignCliOptions& o, Context& c) {
   }
   spec.risk = o.risk.mode;
   spec.faults_from_condition = o.faults_from_condition;
+  spec.world_errors = o.world_errors;
   if (!o.risk.table.empty()) {
     // A risk table changes what the findings mean: part of the mission's identity.
     Result<std::string> table = read_text_file(o.risk.table);
@@ -333,6 +339,10 @@ void add_campaign_command(CLI::App& app, Context& context) {
                   "[PROFILE,]NAME=VALUE,...: a profile (default, realistic, moderate, harsh), "
                   "then obstacles=20 (per km of pipe), danger=5 (per km), passages=0.01 "
                   "(share), malfunctions=0.5 (per hour), permanent=0.1, transient=0.5 (shares)");
+  cmd->add_option("--world-errors", options->world_errors,
+                  "NAME|SPEC: the true world each robot drives (none, realistic; or "
+                  "[NAME,]key=value,...: docs/simulation.md)")
+      ->capture_default_str();
   cmd->add_option("-j,--jobs", options->jobs, "Runs in parallel")->capture_default_str();
   cmd->add_option("--shard", options->shard, "I/N: only the runs with index % N == I")
       ->capture_default_str();

@@ -4,6 +4,7 @@
 //                    [--can slcan:TTY|socketcan:IFACE | --replay CANDUMP.log] [--can-log FILE]
 //                    [--condition FILE] [--risk MODE] [--risk-table FILE]
 //                    [--corrected-map OUT.json]
+//                    [--world-errors NAME|SPEC] [--world-seed N]
 #include <cerrno>
 #include <csignal>
 #include <filesystem>
@@ -25,6 +26,7 @@
 #include "sewerplan/executor/measuring.h"
 #include "sewerplan/hal/fault_scenario.h"
 #include "sewerplan/hal/sim_robot.h"
+#include "sewerplan/hal/world_errors.h"
 
 #include "can_link.h"
 #include "command.h"
@@ -58,6 +60,8 @@ struct SimulateOptions {
   bool json = false;
   // The corrected map, and beside it OUT.discrepancies.json and OUT.measurements.json.
   std::string corrected_map;
+  std::string world_errors = "none";  // the true world the simulated robot drives
+  std::uint64_t world_seed = 1;
 };
 
 // Ctrl-C (SIGINT) and SIGTERM halt the mission (Executor::halt: the robot's emergency stop, the
@@ -139,6 +143,8 @@ class HaltOnSignal {
 
 int run(const SimulateOptions& o, Context& c) {
   HaltOnSignal halt_on_signal;
+  const Result<hal::WorldErrorProfile> world_errors = hal::parse_world_errors(o.world_errors);
+  if (!world_errors.has_value()) return fail(c, o.json, world_errors.error());
   Diagnostics diagnostics;
   Result<SimWorld> world = read_sim_world({o.map, o.gis_fields}, o.mission, o.faults,
                                           o.random_faults, diagnostics, o.condition);
@@ -187,7 +193,13 @@ int run(const SimulateOptions& o, Context& c) {
     if (!link.has_value()) return fail(c, o.json, link.error());
     can = std::move(*link);
   }
-  hal::SimRobot sim(map, mission.profile, start_pose(replanner.progress().position), faults);
+  // The robot drives the true world (the map itself with "none"); the executor plans on the map.
+  const Result<hal::TrueWorld> truth = hal::make_true_world(map, *world_errors, o.world_seed);
+  if (!truth.has_value()) return fail(c, o.json, truth.error());
+  hal::SimRobot sim(truth->world, mission.profile,
+                    hal::world_pose(map, *truth, start_pose(replanner.progress().position)),
+                    hal::world_faults(map, *truth, faults),
+                    hal::SimOptions{.sensing = hal::make_sensing(*truth)});
   hal::Robot& robot = can ? static_cast<hal::Robot&>(can->robot()) : sim;
   executor::Executor executor(map, replanner, robot, options);
   if (log_file) {
@@ -309,6 +321,13 @@ void add_simulate_command(CLI::App& app, Context& context) {
   cmd->add_option("--can-log", options->can.log, "Record the CAN traffic as a candump log");
   faults->excludes(can)->excludes(replay);
   random->excludes(can)->excludes(replay);
+  auto* world = cmd->add_option("--world-errors", options->world_errors,
+                                "NAME|SPEC: the true world the robot drives (none, realistic; or "
+                                "[NAME,]key=value,...: docs/simulation.md)")
+                    ->capture_default_str();
+  cmd->add_option("--world-seed", options->world_seed, "Seed of the true world and the sensing")
+      ->capture_default_str();
+  world->excludes(can)->excludes(replay);
   add_motion_options(*cmd, options->motion);
   add_condition_option(*cmd, options->condition);
   add_risk_options(*cmd, options->risk);

@@ -256,7 +256,12 @@ RunSettings run_settings(const CampaignSpec& spec) {
           .push_allowed = spec.push_allowed,
           .planner_time_limit_s = spec.planner_time_limit_s,
           .faults_from_condition = spec.faults_from_condition,
-          .risk = spec.risk == "expected" ? domain::kDefaultRiskCosts : domain::RiskCosts{}};
+          .risk = spec.risk == "expected" ? domain::kDefaultRiskCosts : domain::RiskCosts{},
+          // Checked when the spec was made (the CLI) or read (parse_campaign_json).
+          .world_errors = [&] {
+            const Result<hal::WorldErrorProfile> p = hal::parse_world_errors(spec.world_errors);
+            return p.has_value() ? *p : hal::WorldErrorProfile{};
+          }()};
 }
 
 std::size_t campaign_jobs(const CampaignSpec& spec, const CampaignOptions& options) {

@@ -134,6 +134,41 @@ std::vector<double> read_times_s(JsonFields& measured, std::string_view key) {
   return out;
 }
 
+// The seeded discrepancies of a run's true world ("world": {"seeded": [...]}, run_json_line).
+std::vector<Discrepancy> read_seeded(JsonFields& f, std::string_view file) {
+  std::vector<Discrepancy> out;
+  std::optional<JsonFields> world = object_in(f, "world", file);
+  if (!world) return out;
+  const std::optional<JsonArray> list = world->array("seeded");
+  if (!list) return out;
+  std::size_t i = 0;
+  for (JsonElement e : *list) {
+    JsonFields d(e, world->path() + ".seeded[" + std::to_string(i++) + "]", file, f.diagnostics());
+    Discrepancy x;
+    if (const std::optional<std::string> kind = d.string("kind")) {
+      if (const auto k = parse_discrepancy_kind(*kind)) {
+        x.kind = *k;
+      } else {
+        d.error("kind", "unknown discrepancy '" + *kind + "'");
+      }
+    }
+    if (const auto p = d.count("pipe", 0xffffffffU, kOptional)) {
+      x.pipe = PipeId{static_cast<std::uint32_t>(*p)};
+    }
+    if (const auto m = d.count("manhole", 0xffffffffU, kOptional)) {
+      x.manhole = ManholeId{static_cast<std::uint32_t>(*m)};
+    }
+    if (const auto s = d.count("slot", 0xffffU, kOptional)) {
+      x.slot = SlotIndex{static_cast<std::uint16_t>(*s)};
+    }
+    x.offset_m = d.number("offset_m", kOptional).value_or(0);
+    x.map_value = d.number("map_value", kOptional).value_or(0);
+    x.value = d.number("value", kOptional).value_or(0);
+    out.push_back(x);
+  }
+  return out;
+}
+
 RunResult read_result(const RunRecord& r, JsonFields& f, JsonFields& measured,
                       std::string_view file) {
   RunResult x;
@@ -165,6 +200,7 @@ RunResult read_result(const RunRecord& r, JsonFields& f, JsonFields& measured,
     x.risk_aware = read_execution(f, "risk_aware", file);
     x.risk_aware->planning_times_s = read_times_s(measured, "risk_aware_planning_ms");
   }
+  if (f.has("world")) x.seeded = read_seeded(f, file);
   return x;
 }
 
@@ -205,6 +241,22 @@ std::string run_json_line(const RunRecord& record) {
     if (r->risk_aware) {
       j["risk_aware"] = execution_json(*r->risk_aware);
       measured["risk_aware_planning_ms"] = planning_json(*r->risk_aware);
+    }
+    // How the run's true world differs from its map, by the map's object indices (0-based), for a
+    // scorer of the robot's reports (docs/campaign.md). Only with world errors.
+    if (!r->seeded.empty()) {
+      Json seeded = Json::array();
+      for (const Discrepancy& d : r->seeded) {
+        Json one{{"kind", std::string(to_string(d.kind))}};
+        if (d.pipe) one["pipe"] = d.pipe->value();
+        if (d.manhole) one["manhole"] = d.manhole->value();
+        if (d.slot) one["slot"] = d.slot->value();
+        if (d.kind == Discrepancy::Kind::kUnmappedJunction) one["offset_m"] = d.offset_m;
+        if (d.map_value != 0) one["map_value"] = d.map_value;
+        if (d.value != 0) one["value"] = d.value;
+        seeded.push_back(std::move(one));
+      }
+      j["world"] = Json{{"seeded", std::move(seeded)}};
     }
   }
   j["measured"] = measured;
@@ -252,7 +304,7 @@ bool CampaignSpec::same_campaign(const CampaignSpec& o) const {
          seed == o.seed && runs == o.runs && rates == o.rates && push_allowed == o.push_allowed &&
          planner_time_limit_s == o.planner_time_limit_s && shard_count == o.shard_count &&
          condition_fingerprint == o.condition_fingerprint && risk == o.risk &&
-         faults_from_condition == o.faults_from_condition;
+         faults_from_condition == o.faults_from_condition && world_errors == o.world_errors;
 }
 
 std::string fingerprint(std::string_view bytes) {
@@ -288,6 +340,7 @@ std::string campaign_json(const CampaignSpec& s) {
   }
   if (s.risk != "impassable") j["risk"] = s.risk;
   if (s.faults_from_condition) j["faults_from_condition"] = true;
+  if (s.world_errors != "none") j["world_errors"] = s.world_errors;
   j["shard"] = Json{{"index", s.shard_index}, {"count", s.shard_count}};
   return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
@@ -333,6 +386,12 @@ Result<CampaignSpec> parse_campaign_json(std::string_view text, const std::strin
   }
   if (const auto risk = f.string("risk", kOptional)) s.risk = *risk;
   s.faults_from_condition = f.boolean("faults_from_condition", kOptional).value_or(false);
+  if (const auto world = f.string("world_errors", kOptional)) {
+    s.world_errors = *world;
+    if (Result<hal::WorldErrorProfile> p = hal::parse_world_errors(*world); !p.has_value()) {
+      f.error("world_errors", p.error().message);
+    }
+  }
   if (std::optional<JsonFields> shard = object_in(f, "shard", file_name)) {
     const std::optional<std::uint64_t> index = shard->count("index", kMaxCount);
     const std::optional<std::uint64_t> count = shard->count("count", kMaxCount);
@@ -375,6 +434,7 @@ std::string reproduce_command(const CampaignSpec& s, std::size_t run) {
   if (!s.condition_name.empty()) out << " --condition " << s.condition_name;
   if (s.risk != "impassable") out << " --risk " << s.risk;
   if (s.faults_from_condition) out << " --faults-from-condition";
+  if (s.world_errors != "none") out << " --world-errors " << s.world_errors;
   out << " --only " << run;
   return out.str();
 }

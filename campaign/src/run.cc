@@ -94,9 +94,42 @@ Mission clairvoyant(const Mission& mission, const hal::FaultScenario& faults,
   return known;
 }
 
-Execution execute(const SewerMap& map, const Mission& mission, const hal::FaultScenario& faults,
-                  const RunSettings& settings, executor::ReplannerOptions::Goals goals,
-                  domain::RiskCosts risk = {}, const ExecutionObservers& observers = {}) {
+// The mission in the true world's terms (its places in pipes moved with hal::world_spot), for the
+// oracle, which plans on the world.
+Mission in_world(const SewerMap& map, const hal::TrueWorld& truth, Mission mission) {
+  if (truth.seeded.empty()) return mission;
+  const auto move = [&](PipeSpot& spot) {
+    if (!spot.offset_m) return;
+    const hal::WorldSpot w = hal::world_spot(map, truth, spot.pipe, *spot.offset_m);
+    spot.pipe = w.pipe;
+    spot.offset_m = w.offset_m;
+  };
+  if (auto* spot = std::get_if<PipeSpot>(&mission.start)) move(*spot);
+  for (Task& t : mission.tasks) {
+    if (auto* spot = std::get_if<PipeSpot>(&t.place)) move(*spot);
+  }
+  for (Blockage& b : mission.blockages) {
+    const hal::WorldSpot w = hal::world_spot(map, truth, b.pipe, b.offset_m);
+    b = {w.pipe, w.offset_m};
+  }
+  for (Hazard& h : mission.hazards) {
+    const hal::WorldSpot w = hal::world_spot(map, truth, h.pipe, h.offset_m);
+    h.pipe = w.pipe;
+    h.offset_m = w.offset_m;
+  }
+  std::erase_if(mission.closed_passages, [&](const ClosedPassage& c) {
+    const std::size_t n = truth.world.manhole(c.manhole).slot_count;
+    return c.from.index() >= n || c.to.index() >= n;
+  });
+  return mission;
+}
+
+// `map` is what the executor plans on; the robot drives `truth.world` with the faults (in the
+// world's terms) and senses it as the profile says.
+Execution execute(const SewerMap& map, const hal::TrueWorld& truth, const Mission& mission,
+                  const hal::FaultScenario& faults, const RunSettings& settings,
+                  executor::ReplannerOptions::Goals goals, domain::RiskCosts risk = {},
+                  const ExecutionObservers& observers = {}) {
   executor::ReplannerOptions replanner_options{.goals = goals};
   replanner_options.planner.time_limit_s = settings.planner_time_limit_s;
   replanner_options.planner.risk = risk;
@@ -104,7 +137,9 @@ Execution execute(const SewerMap& map, const Mission& mission, const hal::FaultS
   replanner_options.planner.contingency =
       goals != executor::ReplannerOptions::Goals::kPaperBaseline;
   executor::Replanner replanner(map, mission, replanner_options);
-  hal::SimRobot robot(map, mission.profile, start_pose(replanner.progress().position), faults);
+  hal::SimRobot robot(truth.world, mission.profile,
+                      hal::world_pose(map, truth, start_pose(replanner.progress().position)),
+                      faults, hal::SimOptions{.sensing = hal::make_sensing(truth)});
   executor::ExecutorOptions options;
   options.recovery = recovery_of(settings);
   executor::Executor executor(map, replanner, robot, options);
@@ -282,11 +317,24 @@ Result<hal::FaultScenario> run_faults(const SewerMap& map, const Mission& missio
   return faults;
 }
 
+Result<hal::TrueWorld> run_world(const SewerMap& map, const RunSettings& settings,
+                                 std::size_t index) {
+  // A stream apart from the faults' (which keep the seed they had before world errors).
+  return hal::make_true_world(
+      map, settings.world_errors,
+      splitmix64(run_seed(settings.campaign_seed, index) ^ 0x3017DE5EED5EED00ULL));
+}
+
 Result<RunResult> run_one(const SewerMap& map, const Mission& mission, const RunSettings& settings,
                           std::size_t index) {
   const auto wall_start = std::chrono::steady_clock::now();
-  Result<hal::FaultScenario> faults = run_faults(map, mission, settings, index);
-  if (!faults.has_value()) return faults.error();
+  Result<hal::FaultScenario> map_faults = run_faults(map, mission, settings, index);
+  if (!map_faults.has_value()) return map_faults.error();
+  Result<hal::TrueWorld> truth = run_world(map, settings, index);
+  if (!truth.has_value()) return truth.error();
+  const SewerMap& world = truth->world;
+  const Result<hal::FaultScenario> faults = hal::world_faults(map, *truth, std::move(*map_faults));
+  const Mission world_mission = in_world(map, *truth, mission);
   RunResult r;
   r.index = index;
   r.seed = run_seed(settings.campaign_seed, index);
@@ -307,19 +355,21 @@ Result<RunResult> run_one(const SewerMap& map, const Mission& mission, const Run
   executor::ReplannerOptions oracle_options{.clock = &no_time};
   oracle_options.planner.contingency = false;
   const executor::RecoveryConfig recovery = recovery_of(settings);
-  const Mission bound = clairvoyant(mission, *faults, recovery);
-  executor::Replanner oracle(map, bound, oracle_options);
+  const Mission bound = clairvoyant(world_mission, *faults, recovery);
+  executor::Replanner oracle(world, bound, oracle_options);
   const executor::PlanResponse plan = oracle.plan("oracle");
   r.oracle_can_end = executor::has_plan(plan.decision);
   r.oracle_tasks = r.oracle_can_end ? plan.goals.size() : 0;
 
-  r.ours = execute(map, mission, *faults, settings, executor::ReplannerOptions::Goals::kReselect);
-  r.baseline =
-      execute(map, mission, *faults, settings, executor::ReplannerOptions::Goals::kPaperBaseline);
+  r.ours = execute(map, *truth, mission, *faults, settings,
+                   executor::ReplannerOptions::Goals::kReselect);
+  r.baseline = execute(map, *truth, mission, *faults, settings,
+                       executor::ReplannerOptions::Goals::kPaperBaseline);
   if (settings.risk.active()) {
-    r.risk_aware = execute(map, mission, *faults, settings,
+    r.risk_aware = execute(map, *truth, mission, *faults, settings,
                            executor::ReplannerOptions::Goals::kReselect, settings.risk);
   }
+  r.seeded = truth->seeded;
   r.could_reach_exit = r.oracle_can_end && !r.ours.disabled;
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   return r;
@@ -351,16 +401,20 @@ Result<Execution> replay_execution(const SewerMap& map, const Mission& mission,
     return Error{ErrorCode::kInvalidArgument,
                  "the campaign has no risk-aware execution (risk \"expected\")"};
   }
-  Result<hal::FaultScenario> faults = run_faults(map, mission, settings, index);
-  if (!faults.has_value()) return faults.error();
+  Result<hal::FaultScenario> map_faults = run_faults(map, mission, settings, index);
+  if (!map_faults.has_value()) return map_faults.error();
+  Result<hal::TrueWorld> truth = run_world(map, settings, index);
+  if (!truth.has_value()) return truth.error();
+  const hal::FaultScenario faults = hal::world_faults(map, *truth, std::move(*map_faults));
   using Goals = executor::ReplannerOptions::Goals;
   switch (policy) {
     case Policy::kOurs:
-      return execute(map, mission, *faults, settings, Goals::kReselect, {}, observers);
+      return execute(map, *truth, mission, faults, settings, Goals::kReselect, {}, observers);
     case Policy::kBaseline:
-      return execute(map, mission, *faults, settings, Goals::kPaperBaseline, {}, observers);
+      return execute(map, *truth, mission, faults, settings, Goals::kPaperBaseline, {}, observers);
     case Policy::kRiskAware:
-      return execute(map, mission, *faults, settings, Goals::kReselect, settings.risk, observers);
+      return execute(map, *truth, mission, faults, settings, Goals::kReselect, settings.risk,
+                     observers);
   }
   return Error{ErrorCode::kInvalidArgument, "unknown policy"};
 }

@@ -10,19 +10,20 @@ namespace sewerplan::executor::detail {
 
 std::optional<Job> rest_of(const Job& job, double done_m) {
   return std::visit(
-      Overloaded{[&](const DriveForward& j) -> std::optional<Job> {
-                   return DriveForward{j.speed_mps, std::max(0.0, j.distance_m - done_m)};
-                 },
-                 [&](const DriveBackward& j) -> std::optional<Job> {
-                   return DriveBackward{j.speed_mps, std::max(0.0, j.distance_m - done_m)};
-                 },
-                 [&](const Push& j) -> std::optional<Job> {
-                   return Push{j.speed_mps, std::max(0.0, j.distance_m - done_m), j.backward};
-                 },
-                 [&](const Scan& j) -> std::optional<Job> {
-                   return Scan{j.speed_mps, std::max(0.0, j.distance_m - done_m), j.backward};
-                 },
-                 [](const auto&) -> std::optional<Job> { return std::nullopt; }},
+      Overloaded{
+          [&](const DriveForward& j) -> std::optional<Job> {
+            return DriveForward{j.speed_mps, std::max(0.0, j.distance_m - done_m), j.to_manhole};
+          },
+          [&](const DriveBackward& j) -> std::optional<Job> {
+            return DriveBackward{j.speed_mps, std::max(0.0, j.distance_m - done_m), j.to_manhole};
+          },
+          [&](const Push& j) -> std::optional<Job> {
+            return Push{j.speed_mps, std::max(0.0, j.distance_m - done_m), j.backward};
+          },
+          [&](const Scan& j) -> std::optional<Job> {
+            return Scan{j.speed_mps, std::max(0.0, j.distance_m - done_m), j.backward};
+          },
+          [](const auto&) -> std::optional<Job> { return std::nullopt; }},
       job);
 }
 

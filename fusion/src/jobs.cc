@@ -7,15 +7,17 @@ namespace sewerplan::fusion {
 namespace {
 
 // A drive along the pipe; nothing for a distance of 0 unless `onto_mouth`.
+// A drive onto a mouth is one `to_manhole` (core/job.h): it ends where the robot sees the manhole.
 void add_drive(std::vector<Job>& jobs, const PipeDrive& drive, bool onto_mouth = false) {
   if (drive.distance_m == 0 && !onto_mouth) return;
   switch (drive.direction) {
     case Direction::kForward:
-      jobs.emplace_back(DriveForward{.speed_mps = drive.speed_mps, .distance_m = drive.distance_m});
+      jobs.emplace_back(DriveForward{
+          .speed_mps = drive.speed_mps, .distance_m = drive.distance_m, .to_manhole = onto_mouth});
       return;
     case Direction::kBackward:
-      jobs.emplace_back(
-          DriveBackward{.speed_mps = drive.speed_mps, .distance_m = drive.distance_m});
+      jobs.emplace_back(DriveBackward{
+          .speed_mps = drive.speed_mps, .distance_m = drive.distance_m, .to_manhole = onto_mouth});
       return;
   }
 }

@@ -107,7 +107,8 @@ SimRobot::SimRobot(const SewerMap& map, RobotProfile profile, SimPose start, Fau
       faults_(std::move(faults)),
       obstacle_cleared_(faults_.obstacles.size(), false),
       malfunction_struck_(faults_.malfunctions.size(), false),
-      options_(options) {
+      options_(std::move(options)),
+      sensing_rng_(options_.sensing.seed) {
   SEWER_CHECK(validate_profile(profile_).has_value(), "SimRobot: invalid robot profile");
   SEWER_CHECK(validate_faults(faults_, map_).has_value(), "SimRobot: invalid fault scenario");
   std::visit(Overloaded{
@@ -188,30 +189,35 @@ Result<void> SimRobot::reboot() {
 }
 
 JobReport SimRobot::run(const Job& job) {
-  return std::visit(
-      Overloaded{
-          [&](const DriveForward& j) { return drive(j.speed_mps, j.distance_m, +1, false); },
-          [&](const DriveBackward& j) { return drive(j.speed_mps, j.distance_m, -1, false); },
-          [&](const Push& j) {
-            return drive(j.speed_mps, j.distance_m, j.backward ? -1 : +1, true);
-          },
-          [&](const Scan& j) {
-            return drive(j.speed_mps, j.distance_m, j.backward ? -1 : +1, false);
-          },
-          [&](const TurnInManhole& j) { return turn(j); },
-          [&](const EnterPipeFromManhole& j) { return enter(j); },
-          [&](const LiftHead&) { return set_head(true); },
-          [&](const LowerHead&) { return set_head(false); },
-          [&](const TakeSample& j) {
-            if (!valid_number(j.duration_s)) return invalid("the duration must be >= 0");
-            return stand(j.duration_s);
-          },
-          [&](const Stop&) { return JobReport{}; },
-      },
-      job);
+  return std::visit(Overloaded{
+                        [&](const DriveForward& j) {
+                          return drive(j.speed_mps, j.distance_m, +1, false, j.to_manhole);
+                        },
+                        [&](const DriveBackward& j) {
+                          return drive(j.speed_mps, j.distance_m, -1, false, j.to_manhole);
+                        },
+                        [&](const Push& j) {
+                          return drive(j.speed_mps, j.distance_m, j.backward ? -1 : +1, true);
+                        },
+                        [&](const Scan& j) {
+                          return drive(j.speed_mps, j.distance_m, j.backward ? -1 : +1, false);
+                        },
+                        [&](const TurnInManhole& j) { return turn(j); },
+                        [&](const EnterPipeFromManhole& j) { return enter(j); },
+                        [&](const LiftHead&) { return set_head(true); },
+                        [&](const LowerHead&) { return set_head(false); },
+                        [&](const TakeSample& j) {
+                          if (!valid_number(j.duration_s))
+                            return invalid("the duration must be >= 0");
+                          return stand(j.duration_s);
+                        },
+                        [&](const Stop&) { return JobReport{}; },
+                    },
+                    job);
 }
 
-JobReport SimRobot::drive(double speed_mps, double distance_m, int direction, bool push) {
+JobReport SimRobot::drive(double speed_mps, double distance_m, int direction, bool push,
+                          bool to_manhole) {
   if (!(std::isfinite(speed_mps) && speed_mps > 0)) return invalid("the speed must be > 0");
   if (!valid_number(distance_m)) return invalid("the distance must be >= 0");
   // A drive of 0 m does nothing, except in a pipe right at its end, where it is at the mouth.
@@ -231,10 +237,15 @@ JobReport SimRobot::drive(double speed_mps, double distance_m, int direction, bo
                          slot_text(at->slot) + ": turn through it");
     }
     const bool front_into_pipe = at->facing == Facing::kIntoPipe;
-    return drive_in_pipe(pipe_end_pose(map_, at->manhole, at->slot, front_into_pipe), speed_mps,
-                         distance_m, direction, push);
+    const InPipe from = pipe_end_pose(map_, at->manhole, at->slot, front_into_pipe);
+    JobReport report = drive_in_pipe(from, speed_mps, distance_m, direction, push, to_manhole);
+    report.progress_m = odometry(report.progress_m, from.pipe);
+    return report;
   }
-  return drive_in_pipe(std::get<InPipe>(pose_), speed_mps, distance_m, direction, push);
+  const InPipe from = std::get<InPipe>(pose_);
+  JobReport report = drive_in_pipe(from, speed_mps, distance_m, direction, push, to_manhole);
+  report.progress_m = odometry(report.progress_m, from.pipe);
+  return report;
 }
 
 SimRobot::Move SimRobot::plan_move(const InPipe& from, double distance_m, int sign,
@@ -269,11 +280,22 @@ SimRobot::Move SimRobot::plan_move(const InPipe& from, double distance_m, int si
 }
 
 JobReport SimRobot::drive_in_pipe(const InPipe& from, double speed_mps, double distance_m,
-                                  int direction, bool push) {
+                                  int direction, bool push, bool to_manhole) {
   const Pipe& pipe = map_.pipe(from.pipe);
   const int sign = (from.heading == Heading::kTowardsEnd1 ? 1 : -1) * direction;
+  // A drive to a manhole goes on past the map's distance, up to a bound, until it sees one; a
+  // false detection may stop it sooner.
+  const SensingModel& sensing = options_.sensing;
+  const double budget_m = to_manhole ? distance_m + beyond_manhole_limit_m(distance_m) : distance_m;
+  std::optional<double> false_at_m;
+  if (to_manhole && sensing.false_per_km > 0) {
+    const double at_m = -std::log(1 - sensing_rng_.uniform01()) * 1000 / sensing.false_per_km;
+    const double to_end_m = sign > 0 ? pipe.length_m - from.offset_m : from.offset_m;
+    if (at_m < std::min(budget_m, to_end_m)) false_at_m = at_m;
+  }
   const Approach approach = direction > 0 ? Approach::kFront : Approach::kRear;
-  Move move = plan_move(from, distance_m, sign, push ? std::optional(approach) : std::nullopt);
+  Move move = plan_move(from, false_at_m.value_or(budget_m), sign,
+                        push ? std::optional(approach) : std::nullopt);
   JobReport report;
   std::optional<Interrupt> stop = interrupt_within(move.distance_m / speed_mps);
   report.progress_m = stop ? std::min(move.distance_m, stop->after_s * speed_mps) : move.distance_m;
@@ -294,13 +316,46 @@ JobReport SimRobot::drive_in_pipe(const InPipe& from, double speed_mps, double d
   if (stop) return interrupt(*stop, std::move(report));
   switch (move.why) {
     case Move::Why::kDone:
+      if (false_at_m) {
+        if (sensing.observe) report.observation = false_manhole(from.pipe);
+        return report;
+      }
+      if (to_manhole) {
+        report.error =
+            RobotError{RobotErrorKind::kBlockage, "no manhole seen in " + pipe.name + " within " +
+                                                      metres(report.progress_m) +
+                                                      " (the map says " + metres(distance_m) + ")"};
+      }
       return report;
     case Move::Why::kPipeEnd: {
       const PipeEnd& end = pipe.ends[sign > 0 ? 1 : 0];
       if (end.manhole) {
         pose_ = AtSlot{*end.manhole, end.slot,
                        direction > 0 ? Facing::kIntoManhole : Facing::kIntoPipe};
-        return report;
+        const bool missed =
+            sensing.missed_share > 0 && sensing_rng_.bernoulli(sensing.missed_share);
+        if (!missed) {
+          if (sensing.observe) {
+            report.observation = observe(expected_signature(map_, *end.manhole, end.slot));
+          }
+          return report;
+        }
+        // Not seen: where the manhole lets it drive straight on, a drive to a manhole does,
+        // with what is left of its bound; elsewhere the pipe's end stops it, unobserved.
+        const double left_m = budget_m - report.progress_m;
+        const std::optional<SlotIndex> on = straight_on(*end.manhole, end.slot);
+        if (!to_manhole || !on || left_m <= kLengthTolerance_m) return report;
+        const InPipe next = pipe_end_pose(map_, *end.manhole, *on, direction > 0);
+        JobReport rest = drive_in_pipe(next, speed_mps, left_m, direction, push, false);
+        rest.progress_m += report.progress_m;
+        rest.duration_s += report.duration_s;
+        if (rest.ok() && !rest.observation && !std::holds_alternative<AtSlot>(pose_)) {
+          rest.error =
+              RobotError{RobotErrorKind::kBlockage,
+                         "no manhole seen in " + pipe.name + " within " + metres(rest.progress_m) +
+                             " (the map says " + metres(distance_m) + ")"};
+        }
+        return rest;
       }
       pose_ = InPipe{from.pipe, sign > 0 ? pipe.length_m : 0.0, from.heading};
       if (distance_m <= report.progress_m + kLengthTolerance_m) return report;
@@ -318,6 +373,68 @@ JobReport SimRobot::drive_in_pipe(const InPipe& from, double speed_mps, double d
       return report;
   }
   return report;
+}
+
+// Irwin-Hall: twelve uniforms less 6, a normal to within 0.3 % in the body and cut at 6 sigma;
+// plain arithmetic, so the same on every platform.
+double SimRobot::normal(double sigma) {
+  if (sigma <= 0) return 0;
+  double sum = 0;
+  for (int i = 0; i < 12; ++i) sum += sensing_rng_.uniform01();
+  return (sum - 6) * sigma;
+}
+
+// Slip: the error's standard deviation is drift x distance, twice that in a wet pipe and twice
+// again in one falling more than 2 % (its ends' inverts); never below 0.
+double SimRobot::odometry(double true_m, PipeId pipe) {
+  const SensingModel& s = options_.sensing;
+  if (s.drift <= 0 || true_m <= 0) return true_m;
+  double slip = 1;
+  if (pipe.index() < s.wet.size() && s.wet[pipe.index()]) slip *= 2;
+  const Pipe& p = map_.pipe(pipe);
+  if (p.ends[0].manhole && p.ends[1].manhole) {
+    const double fall_m = map_.slot(*p.ends[0].manhole, p.ends[0].slot).invert_z_m -
+                          map_.slot(*p.ends[1].manhole, p.ends[1].slot).invert_z_m;
+    if (std::abs(fall_m) > 0.02 * p.length_m) slip *= 2;
+  }
+  return std::max(0.0, true_m + normal(s.drift * slip * true_m));
+}
+
+ManholeSignature SimRobot::observe(ManholeSignature truth) {
+  if (!options_.sensing.signature_noise) return truth;
+  const SignatureNoise& n = *options_.sensing.signature_noise;
+  for (std::size_t i = 0; i < truth.slots.size(); ++i) {
+    SlotSighting& s = truth.slots[i];
+    if (i > 0) {
+      s.relative_deg = std::fmod(s.relative_deg + normal(n.direction_deg) + 720.0, 360.0);
+      s.step_m += normal(n.step_m);
+    }
+    s.diameter_m = std::max(0.01, s.diameter_m + normal(n.diameter_m));
+  }
+  // The robot lists what it sees counter-clockwise from where it came in.
+  std::sort(
+      truth.slots.begin() + (truth.slots.empty() ? 0 : 1), truth.slots.end(),
+      [](const SlotSighting& a, const SlotSighting& b) { return a.relative_deg < b.relative_deg; });
+  truth.shaft_diameter_m = std::max(0.1, truth.shaft_diameter_m + normal(n.shaft_m));
+  return truth;
+}
+
+// What a false detection looks like: a pipe going straight on, the shaft the pipe's own width (a
+// joint, a lateral's mouth, a change of profile taken for a manhole).
+ManholeSignature SimRobot::false_manhole(PipeId pipe) {
+  const double d = map_.pipe(pipe).diameter_m;
+  return observe(ManholeSignature{.slots = {{0, 0, d}, {180, 0, d}}, .shaft_diameter_m = d});
+}
+
+std::optional<SlotIndex> SimRobot::straight_on(ManholeId manhole, SlotIndex arrival) const {
+  const double in_deg = map_.slot(manhole, arrival).azimuth_deg;
+  const auto slots = map_.slots(manhole);
+  for (std::size_t i = 0; i < slots.size(); ++i) {
+    if (i == arrival.index()) continue;
+    const double turn = std::abs(std::fmod(slots[i].azimuth_deg - in_deg + 720.0, 360.0) - 180);
+    if (turn <= 15) return SlotIndex{static_cast<std::uint16_t>(i)};
+  }
+  return std::nullopt;
 }
 
 JobReport SimRobot::turn(const TurnInManhole& job) {

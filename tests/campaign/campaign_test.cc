@@ -642,3 +642,50 @@ TEST(Campaign, FaultsFromConditionAreSeededAndTheRiskAwareRunIsRecordedAndSummar
 
 }  // namespace
 }  // namespace sewerplan::campaign
+
+namespace sewerplan::campaign {
+namespace {
+
+// --world-errors (issue 29): each run's robot drives a true world drawn from the run's seed, the
+// oracle plans on it, and the line carries the seeded discrepancies, which read back.
+TEST(CampaignWorld, RunsInATrueWorldRecordAndReadBackItsDiscrepancies) {
+  const auto ais = testing::load_ais_testbed();
+  CampaignSpec spec = ais_spec(4, 3);
+  spec.world_errors = "realistic,lengths=1";
+  const RunSettings settings = run_settings(spec);
+  EXPECT_DOUBLE_EQ(settings.world_errors.length_share, 1);
+  const Result<RunResult> r = run_one(ais.map, ais.mission, settings, 2);
+  ASSERT_TRUE(r.has_value()) << r.error().message;
+  std::size_t lengths = 0;
+  for (const Discrepancy& d : r->seeded) {
+    lengths += d.kind == Discrepancy::Kind::kLengthOff ? 1U : 0U;
+  }
+  EXPECT_EQ(lengths, ais.map.pipe_count());
+  // The same run again: the same world.
+  EXPECT_EQ(run_one(ais.map, ais.mission, settings, 2)->seeded, r->seeded);
+  const RunRecord record{.index = 2, .seed = r->seed, .result = *r, .wall_s = r->wall_s};
+  const std::string line = run_json_line(record);
+  EXPECT_THAT(line, ::testing::HasSubstr("\"world\":{\"seeded\":[{\"kind\":\"length-off\""));
+  const Result<RunRecord> back = parse_run_line(line, "runs.jsonl", 1);
+  ASSERT_TRUE(back.has_value()) << back.error().message;
+  ASSERT_TRUE(back->result.has_value());
+  ASSERT_EQ(back->result->seeded.size(), r->seeded.size());
+  for (std::size_t i = 0; i < r->seeded.size(); ++i) {
+    EXPECT_TRUE(same_difference(back->result->seeded[i], r->seeded[i]));
+    EXPECT_DOUBLE_EQ(back->result->seeded[i].value, r->seeded[i].value);
+  }
+  // Without world errors a line has no "world" and the campaign spec none either.
+  const RunSettings plain = run_settings(ais_spec(4, 3));
+  const Result<RunResult> exact = run_one(ais.map, ais.mission, plain, 2);
+  EXPECT_TRUE(exact->seeded.empty());
+  EXPECT_THAT(run_json_line({.index = 2, .seed = exact->seed, .result = *exact}),
+              ::testing::Not(::testing::HasSubstr("\"world\"")));
+  EXPECT_THAT(campaign_json(ais_spec(4, 3)), ::testing::Not(::testing::HasSubstr("world_errors")));
+  EXPECT_THAT(campaign_json(spec),
+              ::testing::HasSubstr("\"world_errors\": \"realistic,lengths=1\""));
+  spec.world_errors = "realism";
+  EXPECT_FALSE(parse_campaign_json(campaign_json(spec), "campaign.json").has_value());
+}
+
+}  // namespace
+}  // namespace sewerplan::campaign

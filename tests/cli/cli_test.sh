@@ -237,6 +237,18 @@ echo '{"format": "sewerplan-faults", "version": 1, "obstacles": [{"pipe": "P99",
 expect 1 'P99' -- "$sp" simulate --map "$ais" --mission "$mission" --faults "$tmp/bad-faults.json" -q
 # Unbounded drawing (47 s and 6 GB): a rate beyond the limit is refused at once.
 expect 2 'obstacle_rate_per_km must be at most 1000' -- "$sp" simulate --map "$ais" --mission "$mission" --random-faults 1,1e9 -q
+# --world-errors (docs/simulation.md): a bad spec is a usage error naming the item; "none" is the
+# simulator as before (the same log, byte for byte); a realistic world runs, whatever it meets.
+expect 2 "--world-errors: unknown profile 'realism' \\(known: none, realistic\\)" -- "$sp" simulate --map "$ais" --mission "$mission" --world-errors realism -q
+expect 2 "--world-errors: 'dirft=0.1': unknown key" -- "$sp" simulate --map "$ais" --mission "$mission" --world-errors realistic,dirft=0.1 -q
+expect 2 "--world-errors: 'lengths=1.5': must be from 0 to 1" -- "$sp" campaign --map "$ais" --mission "$mission" --runs 2 --world-errors lengths=1.5
+expect 2 "--world-errors: 'drift=x': not a number" -- "$sp" campaign --map "$ais" --mission "$mission" --runs 2 --world-errors realistic,drift=x
+"$sp" simulate --map "$ais" --mission "$mission" --random-faults 3 --log "$tmp/plain.jsonl" -q >/dev/null 2>&1
+"$sp" simulate --map "$ais" --mission "$mission" --random-faults 3 --world-errors none --log "$tmp/none.jsonl" -q >/dev/null 2>&1
+# (planning_ms is measured, the rest must be equal)
+expect 0 '' -- bash -c "cmp <(sed -E 's/\"planning_ms\":[^,]*,//' \"$tmp/plain.jsonl\") <(sed -E 's/\"planning_ms\":[^,]*,//' \"$tmp/none.jsonl\")"
+expect 0 '' -- bash -c "\"$sp\" simulate --map \"$ais\" --mission \"$mission\" --world-errors realistic --world-seed 4 -q; r=\$?; [ \$r -eq 0 ] || [ \$r -eq 4 ]"
+expect 0 '"seeded":\[\{"kind":' -- "$sp" campaign --map "$ais" --mission "$mission" --runs 3 --seed 2 --only 1 --world-errors realistic,lengths=1
 # --learnt: the blockage the first mission met is known to the second, which plans around it.
 expect 0 'mission ended' -- "$sp" simulate --map "$ais" --mission "$mission" --faults "$src/datasets/ais-testbed/faults/blocked-p5.json" --learnt "$tmp/learnt.json" -q
 expect 0 '"pipe": "P5"' -- cat "$tmp/learnt.json"

@@ -17,25 +17,29 @@ const RobotProfile& profile() {
   return p;
 }
 
+// ... that ends where the robot sees the manhole (to_manhole): the map's distance may be wrong.
 TEST(ExpandTest, ADriveToAManholeIsOneDriveInItsDirection) {
   DriveToManhole forward{.direction = Direction::kForward, .distance_m = 2.5, .speed_mps = 0.3};
-  EXPECT_EQ(expand(forward, profile()),
-            std::vector<Job>{(DriveForward{.speed_mps = 0.3, .distance_m = 2.5})});
+  EXPECT_EQ(
+      expand(forward, profile()),
+      std::vector<Job>{(DriveForward{.speed_mps = 0.3, .distance_m = 2.5, .to_manhole = true})});
   DriveToManhole backward = forward;
   backward.direction = Direction::kBackward;
-  EXPECT_EQ(expand(backward, profile()),
-            std::vector<Job>{(DriveBackward{.speed_mps = 0.3, .distance_m = 2.5})});
+  EXPECT_EQ(
+      expand(backward, profile()),
+      std::vector<Job>{(DriveBackward{.speed_mps = 0.3, .distance_m = 2.5, .to_manhole = true})});
 }
 
 // A drive to a manhole of 0 m still takes a robot right at the pipe's end onto the mouth (the
 // executor used to add that job itself); a 0 m approach to a point is no job.
 TEST(ExpandTest, ADriveOfZeroMetresToAManholeIsAJobAndToAPointNone) {
-  EXPECT_EQ(expand(DriveToManhole{.distance_m = 0, .speed_mps = 0.3}, profile()),
-            std::vector<Job>{(DriveForward{.speed_mps = 0.3, .distance_m = 0})});
+  EXPECT_EQ(
+      expand(DriveToManhole{.distance_m = 0, .speed_mps = 0.3}, profile()),
+      std::vector<Job>{(DriveForward{.speed_mps = 0.3, .distance_m = 0, .to_manhole = true})});
   EXPECT_EQ(
       expand(DriveToManhole{.direction = Direction::kBackward, .distance_m = 0, .speed_mps = 0.3},
              profile()),
-      std::vector<Job>{(DriveBackward{.speed_mps = 0.3, .distance_m = 0})});
+      std::vector<Job>{(DriveBackward{.speed_mps = 0.3, .distance_m = 0, .to_manhole = true})});
   EXPECT_TRUE(expand(GoToPoint{.drive = {Direction::kForward, 0, 0.3}}, profile()).empty());
 }
 

@@ -51,6 +51,8 @@ TEST(JobProtocol, EveryJobKindRoundTripsBitForBit) {
   const std::vector<Job> jobs{
       DriveForward{0.3, 12.345678901234567},
       DriveBackward{0.25, 1e-9},
+      DriveForward{0.3, 7.5, true},
+      DriveBackward{0.3, 0, true},
       Push{0.1, 0.5},
       Push{0.1, 0.5, true},
       TurnInManhole{2, 3, -94.5, -0.1, 1.0, 20.25, {}},

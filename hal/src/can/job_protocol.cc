@@ -81,9 +81,11 @@ std::vector<CanFrame> encode_job(const JobCommand& c) {
   std::vector<double> numbers;
   std::visit(Overloaded{
                  [&](const DriveForward& j) {
+                   header[1] = j.to_manhole ? 1 : 0;
                    numbers = {j.speed_mps, j.distance_m};
                  },
                  [&](const DriveBackward& j) {
+                   header[1] = j.to_manhole ? 1 : 0;
                    numbers = {j.speed_mps, j.distance_m};
                  },
                  [&](const Push& j) {

@@ -91,11 +91,13 @@ Decoded decode_job(Reader& r, std::uint8_t seq) {
   std::size_t numbers = 0;
   switch (kind) {
     case 1:
-      job = DriveForward{n(0), n(1)};
+      if (h.data[1] > 1) r.fail("unknown drive flags");
+      job = DriveForward{n(0), n(1), h.data[1] != 0};
       numbers = 2;
       break;
     case 2:
-      job = DriveBackward{n(0), n(1)};
+      if (h.data[1] > 1) r.fail("unknown drive flags");
+      job = DriveBackward{n(0), n(1), h.data[1] != 0};
       numbers = 2;
       break;
     case 3:

@@ -71,6 +71,9 @@ struct CampaignSpec {
   std::string condition_fingerprint;
   std::string risk = "impassable";
   bool faults_from_condition = false;
+  // --world-errors as given ("none", "realistic", "realistic,drift=0.05", ...); written only when
+  // not "none", so campaigns without world errors read as before.
+  std::string world_errors = "none";
   std::size_t shard_index = 0;  // this directory holds the runs with index % shard_count == index
   std::size_t shard_count = 1;
   friend bool operator==(const CampaignSpec&, const CampaignSpec&) = default;

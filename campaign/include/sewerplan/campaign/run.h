@@ -35,12 +35,14 @@
 #include <string_view>
 #include <vector>
 
+#include "sewerplan/core/map_discrepancy.h"
 #include "sewerplan/core/mission.h"
 #include "sewerplan/core/result.h"
 #include "sewerplan/core/sewer_map.h"
 #include "sewerplan/domain/compile.h"
 #include "sewerplan/executor/executor.h"
 #include "sewerplan/hal/fault_scenario.h"
+#include "sewerplan/hal/world_errors.h"
 
 namespace sewerplan::campaign {
 
@@ -117,7 +119,14 @@ struct RunSettings {
   // Risk-aware planning (domain::RiskCosts): when active, a fourth execution, the default
   // Replanner planning with these costs (RunResult::risk_aware), on the same faults.
   domain::RiskCosts risk;
+  // The true world each run's robot drives (hal/world_errors.h), drawn from the run's seed; ours
+  // and the baseline still plan on the map, the oracle on the true world. "none": the map.
+  hal::WorldErrorProfile world_errors;
 };
+
+// The true world of run `index` (the map itself, as a copy, with no world errors).
+Result<hal::TrueWorld> run_world(const SewerMap& map, const RunSettings& settings,
+                                 std::size_t index);
 
 // The run's own seed: splitmix64 of the campaign seed and the index.
 std::uint64_t run_seed(std::uint64_t campaign_seed, std::size_t index);
@@ -178,6 +187,9 @@ struct RunResult {
   Execution baseline;
   std::optional<Execution> risk_aware;  // with RunSettings::risk
   double wall_s = 0;                    // measured
+  // How the run's true world differs from the map, in the map's terms (empty with no world
+  // errors); written to runs.jsonl as "world", and read back.
+  std::vector<Discrepancy> seeded;
   friend bool operator==(const RunResult&, const RunResult&) = default;
 };
 

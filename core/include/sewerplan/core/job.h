@@ -25,17 +25,30 @@
 namespace sewerplan {
 
 // Drive along the pipe, away from the mouth the robot entered by (forward) or back towards it.
+//
+// `to_manhole`: the drive ends at a manhole's mouth (fusion sets it for every drive to a manhole).
+// distance_m is then the map's distance, and the map may be wrong: the robot stops at the manhole
+// when it detects it sooner, and where it has not seen it after distance_m, it drives on, at most
+// beyond_manhole_limit_m(distance_m) further, until it does (docs/simulation.md). Not shown by
+// operator<< (the event log's job text stays as it was).
 struct DriveForward {
   double speed_mps = 0;
   double distance_m = 0;
+  bool to_manhole = false;
   friend bool operator==(const DriveForward&, const DriveForward&) = default;
 };
 
 struct DriveBackward {
   double speed_mps = 0;
   double distance_m = 0;
+  bool to_manhole = false;
   friend bool operator==(const DriveBackward&, const DriveBackward&) = default;
 };
+
+// How much farther than the map's distance a drive `to_manhole` may go looking for the manhole:
+// a quarter of the distance and 2 m (the realistic world profile's lengths are off by up to 20 %
+// and 0.5 m, its odometry by 3 %: hal/world_errors.h).
+constexpr double beyond_manhole_limit_m(double distance_m) { return 0.25 * distance_m + 2.0; }
 
 // Drive against an obstacle to move it (recovery phase 3; risky in a real sewer): forward, pushing
 // with the front head, or backward, pushing with the rear head (for an obstacle met while backing:

@@ -49,11 +49,15 @@ std::optional<BeaconState> parse_beacon_state(std::string_view name);
 
 struct JobReport {
   std::optional<RobotError> error;  // empty: the job was done
-  double progress_m = 0;            // distance driven by this job (drives and scans)
-  double duration_s = 0;            // time the job took
-  double energy_wh = 0;             // energy it used
-  // What the robot saw of the manhole it arrived in when this drive ended at a detected manhole,
-  // relative to the mouth it arrived by (core/manhole_signature.h); empty otherwise.
+  // Distance driven by this job (drives and scans), as the wheels measured it: odometry, which
+  // slips (the truth stays in the robot, or the simulator).
+  double progress_m = 0;
+  double duration_s = 0;  // time the job took
+  double energy_wh = 0;   // energy it used
+  // What the robot saw of the manhole a drive ended at, when it detected one (also a false
+  // detection: something it took for a manhole). Empty after every other job, when the robot
+  // missed the manhole, and from a robot that does not observe (the exact simulated world,
+  // hal/sim_robot.h SensingModel; the CAN protocol, which does not carry it yet).
   std::optional<ManholeSignature> observation;
   bool ok() const { return !error.has_value(); }
   friend bool operator==(const JobReport&, const JobReport&) = default;

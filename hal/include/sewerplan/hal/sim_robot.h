@@ -37,6 +37,7 @@
 #include <vector>
 
 #include "sewerplan/core/clock.h"
+#include "sewerplan/core/rng.h"
 #include "sewerplan/core/robot_profile.h"
 #include "sewerplan/core/sewer_map.h"
 #include "sewerplan/hal/fault_scenario.h"
@@ -84,6 +85,20 @@ std::ostream& operator<<(std::ostream& os, const SimPose& pose);
 // The same with the map's names: "at M6 slot 3 (P5) facing the manhole".
 std::string describe(const SimPose& pose, const SewerMap& map);
 
+// The robot's sensing errors (docs/simulation.md, "Sensing"): odometry that slips, manholes it
+// misses or sees where there are none, and noisy observations of manholes. The default is exact
+// sensing with no observations: the simulator as it was before issue 29. make_sensing
+// (hal/world_errors.h) sets it from a world error profile.
+struct SensingModel {
+  double drift = 0;         // odometry: standard deviation of a drive's error, share of its length
+  std::vector<bool> wet;    // per pipe of the robot's world: wet (slip x2); empty: none
+  double missed_share = 0;  // of manhole arrivals, not detected
+  double false_per_km = 0;  // false manhole detections per km of drives to a manhole
+  bool observe = false;     // report the manhole's signature at the end of a drive (JobReport)
+  std::optional<SignatureNoise> signature_noise;  // empty: exact observations
+  std::uint64_t seed = 0;
+};
+
 // The constants of the model (docs/simulation.md).
 struct SimOptions {
   double clearance_m = 0.05;  // the robot stops this far before an obstacle or a danger spot
@@ -93,6 +108,7 @@ struct SimOptions {
   // Advanced by every job's and reboot's duration, so that an executor sharing it sees simulated
   // time. Optional, non-owning; must outlive the robot.
   ManualClock* clock = nullptr;
+  SensingModel sensing;
 };
 
 class SimRobot final : public Robot {
@@ -131,12 +147,21 @@ class SimRobot final : public Robot {
   struct Move;
 
   JobReport run(const Job& job);
-  JobReport drive(double speed_mps, double distance_m, int direction, bool push);
+  JobReport drive(double speed_mps, double distance_m, int direction, bool push,
+                  bool to_manhole = false);
   // `push`: how a push meets what it drives against; empty for a drive.
   Move plan_move(const InPipe& from, double distance_m, int sign,
                  std::optional<Approach> push) const;
   JobReport drive_in_pipe(const InPipe& from, double speed_mps, double distance_m, int direction,
-                          bool push);
+                          bool push, bool to_manhole);
+  // Sensing (docs/simulation.md): a zero-mean normal draw; the odometry of a true distance; what
+  // the robot sees of a manhole, or of a pipe where it takes one for a manhole.
+  double normal(double sigma);
+  double odometry(double true_m, PipeId pipe);
+  ManholeSignature observe(ManholeSignature truth);
+  ManholeSignature false_manhole(PipeId pipe);
+  // A drive through a missed manhole: the slot straight on from `arrival`, if it has one.
+  std::optional<SlotIndex> straight_on(ManholeId manhole, SlotIndex arrival) const;
   JobReport turn(const TurnInManhole& job);
   JobReport enter(const EnterPipeFromManhole& job);
   JobReport set_head(bool lifted);
@@ -162,6 +187,7 @@ class SimRobot final : public Robot {
   bool battery_empty_ = false;
   std::size_t jobs_executed_ = 0;
   std::atomic<bool> stopped_{false};  // the emergency stop, latched until reboot()
+  Rng sensing_rng_;
 };
 
 }  // namespace sewerplan::hal

@@ -1,0 +1,176 @@
+// SPDX-License-Identifier: MIT
+// The simulated robot's sensing (SimOptions::sensing, docs/simulation.md "Sensing"): odometry that
+// slips, manholes missed or seen where there are none, noisy observations, and drives that end at
+// a manhole (DriveForward::to_manhole).
+#include <cmath>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "sewerplan/hal/sim_robot.h"
+
+#include "support/small_map.h"
+
+namespace sewerplan::hal {
+namespace {
+
+using ::testing::HasSubstr;
+
+// M1 --P1 (20 m)-- M2 --P2 (10 m)-- M3
+//                  |
+//                  P3 (10 m)
+//                  |
+//                  M4
+// At M2, P2 goes straight on from P1; P3 turns off it.
+class SensingTest : public ::testing::Test {
+ protected:
+  SensingTest()
+      : map_(testing::SmallMap()
+                 .manhole("M1", 0, 0, /*exit=*/true)
+                 .manhole("M2", 20, 0)
+                 .manhole("M3", 30, 0)
+                 .manhole("M4", 20, 10)
+                 .pipe("P1", "M1", "M2")
+                 .pipe("P2", "M2", "M3")
+                 .pipe("P3", "M4", "M2")
+                 .build()),
+        profile_(*builtin_profile("makro-1.1")) {}
+
+  PipeId pipe(std::string_view name) const { return *map_.find_pipe(name); }
+  ManholeId manhole(std::string_view name) const { return *map_.find_manhole(name); }
+  SimRobot robot(SimPose start, SensingModel sensing) const {
+    return SimRobot(map_, profile_, start, {}, SimOptions{.sensing = std::move(sensing)});
+  }
+  // The slot of M2 that `pipe` leaves by.
+  SlotIndex m2_slot(std::string_view name) const {
+    const auto slots = map_.slots(manhole("M2"));
+    for (std::size_t i = 0; i < slots.size(); ++i) {
+      if (slots[i].pipe == pipe(name)) return SlotIndex{static_cast<std::uint16_t>(i)};
+    }
+    return SlotIndex{0};
+  }
+
+  SewerMap map_;
+  RobotProfile profile_;
+};
+
+TEST_F(SensingTest, OdometryErrorIsZeroMeanWithTheDriftAsItsStandardDeviation) {
+  SimRobot r = robot(InPipe{pipe("P1"), 5, Heading::kTowardsEnd1}, {.drift = 0.03, .seed = 3});
+  constexpr int kDrives = 2000;  // at 10 m/s, within the battery
+  double sum = 0, sum2 = 0;
+  for (int i = 0; i < kDrives; ++i) {
+    const bool forward = i % 2 == 0;
+    const JobReport report =
+        forward ? r.execute(DriveForward{10, 10}) : r.execute(DriveBackward{10, 10});
+    ASSERT_TRUE(report.ok());
+    const double error = report.progress_m - 10;
+    sum += error;
+    sum2 += error * error;
+  }
+  // The truth stays in the simulator: back where it started after every pair.
+  EXPECT_EQ(r.pose(), (SimPose{InPipe{pipe("P1"), 5, Heading::kTowardsEnd1}}));
+  const double mean = sum / kDrives;
+  const double sd = std::sqrt(sum2 / kDrives - mean * mean);
+  EXPECT_NEAR(sd, 0.3, 0.03);  // 3 % of 10 m
+  EXPECT_NEAR(mean, 0, 4 * 0.3 / std::sqrt(kDrives));
+}
+
+TEST_F(SensingTest, OdometrySlipsTwiceAsMuchInAWetPipe) {
+  std::vector<bool> wet(map_.pipe_count(), false);
+  wet[pipe("P1").index()] = true;
+  SimRobot r =
+      robot(InPipe{pipe("P1"), 5, Heading::kTowardsEnd1}, {.drift = 0.03, .wet = wet, .seed = 4});
+  double sum2 = 0;
+  // 10 m/s: 2,000 drives within the battery.
+  for (int i = 0; i < 2000; ++i) {
+    const JobReport report =
+        i % 2 == 0 ? r.execute(DriveForward{10, 10}) : r.execute(DriveBackward{10, 10});
+    sum2 += (report.progress_m - 10) * (report.progress_m - 10);
+  }
+  EXPECT_NEAR(std::sqrt(sum2 / 2000), 0.6, 0.06);
+}
+
+TEST_F(SensingTest, ObservesTheManholeADriveEndsAt) {
+  SimRobot r = robot(InPipe{pipe("P1"), 0, Heading::kTowardsEnd1}, {.observe = true});
+  const JobReport report = r.execute(DriveForward{0.3, 20, true});
+  ASSERT_TRUE(report.ok());
+  ASSERT_TRUE(report.observation.has_value());
+  EXPECT_EQ(*report.observation, expected_signature(map_, manhole("M2"), m2_slot("P1")));
+  EXPECT_EQ(report.observation->slots.size(), 3U);
+  // A drive that ends in the pipe sees no manhole.
+  SimRobot s = robot(InPipe{pipe("P1"), 0, Heading::kTowardsEnd1}, {.observe = true});
+  EXPECT_FALSE(s.execute(DriveForward{0.3, 12}).observation.has_value());
+}
+
+TEST_F(SensingTest, ANoisyObservationStillMatchesItsManhole) {
+  SimRobot r = robot(InPipe{pipe("P1"), 0, Heading::kTowardsEnd1},
+                     {.observe = true, .signature_noise = SignatureNoise{}, .seed = 5});
+  const JobReport report = r.execute(DriveForward{0.3, 20, true});
+  ASSERT_TRUE(report.observation.has_value());
+  const ManholeSignature expected = expected_signature(map_, manhole("M2"), m2_slot("P1"));
+  EXPECT_NE(*report.observation, expected);
+  EXPECT_TRUE(check_signature(*report.observation).has_value());
+  EXPECT_TRUE(compare(expected, *report.observation).matches)
+      << compare(expected, *report.observation).reason;
+}
+
+TEST_F(SensingTest, AMissedManholeWithAWayStraightOnIsDrivenThrough) {
+  SimRobot r =
+      robot(InPipe{pipe("P1"), 0, Heading::kTowardsEnd1}, {.missed_share = 1, .observe = true});
+  const JobReport report = r.execute(DriveForward{0.3, 20, true});
+  // 20 m of P1, then on through M2 into P2 until the bound: 0.25 x 20 + 2 = 7 m more.
+  ASSERT_FALSE(report.ok());
+  EXPECT_EQ(report.error->kind, RobotErrorKind::kBlockage);
+  EXPECT_THAT(report.error->reason, HasSubstr("no manhole seen in P1"));
+  EXPECT_FALSE(report.observation.has_value());
+  EXPECT_NEAR(report.progress_m, 27, 1e-9);
+  EXPECT_EQ(r.pose(), (SimPose{InPipe{pipe("P2"), 7, Heading::kTowardsEnd1}}));
+}
+
+TEST_F(SensingTest, AMissedManholeWithNoWayStraightOnStopsTheRobotUnobserved) {
+  // From P3 (north) M2 has no way straight on: the pipe's end stops the robot.
+  SimRobot r =
+      robot(InPipe{pipe("P3"), 0, Heading::kTowardsEnd1}, {.missed_share = 1, .observe = true});
+  const JobReport report = r.execute(DriveForward{0.3, 10, true});
+  EXPECT_TRUE(report.ok());
+  EXPECT_FALSE(report.observation.has_value());
+  EXPECT_EQ(r.pose(), (SimPose{AtSlot{manhole("M2"), m2_slot("P3"), Facing::kIntoManhole}}));
+}
+
+TEST_F(SensingTest, AFalseManholeStopsADriveToAManholeEarly) {
+  SimRobot r = robot(InPipe{pipe("P1"), 0, Heading::kTowardsEnd1},
+                     {.false_per_km = 500, .observe = true, .seed = 7});
+  const JobReport report = r.execute(DriveForward{0.3, 20, true});
+  ASSERT_TRUE(report.ok());
+  ASSERT_TRUE(report.observation.has_value());
+  EXPECT_EQ(report.observation->slots.size(), 2U);
+  EXPECT_EQ(report.observation->slots[1].relative_deg, 180);
+  const auto* in = std::get_if<InPipe>(&r.pose());
+  ASSERT_NE(in, nullptr) << "stopped in the pipe, short of M2";
+  EXPECT_LT(in->offset_m, 20);
+  EXPECT_NEAR(report.progress_m, in->offset_m, 1e-9);
+  // A drive of a distance (not to a manhole) never stops at a false one.
+  SimRobot s = robot(InPipe{pipe("P1"), 0, Heading::kTowardsEnd1},
+                     {.false_per_km = 500, .observe = true, .seed = 7});
+  EXPECT_NEAR(s.execute(DriveForward{0.3, 15}).progress_m, 15, 1e-9);
+}
+
+TEST_F(SensingTest, ADriveToAManholeGoesOnPastTheMapsDistanceToTheManhole) {
+  // The map said 12 m; the pipe is 20 m: the robot drives on (up to 12 + 5 m) until it is there.
+  SimRobot r = robot(InPipe{pipe("P1"), 5, Heading::kTowardsEnd1}, {});
+  const JobReport report = r.execute(DriveForward{0.3, 12, true});
+  EXPECT_TRUE(report.ok());
+  EXPECT_NEAR(report.progress_m, 15, 1e-9);
+  EXPECT_EQ(r.pose(), (SimPose{AtSlot{manhole("M2"), m2_slot("P1"), Facing::kIntoManhole}}));
+  // Beyond the bound, it stops and says so.
+  SimRobot s = robot(InPipe{pipe("P1"), 0, Heading::kTowardsEnd1}, {});
+  const JobReport far = s.execute(DriveForward{0.3, 10, true});
+  ASSERT_FALSE(far.ok());
+  EXPECT_THAT(far.error->reason, HasSubstr("no manhole seen in P1 within 14.50 m"));
+  // Without to_manhole, the distance is the distance.
+  SimRobot t = robot(InPipe{pipe("P1"), 5, Heading::kTowardsEnd1}, {});
+  EXPECT_NEAR(t.execute(DriveForward{0.3, 12}).progress_m, 12, 1e-9);
+}
+
+}  // namespace
+}  // namespace sewerplan::hal
