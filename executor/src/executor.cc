@@ -293,19 +293,21 @@ class Executor::Run {
         return Replan{Failure{.kind = Failure::Kind::kStuck, .detail = "plan and robot disagree"},
                       ""};
       }
+      if (!agrees(tracker_.position(), replay.position())) {
+        // The robot is not where the plan puts it: plan again from where it really is, rather than
+        // carry on (or report the mission ended at an exit) on the plan's word; the step's tasks
+        // are not done (a go-to 1 m short is not at its place, a scan stopped short did not
+        // inspect the whole pipe).
+        sync_progress(replay.progress());
+        return Replan{std::nullopt, "the robot is " + tracker_.describe() + ", the plan has it " +
+                                        domain::describe(replay.position(), map_)};
+      }
       for (TaskId t : mission().task_ids()) {
         if (!before[t.index()] && replay.done()[t.index()]) {
           report_.tasks_done.push_back(mission().task(t).name);
           done_[t.index()] = true;
           emit(TaskDoneEvent{mission().task(t).name});
         }
-      }
-      if (!agrees(tracker_.position(), replay.position())) {
-        // The robot is not where the plan puts it: plan again from where it really is, rather than
-        // carry on (or report the mission ended at an exit) on the plan's word.
-        sync_progress(replay.progress());
-        return Replan{std::nullopt, "the robot is " + tracker_.describe() + ", the plan has it " +
-                                        domain::describe(replay.position(), map_)};
       }
       tracker_.set_position(replay.position());
       sync_progress(replay.progress());
