@@ -464,7 +464,11 @@ class Executor::Run {
     if (std::optional<detail::Arrival> a =
             localising_.follow(job, r, before, tracker_.position())) {
       if (a->worth_logging()) emit(arrival_event(*a));
-      if (!a->verification.matches()) settle(std::move(*a));
+      if (!a->verification.matches()) {
+        settle(std::move(*a));
+      } else if (a->expected && !std::holds_alternative<domain::AtSlot>(tracker_.position())) {
+        tracker_.set_position(*a->expected);  // the far end, sooner than the map says
+      }
     }
     notify_job_observers(job, r, before, direction);
     return r;

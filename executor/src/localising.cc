@@ -141,9 +141,27 @@ std::optional<Arrival> Localising::follow(const Job& job, const hal::JobReport& 
       return std::nullopt;
     }
     arrival.verification = std::move(*checked);
-  } else {
-    arrival.verification = unexpected_stop(filter.estimate(), map_);
+    return arrival;
   }
+  // The tracking has the robot in a pipe: a drive of a distance (a scan of the whole pipe, a go-to)
+  // that stopped at a manhole. At the far end of the pipe it drove in, the pipe is shorter than the
+  // map says and the robot is where the drive was going; anything else does not match.
+  const localisation::Estimate estimate = filter.estimate();
+  const auto* in = std::get_if<domain::InPipe>(&after);
+  if (in != nullptr && !estimate.lost()) {
+    const localisation::Hypothesis& best = estimate.best();
+    const auto* at = std::get_if<domain::AtSlot>(&best.pose.position);
+    if (at != nullptr && !best.pose.at_unmapped_junction &&
+        map_.slot(at->manhole, at->slot).pipe == in->pipe &&
+        best.probability >= filter.options().verify_probability) {
+      arrival.expected = *at;
+      arrival.verification.kind = Verification::Kind::kMatches;
+      arrival.verification.probability = best.probability;
+      arrival.verification.believed = best.pose;
+      return arrival;
+    }
+  }
+  arrival.verification = unexpected_stop(estimate, map_);
   return arrival;
 }
 

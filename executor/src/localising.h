@@ -23,8 +23,9 @@ namespace sewerplan::executor::detail {
 
 // A job's end at a manhole (or at what the robot took for one), checked.
 struct Arrival {
-  // Where the tracking has the robot: a mouth; empty when it has it in a pipe (the robot stopped
-  // short of the manhole the plan drove to).
+  // The mouth the robot arrived at as the plan's drive expected it: where the tracking has it, or,
+  // when that is in a pipe, the far end of that pipe reached sooner than the map says (the
+  // arrival then matches). Empty when it stopped at no manhole the drive was going to.
   std::optional<domain::AtSlot> expected;
   localisation::Verification verification;
   std::optional<ManholeSignature> observation;
