@@ -23,8 +23,6 @@ struct Key {
   double max;
 };
 
-constexpr double kLargest = 1e6;
-
 const std::array<Key, 16>& keys() {
   static const std::array<Key, 16> k{{
       {"lengths", &WorldErrorProfile::length_share, 1},
