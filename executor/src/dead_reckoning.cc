@@ -6,16 +6,9 @@
 
 #include "sewerplan/core/map_queries.h"
 
+#include "job_arithmetic.h"
+
 namespace sewerplan::executor::detail {
-namespace {
-
-bool to_manhole(const Job& job) {
-  if (const auto* f = std::get_if<DriveForward>(&job)) return f->to_manhole;
-  if (const auto* b = std::get_if<DriveBackward>(&job)) return b->to_manhole;
-  return false;
-}
-
-}  // namespace
 
 double DeadReckoning::direction_of(const Job& job) const {
   const double front = heading_end_ == 1 ? 1.0 : -1.0;
@@ -62,13 +55,13 @@ void DeadReckoning::advance(const Job& job, const hal::JobReport& report) {
         domain::InPipe{slot.pipe, std::clamp(end + inward * report.progress_m, 0.0, pipe.length_m)};
     // A drive to the manhole at the far end that the robot finished is at that end, whatever
     // the odometry (the pipe may be longer or shorter than the map says: core/job.h).
-    if (!(to_manhole(job) && report.ok())) return;
+    if (!(ends_at_manhole(job) && report.ok())) return;
   }
   auto* in = std::get_if<domain::InPipe>(&position_);
   if (in == nullptr) return;
   const Pipe& pipe = map_.pipe(in->pipe);
   in->offset_m = std::clamp(in->offset_m + direction * report.progress_m, 0.0, pipe.length_m);
-  if (to_manhole(job) && report.ok()) {
+  if (ends_at_manhole(job) && report.ok()) {
     const std::size_t ahead = direction > 0 ? 1 : 0;
     if (pipe.ends[ahead].manhole) in->offset_m = domain::end_offset_m(pipe, ahead);
   }

@@ -87,4 +87,10 @@ std::string job_text(const Job& job) {
   return out.str();
 }
 
+bool ends_at_manhole(const Job& job) {
+  if (const auto* f = std::get_if<DriveForward>(&job)) return f->to_manhole;
+  if (const auto* b = std::get_if<DriveBackward>(&job)) return b->to_manhole;
+  return false;
+}
+
 }  // namespace sewerplan::executor::detail

@@ -31,6 +31,10 @@ std::optional<Job> push_for(const Job& job);
 // that is not a drive.
 hal::Approach approach_of(const Job& job);
 
+// Whether `job` is a drive that ends at a manhole's mouth (DriveForward/DriveBackward::to_manhole):
+// reported done, the robot is at that manhole (core/job.h).
+bool ends_at_manhole(const Job& job);
+
 // The job as the event log writes it.
 std::string job_text(const Job& job);
 

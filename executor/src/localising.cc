@@ -6,29 +6,20 @@
 #include <utility>
 #include <variant>
 
+#include "job_arithmetic.h"
+
 namespace sewerplan::executor::detail {
 namespace {
 
 using localisation::DriveDirection;
 using localisation::Verification;
 
-// The direction of a drive as the filter counts it (the robot's own forward and backward), or
-// empty for a job that does not drive.
+// The direction of a drive as the filter counts it (the robot's own forward and backward: a
+// backward push or scan goes backward), or empty for a job that does not drive.
 std::optional<DriveDirection> drive_direction(const Job& job) {
-  if (std::holds_alternative<DriveForward>(job) || std::holds_alternative<Push>(job)) {
-    return DriveDirection::kForward;
-  }
-  if (std::holds_alternative<DriveBackward>(job)) return DriveDirection::kBackward;
-  if (const auto* scan = std::get_if<Scan>(&job)) {
-    return scan->backward ? DriveDirection::kBackward : DriveDirection::kForward;
-  }
-  return std::nullopt;
-}
-
-bool to_manhole(const Job& job) {
-  if (const auto* f = std::get_if<DriveForward>(&job)) return f->to_manhole;
-  if (const auto* b = std::get_if<DriveBackward>(&job)) return b->to_manhole;
-  return false;
+  if (!rest_of(job, 0)) return std::nullopt;  // not a drive
+  return approach_of(job) == hal::Approach::kRear ? DriveDirection::kBackward
+                                                  : DriveDirection::kForward;
 }
 
 // A check without a manhole to check against (the tracking has the robot in a pipe): the filter's
@@ -117,7 +108,7 @@ std::optional<Arrival> Localising::follow(const Job& job, const hal::JobReport& 
   if (!direction) return std::nullopt;
   const bool arrived =
       report.observation.has_value() ||
-      (to_manhole(job) && report.ok() && std::holds_alternative<domain::AtSlot>(after));
+      (ends_at_manhole(job) && report.ok() && std::holds_alternative<domain::AtSlot>(after));
   const double driven = std::max(0.0, report.progress_m);
   if (driven > 0 || arrived)
     step = filter.drive(driven, *direction, odometry_sd_fraction_ * driven);

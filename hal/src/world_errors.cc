@@ -153,7 +153,7 @@ class WorldMaker {
  public:
   WorldMaker(const SewerMap& map, const WorldErrorProfile& profile, std::uint64_t seed)
       : map_(map), profile_(profile), rng_(seed), r_(records_of(map)) {
-    stub_.assign(map.pipe_count(), false);
+    made_blind_.assign(map.pipe_count(), false);
   }
 
   Result<TrueWorld> make(std::uint64_t seed) && {
@@ -278,9 +278,9 @@ class WorldMaker {
       if (count < 3 || !rng.bernoulli(profile_.lateral_missing_share)) continue;
       const Slot& last = map_.slots(m)[count - 1];
       PipeRecord& pipe = r_.pipes[last.pipe.index()];
-      if (!pipe.from || !pipe.to || stub_[last.pipe.index()]) continue;
+      if (!pipe.from || !pipe.to || made_blind_[last.pipe.index()]) continue;
       (last.pipe_end == 0 ? pipe.from : pipe.to).reset();
-      stub_[last.pipe.index()] = true;
+      made_blind_[last.pipe.index()] = true;
       r_.manholes[m.index()].slots.pop_back();
       // A direction drawn for the slot that is not there is no discrepancy of its own.
       const SlotIndex gone{static_cast<std::uint16_t>(count - 1)};
@@ -346,7 +346,7 @@ class WorldMaker {
     std::vector<PipeId> candidates;
     for (PipeId id : map_.pipe_ids()) {
       const PipeRecord& p = r_.pipes[id.index()];
-      if (p.from && p.to && !stub_[id.index()] && p.length_m >= 6) candidates.push_back(id);
+      if (p.from && p.to && !made_blind_[id.index()] && p.length_m >= 6) candidates.push_back(id);
     }
     for (std::size_t i = 0; i < map_.manhole_count() && !candidates.empty(); ++i) {
       if (!rng.bernoulli(profile_.junction_share)) continue;
@@ -428,7 +428,7 @@ class WorldMaker {
   const WorldErrorProfile& profile_;
   Rng rng_;
   Records r_;
-  std::vector<bool> stub_;  // per map pipe: an end made blind (a missing lateral)
+  std::vector<bool> made_blind_;  // per map pipe: an end made blind (a missing lateral)
   std::vector<Discrepancy> seeded_;
   std::vector<PipeSplit> splits_;
   std::size_t new_pipes_ = 0;
