@@ -23,6 +23,7 @@
 #include "sewerplan/core/map_json.h"
 #include "sewerplan/core/output_file.h"
 #include "sewerplan/core/text_file.h"
+#include "sewerplan/executor/event_json.h"
 
 #include "command.h"
 #include "condition_options.h"
@@ -55,6 +56,7 @@ struct CampaignCliOptions {
   bool quiet = false;
   bool no_guard = false;
   std::string faults_out;
+  std::string log_out;  // --log-out: with --only, ours' event log
   MotionOptions motion;
   std::string condition;
   RiskOptions risk;
@@ -294,6 +296,21 @@ int run(const CampaignCliOptions& o, Context& c) {
       return fail(c, o.json, w.error());
     }
   }
+  if (o.only && !o.log_out.empty()) {
+    // The run again, as run_one carried it out, with every event written as simulate --log
+    // writes it: what a missed exit or a beacon was, event by event.
+    std::ostringstream text;
+    campaign::ExecutionObservers observers;
+    observers.on_event = [&](const executor::Event& e) {
+      text << executor::to_json_line(e) << '\n';
+    };
+    const Result<campaign::Execution> replayed = campaign::replay_execution(
+        *map, *mission, campaign::run_settings(spec), *o.only, campaign::Policy::kOurs, observers);
+    if (!replayed.has_value()) return fail(c, o.json, replayed.error());
+    if (Result<void> w = write_text_file(o.log_out, text.str()); !w.has_value()) {
+      return fail(c, o.json, w.error());
+    }
+  }
   if (o.only) {
     const campaign::RunRecord& r = records.front();
     c.out << campaign::run_json_line(r) << '\n';
@@ -360,6 +377,8 @@ void add_campaign_command(CLI::App& app, Context& context) {
                 "Run in this process, not in guarded children (for a debugger)");
   cmd->add_option("--faults-out", options->faults_out,
                   "With --only: write the run's hidden faults (for simulate --faults, render)");
+  cmd->add_option("--log-out", options->log_out,
+                  "With --only: write ours' event log of the run (JSON lines, as simulate --log)");
   cmd->add_flag("-q,--quiet", options->quiet, "No progress and no summary on the terminal");
   cmd->add_flag("--json", options->json,
                 "Print the summary as JSON (summary.json; with --only, the run's JSON line)");

@@ -40,8 +40,12 @@ std::ostream& operator<<(std::ostream& os, const Job& job) {
                << (j.backward ? ", backward)" : ")");
           },
           [&](const TurnInManhole& j) {
-            os << "TurnInManhole(slot " << j.from_slot + 1 << " -> " << j.to_slot + 1 << ", "
-               << std::setprecision(1) << j.turn_deg << " deg, step " << std::setprecision(2)
+            if (j.from_slot == kBySighting) {
+              os << "TurnInManhole(arrival -> mouth " << j.to_slot + 1 << " seen, ";
+            } else {
+              os << "TurnInManhole(slot " << j.from_slot + 1 << " -> " << j.to_slot + 1 << ", ";
+            }
+            os << std::setprecision(1) << j.turn_deg << " deg, step " << std::setprecision(2)
                << j.step_m << " m";
             if (!j.waypoints.empty()) os << ", " << j.waypoints.size() << " waypoints";
             os << ")";

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <sstream>
 
@@ -110,51 +111,131 @@ Result<void> check_signature(const ManholeSignature& signature) {
   return {};
 }
 
+namespace {
+
+// The log-likelihood of `seen` as the mouth the map lists as `want`.
+double pair_log(const SlotSighting& want, const SlotSighting& seen, const SignatureNoise& noise) {
+  return gaussian_log(normalize_deg(seen.relative_deg - want.relative_deg), noise.direction_deg) +
+         gaussian_log(seen.step_m - want.step_m, noise.step_m) +
+         gaussian_log(seen.diameter_m - want.diameter_m, noise.diameter_m);
+}
+
+// Why `seen` is not the mouth `want`, or empty when it is within the noise's limits.
+std::string pair_problem(std::size_t seen_index, const SlotSighting& want, const SlotSighting& seen,
+                         const SignatureNoise& noise) {
+  const std::string slot = "slot " + std::to_string(seen_index + 1);
+  if (std::abs(normalize_deg(seen.relative_deg - want.relative_deg)) > noise.max_direction_deg) {
+    return slot + " at " + number(seen.relative_deg, 0) + "°, " + number(want.relative_deg, 0) +
+           "° expected";
+  }
+  if (std::abs(seen.step_m - want.step_m) > noise.max_step_m) {
+    return slot + " with a step of " + number(seen.step_m, 2) + " m, " + number(want.step_m, 2) +
+           " m expected";
+  }
+  if (std::abs(seen.diameter_m - want.diameter_m) > noise.max_diameter_m) {
+    return slot + " of " + number(seen.diameter_m, 2) + " m, " + number(want.diameter_m, 2) +
+           " m expected";
+  }
+  return {};
+}
+
+// Pairs the mouths of two signatures with different slot counts: both lists run
+// counter-clockwise from the arrival mouth (paired with each other), so the pairing keeps their
+// order, and each mouth left unpaired (one the map lacks, or one the world lacks) costs
+// kSlotCountLogPenalty. The pairing of most likelihood (an alignment, O(expected x observed)).
+// Adds its log-likelihood to `match` and names the first difference.
+void compare_unequal(const ManholeSignature& expected, const ManholeSignature& observed,
+                     const SignatureNoise& noise, SignatureMatch& match) {
+  const std::size_t e = expected.slots.size();
+  const std::size_t o = observed.slots.size();
+  // best[i][j]: the pairing of expected mouths 1..i with observed mouths 1..j.
+  const std::size_t width = o;
+  std::vector<double> best(e * o, 0.0);
+  enum Step : unsigned char { kPair, kExpectedAlone, kObservedAlone };
+  std::vector<Step> how(e * o, kPair);
+  for (std::size_t i = 0; i < e; ++i) {
+    for (std::size_t j = 0; j < o; ++j) {
+      if (i == 0 && j == 0) continue;
+      double value = -std::numeric_limits<double>::infinity();
+      Step step = kPair;
+      if (i > 0 && j > 0) {
+        value =
+            best[(i - 1) * width + j - 1] + pair_log(expected.slots[i], observed.slots[j], noise);
+      }
+      if (i > 0 && best[(i - 1) * width + j] + kSlotCountLogPenalty > value) {
+        value = best[(i - 1) * width + j] + kSlotCountLogPenalty;
+        step = kExpectedAlone;
+      }
+      if (j > 0 && best[i * width + j - 1] + kSlotCountLogPenalty > value) {
+        value = best[i * width + j - 1] + kSlotCountLogPenalty;
+        step = kObservedAlone;
+      }
+      best[i * width + j] = value;
+      how[i * width + j] = step;
+    }
+  }
+  match.log_likelihood += best[e * o - 1];
+  // Back from the end; the reason is the first difference counter-clockwise.
+  std::string reason;
+  for (std::size_t i = e - 1, j = o - 1; i > 0 || j > 0;) {
+    switch (how[i * width + j]) {
+      case kPair: {
+        std::string problem = pair_problem(j, expected.slots[i], observed.slots[j], noise);
+        if (!problem.empty()) reason = std::move(problem);
+        --i;
+        --j;
+        break;
+      }
+      case kExpectedAlone:
+        reason = "no slot seen at " + number(expected.slots[i].relative_deg, 0) + "°";
+        match.unseen.insert(match.unseen.begin(), i);
+        --i;
+        break;
+      case kObservedAlone:
+        reason = "slot " + std::to_string(j + 1) + " at " +
+                 number(observed.slots[j].relative_deg, 0) + "° is not on the map";
+        --j;
+        break;
+    }
+  }
+  match.matches = false;
+  match.reason = std::to_string(o) + " slots seen, " + std::to_string(e) + " expected" +
+                 (reason.empty() ? "" : ": " + reason);
+}
+
+}  // namespace
+
 SignatureMatch compare(const ManholeSignature& expected, const ManholeSignature& observed,
                        const SignatureNoise& noise) {
   SignatureMatch match;
   match.matches = true;
-  auto fail = [&](std::string why) {
-    if (match.matches) match.reason = std::move(why);
+  if (expected.slots.empty() || observed.slots.empty()) {
     match.matches = false;
-  };
-  const std::size_t n = std::min(expected.slots.size(), observed.slots.size());
-  if (expected.slots.size() != observed.slots.size()) {
-    const double missing = std::abs(static_cast<double>(expected.slots.size()) -
-                                    static_cast<double>(observed.slots.size()));
-    match.log_likelihood += kSlotCountLogPenalty * missing;
-    fail(std::to_string(observed.slots.size()) + " slots seen, " +
-         std::to_string(expected.slots.size()) + " expected");
+    match.log_likelihood = -std::numeric_limits<double>::infinity();
+    match.reason = std::to_string(observed.slots.size()) + " slots seen, " +
+                   std::to_string(expected.slots.size()) + " expected";
+    return match;
   }
-  for (std::size_t i = 1; i < n; ++i) {
-    const SlotSighting& want = expected.slots[i];
-    const SlotSighting& seen = observed.slots[i];
-    const double direction = normalize_deg(seen.relative_deg - want.relative_deg);
-    const double step = seen.step_m - want.step_m;
-    const double size = seen.diameter_m - want.diameter_m;
-    match.log_likelihood += gaussian_log(direction, noise.direction_deg) +
-                            gaussian_log(step, noise.step_m) + gaussian_log(size, noise.diameter_m);
-    const std::string slot = "slot " + std::to_string(i + 1);
-    if (std::abs(direction) > noise.max_direction_deg) {
-      fail(slot + " at " + number(seen.relative_deg, 0) + "°, " + number(want.relative_deg, 0) +
-           "° expected");
-    } else if (std::abs(step) > noise.max_step_m) {
-      fail(slot + " with a step of " + number(seen.step_m, 2) + " m, " + number(want.step_m, 2) +
-           " m expected");
-    } else if (std::abs(size) > noise.max_diameter_m) {
-      fail(slot + " of " + number(seen.diameter_m, 2) + " m, " + number(want.diameter_m, 2) +
-           " m expected");
+  if (expected.slots.size() != observed.slots.size()) {
+    compare_unequal(expected, observed, noise, match);
+  } else {
+    for (std::size_t i = 1; i < expected.slots.size(); ++i) {
+      match.log_likelihood += pair_log(expected.slots[i], observed.slots[i], noise);
+      std::string problem = pair_problem(i, expected.slots[i], observed.slots[i], noise);
+      if (match.matches && !problem.empty()) {
+        match.matches = false;
+        match.reason = std::move(problem);
+      }
     }
   }
-  if (n > 0) {
-    const double size = observed.slots[0].diameter_m - expected.slots[0].diameter_m;
-    match.log_likelihood += gaussian_log(size, noise.diameter_m);
-  }
+  match.log_likelihood +=
+      gaussian_log(observed.slots[0].diameter_m - expected.slots[0].diameter_m, noise.diameter_m);
   const double shaft = observed.shaft_diameter_m - expected.shaft_diameter_m;
   match.log_likelihood += gaussian_log(shaft, noise.shaft_m);
-  if (std::abs(shaft) > noise.max_shaft_m) {
-    fail("a shaft of " + number(observed.shaft_diameter_m, 2) + " m, " +
-         number(expected.shaft_diameter_m, 2) + " m expected");
+  if (std::abs(shaft) > noise.max_shaft_m && match.matches) {
+    match.matches = false;
+    match.reason = "a shaft of " + number(observed.shaft_diameter_m, 2) + " m, " +
+                   number(expected.shaft_diameter_m, 2) + " m expected";
   }
   return match;
 }

@@ -22,7 +22,8 @@ double DeadReckoning::direction_of(const Job& job) const {
 void DeadReckoning::advance(const Job& job, const hal::JobReport& report) {
   if (const auto* turn = std::get_if<TurnInManhole>(&job)) {
     const auto* at = std::get_if<domain::AtSlot>(&position_);
-    if (!report.ok() || at == nullptr) return;
+    // Through a manhole the map lacks (kBySighting): on along the pipe it lies in, as tracked.
+    if (!report.ok() || at == nullptr || turn->from_slot == kBySighting) return;
     const Slot& slot = map_.slot(at->manhole, SlotIndex{turn->to_slot});
     position_ =
         domain::InPipe{slot.pipe, domain::end_offset_m(map_.pipe(slot.pipe), slot.pipe_end)};
@@ -65,14 +66,19 @@ void DeadReckoning::advance(const Job& job, const hal::JobReport& report) {
     const std::size_t ahead = direction > 0 ? 1 : 0;
     if (pipe.ends[ahead].manhole) in->offset_m = domain::end_offset_m(pipe, ahead);
   }
-  // At an end with a manhole, the robot is at that manhole's mouth.
+  // At an end with a manhole, the robot is at that manhole's mouth; unless the drive failed there
+  // (against a blind end the world has where the map has a manhole): then it stopped short of it,
+  // in the pipe.
   for (std::size_t e = 0; e < 2; ++e) {
     const double end = domain::end_offset_m(pipe, e);
     const bool towards = (e == 1) == (direction > 0);
-    if (towards && std::abs(in->offset_m - end) <= 1e-6 && pipe.ends[e].manhole) {
-      position_ = domain::AtSlot{*pipe.ends[e].manhole, pipe.ends[e].slot};
+    if (!towards || std::abs(in->offset_m - end) > 1e-6 || !pipe.ends[e].manhole) continue;
+    if (!report.ok()) {
+      in->offset_m = std::clamp(end - direction * 2 * kBlockageAhead_m, 0.0, pipe.length_m);
       return;
     }
+    position_ = domain::AtSlot{*pipe.ends[e].manhole, pipe.ends[e].slot};
+    return;
   }
 }
 

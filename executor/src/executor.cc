@@ -277,14 +277,18 @@ class Executor::Run {
                        .duration_s = fusion::duration_s(action),
                        .parameters = fusion::describe(action, map_, mission())});
       for (const Job& job : fusion::expand(action, mission().profile)) {
-        std::optional<Failure> failure = recovery_.run_job(job, action);
-        if (failure || halted()) {
-          mismatch_.reset();
-          sync_progress(replay.progress());
-          return Replan{failure, failure ? "" : "halted"};
-        }
-        if (mismatch_) {
-          if (std::optional<Replan> replan = relocalise(replay)) return replan;
+        // A job stopped by a manhole the map lacks goes on beyond it, once the robot has passed.
+        for (std::optional<Job> next = job; next;) {
+          std::optional<Failure> failure = recovery_.run_job(*next, action);
+          next.reset();
+          if (failure || halted()) {
+            mismatch_.reset();
+            sync_progress(replay.progress());
+            return Replan{failure, failure ? "" : "halted"};
+          }
+          if (mismatch_) {
+            if (std::optional<Replan> replan = relocalise(replay, next)) return replan;
+          }
         }
       }
       const domain::PlanStep& step = response.plan.steps[fusion::plan_step(action)];
@@ -323,7 +327,12 @@ class Executor::Run {
   void settle(detail::Arrival arrival) {
     using Kind = localisation::Verification::Kind;
     const localisation::Verification& v = arrival.verification;
-    if (v.kind == Kind::kSignatureDiffers) return;
+    if (v.kind == Kind::kSignatureDiffers) {
+      // The manhole the plan expected, with a mouth fewer: its pipe cannot be reached from here.
+      if (detail::missing_mouth(arrival, map_, localising_.options().noise))
+        mismatch_ = std::move(arrival);
+      return;
+    }
     if (!v.believed) {
       localising_.reset(tracker_.position(), tracker_.heading_end());
       return;
@@ -333,23 +342,64 @@ class Executor::Run {
     mismatch_ = std::move(arrival);
   }
 
-  // The plan again from where the robot was found to be (settle()). At a manhole the map lacks
-  // the robot cannot yet pass: the pipe is closed there, as a blockage (docs/localisation.md).
-  std::optional<Replan> relocalise(const domain::PlanReplay& replay) {
+  // The plan again from where the robot was found to be (settle()). A manhole the map lacks, in
+  // the pipe a forward drive was driving: the robot passes straight through when a mouth goes on,
+  // and `go_on` is the rest of the job it stopped (empty when it was done); else the pipe is closed
+  // there, as a blockage (docs/localisation.md).
+  std::optional<Replan> relocalise(const domain::PlanReplay& replay, std::optional<Job>& go_on) {
     using Kind = localisation::Verification::Kind;
     const detail::Arrival arrival = std::move(*mismatch_);
     mismatch_.reset();
     const localisation::Verification& v = arrival.verification;
-    sync_progress(replay.progress());
+    if (v.kind == Kind::kSignatureDiffers) {
+      sync_progress(replay.progress());
+      const Slot mouth = *detail::missing_mouth(arrival, map_, localising_.options().noise);
+      return Replan{
+          Failure{.kind = Failure::Kind::kBlockage,
+                  .pipe = mouth.pipe,
+                  .offset_m = domain::end_offset_m(map_.pipe(mouth.pipe), mouth.pipe_end),
+                  .detail = "no mouth of " + map_.pipe(mouth.pipe).name + " seen: " + v.reason},
+          ""};
+    }
     const auto* in = std::get_if<domain::InPipe>(&v.believed->position);
     if ((v.kind == Kind::kUnmappedJunction || v.believed->at_unmapped_junction) && in != nullptr) {
+      std::string why = "a manhole the map lacks: " + v.reason;
+      const domain::InPipe here = *in;
+      if (std::optional<TurnInManhole> through = detail::straight_through(
+              arrival, map_, here.pipe, localising_.options(), mission().profile)) {
+        const Job stopped = last_job_;
+        const double done_m = last_progress_m_;
+        const hal::JobReport r = execute_job(*through);
+        if (r.ok()) {
+          go_on = detail::rest_of(stopped, done_m);
+          // A drive to a manhole goes on to it whatever the odometry says is left.
+          if (go_on && !detail::ends_at_manhole(*go_on) && remaining_m(*go_on) <= 0) go_on.reset();
+          return std::nullopt;
+        }
+        why += "; passing it failed: " + r.error->reason;
+      }
+      sync_progress(replay.progress());
       return Replan{Failure{.kind = Failure::Kind::kBlockage,
-                            .pipe = in->pipe,
-                            .offset_m = in->offset_m,
-                            .detail = "a manhole the map lacks: " + v.reason},
+                            .pipe = here.pipe,
+                            .offset_m = here.offset_m,
+                            .detail = why},
                     ""};
     }
+    sync_progress(replay.progress());
     return Replan{std::nullopt, "relocalised: " + v.reason};
+  }
+
+  // The distance a drive, push or scan has left (0 for any other job).
+  static double remaining_m(const Job& job) {
+    return std::visit(
+        [](const auto& j) {
+          if constexpr (requires { j.distance_m; }) {
+            return j.distance_m;
+          } else {
+            return 0.0;
+          }
+        },
+        job);
   }
 
   ArrivalEvent arrival_event(const detail::Arrival& a) const {
@@ -454,6 +504,8 @@ class Executor::Run {
     const domain::RobotPosition before = tracker_.position();
     const double direction = tracker_.direction_of(job);
     const hal::JobReport r = robot_.execute(job);
+    last_job_ = job;
+    last_progress_m_ = r.progress_m;
     ++report_.jobs;
     tracker_.advance(job, r);
     emit(JobEvent{.job = detail::job_text(job), .progress_m = r.progress_m, .ok = r.ok()});
@@ -576,6 +628,9 @@ class Executor::Run {
   detail::Localising localising_;
   // An arrival that did not match the plan's manhole, handled after the job (relocalise()).
   std::optional<detail::Arrival> mismatch_;
+  // The last job sent and how far it drove (the rest of a job stopped by a manhole the map lacks).
+  Job last_job_ = Stop{};
+  double last_progress_m_ = 0;
   detail::StagedRecovery recovery_;
   std::vector<bool> done_;  // per task: done by the robot (or before the start)
   MissionReport report_;

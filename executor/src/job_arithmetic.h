@@ -14,6 +14,10 @@
 
 namespace sewerplan::executor::detail {
 
+// Where a blocked drive's failure is placed: this far ahead of where the robot stopped, so that
+// the plan made next has the robot before it, not on it.
+inline constexpr double kBlockageAhead_m = 0.001;
+
 // The rest of a drive after `done_m`, or nothing for a job that is not a drive.
 std::optional<Job> rest_of(const Job& job, double done_m);
 

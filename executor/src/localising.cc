@@ -54,6 +54,47 @@ Verification unexpected_stop(const localisation::Estimate& estimate, const Sewer
 
 }  // namespace
 
+std::optional<Slot> missing_mouth(const Arrival& arrival, const SewerMap& map,
+                                  const SignatureNoise& noise) {
+  if (!arrival.expected || !arrival.observation) return std::nullopt;
+  const domain::AtSlot& at = *arrival.expected;
+  const SignatureMatch match =
+      compare(expected_signature(map, at.manhole, at.slot), *arrival.observation, noise);
+  if (match.unseen.empty()) return std::nullopt;
+  const std::vector<SlotIndex> order = signature_slot_order(map, at.manhole, at.slot);
+  return map.slot(at.manhole, order[match.unseen.front()]);
+}
+
+std::optional<TurnInManhole> straight_through(const Arrival& arrival, const SewerMap& map,
+                                              PipeId pipe,
+                                              const localisation::LocalisationOptions& options,
+                                              const RobotProfile& profile) {
+  if (!arrival.observation || !arrival.forward) return std::nullopt;
+  const ManholeSignature& seen = *arrival.observation;
+  std::optional<std::size_t> best;
+  double best_turn = options.straight_through_deg;
+  for (std::size_t i = 1; i < seen.slots.size(); ++i) {
+    const SlotSighting& s = seen.slots[i];
+    const double turn = std::abs(s.relative_deg - 180.0);  // relative_deg is in [0, 360)
+    if (turn > best_turn ||
+        std::abs(s.diameter_m - map.pipe(pipe).diameter_m) > options.noise.max_diameter_m ||
+        std::abs(s.step_m) > profile.max_step_m) {
+      continue;
+    }
+    best = i;
+    best_turn = turn;
+  }
+  if (!best) return std::nullopt;
+  const SlotSighting& s = seen.slots[*best];
+  return TurnInManhole{.from_slot = kBySighting,
+                       .to_slot = static_cast<std::uint16_t>(*best),
+                       .turn_deg = best_turn,
+                       .step_m = s.step_m,
+                       .manhole_diameter_m = seen.shaft_diameter_m,
+                       .duration_s = profile.manhole_pass_s + best_turn * profile.turn_s_per_deg +
+                                     std::abs(s.step_m) * profile.step_s_per_m};
+}
+
 std::string signature_text(const ManholeSignature& signature) {
   std::ostringstream out;
   out << signature.slots.size() << (signature.slots.size() == 1 ? " slot" : " slots") << " at ";
@@ -66,9 +107,9 @@ std::string signature_text(const ManholeSignature& signature) {
 
 Localising::Localising(const SewerMap& map, double odometry_sd_fraction,
                        localisation::LocalisationOptions options)
-    : map_(map), odometry_sd_fraction_(odometry_sd_fraction) {
+    : map_(map), odometry_sd_fraction_(odometry_sd_fraction), options_(std::move(options)) {
   Result<localisation::TopologicalFilter> filter =
-      localisation::TopologicalFilter::create(map, std::move(options));
+      localisation::TopologicalFilter::create(map, options_);
   if (filter.has_value()) filter_.emplace(std::move(*filter));
 }
 
@@ -93,7 +134,16 @@ std::optional<Arrival> Localising::follow(const Job& job, const hal::JobReport& 
   Result<void> step;
   if (const auto* turn = std::get_if<TurnInManhole>(&job)) {
     const auto* at = std::get_if<domain::AtSlot>(&before);
-    if (report.ok() && at != nullptr) {
+    if (turn->from_slot == kBySighting) {
+      // Out through a mouth the robot saw: its direction relative to the arrival's.
+      if (report.ok()) {
+        if (last_observation_ && turn->to_slot < last_observation_->slots.size()) {
+          step = filter.turn(last_observation_->slots[turn->to_slot].relative_deg);
+        } else {
+          step = Error{ErrorCode::kInvalidArgument, "a turn by a mouth the robot did not see"};
+        }
+      }
+    } else if (report.ok() && at != nullptr) {
       step = filter.pass(at->manhole, SlotIndex{turn->from_slot}, SlotIndex{turn->to_slot});
     }
     if (!step.has_value()) usable_ = false;
@@ -122,8 +172,10 @@ std::optional<Arrival> Localising::follow(const Job& job, const hal::JobReport& 
     return std::nullopt;
   }
   if (!arrived) return std::nullopt;
+  last_observation_ = report.observation;
   Arrival arrival;
   arrival.observation = report.observation;
+  arrival.forward = *direction == DriveDirection::kForward;
   if (const auto* at = std::get_if<domain::AtSlot>(&after)) {
     arrival.expected = *at;
     Result<Verification> checked = filter.verify_arrival(at->manhole, at->slot, report.observation);

@@ -14,6 +14,8 @@
 #include <string>
 
 #include "sewerplan/core/job.h"
+#include "sewerplan/core/manhole_signature.h"
+#include "sewerplan/core/robot_profile.h"
 #include "sewerplan/core/sewer_map.h"
 #include "sewerplan/domain/robot_state.h"
 #include "sewerplan/hal/robot.h"
@@ -29,6 +31,8 @@ struct Arrival {
   std::optional<domain::AtSlot> expected;
   localisation::Verification verification;
   std::optional<ManholeSignature> observation;
+  // Whether the drive that arrived went forward (the robot's front at the manhole).
+  bool forward = true;
   // Whether the controller should log it: the robot observed the manhole, or the check failed.
   bool worth_logging() const { return observation.has_value() || !verification.matches(); }
 };
@@ -53,12 +57,32 @@ class Localising {
   // The filter's belief; lost when the filter could explain nothing (then reset()).
   localisation::Estimate estimate() const;
 
+  const localisation::LocalisationOptions& options() const { return options_; }
+
  private:
   const SewerMap& map_;
   double odometry_sd_fraction_;
+  localisation::LocalisationOptions options_;
   std::optional<localisation::TopologicalFilter> filter_;
   bool usable_ = false;  // the filter follows the robot (false after an update it refused)
+  // What the robot saw at its last arrival: a turn by sighting (kBySighting) names its mouths.
+  std::optional<ManholeSignature> last_observation_;
 };
+
+// The first mouth of the manhole `arrival` expected that the robot's observation lacks (the slot
+// counts differ and no sighting pairs with it: a lateral the world lacks), if any.
+std::optional<Slot> missing_mouth(const Arrival& arrival, const SewerMap& map,
+                                  const SignatureNoise& noise);
+
+// The pass straight on through a manhole the map lacks that a forward drive in `pipe` arrived
+// at (a robot that arrived rear first is not passed: it would leave facing the other way): into the
+// mouth the robot saw most nearly straight ahead, when one is within
+// `options.straight_through_deg`, of the pipe's size, with a step the robot can climb, addressed by
+// sighting (kBySighting); else empty.
+std::optional<TurnInManhole> straight_through(const Arrival& arrival, const SewerMap& map,
+                                              PipeId pipe,
+                                              const localisation::LocalisationOptions& options,
+                                              const RobotProfile& profile);
 
 // The signature in a log line: "4 slots at 0, 92, 181, 268°".
 std::string signature_text(const ManholeSignature& signature);

@@ -16,7 +16,6 @@ namespace {
 // stops short of what it meets, and a task between where it stopped and the thing itself cannot
 // be reached from this side (a fault campaign found the robot replanning the same unreachable
 // sample a hundred times when the margin was 5 cm).
-constexpr double kAhead_m = 0.001;
 
 // A recovery drive that got farther than this got past where the robot was stopped.
 constexpr double kMoved_m = 0.001;
@@ -242,7 +241,7 @@ Failure StagedRecovery::blocked_here(Failure::Kind kind, const Job& job,
   const auto* in = std::get_if<domain::InPipe>(&tracker_.position());
   if (in == nullptr) return Failure{.kind = Failure::Kind::kStuck, .detail = reason};
   const double length = map_.pipe(in->pipe).length_m;
-  const double ahead = in->offset_m + tracker_.direction_of(job) * kAhead_m;
+  const double ahead = in->offset_m + tracker_.direction_of(job) * kBlockageAhead_m;
   return Failure{
       .kind = kind, .pipe = in->pipe, .offset_m = std::clamp(ahead, 0.0, length), .detail = reason};
 }

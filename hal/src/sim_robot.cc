@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <numeric>
 #include <sstream>
 #include <utility>
 
@@ -336,7 +337,9 @@ JobReport SimRobot::drive_in_pipe(const InPipe& from, double speed_mps, double d
             sensing.missed_share > 0 && sensing_rng_.bernoulli(sensing.missed_share);
         if (!missed) {
           if (sensing.observe) {
-            report.observation = observe(expected_signature(map_, *end.manhole, end.slot));
+            std::vector<SlotIndex> order = signature_slot_order(map_, *end.manhole, end.slot);
+            report.observation = observe(expected_signature(map_, *end.manhole, end.slot), &order);
+            sighting_ = Sighting{*end.manhole, end.slot, std::move(order)};
           }
           return report;
         }
@@ -358,7 +361,9 @@ JobReport SimRobot::drive_in_pipe(const InPipe& from, double speed_mps, double d
         return rest;
       }
       pose_ = InPipe{from.pipe, sign > 0 ? pipe.length_m : 0.0, from.heading};
-      if (distance_m <= report.progress_m + kLengthTolerance_m) return report;
+      // A drive to a manhole that meets the pipe's blind end (a lateral the world lacks) saw no
+      // manhole, however far it went.
+      if (!to_manhole && distance_m <= report.progress_m + kLengthTolerance_m) return report;
       report.error = RobotError{RobotErrorKind::kBlockage,
                                 "blind end of " + pipe.name + " at " + metres(offset_m)};
       return report;
@@ -400,7 +405,7 @@ double SimRobot::odometry(double true_m, PipeId pipe) {
   return std::max(0.0, true_m + normal(s.drift * slip * true_m));
 }
 
-ManholeSignature SimRobot::observe(ManholeSignature truth) {
+ManholeSignature SimRobot::observe(ManholeSignature truth, std::vector<SlotIndex>* order) {
   if (!options_.sensing.signature_noise) return truth;
   const SignatureNoise& n = *options_.sensing.signature_noise;
   for (std::size_t i = 0; i < truth.slots.size(); ++i) {
@@ -412,9 +417,22 @@ ManholeSignature SimRobot::observe(ManholeSignature truth) {
     s.diameter_m = std::max(0.01, s.diameter_m + normal(n.diameter_m));
   }
   // The robot lists what it sees counter-clockwise from where it came in.
-  std::sort(
-      truth.slots.begin() + (truth.slots.empty() ? 0 : 1), truth.slots.end(),
-      [](const SlotSighting& a, const SlotSighting& b) { return a.relative_deg < b.relative_deg; });
+  std::vector<std::size_t> seen(truth.slots.size());
+  std::iota(seen.begin(), seen.end(), std::size_t{0});
+  std::stable_sort(seen.begin() + (seen.empty() ? 0 : 1), seen.end(),
+                   [&](std::size_t a, std::size_t b) {
+                     return truth.slots[a].relative_deg < truth.slots[b].relative_deg;
+                   });
+  std::vector<SlotSighting> sorted;
+  sorted.reserve(seen.size());
+  for (std::size_t i : seen) sorted.push_back(truth.slots[i]);
+  truth.slots = std::move(sorted);
+  if (order != nullptr && order->size() == seen.size()) {
+    std::vector<SlotIndex> reordered;
+    reordered.reserve(seen.size());
+    for (std::size_t i : seen) reordered.push_back((*order)[i]);
+    *order = std::move(reordered);
+  }
   truth.shaft_diameter_m = std::max(0.1, truth.shaft_diameter_m + normal(n.shaft_m));
   return truth;
 }
@@ -437,7 +455,42 @@ std::optional<SlotIndex> SimRobot::straight_on(ManholeId manhole, SlotIndex arri
   return std::nullopt;
 }
 
+JobReport SimRobot::turn_by_sighting(const TurnInManhole& job) {
+  // In a pipe right at its end in a manhole is at that mouth.
+  if (const auto* in = std::get_if<InPipe>(&pose_)) {
+    const Pipe& pipe = map_.pipe(in->pipe);
+    for (std::size_t e = 0; e < 2; ++e) {
+      const double end = e == 0 ? 0.0 : pipe.length_m;
+      if (pipe.ends[e].manhole && std::abs(in->offset_m - end) <= 1e-6) {
+        const bool front_to_this_end = (in->heading == Heading::kTowardsEnd1) == (e == 1);
+        pose_ = AtSlot{*pipe.ends[e].manhole, pipe.ends[e].slot,
+                       front_to_this_end ? Facing::kIntoManhole : Facing::kIntoPipe};
+        break;
+      }
+    }
+  }
+  const auto* at = std::get_if<AtSlot>(&pose_);
+  if (at == nullptr) {
+    return failure(RobotErrorKind::kMalfunction,
+                   "not at a manhole's mouth (" + describe(pose_, map_) + ")");
+  }
+  const std::vector<SlotIndex> order =
+      sighting_ && sighting_->manhole == at->manhole && sighting_->arrival == at->slot
+          ? sighting_->order
+          : signature_slot_order(map_, at->manhole, at->slot);
+  if (job.to_slot == 0 || job.to_slot >= order.size()) {
+    return invalid(map_.manhole(at->manhole).name + " has no mouth " +
+                   std::to_string(job.to_slot + 1) + " seen from its arrival (" +
+                   std::to_string(order.size()) + " seen)");
+  }
+  TurnInManhole by_number = job;
+  by_number.from_slot = at->slot.value();
+  by_number.to_slot = order[job.to_slot].value();
+  return turn(by_number);
+}
+
 JobReport SimRobot::turn(const TurnInManhole& job) {
+  if (job.from_slot == kBySighting) return turn_by_sighting(job);
   // In a pipe right at its end in a manhole is at that mouth: a plan may leave a pipe it only just
   // entered with a drive of 0 m, which fusion sends as no job at all.
   if (const auto* in = std::get_if<InPipe>(&pose_)) {

@@ -69,7 +69,33 @@ TEST(ManholeSignature, MatchesWithinNoiseAndSaysWhyNot) {
   fewer.slots.pop_back();
   const SignatureMatch count = compare(want, fewer);
   EXPECT_FALSE(count.matches);
-  EXPECT_EQ(count.reason, "3 slots seen, 4 expected");
+  EXPECT_EQ(count.reason, "3 slots seen, 4 expected: no slot seen at " +
+                              std::to_string(std::lround(want.slots[3].relative_deg)) + "°");
+}
+
+// A lateral the map lacks, seen between two mapped mouths: the mouths after it are still paired
+// with theirs (not each with the next one along), so the manhole is far likelier than one whose
+// mouths all differ, and the reason names the extra mouth.
+TEST(ManholeSignature, AnExtraOrMissingMouthIsPairedAroundNotShifted) {
+  const ManholeSignature want{.slots = {{0, 0, 0.6}, {135, 0, 0.6}, {225, 0, 0.6}},
+                              .shaft_diameter_m = 1.2};
+  ManholeSignature extra = want;
+  extra.slots.insert(extra.slots.begin() + 1, SlotSighting{27, 0.1, 0.2});
+  const SignatureMatch seen = compare(want, extra);
+  EXPECT_FALSE(seen.matches);
+  EXPECT_EQ(seen.reason, "4 slots seen, 3 expected: slot 2 at 27° is not on the map");
+  // One unpaired mouth and the others exact: the penalty and nothing else of note.
+  const SignatureMatch same = compare(want, want);
+  EXPECT_NEAR(seen.log_likelihood, same.log_likelihood + kSlotCountLogPenalty, 1e-9);
+
+  ManholeSignature missing = want;
+  missing.slots.erase(missing.slots.begin() + 1);
+  const SignatureMatch gone = compare(want, missing);
+  EXPECT_EQ(gone.reason, "2 slots seen, 3 expected: no slot seen at 135°");
+  EXPECT_EQ(gone.unseen, std::vector<std::size_t>{1});
+  EXPECT_TRUE(seen.unseen.empty());
+  // One mouth fewer to score, and the penalty: not the 90-degree misses of a shifted pairing.
+  EXPECT_GT(gone.log_likelihood, same.log_likelihood + 2 * kSlotCountLogPenalty);
 }
 
 TEST(ManholeSignature, ImpossibleObservationsAreErrors) {

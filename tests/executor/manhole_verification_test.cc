@@ -3,6 +3,7 @@
 // drawn from the map (hal/world_errors.h) and senses it; the executor plans on the map, takes a
 // finished drive to a manhole as the arrival there, and checks every observed arrival against the
 // plan's manhole with the topological filter (docs/localisation.md).
+#include <algorithm>
 #include <set>
 #include <string>
 #include <vector>
@@ -20,6 +21,8 @@ namespace {
 
 struct WorldRun {
   MissionReport report;
+  std::vector<std::string> replans;  // the reasons of the replans
+  std::size_t passes = 0;        // turns by sighting done: passes through a manhole the map lacks
   std::size_t arrivals = 0;      // arrival events the controller settled on a mapped manhole
   std::size_t wrong = 0;         // of those, where the robot really was at another manhole
   std::set<std::string> checks;  // the arrival checks seen
@@ -43,6 +46,11 @@ WorldRun run_in_world(const testing::AisTestbed& ais, const std::string& spec, s
   Executor executor(ais.map, replanner, robot);
   WorldRun run;
   executor.subscribe([&](const Event& e) {
+    if (const auto* plan = std::get_if<PlanEvent>(&e.what); plan != nullptr && plan->replan)
+      run.replans.push_back(plan->reason);
+    if (const auto* job = std::get_if<JobEvent>(&e.what)) {
+      if (job->ok && job->job.rfind("TurnInManhole(arrival -> mouth", 0) == 0) ++run.passes;
+    }
     const auto* arrival = std::get_if<ArrivalEvent>(&e.what);
     if (arrival == nullptr) return;
     run.checks.insert(arrival->check);
@@ -90,6 +98,47 @@ TEST(ManholeVerification, ArrivalsTheControllerSettlesOnAreTheTrueManholes) {
   // A manhole driven through unseen was noticed at the next one, and a manhole the map lacks.
   EXPECT_EQ(checks.count("wrong-manhole"), 1U);
   EXPECT_EQ(checks.count("unmapped-junction"), 1U);
+}
+
+bool any_starts_with(const std::vector<std::string>& texts, const std::string& prefix) {
+  return std::any_of(texts.begin(), texts.end(),
+                     [&](const std::string& t) { return t.rfind(prefix, 0) == 0; });
+}
+
+// A manhole the map lacks in a pipe the plan drives: the robot stops at it (it sees a manhole),
+// passes it straight on by the mouth it saw opposite the one it came out of, and the drive goes
+// on beyond it. Met rear first (the robot backing out of a lateral), it is not passed: the pipe
+// is closed there (seeds 6 and 9, where the sample lies beyond such a junction in a dead end).
+TEST(ManholeVerification, AManholeTheMapLacksIsPassedStraightOn) {
+  const testing::AisTestbed ais = testing::load_ais_testbed();
+  const WorldRun exact = run_in_world(ais, "none", 1);
+  std::size_t passed = 0;
+  std::size_t as_exact = 0;
+  for (std::uint64_t seed = 1; seed <= 10; ++seed) {
+    const WorldRun r = run_in_world(ais, "junctions=0.5", seed);
+    EXPECT_NE(r.report.outcome, MissionReport::Outcome::kHalted) << "seed " << seed;
+    if (r.report.outcome == MissionReport::Outcome::kEnded &&
+        r.report.tasks_done == exact.report.tasks_done) {
+      ++as_exact;
+    }
+    if (r.passes > 0) ++passed;
+  }
+  EXPECT_GE(as_exact, 8U);
+  EXPECT_GE(passed, 3U);
+}
+
+// A lateral the world lacks at a manhole the plan turns through: the robot sees a mouth fewer,
+// takes that pipe as closed at this end and plans again, rather than asking the robot for a turn
+// into a mouth that is not there (which it refuses: stuck, the beacon).
+TEST(ManholeVerification, AMouthTheWorldLacksClosesItsPipeThere) {
+  const testing::AisTestbed ais = testing::load_ais_testbed();
+  std::size_t closed = 0;
+  for (std::uint64_t seed = 1; seed <= 10; ++seed) {
+    const WorldRun r = run_in_world(ais, "laterals_missing=1", seed);
+    EXPECT_NE(r.report.beacon_cause, BeaconCause::kStuck) << "seed " << seed << r.report;
+    if (any_starts_with(r.replans, "blockage in")) ++closed;
+  }
+  EXPECT_GE(closed, 1U);
 }
 
 }  // namespace

@@ -105,6 +105,20 @@ TEST_F(SimRobotTest, ADriveBeyondABlindEndIsABlockage) {
   EXPECT_TRUE(exact.execute(DriveForward{.speed_mps = 0.3, .distance_m = 4}).ok());
 }
 
+// A drive to a manhole ends at a manhole it sees; a blind end where the map has a manhole (a
+// lateral the world lacks) is a blockage even when the drive went as far as the map's length.
+TEST_F(SimRobotTest, ADriveToAManholeThatMeetsABlindEndIsABlockage) {
+  for (double distance : {3.0, 4.0}) {
+    SimRobot r = robot(InPipe{pipe("P4"), 1.0, Heading::kTowardsEnd1});
+    const JobReport report =
+        r.execute(DriveForward{.speed_mps = 0.3, .distance_m = distance, .to_manhole = true});
+    ASSERT_FALSE(report.ok()) << distance;
+    EXPECT_EQ(report.error->kind, RobotErrorKind::kBlockage);
+    EXPECT_THAT(report.error->reason, HasSubstr("blind end of P4"));
+    EXPECT_FALSE(report.observation.has_value());
+  }
+}
+
 TEST_F(SimRobotTest, StopsBeforeAPermanentObstacleWithBlockage) {
   SimRobot r = robot(in_p1(), obstacle_in_p1(ObstacleKind::kPermanent));
   JobReport report = r.execute(kDrive15);

@@ -73,6 +73,12 @@ struct Waypoint {
 // Pass a manhole from the mouth of slot `from_slot` into the pipe of slot `to_slot` (slots from 0),
 // turning `turn_deg` and climbing `step_m` (negative: down). `waypoints` is the motion planned for
 // the body, when there is one; the controller otherwise uses its own manoeuvre.
+//
+// A manhole the map lacks has no slot numbers: with `from_slot` kBySighting the robot leaves by
+// the mouths as it saw them on arriving (a ManholeSignature's order): from the mouth it arrived
+// by into the `to_slot`-th counter-clockwise from it (1 .. slots - 1).
+inline constexpr std::uint16_t kBySighting = 0xFFFF;
+
 struct TurnInManhole {
   std::uint16_t from_slot = 0;
   std::uint16_t to_slot = 0;

@@ -17,7 +17,7 @@
 //   ManholeSignature seen = report.observation->signature;
 //   ManholeSignature want = expected_signature(map, m, arrival_slot);
 //   SignatureMatch match = compare(want, seen, SignatureNoise{});
-//   if (!match.matches) ... match.reason: "3 slots seen, M6 has 4"
+//   if (!match.matches) ... match.reason: "3 slots seen, 4 expected: no slot seen at 90°"
 //
 // Thread safety: plain value types and pure functions.
 #pragma once
@@ -78,14 +78,20 @@ struct SignatureMatch {
   // The log-likelihood of `observed` given `expected` under the noise (Gaussian per measurement;
   // a different slot count costs kSlotCountLogPenalty per slot). Comparable across manholes.
   double log_likelihood = 0;
+  // The expected mouths (indices into expected.slots) the pairing left without a sighting: with
+  // a differing slot count, mouths the world may lack.
+  std::vector<std::size_t> unseen;
   std::string
       reason;  // why not, when !matches: "3 slots seen, 4 expected"; "slot 2 at 75°, 20° expected"
 };
 
 inline constexpr double kSlotCountLogPenalty = -12.0;
 
-// How well `observed` fits `expected`. Slots are paired in order; a differing slot count never
-// matches. Runtime: O(slots).
+// How well `observed` fits `expected`. Slots are paired in order; with a differing slot count
+// (never a match) the pairing that keeps both orders and is most likely, each mouth left unpaired
+// (a lateral the map lacks, or one the world lacks) costing kSlotCountLogPenalty, and the reason
+// names it ("4 slots seen, 3 expected: slot 2 at 27° is not on the map"). Runtime: O(slots) with
+// equal counts, O(expected x observed) otherwise.
 SignatureMatch compare(const ManholeSignature& expected, const ManholeSignature& observed,
                        const SignatureNoise& noise = {});
 

@@ -158,11 +158,15 @@ class SimRobot final : public Robot {
   // the robot sees of a manhole, or of a pipe where it takes one for a manhole.
   double normal(double sigma);
   double odometry(double true_m, PipeId pipe);
-  ManholeSignature observe(ManholeSignature truth);
+  // `order`, when given, is the map's slot of each of truth's mouths; it is reordered with them
+  // (what the robot saw, in the order it saw it).
+  ManholeSignature observe(ManholeSignature truth, std::vector<SlotIndex>* order = nullptr);
   ManholeSignature false_manhole(PipeId pipe);
   // A drive through a missed manhole: the slot straight on from `arrival`, if it has one.
   std::optional<SlotIndex> straight_on(ManholeId manhole, SlotIndex arrival) const;
   JobReport turn(const TurnInManhole& job);
+  // A turn addressed by the mouths seen on arrival (kBySighting), as one by slot numbers.
+  JobReport turn_by_sighting(const TurnInManhole& job);
   JobReport enter(const EnterPipeFromManhole& job);
   JobReport set_head(bool lifted);
   // A job that keeps the robot where it is for duration_s, unless interrupted.
@@ -188,6 +192,13 @@ class SimRobot final : public Robot {
   std::size_t jobs_executed_ = 0;
   std::atomic<bool> stopped_{false};  // the emergency stop, latched until reboot()
   Rng sensing_rng_;
+  // The mouths of the last manhole observed, in the order the robot saw them (kBySighting).
+  struct Sighting {
+    ManholeId manhole;
+    SlotIndex arrival;
+    std::vector<SlotIndex> order;
+  };
+  std::optional<Sighting> sighting_;
 };
 
 }  // namespace sewerplan::hal
