@@ -34,6 +34,11 @@ struct MergeOptions {
 };
 
 int run(const MergeOptions& o, Context& c) {
+  if (!o.corrected_map.empty()) {
+    if (Result<void> ok = check_corrected_map_target(o.corrected_map, o.map); !ok.has_value()) {
+      return fail(c, o.json, ok.error());
+    }
+  }
   Diagnostics diagnostics;
   Result<SewerMap> map = read_input_map({o.map, o.gis_fields}, diagnostics);
   if (!map.has_value()) return fail(c, o.json, map.error(), diagnostics);
@@ -54,10 +59,10 @@ int run(const MergeOptions& o, Context& c) {
   print_diagnostics(diagnostics, c.err);
   std::ostream& text = o.json ? c.err : c.out;
   if (!o.corrected_map.empty()) {
-    if (Result<void> w = write_corrected_map(o.corrected_map, *map, *merged, text);
-        !w.has_value()) {
-      return fail(c, o.json, w.error());
-    }
+    Diagnostics written;
+    Result<void> w = write_corrected_map(o.corrected_map, o.map, *map, *merged, text, written);
+    print_diagnostics(written, c.err);
+    if (!w.has_value()) return fail(c, o.json, w.error());
   } else {
     merged->discrepancies = discrepancies(*merged, *map);
   }
@@ -93,7 +98,8 @@ void add_merge_measurements_command(CLI::App& app, Context& context) {
   cmd->add_option("inputs", options->inputs, "Measurements files (.measurements.json)")->required();
   cmd->add_option("-o,--output", options->output, "The merged measurements file")->required();
   cmd->add_option("--corrected-map", options->corrected_map,
-                  "Also write the corrected map (JSON) and OUT.discrepancies.json beside it");
+                  "Also write the corrected map (JSON; for an ISYBAU map also OUT.xml, ISYBAU) and "
+                  "OUT.discrepancies.json beside it");
   cmd->add_flag("--json", options->json, "Print a JSON summary (docs/cli.md)");
   cmd->callback([options, &context] { context.exit_code = run(*options, context); });
 }

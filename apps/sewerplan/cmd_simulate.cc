@@ -142,6 +142,11 @@ class HaltOnSignal {
 };
 
 int run(const SimulateOptions& o, Context& c) {
+  if (!o.corrected_map.empty()) {
+    if (Result<void> ok = check_corrected_map_target(o.corrected_map, o.map); !ok.has_value()) {
+      return fail(c, o.json, ok.error());
+    }
+  }
   HaltOnSignal halt_on_signal;
   const Result<hal::WorldErrorProfile> world_errors = hal::parse_world_errors(o.world_errors);
   if (!world_errors.has_value()) return fail(c, o.json, world_errors.error());
@@ -265,7 +270,10 @@ int run(const SimulateOptions& o, Context& c) {
     for (const std::string& why : measurer->rejected()) {
       c.err << "sewerplan simulate: warning: a report not measured: " << why << '\n';
     }
-    Result<void> w = write_corrected_map(o.corrected_map, map, measured, o.json ? c.err : c.out);
+    Diagnostics written;
+    Result<void> w =
+        write_corrected_map(o.corrected_map, o.map, map, measured, o.json ? c.err : c.out, written);
+    print_diagnostics(written, c.err);
     if (w.has_value()) {
       w = write_text_file(beside(o.corrected_map, "measurements"),
                           measurements_json(measured, map));
@@ -307,8 +315,9 @@ void add_simulate_command(CLI::App& app, Context& context) {
   cmd->add_option("--learnt", options->learnt,
                   "What the robot learnt (JSON): read if it exists, written at the end");
   cmd->add_option("--corrected-map", options->corrected_map,
-                  "Write the map corrected by what the robot measured (JSON), with "
-                  "OUT.discrepancies.json and OUT.measurements.json beside it");
+                  "Write the map corrected by what the robot measured (JSON; for an ISYBAU map "
+                  "also OUT.xml, ISYBAU), with OUT.discrepancies.json and "
+                  "OUT.measurements.json beside it");
   cmd->add_flag("-q,--quiet", options->quiet, "Only the final report");
   cmd->add_flag("--json", options->json,
                 "Print the report as JSON (the live log goes to standard error)");

@@ -21,6 +21,7 @@
 #include "ascii_syntax.h"
 #include "condition_isybau.h"
 #include "isybau_geometry.h"
+#include "isybau_objects.h"
 #include "network_import.h"
 #include "xml_support.h"
 
@@ -66,39 +67,6 @@ bool is_nines(std::string_view t) {
   return whole.size() >= 3 && all(whole, "9") && all(fraction, "09");
 }
 
-// Every AbwassertechnischeAnlage of the document, in document order, and every
-// InspizierteAbwassertechnischeAnlage (Zustandsdaten) into `inspected`.
-std::vector<XmlNode> objects_of(XmlNode root, std::vector<XmlNode>* inspected = nullptr) {
-  std::vector<XmlNode> objects;
-  std::vector<XmlNode> stack{root};
-  while (!stack.empty()) {
-    const XmlNode n = stack.back();
-    stack.pop_back();
-    if (xml::local_name(n) == "AbwassertechnischeAnlage") {
-      objects.push_back(n);
-      continue;
-    }
-    if (xml::local_name(n) == "InspizierteAbwassertechnischeAnlage") {
-      if (inspected != nullptr) inspected->push_back(n);
-      continue;
-    }
-    std::vector<XmlNode> children;
-    for (XmlNode c = n.first_child(); c; c = c.next_sibling()) {
-      if (c.type() == pugi::node_element) children.push_back(c);
-    }
-    stack.insert(stack.end(), children.rbegin(), children.rend());
-  }
-  return objects;
-}
-
-// The first element named `name` below `node`, at any depth, in document order (ISYBAU versions
-// nest the length elements differently). Runtime: O(size of the subtree).
-XmlNode find_below(XmlNode node, std::string_view name) {
-  std::vector<XmlNode> found;
-  detail::collect(node, name, found);
-  return found.empty() ? XmlNode() : found.front();
-}
-
 class IsybauReader {
  public:
   IsybauReader(const std::string& file, const IsybauImportOptions& o, Diagnostics& d)
@@ -108,7 +76,7 @@ class IsybauReader {
     const Diagnostics::Mark before = d_.mark();
     if (!check_root(root)) return Error{ErrorCode::kParse, d_.error_summary(before)};
     std::vector<XmlNode> inspected;
-    const std::vector<XmlNode> objects = objects_of(root, &inspected);
+    const std::vector<XmlNode> objects = detail::isybau_objects(root, &inspected);
     for (XmlNode object : objects) read_object(object);
     net_.crs = detail::read_isybau_crs(root, file_, d_);
     detail::strip_utm_zone_prefix(net_, file_, d_);
@@ -341,12 +309,11 @@ void IsybauReader::read_shaft(XmlNode knoten, ImportNode& node) {
 void IsybauReader::read_node_geometry(XmlNode object, ImportNode& node) {
   const XmlNode points = xml::descend(object, {"Geometrie", "Geometriedaten", "Knoten"});
   const std::string what = "node " + node.name;
-  XmlNode first;
+  const XmlNode first = detail::isybau_position_point(object);  // the corrected copy's too
   XmlNode floor;
   XmlNode cover;
   for (XmlNode p = points.first_child(); p; p = p.next_sibling()) {
     if (xml::local_name(p) != "Punkt") continue;
-    if (!first) first = p;
     const std::string_view attribute = xml::text(xml::child(p, "PunktattributAbwasser"));
     if (attribute == "SMP" && !floor) floor = p;
     if (attribute == "DMP" && !cover) cover = p;
@@ -393,7 +360,7 @@ void IsybauReader::read_edge(XmlNode object, XmlNode kante, const std::string& n
                       .length = measure(kante, "Laenge", what)};
   for (std::string_view other : {"Rohrlaenge", "DMPLaenge"}) {
     if (pending.length) break;
-    if (const XmlNode n = find_below(kante, other)) {
+    if (const XmlNode n = detail::find_below(kante, other)) {
       pending.length = measure(n.parent(), other, what);
       if (pending.length) ++fallbacks_.length_from_other;
     }

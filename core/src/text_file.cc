@@ -280,6 +280,36 @@ Result<std::string> text_to_utf8(std::string_view text, std::string_view declare
   return std::move(decoded->text);
 }
 
+Result<std::string> utf8_to_text(std::string_view utf8, std::string_view encoding,
+                                 const std::string& file) {
+  const std::string lower = ascii_lower(encoding);
+  if (lower == "utf-8" || lower == "utf8") return std::string(utf8);
+  iconv_t cd = iconv_open(std::string(encoding).c_str(), "UTF-8");
+  if (cd == reinterpret_cast<iconv_t>(-1)) {
+    return Error{ErrorCode::kUnsupportedFormat, file + ": cannot write text in " +
+                                                    to_utf8_lossy(encoding) +
+                                                    " (iconv has no such encoding)"};
+  }
+  std::string out(utf8.size() * 4 + 16, '\0');
+  // iconv's interface takes char* for its input, which it does not change.
+  char* in = const_cast<char*>(utf8.data());  // NOLINT(cppcoreguidelines-pro-type-const-cast)
+  std::size_t in_left = utf8.size();
+  char* to = out.data();
+  std::size_t to_left = out.size();
+  const std::size_t done = iconv(cd, &in, &in_left, &to, &to_left);
+  if (done != static_cast<std::size_t>(-1)) iconv(cd, nullptr, nullptr, &to, &to_left);
+  iconv_close(cd);
+  if (done == static_cast<std::size_t>(-1)) {
+    const std::size_t at = utf8.size() - in_left;
+    return Error{ErrorCode::kUnsupportedFormat,
+                 file + ": the text at byte " + std::to_string(at) + " of its UTF-8 (\"" +
+                     std::string(utf8.substr(at, 8)) + "...\") has no character in " +
+                     std::string(encoding)};
+  }
+  out.resize(out.size() - to_left);
+  return out;
+}
+
 void warn_about_decoding(const TextDecoding& how, const std::string& file,
                          Diagnostics& diagnostics) {
   const std::string as = how.encoding == "WINDOWS-1252" ? "Windows-1252 (Latin-1)" : how.encoding;

@@ -92,6 +92,37 @@ if "$sp" --help | grep -q export-geojson; then
   check "two discrepancy features" test "$(grep -c '"layer": "discrepancy"' "$tmp/d.geojson")" -eq 2
 fi
 
+# A map read from ISYBAU XML: the corrected map also as ISYBAU XML (OUT.xml; an .xml OUT names it
+# and the JSON map goes to OUT.json), the source with the measured length changed in place and
+# everything else as it was; merge-measurements writes it too; an .xml OUT for a map that is not
+# ISYBAU is a usage error before the mission.
+street=$src/datasets/isybau/street-2017.xml
+cat >"$tmp/street-mission.json" <<'JSON'
+{"format": "sewerplan-mission", "version": 1, "name": "street-check", "profile": "makro-plus",
+ "start": {"manhole": "S1"},
+ "tasks": [{"name": "in", "type": "inspect_pipe", "pipe": "S1"},
+           {"name": "end", "type": "go_to", "at": {"manhole": "S1"}, "final": true}]}
+JSON
+expect 0 "corrected ISYBAU .*/street-fixed.xml: 1 lengths, 0 positions" -- "$sp" simulate \
+  --map "$street" --mission "$tmp/street-mission.json" -q --world-errors lengths=1,length_rel=0.2 \
+  --world-seed 3 --corrected-map "$tmp/street-fixed.xml"
+check "the JSON map beside the ISYBAU copy" test -s "$tmp/street-fixed.json" \
+  -a -s "$tmp/street-fixed.discrepancies.json" -a -s "$tmp/street-fixed.measurements.json"
+# Only the Laenge of S1 and our comments differ from the source.
+check "the ISYBAU copy is the source but for S1's Laenge" test "$(diff "$street" \
+  "$tmp/street-fixed.xml" | grep '^[<>]' | grep -vc '<!-- sewerplan: ')" -eq 2
+check "S1's measured length in its Laenge" grep -qE '<Laenge>2[0-9]\.[0-9]{2}</Laenge>' \
+  "$tmp/street-fixed.xml"
+expect 0 "pipes +4 " -- "$sp" info --map "$tmp/street-fixed.xml"
+expect 0 "corrected ISYBAU .*/merged-street.xml: 1 lengths" -- "$sp" merge-measurements \
+  --map "$street" "$tmp/street-fixed.measurements.json" -o "$tmp/m.json" \
+  --corrected-map "$tmp/merged-street.json"
+check "merge-measurements' ISYBAU copy is simulate's" cmp -s "$tmp/street-fixed.xml" \
+  "$tmp/merged-street.xml"
+expect 2 "ISYBAU XML is written only for a map read from ISYBAU XML" -- "$sp" simulate \
+  --map "$ais" --mission "$mission" -q --corrected-map "$tmp/ais-fixed.xml"
+check "nothing written for the refused name" test ! -e "$tmp/ais-fixed.json"
+
 # Failed writes: exit 3 naming the file.
 expect 3 "/dev/full" -- "$sp" merge-measurements --map "$ais" "$tmp/one.json" -o /dev/full
 expect 3 "/dev/full" -- "$sp" merge-measurements --map "$ais" "$tmp/one.json" -o "$tmp/y.json" \

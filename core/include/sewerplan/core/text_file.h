@@ -82,6 +82,13 @@ struct TextDecoding {
 Result<std::string> text_to_utf8(std::string_view text, std::string_view declared_encoding,
                                  const std::string& file, TextDecoding& how);
 
+// `utf8` in `encoding` (a TextDecoding::encoding: "UTF-8", "WINDOWS-1252", "UTF-16LE", ...), for
+// writing a file back in the encoding it was read in; without a byte-order mark. kUnsupportedFormat
+// naming `file` if iconv does not know the encoding or a character has none in it. Runtime:
+// O(size).
+Result<std::string> utf8_to_text(std::string_view utf8, std::string_view encoding,
+                                 const std::string& file);
+
 // The warnings of a reader for `how`, at `file`: the encoding assumed, and bytes that were no
 // character.
 void warn_about_decoding(const TextDecoding& how, const std::string& file,
