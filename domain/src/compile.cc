@@ -277,6 +277,15 @@ class SewerTaskCompiler {
                  GraphSearch::Direction::kForward);
       store_routes(search, 0, std::nullopt);
     }
+    // Issue 35: when the searches from the other keys, each about as large as the start's, will
+    // settle more nodes than the graph has, reading the moves from the core's adjacency repays
+    // building it (one pass over the map): on 100,000 manholes numbered without spatial order a
+    // search settles a node in about a third of the time (docs/benchmarks.md). A stop condition
+    // that fires meanwhile leaves the core without it, and the next search stops at its check.
+    if (!result_.graph_->has_adjacency() &&
+        (search.settled_total() + 1) * (k() - 1) > result_.graph_->size()) {
+      (void)result_.graph_->build_adjacency(&options_.stop);
+    }
     // Issue 14: sized once from the start's routes (route_store.h).
     route_store_.reserve_rows(k());
     std::vector<Node> reachable;
