@@ -115,6 +115,7 @@ class SewerTaskCompiler {
     result_.statistics_.settled_nodes =
         search.settled_total() + (contingency_search_ ? contingency_search_->settled_total() : 0);
     result_.statistics_.actions = result_.task_.action_count();
+    result_.statistics_.adjacency = graph.has_adjacency();
     result_.statistics_.time_s = clock.now_s() - start_s;
     return std::move(result_);
   }
