@@ -147,7 +147,7 @@ void measure(benchmark::State& state, const Instance& instance) {
   }
   const MissionProgress progress = initial_progress(instance.mission, instance.map);
   PositionGraph graph(instance.map, instance.mission);
-  const Csr csr = to_csr(graph);
+  // The start first: in a pipe it is a node of its own, which the CSR copy must hold.
   std::vector<Node> sources{graph.node(progress.position)};
   for (const Task& t : instance.mission.tasks) {
     if (const auto* spot = std::get_if<PipeSpot>(&t.place)) {
@@ -156,6 +156,7 @@ void measure(benchmark::State& state, const Instance& instance) {
       sources.push_back(graph.in_manhole(std::get<ManholeId>(t.place)));
     }
   }
+  const Csr csr = to_csr(graph);
   std::vector<Cost> dist(graph.size());
   CompileCache cache;
   double compile_ms = 0, cached_ms = 0, dijkstra_ms = 0;
@@ -208,7 +209,7 @@ BENCHMARK(BM_CompileVsDijkstra)
     ->ArgsProduct({{0, 1}, {1000, 10000, 100000}, {20}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
-    ->Iterations(2);
+    ->Iterations(1);
 
 void BM_CompileVsDijkstraReal(benchmark::State& state) {
   measure(state, real(static_cast<int>(state.range(0))));
