@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "sewerplan/core/limits.h"
 #include "sewerplan/core/rng.h"
 
 #include "graph_search.h"
@@ -134,6 +135,12 @@ Result<Mission> generate_mission(const SewerMap& map, const MissionOptions& opti
   if (!profile)
     return Error{ErrorCode::kInvalidArgument, "unknown profile '" + options.profile + "'"};
   mission.profile = *profile;
+  if (options.battery_wh) {
+    if (!(*options.battery_wh > 0 && *options.battery_wh <= kMaxBattery_wh)) {
+      return Error{ErrorCode::kInvalidArgument, "battery_wh must be above 0 and at most 1e6"};
+    }
+    mission.profile.battery_wh = *options.battery_wh;
+  }
   mission.battery_reserve_fraction = options.battery_reserve;
   for (ManholeId m : map.manhole_ids()) {
     if (map.manhole(m).exit) mission.exits.push_back(m);

@@ -111,6 +111,40 @@ PositionGraph::PositionGraph(const SewerMap& map, const Mission& mission,
   std::sort(hazards_.begin(), hazards_.end(), [](const Hazard& a, const Hazard& b) {
     return std::tie(a.pipe, a.offset_m) < std::tie(b.pipe, b.offset_m);
   });
+  has_closed_pipes_ = !mission.closed_pipes.empty();
+  plain_moves_ = closed_passages_.empty() && !has_blockages_ && hazards_.empty();
+}
+
+bool PositionGraph::build_adjacency(const StopCondition* stop) {
+  GraphCore& core = *core_;
+  if (!core.adjacency_begin.empty()) return true;
+  // The moves of a mission without closures, blockages or hazards on the same core, generated
+  // from the map as a search would (the core has no adjacency yet, so they are).
+  Mission plain;
+  plain.profile = core.profile;
+  plain.passage_motion = core.motion;
+  const PositionGraph graph(map_, plain, core_);
+  const Node nodes = manholes_ + slots_ + 2 * pipes_;
+  std::vector<std::uint32_t> begin;
+  std::vector<Node> to;
+  std::vector<Cost> cost;
+  begin.reserve(std::size_t{nodes} + 1);
+  to.reserve(2 * std::size_t{nodes});
+  cost.reserve(2 * std::size_t{nodes});
+  for (Node n = 0; n < nodes; ++n) {
+    if (n % kSlice == 0 && fired(stop)) return false;
+    begin.push_back(static_cast<std::uint32_t>(to.size()));
+    graph.for_each_successor(n, [&](Node next, Cost c) {
+      to.push_back(next);
+      cost.push_back(c);
+    });
+  }
+  SEWER_CHECK(to.size() < 0xffffffffU, "too many moves for the adjacency");
+  begin.push_back(static_cast<std::uint32_t>(to.size()));
+  core.adjacency_begin = std::move(begin);
+  core.adjacency_to = std::move(to);
+  core.adjacency_cost = std::move(cost);
+  return true;
 }
 
 Cost PositionGraph::risk_cost_uncached(PipeId p, double a, double b, double weight_s) const {

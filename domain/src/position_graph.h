@@ -84,6 +84,16 @@ struct GraphCore {
   std::vector<Cost> passages;
   std::vector<bool> judged;
   SearchScratch scratch;  // the compile's route searches
+  // Issue 35: the moves out of each of the map's own nodes (not extra spots) as a graph without
+  // closures, blockages or hazards has them, in compressed sparse rows, in the order
+  // PositionGraph::for_each_successor gives them; empty until PositionGraph::build_adjacency.
+  // Generating the moves from the map reads a manhole, its slots, a pipe and the judged
+  // passages for every node settled, each in its own array: on a network numbered without
+  // spatial order, cache misses that made a compile's searches cost 3 times a plain Dijkstra's
+  // per node (bench/domain/compile_bound_bench.cc, docs/benchmarks.md).
+  std::vector<std::uint32_t> adjacency_begin;
+  std::vector<Node> adjacency_to;
+  std::vector<Cost> adjacency_cost;
   // Exit marks by node (the last compile's), the nodes marked, and the exits they mark.
   std::vector<bool> exit_marks;
   std::vector<Node> marked_exits;
@@ -110,6 +120,14 @@ class PositionGraph {
   // fires, the graph is incomplete (core().complete is false) and must not be searched.
   PositionGraph(const SewerMap& map, const Mission& mission,
                 std::shared_ptr<GraphCore> core = nullptr, const StopCondition* stop = nullptr);
+
+  // Builds the core's adjacency (GraphCore::adjacency_begin), asking `stop` (if not null) between
+  // slices; false if it fired first (the core is left without one). Afterwards, the moves out of
+  // the map's own nodes are read from it whenever the mission has no closed passage, blockage or
+  // hazard (closed and excluded pipes are filtered as the moves are read), with the same moves,
+  // costs and order as generated from the map. Runtime: O(nodes + moves), judging every passage.
+  bool build_adjacency(const StopCondition* stop);
+  bool has_adjacency() const { return !core_->adjacency_begin.empty(); }
 
   // Adds an extra spot in a pipe (or returns the node of an end, or of an existing spot, there).
   Node spot(PipeId pipe, double offset_m);
@@ -222,6 +240,10 @@ class PositionGraph {
   const Mission& mission_;
   const RobotProfile& profile_;
   bool has_blockages_ = false;
+  // The moves out of the map's nodes may be read from the core's adjacency: no closed passage,
+  // blockage or hazard changes them (closed pipes are filtered as they are read).
+  bool plain_moves_ = false;
+  bool has_closed_pipes_ = false;
   Node manholes_;
   Node slots_;
   Node pipes_;
@@ -251,6 +273,21 @@ void PositionGraph::drive_out_of_pipe(Node, PipeId p, double x, F&& f) const {
 
 template <class F>
 void PositionGraph::for_each_successor(Node from, F&& f) const {
+  const GraphCore& core = *core_;
+  if (plain_moves_ && from < manholes_ + slots_ + 2 * pipes_ && !core.adjacency_begin.empty()) {
+    const Node first_end = manholes_ + slots_;
+    const bool filter = has_closed_pipes_ || excluded_count_ > 0;
+    for (std::uint32_t e = core.adjacency_begin[from]; e < core.adjacency_begin[from + 1]; ++e) {
+      const Node to = core.adjacency_to[e];
+      // Only a move out of a manhole or a slot ends at a pipe's end: it enters that pipe.
+      if (filter && to >= first_end) {
+        const PipeId p{(to - first_end) / 2};
+        if (!drivable_[p.index()] || excluded(p)) continue;
+      }
+      f(to, core.adjacency_cost[e]);
+    }
+    return;
+  }
   if (from < manholes_) {  // in manhole: ENTER_PIPE
     const ManholeId m{from};
     for (const Slot& s : map_.slots(m)) {

@@ -53,5 +53,19 @@ TEST(MissionGenerator, UniformTasksSpreadFartherThanTasksNearTheExit) {
   EXPECT_GT(settled(map, *uniform), 3 * settled(map, *near));
 }
 
+TEST(MissionGenerator, ABatteryGivenReplacesTheProfilesAndOneOutOfRangeIsAnError) {
+  const SewerMap map = city();
+  const auto big = generate_mission(
+      map, {.tasks = 5, .seed = 1, .spread = MissionSpread::kUniform, .battery_wh = 1e6});
+  ASSERT_TRUE(big.has_value()) << big.error().message;
+  EXPECT_EQ(big->profile.battery_wh, 1e6);
+  for (double wh : {0.0, -5.0, 2e6}) {
+    const auto bad = generate_mission(map, {.tasks = 5, .seed = 1, .battery_wh = wh});
+    ASSERT_FALSE(bad.has_value()) << wh;
+    EXPECT_EQ(bad.error().code, ErrorCode::kInvalidArgument);
+    EXPECT_NE(bad.error().message.find("battery_wh"), std::string::npos);
+  }
+}
+
 }  // namespace
 }  // namespace sewerplan::domain

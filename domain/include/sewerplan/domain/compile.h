@@ -89,6 +89,9 @@ struct CompileStatistics {
   std::size_t settled_nodes = 0;  // Dijkstra work over all searches
   std::size_t route_searches = 0;
   std::size_t actions = 0;
+  // The searches read the moves from the map's adjacency in the compile cache's core, built
+  // by this compile or kept from an earlier one (issue 35).
+  bool adjacency = false;
   double time_s = 0;
 };
 

@@ -49,6 +49,9 @@ struct MissionOptions {
   // The library's default keeps the missions tests were written against; the command line and the
   // planning benchmarks default to kUniform.
   MissionSpread spread = MissionSpread::kNearExit;
+  // The profile's battery replaced (a larger or a tethered robot, up to 1e6 Wh): with one large
+  // enough, the uniform spread draws from every pipe the robot can reach (issue 35's benchmarks).
+  std::optional<double> battery_wh;
 };
 
 // kInvalidArgument if the map has no exit, the profile is unknown, or fewer pipes than tasks are
