@@ -283,9 +283,10 @@ async function strangersRefused() {
 async function whatHappenedOnScreen(page) {
   const failures = [];
   const expect = async (what, body) => {
+    const t = Date.now();
     try {
       await body();
-      console.log(`on screen: ${what}: ok`);
+      console.log(`on screen: ${what}: ok (${Date.now() - t} ms)`);
     } catch (e) {
       failures.push(`${what}: ${e.message}`);
       console.error(`on screen: ${what}: FAILED: ${e.message}`);
@@ -300,15 +301,12 @@ async function whatHappenedOnScreen(page) {
   await expect('an uploaded mission\'s profile is the one the map is drawn for', async () => {
     await page.selectOption('#profile', 'makro-1.1');
     await page.waitForFunction(() => document.body.dataset.driveability, null, { timeout: 10000 });
-    const asked = [];
-    const onRequest = (r) => { if (r.url().includes('/driveability')) asked.push(r.url()); };
-    page.on('request', onRequest);
+    const asked = page.waitForRequest((r) => r.url().includes('/driveability?profile=makro-plus'), { timeout: 5000 })
+      .catch(() => null);
     await upload({ ...paper, name: 'plus', profile: 'makro-plus' }, 'plus.json');
     await page.waitForFunction(() => window.station.state.mission.name === 'plus');
-    await page.waitForTimeout(300);
-    page.off('request', onRequest);
     check(await page.inputValue('#profile') === 'makro-plus', 'the selector does not say makro-plus');
-    check(asked.some((u) => u.includes('profile=makro-plus')), `no driveability asked for makro-plus (asked: ${asked.join(', ') || 'none'})`);
+    check(await asked, 'no driveability asked for makro-plus: the map shows the last profile\'s');
   });
   await upload(paper, 'paper.json');
   await page.waitForFunction(() => window.station.state.mission.name === 'paper-section-6');
@@ -457,7 +455,8 @@ async function whatHappenedOnScreen(page) {
       check(/--token/.test(await bare.locator('#fatal').textContent()), 'the banner does not name --token');
       await bare.fill('#fatal-token', token);
       await bare.click('#fatal-use');
-      await bare.waitForSelector('body[data-ready=true]', { timeout: 60000 });
+      await bare.waitForFunction(() => document.querySelectorAll('#map option').length > 0 && !document.querySelector('#fatal'),
+                                 null, { timeout: 60000 });
     } finally {
       await context.close();
     }
