@@ -6,7 +6,8 @@
 // and see the recovery phases, the replan (old and new route) and the dropped inspection on the
 // map and in the log, and the end reached; download the mission, upload it back, replay an event
 // log; run a fault campaign of 20 runs (progress, charts) and replay one of its runs, cancel a
-// long one; upload a map; a page of another origin and a rebound name refused. Saves a screenshot of each step in OUT (docs/operator-station.md uses them) and prints
+// long one; upload a map; a page of another origin and a rebound name refused; then issue 32's
+// checks of what the screen says (whatHappenedOnScreen), each a case of its own, at 1366 x 768. Saves a screenshot of each step in OUT (docs/operator-station.md uses them) and prints
 // the figures (page load, first draw, plan round trip, event delay).
 //
 //   node e2e/station.test.mjs SEWERPLAN_BINARY SOURCE_DIR [OUT_DIR] [--large MAP]
