@@ -93,6 +93,10 @@ struct LoadedMap {
   std::shared_ptr<const Geometry> geometry;
   std::filesystem::path motion_table;  // MAP.motion.json beside the map, if there is one
   std::string condition_name;          // the uploaded condition file's name
+  // The reader's warnings of the map and of its condition data ({where, message} each), for the
+  // page to show beside the map (GET /api/maps).
+  Json warnings = Json::array();
+  Json condition_warnings = Json::array();
 };
 
 // Answers with `body`, an immutable part of `owner`, without copying it: httplib reads it while it
@@ -304,7 +308,9 @@ void StationServer::Impl::list_maps(httplib::Response& res) const {
                     {"manholes", m->map->manhole_count()},
                     {"pipes", m->map->pipe_count()},
                     {"findings", m->map->finding_count()},
-                    {"motion_table", !m->motion_table.empty()}});
+                    {"motion_table", !m->motion_table.empty()},
+                    {"warnings", m->warnings},
+                    {"condition_warnings", m->condition_warnings}});
   }
   send_json(res, {{"maps", list}, {"profiles", builtin_profile_names()}});
 }
@@ -338,15 +344,22 @@ void StationServer::Impl::upload_map(const httplib::Request& req, const std::str
   Result<std::shared_ptr<const Geometry>> geometry = build_geometry(*given, upload.id());
   if (!geometry.has_value()) return send_error(res, kUnprocessable, geometry.error());
   if (options.on_geometry_built) options.on_geometry_built(upload.id());
-  auto loaded = std::make_shared<const LoadedMap>(
-      LoadedMap{upload.id(), given, given, std::move(*geometry), {}, {}});
+  auto loaded =
+      std::make_shared<const LoadedMap>(LoadedMap{upload.id(),
+                                                  given,
+                                                  given,
+                                                  std::move(*geometry),
+                                                  {},
+                                                  {},
+                                                  diagnostics_json(diagnostics, Severity::kWarning),
+                                                  Json::array()});
   upload.list(loaded);
   send_json(res,
             {{"id", upload.id()},
              {"name", loaded->map->name()},
              {"manholes", loaded->map->manhole_count()},
              {"pipes", loaded->map->pipe_count()},
-             {"warnings", diagnostics_json(diagnostics, Severity::kWarning)}},
+             {"warnings", loaded->warnings}},
             201);
 }
 
@@ -366,9 +379,9 @@ void StationServer::Impl::upload_condition(const httplib::Request& req, const st
   // The one copy: the joined map owns its findings. The map as given and the geometry are shared.
   Result<SewerMap> joined = read_condition_isybau(*m->given, body, name, diagnostics);
   if (!joined.has_value()) return send_error(res, kUnprocessable, joined.error(), diagnostics);
-  auto loaded = std::make_shared<const LoadedMap>(
-      LoadedMap{m->id, m->given, std::make_shared<const SewerMap>(std::move(*joined)), m->geometry,
-                m->motion_table, name});
+  auto loaded = std::make_shared<const LoadedMap>(LoadedMap{
+      m->id, m->given, std::make_shared<const SewerMap>(std::move(*joined)), m->geometry,
+      m->motion_table, name, m->warnings, diagnostics_json(diagnostics, Severity::kWarning)});
   const std::lock_guard lock(maps_mutex);
   for (auto& slot : maps) {
     if (slot->id == loaded->id) slot = loaded;
@@ -376,7 +389,7 @@ void StationServer::Impl::upload_condition(const httplib::Request& req, const st
   send_json(res, {{"id", loaded->id},
                   {"condition", name},
                   {"findings", loaded->map->finding_count()},
-                  {"warnings", diagnostics_json(diagnostics, Severity::kWarning)}});
+                  {"warnings", loaded->condition_warnings}});
 }
 
 void StationServer::Impl::driveability(const httplib::Request& req, httplib::Response& res) const {
@@ -730,7 +743,14 @@ Result<std::unique_ptr<StationServer>> StationServer::create(const ServerOptions
     std::error_code ec;
     if (!std::filesystem::exists(motion, ec)) motion.clear();
     impl->maps.push_back(std::make_shared<const LoadedMap>(
-        LoadedMap{id, given, given, std::move(*geometry), std::move(motion), {}}));
+        LoadedMap{id,
+                  given,
+                  given,
+                  std::move(*geometry),
+                  std::move(motion),
+                  {},
+                  diagnostics_json(diagnostics, Severity::kWarning),
+                  Json::array()}));
   }
   if (!options.web_root.empty() && !std::filesystem::is_directory(options.web_root)) {
     return Error{ErrorCode::kIo, options.web_root.string() + ": no such directory (the page)"};

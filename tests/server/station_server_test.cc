@@ -336,6 +336,47 @@ TEST_F(StationServerTest, ManualKeepsAMapsGeometryWhenItsConditionIsUploaded) {
   }
 }
 
+// Issue 32: the reader's warnings of a map given at the start, of an uploaded one and of a map's
+// condition data are listed with the map, for the page to show (they were printed nowhere).
+TEST_F(StationServerTest, ManualListsTheReadersWarningsOfEachMapAndOfItsConditionData) {
+  const std::filesystem::path isybau = kSource / "datasets/isybau";
+  start({.maps = {isybau / "street-2013.xml"}});
+  const auto listed = [&](const std::string& id) {
+    const json maps = get("/api/maps").second["maps"];
+    for (const auto& m : maps) {
+      if (m["id"] == id) return m;
+    }
+    ADD_FAILURE() << "map " << id << " not listed";
+    return json();
+  };
+  const auto messages = [](const json& warnings) {
+    std::string all;
+    for (const auto& w : warnings)
+      all += w["where"].get<std::string>() + ": " + w["message"].get<std::string>() + "\n";
+    return all;
+  };
+  json given = listed("street-2013");
+  EXPECT_THAT(messages(given["warnings"]),
+              ::testing::HasSubstr("street-2013.xml: 4 manholes have no shaft size"));
+  EXPECT_EQ(given["condition_warnings"], json::array());
+  auto [status, joined] = post("/api/maps/street-2013/condition?name=street-zustand.xml",
+                               read(isybau / "street-zustand.xml"));
+  ASSERT_EQ(status, 200) << joined.dump();
+  EXPECT_THAT(messages(joined["warnings"]),
+              ::testing::HasSubstr("findings name no pipe of the map"));
+  given = listed("street-2013");
+  EXPECT_EQ(given["condition_warnings"], joined["warnings"]);
+  EXPECT_THAT(messages(given["warnings"]), ::testing::HasSubstr("4 manholes have no shaft size"));
+  auto r = client_->Post("/api/maps?name=polyline.xml", read(isybau / "street-polyline.xml"),
+                         "application/octet-stream");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 201) << r->body;
+  const json uploaded = json::parse(r->body);
+  EXPECT_THAT(messages(uploaded["warnings"]),
+              ::testing::HasSubstr("pipe ends begin inside their manhole"));
+  EXPECT_EQ(listed("polyline")["warnings"], uploaded["warnings"]);
+}
+
 TEST_F(StationServerTest, WithATokenRefusesTheBinaryGeometryWithoutIt) {
   TearDown();
   start({.token = "s3cret"});

@@ -28,7 +28,7 @@ const file = { 'Content-Type': 'application/octet-stream' };
 async function call(path, options = {}) {
   const response = await fetch(path, { ...options, headers: { ...headers, ...options.headers } });
   const body = await response.json();
-  if (!response.ok) throw Object.assign(new Error(body.error?.message ?? response.statusText), { body });
+  if (!response.ok) throw Object.assign(new Error(body.error?.message ?? response.statusText), { body, status: response.status });
   return body;
 }
 

@@ -9,18 +9,23 @@ import { offsetOf, pipesOfSteps, placePoint, readGeometry } from './geometry.js'
 import { mapRequests } from './latest.js';
 import { createMapView } from './map-view.js';
 import { clickMission, describePlace, download, newMission, renderTasks } from './mission.js';
-import { renderPlan } from './plan-view.js';
+import { showFatal } from './fatal.js';
+import { outcomeLine } from './outcome.js';
+import { PlanHistory } from './plan-history.js';
 import { actionTarget, Player, wherePoint } from './player.js';
+import { renderWarnings } from './warnings.js';
 
 const $ = (id) => document.getElementById(id);
 const state = {
   map: null, blocked: new Map(), mission: null, faults: newFaults(), route: new Set(), oldRoutes: [],
   failures: [], robot: null, beacon: false, dropped: new Set(), done: new Set(), events: [], outcome: null,
-  delays_ms: [],
+  delays_ms: [], highlight: null, mapInfo: new Map(),
 };
 
 const view = createMapView($('view'), { onClick: (info) => clickMap(info), onHover: (info) => showHover(info) });
 const draw = () => view.draw(state);
+// The Plan panel: the plan asked, or a run's plan and replans; one chosen is highlighted.
+const plans = new PlanHistory({ onChange: () => { state.highlight = plans.highlighted(); draw(); } });
 
 function showHover(info) {
   const box = $('hover');
@@ -103,6 +108,7 @@ async function openMap(id) {
   state.faults = newFaults();
   $('condition').textContent = '';
   $('placeless').textContent = placelessNote(state.map);
+  showWarnings();
   clearRun();
   state.route = new Set();
   view.fit(state.map.bounds);
@@ -182,19 +188,39 @@ async function showDriveability() {
 // The driveability asked again (another profile, the motion table ticked or not).
 const loadDriveability = () => showDriveability();
 
+// A plan: the last one's route, steps and summary go at once (none of them is this mission's plan
+// until the answer comes), and stay gone if the planner fails.
 async function runPlan() {
   $('messages').textContent = '';
+  clearRun();
+  state.route = new Set();
+  draw();
   try {
     const t0 = performance.now();
     const result = await api.plan(state.map.id, state.mission, $('time-limit').value);
     state.timings.plan_round_trip_ms = Math.round(performance.now() - t0);
-    clearRun();
     state.route = new Set(result.steps.flatMap((s) => [s.pipe, s.from_pipe, s.to_pipe]).filter(Boolean));
-    renderPlan(result);
+    plans.planned(result);
     draw();
   } catch (e) {
     $('messages').textContent = e.message;
+    plans.clear(`No plan: ${e.message}`);
   }
+}
+
+// The reader's warnings of the open map and its condition data's, each linked to its objects.
+function showWarnings() {
+  const info = state.mapInfo.get(state.map.id) ?? {};
+  const warnings = [...info.warnings ?? [], ...info.condition_warnings ?? []];
+  $('warnings-count').textContent = warnings.length ? `${warnings.length} warning${warnings.length === 1 ? '' : 's'} reading the map` : '';
+  $('warnings').hidden = warnings.length === 0;
+  renderWarnings($('warnings-list'), state.map, warnings, (objects) => {
+    state.highlight = objects;
+    draw();
+    const points = [...objects.manholes.map((n) => state.map.manholeByName.get(n).position),
+                    ...objects.pipes.map((n) => state.map.pipeByName.get(n)).filter((p) => !p.placeless).flatMap((p) => [p.from, p.to])];
+    view.focus(points);
+  });
 }
 
 // --- simulation and replay ---
@@ -208,6 +234,9 @@ function clearRun() {
   state.delays_ms = [];
   state.outcome = null;
   state.beacon = false;
+  state.highlight = null;
+  state.runMission = null;
+  plans.clear();
   $('events').replaceChildren();
   $('outcome').textContent = '';
   player.reset(placePoint(state.map, state.mission?.start));
@@ -222,6 +251,12 @@ function logLine(type, text) {
   li.scrollIntoView({ block: 'nearest' });
 }
 
+// A plan event's tasks: its goals and those it dropped; the final one named by its end.
+function runTasks(e) {
+  const final = /final task '([^']*)'/.exec(e.end ?? '')?.[1];
+  return { tasks: [...new Set([...e.goals ?? [], ...e.dropped ?? []])].map((name) => ({ name, final: name === final })) };
+}
+
 const fmt = (t) => `${(t ?? 0).toFixed(1)} s`;
 
 // One event, when the player reaches its time: the log, the map, the robot's motion.
@@ -233,10 +268,14 @@ function playEvent(type, e) {
       // The plan just announced: the route before it becomes an old route.
       if (state.events.filter((x) => x.type === 'route').length > 1 && state.route.size > 0) state.oldRoutes.push(state.route);
       state.route = new Set(e.pipes ?? pipesOfSteps(map, e.steps));
+      plans.route(e, state.route);
       draw();
       return;
     }
     case 'plan': case 'replan':
+      plans.event(type, e);
+      // The run's tasks, from its first plan (a replayed log's mission is not the one edited).
+      state.runMission ??= runTasks(e);
       logLine(type, `${fmt(e.t_s)} ${type}: ${e.reason} → ${e.decision}, ${e.steps} steps, ends ${e.end}` +
                     `${e.dropped.length ? `; drops ${e.dropped.join(', ')}` : ''}`);
       return;
@@ -268,6 +307,7 @@ function playEvent(type, e) {
       break;
     case 'task_dropped':
       state.dropped.add(e.task);
+      plans.dropped(e.task, e.reason);
       logLine(type, `${fmt(e.t_s)} task ${e.task} DROPPED: ${e.reason}`);
       break;
     case 'beacon':
@@ -277,9 +317,8 @@ function playEvent(type, e) {
     case 'mission_end':
       state.outcome = e;
       if (e.outcome === 'beacon') state.beacon = true;
-      $('outcome').className = e.outcome;
-      $('outcome').textContent = e.outcome === 'ended' ? `Ended: ${e.end} reached` : e.outcome === 'beacon'
-        ? `Beacon on: ${e.end}` : `Halted: ${e.end}`;
+      ({ text: $('outcome').textContent, className: $('outcome').className } =
+        outcomeLine(e, state.runMission, state.dropped));
       logLine(type, `${fmt(e.t_s)} mission end: ${e.outcome}, ${e.end}; done: ${e.tasks_done.join(', ') || 'none'}; ` +
                     `${e.replans} replans, ${e.energy_wh.toFixed(1)} Wh`);
       break;
@@ -355,9 +394,18 @@ async function uploadMission(file) {
   try {
     const mission = JSON.parse(await file.text());
     if (mission.format !== 'sewerplan-mission') throw new Error(`${file.name}: not a sewerplan mission`);
+    const known = [...$('profile').options].some((o) => o.value === mission.profile);
+    if (mission.profile && !known) {
+      throw new Error(`${file.name}: profile '${mission.profile}' is not one the station has (${[...$('profile').options].map((o) => o.value).join(', ')})`);
+    }
     state.mission = mission;
-    if (mission.profile && [...$('profile').options].some((o) => o.value === mission.profile)) $('profile').value = mission.profile;
     clearRun();
+    state.route = new Set();
+    // The profile selected and the map's driveability drawn for it, as a choice in the selector does.
+    if (mission.profile && $('profile').value !== mission.profile) {
+      $('profile').value = mission.profile;
+      loadDriveability();
+    }
     missionChanged();
   } catch (e) {
     $('messages').textContent = e.message;
@@ -366,6 +414,7 @@ async function uploadMission(file) {
 
 async function listMaps() {
   const { maps, profiles } = await api.listMaps();
+  state.mapInfo = new Map(maps.map((m) => [m.id, m]));
   $('map').replaceChildren(...maps.map((m) => new Option(`${m.id} (${m.manholes} manholes)`, m.id)));
   return { maps, profiles };
 }
@@ -388,7 +437,10 @@ async function uploadCondition(file) {
   try {
     const r = await api.uploadCondition(state.map.id, file.name, await file.text());
     $('condition').textContent = `${r.findings} findings from ${r.condition}` +
-      (r.warnings.length ? ` (${r.warnings.length} warnings)` : '');
+      (r.warnings.length ? ` (${r.warnings.length} warnings, below)` : '');
+    const info = state.mapInfo.get(state.map.id);
+    if (info) info.condition_warnings = r.warnings;
+    showWarnings();
     await loadDriveability();
   } catch (e) {
     $('condition').textContent = e.message;
@@ -431,7 +483,7 @@ async function start() {
 
 let campaign = null;
 state.timings = {};
-start();
+start().catch(showFatal);
 
 // For the browser test (e2e/): the state, the player, and where a pipe's point is on the screen.
 window.station = {

@@ -191,10 +191,14 @@ export function createMapView(parent, { onClick, onHover }) {
       getFillColor: (f) => (f.kind === 'permanent' ? [120, 0, 0] : f.kind === 'danger' ? [255, 90, 0] : [200, 120, 120]),
       stroked: true, getLineColor: [255, 255, 255], lineWidthUnits: 'pixels', getLineWidth: 2,
     }));
+    // Every layer gets an array of its own, made here: deck.gl redraws a layer only when its data is
+    // another array than last time, so an array of the page's state, changed in place (a failure
+    // pushed while the run plays), would never be drawn again (the failure ring at paced speeds).
     layers.push(new ScatterplotLayer({
-      id: 'failures', data: s.failures, getPosition: (f) => f, radiusUnits: 'pixels', getRadius: 10,
+      id: 'failures', data: [...s.failures], getPosition: (f) => f, radiusUnits: 'pixels', getRadius: 10,
       filled: false, stroked: true, getLineColor: [220, 0, 0], lineWidthUnits: 'pixels', getLineWidth: 3,
     }));
+    layers.push(...highlightLayers(map, s.highlight));
     if (map.manholeCount <= kNamesUpTo) {
       layers.push(new TextLayer({ id: 'names', data: map.manholes, getPosition: (m) => m.position,
                                   getText: (m) => m.name, getSize: 11, getPixelOffset: [0, -12],
@@ -257,6 +261,16 @@ export function createMapView(parent, { onClick, onHover }) {
       const zoom = Math.log2(Math.min(parent.clientWidth, parent.clientHeight) / (size * 1.1));
       setView({ target: [(x0 + x1) / 2, (y0 + y1) / 2], zoom }, { now: false });
     },
+    // Shows `points` ([x, y] in metres): the view centred on them, zoomed to hold them all with a
+    // margin (at least 40 m across), never further out than the whole map.
+    focus(points) {
+      if (points.length === 0) return;
+      const xs = points.map((p) => p[0]), ys = points.map((p) => p[1]);
+      const [x0, y0, x1, y1] = [Math.min(...xs), Math.min(...ys), Math.max(...xs), Math.max(...ys)];
+      const size = Math.max(x1 - x0, y1 - y0, 40) * 1.4;
+      const zoom = Math.log2(Math.min(parent.clientWidth, parent.clientHeight) / size);
+      setView({ target: [(x0 + x1) / 2, (y0 + y1) / 2], zoom });
+    },
     // The view ({target, zoom}) and setting it, as a pan or a zoom would.
     viewState: () => viewState,
     setView,
@@ -269,6 +283,21 @@ export function createMapView(parent, { onClick, onHover }) {
     // Where a map point is on the screen, in the view's pixels.
     project(point) { return deck.getViewports()[0].project(point); },
   };
+}
+
+// What the page points the operator at (a warning's objects, a plan chosen in the Plan panel):
+// {pipes: [name], manholes: [name]} drawn in cyan over everything but the robot.
+function highlightLayers(map, highlight) {
+  if (!highlight) return [];
+  const pipes = (highlight.pipes ?? []).map((n) => map.pipeByName.get(n)).filter((p) => p && !p.placeless);
+  const manholes = (highlight.manholes ?? []).map((n) => map.manholeByName.get(n)).filter(Boolean);
+  return [
+    new LineLayer({ id: 'highlight-pipes', data: pipes, getSourcePosition: (p) => p.from, getTargetPosition: (p) => p.to,
+                    getColor: [0, 200, 230, 200], getWidth: 10, widthUnits: 'pixels' }),
+    new ScatterplotLayer({ id: 'highlight-manholes', data: manholes, getPosition: (m) => m.position,
+                           radiusUnits: 'pixels', getRadius: 12, filled: false, stroked: true,
+                           getLineColor: [0, 200, 230], lineWidthUnits: 'pixels', getLineWidth: 4 }),
+  ];
 }
 
 // The hidden faults (a fault scenario, docs/simulation.md) as points: obstacles and danger spots
