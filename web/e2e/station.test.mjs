@@ -17,6 +17,7 @@ import { spawn } from 'node:child_process';
 import { mkdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { chromium } from 'playwright-core';
+import { gisHabits } from './gis-habits.mjs';
 
 const args = process.argv.slice(2);
 const largeAt = args.indexOf('--large');
@@ -486,6 +487,8 @@ try {
   await page.selectOption('#map', aisId);
   await page.waitForFunction((i) => document.body.dataset.opened === i, aisId, { timeout: 30000 });
   check((await page.locator('#placeless').textContent()) === '', 'the placeless note stays on another map');
+
+  await gisHabits(page, { binary, source, ais, out, check, shot });
 
   if (large) await largeMapAtRatio2(await largeMap(page, canvas, shot));
   console.log(`station e2e: ok in ${Date.now() - started} ms, of which screenshots ${shotsMs} ms`);
