@@ -420,7 +420,8 @@ TEST_F(StationServerTest, ExportsAPlanAndARunAsGeoJsonOnAMapWithACrs) {
   ASSERT_EQ(r->status, 200) << r->body;
   EXPECT_EQ(r->get_header_value("Content-Type"), "application/geo+json");
   std::map<std::string, int> layers;
-  for (const json& f : json::parse(r->body)["features"]) ++layers[f["properties"]["layer"]];
+  const json exported = json::parse(r->body);
+  for (const json& f : exported["features"]) ++layers[f["properties"]["layer"].get<std::string>()];
   EXPECT_EQ(layers["planned_route"], 1);
   EXPECT_EQ(layers["driven_route"], 1);
   EXPECT_EQ(layers["task"], 3);
@@ -458,9 +459,11 @@ TEST_F(StationServerTest, TakesAnUploadedMapInAnyFormatUnderANewId) {
   georeferenced.insert(georeferenced.find('{') + 1, R"("crs": "EPSG:25832",)");
   r = client_->Post("/api/maps?name=utm.json", georeferenced, "application/json");
   ASSERT_EQ(r->status, 201) << r->body;
-  for (const json& m : get("/api/maps").second["maps"]) {
-    if (m["id"] == "utm") EXPECT_EQ(m["crs"], "EPSG:25832");
-  }
+  const json maps = get("/api/maps").second["maps"];
+  const auto utm =
+      std::find_if(maps.begin(), maps.end(), [](const json& m) { return m["id"] == "utm"; });
+  ASSERT_NE(utm, maps.end());
+  EXPECT_EQ((*utm)["crs"], "EPSG:25832");
   r = client_->Post("/api/maps?name=ais.json", read(kAis / "map.json"), "application/json");
   ASSERT_EQ(r->status, 201) << r->body;
   EXPECT_EQ(json::parse(r->body)["id"], "ais");
