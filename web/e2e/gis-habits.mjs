@@ -49,13 +49,16 @@ export async function gisHabits(page, { binary, source, ais, out, check, shot })
   const far = await scale();
   await page.evaluate(() => window.station.zoomAndWait(2));
   const near = await scale();
-  await page.click('#fit');
+  await blur();
+  await page.keyboard.press('Home');  // Fit's key
+  const home = await page.evaluate(() => window.station.view.viewState().zoom);
+  check(Math.abs(home - fitted.expected) < 1e-9, `Home: zoom ${home}, the whole map's ${fitted.expected}`);
   for (const s of [near, far]) {
     check(Math.abs(s.px - s.metres * 2 ** s.zoom) < 1.5 && s.px <= 161 && /^[125]0*$/.test(String(s.metres).replace('.', '')),
           `the scale bar: ${JSON.stringify(s)}`);
   }
   check(near.metres < far.metres, `the scale bar did not change with the zoom: ${near.text}, ${far.text}`);
-  console.log(`GIS habits: P6 found and centred; Fit; scale ${near.text} zoomed in, ${far.text} fitted`);
+  console.log(`GIS habits: P6 found and centred; Fit, and Home; scale ${near.text} zoomed in, ${far.text} fitted`);
 
   // A task clicked onto the map is selected; Delete removes it; Ctrl+Z brings it back, Ctrl+Y
   // removes it again, Ctrl+Z once more.
