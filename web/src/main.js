@@ -1,14 +1,16 @@
 // SPDX-License-Identifier: MIT
 // The operator station's page: wires the map view (map-view.js), the mission editor (mission.js),
 // the hidden faults (faults.js), the plan view (plan-view.js), the event player (player.js) and the
-// campaign panel (campaign.js) to the server's API (api.js). All state is here, in `state`.
+// campaign panel (campaign.js) to the server's API (api.js), with the GIS habits (search-box.js,
+// undo.js, task-keys.js, scale-bar.js, cursor-coords.js, saved-mission.js, export-geojson.js;
+// docs/operator-station.md). All state is here, in `state`.
 import * as api from './api.js';
 import { CampaignPanel } from './campaign.js';
+import { trackCursor } from './cursor-coords.js';
+import { exportGeoJson } from './export-geojson.js';
 import { clickFault, isEmpty, newFaults, renderFaults } from './faults.js';
 import { offsetOf, pipesOfSteps, placePoint, readGeometry } from './geometry.js';
 import { mapRequests } from './latest.js';
-import { trackCursor } from './cursor-coords.js';
-import { exportGeoJson } from './export-geojson.js';
 import { createMapView } from './map-view.js';
 import { clickMission, describePlace, download, newMission, renderTasks } from './mission.js';
 import { renderPlan } from './plan-view.js';
@@ -23,7 +25,7 @@ const $ = (id) => document.getElementById(id);
 const state = {
   map: null, blocked: new Map(), mission: null, faults: newFaults(), route: new Set(), oldRoutes: [],
   failures: [], robot: null, beacon: false, dropped: new Set(), done: new Set(), events: [], outcome: null,
-  delays_ms: [], highlight: null,
+  delays_ms: [], highlight: null, planText: null,
 };
 const crsOf = new Map();  // map ID -> its CRS ("EPSG:25832"), or null (GET /api/maps)
 const history = new EditHistory();  // the mission's edits (undo.js)
