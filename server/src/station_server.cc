@@ -39,6 +39,7 @@
 #include "sewerplan/search/planner.h"
 #include "sewerplan/server/documents.h"
 #include "sewerplan/server/driveability_output.h"
+#include "sewerplan/server/geojson_export.h"
 #include "sewerplan/server/sim_setup.h"
 
 #include "campaign_service.h"
@@ -280,6 +281,7 @@ struct StationServer::Impl {
   void plan(const httplib::Request& req, const std::string& body, httplib::Response& res) const;
   void simulate(const httplib::Request& req, const std::string& body, httplib::Response& res) const;
   void replay(const httplib::Request& req, const std::string& body, httplib::Response& res) const;
+  void geojson(const httplib::Request& req, const std::string& body, httplib::Response& res) const;
   void campaign(const httplib::Request& req, const std::string& body, httplib::Response& res);
   // Why an /api/ request is refused for its token, if it is.
   std::optional<std::string> unauthorised(const httplib::Request& req) const;
@@ -310,7 +312,10 @@ void StationServer::Impl::list_maps(httplib::Response& res) const {
                     {"findings", m->map->finding_count()},
                     {"motion_table", !m->motion_table.empty()},
                     {"warnings", m->warnings},
-                    {"condition_warnings", m->condition_warnings}});
+                    {"condition_warnings", m->condition_warnings},
+                    // The coordinate reference system of the geometry's x and y (core/crs.h),
+                    // or null: local coordinates. The page names it beside the cursor's position.
+                    {"crs", m->map->crs() ? Json(m->map->crs()->to_string()) : Json()}});
   }
   send_json(res, {{"maps", list}, {"profiles", builtin_profile_names()}});
 }
@@ -558,6 +563,36 @@ void StationServer::Impl::replay(const httplib::Request& req, const std::string&
   send_json(res, {{"events", list}});
 }
 
+// POST /api/maps/ID/geojson: {"mission", "plan": its text, "log": an event log's lines}, the plan
+// and the log optional, as `export-geojson --mission --plan --log` writes them (geojson_export.h).
+void StationServer::Impl::geojson(const httplib::Request& req, const std::string& text,
+                                  httplib::Response& res) const {
+  const auto m = find_map(req, res);
+  if (!m) return;
+  const Result<Json> parsed = parse_json_body(text);
+  if (!parsed.has_value()) return bad_request(res, parsed.error().message);
+  const Json& body = *parsed;
+  if (!body.is_object())
+    return bad_request(res, "expected a JSON object {\"mission\", \"plan\", \"log\"}");
+  if (!body.contains("mission") || !body["mission"].is_object()) {
+    return bad_request(res, "\"mission\": expected the mission's JSON object");
+  }
+  for (const char* key : {"plan", "log"}) {
+    if (body.contains(key) && !body[key].is_string()) {
+      return bad_request(res, std::string("\"") + key + "\": expected text");
+    }
+  }
+  std::optional<Mission> mission = read_body_mission(dump(body["mission"]), *m->map, res);
+  if (!mission) return;
+  const std::string plan = body.value("plan", std::string());
+  const std::string log = body.value("log", std::string());
+  Diagnostics diagnostics;
+  Result<std::string> geojson =
+      export_geojson(*m->map, *mission, {.plan_text = plan, .log_text = log}, diagnostics);
+  if (!geojson.has_value()) return send_error(res, kUnprocessable, geojson.error(), diagnostics);
+  res.set_content(std::move(*geojson), "application/geo+json");
+}
+
 // POST /api/maps/ID/campaign: the mission read as /simulate reads it, the rest by the service.
 void StationServer::Impl::campaign(const httplib::Request& req, const std::string& text,
                                    httplib::Response& res) {
@@ -698,6 +733,8 @@ void StationServer::Impl::routes() {
        [this](const Req& req, const std::string& body, Res& res) { simulate(req, body, res); });
   post(R"(/api/maps/([^/]+)/replay)",
        [this](const Req& req, const std::string& body, Res& res) { replay(req, body, res); });
+  post(R"(/api/maps/([^/]+)/geojson)",
+       [this](const Req& req, const std::string& body, Res& res) { geojson(req, body, res); });
   post(R"(/api/maps/([^/]+)/campaign)",
        [this](const Req& req, const std::string& body, Res& res) { campaign(req, body, res); });
   http.Get("/api/campaign", [this](const Req&, Res& res) { campaigns->status(res); });

@@ -42,6 +42,7 @@ TEST_F(StationServerTest, ListsItsMapsByIdAndTheBuiltInProfiles) {
   ASSERT_EQ(j["maps"].size(), 1u);
   EXPECT_EQ(j["maps"][0]["id"], "map");
   EXPECT_EQ(j["maps"][0]["manholes"], 12);
+  EXPECT_TRUE(j["maps"][0]["crs"].is_null());  // the AIS test environment: local coordinates
   EXPECT_NE(std::find(j["profiles"].begin(), j["profiles"].end(), "makro-plus"),
             j["profiles"].end());
 }
@@ -437,6 +438,54 @@ TEST_F(StationServerTest, ManualPlansWithTheMotionTableBesideTheMapAndSaysSo) {
   std::filesystem::remove_all(dir);
 }
 
+// The page's GeoJSON export: the mission, the plan's text and a run's log, written as
+// `export-geojson --mission --plan --log` writes them; a map without a CRS, or a plan that does not
+// read, answered with why.
+TEST_F(StationServerTest, ExportsAPlanAndARunAsGeoJsonOnAMapWithACrs) {
+  const std::string mission = read(kAis / "missions/paper.json");
+  auto [status, plan] = post("/api/maps/map/plan", mission);
+  ASSERT_EQ(status, 200) << plan.dump();
+  const std::string log = read(kSource / "tests/data/events/demo.jsonl");
+  const json request = {{"mission", json::parse(mission)}, {"plan", plan["text"]}, {"log", log}};
+  auto [local, why] = post("/api/maps/map/geojson", request.dump());
+  EXPECT_EQ(local, 422);
+  EXPECT_NE(why["error"]["message"].get<std::string>().find("names no coordinate reference system"),
+            std::string::npos)
+      << why.dump();
+  std::string georeferenced = read(kAis / "map.json");
+  georeferenced.insert(georeferenced.find('{') + 1, R"("crs": "EPSG:25832",)");
+  auto r = client_->Post("/api/maps?name=utm.json", georeferenced, "application/json");
+  ASSERT_EQ(r->status, 201) << r->body;
+  r = client_->Post("/api/maps/utm/geojson", request.dump(), "application/json");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  EXPECT_EQ(r->get_header_value("Content-Type"), "application/geo+json");
+  std::map<std::string, int> layers;
+  const json exported = json::parse(r->body);
+  for (const json& f : exported["features"]) ++layers[f["properties"]["layer"].get<std::string>()];
+  EXPECT_EQ(layers["planned_route"], 1);
+  EXPECT_EQ(layers["driven_route"], 1);
+  EXPECT_EQ(layers["task"], 3);
+  EXPECT_EQ(layers["manhole"], 12);
+  // The mission alone: the network and its marks, no route.
+  auto [bare, doc] = post("/api/maps/utm/geojson", json{{"mission", json::parse(mission)}}.dump());
+  ASSERT_EQ(bare, 200);
+  for (const json& f : doc["features"]) {
+    EXPECT_NE(f["properties"]["layer"], "planned_route");
+    EXPECT_NE(f["properties"]["layer"], "driven_route");
+  }
+  // A plan that does not read, a plan that is not text: the reader's message, a 400.
+  auto [bad, bad_why] = post("/api/maps/utm/geojson",
+                             json{{"mission", json::parse(mission)}, {"plan", "FLY P1"}}.dump());
+  EXPECT_EQ(bad, 422);
+  EXPECT_NE(bad_why["error"]["message"].get<std::string>().find("plan"), std::string::npos);
+  EXPECT_EQ(
+      post("/api/maps/utm/geojson", json{{"mission", json::parse(mission)}, {"plan", 5}}.dump())
+          .first,
+      400);
+  EXPECT_EQ(post("/api/maps/utm/geojson", R"({"plan": ""})").first, 400);
+}
+
 TEST_F(StationServerTest, TakesAnUploadedMapInAnyFormatUnderANewId) {
   auto r =
       client_->Post("/api/maps?name=epa-example1.inp",
@@ -445,10 +494,21 @@ TEST_F(StationServerTest, TakesAnUploadedMapInAnyFormatUnderANewId) {
   ASSERT_EQ(r->status, 201) << r->body;
   EXPECT_EQ(json::parse(r->body)["id"], "epa-example1");
   EXPECT_GT(json::parse(r->body)["manholes"].get<int>(), 0);
+  // A map that names its coordinate reference system: the list says which (the page shows the
+  // cursor's position in it).
+  std::string georeferenced = read(kAis / "map.json");
+  georeferenced.insert(georeferenced.find('{') + 1, R"("crs": "EPSG:25832",)");
+  r = client_->Post("/api/maps?name=utm.json", georeferenced, "application/json");
+  ASSERT_EQ(r->status, 201) << r->body;
+  const json maps = get("/api/maps").second["maps"];
+  const auto utm =
+      std::find_if(maps.begin(), maps.end(), [](const json& m) { return m["id"] == "utm"; });
+  ASSERT_NE(utm, maps.end());
+  EXPECT_EQ((*utm)["crs"], "EPSG:25832");
   r = client_->Post("/api/maps?name=ais.json", read(kAis / "map.json"), "application/json");
   ASSERT_EQ(r->status, 201) << r->body;
   EXPECT_EQ(json::parse(r->body)["id"], "ais");
-  EXPECT_EQ(get("/api/maps").second["maps"].size(), 3u);
+  EXPECT_EQ(get("/api/maps").second["maps"].size(), 4u);
   auto [status, plan] = post("/api/maps/ais/plan", read(kAis / "missions/paper.json"));
   EXPECT_EQ(status, 200) << plan.dump();
   EXPECT_EQ(plan["steps"].size(), 14u);

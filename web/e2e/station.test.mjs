@@ -18,6 +18,7 @@ import { spawn } from 'node:child_process';
 import { mkdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { chromium } from 'playwright-core';
+import { gisHabits } from './gis-habits.mjs';
 
 const args = process.argv.slice(2);
 const largeAt = args.indexOf('--large');
@@ -676,6 +677,8 @@ try {
   check((await page.locator('#placeless').textContent()) === '', 'the placeless note stays on another map');
 
   await whatHappenedOnScreen(page);
+  await gisHabits(page, { binary, source, ais, out, check, shot });
+
   if (large) await largeMapAtRatio2(await largeMap(page, canvas, shot));
   console.log(`station e2e: ok in ${Date.now() - started} ms, of which screenshots ${shotsMs} ms`);
 } catch (e) {

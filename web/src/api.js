@@ -70,6 +70,15 @@ export const validate = (id, mission) => call(`${map(id)}/validate`, { method: '
 export const plan = (id, mission, timeLimit) =>
   call(risk(motion(`${map(id)}/plan?time_limit=${timeLimit}`)), { method: 'POST', body: JSON.stringify(mission), headers: json });
 export const replay = (id, log) => call(`${map(id)}/replay`, { method: 'POST', body: log, headers: file });
+// The network, the mission, a plan's route and a run's trace as GeoJSON text (export-geojson.js).
+export async function geojson(id, body) {
+  const response = await fetch(`${map(id)}/geojson`, { method: 'POST', body: JSON.stringify(body), headers: { ...headers, ...json } });
+  if (!response.ok) {
+    const error = await response.json();
+    throw Object.assign(new Error(error.error?.message ?? response.statusText), { body: error });
+  }
+  return response.text();
+}
 
 export const campaignStatus = () => call('api/campaign');
 export const cancelCampaign = () => call('api/campaign/cancel', { method: 'POST', headers: json });

@@ -1,9 +1,13 @@
 // SPDX-License-Identifier: MIT
 // The operator station's page: wires the map view (map-view.js), the mission editor (mission.js),
 // the hidden faults (faults.js), the plan view (plan-view.js), the event player (player.js) and the
-// campaign panel (campaign.js) to the server's API (api.js). All state is here, in `state`.
+// campaign panel (campaign.js) to the server's API (api.js), with the GIS habits (search-box.js,
+// undo.js, task-keys.js, scale-bar.js, cursor-coords.js, saved-mission.js, export-geojson.js;
+// docs/operator-station.md). All state is here, in `state`.
 import * as api from './api.js';
 import { CampaignPanel } from './campaign.js';
+import { trackCursor } from './cursor-coords.js';
+import { exportGeoJson } from './export-geojson.js';
 import { clickFault, isEmpty, newFaults, renderFaults } from './faults.js';
 import { offsetOf, pipesOfSteps, placePoint, readGeometry } from './geometry.js';
 import { mapRequests } from './latest.js';
@@ -13,16 +17,25 @@ import { showFatal } from './fatal.js';
 import { outcomeLine } from './outcome.js';
 import { PlanHistory } from './plan-history.js';
 import { actionTarget, Player, wherePoint } from './player.js';
+import { restoreMission, saveMission } from './saved-mission.js';
+import { showScale } from './scale-bar.js';
+import { findPlace, suggestions, viewOf } from './search-box.js';
+import { bindEditorKeys, TaskSelection } from './task-keys.js';
+import { EditHistory } from './undo.js';
 import { renderWarnings } from './warnings.js';
 
 const $ = (id) => document.getElementById(id);
 const state = {
   map: null, blocked: new Map(), mission: null, faults: newFaults(), route: new Set(), oldRoutes: [],
   failures: [], robot: null, beacon: false, dropped: new Set(), done: new Set(), events: [], outcome: null,
-  delays_ms: [], highlight: null, mapInfo: new Map(),
+  delays_ms: [], highlight: null, mapInfo: new Map(), planText: null,
 };
+const history = new EditHistory();  // the mission's edits (undo.js)
 
-const view = createMapView($('view'), { onClick: (info) => clickMap(info), onHover: (info) => showHover(info) });
+const view = createMapView($('view'), {
+  onClick: (info) => clickMap(info), onHover: (info) => showHover(info),
+  onViewChange: (v) => showScale($('scale-bar'), $('scale-text'), v.zoom),
+});
 const draw = () => view.draw(state);
 // The Plan panel: the plan asked, or a run's plan and replans; one chosen is highlighted.
 const plans = new PlanHistory({ onChange: () => { state.highlight = plans.highlighted(); draw(); } });
@@ -57,12 +70,52 @@ const taskStatus = (t) => (state.dropped.has(t.name) ? '— dropped' : state.don
 async function missionChanged() {
   const m = state.mission;
   m.profile = $('profile').value;
+  if (history.record(JSON.stringify(m))) state.planText = null;  // the last plan was for another mission
+  showHistory();
+  saveMission(state.map, m);
   $('mission-summary').textContent = `start: ${describePlace(m.start)}`;
   renderTasks($('tasks'), m, missionChanged, taskStatus);
   draw();
   if (!m.start || m.tasks.length === 0) return;
   const verdict = await api.validate(state.map.id, m);
   $('messages').textContent = verdict.errors.map((e) => `${e.where}: ${e.message}`).join('\n');
+}
+
+// Undo and redo (undo.js): the mission becomes the state recorded, its profile selected.
+function restoreEdit(snapshot) {
+  if (snapshot === null) return;
+  state.mission = JSON.parse(snapshot);
+  const profile = state.mission.profile;
+  if (profile && [...$('profile').options].some((o) => o.value === profile)) $('profile').value = profile;
+  missionChanged();
+}
+const undo = () => restoreEdit(history.undo());
+const redo = () => restoreEdit(history.redo());
+function showHistory() {
+  $('undo').disabled = !history.canUndo;
+  $('redo').disabled = !history.canRedo;
+}
+const selection = new TaskSelection($('tasks'), () => state.mission?.tasks ?? []);
+// The Delete key: the selected task removed, as its × button does. Whether there was one.
+function removeSelected() {
+  const i = selection.index();
+  if (i < 0) return false;
+  state.mission.tasks.splice(i, 1);
+  missionChanged();
+  return true;
+}
+const fitView = () => state.map && view.fit(state.map.bounds, { now: true });
+
+// The search box: the place named is centred, marked and its name said; else why not.
+function search() {
+  if (!state.map) return;
+  const found = findPlace(state.map, $('search').value);
+  $('search-note').textContent = found.error ?? `${found.kind} ${found.name}`;
+  if (found.error) return;
+  // Drawn as a warning's objects are (map-view.js), and named (the browser test reads it).
+  state.highlight = { ...found, pipes: found.kind === 'pipe' ? [found.name] : [], manholes: found.kind === 'manhole' ? [found.name] : [] };
+  view.setView(viewOf(found, $('view').clientWidth, $('view').clientHeight));
+  draw();
 }
 
 function faultsChanged() {
@@ -104,7 +157,16 @@ async function openMap(id) {
   state.timings.load_geometry_ms = Math.round(performance.now() - t0) - state.timings.geometry_ms;
   state.blocked = new Map();
   $('driveability').textContent = 'driveability: asking the server';
-  state.mission = newMission($('profile').value);
+  // The mission kept for this map across a reload (saved-mission.js), unless it is stale.
+  const kept = restoreMission(state.map);
+  if (kept.mission && [...$('profile').options].some((o) => o.value === kept.mission.profile)) $('profile').value = kept.mission.profile;
+  state.mission = kept.mission ?? newMission($('profile').value);
+  $('messages').textContent = kept.message;
+  history.reset(JSON.stringify(state.mission));
+  state.planText = null;
+  selection.reset();
+  state.highlight = null;
+  $('search-note').textContent = '';
   state.faults = newFaults();
   $('condition').textContent = '';
   $('placeless').textContent = placelessNote(state.map);
@@ -199,6 +261,7 @@ async function runPlan() {
     const t0 = performance.now();
     const result = await api.plan(state.map.id, state.mission, $('time-limit').value);
     state.timings.plan_round_trip_ms = Math.round(performance.now() - t0);
+    state.planText = result.text;  // for the GeoJSON export
     state.route = new Set(result.steps.flatMap((s) => [s.pipe, s.from_pipe, s.to_pipe]).filter(Boolean));
     plans.planned(result);
     draw();
@@ -414,7 +477,7 @@ async function uploadMission(file) {
 
 async function listMaps() {
   const { maps, profiles } = await api.listMaps();
-  state.mapInfo = new Map(maps.map((m) => [m.id, m]));
+  state.mapInfo = new Map(maps.map((m) => [m.id, m]));  // warnings, CRS ("EPSG:25832" or null)
   $('map').replaceChildren(...maps.map((m) => new Option(`${m.id} (${m.manholes} manholes)`, m.id)));
   return { maps, profiles };
 }
@@ -467,6 +530,20 @@ async function start() {
   $('mission-download').onclick = () => download(`${state.mission.name}.json`, state.mission);
   $('mission-upload').onchange = (e) => e.target.files[0] && uploadMission(e.target.files[0]);
   $('replay-upload').onchange = (e) => e.target.files[0] && replayLog(e.target.files[0]);
+  // GIS habits: search by name, fit, undo and redo, the editor's keys, the cursor's coordinates.
+  $('search').onkeydown = (e) => { if (e.key === 'Enter') search(); };
+  $('search').oninput = (e) => {
+    if (!state.map) return;
+    if (e.inputType === 'insertReplacementText' || e.inputType === undefined) search();  // a suggestion picked
+    else $('search-names').replaceChildren(...suggestions(state.map, $('search').value).map((n) => new Option(n)));
+  };
+  $('fit').onclick = fitView;
+  $('export-geojson').onclick = () => exportGeoJson(state).then((said) => { $('search-note').textContent = said; },
+                                                            (e) => { $('search-note').textContent = e.message; });
+  $('undo').onclick = undo;
+  $('redo').onclick = redo;
+  bindEditorKeys({ undo, redo, remove: removeSelected, fit: fitView });
+  trackCursor($('view'), view, $('coords'), () => (state.map ? state.mapInfo.get(state.map.id)?.crs ?? null : null));
   campaign = new CampaignPanel($, {
     mapId: () => state.map.id,
     mission: () => state.mission,

@@ -10,14 +10,18 @@
 import { Deck, OrthographicView } from '@deck.gl/core';
 import { LineLayer, ScatterplotLayer, TextLayer } from '@deck.gl/layers';
 import { placePoint, pointOnPipe } from './geometry.js';
+import { labelWidth, thinLabels } from './labels.js';
 import { GridIndex, keyServes, lodKey, mapColumns, pick, pipeClasses, vectorData, workerColumns } from './lod.js';
 import { NetworkPicture } from './network-picture.js';
 
-const kNamesUpTo = 2000;  // manhole names at every zoom only on maps this small
+const kNamesUpTo = 2000;  // manhole names (thinned: labels.js) only on maps this small
 
 // scene: {map, blocked: Map(pipe -> reason), route: Set, oldRoutes: [Set], mission, faults,
-//         failures: [[x, y]], robot: [x, y] | null, beacon: bool}
-export function createMapView(parent, { onClick, onHover }) {
+//         failures: [[x, y]], robot: [x, y] | null, beacon: bool,
+//         highlight: {pipes: [name], manholes: [name]} | null (a warning's objects, a plan chosen,
+//         a place found by name: highlightLayers)}
+// onViewChange(viewState) after every pan and zoom (the scale bar).
+export function createMapView(parent, { onClick, onHover, onViewChange = () => {} }) {
   let viewState = { target: [0, 0, 0], zoom: 0 };
   let hovering = false;
   // What the browser test reads (web/e2e): frames drawn, LOD rebuilds and picks, timed; the
@@ -37,7 +41,7 @@ export function createMapView(parent, { onClick, onHover }) {
     // follows; with no double-click zoom none is wanted, so a click places its task at once.
     eventRecognizerOptions: { click: { interval: 0 } },
     initialViewState: viewState,
-    onViewStateChange: ({ viewState: v }) => { viewState = v; refresh(); },
+    onViewStateChange: ({ viewState: v }) => { viewState = v; viewChanged(); refresh(); },
     getCursor: ({ isDragging }) => (isDragging ? 'grabbing' : hovering ? 'pointer' : 'grab'),
     onHover: (info, event) => {
       const t0 = performance.now();
@@ -64,6 +68,8 @@ export function createMapView(parent, { onClick, onHover }) {
   let overlay = [];    // the routes, then the marks: change with the mission, the faults or a plan
   let drawnBlocked = null;
   let robotLayers = [];
+  let labelLayer = null, labelZoom = null;  // the thinned names and the zoom they were thinned at
+  const measure = labelWidth();
 
   // The worker draws one window at a time; a request made while it draws waits, and only the
   // latest waits (the view moved on).
@@ -100,8 +106,27 @@ export function createMapView(parent, { onClick, onHover }) {
   // Bottom to top: pipes, routes, manholes, then the mission's marks and the robot.
   const setLayers = () => {
     const network = picture.layers;
-    deck.setProps({ layers: [network[0], overlay[0], network[1], ...overlay.slice(1), ...robotLayers].filter(Boolean) });
+    deck.setProps({ layers: [network[0], overlay[0], network[1], ...overlay.slice(1), labelLayer, ...robotLayers].filter(Boolean) });
   };
+
+  // The manholes' names, thinned so that none overlaps another (labels.js) at the zoom rounded
+  // down to a quarter level: valid for every zoom above it, so thinned again only when the zoom
+  // leaves that quarter. Returns whether the layer changed.
+  function updateLabels() {
+    const z = map && map.manholeCount <= kNamesUpTo ? Math.floor(viewState.zoom * 4) / 4 : null;
+    if (z === labelZoom) return false;
+    labelZoom = z;
+    labelLayer = z === null ? null : new TextLayer({
+      id: 'names', data: thinLabels(map.manholes, z, measure), getPosition: (m) => m.position,
+      getText: (m) => m.name, getSize: 11, getPixelOffset: [0, -12], characterSet: 'auto', fontFamily: 'monospace',
+    });
+    return true;
+  }
+
+  function viewChanged() {
+    if (updateLabels()) setLayers();
+    onViewChange(viewState);
+  }
 
   // The view's rectangle in metres (2^zoom CSS pixels a metre) and the screen's pixel ratio.
   function viewOf(v) {
@@ -199,17 +224,13 @@ export function createMapView(parent, { onClick, onHover }) {
       filled: false, stroked: true, getLineColor: [220, 0, 0], lineWidthUnits: 'pixels', getLineWidth: 3,
     }));
     layers.push(...highlightLayers(map, s.highlight));
-    if (map.manholeCount <= kNamesUpTo) {
-      layers.push(new TextLayer({ id: 'names', data: map.manholes, getPosition: (m) => m.position,
-                                  getText: (m) => m.name, getSize: 11, getPixelOffset: [0, -12],
-                                  characterSet: 'auto', fontFamily: 'monospace' }));
-    }
     return layers;
   }
 
   const setView = (v, { now = true } = {}) => {
     viewState = { target: [v.target[0], v.target[1], 0], zoom: v.zoom };
     deck.setProps({ initialViewState: viewState });
+    if (map) viewChanged();
     if (now) refresh();
   };
 
@@ -229,6 +250,7 @@ export function createMapView(parent, { onClick, onHover }) {
         ++requestId;  // an image of the last map still being drawn is not shown
         key = null;
         drawnBlocked = null;
+        labelZoom = undefined;  // the names are thinned again for this map
       }
       if (s.blocked !== drawnBlocked) {
         classes = pipeClasses(map, s.blocked);
@@ -241,6 +263,7 @@ export function createMapView(parent, { onClick, onHover }) {
         else if (key) request(key);
       }
       overlay = overlayLayers(s);
+      updateLabels();
       if (!key) refresh();
       setLayers();
     },
@@ -256,10 +279,11 @@ export function createMapView(parent, { onClick, onHover }) {
     },
     // Fits the view to a new map's bounds; its network is drawn by the next draw() (with the
     // map's grid: the last map's would be drawn in vain).
-    fit([x0, y0, x1, y1]) {
+    // now: drawn at once (the Fit button), not by the next draw().
+    fit([x0, y0, x1, y1], { now = false } = {}) {
       const size = Math.max(x1 - x0, y1 - y0, 1);
       const zoom = Math.log2(Math.min(parent.clientWidth, parent.clientHeight) / (size * 1.1));
-      setView({ target: [(x0 + x1) / 2, (y0 + y1) / 2], zoom }, { now: false });
+      setView({ target: [(x0 + x1) / 2, (y0 + y1) / 2], zoom }, { now });
     },
     // Shows `points` ([x, y] in metres): the view centred on them, zoomed to hold them all with a
     // margin (at least 40 m across), never further out than the whole map.
@@ -274,6 +298,8 @@ export function createMapView(parent, { onClick, onHover }) {
     // The view ({target, zoom}) and setting it, as a pan or a zoom would.
     viewState: () => viewState,
     setView,
+    // The manholes whose names are drawn (thinned: labels.js), and the zoom they were thinned at.
+    labels: () => ({ zoom: labelZoom, manholes: labelLayer?.props.data ?? [] }),
     // Resolves when deck.gl has drawn the current layers and the window's image has come.
     whenDrawn() {
       const done = new Promise((resolve) => drawn.push(resolve));
