@@ -20,7 +20,7 @@ export function renderLegend(element, { findings, risk, learnt }) {
       .map(([c, colour]) => `${dot(colour, [0, 0, 0, 0], 0)}${c}`).join(' ')}</div>`);
     parts.push(`<div>planner (${risk}): ${dot([255, 255, 255], kUseRings.closed, 3)}closed (${counts('closed')}) ` +
                `${dot([255, 255, 255], kUseRings.weighed, 2)}weighed by probability (${counts('weighed')}) ` +
-               `${dot([255, 255, 255, 120], [0, 0, 0, 0], 0)}ignored (${counts('ignored')})</div>`);
+               `${dot([150, 150, 150, 120], [0, 0, 0, 0], 0)}ignored (${counts('ignored')})</div>`);
   }
   if (learnt) {
     parts.push(`<div data-legend="learnt">learnt: ${dot(kLearntColours.blockage, [255, 255, 255])}blocked ` +
