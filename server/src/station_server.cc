@@ -31,6 +31,7 @@
 #include "sewerplan/domain/validator.h"
 #include "sewerplan/executor/event_json.h"
 #include "sewerplan/executor/executor.h"
+#include "sewerplan/executor/measuring.h"
 #include "sewerplan/fusion/action_json.h"
 #include "sewerplan/fusion/action_text.h"
 #include "sewerplan/fusion/fuse.h"
@@ -39,6 +40,7 @@
 #include "sewerplan/search/planner.h"
 #include "sewerplan/server/documents.h"
 #include "sewerplan/server/driveability_output.h"
+#include "sewerplan/server/findings_output.h"
 #include "sewerplan/server/geojson_export.h"
 #include "sewerplan/server/sim_setup.h"
 
@@ -274,6 +276,7 @@ struct StationServer::Impl {
   void routes();
   void list_maps(httplib::Response& res) const;
   void driveability(const httplib::Request& req, httplib::Response& res) const;
+  void findings(const httplib::Request& req, httplib::Response& res) const;
   void upload_map(const httplib::Request& req, const std::string& body, httplib::Response& res);
   void upload_condition(const httplib::Request& req, const std::string& body,
                         httplib::Response& res);
@@ -421,6 +424,27 @@ void StationServer::Impl::driveability(const httplib::Request& req, httplib::Res
   res.set_content(j.dump(), kJsonType);
 }
 
+// GET /api/maps/ID/findings?profile=P&risk=MODE: the map's inspection findings with their class
+// for the robot and what planning in the mode makes of them (findings_output.h). The risk mode
+// as /plan's (default impassable); a built-in profile only, as /driveability.
+void StationServer::Impl::findings(const httplib::Request& req, httplib::Response& res) const {
+  const auto m = find_map(req, res);
+  if (!m) return;
+  const std::string name = req.get_param_value("profile");
+  const std::optional<RobotProfile> profile = builtin_profile(name);
+  if (!profile) {
+    return bad_request(res, "profile: unknown '" + name + "' (built-in: makro-1.1, makro-plus)");
+  }
+  const std::string mode_name =
+      req.has_param("risk") ? req.get_param_value("risk") : std::string("impassable");
+  const std::optional<RiskMode> mode = risk_mode_from_string(mode_name);
+  if (!mode) {
+    return bad_request(
+        res, "risk: expected ignore, impassable, avoid or expected, not '" + mode_name + "'");
+  }
+  send_json(res, findings_json(*m->map, *profile, *mode, mode_name, default_risk_table()));
+}
+
 void StationServer::Impl::validate(const httplib::Request& req, const std::string& body,
                                    httplib::Response& res) const {
   const auto m = find_map(req, res);
@@ -465,9 +489,11 @@ void StationServer::Impl::plan(const httplib::Request& req, const std::string& b
   Json j = plan_json(*outcome, report, *m->map, *mission);
   j["text"] = domain::format_plan(outcome->plan, *m->map, *mission);
   j["motion_table"] = mission->passage_motion != nullptr;
-  j["risk"] = {{"mode", risk->name},
-               {"closed_by_findings", risk->closed},
-               {"possible_blockages", mission->hazards.size()}};
+  // With weighed blockages plan_json has put the route's risk (its unobstructed probability, the
+  // expected cost of stops, the blockages passed) here already: kept, and what the mode did added.
+  j["risk"].update({{"mode", risk->name},
+                    {"closed_by_findings", risk->closed},
+                    {"possible_blockages", mission->hazards.size()}});
   Json actions = Json::array();
   if (Result<fusion::FusedPlan> fused = fusion::fuse(outcome->plan, *m->map, *mission, fuse_start);
       fused.has_value()) {
@@ -543,7 +569,16 @@ void StationServer::Impl::simulate(const httplib::Request& req, const std::strin
         executor.subscribe_plans([&](const executor::PlanResponse& response) {
           send("route", dump(plan_route_json(response.plan, *run->map, replanner.mission())));
         });
+        // What the run measured of the map (simulate --corrected-map's measurements).
+        executor::Measurer measurer(*run->map, MeasurementSource{.robot = run->mission.profile.name,
+                                                                 .mission = run->mission.name,
+                                                                 .date = {}});
+        executor.subscribe_jobs(measurer.observer());
         const executor::MissionReport report = executor.run();
+        // What the robot learnt (closed pipes, dangerous passages) and the map corrections its
+        // measurements show, for the page to draw and export (findings_output.h).
+        send("learnt",
+             dump(learnt_json_document(replanner.learnt(), measurer.measurements(), *run->map)));
         send("report", dump(report_json(report)));
         sink.done();
         return true;
@@ -725,6 +760,8 @@ void StationServer::Impl::routes() {
   });
   http.Get(R"(/api/maps/([^/]+)/driveability)",
            [this](const Req& req, Res& res) { driveability(req, res); });
+  http.Get(R"(/api/maps/([^/]+)/findings)",
+           [this](const Req& req, Res& res) { findings(req, res); });
   post(R"(/api/maps/([^/]+)/validate)",
        [this](const Req& req, const std::string& body, Res& res) { validate(req, body, res); });
   post(R"(/api/maps/([^/]+)/plan)",

@@ -840,6 +840,7 @@ TEST_F(StationServerTest, StreamsASimulationsEventsAndItsReportThatReplayReadsBa
       routes.push_back(json::parse(e.data));
       continue;
     }
+    if (e.type == "learnt") continue;  // after the run: not an event of the log
     if (e.type == "plan" || e.type == "replan") plans.push_back(e.type);
     log += e.data + "\n";
     ++events;
@@ -856,6 +857,132 @@ TEST_F(StationServerTest, StreamsASimulationsEventsAndItsReportThatReplayReadsBa
   auto [status, replayed] = post("/api/maps/map/replay", log);
   EXPECT_EQ(status, 200);
   EXPECT_EQ(replayed["events"].size(), events);
+}
+
+// Each finding of the map for the page to draw: where it is, its code and the code's name, its
+// class for the robot, and what the risk mode makes of it, as close_findings does: the places the
+// plan says it closed are those the findings document calls closed.
+TEST_F(StationServerTest, ManualSaysWhatEachRiskModeMakesOfEachFinding) {
+  const std::filesystem::path isybau = kSource / "datasets/isybau";
+  start({.maps = {isybau / "street-2017.xml"}});
+  const std::string map = "/api/maps/street-2017";
+  const auto findings = [&](const std::string& query) {
+    auto r = client_->Get(map + "/findings" + query);
+    EXPECT_TRUE(r);
+    return r ? std::pair{r->status, json::parse(r->body)} : std::pair{0, json()};
+  };
+  auto [none, empty] = findings("?profile=makro-plus");
+  ASSERT_EQ(none, 200) << empty.dump();
+  EXPECT_TRUE(empty["findings"].empty());
+  ASSERT_EQ(
+      post(map + "/condition?name=street-zustand.xml", read(isybau / "street-zustand.xml")).first,
+      200);
+  const auto of = [](const json& doc, std::string_view pipe, std::string_view code) {
+    for (const json& f : doc["findings"]) {
+      if (f["pipe"] == pipe && f["code"] == code) return f;
+    }
+    return json();
+  };
+  const auto count = [](const json& doc, std::string_view use) {
+    return std::ranges::count_if(doc["findings"],
+                                 [&](const json& f) { return f["planner"] == use; });
+  };
+  auto [status, expected] = findings("?profile=makro-plus&risk=expected");
+  ASSERT_EQ(status, 200) << expected.dump();
+  EXPECT_EQ(expected["risk"], "expected");
+  EXPECT_EQ(expected["profile"], "makro-plus");
+  const json roots = of(expected, "S1", "BBA");
+  EXPECT_EQ(roots["name"], "roots");
+  EXPECT_EQ(roots["offset_m"], 7.5);
+  EXPECT_EQ(roots["characterisation"], "B");
+  EXPECT_EQ(roots["quantity1"], 10);
+  EXPECT_EQ(roots["class"], "blockage");
+  EXPECT_NEAR(roots["probability"].get<double>(), 0.3, 1e-12);
+  EXPECT_EQ(roots["reason"], "BBA roots");
+  EXPECT_EQ(roots["planner"], "weighed");
+  const json collapse = of(expected, "S2", "BAC");
+  EXPECT_EQ(collapse["class"], "impassable");
+  EXPECT_EQ(collapse["planner"], "closed");
+  EXPECT_EQ(of(expected, "S1", "BAJ")["class"], "danger");
+  EXPECT_EQ(of(expected, "S1", "BAJ")["planner"], "ignored");
+  EXPECT_EQ(of(expected, "S1", "BCD")["name"], "start node");
+  EXPECT_EQ(of(expected, "S1", "BCD")["class"], "none");
+  EXPECT_EQ(expected["counts"]["weighed"], count(expected, "weighed"));
+  EXPECT_EQ(expected["counts"]["closed"], count(expected, "closed"));
+  // The default mode closes only what no robot of the profile passes; avoid closes the danger too.
+  auto [s1, impassable] = findings("?profile=makro-plus");
+  EXPECT_EQ(impassable["risk"], "impassable");
+  EXPECT_EQ(of(impassable, "S1", "BBA")["planner"], "ignored");
+  EXPECT_EQ(count(impassable, "weighed"), 0);
+  auto [s2, avoid] = findings("?profile=makro-plus&risk=avoid");
+  EXPECT_EQ(of(avoid, "S1", "BAJ")["planner"], "closed");
+  auto [s3, ignore] = findings("?profile=makro-plus&risk=ignore");
+  EXPECT_EQ(count(ignore, "ignored"), std::ssize(ignore["findings"]));
+  // The plan closes what the document calls closed.
+  const std::string mission = R"({"format": "sewerplan-mission", "version": 1, "name": "m",
+    "profile": "makro-plus", "start": {"manhole": "S2"},
+    "tasks": [{"name": "end", "type": "go_to", "at": {"pipe": "S3", "offset_m": 40}, "final": true}]})";
+  for (const std::string mode : {"impassable", "avoid", "expected", "ignore"}) {
+    auto [plan_status, plan] = post(map + "/plan?select_goals=1&risk=" + mode, mission);
+    auto [doc_status, doc] = findings("?profile=makro-plus&risk=" + mode);
+    ASSERT_EQ(doc_status, 200);
+    EXPECT_EQ(plan_status, 200) << mode << ": " << plan.dump();
+    EXPECT_EQ(plan["risk"]["closed_by_findings"], count(doc, "closed")) << mode;
+    EXPECT_EQ(plan["risk"]["possible_blockages"], count(doc, "weighed")) << mode;
+  }
+  EXPECT_EQ(findings("?profile=nobody").first, 400);
+  EXPECT_EQ(findings("?profile=makro-plus&risk=maybe").first, 400);
+  EXPECT_EQ(client_->Get("/api/maps/nowhere/findings?profile=makro-plus")->status, 404);
+}
+
+// A plan that weighs possible blockages says its risk beside it: the chance that none on its
+// route stops the robot, the expected cost of stops it was chosen with, and the blockages passed;
+// the mode's own figures are added, not put in their place.
+TEST_F(StationServerTest, ManualSaysThePlansRiskWhenItWeighsPossibleBlockages) {
+  const std::filesystem::path condition = kSource / "datasets/condition/swmm-state-plane";
+  start({.maps = {kSource / "datasets/swmm/swmmio-state-plane.inp"}});
+  const std::string map = "/api/maps/swmmio-state-plane";
+  ASSERT_EQ(post(map + "/condition?name=zustand.xml", read(condition / "zustand.xml")).first, 200);
+  auto [status, plan] =
+      post(map + "/plan?select_goals=1&risk=expected", read(condition / "mission.json"));
+  ASSERT_EQ(status, 200) << plan.dump();
+  const json& risk = plan["risk"];
+  EXPECT_EQ(risk["mode"], "expected");
+  ASSERT_TRUE(risk.contains("unobstructed_probability")) << risk.dump();
+  ASSERT_TRUE(risk.contains("expected_cost_s")) << risk.dump();
+  ASSERT_FALSE(risk["hazards"].empty()) << risk.dump();
+  double unobstructed = 1;
+  for (const json& h : risk["hazards"]) unobstructed *= 1 - h["probability"].get<double>();
+  EXPECT_NEAR(risk["unobstructed_probability"].get<double>(), unobstructed, 1e-9);
+  EXPECT_LT(risk["unobstructed_probability"].get<double>(), 1.0);
+  EXPECT_GT(risk["expected_cost_s"].get<double>(), 0.0);
+  // Without weighing, no figures the planner did not compute.
+  auto [s, blind] = post(map + "/plan?select_goals=1", read(condition / "mission.json"));
+  ASSERT_EQ(s, 200);
+  EXPECT_FALSE(blind["risk"].contains("unobstructed_probability"));
+  EXPECT_FALSE(blind["risk"].contains("expected_cost_s"));
+}
+
+// After a run, what the robot learnt: the blockage in P5 its recovery could not clear (as
+// `simulate --learnt` writes it, which reads it back), and what it measured of the map: in the
+// simulated world, which is the map, no corrections.
+TEST_F(StationServerTest, SendsWhatTheRobotLearntAfterTheRun) {
+  const std::string body = R"({"mission": )" + read(kAis / "missions/paper.json") +
+                           R"(, "faults": )" + read(kAis / "faults/blocked-p5.json") + "}";
+  auto r = client_->Post("/api/maps/map/simulate", body, "application/json");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  const std::vector<Sse> stream = parse_stream(r->body);
+  ASSERT_GE(stream.size(), 2u);
+  ASSERT_EQ(stream[stream.size() - 2].type, "learnt");
+  const json doc = json::parse(stream[stream.size() - 2].data);
+  const json& learnt = doc["learnt"];
+  EXPECT_EQ(learnt["format"], "sewerplan-learnt");
+  ASSERT_EQ(learnt["blockages"].size(), 1u) << doc.dump();
+  EXPECT_EQ(learnt["blockages"][0]["pipe"], "P5");
+  const json& measured = doc["measurements"];
+  EXPECT_GT(measured["pipes_measured"].get<int>(), 0) << doc.dump();
+  EXPECT_TRUE(measured["discrepancies"].empty()) << doc.dump();
 }
 
 TEST_F(StationServerTest, NamesTheMapThatCannotBeRead) {

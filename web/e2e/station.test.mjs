@@ -18,6 +18,7 @@ import { spawn } from 'node:child_process';
 import { mkdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { chromium } from 'playwright-core';
+import { findingsOnTheMap, learntAfterRun, taskMarkers } from './findings.test.mjs';
 import { gisHabits } from './gis-habits.mjs';
 
 const args = process.argv.slice(2);
@@ -529,6 +530,10 @@ try {
   const route = await page.evaluate(() => [...window.station.state.route]);
   check(route.includes('P12') && route.includes('P9'), `route ${route} misses P12 or P9`);
   await shot('3-plan.png');
+  // Issue 32's findings and knowledge cases (findings.test.mjs): each one's failure is kept and
+  // reported at the end, so that one run shows every one that fails.
+  const issue32 = [];
+  await taskMarkers(page).catch((e) => issue32.push(`task markers: ${e.message}`));
 
   // A permanent obstacle 5 m into P4, hidden from the planner, and the simulation.
   await click('obstacle-permanent', await pipe('P4', 5 / 8), 'P4 (obstacle)');
@@ -559,6 +564,7 @@ try {
   const delays = [...run.delays].sort((a, b) => a - b);
   console.log(`event delay, server to page (${delays.length} events): median ${delays[delays.length >> 1]} ms, max ${delays.at(-1)} ms`);
   await shot('5-simulated.png');
+  await learntAfterRun(page, { binary, ais, out }).catch((e) => issue32.push(`learnt: ${e.message}`));
 
   // The mission downloaded is the CLI's mission JSON; uploaded back, the same tasks.
   const [download] = await Promise.all([page.waitForEvent('download'), page.click('#mission-download')]);
@@ -638,7 +644,9 @@ try {
   let releaseGeometry;
   const geometryHeld = new Promise((resolve) => { releaseGeometry = resolve; });
   await page.route('**/geometry', async (route) => { await geometryHeld; await route.continue(); });
-  await page.selectOption('#profile', profiles[0]);
+  // The request this selection makes (for the open map) is taken here, before the listener below:
+  // its event could otherwise reach the listener late, and count as one for the map being opened.
+  await Promise.all([page.waitForRequest((r) => r.url().includes('/driveability')), page.selectOption('#profile', profiles[0])]);
   await page.evaluate(() => { delete document.body.dataset.driveability; });
   const asked = [];
   const onRequest = (r) => { if (r.url().includes('/driveability')) asked.push(r.url()); };
@@ -678,7 +686,9 @@ try {
 
   await whatHappenedOnScreen(page);
   await gisHabits(page, { binary, source, ais, out, check, shot });
-
+  await findingsOnTheMap(page, { source }).catch((e) => issue32.push(`findings: ${e.message}`));
+  await shot('12-findings.png');
+  check(issue32.length === 0, `issue 32: ${issue32.join('; ')}`);
   if (large) await largeMapAtRatio2(await largeMap(page, canvas, shot));
   console.log(`station e2e: ok in ${Date.now() - started} ms, of which screenshots ${shotsMs} ms`);
 } catch (e) {

@@ -66,6 +66,9 @@ export async function driveability(id, profile, signal) {
     return body;
   };
 }
+// The map's inspection findings for a profile, with what the risk mode makes of them.
+export const findings = (id, profile, signal) =>
+  call(risk(`${map(id)}/findings?profile=${encodeURIComponent(profile)}`), { signal });
 export const validate = (id, mission) => call(`${map(id)}/validate`, { method: 'POST', body: JSON.stringify(mission), headers: json });
 export const plan = (id, mission, timeLimit) =>
   call(risk(motion(`${map(id)}/plan?time_limit=${timeLimit}`)), { method: 'POST', body: JSON.stringify(mission), headers: json });

@@ -17,6 +17,11 @@ import { showFatal } from './fatal.js';
 import { outcomeLine } from './outcome.js';
 import { PlanHistory } from './plan-history.js';
 import { actionTarget, Player, wherePoint } from './player.js';
+import { describeFinding, findingAt, placeFindings } from './findings-layer.js';
+import { learntGeoJson, learntPlaces } from './learnt-layer.js';
+import { renderLegend } from './legend.js';
+import { renderPlanRisk } from './plan-risk.js';
+import { planOrder } from './task-markers.js';
 import { restoreMission, saveMission } from './saved-mission.js';
 import { showScale } from './scale-bar.js';
 import { findPlace, suggestions, viewOf } from './search-box.js';
@@ -29,6 +34,7 @@ const state = {
   map: null, blocked: new Map(), mission: null, faults: newFaults(), route: new Set(), oldRoutes: [],
   failures: [], robot: null, beacon: false, dropped: new Set(), done: new Set(), events: [], outcome: null,
   delays_ms: [], highlight: null, mapInfo: new Map(), planText: null,
+  findings: [], learnt: [], learntDoc: null, planOrder: new Map(),  // findings-layer.js, learnt-layer.js
 };
 const history = new EditHistory();  // the mission's edits (undo.js)
 
@@ -42,6 +48,12 @@ const plans = new PlanHistory({ onChange: () => { state.highlight = plans.highli
 
 function showHover(info) {
   const box = $('hover');
+  const finding = findingAt(state.findings, info.coordinate, view.viewState().zoom);
+  if (finding) {  // a finding is drawn over its pipe: it is what the pointer is on
+    box.textContent = `finding ${describeFinding(finding)}`;
+    Object.assign(box.style, { display: 'block', left: `${info.x + 12}px`, top: `${info.y + 12}px` });
+    return;
+  }
   if (!info.object || !['pipes', 'manholes'].includes(info.layer?.id)) {
     box.style.display = 'none';
     return;
@@ -73,6 +85,7 @@ async function missionChanged() {
   if (history.record(JSON.stringify(m))) state.planText = null;  // the last plan was for another mission
   showHistory();
   saveMission(state.map, m);
+  state.planOrder = new Map();  // the last plan's numbers are for the mission it was made for
   $('mission-summary').textContent = `start: ${describePlace(m.start)}`;
   renderTasks($('tasks'), m, missionChanged, taskStatus);
   draw();
@@ -156,6 +169,7 @@ async function openMap(id) {
   state.map = readGeometry(buffer, id);
   state.timings.load_geometry_ms = Math.round(performance.now() - t0) - state.timings.geometry_ms;
   state.blocked = new Map();
+  state.findings = [];
   $('driveability').textContent = 'driveability: asking the server';
   // The mission kept for this map across a reload (saved-mission.js), unless it is stale.
   const kept = restoreMission(state.map);
@@ -181,6 +195,7 @@ async function openMap(id) {
   performance.mark(`${id}: first draw`);
   state.timings.open_map_ms = Math.round(performance.now() - t0);
   document.body.dataset.opened = id;
+  loadFindings();
   drawn();  // the driveability asked meanwhile is applied now or when it comes (not awaited)
 }
 
@@ -264,11 +279,53 @@ async function runPlan() {
     state.planText = result.text;  // for the GeoJSON export
     state.route = new Set(result.steps.flatMap((s) => [s.pipe, s.from_pipe, s.to_pipe]).filter(Boolean));
     plans.planned(result);
+    renderPlanRisk($('plan-risk'), result);
+    state.planOrder = planOrder(result.steps);
     draw();
   } catch (e) {
     $('messages').textContent = e.message;
     plans.clear(`No plan: ${e.message}`);
+    renderPlanRisk($('plan-risk'), null);
   }
+}
+
+// The open map's findings for the profile and risk mode (GET /findings), drawn with the legend;
+// only the latest request's answer is used.
+let findingsAsked = 0;
+async function loadFindings() {
+  if (!state.map) return;
+  const asked = ++findingsAsked, map = state.map;
+  try {
+    const doc = await api.findings(map.id, $('profile').value);
+    if (asked !== findingsAsked || state.map !== map) return;
+    state.findings = placeFindings(map, doc);
+    document.body.dataset.findings = `${map.id}:${doc.risk}:${doc.findings.length}`;
+  } catch (e) {
+    if (asked !== findingsAsked) return;
+    state.findings = [];
+    $('condition').textContent = `findings: ${e.message}`;
+  }
+  showLegend();
+  draw();
+}
+
+function showLegend() {
+  renderLegend($('overlay-legend'), { findings: state.findings, risk: api.settings.risk, learnt: state.learntDoc });
+}
+
+// What the robot learnt on the run (the `learnt` event), drawn and offered for download.
+function showLearnt(doc) {
+  state.learntDoc = doc;
+  state.learnt = doc ? learntPlaces(state.map, doc) : [];
+  const l = doc?.learnt, d = doc?.measurements;
+  $('learnt-summary').textContent = doc
+    ? `Learnt: ${l.blockages.length} blocked, ${l.danger.length} danger spots, ${l.closed_passages.length} passages closed; ` +
+      `measured ${d.pipes_measured} pipes, ${d.discrepancies.length} map corrections` +
+      (d.discrepancies.length ? ` (${d.discrepancies.map((x) => x.text).join('; ')})` : '')
+    : '';
+  $('learnt-json').disabled = $('learnt-geojson').disabled = !doc;
+  showLegend();
+  draw();
 }
 
 // The reader's warnings of the open map and its condition data's, each linked to its objects.
@@ -302,6 +359,7 @@ function clearRun() {
   plans.clear();
   $('events').replaceChildren();
   $('outcome').textContent = '';
+  showLearnt(null);
   player.reset(placePoint(state.map, state.mission?.start));
   view.drawRobot(null, false);
 }
@@ -387,6 +445,9 @@ function playEvent(type, e) {
       break;
     case 'report':
       state.report = e;
+      return;
+    case 'learnt':
+      showLearnt(e);
       return;
     default:
       return;
@@ -504,6 +565,7 @@ async function uploadCondition(file) {
     const info = state.mapInfo.get(state.map.id);
     if (info) info.condition_warnings = r.warnings;
     showWarnings();
+    loadFindings();
     await loadDriveability();
   } catch (e) {
     $('condition').textContent = e.message;
@@ -517,9 +579,11 @@ async function start() {
   $('map-upload').onchange = (e) => e.target.files[0] && uploadMap(e.target.files[0]);
   $('condition-upload').onchange = (e) => e.target.files[0] && uploadCondition(e.target.files[0]);
   $('map').onchange = () => openMap($('map').value).catch((e) => { $('messages').textContent = e.message; });
-  $('profile').onchange = () => { loadDriveability(); missionChanged(); };
+  $('profile').onchange = () => { loadDriveability(); loadFindings(); missionChanged(); };
   $('motion').onchange = () => { api.settings.motion = $('motion').checked; loadDriveability(); };
-  $('risk').onchange = () => { api.settings.risk = $('risk').value; };
+  $('risk').onchange = () => { api.settings.risk = $('risk').value; loadFindings(); };
+  $('learnt-json').onclick = () => download(`${state.map.id}-learnt.json`, state.learntDoc.learnt);
+  $('learnt-geojson').onclick = () => download(`${state.map.id}-learnt.geojson`, learntGeoJson(state.learnt, state.map.id));
   $('plan').onclick = runPlan;
   $('simulate').onclick = runSimulation;
   $('speed').onchange = () => { player.speed = Number($('speed').value); };

@@ -13,11 +13,15 @@ import { placePoint, pointOnPipe } from './geometry.js';
 import { labelWidth, thinLabels } from './labels.js';
 import { GridIndex, keyServes, lodKey, mapColumns, pick, pipeClasses, vectorData, workerColumns } from './lod.js';
 import { NetworkPicture } from './network-picture.js';
+import { findingsLayer } from './findings-layer.js';
+import { learntLayers } from './learnt-layer.js';
+import { taskLayers } from './task-markers.js';
 
 const kNamesUpTo = 2000;  // manhole names (thinned: labels.js) only on maps this small
 
 // scene: {map, blocked: Map(pipe -> reason), route: Set, oldRoutes: [Set], mission, faults,
-//         failures: [[x, y]], robot: [x, y] | null, beacon: bool,
+//         failures: [[x, y]], robot: [x, y] | null, beacon: bool, findings: [placed finding],
+//         learnt: [learnt place], planOrder: Map(task -> number),
 //         highlight: {pipes: [name], manholes: [name]} | null (a warning's objects, a plan chosen,
 //         a place found by name: highlightLayers)}
 // onViewChange(viewState) after every pan and zoom (the scale bar).
@@ -199,17 +203,10 @@ export function createMapView(parent, { onClick, onHover, onViewChange = () => {
         getWidth: (p) => (s.route.has(p.name) ? 6 : 4), widthUnits: 'pixels',
       }),
     ];
-    const tasks = s.mission.tasks.map((t) => ({ t, at: placePoint(map, t.at ?? { pipe: t.pipe }) }))
-      .filter((x) => x.at);
-    const start = placePoint(map, s.mission.start);
-    layers.push(new ScatterplotLayer({
-      id: 'tasks', data: [...tasks, ...(start ? [{ t: { type: 'start' }, at: start }] : [])],
-      getPosition: (x) => x.at, radiusUnits: 'pixels', getRadius: 7, stroked: true,
-      getFillColor: (x) => (s.dropped.has(x.t.name) ? [170, 170, 170] : s.done.has(x.t.name) ? [60, 190, 90]
-                            : x.t.type === 'start' ? [255, 255, 255] : [240, 200, 0]),
-      getLineColor: [0, 0, 0], lineWidthUnits: 'pixels', getLineWidth: 1,
-      updateTriggers: { getFillColor: [s.dropped.size, s.done.size] },
-    }));
+    // The findings under the mission's marks, what the robot learnt over them (findings-layer.js,
+    // learnt-layer.js, task-markers.js).
+    if (s.findings?.length) layers.push(findingsLayer(s.findings));
+    layers.push(...learntLayers(s.learnt ?? []), ...taskLayers(map, s));
     const faults = faultPoints(map, s.faults);
     layers.push(new ScatterplotLayer({
       id: 'faults', data: faults, getPosition: (f) => f.at, radiusUnits: 'pixels', getRadius: 6,
