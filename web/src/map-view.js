@@ -12,6 +12,7 @@ import { LineLayer, ScatterplotLayer, TextLayer } from '@deck.gl/layers';
 import { placePoint, pointOnPipe } from './geometry.js';
 import { GridIndex, keyServes, lodKey, mapColumns, pick, pipeClasses, vectorData, workerColumns } from './lod.js';
 import { NetworkPicture } from './network-picture.js';
+import { FirstView } from './first-view.js';
 
 const kNamesUpTo = 2000;  // manhole names at every zoom only on maps this small
 
@@ -29,6 +30,9 @@ export function createMapView(parent, { onClick, onHover }) {
   const under = document.createElement('canvas');
   Object.assign(under.style, { position: 'absolute', left: '0', top: '0', width: '100%', height: '100%' });
   parent.prepend(under);
+  // A new map's first picture (canvas 2D) and the loading note, while deck.gl's shaders compile.
+  const first = new FirstView(parent, under);
+  stats.firstView = first.stats;
   const deck = new Deck({
     parent,
     views: new OrthographicView({ flipY: false }),
@@ -49,10 +53,11 @@ export function createMapView(parent, { onClick, onHover }) {
       stats.picks.push({ pick_ms: t1 - t0, event_to_shown_ms: t1 - (event?.srcEvent?.timeStamp ?? t0) });
     },
     onClick: (info) => onClick(pickAt(info)),
-    onBeforeRender: () => blit(),
+    onBeforeRender: () => { blit(); first.follow(viewState); },
     onAfterRender: () => {
       ++stats.renders;
-      if (!waiting) drawn.splice(0).forEach((resolve) => resolve());
+      if (first.afterRender(deck.props.layers)) queueMicrotask(() => setLayers());  // without the warm-up
+      if (!waiting && !first.holding) drawn.splice(0).forEach((resolve) => resolve());
     },
     layers: [],
   });
@@ -100,7 +105,8 @@ export function createMapView(parent, { onClick, onHover }) {
   // Bottom to top: pipes, routes, manholes, then the mission's marks and the robot.
   const setLayers = () => {
     const network = picture.layers;
-    deck.setProps({ layers: [network[0], overlay[0], network[1], ...overlay.slice(1), ...robotLayers].filter(Boolean) });
+    deck.setProps({ layers: first.layers([network[0], overlay[0], network[1], ...overlay.slice(1), ...robotLayers].filter(Boolean),
+                                         viewState.target) });
   };
 
   // The view's rectangle in metres (2^zoom CSS pixels a metre) and the screen's pixel ratio.
@@ -216,7 +222,8 @@ export function createMapView(parent, { onClick, onHover }) {
     // rebuilt only for another map or profile.
     draw(s) {
       if (!s.map) return;
-      if (s.map !== map) {
+      const fresh = s.map !== map;
+      if (fresh) {
         map = s.map;
         index = new GridIndex(mapColumns(map));
         const { columns, transfer } = workerColumns(map);
@@ -236,10 +243,14 @@ export function createMapView(parent, { onClick, onHover }) {
         if (key?.mode === 'vector') key = null;
         else if (key) request(key);
       }
+      // A new map's picture at once (the view is fitted to it); the layers once it is on screen.
+      if (fresh) first.start(mapColumns(map), classes, viewState, () => { deck.redraw(true); setLayers(); });
       overlay = overlayLayers(s);
       if (!key) refresh();
       setLayers();
     },
+    // What the map's first view said (first-view.js), for a page with no map to open.
+    say: (text) => first.say(text),
     // Moves the robot only: one small layer per animation frame.
     drawRobot(robot, beacon) {
       robotLayers = robot ? [new ScatterplotLayer({
