@@ -24,6 +24,8 @@ function recorder() {
   return {
     ops,
     clearRect() { ops.push({ op: 'clear' }); },
+    createImageData(width, height) { return { width, height, data: new Uint8ClampedArray(4 * width * height) }; },
+    putImageData(image) { ops.push({ op: 'pixels', image }); },
     stroke(path) { ops.push({ op: 'stroke', color: this.strokeStyle, width: this.lineWidth, lines: path.lines }); },
     fill(path) { ops.push({ op: 'fill', color: this.fillStyle, arcs: path.arcs }); },
   };
@@ -80,16 +82,31 @@ test('without a profile yet, pipes are classed by their open ends', () => {
   assert.deepEqual(g.ops.filter((o) => o.op === 'stroke').map((o) => o.color).sort(), ['rgb(140,140,140)', 'rgb(60,90,160)']);
 });
 
-test('beyond the detail budget: every pipe one device pixel wide, the exits only', () => {
+test('beyond the detail budget: every pipe one device pixel wide, blocked over the others, the exits only', () => {
   const n = kDetailBudget + 1;
-  const pipes = Array.from({ length: n }, (_, i) => ({ ends: [i, 0, i, 1], diameter: i % 2 ? 0.3 : 0.9 }));
+  // Pipes along the x axis, one a metre: 1 pixel a metre at zoom 0 (dpr 1), pipe i from x = i to
+  // i + 1; each tenth blocked; one more across them all, far outside the canvas at both ends.
+  const pipes = Array.from({ length: n }, (_, i) => ({ ends: [i, 0, i + 1, 0], diameter: 0.4 }));
+  pipes.push({ ends: [-1e9, -2, 1e9, -2], diameter: 0.4 });
+  const classes = Uint8Array.from(pipes, (_, i) => (i % 10 === 0 ? kBlocked : kNormal));
   const manholes = Array.from({ length: 100 }, (_, i) => ({ at: [i, 0], exit: i % 10 === 0 }));
   const g = recorder();
-  const drawn = drawNetwork(g, columns(pipes, manholes), null, { target: [n / 2, 0], zoom: -5 }, 1000, 500, 2);
-  assert.deepEqual(drawn, { pipes: n, manholes: 10, detail: false });
-  const strokes = g.ops.filter((o) => o.op === 'stroke');
-  assert.deepEqual(strokes.map((o) => o.width), [2]);
-  assert.equal(strokes[0].lines.length, n);
+  const width = 400, height = 20;
+  const drawn = drawNetwork(g, columns(pipes, manholes), classes, { target: [width / 2, 0], zoom: 0 }, width, height, 1);
+  assert.deepEqual(drawn, { pipes: n + 1, manholes: 10, detail: false });
+  assert.equal(g.ops.filter((o) => o.op === 'stroke').length, 0, 'pipes stroked one by one');
+  const { image } = g.ops.find((o) => o.op === 'pixels');
+  const at = (x, y) => Array.from(image.data.subarray(4 * (y * width + x), 4 * (y * width + x) + 4));
+  const blue = [60, 90, 160, 255], red = [200, 40, 40, 255], none = [0, 0, 0, 0];
+  // y = 0 is the canvas's row 10; x = i is column i. Pixel 10 is the end of pipe 9 and the start of
+  // pipe 10 (blocked): red over blue.
+  assert.deepEqual(at(5, 10), blue);
+  assert.deepEqual(at(10, 10), red);
+  assert.deepEqual(at(15, 10), blue);
+  assert.deepEqual(at(5, 11), none);
+  assert.deepEqual(at(5, 9), none);
+  // The long pipe at y = -2 (row 12), clipped to the canvas: every pixel of its row.
+  for (let x = 0; x < width; ++x) assert.deepEqual(at(x, 12), blue);
   const fills = g.ops.filter((o) => o.op === 'fill');
   assert.deepEqual(fills.map((o) => [o.color, o.arcs.length]), [['rgb(20,150,60)', 10]]);
 });
