@@ -96,6 +96,7 @@ function instrument() {
     if (fv.loading.length === 0 ? shown : fv.loading.at(-1)[1] !== shown) fv.loading.push([performance.now(), shown]);
   };
   new MutationObserver(watch).observe(document, { subtree: true, childList: true, attributes: true });
+  document.addEventListener('DOMContentLoaded', watch);
 }
 
 function serve(map) {

@@ -8,8 +8,8 @@
 //     view, the moment the map's geometry is read: each pipe and manhole as the layers draw them
 //     (lod.js's widths, radii and colours) on a map of up to kDetailBudget pipes; beyond, every
 //     pipe as a thin line and the exits only, as lod.js's overview shows them;
-//  2. deck.gl is given no layer until that picture has been shown (two animation frames after it),
-//     so that the compile comes after it, not before;
+//  2. deck.gl is not even started (LaterDeck) until that picture has been shown (two animation
+//     frames after it), so that its WebGL start and its compile come after it, not before;
 //  3. then the layers, with a warm-up: one transparent line and one transparent circle, drawn as a
 //     vector window's pipes and manholes are (lod.js's vectorData: the same layers, attributes and
 //     units), so that their shaders are compiled now, under the note, and not at the first deep zoom
@@ -17,8 +17,33 @@
 //  4. once every layer's shaders are linked and have drawn, and two more frames ran (the main
 //     thread free again), the picture and the note go: the map reacts.
 // The picture follows the view meanwhile (a pan or a zoom redraws it).
+import { Deck } from '@deck.gl/core';
 import { LineLayer, ScatterplotLayer } from '@deck.gl/layers';
 import { drawNetwork } from './first-picture.js';
+
+// deck.gl's Deck, made only when make() is called (once the first picture is on screen): its
+// WebGL start (the context, its first drawing buffer) holds the page's main thread for 0.5 to 2 s
+// without a GPU, which came before the first picture when the Deck was made with the page. Until
+// made, its props are kept (setProps merges them), a redraw is nothing to do and the view has no
+// viewport; made, each call is the Deck's.
+export class LaterDeck {
+  #props;
+  #deck = null;
+
+  constructor(props) { this.#props = { ...props }; }
+
+  // The Deck, made now if it was not.
+  make() {
+    this.#deck ??= new Deck(this.#props);
+    return this.#deck;
+  }
+
+  get made() { return this.#deck !== null; }
+  get props() { return this.#deck ? this.#deck.props : this.#props; }
+  setProps(props) { if (this.#deck) this.#deck.setProps(props); else Object.assign(this.#props, props); }
+  redraw(reason) { this.#deck?.redraw(reason); }
+  getViewports() { return this.#deck ? this.#deck.getViewports() : []; }
+}
 
 // The warm-up layers: one transparent line and one transparent circle at `at`, as lod.js's
 // vectorData gives a vector window's pipes and manholes to the map view's layers (binary columns,

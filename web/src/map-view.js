@@ -7,12 +7,12 @@
 // window or the zoom level changes. Hover and click pick on the CPU from lod.js's grid (no GPU
 // picking pass, which would draw the scene again). The routes, the mission, the hidden faults
 // and the robot are small deck.gl layers over it.
-import { Deck, OrthographicView } from '@deck.gl/core';
+import { OrthographicView } from '@deck.gl/core';
 import { LineLayer, ScatterplotLayer, TextLayer } from '@deck.gl/layers';
 import { placePoint, pointOnPipe } from './geometry.js';
 import { GridIndex, keyServes, lodKey, mapColumns, pick, pipeClasses, vectorData, workerColumns } from './lod.js';
 import { NetworkPicture } from './network-picture.js';
-import { FirstView } from './first-view.js';
+import { FirstView, LaterDeck } from './first-view.js';
 
 const kNamesUpTo = 2000;  // manhole names at every zoom only on maps this small
 
@@ -33,7 +33,7 @@ export function createMapView(parent, { onClick, onHover }) {
   // A new map's first picture (canvas 2D) and the loading note, while deck.gl's shaders compile.
   const first = new FirstView(parent, under);
   stats.firstView = first.stats;
-  const deck = new Deck({
+  const deck = new LaterDeck({  // made once a map's first picture is on screen (first-view.js)
     parent,
     views: new OrthographicView({ flipY: false }),
     controller: { doubleClickZoom: false },  // clicks place tasks: none may zoom
@@ -244,13 +244,13 @@ export function createMapView(parent, { onClick, onHover }) {
         else if (key) request(key);
       }
       // A new map's picture at once (the view is fitted to it); the layers once it is on screen.
-      if (fresh) first.start(mapColumns(map), classes, viewState, () => { deck.redraw(true); setLayers(); });
+      if (fresh) first.start(mapColumns(map), classes, viewState, () => { deck.make(); deck.redraw(true); setLayers(); });
       overlay = overlayLayers(s);
       if (!key) refresh();
       setLayers();
     },
     // What the map's first view said (first-view.js), for a page with no map to open.
-    say: (text) => first.say(text),
+    say: (text) => { first.say(text); deck.make(); },
     // Moves the robot only: one small layer per animation frame.
     drawRobot(robot, beacon) {
       robotLayers = robot ? [new ScatterplotLayer({
@@ -278,7 +278,12 @@ export function createMapView(parent, { onClick, onHover }) {
       return done;
     },
     // Where a map point is on the screen, in the view's pixels.
-    project(point) { return deck.getViewports()[0].project(point); },
+    project(point) {
+      if (deck.made) return deck.getViewports()[0].project(point);
+      const s = 2 ** viewState.zoom;  // before the Deck: its OrthographicView's projection (y up)
+      return [(point[0] - viewState.target[0]) * s + parent.clientWidth / 2,
+              (viewState.target[1] - point[1]) * s + parent.clientHeight / 2];
+    },
   };
 }
 
