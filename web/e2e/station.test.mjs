@@ -273,6 +273,7 @@ function watchFirstView() {
 // once the map reacts (deck.gl's layers linked and drawn). Timings are the measuring script's
 // (scripts/station-first-view.mjs), not asserted here.
 async function firstViewShown(page) {
+  check(await page.evaluate(() => Boolean(window.station.view.stats.firstView)), 'the map view has no first view (first-view.js)');
   await page.waitForFunction(() => window.station.view.stats.firstView.maps[0]?.reacts_at !== undefined, null,
                              { timeout: 90000 });
   const r = await page.evaluate(() => {
