@@ -9,8 +9,9 @@
 //  - ready: the page's data-ready (its map opened and drawn, as the page itself says);
 //  - reacts: the end of the last long task (over 200 ms) before the page stays responsive for 1.5 s
 //    (no animation frame later than 200 ms); and the longest task;
-//  - loading: whether a loading indicator (`#map-loading`) was shown before the first picture and
-//    until it reacted, and when it was hidden.
+//  - first paint: the page's first contentful paint (a loading note in the page's HTML shows then);
+//  - loading: when a loading indicator (`#map-loading`) was first seen shown (at the latest when the
+//    page's HTML is parsed, after its module scripts ran) and when it was hidden.
 // With --deep-zoom, on a map whose overview is an image (lod.js: 'overview' or 'detail'), the view is
 // then zoomed in a level at a time, each until drawn, until the window is drawn as vector layers, and
 // the longest animation-frame gap of each step (and the 2 s after the switch) is printed.
@@ -142,7 +143,8 @@ async function firstView(browser, url) {
   const reacts = Math.max(lastGap ? lastGap[0] + lastGap[1] : 0, ...fv.longTasks.map(([s, d]) => s + d), fv.firstPicture ?? 0);
   const shown = fv.loading.find(([, s]) => s)?.[0];
   const hidden = fv.loading.findLast(([, s]) => !s)?.[0];
-  const result = { firstPicture: fv.firstPicture, kind: fv.firstDrawKind, ready, reacts, longest,
+  const fcp = await page.evaluate(() => performance.getEntriesByName('first-contentful-paint')[0]?.startTime ?? null);
+  const result = { fcp, firstPicture: fv.firstPicture, kind: fv.firstDrawKind, ready, reacts, longest,
                    loadingShown: shown ?? null, loadingHidden: hidden ?? null, marks };
   return { page, context, result };
 }
@@ -176,7 +178,7 @@ try {
     const address = await url;
     for (let run = 0; run < runs; ++run) {
       const { page, context, result: r } = await firstView(browser, address);
-      console.log(`${basename(map)} run ${run + 1}: first picture ${r0(r.firstPicture)} ms (${r.kind}), ready ${r0(r.ready)} ms, ` +
+      console.log(`${basename(map)} run ${run + 1}: first paint ${r0(r.fcp)} ms, first picture ${r0(r.firstPicture)} ms (${r.kind}), ready ${r0(r.ready)} ms, ` +
                   `reacts ${r0(r.reacts)} ms, longest task ${r0(r.longest)} ms; loading shown ${r0(r.loadingShown)} ms, ` +
                   `hidden ${r0(r.loadingHidden)} ms; the page's marks: ${r.marks} (load ${loadavg()})`);
       if (deepZoom && run === 0) {
