@@ -43,6 +43,8 @@ export class LaterDeck {
   setProps(props) { if (this.#deck) this.#deck.setProps(props); else Object.assign(this.#props, props); }
   redraw(reason) { this.#deck?.redraw(reason); }
   getViewports() { return this.#deck ? this.#deck.getViewports() : []; }
+  // Every layer deck.gl holds, the sublayers of composite ones (a TextLayer's) included.
+  layers() { return this.#deck?.layerManager?.getLayers() ?? []; }
 }
 
 // The warm-up layers: one transparent line and one transparent circle at `at`, as lod.js's
@@ -133,8 +135,8 @@ export class FirstView {
     return this.#phase === 'layers' ? [...layers, ...warmUpLayers(at)] : layers;
   }
 
-  // After each deck.gl frame with `layers` (as given): once all are linked (they drew in this
-  // frame), the picture and the note go two frames later.
+  // After each deck.gl frame with `layers` (every layer it holds, sublayers included): once all are
+  // linked (they drew in this frame), the picture and the note go two frames later.
   afterRender(layers) {
     if (this.#phase !== 'layers' || !layersLinked(layers)) return false;
     this.#phase = 'done';

@@ -56,7 +56,7 @@ export function createMapView(parent, { onClick, onHover }) {
     onBeforeRender: () => { blit(); first.follow(viewState); },
     onAfterRender: () => {
       ++stats.renders;
-      if (first.afterRender(deck.props.layers)) queueMicrotask(() => setLayers());  // without the warm-up
+      if (first.afterRender(deck.layers())) queueMicrotask(() => setLayers());  // without the warm-up
       if (!waiting && !first.holding) drawn.splice(0).forEach((resolve) => resolve());
     },
     layers: [],
