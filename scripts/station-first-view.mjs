@@ -14,7 +14,8 @@
 //    page's HTML is parsed, after its module scripts ran) and when it was hidden.
 // With --deep-zoom, on a map whose overview is an image (lod.js: 'overview' or 'detail'), the view is
 // then zoomed in a level at a time, each until drawn, until the window is drawn as vector layers, and
-// the longest animation-frame gap of each step (and the 2 s after the switch) is printed.
+// the longest animation-frame gap of each step is printed (the switch's: until 1.5 s pass after it
+// with no frame over 200 ms, since its layers' shaders link and compile a few frames later).
 //
 //   node scripts/station-first-view.mjs --binary build/release/bin/sewerplan [--web DIR] [--runs N]
 //        [--deep-zoom] MAP...
@@ -160,7 +161,20 @@ async function deepZoom_(page) {
       const from = fv.frames.length;
       const t0 = performance.now();
       await window.station.zoomAndWait(1);
-      if (view.stats.lod.at(-1)?.mode === 'vector') await new Promise((r) => setTimeout(r, 2000));
+      // The switch's layers link asynchronously and draw (and compile) a few frames later: until
+      // 1.5 s pass with no frame over 200 ms (at most 60 s).
+      if (view.stats.lod.at(-1)?.mode === 'vector') {
+        const quietSince = () => {
+          const f = fv.frames;
+          let k = f.length - 1;
+          while (k > from && f[k] - f[k - 1] <= 200) --k;
+          return f[k];
+        };
+        const until = performance.now() + 60000;
+        while (performance.now() < until && (fv.frames.length - from < 3 || performance.now() - quietSince() < 1500)) {
+          await new Promise((r) => setTimeout(r, 100));
+        }
+      }
       const f = fv.frames.slice(Math.max(0, from - 1));
       const gaps = f.slice(1).map((t, i) => t - f[i]);
       steps.push({ mode: view.stats.lod.at(-1)?.mode, drawn: view.stats.lod.at(-1)?.drawn,
