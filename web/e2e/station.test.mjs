@@ -253,6 +253,49 @@ async function largeMapAtRatio2(id) {
         `at ratio 2 the image is ${two.w}x${two.h}, at 1 ${one.w}x${one.h}`);
 }
 
+// The first view (first-view.js): stamps, in the page before its code runs, whether the loading note
+// is shown at the page's first parse and the first WebGL draw call that draws something.
+function watchFirstView() {
+  const seen = { noteAtParse: null, firstGlDraw: null };
+  window.__firstViewSeen = seen;
+  document.addEventListener('DOMContentLoaded', () => {
+    const note = document.getElementById('map-loading');
+    seen.noteAtParse = Boolean(note && !note.hidden && getComputedStyle(note).display !== 'none' && note.textContent);
+  });
+  for (const name of ['drawArrays', 'drawElements', 'drawArraysInstanced', 'drawElementsInstanced']) {
+    const original = WebGL2RenderingContext.prototype[name];
+    WebGL2RenderingContext.prototype[name] = function (...a) {
+      seen.firstGlDraw ??= performance.now();
+      return original.apply(this, a);
+    };
+  }
+}
+
+// The AIS map's first picture is drawn (its pipes and manholes, on the 2-D canvas) before deck.gl
+// draws anything with WebGL, the loading note is shown from the page's first parse, and both go
+// once the map reacts (deck.gl's layers linked and drawn). Timings are the measuring script's
+// (scripts/station-first-view.mjs), not asserted here.
+async function firstViewShown(page) {
+  check(await page.evaluate(() => Boolean(window.station.view.stats.firstView)), 'the map view has no first view (first-view.js)');
+  await page.waitForFunction(() => window.station.view.stats.firstView.maps[0]?.reacts_at !== undefined, null,
+                             { timeout: 90000 });
+  const r = await page.evaluate(() => {
+    const picture = document.getElementById('map-first-picture'), note = document.getElementById('map-loading');
+    return { ...window.__firstViewSeen, first: window.station.view.stats.firstView.maps[0],
+             pictureHidden: picture?.hidden, noteHidden: note?.hidden };
+  });
+  const f = r.first;
+  console.log(`first view: picture of ${f.pipes} pipes and ${f.manholes} manholes at ${Math.round(f.picture_at)} ms ` +
+              `(drawn in ${f.picture_ms.toFixed(1)} ms), first WebGL draw ${Math.round(r.firstGlDraw)} ms, ` +
+              `layers linked ${Math.round(f.linked_at)} ms, reacts ${Math.round(f.reacts_at)} ms after navigation`);
+  check(r.noteAtParse === true, 'the loading note is not shown when the page is parsed');
+  check(f.detail && f.pipes > 0 && f.manholes > 0, `the first picture drew ${f.pipes} pipes and ${f.manholes} manholes`);
+  check(r.firstGlDraw === null || f.picture_at < r.firstGlDraw,
+        `the first picture (${f.picture_at} ms) came after deck.gl's first WebGL draw (${r.firstGlDraw} ms)`);
+  check(f.linked_at <= f.reacts_at && r.pictureHidden === true && r.noteHidden === true,
+        'the first picture or the loading note stays after the map reacts');
+}
+
 // Nobody else drives the station (docs/operator-station.md, "Who may drive the station"), the
 // token aside (these are refused before it is looked at: 403, not 401): a page of another origin
 // (http://localhost:PORT is not http://127.0.0.1:PORT) posts a map as a "simple" request, which a
@@ -351,7 +394,7 @@ async function whatHappenedOnScreen(page) {
   await expect('the failure ring is drawn at a paced speed', async () => {
     const drawn = await page.evaluate(async () => {
       await new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r)));
-      const layer = window.station.view.deck.layerManager.getLayers().find((l) => l.id === 'failures');
+      const layer = window.station.view.deck.layers().find((l) => l.id === 'failures');
       return layer.getAttributeManager().attributes.instancePositions.numInstances;
     });
     check(drawn === 1, `the failures layer draws ${drawn} rings`);
@@ -483,6 +526,7 @@ try {
   };
   page.on('pageerror', (e) => console.error('page error:', e.message));
   page.on('console', (m) => m.type() === 'error' && console.error('console:', m.text()));
+  await page.addInitScript(watchFirstView);
   const t0 = Date.now();
   await page.goto(url);
   console.log(`page loaded: ${Date.now() - t0} ms`);
@@ -492,6 +536,7 @@ try {
   const inUrl = await fetch(new URL(`api/maps?token=${token}`, url));
   check(inUrl.status === 401, `?token= in a URL answered ${inUrl.status}, not 401`);
   await strangersRefused();
+  await firstViewShown(page);
   console.log(`page load and first draw (AIS map): ${Date.now() - t0} ms; in the page:`,
               await page.evaluate(() => window.station.state.timings));
   console.log(`AIS map, the page's marks: ${await marks(page, 'map')} (load ${loadavg()})`);

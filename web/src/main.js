@@ -615,6 +615,7 @@ async function start() {
     onError: (message) => { $('campaign-status').textContent = message; },
   });
   if (maps.length > 0) await openMap(maps[0].id);
+  else view.say('No map to open: upload one');
   state.timings.first_draw_ms = Math.round(performance.now() - t0);
   // Since navigation started: when the page's code started, and when the map was drawn.
   state.timings.started_at_ms = Math.round(t0);

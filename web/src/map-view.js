@@ -7,7 +7,7 @@
 // window or the zoom level changes. Hover and click pick on the CPU from lod.js's grid (no GPU
 // picking pass, which would draw the scene again). The routes, the mission, the hidden faults
 // and the robot are small deck.gl layers over it.
-import { Deck, OrthographicView } from '@deck.gl/core';
+import { OrthographicView } from '@deck.gl/core';
 import { LineLayer, ScatterplotLayer, TextLayer } from '@deck.gl/layers';
 import { placePoint, pointOnPipe } from './geometry.js';
 import { labelWidth, thinLabels } from './labels.js';
@@ -16,6 +16,7 @@ import { NetworkPicture } from './network-picture.js';
 import { findingsLayer } from './findings-layer.js';
 import { learntLayers } from './learnt-layer.js';
 import { taskLayers } from './task-markers.js';
+import { FirstView, LaterDeck } from './first-view.js';
 
 const kNamesUpTo = 2000;  // manhole names (thinned: labels.js) only on maps this small
 
@@ -37,7 +38,10 @@ export function createMapView(parent, { onClick, onHover, onViewChange = () => {
   const under = document.createElement('canvas');
   Object.assign(under.style, { position: 'absolute', left: '0', top: '0', width: '100%', height: '100%' });
   parent.prepend(under);
-  const deck = new Deck({
+  // A new map's first picture (canvas 2D) and the loading note, while deck.gl's shaders compile.
+  const first = new FirstView(parent, under);
+  stats.firstView = first.stats;
+  const deck = new LaterDeck({  // made once a map's first picture is on screen (first-view.js)
     parent,
     views: new OrthographicView({ flipY: false }),
     controller: { doubleClickZoom: false },  // clicks place tasks: none may zoom
@@ -57,10 +61,11 @@ export function createMapView(parent, { onClick, onHover, onViewChange = () => {
       stats.picks.push({ pick_ms: t1 - t0, event_to_shown_ms: t1 - (event?.srcEvent?.timeStamp ?? t0) });
     },
     onClick: (info) => onClick(pickAt(info)),
-    onBeforeRender: () => blit(),
+    onBeforeRender: () => { blit(); first.follow(viewState); },
     onAfterRender: () => {
       ++stats.renders;
-      if (!waiting) drawn.splice(0).forEach((resolve) => resolve());
+      if (first.afterRender(deck.layers())) queueMicrotask(() => setLayers());  // without the warm-up
+      if (!waiting && !first.holding) drawn.splice(0).forEach((resolve) => resolve());
     },
     layers: [],
   });
@@ -110,7 +115,8 @@ export function createMapView(parent, { onClick, onHover, onViewChange = () => {
   // Bottom to top: pipes, routes, manholes, then the mission's marks and the robot.
   const setLayers = () => {
     const network = picture.layers;
-    deck.setProps({ layers: [network[0], overlay[0], network[1], ...overlay.slice(1), labelLayer, ...robotLayers].filter(Boolean) });
+    deck.setProps({ layers: first.layers([network[0], overlay[0], network[1], ...overlay.slice(1), labelLayer, ...robotLayers].filter(Boolean),
+                                         viewState.target) });
   };
 
   // The manholes' names, thinned so that none overlaps another (labels.js) at the zoom rounded
@@ -238,11 +244,10 @@ export function createMapView(parent, { onClick, onHover, onViewChange = () => {
     // rebuilt only for another map or profile.
     draw(s) {
       if (!s.map) return;
-      if (s.map !== map) {
+      const fresh = s.map !== map;
+      if (fresh) {
         map = s.map;
-        index = new GridIndex(mapColumns(map));
-        const { columns, transfer } = workerColumns(map);
-        worker.postMessage({ map: columns }, transfer);
+        index = null;  // made once the first picture is on screen (below)
         picture.clear();
         ++requestId;  // an image of the last map still being drawn is not shown
         key = null;
@@ -259,11 +264,26 @@ export function createMapView(parent, { onClick, onHover, onViewChange = () => {
         if (key?.mode === 'vector') key = null;
         else if (key) request(key);
       }
+      // A new map's picture at once (the view is fitted to it); its grid, the worker's columns and
+      // the layers once it is on screen: they held a 100,000-manhole map's picture back 0.6 s.
+      if (fresh) {
+        first.start(mapColumns(map), classes, viewState, () => {
+          index = new GridIndex(mapColumns(map));
+          const { columns, transfer } = workerColumns(map);
+          worker.postMessage({ map: columns }, transfer);  // the classes were sent before: the worker keeps them
+          deck.make();
+          refresh();
+          setLayers();
+          deck.redraw(true);
+        });
+      }
       overlay = overlayLayers(s);
       updateLabels();
       if (!key) refresh();
       setLayers();
     },
+    // What the map's first view said (first-view.js), for a page with no map to open.
+    say: (text) => { first.say(text); deck.make(); },
     // Moves the robot only: one small layer per animation frame.
     drawRobot(robot, beacon) {
       robotLayers = robot ? [new ScatterplotLayer({
@@ -304,7 +324,12 @@ export function createMapView(parent, { onClick, onHover, onViewChange = () => {
       return done;
     },
     // Where a map point is on the screen, in the view's pixels.
-    project(point) { return deck.getViewports()[0].project(point); },
+    project(point) {
+      if (deck.made) return deck.getViewports()[0].project(point);
+      const s = 2 ** viewState.zoom;  // before the Deck: its OrthographicView's projection (y up)
+      return [(point[0] - viewState.target[0]) * s + parent.clientWidth / 2,
+              (viewState.target[1] - point[1]) * s + parent.clientHeight / 2];
+    },
   };
 }
 
