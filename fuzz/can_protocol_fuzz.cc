@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: MIT
 // libFuzzer target: the CAN job protocol's decoder (hal/can/job_protocol.h) on any sequence of
-// frames; every message it decodes must encode to frames that decode to the same frames again.
+// frames; every message it decodes must encode to frames that decode to the same frames again (so
+// a RESULT's manhole observation that the decoder accepts passes the encoder's check_signature:
+// the decoder never lets an invalid one through). The corpus holds a session, a job and results
+// with observations (result-observation.bin, docs/can-protocol.md).
 // Input: frames of 13 bytes each - 4 bytes identifier (little-endian, bit 31 = extended), 1 byte
 // length (0..8, higher values are cut), 8 data bytes.
 #include <cstddef>

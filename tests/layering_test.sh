@@ -4,7 +4,9 @@
 #   core <- domain <- search; fusion and localisation on core and domain; hal on core; executor on all;
 #   campaign on all (with executor); render on core, domain, hal and executor (the typed events of
 #   the logs it draws); nothing includes campaign except apps, tests, bench, the Python module
-#   (python/) and the operator station's server (server/, its campaigns) (and campaign itself).
+#   (python/) and the operator station's server (server/, its campaigns) (and campaign itself); the
+#   server also on render (event logs read back) and gis (its headers: the GeoJSON export loads the
+#   GIS module at run time).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 declare -A allowed=(
@@ -18,7 +20,7 @@ declare -A allowed=(
   [render]="core domain hal executor render"
   [gis]="core domain gis"
   [localisation]="core domain localisation"
-  [server]="core domain search fusion localisation hal executor campaign server"
+  [server]="core domain search fusion localisation hal executor campaign render gis server"
 )
 status=0
 for lib in "${!allowed[@]}"; do

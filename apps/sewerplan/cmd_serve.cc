@@ -68,10 +68,14 @@ int run(const ServeOptions& o, Context& c) {
   server::ServerOptions options{
       .host = o.host, .port = o.port, .token = o.token, .allowed_hosts = o.allowed_hosts};
   for (const std::string& m : o.maps) options.maps.emplace_back(m);
-  options.read_map_with = [fields = o.gis_fields](const std::filesystem::path& path,
-                                                  Diagnostics& diagnostics) {
-    return read_input_map({path.string(), is_gis_source_path(path) ? fields : std::string()},
-                          diagnostics);
+  // The reader's warnings on stderr, as every command's (an error fails the start with its own
+  // message); the page lists them too, each linked to its objects on the map.
+  options.read_map_with = [fields = o.gis_fields, &c](const std::filesystem::path& path,
+                                                      Diagnostics& diagnostics) {
+    Result<SewerMap> map = read_input_map(
+        {path.string(), is_gis_source_path(path) ? fields : std::string()}, diagnostics);
+    if (map.has_value()) print_diagnostics(diagnostics, c.err);
+    return map;
   };
   options.web_root = web_root(o.web);
   if (options.web_root.empty()) {

@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: MIT
 // sewerplan sim-node --pty --map MAP --mission MISSION [--faults FILE | --random-faults S[,R]]
-//                    [--bus-faults SPEC]
+//                    [--bus-faults SPEC] [--world-errors NAME|SPEC] [--world-seed N]
 //
 // The simulated microcontroller node on a pseudo-terminal that speaks SLCAN, as a USB-CAN adapter
 // would: prints the pty's path on the first line of its output, then serves the job protocol
-// (docs/can-protocol.md) to whoever opens it, until SIGINT or SIGTERM.
+// (docs/can-protocol.md) to whoever opens it, until SIGINT or SIGTERM. Its robot is the one
+// `simulate` would run in process with the same options (sim_setup.h): the same true world, faults
+// and sensing, so that a run over the bus equals the run in process.
 #include <atomic>
 #include <csignal>
 #include <iostream>
@@ -17,6 +19,7 @@
 #include "sewerplan/executor/replanner.h"
 #include "sewerplan/hal/can/sim_node.h"
 #include "sewerplan/hal/can/slcan.h"
+#include "sewerplan/hal/world_errors.h"
 
 #include "command.h"
 #include "map_input.h"
@@ -32,6 +35,8 @@ struct SimNodeCliOptions {
   std::string faults;
   std::string random_faults;
   std::string bus_faults;
+  std::string world_errors = "none";
+  std::uint64_t world_seed = 1;
   bool pty = false;
 };
 
@@ -42,6 +47,10 @@ extern "C" void stop_serving(int /*signal*/) { g_stop.store(true); }
 
 int run(const SimNodeCliOptions& o, Context& c) {
   int exit_code = kExitOk;
+  if (Result<hal::WorldErrorProfile> w = hal::parse_world_errors(o.world_errors); !w.has_value()) {
+    c.err << "sewerplan sim-node: " << w.error().message << '\n';
+    return kExitUsage;
+  }
   std::optional<SimWorld> world =
       load_sim_world({o.map, o.gis_fields}, o.mission, o.faults, o.random_faults, c.err, exit_code);
   if (!world) return exit_code;
@@ -60,9 +69,15 @@ int run(const SimNodeCliOptions& o, Context& c) {
   }
   // Where the simulate command's robot would start: the mission's start, through the Replanner.
   const executor::Replanner replanner(map, mission);
-  hal::SimRobot robot(map, mission.profile, start_pose(replanner.progress().position), faults);
+  Result<std::unique_ptr<SimulatedRobot>> sim =
+      make_simulated_robot(map, mission, start_pose(replanner.progress().position), faults,
+                           o.world_errors, o.world_seed);
+  if (!sim.has_value()) {
+    c.err << "sewerplan sim-node: " << sim.error().message << '\n';
+    return exit_code_for(sim.error());
+  }
   hal::SlcanDeviceBus line(std::move(pty->master), pty->slave_path);
-  hal::SimNode node(line, robot, {.faults = *bus_faults}, &line);
+  hal::SimNode node(line, *(*sim)->robot, {.faults = *bus_faults}, &line);
   c.out << pty->slave_path << '\n'
         << "sim-node: serving " << o.mission << " on " << pty->slave_path
         << " (SLCAN); connect with: sewerplan simulate --map " << o.map << " --mission "
@@ -101,6 +116,12 @@ void add_sim_node_command(CLI::App& app, Context& context) {
   cmd->add_option("--bus-faults", options->bus_faults,
                   "Bus faults: drop=N,..;drop-rate=P;seed=S;garbage=N,..;silence=R+K;bus-off=R;"
                   "late-ack=J@S;lose-result=J,.. (docs/can.md)");
+  cmd->add_option("--world-errors", options->world_errors,
+                  "NAME|SPEC: the true world the robot drives, as simulate's (none, realistic; or "
+                  "[NAME,]key=value,...: docs/simulation.md)")
+      ->capture_default_str();
+  cmd->add_option("--world-seed", options->world_seed, "Seed of the true world and the sensing")
+      ->capture_default_str();
   cmd->callback([options, &context] { context.exit_code = run(*options, context); });
 }
 

@@ -62,6 +62,7 @@ struct SimulateOptions {
   std::string corrected_map;
   std::string world_errors = "none";  // the true world the simulated robot drives
   std::uint64_t world_seed = 1;
+  bool world_given = false;  // --world-errors or --world-seed on the command line
 };
 
 // Ctrl-C (SIGINT) and SIGTERM halt the mission (Executor::halt: the robot's emergency stop, the
@@ -148,6 +149,18 @@ int run(const SimulateOptions& o, Context& c) {
     }
   }
   HaltOnSignal halt_on_signal;
+  // Over CAN the robot drives the node's world (sim-node takes them), or the real one; a replay
+  // replays the recorded run's.
+  if (o.world_given && !o.can.bus.empty()) {
+    return usage_error(c, o.json,
+                       "sewerplan simulate: --world-errors and --world-seed are the node's with "
+                       "--can: give them to sim-node (docs/can.md)");
+  }
+  if (o.world_given && !o.can.replay.empty()) {
+    return usage_error(c, o.json,
+                       "sewerplan simulate: --world-errors and --world-seed are not for --replay: "
+                       "the log holds the recorded run's observations");
+  }
   const Result<hal::WorldErrorProfile> world_errors = hal::parse_world_errors(o.world_errors);
   if (!world_errors.has_value()) return fail(c, o.json, world_errors.error());
   Diagnostics diagnostics;
@@ -199,13 +212,16 @@ int run(const SimulateOptions& o, Context& c) {
     can = std::move(*link);
   }
   // The robot drives the true world (the map itself with "none"); the executor plans on the map.
-  const Result<hal::TrueWorld> truth = hal::make_true_world(map, *world_errors, o.world_seed);
-  if (!truth.has_value()) return fail(c, o.json, truth.error());
-  hal::SimRobot sim(truth->world, mission.profile,
-                    hal::world_pose(map, *truth, start_pose(replanner.progress().position)),
-                    hal::world_faults(map, *truth, faults),
-                    hal::SimOptions{.sensing = hal::make_sensing(*truth)});
-  hal::Robot& robot = can ? static_cast<hal::Robot&>(can->robot()) : sim;
+  // Over CAN the world is the node's (sim-node --world-errors, or the real one).
+  std::unique_ptr<SimulatedRobot> sim;
+  if (!can) {
+    Result<std::unique_ptr<SimulatedRobot>> made =
+        make_simulated_robot(map, mission, start_pose(replanner.progress().position), faults,
+                             o.world_errors, o.world_seed);
+    if (!made.has_value()) return fail(c, o.json, made.error());
+    sim = std::move(*made);
+  }
+  hal::Robot& robot = can ? static_cast<hal::Robot&>(can->robot()) : *sim->robot;
   executor::Executor executor(map, replanner, robot, options);
   if (log_file) {
     executor.subscribe_log(*log_file);
@@ -332,15 +348,18 @@ void add_simulate_command(CLI::App& app, Context& context) {
   random->excludes(can)->excludes(replay);
   auto* world = cmd->add_option("--world-errors", options->world_errors,
                                 "NAME|SPEC: the true world the robot drives (none, realistic; or "
-                                "[NAME,]key=value,...: docs/simulation.md)")
+                                "[NAME,]key=value,...: docs/simulation.md); with --can, sim-node's")
                     ->capture_default_str();
-  cmd->add_option("--world-seed", options->world_seed, "Seed of the true world and the sensing")
-      ->capture_default_str();
-  world->excludes(can)->excludes(replay);
+  auto* world_seed =
+      cmd->add_option("--world-seed", options->world_seed, "Seed of the true world and the sensing")
+          ->capture_default_str();
   add_motion_options(*cmd, options->motion);
   add_condition_option(*cmd, options->condition);
   add_risk_options(*cmd, options->risk);
-  cmd->callback([options, &context] { context.exit_code = run(*options, context); });
+  cmd->callback([options, world, world_seed, &context] {
+    options->world_given = world->count() > 0 || world_seed->count() > 0;
+    context.exit_code = run(*options, context);
+  });
 }
 
 }  // namespace sewerplan::cli

@@ -30,6 +30,22 @@ Result<SimWorld> read_sim_world(const MapSource& map_source, const std::string& 
   return SimWorld{std::move(*map), std::move(*mission), std::move(*faults)};
 }
 
+Result<std::unique_ptr<SimulatedRobot>> make_simulated_robot(
+    const SewerMap& map, const Mission& mission, const hal::SimPose& start,
+    const hal::FaultScenario& faults, const std::string& world_errors, std::uint64_t world_seed) {
+  const Result<hal::WorldErrorProfile> profile = hal::parse_world_errors(world_errors);
+  if (!profile.has_value()) return profile.error();
+  Result<hal::TrueWorld> truth = hal::make_true_world(map, *profile, world_seed);
+  if (!truth.has_value()) return truth.error();
+  auto simulated = std::make_unique<SimulatedRobot>();
+  simulated->truth = std::move(*truth);
+  const hal::TrueWorld& t = simulated->truth;
+  simulated->robot.emplace(t.world, mission.profile, hal::world_pose(map, t, start),
+                           hal::world_faults(map, t, faults),
+                           hal::SimOptions{.sensing = hal::make_sensing(t)});
+  return simulated;
+}
+
 std::optional<SimWorld> load_sim_world(const MapSource& map_source, const std::string& mission_path,
                                        const std::string& faults_file,
                                        const std::string& random_faults, std::ostream& err,

@@ -31,6 +31,26 @@ Json execution_json(const Execution& e) {
   j["energy_wh"] = e.energy_wh;
   j["disabled"] = e.disabled;
   j["beacon_cause"] = std::string(executor::to_string(e.beacon_cause));
+  if (e.world) {
+    // The counts are read back; the shares are written for a reader (null: nothing to share).
+    const WorldScore& w = *e.world;
+    const auto share = [](std::size_t part, std::size_t whole) {
+      const std::optional<double> p = percent(part, whole);
+      return p ? Json(*p) : Json();
+    };
+    j["localisation"] = Json{{"arrivals", w.arrivals},
+                             {"correct_arrivals", w.correct_arrivals},
+                             {"correct_arrivals_pct", share(w.correct_arrivals, w.arrivals)}};
+    j["corrected_map"] =
+        Json{{"pipes_measured", w.pipes_measured},
+             {"length_rms_pct", w.pipes_measured > 0 ? Json(w.length_rms_pct) : Json()},
+             {"seeded_in_reach", w.seeded_in_reach},
+             {"found", w.found},
+             {"discrepancies_found_pct", share(w.found, w.seeded_in_reach)},
+             {"reported", w.reported},
+             {"false_reports", w.false_reports},
+             {"false_reports_pct", share(w.false_reports, w.reported)}};
+  }
   return j;
 }
 
@@ -82,6 +102,39 @@ std::uint64_t read_seed(JsonFields& f) {
   return v;
 }
 
+// "localisation" and "corrected_map" of an execution (execution_json); the shares are derived.
+WorldScore read_world_score(JsonFields& execution, std::string_view file) {
+  WorldScore w;
+  if (std::optional<JsonFields> l = object_in(execution, "localisation", file)) {
+    w.arrivals = l->count("arrivals", kMaxCount).value_or(0);
+    w.correct_arrivals = l->count("correct_arrivals", kMaxCount).value_or(0);
+    if (w.correct_arrivals > w.arrivals) {
+      l->error("correct_arrivals", "more than the arrivals (" + std::to_string(w.arrivals) + ")");
+    }
+  }
+  if (std::optional<JsonFields> c = object_in(execution, "corrected_map", file)) {
+    w.pipes_measured = c->count("pipes_measured", kMaxCount).value_or(0);
+    if (w.pipes_measured > 0) {
+      w.length_rms_pct = c->number("length_rms_pct").value_or(0);
+      if (!(w.length_rms_pct >= 0 && w.length_rms_pct <= 1e9)) {
+        c->error("length_rms_pct",
+                 "out of range: 0 to 1e9, got " + format_double(w.length_rms_pct));
+      }
+    }
+    w.seeded_in_reach = c->count("seeded_in_reach", kMaxCount).value_or(0);
+    w.found = c->count("found", kMaxCount).value_or(0);
+    w.reported = c->count("reported", kMaxCount).value_or(0);
+    w.false_reports = c->count("false_reports", kMaxCount).value_or(0);
+    if (w.found > w.seeded_in_reach) {
+      c->error("found", "more than seeded_in_reach (" + std::to_string(w.seeded_in_reach) + ")");
+    }
+    if (w.false_reports > w.reported) {
+      c->error("false_reports", "more than reported (" + std::to_string(w.reported) + ")");
+    }
+  }
+  return w;
+}
+
 Execution read_execution(JsonFields& run, std::string_view key, std::string_view file) {
   Execution x;
   std::optional<JsonFields> f = object_in(run, key, file);
@@ -101,6 +154,8 @@ Execution read_execution(JsonFields& run, std::string_view key, std::string_view
   x.time_s = f->number("time_s").value_or(0);
   x.energy_wh = f->number("energy_wh").value_or(0);
   x.disabled = f->boolean("disabled").value_or(false);
+  // Only ours with world errors is scored (world_score.h); records without have neither object.
+  if (f->has("localisation") || f->has("corrected_map")) x.world = read_world_score(*f, file);
   // Records written before beacons had causes have none.
   if (const std::optional<std::string> name = f->string("beacon_cause", kOptional)) {
     if (const auto cause = executor::parse_beacon_cause(*name)) {

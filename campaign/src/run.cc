@@ -129,7 +129,7 @@ Mission in_world(const SewerMap& map, const hal::TrueWorld& truth, Mission missi
 Execution execute(const SewerMap& map, const hal::TrueWorld& truth, const Mission& mission,
                   const hal::FaultScenario& faults, const RunSettings& settings,
                   executor::ReplannerOptions::Goals goals, domain::RiskCosts risk = {},
-                  const ExecutionObservers& observers = {}) {
+                  const ExecutionObservers& observers = {}, bool score_world = false) {
   executor::ReplannerOptions replanner_options{.goals = goals};
   replanner_options.planner.time_limit_s = settings.planner_time_limit_s;
   replanner_options.planner.risk = risk;
@@ -145,6 +145,10 @@ Execution execute(const SewerMap& map, const hal::TrueWorld& truth, const Missio
   executor::Executor executor(map, replanner, robot, options);
   if (observers.on_event) executor.subscribe(observers.on_event);
   if (observers.on_plan) executor.subscribe_plans(observers.on_plan);
+  // Watches from outside the robot's loop: it reads the simulated robot's true pose, and nothing of
+  // it reaches the executor.
+  std::optional<WorldScorer> scorer;
+  if (score_world) scorer.emplace(map, truth, robot).watch(executor);
   const executor::MissionReport report = executor.run();
   Execution e;
   e.tasks = report.tasks_done.size();
@@ -157,6 +161,7 @@ Execution execute(const SewerMap& map, const hal::TrueWorld& truth, const Missio
   e.disabled = disabled(faults, robot);
   e.beacon_cause = report.beacon_cause;
   e.planning_times_s = report.planning_times_s;
+  if (scorer) e.world = scorer->score();
   const std::optional<ManholeId> m = manhole_of(robot.pose());
   // A final task that is a place (go to a pipe or a manhole) is done by ending there: the executor
   // counts it when the robot is confirmed there at the end of the plan.
@@ -178,6 +183,12 @@ Execution execute(const SewerMap& map, const hal::TrueWorld& truth, const Missio
     e.outcome = Outcome::kStranded;
   }
   return e;
+}
+
+// Ours is scored against the true world whenever there is one apart from the map, or sensing
+// errors (any rate of the profile); with "none" its record has no scores.
+bool scores_world(const RunSettings& settings) {
+  return settings.world_errors != hal::WorldErrorProfile{};
 }
 
 }  // namespace
@@ -362,7 +373,7 @@ Result<RunResult> run_one(const SewerMap& map, const Mission& mission, const Run
   r.oracle_tasks = r.oracle_can_end ? plan.goals.size() : 0;
 
   r.ours = execute(map, *truth, mission, *faults, settings,
-                   executor::ReplannerOptions::Goals::kReselect);
+                   executor::ReplannerOptions::Goals::kReselect, {}, {}, scores_world(settings));
   r.baseline = execute(map, *truth, mission, *faults, settings,
                        executor::ReplannerOptions::Goals::kPaperBaseline);
   if (settings.risk.active()) {
@@ -409,7 +420,8 @@ Result<Execution> replay_execution(const SewerMap& map, const Mission& mission,
   using Goals = executor::ReplannerOptions::Goals;
   switch (policy) {
     case Policy::kOurs:
-      return execute(map, *truth, mission, faults, settings, Goals::kReselect, {}, observers);
+      return execute(map, *truth, mission, faults, settings, Goals::kReselect, {}, observers,
+                     scores_world(settings));
     case Policy::kBaseline:
       return execute(map, *truth, mission, faults, settings, Goals::kPaperBaseline, {}, observers);
     case Policy::kRiskAware:

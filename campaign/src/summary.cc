@@ -218,6 +218,43 @@ void summarize_risk_aware(const std::vector<const RunResult*>& runs, Summary& s)
 
 }  // namespace
 
+std::optional<double> WorldFigures::correct_arrivals_pct() const {
+  return percent(total.correct_arrivals, total.arrivals);
+}
+std::optional<double> WorldFigures::length_rms_pct() const {
+  if (total.pipes_measured == 0) return std::nullopt;
+  return total.length_rms_pct;
+}
+std::optional<double> WorldFigures::discrepancies_found_pct() const {
+  return percent(total.found, total.seeded_in_reach);
+}
+std::optional<double> WorldFigures::false_reports_pct() const {
+  return percent(total.false_reports, total.reported);
+}
+
+std::optional<WorldFigures> pool_world_scores(const std::vector<const RunResult*>& runs) {
+  WorldFigures f;
+  double squares = 0;  // sum over every measured pipe of (error in %)^2
+  for (const RunResult* r : runs) {
+    if (!r->ours.world) continue;
+    const WorldScore& w = *r->ours.world;
+    ++f.runs;
+    f.total.arrivals += w.arrivals;
+    f.total.correct_arrivals += w.correct_arrivals;
+    f.total.pipes_measured += w.pipes_measured;
+    squares += static_cast<double>(w.pipes_measured) * w.length_rms_pct * w.length_rms_pct;
+    f.total.seeded_in_reach += w.seeded_in_reach;
+    f.total.found += w.found;
+    f.total.reported += w.reported;
+    f.total.false_reports += w.false_reports;
+  }
+  if (f.runs == 0) return std::nullopt;
+  if (f.total.pipes_measured > 0) {
+    f.total.length_rms_pct = std::sqrt(squares / static_cast<double>(f.total.pipes_measured));
+  }
+  return f;
+}
+
 Summary summarize(const CampaignSpec& spec, const std::vector<RunRecord>& records) {
   Summary s;
   s.spec = spec;
@@ -250,6 +287,7 @@ Summary summarize(const CampaignSpec& spec, const std::vector<RunRecord>& record
   figures(runs, &RunResult::ours, s.ours);
   figures(runs, &RunResult::baseline, s.baseline);
   summarize_risk_aware(runs, s);
+  s.world = pool_world_scores(runs);
   return s;
 }
 
@@ -292,6 +330,27 @@ void write_summary_json(const Summary& s, std::ostream& out) {
                                    {"only_risk_aware_ended", s.risk_aware_only_ended},
                                    {"only_ours_ended", s.risk_blind_only_ended}};
   }
+  // Ours against the true world: null without world errors (docs/campaign.md).
+  const auto or_null = [](const std::optional<double>& v) { return v ? Json(*v) : Json(); };
+  if (s.world) {
+    const WorldFigures& w = *s.world;
+    j["localisation"] = Json{{"correct_arrivals_pct", or_null(w.correct_arrivals_pct())},
+                             {"arrivals", w.total.arrivals},
+                             {"correct_arrivals", w.total.correct_arrivals},
+                             {"runs", w.runs}};
+    j["corrected_map"] = Json{{"length_rms_pct", or_null(w.length_rms_pct())},
+                              {"discrepancies_found_pct", or_null(w.discrepancies_found_pct())},
+                              {"false_reports_pct", or_null(w.false_reports_pct())},
+                              {"pipes_measured", w.total.pipes_measured},
+                              {"seeded_in_reach", w.total.seeded_in_reach},
+                              {"found", w.total.found},
+                              {"reported", w.total.reported},
+                              {"false_reports", w.total.false_reports},
+                              {"runs", w.runs}};
+  } else {
+    j["localisation"] = nullptr;
+    j["corrected_map"] = nullptr;
+  }
   if (!s.spec.condition_name.empty()) j["condition"] = s.spec.condition_name;
   if (s.spec.faults_from_condition) j["faults_from_condition"] = true;
   out << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
@@ -322,6 +381,31 @@ void write_risk_aware_markdown(const Summary& s, std::ostream& out) {
       << s.risk_aware_equal << " equal, " << s.risk_aware_worse
       << " worse (tasks done); only the risk-aware robot ended: " << s.risk_aware_only_ended
       << " runs, only the risk-blind one: " << s.risk_blind_only_ended << ".\n";
+}
+
+// "12.3 % (45 of 366)", or "none (no ...)".
+std::string share_of(const std::optional<double>& v, std::size_t part, std::size_t whole,
+                     std::string_view none) {
+  if (!v) return "none (" + std::string(none) + ")";
+  return num(*v, 1) + " % (" + std::to_string(part) + " of " + std::to_string(whole) + ")";
+}
+
+// Ours against the true world (world errors only).
+void write_world_markdown(const WorldFigures& w, std::ostream& out) {
+  const WorldScore& t = w.total;
+  out << "\nOurs against the true world (" << w.runs << " runs):\n\n| | |\n|---|---|\n";
+  out << "| arrivals at the true manhole (localisation.correct_arrivals_pct) | "
+      << share_of(w.correct_arrivals_pct(), t.correct_arrivals, t.arrivals, "no arrival") << " |\n";
+  out << "| measured lengths, RMS error (corrected_map.length_rms_pct) | "
+      << (w.length_rms_pct() ? num(*w.length_rms_pct(), 2) + " % over " +
+                                   std::to_string(t.pipes_measured) + " pipes"
+                             : std::string("none (no pipe measured)"))
+      << " |\n";
+  out << "| seeded discrepancies within reach reported (corrected_map.discrepancies_found_pct) | "
+      << share_of(w.discrepancies_found_pct(), t.found, t.seeded_in_reach, "none within reach")
+      << " |\n";
+  out << "| reports matching no seeded discrepancy (corrected_map.false_reports_pct) | "
+      << share_of(w.false_reports_pct(), t.false_reports, t.reported, "none reported") << " |\n\n";
 }
 
 }  // namespace
@@ -391,6 +475,7 @@ void write_summary_markdown(const Summary& s, std::ostream& out) {
          "mission it could not end): "
       << s.oracle_below_ours << ".\n";
   if (s.risk_aware) write_risk_aware_markdown(s, out);
+  if (s.world) write_world_markdown(*s.world, out);
   out << "Crashes and hangs: " << s.failed.size() << (s.failed.empty() ? ".\n" : ":\n");
   for (const FailedRun& f : s.failed) {
     out << "- run " << f.run << " (seed " << f.seed << "): " << f.status << ", " << f.detail

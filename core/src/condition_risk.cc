@@ -162,22 +162,57 @@ std::optional<RiskMode> risk_mode_from_string(std::string_view name) {
   return std::nullopt;
 }
 
+std::string_view to_string(FindingUse use) {
+  switch (use) {
+    case FindingUse::kIgnored:
+      return "ignored";
+    case FindingUse::kClosed:
+      return "closed";
+    case FindingUse::kWeighed:
+      return "weighed";
+  }
+  return "ignored";
+}
+
+FindingUse finding_use(const FindingRisk& risk, RiskMode mode) {
+  switch (mode) {
+    case RiskMode::kIgnore:
+      return FindingUse::kIgnored;
+    case RiskMode::kImpassable:
+      return risk.effect == RiskEffect::kImpassable ? FindingUse::kClosed : FindingUse::kIgnored;
+    case RiskMode::kAvoid:
+      return risk.effect != RiskEffect::kNone ? FindingUse::kClosed : FindingUse::kIgnored;
+    case RiskMode::kExpected:
+      if (risk.effect == RiskEffect::kImpassable) return FindingUse::kClosed;
+      return risk.effect == RiskEffect::kBlockage && risk.blockage_probability > 0
+                 ? FindingUse::kWeighed
+                 : FindingUse::kIgnored;
+  }
+  return FindingUse::kIgnored;
+}
+
 std::size_t close_findings(const SewerMap& map, Mission& mission, RiskMode mode,
                            const RiskTable& table) {
   if (mode == RiskMode::kIgnore) return 0;
-  std::vector<FindingRisk> risks = assess_findings(map, mission.profile, table);
-  if (mode == RiskMode::kExpected) {
-    std::vector<Hazard> hazards = blockage_hazards(map, risks);
-    mission.hazards.insert(mission.hazards.end(), hazards.begin(), hazards.end());
-  }
-  if (mode == RiskMode::kAvoid) {
-    for (FindingRisk& r : risks) {
-      if (r.effect != RiskEffect::kNone) r.effect = RiskEffect::kImpassable;
+  std::size_t closed = 0;
+  for (const FindingRisk& r : assess_findings(map, mission.profile, table)) {
+    const Finding& f = map.findings()[r.finding];
+    switch (finding_use(r, mode)) {
+      case FindingUse::kClosed:
+        mission.blockages.push_back({.pipe = f.pipe, .offset_m = f.offset_m});
+        ++closed;
+        break;
+      case FindingUse::kWeighed:
+        mission.hazards.push_back({.pipe = f.pipe,
+                                   .offset_m = f.offset_m,
+                                   .probability = r.blockage_probability,
+                                   .reason = r.reason});
+        break;
+      case FindingUse::kIgnored:
+        break;
     }
   }
-  const std::vector<Blockage> closed = impassable_blockages(map, risks);
-  mission.blockages.insert(mission.blockages.end(), closed.begin(), closed.end());
-  return closed.size();
+  return closed;
 }
 
 }  // namespace sewerplan

@@ -28,6 +28,20 @@ bool Measurer::valid(const ManholeSignature& seen, const std::string& where) {
   return true;
 }
 
+bool Measurer::near_an_end(const Pipe& pipe, double offset_m, double sigma_m) {
+  const double margin = std::max(options_.end_margin_sigmas * sigma_m, options_.end_margin_m);
+  for (std::uint8_t e = 0; e < 2; ++e) {
+    const double from_end = std::abs(offset_m - domain::end_offset_m(pipe, e));
+    if (!pipe.ends[e].manhole || from_end > margin) continue;
+    rejected_.push_back(pipe.name + " at " + std::to_string(offset_m) + " m: a manhole seen " +
+                        std::to_string(from_end) + " m from " +
+                        map_.manhole(*pipe.ends[e].manhole).name +
+                        ", too near to tell from it: no junction");
+    return true;
+  }
+  return false;
+}
+
 void Measurer::observe(const Job& job, const hal::JobReport& report,
                        const domain::RobotPosition& before, const domain::RobotPosition& after,
                        double direction) {
@@ -50,12 +64,13 @@ void Measurer::observe(const Job& job, const hal::JobReport& report,
   if (leg_ || in == nullptr) return;
   const Pipe& pipe = map_.pipe(in->pipe);
   if (!valid(*report.observation, pipe.name)) return;
-  measurements_.junctions.push_back(
-      {.pipe = in->pipe,
-       .offset_m = in->offset_m,
-       .sigma_m = sigma_m(std::min(in->offset_m, pipe.length_m - in->offset_m)),
-       .signature = *report.observation,
-       .source = 0});
+  const double sigma = sigma_m(std::min(in->offset_m, pipe.length_m - in->offset_m));
+  if (near_an_end(pipe, in->offset_m, sigma)) return;
+  measurements_.junctions.push_back({.pipe = in->pipe,
+                                     .offset_m = in->offset_m,
+                                     .sigma_m = sigma,
+                                     .signature = *report.observation,
+                                     .source = 0});
 }
 
 void Measurer::start_leg(const domain::RobotPosition& after) {
@@ -112,9 +127,11 @@ void Measurer::drive(const Job& job, const hal::JobReport& report,
     arrival(m, s, *report.observation);
     return;
   }
+  const double sigma = sigma_m(std::abs(leg_->driven_m));
+  if (near_an_end(pipe, in->offset_m, sigma)) return;
   measurements_.junctions.push_back({.pipe = leg_->pipe,
                                      .offset_m = in->offset_m,
-                                     .sigma_m = sigma_m(std::abs(leg_->driven_m)),
+                                     .sigma_m = sigma,
                                      .signature = *report.observation,
                                      .source = 0});
 }

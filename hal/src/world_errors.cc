@@ -524,14 +524,26 @@ SensingModel make_sensing(const TrueWorld& truth) {
   return s;
 }
 
-WorldSpot world_spot(const SewerMap& map, const TrueWorld& truth, PipeId pipe, double offset_m) {
+namespace {
+
+const PipeSplit* split_of(const TrueWorld& truth, PipeId pipe) {
   const PipeSplit* split = nullptr;
   for (const PipeSplit& s : truth.splits) {
     if (s.pipe == pipe) split = &s;
   }
-  const double world_m =
-      truth.world.pipe(pipe).length_m + (split ? truth.world.pipe(split->rest).length_m : 0);
-  return spot_in(map.pipe(pipe).length_m, world_m, split, pipe, offset_m);
+  return split;
+}
+
+}  // namespace
+
+double world_length_m(const TrueWorld& truth, PipeId pipe) {
+  const PipeSplit* split = split_of(truth, pipe);
+  return truth.world.pipe(pipe).length_m + (split ? truth.world.pipe(split->rest).length_m : 0);
+}
+
+WorldSpot world_spot(const SewerMap& map, const TrueWorld& truth, PipeId pipe, double offset_m) {
+  return spot_in(map.pipe(pipe).length_m, world_length_m(truth, pipe), split_of(truth, pipe), pipe,
+                 offset_m);
 }
 
 SimPose world_pose(const SewerMap& map, const TrueWorld& truth, const SimPose& pose) {

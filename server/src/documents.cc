@@ -145,6 +145,12 @@ Json plan_json(const search::PlanOutcome& outcome, const domain::ValidationRepor
   j["algorithm"] = outcome.algorithm;
   j["dropped"] = dropped_json(outcome.dropped, m);
   j["statistics"] = statistics_json(outcome);
+  if (j.contains("risk")) {
+    // Risk-aware planning: beside the route's unobstructed probability (plan_json.h), the expected
+    // cost of stops the planner chose the plan with, and why it took the risk-blind plan, if so.
+    j["risk"]["expected_cost_s"] = outcome.risk_cost_s;
+    if (!outcome.risk_note.empty()) j["risk"]["note"] = outcome.risk_note;
+  }
   return j;
 }
 

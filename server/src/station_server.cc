@@ -31,6 +31,7 @@
 #include "sewerplan/domain/validator.h"
 #include "sewerplan/executor/event_json.h"
 #include "sewerplan/executor/executor.h"
+#include "sewerplan/executor/measuring.h"
 #include "sewerplan/fusion/action_json.h"
 #include "sewerplan/fusion/action_text.h"
 #include "sewerplan/fusion/fuse.h"
@@ -39,6 +40,8 @@
 #include "sewerplan/search/planner.h"
 #include "sewerplan/server/documents.h"
 #include "sewerplan/server/driveability_output.h"
+#include "sewerplan/server/findings_output.h"
+#include "sewerplan/server/geojson_export.h"
 #include "sewerplan/server/sim_setup.h"
 
 #include "campaign_service.h"
@@ -93,6 +96,10 @@ struct LoadedMap {
   std::shared_ptr<const Geometry> geometry;
   std::filesystem::path motion_table;  // MAP.motion.json beside the map, if there is one
   std::string condition_name;          // the uploaded condition file's name
+  // The reader's warnings of the map and of its condition data ({where, message} each), for the
+  // page to show beside the map (GET /api/maps).
+  Json warnings = Json::array();
+  Json condition_warnings = Json::array();
 };
 
 // Answers with `body`, an immutable part of `owner`, without copying it: httplib reads it while it
@@ -269,6 +276,7 @@ struct StationServer::Impl {
   void routes();
   void list_maps(httplib::Response& res) const;
   void driveability(const httplib::Request& req, httplib::Response& res) const;
+  void findings(const httplib::Request& req, httplib::Response& res) const;
   void upload_map(const httplib::Request& req, const std::string& body, httplib::Response& res);
   void upload_condition(const httplib::Request& req, const std::string& body,
                         httplib::Response& res);
@@ -276,6 +284,7 @@ struct StationServer::Impl {
   void plan(const httplib::Request& req, const std::string& body, httplib::Response& res) const;
   void simulate(const httplib::Request& req, const std::string& body, httplib::Response& res) const;
   void replay(const httplib::Request& req, const std::string& body, httplib::Response& res) const;
+  void geojson(const httplib::Request& req, const std::string& body, httplib::Response& res) const;
   void campaign(const httplib::Request& req, const std::string& body, httplib::Response& res);
   // Why an /api/ request is refused for its token, if it is.
   std::optional<std::string> unauthorised(const httplib::Request& req) const;
@@ -304,7 +313,12 @@ void StationServer::Impl::list_maps(httplib::Response& res) const {
                     {"manholes", m->map->manhole_count()},
                     {"pipes", m->map->pipe_count()},
                     {"findings", m->map->finding_count()},
-                    {"motion_table", !m->motion_table.empty()}});
+                    {"motion_table", !m->motion_table.empty()},
+                    {"warnings", m->warnings},
+                    {"condition_warnings", m->condition_warnings},
+                    // The coordinate reference system of the geometry's x and y (core/crs.h),
+                    // or null: local coordinates. The page names it beside the cursor's position.
+                    {"crs", m->map->crs() ? Json(m->map->crs()->to_string()) : Json()}});
   }
   send_json(res, {{"maps", list}, {"profiles", builtin_profile_names()}});
 }
@@ -338,15 +352,22 @@ void StationServer::Impl::upload_map(const httplib::Request& req, const std::str
   Result<std::shared_ptr<const Geometry>> geometry = build_geometry(*given, upload.id());
   if (!geometry.has_value()) return send_error(res, kUnprocessable, geometry.error());
   if (options.on_geometry_built) options.on_geometry_built(upload.id());
-  auto loaded = std::make_shared<const LoadedMap>(
-      LoadedMap{upload.id(), given, given, std::move(*geometry), {}, {}});
+  auto loaded =
+      std::make_shared<const LoadedMap>(LoadedMap{upload.id(),
+                                                  given,
+                                                  given,
+                                                  std::move(*geometry),
+                                                  {},
+                                                  {},
+                                                  diagnostics_json(diagnostics, Severity::kWarning),
+                                                  Json::array()});
   upload.list(loaded);
   send_json(res,
             {{"id", upload.id()},
              {"name", loaded->map->name()},
              {"manholes", loaded->map->manhole_count()},
              {"pipes", loaded->map->pipe_count()},
-             {"warnings", diagnostics_json(diagnostics, Severity::kWarning)}},
+             {"warnings", loaded->warnings}},
             201);
 }
 
@@ -366,9 +387,9 @@ void StationServer::Impl::upload_condition(const httplib::Request& req, const st
   // The one copy: the joined map owns its findings. The map as given and the geometry are shared.
   Result<SewerMap> joined = read_condition_isybau(*m->given, body, name, diagnostics);
   if (!joined.has_value()) return send_error(res, kUnprocessable, joined.error(), diagnostics);
-  auto loaded = std::make_shared<const LoadedMap>(
-      LoadedMap{m->id, m->given, std::make_shared<const SewerMap>(std::move(*joined)), m->geometry,
-                m->motion_table, name});
+  auto loaded = std::make_shared<const LoadedMap>(LoadedMap{
+      m->id, m->given, std::make_shared<const SewerMap>(std::move(*joined)), m->geometry,
+      m->motion_table, name, m->warnings, diagnostics_json(diagnostics, Severity::kWarning)});
   const std::lock_guard lock(maps_mutex);
   for (auto& slot : maps) {
     if (slot->id == loaded->id) slot = loaded;
@@ -376,7 +397,7 @@ void StationServer::Impl::upload_condition(const httplib::Request& req, const st
   send_json(res, {{"id", loaded->id},
                   {"condition", name},
                   {"findings", loaded->map->finding_count()},
-                  {"warnings", diagnostics_json(diagnostics, Severity::kWarning)}});
+                  {"warnings", loaded->condition_warnings}});
 }
 
 void StationServer::Impl::driveability(const httplib::Request& req, httplib::Response& res) const {
@@ -401,6 +422,27 @@ void StationServer::Impl::driveability(const httplib::Request& req, httplib::Res
   j.update(closures_json(*m->map, split_closures(*m->map, *profile, table, report)));
   j["motion_table"] = with_motion.passage_motion != nullptr;
   res.set_content(j.dump(), kJsonType);
+}
+
+// GET /api/maps/ID/findings?profile=P&risk=MODE: the map's inspection findings with their class
+// for the robot and what planning in the mode makes of them (findings_output.h). The risk mode
+// as /plan's (default impassable); a built-in profile only, as /driveability.
+void StationServer::Impl::findings(const httplib::Request& req, httplib::Response& res) const {
+  const auto m = find_map(req, res);
+  if (!m) return;
+  const std::string name = req.get_param_value("profile");
+  const std::optional<RobotProfile> profile = builtin_profile(name);
+  if (!profile) {
+    return bad_request(res, "profile: unknown '" + name + "' (built-in: makro-1.1, makro-plus)");
+  }
+  const std::string mode_name =
+      req.has_param("risk") ? req.get_param_value("risk") : std::string("impassable");
+  const std::optional<RiskMode> mode = risk_mode_from_string(mode_name);
+  if (!mode) {
+    return bad_request(
+        res, "risk: expected ignore, impassable, avoid or expected, not '" + mode_name + "'");
+  }
+  send_json(res, findings_json(*m->map, *profile, *mode, mode_name, default_risk_table()));
 }
 
 void StationServer::Impl::validate(const httplib::Request& req, const std::string& body,
@@ -447,9 +489,11 @@ void StationServer::Impl::plan(const httplib::Request& req, const std::string& b
   Json j = plan_json(*outcome, report, *m->map, *mission);
   j["text"] = domain::format_plan(outcome->plan, *m->map, *mission);
   j["motion_table"] = mission->passage_motion != nullptr;
-  j["risk"] = {{"mode", risk->name},
-               {"closed_by_findings", risk->closed},
-               {"possible_blockages", mission->hazards.size()}};
+  // With weighed blockages plan_json has put the route's risk (its unobstructed probability, the
+  // expected cost of stops, the blockages passed) here already: kept, and what the mode did added.
+  j["risk"].update({{"mode", risk->name},
+                    {"closed_by_findings", risk->closed},
+                    {"possible_blockages", mission->hazards.size()}});
   Json actions = Json::array();
   if (Result<fusion::FusedPlan> fused = fusion::fuse(outcome->plan, *m->map, *mission, fuse_start);
       fused.has_value()) {
@@ -525,7 +569,16 @@ void StationServer::Impl::simulate(const httplib::Request& req, const std::strin
         executor.subscribe_plans([&](const executor::PlanResponse& response) {
           send("route", dump(plan_route_json(response.plan, *run->map, replanner.mission())));
         });
+        // What the run measured of the map (simulate --corrected-map's measurements).
+        executor::Measurer measurer(*run->map, MeasurementSource{.robot = run->mission.profile.name,
+                                                                 .mission = run->mission.name,
+                                                                 .date = {}});
+        executor.subscribe_jobs(measurer.observer());
         const executor::MissionReport report = executor.run();
+        // What the robot learnt (closed pipes, dangerous passages) and the map corrections its
+        // measurements show, for the page to draw and export (findings_output.h).
+        send("learnt",
+             dump(learnt_json_document(replanner.learnt(), measurer.measurements(), *run->map)));
         send("report", dump(report_json(report)));
         sink.done();
         return true;
@@ -543,6 +596,36 @@ void StationServer::Impl::replay(const httplib::Request& req, const std::string&
   Json list = Json::array();
   for (const executor::Event& e : *events) list.push_back(Json::parse(executor::to_json_line(e)));
   send_json(res, {{"events", list}});
+}
+
+// POST /api/maps/ID/geojson: {"mission", "plan": its text, "log": an event log's lines}, the plan
+// and the log optional, as `export-geojson --mission --plan --log` writes them (geojson_export.h).
+void StationServer::Impl::geojson(const httplib::Request& req, const std::string& text,
+                                  httplib::Response& res) const {
+  const auto m = find_map(req, res);
+  if (!m) return;
+  const Result<Json> parsed = parse_json_body(text);
+  if (!parsed.has_value()) return bad_request(res, parsed.error().message);
+  const Json& body = *parsed;
+  if (!body.is_object())
+    return bad_request(res, "expected a JSON object {\"mission\", \"plan\", \"log\"}");
+  if (!body.contains("mission") || !body["mission"].is_object()) {
+    return bad_request(res, "\"mission\": expected the mission's JSON object");
+  }
+  for (const char* key : {"plan", "log"}) {
+    if (body.contains(key) && !body[key].is_string()) {
+      return bad_request(res, std::string("\"") + key + "\": expected text");
+    }
+  }
+  std::optional<Mission> mission = read_body_mission(dump(body["mission"]), *m->map, res);
+  if (!mission) return;
+  const std::string plan = body.value("plan", std::string());
+  const std::string log = body.value("log", std::string());
+  Diagnostics diagnostics;
+  Result<std::string> geojson =
+      export_geojson(*m->map, *mission, {.plan_text = plan, .log_text = log}, diagnostics);
+  if (!geojson.has_value()) return send_error(res, kUnprocessable, geojson.error(), diagnostics);
+  res.set_content(std::move(*geojson), "application/geo+json");
 }
 
 // POST /api/maps/ID/campaign: the mission read as /simulate reads it, the rest by the service.
@@ -677,6 +760,8 @@ void StationServer::Impl::routes() {
   });
   http.Get(R"(/api/maps/([^/]+)/driveability)",
            [this](const Req& req, Res& res) { driveability(req, res); });
+  http.Get(R"(/api/maps/([^/]+)/findings)",
+           [this](const Req& req, Res& res) { findings(req, res); });
   post(R"(/api/maps/([^/]+)/validate)",
        [this](const Req& req, const std::string& body, Res& res) { validate(req, body, res); });
   post(R"(/api/maps/([^/]+)/plan)",
@@ -685,6 +770,8 @@ void StationServer::Impl::routes() {
        [this](const Req& req, const std::string& body, Res& res) { simulate(req, body, res); });
   post(R"(/api/maps/([^/]+)/replay)",
        [this](const Req& req, const std::string& body, Res& res) { replay(req, body, res); });
+  post(R"(/api/maps/([^/]+)/geojson)",
+       [this](const Req& req, const std::string& body, Res& res) { geojson(req, body, res); });
   post(R"(/api/maps/([^/]+)/campaign)",
        [this](const Req& req, const std::string& body, Res& res) { campaign(req, body, res); });
   http.Get("/api/campaign", [this](const Req&, Res& res) { campaigns->status(res); });
@@ -730,7 +817,14 @@ Result<std::unique_ptr<StationServer>> StationServer::create(const ServerOptions
     std::error_code ec;
     if (!std::filesystem::exists(motion, ec)) motion.clear();
     impl->maps.push_back(std::make_shared<const LoadedMap>(
-        LoadedMap{id, given, given, std::move(*geometry), std::move(motion), {}}));
+        LoadedMap{id,
+                  given,
+                  given,
+                  std::move(*geometry),
+                  std::move(motion),
+                  {},
+                  diagnostics_json(diagnostics, Severity::kWarning),
+                  Json::array()}));
   }
   if (!options.web_root.empty() && !std::filesystem::is_directory(options.web_root)) {
     return Error{ErrorCode::kIo, options.web_root.string() + ": no such directory (the page)"};

@@ -97,6 +97,30 @@ expect 3 'cannot write /dev/full: No space left on device \([0-9]+ of [0-9]+ wri
 expect 3 'mission ended at pipe P9' -- \
   "$sp" simulate --map "$ais" --mission "$mission" --replay "$tmp/run.log" --can-log /dev/full -q
 
+# Issue 29: a world that is not the map. sim-node builds the true world and sensing that simulate
+# builds in process from the same --world-errors and --world-seed; the job results carry the
+# odometry and each manhole's observed signature, so the run over the bus is the run in process,
+# arrival for arrival.
+"$sp" simulate --map "$ais" --mission "$mission" --world-errors realistic --world-seed 3 \
+  --log "$tmp/world-local.jsonl" -q > "$tmp/world-local.out"
+start_node --world-errors realistic --world-seed 3
+"$sp" simulate --map "$ais" --mission "$mission" --can "slcan:$pty" --log "$tmp/world-can.jsonl" \
+  -q > "$tmp/world-can.out" 2> /dev/null
+stop_node
+expect 0 '"type":"arrival".*"observed":' -- cat "$tmp/world-can.jsonl"
+strip_planning "$tmp/world-local.jsonl" > "$tmp/a"; strip_planning "$tmp/world-can.jsonl" > "$tmp/b"
+same "event logs in a realistic world in process and over SLCAN" "$tmp/a" "$tmp/b"
+strip_planning "$tmp/world-local.out" > "$tmp/a"; strip_planning "$tmp/world-can.out" > "$tmp/b"
+same "reports in a realistic world in process and over SLCAN" "$tmp/a" "$tmp/b"
+# The world is the node's: simulate refuses it with --can (it would not reach the robot) and
+# --replay; sim-node names a bad profile.
+expect 2 'are the node.s with --can: give them to sim-node' -- \
+  "$sp" simulate --map "$ais" --mission "$mission" --can slcan:/dev/null --world-seed 3
+expect 2 'are not for --replay' -- \
+  "$sp" simulate --map "$ais" --mission "$mission" --replay "$tmp/run.log" --world-errors realistic
+expect 2 "sim-node: --world-errors: unknown profile 'realism'" -- \
+  "$sp" sim-node --pty --map "$ais" --mission "$mission" --world-errors realism
+
 # A node that falls silent for three requests: a malfunction, a reboot over the bus, and on.
 start_node --bus-faults 'silence=5+3'
 expect 0 'reason=CAN link: no acknowledgement of job' -- "$sp" simulate --map "$ais" \

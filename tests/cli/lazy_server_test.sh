@@ -36,9 +36,11 @@ for run in version plan validate; do
   fi
 done
 
-# serve: loads the module and httplib, answers, and stops on SIGTERM.
+# serve: loads the module and httplib, answers, and stops on SIGTERM. A map with reader's warnings
+# beside: serve prints them at the start, as every command (issue 32), and lists them with the map.
 LD_DEBUG=files LD_DEBUG_OUTPUT="$tmp/serve.trace" \
-  "$sp" serve --map "$data/map.json" --port 0 > "$tmp/serve.log" 2>&1 &
+  "$sp" serve --map "$data/map.json" --map "$src/datasets/isybau/street-2013.xml" --port 0 \
+  > "$tmp/serve.log" 2>&1 &
 pid=$!
 url=
 for _ in $(seq 1 600); do
@@ -51,6 +53,11 @@ done
 curl -sf "${url}api/maps" > "$tmp/maps.json"
 [ "$(jq -r '.maps[0].id' "$tmp/maps.json")" = map ] || {
   echo "FAIL: /api/maps does not list the map:"; cat "$tmp/maps.json"; exit 1; }
+grep -q 'street-2013.xml: warning: 4 manholes have no shaft size' "$tmp/serve.log" || {
+  cat "$tmp/serve.log"; echo "FAIL: serve did not print the reader's warnings"; exit 1; }
+jq -e '.maps[1].warnings | map(.message) | any(test("4 manholes have no shaft size"))' \
+  "$tmp/maps.json" > /dev/null || {
+  echo "FAIL: /api/maps does not list the reader's warnings:"; cat "$tmp/maps.json"; exit 1; }
 kill -TERM "$pid"
 status=0
 wait "$pid" || status=$?

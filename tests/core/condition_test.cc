@@ -270,6 +270,58 @@ TEST(ConditionRisk, DefaultTableClosesCollapsesAndNarrowDeformations) {
   EXPECT_TRUE(impassable_blockages(*map, assess_findings(*map, profile, RiskTable{})).empty());
 }
 
+// What each risk mode makes of each finding (finding_use: the operator station draws it) is what
+// close_findings adds to the mission: a blockage for each closed one, a hazard for each weighed.
+TEST(ConditionRisk, CloseFindingsAppliesExactlyWhatFindingUseSaysInEveryMode) {
+  Diagnostics d;
+  Result<SewerMap> map = read_condition_isybau(street(d), zustand(), "z.xml", d);
+  ASSERT_TRUE(map.has_value());
+  RobotProfile profile = *builtin_profile("makro-plus");
+  profile.body_width_m = 0.22;
+  const std::vector<FindingRisk> risks = assess_findings(*map, profile, default_risk_table());
+  const auto use_of = [&](RiskMode mode, std::string_view pipe, std::string_view code) {
+    const Finding* f = find(*map, pipe, code);
+    return finding_use(risks[static_cast<std::size_t>(f - map->findings().data())], mode);
+  };
+  using U = FindingUse;
+  EXPECT_EQ(use_of(RiskMode::kImpassable, "S2", "BAC"), U::kClosed);
+  EXPECT_EQ(use_of(RiskMode::kImpassable, "S1", "BBA"), U::kIgnored);
+  EXPECT_EQ(use_of(RiskMode::kExpected, "S1", "BBA"), U::kWeighed);
+  EXPECT_EQ(use_of(RiskMode::kExpected, "S2", "BAC"), U::kClosed);
+  EXPECT_EQ(use_of(RiskMode::kExpected, "S1", "BAJ"), U::kIgnored);  // a danger is not weighed
+  EXPECT_EQ(use_of(RiskMode::kAvoid, "S1", "BAJ"), U::kClosed);
+  EXPECT_EQ(use_of(RiskMode::kAvoid, "S1", "BCD"), U::kIgnored);
+  EXPECT_EQ(use_of(RiskMode::kIgnore, "S2", "BAC"), U::kIgnored);
+  for (const RiskMode mode :
+       {RiskMode::kIgnore, RiskMode::kImpassable, RiskMode::kAvoid, RiskMode::kExpected}) {
+    Mission mission;
+    mission.profile = profile;
+    std::vector<Blockage> closed;
+    std::vector<Hazard> weighed;
+    for (const FindingRisk& r : risks) {
+      const Finding& f = map->findings()[r.finding];
+      if (finding_use(r, mode) == U::kClosed) closed.push_back({f.pipe, f.offset_m});
+      if (finding_use(r, mode) == U::kWeighed) {
+        weighed.push_back({f.pipe, f.offset_m, r.blockage_probability, r.reason});
+      }
+    }
+    EXPECT_EQ(close_findings(*map, mission, mode, default_risk_table()), closed.size());
+    EXPECT_EQ(mission.blockages, closed);
+    EXPECT_EQ(mission.hazards, weighed);
+  }
+  EXPECT_EQ(to_string(U::kWeighed), "weighed");
+}
+
+TEST(Condition, NamesTheMainCodesOfDinEn13508_2) {
+  EXPECT_EQ(finding_code_name("BBA"), "roots");
+  EXPECT_EQ(finding_code_name("BAC"), "break or collapse");
+  EXPECT_EQ(finding_code_name("BCD"), "start node");
+  EXPECT_EQ(finding_code_name("BDC"), "inspection abandoned");
+  EXPECT_EQ(finding_code_name("DAB"), "");  // a manhole's code: not a pipe's
+  EXPECT_EQ(finding_code_name("bba"), "");  // as the risk table matches codes: case counts
+  EXPECT_EQ(finding_code_name(""), "");
+}
+
 // DIN EN 13508-2 tells a break (A: pieces displaced, B: pieces missing) from a collapse (C) by
 // the characterisation: only a collapse, or a BAC that does not say which, closes the pipe.
 TEST(ConditionRisk, DefaultTableTellsABreakFromACollapse) {

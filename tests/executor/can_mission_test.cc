@@ -18,6 +18,7 @@
 #include "sewerplan/hal/can/candump.h"
 #include "sewerplan/hal/fault_scenario.h"
 #include "sewerplan/hal/sim_robot.h"
+#include "sewerplan/hal/world_errors.h"
 
 #include "support/ais_testbed.h"
 #include "support/can_node.h"
@@ -55,10 +56,30 @@ CanRun run_on(const SewerMap& map, const Mission& mission, hal::Robot& robot, Ma
   return run;
 }
 
-CanRun in_process(const testing::AisTestbed& ais, const hal::FaultScenario& faults) {
-  ManualClock clock;  // planning times of 0: runs compare equal
+// The simulated robot of a run: in the map itself, or in a true world drawn from it (issue 29,
+// hal/world_errors.h) with its sensing; the start and the faults are given on the map.
+struct RobotSetup {
+  const SewerMap* world = nullptr;
+  hal::SimPose start;
+  hal::FaultScenario faults;
+  hal::SimOptions options;
+};
+
+RobotSetup setup_of(const testing::AisTestbed& ais, const hal::FaultScenario& faults,
+                    const hal::TrueWorld* truth) {
+  ManualClock clock;
   Replanner probe(ais.map, ais.mission, {.clock = &clock});
-  hal::SimRobot robot(ais.map, ais.mission.profile, start_of(probe), faults);
+  if (truth == nullptr) return {&ais.map, start_of(probe), faults, {}};
+  return {&truth->world, hal::world_pose(ais.map, *truth, start_of(probe)),
+          hal::world_faults(ais.map, *truth, faults),
+          hal::SimOptions{.sensing = hal::make_sensing(*truth)}};
+}
+
+CanRun in_process(const testing::AisTestbed& ais, const hal::FaultScenario& faults,
+                  const hal::TrueWorld* truth = nullptr) {
+  ManualClock clock;  // planning times of 0: runs compare equal
+  const RobotSetup s = setup_of(ais, faults, truth);
+  hal::SimRobot robot(*s.world, ais.mission.profile, s.start, s.faults, s.options);
   return run_on(ais.map, ais.mission, robot, clock);
 }
 
@@ -72,14 +93,15 @@ hal::CanRobotOptions patient() { return {.ack_timeout_s = 5, .link_timeout_s = 1
 
 // Over SLCAN through a pty; `candump` gets the bus traffic when given.
 CanRun over_can(const testing::AisTestbed& ais, const hal::FaultScenario& faults,
-                const std::string& bus_faults = "", std::ostream* candump = nullptr) {
+                const std::string& bus_faults = "", std::ostream* candump = nullptr,
+                const hal::TrueWorld* truth = nullptr) {
   const hal::CanRobotOptions options = bus_faults.empty() ? patient() : fast();
   ManualClock clock;
-  Replanner probe(ais.map, ais.mission, {.clock = &clock});
   Result<hal::BusFaults> parsed = hal::parse_bus_faults(bus_faults);
   EXPECT_TRUE(parsed.has_value());
-  testing::CanNodeThread node(ais.map, ais.mission.profile, start_of(probe), faults, *parsed,
-                              testing::Transport::kSlcanPty);
+  const RobotSetup s = setup_of(ais, faults, truth);
+  testing::CanNodeThread node(*s.world, ais.mission.profile, s.start, s.faults, *parsed,
+                              testing::Transport::kSlcanPty, 0.5, s.options);
   if (!node.ok()) return {};
   SteadyClock wall;
   std::optional<hal::RecordingCanBus> recording;
@@ -223,13 +245,14 @@ struct Traffic {
 // Over the in-memory bus with short timeouts, so that many faulty runs stay quick (a timeout that
 // a loaded machine makes expire early only adds a retry); `traffic` gets the frames when given.
 CanRun over_memory(const testing::AisTestbed& ais, const hal::FaultScenario& faults,
-                   const std::string& bus_faults, Traffic* traffic = nullptr) {
+                   const std::string& bus_faults, Traffic* traffic = nullptr,
+                   const hal::TrueWorld* truth = nullptr) {
   ManualClock clock;
-  Replanner probe(ais.map, ais.mission, {.clock = &clock});
   Result<hal::BusFaults> parsed = hal::parse_bus_faults(bus_faults);
   EXPECT_TRUE(parsed.has_value()) << bus_faults;
-  testing::CanNodeThread node(ais.map, ais.mission.profile, start_of(probe), faults, *parsed,
-                              testing::Transport::kMemory, 0.05);
+  const RobotSetup s = setup_of(ais, faults, truth);
+  testing::CanNodeThread node(*s.world, ais.mission.profile, s.start, s.faults, *parsed,
+                              testing::Transport::kMemory, 0.05, s.options);
   Tap recording(node.controller_bus());
   hal::CanRobot robot(recording,
                       {.ack_timeout_s = 0.05, .link_timeout_s = 0.1, .heartbeat_s = 0.05});
@@ -357,6 +380,79 @@ TEST(CanMission, TheCandumpLogOfARunReplaysToTheSameEventLog) {
     EXPECT_EQ(replayed.report, recorded.report);
     EXPECT_EQ(replay.unsent(), 0U);
   }
+}
+
+// Issue 29: a robot in a world that is not the map, with slipping wheels, missed and false
+// manholes, reports its odometry and what it saw at each manhole in the job's RESULT. Over SLCAN
+// the run is the in-process run, event for event (the arrivals with their observed signatures).
+hal::TrueWorld realistic_world(const testing::AisTestbed& ais, std::uint64_t seed) {
+  const Result<hal::TrueWorld> truth =
+      hal::make_true_world(ais.map, *hal::parse_world_errors("realistic"), seed);
+  EXPECT_TRUE(truth.has_value());
+  return truth.has_value() ? *truth : hal::TrueWorld{};
+}
+
+TEST(CanMission, IssueTwentyNineARunInARealisticWorldOverSlcanEqualsTheRunInProcess) {
+  const auto ais = testing::load_ais_testbed();
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    const hal::TrueWorld truth = realistic_world(ais, seed);
+    const CanRun local = in_process(ais, {}, &truth);
+    ASSERT_THAT(local.json_lines, HasSubstr("\"observed\":")) << "seed " << seed;
+    const CanRun bus = over_can(ais, {}, "", nullptr, &truth);
+    EXPECT_EQ(bus.report, local.report) << "seed " << seed;
+    EXPECT_EQ(bus.json_lines, local.json_lines) << "seed " << seed;
+    EXPECT_EQ(bus.link.retries, 0U);
+  }
+}
+
+// The observation's frames lost on the way are repaired as any result frame (a RESULT_REQUEST;
+// the copies fill the gaps), and a result the link lost until the reboot comes back with its
+// observation (the node's kept RESULT): the run ends as the loss-free one.
+TEST(CanMission, IssueTwentyNineLostObservationFramesChangeNoOutcome) {
+  const auto ais = testing::load_ais_testbed();
+  const hal::TrueWorld truth = realistic_world(ais, 2);
+  const CanRun local = in_process(ais, {}, &truth);
+  Traffic clean;
+  expect_same_outcome(over_memory(ais, {}, "", &clean, &truth), local, "no loss");
+  // The node's frames (as it counts them: heartbeats aside) of the first observed RESULT.
+  std::vector<std::uint64_t> observation;
+  std::optional<std::uint8_t> observed_seq;
+  std::uint64_t index = 0;
+  for (const hal::CanFrame& f : clean.received) {
+    const std::optional<hal::FrameId> id = hal::frame_id(f);
+    if (!id || id->type == hal::MessageType::kNodeHeartbeat) continue;
+    const std::uint64_t at = index++;
+    if (id->type != hal::MessageType::kResult) continue;
+    if (id->index == 0 && !observed_seq && f.dlc == 6) observed_seq = id->seq;
+    if (observed_seq == id->seq && id->index >= 7 && id->index != hal::kEndFrameIndex) {
+      observation.push_back(at);  // the observation follows the 7 frames (header, numbers)
+    }
+  }
+  ASSERT_GE(observation.size(), 6U);  // two slots at least
+  for (const std::uint64_t frame :
+       {observation.front(), observation[observation.size() / 2], observation.back()}) {
+    const std::string spec = "drop=" + std::to_string(frame);
+    const CanRun bus = over_memory(ais, {}, spec, nullptr, &truth);
+    expect_same_outcome(bus, local, spec);
+    EXPECT_GE(bus.link.retries + bus.link.timeouts, 1U) << spec;
+  }
+  // The job of that result, counted from 0 as the node runs them (loss-free: each job once).
+  std::size_t job = 0;
+  hal::MessageDecoder decoder;
+  for (const hal::CanFrame& f : clean.sent) {
+    const std::optional<hal::Decoded> d = decoder.push(f);
+    const auto* m = d ? std::get_if<hal::Message>(&*d) : nullptr;
+    const auto* command = m != nullptr ? std::get_if<hal::JobCommand>(m) : nullptr;
+    if (command == nullptr) continue;
+    if (command->seq == *observed_seq) break;
+    ++job;
+  }
+  const std::string lose = "lose-result=" + std::to_string(job);
+  const CanRun lost = over_memory(ais, {}, lose, nullptr, &truth);
+  expect_same_outcome(lost, local, lose);
+  EXPECT_THAT(lost.json_lines, HasSubstr("CAN link: no result of job")) << lose;
+  const CanRun random = over_memory(ais, {}, "drop-rate=0.2;seed=1", nullptr, &truth);
+  expect_same_outcome(random, local, "drop-rate=0.2");
 }
 
 }  // namespace

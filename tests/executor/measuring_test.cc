@@ -155,6 +155,24 @@ TEST_F(MeasurerTest, AManholeSeenInThePipeIsAJunctionOrTheFarOneArrivedEarly) {
   EXPECT_EQ(measurer_.measurements().manholes.at(0).observations.size(), 1u);
 }
 
+// A manhole seen within the odometry's reach of a pipe's end manhole is that manhole, not a
+// junction the map lacks (issue 29: such sightings were most of the false junction reports).
+TEST_F(MeasurerTest, AManholeSeenNearAnEndOfThePipeIsNoJunction) {
+  enter();
+  hal::JobReport seen;
+  ManholeSignature three = m2_seen();
+  three.slots.push_back(SlotSighting{270, 0, 0.3});  // unlike M2: not its early arrival
+  seen.observation = three;
+  drive(0, 0.3, seen);    // the mouth just left
+  drive(0.3, 9.3, seen);  // 0.4 m short of M2, within 3 sigma of 9.6 m of odometry (0.87 m)
+  EXPECT_TRUE(measurer_.measurements().junctions.empty());
+  ASSERT_EQ(measurer_.rejected().size(), 2u);
+  EXPECT_NE(measurer_.rejected()[1].find("too near to tell from it"), std::string::npos)
+      << measurer_.rejected()[1];
+  drive(9.6, 4.6, seen, -1);  // back to 5 m: a junction
+  EXPECT_EQ(measurer_.measurements().junctions.size(), 1u);
+}
+
 // On the exact world of today's simulator, the mission's measurements are the map's: every pipe
 // driven whole measures its map length, and nothing differs.
 TEST(MeasuringMission, AnExactWorldMeasuresTheMapAndChangesNothingOfTheRun) {

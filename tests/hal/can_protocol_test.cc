@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The job protocol's frames (docs/can-protocol.md): every message survives encode and decode bit
 // for bit, and malformed input is named, never trusted.
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -256,6 +257,115 @@ TEST(JobProtocol, ACopySentAgainFillsTheFramesTheCopiesBeforeItMissed) {
   const std::optional<Decoded> filled = late.push(frames[0]);
   ASSERT_TRUE(filled);
   EXPECT_EQ(std::get<Message>(*filled), Message{result});
+}
+
+// Issue 29: a drive that ends at a manhole it detected reports what the robot saw of it. The
+// odometry is the report's progress_m (and the status's odometry_m), as before.
+JobReport observed_drive() {
+  JobReport r;
+  r.progress_m = 12.345678901234567;  // the wheels' measure, slip and all
+  r.duration_s = 41.15;
+  r.energy_wh = 2.0 / 3.0;
+  r.observation = ManholeSignature{
+      .slots = {{0, 0, 0.3}, {87.25, -0.0412, 0.25}, {181.5, 0.1 / 3, 0.2999999999999999}},
+      .shaft_diameter_m = 1.0000000000000002};
+  return r;
+}
+
+void put_f64(CanFrame& frame, double value) {
+  const auto bits = std::bit_cast<std::uint64_t>(value);
+  for (std::size_t i = 0; i < 8; ++i) frame.data[i] = static_cast<std::uint8_t>(bits >> (8 * i));
+}
+
+TEST(JobProtocol, AResultCarriesTheManholeObservationBitForBit) {
+  const RobotStatus status{99.5, 512.25, 1800, false, false};
+  JobReport blocked = observed_drive();
+  blocked.error = RobotError{RobotErrorKind::kBlockage, "obstacle in P5 at 4.00 m"};
+  ManholeSignature many;
+  for (std::size_t i = 0; i < kMaxObservedSlots; ++i) {
+    many.slots.push_back({3.5 * static_cast<double>(i), 0.01 * static_cast<double>(i), 0.3});
+  }
+  many.shaft_diameter_m = 4;
+  JobReport crowded = observed_drive();
+  crowded.observation = many;
+  for (const JobResult& result : {JobResult{1, observed_drive(), status},
+                                  JobResult{2, blocked, status}, JobResult{3, crowded, {}}}) {
+    const std::vector<CanFrame> frames = encode(result);
+    // The 6-byte header, 6 numbers, the reason, 3 frames a slot (slots[0]'s direction, always 0,
+    // is not sent, the shaft is), the end frame.
+    const std::size_t reason = result.report.error ? 3 : 0;
+    const std::size_t slots = result.report.observation->slots.size();
+    EXPECT_EQ(frames.size(), 1 + 6 + reason + 3 * slots + 1);
+    EXPECT_EQ(frames[0].dlc, 6);
+    EXPECT_EQ(frames[0].data[4] | (frames[0].data[5] << 8),
+              static_cast<int>(result.report.observation->slots.size()));
+    const Message back = round_trip(result);
+    EXPECT_EQ(back, Message{result});
+    // Bit for bit: a run over the bus equals one in process.
+    EXPECT_EQ(encode(back), frames);
+  }
+}
+
+TEST(JobProtocol, AResultWithoutAnObservationKeepsTheEarlierLayout) {
+  JobReport plain = observed_drive();
+  plain.observation.reset();
+  const std::vector<CanFrame> frames = encode(JobResult{4, plain, {}});
+  ASSERT_EQ(frames.size(), 8U);  // header, 6 numbers, end: as before issue 29
+  EXPECT_EQ(frames[0].dlc, 4);
+  const Message back = round_trip(JobResult{4, plain, {}});
+  EXPECT_FALSE(std::get<JobResult>(back).report.observation.has_value());
+}
+
+TEST(JobProtocol, AMalformedObservationIsNamed) {
+  JobReport r = observed_drive();
+  std::vector<CanFrame> good = encode(JobResult{5, r, {}});
+  good.pop_back();  // decode_message takes the data frames
+  // Frames 0 header, 1-6 numbers, 7 shaft, 8-9 slot 1 (step, diameter), 10-12 slot 2, 13-15 slot 3.
+  ASSERT_EQ(good.size(), 16U);
+  const auto reason_of = [](const std::vector<CanFrame>& frames) {
+    const Decoded d = decode_message(MessageType::kResult, 5, frames);
+    const auto* bad = std::get_if<Malformed>(&d);
+    return bad != nullptr ? bad->reason : std::string("decoded");
+  };
+  EXPECT_EQ(reason_of(good), "decoded");
+  const auto with = [&](std::size_t frame, double value) {
+    std::vector<CanFrame> f = good;
+    put_f64(f[frame], value);
+    return reason_of(f);
+  };
+  const auto slots = [&](std::uint16_t n) {
+    std::vector<CanFrame> f = good;
+    f[0].data[4] = static_cast<std::uint8_t>(n & 0xffU);
+    f[0].data[5] = static_cast<std::uint8_t>(n >> 8U);
+    return reason_of(f);
+  };
+  EXPECT_THAT(slots(0), HasSubstr("result 5: an observation of 0 slots"));
+  EXPECT_THAT(slots(101), HasSubstr("an observation of 101 slots (at most 100)"));
+  EXPECT_THAT(slots(4), HasSubstr("frame 16 missing"));
+  EXPECT_THAT(slots(2), HasSubstr("16 frames, expected 13"));
+  EXPECT_THAT(with(7, 0), HasSubstr("observation: shaft diameter 0 is not > 0"));
+  EXPECT_THAT(with(9, std::numeric_limits<double>::quiet_NaN()),
+              HasSubstr("observation: slot 1: diameter nan is not > 0"));
+  EXPECT_THAT(with(10, 400), HasSubstr("observation: slot 2: direction 400 is not in [0, 360)"));
+  EXPECT_THAT(with(13, 10), HasSubstr("observation: slot 3: directions must be counter-clockwise"));
+  EXPECT_THAT(with(14, std::numeric_limits<double>::infinity()),
+              HasSubstr("observation: slot 3: the step is not a number"));
+  std::vector<CanFrame> short_header = good;
+  short_header[0].dlc = 5;
+  EXPECT_THAT(reason_of(short_header), HasSubstr("frame 0 has 5 bytes, expected 4"));
+  // An observation's frames lost on the way: the copy sent again fills them, as for any result.
+  const std::vector<CanFrame> frames = encode(JobResult{5, r, {}});
+  MessageDecoder decoder;
+  std::optional<Decoded> first;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    if (i != 8 && i != 14) first = decoder.push(frames[i]);
+  }
+  ASSERT_TRUE(first);
+  EXPECT_THAT(std::get<Malformed>(*first).reason, HasSubstr("result 5: frame 8 of 16 missing"));
+  EXPECT_FALSE(decoder.push(frames[8]));
+  const std::optional<Decoded> whole = decoder.push(frames[14]);
+  ASSERT_TRUE(whole);
+  EXPECT_EQ(std::get<Message>(*whole), (Message{JobResult{5, r, {}}}));
 }
 
 TEST(JobProtocol, Crc32IsTheZlibOne) {

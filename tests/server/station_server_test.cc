@@ -42,6 +42,7 @@ TEST_F(StationServerTest, ListsItsMapsByIdAndTheBuiltInProfiles) {
   ASSERT_EQ(j["maps"].size(), 1u);
   EXPECT_EQ(j["maps"][0]["id"], "map");
   EXPECT_EQ(j["maps"][0]["manholes"], 12);
+  EXPECT_TRUE(j["maps"][0]["crs"].is_null());  // the AIS test environment: local coordinates
   EXPECT_NE(std::find(j["profiles"].begin(), j["profiles"].end(), "makro-plus"),
             j["profiles"].end());
 }
@@ -336,6 +337,47 @@ TEST_F(StationServerTest, ManualKeepsAMapsGeometryWhenItsConditionIsUploaded) {
   }
 }
 
+// Issue 32: the reader's warnings of a map given at the start, of an uploaded one and of a map's
+// condition data are listed with the map, for the page to show (they were printed nowhere).
+TEST_F(StationServerTest, ManualListsTheReadersWarningsOfEachMapAndOfItsConditionData) {
+  const std::filesystem::path isybau = kSource / "datasets/isybau";
+  start({.maps = {isybau / "street-2013.xml"}});
+  const auto listed = [&](const std::string& id) {
+    const json maps = get("/api/maps").second["maps"];
+    for (const auto& m : maps) {
+      if (m["id"] == id) return m;
+    }
+    ADD_FAILURE() << "map " << id << " not listed";
+    return json();
+  };
+  const auto messages = [](const json& warnings) {
+    std::string all;
+    for (const auto& w : warnings)
+      all += w["where"].get<std::string>() + ": " + w["message"].get<std::string>() + "\n";
+    return all;
+  };
+  json given = listed("street-2013");
+  EXPECT_THAT(messages(given["warnings"]),
+              ::testing::HasSubstr("street-2013.xml: 4 manholes have no shaft size"));
+  EXPECT_EQ(given["condition_warnings"], json::array());
+  auto [status, joined] = post("/api/maps/street-2013/condition?name=street-zustand.xml",
+                               read(isybau / "street-zustand.xml"));
+  ASSERT_EQ(status, 200) << joined.dump();
+  EXPECT_THAT(messages(joined["warnings"]),
+              ::testing::HasSubstr("findings name no pipe of the map"));
+  given = listed("street-2013");
+  EXPECT_EQ(given["condition_warnings"], joined["warnings"]);
+  EXPECT_THAT(messages(given["warnings"]), ::testing::HasSubstr("4 manholes have no shaft size"));
+  auto r = client_->Post("/api/maps?name=polyline.xml", read(isybau / "street-polyline.xml"),
+                         "application/octet-stream");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 201) << r->body;
+  const json uploaded = json::parse(r->body);
+  EXPECT_THAT(messages(uploaded["warnings"]),
+              ::testing::HasSubstr("pipe ends begin inside their manhole"));
+  EXPECT_EQ(listed("polyline")["warnings"], uploaded["warnings"]);
+}
+
 TEST_F(StationServerTest, WithATokenRefusesTheBinaryGeometryWithoutIt) {
   TearDown();
   start({.token = "s3cret"});
@@ -396,6 +438,54 @@ TEST_F(StationServerTest, ManualPlansWithTheMotionTableBesideTheMapAndSaysSo) {
   std::filesystem::remove_all(dir);
 }
 
+// The page's GeoJSON export: the mission, the plan's text and a run's log, written as
+// `export-geojson --mission --plan --log` writes them; a map without a CRS, or a plan that does not
+// read, answered with why.
+TEST_F(StationServerTest, ExportsAPlanAndARunAsGeoJsonOnAMapWithACrs) {
+  const std::string mission = read(kAis / "missions/paper.json");
+  auto [status, plan] = post("/api/maps/map/plan", mission);
+  ASSERT_EQ(status, 200) << plan.dump();
+  const std::string log = read(kSource / "tests/data/events/demo.jsonl");
+  const json request = {{"mission", json::parse(mission)}, {"plan", plan["text"]}, {"log", log}};
+  auto [local, why] = post("/api/maps/map/geojson", request.dump());
+  EXPECT_EQ(local, 422);
+  EXPECT_NE(why["error"]["message"].get<std::string>().find("names no coordinate reference system"),
+            std::string::npos)
+      << why.dump();
+  std::string georeferenced = read(kAis / "map.json");
+  georeferenced.insert(georeferenced.find('{') + 1, R"("crs": "EPSG:25832",)");
+  auto r = client_->Post("/api/maps?name=utm.json", georeferenced, "application/json");
+  ASSERT_EQ(r->status, 201) << r->body;
+  r = client_->Post("/api/maps/utm/geojson", request.dump(), "application/json");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  EXPECT_EQ(r->get_header_value("Content-Type"), "application/geo+json");
+  std::map<std::string, int> layers;
+  const json exported = json::parse(r->body);
+  for (const json& f : exported["features"]) ++layers[f["properties"]["layer"].get<std::string>()];
+  EXPECT_EQ(layers["planned_route"], 1);
+  EXPECT_EQ(layers["driven_route"], 1);
+  EXPECT_EQ(layers["task"], 3);
+  EXPECT_EQ(layers["manhole"], 12);
+  // The mission alone: the network and its marks, no route.
+  auto [bare, doc] = post("/api/maps/utm/geojson", json{{"mission", json::parse(mission)}}.dump());
+  ASSERT_EQ(bare, 200);
+  for (const json& f : doc["features"]) {
+    EXPECT_NE(f["properties"]["layer"], "planned_route");
+    EXPECT_NE(f["properties"]["layer"], "driven_route");
+  }
+  // A plan that does not read, a plan that is not text: the reader's message, a 400.
+  auto [bad, bad_why] = post("/api/maps/utm/geojson",
+                             json{{"mission", json::parse(mission)}, {"plan", "FLY P1"}}.dump());
+  EXPECT_EQ(bad, 422);
+  EXPECT_NE(bad_why["error"]["message"].get<std::string>().find("plan"), std::string::npos);
+  EXPECT_EQ(
+      post("/api/maps/utm/geojson", json{{"mission", json::parse(mission)}, {"plan", 5}}.dump())
+          .first,
+      400);
+  EXPECT_EQ(post("/api/maps/utm/geojson", R"({"plan": ""})").first, 400);
+}
+
 TEST_F(StationServerTest, TakesAnUploadedMapInAnyFormatUnderANewId) {
   auto r =
       client_->Post("/api/maps?name=epa-example1.inp",
@@ -404,10 +494,21 @@ TEST_F(StationServerTest, TakesAnUploadedMapInAnyFormatUnderANewId) {
   ASSERT_EQ(r->status, 201) << r->body;
   EXPECT_EQ(json::parse(r->body)["id"], "epa-example1");
   EXPECT_GT(json::parse(r->body)["manholes"].get<int>(), 0);
+  // A map that names its coordinate reference system: the list says which (the page shows the
+  // cursor's position in it).
+  std::string georeferenced = read(kAis / "map.json");
+  georeferenced.insert(georeferenced.find('{') + 1, R"("crs": "EPSG:25832",)");
+  r = client_->Post("/api/maps?name=utm.json", georeferenced, "application/json");
+  ASSERT_EQ(r->status, 201) << r->body;
+  const json maps = get("/api/maps").second["maps"];
+  const auto utm =
+      std::find_if(maps.begin(), maps.end(), [](const json& m) { return m["id"] == "utm"; });
+  ASSERT_NE(utm, maps.end());
+  EXPECT_EQ((*utm)["crs"], "EPSG:25832");
   r = client_->Post("/api/maps?name=ais.json", read(kAis / "map.json"), "application/json");
   ASSERT_EQ(r->status, 201) << r->body;
   EXPECT_EQ(json::parse(r->body)["id"], "ais");
-  EXPECT_EQ(get("/api/maps").second["maps"].size(), 3u);
+  EXPECT_EQ(get("/api/maps").second["maps"].size(), 4u);
   auto [status, plan] = post("/api/maps/ais/plan", read(kAis / "missions/paper.json"));
   EXPECT_EQ(status, 200) << plan.dump();
   EXPECT_EQ(plan["steps"].size(), 14u);
@@ -739,6 +840,7 @@ TEST_F(StationServerTest, StreamsASimulationsEventsAndItsReportThatReplayReadsBa
       routes.push_back(json::parse(e.data));
       continue;
     }
+    if (e.type == "learnt") continue;  // after the run: not an event of the log
     if (e.type == "plan" || e.type == "replan") plans.push_back(e.type);
     log += e.data + "\n";
     ++events;
@@ -755,6 +857,132 @@ TEST_F(StationServerTest, StreamsASimulationsEventsAndItsReportThatReplayReadsBa
   auto [status, replayed] = post("/api/maps/map/replay", log);
   EXPECT_EQ(status, 200);
   EXPECT_EQ(replayed["events"].size(), events);
+}
+
+// Each finding of the map for the page to draw: where it is, its code and the code's name, its
+// class for the robot, and what the risk mode makes of it, as close_findings does: the places the
+// plan says it closed are those the findings document calls closed.
+TEST_F(StationServerTest, ManualSaysWhatEachRiskModeMakesOfEachFinding) {
+  const std::filesystem::path isybau = kSource / "datasets/isybau";
+  start({.maps = {isybau / "street-2017.xml"}});
+  const std::string map = "/api/maps/street-2017";
+  const auto findings = [&](const std::string& query) {
+    auto r = client_->Get(map + "/findings" + query);
+    EXPECT_TRUE(r);
+    return r ? std::pair{r->status, json::parse(r->body)} : std::pair{0, json()};
+  };
+  auto [none, empty] = findings("?profile=makro-plus");
+  ASSERT_EQ(none, 200) << empty.dump();
+  EXPECT_TRUE(empty["findings"].empty());
+  ASSERT_EQ(
+      post(map + "/condition?name=street-zustand.xml", read(isybau / "street-zustand.xml")).first,
+      200);
+  const auto of = [](const json& doc, std::string_view pipe, std::string_view code) {
+    for (const json& f : doc["findings"]) {
+      if (f["pipe"] == pipe && f["code"] == code) return f;
+    }
+    return json();
+  };
+  const auto count = [](const json& doc, std::string_view use) {
+    return std::ranges::count_if(doc["findings"],
+                                 [&](const json& f) { return f["planner"] == use; });
+  };
+  auto [status, expected] = findings("?profile=makro-plus&risk=expected");
+  ASSERT_EQ(status, 200) << expected.dump();
+  EXPECT_EQ(expected["risk"], "expected");
+  EXPECT_EQ(expected["profile"], "makro-plus");
+  const json roots = of(expected, "S1", "BBA");
+  EXPECT_EQ(roots["name"], "roots");
+  EXPECT_EQ(roots["offset_m"], 7.5);
+  EXPECT_EQ(roots["characterisation"], "B");
+  EXPECT_EQ(roots["quantity1"], 10);
+  EXPECT_EQ(roots["class"], "blockage");
+  EXPECT_NEAR(roots["probability"].get<double>(), 0.3, 1e-12);
+  EXPECT_EQ(roots["reason"], "BBA roots");
+  EXPECT_EQ(roots["planner"], "weighed");
+  const json collapse = of(expected, "S2", "BAC");
+  EXPECT_EQ(collapse["class"], "impassable");
+  EXPECT_EQ(collapse["planner"], "closed");
+  EXPECT_EQ(of(expected, "S1", "BAJ")["class"], "danger");
+  EXPECT_EQ(of(expected, "S1", "BAJ")["planner"], "ignored");
+  EXPECT_EQ(of(expected, "S1", "BCD")["name"], "start node");
+  EXPECT_EQ(of(expected, "S1", "BCD")["class"], "none");
+  EXPECT_EQ(expected["counts"]["weighed"], count(expected, "weighed"));
+  EXPECT_EQ(expected["counts"]["closed"], count(expected, "closed"));
+  // The default mode closes only what no robot of the profile passes; avoid closes the danger too.
+  auto [s1, impassable] = findings("?profile=makro-plus");
+  EXPECT_EQ(impassable["risk"], "impassable");
+  EXPECT_EQ(of(impassable, "S1", "BBA")["planner"], "ignored");
+  EXPECT_EQ(count(impassable, "weighed"), 0);
+  auto [s2, avoid] = findings("?profile=makro-plus&risk=avoid");
+  EXPECT_EQ(of(avoid, "S1", "BAJ")["planner"], "closed");
+  auto [s3, ignore] = findings("?profile=makro-plus&risk=ignore");
+  EXPECT_EQ(count(ignore, "ignored"), std::ssize(ignore["findings"]));
+  // The plan closes what the document calls closed.
+  const std::string mission = R"({"format": "sewerplan-mission", "version": 1, "name": "m",
+    "profile": "makro-plus", "start": {"manhole": "S2"},
+    "tasks": [{"name": "end", "type": "go_to", "at": {"pipe": "S3", "offset_m": 40}, "final": true}]})";
+  for (const std::string mode : {"impassable", "avoid", "expected", "ignore"}) {
+    auto [plan_status, plan] = post(map + "/plan?select_goals=1&risk=" + mode, mission);
+    auto [doc_status, doc] = findings("?profile=makro-plus&risk=" + mode);
+    ASSERT_EQ(doc_status, 200);
+    EXPECT_EQ(plan_status, 200) << mode << ": " << plan.dump();
+    EXPECT_EQ(plan["risk"]["closed_by_findings"], count(doc, "closed")) << mode;
+    EXPECT_EQ(plan["risk"]["possible_blockages"], count(doc, "weighed")) << mode;
+  }
+  EXPECT_EQ(findings("?profile=nobody").first, 400);
+  EXPECT_EQ(findings("?profile=makro-plus&risk=maybe").first, 400);
+  EXPECT_EQ(client_->Get("/api/maps/nowhere/findings?profile=makro-plus")->status, 404);
+}
+
+// A plan that weighs possible blockages says its risk beside it: the chance that none on its
+// route stops the robot, the expected cost of stops it was chosen with, and the blockages passed;
+// the mode's own figures are added, not put in their place.
+TEST_F(StationServerTest, ManualSaysThePlansRiskWhenItWeighsPossibleBlockages) {
+  const std::filesystem::path condition = kSource / "datasets/condition/swmm-state-plane";
+  start({.maps = {kSource / "datasets/swmm/swmmio-state-plane.inp"}});
+  const std::string map = "/api/maps/swmmio-state-plane";
+  ASSERT_EQ(post(map + "/condition?name=zustand.xml", read(condition / "zustand.xml")).first, 200);
+  auto [status, plan] =
+      post(map + "/plan?select_goals=1&risk=expected", read(condition / "mission.json"));
+  ASSERT_EQ(status, 200) << plan.dump();
+  const json& risk = plan["risk"];
+  EXPECT_EQ(risk["mode"], "expected");
+  ASSERT_TRUE(risk.contains("unobstructed_probability")) << risk.dump();
+  ASSERT_TRUE(risk.contains("expected_cost_s")) << risk.dump();
+  ASSERT_FALSE(risk["hazards"].empty()) << risk.dump();
+  double unobstructed = 1;
+  for (const json& h : risk["hazards"]) unobstructed *= 1 - h["probability"].get<double>();
+  EXPECT_NEAR(risk["unobstructed_probability"].get<double>(), unobstructed, 1e-9);
+  EXPECT_LT(risk["unobstructed_probability"].get<double>(), 1.0);
+  EXPECT_GT(risk["expected_cost_s"].get<double>(), 0.0);
+  // Without weighing, no figures the planner did not compute.
+  auto [s, blind] = post(map + "/plan?select_goals=1", read(condition / "mission.json"));
+  ASSERT_EQ(s, 200);
+  EXPECT_FALSE(blind["risk"].contains("unobstructed_probability"));
+  EXPECT_FALSE(blind["risk"].contains("expected_cost_s"));
+}
+
+// After a run, what the robot learnt: the blockage in P5 its recovery could not clear (as
+// `simulate --learnt` writes it, which reads it back), and what it measured of the map: in the
+// simulated world, which is the map, no corrections.
+TEST_F(StationServerTest, SendsWhatTheRobotLearntAfterTheRun) {
+  const std::string body = R"({"mission": )" + read(kAis / "missions/paper.json") +
+                           R"(, "faults": )" + read(kAis / "faults/blocked-p5.json") + "}";
+  auto r = client_->Post("/api/maps/map/simulate", body, "application/json");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  const std::vector<Sse> stream = parse_stream(r->body);
+  ASSERT_GE(stream.size(), 2u);
+  ASSERT_EQ(stream[stream.size() - 2].type, "learnt");
+  const json doc = json::parse(stream[stream.size() - 2].data);
+  const json& learnt = doc["learnt"];
+  EXPECT_EQ(learnt["format"], "sewerplan-learnt");
+  ASSERT_EQ(learnt["blockages"].size(), 1u) << doc.dump();
+  EXPECT_EQ(learnt["blockages"][0]["pipe"], "P5");
+  const json& measured = doc["measurements"];
+  EXPECT_GT(measured["pipes_measured"].get<int>(), 0) << doc.dump();
+  EXPECT_TRUE(measured["discrepancies"].empty()) << doc.dump();
 }
 
 TEST_F(StationServerTest, NamesTheMapThatCannotBeRead) {

@@ -22,11 +22,12 @@ enum class Transport { kSlcanPty, kMemory };
 
 class CanNodeThread {
  public:
-  // `map` must outlive this.
+  // `map` must outlive this; it is the robot's world (a true world, hal/world_errors.h, with the
+  // sensing of `sim_options`, or the map itself).
   CanNodeThread(const SewerMap& map, const RobotProfile& profile, hal::SimPose start,
                 hal::FaultScenario faults, hal::BusFaults bus_faults, Transport transport,
-                double heartbeat_s = 0.5)
-      : robot_(map, profile, start, std::move(faults)) {
+                double heartbeat_s = 0.5, hal::SimOptions sim_options = {})
+      : robot_(map, profile, start, std::move(faults), std::move(sim_options)) {
     hal::SimNodeOptions options{.heartbeat_s = heartbeat_s, .faults = std::move(bus_faults)};
     if (transport == Transport::kSlcanPty) {
       Result<hal::Pty> pty = hal::open_pty();

@@ -28,7 +28,7 @@ const file = { 'Content-Type': 'application/octet-stream' };
 async function call(path, options = {}) {
   const response = await fetch(path, { ...options, headers: { ...headers, ...options.headers } });
   const body = await response.json();
-  if (!response.ok) throw Object.assign(new Error(body.error?.message ?? response.statusText), { body });
+  if (!response.ok) throw Object.assign(new Error(body.error?.message ?? response.statusText), { body, status: response.status });
   return body;
 }
 
@@ -66,10 +66,22 @@ export async function driveability(id, profile, signal) {
     return body;
   };
 }
+// The map's inspection findings for a profile, with what the risk mode makes of them.
+export const findings = (id, profile, signal) =>
+  call(risk(`${map(id)}/findings?profile=${encodeURIComponent(profile)}`), { signal });
 export const validate = (id, mission) => call(`${map(id)}/validate`, { method: 'POST', body: JSON.stringify(mission), headers: json });
 export const plan = (id, mission, timeLimit) =>
   call(risk(motion(`${map(id)}/plan?time_limit=${timeLimit}`)), { method: 'POST', body: JSON.stringify(mission), headers: json });
 export const replay = (id, log) => call(`${map(id)}/replay`, { method: 'POST', body: log, headers: file });
+// The network, the mission, a plan's route and a run's trace as GeoJSON text (export-geojson.js).
+export async function geojson(id, body) {
+  const response = await fetch(`${map(id)}/geojson`, { method: 'POST', body: JSON.stringify(body), headers: { ...headers, ...json } });
+  if (!response.ok) {
+    const error = await response.json();
+    throw Object.assign(new Error(error.error?.message ?? response.statusText), { body: error });
+  }
+  return response.text();
+}
 
 export const campaignStatus = () => call('api/campaign');
 export const cancelCampaign = () => call('api/campaign/cancel', { method: 'POST', headers: json });

@@ -142,6 +142,7 @@ function makeMap(c) {
   return {
     id: c.id, bounds: c.bounds, manholeCount: m, pipeCount: p, openEnd, placeless: Uint32Array.from(placeless),
     columns: { ends, diameters: c.diameters, positions: pos, exits: c.exits, slots: c.slots },
+    ends: { from: c.from, to: c.to },  // each pipe's manholes (indices; 0xffffffff: an open end)
     pipe,
     manhole,
     get pipes() { return pipes(); },

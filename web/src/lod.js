@@ -31,8 +31,8 @@ const kOverviewExitPx = 2.5;         // an exit's radius in the overview
 
 // Pipe classes, their colours and the widths of each pipe drawn.
 export const kNormal = 0, kOpenEnd = 1, kBlocked = 2;
-const kClassColor = [[60, 90, 160, 255], [140, 140, 140, 255], [200, 40, 40, 255]];
-const kExitColor = [20, 150, 60, 255], kManholeColor = [90, 90, 90, 255];
+export const kClassColor = [[60, 90, 160, 255], [140, 140, 140, 255], [200, 40, 40, 255]];
+export const kExitColor = [20, 150, 60, 255], kManholeColor = [90, 90, 90, 255];
 export const pipeWidthPx = (diameter) => 1 + 4 * Math.min(diameter, 1);
 export const manholeRadiusPx = (exit, slots) => (exit ? 6 : 3 + Math.min(slots, 4) * 0.5);
 

@@ -1,29 +1,59 @@
 // SPDX-License-Identifier: MIT
 // The operator station's page: wires the map view (map-view.js), the mission editor (mission.js),
 // the hidden faults (faults.js), the plan view (plan-view.js), the event player (player.js) and the
-// campaign panel (campaign.js) to the server's API (api.js). All state is here, in `state`.
+// campaign panel (campaign.js) to the server's API (api.js), with the GIS habits (search-box.js,
+// undo.js, task-keys.js, scale-bar.js, cursor-coords.js, saved-mission.js, export-geojson.js;
+// docs/operator-station.md). All state is here, in `state`.
 import * as api from './api.js';
 import { CampaignPanel } from './campaign.js';
+import { trackCursor } from './cursor-coords.js';
+import { exportGeoJson } from './export-geojson.js';
 import { clickFault, isEmpty, newFaults, renderFaults } from './faults.js';
 import { offsetOf, pipesOfSteps, placePoint, readGeometry } from './geometry.js';
 import { mapRequests } from './latest.js';
 import { createMapView } from './map-view.js';
 import { clickMission, describePlace, download, newMission, renderTasks } from './mission.js';
-import { renderPlan } from './plan-view.js';
+import { showFatal } from './fatal.js';
+import { outcomeLine } from './outcome.js';
+import { PlanHistory } from './plan-history.js';
 import { actionTarget, Player, wherePoint } from './player.js';
+import { describeFinding, findingAt, placeFindings } from './findings-layer.js';
+import { learntGeoJson, learntPlaces } from './learnt-layer.js';
+import { renderLegend } from './legend.js';
+import { renderPlanRisk } from './plan-risk.js';
+import { planOrder } from './task-markers.js';
+import { restoreMission, saveMission } from './saved-mission.js';
+import { showScale } from './scale-bar.js';
+import { findPlace, suggestions, viewOf } from './search-box.js';
+import { bindEditorKeys, TaskSelection } from './task-keys.js';
+import { EditHistory } from './undo.js';
+import { renderWarnings } from './warnings.js';
 
 const $ = (id) => document.getElementById(id);
 const state = {
   map: null, blocked: new Map(), mission: null, faults: newFaults(), route: new Set(), oldRoutes: [],
   failures: [], robot: null, beacon: false, dropped: new Set(), done: new Set(), events: [], outcome: null,
-  delays_ms: [],
+  delays_ms: [], highlight: null, mapInfo: new Map(), planText: null,
+  findings: [], learnt: [], learntDoc: null, planOrder: new Map(),  // findings-layer.js, learnt-layer.js
 };
+const history = new EditHistory();  // the mission's edits (undo.js)
 
-const view = createMapView($('view'), { onClick: (info) => clickMap(info), onHover: (info) => showHover(info) });
+const view = createMapView($('view'), {
+  onClick: (info) => clickMap(info), onHover: (info) => showHover(info),
+  onViewChange: (v) => showScale($('scale-bar'), $('scale-text'), v.zoom),
+});
 const draw = () => view.draw(state);
+// The Plan panel: the plan asked, or a run's plan and replans; one chosen is highlighted.
+const plans = new PlanHistory({ onChange: () => { state.highlight = plans.highlighted(); draw(); } });
 
 function showHover(info) {
   const box = $('hover');
+  const finding = findingAt(state.findings, info.coordinate, view.viewState().zoom);
+  if (finding) {  // a finding is drawn over its pipe: it is what the pointer is on
+    box.textContent = `finding ${describeFinding(finding)}`;
+    Object.assign(box.style, { display: 'block', left: `${info.x + 12}px`, top: `${info.y + 12}px` });
+    return;
+  }
   if (!info.object || !['pipes', 'manholes'].includes(info.layer?.id)) {
     box.style.display = 'none';
     return;
@@ -52,12 +82,53 @@ const taskStatus = (t) => (state.dropped.has(t.name) ? '— dropped' : state.don
 async function missionChanged() {
   const m = state.mission;
   m.profile = $('profile').value;
+  if (history.record(JSON.stringify(m))) state.planText = null;  // the last plan was for another mission
+  showHistory();
+  saveMission(state.map, m);
+  state.planOrder = new Map();  // the last plan's numbers are for the mission it was made for
   $('mission-summary').textContent = `start: ${describePlace(m.start)}`;
   renderTasks($('tasks'), m, missionChanged, taskStatus);
   draw();
   if (!m.start || m.tasks.length === 0) return;
   const verdict = await api.validate(state.map.id, m);
   $('messages').textContent = verdict.errors.map((e) => `${e.where}: ${e.message}`).join('\n');
+}
+
+// Undo and redo (undo.js): the mission becomes the state recorded, its profile selected.
+function restoreEdit(snapshot) {
+  if (snapshot === null) return;
+  state.mission = JSON.parse(snapshot);
+  const profile = state.mission.profile;
+  if (profile && [...$('profile').options].some((o) => o.value === profile)) $('profile').value = profile;
+  missionChanged();
+}
+const undo = () => restoreEdit(history.undo());
+const redo = () => restoreEdit(history.redo());
+function showHistory() {
+  $('undo').disabled = !history.canUndo;
+  $('redo').disabled = !history.canRedo;
+}
+const selection = new TaskSelection($('tasks'), () => state.mission?.tasks ?? []);
+// The Delete key: the selected task removed, as its × button does. Whether there was one.
+function removeSelected() {
+  const i = selection.index();
+  if (i < 0) return false;
+  state.mission.tasks.splice(i, 1);
+  missionChanged();
+  return true;
+}
+const fitView = () => state.map && view.fit(state.map.bounds, { now: true });
+
+// The search box: the place named is centred, marked and its name said; else why not.
+function search() {
+  if (!state.map) return;
+  const found = findPlace(state.map, $('search').value);
+  $('search-note').textContent = found.error ?? `${found.kind} ${found.name}`;
+  if (found.error) return;
+  // Drawn as a warning's objects are (map-view.js), and named (the browser test reads it).
+  state.highlight = { ...found, pipes: found.kind === 'pipe' ? [found.name] : [], manholes: found.kind === 'manhole' ? [found.name] : [] };
+  view.setView(viewOf(found, $('view').clientWidth, $('view').clientHeight));
+  draw();
 }
 
 function faultsChanged() {
@@ -98,11 +169,22 @@ async function openMap(id) {
   state.map = readGeometry(buffer, id);
   state.timings.load_geometry_ms = Math.round(performance.now() - t0) - state.timings.geometry_ms;
   state.blocked = new Map();
+  state.findings = [];
   $('driveability').textContent = 'driveability: asking the server';
-  state.mission = newMission($('profile').value);
+  // The mission kept for this map across a reload (saved-mission.js), unless it is stale.
+  const kept = restoreMission(state.map);
+  if (kept.mission && [...$('profile').options].some((o) => o.value === kept.mission.profile)) $('profile').value = kept.mission.profile;
+  state.mission = kept.mission ?? newMission($('profile').value);
+  $('messages').textContent = kept.message;
+  history.reset(JSON.stringify(state.mission));
+  state.planText = null;
+  selection.reset();
+  state.highlight = null;
+  $('search-note').textContent = '';
   state.faults = newFaults();
   $('condition').textContent = '';
   $('placeless').textContent = placelessNote(state.map);
+  showWarnings();
   clearRun();
   state.route = new Set();
   view.fit(state.map.bounds);
@@ -113,6 +195,7 @@ async function openMap(id) {
   performance.mark(`${id}: first draw`);
   state.timings.open_map_ms = Math.round(performance.now() - t0);
   document.body.dataset.opened = id;
+  loadFindings();
   drawn();  // the driveability asked meanwhile is applied now or when it comes (not awaited)
 }
 
@@ -182,19 +265,82 @@ async function showDriveability() {
 // The driveability asked again (another profile, the motion table ticked or not).
 const loadDriveability = () => showDriveability();
 
+// A plan: the last one's route, steps and summary go at once (none of them is this mission's plan
+// until the answer comes), and stay gone if the planner fails.
 async function runPlan() {
   $('messages').textContent = '';
+  clearRun();
+  state.route = new Set();
+  draw();
   try {
     const t0 = performance.now();
     const result = await api.plan(state.map.id, state.mission, $('time-limit').value);
     state.timings.plan_round_trip_ms = Math.round(performance.now() - t0);
-    clearRun();
+    state.planText = result.text;  // for the GeoJSON export
     state.route = new Set(result.steps.flatMap((s) => [s.pipe, s.from_pipe, s.to_pipe]).filter(Boolean));
-    renderPlan(result);
+    plans.planned(result);
+    renderPlanRisk($('plan-risk'), result);
+    state.planOrder = planOrder(result.steps);
     draw();
   } catch (e) {
     $('messages').textContent = e.message;
+    plans.clear(`No plan: ${e.message}`);
+    renderPlanRisk($('plan-risk'), null);
   }
+}
+
+// The open map's findings for the profile and risk mode (GET /findings), drawn with the legend;
+// only the latest request's answer is used.
+let findingsAsked = 0;
+async function loadFindings() {
+  if (!state.map) return;
+  const asked = ++findingsAsked, map = state.map;
+  try {
+    const doc = await api.findings(map.id, $('profile').value);
+    if (asked !== findingsAsked || state.map !== map) return;
+    state.findings = placeFindings(map, doc);
+    document.body.dataset.findings = `${map.id}:${doc.risk}:${doc.findings.length}`;
+  } catch (e) {
+    if (asked !== findingsAsked) return;
+    state.findings = [];
+    $('condition').textContent = `findings: ${e.message}`;
+  }
+  showLegend();
+  draw();
+}
+
+function showLegend() {
+  renderLegend($('overlay-legend'), { findings: state.findings, risk: api.settings.risk, learnt: state.learntDoc });
+}
+
+// What the robot learnt on the run (the `learnt` event), drawn and offered for download.
+function showLearnt(doc) {
+  state.learntDoc = doc;
+  state.learnt = doc ? learntPlaces(state.map, doc) : [];
+  const l = doc?.learnt, d = doc?.measurements;
+  $('learnt-summary').textContent = doc
+    ? `Learnt: ${l.blockages.length} blocked, ${l.danger.length} danger spots, ${l.closed_passages.length} passages closed; ` +
+      `measured ${d.pipes_measured} pipes, ${d.discrepancies.length} map corrections` +
+      (d.discrepancies.length ? ` (${d.discrepancies.map((x) => x.text).join('; ')})` : '')
+    : '';
+  $('learnt-json').disabled = $('learnt-geojson').disabled = !doc;
+  showLegend();
+  draw();
+}
+
+// The reader's warnings of the open map and its condition data's, each linked to its objects.
+function showWarnings() {
+  const info = state.mapInfo.get(state.map.id) ?? {};
+  const warnings = [...info.warnings ?? [], ...info.condition_warnings ?? []];
+  $('warnings-count').textContent = warnings.length ? `${warnings.length} warning${warnings.length === 1 ? '' : 's'} reading the map` : '';
+  $('warnings').hidden = warnings.length === 0;
+  renderWarnings($('warnings-list'), state.map, warnings, (objects) => {
+    state.highlight = objects;
+    draw();
+    const points = [...objects.manholes.map((n) => state.map.manholeByName.get(n).position),
+                    ...objects.pipes.map((n) => state.map.pipeByName.get(n)).filter((p) => !p.placeless).flatMap((p) => [p.from, p.to])];
+    view.focus(points);
+  });
 }
 
 // --- simulation and replay ---
@@ -208,8 +354,12 @@ function clearRun() {
   state.delays_ms = [];
   state.outcome = null;
   state.beacon = false;
+  state.highlight = null;
+  state.runMission = null;
+  plans.clear();
   $('events').replaceChildren();
   $('outcome').textContent = '';
+  showLearnt(null);
   player.reset(placePoint(state.map, state.mission?.start));
   view.drawRobot(null, false);
 }
@@ -220,6 +370,12 @@ function logLine(type, text) {
   li.textContent = text;
   $('events').append(li);
   li.scrollIntoView({ block: 'nearest' });
+}
+
+// A plan event's tasks: its goals and those it dropped; the final one named by its end.
+function runTasks(e) {
+  const final = /final task '([^']*)'/.exec(e.end ?? '')?.[1];
+  return { tasks: [...new Set([...e.goals ?? [], ...e.dropped ?? []])].map((name) => ({ name, final: name === final })) };
 }
 
 const fmt = (t) => `${(t ?? 0).toFixed(1)} s`;
@@ -233,10 +389,14 @@ function playEvent(type, e) {
       // The plan just announced: the route before it becomes an old route.
       if (state.events.filter((x) => x.type === 'route').length > 1 && state.route.size > 0) state.oldRoutes.push(state.route);
       state.route = new Set(e.pipes ?? pipesOfSteps(map, e.steps));
+      plans.route(e, state.route);
       draw();
       return;
     }
     case 'plan': case 'replan':
+      plans.event(type, e);
+      // The run's tasks, from its first plan (a replayed log's mission is not the one edited).
+      state.runMission ??= runTasks(e);
       logLine(type, `${fmt(e.t_s)} ${type}: ${e.reason} → ${e.decision}, ${e.steps} steps, ends ${e.end}` +
                     `${e.dropped.length ? `; drops ${e.dropped.join(', ')}` : ''}`);
       return;
@@ -268,6 +428,7 @@ function playEvent(type, e) {
       break;
     case 'task_dropped':
       state.dropped.add(e.task);
+      plans.dropped(e.task, e.reason);
       logLine(type, `${fmt(e.t_s)} task ${e.task} DROPPED: ${e.reason}`);
       break;
     case 'beacon':
@@ -277,14 +438,16 @@ function playEvent(type, e) {
     case 'mission_end':
       state.outcome = e;
       if (e.outcome === 'beacon') state.beacon = true;
-      $('outcome').className = e.outcome;
-      $('outcome').textContent = e.outcome === 'ended' ? `Ended: ${e.end} reached` : e.outcome === 'beacon'
-        ? `Beacon on: ${e.end}` : `Halted: ${e.end}`;
+      ({ text: $('outcome').textContent, className: $('outcome').className } =
+        outcomeLine(e, state.runMission, state.dropped));
       logLine(type, `${fmt(e.t_s)} mission end: ${e.outcome}, ${e.end}; done: ${e.tasks_done.join(', ') || 'none'}; ` +
                     `${e.replans} replans, ${e.energy_wh.toFixed(1)} Wh`);
       break;
     case 'report':
       state.report = e;
+      return;
+    case 'learnt':
+      showLearnt(e);
       return;
     default:
       return;
@@ -355,9 +518,18 @@ async function uploadMission(file) {
   try {
     const mission = JSON.parse(await file.text());
     if (mission.format !== 'sewerplan-mission') throw new Error(`${file.name}: not a sewerplan mission`);
+    const known = [...$('profile').options].some((o) => o.value === mission.profile);
+    if (mission.profile && !known) {
+      throw new Error(`${file.name}: profile '${mission.profile}' is not one the station has (${[...$('profile').options].map((o) => o.value).join(', ')})`);
+    }
     state.mission = mission;
-    if (mission.profile && [...$('profile').options].some((o) => o.value === mission.profile)) $('profile').value = mission.profile;
     clearRun();
+    state.route = new Set();
+    // The profile selected and the map's driveability drawn for it, as a choice in the selector does.
+    if (mission.profile && $('profile').value !== mission.profile) {
+      $('profile').value = mission.profile;
+      loadDriveability();
+    }
     missionChanged();
   } catch (e) {
     $('messages').textContent = e.message;
@@ -366,6 +538,7 @@ async function uploadMission(file) {
 
 async function listMaps() {
   const { maps, profiles } = await api.listMaps();
+  state.mapInfo = new Map(maps.map((m) => [m.id, m]));  // warnings, CRS ("EPSG:25832" or null)
   $('map').replaceChildren(...maps.map((m) => new Option(`${m.id} (${m.manholes} manholes)`, m.id)));
   return { maps, profiles };
 }
@@ -388,7 +561,11 @@ async function uploadCondition(file) {
   try {
     const r = await api.uploadCondition(state.map.id, file.name, await file.text());
     $('condition').textContent = `${r.findings} findings from ${r.condition}` +
-      (r.warnings.length ? ` (${r.warnings.length} warnings)` : '');
+      (r.warnings.length ? ` (${r.warnings.length} warnings, below)` : '');
+    const info = state.mapInfo.get(state.map.id);
+    if (info) info.condition_warnings = r.warnings;
+    showWarnings();
+    loadFindings();
     await loadDriveability();
   } catch (e) {
     $('condition').textContent = e.message;
@@ -402,9 +579,11 @@ async function start() {
   $('map-upload').onchange = (e) => e.target.files[0] && uploadMap(e.target.files[0]);
   $('condition-upload').onchange = (e) => e.target.files[0] && uploadCondition(e.target.files[0]);
   $('map').onchange = () => openMap($('map').value).catch((e) => { $('messages').textContent = e.message; });
-  $('profile').onchange = () => { loadDriveability(); missionChanged(); };
+  $('profile').onchange = () => { loadDriveability(); loadFindings(); missionChanged(); };
   $('motion').onchange = () => { api.settings.motion = $('motion').checked; loadDriveability(); };
-  $('risk').onchange = () => { api.settings.risk = $('risk').value; };
+  $('risk').onchange = () => { api.settings.risk = $('risk').value; loadFindings(); };
+  $('learnt-json').onclick = () => download(`${state.map.id}-learnt.json`, state.learntDoc.learnt);
+  $('learnt-geojson').onclick = () => download(`${state.map.id}-learnt.geojson`, learntGeoJson(state.learnt, state.map.id));
   $('plan').onclick = runPlan;
   $('simulate').onclick = runSimulation;
   $('speed').onchange = () => { player.speed = Number($('speed').value); };
@@ -415,6 +594,20 @@ async function start() {
   $('mission-download').onclick = () => download(`${state.mission.name}.json`, state.mission);
   $('mission-upload').onchange = (e) => e.target.files[0] && uploadMission(e.target.files[0]);
   $('replay-upload').onchange = (e) => e.target.files[0] && replayLog(e.target.files[0]);
+  // GIS habits: search by name, fit, undo and redo, the editor's keys, the cursor's coordinates.
+  $('search').onkeydown = (e) => { if (e.key === 'Enter') search(); };
+  $('search').oninput = (e) => {
+    if (!state.map) return;
+    if (e.inputType === 'insertReplacementText' || e.inputType === undefined) search();  // a suggestion picked
+    else $('search-names').replaceChildren(...suggestions(state.map, $('search').value).map((n) => new Option(n)));
+  };
+  $('fit').onclick = fitView;
+  $('export-geojson').onclick = () => exportGeoJson(state).then((said) => { $('search-note').textContent = said; },
+                                                            (e) => { $('search-note').textContent = e.message; });
+  $('undo').onclick = undo;
+  $('redo').onclick = redo;
+  bindEditorKeys({ undo, redo, remove: removeSelected, fit: fitView });
+  trackCursor($('view'), view, $('coords'), () => (state.map ? state.mapInfo.get(state.map.id)?.crs ?? null : null));
   campaign = new CampaignPanel($, {
     mapId: () => state.map.id,
     mission: () => state.mission,
@@ -422,6 +615,7 @@ async function start() {
     onError: (message) => { $('campaign-status').textContent = message; },
   });
   if (maps.length > 0) await openMap(maps[0].id);
+  else view.say('No map to open: upload one');
   state.timings.first_draw_ms = Math.round(performance.now() - t0);
   // Since navigation started: when the page's code started, and when the map was drawn.
   state.timings.started_at_ms = Math.round(t0);
@@ -431,7 +625,7 @@ async function start() {
 
 let campaign = null;
 state.timings = {};
-start();
+start().catch(showFatal);
 
 // For the browser test (e2e/): the state, the player, and where a pipe's point is on the screen.
 window.station = {

@@ -7,17 +7,26 @@
 // window or the zoom level changes. Hover and click pick on the CPU from lod.js's grid (no GPU
 // picking pass, which would draw the scene again). The routes, the mission, the hidden faults
 // and the robot are small deck.gl layers over it.
-import { Deck, OrthographicView } from '@deck.gl/core';
+import { OrthographicView } from '@deck.gl/core';
 import { LineLayer, ScatterplotLayer, TextLayer } from '@deck.gl/layers';
 import { placePoint, pointOnPipe } from './geometry.js';
+import { labelWidth, thinLabels } from './labels.js';
 import { GridIndex, keyServes, lodKey, mapColumns, pick, pipeClasses, vectorData, workerColumns } from './lod.js';
 import { NetworkPicture } from './network-picture.js';
+import { findingsLayer } from './findings-layer.js';
+import { learntLayers } from './learnt-layer.js';
+import { taskLayers } from './task-markers.js';
+import { FirstView, LaterDeck } from './first-view.js';
 
-const kNamesUpTo = 2000;  // manhole names at every zoom only on maps this small
+const kNamesUpTo = 2000;  // manhole names (thinned: labels.js) only on maps this small
 
 // scene: {map, blocked: Map(pipe -> reason), route: Set, oldRoutes: [Set], mission, faults,
-//         failures: [[x, y]], robot: [x, y] | null, beacon: bool}
-export function createMapView(parent, { onClick, onHover }) {
+//         failures: [[x, y]], robot: [x, y] | null, beacon: bool, findings: [placed finding],
+//         learnt: [learnt place], planOrder: Map(task -> number),
+//         highlight: {pipes: [name], manholes: [name]} | null (a warning's objects, a plan chosen,
+//         a place found by name: highlightLayers)}
+// onViewChange(viewState) after every pan and zoom (the scale bar).
+export function createMapView(parent, { onClick, onHover, onViewChange = () => {} }) {
   let viewState = { target: [0, 0, 0], zoom: 0 };
   let hovering = false;
   // What the browser test reads (web/e2e): frames drawn, LOD rebuilds and picks, timed; the
@@ -29,7 +38,10 @@ export function createMapView(parent, { onClick, onHover }) {
   const under = document.createElement('canvas');
   Object.assign(under.style, { position: 'absolute', left: '0', top: '0', width: '100%', height: '100%' });
   parent.prepend(under);
-  const deck = new Deck({
+  // A new map's first picture (canvas 2D) and the loading note, while deck.gl's shaders compile.
+  const first = new FirstView(parent, under);
+  stats.firstView = first.stats;
+  const deck = new LaterDeck({  // made once a map's first picture is on screen (first-view.js)
     parent,
     views: new OrthographicView({ flipY: false }),
     controller: { doubleClickZoom: false },  // clicks place tasks: none may zoom
@@ -37,7 +49,7 @@ export function createMapView(parent, { onClick, onHover }) {
     // follows; with no double-click zoom none is wanted, so a click places its task at once.
     eventRecognizerOptions: { click: { interval: 0 } },
     initialViewState: viewState,
-    onViewStateChange: ({ viewState: v }) => { viewState = v; refresh(); },
+    onViewStateChange: ({ viewState: v }) => { viewState = v; viewChanged(); refresh(); },
     getCursor: ({ isDragging }) => (isDragging ? 'grabbing' : hovering ? 'pointer' : 'grab'),
     onHover: (info, event) => {
       const t0 = performance.now();
@@ -49,10 +61,11 @@ export function createMapView(parent, { onClick, onHover }) {
       stats.picks.push({ pick_ms: t1 - t0, event_to_shown_ms: t1 - (event?.srcEvent?.timeStamp ?? t0) });
     },
     onClick: (info) => onClick(pickAt(info)),
-    onBeforeRender: () => blit(),
+    onBeforeRender: () => { blit(); first.follow(viewState); },
     onAfterRender: () => {
       ++stats.renders;
-      if (!waiting) drawn.splice(0).forEach((resolve) => resolve());
+      if (first.afterRender(deck.layers())) queueMicrotask(() => setLayers());  // without the warm-up
+      if (!waiting && !first.holding) drawn.splice(0).forEach((resolve) => resolve());
     },
     layers: [],
   });
@@ -64,6 +77,8 @@ export function createMapView(parent, { onClick, onHover }) {
   let overlay = [];    // the routes, then the marks: change with the mission, the faults or a plan
   let drawnBlocked = null;
   let robotLayers = [];
+  let labelLayer = null, labelZoom = null;  // the thinned names and the zoom they were thinned at
+  const measure = labelWidth();
 
   // The worker draws one window at a time; a request made while it draws waits, and only the
   // latest waits (the view moved on).
@@ -100,8 +115,28 @@ export function createMapView(parent, { onClick, onHover }) {
   // Bottom to top: pipes, routes, manholes, then the mission's marks and the robot.
   const setLayers = () => {
     const network = picture.layers;
-    deck.setProps({ layers: [network[0], overlay[0], network[1], ...overlay.slice(1), ...robotLayers].filter(Boolean) });
+    deck.setProps({ layers: first.layers([network[0], overlay[0], network[1], ...overlay.slice(1), labelLayer, ...robotLayers].filter(Boolean),
+                                         viewState.target) });
   };
+
+  // The manholes' names, thinned so that none overlaps another (labels.js) at the zoom rounded
+  // down to a quarter level: valid for every zoom above it, so thinned again only when the zoom
+  // leaves that quarter. Returns whether the layer changed.
+  function updateLabels() {
+    const z = map && map.manholeCount <= kNamesUpTo ? Math.floor(viewState.zoom * 4) / 4 : null;
+    if (z === labelZoom) return false;
+    labelZoom = z;
+    labelLayer = z === null ? null : new TextLayer({
+      id: 'names', data: thinLabels(map.manholes, z, measure), getPosition: (m) => m.position,
+      getText: (m) => m.name, getSize: 11, getPixelOffset: [0, -12], characterSet: 'auto', fontFamily: 'monospace',
+    });
+    return true;
+  }
+
+  function viewChanged() {
+    if (updateLabels()) setLayers();
+    onViewChange(viewState);
+  }
 
   // The view's rectangle in metres (2^zoom CSS pixels a metre) and the screen's pixel ratio.
   function viewOf(v) {
@@ -174,38 +209,31 @@ export function createMapView(parent, { onClick, onHover }) {
         getWidth: (p) => (s.route.has(p.name) ? 6 : 4), widthUnits: 'pixels',
       }),
     ];
-    const tasks = s.mission.tasks.map((t) => ({ t, at: placePoint(map, t.at ?? { pipe: t.pipe }) }))
-      .filter((x) => x.at);
-    const start = placePoint(map, s.mission.start);
-    layers.push(new ScatterplotLayer({
-      id: 'tasks', data: [...tasks, ...(start ? [{ t: { type: 'start' }, at: start }] : [])],
-      getPosition: (x) => x.at, radiusUnits: 'pixels', getRadius: 7, stroked: true,
-      getFillColor: (x) => (s.dropped.has(x.t.name) ? [170, 170, 170] : s.done.has(x.t.name) ? [60, 190, 90]
-                            : x.t.type === 'start' ? [255, 255, 255] : [240, 200, 0]),
-      getLineColor: [0, 0, 0], lineWidthUnits: 'pixels', getLineWidth: 1,
-      updateTriggers: { getFillColor: [s.dropped.size, s.done.size] },
-    }));
+    // The findings under the mission's marks, what the robot learnt over them (findings-layer.js,
+    // learnt-layer.js, task-markers.js).
+    if (s.findings?.length) layers.push(findingsLayer(s.findings));
+    layers.push(...learntLayers(s.learnt ?? []), ...taskLayers(map, s));
     const faults = faultPoints(map, s.faults);
     layers.push(new ScatterplotLayer({
       id: 'faults', data: faults, getPosition: (f) => f.at, radiusUnits: 'pixels', getRadius: 6,
       getFillColor: (f) => (f.kind === 'permanent' ? [120, 0, 0] : f.kind === 'danger' ? [255, 90, 0] : [200, 120, 120]),
       stroked: true, getLineColor: [255, 255, 255], lineWidthUnits: 'pixels', getLineWidth: 2,
     }));
+    // Every layer gets an array of its own, made here: deck.gl redraws a layer only when its data is
+    // another array than last time, so an array of the page's state, changed in place (a failure
+    // pushed while the run plays), would never be drawn again (the failure ring at paced speeds).
     layers.push(new ScatterplotLayer({
-      id: 'failures', data: s.failures, getPosition: (f) => f, radiusUnits: 'pixels', getRadius: 10,
+      id: 'failures', data: [...s.failures], getPosition: (f) => f, radiusUnits: 'pixels', getRadius: 10,
       filled: false, stroked: true, getLineColor: [220, 0, 0], lineWidthUnits: 'pixels', getLineWidth: 3,
     }));
-    if (map.manholeCount <= kNamesUpTo) {
-      layers.push(new TextLayer({ id: 'names', data: map.manholes, getPosition: (m) => m.position,
-                                  getText: (m) => m.name, getSize: 11, getPixelOffset: [0, -12],
-                                  characterSet: 'auto', fontFamily: 'monospace' }));
-    }
+    layers.push(...highlightLayers(map, s.highlight));
     return layers;
   }
 
   const setView = (v, { now = true } = {}) => {
     viewState = { target: [v.target[0], v.target[1], 0], zoom: v.zoom };
     deck.setProps({ initialViewState: viewState });
+    if (map) viewChanged();
     if (now) refresh();
   };
 
@@ -216,15 +244,15 @@ export function createMapView(parent, { onClick, onHover }) {
     // rebuilt only for another map or profile.
     draw(s) {
       if (!s.map) return;
-      if (s.map !== map) {
+      const fresh = s.map !== map;
+      if (fresh) {
         map = s.map;
-        index = new GridIndex(mapColumns(map));
-        const { columns, transfer } = workerColumns(map);
-        worker.postMessage({ map: columns }, transfer);
+        index = null;  // made once the first picture is on screen (below)
         picture.clear();
         ++requestId;  // an image of the last map still being drawn is not shown
         key = null;
         drawnBlocked = null;
+        labelZoom = undefined;  // the names are thinned again for this map
       }
       if (s.blocked !== drawnBlocked) {
         classes = pipeClasses(map, s.blocked);
@@ -236,10 +264,26 @@ export function createMapView(parent, { onClick, onHover }) {
         if (key?.mode === 'vector') key = null;
         else if (key) request(key);
       }
+      // A new map's picture at once (the view is fitted to it); its grid, the worker's columns and
+      // the layers once it is on screen: they held a 100,000-manhole map's picture back 0.6 s.
+      if (fresh) {
+        first.start(mapColumns(map), classes, viewState, () => {
+          index = new GridIndex(mapColumns(map));
+          const { columns, transfer } = workerColumns(map);
+          worker.postMessage({ map: columns }, transfer);  // the classes were sent before: the worker keeps them
+          deck.make();
+          refresh();
+          setLayers();
+          deck.redraw(true);
+        });
+      }
       overlay = overlayLayers(s);
+      updateLabels();
       if (!key) refresh();
       setLayers();
     },
+    // What the map's first view said (first-view.js), for a page with no map to open.
+    say: (text) => { first.say(text); deck.make(); },
     // Moves the robot only: one small layer per animation frame.
     drawRobot(robot, beacon) {
       robotLayers = robot ? [new ScatterplotLayer({
@@ -252,14 +296,27 @@ export function createMapView(parent, { onClick, onHover }) {
     },
     // Fits the view to a new map's bounds; its network is drawn by the next draw() (with the
     // map's grid: the last map's would be drawn in vain).
-    fit([x0, y0, x1, y1]) {
+    // now: drawn at once (the Fit button), not by the next draw().
+    fit([x0, y0, x1, y1], { now = false } = {}) {
       const size = Math.max(x1 - x0, y1 - y0, 1);
       const zoom = Math.log2(Math.min(parent.clientWidth, parent.clientHeight) / (size * 1.1));
-      setView({ target: [(x0 + x1) / 2, (y0 + y1) / 2], zoom }, { now: false });
+      setView({ target: [(x0 + x1) / 2, (y0 + y1) / 2], zoom }, { now });
+    },
+    // Shows `points` ([x, y] in metres): the view centred on them, zoomed to hold them all with a
+    // margin (at least 40 m across), never further out than the whole map.
+    focus(points) {
+      if (points.length === 0) return;
+      const xs = points.map((p) => p[0]), ys = points.map((p) => p[1]);
+      const [x0, y0, x1, y1] = [Math.min(...xs), Math.min(...ys), Math.max(...xs), Math.max(...ys)];
+      const size = Math.max(x1 - x0, y1 - y0, 40) * 1.4;
+      const zoom = Math.log2(Math.min(parent.clientWidth, parent.clientHeight) / size);
+      setView({ target: [(x0 + x1) / 2, (y0 + y1) / 2], zoom });
     },
     // The view ({target, zoom}) and setting it, as a pan or a zoom would.
     viewState: () => viewState,
     setView,
+    // The manholes whose names are drawn (thinned: labels.js), and the zoom they were thinned at.
+    labels: () => ({ zoom: labelZoom, manholes: labelLayer?.props.data ?? [] }),
     // Resolves when deck.gl has drawn the current layers and the window's image has come.
     whenDrawn() {
       const done = new Promise((resolve) => drawn.push(resolve));
@@ -267,8 +324,28 @@ export function createMapView(parent, { onClick, onHover }) {
       return done;
     },
     // Where a map point is on the screen, in the view's pixels.
-    project(point) { return deck.getViewports()[0].project(point); },
+    project(point) {
+      if (deck.made) return deck.getViewports()[0].project(point);
+      const s = 2 ** viewState.zoom;  // before the Deck: its OrthographicView's projection (y up)
+      return [(point[0] - viewState.target[0]) * s + parent.clientWidth / 2,
+              (viewState.target[1] - point[1]) * s + parent.clientHeight / 2];
+    },
   };
+}
+
+// What the page points the operator at (a warning's objects, a plan chosen in the Plan panel):
+// {pipes: [name], manholes: [name]} drawn in cyan over everything but the robot.
+function highlightLayers(map, highlight) {
+  if (!highlight) return [];
+  const pipes = (highlight.pipes ?? []).map((n) => map.pipeByName.get(n)).filter((p) => p && !p.placeless);
+  const manholes = (highlight.manholes ?? []).map((n) => map.manholeByName.get(n)).filter(Boolean);
+  return [
+    new LineLayer({ id: 'highlight-pipes', data: pipes, getSourcePosition: (p) => p.from, getTargetPosition: (p) => p.to,
+                    getColor: [0, 200, 230, 200], getWidth: 10, widthUnits: 'pixels' }),
+    new ScatterplotLayer({ id: 'highlight-manholes', data: manholes, getPosition: (m) => m.position,
+                           radiusUnits: 'pixels', getRadius: 12, filled: false, stroked: true,
+                           getLineColor: [0, 200, 230], lineWidthUnits: 'pixels', getLineWidth: 4 }),
+  ];
 }
 
 // The hidden faults (a fault scenario, docs/simulation.md) as points: obstacles and danger spots

@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: MIT
 // The mission editor: clicks on the map become the CLI's mission JSON (docs/formats/mission-json.md),
-// listed with their order (up, down, remove), downloaded and uploaded in exactly that format.
+// listed (each can be removed), downloaded and uploaded in exactly that format. The list has no
+// up/down: the planner chooses the order of the tasks (the cheapest it finds, the paper's goal
+// set), never the order they are listed in, so buttons that reorder them would promise what no
+// plan does. The final task (the end) is always listed last, as it is done last.
 
 export const newMission = (profile) =>
   ({ format: 'sewerplan-mission', version: 1, name: 'station', profile, tasks: [] });
@@ -40,7 +43,7 @@ export function clickMission(m, mode, { pipe, offset, manhole }) {
 export const describePlace = (p) =>
   (p ? `${p.pipe ?? p.manhole ?? p.point}${p.offset_m !== undefined ? ` at ${p.offset_m} m` : ''}` : '—');
 
-// The task list with its buttons; onChange() after every edit.
+// The task list with its remove buttons; onChange() after every edit.
 export function renderTasks(list, m, onChange, status = () => '') {
   list.replaceChildren(...m.tasks.map((t, i) => {
     const li = document.createElement('li');
@@ -51,8 +54,6 @@ export function renderTasks(list, m, onChange, status = () => '') {
       b.onclick = () => { action(); onChange(); };
       li.append(b);
     };
-    if (!t.final && i > 0) button('↑', 'earlier', () => m.tasks.splice(i - 1, 2, m.tasks[i], m.tasks[i - 1]));
-    if (!t.final && i + 1 < endIndex(m)) button('↓', 'later', () => m.tasks.splice(i, 2, m.tasks[i + 1], m.tasks[i]));
     button('×', 'remove', () => m.tasks.splice(i, 1));
     return li;
   }));

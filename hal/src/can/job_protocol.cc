@@ -123,20 +123,38 @@ std::vector<CanFrame> encode_job(const JobCommand& c) {
   return w.finish();
 }
 
+// A result's header is 4 bytes without an observation (the layout of earlier versions, byte for
+// byte) and 6 with one: bytes 4-5 are the observed slot count, and the observation follows the
+// reason (docs/can-protocol.md).
 std::vector<CanFrame> encode_result(const JobResult& r) {
   const std::string reason = r.report.error ? cut_reason(r.report.error->reason) : std::string();
-  std::array<std::uint8_t, 4> header{};
+  const std::optional<ManholeSignature>& seen = r.report.observation;
+  if (seen) {
+    SEWER_CHECK(seen->slots.size() <= kMaxObservedSlots && check_signature(*seen).has_value(),
+                "encode: an observation the protocol cannot carry");
+  }
+  std::array<std::uint8_t, 6> header{};
   header[0] =
       r.report.error ? static_cast<std::uint8_t>(1 + static_cast<int>(r.report.error->kind)) : 0;
   header[1] = status_flags(r.status);
   put_u16(&header[2], static_cast<std::uint16_t>(reason.size()));
+  if (seen) put_u16(&header[4], static_cast<std::uint16_t>(seen->slots.size()));
   Writer w(MessageType::kResult, r.seq);
-  w.bytes(header);
+  w.bytes(std::span(header.data(), seen ? kObservationHeaderBytes : kResultHeaderBytes));
   w.number(r.report.progress_m);
   w.number(r.report.duration_s);
   w.number(r.report.energy_wh);
   w.status(r.status);
   w.text(reason);
+  if (seen) {
+    // slots[0]'s direction is 0 by definition (core/manhole_signature.h): not sent.
+    w.number(seen->shaft_diameter_m);
+    for (std::size_t i = 0; i < seen->slots.size(); ++i) {
+      if (i > 0) w.number(seen->slots[i].relative_deg);
+      w.number(seen->slots[i].step_m);
+      w.number(seen->slots[i].diameter_m);
+    }
+  }
   return w.finish();
 }
 
@@ -284,6 +302,9 @@ std::ostream& operator<<(std::ostream& os, const Message& message) {
                      os << *m.report.error;
                    } else {
                      os << "done";
+                   }
+                   if (m.report.observation) {
+                     os << ", a manhole of " << m.report.observation->slots.size() << " slots seen";
                    }
                  },
                  [&](const StatusReply& m) { os << ' ' << int{m.seq}; },

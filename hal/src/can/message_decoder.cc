@@ -2,7 +2,10 @@
 // The job protocol's decoder (docs/can-protocol.md): frames assembled into messages, every field
 // checked, and what is wrong with a malformed message named.
 #include <cmath>
+#include <optional>
+#include <string>
 
+#include "sewerplan/core/manhole_signature.h"
 #include "sewerplan/hal/can/job_protocol.h"
 
 #include "can_text.h"
@@ -65,6 +68,8 @@ class Reader {
     }
     return text;
   }
+  bool empty() const { return frames_.empty(); }
+  std::size_t dlc(std::size_t i) const { return frames_[i].dlc; }
   void expect_frames(std::size_t n) {
     if (ok() && frames_.size() != n) {
       fail(std::to_string(frames_.size()) + " frames, expected " + std::to_string(n));
@@ -147,8 +152,40 @@ Decoded decode_job(Reader& r, std::uint8_t seq) {
   return Message{JobCommand{seq, std::move(job)}};
 }
 
+// The observation after a result's reason (docs/can-protocol.md): the shaft, then per slot its
+// direction (not slots[0]'s, 0 by definition), step and diameter; checked as core checks any.
+std::optional<ManholeSignature> read_observation(Reader& r, std::size_t first,
+                                                 std::uint16_t slots) {
+  if (slots == 0) {
+    r.fail("an observation of 0 slots (a result without one has a 4-byte header)");
+    return std::nullopt;
+  }
+  if (slots > kMaxObservedSlots) {
+    r.fail("an observation of " + std::to_string(slots) + " slots (at most " +
+           std::to_string(kMaxObservedSlots) + ")");
+    return std::nullopt;
+  }
+  ManholeSignature seen;
+  std::size_t at = first;
+  seen.shaft_diameter_m = r.number(at++, "the observed shaft", false);
+  for (std::size_t i = 0; i < slots && r.ok(); ++i) {
+    SlotSighting s;
+    if (i > 0) s.relative_deg = r.number(at++, "an observed direction", false);
+    s.step_m = r.number(at++, "an observed step", false);
+    s.diameter_m = r.number(at++, "an observed diameter", false);
+    seen.slots.push_back(s);
+  }
+  if (!r.ok()) return std::nullopt;
+  if (Result<void> valid = check_signature(seen); !valid.has_value()) {
+    r.fail("observation: " + valid.error().message);
+    return std::nullopt;
+  }
+  return seen;
+}
+
 Decoded decode_result(Reader& r, std::uint8_t seq) {
-  const CanFrame& h = r.frame(0, 4);
+  const bool observed = !r.empty() && r.dlc(0) == kObservationHeaderBytes;
+  const CanFrame& h = r.frame(0, observed ? kObservationHeaderBytes : kResultHeaderBytes);
   if (!r.ok()) return r.malformed();
   JobResult result{seq, {}, {}};
   result.report.progress_m = r.number(1, "progress_m", true);
@@ -156,8 +193,13 @@ Decoded decode_result(Reader& r, std::uint8_t seq) {
   result.report.energy_wh = r.number(3, "energy_wh", true);
   result.status = r.status(4, h.data[1]);
   const std::uint16_t length = u16_of(h, 2);
-  const std::string reason = r.text(4 + kStatusFrames, length);
-  r.expect_frames(4 + kStatusFrames + (std::size_t{length} + 7) / 8);
+  const std::string reason = r.text(1 + kResultNumberFrames, length);
+  const std::size_t reason_frames = (std::size_t{length} + 7) / 8;
+  const std::uint16_t slots = observed ? u16_of(h, 4) : 0;
+  if (observed && r.ok()) {
+    result.report.observation = read_observation(r, 1 + kResultNumberFrames + reason_frames, slots);
+  }
+  r.expect_frames(1 + kResultNumberFrames + reason_frames + observation_frames(slots));
   const std::uint8_t outcome = h.data[0];
   if (outcome > 3) r.fail("unknown outcome " + std::to_string(outcome));
   if (outcome == 0 && length != 0) r.fail("a reason for a job that was done");

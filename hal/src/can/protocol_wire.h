@@ -18,6 +18,14 @@ namespace sewerplan::hal::wire {
 inline constexpr std::uint8_t kHeadLifted = 0x01;
 inline constexpr std::uint8_t kBeaconOn = 0x02;
 inline constexpr std::size_t kStatusFrames = 3;  // battery, odometry, elapsed
+// A RESULT's header frame: outcome, flags, reason length; and with an observation, its slot count.
+inline constexpr std::size_t kResultHeaderBytes = 4;
+inline constexpr std::size_t kObservationHeaderBytes = 6;
+// A RESULT's numbers before the reason: progress, duration, energy and the status.
+inline constexpr std::size_t kResultNumberFrames = 3 + kStatusFrames;
+// The frames of an observation of `slots` slots: the shaft, then per slot its direction (not for
+// slots[0], always 0), step and diameter.
+inline constexpr std::size_t observation_frames(std::size_t slots) { return 3 * slots; }
 
 // The job kinds' codes on the bus: the Job variant's index + 1.
 inline constexpr std::size_t kJobKinds = std::variant_size_v<Job>;

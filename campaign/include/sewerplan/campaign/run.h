@@ -35,6 +35,7 @@
 #include <string_view>
 #include <vector>
 
+#include "sewerplan/campaign/world_score.h"
 #include "sewerplan/core/map_discrepancy.h"
 #include "sewerplan/core/mission.h"
 #include "sewerplan/core/result.h"
@@ -160,6 +161,9 @@ struct Execution {
   // Why the beacon is on ("none" otherwise); "limit" must never happen.
   executor::MissionReport::BeaconCause beacon_cause = executor::MissionReport::BeaconCause::kNone;
   std::vector<double> planning_times_s;  // measured
+  // Ours only, with world errors (RunSettings::world_errors not "none"): its localisation and
+  // measured map scored against the true world (world_score.h).
+  std::optional<WorldScore> world;
   friend bool operator==(const Execution&, const Execution&) = default;
 };
 

@@ -59,6 +59,21 @@ struct PolicyFigures {
   std::array<std::size_t, 12> vs_oracle_histogram{};
 };
 
+// Ours' localisation and measured map against the true world, pooled over the runs scored
+// (world_score.h; only with world errors): counts summed, the length RMS over every measured pipe
+// of every run (each run's RMS weighted by its pipes).
+struct WorldFigures {
+  std::size_t runs = 0;  // runs scored
+  WorldScore total;
+  std::optional<double> correct_arrivals_pct() const;     // none: no arrival
+  std::optional<double> length_rms_pct() const;           // none: no pipe measured
+  std::optional<double> discrepancies_found_pct() const;  // none: none seeded within reach
+  std::optional<double> false_reports_pct() const;        // none: none reported
+};
+
+// Pools the scores of `runs` (those without one are left out); none when no run has one.
+std::optional<WorldFigures> pool_world_scores(const std::vector<const RunResult*>& runs);
+
 struct FailedRun {
   std::size_t run = 0;
   std::uint64_t seed = 0;
@@ -91,6 +106,9 @@ struct Summary {
   std::size_t risk_aware_worse = 0;
   std::size_t risk_aware_only_ended = 0;
   std::size_t risk_blind_only_ended = 0;
+  // Ours against the true world (with world errors only): summary.json's "localisation" and
+  // "corrected_map", null without.
+  std::optional<WorldFigures> world;
   std::vector<FailedRun> failed;  // crashes and hangs
   double wall_s = 0;              // measured: sum over runs
 

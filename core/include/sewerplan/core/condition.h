@@ -41,4 +41,9 @@ Result<SewerMap> read_condition_isybau(SewerMap map, std::string_view text,
 Result<SewerMap> read_condition(SewerMap map, const std::filesystem::path& path,
                                 Diagnostics& diagnostics);
 
+// The name DIN EN 13508-2 gives a pipe's main code ("BBA": "roots", "BCD": "start node"), for
+// people reading a finding (the operator station's hover, reports); empty for a code it does not
+// list (a manhole's D.. codes, a typo). Runtime: O(codes).
+std::string_view finding_code_name(std::string_view code);
+
 }  // namespace sewerplan

@@ -108,8 +108,19 @@ enum class RiskMode { kIgnore, kImpassable, kAvoid, kExpected };
 // "ignore", "impassable", "avoid", "expected"; empty for another name.
 std::optional<RiskMode> risk_mode_from_string(std::string_view name);
 
+// What planning in `mode` makes of one assessed finding: kClosed, a blockage (the robot may drive
+// up to it, not across); kWeighed, a hazard whose blockage probability the risk-aware planner
+// weighs (kExpected, a kBlockage with a probability over 0); kIgnored, nothing. close_findings
+// applies exactly this; the operator station draws it (docs/operator-station.md).
+enum class FindingUse { kIgnored, kClosed, kWeighed };
+
+// "ignored", "closed", "weighed".
+std::string_view to_string(FindingUse use);
+
+FindingUse finding_use(const FindingRisk& risk, RiskMode mode);
+
 // Adds a blockage to `mission` at every finding `mode` closes and, for kExpected, a hazard at
-// every possible blockage; returns how many places it closed.
+// every possible blockage (finding_use); returns how many places it closed.
 std::size_t close_findings(const SewerMap& map, Mission& mission, RiskMode mode,
                            const RiskTable& table);
 

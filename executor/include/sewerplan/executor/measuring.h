@@ -18,7 +18,9 @@
 //   - an observation in the middle of a pipe is a junction the map lacks, at the odometry's offset
 //     (MapMeasurements::junctions) unless it is the far manhole seen early: the remaining distance
 //     within early_arrival_fraction of the pipe's length and the signature matching that manhole's
-//     (compare()): then the pipe is shorter than mapped, and the leg ends there.
+//     (compare()): then the pipe is shorter than mapped, and the leg ends there. Nor is one within
+//     end_margin_sigmas of the odometry (at least end_margin_m) of a manhole at either end of the
+//     pipe: the odometry cannot tell it from that manhole.
 // Whether an arrival is at the manhole the controller thinks is the localisation's to verify
 // (issue 29); the Measurer takes the controller's positions as given.
 //
@@ -49,7 +51,12 @@ struct MeasuringOptions {
   double odometry_sigma_fraction = 0.03;  // of the distance driven (the issue's drift)
   double odometry_sigma_floor_m = 0.05;   // the wheels' resolution and the manhole's mouth
   double early_arrival_fraction = 0.25;   // see the header comment
-  SignatureNoise noise;                   // for telling the far manhole from a junction
+  // A manhole seen in a pipe within this many odometry standard deviations of one of its ends
+  // (and at least end_margin_m) is not taken for a junction the map lacks: the odometry cannot tell
+  // it from the manhole at that end (a longer pipe, the mouth just left, a signature seen askew).
+  double end_margin_sigmas = 3.0;
+  double end_margin_m = 0.5;
+  SignatureNoise noise;  // for telling the far manhole from a junction
 };
 
 class Measurer {
@@ -85,6 +92,9 @@ class Measurer {
   void arrival(ManholeId manhole, SlotIndex slot, const ManholeSignature& seen);
   double sigma_m(double distance_m) const;
   bool valid(const ManholeSignature& seen, const std::string& where);
+  // Whether a sighting at `offset_m` in `pipe` (standard deviation `sigma_m`) lies within the end
+  // margin of a manhole at one of its ends; if so, says why in rejected().
+  bool near_an_end(const Pipe& pipe, double offset_m, double sigma_m);
 
   const SewerMap& map_;
   MeasuringOptions options_;

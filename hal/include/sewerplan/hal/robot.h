@@ -57,7 +57,7 @@ struct JobReport {
   // What the robot saw of the manhole a drive ended at, when it detected one (also a false
   // detection: something it took for a manhole). Empty after every other job, when the robot
   // missed the manhole, and from a robot that does not observe (the exact simulated world,
-  // hal/sim_robot.h SensingModel; the CAN protocol, which does not carry it yet).
+  // hal/sim_robot.h SensingModel). Over CAN it crosses in the job's RESULT (docs/can-protocol.md).
   std::optional<ManholeSignature> observation;
   bool ok() const { return !error.has_value(); }
   friend bool operator==(const JobReport&, const JobReport&) = default;

@@ -145,6 +145,10 @@ struct WorldSpot {
 };
 WorldSpot world_spot(const SewerMap& map, const TrueWorld& truth, PipeId pipe, double offset_m);
 
+// The true length of map pipe `pipe`: its world pipe's, plus the rest's where an unmapped junction
+// split it (from the map pipe's ends[0] manhole to its ends[1] one, through the junction).
+double world_length_m(const TrueWorld& truth, PipeId pipe);
+
 // A start pose given on the map, in the world (world_spot for a pose in a pipe).
 SimPose world_pose(const SewerMap& map, const TrueWorld& truth, const SimPose& pose);
 

@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "sewerplan/core/job.h"
+#include "sewerplan/core/limits.h"
 #include "sewerplan/hal/can/can_frame.h"
 #include "sewerplan/hal/robot.h"
 
@@ -64,6 +65,8 @@ inline constexpr std::uint16_t kEndFrameIndex = 0xfff;
 inline constexpr std::size_t kMaxDataFrames = 4094;
 // Reasons longer than this are cut.
 inline constexpr std::size_t kMaxReasonBytes = 1024;
+// A RESULT carries an observation of at most this many slots (a map's own limit per manhole).
+inline constexpr std::size_t kMaxObservedSlots = kMaxSlotsPerManhole;
 
 struct FrameId {
   MessageType type = MessageType::kJob;
@@ -153,7 +156,9 @@ using Message = std::variant<JobCommand, JobAck, JobProgress, JobResult, StatusR
 MessageType message_type(const Message& message);
 std::ostream& operator<<(std::ostream& os, const Message& message);
 
-// The frames of `message`. A reason is cut to kMaxReasonBytes; a turn's waypoints to what fits.
+// The frames of `message`. A reason is cut to kMaxReasonBytes. Preconditions (checked): a turn
+// has at most (kMaxDataFrames - 5) / 4 waypoints; a result's observation passes check_signature
+// (core/manhole_signature.h) and has at most kMaxObservedSlots slots.
 std::vector<CanFrame> encode(const Message& message);
 
 // A message of the protocol that could not be read: which one, and why.

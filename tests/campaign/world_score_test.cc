@@ -1,0 +1,227 @@
+// SPDX-License-Identifier: MIT
+// The campaign's figures against the true world (issue 29): an arrival is right only at the true
+// manhole, length errors are against the world's lengths, seeded discrepancies count only within
+// the robot's reach and match by same_difference, and a campaign pools runs exactly. Each figure
+// is computed on hand-made inputs whose answer is known.
+#include "sewerplan/campaign/world_score.h"
+
+#include <cmath>
+#include <sstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "sewerplan/campaign/campaign.h"
+#include "sewerplan/campaign/record.h"
+#include "sewerplan/campaign/summary.h"
+
+#include "support/ais_testbed.h"
+
+namespace sewerplan::campaign {
+namespace {
+
+const SewerMap& ais() {
+  static const SewerMap map = testing::load_ais_testbed().map;
+  return map;
+}
+
+const std::string& name(ManholeId m) { return ais().manhole(m).name; }
+
+TEST(WorldScore, AnArrivalIsRightOnlyAtTheTrueManhole) {
+  const SewerMap& map = ais();
+  const ManholeId m0{0}, m1{1};
+  EXPECT_TRUE(arrival_correct(map, hal::AtSlot{m0, SlotIndex{0}}, name(m0)));
+  EXPECT_FALSE(arrival_correct(map, hal::AtSlot{m0, SlotIndex{0}}, name(m1)));
+  EXPECT_FALSE(arrival_correct(map, hal::AtSlot{m0, SlotIndex{0}}, ""));
+  EXPECT_TRUE(arrival_correct(map, hal::InManhole{m1}, name(m1)));
+  // A false detection: truly in a pipe, right only when the robot believes no mapped manhole.
+  EXPECT_TRUE(arrival_correct(map, hal::InPipe{PipeId{0}, 3.0}, ""));
+  EXPECT_FALSE(arrival_correct(map, hal::InPipe{PipeId{0}, 3.0}, name(m0)));
+  // A manhole only the world has (appended after the map's): an unmapped junction.
+  const ManholeId junction{static_cast<std::uint32_t>(map.manhole_count())};
+  EXPECT_TRUE(arrival_correct(map, hal::AtSlot{junction, SlotIndex{0}}, ""));
+  EXPECT_FALSE(arrival_correct(map, hal::AtSlot{junction, SlotIndex{0}}, name(m0)));
+}
+
+TEST(WorldScore, LengthErrorsAreAgainstTheWorldsLengths) {
+  const SewerMap& map = ais();
+  const Result<hal::TrueWorld> truth =
+      hal::make_true_world(map, *hal::parse_world_errors("lengths=1,length_rel=0.2"), 3);
+  ASSERT_TRUE(truth.has_value()) << truth.error().message;
+  const double true0 = truth->world.pipe(PipeId{0}).length_m;
+  const double true1 = truth->world.pipe(PipeId{1}).length_m;
+  ASSERT_GT(std::abs(true0 - map.pipe(PipeId{0}).length_m), 0.01);
+  MapMeasurements m = measurements_of(map, {.robot = "r", .mission = "m", .date = "d"});
+  add_length(m, PipeId{0}, true0 * 1.03, 0.01, 0);
+  add_length(m, PipeId{1}, true1 * 0.96, 0.01, 0);
+  const std::vector<double> errors = length_errors(map, *truth, m);
+  ASSERT_EQ(errors.size(), 2U);
+  EXPECT_NEAR(errors[0], 0.03, 1e-12);
+  EXPECT_NEAR(errors[1], -0.04, 1e-12);
+  EXPECT_NEAR(rms(errors), std::sqrt((0.03 * 0.03 + 0.04 * 0.04) / 2), 1e-12);
+  EXPECT_EQ(rms({}), 0);
+  // The map's length measured exactly is wrong by the world's error.
+  MapMeasurements as_mapped = measurements_of(map, {.robot = "r", .mission = "m", .date = "d"});
+  add_length(as_mapped, PipeId{0}, map.pipe(PipeId{0}).length_m, 0.01, 0);
+  EXPECT_NEAR(length_errors(map, *truth, as_mapped)[0],
+              (map.pipe(PipeId{0}).length_m - true0) / true0, 1e-12);
+}
+
+TEST(WorldScore, APipeSplitByAJunctionIsAsLongAsBothPieces) {
+  const SewerMap& map = ais();
+  const Result<hal::TrueWorld> truth =
+      hal::make_true_world(map, *hal::parse_world_errors("junctions=1"), 5);
+  ASSERT_TRUE(truth.has_value()) << truth.error().message;
+  ASSERT_FALSE(truth->splits.empty());
+  for (const hal::PipeSplit& s : truth->splits) {
+    const double piece = truth->world.pipe(s.pipe).length_m;
+    EXPECT_LT(piece, map.pipe(s.pipe).length_m);
+    EXPECT_NEAR(hal::world_length_m(*truth, s.pipe), piece + truth->world.pipe(s.rest).length_m,
+                1e-12);
+    EXPECT_NEAR(hal::world_length_m(*truth, s.pipe), map.pipe(s.pipe).length_m, 1e-9);
+  }
+}
+
+Discrepancy length_off(std::uint32_t pipe) {
+  return {.kind = Discrepancy::Kind::kLengthOff, .pipe = PipeId{pipe}};
+}
+
+TEST(WorldScore, SeededDiscrepanciesCountWithinReachAndMatchBySameDifference) {
+  using Kind = Discrepancy::Kind;
+  const std::vector<Discrepancy> seeded{
+      length_off(0),                                                                 // driven whole
+      {.kind = Kind::kDirectionOff, .manhole = ManholeId{1}, .slot = SlotIndex{0}},  // arrived
+      {.kind = Kind::kUnmappedJunction, .pipe = PipeId{2}, .offset_m = 10},          // arrived
+      {.kind = Kind::kPositionOff, .manhole = ManholeId{1}},  // never within reach
+      length_off(5),                                          // not driven whole
+      {.kind = Kind::kMissingLateral, .manhole = ManholeId{4}, .slot = SlotIndex{2}},  // not there
+  };
+  const Reach reach{.pipes_driven_whole = {PipeId{0}, PipeId{7}},
+                    .manholes_arrived = {ManholeId{1}},
+                    .junctions_arrived = {PipeId{2}}};
+  EXPECT_TRUE(within_reach(seeded[0], reach));
+  EXPECT_TRUE(within_reach(seeded[1], reach));
+  EXPECT_TRUE(within_reach(seeded[2], reach));
+  EXPECT_FALSE(within_reach(seeded[3], reach));
+  EXPECT_FALSE(within_reach(seeded[4], reach));
+  EXPECT_FALSE(within_reach(seeded[5], reach));
+  const auto found = [](Discrepancy d) { return FoundDiscrepancy{.discrepancy = d}; };
+  const std::vector<FoundDiscrepancy> reported{
+      found(length_off(0)),                                                         // found
+      found({.kind = Kind::kUnmappedJunction, .pipe = PipeId{2}, .offset_m = 13}),  // within 5 m
+      found({.kind = Kind::kDirectionOff, .manhole = ManholeId{1}, .slot = SlotIndex{1}}),  // false
+      found(length_off(5)),  // seeded, out of reach: not false
+      found(length_off(7)),  // driven, not seeded: false
+  };
+  const DiscrepancyScore s = score_discrepancies(seeded, reported, reach);
+  EXPECT_EQ(s, (DiscrepancyScore{.in_reach = 3, .found = 2, .reported = 5, .false_reports = 2}));
+  // A junction reported 6 m from the seeded one is another junction.
+  const DiscrepancyScore far = score_discrepancies(
+      seeded, {found({.kind = Kind::kUnmappedJunction, .pipe = PipeId{2}, .offset_m = 16})}, reach);
+  EXPECT_EQ(far, (DiscrepancyScore{.in_reach = 3, .found = 0, .reported = 1, .false_reports = 1}));
+}
+
+RunRecord scored(std::size_t index, WorldScore w) {
+  RunResult r;
+  r.index = index;
+  r.oracle_can_end = true;
+  r.could_reach_exit = true;
+  r.ours.world = w;
+  return RunRecord{.index = index, .result = r};
+}
+
+TEST(WorldScore, ACampaignPoolsItsRunsAndSaysNullWithoutWorldErrors) {
+  CampaignSpec spec;
+  spec.map_name = "map.json";
+  spec.mission_name = "mission.json";
+  spec.runs = 3;
+  const std::vector<RunRecord> records{
+      scored(0, {.arrivals = 10,
+                 .correct_arrivals = 9,
+                 .pipes_measured = 2,
+                 .length_rms_pct = 3,
+                 .seeded_in_reach = 4,
+                 .found = 3,
+                 .reported = 5,
+                 .false_reports = 1}),
+      scored(1, {.arrivals = 10,
+                 .correct_arrivals = 10,
+                 .pipes_measured = 6,
+                 .length_rms_pct = 1,
+                 .seeded_in_reach = 6,
+                 .found = 6,
+                 .reported = 5,
+                 .false_reports = 0}),
+      scored(2, {}),  // a run with no arrival and nothing measured
+  };
+  const Summary s = summarize(spec, records);
+  ASSERT_TRUE(s.world.has_value());
+  EXPECT_EQ(s.world->runs, 3U);
+  EXPECT_DOUBLE_EQ(*s.world->correct_arrivals_pct(), 95.0);
+  // Over all 8 pipes: sqrt((2 * 3^2 + 6 * 1^2) / 8), not the mean of the runs' RMS.
+  EXPECT_DOUBLE_EQ(*s.world->length_rms_pct(), std::sqrt(3.0));
+  EXPECT_DOUBLE_EQ(*s.world->discrepancies_found_pct(), 90.0);
+  EXPECT_DOUBLE_EQ(*s.world->false_reports_pct(), 10.0);
+  std::ostringstream json;
+  write_summary_json(s, json);
+  const auto j = nlohmann::json::parse(json.str());
+  EXPECT_DOUBLE_EQ(j["localisation"]["correct_arrivals_pct"].get<double>(), 95.0);
+  EXPECT_DOUBLE_EQ(j["corrected_map"]["length_rms_pct"].get<double>(), std::sqrt(3.0));
+  EXPECT_DOUBLE_EQ(j["corrected_map"]["discrepancies_found_pct"].get<double>(), 90.0);
+  EXPECT_DOUBLE_EQ(j["corrected_map"]["false_reports_pct"].get<double>(), 10.0);
+  std::ostringstream md;
+  write_summary_markdown(s, md);
+  EXPECT_NE(md.str().find("| 95.0 % (19 of 20) |"), std::string::npos) << md.str();
+  // Each line reads back with its score (the shares are derived, not read).
+  for (const RunRecord& r : records) {
+    const std::string line = run_json_line(r);
+    const Result<RunRecord> back = parse_run_line(line, "runs.jsonl", r.index + 1);
+    ASSERT_TRUE(back.has_value()) << back.error().message;
+    EXPECT_EQ(back->result->ours.world, r.result->ours.world);
+    EXPECT_EQ(run_json_line(*back), line);
+  }
+  EXPECT_NE(run_json_line(records[2]).find("\"correct_arrivals_pct\":null"), std::string::npos);
+  // A count that cannot be is refused, naming it.
+  std::string bad = run_json_line(records[0]);
+  bad.replace(bad.find("\"correct_arrivals\":9"), 20, "\"correct_arrivals\":11");
+  const Result<RunRecord> refused = parse_run_line(bad, "runs.jsonl", 1);
+  ASSERT_FALSE(refused.has_value());
+  EXPECT_NE(refused.error().message.find("correct_arrivals"), std::string::npos);
+  // Without scores (world errors "none"): null, both.
+  RunRecord plain = records[0];
+  plain.result->ours.world.reset();
+  std::ostringstream none;
+  write_summary_json(summarize(spec, {plain}), none);
+  const auto n = nlohmann::json::parse(none.str());
+  EXPECT_TRUE(n["localisation"].is_null());
+  EXPECT_TRUE(n["corrected_map"].is_null());
+}
+
+// A real run: with every pipe's length off and exact odometry the robot measures the world's
+// lengths, not the map's, and every arrival it verifies is at the true manhole; with "none" ours
+// is not scored.
+TEST(WorldScore, ARunInATrueWorldIsScoredAgainstIt) {
+  const auto ais_testbed = testing::load_ais_testbed();
+  CampaignSpec spec;
+  spec.seed = 3;
+  spec.runs = 4;
+  spec.rates = *parse_fault_rates("obstacles=0,danger=0,passages=0,malfunctions=0");
+  spec.world_errors = "lengths=1,length_rel=0.2";
+  const Result<RunResult> r = run_one(ais_testbed.map, ais_testbed.mission, run_settings(spec), 1);
+  ASSERT_TRUE(r.has_value()) << r.error().message;
+  ASSERT_TRUE(r->ours.world.has_value());
+  const WorldScore& w = *r->ours.world;
+  EXPECT_GT(w.arrivals, 3U);
+  EXPECT_EQ(w.correct_arrivals, w.arrivals);
+  EXPECT_GT(w.pipes_measured, 2U);
+  EXPECT_LT(w.length_rms_pct, 0.5);  // the map's lengths are 5 to 20 % off
+  EXPECT_GT(w.seeded_in_reach, 2U);  // length-off on every pipe driven whole
+  EXPECT_LE(w.found, w.seeded_in_reach);
+  EXPECT_FALSE(r->baseline.world.has_value());
+  spec.world_errors = "none";
+  EXPECT_FALSE(
+      run_one(ais_testbed.map, ais_testbed.mission, run_settings(spec), 1)->ours.world.has_value());
+}
+
+}  // namespace
+}  // namespace sewerplan::campaign
