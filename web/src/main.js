@@ -324,6 +324,7 @@ function showLearnt(doc) {
       (d.discrepancies.length ? ` (${d.discrepancies.map((x) => x.text).join('; ')})` : '')
     : '';
   $('learnt-json').disabled = $('learnt-geojson').disabled = !doc;
+  $('learnt-downloads').hidden = !doc;  // in the results column only once there is something learnt
   showLegend();
   draw();
 }
