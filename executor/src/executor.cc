@@ -354,10 +354,13 @@ class Executor::Run {
     if (v.kind == Kind::kSignatureDiffers) {
       sync_progress(replay.progress());
       const Slot mouth = *detail::missing_mouth(arrival, map_, localising_.options().noise);
+      // Just inside the pipe from this manhole: at its very end, the way in would stay open.
+      const double length = map_.pipe(mouth.pipe).length_m;
+      const double inside = std::min(10 * detail::kBlockageAhead_m, length / 2);
       return Replan{
           Failure{.kind = Failure::Kind::kBlockage,
                   .pipe = mouth.pipe,
-                  .offset_m = domain::end_offset_m(map_.pipe(mouth.pipe), mouth.pipe_end),
+                  .offset_m = mouth.pipe_end == 0 ? inside : length - inside,
                   .detail = "no mouth of " + map_.pipe(mouth.pipe).name + " seen: " + v.reason},
           ""};
     }
