@@ -376,7 +376,8 @@ class Executor::Run {
         if (r.ok()) {
           go_on = detail::rest_of(stopped, done_m);
           // A drive to a manhole goes on to it whatever the odometry says is left.
-          if (go_on && !detail::ends_at_manhole(*go_on) && remaining_m(*go_on) <= 0) go_on.reset();
+          if (go_on && !detail::ends_at_manhole(*go_on) && detail::distance_left_m(*go_on) <= 0)
+            go_on.reset();
           return std::nullopt;
         }
         why += "; passing it failed: " + r.error->reason;
@@ -390,19 +391,6 @@ class Executor::Run {
     }
     sync_progress(replay.progress());
     return Replan{std::nullopt, "relocalised: " + v.reason};
-  }
-
-  // The distance a drive, push or scan has left (0 for any other job).
-  static double remaining_m(const Job& job) {
-    return std::visit(
-        [](const auto& j) {
-          if constexpr (requires { j.distance_m; }) {
-            return j.distance_m;
-          } else {
-            return 0.0;
-          }
-        },
-        job);
   }
 
   ArrivalEvent arrival_event(const detail::Arrival& a) const {

@@ -27,6 +27,18 @@ std::optional<Job> rest_of(const Job& job, double done_m) {
       job);
 }
 
+double distance_left_m(const Job& job) {
+  return std::visit(
+      [](const auto& j) {
+        if constexpr (requires { j.distance_m; }) {
+          return j.distance_m;
+        } else {
+          return 0.0;
+        }
+      },
+      job);
+}
+
 Job lengthened(const Job& job, double extra_m) {
   return std::visit(
       [&](auto j) -> Job {

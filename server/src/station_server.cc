@@ -190,6 +190,34 @@ struct StationServer::Impl {
     return std::move(*mission);
   }
 
+  // A POST body that is a JSON object with "mission", a mission's JSON object, on `map` (`shape`
+  // names the object's keys in the error): the body and its mission, or empty with the 400 or
+  // 422 sent.
+  struct MissionBody {
+    Json body;
+    Mission mission;
+  };
+  static std::optional<MissionBody> read_mission_body(std::string_view text, const SewerMap& map,
+                                                      std::string_view shape,
+                                                      httplib::Response& res) {
+    Result<Json> parsed = parse_json_body(text);
+    if (!parsed.has_value()) {
+      bad_request(res, parsed.error().message);
+      return std::nullopt;
+    }
+    if (!parsed->is_object()) {
+      bad_request(res, "expected a JSON object " + std::string(shape));
+      return std::nullopt;
+    }
+    if (!parsed->contains("mission") || !(*parsed)["mission"].is_object()) {
+      bad_request(res, "\"mission\": expected the mission's JSON object");
+      return std::nullopt;
+    }
+    std::optional<Mission> mission = read_body_mission(dump((*parsed)["mission"]), map, res);
+    if (!mission) return std::nullopt;
+    return MissionBody{std::move(*parsed), std::move(*mission)};
+  }
+
   // As the CLI's plan and simulate: the planned manhole passages beside the map (MAP.motion.json,
   // `motion precompute`), unless ?motion=0; a table for another map or robot is a 422, as the
   // CLI's exit code 1. Whether a table is used: the mission's passage_motion.
@@ -511,16 +539,12 @@ void StationServer::Impl::simulate(const httplib::Request& req, const std::strin
                                    httplib::Response& res) const {
   const auto m = find_map(req, res);
   if (!m) return;
-  const Result<Json> parsed = parse_json_body(text);
-  if (!parsed.has_value()) return bad_request(res, parsed.error().message);
-  const Json& body = *parsed;
-  if (!body.is_object())
-    return bad_request(res, "expected a JSON object {\"mission\", \"faults\" | \"random_faults\"}");
-  if (!body.contains("mission") || !body["mission"].is_object()) {
-    return bad_request(res, "\"mission\": expected the mission's JSON object");
-  }
-  std::optional<Mission> mission = read_body_mission(dump(body["mission"]), *m->map, res);
-  if (!mission || !attach_motion(*m, req, *mission, res)) return;
+  std::optional<MissionBody> read =
+      read_mission_body(text, *m->map, "{\"mission\", \"faults\" | \"random_faults\"}", res);
+  if (!read) return;
+  const Json& body = read->body;
+  std::optional<Mission> mission = std::move(read->mission);
+  if (!attach_motion(*m, req, *mission, res)) return;
   const std::optional<AppliedRisk> risk = apply_risk(*m, req, *mission, res);
   if (!risk) return;
   Diagnostics diagnostics;
@@ -604,21 +628,16 @@ void StationServer::Impl::geojson(const httplib::Request& req, const std::string
                                   httplib::Response& res) const {
   const auto m = find_map(req, res);
   if (!m) return;
-  const Result<Json> parsed = parse_json_body(text);
-  if (!parsed.has_value()) return bad_request(res, parsed.error().message);
-  const Json& body = *parsed;
-  if (!body.is_object())
-    return bad_request(res, "expected a JSON object {\"mission\", \"plan\", \"log\"}");
-  if (!body.contains("mission") || !body["mission"].is_object()) {
-    return bad_request(res, "\"mission\": expected the mission's JSON object");
-  }
+  const std::optional<MissionBody> read =
+      read_mission_body(text, *m->map, "{\"mission\", \"plan\", \"log\"}", res);
+  if (!read) return;
+  const Json& body = read->body;
   for (const char* key : {"plan", "log"}) {
     if (body.contains(key) && !body[key].is_string()) {
       return bad_request(res, std::string("\"") + key + "\": expected text");
     }
   }
-  std::optional<Mission> mission = read_body_mission(dump(body["mission"]), *m->map, res);
-  if (!mission) return;
+  const Mission* mission = &read->mission;
   const std::string plan = body.value("plan", std::string());
   const std::string log = body.value("log", std::string());
   Diagnostics diagnostics;
@@ -633,18 +652,11 @@ void StationServer::Impl::campaign(const httplib::Request& req, const std::strin
                                    httplib::Response& res) {
   const auto m = find_map(req, res);
   if (!m) return;
-  const Result<Json> parsed = parse_json_body(text);
-  if (!parsed.has_value()) return bad_request(res, parsed.error().message);
-  const Json& body = *parsed;
-  if (!body.is_object())
-    return bad_request(res, "expected a JSON object {\"mission\", \"runs\", \"seed\", ...}");
-  if (!body.contains("mission") || !body["mission"].is_object()) {
-    return bad_request(res, "\"mission\": expected the mission's JSON object");
-  }
-  std::optional<Mission> mission = read_body_mission(dump(body["mission"]), *m->map, res);
-  if (!mission || !attach_motion(*m, req, *mission, res)) return;
+  std::optional<MissionBody> read =
+      read_mission_body(text, *m->map, "{\"mission\", \"runs\", \"seed\", ...}", res);
+  if (!read || !attach_motion(*m, req, read->mission, res)) return;
   // The map stays while the campaign runs and while its runs can be replayed.
-  campaigns->start(body, m->map, m->id, std::move(*mission), res);
+  campaigns->start(read->body, m->map, m->id, std::move(read->mission), res);
 }
 
 void StationServer::Impl::routes() {
