@@ -505,7 +505,7 @@ class Executor::Run {
           .kind = r.error->kind, .reason = r.error->reason, .where = tracker_.describe()});
     }
     if (std::optional<detail::Arrival> a =
-            localising_.follow(job, r, before, tracker_.position())) {
+            localising_.follow(job, r, before, tracker_.position(), tracker_.heading_end())) {
       if (a->worth_logging()) emit(arrival_event(*a));
       if (!a->verification.matches()) {
         settle(std::move(*a));

@@ -128,7 +128,21 @@ localisation::Estimate Localising::estimate() const {
 
 std::optional<Arrival> Localising::follow(const Job& job, const hal::JobReport& report,
                                           const domain::RobotPosition& before,
-                                          const domain::RobotPosition& after) {
+                                          const domain::RobotPosition& after,
+                                          std::uint8_t after_heading_end) {
+  std::optional<Arrival> arrival = follow_filter(job, report, before, after);
+  if (!usable_ && filter_) {
+    // An update the filter refused (a drive it cannot follow from the place it has): it starts
+    // again from the tracking's place, so that the next arrival is still checked.
+    reset(after, after_heading_end);
+    ++restarts_;
+  }
+  return arrival;
+}
+
+std::optional<Arrival> Localising::follow_filter(const Job& job, const hal::JobReport& report,
+                                                 const domain::RobotPosition& before,
+                                                 const domain::RobotPosition& after) {
   if (!usable_) return std::nullopt;
   localisation::TopologicalFilter& filter = *filter_;
   Result<void> step;

@@ -49,10 +49,15 @@ class Localising {
   void reset(const domain::RobotPosition& position, std::uint8_t heading_end);
 
   // Follows `job` and its report; `before` is where the tracking had the robot before the job,
-  // `after` where it has it now. Returns the checked arrival when the job ended at a manhole.
+  // `after` (facing `after_heading_end` in a pipe) where it has it now. Returns the checked
+  // arrival when the job ended at a manhole. An update the filter refuses restarts it from
+  // `after` (restarts()), so that a later arrival is still checked.
   std::optional<Arrival> follow(const Job& job, const hal::JobReport& report,
                                 const domain::RobotPosition& before,
-                                const domain::RobotPosition& after);
+                                const domain::RobotPosition& after, std::uint8_t after_heading_end);
+
+  // How often the filter had to start again from the tracking's place.
+  int restarts() const { return restarts_; }
 
   // The filter's belief; lost when the filter could explain nothing (then reset()).
   localisation::Estimate estimate() const;
@@ -64,7 +69,12 @@ class Localising {
   double odometry_sd_fraction_;
   localisation::LocalisationOptions options_;
   std::optional<localisation::TopologicalFilter> filter_;
+  std::optional<Arrival> follow_filter(const Job& job, const hal::JobReport& report,
+                                       const domain::RobotPosition& before,
+                                       const domain::RobotPosition& after);
+
   bool usable_ = false;  // the filter follows the robot (false after an update it refused)
+  int restarts_ = 0;
   // What the robot saw at its last arrival: a turn by sighting (kBySighting) names its mouths.
   std::optional<ManholeSignature> last_observation_;
 };

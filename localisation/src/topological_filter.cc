@@ -201,10 +201,9 @@ Result<void> TopologicalFilter::drive(double odometry_m, DriveDirection directio
     t.kind = Track::Kind::kInPipe;
     const bool forward = direction == DriveDirection::kForward;
     t.moving_end = forward ? t.heading_end : static_cast<std::uint8_t>(1 - t.heading_end);
+    // Backing past the mouth behind it goes below 0 until arrive() or no_manhole_within()
+    // explains it (the pipe straight on beyond a manhole passed unseen).
     t.travelled_m += forward ? odometry_m : -odometry_m;
-    // Backing out past the mouth it entered by is not followed (docs/localisation.md, limits).
-    t.travelled_m = std::max(t.travelled_m, 0.0);
-    if (!forward) t.cleared_m = std::min(t.cleared_m, t.travelled_m);
     t.odometry_var_m2 += sigma_m * sigma_m;
   }
   mode_ = Mode::kInPipe;

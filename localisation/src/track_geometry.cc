@@ -31,12 +31,6 @@ void assume_missed(Track& track, const std::vector<ManholeId>& passed) {
   }
 }
 
-// The variance of the robot's distance to the mouth behind it (at 0, the end opposite its heading).
-double behind_var(const LocalisationOptions& o, const Track& track) {
-  return std::max(track.odometry_var_m2 + std::pow(o.length_sd_fraction * track.anchor_m, 2),
-                  kMinVarianceM2);
-}
-
 // One pipe of the chain a forward-moving hypothesis may have reached by missing manholes.
 struct ChainStep {
   PipeId pipe{0};
@@ -203,34 +197,31 @@ struct ArrivalExplainer {
       out.push_back(std::move(f));
     }
   }
-
-  // Backing towards the mouth it entered by, at 0: no chain behind it (docs/localisation.md).
-  void backing() {
-    const double t = track.travelled_m;
-    const MouthAhead mouth = mouth_ahead(map, track);
-    const double var = behind_var(o, track);
-    if (mouth.manhole) {
-      Track c = track;
-      c.travelled_m = 0;
-      c.arrival_misses = 0;
-      at_mouth(std::move(c), *mouth.manhole, mouth.slot, log_normal(t, 0, var));
-    }
-    Track here = track;
-    here.cleared_m = t;
-    alternatives(here, log_phi(t / std::sqrt(var)));
-  }
 };
 
 }  // namespace
 
-void explain_arrival(const TopologicalFilter& filter, const Track& track,
-                     const std::optional<ManholeSignature>& observation, std::vector<Track>& out) {
+namespace {
+
+// A backing hypothesis seen from behind: the same place with the end it moves towards as its
+// heading, so the chain of mouths behind it is walked as the chain ahead of a forward drive. Its
+// own inverse: the travelled coordinate counts from the other end (travelled' = length -
+// travelled), and so do the anchor and the cleared distance.
+Track mirrored(const SewerMap& map, const Track& track) {
+  const double length = map.pipe(track.pipe).length_m;
+  Track m = track;
+  m.heading_end = static_cast<std::uint8_t>(1 - track.heading_end);
+  m.travelled_m = length - track.travelled_m;
+  m.anchor_m = length - track.anchor_m;
+  m.cleared_m = length - track.cleared_m;
+  return m;
+}
+
+// The explanations of a hypothesis driving towards the end it faces.
+void arrival_ahead(const TopologicalFilter& filter, const Track& track,
+                   const std::optional<ManholeSignature>& observation, std::vector<Track>& out) {
   const SewerMap& map = filter.map();
   ArrivalExplainer explain{map, filter.options(), track, observation, out};
-  if (track.moving_end != track.heading_end) {
-    explain.backing();
-    return;
-  }
   const double t = track.travelled_m;
   walk_chain(filter, track, track.cleared_m,
              [&](const ChainStep& step, double mouth, double sd, double log_beyond_lower) {
@@ -249,18 +240,10 @@ void explain_arrival(const TopologicalFilter& filter, const Track& track,
              });
 }
 
-void explain_no_arrival(const TopologicalFilter& filter, const Track& track, double distance_m,
-                        std::vector<Track>& out) {
+void no_arrival_ahead(const TopologicalFilter& filter, const Track& track, double distance_m,
+                      std::vector<Track>& out) {
   const SewerMap& map = filter.map();
   const double t = track.travelled_m;
-  if (track.moving_end != track.heading_end) {
-    // Backing: still short of the mouth it entered by (passing it is not followed).
-    Track c = track;
-    const double sd = std::sqrt(behind_var(filter.options(), track));
-    c.log_weight += log_phi(t / sd);
-    out.push_back(std::move(c));
-    return;
-  }
   walk_chain(filter, track, std::max(track.cleared_m, t - distance_m),
              [&](const ChainStep& step, double mouth, double sd, double log_beyond_lower) {
                const Pipe& pipe = map.pipe(step.pipe);
@@ -274,6 +257,48 @@ void explain_no_arrival(const TopologicalFilter& filter, const Track& track, dou
                    track.log_weight + step.log_pass + log_phi((mouth - t) / sd) - log_beyond_lower;
                out.push_back(std::move(c));
              });
+}
+
+// Runs `ahead` on `track`, mirrored when it backs: a robot backing up passes the mouth behind it
+// unseen as one driving forward passes the mouth ahead (into the pipe straight on), and the
+// places found are turned back to face the way the robot does. A place beyond the mapped length
+// behind it (the pipe is longer than the map says) stays at the mouth: the travelled coordinate
+// starts there.
+template <class Ahead>
+void explain_either_way(const TopologicalFilter& filter, const Track& track,
+                        std::vector<Track>& out, Ahead ahead) {
+  if (track.moving_end == track.heading_end) {
+    ahead(track, out);
+    return;
+  }
+  const SewerMap& map = filter.map();
+  const std::size_t first = out.size();
+  ahead(mirrored(map, track), out);
+  for (std::size_t i = first; i < out.size(); ++i) {
+    Track& c = out[i];
+    c = mirrored(map, c);
+    c.moving_end = static_cast<std::uint8_t>(1 - c.heading_end);
+    const double length = map.pipe(c.pipe).length_m;
+    c.travelled_m = std::clamp(c.travelled_m, 0.0, length);
+    c.anchor_m = std::clamp(c.anchor_m, 0.0, length);
+    c.cleared_m = std::clamp(c.cleared_m, 0.0, length);
+  }
+}
+
+}  // namespace
+
+void explain_arrival(const TopologicalFilter& filter, const Track& track,
+                     const std::optional<ManholeSignature>& observation, std::vector<Track>& out) {
+  explain_either_way(filter, track, out, [&](const Track& t, std::vector<Track>& into) {
+    arrival_ahead(filter, t, observation, into);
+  });
+}
+
+void explain_no_arrival(const TopologicalFilter& filter, const Track& track, double distance_m,
+                        std::vector<Track>& out) {
+  explain_either_way(filter, track, out, [&](const Track& t, std::vector<Track>& into) {
+    no_arrival_ahead(filter, t, distance_m, into);
+  });
 }
 
 std::optional<Track> turned(const TopologicalFilter& filter, const Track& track,

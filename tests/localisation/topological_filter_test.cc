@@ -326,6 +326,71 @@ TEST(TopologicalFilter, BackingUpReturnsToTheLastVerifiedManhole) {
   EXPECT_EQ(f.estimate().best().pose.position, s.at("M2", "P2"));
 }
 
+// The robot entered P3 from M3 and backs up to it, but drives through M3 unseen: it is then
+// backing along P2 (straight on beyond M3), facing M3, and its next arrival (rear first) is M2,
+// explained as a missed M3. Before, a place backing past its pipe's mouth stayed at that mouth,
+// and M2's signature there read as a manhole the map lacks at M3 (issue 29: a robot that ended
+// the mission believing itself at its exit, far from it).
+TEST(TopologicalFilter, BackingPastTheMouthBehindUnseenGoesOnIntoThePipeBeyond) {
+  Street s;
+  TopologicalFilter f = s.filter();
+  ASSERT_TRUE(f.reset({.position = s.at("M3", "P2")}).has_value());
+  ASSERT_TRUE(f.pass(s.manhole("M3"), s.slot("M3", "P2"), s.slot("M3", "P3")).has_value());
+  ASSERT_TRUE(f.drive(20, DriveDirection::kForward, 0.6).has_value());
+  ASSERT_TRUE(f.no_manhole_within(20).has_value());
+  // Back to M3 (20 m), but it goes on 8 m beyond without seeing a manhole.
+  ASSERT_TRUE(f.drive(28, DriveDirection::kBackward, 0.84).has_value());
+  ASSERT_TRUE(f.no_manhole_within(28).has_value());
+  Estimate e = f.estimate();
+  const auto* in = std::get_if<domain::InPipe>(&e.best().pose.position);
+  ASSERT_NE(in, nullptr) << dump(e, s.map);
+  EXPECT_EQ(in->pipe, s.pipe("P2")) << dump(e, s.map);
+  EXPECT_NEAR(in->offset_m, 16, 1.0) << dump(e, s.map);  // P2 runs M2 -> M3, 24 m
+  // Facing M3, the manhole it passed (the end a forward drive would approach).
+  EXPECT_EQ(e.best().pose.heading_end, std::optional<std::uint8_t>(1)) << dump(e, s.map);
+  ASSERT_FALSE(e.best().assumptions.empty());
+  EXPECT_EQ(e.best().assumptions.front().kind, Assumption::Kind::kMissedManhole);
+  EXPECT_EQ(e.best().assumptions.front().manhole, s.manhole("M3"));
+
+  // On backing, it meets M2 rear first, 16 m on.
+  ASSERT_TRUE(f.drive(16, DriveDirection::kBackward, 0.5).has_value());
+  ASSERT_TRUE(f.arrive(s.seen("M2", "P2")).has_value());
+  e = f.estimate();
+  EXPECT_EQ(e.best().pose.position, s.at("M2", "P2")) << dump(e, s.map);
+  Result<Verification> v =
+      f.verify_arrival(s.manhole("M3"), s.slot("M3", "P3"), s.seen("M2", "P2"));
+  ASSERT_TRUE(v.has_value());
+  EXPECT_FALSE(v->matches());
+  ASSERT_TRUE(v->believed.has_value());
+  EXPECT_EQ(v->believed->position, s.at("M2", "P2")) << v->reason;
+}
+
+// Backing a little past the mapped mouth behind, within what the pipe's length is off by, is
+// still most likely short of the mouth (the pipe is longer): the place beyond stays possible.
+TEST(TopologicalFilter, BackingJustPastTheMouthBehindKeepsBothPlaces) {
+  Street s;
+  TopologicalFilter f = s.filter();
+  ASSERT_TRUE(f.reset({.position = s.at("M3", "P2")}).has_value());
+  ASSERT_TRUE(f.pass(s.manhole("M3"), s.slot("M3", "P2"), s.slot("M3", "P3")).has_value());
+  ASSERT_TRUE(f.drive(20, DriveDirection::kForward, 0.6).has_value());
+  ASSERT_TRUE(f.no_manhole_within(20).has_value());
+  ASSERT_TRUE(f.drive(21, DriveDirection::kBackward, 0.63).has_value());
+  ASSERT_TRUE(f.no_manhole_within(21).has_value());
+  const Estimate e = f.estimate();
+  bool in_p3 = false;
+  bool in_p2 = false;
+  for (const Hypothesis& h : e.hypotheses) {
+    const auto* p = std::get_if<domain::InPipe>(&h.pose.position);
+    in_p3 = in_p3 || (p != nullptr && p->pipe == s.pipe("P3"));
+    in_p2 = in_p2 || (p != nullptr && p->pipe == s.pipe("P2"));
+  }
+  EXPECT_TRUE(in_p3) << dump(e, s.map);
+  EXPECT_TRUE(in_p2) << dump(e, s.map);
+  const auto* best = std::get_if<domain::InPipe>(&e.best().pose.position);
+  ASSERT_NE(best, nullptr);
+  EXPECT_EQ(best->pipe, s.pipe("P3")) << dump(e, s.map);
+}
+
 TEST(TopologicalFilter, TurningIntoAMouthTheMapLacksLosesTheRobot) {
   Street s;
   TopologicalFilter f = s.filter();
