@@ -43,7 +43,9 @@ std::vector<double> length_errors(const SewerMap& map, const hal::TrueWorld& tru
   for (const PipeMeasurement& p : measurements.pipes) {
     if (p.pipe.index() >= map.pipe_count()) continue;  // not of this map: nothing to score
     const double true_m = hal::world_length_m(truth, p.pipe);
-    errors.push_back((p.length_m.mean - true_m) / true_m);
+    // The corrected map's length (map_measurements.h): the measurement weighed with the map's.
+    const double corrected_m = corrected_length_m(map.pipe(p.pipe).length_m, p.length_m);
+    errors.push_back((corrected_m - true_m) / true_m);
   }
   return errors;
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <utility>
 
 #include <Eigen/Dense>
@@ -462,8 +463,38 @@ std::vector<FoundDiscrepancy> discrepancies(const MapMeasurements& measurements,
   return Derivation(measurements, map, thresholds).run();
 }
 
-Result<CorrectedMap> corrected_map(const SewerMap& map, const MapMeasurements& measurements) {
+double corrected_length_m(double map_m, const PooledValue& measured, const LengthPrior& prior) {
+  const double v = measured.variance;
+  const double m = measured.mean;
+  if (!(v > 0) || !(map_m > 0) || !(prior.right_share > 0)) return m;
+  // Right: the truth N(map_m, s2), measured with variance v; the measurement's density and the
+  // truth's posterior mean. Off: the truth uniform within off_max_fraction of map_m, so the
+  // measurement's density is about 1 / width there and the truth's mean is the measurement.
+  const double s2 = std::pow(prior.right_sd_fraction * map_m, 2);
+  const double total = s2 + v;
+  const double log_right = std::log(prior.right_share) -
+                           0.5 * std::log(2 * std::numbers::pi * total) -
+                           0.5 * (m - map_m) * (m - map_m) / total;
+  const double log_off =
+      std::log(1 - prior.right_share) - std::log(2 * prior.off_max_fraction * map_m);
+  // As map_m plus a share of the difference, so that a measurement equal to the map's length
+  // gives exactly the map's length.
+  const double right_share_of_difference = s2 / total;
+  if (!(prior.right_share < 1)) return map_m + (m - map_m) * right_share_of_difference;
+  const double w_right = 1 / (1 + std::exp(log_off - log_right));
+  return map_m + (m - map_m) * (w_right * right_share_of_difference + (1 - w_right));
+}
+
+Result<CorrectedMap> corrected_map(const SewerMap& map, const MapMeasurements& measurements,
+                                   const LengthPrior& prior) {
   if (Result<void> same = same_map(measurements, map); !same.has_value()) return same.error();
+  if (!(prior.right_share >= 0 && prior.right_share <= 1) || !(prior.right_sd_fraction >= 0) ||
+      !(prior.off_max_fraction > 0) || !std::isfinite(prior.right_sd_fraction) ||
+      !std::isfinite(prior.off_max_fraction)) {
+    return Error{ErrorCode::kInvalidArgument,
+                 "length prior: right_share must be in [0, 1], right_sd_fraction >= 0 and "
+                 "off_max_fraction > 0"};
+  }
   CorrectedMap out;
   std::vector<double> length(map.pipe_count());
   std::vector<double> diameter(map.pipe_count());
@@ -471,7 +502,9 @@ Result<CorrectedMap> corrected_map(const SewerMap& map, const MapMeasurements& m
     length[p.index()] = map.pipe(p).length_m;
     diameter[p.index()] = map.pipe(p).diameter_m;
   }
-  for (const PipeMeasurement& p : measurements.pipes) length[p.pipe.index()] = p.length_m.mean;
+  for (const PipeMeasurement& p : measurements.pipes) {
+    length[p.pipe.index()] = corrected_length_m(map.pipe(p.pipe).length_m, p.length_m, prior);
+  }
   std::vector<Position> position(map.manhole_count());
   for (ManholeId m : map.manhole_ids()) position[m.index()] = map.manhole(m).position;
   std::map<std::pair<std::size_t, std::size_t>, double> azimuth;  // (manhole, slot)
@@ -480,7 +513,7 @@ Result<CorrectedMap> corrected_map(const SewerMap& map, const MapMeasurements& m
     bool applied = false;
     switch (d.kind) {
       case Discrepancy::Kind::kLengthOff:
-        applied = d.pipe.has_value();  // the measured length, applied above
+        applied = d.pipe.has_value();  // the corrected length, applied above
         break;
       case Discrepancy::Kind::kDirectionOff:
         if (d.manhole && d.slot) {

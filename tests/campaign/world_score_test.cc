@@ -52,13 +52,14 @@ TEST(WorldScore, LengthErrorsAreAgainstTheWorldsLengths) {
   const double true1 = truth->world.pipe(PipeId{1}).length_m;
   ASSERT_GT(std::abs(true0 - map.pipe(PipeId{0}).length_m), 0.01);
   MapMeasurements m = measurements_of(map, {.robot = "r", .mission = "m", .date = "d"});
-  add_length(m, PipeId{0}, true0 * 1.03, 0.01, 0);
-  add_length(m, PipeId{1}, true1 * 0.96, 0.01, 0);
+  // Measured to a millimetre, far from the map: the corrected length is the measurement.
+  add_length(m, PipeId{0}, true0 * 1.03, 1e-6, 0);
+  add_length(m, PipeId{1}, true1 * 0.96, 1e-6, 0);
   const std::vector<double> errors = length_errors(map, *truth, m);
   ASSERT_EQ(errors.size(), 2U);
-  EXPECT_NEAR(errors[0], 0.03, 1e-12);
-  EXPECT_NEAR(errors[1], -0.04, 1e-12);
-  EXPECT_NEAR(rms(errors), std::sqrt((0.03 * 0.03 + 0.04 * 0.04) / 2), 1e-12);
+  EXPECT_NEAR(errors[0], 0.03, 1e-9);
+  EXPECT_NEAR(errors[1], -0.04, 1e-9);
+  EXPECT_NEAR(rms(errors), std::sqrt((0.03 * 0.03 + 0.04 * 0.04) / 2), 1e-9);
   EXPECT_EQ(rms({}), 0);
   // The map's length measured exactly is wrong by the world's error.
   MapMeasurements as_mapped = measurements_of(map, {.robot = "r", .mission = "m", .date = "d"});
@@ -214,7 +215,10 @@ TEST(WorldScore, ARunInATrueWorldIsScoredAgainstIt) {
   EXPECT_GT(w.arrivals, 3U);
   EXPECT_EQ(w.correct_arrivals, w.arrivals);
   EXPECT_GT(w.pipes_measured, 2U);
-  EXPECT_LT(w.length_rms_pct, 0.5);  // the map's lengths are 5 to 20 % off
+  // The map's lengths are 5 to 20 % off; the corrected map assumes 9 in 10 are right and keeps
+  // the map's length where one pass (3 % noise, by the measuring's own account) agrees with it
+  // within that noise, so a pipe 5 % off measured once stays near its map length.
+  EXPECT_LT(w.length_rms_pct, 4.0);
   EXPECT_GT(w.seeded_in_reach, 2U);  // length-off on every pipe driven whole
   EXPECT_LE(w.found, w.seeded_in_reach);
   EXPECT_FALSE(r->baseline.world.has_value());

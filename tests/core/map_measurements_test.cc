@@ -226,11 +226,40 @@ TEST(MapMeasurements, PositionsAreReportedOnlyWhenAsked) {
   EXPECT_NEAR(found[0].discrepancy.value, 4, 1e-12);
 }
 
+// A driven pipe's corrected length weighs the measurement against the map's (LengthPrior): within
+// the measurement's noise of the map it stays near the map's length, far off it is the measured
+// one, and with a precise measurement it is the measurement wherever it lies.
+TEST(MapMeasurements, ACorrectedLengthWeighsTheMeasurementAgainstTheMap) {
+  const PooledValue noisy_near{.mean = 41.0, .variance = std::pow(0.03 * 40, 2), .count = 1};
+  EXPECT_NEAR(corrected_length_m(40.0, noisy_near), 40.0, 0.2);
+  const PooledValue noisy_far{.mean = 46.0, .variance = std::pow(0.03 * 40, 2), .count = 1};
+  EXPECT_NEAR(corrected_length_m(40.0, noisy_far), 46.0, 0.05);
+  const PooledValue precise{.mean = 41.0, .variance = 1e-6, .count = 4};
+  EXPECT_NEAR(corrected_length_m(40.0, precise), 41.0, 1e-3);
+  // Between, it moves monotonically from the map's length to the measurement's.
+  double last = 0;
+  for (double measured = 40.0; measured <= 48.0; measured += 0.25) {
+    const double c = corrected_length_m(40.0, {.mean = measured, .variance = 1.44, .count = 1});
+    EXPECT_GE(c, last - 1e-9) << measured;
+    EXPECT_GE(c, 40.0 - 1e-9);
+    EXPECT_LE(c, measured + 1e-9);
+    last = c;
+  }
+  // An operator who trusts no length of the map gets the measurements.
+  EXPECT_NEAR(corrected_length_m(40.0, noisy_near, {.right_share = 0}), 41.0, 1e-12);
+  // A prior out of range is refused by corrected_map, naming it.
+  const SewerMap map = cross();
+  const Result<CorrectedMap> refused =
+      corrected_map(map, measurements_of(map, source("one")), {.right_share = 1.5});
+  ASSERT_FALSE(refused.has_value());
+  EXPECT_NE(refused.error().message.find("right_share"), std::string::npos);
+}
+
 TEST(MapMeasurements, TheCorrectedMapCarriesLengthsAndDirections) {
   const SewerMap map = cross();
   MapMeasurements m = measurements_of(map, source("one"));
   add_length(m, pipe(map, "P1"), 12.0, 0.09, 0);
-  add_length(m, pipe(map, "P3"), 10.1, 0.09, 0);  // measured, not a discrepancy: still applied
+  add_length(m, pipe(map, "P3"), 10.1, 0.09, 0);  // measured, not a discrepancy
   m.discrepancies = discrepancies(m, map);
   m.discrepancies.push_back({{.kind = Kind::kDirectionOff,
                               .manhole = id(map, "M0"),
@@ -242,11 +271,12 @@ TEST(MapMeasurements, TheCorrectedMapCarriesLengthsAndDirections) {
       {{.kind = Kind::kUnmappedLateral, .manhole = id(map, "M0"), .value = 45}, {0}});
   const Result<CorrectedMap> fixed = corrected_map(map, m);
   ASSERT_TRUE(fixed.has_value()) << fixed.error().message;
-  EXPECT_DOUBLE_EQ(fixed->map.pipe(pipe(map, "P1")).length_m, 12.0);
-  EXPECT_DOUBLE_EQ(fixed->map.pipe(pipe(map, "P3")).length_m, 10.1);
+  EXPECT_NEAR(fixed->map.pipe(pipe(map, "P1")).length_m, 12.0, 1e-6);  // 20 % off: measured
+  // 1 % off, measured with 3 % noise: mostly the map's length.
+  EXPECT_NEAR(fixed->map.pipe(pipe(map, "P3")).length_m, 10.0, 0.02);
   EXPECT_DOUBLE_EQ(fixed->map.pipe(pipe(map, "P2")).length_m, 10.0);
   EXPECT_DOUBLE_EQ(fixed->map.slot(id(map, "M0"), SlotIndex{1}).azimuth_deg, 100);
-  EXPECT_NEAR(fixed->map.point(*map.find_point("X1")).offset_m, 6.0, 1e-12);  // moved with P1
+  EXPECT_NEAR(fixed->map.point(*map.find_point("X1")).offset_m, 6.0, 1e-6);  // moved with P1
   ASSERT_EQ(fixed->applied.size(), 3u);
   EXPECT_TRUE(fixed->applied[0].second);   // length
   EXPECT_TRUE(fixed->applied[1].second);   // direction
