@@ -36,6 +36,18 @@ double log_phi(double z) {
   return -0.5 * z * z - std::log(-z) - kLogSqrtTwoPi;
 }
 
+double log_normal(double x, double mean, double var, const OdometryTails& tails) {
+  if (tails.share <= 0) return log_normal(x, mean, var);
+  return log_add(std::log1p(-tails.share) + log_normal(x, mean, var),
+                 std::log(tails.share) + log_normal(x, mean, var * tails.scale * tails.scale));
+}
+
+double log_phi(double z, const OdometryTails& tails) {
+  if (tails.share <= 0) return log_phi(z);
+  return log_add(std::log1p(-tails.share) + log_phi(z),
+                 std::log(tails.share) + log_phi(z / tails.scale));
+}
+
 double log1m_exp(double a) {
   if (a >= 0) return kNegativeInfinity;
   return a > -0.693 ? std::log(-std::expm1(a)) : std::log1p(-std::exp(a));

@@ -26,6 +26,14 @@ inline constexpr double kMinVarianceM2 = 1e-4;
 double log_normal(double x, double mean, double var);
 // log P(X <= x) for X ~ N(0, 1), finite down to far in the tail.
 double log_phi(double z);
+// The odometry's place along a pipe: a Gaussian, and with `share` of the weight one `scale` times
+// as wide (heavy tails, LocalisationOptions::odometry_outlier_share). Density and lower tail.
+struct OdometryTails {
+  double share = 0;
+  double scale = 1;
+};
+double log_normal(double x, double mean, double var, const OdometryTails& tails);
+double log_phi(double z, const OdometryTails& tails);
 // log(1 - exp(a)) for a <= 0.
 double log1m_exp(double a);
 // log(exp(a) + exp(b)).

@@ -61,6 +61,10 @@ Result<void> check_options(const LocalisationOptions& o) {
     return bad("unmapped_junctions_per_m", o.unmapped_junctions_per_m, "in [0, 1]");
   if (!finite_in(o.false_detections_per_m, 0, 1))
     return bad("false_detections_per_m", o.false_detections_per_m, "in [0, 1]");
+  if (!finite_in(o.odometry_outlier_share, 0, 0.5))
+    return bad("odometry_outlier_share", o.odometry_outlier_share, "in [0, 0.5]");
+  if (!finite_in(o.odometry_outlier_scale, 1, 100))
+    return bad("odometry_outlier_scale", o.odometry_outlier_scale, "in [1, 100]");
   if (o.max_misses < 0 || o.max_misses > 8) return bad("max_misses", o.max_misses, "in [0, 8]");
   if (!finite_in(o.straight_through_deg, 0, 90))
     return bad("straight_through_deg", o.straight_through_deg, "in [0, 90]");

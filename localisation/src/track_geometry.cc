@@ -31,6 +31,10 @@ void assume_missed(Track& track, const std::vector<ManholeId>& passed) {
   }
 }
 
+OdometryTails tails(const LocalisationOptions& o) {
+  return {.share = o.odometry_outlier_share, .scale = o.odometry_outlier_scale};
+}
+
 // One pipe of the chain a forward-moving hypothesis may have reached by missing manholes.
 struct ChainStep {
   PipeId pipe{0};
@@ -61,7 +65,7 @@ void walk_chain(const TopologicalFilter& filter, const Track& track, double lowe
     const double sd = std::sqrt(std::max(step.position_var + step.length_var, kMinVarianceM2));
     const double lower = k == 0 ? lower0_m : step.base_m;
     // Known: the mouth lies beyond `lower` (nothing was detected before it).
-    const double log_beyond_lower = log_phi((mouth - lower) / sd);
+    const double log_beyond_lower = log_phi((mouth - lower) / sd, tails(o));
     visit(step, mouth, sd, log_beyond_lower);
     const PipeEnd& far = pipe.ends[step.heading_end];
     if (!far.manhole || log_miss == kNegativeInfinity) return;
@@ -69,7 +73,7 @@ void walk_chain(const TopologicalFilter& filter, const Track& track, double lowe
     const std::optional<SlotIndex> next =
         straight_on(map, *far.manhole, far.slot, o.straight_through_deg);
     if (!next) return;
-    const double log_passed = log1m_exp(log_phi((mouth - t) / sd) - log_beyond_lower);
+    const double log_passed = log1m_exp(log_phi((mouth - t) / sd, tails(o)) - log_beyond_lower);
     step.log_pass += log_miss + log_passed;
     if (step.log_pass == kNegativeInfinity) return;
     step.passed.push_back(*far.manhole);
@@ -222,6 +226,7 @@ void arrival_ahead(const TopologicalFilter& filter, const Track& track,
                    const std::optional<ManholeSignature>& observation, std::vector<Track>& out) {
   const SewerMap& map = filter.map();
   ArrivalExplainer explain{map, filter.options(), track, observation, out};
+  const OdometryTails odometry = tails(filter.options());
   const double t = track.travelled_m;
   walk_chain(filter, track, track.cleared_m,
              [&](const ChainStep& step, double mouth, double sd, double log_beyond_lower) {
@@ -229,12 +234,14 @@ void arrival_ahead(const TopologicalFilter& filter, const Track& track,
                const bool first = step.passed.empty();
                const PipeEnd& far = pipe.ends[step.heading_end];
                if (far.manhole) {
-                 explain.at_mouth(placed(track, step, pipe.length_m, first), *far.manhole, far.slot,
-                                  step.log_pass + log_normal(t, mouth, sd * sd) - log_beyond_lower);
+                 explain.at_mouth(
+                     placed(track, step, pipe.length_m, first), *far.manhole, far.slot,
+                     step.log_pass + log_normal(t, mouth, sd * sd, odometry) - log_beyond_lower);
                }
                const double here = t - step.base_m;
                if (!first && here < 0) return;
-               const double log_here = step.log_pass + log_phi((mouth - t) / sd) - log_beyond_lower;
+               const double log_here =
+                   step.log_pass + log_phi((mouth - t) / sd, odometry) - log_beyond_lower;
                explain.alternatives(
                    placed(track, step, std::clamp(here, 0.0, pipe.length_m), first), log_here);
              });
@@ -243,6 +250,7 @@ void arrival_ahead(const TopologicalFilter& filter, const Track& track,
 void no_arrival_ahead(const TopologicalFilter& filter, const Track& track, double distance_m,
                       std::vector<Track>& out) {
   const SewerMap& map = filter.map();
+  const OdometryTails odometry = tails(filter.options());
   const double t = track.travelled_m;
   walk_chain(filter, track, std::max(track.cleared_m, t - distance_m),
              [&](const ChainStep& step, double mouth, double sd, double log_beyond_lower) {
@@ -253,8 +261,8 @@ void no_arrival_ahead(const TopologicalFilter& filter, const Track& track, doubl
                Track c = placed(track, step, std::clamp(here, 0.0, pipe.length_m), first);
                if (first) c.travelled_m = t;  // beyond the mapped length: the pipe is longer
                c.cleared_m = c.travelled_m;
-               c.log_weight =
-                   track.log_weight + step.log_pass + log_phi((mouth - t) / sd) - log_beyond_lower;
+               c.log_weight = track.log_weight + step.log_pass +
+                              log_phi((mouth - t) / sd, odometry) - log_beyond_lower;
                out.push_back(std::move(c));
              });
 }

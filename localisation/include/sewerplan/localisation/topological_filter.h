@@ -71,6 +71,12 @@ struct LocalisationOptions {
   double unmapped_junctions_per_m = 0.001;
   // Detections where there is no manhole, per metre driven.
   double false_detections_per_m = 0.0002;
+  // Odometry with heavy tails: this share of drives is off by odometry_outlier_scale times the
+  // standard deviation given with the drive (a wet pipe slips twice as much, a wet and steep one
+  // four times: docs/simulation.md). Without it one drive off by 4 sigma made an arrival at the
+  // right manhole read as a missed manhole and a junction the map lacks.
+  double odometry_outlier_share = 0.1;
+  double odometry_outlier_scale = 4;
   // Consecutive missed manholes an arrival may explain (0: none).
   int max_misses = 2;
   // A manhole can be driven through unseen, or a false detection or an unmapped junction passed,
