@@ -280,6 +280,7 @@ class Executor::Run {
         // A job stopped by a manhole the map lacks goes on beyond it, once the robot has passed.
         for (std::optional<Job> next = job; next;) {
           std::optional<Failure> failure = recovery_.run_job(*next, action);
+          if (failure) place_by_belief(*failure, *next);
           next.reset();
           if (failure || halted()) {
             mismatch_.reset();
@@ -340,6 +341,41 @@ class Executor::Run {
     tracker_.set_pose(v.believed->position,
                       v.believed->heading_end.value_or(tracker_.heading_end()));
     mismatch_ = std::move(arrival);
+  }
+
+  // A blockage or danger met in a pipe other than the one the tracking has the robot in, by the
+  // filter's belief (a manhole passed unseen, with no arrival since to settle on): the controller
+  // settles there and closes that pipe, not the tracked one. Closing the tracked pipe
+  // cut the robot's own way back and ended missions with the beacon on.
+  void place_by_belief(Failure& failure, const Job& job) {
+    if (failure.kind != Failure::Kind::kBlockage && failure.kind != Failure::Kind::kDangerInPipe)
+      return;
+    const localisation::Estimate belief = localising_.estimate();
+    if (belief.lost()) return;
+    const localisation::Hypothesis& best = belief.best();
+    const auto* in = std::get_if<domain::InPipe>(&best.pose.position);
+    if (in == nullptr || best.pose.at_unmapped_junction || in->pipe == failure.pipe ||
+        !best.pose.heading_end) {
+      return;
+    }
+    // Believed: the most likely place holds a majority, and at least twice what every place in
+    // the tracked pipe holds together.
+    double tracked_p = 0;
+    for (const localisation::Hypothesis& h : belief.hypotheses) {
+      const auto* there = std::get_if<domain::InPipe>(&h.pose.position);
+      if (there != nullptr && there->pipe == failure.pipe) tracked_p += h.probability;
+    }
+    if (best.probability < 0.5 || best.probability < 2 * tracked_p) return;
+    const std::string tracked = tracker_.describe();
+    tracker_.set_pose(best.pose.position, *best.pose.heading_end);
+    const double length = map_.pipe(in->pipe).length_m;
+    failure.pipe = in->pipe;
+    failure.offset_m = std::clamp(
+        in->offset_m + tracker_.direction_of(job) * detail::kBlockageAhead_m, 0.0, length);
+    std::ostringstream why;
+    why << failure.detail << "; the robot is " << localisation::describe(best.pose, map_)
+        << " (p=" << std::fixed << std::setprecision(2) << best.probability << "), not " << tracked;
+    failure.detail = why.str();
   }
 
   // The plan again from where the robot was found to be (settle()). A manhole the map lacks, in

@@ -15,6 +15,7 @@
 #include "sewerplan/hal/world_errors.h"
 
 #include "support/ais_testbed.h"
+#include "support/small_map.h"
 
 namespace sewerplan::executor {
 namespace {
@@ -139,6 +140,44 @@ TEST(ManholeVerification, AMouthTheWorldLacksClosesItsPipeThere) {
     if (any_starts_with(r.replans, "blockage in")) ++closed;
   }
   EXPECT_GE(closed, 1U);
+}
+
+// The robot drives through M2 without seeing it (every manhole goes unseen here) and meets an
+// obstacle 4 m into P2. The tracking has it at the end of P1 (a drive to M2 that saw none); the
+// filter, by the distance driven, in P2. The blockage is P2's: closing P1 instead cut the robot's
+// own way back (a 1,000-manhole meshed campaign: beacons where an exit was in reach).
+TEST(ManholeVerification, AnObstacleBeyondAManholePassedUnseenClosesThePipeItIsIn) {
+  const SewerMap map = testing::SmallMap()
+                           .manhole("M1", 0, 0, /*exit=*/true)
+                           .manhole("M2", 20, 0)
+                           .manhole("M3", 40, 0, /*exit=*/true)
+                           .pipe("P1", "M1", "M2")
+                           .pipe("P2", "M2", "M3")
+                           .build();
+  Mission mission = testing::small_mission(map, "P1");
+  testing::add_task(mission, map, "inspect-P2", TaskKind::kInspectPipe, "P2");
+  ManualClock clock;
+  Replanner replanner(map, mission, {.clock = &clock});
+  const auto& in = std::get<domain::InPipe>(replanner.progress().position);
+  hal::FaultScenario faults;
+  faults.obstacles.push_back({.pipe = *map.find_pipe("P2"), .offset_m = 4.0});
+  hal::SimRobot robot(map, mission.profile,
+                      hal::InPipe{in.pipe, in.offset_m, hal::Heading::kTowardsEnd1}, faults,
+                      hal::SimOptions{.sensing = {.missed_share = 1.0, .observe = true}});
+  Executor executor(map, replanner, robot);
+  std::vector<FailureEvent> failures;
+  executor.subscribe([&](const Event& e) {
+    if (const auto* f = std::get_if<FailureEvent>(&e.what)) failures.push_back(*f);
+  });
+  const MissionReport report = executor.run();
+  EXPECT_NE(report.outcome, MissionReport::Outcome::kHalted);
+  ASSERT_FALSE(failures.empty());
+  const auto* where = std::get_if<FailureEvent::InPipe>(&failures.front().where);
+  ASSERT_NE(where, nullptr);
+  EXPECT_EQ(where->pipe, "P2") << failures.front().detail;
+  EXPECT_NEAR(where->offset_m, 3.95, 0.5) << failures.front().detail;
+  EXPECT_NE(failures.front().detail.find("not in pipe P1"), std::string::npos)
+      << failures.front().detail;
 }
 
 }  // namespace
