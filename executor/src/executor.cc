@@ -343,39 +343,52 @@ class Executor::Run {
     mismatch_ = std::move(arrival);
   }
 
-  // A blockage or danger met in a pipe other than the one the tracking has the robot in, by the
-  // filter's belief (a manhole passed unseen, with no arrival since to settle on): the controller
-  // settles there and closes that pipe, not the tracked one. Closing the tracked pipe
-  // cut the robot's own way back and ended missions with the beacon on.
-  void place_by_belief(Failure& failure, const Job& job) {
-    if (failure.kind != Failure::Kind::kBlockage && failure.kind != Failure::Kind::kDangerInPipe)
-      return;
+  // The filter's place for the robot when it believes it in another pipe than `tracked` (a
+  // manhole driven through unseen, with no arrival since to settle on): the most likely place holds
+  // a majority, and at least twice what every place in the tracked pipe holds together.
+  std::optional<localisation::Hypothesis> believed_elsewhere(PipeId tracked) const {
     const localisation::Estimate belief = localising_.estimate();
-    if (belief.lost()) return;
+    if (belief.lost()) return std::nullopt;
     const localisation::Hypothesis& best = belief.best();
     const auto* in = std::get_if<domain::InPipe>(&best.pose.position);
-    if (in == nullptr || best.pose.at_unmapped_junction || in->pipe == failure.pipe ||
+    if (in == nullptr || best.pose.at_unmapped_junction || in->pipe == tracked ||
         !best.pose.heading_end) {
-      return;
+      return std::nullopt;
     }
-    // Believed: the most likely place holds a majority, and at least twice what every place in
-    // the tracked pipe holds together.
     double tracked_p = 0;
     for (const localisation::Hypothesis& h : belief.hypotheses) {
       const auto* there = std::get_if<domain::InPipe>(&h.pose.position);
-      if (there != nullptr && there->pipe == failure.pipe) tracked_p += h.probability;
+      if (there != nullptr && there->pipe == tracked) tracked_p += h.probability;
     }
-    if (best.probability < 0.5 || best.probability < 2 * tracked_p) return;
-    const std::string tracked = tracker_.describe();
-    tracker_.set_pose(best.pose.position, *best.pose.heading_end);
-    const double length = map_.pipe(in->pipe).length_m;
-    failure.pipe = in->pipe;
-    failure.offset_m = std::clamp(
-        in->offset_m + tracker_.direction_of(job) * detail::kBlockageAhead_m, 0.0, length);
+    if (best.probability < 0.5 || best.probability < 2 * tracked_p) return std::nullopt;
+    return best;
+  }
+
+  // Moves the tracking to `believed`; what it was, for the record.
+  std::string settle_on(const localisation::Hypothesis& believed) {
+    std::string tracked = tracker_.describe();
+    tracker_.set_pose(believed.pose.position, *believed.pose.heading_end);
     std::ostringstream why;
-    why << failure.detail << "; the robot is " << localisation::describe(best.pose, map_)
-        << " (p=" << std::fixed << std::setprecision(2) << best.probability << "), not " << tracked;
-    failure.detail = why.str();
+    why << "the robot is " << localisation::describe(believed.pose, map_) << " (p=" << std::fixed
+        << std::setprecision(2) << believed.probability << "), not " << tracked;
+    return why.str();
+  }
+
+  // A blockage or danger met in a pipe other than the one the tracking has the robot in, by the
+  // filter's belief (believed_elsewhere): the controller settles there and closes that pipe, not
+  // the tracked one. Closing the tracked pipe cut the robot's own way back and ended missions with
+  // the beacon on.
+  void place_by_belief(Failure& failure, const Job& job) {
+    if (failure.kind != Failure::Kind::kBlockage && failure.kind != Failure::Kind::kDangerInPipe)
+      return;
+    const std::optional<localisation::Hypothesis> best = believed_elsewhere(failure.pipe);
+    if (!best) return;
+    failure.detail += "; " + settle_on(*best);
+    const auto& in = std::get<domain::InPipe>(best->pose.position);
+    const double length = map_.pipe(in.pipe).length_m;
+    failure.pipe = in.pipe;
+    failure.offset_m = std::clamp(
+        in.offset_m + tracker_.direction_of(job) * detail::kBlockageAhead_m, 0.0, length);
   }
 
   // The plan again from where the robot was found to be (settle()). A manhole the map lacks, in
