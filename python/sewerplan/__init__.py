@@ -7,13 +7,16 @@
     outcome = sewerplan.plan(mission, time_limit_s=1.0)
     print(outcome.plan.text, outcome.cost_s, outcome.energy_wh)
 
-Errors are sewerplan.Error exceptions with .code ("parse", "no-plan", ...), .message and
-.diagnostics (each naming its .file and .line or JSON .path).
+Errors are sewerplan.Error exceptions, one subclass per error code (ParseError, NoPlanError,
+...; grouped as the CLI's exit codes: InvalidInputError, IoError, SearchStoppedError), with .code
+("parse", "no-plan", ...), .exit_code, .message and .diagnostics (each naming its .file and .line
+or JSON .path).
 """
 import json as _json
 
 from ._sewerplan import *  # noqa: F401,F403
-from ._sewerplan import Error, Mission, RobotProfile, SewerMap
+from ._sewerplan import InvalidMissionError, Mission, RobotProfile, SewerMap
+from ._sewerplan import __version__  # noqa: F401 (project(sewerplan VERSION) in CMakeLists.txt)
 
 __all__ = [name for name in dir() if not name.startswith("_")]
 
@@ -25,8 +28,9 @@ def _place(map_, place):
     kind = map_.kind_of(place)
     if kind is None:
         message = f"no manhole, pipe or point named '{place}' in map {map_.name}"
-        error = Error(message)
-        error.code, error.message, error.diagnostics = "invalid-mission", message, []
+        error = InvalidMissionError(message)
+        error.code, error.exit_code = InvalidMissionError.code, InvalidMissionError.exit_code
+        error.message, error.diagnostics = message, []
         raise error
     return {kind: place}
 

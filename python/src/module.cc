@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The sewerplan Python module: errors, maps, robot profiles and missions (bindings.h says why the
 // module is split into three files).
+#include <array>
 #include <cctype>
 #include <optional>
 #include <sstream>
@@ -15,6 +16,8 @@
 #include "sewerplan/core/output_file.h"
 #include "sewerplan/core/robot_profile.h"
 #include "sewerplan/domain/mission_generator.h"
+#include "sewerplan/server/documents.h"
+#include "sewerplan/version.h"
 #ifdef SEWERPLAN_WITH_GIS
 #include "sewerplan/gis/map_source.h"
 #endif
@@ -44,8 +47,68 @@ Result<SewerMap> read_any_map(const std::filesystem::path& path,
 #endif
 }
 
-// Set once at import: the sewerplan.Error type.
+constexpr std::size_t kErrorCodeCount = static_cast<std::size_t>(ErrorCode::kBusError) + 1;
+
+// Set once at import: sewerplan.Error, and the subclass each error code raises.
 PyObject* error_type = nullptr;
+std::array<PyObject*, kErrorCodeCount> error_types{};
+
+// The exception class of each library error code, grouped as the CLI's exit codes group them
+// (server::exit_code_for, docs/cli.md): `except sewerplan.Error` catches them all,
+// `except sewerplan.InvalidInputError` every bad file (exit 1), and so on.
+struct ErrorClass {
+  const char* name;
+  const char* group;  // the exit code's class, or nullptr: a direct subclass of Error
+  const char* doc;
+};
+
+ErrorClass error_class(ErrorCode code) {
+  switch (code) {
+    case ErrorCode::kIo:
+      return {"IoError", nullptr, "A file could not be read or written (code 'io', exit code 3)."};
+    case ErrorCode::kParse:
+      return {"ParseError", "InvalidInputError",
+              "A file is not well-formed in its format (code 'parse', exit code 1)."};
+    case ErrorCode::kInvalidMap:
+      return {"InvalidMapError", "InvalidInputError",
+              "A map is well-formed but inconsistent (code 'invalid-map', exit code 1)."};
+    case ErrorCode::kInvalidMission:
+      return {"InvalidMissionError", "InvalidInputError",
+              "A mission names unknown objects or is inconsistent (code 'invalid-mission', exit "
+              "code 1)."};
+    case ErrorCode::kInvalidProfile:
+      return {"InvalidProfileError", "InvalidInputError",
+              "A robot profile is missing or has impossible values (code 'invalid-profile', exit "
+              "code 1)."};
+    case ErrorCode::kUnsupportedFormat:
+      return {"UnsupportedFormatError", "InvalidInputError",
+              "A file format sewerplan does not read or write (code 'unsupported-format', exit "
+              "code 1)."};
+    case ErrorCode::kInvalidArgument:
+      return {"InvalidArgumentError", nullptr,
+              "An argument outside its documented range, or a name the map lacks (code "
+              "'invalid-argument', the CLI's usage error, exit code 2); also a ValueError."};
+    case ErrorCode::kNoPlan:
+      return {"NoPlanError", nullptr,
+              "No plan exists: a task, every exit or the battery is out of reach (code 'no-plan', "
+              "exit code 4)."};
+    case ErrorCode::kSearchLimit:
+      return {"SearchLimitError", "SearchStoppedError",
+              "The search stopped at its time or expansion limit without a plan (code "
+              "'search-limit', exit code 5)."};
+    case ErrorCode::kCancelled:
+      return {"CancelledError", "SearchStoppedError",
+              "The search was cancelled (CancelToken) without a plan (code 'cancelled', exit "
+              "code 5)."};
+    case ErrorCode::kCanTimeout:
+      return {"CanTimeoutError", "IoError",
+              "A CAN peer did not answer within its deadline (code 'can-timeout', exit code 3)."};
+    case ErrorCode::kBusError:
+      return {"BusError", "IoError",
+              "A CAN bus or adapter failed (code 'bus-error', exit code 3)."};
+  }
+  return {"Error", nullptr, ""};
+}
 
 // A diagnostic's place, split: "map.json:$.pipes[3]" -> file, path; "a.sewer:12" or
 // "m.json:3:7" -> file, line (and column); anything else: file only.
@@ -122,10 +185,49 @@ std::string mission_json(const MissionHandle& h) {
 }
 
 void bind_errors(py::module_& m) {
-  // Never destroyed: the type lives as long as the interpreter, which may end after this
+  // Never destroyed: the types live as long as the interpreter, which may end after this
   // library's static destructors.
-  auto* type = new py::exception<Error>(m, "Error", PyExc_RuntimeError);
-  error_type = type->ptr();
+  auto* base = new py::exception<Error>(m, "Error", PyExc_RuntimeError);
+  error_type = base->ptr();
+  py::setattr(*base, "__doc__",
+              py::str("Every failure of the library: .code (the error's name, as the CLI's --json "
+                      "names it), .exit_code (the CLI's exit code for it), .message and "
+                      ".diagnostics (each Diagnostic naming its file and line or JSON path). A "
+                      "subclass per code (ParseError, NoPlanError, ...), grouped as the exit codes "
+                      "are (InvalidInputError: 1, IoError: 3, SearchStoppedError: 5)."));
+  py::setattr(*base, "__module__", py::str("sewerplan"));
+  py::setattr(*base, "code", py::none());
+  py::setattr(*base, "exit_code", py::none());
+  const auto new_type = [&m](const char* name, const char* doc, py::tuple bases) {
+    const std::string qualified = std::string("sewerplan.") + name;
+    PyObject* type = PyErr_NewExceptionWithDoc(qualified.c_str(), doc, bases.ptr(), nullptr);
+    if (type == nullptr) throw py::error_already_set();
+    m.add_object(name, py::handle(type));  // the module holds the reference
+    return type;
+  };
+  const py::handle base_type(error_type);
+  new_type("InvalidInputError",
+           "An input that does not parse or validate (exit code 1): ParseError, InvalidMapError, "
+           "InvalidMissionError, InvalidProfileError, UnsupportedFormatError.",
+           py::make_tuple(base_type));
+  py::setattr(m.attr("InvalidInputError"), "exit_code", py::int_(int{server::kExitInvalidInput}));
+  new_type("SearchStoppedError",
+           "The search stopped without a plan (exit code 5): SearchLimitError, CancelledError.",
+           py::make_tuple(base_type));
+  py::setattr(m.attr("SearchStoppedError"), "exit_code", py::int_(int{server::kExitSearchLimit}));
+  for (std::size_t i = 0; i < kErrorCodeCount; ++i) {
+    const auto code = static_cast<ErrorCode>(i);
+    const ErrorClass c = error_class(code);
+    py::tuple bases = c.group != nullptr ? py::make_tuple(m.attr(c.group))
+                      : code == ErrorCode::kInvalidArgument
+                          ? py::make_tuple(base_type, py::handle(PyExc_ValueError))
+                          : py::make_tuple(base_type);
+    PyObject* type = new_type(c.name, c.doc, bases);
+    py::handle handle(type);
+    py::setattr(handle, "code", py::str(std::string(to_string(code))));
+    py::setattr(handle, "exit_code", py::int_(server::exit_code_for(Error{code, {}})));
+    error_types[i] = type;
+  }
   py::class_<Diagnostic>(m, "Diagnostic", "A problem found in an input file, naming where.")
       .def_property_readonly(
           "severity",
@@ -425,13 +527,16 @@ void CancelToken::wait_entered() {
 void raise_error(const Error& error, const Diagnostics* diagnostics) {
   std::string message = error.message;
   if (message.empty() && diagnostics != nullptr) message = diagnostics->error_summary();
-  py::object type = py::reinterpret_borrow<py::object>(error_type);
+  const auto index = static_cast<std::size_t>(error.code);
+  PyObject* const class_of_code = index < kErrorCodeCount ? error_types[index] : error_type;
+  py::object type = py::reinterpret_borrow<py::object>(class_of_code);
   py::object exception = type(message);
   exception.attr("code") = std::string(to_string(error.code));
+  exception.attr("exit_code") = server::exit_code_for(error);
   exception.attr("message") = message;
   exception.attr("diagnostics") =
       diagnostics != nullptr ? diagnostics->all() : std::vector<Diagnostic>{};
-  PyErr_SetObject(error_type, exception.ptr());
+  PyErr_SetObject(class_of_code, exception.ptr());
   throw py::error_already_set();
 }
 
@@ -459,6 +564,7 @@ void bind_maps(py::module_& m) {
 
 PYBIND11_MODULE(_sewerplan, m) {
   m.doc() = "sewerplan: planning and replanning for autonomous sewer-inspection robots";
+  m.attr("__version__") = std::string(sewerplan::kVersion);
   sewerplan::python::bind_maps(m);
   sewerplan::python::bind_planning(m);
   sewerplan::python::bind_simulation(m);
