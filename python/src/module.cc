@@ -375,8 +375,11 @@ void bind_map(py::module_& m) {
           },
           "The map in its JSON format (docs/formats/map-json.md).")
       .def(
-          "__eq__", [](const SewerMap& a, const SewerMap& b) { return a == b; },
-          "Whether two maps hold the same network.")
+          "__eq__",
+          [](const SewerMap& a, const py::object& other) {
+            return py::isinstance<SewerMap>(other) && a == other.cast<const SewerMap&>();
+          },
+          py::arg("other"), "Whether two maps hold the same network (False for a non-map).")
       .def("__repr__", [](const SewerMap& map) {
         Repr repr("SewerMap");
         repr.word(map.name())

@@ -290,8 +290,20 @@ void bind_plan_types(py::module_& m) {
       .def(
           "__getitem__",
           [](const PlanHandle& h, const py::slice& slice) {
-            const py::list steps = py::cast(steps_of(h));
-            return py::list(steps[slice]);
+            const std::vector<Step> steps = steps_of(h);
+            py::ssize_t start = 0;
+            py::ssize_t stop = 0;
+            py::ssize_t step = 0;
+            py::ssize_t length = 0;
+            if (!slice.compute(static_cast<py::ssize_t>(steps.size()), &start, &stop, &step,
+                               &length)) {
+              throw py::error_already_set();
+            }
+            std::vector<Step> out;
+            for (py::ssize_t i = 0; i < length; ++i) {
+              out.push_back(steps[static_cast<std::size_t>(start + i * step)]);
+            }
+            return out;
           },
           py::arg("index"), "The Steps of a slice, as a list.")
       .def(

@@ -29,10 +29,10 @@ SIGNATURE = re.compile(r"^(?:\d+\. )?(\w+)\((.*)\)(?: -> (.+))?$")
 
 def clean_type(text):
     text = text.replace("sewerplan.", "")
-    text = re.sub(r"\bfunction\b", "Callable[[Event], None]", text).replace("os.PathLike", "Union[str, os.PathLike]")
+    text = re.sub(r"\bfunction\b", "Callable[[Event], None]", text).replace("os.PathLike", "Union[str, os.PathLike[str]]")
     text = re.sub(r"\bIterator\b(?!\[)", "Iterator[Step]", text)
     return {"iterator": "Iterator[Any]", "handle": "Any", "object": "Any", "slice": "slice",
-            "list": "List[Step]"}.get(text, text)
+            "list": "List[Any]", "dict": "Dict[str, Any]"}.get(text, text)
 
 
 def split_params(text):
@@ -118,9 +118,12 @@ def annotation_text(annotation):
         return "Any"
     if annotation is None:
         return "None"
+    if annotation is dict:
+        return "Dict[str, Any]"
     if isinstance(annotation, type):
         return annotation.__name__
-    return str(annotation).replace("typing.", "").replace("sewerplan.", "")
+    text = str(annotation).replace("typing.", "").replace("sewerplan.", "")
+    return re.sub(r"\bdict\b(?!\[)", "Dict[str, Any]", text)
 
 
 def property_type(prop):
@@ -149,6 +152,7 @@ def class_stub(name, cls):
     if hasattr(cls, "__members__"):  # a pybind11 enum
         for member in cls.__members__:
             lines.append(f"    {member}: ClassVar[{name}]")
+        lines.append(f"    __members__: ClassVar[Dict[str, {name}]]")
         lines += ["    def __init__(self, value: int) -> None: ...",
                   "    def __int__(self) -> int: ...", "    def __index__(self) -> int: ...",
                   "    @property", "    def name(self) -> str: ...",

@@ -19,7 +19,11 @@ def test_plan_is_a_sequence_of_steps(paper):
     assert plan[0].text == steps[0].text == "DRIVE_PIPE_TO_MANHOLE P12 M2"
     assert plan[-1].text == steps[-1].text and plan[-14].text == steps[0].text
     assert [s.text for s in plan[2:5]] == [s.text for s in steps[2:5]]
-    assert [s.text for s in plan[::-3]] == [s.text for s in steps[::-3]]
+    for window in (slice(None, None, -3), slice(10, 100), slice(-3, None), slice(5, 2),
+                   slice(-100, 3, 2)):
+        assert [s.text for s in plan[window]] == [s.text for s in steps[window]], window
+    with pytest.raises(ValueError):
+        plan[::0]
     for index in (14, -15):
         with pytest.raises(IndexError, match="out of range"):
             plan[index]

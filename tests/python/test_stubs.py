@@ -132,7 +132,7 @@ def test_the_same_classes_members_and_methods(stub):
         if "__init__(" not in (cls.__init__.__doc__ or ""):
             runtime.discard("__init__")  # no constructor from Python: the base type's slot
         if hasattr(cls, "__members__"):  # an enum: its values, name and value too
-            runtime |= set(cls.__members__) | {"name", "value"}
+            runtime |= set(cls.__members__) | {"name", "value", "__members__"}
         assert set(members) - {"__int__", "__index__"} == runtime, name
         for attr, defs in members.items():
             if not isinstance(defs[0], ast.FunctionDef) or attr in ("__int__", "__index__"):
