@@ -230,7 +230,8 @@ void bind_errors(py::module_& m) {
   py::class_<Diagnostic>(m, "Diagnostic", "A problem found in an input file, naming where.")
       .def_property_readonly(
           "severity",
-          [](const Diagnostic& d) { return d.severity == Severity::kError ? "error" : "warning"; })
+          [](const Diagnostic& d) { return d.severity == Severity::kError ? "error" : "warning"; },
+          "'error' or 'warning'.")
       .def_readonly("where", &Diagnostic::where, "Where: 'map.json:$.pipes[1]', 'a.sewer:12'.")
       .def_readonly("message", &Diagnostic::message, "What is wrong, naming the object.")
       .def_property_readonly(
@@ -275,7 +276,7 @@ void bind_map_types(py::module_& m) {
         return Repr("Position").field("x_m", p.x_m).field("y_m", p.y_m).field("z_m", p.z_m).str();
       });
   py::class_<Manhole>(m, "Manhole", "A manhole: where pipes meet and the robot turns or exits.")
-      .def_readonly("name", &Manhole::name)
+      .def_readonly("name", &Manhole::name, "The manhole's name.")
       .def_readonly("position", &Manhole::position, "Its Position.")
       .def_readonly("diameter_m", &Manhole::diameter_m, "Inner diameter (m).")
       .def_readonly("exit", &Manhole::exit, "Whether the robot may leave the sewer here.")
@@ -290,7 +291,7 @@ void bind_map_types(py::module_& m) {
             .str();
       });
   py::class_<InspectionPoint>(m, "InspectionPoint", "A named point in a pipe (a task's place).")
-      .def_readonly("name", &InspectionPoint::name)
+      .def_readonly("name", &InspectionPoint::name, "The point's name.")
       .def_readonly("offset_m", &InspectionPoint::offset_m,
                     "Distance from the pipe's first end (m).")
       .def("__repr__", [](const InspectionPoint& p) {
@@ -301,7 +302,7 @@ void bind_map_types(py::module_& m) {
 void bind_map(py::module_& m) {
   py::class_<SewerMap, std::shared_ptr<SewerMap>>(
       m, "SewerMap", "A sewer network: manholes, pipes, inspection points (immutable).")
-      .def_property_readonly("name", &SewerMap::name)
+      .def_property_readonly("name", &SewerMap::name, "The network's name.")
       .def_property_readonly(
           "crs",
           [](const SewerMap& map) -> std::optional<std::string> {
@@ -309,8 +310,8 @@ void bind_map(py::module_& m) {
             return map.crs()->to_string();
           },
           "The coordinate reference system ('EPSG:25832'), or None.")
-      .def_property_readonly("manhole_count", &SewerMap::manhole_count)
-      .def_property_readonly("pipe_count", &SewerMap::pipe_count)
+      .def_property_readonly("manhole_count", &SewerMap::manhole_count, "How many manholes.")
+      .def_property_readonly("pipe_count", &SewerMap::pipe_count, "How many pipes.")
       .def_property_readonly("point_count", &SewerMap::point_count, "Inspection points.")
       .def_property_readonly("finding_count", &SewerMap::finding_count,
                              "Inspection findings (read_condition).")
@@ -475,7 +476,7 @@ void bind_profile(py::module_& m) {
              return *p;
            }),
            py::arg("name") = "makro-1.1", "A built-in profile: 'makro-1.1' or 'makro-plus'.")
-      .def_readwrite("name", &RobotProfile::name)
+      .def_readwrite("name", &RobotProfile::name, "The profile's name.")
       .def_readwrite("speed_mps", &RobotProfile::speed_mps, "Driving speed in pipes (m/s).")
       .def_readwrite("inspection_speed_mps", &RobotProfile::inspection_speed_mps,
                      "Speed while inspecting a pipe (m/s).")
@@ -506,7 +507,7 @@ void bind_profile(py::module_& m) {
 
 void bind_mission(py::module_& m) {
   py::class_<Task>(m, "Task", "One task of a mission.")
-      .def_readonly("name", &Task::name)
+      .def_readonly("name", &Task::name, "The task's name.")
       .def_property_readonly(
           "kind", [](const Task& t) { return std::string(to_string(t.kind)); },
           "'go_to', 'inspect_pipe' or 'take_water_sample'.")
@@ -524,7 +525,8 @@ void bind_mission(py::module_& m) {
                   "Reads a mission in the JSON format (docs/formats/mission-json.md).")
       .def_property_readonly(
           "map", [](const MissionHandle& h) { return h.map; }, "The SewerMap it is on.")
-      .def_property_readonly("name", [](const MissionHandle& h) { return h.mission.name; })
+      .def_property_readonly(
+          "name", [](const MissionHandle& h) { return h.mission.name; }, "The mission's name.")
       .def_property_readonly(
           "profile", [](const MissionHandle& h) { return h.mission.profile; },
           "The RobotProfile (a copy).")

@@ -361,7 +361,8 @@ void bind_plan_types(py::module_& m) {
       });
   py::class_<domain::ValidationReport>(m, "ValidationReport",
                                        "check()'s answer; true when the plan is valid.")
-      .def_readonly("valid", &domain::ValidationReport::valid)
+      .def_readonly("valid", &domain::ValidationReport::valid,
+                    "Whether every step runs and every task is done.")
       .def_readonly("failed_step", &domain::ValidationReport::failed_step,
                     "The first step that cannot run (from 0), or None.")
       .def_readonly("error", &domain::ValidationReport::error,

@@ -94,7 +94,7 @@ def public_api():
             yield name, getattr(sewerplan, name)
 
 
-def test_every_public_class_function_and_method_has_a_docstring():
+def test_every_public_class_function_method_and_field_has_a_docstring():
     def documented(function):
         # pybind11 writes the signature as the docstring's first line; the text is after it.
         doc = inspect.getdoc(function) or ""
@@ -116,4 +116,9 @@ def test_every_public_class_function_and_method_has_a_docstring():
                     continue  # an enum's: pybind11's own, from its value
                 if callable(member) and not documented(getattr(value, attr)):
                     missing.append(f"{name}.{attr}")
+                if isinstance(member, property) and not attr.startswith("_") and not (
+                        hasattr(value, "__members__") and attr == "value"):
+                    doc = (member.__doc__ or "").strip()
+                    if not doc or re.match(r"^\((self|arg0): .*\) -> ", doc):
+                        missing.append(f"{name}.{attr}")  # a field: its meaning and unit
     assert missing == []
