@@ -91,6 +91,6 @@ def mission(map: SewerMap, *, start: _Union[str, dict], tasks: _Iterable[dict] =
 
 
 def write_mission(mission: Mission, path: _Any) -> None:
-    """Writes a mission in its JSON format, atomically; a failed write raises Error naming the
+    """Writes a mission in its JSON format, atomically; a failed write raises IoError naming the
     file (write_text_file, core/output_file.h); path: a str or os.PathLike."""
     write_text_file(str(path), mission.to_json())

@@ -449,7 +449,7 @@ void bind_map(py::module_& m) {
         if (!written.has_value()) raise_error(written.error());
       },
       py::arg("path"), py::arg("text"),
-      "Writes text as a whole file, atomically (core/output_file.h): a failure raises Error "
+      "Writes text as a whole file, atomically (core/output_file.h): a failure raises IoError "
       "(code 'io') naming the file and the reason.");
   m.def(
       "generate_network",
