@@ -7,13 +7,17 @@
     outcome = sewerplan.plan(mission, time_limit_s=1.0)
     print(outcome.plan.text, outcome.cost_s, outcome.energy_wh)
 
-Errors are sewerplan.Error exceptions with .code ("parse", "no-plan", ...), .message and
-.diagnostics (each naming its .file and .line or JSON .path).
+Errors are sewerplan.Error exceptions, one subclass per error code (ParseError, NoPlanError,
+...; grouped as the CLI's exit codes: InvalidInputError, IoError, SearchStoppedError), with .code
+("parse", "no-plan", ...), .exit_code, .message and .diagnostics (each naming its .file and .line
+or JSON .path).
 """
 import json as _json
+from typing import Any as _Any, Iterable as _Iterable, Optional as _Optional, Union as _Union
 
 from ._sewerplan import *  # noqa: F401,F403
-from ._sewerplan import Error, Mission, RobotProfile, SewerMap
+from ._sewerplan import InvalidMissionError, Mission, RobotProfile, SewerMap
+from ._sewerplan import __version__  # noqa: F401 (project(sewerplan VERSION) in CMakeLists.txt)
 
 __all__ = [name for name in dir() if not name.startswith("_")]
 
@@ -25,34 +29,41 @@ def _place(map_, place):
     kind = map_.kind_of(place)
     if kind is None:
         message = f"no manhole, pipe or point named '{place}' in map {map_.name}"
-        error = Error(message)
-        error.code, error.message, error.diagnostics = "invalid-mission", message, []
+        error = InvalidMissionError(message)
+        error.code, error.exit_code = InvalidMissionError.code, InvalidMissionError.exit_code
+        error.message, error.diagnostics = message, []
         raise error
     return {kind: place}
 
 
-def go_to(at, name=None, final=False):
-    """A go-to task: reach `at` (a manhole, pipe or point name, or a place dict)."""
+def go_to(at: _Union[str, dict], name: _Optional[str] = None, final: bool = False) -> dict:
+    """A go-to task for mission(): reach `at` (a manhole, pipe or point name, or a place dict);
+    final: done last, the mission ends there."""
     return {"type": "go_to", "at": at, "name": name, "final": final}
 
 
-def inspect_pipe(pipe, name=None):
-    """Drive the whole pipe while scanning it."""
+def inspect_pipe(pipe: str, name: _Optional[str] = None) -> dict:
+    """An inspection task for mission(): drive the whole pipe while scanning it."""
     return {"type": "inspect_pipe", "pipe": pipe, "name": name}
 
 
-def take_water_sample(at, name=None):
-    """Drive to `at` (a point or pipe name, or a place dict) and take a water sample."""
+def take_water_sample(at: _Union[str, dict], name: _Optional[str] = None) -> dict:
+    """A sampling task for mission(): drive to `at` (a point or pipe name, or a place dict) and
+    take a water sample."""
     return {"type": "take_water_sample", "at": at, "name": name}
 
 
-def mission(map, *, start, tasks=(), exits="map", profile="makro-1.1", battery_reserve=0.2,
-            name="mission", closed_pipes=()):
+def mission(map: SewerMap, *, start: _Union[str, dict], tasks: _Iterable[dict] = (),
+            exits: _Union[str, _Iterable[str]] = "map",
+            profile: _Union[str, RobotProfile, dict] = "makro-1.1", battery_reserve: float = 0.2,
+            name: str = "mission", closed_pipes: _Iterable[str] = ()) -> Mission:
     """Builds a Mission on `map` from Python values, checked as a mission file is.
 
     start: a manhole, pipe or point name (or a place dict); tasks: go_to(), inspect_pipe(),
     take_water_sample() (or task dicts of the mission format); exits: manhole names, "map" or
-    "all"; profile: a built-in profile's name, a RobotProfile or a profile dict.
+    "all"; profile: a built-in profile's name, a RobotProfile or a profile dict;
+    battery_reserve: the fraction of the battery kept for the way out (0 to 1); closed_pipes:
+    pipe names the robot must not use. Raises InvalidMissionError naming the JSON path.
     """
     if isinstance(profile, RobotProfile):
         profile = profile.to_dict()
@@ -79,7 +90,7 @@ def mission(map, *, start, tasks=(), exits="map", profile="makro-1.1", battery_r
     return Mission.from_json(map, _json.dumps(doc), "<python mission " + name + ">")
 
 
-def write_mission(mission, path):
-    """Writes a mission in its JSON format, atomically; a failed write raises Error naming the
-    file (write_text_file, core/output_file.h)."""
+def write_mission(mission: Mission, path: _Any) -> None:
+    """Writes a mission in its JSON format, atomically; a failed write raises IoError naming the
+    file (write_text_file, core/output_file.h); path: a str or os.PathLike."""
     write_text_file(str(path), mission.to_json())

@@ -14,6 +14,11 @@
 #include <condition_variable>
 #include <memory>
 #include <mutex>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <type_traits>
 
 #include "sewerplan/core/diagnostics.h"
 #include "sewerplan/core/mission.h"
@@ -67,6 +72,44 @@ T value_or_raise(Result<T> result, const Diagnostics* diagnostics = nullptr) {
   if (!result.has_value()) raise_error(result.error(), diagnostics);
   return std::move(*result);
 }
+
+// A value class's __repr__, "<PlanOutcome cost_s=585.377 optimal=True algorithm='astar'>": the
+// type and the fields that tell one value from another; reals with 6 significant digits, strings
+// quoted as Python quotes them, None for a missing value.
+class Repr {
+ public:
+  explicit Repr(std::string_view type) { out_ << '<' << type; }
+  // A bare word after the type: "<Manhole M1 ...>".
+  Repr& word(std::string_view text) {
+    out_ << ' ' << text;
+    return *this;
+  }
+  template <class T>
+  Repr& field(std::string_view name, const T& value) {
+    out_ << ' ' << name << '=';
+    put(value);
+    return *this;
+  }
+  std::string str() const { return out_.str() + '>'; }
+
+ private:
+  void put(const std::string& s) { out_ << std::string(py::repr(py::str(s))); }
+  void put(const char* s) { put(std::string(s)); }
+  void put(bool b) { out_ << (b ? "True" : "False"); }
+  void put(double d) { out_ << d; }
+  template <class T>
+  void put(const std::optional<T>& v) {
+    if (v) {
+      put(*v);
+    } else {
+      out_ << "None";
+    }
+  }
+  template <class T>
+  requires std::is_integral_v<T>
+  void put(T v) { out_ << v; }
+  std::ostringstream out_;
+};
 
 // Name lookups for arguments given by name; an unknown name raises sewerplan.Error
 // (invalid-argument) naming it.
