@@ -285,6 +285,10 @@ for i in 0 1 2; do
 done
 expect 0 'Verdict: clean' -- "$sp" campaign merge "$tmp/shard0" "$tmp/shard1" "$tmp/shard2" -o "$tmp/merged"
 expect 0 '' -- bash -c "diff <(sed 's/,\"measured\".*//' \"$tmp/camp/runs.jsonl\") <(sed 's/,\"measured\".*//' \"$tmp/merged/runs.jsonl\")"
+# merge -q, like the campaign itself: nothing on the terminal, the same files written.
+expect 0 '' -- bash -c 'out=$("$@" 2>&1) && [ -z "$out" ]' - \
+  "$sp" campaign merge "$tmp/shard0" "$tmp/shard1" "$tmp/shard2" -o "$tmp/merged-q" -q
+expect 0 '' -- cmp "$tmp/merged/summary.json" "$tmp/merged-q/summary.json"
 # Issue 14: a go-to at P9's M10 end leaves the robot right at that end after a pass into P9; the
 # drive of 0 m back to M10 must bring it to the mouth (it stayed in P9, and was "ended at exit M10").
 cat >"$tmp/end-of-p9.json" <<'JSON'
