@@ -318,6 +318,16 @@ expect 0 'class="blocked"' -- cat "$tmp/demo.svg"
 echo 'not json' > "$tmp/bad.jsonl"
 expect 1 'bad.jsonl:1: error: not a JSON object' -- "$sp" render --map "$ais" --mission "$mission" --log "$tmp/bad.jsonl" -o "$tmp/bad.svg"
 expect 2 "need --mission" -- "$sp" render --map "$ais" --log "$tmp/events.jsonl" -o "$tmp/x.svg"
+# The picture's format is -o's extension: .svg or .png in any case, SVG without one; any other
+# extension is refused before the map is read (it wrote SVG into x.pdf), and nothing is written.
+expect 2 "render -o $tmp/x.pdf: unknown extension \".pdf\" \(.svg or .png\)" -- \
+  "$sp" render --map "$ais" -o "$tmp/x.pdf"
+expect 2 'unknown extension' -- "$sp" render --map "$tmp/no-such-map.json" -o "$tmp/x.svgz"
+expect 0 '' -- test ! -e "$tmp/x.pdf" -a ! -e "$tmp/x.svgz"
+expect 2 '"code": "usage", *"exit_code": 2, *"message": "render -o [^"]*x.jpg: unknown extension' -- bash -c "set -o pipefail; '$sp' render --map '$ais' -o '$tmp/x.jpg' --json | tr -d '\n'"
+expect 0 '"format": "svg"' -- "$sp" render --map "$ais" -o "$tmp/CAPS.SVG" --json
+expect 0 '"format": "svg"' -- "$sp" render --map "$ais" -o "$tmp/no-extension" --json
+expect 0 '^<svg' -- head -c 4 "$tmp/no-extension"
 # Manhole motions (docs/motion.md): precompute beside a copy of the map; plan uses the table and
 # says so; --no-motion and a stale table. A build without OMPL says it cannot plan them.
 mkdir -p "$tmp/motion"
