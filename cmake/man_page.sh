@@ -6,6 +6,9 @@
 set -euo pipefail
 sp=$1
 out=$2
+# Every --help laid out 73 columns wide (apps/sewerplan/help_format.h): the page indents the
+# commands' texts by 7, and a man page must fit 80 (tests/cli/help_test.sh checks it).
+export COLUMNS=73
 include=$(mktemp)
 trap 'rm -f "$include"' EXIT
 {

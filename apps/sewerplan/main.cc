@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <iostream>
+#include <memory>
 #include <span>
 #include <string>
 #include <string_view>
@@ -13,6 +14,7 @@
 #include "sewerplan/version.h"
 
 #include "command.h"
+#include "help_format.h"
 #include "json_output.h"
 
 namespace sewerplan::cli {
@@ -124,6 +126,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "sewerplan " + std::string(sewerplan::kVersion));
   app.footer(kFooter);
+  // Before the commands are added: each takes its parent's formatter.
+  app.formatter(std::make_shared<HelpFormatter>(help_width()));
   Context context{std::cout, std::cerr};
   // Only the command argv names first is registered, when it names one: CLI11 builds every option
   // of every command it is given (strings, validators, callbacks), 2.4 M instructions for all of
