@@ -31,7 +31,8 @@ namespace {
 constexpr const char* kFooter =
     "Give the map with --map FILE (the old positional MAP of validate, info, convert and motion\n"
     "precompute still works, with a note on standard error). --json, on every command but\n"
-    "sim-node and serve, prints one JSON document on standard output; a failure prints\n"
+    "sim-node, serve and completion, prints one JSON document on standard output; a failure "
+    "prints\n"
     "{\"error\": "
     "{\"code\", \"exit_code\", \"message\", ...}} (schemas: docs/cli.md).\n"
     "\n"
@@ -68,6 +69,7 @@ constexpr CommandEntry kCommands[] = {
 #endif
     {"serve", &sewerplan::cli::add_serve_command},
     {"merge-measurements", &sewerplan::cli::add_merge_measurements_command},
+    {"completion", &sewerplan::cli::add_completion_command},
 };
 
 // Every number on the command line is checked before a command sees it: CLI11 reads "-5" into an
@@ -139,7 +141,8 @@ int main(int argc, char** argv) {
     if (argc > 1 && std::string_view(argv[1]) == c.name) named = &c;
   }
   const bool version_only = argc == 2 && std::string_view(argv[1]) == "--version";
-  if (named != nullptr) {
+  // completion prints every command's options: it is registered with all of them.
+  if (named != nullptr && named->add != &add_completion_command) {
     named->add(app, context);
   } else if (!version_only) {
     for (std::size_t i = 0; i < commands.size(); ++i) {
