@@ -68,6 +68,12 @@ else
 fi
 expect 2 'unknown format' -- "$sp" convert --map "$ais" -o "$tmp/x.out" --to xml
 expect 1 'cannot tell the format' -- "$sp" convert --map "$ais" -o "$tmp/x.out"
+# ... told before the map is read or made (a missing map was reported first, a large network made
+# first), and nothing written.
+expect 1 "$tmp/x.out: cannot tell the format" -- "$sp" convert --map "$tmp/no-such-map.json" -o "$tmp/x.out"
+expect 1 'does not write them' -- "$sp" convert --map "$tmp/no-such-map.json" -o "$tmp/x.inp"
+expect 1 "$tmp/g.pdf: cannot tell the format" -- "$sp" generate --manholes 5 -o "$tmp/g.pdf"
+expect 0 '' -- test ! -e "$tmp/x.out" -a ! -e "$tmp/g.pdf"
 
 # Imported sewer databases: SWMM and ISYBAU, converted to the native formats, never written.
 swmm="$src/datasets/swmm/epa-example1.inp"
@@ -328,6 +334,14 @@ expect 2 '"code": "usage", *"exit_code": 2, *"message": "render -o [^"]*x.jpg: u
 expect 0 '"format": "svg"' -- "$sp" render --map "$ais" -o "$tmp/CAPS.SVG" --json
 expect 0 '"format": "svg"' -- "$sp" render --map "$ais" -o "$tmp/no-extension" --json
 expect 0 '^<svg' -- head -c 4 "$tmp/no-extension"
+# export-geojson writes GeoJSON only: a GeoPackage or Shapefile name is refused, not filled with it.
+if "$sp" --help | grep -q export-geojson; then
+  expect 2 "export-geojson -o $tmp/x.gpkg: unknown extension \".gpkg\" \(.geojson or .json\)" -- \
+    "$sp" export-geojson --map "$ais" --crs EPSG:25832 -o "$tmp/x.gpkg"
+  expect 2 "--nav2 $tmp/g.shp: unknown extension" -- \
+    "$sp" export-geojson --map "$ais" --crs EPSG:25832 --nav2 "$tmp/g.shp"
+  expect 0 '' -- test ! -e "$tmp/x.gpkg" -a ! -e "$tmp/g.shp"
+fi
 # Manhole motions (docs/motion.md): precompute beside a copy of the map; plan uses the table and
 # says so; --no-motion and a stale table. A build without OMPL says it cannot plan them.
 mkdir -p "$tmp/motion"
