@@ -13,7 +13,7 @@ include=$(mktemp)
 trap 'rm -f "$include"' EXIT
 {
   echo "[COMMANDS]"
-  commands=$("$sp" --help | awk '/^Subcommands:/ {on = 1; next} on && !NF {exit} on {print $1}')
+  commands=$("$sp" --help | awk '/^Subcommands:/ {on = 1; next} on && !NF {exit} on && /^  [a-z]/ {print $1}')
   for c in $commands; do
     echo ".SS $c"
     echo ".nf"
