@@ -12,8 +12,7 @@ install(FILES ${PROJECT_SOURCE_DIR}/README.md ${PROJECT_SOURCE_DIR}/LICENSE
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/datasets/ais-testbed
         DESTINATION ${CMAKE_INSTALL_DATADIR}/sewerplan/datasets)
-install(FILES ${PROJECT_SOURCE_DIR}/apps/sewerplan/completion/sewerplan.bash
-        DESTINATION ${CMAKE_INSTALL_DATADIR}/bash-completion/completions RENAME sewerplan)
+# (The bash completion is written and installed by apps/CMakeLists.txt.)
 if(TARGET sewerplan_python)  # finds the example data beside it: ../../datasets/ais-testbed
   install(PROGRAMS ${PROJECT_SOURCE_DIR}/examples/python/plan_ais.py
           DESTINATION ${CMAKE_INSTALL_DATADIR}/sewerplan/examples/python)

@@ -6,11 +6,14 @@
 set -euo pipefail
 sp=$1
 out=$2
+# Every --help laid out 73 columns wide (apps/sewerplan/help_format.h): the page indents the
+# commands' texts by 7, and a man page must fit 80 (tests/cli/help_test.sh checks it).
+export COLUMNS=73
 include=$(mktemp)
 trap 'rm -f "$include"' EXIT
 {
   echo "[COMMANDS]"
-  commands=$("$sp" --help | awk '/^Subcommands:/ {on = 1; next} on && !NF {exit} on {print $1}')
+  commands=$("$sp" --help | awk '/^Subcommands:/ {on = 1; next} on && !NF {exit} on && /^  [a-z]/ {print $1}')
   for c in $commands; do
     echo ".SS $c"
     echo ".nf"

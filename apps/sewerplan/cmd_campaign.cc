@@ -127,7 +127,7 @@ int merge(const CampaignCliOptions& o, Context& c) {
   const campaign::Summary s = campaign::summarize(merged->spec, merged->records);
   if (o.json) {
     campaign::write_summary_json(s, c.out);
-  } else {
+  } else if (!o.quiet) {
     campaign::write_summary_markdown(s, c.out);
     c.out << "\nwrote " << o.merge_out
           << "/{campaign.json,runs.jsonl,summary.json,summary.md,summary.svg}\n";
@@ -392,6 +392,7 @@ void add_campaign_command(CLI::App& app, Context& context) {
       cmd->add_subcommand("merge", "Merge the output directories of a sharded campaign");
   merge_cmd->add_option("dirs", options->merge_dirs, "Shard directories")->required();
   merge_cmd->add_option("-o,--out", options->merge_out, "Output directory")->required();
+  merge_cmd->add_flag("-q,--quiet", options->quiet, "No summary on the terminal");
   merge_cmd->add_flag("--json", options->json, "Print the summary as JSON (summary.json)");
   cmd->require_subcommand(0, 1);
   merge_cmd->callback([options, &context] { context.exit_code = merge(*options, context); });

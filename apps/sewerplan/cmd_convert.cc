@@ -56,6 +56,10 @@ int run(const ConvertOptions& o, Context& c) {
           c, o.json, "--to: sewerplan reads " + o.to + " but does not write it (json or ascii)");
     }
   }
+  // The output's format, before the map is read.
+  if (Result<MapFormat> checked = map_output_format(out, format); !checked.has_value()) {
+    return fail(c, o.json, checked.error());
+  }
   Diagnostics diagnostics;
   Result<SewerMap> map = read_map_with_condition({*in, o.gis_fields}, o.condition, diagnostics);
   if (map.has_value()) map = apply_crs_option(std::move(*map), o.crs);

@@ -25,6 +25,7 @@
 #include "gis_module.h"
 #include "json_output.h"
 #include "map_input.h"
+#include "output_format.h"
 
 namespace sewerplan::cli {
 namespace {
@@ -93,6 +94,15 @@ int run(const ExportOptions& o, Context& c) {
   }
   if (!o.nav2_origin.empty() && o.nav2_origin.size() != 2) {
     return usage_error(c, o.json, "--nav2-origin: give X,Y");
+  }
+  // Both files are GeoJSON (output_format.h): a GeoPackage or Shapefile name, which the command
+  // reads, is refused rather than written as GeoJSON under that name.
+  constexpr OutputExtension kGeoJson[] = {{".geojson", "geojson"}, {".json", "geojson"}};
+  for (const auto& [file, option] : {std::pair{&o.out, "export-geojson -o"}, {&o.nav2, "--nav2"}}) {
+    if (file->empty()) continue;
+    if (Result<std::string_view> f = output_format(*file, option, kGeoJson); !f.has_value()) {
+      return fail(c, o.json, f.error());
+    }
   }
   Diagnostics diagnostics;
   auto failed = [&](const Error& e) { return fail(c, o.json, e, diagnostics); };

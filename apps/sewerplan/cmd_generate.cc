@@ -71,6 +71,10 @@ int run(GenerateOptions& o, Context& c) {
       (o.mission_out.empty() || o.mission_tasks == 0)) {
     return usage_error(c, o.json, "--mission-tasks and --mission-out go together");
   }
+  // The map's format by -o's extension, before the network is made (a large one takes minutes).
+  if (Result<MapFormat> format = map_output_format(o.out); !format.has_value()) {
+    return fail(c, o.json, format.error());
+  }
   Result<SewerMap> map = generate_network(o.generator);
   if (map.has_value()) map = apply_crs_option(std::move(*map), o.crs);
   if (!map.has_value()) return fail(c, o.json, map.error());

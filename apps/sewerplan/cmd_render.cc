@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // sewerplan render --map MAP [--mission MISSION] [--plan PLAN] [--log EVENTS] [--faults FAULTS]
 //                  [--profile P] [--title T] [--width PX] [--focus] -o FILE.svg|FILE.png
-#include <filesystem>
 #include <ostream>
+#include <string_view>
 
 #include <CLI/CLI.hpp>
 
@@ -17,6 +17,7 @@
 #include "driveability_option.h"
 #include "json_output.h"
 #include "map_input.h"
+#include "output_format.h"
 
 namespace sewerplan::cli {
 namespace {
@@ -36,7 +37,12 @@ struct RenderOptions {
   bool json = false;
 };
 
+// What render writes, by -o's extension (output_format.h): SVG, the default, or PNG through cairo.
+constexpr OutputExtension kPictureFormats[] = {{".svg", "svg"}, {".png", "png"}};
+
 int run(const RenderOptions& o, Context& c) {
+  const Result<std::string_view> format = output_format(o.out, "render -o", kPictureFormats);
+  if (!format.has_value()) return fail(c, o.json, format.error());
   if ((!o.plan.empty() || !o.log.empty() || o.focus) && o.mission.empty()) {
     return usage_error(c, o.json, "render: --plan, --log and --focus need --mission");
   }
@@ -78,7 +84,7 @@ int run(const RenderOptions& o, Context& c) {
       driveability_for_profile(*map, o.profile);
   if (!driveability.has_value()) return failed(driveability.error());
   print_diagnostics(diagnostics, c.err);
-  const bool png = std::filesystem::path(o.out).extension() == ".png";
+  const bool png = *format == "png";
   const render::RenderInput input{.map = &*map,
                                   .mission = mission ? &*mission : nullptr,
                                   .plan = plan ? &*plan : nullptr,
@@ -94,7 +100,7 @@ int run(const RenderOptions& o, Context& c) {
   if (Result<void> w = write_text_file(o.out, *picture); !w.has_value()) return failed(w.error());
   if (o.json) {
     print_json(c.out, {{"wrote", o.out},
-                       {"format", png ? "png" : "svg"},
+                       {"format", *format},
                        {"bytes", picture->size()},
                        {"width_px", o.width_px},
                        {"focus", o.focus},
@@ -131,7 +137,7 @@ void add_render_command(CLI::App& app, Context& context) {
   cmd->add_option("--width", options->width_px, "Width in pixels")->capture_default_str();
   cmd->add_flag("--focus", options->focus,
                 "Only the mission's area (start, tasks, routes), not the whole network");
-  cmd->add_option("-o,--out", options->out, "File to write: PNG if it ends in .png, else SVG")
+  cmd->add_option("-o,--out", options->out, "File to write: .svg or .png (no extension: SVG)")
       ->required();
   cmd->add_flag("--json", options->json, "Print what was written as JSON");
   cmd->callback([options, &context] { context.exit_code = run(*options, context); });

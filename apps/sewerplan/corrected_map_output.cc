@@ -6,12 +6,13 @@
 #include <optional>
 #include <string_view>
 
-#include "sewerplan/core/ascii_case.h"
 #include "sewerplan/core/isybau_correction.h"
 #include "sewerplan/core/map_io.h"
 #include "sewerplan/core/measurements_json.h"
 #include "sewerplan/core/output_file.h"
 #include "sewerplan/core/text_file.h"
+
+#include "output_format.h"
 
 namespace sewerplan::cli {
 
@@ -38,8 +39,12 @@ std::string measurement_date() {
 
 namespace {
 
+// What --corrected-map names (output_format.h): our JSON map, the default, or ISYBAU XML too.
+constexpr OutputExtension kCorrectedMapFormats[] = {{".json", "json"}, {".xml", "xml"}};
+
 bool names_xml(const std::filesystem::path& out) {
-  return ascii_lower(out.extension().string()) == ".xml";
+  const Result<std::string_view> format = output_format(out, "", kCorrectedMapFormats);
+  return format.has_value() && *format == "xml";
 }
 
 // The text of `map_source` if it is an ISYBAU file (what the map was read from), else nothing.
@@ -61,6 +66,10 @@ std::filesystem::path with_extension(std::filesystem::path p, const char* extens
 
 Result<void> check_corrected_map_target(const std::filesystem::path& out,
                                         const std::string& map_source) {
+  if (Result<std::string_view> format = output_format(out, "--corrected-map", kCorrectedMapFormats);
+      !format.has_value()) {
+    return format.error();
+  }
   if (!names_xml(out) || isybau_source(map_source)) return {};
   return Error{ErrorCode::kInvalidArgument,
                "--corrected-map " + out.string() +

@@ -25,9 +25,10 @@ std::filesystem::path beside(const std::filesystem::path& out, const std::string
 // 8601 UTC.
 std::string measurement_date();
 
-// Whether --corrected-map `out` can be written for the map file `map_source`: an .xml OUT only
-// for a map read from ISYBAU XML (kInvalidArgument, a usage error, naming both). Asked before a
-// mission, so that its measurements are not lost to a name.
+// Whether --corrected-map `out` can be written for the map file `map_source`: OUT ends in .json or
+// .xml (or has no extension: JSON; output_format.h), and an .xml OUT only for a map read from
+// ISYBAU XML (else kInvalidArgument, a usage error, naming the file). Asked before a mission, so
+// that its measurements are not lost to a name.
 Result<void> check_corrected_map_target(const std::filesystem::path& out,
                                         const std::string& map_source);
 

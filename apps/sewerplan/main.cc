@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <iostream>
+#include <memory>
 #include <span>
 #include <string>
 #include <string_view>
@@ -13,6 +14,7 @@
 #include "sewerplan/version.h"
 
 #include "command.h"
+#include "help_format.h"
 #include "json_output.h"
 
 namespace sewerplan::cli {
@@ -29,7 +31,8 @@ namespace {
 constexpr const char* kFooter =
     "Give the map with --map FILE (the old positional MAP of validate, info, convert and motion\n"
     "precompute still works, with a note on standard error). --json, on every command but\n"
-    "sim-node and serve, prints one JSON document on standard output; a failure prints\n"
+    "sim-node, serve and completion, prints one JSON document on standard output; a failure "
+    "prints\n"
     "{\"error\": "
     "{\"code\", \"exit_code\", \"message\", ...}} (schemas: docs/cli.md).\n"
     "\n"
@@ -66,6 +69,7 @@ constexpr CommandEntry kCommands[] = {
 #endif
     {"serve", &sewerplan::cli::add_serve_command},
     {"merge-measurements", &sewerplan::cli::add_merge_measurements_command},
+    {"completion", &sewerplan::cli::add_completion_command},
 };
 
 // Every number on the command line is checked before a command sees it: CLI11 reads "-5" into an
@@ -124,6 +128,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "sewerplan " + std::string(sewerplan::kVersion));
   app.footer(kFooter);
+  // Before the commands are added: each takes its parent's formatter.
+  app.formatter(std::make_shared<HelpFormatter>(help_width()));
   Context context{std::cout, std::cerr};
   // Only the command argv names first is registered, when it names one: CLI11 builds every option
   // of every command it is given (strings, validators, callbacks), 2.4 M instructions for all of
@@ -135,7 +141,8 @@ int main(int argc, char** argv) {
     if (argc > 1 && std::string_view(argv[1]) == c.name) named = &c;
   }
   const bool version_only = argc == 2 && std::string_view(argv[1]) == "--version";
-  if (named != nullptr) {
+  // completion prints every command's options: it is registered with all of them.
+  if (named != nullptr && named->add != &add_completion_command) {
     named->add(app, context);
   } else if (!version_only) {
     for (std::size_t i = 0; i < commands.size(); ++i) {

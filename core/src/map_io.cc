@@ -211,16 +211,24 @@ Result<SewerMap> read_map(const std::filesystem::path& path, Diagnostics& diagno
   return parse_map(text, path.string(), *format, diagnostics);
 }
 
-Result<void> write_map(const SewerMap& map, const std::filesystem::path& path,
-                       std::optional<MapFormat> format) {
+Result<MapFormat> map_output_format(const std::filesystem::path& path,
+                                    std::optional<MapFormat> format) {
   if (!format) format = map_format_from_extension(path);
   if (!format) {
     return Error{
         ErrorCode::kUnsupportedFormat,
         path.string() + ": cannot tell the format from the extension (use .json or .sewer)"};
   }
+  if (!is_writable(*format)) return read_only(*format, path);
+  return *format;
+}
+
+Result<void> write_map(const SewerMap& map, const std::filesystem::path& path,
+                       std::optional<MapFormat> format) {
+  const Result<MapFormat> writable = map_output_format(path, format);
+  if (!writable.has_value()) return writable.error();
   std::ostringstream out;
-  switch (*format) {
+  switch (*writable) {
     case MapFormat::kJson:
       write_map_json(map, out);
       break;
@@ -229,7 +237,7 @@ Result<void> write_map(const SewerMap& map, const std::filesystem::path& path,
       break;
     case MapFormat::kSwmm:
     case MapFormat::kIsybau:
-      return read_only(*format, path);
+      return read_only(*writable, path);  // refused by map_output_format already
   }
   return write_text_file(path, out.str());
 }

@@ -68,6 +68,12 @@ else
 fi
 expect 2 'unknown format' -- "$sp" convert --map "$ais" -o "$tmp/x.out" --to xml
 expect 1 'cannot tell the format' -- "$sp" convert --map "$ais" -o "$tmp/x.out"
+# ... told before the map is read or made (a missing map was reported first, a large network made
+# first), and nothing written.
+expect 1 "$tmp/x.out: cannot tell the format" -- "$sp" convert --map "$tmp/no-such-map.json" -o "$tmp/x.out"
+expect 1 'does not write them' -- "$sp" convert --map "$tmp/no-such-map.json" -o "$tmp/x.inp"
+expect 1 "$tmp/g.pdf: cannot tell the format" -- "$sp" generate --manholes 5 -o "$tmp/g.pdf"
+expect 0 '' -- test ! -e "$tmp/x.out" -a ! -e "$tmp/g.pdf"
 
 # Imported sewer databases: SWMM and ISYBAU, converted to the native formats, never written.
 swmm="$src/datasets/swmm/epa-example1.inp"
@@ -285,6 +291,10 @@ for i in 0 1 2; do
 done
 expect 0 'Verdict: clean' -- "$sp" campaign merge "$tmp/shard0" "$tmp/shard1" "$tmp/shard2" -o "$tmp/merged"
 expect 0 '' -- bash -c "diff <(sed 's/,\"measured\".*//' \"$tmp/camp/runs.jsonl\") <(sed 's/,\"measured\".*//' \"$tmp/merged/runs.jsonl\")"
+# merge -q, like the campaign itself: nothing on the terminal, the same files written.
+expect 0 '' -- bash -c 'out=$("$@" 2>&1) && [ -z "$out" ]' - \
+  "$sp" campaign merge "$tmp/shard0" "$tmp/shard1" "$tmp/shard2" -o "$tmp/merged-q" -q
+expect 0 '' -- cmp "$tmp/merged/summary.json" "$tmp/merged-q/summary.json"
 # Issue 14: a go-to at P9's M10 end leaves the robot right at that end after a pass into P9; the
 # drive of 0 m back to M10 must bring it to the mouth (it stayed in P9, and was "ended at exit M10").
 cat >"$tmp/end-of-p9.json" <<'JSON'
@@ -314,6 +324,24 @@ expect 0 'class="blocked"' -- cat "$tmp/demo.svg"
 echo 'not json' > "$tmp/bad.jsonl"
 expect 1 'bad.jsonl:1: error: not a JSON object' -- "$sp" render --map "$ais" --mission "$mission" --log "$tmp/bad.jsonl" -o "$tmp/bad.svg"
 expect 2 "need --mission" -- "$sp" render --map "$ais" --log "$tmp/events.jsonl" -o "$tmp/x.svg"
+# The picture's format is -o's extension: .svg or .png in any case, SVG without one; any other
+# extension is refused before the map is read (it wrote SVG into x.pdf), and nothing is written.
+expect 2 "render -o $tmp/x.pdf: unknown extension \".pdf\" \(.svg or .png\)" -- \
+  "$sp" render --map "$ais" -o "$tmp/x.pdf"
+expect 2 'unknown extension' -- "$sp" render --map "$tmp/no-such-map.json" -o "$tmp/x.svgz"
+expect 0 '' -- test ! -e "$tmp/x.pdf" -a ! -e "$tmp/x.svgz"
+expect 2 '"code": "usage", *"exit_code": 2, *"message": "render -o [^"]*x.jpg: unknown extension' -- bash -c "set -o pipefail; '$sp' render --map '$ais' -o '$tmp/x.jpg' --json | tr -d '\n'"
+expect 0 '"format": "svg"' -- "$sp" render --map "$ais" -o "$tmp/CAPS.SVG" --json
+expect 0 '"format": "svg"' -- "$sp" render --map "$ais" -o "$tmp/no-extension" --json
+expect 0 '^<svg' -- head -c 4 "$tmp/no-extension"
+# export-geojson writes GeoJSON only: a GeoPackage or Shapefile name is refused, not filled with it.
+if "$sp" --help | grep -q export-geojson; then
+  expect 2 "export-geojson -o $tmp/x.gpkg: unknown extension \".gpkg\" \(.geojson or .json\)" -- \
+    "$sp" export-geojson --map "$ais" --crs EPSG:25832 -o "$tmp/x.gpkg"
+  expect 2 "--nav2 $tmp/g.shp: unknown extension" -- \
+    "$sp" export-geojson --map "$ais" --crs EPSG:25832 --nav2 "$tmp/g.shp"
+  expect 0 '' -- test ! -e "$tmp/x.gpkg" -a ! -e "$tmp/g.shp"
+fi
 # Manhole motions (docs/motion.md): precompute beside a copy of the map; plan uses the table and
 # says so; --no-motion and a stale table. A build without OMPL says it cannot plan them.
 mkdir -p "$tmp/motion"

@@ -123,6 +123,13 @@ expect 2 "ISYBAU XML is written only for a map read from ISYBAU XML" -- "$sp" si
   --map "$ais" --mission "$mission" -q --corrected-map "$tmp/ais-fixed.xml"
 check "nothing written for the refused name" test ! -e "$tmp/ais-fixed.json"
 
+# The corrected map is written as JSON (.json, or no extension) or also as ISYBAU XML (.xml): any
+# other name is refused before the mission (it wrote JSON into fixed.sewer).
+expect 2 "--corrected-map $tmp/fixed.sewer: unknown extension \".sewer\" \(.json or .xml\)" -- \
+  "$sp" simulate --map "$ais" --mission "$mission" -q --corrected-map "$tmp/fixed.sewer"
+expect 2 "--corrected-map $tmp/fixed.txt: unknown extension" -- \
+  "$sp" merge-measurements --map "$ais" "$tmp/one.json" -o "$tmp/z.json" --corrected-map "$tmp/fixed.txt"
+expect 0 '' -- test ! -e "$tmp/fixed.sewer" -a ! -e "$tmp/fixed.txt" -a ! -e "$tmp/z.json"
 # Failed writes: exit 3 naming the file.
 expect 3 "/dev/full" -- "$sp" merge-measurements --map "$ais" "$tmp/one.json" -o /dev/full
 expect 3 "/dev/full" -- "$sp" merge-measurements --map "$ais" "$tmp/one.json" -o "$tmp/y.json" \

@@ -70,8 +70,14 @@ Result<SewerMap> read_map_without_gis(
     const std::filesystem::path& path, Diagnostics& diagnostics,
     const std::optional<std::filesystem::path>& field_mapping = std::nullopt);
 
+// The format write_map writes `path` in: `format`, else the extension's; an unknown extension or a
+// read-only format is a kUnsupportedFormat error naming the file. Asked before a map is made, so
+// that a wrong name fails before the work (sewerplan generate, convert).
+Result<MapFormat> map_output_format(const std::filesystem::path& path,
+                                    std::optional<MapFormat> format = std::nullopt);
+
 // Without a format, the extension decides (an unknown extension is an error). A read-only format
-// is a kUnsupportedFormat error, and nothing is written.
+// is a kUnsupportedFormat error, and nothing is written (map_output_format).
 Result<void> write_map(const SewerMap& map, const std::filesystem::path& path,
                        std::optional<MapFormat> format = std::nullopt);
 

@@ -66,7 +66,7 @@ struct Failure {
   ManholeId manhole{0};
   SlotIndex from{0};
   SlotIndex to{0};
-  std::string detail;  // the robot's own words
+  std::string detail{};  // the robot's own words
 };
 
 std::string_view to_string(Failure::Kind kind);

@@ -53,7 +53,7 @@ std::optional<Algorithm> algorithm_from_string(std::string_view name);
 struct PlannerOptions {
   Algorithm algorithm = Algorithm::kAuto;
   // Default: FF for ehc, gbfs and wastar; h_max for astar (admissible, so its plans are optimal).
-  std::optional<HeuristicKind> heuristic;
+  std::optional<HeuristicKind> heuristic{};
   double weight = 2.0;               // wastar
   double time_limit_s = 0;           // 0: none
   std::uint64_t max_expansions = 0;  // 0: none
@@ -82,7 +82,7 @@ struct PlannerOptions {
   // plan must fit the real battery by its true cost. It never costs a task or the mission: when
   // the risk-aware plan does not fit, none is found, or (with goal selection) it does fewer tasks
   // than a risk-blind one, the risk-blind plan is the answer (PlanOutcome::risk_note).
-  domain::RiskCosts risk;
+  domain::RiskCosts risk{};
   // Contingency-aware battery planning (domain::CompileOptions::contingency, docs/planning.md):
   // where the mission has hazards, keep at every drive past one enough battery to back out and
   // reach an exit another way. Where no plan can keep those reserves, the plan without them is
