@@ -1,16 +1,19 @@
 // SPDX-License-Identifier: MIT
 // Golden frames of the job protocol (docs/can-protocol.md): for every job kind and every error
 // code of a RESULT, the exact frames on the bus. A change of the wire (a reordered Job variant, a
-// renumbered code) breaks these, not a robot in the field. The frames were written from the
-// protocol's document by an encoder of its own (Python, zlib's CRC-32), not by sewerplan's.
+// renumbered code: hal/can/wire_codes.h) breaks these, not a robot in the field. The frames were
+// written from the protocol's document by an encoder of its own (Python, zlib's CRC-32), not by
+// sewerplan's.
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "sewerplan/hal/can/can_frame.h"
 #include "sewerplan/hal/can/job_protocol.h"
+#include "sewerplan/hal/can/wire_codes.h"
 
 namespace sewerplan::hal {
 namespace {
@@ -135,25 +138,113 @@ TEST(CanGoldenFrames, ADoneJobsResult) {
 }
 
 struct GoldenError {
-  RobotError error;
+  RobotErrorCause cause;
   std::string header;  // data frame 0: the outcome code, flags 0, reason length 4
   std::string end;
 };
 
-TEST(CanGoldenFrames, EveryErrorKindHasItsFramesOnTheBus) {
-  const std::vector<GoldenError> errors{
-      {RobotError{RobotErrorKind::kBlockage, "stop"}, "02221000#01000400", "02221FFF#0800AFD18E74"},
-      {RobotError{RobotErrorKind::kDanger, "stop"}, "02221000#02000400", "02221FFF#0800D6E53152"},
-      {RobotError{RobotErrorKind::kMalfunction, "stop"}, "02221000#03000400",
-       "02221FFF#080001F6A44F"},
+// Codes 1-3 (an error known by its kind alone) are the frames of earlier versions, byte for byte.
+const std::vector<GoldenError>& golden_errors() {
+  static const std::vector<GoldenError> kErrors{
+      {RobotErrorCause::kOtherBlockage, "02221000#01000400", "02221FFF#0800AFD18E74"},
+      {RobotErrorCause::kOtherDanger, "02221000#02000400", "02221FFF#0800D6E53152"},
+      {RobotErrorCause::kOtherMalfunction, "02221000#03000400", "02221FFF#080001F6A44F"},
+      {RobotErrorCause::kObstacle, "02221000#11000400", "02221FFF#08009EEAAE76"},
+      {RobotErrorCause::kBlindEnd, "02221000#12000400", "02221FFF#0800E7DE1150"},
+      {RobotErrorCause::kNoManholeSeen, "02221000#13000400", "02221FFF#080030CD844D"},
+      {RobotErrorCause::kDangerSpot, "02221000#21000400", "02221FFF#0800CDA7CE70"},
+      {RobotErrorCause::kDangerousPassage, "02221000#22000400", "02221FFF#0800B4937156"},
+      {RobotErrorCause::kFault, "02221000#31000400", "02221FFF#0800FC9CEE72"},
+      {RobotErrorCause::kBatteryEmpty, "02221000#32000400", "02221FFF#080085A85154"},
+      {RobotErrorCause::kInvalidJob, "02221000#33000400", "02221FFF#080052BBC449"},
+      {RobotErrorCause::kEmergencyStop, "02221000#34000400", "02221FFF#080077C02F19"},
+      {RobotErrorCause::kLink, "02221000#35000400", "02221FFF#0800A0D3BA04"},
   };
-  for (const GoldenError& g : errors) {
-    SCOPED_TRACE(g.header);
-    const JobResult result = golden_result(g.error);
+  return kErrors;
+}
+
+TEST(CanGoldenFrames, EveryErrorCauseHasItsFramesOnTheBus) {
+  std::set<RobotErrorCause> causes;
+  for (const GoldenError& g : golden_errors()) {
+    SCOPED_TRACE(std::string(to_string(g.cause)));
+    causes.insert(g.cause);
+    const JobResult result = golden_result(RobotError{g.cause, "stop"});
     const std::vector<std::string> frames = result_frames(g.header, g.end);
     EXPECT_EQ(texts(encode(result)), frames);
-    EXPECT_EQ(decoded(frames), std::optional<Message>(result));
+    const std::optional<Message> back = decoded(frames);
+    ASSERT_TRUE(back.has_value());
+    EXPECT_EQ(*back, Message{result});
+    const RobotError& error = *std::get<JobResult>(*back).report.error;
+    EXPECT_EQ(error.cause, g.cause);
+    EXPECT_EQ(error.kind, kind_of(g.cause));
   }
+  EXPECT_EQ(causes.size(), kRobotErrorCauses) << "an error cause without golden frames";
+}
+
+// An error built from its kind alone is the kind's code of earlier versions.
+TEST(CanGoldenFrames, AnErrorKnownByItsKindAloneKeepsTheEarlierCodes) {
+  EXPECT_EQ(encode(golden_result(RobotError{RobotErrorKind::kBlockage, "stop"}))[0],
+            encode(golden_result(RobotError{RobotErrorCause::kOtherBlockage, "stop"}))[0]);
+  EXPECT_EQ(encode(golden_result(RobotError{RobotErrorKind::kDanger, "x"}))[0].data[0], 2);
+  EXPECT_EQ(encode(golden_result(RobotError{RobotErrorKind::kMalfunction, "x"}))[0].data[0], 3);
+}
+
+// An unknown code (a node of a later version, a damaged log) is a malformed message that names the
+// code and the frame; the decoder goes on with the next message.
+TEST(CanGoldenFrames, AnUnknownCodeIsNamedWithItsFrame) {
+  // Job kinds: a code no kind has, with the message's CRC right.
+  for (const int kind : {0, 11, 0x42, 0xff}) {
+    const auto code = static_cast<std::uint8_t>(kind);
+    SCOPED_TRACE(int{code});
+    std::vector<CanFrame> frames = encode(JobCommand{9, Stop{}});
+    frames[0].data[0] = code;
+    std::vector<std::uint8_t> data(frames[0].bytes().begin(), frames[0].bytes().end());
+    const std::uint32_t crc = crc32(data);
+    for (std::size_t i = 0; i < 4; ++i)
+      frames[1].data[2 + i] = static_cast<std::uint8_t>(crc >> (8 * i));
+    MessageDecoder decoder;
+    EXPECT_FALSE(decoder.push(frames[0]).has_value());
+    const std::optional<Decoded> d = decoder.push(frames[1]);
+    ASSERT_TRUE(d.has_value());
+    ASSERT_TRUE(std::holds_alternative<Malformed>(*d));
+    EXPECT_EQ(std::get<Malformed>(*d).reason, "job 9: frame 0: unknown job kind " +
+                                                  std::to_string(code) +
+                                                  " (the kinds are 1, 2, 3, 4, 5, 6, 7, 8, 9, 10)");
+    // The next message decodes.
+    for (const CanFrame& f : encode(JobCommand{10, LiftHead{}})) {
+      if (const std::optional<Decoded> next = decoder.push(f)) {
+        EXPECT_TRUE(std::holds_alternative<Message>(*next));
+      }
+    }
+  }
+  // Errors: codes between and beyond the table's.
+  const std::vector<std::pair<int, std::string>> outcomes{
+      {4, "4 (0x04)"},     {0x10, "16 (0x10)"}, {0x14, "20 (0x14)"},
+      {0x23, "35 (0x23)"}, {0x36, "54 (0x36)"}, {0xff, "255 (0xFF)"}};
+  for (const auto& [code, named] : outcomes) {
+    SCOPED_TRACE(code);
+    std::vector<CanFrame> frames =
+        encode(golden_result(RobotError{RobotErrorCause::kLink, "stop"}));
+    frames.pop_back();
+    frames[0].data[0] = static_cast<std::uint8_t>(code);
+    const Decoded d = decode_message(MessageType::kResult, 0x21, frames);
+    ASSERT_TRUE(std::holds_alternative<Malformed>(d));
+    EXPECT_EQ(std::get<Malformed>(d).reason, "result 33: frame 0: unknown outcome " + named);
+  }
+}
+
+// The tables, read through their functions: every code decodes to what encodes to it.
+TEST(CanGoldenFrames, TheCodeTablesInvertEachOther) {
+  for (const GoldenJob& g : golden_jobs()) {
+    const std::optional<Job> blank = blank_job(job_code(g.job));
+    ASSERT_TRUE(blank.has_value());
+    EXPECT_EQ(blank->index(), g.job.index());
+  }
+  for (const GoldenError& g : golden_errors()) {
+    EXPECT_EQ(error_cause(error_code(g.cause)), g.cause);
+  }
+  EXPECT_FALSE(error_cause(kDoneCode).has_value());
+  EXPECT_FALSE(blank_job(0).has_value());
 }
 
 }  // namespace
