@@ -11,9 +11,14 @@
 
 #include <gtest/gtest.h>
 
+#include "sewerplan/hal/can/can_bus.h"
 #include "sewerplan/hal/can/can_frame.h"
 #include "sewerplan/hal/can/job_protocol.h"
+#include "sewerplan/hal/can/sim_node.h"
 #include "sewerplan/hal/can/wire_codes.h"
+#include "sewerplan/hal/sim_robot.h"
+
+#include "support/ais_testbed.h"
 
 namespace sewerplan::hal {
 namespace {
@@ -245,6 +250,49 @@ TEST(CanGoldenFrames, TheCodeTablesInvertEachOther) {
   }
   EXPECT_FALSE(error_cause(kDoneCode).has_value());
   EXPECT_FALSE(blank_job(0).has_value());
+}
+
+// The node answers a JOB whose end frame counted frames that never came with ACK 1 (incomplete),
+// and one whose frames all came and do not make a job with ACK 2 (corrupt), by the decoder's typed
+// Malformed::incomplete: a JOB too short for its kind was ACK 1 while the word "missing" in the
+// reason decided.
+TEST(CanGoldenFrames, TheNodeTellsMissingFramesFromACorruptJobByType) {
+  const auto ais = testing::load_ais_testbed();
+  SimRobot robot(ais.map, ais.mission.profile, InPipe{PipeId{0}, 0, Heading::kTowardsEnd1});
+  auto [controller, bus] = make_memory_can_pair();
+  SimNode node(*bus, robot, {.heartbeat_s = 0});
+  const auto answer = [&](const std::vector<CanFrame>& frames) -> std::optional<JobAck> {
+    for (const CanFrame& f : frames) EXPECT_TRUE(controller->send(f).has_value());
+    for (std::size_t i = 0; i < frames.size(); ++i) EXPECT_TRUE(node.poll(0.01).has_value());
+    MessageDecoder decoder;
+    for (;;) {
+      Result<std::optional<CanFrame>> in = controller->receive(0.01);
+      if (!in.has_value() || !in->has_value()) return std::nullopt;
+      if (const std::optional<Decoded> d = decoder.push(**in)) {
+        if (const auto* m = std::get_if<Message>(&*d)) {
+          if (const auto* ack = std::get_if<JobAck>(m)) return *ack;
+        }
+      }
+    }
+  };
+  // A gap: data frame 1 of a drive lost.
+  std::vector<CanFrame> gap = encode(JobCommand{5, DriveForward{0.5, 2.0}});
+  gap.erase(gap.begin() + 1);
+  const std::optional<JobAck> incomplete = answer(gap);
+  ASSERT_TRUE(incomplete.has_value());
+  EXPECT_EQ(incomplete->code, AckCode::kIncomplete);
+  // A drive without its numbers, its frame count and CRC right: "frame 1 missing (1 frames)".
+  std::vector<CanFrame> short_drive = encode(JobCommand{6, LiftHead{}});
+  short_drive[0].data[0] = job_code(DriveForward{});
+  const std::vector<std::uint8_t> data(short_drive[0].bytes().begin(),
+                                       short_drive[0].bytes().end());
+  const std::uint32_t crc = crc32(data);
+  for (std::size_t i = 0; i < 4; ++i) {
+    short_drive[1].data[2 + i] = static_cast<std::uint8_t>(crc >> (8 * i));
+  }
+  const std::optional<JobAck> corrupt = answer(short_drive);
+  ASSERT_TRUE(corrupt.has_value());
+  EXPECT_EQ(corrupt->code, AckCode::kCorrupt);
 }
 
 }  // namespace
