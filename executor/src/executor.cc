@@ -193,18 +193,31 @@ class Executor::Run {
   }
 
   // Why the Replanner's answer switches the beacon on: a proof that no exit can be reached, or a
-  // robot that cannot move, by what stopped it (the robot's words in the last failure).
+  // robot that cannot move, by what stopped it: the cause the robot typed on the last failure
+  // (hal::RobotErrorCause; its words are for people and decide nothing).
   static MissionReport::BeaconCause beacon_cause(PlanResponse::Decision decision,
                                                  const std::optional<Failure>& failure) {
     using Cause = MissionReport::BeaconCause;
     if (decision == PlanResponse::Decision::kCallForRecovery) return Cause::kNoExit;
     if (decision != PlanResponse::Decision::kStuck) return Cause::kLimit;
-    const std::string detail = failure ? failure->detail : "";
-    if (detail.find("CAN link") != std::string::npos) return Cause::kLink;
-    if (detail.find("malfunction") != std::string::npos ||
-        detail.find("reboot failed") != std::string::npos ||
-        detail.find("battery empty") != std::string::npos) {
-      return Cause::kMalfunction;
+    if (!failure || !failure->cause) return Cause::kStuck;
+    switch (*failure->cause) {
+      case hal::RobotErrorCause::kLink:
+        return Cause::kLink;
+      case hal::RobotErrorCause::kFault:
+      case hal::RobotErrorCause::kBatteryEmpty:
+      case hal::RobotErrorCause::kOtherMalfunction:
+        return Cause::kMalfunction;
+      case hal::RobotErrorCause::kObstacle:
+      case hal::RobotErrorCause::kBlindEnd:
+      case hal::RobotErrorCause::kNoManholeSeen:
+      case hal::RobotErrorCause::kOtherBlockage:
+      case hal::RobotErrorCause::kDangerSpot:
+      case hal::RobotErrorCause::kDangerousPassage:
+      case hal::RobotErrorCause::kOtherDanger:
+      case hal::RobotErrorCause::kInvalidJob:
+      case hal::RobotErrorCause::kEmergencyStop:
+        break;  // held where it is: a danger, a job it cannot run, a stop
     }
     return Cause::kStuck;
   }

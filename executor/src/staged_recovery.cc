@@ -74,14 +74,18 @@ std::optional<Failure> StagedRecovery::run_job(const Job& job, const fusion::Rob
     const hal::RobotErrorKind kind = r.error->kind;
     if (kind == hal::RobotErrorKind::kMalfunction) {
       if (!reboots.take(r)) {
-        return Failure{.kind = Failure::Kind::kStuck, .detail = r.error->reason};
+        return Failure{
+            .kind = Failure::Kind::kStuck, .detail = r.error->reason, .cause = r.error->cause};
       }
       const Result<void> rebooted = host_.reboot();
       host_.log_recovery(RecoveryPhase::kReboot, rebooted.has_value());
       if (!rebooted.has_value()) {
-        // The robot's words say "reboot failed: why" (hal/robot.h).
+        // The robot's words say "reboot failed: why" (hal/robot.h). Its software cannot be
+        // restarted: a fault of the robot's, unless what failed is the link to it.
+        const bool link = r.error->cause == hal::RobotErrorCause::kLink;
         return Failure{.kind = Failure::Kind::kStuck,
-                       .detail = r.error->reason + "; " + rebooted.error().message};
+                       .detail = r.error->reason + "; " + rebooted.error().message,
+                       .cause = link ? hal::RobotErrorCause::kLink : hal::RobotErrorCause::kFault};
       }
       ++cleared_;
       // The job's own report, when the link lost it: done, or its own error, handled as such;
@@ -107,11 +111,15 @@ std::optional<Failure> StagedRecovery::run_job(const Job& job, const fusion::Rob
         r = cleared.report;
         continue;
       case Cleared::How::kStuck:
-        return Failure{.kind = Failure::Kind::kStuck, .detail = "recovery left the robot stuck"};
+        // What stopped the recovery's own job (backing up, the head), as the robot typed it.
+        return Failure{.kind = Failure::Kind::kStuck,
+                       .detail = "recovery left the robot stuck",
+                       .cause = cleared.report.error ? std::optional(cleared.report.error->cause)
+                                                     : std::nullopt};
       case Cleared::How::kStays:
         break;
     }
-    return blocked_here(Failure::Kind::kBlockage, current, r.error->reason);
+    return blocked_here(Failure::Kind::kBlockage, current, *r.error);
   }
 }
 
@@ -164,7 +172,9 @@ StagedRecovery::Cleared StagedRecovery::clear_blockage(Job rest) {
   for (int i = 0; i < stage_tries(c, RecoveryPhase::kBackUpAndRetry); ++i) {
     const hal::JobReport back = recovery_job(back_off(rest, c.backup_m));
     if (!back.ok()) {
-      if (back.error->kind == hal::RobotErrorKind::kMalfunction) return {Cleared::How::kStuck};
+      if (back.error->kind == hal::RobotErrorKind::kMalfunction) {
+        return Cleared{Cleared::How::kStuck, rest, back};
+      }
       break;  // no room to back up: on to the head
     }
     if (auto done = retry(lengthened(rest, back.progress_m), RecoveryPhase::kBackUpAndRetry,
@@ -173,8 +183,9 @@ StagedRecovery::Cleared StagedRecovery::clear_blockage(Job rest) {
     }
   }
   for (int i = 0; i < stage_tries(c, RecoveryPhase::kLiftHeadAndRetry); ++i) {
-    if (!recovery_job(LiftHead{}).ok() || !recovery_job(LowerHead{}).ok()) {
-      return Cleared{Cleared::How::kStuck};
+    for (const Job& head : {Job{LiftHead{}}, Job{LowerHead{}}}) {
+      hal::JobReport moved = recovery_job(head);
+      if (!moved.ok()) return Cleared{Cleared::How::kStuck, head, std::move(moved)};
     }
     if (auto done = retry(rest, RecoveryPhase::kLiftHeadAndRetry, 0)) return *done;
   }
@@ -207,12 +218,14 @@ std::optional<Failure> StagedRecovery::danger(const Job& job, const fusion::Robo
                    .manhole = pass->manhole,
                    .from = pass->from_slot,
                    .to = pass->to_slot,
-                   .detail = r.error->reason};
+                   .detail = r.error->reason,
+                   .cause = r.error->cause};
   }
   if (!rest_of(job, 0)) {
-    return Failure{.kind = Failure::Kind::kStuck, .detail = r.error->reason};
+    return Failure{
+        .kind = Failure::Kind::kStuck, .detail = r.error->reason, .cause = r.error->cause};
   }
-  std::optional<Failure> failure = blocked_here(Failure::Kind::kDangerInPipe, job, r.error->reason);
+  std::optional<Failure> failure = blocked_here(Failure::Kind::kDangerInPipe, job, *r.error);
   const hal::JobReport back = host_.execute_job(back_off(job, config_.danger_backoff_m));
   host_.log_recovery(RecoveryPhase::kBackOffToSafety, back.ok());
   return failure;
@@ -237,13 +250,18 @@ void StagedRecovery::back_out_of_manhole() {
 
 // A blockage or danger just ahead of the robot in its pipe.
 Failure StagedRecovery::blocked_here(Failure::Kind kind, const Job& job,
-                                     const std::string& reason) const {
+                                     const hal::RobotError& error) const {
   const auto* in = std::get_if<domain::InPipe>(&tracker_.position());
-  if (in == nullptr) return Failure{.kind = Failure::Kind::kStuck, .detail = reason};
+  if (in == nullptr) {
+    return Failure{.kind = Failure::Kind::kStuck, .detail = error.reason, .cause = error.cause};
+  }
   const double length = map_.pipe(in->pipe).length_m;
   const double ahead = in->offset_m + tracker_.direction_of(job) * kBlockageAhead_m;
-  return Failure{
-      .kind = kind, .pipe = in->pipe, .offset_m = std::clamp(ahead, 0.0, length), .detail = reason};
+  return Failure{.kind = kind,
+                 .pipe = in->pipe,
+                 .offset_m = std::clamp(ahead, 0.0, length),
+                 .detail = error.reason,
+                 .cause = error.cause};
 }
 
 }  // namespace sewerplan::executor::detail

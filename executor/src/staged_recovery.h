@@ -70,7 +70,7 @@ class StagedRecovery {
   std::optional<Failure> danger(const Job& job, const fusion::RobotAction& action,
                                 const hal::JobReport& r);
   void back_out_of_manhole();
-  Failure blocked_here(Failure::Kind kind, const Job& job, const std::string& reason) const;
+  Failure blocked_here(Failure::Kind kind, const Job& job, const hal::RobotError& error) const;
 
   const SewerMap& map_;
   const RecoveryConfig& config_;

@@ -15,6 +15,38 @@ std::string_view to_string(RobotErrorKind kind) {
   return "malfunction";
 }
 
+std::string_view to_string(RobotErrorCause cause) {
+  switch (cause) {
+    case RobotErrorCause::kObstacle:
+      return "obstacle";
+    case RobotErrorCause::kBlindEnd:
+      return "blind-end";
+    case RobotErrorCause::kNoManholeSeen:
+      return "no-manhole-seen";
+    case RobotErrorCause::kOtherBlockage:
+      return "blockage";
+    case RobotErrorCause::kDangerSpot:
+      return "danger-spot";
+    case RobotErrorCause::kDangerousPassage:
+      return "dangerous-passage";
+    case RobotErrorCause::kOtherDanger:
+      return "danger";
+    case RobotErrorCause::kFault:
+      return "fault";
+    case RobotErrorCause::kBatteryEmpty:
+      return "battery-empty";
+    case RobotErrorCause::kInvalidJob:
+      return "invalid-job";
+    case RobotErrorCause::kEmergencyStop:
+      return "emergency-stop";
+    case RobotErrorCause::kLink:
+      return "link";
+    case RobotErrorCause::kOtherMalfunction:
+      return "malfunction";
+  }
+  return "malfunction";
+}
+
 std::string_view to_string(BeaconState state) {
   switch (state) {
     case BeaconState::kNone:

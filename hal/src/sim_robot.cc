@@ -140,7 +140,7 @@ std::vector<Obstacle> SimRobot::remaining_obstacles() const {
 }
 
 JobReport SimRobot::execute(const Job& job) {
-  if (stopped_.load()) return finish(failure(RobotErrorKind::kMalfunction, "emergency stop"));
+  if (stopped_.load()) return finish(failure(RobotErrorCause::kEmergencyStop, "emergency stop"));
   const std::size_t index = jobs_executed_++;
   for (std::size_t i = 0; i < faults_.malfunctions.size(); ++i) {
     if (malfunction_struck_[i]) continue;
@@ -153,9 +153,9 @@ JobReport SimRobot::execute(const Job& job) {
       strike(i, "at " + seconds(at_time->time_s));
     }
   }
-  if (fault_) return finish(failure(RobotErrorKind::kMalfunction, fault_->reason));
+  if (fault_) return finish(failure(RobotErrorCause::kFault, fault_->reason));
   if (status_.battery_wh <= 0) {
-    return finish(failure(RobotErrorKind::kMalfunction, "battery empty"));
+    return finish(failure(RobotErrorCause::kBatteryEmpty, "battery empty"));
   }
   return finish(run(job));
 }
@@ -224,7 +224,7 @@ JobReport SimRobot::drive(double speed_mps, double distance_m, int direction, bo
   // A drive of 0 m does nothing, except in a pipe right at its end, where it is at the mouth.
   if (distance_m == 0 && !std::holds_alternative<InPipe>(pose_)) return JobReport{};
   if (const auto* in = std::get_if<InManhole>(&pose_)) {
-    return failure(RobotErrorKind::kMalfunction, "cannot drive in manhole " +
+    return failure(RobotErrorCause::kInvalidJob, "cannot drive in manhole " +
                                                      map_.manhole(in->manhole).name +
                                                      " at no pipe mouth: enter a pipe first");
   }
@@ -232,7 +232,7 @@ JobReport SimRobot::drive(double speed_mps, double distance_m, int direction, bo
     // The way into the pipe is behind the robot when it faces the manhole.
     const int into_pipe = at->facing == Facing::kIntoManhole ? -1 : +1;
     if (direction != into_pipe) {
-      return failure(RobotErrorKind::kMalfunction,
+      return failure(RobotErrorCause::kInvalidJob,
                      std::string("cannot drive ") + (direction > 0 ? "forward" : "backward") +
                          " into manhole " + map_.manhole(at->manhole).name + " from the mouth of " +
                          slot_text(at->slot) + ": turn through it");
@@ -323,9 +323,9 @@ JobReport SimRobot::drive_in_pipe(const InPipe& from, double speed_mps, double d
       }
       if (to_manhole) {
         report.error =
-            RobotError{RobotErrorKind::kBlockage, "no manhole seen in " + pipe.name + " within " +
-                                                      metres(report.progress_m) +
-                                                      " (the map says " + metres(distance_m) + ")"};
+            RobotError{RobotErrorCause::kNoManholeSeen,
+                       "no manhole seen in " + pipe.name + " within " + metres(report.progress_m) +
+                           " (the map says " + metres(distance_m) + ")"};
       }
       return report;
     case Move::Why::kPipeEnd: {
@@ -354,7 +354,7 @@ JobReport SimRobot::drive_in_pipe(const InPipe& from, double speed_mps, double d
         rest.duration_s += report.duration_s;
         if (rest.ok() && !rest.observation && !std::holds_alternative<AtSlot>(pose_)) {
           rest.error =
-              RobotError{RobotErrorKind::kBlockage,
+              RobotError{RobotErrorCause::kNoManholeSeen,
                          "no manhole seen in " + pipe.name + " within " + metres(rest.progress_m) +
                              " (the map says " + metres(distance_m) + ")"};
         }
@@ -364,16 +364,16 @@ JobReport SimRobot::drive_in_pipe(const InPipe& from, double speed_mps, double d
       // A drive to a manhole that meets the pipe's blind end (a lateral the world lacks) saw no
       // manhole, however far it went.
       if (!to_manhole && distance_m <= report.progress_m + kLengthTolerance_m) return report;
-      report.error = RobotError{RobotErrorKind::kBlockage,
+      report.error = RobotError{RobotErrorCause::kBlindEnd,
                                 "blind end of " + pipe.name + " at " + metres(offset_m)};
       return report;
     }
     case Move::Why::kObstacle:
-      report.error = RobotError{RobotErrorKind::kBlockage,
+      report.error = RobotError{RobotErrorCause::kObstacle,
                                 "obstacle in " + pipe.name + " at " + metres(move.fault_offset_m)};
       return report;
     case Move::Why::kDanger:
-      report.error = RobotError{RobotErrorKind::kDanger,
+      report.error = RobotError{RobotErrorCause::kDangerSpot,
                                 "danger in " + pipe.name + " at " + metres(move.fault_offset_m)};
       return report;
   }
@@ -471,7 +471,7 @@ JobReport SimRobot::turn_by_sighting(const TurnInManhole& job) {
   }
   const auto* at = std::get_if<AtSlot>(&pose_);
   if (at == nullptr) {
-    return failure(RobotErrorKind::kMalfunction,
+    return failure(RobotErrorCause::kInvalidJob,
                    "not at a manhole's mouth (" + describe(pose_, map_) + ")");
   }
   const std::vector<SlotIndex> order =
@@ -509,7 +509,7 @@ JobReport SimRobot::turn(const TurnInManhole& job) {
   }
   const auto* at = std::get_if<AtSlot>(&pose_);
   if (at == nullptr || at->slot.value() != job.from_slot) {
-    return failure(RobotErrorKind::kMalfunction, "not at " + slot_text(SlotIndex{job.from_slot}) +
+    return failure(RobotErrorCause::kInvalidJob, "not at " + slot_text(SlotIndex{job.from_slot}) +
                                                      " of a manhole (" + describe(pose_, map_) +
                                                      ")");
   }
@@ -524,8 +524,9 @@ JobReport SimRobot::turn(const TurnInManhole& job) {
     const bool same = d.from_slot == at->slot && d.to_slot == to;
     const bool reverse = d.from_slot == to && d.to_slot == at->slot;
     if (d.manhole == at->manhole && (same || reverse)) {
-      return failure(RobotErrorKind::kDanger, "dangerous passage in " + manhole.name + " from " +
-                                                  slot_text(at->slot) + " to " + slot_text(to));
+      return failure(RobotErrorCause::kDangerousPassage, "dangerous passage in " + manhole.name +
+                                                             " from " + slot_text(at->slot) +
+                                                             " to " + slot_text(to));
     }
   }
   JobReport report = stand(job.duration_s);
@@ -536,7 +537,7 @@ JobReport SimRobot::turn(const TurnInManhole& job) {
 JobReport SimRobot::enter(const EnterPipeFromManhole& job) {
   const auto* in = std::get_if<InManhole>(&pose_);
   if (in == nullptr) {
-    return failure(RobotErrorKind::kMalfunction,
+    return failure(RobotErrorCause::kInvalidJob,
                    "not lowered into a manhole (" + describe(pose_, map_) + ")");
   }
   const Manhole& manhole = map_.manhole(in->manhole);
@@ -600,12 +601,12 @@ std::optional<SimRobot::Interrupt> SimRobot::interrupt_within(double duration_s)
 JobReport SimRobot::interrupt(const Interrupt& stop, JobReport report) {
   if (!stop.malfunction) {
     battery_empty_ = true;
-    report.error = RobotError{RobotErrorKind::kMalfunction, "battery empty"};
+    report.error = RobotError{RobotErrorCause::kBatteryEmpty, "battery empty"};
     return report;
   }
   const auto& at = std::get<AtTime>(faults_.malfunctions[*stop.malfunction].when);
   strike(*stop.malfunction, "at " + seconds(at.time_s));
-  report.error = RobotError{RobotErrorKind::kMalfunction, fault_->reason};
+  report.error = RobotError{RobotErrorCause::kFault, fault_->reason};
   return report;
 }
 
@@ -617,14 +618,14 @@ void SimRobot::strike(std::size_t malfunction, const std::string& when) {
   fault_ = Fault{kind, std::string(to_string(kind)) + " malfunction " + when};
 }
 
-JobReport SimRobot::failure(RobotErrorKind kind, std::string reason) {
+JobReport SimRobot::failure(RobotErrorCause cause, std::string reason) {
   JobReport report;
-  report.error = RobotError{kind, std::move(reason)};
+  report.error = RobotError{cause, std::move(reason)};
   return report;
 }
 
 JobReport SimRobot::invalid(const std::string& what) {
-  return failure(RobotErrorKind::kMalfunction, "invalid job: " + what);
+  return failure(RobotErrorCause::kInvalidJob, "invalid job: " + what);
 }
 
 JobReport SimRobot::finish(JobReport report) {

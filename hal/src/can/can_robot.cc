@@ -180,7 +180,7 @@ JobReport CanRobot::link_failure(const std::string& what, double progress_m) {
   if (!last_bad_input_.empty() && what.find(last_bad_input_) == std::string::npos) {
     reason += "; dropped before: " + last_bad_input_;
   }
-  report.error = RobotError{RobotErrorKind::kMalfunction, std::move(reason)};
+  report.error = RobotError{RobotErrorCause::kLink, std::move(reason)};
   return report;
 }
 
@@ -189,7 +189,7 @@ JobReport CanRobot::stopped(double progress_m) {
   static_cast<void>(send(EmergencyStop{StopReason::kController}));
   JobReport report;
   report.progress_m = progress_m;
-  report.error = RobotError{RobotErrorKind::kMalfunction, "emergency stop"};
+  report.error = RobotError{RobotErrorCause::kEmergencyStop, "emergency stop"};
   return report;
 }
 
@@ -223,7 +223,7 @@ JobReport CanRobot::execute(const Job& job) {
   if (const auto* turn = std::get_if<TurnInManhole>(&job);
       turn != nullptr && turn->waypoints.size() > (kMaxDataFrames - 5) / 4) {
     JobReport report;
-    report.error = RobotError{RobotErrorKind::kMalfunction,
+    report.error = RobotError{RobotErrorCause::kInvalidJob,
                               "invalid job: " + std::to_string(turn->waypoints.size()) +
                                   " waypoints, the CAN protocol carries at most " +
                                   std::to_string((kMaxDataFrames - 5) / 4)};
@@ -281,7 +281,7 @@ JobReport CanRobot::execute(const Job& job) {
         break;
       case AckCode::kRefused: {
         JobReport report;
-        report.error = RobotError{RobotErrorKind::kMalfunction,
+        report.error = RobotError{RobotErrorCause::kEmergencyStop,
                                   "the node refused " + name + ": stopped until a reboot"};
         return report;
       }
@@ -415,7 +415,7 @@ Result<void> CanRobot::settle_lost_job() {
   } else {
     JobReport never;
     never.error =
-        RobotError{RobotErrorKind::kMalfunction, "CAN link: " + name + " never reached the node"};
+        RobotError{RobotErrorCause::kLink, "CAN link: " + name + " never reached the node"};
     recovered_ = never;
   }
   return {};

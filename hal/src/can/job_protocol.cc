@@ -7,6 +7,7 @@
 
 #include "sewerplan/core/check.h"
 #include "sewerplan/core/overloaded.h"
+#include "sewerplan/hal/can/wire_codes.h"
 
 #include "protocol_wire.h"
 
@@ -77,7 +78,7 @@ std::vector<CanFrame> single(MessageType type, std::uint8_t seq,
 
 std::vector<CanFrame> encode_job(const JobCommand& c) {
   std::array<std::uint8_t, 8> header{};
-  header[0] = static_cast<std::uint8_t>(c.job.index() + 1);
+  header[0] = job_code(c.job);
   std::vector<double> numbers;
   std::visit(Overloaded{
                  [&](const DriveForward& j) {
@@ -133,9 +134,12 @@ std::vector<CanFrame> encode_result(const JobResult& r) {
     SEWER_CHECK(seen->slots.size() <= kMaxObservedSlots && check_signature(*seen).has_value(),
                 "encode: an observation the protocol cannot carry");
   }
+  if (r.report.error) {
+    SEWER_CHECK(kind_of(r.report.error->cause) == r.report.error->kind,
+                "encode: an error whose kind is not its cause's");
+  }
   std::array<std::uint8_t, 6> header{};
-  header[0] =
-      r.report.error ? static_cast<std::uint8_t>(1 + static_cast<int>(r.report.error->kind)) : 0;
+  header[0] = r.report.error ? error_code(r.report.error->cause) : kDoneCode;
   header[1] = status_flags(r.status);
   put_u16(&header[2], static_cast<std::uint16_t>(reason.size()));
   if (seen) put_u16(&header[4], static_cast<std::uint16_t>(seen->slots.size()));

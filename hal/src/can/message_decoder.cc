@@ -6,7 +6,9 @@
 #include <string>
 
 #include "sewerplan/core/manhole_signature.h"
+#include "sewerplan/core/overloaded.h"
 #include "sewerplan/hal/can/job_protocol.h"
+#include "sewerplan/hal/can/wire_codes.h"
 
 #include "can_text.h"
 #include "protocol_wire.h"
@@ -84,69 +86,85 @@ class Reader {
   std::string problem_;
 };
 
+// "1, 2, ..., 10": the job kinds' codes, for an error naming an unknown one.
+std::string job_codes_text() {
+  std::string text;
+  for (unsigned code = 1; code < 256; ++code) {
+    if (blank_job(static_cast<std::uint8_t>(code))) {
+      text += (text.empty() ? "" : ", ") + std::to_string(code);
+    }
+  }
+  return text;
+}
+
 Decoded decode_job(Reader& r, std::uint8_t seq) {
   const CanFrame& h = r.frame(0, 8);
   if (!r.ok()) return r.malformed();
-  const std::uint8_t kind = h.data[0];
+  const std::uint8_t code = h.data[0];
+  std::optional<Job> blank = blank_job(code);
+  if (!blank) {
+    r.fail("frame 0: unknown job kind " + std::to_string(code) + " (the kinds are " +
+           job_codes_text() + ")");
+    return r.malformed();
+  }
   const std::uint16_t a = u16_of(h, 2);
   const std::uint16_t b = u16_of(h, 4);
   const std::uint16_t waypoints = u16_of(h, 6);
   const auto n = [&](std::size_t i) { return r.number(1 + i, "a parameter", false); };
-  Job job;
+  // Bit 0 of byte 1 (docs/can-protocol.md); other bits are refused.
+  const auto flag = [&](std::string_view what) {
+    if (h.data[1] > 1) r.fail("unknown " + std::string(what) + " flags");
+    return h.data[1] == 1;
+  };
+  Job job = std::move(*blank);
   std::size_t numbers = 0;
-  switch (kind) {
-    case 1:
-      if (h.data[1] > 1) r.fail("unknown drive flags");
-      job = DriveForward{n(0), n(1), h.data[1] != 0};
-      numbers = 2;
-      break;
-    case 2:
-      if (h.data[1] > 1) r.fail("unknown drive flags");
-      job = DriveBackward{n(0), n(1), h.data[1] != 0};
-      numbers = 2;
-      break;
-    case 3:
-      if (h.data[1] > 1) r.fail("unknown push flags");
-      job = Push{n(0), n(1), h.data[1] == 1};
-      numbers = 2;
-      break;
-    case 4: {
-      if (waypoints > (kMaxDataFrames - 5) / 4) r.fail("too many waypoints");
-      TurnInManhole t{a, b, n(0), n(1), n(2), n(3), {}};
-      for (std::size_t w = 0; w < waypoints && r.ok(); ++w) {
-        const std::size_t at = 4 + 4 * w;
-        t.waypoints.push_back(Waypoint{n(at), n(at + 1), n(at + 2), n(at + 3)});
-      }
-      job = std::move(t);
-      numbers = 4 + 4 * std::size_t{waypoints};
-      break;
-    }
-    case 5:
-      job = EnterPipeFromManhole{a, n(0)};
-      numbers = 1;
-      break;
-    case 6:
-      job = LiftHead{};
-      break;
-    case 7:
-      job = LowerHead{};
-      break;
-    case 8:
-      job = TakeSample{n(0)};
-      numbers = 1;
-      break;
-    case 9:
-      if (h.data[1] > 1) r.fail("unknown scan flags");
-      job = Scan{n(0), n(1), h.data[1] == 1};
-      numbers = 2;
-      break;
-    case 10:
-      job = Stop{};
-      break;
-    default:
-      r.fail("unknown job kind " + std::to_string(kind) + " (1.." + std::to_string(kJobKinds) +
-             ")");
-  }
+  std::visit(Overloaded{
+                 [&](DriveForward& j) {
+                   j.to_manhole = flag("drive");
+                   j.speed_mps = n(0);
+                   j.distance_m = n(1);
+                   numbers = 2;
+                 },
+                 [&](DriveBackward& j) {
+                   j.to_manhole = flag("drive");
+                   j.speed_mps = n(0);
+                   j.distance_m = n(1);
+                   numbers = 2;
+                 },
+                 [&](Push& j) {
+                   j.backward = flag("push");
+                   j.speed_mps = n(0);
+                   j.distance_m = n(1);
+                   numbers = 2;
+                 },
+                 [&](Scan& j) {
+                   j.backward = flag("scan");
+                   j.speed_mps = n(0);
+                   j.distance_m = n(1);
+                   numbers = 2;
+                 },
+                 [&](TurnInManhole& j) {
+                   if (waypoints > (kMaxDataFrames - 5) / 4) r.fail("too many waypoints");
+                   j = TurnInManhole{a, b, n(0), n(1), n(2), n(3), {}};
+                   for (std::size_t w = 0; w < waypoints && r.ok(); ++w) {
+                     const std::size_t at = 4 + 4 * w;
+                     j.waypoints.push_back(Waypoint{n(at), n(at + 1), n(at + 2), n(at + 3)});
+                   }
+                   numbers = 4 + 4 * std::size_t{waypoints};
+                 },
+                 [&](EnterPipeFromManhole& j) {
+                   j = EnterPipeFromManhole{a, n(0)};
+                   numbers = 1;
+                 },
+                 [&](TakeSample& j) {
+                   j.duration_s = n(0);
+                   numbers = 1;
+                 },
+                 [](LiftHead&) {},
+                 [](LowerHead&) {},
+                 [](Stop&) {},
+             },
+             job);
   r.expect_frames(1 + numbers);
   if (!r.ok()) return r.malformed();
   return Message{JobCommand{seq, std::move(job)}};
@@ -201,13 +219,15 @@ Decoded decode_result(Reader& r, std::uint8_t seq) {
   }
   r.expect_frames(1 + kResultNumberFrames + reason_frames + observation_frames(slots));
   const std::uint8_t outcome = h.data[0];
-  if (outcome > 3) r.fail("unknown outcome " + std::to_string(outcome));
-  if (outcome == 0 && length != 0) r.fail("a reason for a job that was done");
-  if (outcome != 0 && length == 0) r.fail("an error without a reason");
-  if (!r.ok()) return r.malformed();
-  if (outcome != 0) {
-    result.report.error = RobotError{static_cast<RobotErrorKind>(outcome - 1), reason};
+  const std::optional<RobotErrorCause> cause = error_cause(outcome);
+  if (outcome != kDoneCode && !cause) {
+    r.fail("frame 0: unknown outcome " + std::to_string(outcome) + " (0x" + hex_text(outcome, 2) +
+           ")");
   }
+  if (outcome == kDoneCode && length != 0) r.fail("a reason for a job that was done");
+  if (outcome != kDoneCode && length == 0) r.fail("an error without a reason");
+  if (!r.ok()) return r.malformed();
+  if (cause) result.report.error = RobotError{*cause, reason};
   return Message{std::move(result)};
 }
 
@@ -368,7 +388,8 @@ std::optional<Decoded> MessageDecoder::finish(MessageType type, const std::strin
       // Kept: a copy of the message sent again (a retry, the same sequence number) fills the gap.
       return Malformed{
           type, seq,
-          what + ": frame " + std::to_string(i) + " of " + std::to_string(count) + " missing"};
+          what + ": frame " + std::to_string(i) + " of " + std::to_string(count) + " missing",
+          true};
     }
   }
   const Partial whole = std::move(p);

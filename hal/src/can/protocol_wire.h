@@ -9,7 +9,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
-#include <variant>
 
 #include "sewerplan/hal/can/job_protocol.h"
 
@@ -26,9 +25,6 @@ inline constexpr std::size_t kResultNumberFrames = 3 + kStatusFrames;
 // The frames of an observation of `slots` slots: the shaft, then per slot its direction (not for
 // slots[0], always 0), step and diameter.
 inline constexpr std::size_t observation_frames(std::size_t slots) { return 3 * slots; }
-
-// The job kinds' codes on the bus: the Job variant's index + 1.
-inline constexpr std::size_t kJobKinds = std::variant_size_v<Job>;
 
 inline CanFrame frame_of(FrameId id, std::span<const std::uint8_t> bytes) {
   CanFrame frame;

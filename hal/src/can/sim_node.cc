@@ -225,8 +225,7 @@ void SimNode::handle_request(const Request& request) {
 void SimNode::handle_malformed(const Malformed& malformed) {
   ++stats_.malformed;
   if (malformed.type != MessageType::kJob) return;
-  const bool missing = malformed.reason.find("missing") != std::string::npos;
-  send(JobAck{malformed.seq, missing ? AckCode::kIncomplete : AckCode::kCorrupt, 0});
+  send(JobAck{malformed.seq, malformed.incomplete ? AckCode::kIncomplete : AckCode::kCorrupt, 0});
 }
 
 }  // namespace sewerplan::hal

@@ -48,6 +48,7 @@
 #include "sewerplan/domain/robot_state.h"
 #include "sewerplan/executor/learnt.h"
 #include "sewerplan/fusion/fuse.h"
+#include "sewerplan/hal/robot.h"
 #include "sewerplan/search/planner.h"
 
 namespace sewerplan::executor {
@@ -66,7 +67,11 @@ struct Failure {
   ManholeId manhole{0};
   SlotIndex from{0};
   SlotIndex to{0};
-  std::string detail{};  // the robot's own words
+  std::string detail{};  // the robot's own words: for people, never read to decide
+  // What stopped the robot, as it typed it (hal::RobotErrorCause): for kStuck, whether it failed
+  // itself (kFault, kBatteryEmpty, a reboot that failed), its link did (kLink), or something held
+  // it. Empty when the failure is the executor's own finding (the plan and the robot disagree).
+  std::optional<hal::RobotErrorCause> cause{};
 };
 
 std::string_view to_string(Failure::Kind kind);

@@ -10,16 +10,20 @@
 //
 //   JobReport r = robot.execute(DriveForward{.speed_mps = 0.3, .distance_m = 12});
 //   if (!r.ok() && r.error->kind == RobotErrorKind::kMalfunction) robot.reboot();
+//   if (!r.ok() && r.error->cause == RobotErrorCause::kLink) ...  // the link failed, not the robot
 //
 // Thread safety: A Robot is not thread-safe unless an implementation says so: one thread drives it.
 // The exception is emergency_stop(), which every implementation must allow from any thread, also
 // while execute() runs on another (Executor::halt calls it).
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <ostream>
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include "sewerplan/core/job.h"
 #include "sewerplan/core/manhole_signature.h"
@@ -32,9 +36,83 @@ enum class RobotErrorKind { kBlockage, kDanger, kMalfunction };
 // "blockage", "danger", "malfunction".
 std::string_view to_string(RobotErrorKind kind);
 
+// What stopped a job, typed by the robot beside the paper's kind: the controller decides by it
+// (the executor's beacon says whether the robot failed itself, or its link did), never by the
+// words of the reason, which are for people and may change. Each cause is of one kind
+// (kind_of). The kOther* causes are errors of a kind the robot did not type further: a CAN node
+// of an earlier version sends the kind alone (docs/can-protocol.md).
+enum class RobotErrorCause : std::uint8_t {
+  // BLOCKAGE
+  kObstacle,       // "obstacle": something in the pipe stops the drive
+  kBlindEnd,       // "blind-end": the pipe ends where the map has it go on
+  kNoManholeSeen,  // "no-manhole-seen": a drive to a manhole went its bound and saw none
+  kOtherBlockage,  // "blockage"
+  // DANGER
+  kDangerSpot,        // "danger-spot": a spot in the pipe the robot must not drive onto
+  kDangerousPassage,  // "dangerous-passage": a way through a manhole it must not take
+  kOtherDanger,       // "danger"
+  // MALFUNCTION
+  kFault,             // "fault": the robot's hardware or software failed (motor, sensor, crash)
+  kBatteryEmpty,      // "battery-empty"
+  kInvalidJob,        // "invalid-job": a job it cannot run (bad numbers, not where it starts)
+  kEmergencyStop,     // "emergency-stop": stopped (emergency_stop(), a stop latched in a node)
+  kLink,              // "link": the link to the robot failed (CAN, can_robot.h): not the robot
+  kOtherMalfunction,  // "malfunction" (stays the last)
+};
+inline constexpr std::size_t kRobotErrorCauses =
+    static_cast<std::size_t>(RobotErrorCause::kOtherMalfunction) + 1;
+
+// The kind a cause is of.
+constexpr RobotErrorKind kind_of(RobotErrorCause cause) {
+  switch (cause) {
+    case RobotErrorCause::kObstacle:
+    case RobotErrorCause::kBlindEnd:
+    case RobotErrorCause::kNoManholeSeen:
+    case RobotErrorCause::kOtherBlockage:
+      return RobotErrorKind::kBlockage;
+    case RobotErrorCause::kDangerSpot:
+    case RobotErrorCause::kDangerousPassage:
+    case RobotErrorCause::kOtherDanger:
+      return RobotErrorKind::kDanger;
+    case RobotErrorCause::kFault:
+    case RobotErrorCause::kBatteryEmpty:
+    case RobotErrorCause::kInvalidJob:
+    case RobotErrorCause::kEmergencyStop:
+    case RobotErrorCause::kLink:
+    case RobotErrorCause::kOtherMalfunction:
+      return RobotErrorKind::kMalfunction;
+  }
+  return RobotErrorKind::kMalfunction;
+}
+
+// The cause of an error known by its kind alone: kOtherBlockage, kOtherDanger, kOtherMalfunction.
+constexpr RobotErrorCause other_cause(RobotErrorKind kind) {
+  switch (kind) {
+    case RobotErrorKind::kBlockage:
+      return RobotErrorCause::kOtherBlockage;
+    case RobotErrorKind::kDanger:
+      return RobotErrorCause::kOtherDanger;
+    case RobotErrorKind::kMalfunction:
+      return RobotErrorCause::kOtherMalfunction;
+  }
+  return RobotErrorCause::kOtherMalfunction;
+}
+
+// The names in the comments above ("obstacle", "link", ...).
+std::string_view to_string(RobotErrorCause cause);
+
+// An error of the robot: its kind and cause agree by construction (a cause gives its kind; a
+// kind alone, its kOther* cause).
 struct RobotError {
+  RobotError() = default;
+  RobotError(RobotErrorCause c, std::string why)
+      : kind(kind_of(c)), cause(c), reason(std::move(why)) {}
+  RobotError(RobotErrorKind k, std::string why)
+      : kind(k), cause(other_cause(k)), reason(std::move(why)) {}
+
   RobotErrorKind kind = RobotErrorKind::kMalfunction;
-  std::string reason;  // "obstacle 0.20 m ahead", "motor 3 over current", ...
+  RobotErrorCause cause = RobotErrorCause::kOtherMalfunction;
+  std::string reason;  // "obstacle 0.20 m ahead", "motor 3 over current", ...: for people
   friend bool operator==(const RobotError&, const RobotError&) = default;
 };
 

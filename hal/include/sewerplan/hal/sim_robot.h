@@ -174,7 +174,7 @@ class SimRobot final : public Robot {
   std::optional<Interrupt> interrupt_within(double duration_s) const;
   JobReport interrupt(const Interrupt& stop, JobReport report);
   void strike(std::size_t malfunction, const std::string& when);
-  static JobReport failure(RobotErrorKind kind, std::string reason);
+  static JobReport failure(RobotErrorCause cause, std::string reason);
   static JobReport invalid(const std::string& what);
   // Charges the report's time and energy and adds its progress to the status.
   JobReport finish(JobReport report);

@@ -156,9 +156,10 @@ using Message = std::variant<JobCommand, JobAck, JobProgress, JobResult, StatusR
 MessageType message_type(const Message& message);
 std::ostream& operator<<(std::ostream& os, const Message& message);
 
-// The frames of `message`. A reason is cut to kMaxReasonBytes. Preconditions (checked): a turn
-// has at most (kMaxDataFrames - 5) / 4 waypoints; a result's observation passes check_signature
-// (core/manhole_signature.h) and has at most kMaxObservedSlots slots.
+// The frames of `message`. A reason is cut to kMaxReasonBytes. The codes of job kinds and errors
+// are wire_codes.h's. Preconditions (checked): a turn has at most (kMaxDataFrames - 5) / 4
+// waypoints; a result's observation passes check_signature (core/manhole_signature.h) and has at
+// most kMaxObservedSlots slots; a result's error is of its cause's kind (as RobotError builds it).
 std::vector<CanFrame> encode(const Message& message);
 
 // A message of the protocol that could not be read: which one, and why.
@@ -166,6 +167,9 @@ struct Malformed {
   MessageType type = MessageType::kJob;
   std::uint8_t seq = 0;
   std::string reason;  // "job 7: frame 2 of 3 missing"
+  // Data frames that the end frame counts never arrived: a copy sent again fills the gaps (a
+  // node answers a JOB so with ACK 1, incomplete; any other fault with ACK 2, corrupt).
+  bool incomplete = false;
   friend bool operator==(const Malformed&, const Malformed&) = default;
 };
 using Decoded = std::variant<Message, Malformed>;
