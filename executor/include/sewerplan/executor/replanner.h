@@ -10,9 +10,11 @@
 // most tasks that can still be done with the battery left, and still reaching an exit. If the
 // mission's end point (its final task) is cut off, the mission ends at the nearest reachable exit
 // instead. The answer is anytime: when the time limit or a cancel stops the search first, it is the
-// safe one: the rest of the current plan if it still holds (the robot is at a state it passed
-// through, and what was learnt since and the battery left do not break the rest; kFollowPlan, as
-// it does every task it did), else the nearest reachable exit (kDegraded). The battery reserve is
+// first safe rung of a ladder (PlanResponse::Rung, issue 34): the best plan the search had; the
+// rest of the current plan if it still holds (the robot is at a state it passed through, and what
+// was learnt since and the battery left do not break the rest; kFollowPlan, as it does every task
+// it did); the current plan's tasks repaired onto new routes; a greedy insertion; and only then the
+// nearest reachable exit (kDegraded). Each is validated as a plan is. The battery reserve is
 // the last way out, not a wall: when a search proved that no exit can be reached above the
 // reserve, the answer is the nearest exit the robot can reach on the charge it has left
 // (kExitOnReserve, every task left dropped). The beacon (kCallForRecovery) is only the answer when
