@@ -721,6 +721,7 @@ void SewerTaskCompiler::build_task() {
   for (TaskId t : pending_) {
     task_vars_.push_back(builder_.add_variable(2, "task '" + mission_.task(t).name + "'"));
   }
+  result_.goal_tasks_ = pending_;
   builder_.set_initial(std::vector<std::int32_t>(1 + pending_.size(), 0));
   for (VarId v : task_vars_) builder_.add_goal({v, 1});
   if (ends_at_exit_) builder_.add_goal({pos, exit_value});

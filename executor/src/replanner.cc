@@ -91,6 +91,33 @@ std::optional<PlanResponse::Decision> parse_decision(std::string_view name) {
   return std::nullopt;
 }
 
+std::string_view to_string(PlanResponse::Rung rung) {
+  switch (rung) {
+    case PlanResponse::Rung::kSearch:
+      return "search";
+    case PlanResponse::Rung::kBestSoFar:
+      return "best-so-far";
+    case PlanResponse::Rung::kCurrentPlan:
+      return "current-plan";
+    case PlanResponse::Rung::kRepairedPlan:
+      return "repaired-plan";
+    case PlanResponse::Rung::kGreedy:
+      return "greedy";
+    case PlanResponse::Rung::kNearestExit:
+      return "nearest-exit";
+  }
+  return "search";
+}
+
+std::optional<PlanResponse::Rung> parse_rung(std::string_view name) {
+  for (auto r : {PlanResponse::Rung::kSearch, PlanResponse::Rung::kBestSoFar,
+                 PlanResponse::Rung::kCurrentPlan, PlanResponse::Rung::kRepairedPlan,
+                 PlanResponse::Rung::kGreedy, PlanResponse::Rung::kNearestExit}) {
+    if (to_string(r) == name) return r;
+  }
+  return std::nullopt;
+}
+
 bool has_plan(PlanResponse::Decision decision) {
   return decision == PlanResponse::Decision::kFollowPlan ||
          decision == PlanResponse::Decision::kDegraded ||
@@ -300,10 +327,19 @@ PlanResponse Replanner::plan(const std::string& reason) {
     cancelled_ = true;  // plan_cancellable answers kCancelled: no fallback
     return PlanResponse{.decision = PlanResponse::Decision::kDegraded, .reason = "cancelled"};
   }
-  std::string kept_because;
+  PlanResponse::Rung rung = PlanResponse::Rung::kSearch;
+  if (outcome.has_value() && outcome->best_so_far) {
+    // Stopped after a first plan: the best it had, if that is safe; else the rungs below.
+    if (safe(*outcome)) {
+      rung = PlanResponse::Rung::kBestSoFar;
+    } else {
+      outcome = Error{ErrorCode::kSearchLimit, "the best plan found in time is not safe"};
+    }
+  }
+  std::string kept_because, ladder_note;
   if (!outcome.has_value() && outcome.error().code != ErrorCode::kNoPlan) {
-    // A limit, a cancel or a planner error proves nothing: the safe answer, the rest of the
-    // current plan if it still holds, else the nearest exit.
+    // A limit, a cancel or a planner error proves nothing: the first safe answer of the ladder
+    // below the search (PlanResponse::Rung), the nearest exit when nothing else is.
     const ErrorCode code = outcome.error().code;
     const std::string why = code == ErrorCode::kSearchLimit ? "the planner's time ran out"
                             : code == ErrorCode::kCancelled
@@ -312,9 +348,17 @@ PlanResponse Replanner::plan(const std::string& reason) {
     if (auto rest = rest_of_current_plan()) {
       outcome = std::move(*rest);
       kept_because = why;
+      rung = PlanResponse::Rung::kCurrentPlan;
+    } else if (auto quick = quick_answer(why, rung)) {
+      outcome = std::move(*quick);
+      ladder_note = "; " + why + ": " +
+                    (rung == PlanResponse::Rung::kRepairedPlan
+                         ? "the current plan's tasks left, on routes around what was learnt"
+                         : "the cheapest insertion of the tasks left");
     } else {
       outcome = exit_from_here(why);
       cut_short = true;
+      rung = PlanResponse::Rung::kNearestExit;
     }
   }
   if (!outcome.has_value() && outcome.error().code == ErrorCode::kNoPlan) {
@@ -334,7 +378,12 @@ PlanResponse Replanner::plan(const std::string& reason) {
     return r;
   }
   PlanResponse r = respond(std::move(*outcome), reason, seconds);
+  r.rung = rung;
   if (!kept_because.empty()) r.reason += "; " + kept_because + ": the current plan still holds";
+  if (rung == PlanResponse::Rung::kBestSoFar) {
+    r.reason += "; the planner's time ran out: the best plan it had found";
+  }
+  r.reason += ladder_note;
   r.newly_dropped.assign(dropped_.begin() + static_cast<std::ptrdiff_t>(dropped_before),
                          dropped_.end());
   if (r.decision == PlanResponse::Decision::kFollowPlan &&
@@ -359,6 +408,64 @@ PlanResponse Replanner::plan(const std::string& reason) {
     last_start_.reset();
   }
   return r;
+}
+
+std::optional<domain::ValidationReport> Replanner::safe(const search::PlanOutcome& outcome) const {
+  domain::MissionProgress now = progress_;
+  for (const auto& d : dropped_) now.done[d.task.index()] = true;
+  for (const auto& d : outcome.dropped) now.done[d.task.index()] = true;
+  domain::ValidationReport report = domain::validate_plan(outcome.plan, map_, mission_, now);
+  const double budget_wh = mission_.profile.battery_wh * (1 - mission_.battery_reserve_fraction) -
+                           progress_.energy_used_wh;
+  if (!report.valid || report.energy_wh > budget_wh + 1e-9) return std::nullopt;
+  return report;
+}
+
+std::vector<TaskId> Replanner::tasks_of_current_plan() const {
+  std::vector<TaskId> order;
+  if (!last_start_) return order;
+  domain::MissionProgress now = progress_;
+  for (const auto& d : dropped_) now.done[d.task.index()] = true;
+  // Replayed as planned (what was learnt since may block the rest): only its order is wanted.
+  Mission as_planned = mission_;
+  as_planned.blockages.clear();
+  as_planned.closed_passages.clear();
+  for (Task& t : as_planned.tasks) t.final = false;
+  if (domain::start_problem(map_, as_planned, *last_start_)) return order;
+  domain::PlanReplay replay(map_, as_planned, *last_start_);
+  std::vector<bool> done = last_start_->done;
+  for (const auto& step : last_steps_) {
+    if (!replay.apply(step).has_value()) break;
+    for (TaskId t : mission_.task_ids()) {
+      if (done[t.index()] || !replay.done()[t.index()]) continue;
+      done[t.index()] = true;
+      if (!now.done[t.index()]) order.push_back(t);
+    }
+  }
+  return order;
+}
+
+std::optional<search::PlanOutcome> Replanner::quick_answer(const std::string& why,
+                                                           PlanResponse::Rung& rung) {
+  if (options_.goals == ReplannerOptions::Goals::kPaperBaseline) return std::nullopt;
+  domain::MissionProgress start = progress_;
+  for (const auto& d : dropped_) start.done[d.task.index()] = true;
+  const search::PlannerOptions options = bounded(std::numeric_limits<double>::infinity());
+  const auto accept = [&](Result<search::PlanOutcome> outcome,
+                          PlanResponse::Rung answered) -> std::optional<search::PlanOutcome> {
+    if (!outcome.has_value() || !safe(*outcome)) return std::nullopt;
+    for (auto& d : outcome->dropped) {
+      d.reason = why + "; the " + outcome->algorithm + " leaves it out: " + d.reason;
+    }
+    rung = answered;
+    return std::move(*outcome);
+  };
+  if (const std::vector<TaskId> order = tasks_of_current_plan(); !order.empty()) {
+    auto repaired = search::plan_in_order(map_, mission_, start, order, options);
+    if (repaired.has_value()) repaired->algorithm = "current plan's order";
+    if (auto ok = accept(std::move(repaired), PlanResponse::Rung::kRepairedPlan)) return ok;
+  }
+  return accept(search::plan_greedily(map_, mission_, start, options), PlanResponse::Rung::kGreedy);
 }
 
 std::optional<search::PlanOutcome> Replanner::rest_of_current_plan() const {
@@ -390,14 +497,12 @@ std::optional<search::PlanOutcome> Replanner::rest_of_current_plan() const {
   domain::Plan rest;
   rest.steps.assign(last_steps_.begin() + static_cast<std::ptrdiff_t>(*here), last_steps_.end());
   // The rest on the world model as it is now, to the mission's end, within the battery left.
-  const domain::ValidationReport report = domain::validate_plan(rest, map_, mission_, now);
-  const double budget_wh = mission_.profile.battery_wh * (1 - mission_.battery_reserve_fraction) -
-                           progress_.energy_used_wh;
-  if (!report.valid || report.energy_wh > budget_wh + 1e-9) return std::nullopt;
   search::PlanOutcome outcome;
   outcome.plan = std::move(rest);
-  outcome.cost_s = report.total_cost_s;
-  outcome.energy_wh = report.energy_wh;
+  const std::optional<domain::ValidationReport> report = safe(outcome);
+  if (!report) return std::nullopt;
+  outcome.cost_s = report->total_cost_s;
+  outcome.energy_wh = report->energy_wh;
   outcome.algorithm = "the current plan";
   return outcome;
 }

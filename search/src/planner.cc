@@ -202,6 +202,26 @@ void improve(const domain::CompiledTask& task, const StopCondition& stop, const 
   best.statistics = total;
 }
 
+// The outcome of `result`, a plan of `compiled`: its primitive plan, costs, tasks dropped and
+// statistics.
+void complete(const domain::SewerTask& compiled, const Mission& mission, const SearchResult& result,
+              PlanOutcome& outcome) {
+  const domain::CompiledTask& task = compiled.task();
+  outcome.plan = compiled.expand(result.plan);
+  const Cost risk = compiled.risk_cost(result.plan);
+  outcome.cost_s = domain::to_seconds(task.real_cost(result.cost) - risk);
+  outcome.risk_cost_s = domain::to_seconds(risk);
+  outcome.dropped = compiled.dropped();
+  for (TaskId t : compiled.forgone(result.plan)) {
+    outcome.dropped.push_back({t, "not enough battery to do it as well and still end the mission"});
+  }
+  std::sort(outcome.dropped.begin(), outcome.dropped.end(),
+            [](const auto& a, const auto& b) { return a.task < b.task; });
+  outcome.energy_wh = mission.profile.energy_wh(outcome.cost_s);
+  outcome.search = result.statistics;
+  outcome.compile = compiled.statistics();
+}
+
 }  // namespace
 
 namespace {
@@ -270,7 +290,7 @@ Result<PlanOutcome> plan_once(const SewerMap& map, const Mission& mission,
     const double start_s = clock.now_s();
     shape = detail::read_shape(task, &stop);
     tour = detail::tour_search(task, shape, stop, clock, start_s, report);
-    if (report.stopped) return search_failure(*report.stopped, mission, progress, task);
+    if (report.stopped && !tour) return search_failure(*report.stopped, mission, progress, task);
     if (!tour && report.has_shape && task.penalty_unit() == 0 &&
         report.cheapest_order != domain::kInfiniteCost &&
         report.cheapest_order > task.cost_bound()) {
@@ -312,19 +332,10 @@ Result<PlanOutcome> plan_once(const SewerMap& map, const Mission& mission,
     improve(task, stop, clock, improvement_budget(options, task, compiled->statistics()), result,
             outcome);
   }
-  outcome.plan = compiled->expand(result.plan);
-  const Cost risk = compiled->risk_cost(result.plan);
-  outcome.cost_s = domain::to_seconds(task.real_cost(result.cost) - risk);
-  outcome.risk_cost_s = domain::to_seconds(risk);
-  outcome.dropped = compiled->dropped();
-  for (TaskId t : compiled->forgone(result.plan)) {
-    outcome.dropped.push_back({t, "not enough battery to do it as well and still end the mission"});
-  }
-  std::sort(outcome.dropped.begin(), outcome.dropped.end(),
-            [](const auto& a, const auto& b) { return a.task < b.task; });
-  outcome.energy_wh = mission.profile.energy_wh(outcome.cost_s);
-  outcome.search = result.statistics;
-  outcome.compile = compiled->statistics();
+  // The deadline (or a cancel) came after a first plan, before the planner had done all it meant
+  // to: the plan is the best found by then.
+  outcome.best_so_far = stop.interrupted().has_value();
+  complete(*compiled, mission, result, outcome);
   outcome.algorithm = exact  ? std::string("exact tour search")
                       : tour ? std::string("tour search")
                              : std::string(engine->name()) + " + " + std::string(heuristic->name());
@@ -417,6 +428,87 @@ Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
       "no plan keeps the battery to back out of a blocked hazard pipe and reach an exit another "
       "way: planned without that reserve";
   return plain;
+}
+
+namespace {
+
+// plan_greedily and plan_in_order: one compile without a time limit (the cancel is honoured),
+// risk-blind, then `quick` on the compiled task; without the contingency reserves where no plan
+// keeps them.
+template <typename Quick>
+Result<PlanOutcome> plan_quickly(const SewerMap& map, const Mission& mission,
+                                 const domain::MissionProgress& progress,
+                                 const PlannerOptions& options, std::string_view name,
+                                 const Quick& quick) {
+  StopCondition stop;
+  if (options.cancel != nullptr) stop.with_cancel(*options.cancel);
+  std::optional<Error> failure;
+  for (const bool contingency : {true, false}) {
+    if (contingency && !options.contingency) continue;
+    Result<domain::SewerTask> compiled =
+        domain::compile_sewer_task(map, mission, progress,
+                                   {.select_goals = options.select_goals,
+                                    .stop = stop,
+                                    .contingency = contingency,
+                                    .cache = options.compile_cache});
+    if (!compiled.has_value()) {
+      if (compiled.error().code != ErrorCode::kNoPlan) return compiled.error();
+      if (!failure) failure = compiled.error();
+      continue;
+    }
+    std::optional<SearchResult> result = quick(*compiled, stop);
+    if (auto stopped = stop.interrupted()) {
+      return search_failure(*stopped, mission, progress, compiled->task());
+    }
+    if (!result) {
+      if (!failure) {
+        failure = Error{ErrorCode::kNoPlan, std::string(name) + ": no plan within the battery"};
+      }
+      continue;
+    }
+    PlanOutcome outcome;
+    complete(*compiled, mission, *result, outcome);
+    outcome.algorithm = std::string(name);
+    if (options.contingency && !contingency && !mission.hazards.empty()) {
+      outcome.contingency_note =
+          "no plan keeps the battery to back out of a blocked hazard pipe and reach an exit "
+          "another way: planned without that reserve";
+    }
+    return outcome;
+  }
+  return *failure;
+}
+
+}  // namespace
+
+Result<PlanOutcome> plan_greedily(const SewerMap& map, const Mission& mission,
+                                  const domain::MissionProgress& progress,
+                                  const PlannerOptions& options) {
+  const SteadyClock steady;
+  const Clock& clock = options.clock != nullptr ? *options.clock : steady;
+  return plan_quickly(map, mission, progress, options, "greedy insertion",
+                      [&](const domain::SewerTask& compiled, const StopCondition& stop) {
+                        return greedy_tour(compiled.task(), stop, &clock);
+                      });
+}
+
+Result<PlanOutcome> plan_in_order(const SewerMap& map, const Mission& mission,
+                                  const domain::MissionProgress& progress,
+                                  std::span<const TaskId> order, const PlannerOptions& options) {
+  return plan_quickly(map, mission, progress, options, "in a given order",
+                      [&](const domain::SewerTask& compiled, const StopCondition& stop) {
+                        const std::vector<TaskId>& goals = compiled.goal_tasks();
+                        std::vector<domain::VarId> vars;
+                        for (TaskId t : order) {
+                          auto it = std::find(goals.begin(), goals.end(), t);
+                          if (it == goals.end()) continue;  // done or dropped already
+                          const auto v = static_cast<std::uint32_t>(it - goals.begin()) + 1;
+                          if (std::find(vars.begin(), vars.end(), domain::VarId{v}) == vars.end()) {
+                            vars.push_back(domain::VarId{v});
+                          }
+                        }
+                        return ordered_tour(compiled.task(), vars, stop);
+                      });
 }
 
 }  // namespace sewerplan::search

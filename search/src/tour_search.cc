@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <span>
 #include <unordered_map>
 
 #include "sewerplan/core/clock.h"
@@ -128,8 +129,14 @@ class Evaluator {
 
 class Tour {
  public:
-  Tour(const Shape& shape, const StopCondition& stop)
-      : s_(shape), eval_(shape), costs_(shape), whole_(shape.has_reserves()), stop_(stop) {}
+  // `local_search`: false for cheapest insertion alone (greedy_tour).
+  Tour(const Shape& shape, const StopCondition& stop, bool local_search = true)
+      : s_(shape),
+        eval_(shape),
+        costs_(shape),
+        whole_(shape.has_reserves()),
+        local_search_(local_search),
+        stop_(stop) {}
 
   // The reason the stop condition gave, once it fired; then build() returns nothing more.
   std::optional<SearchStatus> stopped() const { return stopped_; }
@@ -183,8 +190,9 @@ class Tour {
       order.insert(order.begin() + static_cast<std::ptrdiff_t>(best_at), todo[best_goal]);
       todo.erase(todo.begin() + static_cast<std::ptrdiff_t>(best_goal));
     }
-    improve(order, last);
-    if (stopped_) return {};
+    // Stopped in the local search, the order is complete: the best one found by then (a caller
+    // that needs a finished search asks stopped()).
+    if (local_search_) improve(order, last);
     if (last) order.push_back(*last);
     return order;
   }
@@ -225,7 +233,7 @@ class Tour {
       last = order.back();
       order.pop_back();
     }
-    improve(order, last);
+    if (local_search_) improve(order, last);
     if (last) order.push_back(*last);
     return order;
   }
@@ -346,6 +354,7 @@ class Tour {
   Evaluator eval_;
   detail::OrderCosts costs_;
   const bool whole_;
+  const bool local_search_;
   std::vector<std::size_t> current_, trial_;
   const StopCondition& stop_;
   std::optional<SearchStatus> stopped_;
@@ -368,7 +377,8 @@ std::optional<SearchResult> tour_search(const CompiledTask& task, const StopCond
 std::optional<SearchResult> detail::tour_search(const CompiledTask& task,
                                                 const std::optional<Shape>& shape,
                                                 const StopCondition& stop, const Clock& time,
-                                                double start_s, TourReport& out) {
+                                                double start_s, TourReport& out,
+                                                bool local_search) {
   out = {};
   // Reading the shape goes over every action, and asks the stop condition (issue 14).
   if (auto stopped = stop.interrupted()) {
@@ -379,11 +389,32 @@ std::optional<SearchResult> detail::tour_search(const CompiledTask& task,
   out.has_shape = true;
   std::vector<std::size_t> goals(shape->goals.size());
   for (std::size_t i = 0; i < goals.size(); ++i) goals[i] = i;
-  Tour tour(*shape, stop);
+  Tour tour(*shape, stop, local_search);
   std::vector<std::size_t> left_out;
   std::vector<std::size_t> order = tour.build(goals, &left_out);
+  // The plan of an order of every goal, checked on the task; empty if it does not fit the bound.
+  const auto plan_of = [&](const std::vector<std::size_t>& o,
+                           const std::vector<std::size_t>& forgone) -> std::optional<SearchResult> {
+    const Cost c = tour.cost(o);
+    if (c >= kInfiniteCost || c > task.cost_bound()) return std::nullopt;
+    SearchResult result;
+    for (std::size_t g : forgone) result.plan.push_back(*shape->goals[g].forgo);
+    tour.cost(o, result.plan);
+    if (!task.solves(result.plan, &result.cost)) return std::nullopt;
+    result.status = SearchStatus::kSolved;
+    result.statistics.time_s = time.now_s() - start_s;
+    return result;
+  };
   if (tour.stopped()) {
     out.stopped = tour.stopped();
+    // Stopped in the local search after the insertion gave an order of every goal: that order,
+    // as far as the local search got, if it fits (the anytime answer, TourReport::best_so_far).
+    if ((!order.empty() || goals.empty()) && left_out.empty()) {
+      if (auto best = plan_of(order, {})) {
+        out.best_so_far = true;
+        return best;
+      }
+    }
     return std::nullopt;
   }
   if ((!order.empty() || goals.empty()) && left_out.empty()) out.cheapest_order = tour.cost(order);
@@ -476,14 +507,77 @@ std::optional<SearchResult> detail::tour_search(const CompiledTask& task,
       return std::nullopt;
     }
   }
-  if (!fits(order)) return std::nullopt;
+  // Checked on the task itself.
+  return plan_of(order, forgone);
+}
+
+std::optional<SearchResult> greedy_tour(const CompiledTask& task, const StopCondition& stop,
+                                        const Clock* clock) {
+  const SteadyClock steady;
+  const Clock& time = clock != nullptr ? *clock : steady;
+  TourReport report;
+  const double start_s = time.now_s();
+  return detail::tour_search(task, read_shape(task, &stop), stop, time, start_s, report,
+                             /*local_search=*/false);
+}
+
+std::optional<SearchResult> ordered_tour(const CompiledTask& task, std::span<const VarId> order,
+                                         const StopCondition& stop) {
+  const std::optional<Shape> shape = read_shape(task, &stop);
+  if (!shape || stop.interrupted()) return std::nullopt;
+  const std::size_t n = shape->goals.size();
+  std::vector<bool> chosen(n, false);
+  std::vector<std::size_t> goals;
+  std::optional<std::size_t> last;
+  for (VarId v : order) {
+    if (v.index() == 0 || v.index() > n || chosen[v.index() - 1]) return std::nullopt;
+    const std::size_t g = v.index() - 1;
+    chosen[g] = true;
+    if (shape->goals[g].last) {
+      last = g;  // it needs every other goal done: at the end wherever it was given
+    } else {
+      goals.push_back(g);
+    }
+  }
+  std::vector<std::size_t> forgone;
+  for (std::size_t g = 0; g < n; ++g) {
+    if (chosen[g]) continue;
+    if (!shape->goals[g].forgo) return std::nullopt;
+    forgone.push_back(g);
+  }
+  Tour tour(*shape, stop, /*local_search=*/false);
+  const auto with_last = [&](std::vector<std::size_t> o) {
+    if (last) o.push_back(*last);
+    return o;
+  };
+  const auto fits = [&](const std::vector<std::size_t>& o) {
+    const Cost c = tour.cost(with_last(o));
+    return c < kInfiniteCost && c <= task.cost_bound();
+  };
+  // Over the bound: leave out, one at a time, the goal whose absence costs the least, keeping the
+  // order of the rest.
+  while (!fits(goals)) {
+    std::optional<std::size_t> drop;
+    Cost best = kInfiniteCost;
+    for (std::size_t i = 0; i < goals.size(); ++i) {
+      if (!shape->goals[goals[i]].forgo) continue;
+      std::vector<std::size_t> rest = goals;
+      rest.erase(rest.begin() + static_cast<std::ptrdiff_t>(i));
+      const Cost c = tour.cost(with_last(rest));
+      if (!drop || c < best) {
+        best = c;
+        drop = i;
+      }
+    }
+    if (!drop) return std::nullopt;
+    forgone.push_back(goals[*drop]);
+    goals.erase(goals.begin() + static_cast<std::ptrdiff_t>(*drop));
+  }
   SearchResult result;
   for (std::size_t g : forgone) result.plan.push_back(*shape->goals[g].forgo);
-  tour.cost(order, result.plan);
-  // Check the plan on the task itself.
+  tour.cost(with_last(goals), result.plan);
   if (!task.solves(result.plan, &result.cost)) return std::nullopt;
   result.status = SearchStatus::kSolved;
-  result.statistics.time_s = time.now_s() - start_s;
   return result;
 }
 

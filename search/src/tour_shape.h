@@ -116,7 +116,8 @@ std::optional<Shape> read_shape(const CompiledTask& task, const StopCondition* s
 // costs as much as a fifth of the exact search on 10 manholes and 10 tasks).
 std::optional<SearchResult> tour_search(const CompiledTask& task, const std::optional<Shape>& shape,
                                         const StopCondition& stop, const Clock& clock,
-                                        double start_s, TourReport& report);
+                                        double start_s, TourReport& report,
+                                        bool local_search = true);
 std::optional<SearchResult> exact_tour_search(const CompiledTask& task,
                                               const std::optional<Shape>& shape,
                                               const StopCondition& stop, const Clock& clock,

@@ -508,15 +508,16 @@ TEST(Campaign, APlannerTimeLimitIsPartOfTheCampaignAndNoRunCallsTheBeaconForIt) 
   EXPECT_FALSE(spec.same_campaign(ais_spec(8)));
   EXPECT_NE(reproduce_command(spec, 3).find("--planner-time-limit 1e-06 --only 3"),
             std::string::npos);
-  // Every plan reaches the limit: each run heads for the nearest exit and no beacon is the
-  // limit's.
+  // Every plan reaches the limit: no beacon is the limit's, and (issue 34) the anytime ladder
+  // still does tasks instead of heading for the nearest exit at once.
+  std::size_t tasks = 0;
   for (const RunRecord& r : run_campaign(ais.map, ais.mission, spec, {})) {
     ASSERT_TRUE(r.result.has_value());
     EXPECT_NE(r.result->ours.beacon_cause, executor::MissionReport::BeaconCause::kLimit);
-    EXPECT_TRUE(r.result->ours.outcome == Outcome::kExit ||
-                r.result->ours.outcome == Outcome::kBeacon);
-    EXPECT_EQ(r.result->ours.tasks, 0U);
+    EXPECT_NE(r.result->ours.outcome, Outcome::kStranded);
+    tasks += r.result->ours.tasks;
   }
+  EXPECT_GT(tasks, 0U);
 }
 
 TEST(Campaign, FaultRatesAndShardsParseOrSayWhatIsWrong) {

@@ -174,7 +174,7 @@ class TickingClock final : public Clock {
 // Issue 14: a replan that reached its time limit was answered with the beacon. The acceptance
 // case (a 1 microsecond limit on a generated network) answers degraded, heading to an exit along
 // a valid route; the 100,000-manhole case is bench/executor/deadline_bench.cc.
-TEST(ReplannerIssue14, AReplanOutOfTimeHeadsForTheNearestExitInsteadOfCallingTheBeacon) {
+TEST(ReplannerIssue14, AReplanOutOfTimeAnswersWithAValidPlanInsteadOfCallingTheBeacon) {
   auto map = generate_network({.manholes = 2000, .seed = 7, .topology = Topology::kMeshed});
   ASSERT_TRUE(map.has_value()) << map.error();
   auto mission = domain::generate_mission(*map, {.tasks = 8, .seed = 3});
@@ -187,10 +187,13 @@ TEST(ReplannerIssue14, AReplanOutOfTimeHeadsForTheNearestExitInsteadOfCallingThe
                                    .improvement_expansions = 0},
                        .clock = &clock});
   const PlanResponse r = replanner.plan();
-  ASSERT_EQ(r.decision, Decision::kDegraded) << r.reason;
-  EXPECT_EQ(r.end.rfind("exit ", 0), 0U) << r.end;
-  EXPECT_EQ(r.newly_dropped.size(), mission->tasks.size());
-  EXPECT_NE(r.newly_dropped.front().reason.find("time ran out"), std::string::npos);
+  // Issue 34: not the nearest exit any more, but the greedy insertion of the tasks, as safe.
+  ASSERT_TRUE(has_plan(r.decision)) << r.reason;
+  EXPECT_EQ(r.rung, PlanResponse::Rung::kGreedy) << r.reason;
+  EXPECT_LT(r.newly_dropped.size(), mission->tasks.size());
+  for (const auto& d : r.newly_dropped) {
+    EXPECT_NE(d.reason.find("time ran out"), std::string::npos) << d.reason;
+  }
   domain::MissionProgress start = replanner.progress();
   for (const auto& d : replanner.dropped()) start.done[d.task.index()] = true;
   const auto report = domain::validate_plan(r.plan, *map, replanner.mission(), start);
@@ -200,6 +203,128 @@ TEST(ReplannerIssue14, AReplanOutOfTimeHeadsForTheNearestExitInsteadOfCallingThe
   EXPECT_TRUE(has_plan(unlimited.plan().decision));
 }
 
+// Issue 34: the anytime ladder. A clock that stands still until the test lets it tick: the plans
+// before that never reach their time limit, every one after it does at the first look.
+class StepClock final : public Clock {
+ public:
+  double now_s() const override { return now_s_ += step_s_; }
+  void tick() { step_s_ = 1.0; }
+
+ private:
+  double step_s_ = 0;
+  mutable double now_s_ = 0;
+};
+
+// What every answer of the ladder must be: a plan valid on the world model as it is now, from
+// where the robot is, ending the mission (at an exit or its end point) within the battery left
+// above the reserve.
+void expect_safe(const PlanResponse& r, const Replanner& replanner, const SewerMap& map) {
+  ASSERT_TRUE(has_plan(r.decision)) << r.reason;
+  domain::MissionProgress start = replanner.progress();
+  for (const auto& d : replanner.dropped()) start.done[d.task.index()] = true;
+  const auto report = domain::validate_plan(r.plan, map, replanner.mission(), start);
+  EXPECT_TRUE(report.valid) << report.error;
+  const Mission& m = replanner.mission();
+  EXPECT_LE(report.energy_wh,
+            m.profile.battery_wh * (1 - m.battery_reserve_fraction) - start.energy_used_wh + 1e-9);
+}
+
+TEST(ReplannerAnytime, EveryRungHasAStableNameThatParsesBack) {
+  using Rung = PlanResponse::Rung;
+  const std::vector<std::pair<Rung, std::string_view>> names{{Rung::kSearch, "search"},
+                                                             {Rung::kBestSoFar, "best-so-far"},
+                                                             {Rung::kCurrentPlan, "current-plan"},
+                                                             {Rung::kRepairedPlan, "repaired-plan"},
+                                                             {Rung::kGreedy, "greedy"},
+                                                             {Rung::kNearestExit, "nearest-exit"}};
+  for (const auto& [rung, name] : names) {
+    EXPECT_EQ(to_string(rung), name);
+    EXPECT_EQ(parse_rung(name), rung) << name;
+  }
+  EXPECT_EQ(parse_rung("nearest exit"), std::nullopt);
+}
+
+// Out of time at the first plan, with no current plan to keep or repair: the greedy insertion
+// does the tasks (before issue 34 the robot headed for the nearest exit and did none).
+TEST(ReplannerAnytime, OutOfTimeWithoutACurrentPlanTheGreedyInsertionDoesTheTasks) {
+  const auto ais = testing::load_ais_testbed();
+  StepClock clock;
+  clock.tick();
+  Replanner replanner(
+      ais.map, ais.mission,
+      {.planner = {.time_limit_s = 1e-6, .improvement_expansions = 0}, .clock = &clock});
+  const PlanResponse r = replanner.plan();
+  EXPECT_EQ(r.rung, PlanResponse::Rung::kGreedy) << r.reason;
+  EXPECT_EQ(r.decision, Decision::kFollowPlan) << r.reason;
+  EXPECT_EQ(r.goals.size(), ais.mission.tasks.size());
+  EXPECT_NE(r.reason.find("cheapest insertion"), std::string::npos) << r.reason;
+  expect_safe(r, replanner, ais.map);
+  // The same inputs, the same answer.
+  StepClock again;
+  again.tick();
+  Replanner twin(ais.map, ais.mission,
+                 {.planner = {.time_limit_s = 1e-6, .improvement_expansions = 0}, .clock = &again});
+  EXPECT_EQ(twin.plan().plan.steps, r.plan.steps);
+}
+
+// Out of time where the current plan no longer holds (the robot is somewhere it never went): its
+// tasks left, in its order, on new routes from there.
+TEST(ReplannerAnytime, OutOfTimeWhereTheCurrentPlanNoLongerHoldsItIsRepaired) {
+  auto map = generate_network({.manholes = 300, .seed = 2, .topology = Topology::kMeshed});
+  ASSERT_TRUE(map.has_value()) << map.error();
+  auto mission = domain::generate_mission(
+      *map, {.tasks = 6, .seed = 2, .spread = domain::MissionSpread::kNearExit});
+  ASSERT_TRUE(mission.has_value()) << mission.error();
+  StepClock clock;
+  Replanner replanner(
+      *map, *mission,
+      {.planner = {.time_limit_s = 1e-6, .improvement_expansions = 0}, .clock = &clock});
+  const PlanResponse first = replanner.plan();
+  ASSERT_EQ(first.rung, PlanResponse::Rung::kSearch) << first.reason;
+  ASSERT_TRUE(has_plan(first.decision)) << first.reason;
+  // The robot is halfway along a pipe at its start manhole: no state of the plan.
+  domain::MissionProgress moved = replanner.progress();
+  const domain::RobotPosition& was = moved.position;
+  ASSERT_FALSE(std::holds_alternative<domain::InPipe>(was));
+  const ManholeId m = std::holds_alternative<domain::InManhole>(was)
+                          ? std::get<domain::InManhole>(was).manhole
+                          : std::get<domain::AtSlot>(was).manhole;
+  std::optional<PipeId> beside;
+  for (PipeId p : map->pipe_ids()) {
+    for (const auto& end : map->pipe(p).ends) {
+      if (end.manhole == m && !beside) beside = p;
+    }
+  }
+  ASSERT_TRUE(beside.has_value());
+  moved.position = domain::InPipe{*beside, map->pipe(*beside).length_m / 2};
+  ASSERT_TRUE(replanner.update(moved, 0).has_value());
+  clock.tick();
+  const PlanResponse r = replanner.plan("moved");
+  EXPECT_EQ(r.rung, PlanResponse::Rung::kRepairedPlan) << r.reason;
+  expect_safe(r, replanner, *map);
+  EXPECT_FALSE(r.goals.empty());
+  // The tasks it does are the first plan's, in the first plan's order.
+  auto order = [&](const PlanResponse& p, const domain::MissionProgress& from) {
+    domain::MissionProgress start = from;
+    for (const auto& d : replanner.dropped()) start.done[d.task.index()] = true;
+    domain::PlanReplay replay(*map, replanner.mission(), start);
+    std::vector<TaskId> done;
+    for (const auto& step : p.plan.steps) {
+      if (!replay.apply(step).has_value()) break;
+      for (TaskId t : replanner.mission().task_ids()) {
+        if (!start.done[t.index()] && replay.done()[t.index()] &&
+            std::find(done.begin(), done.end(), t) == done.end()) {
+          done.push_back(t);
+        }
+      }
+    }
+    return done;
+  };
+  const std::vector<TaskId> before = order(first, domain::initial_progress(*mission, *map));
+  const std::vector<TaskId> after = order(r, replanner.progress());
+  EXPECT_EQ(after, before);
+}
+
 TEST(ReplannerIssue14, AReplanThatIsCancelledHeadsForAnExitInsteadOfCallingTheBeacon) {
   const auto ais = testing::load_ais_testbed();
   std::atomic<bool> cancel{true};
@@ -207,8 +332,11 @@ TEST(ReplannerIssue14, AReplanThatIsCancelledHeadsForAnExitInsteadOfCallingTheBe
                       {.planner = {.cancel = &cancel, .improvement_expansions = 0}});
   const PlanResponse r = replanner.plan();
   ASSERT_EQ(r.decision, Decision::kDegraded) << r.reason;
+  // The cancel stops the repaired plan and the greedy insertion too: the nearest exit.
+  EXPECT_EQ(r.rung, PlanResponse::Rung::kNearestExit);
   EXPECT_EQ(r.end.rfind("exit ", 0), 0U) << r.end;
   EXPECT_NE(r.newly_dropped.front().reason.find("cancelled"), std::string::npos);
+  expect_safe(r, replanner, ais.map);
 }
 
 TEST(ReplannerIssue14, OnlyAProofThatNoExitCanBeReachedCallsTheBeacon) {

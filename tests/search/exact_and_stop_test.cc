@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The exact tour search (the proven optimum, with the battery and goal selection), and the stop
 // condition in the tour search, the exact search and the planner (issues 14 and 16).
+#include <algorithm>
 #include <atomic>
 
 #include <gtest/gtest.h>
@@ -227,6 +228,127 @@ TEST(TourSearchStop, ReturnsCancelledWhenTheFlagIsSet) {
                               {.cancel = &cancel, .select_goals = true});
   ASSERT_FALSE(outcome.has_value());
   EXPECT_EQ(outcome.error().code, ErrorCode::kCancelled);
+}
+
+// Issue 34: stopped in its local search, the tour search answers with the order it had (the
+// insertion's, as far as the local search improved it), checked on the task, not with nothing; a
+// stop before the insertion is done still gives no plan. The deadline is put at every read of the
+// clock in turn, so some fall in the local search.
+TEST(TourSearchStop, StoppedInTheLocalSearchAnswersWithTheBestOrderSoFar) {
+  auto g = generated(300, 10, 1, domain::MissionSpread::kUniform);
+  ASSERT_TRUE(g);
+  const domain::SewerTask task = compiled_task(*g, true);
+  TourReport full_report;
+  const auto full = tour_search(task.task(), {}, nullptr, &full_report);
+  ASSERT_TRUE(full.has_value());
+  std::size_t best_so_far = 0, none = 0;
+  for (int n = 1; n <= 300; ++n) {
+    testing::TickingClock clock(1.0);
+    TourReport report;
+    const auto r = tour_search(task.task(), StopCondition::at_deadline(clock, n), &clock, &report);
+    if (!report.stopped) break;  // the search finished before the n-th read
+    if (!r) {
+      EXPECT_FALSE(report.best_so_far);
+      ++none;
+      continue;
+    }
+    EXPECT_TRUE(report.best_so_far) << n;
+    Cost cost = 0;
+    EXPECT_TRUE(task.task().solves(r->plan, &cost)) << n;
+    EXPECT_GE(cost, full->cost) << n;  // the finished search's order is at least as cheap
+    ++best_so_far;
+  }
+  EXPECT_GT(none, 0U);
+  EXPECT_GT(best_so_far, 0U);
+}
+
+// Issue 34: the quick answers past a deadline are deterministic, valid, and within the battery:
+// the greedy insertion, and a given order of tasks repaired for the battery.
+TEST(QuickPlans, TheGreedyInsertionIsValidDeterministicAndDoesEveryTaskThatFits) {
+  const auto ais = testing::load_ais_testbed();
+  const domain::MissionProgress start = domain::initial_progress(ais.mission, ais.map);
+  const PlannerOptions options{.select_goals = true};
+  auto a = plan_greedily(ais.map, ais.mission, start, options);
+  auto b = plan_greedily(ais.map, ais.mission, start, options);
+  ASSERT_TRUE(a.has_value()) << a.error();
+  ASSERT_TRUE(b.has_value()) << b.error();
+  EXPECT_EQ(a->plan.steps, b->plan.steps);
+  EXPECT_EQ(a->algorithm, "greedy insertion");
+  const auto report = domain::validate_plan(a->plan, ais.map, ais.mission, start);
+  EXPECT_TRUE(report.valid) << report.error;
+  auto full = plan_mission(ais.map, ais.mission, start, options);
+  ASSERT_TRUE(full.has_value()) << full.error();
+  EXPECT_EQ(a->dropped.size(), full->dropped.size());
+  EXPECT_GE(a->cost_s, full->cost_s - 1e-6);
+}
+
+// The order of the tasks a plan does, by replaying it.
+std::vector<TaskId> task_order(const domain::Plan& plan, const SewerMap& map,
+                               const Mission& mission, const domain::MissionProgress& start) {
+  domain::PlanReplay replay(map, mission, start);
+  std::vector<TaskId> order;
+  std::vector<bool> done = start.done;
+  for (const auto& step : plan.steps) {
+    if (!replay.apply(step).has_value()) break;
+    for (TaskId t : mission.task_ids()) {
+      if (!done[t.index()] && replay.done()[t.index()]) {
+        done[t.index()] = true;
+        order.push_back(t);
+      }
+    }
+  }
+  return order;
+}
+
+TEST(QuickPlans, InOrderKeepsTheOrderLeavesOutTheRestAndFitsTheBattery) {
+  auto g = generated(300, 6, 2, domain::MissionSpread::kNearExit);
+  ASSERT_TRUE(g);
+  const domain::MissionProgress start = domain::initial_progress(g->mission, g->map);
+  const PlannerOptions options{.select_goals = true};
+  std::vector<TaskId> wanted;
+  for (TaskId t : g->mission.task_ids()) {
+    if (!g->mission.task(t).final) wanted.insert(wanted.begin(), t);  // the mission's backwards
+  }
+  ASSERT_GE(wanted.size(), 3U);
+  const TaskId not_asked = wanted.back();  // one task not asked for: left out
+  wanted.pop_back();
+  auto ordered = plan_in_order(g->map, g->mission, start, wanted, options);
+  ASSERT_TRUE(ordered.has_value()) << ordered.error();
+  // Valid with the tasks it leaves out counted as done (as the Replanner counts them).
+  const auto without = [&](const PlanOutcome& o) {
+    domain::MissionProgress p = start;
+    for (const auto& d : o.dropped) p.done[d.task.index()] = true;
+    return p;
+  };
+  ASSERT_EQ(ordered->dropped.size(), 1U);
+  EXPECT_EQ(ordered->dropped.front().task, not_asked);
+  const auto report = domain::validate_plan(ordered->plan, g->map, g->mission, without(*ordered));
+  ASSERT_TRUE(report.valid) << report.error;
+  std::vector<TaskId> done = task_order(ordered->plan, g->map, g->mission, start);
+  if (const auto final_task = g->mission.final_task_id()) std::erase(done, *final_task);
+  EXPECT_EQ(done, wanted);
+  // A battery for about half of that: tasks are left out, the order of the rest kept, and the
+  // plan fits.
+  Mission tight = g->mission;
+  tight.profile.battery_wh = (ordered->energy_wh / 2) / (1 - tight.battery_reserve_fraction);
+  auto repaired = plan_in_order(g->map, tight, start, wanted, options);
+  ASSERT_TRUE(repaired.has_value()) << repaired.error();
+  const auto r = domain::validate_plan(repaired->plan, g->map, tight, without(*repaired));
+  EXPECT_TRUE(r.valid) << r.error;
+  EXPECT_LE(repaired->energy_wh,
+            tight.profile.battery_wh * (1 - tight.battery_reserve_fraction) + 1e-9);
+  std::vector<TaskId> kept = task_order(repaired->plan, g->map, tight, start);
+  if (const auto final_task = tight.final_task_id()) std::erase(kept, *final_task);
+  EXPECT_LT(kept.size(), wanted.size());
+  EXPECT_EQ(repaired->dropped.size() + kept.size(),
+            g->mission.tasks.size() - (tight.final_task_id() ? 1U : 0U));
+  // A subsequence of the order asked for.
+  auto at = wanted.begin();
+  for (TaskId t : kept) {
+    at = std::find(at, wanted.end(), t);
+    ASSERT_NE(at, wanted.end()) << "task " << t.index() << " out of order";
+    ++at;
+  }
 }
 
 // Issue 14: the compile's route searches honour the cancel flag and the injected clock.

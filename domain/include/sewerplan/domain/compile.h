@@ -166,6 +166,9 @@ class SewerTask {
   const std::vector<DroppedTask>& dropped() const { return dropped_; }
   // With goal selection: the tasks that `plan` forgoes, in mission order (not those dropped()).
   std::vector<TaskId> forgone(std::span<const ActionId> plan) const;
+  // The task each goal variable of task() stands for: variable i + 1 is goal_tasks()[i] (variable
+  // 0 is the robot's position), in mission order.
+  const std::vector<TaskId>& goal_tasks() const { return goal_tasks_; }
   // With CompileOptions::risk: the expected cost of stops (RiskCosts) that `plan`'s actions
   // carry; the plan's true cost is its cost less this. 0 when risk-blind.
   Cost risk_cost(std::span<const ActionId> plan) const;
@@ -184,6 +187,7 @@ class SewerTask {
   std::vector<Cost> risk_;  // per action: its expected cost of stops (RiskCosts)
   std::vector<DroppedTask> dropped_;
   std::vector<std::pair<ActionId, TaskId>> forgo_actions_;  // sorted by action
+  std::vector<TaskId> goal_tasks_;
 };
 
 // Fails with kNoPlan, listing every reason found, when a pending task or (without a final task)

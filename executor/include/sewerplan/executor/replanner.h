@@ -10,9 +10,11 @@
 // most tasks that can still be done with the battery left, and still reaching an exit. If the
 // mission's end point (its final task) is cut off, the mission ends at the nearest reachable exit
 // instead. The answer is anytime: when the time limit or a cancel stops the search first, it is the
-// safe one: the rest of the current plan if it still holds (the robot is at a state it passed
-// through, and what was learnt since and the battery left do not break the rest; kFollowPlan, as
-// it does every task it did), else the nearest reachable exit (kDegraded). The battery reserve is
+// first safe rung of a ladder (PlanResponse::Rung, issue 34): the best plan the search had; the
+// rest of the current plan if it still holds (the robot is at a state it passed through, and what
+// was learnt since and the battery left do not break the rest; kFollowPlan, as it does every task
+// it did); the current plan's tasks repaired onto new routes; a greedy insertion; and only then the
+// nearest reachable exit (kDegraded). Each is validated as a plan is. The battery reserve is
 // the last way out, not a wall: when a search proved that no exit can be reached above the
 // reserve, the answer is the nearest exit the robot can reach on the charge it has left
 // (kExitOnReserve, every task left dropped). The beacon (kCallForRecovery) is only the answer when
@@ -46,6 +48,7 @@
 #include "sewerplan/domain/compile.h"
 #include "sewerplan/domain/plan.h"
 #include "sewerplan/domain/robot_state.h"
+#include "sewerplan/domain/validator.h"
 #include "sewerplan/executor/learnt.h"
 #include "sewerplan/fusion/fuse.h"
 #include "sewerplan/hal/robot.h"
@@ -96,6 +99,21 @@ struct PlanResponse {
                        // world model is unchanged; the robot's last plan stands
   };
   Decision decision = Decision::kFollowPlan;
+  // Which answer of the anytime ladder this is (ReplannerOptions, docs/executor.md); the names
+  // (to_string) are stable, for the event log and the campaigns to count. kSearch: the planner
+  // finished (or proved there is no plan); the others answer when the time limit, a cancel or a
+  // planner error stopped it first, each only if its plan is valid on the world model as it is now
+  // and ends the mission within the battery left above the reserve:
+  enum class Rung {
+    kSearch,        // "search"
+    kBestSoFar,     // "best-so-far": the best plan the planner had when its time ran out
+    kCurrentPlan,   // "current-plan": the rest of the current plan, replayed: it still holds
+    kRepairedPlan,  // "repaired-plan": the current plan's tasks left, in its order, on new routes,
+                    // those that became impossible or no longer fit the battery dropped
+    kGreedy,        // "greedy": the cheapest insertion of the tasks left from the robot's place
+    kNearestExit,   // "nearest-exit": every task left dropped, the nearest reachable exit
+  };
+  Rung rung = Rung::kSearch;
   domain::Plan plan;
   fusion::FusedPlan fused;
   std::vector<TaskId> goals;                       // the tasks the plan does
@@ -121,6 +139,10 @@ Result<void> check_progress(const domain::MissionProgress& progress, std::uint8_
 // text.
 std::string_view to_string(PlanResponse::Decision decision);
 std::optional<PlanResponse::Decision> parse_decision(std::string_view name);
+// The stable name of a rung ("search", "best-so-far", "current-plan", "repaired-plan", "greedy",
+// "nearest-exit") and back; parse_rung is empty for any other text.
+std::string_view to_string(PlanResponse::Rung rung);
+std::optional<PlanResponse::Rung> parse_rung(std::string_view name);
 // kFollowPlan, kDegraded and kExitOnReserve: there is a plan to carry out.
 bool has_plan(PlanResponse::Decision decision);
 // kCallForRecovery and kStuck: the robot switches its locator beacon on.
@@ -131,10 +153,17 @@ struct ReplannerOptions {
   // improvement search after the first plan (for a task beyond exhaustive A*, the tour search's
   // plan: bench/executor/replan_bench.cc); give it expansions to trade time for cost.
   // `planner.time_limit_s` (0: none) is the deadline of each plan() and report_failure() as a
-  // whole, and `planner.cancel` cuts it short: either way the answer is the safe one: the rest of
-  // the current plan if it still holds (kFollowPlan; a replay, no search), else the nearest
-  // reachable exit (kDegraded), found by one search that neither bounds: it may overshoot the
-  // deadline by that search (bench/executor/deadline_bench.cc).
+  // whole, and `planner.cancel` cuts it short: either way the answer is the first safe one of an
+  // anytime ladder (PlanResponse::Rung): the best plan the planner had by then (kBestSoFar); the
+  // rest of the current plan if it still holds (kCurrentPlan, kFollowPlan; a replay, no search);
+  // the current plan's tasks left in its order on new routes, those that cannot be done dropped
+  // (kRepairedPlan); the cheapest insertion of the tasks left (kGreedy); the nearest reachable exit
+  // (kNearestExit, kDegraded). Each is checked as a plan is (valid on the world model as it is
+  // now, ending the mission within the battery left above the reserve), or the next is tried. The
+  // last three each take one compile that the limit does not bound (a cancel does, but for the
+  // nearest exit), and are deterministic: they may overshoot the deadline by that compile
+  // (bench/executor/deadline_bench.cc). The paper-era baseline (kPaperBaseline) skips the
+  // repaired plan and the greedy insertion: its answer past a limit stays the nearest exit.
   // `planner.risk` (domain::RiskCosts, default none) makes every plan and replan risk-aware
   // where the mission has hazards (Mission::hazards: plan --risk expected, docs/planning.md):
   // routes and task orders weigh the expected cost of a possible blockage, more on the way back
@@ -214,6 +243,15 @@ class Replanner {
   // replay on the world model as it is now (with what was learnt since) to the mission's end
   // within the battery left. One replay of each: no search.
   std::optional<search::PlanOutcome> rest_of_current_plan() const;
+  // Rungs kRepairedPlan and kGreedy, for when the planner stopped (`why`): the first whose plan
+  // is safe(), its tasks left out dropped for `why`; empty if neither.
+  std::optional<search::PlanOutcome> quick_answer(const std::string& why, PlanResponse::Rung& rung);
+  // The tasks the last plan answered still had to do, in its order.
+  std::vector<TaskId> tasks_of_current_plan() const;
+  // Whether `outcome`'s plan, from progress() with the tasks dropped so far and those it drops
+  // counted as done, is valid on the world model as it is now and ends the mission within the
+  // battery left above the reserve; its validation report if so.
+  std::optional<domain::ValidationReport> safe(const search::PlanOutcome& outcome) const;
   // The first task `plan` does from progress(), if any.
   std::optional<TaskId> first_task_of(const domain::Plan& plan) const;
   PlanResponse respond(search::PlanOutcome outcome, const std::string& reason, double seconds);

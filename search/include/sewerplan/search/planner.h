@@ -22,6 +22,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string_view>
 
 #include "sewerplan/core/clock.h"
@@ -114,6 +115,10 @@ struct PlanOutcome {
   // Set when no plan keeps the contingency reserves (PlannerOptions::contingency) and the plan
   // was made without them.
   std::string contingency_note;
+  // The time limit (or a cancel) stopped the planner after a first plan, before it had done all
+  // it meant to (the tour search's local search, the exact search or the improvement): the plan
+  // is the best found by then (the Replanner's anytime answer "best-so-far").
+  bool best_so_far = false;
 };
 
 // kAuto's choice for `task`; any other algorithm is returned as it is.
@@ -127,5 +132,23 @@ std::unique_ptr<SearchEngine> make_engine(Algorithm algorithm, const domain::Com
 Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
                                  const domain::MissionProgress& progress,
                                  const PlannerOptions& options);
+
+// The quick answers of a planner past its deadline (the Replanner's anytime ladder,
+// executor/replanner.h, docs/planning.md): one compile without a time limit (options.cancel is
+// honoured), risk-blind, then a tour without local search or improvement (tour_search.h):
+// deterministic, and microseconds beyond the compile. Where no plan keeps the contingency reserves,
+// the plan without them (PlanOutcome::contingency_note), as plan_mission does.
+// plan_greedily: the cheapest insertion of the tasks left from the robot's place, leaving out
+// those that do not fit the battery (with options.select_goals; else kNoPlan when not all fit).
+// plan_in_order: the tasks of `order` still pending, in that order (the mission's final task last),
+// every other task left out, and while that does not fit the battery, the task whose absence
+// leaves the cheapest plan left out too (needs options.select_goals to leave any out).
+// kNoPlan: the task is not of the tour's shape, or nothing fits; kCancelled.
+Result<PlanOutcome> plan_greedily(const SewerMap& map, const Mission& mission,
+                                  const domain::MissionProgress& progress,
+                                  const PlannerOptions& options);
+Result<PlanOutcome> plan_in_order(const SewerMap& map, const Mission& mission,
+                                  const domain::MissionProgress& progress,
+                                  std::span<const TaskId> order, const PlannerOptions& options);
 
 }  // namespace sewerplan::search

@@ -24,6 +24,7 @@
 #pragma once
 
 #include <optional>
+#include <span>
 
 #include "sewerplan/domain/compiled_task.h"
 #include "sewerplan/search/search_engine.h"
@@ -41,7 +42,12 @@ struct TourReport {
   // The real cost of the cheapest order of all goals found (kInfiniteCost: none), also when it
   // does not fit the bound.
   Cost cheapest_order = domain::kInfiniteCost;
-  std::optional<SearchStatus> stopped;  // the stop condition fired: no plan
+  // The stop condition fired: no plan, unless best_so_far.
+  std::optional<SearchStatus> stopped;
+  // It fired in the local search, after the cheapest insertion gave an order of every goal that
+  // fits the bound: the plan is that order as far as the local search improved it (the planner's
+  // anytime answer, PlanOutcome::best_so_far).
+  bool best_so_far = false;
 };
 
 std::optional<SearchResult> tour_search(const domain::CompiledTask& task,
@@ -60,6 +66,22 @@ std::optional<SearchResult> tour_search(const domain::CompiledTask& task,
 // every goal within it are then looked for, and subsets that cannot be completed within it are
 // dropped early (the planner's improvement after the tour search). bench/search/exact_bench.cc has
 // its speed and the default planner's gap to it.
+// The quick answers of a planner past its deadline (the Replanner's anytime ladder,
+// executor/replanner.h): no local search, so each is deterministic and takes microseconds on a
+// compiled task (O(goals^3 x options-per-goal^2) at most, for the insertion).
+// greedy_tour: the cheapest insertion from the start, with goals left out for the bound as
+// tour_search does. ordered_tour: the goals of `order` (goal variables) in that order, the final
+// goal (one that needs every other done) last wherever it is given, every other goal forgone;
+// while that does not fit the bound, the goal whose absence leaves the cheapest plan is forgone
+// too. Empty when the task is not of the tour's shape, `order` names a variable twice or one that
+// is not a goal, a goal to forgo cannot be, or nothing fits; each plan is checked on the task.
+std::optional<SearchResult> greedy_tour(const domain::CompiledTask& task,
+                                        const StopCondition& stop = {},
+                                        const Clock* clock = nullptr);
+std::optional<SearchResult> ordered_tour(const domain::CompiledTask& task,
+                                         std::span<const domain::VarId> order,
+                                         const StopCondition& stop = {});
+
 inline constexpr std::size_t kMaxExactGoals = 20;
 inline constexpr std::size_t kExactDefaultBytes = std::size_t{600} << 20U;  // 600 MB
 std::optional<SearchResult> exact_tour_search(const domain::CompiledTask& task,
