@@ -123,7 +123,8 @@ class Executor::Run {
                  [this](const Job& job, const hal::JobReport& heard) {
                    return recovered_report(job, heard);
                  },
-             .log_recovery = [this](RecoveryPhase phase, bool ok) { log_recovery(phase, ok); }}),
+             .log_recovery = [this](RecoveryPhase phase, bool ok) { log_recovery(phase, ok); },
+             .settle_elsewhere = [this] { return settle_elsewhere(); }}),
         done_(e.replanner_.progress().done) {}
 
   MissionReport go() {
@@ -385,6 +386,20 @@ class Executor::Run {
     why << "the robot is " << localisation::describe(believed.pose, map_) << " (p=" << std::fixed
         << std::setprecision(2) << believed.probability << "), not " << tracked;
     return why.str();
+  }
+
+  // A drive to a manhole that saw none within its bound: where the filter believes the robot in
+  // another pipe (it drove through the manhole unseen), the tracking moves there, and the plan is
+  // made again from there (StagedRecovery). Retrying drove the robot on, 2 m at a time, away from
+  // the manhole it missed, and the pipe beyond was then closed as blocked, often the robot's way
+  // home.
+  bool settle_elsewhere() {
+    const auto* in = std::get_if<domain::InPipe>(&tracker_.position());
+    if (in == nullptr) return false;
+    const std::optional<localisation::Hypothesis> best = believed_elsewhere(in->pipe);
+    if (!best) return false;
+    (void)settle_on(*best);
+    return true;
   }
 
   // A blockage or danger met in a pipe other than the one the tracking has the robot in, by the

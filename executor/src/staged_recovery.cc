@@ -96,6 +96,14 @@ std::optional<Failure> StagedRecovery::run_job(const Job& job, const fusion::Rob
       continue;
     }
     if (kind == hal::RobotErrorKind::kDanger) return danger(current, action, r);
+    // Past the manhole it was driving to, unseen: backing up and retrying would only drive on
+    // (2 m further each time, into the pipe beyond). Where the robot is believed elsewhere, the
+    // job ends there, and the run loop plans again from that place (the tracking no longer
+    // agrees with the plan's).
+    if (r.error->cause == hal::RobotErrorCause::kNoManholeSeen && host_.settle_elsewhere &&
+        host_.settle_elsewhere()) {
+      return std::nullopt;
+    }
     auto rest = rest_of(current, r.progress_m);
     if (!rest) return danger(current, action, r);  // blocked in a manhole: as a danger
     Cleared cleared = clear_blockage(*rest);

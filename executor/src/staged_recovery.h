@@ -40,6 +40,10 @@ struct RecoveryHost {
   std::function<std::optional<hal::JobReport>(const Job& job, const hal::JobReport& heard)>
       recovered_report;
   std::function<void(RecoveryPhase phase, bool ok)> log_recovery;
+  // After a drive to a manhole that went its bound and saw none: true when the tracking moved to
+  // where the localisation believes the robot is, in another pipe (a manhole driven through
+  // unseen). Empty: never.
+  std::function<bool()> settle_elsewhere;
 };
 
 class StagedRecovery {

@@ -180,5 +180,43 @@ TEST(ManholeVerification, AnObstacleBeyondAManholePassedUnseenClosesThePipeItIsI
       << failures.front().detail;
 }
 
+// The robot drives through M2 unseen and on, 4.5 m into P2, where its drive to M2 reaches its
+// bound: "no manhole seen". The localisation believes it in P2, past M2; the controller plans
+// again from there at once. It used to back up and retry, driving on 2 m each time, away from
+// the manhole it missed, and then closed the pipe as blocked.
+TEST(ManholeVerification, ADriveThatMissedItsManholeIsPlannedOnFromBeyondIt) {
+  const SewerMap map = testing::SmallMap()
+                           .manhole("M1", 0, 0, /*exit=*/true)
+                           .manhole("M2", 20, 0)
+                           .manhole("M3", 40, 0, /*exit=*/true)
+                           .pipe("P1", "M1", "M2")
+                           .pipe("P2", "M2", "M3")
+                           .build();
+  Mission mission = testing::small_mission(map, "P1");
+  testing::add_task(mission, map, "inspect-P2", TaskKind::kInspectPipe, "P2");
+  ManualClock clock;
+  Replanner replanner(map, mission, {.clock = &clock});
+  const auto& in = std::get<domain::InPipe>(replanner.progress().position);
+  hal::SimRobot robot(map, mission.profile,
+                      hal::InPipe{in.pipe, in.offset_m, hal::Heading::kTowardsEnd1}, {},
+                      hal::SimOptions{.sensing = {.missed_share = 1.0, .observe = true}});
+  Executor executor(map, replanner, robot);
+  std::vector<std::string> replans;
+  std::size_t recoveries_before = 0;
+  std::size_t failures_before = 0;
+  executor.subscribe([&](const Event& e) {
+    if (const auto* plan = std::get_if<PlanEvent>(&e.what); plan != nullptr && plan->replan)
+      replans.push_back(plan->reason);
+    if (!replans.empty()) return;
+    if (std::holds_alternative<RecoveryEvent>(e.what)) ++recoveries_before;
+    if (std::holds_alternative<FailureEvent>(e.what)) ++failures_before;
+  });
+  (void)executor.run();
+  ASSERT_FALSE(replans.empty());
+  EXPECT_NE(replans.front().find("the robot is in pipe P2"), std::string::npos) << replans.front();
+  EXPECT_EQ(recoveries_before, 0U) << replans.front();
+  EXPECT_EQ(failures_before, 0U) << replans.front();
+}
+
 }  // namespace
 }  // namespace sewerplan::executor
