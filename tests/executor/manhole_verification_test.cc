@@ -142,29 +142,42 @@ TEST(ManholeVerification, AMouthTheWorldLacksClosesItsPipeThere) {
   EXPECT_GE(closed, 1U);
 }
 
+// M1 -P1 (20 m)- M2 -P2 (20 m)- M3, both ends exits, a task in P2; the robot starts in the middle
+// of P1 facing M2, on a simulated robot that sees no manhole at all (every arrival missed).
+struct MissingEveryManhole {
+  SewerMap map = testing::SmallMap()
+                     .manhole("M1", 0, 0, /*exit=*/true)
+                     .manhole("M2", 20, 0)
+                     .manhole("M3", 40, 0, /*exit=*/true)
+                     .pipe("P1", "M1", "M2")
+                     .pipe("P2", "M2", "M3")
+                     .build();
+  Mission mission = [this] {
+    Mission m = testing::small_mission(map, "P1");
+    testing::add_task(m, map, "inspect-P2", TaskKind::kInspectPipe, "P2");
+    return m;
+  }();
+  ManualClock clock;
+  Replanner replanner{map, mission, {.clock = &clock}};
+
+  hal::SimRobot robot(hal::FaultScenario faults = {}) const {
+    const auto& in = std::get<domain::InPipe>(replanner.progress().position);
+    return hal::SimRobot(
+        map, mission.profile, hal::InPipe{in.pipe, in.offset_m, hal::Heading::kTowardsEnd1},
+        std::move(faults), hal::SimOptions{.sensing = {.missed_share = 1.0, .observe = true}});
+  }
+};
+
 // The robot drives through M2 without seeing it (every manhole goes unseen here) and meets an
 // obstacle 4 m into P2. The tracking has it at the end of P1 (a drive to M2 that saw none); the
 // filter, by the distance driven, in P2. The blockage is P2's: closing P1 instead cut the robot's
 // own way back (a 1,000-manhole meshed campaign: beacons where an exit was in reach).
 TEST(ManholeVerification, AnObstacleBeyondAManholePassedUnseenClosesThePipeItIsIn) {
-  const SewerMap map = testing::SmallMap()
-                           .manhole("M1", 0, 0, /*exit=*/true)
-                           .manhole("M2", 20, 0)
-                           .manhole("M3", 40, 0, /*exit=*/true)
-                           .pipe("P1", "M1", "M2")
-                           .pipe("P2", "M2", "M3")
-                           .build();
-  Mission mission = testing::small_mission(map, "P1");
-  testing::add_task(mission, map, "inspect-P2", TaskKind::kInspectPipe, "P2");
-  ManualClock clock;
-  Replanner replanner(map, mission, {.clock = &clock});
-  const auto& in = std::get<domain::InPipe>(replanner.progress().position);
+  MissingEveryManhole w;
   hal::FaultScenario faults;
-  faults.obstacles.push_back({.pipe = *map.find_pipe("P2"), .offset_m = 4.0});
-  hal::SimRobot robot(map, mission.profile,
-                      hal::InPipe{in.pipe, in.offset_m, hal::Heading::kTowardsEnd1}, faults,
-                      hal::SimOptions{.sensing = {.missed_share = 1.0, .observe = true}});
-  Executor executor(map, replanner, robot);
+  faults.obstacles.push_back({.pipe = *w.map.find_pipe("P2"), .offset_m = 4.0});
+  hal::SimRobot robot = w.robot(faults);
+  Executor executor(w.map, w.replanner, robot);
   std::vector<FailureEvent> failures;
   executor.subscribe([&](const Event& e) {
     if (const auto* f = std::get_if<FailureEvent>(&e.what)) failures.push_back(*f);
@@ -185,22 +198,9 @@ TEST(ManholeVerification, AnObstacleBeyondAManholePassedUnseenClosesThePipeItIsI
 // again from there at once. It used to back up and retry, driving on 2 m each time, away from
 // the manhole it missed, and then closed the pipe as blocked.
 TEST(ManholeVerification, ADriveThatMissedItsManholeIsPlannedOnFromBeyondIt) {
-  const SewerMap map = testing::SmallMap()
-                           .manhole("M1", 0, 0, /*exit=*/true)
-                           .manhole("M2", 20, 0)
-                           .manhole("M3", 40, 0, /*exit=*/true)
-                           .pipe("P1", "M1", "M2")
-                           .pipe("P2", "M2", "M3")
-                           .build();
-  Mission mission = testing::small_mission(map, "P1");
-  testing::add_task(mission, map, "inspect-P2", TaskKind::kInspectPipe, "P2");
-  ManualClock clock;
-  Replanner replanner(map, mission, {.clock = &clock});
-  const auto& in = std::get<domain::InPipe>(replanner.progress().position);
-  hal::SimRobot robot(map, mission.profile,
-                      hal::InPipe{in.pipe, in.offset_m, hal::Heading::kTowardsEnd1}, {},
-                      hal::SimOptions{.sensing = {.missed_share = 1.0, .observe = true}});
-  Executor executor(map, replanner, robot);
+  MissingEveryManhole w;
+  hal::SimRobot robot = w.robot();
+  Executor executor(w.map, w.replanner, robot);
   std::vector<std::string> replans;
   std::size_t recoveries_before = 0;
   std::size_t failures_before = 0;
