@@ -67,6 +67,17 @@ struct Street {
     EXPECT_TRUE(f.has_value());
     return std::move(f).value();
   }
+  // A filter at M3 from P2, passed straight on into P3 and `forward_m` along it (odometry sigma
+  // `sigma_m`) without a detection.
+  TopologicalFilter into_p3(double forward_m, double sigma_m,
+                            LocalisationOptions options = {}) const {
+    TopologicalFilter f = filter(options);
+    EXPECT_TRUE(f.reset({.position = at("M3", "P2")}).has_value());
+    EXPECT_TRUE(f.pass(manhole("M3"), slot("M3", "P2"), slot("M3", "P3")).has_value());
+    EXPECT_TRUE(f.drive(forward_m, DriveDirection::kForward, sigma_m).has_value());
+    EXPECT_TRUE(f.no_manhole_within(forward_m).has_value());
+    return f;
+  }
   // A filter at M1, having entered P1 towards M2.
   TopologicalFilter in_p1(LocalisationOptions options = {}) const {
     TopologicalFilter f = filter(options);
@@ -333,11 +344,7 @@ TEST(TopologicalFilter, BackingUpReturnsToTheLastVerifiedManhole) {
 // the mission believing itself at its exit, far from it).
 TEST(TopologicalFilter, BackingPastTheMouthBehindUnseenGoesOnIntoThePipeBeyond) {
   Street s;
-  TopologicalFilter f = s.filter();
-  ASSERT_TRUE(f.reset({.position = s.at("M3", "P2")}).has_value());
-  ASSERT_TRUE(f.pass(s.manhole("M3"), s.slot("M3", "P2"), s.slot("M3", "P3")).has_value());
-  ASSERT_TRUE(f.drive(20, DriveDirection::kForward, 0.6).has_value());
-  ASSERT_TRUE(f.no_manhole_within(20).has_value());
+  TopologicalFilter f = s.into_p3(20, 0.6);
   // Back to M3 (20 m), but it goes on 8 m beyond without seeing a manhole.
   ASSERT_TRUE(f.drive(28, DriveDirection::kBackward, 0.84).has_value());
   ASSERT_TRUE(f.no_manhole_within(28).has_value());
@@ -369,11 +376,7 @@ TEST(TopologicalFilter, BackingPastTheMouthBehindUnseenGoesOnIntoThePipeBeyond) 
 // still most likely short of the mouth (the pipe is longer): the place beyond stays possible.
 TEST(TopologicalFilter, BackingJustPastTheMouthBehindKeepsBothPlaces) {
   Street s;
-  TopologicalFilter f = s.filter();
-  ASSERT_TRUE(f.reset({.position = s.at("M3", "P2")}).has_value());
-  ASSERT_TRUE(f.pass(s.manhole("M3"), s.slot("M3", "P2"), s.slot("M3", "P3")).has_value());
-  ASSERT_TRUE(f.drive(20, DriveDirection::kForward, 0.6).has_value());
-  ASSERT_TRUE(f.no_manhole_within(20).has_value());
+  TopologicalFilter f = s.into_p3(20, 0.6);
   ASSERT_TRUE(f.drive(21, DriveDirection::kBackward, 0.63).has_value());
   ASSERT_TRUE(f.no_manhole_within(21).has_value());
   const Estimate e = f.estimate();
@@ -400,11 +403,7 @@ TEST(TopologicalFilter, BackingJustPastTheMouthBehindKeepsBothPlaces) {
 TEST(TopologicalFilter, AnOdometryOutlierStillArrivesAtTheRightManhole) {
   Street s;
   const auto back_to_m3 = [&](LocalisationOptions options) {
-    TopologicalFilter f = s.filter(options);
-    EXPECT_TRUE(f.reset({.position = s.at("M3", "P2")}).has_value());
-    EXPECT_TRUE(f.pass(s.manhole("M3"), s.slot("M3", "P2"), s.slot("M3", "P3")).has_value());
-    EXPECT_TRUE(f.drive(7, DriveDirection::kForward, 0.3).has_value());
-    EXPECT_TRUE(f.no_manhole_within(7).has_value());
+    TopologicalFilter f = s.into_p3(7, 0.3, options);
     EXPECT_TRUE(f.drive(10.5, DriveDirection::kBackward, 0.3).has_value());
     EXPECT_TRUE(f.arrive(s.seen("M3", "P3")).has_value());
     return f.estimate();
