@@ -139,11 +139,23 @@ std::string pair_problem(std::size_t seen_index, const SlotSighting& want, const
   return {};
 }
 
+// Two mouths a few degrees apart (two pipes entering side by side; the official ISYBAU sample has
+// them 6 degrees apart) are seen in either order counter-clockwise, depending on the noise and on
+// how far the map's directions are off: pairing them in the map's order scored the right manhole
+// as two missing mouths and two the map lacks, and the robot read its arrival as a false
+// detection. So a pairing may swap neighbours: `want_a` with `seen_b` and `want_b` with `seen_a`.
+double swapped_log(const SlotSighting& want_a, const SlotSighting& want_b,
+                   const SlotSighting& seen_a, const SlotSighting& seen_b,
+                   const SignatureNoise& noise) {
+  return pair_log(want_a, seen_b, noise) + pair_log(want_b, seen_a, noise);
+}
+
 // Pairs the mouths of two signatures with different slot counts: both lists run
 // counter-clockwise from the arrival mouth (paired with each other), so the pairing keeps their
-// order, and each mouth left unpaired (one the map lacks, or one the world lacks) costs
-// kSlotCountLogPenalty. The pairing of most likelihood (an alignment, O(expected x observed)).
-// Adds its log-likelihood to `match` and names the first difference.
+// order but for swapped neighbours (swapped_log), and each mouth left unpaired (one the map lacks,
+// or one the world lacks) costs kSlotCountLogPenalty. The pairing of most likelihood (an
+// alignment, O(expected x observed)). Adds its log-likelihood to `match` and names the first
+// difference.
 void compare_unequal(const ManholeSignature& expected, const ManholeSignature& observed,
                      const SignatureNoise& noise, SignatureMatch& match) {
   const std::size_t e = expected.slots.size();
@@ -151,7 +163,7 @@ void compare_unequal(const ManholeSignature& expected, const ManholeSignature& o
   // best[i][j]: the pairing of expected mouths 1..i with observed mouths 1..j.
   const std::size_t width = o;
   std::vector<double> best(e * o, 0.0);
-  enum Step : unsigned char { kPair, kExpectedAlone, kObservedAlone };
+  enum Step : unsigned char { kPair, kSwap, kExpectedAlone, kObservedAlone };
   std::vector<Step> how(e * o, kPair);
   for (std::size_t i = 0; i < e; ++i) {
     for (std::size_t j = 0; j < o; ++j) {
@@ -161,6 +173,15 @@ void compare_unequal(const ManholeSignature& expected, const ManholeSignature& o
       if (i > 0 && j > 0) {
         value =
             best[(i - 1) * width + j - 1] + pair_log(expected.slots[i], observed.slots[j], noise);
+      }
+      if (i > 1 && j > 1) {
+        const double swap = best[(i - 2) * width + j - 2] +
+                            swapped_log(expected.slots[i - 1], expected.slots[i],
+                                        observed.slots[j - 1], observed.slots[j], noise);
+        if (swap > value) {
+          value = swap;
+          step = kSwap;
+        }
       }
       if (i > 0 && best[(i - 1) * width + j] + kSlotCountLogPenalty > value) {
         value = best[(i - 1) * width + j] + kSlotCountLogPenalty;
@@ -184,6 +205,15 @@ void compare_unequal(const ManholeSignature& expected, const ManholeSignature& o
         if (!problem.empty()) reason = std::move(problem);
         --i;
         --j;
+        break;
+      }
+      case kSwap: {
+        std::string problem = pair_problem(j, expected.slots[i - 1], observed.slots[j], noise);
+        if (problem.empty())
+          problem = pair_problem(j - 1, expected.slots[i], observed.slots[j - 1], noise);
+        if (!problem.empty()) reason = std::move(problem);
+        i -= 2;
+        j -= 2;
         break;
       }
       case kExpectedAlone:
@@ -219,9 +249,23 @@ SignatureMatch compare(const ManholeSignature& expected, const ManholeSignature&
   if (expected.slots.size() != observed.slots.size()) {
     compare_unequal(expected, observed, noise, match);
   } else {
-    for (std::size_t i = 1; i < expected.slots.size(); ++i) {
-      match.log_likelihood += pair_log(expected.slots[i], observed.slots[i], noise);
-      std::string problem = pair_problem(i, expected.slots[i], observed.slots[i], noise);
+    // In order, but for neighbours seen swapped (swapped_log).
+    const std::size_t n = expected.slots.size();
+    std::vector<std::size_t> seen_as(n);
+    for (std::size_t i = 0; i < n; ++i) seen_as[i] = i;
+    for (std::size_t i = 1; i + 1 < n; ++i) {
+      const SlotSighting& a = expected.slots[i];
+      const SlotSighting& b = expected.slots[i + 1];
+      if (swapped_log(a, b, observed.slots[i], observed.slots[i + 1], noise) >
+          pair_log(a, observed.slots[i], noise) + pair_log(b, observed.slots[i + 1], noise)) {
+        std::swap(seen_as[i], seen_as[i + 1]);
+        ++i;
+      }
+    }
+    for (std::size_t i = 1; i < n; ++i) {
+      const SlotSighting& seen = observed.slots[seen_as[i]];
+      match.log_likelihood += pair_log(expected.slots[i], seen, noise);
+      std::string problem = pair_problem(seen_as[i], expected.slots[i], seen, noise);
       if (match.matches && !problem.empty()) {
         match.matches = false;
         match.reason = std::move(problem);

@@ -98,6 +98,33 @@ TEST(ManholeSignature, AnExtraOrMissingMouthIsPairedAroundNotShifted) {
   EXPECT_GT(gone.log_likelihood, same.log_likelihood + 2 * kSlotCountLogPenalty);
 }
 
+// Two pipes entering side by side (6 degrees apart on the official ISYBAU sample): with the
+// direction noise, or a map direction off, they are seen in the other order counter-clockwise. The
+// pairing follows the pipes (told apart by their sizes), with or without a mouth the map lacks;
+// in the map's order the right manhole scored two mouths missing and two extra, and the robot
+// read its arrival as a false detection.
+TEST(ManholeSignature, NeighboursSeenInTheOtherOrderArePairedWithTheirPipes) {
+  const ManholeSignature want{.slots = {{0, 0, 0.5}, {92, 0, 0.3}, {180, 0, 0.4}, {186, 0, 0.1}},
+                              .shaft_diameter_m = 1.2};
+  ManholeSignature swapped = want;
+  swapped.slots[2] = {172, 0, 0.1};
+  swapped.slots[3] = {174, 0, 0.4};
+  const SignatureMatch same = compare(want, want);
+  const SignatureMatch seen = compare(want, swapped);
+  EXPECT_TRUE(seen.matches) << seen.reason;
+  // Only the directions' differences (6 and 14 degrees, at 8 degrees of noise) cost anything.
+  const double direction_cost = 0.5 * (6.0 / 8) * (6.0 / 8) + 0.5 * (14.0 / 8) * (14.0 / 8);
+  EXPECT_NEAR(seen.log_likelihood, same.log_likelihood - direction_cost, 1e-9);
+
+  ManholeSignature with_lateral = swapped;
+  with_lateral.slots.push_back({258, 0.23, 0.2});
+  const SignatureMatch extra = compare(want, with_lateral);
+  EXPECT_FALSE(extra.matches);
+  EXPECT_EQ(extra.reason, "5 slots seen, 4 expected: slot 5 at 258° is not on the map");
+  EXPECT_TRUE(extra.unseen.empty());
+  EXPECT_NEAR(extra.log_likelihood, seen.log_likelihood + kSlotCountLogPenalty, 1e-9);
+}
+
 TEST(ManholeSignature, ImpossibleObservationsAreErrors) {
   ManholeSignature none;
   none.shaft_diameter_m = 1;
