@@ -66,7 +66,7 @@ double gaussian_term(double difference, double sigma) {
 }
 
 double unmapped_junction_log_likelihood(const ManholeSignature& observed, double pipe_diameter_m,
-                                        const SignatureNoise& noise) {
+                                        double min_shaft_m, const SignatureNoise& noise) {
   const std::size_t n = observed.slots.size();
   if (n < 2) return kNegativeInfinity;
   double best_straight = kNegativeInfinity;
@@ -77,8 +77,12 @@ double unmapped_junction_log_likelihood(const ManholeSignature& observed, double
         unknown(kStepRangeM) + gaussian_term(s.diameter_m - pipe_diameter_m, noise.diameter_m);
     best_straight = std::max(best_straight, straight);
   }
+  // A shaft below a manhole's is a widening of the pipe, not a manhole (a false detection).
+  const double narrower_m = std::max(0.0, min_shaft_m - observed.shaft_diameter_m);
+  const double shaft = unknown(std::max(kShaftRangeM - min_shaft_m, noise.shaft_m)) -
+                       0.5 * (narrower_m / noise.shaft_m) * (narrower_m / noise.shaft_m);
   return gaussian_term(observed.slots[0].diameter_m - pipe_diameter_m, noise.diameter_m) +
-         best_straight + static_cast<double>(n - 2) * unknown_slot() + unknown(kShaftRangeM);
+         best_straight + static_cast<double>(n - 2) * unknown_slot() + shaft;
 }
 
 double false_detection_log_likelihood(const ManholeSignature& observed) {

@@ -44,10 +44,11 @@ double gaussian_term(double difference, double sigma);
 
 // The log-likelihood of `observed` if it is a manhole the map lacks in a pipe of clear size
 // `pipe_diameter_m`: the arrival mouth and one mouth straight on (within the direction noise) are
-// that pipe's; every other mouth, each step and the shaft are unknown. Needs two mouths or more
-// (a junction in a pipe continues it): kNegativeInfinity with fewer.
+// that pipe's; every other mouth and each step are unknown; the shaft is a manhole's, at least
+// `min_shaft_m` wide (uniform from there up to the largest shaft, a Gaussian tail below). Needs two
+// mouths or more (a junction in a pipe continues it): kNegativeInfinity with fewer.
 double unmapped_junction_log_likelihood(const ManholeSignature& observed, double pipe_diameter_m,
-                                        const SignatureNoise& noise);
+                                        double min_shaft_m, const SignatureNoise& noise);
 
 // The log-likelihood of `observed` if the detection saw nothing real: every measurement unknown.
 double false_detection_log_likelihood(const ManholeSignature& observed);

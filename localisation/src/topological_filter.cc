@@ -59,6 +59,10 @@ Result<void> check_options(const LocalisationOptions& o) {
     return bad("miss_probability", o.miss_probability, "in [0, 0.999]");
   if (!finite_in(o.unmapped_junctions_per_m, 0, 1))
     return bad("unmapped_junctions_per_m", o.unmapped_junctions_per_m, "in [0, 1]");
+  if (!finite_in(o.min_junction_spacing_m, 0, 100))
+    return bad("min_junction_spacing_m", o.min_junction_spacing_m, "in [0, 100]");
+  if (!finite_in(o.min_junction_shaft_m, 0, 2))
+    return bad("min_junction_shaft_m", o.min_junction_shaft_m, "in [0, 2]");
   if (!finite_in(o.false_detections_per_m, 0, 1))
     return bad("false_detections_per_m", o.false_detections_per_m, "in [0, 1]");
   if (!finite_in(o.odometry_outlier_share, 0, 0.5))

@@ -180,10 +180,13 @@ struct ArrivalExplainer {
   void alternatives(const Track& frame, double log_here) {
     const Pipe& pipe = map.pipe(frame.pipe);
     const double offset = offset_from_start(pipe, frame.heading_end, frame.travelled_m);
-    if (log_junction != kNegativeInfinity) {
-      const double fit =
-          observation ? unmapped_junction_log_likelihood(*observation, pipe.diameter_m, o.noise)
-                      : 0.0;
+    const bool room_for_junction =
+        offset >= o.min_junction_spacing_m && offset <= pipe.length_m - o.min_junction_spacing_m;
+    if (log_junction != kNegativeInfinity && room_for_junction) {
+      const double fit = observation
+                             ? unmapped_junction_log_likelihood(*observation, pipe.diameter_m,
+                                                                o.min_junction_shaft_m, o.noise)
+                             : 0.0;
       Track j = frame;
       j.kind = Track::Kind::kAtJunction;
       j.log_weight = track.log_weight + log_here + log_detect + log_junction + fit;
@@ -335,10 +338,13 @@ std::optional<Track> turned(const TopologicalFilter& filter, const Track& track,
     }
     case Track::Kind::kAtJunction:
     case Track::Kind::kInPipe: {
-      // A manhole the map lacks, or no manhole at all: only straight on stays on the map.
+      // A manhole the map lacks, or no manhole at all: only straight on stays on the map. Through
+      // a junction rear first, the robot leaves front first: it faces the end it was backing to.
       if (std::abs(normalize_deg(relative_deg - 180.0)) > o.straight_through_deg)
         return std::nullopt;
-      Track c = track;
+      const bool rear_first =
+          track.kind == Track::Kind::kAtJunction && track.moving_end != track.heading_end;
+      Track c = rear_first ? mirrored(map, track) : track;
       c.kind = Track::Kind::kInPipe;
       c.moving_end = c.heading_end;
       c.cleared_m = c.travelled_m;

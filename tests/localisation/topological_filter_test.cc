@@ -326,6 +326,70 @@ TEST(TopologicalFilter, AFalseDetectionMidPipeIsExplainedAsOne) {
   EXPECT_EQ(f.estimate().best().pose.position, s.at("M2", "P1"));
 }
 
+// A manhole the map lacks is a shaft between two pipe pieces: never 0.4 m from a mapped manhole.
+// Arriving at M3 0.4 m short by the odometry, with a lateral the map lacks, the robot is at M3,
+// not at a junction beside it (on the official ISYBAU sample such a junction was closed as a
+// blockage and cut the robot's way out).
+TEST(TopologicalFilter, ASightingBesideAMappedManholeIsThatManholeNotAJunction) {
+  Street s;
+  TopologicalFilter f = s.filter();
+  ASSERT_TRUE(f.reset({.position = s.at("M2", "P1")}).has_value());
+  ASSERT_TRUE(f.pass(s.manhole("M2"), s.slot("M2", "P1"), s.slot("M2", "P2")).has_value());
+  ASSERT_TRUE(f.drive(23.6, DriveDirection::kForward, 0.7).has_value());
+  ManholeSignature with_lateral = s.seen("M3", "P2");
+  with_lateral.slots.push_back({.relative_deg = 270, .step_m = 0.1, .diameter_m = 0.2});
+  ASSERT_TRUE(f.arrive(with_lateral).has_value());
+  const Estimate e = f.estimate();
+  EXPECT_EQ(find_junction(e), nullptr) << dump(e, s.map);
+  EXPECT_EQ(e.best().pose.position, s.at("M3", "P2")) << dump(e, s.map);
+}
+
+// A detection whose shaft is far narrower than a manhole's is the pipe widening, not a manhole the
+// map lacks: a false detection, and the robot is still in P1 (on a meshed network such a sighting,
+// 0.28 m wide, read as a junction and the pipe the robot had come by was closed behind it).
+TEST(TopologicalFilter, ASightingNarrowerThanAManholeIsNoJunction) {
+  Street s;
+  TopologicalFilter f = s.in_p1();
+  ASSERT_TRUE(f.drive(15, DriveDirection::kForward, 0.45).has_value());
+  const ManholeSignature widening{.slots = {{0, 0, 0.5}, {178, 0, 0.5}}, .shaft_diameter_m = 0.3};
+  ASSERT_TRUE(f.arrive(widening).has_value());
+  const Estimate e = f.estimate();
+  EXPECT_FALSE(e.best().pose.at_unmapped_junction) << dump(e, s.map);
+  EXPECT_EQ(e.best().pose.position, (domain::RobotPosition{domain::InPipe{s.pipe("P1"), 15}}))
+      << dump(e, s.map);
+  ASSERT_FALSE(e.best().assumptions.empty());
+  EXPECT_EQ(e.best().assumptions.back().kind, Assumption::Kind::kFalseDetection);
+}
+
+// Through a junction the map lacks rear first, the robot leaves front first: it then faces the
+// way it was backing, and a forward drive goes on that way (here on to M2). Before, the belief
+// kept its heading, and the robot, driving on, was believed to drive back towards M3.
+TEST(TopologicalFilter, ThroughAJunctionRearFirstTheRobotFacesTheWayItWasBacking) {
+  Street s;
+  TopologicalFilter f = s.filter();
+  // In P2 20 m from M2, facing M3; P2 has a junction the map lacks 12 m along.
+  ASSERT_TRUE(
+      f.reset({.position = domain::InPipe{s.pipe("P2"), 20}, .heading_end = 1}).has_value());
+  ASSERT_TRUE(f.drive(8, DriveDirection::kBackward, 0.24).has_value());
+  ManholeSignature junction = s.seen("M3", "P2");
+  junction.slots.push_back({.relative_deg = 270, .step_m = 0, .diameter_m = 0.3});
+  junction.shaft_diameter_m = 1.0;
+  ASSERT_TRUE(f.arrive(junction).has_value());
+  ASSERT_TRUE(f.estimate().best().pose.at_unmapped_junction) << dump(f.estimate(), s.map);
+  ASSERT_TRUE(f.turn(180).has_value());
+  ASSERT_TRUE(f.drive(6, DriveDirection::kForward, 0.18).has_value());
+  ASSERT_TRUE(f.no_manhole_within(6).has_value());
+  const Estimate half_way = f.estimate();
+  EXPECT_EQ(half_way.best().pose.position, (domain::RobotPosition{domain::InPipe{s.pipe("P2"), 6}}))
+      << dump(half_way, s.map);
+  EXPECT_EQ(half_way.best().pose.heading_end, std::optional<std::uint8_t>{0});
+  ASSERT_TRUE(f.drive(6, DriveDirection::kForward, 0.18).has_value());
+  ASSERT_TRUE(f.arrive(s.seen("M2", "P2")).has_value());
+  const Estimate e = f.estimate();
+  EXPECT_EQ(e.best().pose.position, s.at("M2", "P2")) << dump(e, s.map);
+  EXPECT_GT(e.best().probability, 0.9) << dump(e, s.map);
+}
+
 TEST(TopologicalFilter, BackingUpReturnsToTheLastVerifiedManhole) {
   Street s;
   TopologicalFilter f = s.filter();

@@ -69,6 +69,16 @@ struct LocalisationOptions {
   // one per kilometre, about 4 % of the manholes where they are 40 m apart (the realistic error
   // profile of issue 29 has 3 % of junctions missing from the map).
   double unmapped_junctions_per_m = 0.001;
+  // A manhole the map lacks is a shaft of its own between two pipe pieces: it lies at least this
+  // far from either end of the pipe it splits. A sighting nearer an end is that end's manhole
+  // (seen with a mouth the map lacks, say), never a junction beside it: one 0.4 m from a mapped
+  // manhole was closed as a blockage there and cut the robot's way out.
+  double min_junction_spacing_m = 1.0;
+  // ... and is a manhole: its shaft at least this wide (DIN EN 476's smallest man-entry shaft). A
+  // narrower one is the pipe widening, a false detection: on a 1,000-manhole meshed network a
+  // detection with a 0.28 m shaft, in a pipe the robot had driven through, read as a junction and
+  // the pipe was closed behind it.
+  double min_junction_shaft_m = 0.8;
   // Detections where there is no manhole, per metre driven.
   double false_detections_per_m = 0.0002;
   // Odometry with heavy tails: this share of drives is off by odometry_outlier_scale times the
