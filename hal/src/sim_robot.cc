@@ -231,6 +231,21 @@ JobReport SimRobot::drive(double speed_mps, double distance_m, int direction, bo
   if (const auto* at = std::get_if<AtSlot>(&pose_)) {
     // The way into the pipe is behind the robot when it faces the manhole.
     const int into_pipe = at->facing == Facing::kIntoManhole ? -1 : +1;
+    if (direction != into_pipe && !push) {
+      // Out of the pipe from the mouth it stands at (the controller believed it short of the end,
+      // the pipe being shorter than mapped): the pipe's end stops it at once, as it stops any
+      // drive that reaches it, and the robot sees the manhole unless it misses it. Refusing the
+      // job left the controller rebooting a robot that had nothing wrong with it.
+      JobReport report;
+      const SensingModel& sensing = options_.sensing;
+      const bool missed = sensing.missed_share > 0 && sensing_rng_.bernoulli(sensing.missed_share);
+      if (sensing.observe && !missed) {
+        std::vector<SlotIndex> order = signature_slot_order(map_, at->manhole, at->slot);
+        report.observation = observe(expected_signature(map_, at->manhole, at->slot), &order);
+        sighting_ = Sighting{at->manhole, at->slot, std::move(order)};
+      }
+      return report;
+    }
     if (direction != into_pipe) {
       return failure(RobotErrorCause::kInvalidJob,
                      std::string("cannot drive ") + (direction > 0 ? "forward" : "backward") +

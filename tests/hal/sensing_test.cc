@@ -102,6 +102,25 @@ TEST_F(SensingTest, ObservesTheManholeADriveEndsAt) {
   EXPECT_FALSE(s.execute(DriveForward{0.3, 12}).observation.has_value());
 }
 
+// A drive out of the pipe from the mouth the robot stands at (the controller believed it short
+// of the end, the pipe being shorter than mapped) ends there at once, as any drive that reaches
+// the pipe's end does, and the robot sees the manhole. It was refused as an invalid job, and the
+// controller rebooted a robot with nothing wrong with it until it called for recovery.
+TEST_F(SensingTest, ADriveOutOfThePipeFromItsMouthEndsThereAtOnce) {
+  for (const bool to_manhole : {false, true}) {
+    SimRobot r = robot(InPipe{pipe("P1"), 0, Heading::kTowardsEnd1}, {.observe = true});
+    ASSERT_TRUE(r.execute(DriveForward{0.3, 20, true}).ok());
+    const JobReport again = r.execute(DriveForward{0.3, 1.5, to_manhole});
+    EXPECT_TRUE(again.ok()) << again.error->reason;
+    EXPECT_EQ(again.progress_m, 0);
+    ASSERT_TRUE(again.observation.has_value());
+    EXPECT_EQ(*again.observation, expected_signature(map_, manhole("M2"), m2_slot("P1")));
+    EXPECT_EQ(r.pose(), (SimPose{AtSlot{manhole("M2"), m2_slot("P1"), Facing::kIntoManhole}}));
+    // Backing away from the manhole drives into the pipe as before.
+    EXPECT_NEAR(r.execute(DriveBackward{0.3, 5}).progress_m, 5, 1e-9);
+  }
+}
+
 TEST_F(SensingTest, ANoisyObservationStillMatchesItsManhole) {
   SimRobot r = robot(InPipe{pipe("P1"), 0, Heading::kTowardsEnd1},
                      {.observe = true, .signature_noise = SignatureNoise{}, .seed = 5});

@@ -320,11 +320,17 @@ TEST_F(SimRobotTest, EntersAPipeOnlyFromInsideAManhole) {
   EXPECT_FALSE(r.execute(EnterPipeFromManhole{.slot = 0}).ok());
 }
 
+// Out of the pipe the pipe's end stops a drive at once (as it stops one that reaches it); back
+// into the pipe it drives.
 TEST_F(SimRobotTest, AtAMouthOnlyTheWayBackIntoThePipeIsDrivable) {
-  SimRobot r = robot(AtSlot{manhole("M2"), SlotIndex{0}, Facing::kIntoManhole});
+  const AtSlot mouth{manhole("M2"), SlotIndex{0}, Facing::kIntoManhole};
+  SimRobot r = robot(mouth);
   JobReport forward = r.execute(DriveForward{.speed_mps = 0.3, .distance_m = 1});
-  ASSERT_FALSE(forward.ok());
-  EXPECT_EQ(forward.error->kind, RobotErrorKind::kMalfunction);
+  EXPECT_TRUE(forward.ok());
+  EXPECT_EQ(forward.progress_m, 0);
+  EXPECT_EQ(r.pose(), SimPose(mouth));
+  // A push does not pretend the manhole is not there: refused.
+  EXPECT_FALSE(r.execute(Push{.speed_mps = 0.3, .distance_m = 1}).ok());
   EXPECT_TRUE(r.execute(DriveBackward{.speed_mps = 0.3, .distance_m = 20}).ok());
   // Backed out of P1 into M1's mouth, facing the pipe.
   EXPECT_EQ(r.pose(), SimPose(AtSlot{manhole("M1"), SlotIndex{0}, Facing::kIntoPipe}));
