@@ -419,8 +419,23 @@ class Executor::Run {
         in.offset_m + tracker_.direction_of(job) * detail::kBlockageAhead_m, 0.0, length);
   }
 
+  // Every passage of `manhole` into or out of the mouth `mouth` that the robot did not see, closed
+  // as learnt: the blockage inside its pipe leaves the mouth itself a place to turn through, and a
+  // turn into a mouth the sewer lacks is a job the robot cannot run (on the official ISYBAU sample
+  // the plan turned into it, and the robot, refusing the job three times, called for recovery).
+  void close_passages_into(ManholeId manhole, const Slot& mouth) {
+    const Pipe& pipe = map_.pipe(mouth.pipe);
+    const SlotIndex gone = pipe.ends[mouth.pipe_end].slot;
+    Learnt closed;
+    for (std::uint16_t s = 0; s < map_.manhole(manhole).slot_count; ++s) {
+      if (s != gone.value()) closed.closed_passages.push_back({manhole, gone, SlotIndex{s}});
+    }
+    // Each passage names slots the map has: learn() cannot refuse them.
+    (void)replanner_.learn(closed);
+  }
+
   // The plan again from where the robot was found to be (settle()). A manhole the map lacks, in
-  // the pipe a forward drive was driving: the robot passes straight through when a mouth goes on,
+  // the pipe a drive was driving: the robot passes straight through when a mouth goes on,
   // and `go_on` is the rest of the job it stopped (empty when it was done); else the pipe is closed
   // there, as a blockage (docs/localisation.md).
   std::optional<Replan> relocalise(const domain::PlanReplay& replay, std::optional<Job>& go_on) {
@@ -431,6 +446,7 @@ class Executor::Run {
     if (v.kind == Kind::kSignatureDiffers) {
       sync_progress(replay.progress());
       const Slot mouth = *detail::missing_mouth(arrival, map_, localising_.options().noise);
+      close_passages_into(arrival.expected->manhole, mouth);
       // Just inside the pipe from this manhole: at its very end, the way in would stay open.
       const double length = map_.pipe(mouth.pipe).length_m;
       const double inside = std::min(10 * detail::kBlockageAhead_m, length / 2);
@@ -452,6 +468,14 @@ class Executor::Run {
         const hal::JobReport r = execute_job(*through);
         if (r.ok()) {
           go_on = detail::rest_of(stopped, done_m);
+          if (!arrival.forward) {
+            // Through rear first: the front now leads into the pipe beyond, the way the robot was
+            // backing, so it goes on forward (a backing robot closed the pipe at a junction it had
+            // passed on the way in, and was shut in between it and the blockage it backed from).
+            tracker_.set_pose(tracker_.position(),
+                              static_cast<std::uint8_t>(1 - tracker_.heading_end()));
+            if (go_on) go_on = detail::reversed(*go_on);
+          }
           // A drive to a manhole goes on to it whatever the odometry says is left.
           if (go_on && !detail::ends_at_manhole(*go_on) && detail::distance_left_m(*go_on) <= 0)
             go_on.reset();
@@ -460,9 +484,19 @@ class Executor::Run {
         why += "; passing it failed: " + r.error->reason;
       }
       sync_progress(replay.progress());
+      // Just beyond the robot, the way it was driving: at the junction itself, the plan took the
+      // robot on through it (a backing robot cannot pass a manhole), and the robot, refusing to
+      // drive into the junction's shaft, called for recovery.
+      double offset_m = here.offset_m;
+      if (const std::optional<std::uint8_t> facing = v.believed->heading_end) {
+        const std::uint8_t towards =
+            arrival.forward ? *facing : static_cast<std::uint8_t>(1 - *facing);
+        offset_m = std::clamp(offset_m + (towards == 1 ? 1 : -1) * detail::kBlockageAhead_m, 0.0,
+                              map_.pipe(here.pipe).length_m);
+      }
       return Replan{Failure{.kind = Failure::Kind::kBlockage,
                             .pipe = here.pipe,
-                            .offset_m = here.offset_m,
+                            .offset_m = offset_m,
                             .detail = why},
                     ""};
     }

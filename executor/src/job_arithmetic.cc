@@ -27,6 +27,23 @@ std::optional<Job> rest_of(const Job& job, double done_m) {
       job);
 }
 
+Job reversed(const Job& job) {
+  return std::visit(Overloaded{[](const DriveForward& j) -> Job {
+                                 return DriveBackward{j.speed_mps, j.distance_m, j.to_manhole};
+                               },
+                               [](const DriveBackward& j) -> Job {
+                                 return DriveForward{j.speed_mps, j.distance_m, j.to_manhole};
+                               },
+                               [](const Push& j) -> Job {
+                                 return Push{j.speed_mps, j.distance_m, !j.backward};
+                               },
+                               [](const Scan& j) -> Job {
+                                 return Scan{j.speed_mps, j.distance_m, !j.backward};
+                               },
+                               [](const auto& j) -> Job { return j; }},
+                    job);
+}
+
 double distance_left_m(const Job& job) {
   return std::visit(
       [](const auto& j) {

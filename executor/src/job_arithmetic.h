@@ -20,6 +20,8 @@ inline constexpr double kBlockageAhead_m = 0.001;
 
 // The rest of a drive after `done_m`, or nothing for a job that is not a drive.
 std::optional<Job> rest_of(const Job& job, double done_m);
+// The same drive the other way (forward for backward); any other job unchanged.
+Job reversed(const Job& job);
 
 // The distance a drive, push or scan has to go; 0 for any other job.
 double distance_left_m(const Job& job);

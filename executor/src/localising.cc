@@ -69,7 +69,7 @@ std::optional<TurnInManhole> straight_through(const Arrival& arrival, const Sewe
                                               PipeId pipe,
                                               const localisation::LocalisationOptions& options,
                                               const RobotProfile& profile) {
-  if (!arrival.observation || !arrival.forward) return std::nullopt;
+  if (!arrival.observation) return std::nullopt;
   const ManholeSignature& seen = *arrival.observation;
   std::optional<std::size_t> best;
   double best_turn = options.straight_through_deg;

@@ -84,8 +84,8 @@ class Localising {
 std::optional<Slot> missing_mouth(const Arrival& arrival, const SewerMap& map,
                                   const SignatureNoise& noise);
 
-// The pass straight on through a manhole the map lacks that a forward drive in `pipe` arrived
-// at (a robot that arrived rear first is not passed: it would leave facing the other way): into the
+// The pass straight on through a manhole the map lacks that a drive in `pipe` arrived at (a robot
+// that arrived rear first leaves it front first, facing the way it was backing): into the
 // mouth the robot saw most nearly straight ahead, when one is within
 // `options.straight_through_deg`, of the pipe's size, with a step the robot can climb, addressed by
 // sighting (kBySighting); else empty.

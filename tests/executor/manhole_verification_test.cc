@@ -27,6 +27,8 @@ struct WorldRun {
   std::size_t arrivals = 0;      // arrival events the controller settled on a mapped manhole
   std::size_t wrong = 0;         // of those, where the robot really was at another manhole
   std::set<std::string> checks;  // the arrival checks seen
+  Learnt learnt;                 // what the Replanner learnt
+  std::vector<FailureEvent> failures;
 };
 
 // The paper's mission in a world drawn by `spec` and `seed`; every arrival event's manhole is
@@ -52,6 +54,7 @@ WorldRun run_in_world(const testing::AisTestbed& ais, const std::string& spec, s
     if (const auto* job = std::get_if<JobEvent>(&e.what)) {
       if (job->ok && job->job.rfind("TurnInManhole(arrival -> mouth", 0) == 0) ++run.passes;
     }
+    if (const auto* failure = std::get_if<FailureEvent>(&e.what)) run.failures.push_back(*failure);
     const auto* arrival = std::get_if<ArrivalEvent>(&e.what);
     if (arrival == nullptr) return;
     run.checks.insert(arrival->check);
@@ -61,6 +64,7 @@ WorldRun run_in_world(const testing::AisTestbed& ais, const std::string& spec, s
     if (at == nullptr || truth->world.manhole(at->manhole).name != arrival->manhole) ++run.wrong;
   });
   run.report = executor.run();
+  run.learnt = replanner.learnt();
   return run;
 }
 
@@ -108,8 +112,7 @@ bool any_starts_with(const std::vector<std::string>& texts, const std::string& p
 
 // A manhole the map lacks in a pipe the plan drives: the robot stops at it (it sees a manhole),
 // passes it straight on by the mouth it saw opposite the one it came out of, and the drive goes
-// on beyond it. Met rear first (the robot backing out of a lateral), it is not passed: the pipe
-// is closed there (seeds 6 and 9, where the sample lies beyond such a junction in a dead end).
+// on beyond it, rear first as front first.
 TEST(ManholeVerification, AManholeTheMapLacksIsPassedStraightOn) {
   const testing::AisTestbed ais = testing::load_ais_testbed();
   const WorldRun exact = run_in_world(ais, "none", 1);
@@ -130,7 +133,9 @@ TEST(ManholeVerification, AManholeTheMapLacksIsPassedStraightOn) {
 
 // A lateral the world lacks at a manhole the plan turns through: the robot sees a mouth fewer,
 // takes that pipe as closed at this end and plans again, rather than asking the robot for a turn
-// into a mouth that is not there (which it refuses: stuck, the beacon).
+// into a mouth that is not there (which it refuses: stuck, the beacon). Every passage into and
+// out of that mouth is closed too: with the blockage alone, the mouth itself stayed a place to
+// turn through, and on the official ISYBAU sample the plan reversed the robot's heading there.
 TEST(ManholeVerification, AMouthTheWorldLacksClosesItsPipeThere) {
   const testing::AisTestbed ais = testing::load_ais_testbed();
   std::size_t closed = 0;
@@ -140,6 +145,91 @@ TEST(ManholeVerification, AMouthTheWorldLacksClosesItsPipeThere) {
     if (any_starts_with(r.replans, "blockage in")) ++closed;
   }
   EXPECT_GE(closed, 1U);
+}
+
+// M1 -P1- M2 -P2- M3 along a street, both ends exits, and P3 north from M2 to M4, with a sample in
+// it; in the sewer, M2 has no mouth for P3 (P3 stops blind short of it). Arriving in M2, the
+// robot sees a mouth fewer: P3 is closed just inside it, and every passage of M2 into or out of
+// P3's mouth is closed as learnt, so no plan turns through a mouth that is not there.
+TEST(ManholeVerification, AMouthTheWorldLacksClosesEveryPassageThroughIt) {
+  const SewerMap map = testing::SmallMap()
+                           .manhole("M1", 0, 0, /*exit=*/true)
+                           .manhole("M2", 30, 0)
+                           .manhole("M3", 60, 0, /*exit=*/true)
+                           .manhole("M4", 30, 30)
+                           .pipe("P1", "M1", "M2")
+                           .pipe("P2", "M2", "M3")
+                           .pipe("P3", "M2", "M4")
+                           .build();
+  Mission mission = testing::small_mission(map, "M1");
+  testing::add_task(mission, map, "sample", TaskKind::kTakeWaterSample, "P3", 10.0);
+  const Result<hal::WorldErrorProfile> profile = hal::parse_world_errors("laterals_missing=1");
+  ASSERT_TRUE(profile.has_value());
+  const Result<hal::TrueWorld> truth = hal::make_true_world(map, *profile, 1);
+  ASSERT_TRUE(truth.has_value());
+  const ManholeId m2 = *map.find_manhole("M2");
+  ASSERT_EQ(truth->world.manhole(m2).slot_count, 2U);  // P3's mouth is gone
+  ManualClock clock;
+  Replanner replanner(map, mission, {.clock = &clock});
+  hal::SimRobot robot(truth->world, mission.profile, hal::InManhole{*map.find_manhole("M1")}, {},
+                      hal::SimOptions{.sensing = hal::make_sensing(*truth)});
+  Executor executor(map, replanner, robot);
+  std::size_t robot_errors = 0;
+  executor.subscribe([&](const Event& e) {
+    if (std::holds_alternative<ErrorEvent>(e.what)) ++robot_errors;
+  });
+  const MissionReport report = executor.run();
+  EXPECT_EQ(report.outcome, MissionReport::Outcome::kEnded) << report;
+  EXPECT_EQ(robot_errors, 0U) << report;
+  const SlotIndex p3_mouth = map.pipe(*map.find_pipe("P3")).ends[0].slot;
+  std::vector<ClosedPassage> expected;
+  for (std::uint16_t s = 0; s < 3; ++s) {
+    if (s != p3_mouth.value()) expected.push_back({m2, p3_mouth, SlotIndex{s}});
+  }
+  EXPECT_EQ(replanner.learnt().closed_passages, expected);
+  ASSERT_EQ(replanner.learnt().blockages.size(), 1U);
+  EXPECT_EQ(replanner.learnt().blockages.front().pipe, *map.find_pipe("P3"));
+}
+
+// M1 -P1 (40 m)- M2, M1 the only exit, a sample 36 m along P1; in the sewer, P1 has a manhole the
+// map lacks 12-28 m along, and an obstacle 1.5 m beyond it. The robot passes the junction, meets
+// the obstacle, gives the sample up and backs out to M1: it meets the junction again, rear first,
+// passes it and drives on, now front first, to the exit. The junction was closed as a blockage
+// behind the robot instead (the robot, shut in between it and the obstacle, called for recovery),
+// and before that the plan sent it backing into the junction's shaft, which it refused (stuck).
+TEST(ManholeVerification, BackingOutPastAManholeTheMapLacksReachesTheExit) {
+  const SewerMap map = testing::SmallMap()
+                           .manhole("M1", 0, 0, /*exit=*/true)
+                           .manhole("M2", 40, 0)
+                           .pipe("P1", "M1", "M2")
+                           .build();
+  Mission mission = testing::small_mission(map, "M1");
+  testing::add_task(mission, map, "sample", TaskKind::kTakeWaterSample, "P1", 36.0);
+  const Result<hal::WorldErrorProfile> profile = hal::parse_world_errors("junctions=1");
+  ASSERT_TRUE(profile.has_value());
+  const Result<hal::TrueWorld> truth = hal::make_true_world(map, *profile, 1);
+  ASSERT_TRUE(truth.has_value());
+  ASSERT_EQ(truth->splits.size(), 1U);
+  hal::FaultScenario faults;
+  faults.obstacles.push_back({.pipe = truth->splits.front().rest, .offset_m = 1.5});
+  ManualClock clock;
+  Replanner replanner(map, mission, {.clock = &clock});
+  hal::SimRobot robot(truth->world, mission.profile, hal::InManhole{*map.find_manhole("M1")},
+                      std::move(faults), hal::SimOptions{.sensing = hal::make_sensing(*truth)});
+  Executor executor(map, replanner, robot);
+  std::size_t passes = 0;
+  executor.subscribe([&](const Event& e) {
+    if (const auto* job = std::get_if<JobEvent>(&e.what)) {
+      if (job->ok && job->job.rfind("TurnInManhole(arrival -> mouth", 0) == 0) ++passes;
+    }
+  });
+  const MissionReport report = executor.run();
+  EXPECT_EQ(report.outcome, MissionReport::Outcome::kEnded) << report;
+  EXPECT_EQ(passes, 2U) << report;
+  EXPECT_EQ(
+      robot.pose(),
+      (hal::SimPose{hal::AtSlot{*map.find_manhole("M1"), SlotIndex{0}, hal::Facing::kIntoManhole}}))
+      << report;
 }
 
 // M1 -P1 (20 m)- M2 -P2 (20 m)- M3, both ends exits, a task in P2; the robot starts in the middle
