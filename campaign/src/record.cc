@@ -19,6 +19,21 @@ using Json = nlohmann::ordered_json;
 
 double ms(double seconds) { return std::round(seconds * 1e6) / 1e3; }
 
+// The kinds with anything to count, by name (read_by_kind reads it back).
+Json by_kind_json(const ScoresByKind& by_kind) {
+  Json j = Json::object();
+  for (std::size_t i = 0; i < by_kind.size(); ++i) {
+    const KindScore& k = by_kind[i];
+    if (k == KindScore{}) continue;
+    j[std::string(to_string(static_cast<Discrepancy::Kind>(i)))] =
+        Json{{"in_reach", k.in_reach},
+             {"found", k.found},
+             {"reported", k.reported},
+             {"false_reports", k.false_reports}};
+  }
+  return j;
+}
+
 Json execution_json(const Execution& e) {
   Json j{{"tasks", e.tasks},
          {"outcome", std::string(to_string(e.outcome))},
@@ -49,7 +64,8 @@ Json execution_json(const Execution& e) {
              {"discrepancies_found_pct", share(w.found, w.seeded_in_reach)},
              {"reported", w.reported},
              {"false_reports", w.false_reports},
-             {"false_reports_pct", share(w.false_reports, w.reported)}};
+             {"false_reports_pct", share(w.false_reports, w.reported)},
+             {"by_kind", by_kind_json(w.by_kind)}};
   }
   return j;
 }
@@ -103,6 +119,28 @@ std::uint64_t read_seed(JsonFields& f) {
 }
 
 // "localisation" and "corrected_map" of an execution (execution_json); the shares are derived.
+void read_by_kind(JsonFields& kinds, WorldScore& w, std::string_view file) {
+  kinds.warn_unknown(
+      [](std::string_view name) { return parse_discrepancy_kind(name).has_value(); });
+  for (std::size_t i = 0; i < w.by_kind.size(); ++i) {
+    const std::string_view name = to_string(static_cast<Discrepancy::Kind>(i));
+    if (!kinds.has(name)) continue;
+    std::optional<JsonFields> f = object_in(kinds, name, file);
+    if (!f) continue;
+    KindScore& k = w.by_kind[i];
+    k.in_reach = f->count("in_reach", kMaxCount).value_or(0);
+    k.found = f->count("found", kMaxCount).value_or(0);
+    k.reported = f->count("reported", kMaxCount).value_or(0);
+    k.false_reports = f->count("false_reports", kMaxCount).value_or(0);
+    if (k.found > k.in_reach) {
+      f->error("found", "more than in_reach (" + std::to_string(k.in_reach) + ")");
+    }
+    if (k.false_reports > k.reported) {
+      f->error("false_reports", "more than reported (" + std::to_string(k.reported) + ")");
+    }
+  }
+}
+
 WorldScore read_world_score(JsonFields& execution, std::string_view file) {
   WorldScore w;
   if (std::optional<JsonFields> l = object_in(execution, "localisation", file)) {
@@ -130,6 +168,12 @@ WorldScore read_world_score(JsonFields& execution, std::string_view file) {
     }
     if (w.false_reports > w.reported) {
       c->error("false_reports", "more than reported (" + std::to_string(w.reported) + ")");
+    }
+    // Lines written before the kinds were counted have none: their kinds stay at zero.
+    if (c->has("by_kind")) {
+      if (std::optional<JsonFields> kinds = object_in(*c, "by_kind", file)) {
+        read_by_kind(*kinds, w, file);
+      }
     }
   }
   return w;

@@ -102,6 +102,26 @@ std::string vs_worst(const PolicyFigures& f) {
   return pct(f.vs_oracle_worst) + " (run " + std::to_string(f.worst_run) + ")";
 }
 
+// Every kind by name, with its shares (null: nothing to share).
+Json by_kind_json(const ScoresByKind& by_kind) {
+  const auto share = [](std::size_t part, std::size_t whole) {
+    const std::optional<double> p = percent(part, whole);
+    return p ? Json(*p) : Json();
+  };
+  Json j = Json::object();
+  for (std::size_t i = 0; i < by_kind.size(); ++i) {
+    const KindScore& k = by_kind[i];
+    j[std::string(to_string(static_cast<Discrepancy::Kind>(i)))] =
+        Json{{"found_pct", share(k.found, k.in_reach)},
+             {"false_reports_pct", share(k.false_reports, k.reported)},
+             {"in_reach", k.in_reach},
+             {"found", k.found},
+             {"reported", k.reported},
+             {"false_reports", k.false_reports}};
+  }
+  return j;
+}
+
 Json policy_json(const PolicyFigures& f) {
   Json outcomes;
   for (std::size_t o = 0; o < f.outcomes.size(); ++o) {
@@ -247,6 +267,13 @@ std::optional<WorldFigures> pool_world_scores(const std::vector<const RunResult*
     f.total.found += w.found;
     f.total.reported += w.reported;
     f.total.false_reports += w.false_reports;
+    for (std::size_t i = 0; i < w.by_kind.size(); ++i) {
+      KindScore& k = f.total.by_kind[i];
+      k.in_reach += w.by_kind[i].in_reach;
+      k.found += w.by_kind[i].found;
+      k.reported += w.by_kind[i].reported;
+      k.false_reports += w.by_kind[i].false_reports;
+    }
   }
   if (f.runs == 0) return std::nullopt;
   if (f.total.pipes_measured > 0) {
@@ -346,6 +373,7 @@ void write_summary_json(const Summary& s, std::ostream& out) {
                               {"found", w.total.found},
                               {"reported", w.total.reported},
                               {"false_reports", w.total.false_reports},
+                              {"by_kind", by_kind_json(w.total.by_kind)},
                               {"runs", w.runs}};
   } else {
     j["localisation"] = nullptr;
@@ -406,6 +434,23 @@ void write_world_markdown(const WorldFigures& w, std::ostream& out) {
       << " |\n";
   out << "| reports matching no seeded discrepancy (corrected_map.false_reports_pct) | "
       << share_of(w.false_reports_pct(), t.false_reports, t.reported, "none reported") << " |\n\n";
+  // Kind by kind (corrected_map.by_kind), the kinds seeded within reach or reported.
+  bool any = false;
+  for (std::size_t i = 0; i < t.by_kind.size(); ++i) {
+    const KindScore& k = t.by_kind[i];
+    if (k.in_reach == 0 && k.reported == 0) continue;
+    if (!any) {
+      out << "| discrepancy kind | seeded within reach, reported | reports matching none |\n"
+          << "|---|---|---|\n";
+      any = true;
+    }
+    out << "| " << to_string(static_cast<Discrepancy::Kind>(i)) << " | "
+        << share_of(percent(k.found, k.in_reach), k.found, k.in_reach, "none within reach") << " | "
+        << share_of(percent(k.false_reports, k.reported), k.false_reports, k.reported,
+                    "none reported")
+        << " |\n";
+  }
+  if (any) out << "\n";
 }
 
 }  // namespace

@@ -79,19 +79,26 @@ DiscrepancyScore score_discrepancies(const std::vector<Discrepancy>& seeded,
                                      const std::vector<FoundDiscrepancy>& reported,
                                      const Reach& reach) {
   DiscrepancyScore s;
+  const auto of = [&](Discrepancy::Kind kind) -> KindScore& {
+    return s.by_kind[static_cast<std::size_t>(kind)];
+  };
   s.reported = reported.size();
   for (const Discrepancy& d : seeded) {
     if (!within_reach(d, reach)) continue;
     ++s.in_reach;
+    ++of(d.kind).in_reach;
     if (std::any_of(reported.begin(), reported.end(),
                     [&](const FoundDiscrepancy& r) { return same_difference(r.discrepancy, d); })) {
       ++s.found;
+      ++of(d.kind).found;
     }
   }
   for (const FoundDiscrepancy& r : reported) {
+    ++of(r.discrepancy.kind).reported;
     if (std::none_of(seeded.begin(), seeded.end(),
                      [&](const Discrepancy& d) { return same_difference(r.discrepancy, d); })) {
       ++s.false_reports;
+      ++of(r.discrepancy.kind).false_reports;
     }
   }
   return s;
@@ -175,7 +182,8 @@ WorldScore WorldScorer::score() const {
                     .seeded_in_reach = d.in_reach,
                     .found = d.found,
                     .reported = d.reported,
-                    .false_reports = d.false_reports};
+                    .false_reports = d.false_reports,
+                    .by_kind = d.by_kind};
 }
 
 }  // namespace sewerplan::campaign

@@ -115,11 +115,30 @@ TEST(WorldScore, SeededDiscrepanciesCountWithinReachAndMatchBySameDifference) {
       found(length_off(7)),  // driven, not seeded: false
   };
   const DiscrepancyScore s = score_discrepancies(seeded, reported, reach);
-  EXPECT_EQ(s, (DiscrepancyScore{.in_reach = 3, .found = 2, .reported = 5, .false_reports = 2}));
+  ScoresByKind by_kind{};
+  by_kind[static_cast<std::size_t>(Kind::kLengthOff)] = {
+      .in_reach = 1, .found = 1, .reported = 3, .false_reports = 1};
+  by_kind[static_cast<std::size_t>(Kind::kDirectionOff)] = {
+      .in_reach = 1, .found = 0, .reported = 1, .false_reports = 1};
+  by_kind[static_cast<std::size_t>(Kind::kUnmappedJunction)] = {
+      .in_reach = 1, .found = 1, .reported = 1, .false_reports = 0};
+  EXPECT_EQ(s,
+            (DiscrepancyScore{
+                .in_reach = 3, .found = 2, .reported = 5, .false_reports = 2, .by_kind = by_kind}));
   // A junction reported 6 m from the seeded one is another junction.
   const DiscrepancyScore far = score_discrepancies(
       seeded, {found({.kind = Kind::kUnmappedJunction, .pipe = PipeId{2}, .offset_m = 16})}, reach);
-  EXPECT_EQ(far, (DiscrepancyScore{.in_reach = 3, .found = 0, .reported = 1, .false_reports = 1}));
+  EXPECT_EQ(far.in_reach, 3U);
+  EXPECT_EQ(far.found, 0U);
+  EXPECT_EQ(far.false_reports, 1U);
+  EXPECT_EQ(far.by_kind[static_cast<std::size_t>(Kind::kUnmappedJunction)],
+            (KindScore{.in_reach = 1, .found = 0, .reported = 1, .false_reports = 1}));
+}
+
+ScoresByKind kinds(std::initializer_list<std::pair<Discrepancy::Kind, KindScore>> scores) {
+  ScoresByKind by_kind{};
+  for (const auto& [kind, score] : scores) by_kind[static_cast<std::size_t>(kind)] = score;
+  return by_kind;
 }
 
 RunRecord scored(std::size_t index, WorldScore w) {
@@ -144,7 +163,9 @@ TEST(WorldScore, ACampaignPoolsItsRunsAndSaysNullWithoutWorldErrors) {
                  .seeded_in_reach = 4,
                  .found = 3,
                  .reported = 5,
-                 .false_reports = 1}),
+                 .false_reports = 1,
+                 .by_kind = kinds({{Discrepancy::Kind::kLengthOff, {4, 3, 4, 1}},
+                                   {Discrepancy::Kind::kMissingLateral, {0, 0, 1, 0}}})}),
       scored(1, {.arrivals = 10,
                  .correct_arrivals = 10,
                  .pipes_measured = 6,
@@ -152,7 +173,8 @@ TEST(WorldScore, ACampaignPoolsItsRunsAndSaysNullWithoutWorldErrors) {
                  .seeded_in_reach = 6,
                  .found = 6,
                  .reported = 5,
-                 .false_reports = 0}),
+                 .false_reports = 0,
+                 .by_kind = kinds({{Discrepancy::Kind::kLengthOff, {6, 6, 5, 0}}})}),
       scored(2, {}),  // a run with no arrival and nothing measured
   };
   const Summary s = summarize(spec, records);
@@ -170,9 +192,23 @@ TEST(WorldScore, ACampaignPoolsItsRunsAndSaysNullWithoutWorldErrors) {
   EXPECT_DOUBLE_EQ(j["corrected_map"]["length_rms_pct"].get<double>(), std::sqrt(3.0));
   EXPECT_DOUBLE_EQ(j["corrected_map"]["discrepancies_found_pct"].get<double>(), 90.0);
   EXPECT_DOUBLE_EQ(j["corrected_map"]["false_reports_pct"].get<double>(), 10.0);
+  // Kind by kind: pooled, every kind named, null where there is nothing to share.
+  const auto& length = j["corrected_map"]["by_kind"]["length-off"];
+  EXPECT_EQ(length["found"].get<int>(), 9);
+  EXPECT_EQ(length["in_reach"].get<int>(), 10);
+  EXPECT_DOUBLE_EQ(length["found_pct"].get<double>(), 90.0);
+  EXPECT_DOUBLE_EQ(length["false_reports_pct"].get<double>(), 100.0 / 9);
+  EXPECT_TRUE(j["corrected_map"]["by_kind"]["missing-lateral"]["found_pct"].is_null());
+  EXPECT_EQ(j["corrected_map"]["by_kind"]["direction-off"]["reported"].get<int>(), 0);
   std::ostringstream md;
   write_summary_markdown(s, md);
   EXPECT_NE(md.str().find("| 95.0 % (19 of 20) |"), std::string::npos) << md.str();
+  EXPECT_NE(md.str().find("| length-off | 90.0 % (9 of 10) | 11.1 % (1 of 9) |"), std::string::npos)
+      << md.str();
+  EXPECT_NE(md.str().find("| missing-lateral | none (none within reach) | 0.0 % (0 of 1) |"),
+            std::string::npos)
+      << md.str();
+  EXPECT_EQ(md.str().find("| direction-off |"), std::string::npos) << md.str();
   // Each line reads back with its score (the shares are derived, not read).
   for (const RunRecord& r : records) {
     const std::string line = run_json_line(r);
@@ -188,6 +224,12 @@ TEST(WorldScore, ACampaignPoolsItsRunsAndSaysNullWithoutWorldErrors) {
   const Result<RunRecord> refused = parse_run_line(bad, "runs.jsonl", 1);
   ASSERT_FALSE(refused.has_value());
   EXPECT_NE(refused.error().message.find("correct_arrivals"), std::string::npos);
+  std::string bad_kind = run_json_line(records[0]);
+  bad_kind.replace(bad_kind.find("\"found\":3,\"reported\":4"), 9, "\"found\":5");
+  const Result<RunRecord> kind_refused = parse_run_line(bad_kind, "runs.jsonl", 1);
+  ASSERT_FALSE(kind_refused.has_value());
+  EXPECT_NE(kind_refused.error().message.find("by_kind.length-off"), std::string::npos)
+      << kind_refused.error().message;
   // Without scores (world errors "none"): null, both.
   RunRecord plain = records[0];
   plain.result->ours.world.reset();

@@ -36,6 +36,7 @@
 // its execution.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <optional>
 #include <string_view>
@@ -51,6 +52,17 @@
 
 namespace sewerplan::campaign {
 
+// The discrepancy counts of one kind (below).
+struct KindScore {
+  std::size_t in_reach = 0;       // seeded within reach
+  std::size_t found = 0;          // of those, reported
+  std::size_t reported = 0;       // reports of this kind
+  std::size_t false_reports = 0;  // of those, matching no seeded one
+  friend bool operator==(const KindScore&, const KindScore&) = default;
+};
+// Per Discrepancy::Kind, by its index: which kinds the robot finds and which it misses.
+using ScoresByKind = std::array<KindScore, kDiscrepancyKinds>;
+
 // One execution's figures, counts so that a campaign pools them exactly.
 struct WorldScore {
   std::size_t arrivals = 0;          // arrivals the controller verified (ArrivalEvents)
@@ -61,6 +73,7 @@ struct WorldScore {
   std::size_t found = 0;             // of those, reported
   std::size_t reported = 0;          // discrepancies the robot reported
   std::size_t false_reports = 0;     // of those, matching no seeded one
+  ScoresByKind by_kind{};            // the four above, kind by kind
   friend bool operator==(const WorldScore&, const WorldScore&) = default;
 };
 
@@ -93,6 +106,7 @@ struct DiscrepancyScore {
   std::size_t found = 0;
   std::size_t reported = 0;
   std::size_t false_reports = 0;
+  ScoresByKind by_kind{};
   friend bool operator==(const DiscrepancyScore&, const DiscrepancyScore&) = default;
 };
 DiscrepancyScore score_discrepancies(const std::vector<Discrepancy>& seeded,

@@ -16,6 +16,7 @@
 // Thread safety: plain value types and pure functions.
 #pragma once
 
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -45,6 +46,9 @@ struct Discrepancy {
   double sigma = 0;  // the standard deviation of `value` (0: known exactly, e.g. a seeded one)
   friend bool operator==(const Discrepancy&, const Discrepancy&) = default;
 };
+// The number of kinds (kMissingLateral is the last).
+inline constexpr std::size_t kDiscrepancyKinds =
+    static_cast<std::size_t>(Discrepancy::Kind::kMissingLateral) + 1;
 
 // "length-off", "direction-off", "position-off", "diameter-smaller", "unmapped-junction",
 // "unmapped-lateral", "missing-lateral"; and back (empty for any other text).
