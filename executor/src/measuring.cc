@@ -16,8 +16,16 @@ JobObserver Measurer::observer() {
   };
 }
 
-double Measurer::sigma_m(double distance_m) const {
-  return std::hypot(options_.odometry_sigma_fraction * distance_m, options_.odometry_sigma_floor_m);
+double Measurer::sigma_m(double distance_m, PipeId pipe) const {
+  double fraction = options_.odometry_sigma_fraction;
+  const Pipe& p = map_.pipe(pipe);
+  if (p.ends[0].manhole && p.ends[1].manhole) {
+    const double fall_m = map_.slot(*p.ends[0].manhole, p.ends[0].slot).invert_z_m -
+                          map_.slot(*p.ends[1].manhole, p.ends[1].slot).invert_z_m;
+    if (std::abs(fall_m) > options_.steep_fall_fraction * p.length_m)
+      fraction *= options_.steep_sigma_factor;
+  }
+  return std::hypot(fraction * distance_m, options_.odometry_sigma_floor_m);
 }
 
 bool Measurer::valid(const ManholeSignature& seen, const std::string& where) {
@@ -64,7 +72,7 @@ void Measurer::observe(const Job& job, const hal::JobReport& report,
   if (leg_ || in == nullptr) return;
   const Pipe& pipe = map_.pipe(in->pipe);
   if (!valid(*report.observation, pipe.name)) return;
-  const double sigma = sigma_m(std::min(in->offset_m, pipe.length_m - in->offset_m));
+  const double sigma = sigma_m(std::min(in->offset_m, pipe.length_m - in->offset_m), in->pipe);
   if (near_an_end(pipe, in->offset_m, sigma)) return;
   measurements_.junctions.push_back({.pipe = in->pipe,
                                      .offset_m = in->offset_m,
@@ -127,7 +135,7 @@ void Measurer::drive(const Job& job, const hal::JobReport& report,
     arrival(m, s, *report.observation);
     return;
   }
-  const double sigma = sigma_m(std::abs(leg_->driven_m));
+  const double sigma = sigma_m(std::abs(leg_->driven_m), leg_->pipe);
   if (near_an_end(pipe, in->offset_m, sigma)) return;
   measurements_.junctions.push_back({.pipe = leg_->pipe,
                                      .offset_m = in->offset_m,
@@ -142,7 +150,7 @@ void Measurer::end_leg(ManholeId manhole, SlotIndex slot) {
   leg_.reset();
   if (!leg.clean || leg.driven_m <= 0) return;
   const Pipe& pipe = map_.pipe(leg.pipe);
-  const double sigma = sigma_m(leg.driven_m);
+  const double sigma = sigma_m(leg.driven_m, leg.pipe);
   add_length(measurements_, leg.pipe, leg.driven_m, sigma * sigma, 0);
   // Position: the manhole left's map position plus the pipe's chord, scaled by measured / mapped
   // length (map_measurements.h).

@@ -50,7 +50,12 @@ namespace sewerplan::executor {
 struct MeasuringOptions {
   double odometry_sigma_fraction = 0.03;  // of the distance driven (the drift)
   double odometry_sigma_floor_m = 0.05;   // the wheels' resolution and the manhole's mouth
-  double early_arrival_fraction = 0.25;   // see the header comment
+  // Wheels slip more where the pipe falls steeply (its ends' inverts, from the map): there the
+  // fraction is this many times larger (docs/simulation.md has the robot's slip model). With one
+  // sigma for every pipe, legs in steep pipes were reported as lengths off.
+  double steep_fall_fraction = 0.02;
+  double steep_sigma_factor = 2.0;
+  double early_arrival_fraction = 0.25;  // see the header comment
   // A manhole seen in a pipe within this many odometry standard deviations of one of its ends
   // (and at least end_margin_m) is not taken for a junction the map lacks: the odometry cannot tell
   // it from the manhole at that end (a longer pipe, the mouth just left, a signature seen askew).
@@ -90,7 +95,7 @@ class Measurer {
              double direction);
   void end_leg(ManholeId manhole, SlotIndex slot);
   void arrival(ManholeId manhole, SlotIndex slot, const ManholeSignature& seen);
-  double sigma_m(double distance_m) const;
+  double sigma_m(double distance_m, PipeId pipe) const;
   bool valid(const ManholeSignature& seen, const std::string& where);
   // Whether a sighting at `offset_m` in `pipe` (standard deviation `sigma_m`) lies within the end
   // margin of a manhole at one of its ends; if so, says why in rejected().
