@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // sewerplan serve [--map FILE ...] [--host 127.0.0.1] [--port 8080] [--token T] [--web DIR]
-//                 [--allow-host NAME ...]
+//                 [--allow-host NAME ...] [--tiles URL|DIR]
 // The operator station (docs/operator-station.md): the server of server/station_server.h, loaded
 // from the server module (sewerplan/server/module.h), and the page.
 #include <algorithm>
@@ -29,6 +29,7 @@ struct ServeOptions {
   std::string token;
   std::string web;
   std::vector<std::string> allowed_hosts;
+  std::string tiles;
 };
 
 // The built page: --web, else the build tree's (while developing), else the install's
@@ -67,6 +68,7 @@ int run(const ServeOptions& o, Context& c) {
   }
   server::ServerOptions options{
       .host = o.host, .port = o.port, .token = o.token, .allowed_hosts = o.allowed_hosts};
+  options.tiles = o.tiles;
   for (const std::string& m : o.maps) options.maps.emplace_back(m);
   // The reader's warnings on stderr, as every command's (an error fails the start with its own
   // message); the page lists them too, each linked to its objects on the map.
@@ -116,6 +118,11 @@ void add_serve_command(CLI::App& app, Context& context) {
   cmd->add_option("--allow-host", o->allowed_hosts,
                   "A name the page may be opened under besides IP addresses, localhost and --host "
                   "(requests naming another Host are refused: DNS rebinding); repeatable");
+  cmd->add_option(
+      "--tiles", o->tiles,
+      "A basemap for the page, off until the operator turns it on: an XYZ template "
+      "(https://.../{z}/{x}/{y}.png, the browser fetches it) or a directory of Z/X/Y.png "
+      "tiles (served by the station: no internet needed)");
   cmd->add_option("--web", o->web, "Serve the page from this directory (default: the built one)");
   cmd->callback([o, &context] { context.exit_code = run(*o, context); });
 }

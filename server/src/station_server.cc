@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cctype>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <exception>
 #include <map>
@@ -38,6 +39,7 @@
 #include "sewerplan/hal/fault_scenario.h"
 #include "sewerplan/hal/sim_robot.h"
 #include "sewerplan/search/planner.h"
+#include "sewerplan/server/basemap.h"
 #include "sewerplan/server/documents.h"
 #include "sewerplan/server/driveability_output.h"
 #include "sewerplan/server/findings_output.h"
@@ -163,6 +165,7 @@ struct StationServer::Impl {
   mutable std::mutex maps_mutex;
   // Declared before `http`, so that it outlives the requests that use it.
   std::unique_ptr<CampaignService> campaigns;
+  std::optional<TileSource> tiles;  // --tiles (basemap.h)
   HttpServer http;
   std::atomic<bool> running{false};
   std::atomic<bool> stopping{false};
@@ -305,6 +308,8 @@ struct StationServer::Impl {
   void list_maps(httplib::Response& res) const;
   void driveability(const httplib::Request& req, httplib::Response& res) const;
   void findings(const httplib::Request& req, httplib::Response& res) const;
+  void basemap(const httplib::Request& req, httplib::Response& res) const;
+  void tile(const httplib::Request& req, httplib::Response& res) const;
   void upload_map(const httplib::Request& req, const std::string& body, httplib::Response& res);
   void upload_condition(const httplib::Request& req, const std::string& body,
                         httplib::Response& res);
@@ -348,7 +353,79 @@ void StationServer::Impl::list_maps(httplib::Response& res) const {
                     // or null: local coordinates. The page names it beside the cursor's position.
                     {"crs", m->map->crs() ? Json(m->map->crs()->to_string()) : Json()}});
   }
-  send_json(res, {{"maps", list}, {"profiles", builtin_profile_names()}});
+  // The basemap's tile source (basemap.h), or null: none (`serve --tiles`).
+  Json basemap;
+  if (tiles) {
+    basemap = {{"kind", tiles->kind == TileSource::Kind::kUrl ? "url" : "directory"},
+               {"tiles", tiles->url_template},
+               {"min_zoom", tiles->min_zoom},
+               {"max_zoom", tiles->max_zoom}};
+  }
+  send_json(
+      res,
+      {{"maps", list}, {"profiles", builtin_profile_names()}, {"basemap", std::move(basemap)}});
+}
+
+// GET /api/maps/ID/basemap?x0=&y0=&x1=&y1=&mpp=: the tiles that cover the view (x0, y0, x1, y1
+// in the map's metres, mpp metres a pixel), each with its corners in the map's metres.
+void StationServer::Impl::basemap(const httplib::Request& req, httplib::Response& res) const {
+  const auto m = find_map(req, res);
+  if (!m) return;
+  if (!tiles) {
+    return send_error(
+        res, kNotFound,
+        Error{ErrorCode::kInvalidArgument, "no basemap: the station was started without --tiles"});
+  }
+  BasemapView view;
+  const auto number = [&](const char* name, double& out) {
+    const std::string text = req.get_param_value(name);
+    try {
+      std::size_t used = 0;
+      out = std::stod(text, &used);
+      if (used == text.size() && std::isfinite(out)) return true;
+    } catch (const std::exception&) {  // not a number: said below
+    }
+    bad_request(res, std::string(name) + ": expected a number of metres, not '" + text + "'");
+    return false;
+  };
+  if (!number("x0", view.rect[0]) || !number("y0", view.rect[1]) || !number("x1", view.rect[2]) ||
+      !number("y1", view.rect[3]) || !number("mpp", view.metres_per_pixel)) {
+    return;
+  }
+  Result<TileChoice> choice = basemap_tiles(*m->map, *tiles, view);
+  if (!choice.has_value()) {
+    const bool bad_view = m->map->crs() && choice.error().message.starts_with("the view");
+    return bad_view ? bad_request(res, choice.error().message)
+                    : send_error(res, kUnprocessable, choice.error());
+  }
+  Json list = Json::array();
+  for (const PlacedTile& t : choice->tiles) {
+    Json corners = Json::array();
+    for (const MapXY& c : t.corners) corners.push_back({c.x, c.y});
+    list.push_back({{"z", t.z}, {"x", t.x}, {"y", t.y}, {"url", t.url}, {"corners", corners}});
+  }
+  send_json(res, {{"crs", m->map->crs()->to_string()},
+                  {"zoom", choice->zoom},
+                  {"tiles", std::move(list)},
+                  {"truncated", choice->truncated},
+                  {"note", choice->note}});
+}
+
+// GET /api/tiles/Z/X/Y.EXT: a tile of a directory source, or 404; the path's parts are digits
+// (the route's pattern), so it names no file but a tile's.
+void StationServer::Impl::tile(const httplib::Request& req, httplib::Response& res) const {
+  const std::string z = req.matches[1], x = req.matches[2], y = req.matches[3],
+                    ext = req.matches[4];
+  std::optional<std::string> bytes =
+      tiles ? read_tile(*tiles, std::stoi(z), std::stoll(x), std::stoll(y), ext) : std::nullopt;
+  if (!bytes) {
+    return send_error(res, kNotFound,
+                      Error{ErrorCode::kInvalidArgument,
+                            tiles ? "no tile " + z + "/" + x + "/" + y + "." + ext
+                                  : "no tiles: the station was started without --tiles DIR"});
+  }
+  const char* type = ext == "png" ? "image/png" : ext == "webp" ? "image/webp" : "image/jpeg";
+  res.set_content(std::move(*bytes), type);
 }
 
 // POST /api/maps?name=FILE[&format=F]: the body is a map file in any format read_map reads (the
@@ -774,6 +851,10 @@ void StationServer::Impl::routes() {
            [this](const Req& req, Res& res) { driveability(req, res); });
   http.Get(R"(/api/maps/([^/]+)/findings)",
            [this](const Req& req, Res& res) { findings(req, res); });
+  http.Get(R"(/api/maps/([^/]+)/basemap)", [this](const Req& req, Res& res) { basemap(req, res); });
+  // Only digits in a tile's path: nothing else reaches the tiles' directory.
+  http.Get(R"(/api/tiles/(\d{1,2})/(\d{1,10})/(\d{1,10})\.(png|jpg|jpeg|webp))",
+           [this](const Req& req, Res& res) { tile(req, res); });
   post(R"(/api/maps/([^/]+)/validate)",
        [this](const Req& req, const std::string& body, Res& res) { validate(req, body, res); });
   post(R"(/api/maps/([^/]+)/plan)",
@@ -837,6 +918,11 @@ Result<std::unique_ptr<StationServer>> StationServer::create(const ServerOptions
                   {},
                   diagnostics_json(diagnostics, Severity::kWarning),
                   Json::array()}));
+  }
+  if (!options.tiles.empty()) {
+    Result<TileSource> source = parse_tile_source(options.tiles);
+    if (!source.has_value()) return source.error();
+    impl->tiles = std::move(*source);
   }
   if (!options.web_root.empty() && !std::filesystem::is_directory(options.web_root)) {
     return Error{ErrorCode::kIo, options.web_root.string() + ": no such directory (the page)"};
