@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <cstdint>
 #include <exception>
 #include <map>
 #include <memory>
@@ -51,6 +52,7 @@
 #include "json_body.h"
 #include "map_geometry.h"
 #include "plan_route.h"
+#include "request_deadline.h"
 #include "request_guard.h"
 #include "worker_pool.h"
 #include <httplib.h>
@@ -167,6 +169,17 @@ struct StationServer::Impl {
   std::unique_ptr<CampaignService> campaigns;
   std::optional<TileSource> tiles;  // --tiles (basemap.h)
   HttpServer http;
+  // Closes connections whose request does not come whole in time (request_deadline.h); made by
+  // bind(), which knows the port.
+  std::unique_ptr<RequestDeadline> deadline;
+  // The request of `req`'s connection has its headers read, or is read whole: the deadlines no
+  // longer apply to it.
+  void headers_read(const httplib::Request& req) const {
+    if (deadline) deadline->headers_read(req.remote_addr, req.remote_port);
+  }
+  void read_whole(const httplib::Request& req) const {
+    if (deadline) deadline->read_whole(req.remote_addr, req.remote_port);
+  }
   std::atomic<bool> running{false};
   std::atomic<bool> stopping{false};
 
@@ -760,7 +773,12 @@ void StationServer::Impl::routes() {
   // Who may drive the station (request_guard.h), then the token; before the body is read, and
   // before a client that asks ("Expect: 100-continue", as curl does for a large body) sends it.
   const auto refused = [this, guard](const httplib::Request& req, httplib::Response& res) {
+    // Answered here, or a request with no body (a GET): read whole. A POST's body is read by
+    // post().
+    if (req.method != "POST") read_whole(req);
+    headers_read(req);
     if (const std::optional<Refusal> r = check_request(req, guard)) {
+      read_whole(req);
       send_json(res, {{"error", {{"code", r->code}, {"message", r->message}}}}, r->status);
       return true;
     }
@@ -811,6 +829,7 @@ void StationServer::Impl::routes() {
         if (!over) body.append(data, size);
         return !over;
       });
+      read_whole(req);
       if (over) {
         return send_json(res,
                          {{"error", {{"code", "http-413"}, {"message", body_over_limit(limit)}}}},
@@ -874,7 +893,8 @@ void StationServer::Impl::routes() {
            [this](const Req& req, Res& res) { campaigns->run_events(req, res); });
   // Any other POST: a 404 without its body read (httplib would read it whole, with no limit if
   // it is chunked).
-  http.Post(".*", [](const Req& req, Res& res, const httplib::ContentReader&) {
+  http.Post(".*", [this](const Req& req, Res& res, const httplib::ContentReader&) {
+    read_whole(req);
     send_json(res, {{"error", {{"code", "http-404"}, {"message", "nothing at " + req.path}}}},
               kNotFound);
   });
@@ -945,6 +965,11 @@ Result<int> StationServer::bind() {
                                      std::to_string(impl_->options.port)};
   }
   impl_->http.widen_backlog();
+  const auto ms = [](double s) {
+    return std::chrono::milliseconds(static_cast<std::int64_t>(s * 1000));
+  };
+  impl_->deadline = std::make_unique<RequestDeadline>(port, ms(impl_->options.headers_deadline_s),
+                                                      ms(impl_->options.request_deadline_s));
   return port;
 }
 
@@ -952,6 +977,7 @@ Result<int> StationServer::bind() {
 // get there (or to see `stopping` and return) so that a stop right after the start is not lost.
 void StationServer::run() {
   impl_->running = true;
+  if (impl_->deadline) impl_->deadline->start();
   if (!impl_->stopping) impl_->http.listen_after_bind();
   impl_->running = false;
 }
@@ -961,6 +987,7 @@ void StationServer::stop() {
   impl_->campaigns->shut_down();  // httplib waits for the requests that run, a campaign's too
   while (impl_->running && !impl_->http.is_running()) std::this_thread::yield();
   impl_->http.stop();
+  if (impl_->deadline) impl_->deadline->stop();
 }
 
 Result<void> serve_until_signal(const ServerOptions& options,

@@ -78,6 +78,12 @@ struct ServerOptions {
   // Connections served at once, each on a worker thread started when needed; more wait their
   // turn. A connection serves one request; one that sends nothing is closed after 5 s.
   std::size_t max_connections = 256;
+  // A connection whose request's headers have not come whole this long after it was opened, or
+  // its whole request (a POST's body too) this long, is closed, however it trickles: else
+  // max_connections of them, each sending a byte every few seconds, held every worker
+  // (server/src/request_deadline.h).
+  double headers_deadline_s = 10;
+  double request_deadline_s = 60;
   double max_plan_time_s = 60;            // a request's time_limit is capped at this
   std::size_t max_maps = 64;              // the maps given and uploaded (POST /api/maps) at most
   std::size_t max_campaign_runs = 10000;  // a campaign's runs at most
