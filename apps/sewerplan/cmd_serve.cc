@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: MIT
 // sewerplan serve [--map FILE ...] [--host 127.0.0.1] [--port 8080] [--token T] [--web DIR]
-//                 [--allow-host NAME ...]
+//                 [--allow-host NAME ...] [--tiles URL|DIR] [--max-connections 256]
 // The operator station (docs/operator-station.md): the server of server/station_server.h, loaded
 // from the server module (sewerplan/server/module.h), and the page.
 #include <algorithm>
+#include <cstddef>
 #include <filesystem>
 #include <ostream>
 #include <string>
@@ -29,7 +30,24 @@ struct ServeOptions {
   std::string token;
   std::string web;
   std::vector<std::string> allowed_hosts;
+  std::string tiles;
+  int max_connections = static_cast<int>(server::ServerOptions{}.max_connections);
 };
+
+// The host as the socket takes it: an IPv6 address without the brackets a URL puts around it.
+std::string bare_host(const std::string& host) {
+  if (host.size() > 2 && host.front() == '[' && host.back() == ']') {
+    return host.substr(1, host.size() - 2);
+  }
+  return host;
+}
+
+// The station's address: an IPv6 address in brackets ("http://[::1]:8080/"), as every URL has it
+// (RFC 3986): "http://::1:8080/" is no address a browser opens.
+std::string station_url(const std::string& host, int port) {
+  const bool ipv6 = host.find(':') != std::string::npos;
+  return "http://" + (ipv6 ? "[" + host + "]" : host) + ":" + std::to_string(port) + "/";
+}
 
 // The built page: --web, else the build tree's (while developing), else the install's
 // share/sewerplan/web beside bin/.
@@ -65,8 +83,11 @@ int run(const ServeOptions& o, Context& c) {
                 Error{module.error().code,
                       "serve needs cpp-httplib and OpenSSL, but " + module.error().message});
   }
+  const std::string host = bare_host(o.host);
   server::ServerOptions options{
-      .host = o.host, .port = o.port, .token = o.token, .allowed_hosts = o.allowed_hosts};
+      .host = host, .port = o.port, .token = o.token, .allowed_hosts = o.allowed_hosts};
+  options.tiles = o.tiles;
+  options.max_connections = static_cast<std::size_t>(o.max_connections);
   for (const std::string& m : o.maps) options.maps.emplace_back(m);
   // The reader's warnings on stderr, as every command's (an error fails the start with its own
   // message); the page lists them too, each linked to its objects on the map.
@@ -81,15 +102,14 @@ int run(const ServeOptions& o, Context& c) {
   if (options.web_root.empty()) {
     c.err << "sewerplan serve: the page is not built (SEWERPLAN_WEB=ON, or --web DIR): API only\n";
   }
-  if (o.host != "127.0.0.1" && o.host != "localhost" && o.host != "::1") {
-    c.err << "sewerplan serve: warning: listening on " << o.host
-          << ", reachable from other machines" << (o.token.empty() ? " without a --token" : "")
-          << '\n';
+  if (host != "127.0.0.1" && host != "localhost" && host != "::1") {
+    c.err << "sewerplan serve: warning: listening on " << host << ", reachable from other machines"
+          << (o.token.empty() ? " without a --token" : "") << '\n';
   }
   Result<void> served = (*module)->serve_until_signal(options, [&](int port) {
     // The token in the fragment, which the browser keeps to itself: never in a request's URL, so
     // in no server's or proxy's log (the page sends it as a header, web/src/api.js).
-    c.out << "sewerplan serve: http://" << o.host << ':' << port << '/'
+    c.out << "sewerplan serve: " << station_url(host, port)
           << (o.token.empty() ? "" : "#token=" + o.token) << std::endl;
   });
   if (!served.has_value()) return fail(c, false, served.error());
@@ -116,6 +136,16 @@ void add_serve_command(CLI::App& app, Context& context) {
   cmd->add_option("--allow-host", o->allowed_hosts,
                   "A name the page may be opened under besides IP addresses, localhost and --host "
                   "(requests naming another Host are refused: DNS rebinding); repeatable");
+  cmd->add_option(
+      "--tiles", o->tiles,
+      "A basemap for the page, off until the operator turns it on: an XYZ template "
+      "(https://.../{z}/{x}/{y}.png, the browser fetches it) or a directory of Z/X/Y.png "
+      "tiles (served by the station: no internet needed)");
+  cmd->add_option("--max-connections", o->max_connections,
+                  "Connections served at once, each on a thread of its own; more wait their turn "
+                  "(a connection serves one request, and one that sends nothing for 5 s is closed)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 10000));
   cmd->add_option("--web", o->web, "Serve the page from this directory (default: the built one)");
   cmd->callback([o, &context] { context.exit_code = run(*o, context); });
 }

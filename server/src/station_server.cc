@@ -5,7 +5,9 @@
 #include <atomic>
 #include <cctype>
 #include <chrono>
+#include <cmath>
 #include <csignal>
+#include <cstdint>
 #include <exception>
 #include <map>
 #include <memory>
@@ -38,6 +40,7 @@
 #include "sewerplan/hal/fault_scenario.h"
 #include "sewerplan/hal/sim_robot.h"
 #include "sewerplan/search/planner.h"
+#include "sewerplan/server/basemap.h"
 #include "sewerplan/server/documents.h"
 #include "sewerplan/server/driveability_output.h"
 #include "sewerplan/server/findings_output.h"
@@ -49,6 +52,7 @@
 #include "json_body.h"
 #include "map_geometry.h"
 #include "plan_route.h"
+#include "request_deadline.h"
 #include "request_guard.h"
 #include "worker_pool.h"
 #include <httplib.h>
@@ -163,7 +167,19 @@ struct StationServer::Impl {
   mutable std::mutex maps_mutex;
   // Declared before `http`, so that it outlives the requests that use it.
   std::unique_ptr<CampaignService> campaigns;
+  std::optional<TileSource> tiles;  // --tiles (basemap.h)
   HttpServer http;
+  // Closes connections whose request does not come whole in time (request_deadline.h); made by
+  // bind(), which knows the port.
+  std::unique_ptr<RequestDeadline> deadline;
+  // The request of `req`'s connection has its headers read, or is read whole: the deadlines no
+  // longer apply to it.
+  void headers_read(const httplib::Request& req) const {
+    if (deadline) deadline->headers_read(req.remote_addr, req.remote_port);
+  }
+  void read_whole(const httplib::Request& req) const {
+    if (deadline) deadline->read_whole(req.remote_addr, req.remote_port);
+  }
   std::atomic<bool> running{false};
   std::atomic<bool> stopping{false};
 
@@ -305,6 +321,8 @@ struct StationServer::Impl {
   void list_maps(httplib::Response& res) const;
   void driveability(const httplib::Request& req, httplib::Response& res) const;
   void findings(const httplib::Request& req, httplib::Response& res) const;
+  void basemap(const httplib::Request& req, httplib::Response& res) const;
+  void tile(const httplib::Request& req, httplib::Response& res) const;
   void upload_map(const httplib::Request& req, const std::string& body, httplib::Response& res);
   void upload_condition(const httplib::Request& req, const std::string& body,
                         httplib::Response& res);
@@ -348,7 +366,79 @@ void StationServer::Impl::list_maps(httplib::Response& res) const {
                     // or null: local coordinates. The page names it beside the cursor's position.
                     {"crs", m->map->crs() ? Json(m->map->crs()->to_string()) : Json()}});
   }
-  send_json(res, {{"maps", list}, {"profiles", builtin_profile_names()}});
+  // The basemap's tile source (basemap.h), or null: none (`serve --tiles`).
+  Json basemap;
+  if (tiles) {
+    basemap = {{"kind", tiles->kind == TileSource::Kind::kUrl ? "url" : "directory"},
+               {"tiles", tiles->url_template},
+               {"min_zoom", tiles->min_zoom},
+               {"max_zoom", tiles->max_zoom}};
+  }
+  send_json(
+      res,
+      {{"maps", list}, {"profiles", builtin_profile_names()}, {"basemap", std::move(basemap)}});
+}
+
+// GET /api/maps/ID/basemap?x0=&y0=&x1=&y1=&mpp=: the tiles that cover the view (x0, y0, x1, y1
+// in the map's metres, mpp metres a pixel), each with its corners in the map's metres.
+void StationServer::Impl::basemap(const httplib::Request& req, httplib::Response& res) const {
+  const auto m = find_map(req, res);
+  if (!m) return;
+  if (!tiles) {
+    return send_error(
+        res, kNotFound,
+        Error{ErrorCode::kInvalidArgument, "no basemap: the station was started without --tiles"});
+  }
+  BasemapView view;
+  const auto number = [&](const char* name, double& out) {
+    const std::string text = req.get_param_value(name);
+    try {
+      std::size_t used = 0;
+      out = std::stod(text, &used);
+      if (used == text.size() && std::isfinite(out)) return true;
+    } catch (const std::exception&) {  // not a number: said below
+    }
+    bad_request(res, std::string(name) + ": expected a number of metres, not '" + text + "'");
+    return false;
+  };
+  if (!number("x0", view.rect[0]) || !number("y0", view.rect[1]) || !number("x1", view.rect[2]) ||
+      !number("y1", view.rect[3]) || !number("mpp", view.metres_per_pixel)) {
+    return;
+  }
+  Result<TileChoice> choice = basemap_tiles(*m->map, *tiles, view);
+  if (!choice.has_value()) {
+    const bool bad_view = m->map->crs() && choice.error().message.starts_with("the view");
+    return bad_view ? bad_request(res, choice.error().message)
+                    : send_error(res, kUnprocessable, choice.error());
+  }
+  Json list = Json::array();
+  for (const PlacedTile& t : choice->tiles) {
+    Json corners = Json::array();
+    for (const MapXY& c : t.corners) corners.push_back({c.x, c.y});
+    list.push_back({{"z", t.z}, {"x", t.x}, {"y", t.y}, {"url", t.url}, {"corners", corners}});
+  }
+  send_json(res, {{"crs", m->map->crs()->to_string()},
+                  {"zoom", choice->zoom},
+                  {"tiles", std::move(list)},
+                  {"truncated", choice->truncated},
+                  {"note", choice->note}});
+}
+
+// GET /api/tiles/Z/X/Y.EXT: a tile of a directory source, or 404; the path's parts are digits
+// (the route's pattern), so it names no file but a tile's.
+void StationServer::Impl::tile(const httplib::Request& req, httplib::Response& res) const {
+  const std::string z = req.matches[1], x = req.matches[2], y = req.matches[3],
+                    ext = req.matches[4];
+  std::optional<std::string> bytes =
+      tiles ? read_tile(*tiles, std::stoi(z), std::stoll(x), std::stoll(y), ext) : std::nullopt;
+  if (!bytes) {
+    return send_error(res, kNotFound,
+                      Error{ErrorCode::kInvalidArgument,
+                            tiles ? "no tile " + z + "/" + x + "/" + y + "." + ext
+                                  : "no tiles: the station was started without --tiles DIR"});
+  }
+  const char* type = ext == "png" ? "image/png" : ext == "webp" ? "image/webp" : "image/jpeg";
+  res.set_content(std::move(*bytes), type);
 }
 
 // POST /api/maps?name=FILE[&format=F]: the body is a map file in any format read_map reads (the
@@ -683,7 +773,12 @@ void StationServer::Impl::routes() {
   // Who may drive the station (request_guard.h), then the token; before the body is read, and
   // before a client that asks ("Expect: 100-continue", as curl does for a large body) sends it.
   const auto refused = [this, guard](const httplib::Request& req, httplib::Response& res) {
+    // Answered here, or a request with no body (a GET): read whole. A POST's body is read by
+    // post().
+    if (req.method != "POST") read_whole(req);
+    headers_read(req);
     if (const std::optional<Refusal> r = check_request(req, guard)) {
+      read_whole(req);
       send_json(res, {{"error", {{"code", r->code}, {"message", r->message}}}}, r->status);
       return true;
     }
@@ -734,6 +829,7 @@ void StationServer::Impl::routes() {
         if (!over) body.append(data, size);
         return !over;
       });
+      read_whole(req);
       if (over) {
         return send_json(res,
                          {{"error", {{"code", "http-413"}, {"message", body_over_limit(limit)}}}},
@@ -774,6 +870,10 @@ void StationServer::Impl::routes() {
            [this](const Req& req, Res& res) { driveability(req, res); });
   http.Get(R"(/api/maps/([^/]+)/findings)",
            [this](const Req& req, Res& res) { findings(req, res); });
+  http.Get(R"(/api/maps/([^/]+)/basemap)", [this](const Req& req, Res& res) { basemap(req, res); });
+  // Only digits in a tile's path: nothing else reaches the tiles' directory.
+  http.Get(R"(/api/tiles/(\d{1,2})/(\d{1,10})/(\d{1,10})\.(png|jpg|jpeg|webp))",
+           [this](const Req& req, Res& res) { tile(req, res); });
   post(R"(/api/maps/([^/]+)/validate)",
        [this](const Req& req, const std::string& body, Res& res) { validate(req, body, res); });
   post(R"(/api/maps/([^/]+)/plan)",
@@ -793,7 +893,8 @@ void StationServer::Impl::routes() {
            [this](const Req& req, Res& res) { campaigns->run_events(req, res); });
   // Any other POST: a 404 without its body read (httplib would read it whole, with no limit if
   // it is chunked).
-  http.Post(".*", [](const Req& req, Res& res, const httplib::ContentReader&) {
+  http.Post(".*", [this](const Req& req, Res& res, const httplib::ContentReader&) {
+    read_whole(req);
     send_json(res, {{"error", {{"code", "http-404"}, {"message", "nothing at " + req.path}}}},
               kNotFound);
   });
@@ -838,6 +939,11 @@ Result<std::unique_ptr<StationServer>> StationServer::create(const ServerOptions
                   diagnostics_json(diagnostics, Severity::kWarning),
                   Json::array()}));
   }
+  if (!options.tiles.empty()) {
+    Result<TileSource> source = parse_tile_source(options.tiles);
+    if (!source.has_value()) return source.error();
+    impl->tiles = std::move(*source);
+  }
   if (!options.web_root.empty() && !std::filesystem::is_directory(options.web_root)) {
     return Error{ErrorCode::kIo, options.web_root.string() + ": no such directory (the page)"};
   }
@@ -859,6 +965,11 @@ Result<int> StationServer::bind() {
                                      std::to_string(impl_->options.port)};
   }
   impl_->http.widen_backlog();
+  const auto ms = [](double s) {
+    return std::chrono::milliseconds(static_cast<std::int64_t>(s * 1000));
+  };
+  impl_->deadline = std::make_unique<RequestDeadline>(port, ms(impl_->options.headers_deadline_s),
+                                                      ms(impl_->options.request_deadline_s));
   return port;
 }
 
@@ -866,6 +977,7 @@ Result<int> StationServer::bind() {
 // get there (or to see `stopping` and return) so that a stop right after the start is not lost.
 void StationServer::run() {
   impl_->running = true;
+  if (impl_->deadline) impl_->deadline->start();
   if (!impl_->stopping) impl_->http.listen_after_bind();
   impl_->running = false;
 }
@@ -875,6 +987,7 @@ void StationServer::stop() {
   impl_->campaigns->shut_down();  // httplib waits for the requests that run, a campaign's too
   while (impl_->running && !impl_->http.is_running()) std::this_thread::yield();
   impl_->http.stop();
+  if (impl_->deadline) impl_->deadline->stop();
 }
 
 Result<void> serve_until_signal(const ServerOptions& options,

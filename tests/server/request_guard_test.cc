@@ -335,6 +335,51 @@ TEST_F(RequestGuardTest, AnswersWhileManyConnectionsSitIdleOrTrickle) {
   EXPECT_EQ(r->status, 200);
 }
 
+// More connections than the station serves at once, each trickling a byte every 100 ms (within
+// the read timeout) and never ending its request, held every worker for as long as they went on:
+// httplib times out each read, not the request. Each is closed at its deadline (the headers', or
+// the whole request's for a POST's body), and a request of the operator's, waiting its turn behind
+// them, is answered.
+TEST_F(RequestGuardTest, ManualAnswersWhileMoreConnectionsThanWorkersTrickle) {
+  start({.max_connections = 8, .headers_deadline_s = 0.5, .request_deadline_s = 0.6});
+  // Half trickle their headers, half the body of a POST whose headers came whole.
+  constexpr std::size_t kConnections = 20;
+  std::vector<std::unique_ptr<RawConnection>> slow;
+  for (std::size_t i = 0; i < kConnections; ++i) {
+    slow.push_back(std::make_unique<RawConnection>(port_));
+    ASSERT_TRUE(slow.back()->connected());
+    ASSERT_TRUE(slow.back()->send(
+        i % 2 == 0 ? "GET /api/maps HTTP/1.1\r\nHost: " + here() + "\r\nX-Slow: "
+                   : "POST /api/maps/map/validate HTTP/1.1\r\nHost: " + here() +
+                         "\r\nContent-Type: application/json\r\nContent-Length: 100000\r\n\r\n"));
+  }
+  std::atomic<bool> done{false};
+  std::atomic<std::size_t> cut{0};
+  std::thread trickle([&] {
+    std::vector<bool> closed(kConnections, false);
+    while (!done) {
+      for (std::size_t i = 0; i < kConnections; ++i) {
+        if (!closed[i] && !slow[i]->send("x")) closed[i] = true, ++cut;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+  });
+  // Younger than the trickling ones: its wait for a worker counts against its own deadline.
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  httplib::Client client("127.0.0.1", port_);
+  client.set_read_timeout(10, 0);
+  auto r = client.Get("/api/maps");
+  // Each trickling connection closed by the station: its sends fail (a reset) soon after.
+  for (int i = 0; i < 50 && cut < kConnections; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  done = true;
+  trickle.join();
+  ASSERT_TRUE(r) << "no answer within 10 s: " << r.error();
+  EXPECT_EQ(r->status, 200);
+  EXPECT_EQ(cut, kConnections);
+}
+
 // httplib binds with SO_REUSEPORT: a second server, of any program of the same user, bound the
 // station's port and was given half its connections. The station's port is its own.
 TEST_F(RequestGuardTest, KeepsItsPortToItself) {

@@ -20,6 +20,7 @@ import { join } from 'node:path';
 import { chromium } from 'playwright-core';
 import { findingsOnTheMap, learntAfterRun, taskMarkers } from './findings.test.mjs';
 import { gisHabits } from './gis-habits.mjs';
+import { basemapCase, watchBasemapRequests, writeTiles } from './basemap.mjs';
 
 const args = process.argv.slice(2);
 const largeAt = args.indexOf('--large');
@@ -42,8 +43,10 @@ const launching = chromium.launch({
 // With a token, as on a shared machine: every request of the page, the streams too, must carry it in
 // its header (the printed address has it in its #fragment, which the page takes from there).
 const token = 'e2e-token';
+// A basemap from a directory of tiles (basemap.mjs), off until the page turns it on.
+const tiles = writeTiles(join(out, 'tiles'));
 const server = spawn(binary, ['serve', '--map', join(ais, 'map.json'), ...(large ? ['--map', large] : []),
-                              '--port', '0', '--token', token,
+                              '--port', '0', '--token', token, '--tiles', tiles,
                               ...process.env.SEWERPLAN_WEB_DIR ? ['--web', process.env.SEWERPLAN_WEB_DIR] : []],
                      { stdio: ['ignore', 'pipe', 'inherit'] });
 const url = await new Promise((resolve, reject) => {
@@ -524,6 +527,7 @@ try {
     shotsMs += Date.now() - t;
     console.log(`[${Date.now() - started} ms] ${name}`);
   };
+  const basemapAsked = watchBasemapRequests(page);
   page.on('pageerror', (e) => console.error('page error:', e.message));
   page.on('console', (m) => m.type() === 'error' && console.error('console:', m.text()));
   await page.addInitScript(watchFirstView);
@@ -731,6 +735,7 @@ try {
 
   await whatHappenedOnScreen(page);
   await gisHabits(page, { binary, source, ais, out, check, shot });
+  await basemapCase(page, { asked: basemapAsked, check, shot });
   await findingsOnTheMap(page, { source }).catch((e) => issue32.push(`findings: ${e.message}`));
   await shot('12-findings.png');
   check(issue32.length === 0, `issue 32: ${issue32.join('; ')}`);

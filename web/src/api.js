@@ -69,6 +69,17 @@ export async function driveability(id, profile, signal) {
 // The map's inspection findings for a profile, with what the risk mode makes of them.
 export const findings = (id, profile, signal) =>
   call(risk(`${map(id)}/findings?profile=${encodeURIComponent(profile)}`), { signal });
+// The basemap's tiles for a view of the map (basemap.js): each with its corners in the map's metres.
+export const basemap = (id, [x0, y0, x1, y1], mpp) =>
+  call(`${map(id)}/basemap?x0=${x0}&y0=${y0}&x1=${x1}&y1=${y1}&mpp=${mpp}`);
+// A basemap tile's image: the station's own (`--tiles DIR`: with the token, as every API request),
+// or another server's (an XYZ URL: never with the token, and only if that server lets other sites'
+// pages read its tiles, CORS, as the public tile servers do).
+export async function tile(url, kind) {
+  const response = await fetch(url, kind === 'directory' ? { headers } : { mode: 'cors', credentials: 'omit' });
+  if (!response.ok) throw new Error(`${response.status} ${response.statusText}`.trim());
+  return createImageBitmap(await response.blob());
+}
 export const validate = (id, mission) => call(`${map(id)}/validate`, { method: 'POST', body: JSON.stringify(mission), headers: json });
 export const plan = (id, mission, timeLimit) =>
   call(risk(motion(`${map(id)}/plan?time_limit=${timeLimit}`)), { method: 'POST', body: JSON.stringify(mission), headers: json });

@@ -5,6 +5,7 @@
 // undo.js, task-keys.js, scale-bar.js, cursor-coords.js, saved-mission.js, export-geojson.js;
 // docs/operator-station.md). All state is here, in `state`.
 import * as api from './api.js';
+import { Basemap } from './basemap.js';
 import { CampaignPanel } from './campaign.js';
 import { trackCursor } from './cursor-coords.js';
 import { exportGeoJson } from './export-geojson.js';
@@ -38,10 +39,14 @@ const state = {
 };
 const history = new EditHistory();  // the mission's edits (undo.js)
 
+let basemap = null;  // the optional basemap (basemap.js), once the server said its source
 const view = createMapView($('view'), {
   onClick: (info) => clickMap(info), onHover: (info) => showHover(info),
-  onViewChange: (v) => showScale($('scale-bar'), $('scale-text'), v.zoom),
+  onViewChange: (v) => { showScale($('scale-bar'), $('scale-text'), v.zoom); askBasemap(); },
+  underlay: (g, toScreen) => basemap?.draw(g, toScreen),
 });
+// The basemap's tiles for the view, if it is on (basemap.js asks nothing otherwise).
+const askBasemap = () => basemap?.view(view.rect(), 2 ** -view.viewState().zoom);
 const draw = () => view.draw(state);
 // The Plan panel: the plan asked, or a run's plan and replans; one chosen is highlighted.
 const plans = new PlanHistory({ onChange: () => { state.highlight = plans.highlighted(); draw(); } });
@@ -187,6 +192,7 @@ async function openMap(id) {
   showWarnings();
   clearRun();
   state.route = new Set();
+  basemap?.setMap(id, state.mapInfo.get(id)?.crs ?? null);
   view.fit(state.map.bounds);
   missionChanged();
   faultsChanged();
@@ -195,6 +201,7 @@ async function openMap(id) {
   performance.mark(`${id}: first draw`);
   state.timings.open_map_ms = Math.round(performance.now() - t0);
   document.body.dataset.opened = id;
+  askBasemap();
   loadFindings();
   drawn();  // the driveability asked meanwhile is applied now or when it comes (not awaited)
 }
@@ -538,10 +545,24 @@ async function uploadMission(file) {
 }
 
 async function listMaps() {
-  const { maps, profiles } = await api.listMaps();
+  const { maps, profiles, basemap: source } = await api.listMaps();
+  basemap ??= newBasemap(source);
   state.mapInfo = new Map(maps.map((m) => [m.id, m]));  // warnings, CRS ("EPSG:25832" or null)
   $('map').replaceChildren(...maps.map((m) => new Option(`${m.id} (${m.manholes} manholes)`, m.id)));
   return { maps, profiles };
+}
+
+// The basemap of the station's tile source (null: none), off until the operator turns it on.
+function newBasemap(source) {
+  const made = new Basemap({
+    source, placement: api.basemap, tile: api.tile,
+    onChange: () => { $('basemap-note').textContent = made.note; view.redraw(); },
+  });
+  $('basemap').disabled = !source;
+  $('basemap').checked = false;
+  $('basemap').onchange = () => { made.setEnabled($('basemap').checked); askBasemap(); };
+  $('basemap-note').textContent = made.note;
+  return made;
 }
 
 // A map file sent to the server (any format it reads), listed and opened under its new ID.
@@ -641,6 +662,8 @@ window.station = {
   manholePoint(name) { return view.project(state.map.manholeByName.get(name).position); },
   // The map view: its view state, setView and drawing statistics (frames, LOD, picks).
   view,
+  // The basemap: its tiles asked, fetched and drawn (basemap.js's stats).
+  get basemap() { return basemap; },
   // Zooms in by `levels` about the view's centre; resolves when it is drawn.
   zoomAndWait(levels) {
     const { target, zoom } = view.viewState();

@@ -25,8 +25,10 @@ const kNamesUpTo = 2000;  // manhole names (thinned: labels.js) only on maps thi
 //         learnt: [learnt place], planOrder: Map(task -> number),
 //         highlight: {pipes: [name], manholes: [name]} | null (a warning's objects, a plan chosen,
 //         a place found by name: highlightLayers)}
-// onViewChange(viewState) after every pan and zoom (the scale bar).
-export function createMapView(parent, { onClick, onHover, onViewChange = () => {} }) {
+// onViewChange(viewState) after every pan and zoom (the scale bar, the basemap).
+// underlay(g, toScreen) draws under the network on the 2-D canvas, at each frame (the basemap,
+// basemap.js): g's transform the identity, toScreen([x, y]) the map's metres in its pixels.
+export function createMapView(parent, { onClick, onHover, onViewChange = () => {}, underlay = () => {} }) {
   let viewState = { target: [0, 0, 0], zoom: 0 };
   let hovering = false;
   // What the browser test reads (web/e2e): frames drawn, LOD rebuilds and picks, timed; the
@@ -145,18 +147,20 @@ export function createMapView(parent, { onClick, onHover, onViewChange = () => {
              dpr: devicePixelRatio };
   }
 
-  // Shows the window's image where the view has it (each frame: a 2-D canvas blit, milliseconds).
-  // A new image replaces the last in one blit: the last stays shown, scaled, until it comes. None
-  // is shown while a vector window's layers are (NetworkPicture).
+  // Shows the window's image where the view has it (each frame: a 2-D canvas blit, milliseconds),
+  // over the underlay (the basemap). A new image replaces the last in one blit: the last stays
+  // shown, scaled, until it comes. None is shown while a vector window's layers are
+  // (NetworkPicture).
   function blit() {
     const dpr = devicePixelRatio;
     const width = Math.round(parent.clientWidth * dpr), height = Math.round(parent.clientHeight * dpr);
     if (under.width !== width || under.height !== height) Object.assign(under, { width, height });
     const g = under.getContext('2d');
     g.clearRect(0, 0, width, height);
+    const { rect, zoom } = viewOf(viewState), s = 2 ** zoom * dpr;
+    underlay(g, (p) => [(p[0] - rect[0]) * s, (rect[3] - p[1]) * s]);
     const image = picture.image;
     if (!image) return;
-    const { rect, zoom } = viewOf(viewState), s = 2 ** zoom * dpr;
     const [x0, y0, x1, y1] = image.bounds;
     const t0 = performance.now();
     g.drawImage(image.image, (x0 - rect[0]) * s, (rect[3] - y1) * s, (x1 - x0) * s, (y1 - y0) * s);
@@ -314,6 +318,10 @@ export function createMapView(parent, { onClick, onHover, onViewChange = () => {
     },
     // The view ({target, zoom}) and setting it, as a pan or a zoom would.
     viewState: () => viewState,
+    // The view's rectangle in metres: [x0, y0, x1, y1].
+    rect: () => viewOf(viewState).rect,
+    // Draws the next frame (the underlay changed).
+    redraw: () => deck.redraw(true),
     setView,
     // The manholes whose names are drawn (thinned: labels.js), and the zoom they were thinned at.
     labels: () => ({ zoom: labelZoom, manholes: labelLayer?.props.data ?? [] }),

@@ -17,6 +17,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -37,6 +38,12 @@ struct ModuleTable {
   Result<std::string> (*to_geojson)(const GeoJsonInput& input);
   // to_nav2_route_graph (geojson.h).
   std::string (*to_nav2_route_graph)(const SewerMap& map, MapXY origin, std::string_view frame);
+  // Transforms `points` in place through a Wgs84Projection of `crs` (wgs84_projection.h): with
+  // `to_wgs84`, from the CRS's x and y in metres to WGS84 (x: longitude, y: latitude, degrees),
+  // else back. A point PROJ cannot transform (outside the CRS's domain) becomes NaN, NaN; an error
+  // only when PROJ does not know the CRS or finds no transformation. (The station's basemap:
+  // server/basemap.h.)
+  Result<void> (*reproject)(const Crs& crs, bool to_wgs84, std::span<MapXY> points);
 };
 
 inline constexpr const char* kModuleName = "gis";
@@ -56,6 +63,9 @@ inline std::string module_stamp() {
       {"string", sizeof(std::string)},
       {"MapXY", sizeof(MapXY)},
       {"string_view", sizeof(std::string_view)},
+      {"Crs", sizeof(Crs)},
+      {"span<MapXY>", sizeof(std::span<MapXY>)},
+      {"Result<void>", sizeof(Result<void>)},
   };
   return module_abi_stamp(types);
 }

@@ -20,6 +20,8 @@
 //   ...}: a
 //                                           fault campaign, its progress as server-sent events,
 //                                           then its summary (one campaign at a time)
+//   GET  /api/maps/ID/basemap?x0=&y0=&x1=&y1=&mpp=  the basemap's tiles for a view (basemap.h)
+//   GET  /api/tiles/Z/X/Y.png               a tile of a `--tiles DIR` source
 //   GET  /api/campaign                      the running campaign's progress, or the last summary
 //   POST /api/campaign/cancel               stops the running campaign
 //   GET  /api/campaign/runs/I               run I of the last campaign simulated again: its events
@@ -68,11 +70,20 @@ struct ServerOptions {
   // Names (besides IP addresses, "localhost" and `host`) the page may be opened under: a request
   // with another Host is refused (DNS rebinding; docs/operator-station.md). `serve --allow-host`.
   std::vector<std::string> allowed_hosts;
-  std::filesystem::path web_root;          // the built page (share/sewerplan/web); empty: API only
+  std::filesystem::path web_root;  // the built page (share/sewerplan/web); empty: API only
+  // The basemap's tile source (`serve --tiles`, basemap.h): an XYZ URL template, or a directory
+  // of Z/X/Y.png tiles served at /api/tiles/. Empty: no basemap.
+  std::string tiles;
   std::size_t max_body_bytes = 16u << 20;  // in any transfer or content encoding
   // Connections served at once, each on a worker thread started when needed; more wait their
   // turn. A connection serves one request; one that sends nothing is closed after 5 s.
   std::size_t max_connections = 256;
+  // A connection whose request's headers have not come whole this long after it was opened, or
+  // its whole request (a POST's body too) this long, is closed, however it trickles: else
+  // max_connections of them, each sending a byte every few seconds, held every worker
+  // (server/src/request_deadline.h).
+  double headers_deadline_s = 10;
+  double request_deadline_s = 60;
   double max_plan_time_s = 60;            // a request's time_limit is capped at this
   std::size_t max_maps = 64;              // the maps given and uploaded (POST /api/maps) at most
   std::size_t max_campaign_runs = 10000;  // a campaign's runs at most
