@@ -94,14 +94,17 @@ Fields fields_of(const Event& event) {
   return std::visit(
       Overloaded{
           [](const PlanEvent& e) -> Fields {
-            return {{"reason", e.reason},
-                    {"planning_ms", e.planning_ms},
-                    {"decision", text(to_string(e.decision))},
-                    {"goals", e.goals},
-                    {"dropped", e.dropped},
-                    {"end", e.end},
-                    {"steps", static_cast<I>(e.steps)},
-                    {"cost_s", e.cost_s}};
+            Fields f{{"reason", e.reason},
+                     {"planning_ms", e.planning_ms},
+                     {"decision", text(to_string(e.decision))},
+                     {"goals", e.goals},
+                     {"dropped", e.dropped},
+                     {"end", e.end},
+                     {"steps", static_cast<I>(e.steps)},
+                     {"cost_s", e.cost_s}};
+            if (e.rung != PlanResponse::Rung::kSearch)
+              f.emplace_back("rung", text(to_string(e.rung)));
+            return f;
           },
           [](const ActionEvent& e) -> Fields {
             return {{"step", e.step},

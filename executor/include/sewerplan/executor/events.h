@@ -64,6 +64,9 @@ struct PlanEvent {
   std::string end;                   // "exit M4", "pipe P9 (final task 'end')"
   std::size_t steps = 0;
   double cost_s = 0;
+  // Which answer of the anytime ladder it is (PlanResponse::Rung); written when not "search",
+  // so logs of plans the search made read as before.
+  PlanResponse::Rung rung = PlanResponse::Rung::kSearch;
   friend bool operator==(const PlanEvent&, const PlanEvent&) = default;
 };
 

@@ -125,6 +125,7 @@ struct PlanResponse {
     kGreedy,        // "greedy": the cheapest insertion of the tasks left from the robot's place
     kNearestExit,   // "nearest-exit": every task left dropped, the nearest reachable exit
   };
+  static constexpr std::size_t kRungCount = 6;  // for counts indexed by Rung
   Rung rung = Rung::kSearch;
   domain::Plan plan;
   fusion::FusedPlan fused;
