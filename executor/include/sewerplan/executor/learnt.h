@@ -78,9 +78,9 @@ double hazard_probability_after_pass(double probability, std::size_t passes, dou
 bool same_hazard(const HazardBelief& belief, const Hazard& hazard);
 
 // `mission` as the planner sees it with `learnt`: every blockage and danger spot a blockage,
-// every dangerous passage closed, and every hazard of the mission that a belief is about (same_
-// hazard) with the belief's probability. A belief about no hazard of the mission (another risk
-// table, planning without --risk expected) changes nothing.
+// every dangerous passage closed, and every hazard of the mission that a belief is about
+// (same_hazard) with the belief's probability. A belief about no hazard of the mission (another
+// risk table, planning without --risk expected) changes nothing.
 Mission with_learnt(Mission mission, const Learnt& learnt);
 
 // Whether `belief` can be learnt on `map`: a known pipe, a finite offset within it, a probability
