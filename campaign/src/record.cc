@@ -46,6 +46,14 @@ Json execution_json(const Execution& e) {
   j["energy_wh"] = e.energy_wh;
   j["disabled"] = e.disabled;
   j["beacon_cause"] = std::string(executor::to_string(e.beacon_cause));
+  // The rungs that answered (issue 34), by name; those that never did are left out.
+  Json rungs = Json::object();
+  for (std::size_t r = 0; r < e.rungs.size(); ++r) {
+    if (e.rungs[r] == 0) continue;
+    rungs[std::string(executor::to_string(static_cast<executor::PlanResponse::Rung>(r)))] =
+        e.rungs[r];
+  }
+  j["rungs"] = std::move(rungs);
   if (e.world) {
     // The counts are read back; the shares are written for a reader (null: nothing to share).
     const WorldScore& w = *e.world;
@@ -200,6 +208,16 @@ Execution read_execution(JsonFields& run, std::string_view key, std::string_view
   x.disabled = f->boolean("disabled").value_or(false);
   // Only ours with world errors is scored (world_score.h); records without have neither object.
   if (f->has("localisation") || f->has("corrected_map")) x.world = read_world_score(*f, file);
+  // Records written before the rungs were counted have none (all 0).
+  if (std::optional<JsonFields> rungs =
+          f->has("rungs") ? object_in(*f, "rungs", file) : std::nullopt) {
+    for (std::size_t r = 0; r < x.rungs.size(); ++r) {
+      const std::string name(executor::to_string(static_cast<executor::PlanResponse::Rung>(r)));
+      x.rungs[r] = rungs->count(name, kMaxCount, kOptional).value_or(0);
+    }
+    rungs->reject_unknown(
+        {"search", "best-so-far", "current-plan", "repaired-plan", "greedy", "nearest-exit"});
+  }
   // Records written before beacons had causes have none.
   if (const std::optional<std::string> name = f->string("beacon_cause", kOptional)) {
     if (const auto cause = executor::parse_beacon_cause(*name)) {

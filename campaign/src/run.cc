@@ -145,12 +145,14 @@ Execution execute(const SewerMap& map, const hal::TrueWorld& truth, const Missio
   executor::Executor executor(map, replanner, robot, options);
   if (observers.on_event) executor.subscribe(observers.on_event);
   if (observers.on_plan) executor.subscribe_plans(observers.on_plan);
+  Execution e;
+  executor.subscribe_plans(
+      [&e](const executor::PlanResponse& r) { ++e.rungs[static_cast<std::size_t>(r.rung)]; });
   // Watches from outside the robot's loop: it reads the simulated robot's true pose, and nothing of
   // it reaches the executor.
   std::optional<WorldScorer> scorer;
   if (score_world) scorer.emplace(map, truth, robot).watch(executor);
   const executor::MissionReport report = executor.run();
-  Execution e;
   e.tasks = report.tasks_done.size();
   e.end = report.end;
   e.reserve_kept = report.battery_reserve_kept;

@@ -64,6 +64,7 @@ void figures(const std::vector<const RunResult*>& runs, const Execution RunResul
     }
     if (e.exit_on_reserve) ++f.exits_on_reserve;
     if (!e.reserve_kept && !e.exit_on_reserve) ++f.reserve_violations;
+    for (std::size_t k = 0; k < f.rungs.size(); ++k) f.rungs[k] += e.rungs[k];
     replans += static_cast<double>(e.replans);
     f.replans_max = std::max(f.replans_max, e.replans);
     for (double t : e.planning_times_s) planning_ms.push_back(t * 1000);
@@ -134,6 +135,11 @@ Json policy_json(const PolicyFigures& f) {
     causes[name] = f.beacon_causes[c];
     otherwise_causes[name] = f.ended_otherwise_beacon_causes[c];
   }
+  Json rungs;
+  for (std::size_t k = 0; k < f.rungs.size(); ++k) {
+    rungs[std::string(executor::to_string(static_cast<executor::PlanResponse::Rung>(k)))] =
+        f.rungs[k];
+  }
   // Nothing to compare when the oracle can end no run: no mean, no worst run (null).
   const bool compared = f.compared > 0;
   return Json{{"tasks_mean", f.tasks_mean},
@@ -151,6 +157,7 @@ Json policy_json(const PolicyFigures& f) {
               {"exits_on_reserve", f.exits_on_reserve},
               {"replans_mean", f.replans_mean},
               {"replans_max", f.replans_max},
+              {"rungs", rungs},
               {"planning_ms_p50", f.planning_p50_ms},
               {"planning_ms_p99", f.planning_p99_ms},
               {"tasks_vs_oracle_histogram", f.vs_oracle_histogram}};

@@ -126,6 +126,7 @@ std::optional<Event> event_of(const std::string& type, FieldReader& r) {
     r.get("end", p.end);
     r.get("steps", p.steps);
     r.get("cost_s", p.cost_s);
+    r.get<PlanResponse::Rung>("rung", p.rung, parse_rung);
     e.what = std::move(p);
   } else if (type == "action") {
     ActionEvent a;
@@ -194,6 +195,16 @@ std::optional<Event> event_of(const std::string& type, FieldReader& r) {
     r.get("observed", a.observed);
     r.get("reason", a.reason);
     e.what = std::move(a);
+  } else if (type == "hazard") {
+    HazardEvent h;
+    r.get("pipe", h.pipe);
+    r.get("offset_m", h.offset_m);
+    r.get("reason", h.reason);
+    r.get<HazardEvent::Observed>("observed", h.observed, parse_hazard_observed);
+    r.get("probability_before", h.probability_before);
+    r.get("probability", h.probability);
+    r.get("passes", h.passes);
+    e.what = std::move(h);
   } else if (type == "beacon") {
     BeaconEvent b;
     r.get("reason", b.reason);

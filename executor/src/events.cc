@@ -27,6 +27,11 @@ constexpr std::array<std::pair<BeaconCause, std::string_view>, 6> kBeaconCauses{
     {BeaconCause::kLimit, "limit"},
 }};
 
+constexpr std::array<std::pair<HazardEvent::Observed, std::string_view>, 2> kObserved{{
+    {HazardEvent::Observed::kPassed, "passed"},
+    {HazardEvent::Observed::kBlocked, "blocked"},
+}};
+
 template <class Enum, std::size_t N>
 std::string_view name_of(const std::array<std::pair<Enum, std::string_view>, N>& names,
                          Enum value) {
@@ -58,6 +63,11 @@ std::optional<BeaconCause> parse_beacon_cause(std::string_view name) {
   return value_of(kBeaconCauses, name);
 }
 
+std::string_view to_string(HazardEvent::Observed observed) { return name_of(kObserved, observed); }
+std::optional<HazardEvent::Observed> parse_hazard_observed(std::string_view name) {
+  return value_of(kObserved, name);
+}
+
 std::string_view type_name(const Event& event) {
   return std::visit(
       Overloaded{
@@ -71,6 +81,7 @@ std::string_view type_name(const Event& event) {
           [](const TaskDroppedEvent&) -> std::string_view { return "task_dropped"; },
           [](const ReserveEvent&) -> std::string_view { return "reserve"; },
           [](const ArrivalEvent&) -> std::string_view { return "arrival"; },
+          [](const HazardEvent&) -> std::string_view { return "hazard"; },
           [](const BeaconEvent&) -> std::string_view { return "beacon"; },
           [](const MissionEndEvent&) -> std::string_view { return "mission_end"; }},
       event.what);
@@ -83,14 +94,17 @@ Fields fields_of(const Event& event) {
   return std::visit(
       Overloaded{
           [](const PlanEvent& e) -> Fields {
-            return {{"reason", e.reason},
-                    {"planning_ms", e.planning_ms},
-                    {"decision", text(to_string(e.decision))},
-                    {"goals", e.goals},
-                    {"dropped", e.dropped},
-                    {"end", e.end},
-                    {"steps", static_cast<I>(e.steps)},
-                    {"cost_s", e.cost_s}};
+            Fields f{{"reason", e.reason},
+                     {"planning_ms", e.planning_ms},
+                     {"decision", text(to_string(e.decision))},
+                     {"goals", e.goals},
+                     {"dropped", e.dropped},
+                     {"end", e.end},
+                     {"steps", static_cast<I>(e.steps)},
+                     {"cost_s", e.cost_s}};
+            if (e.rung != PlanResponse::Rung::kSearch)
+              f.emplace_back("rung", text(to_string(e.rung)));
+            return f;
           },
           [](const ActionEvent& e) -> Fields {
             return {{"step", e.step},
@@ -138,6 +152,15 @@ Fields fields_of(const Event& event) {
                 {"expected", e.expected}, {"check", e.check},     {"probability", e.probability},
                 {"believed", e.believed}, {"manhole", e.manhole}, {"observed", e.observed},
                 {"reason", e.reason}};
+          },
+          [](const HazardEvent& e) -> Fields {
+            return {{"pipe", e.pipe},
+                    {"offset_m", e.offset_m},
+                    {"reason", e.reason},
+                    {"observed", text(to_string(e.observed))},
+                    {"probability_before", e.probability_before},
+                    {"probability", e.probability},
+                    {"passes", static_cast<I>(e.passes)}};
           },
           [](const BeaconEvent& e) -> Fields {
             return {{"reason", e.reason}, {"state", text(hal::to_string(e.state))}};

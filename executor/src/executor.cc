@@ -238,6 +238,7 @@ class Executor::Run {
   }
 
   void log_plan(bool replan, const PlanResponse& r) {
+    for (const HazardUpdate& u : r.hazard_updates) log_hazard(u);
     std::vector<std::string> dropped;
     for (const auto& d : r.newly_dropped) {
       dropped.push_back(mission().task(d.task).name);
@@ -252,7 +253,8 @@ class Executor::Run {
                    .dropped = std::move(dropped),
                    .end = r.end,
                    .steps = r.plan.steps.size(),
-                   .cost_s = r.cost_s});
+                   .cost_s = r.cost_s,
+                   .rung = r.rung});
     for (const PlanObserver& observer : plan_observers_) observer(r);
     if (r.decision == PlanResponse::Decision::kExitOnReserve) {
       report_.exit_on_reserve = true;
@@ -624,8 +626,45 @@ class Executor::Run {
         tracker_.set_position(*a->expected);  // the far end, sooner than the map says
       }
     }
+    observe_pass(r, before, direction);
     notify_job_observers(job, r, before, direction);
     return r;
+  }
+
+  // The pipe and offset of a position in a pipe or at a pipe's mouth.
+  std::optional<std::pair<PipeId, double>> pipe_offset(const domain::RobotPosition& p) const {
+    if (const auto* in = std::get_if<domain::InPipe>(&p)) return std::pair{in->pipe, in->offset_m};
+    if (const auto* at = std::get_if<domain::AtSlot>(&p)) {
+      const Slot& slot = map_.slot(at->manhole, at->slot);
+      return std::pair{slot.pipe, domain::end_offset_m(map_.pipe(slot.pipe), slot.pipe_end)};
+    }
+    return std::nullopt;
+  }
+
+  // A drive (or push, or scan) the robot finished, from `before` to where it is now in the same
+  // pipe: the hazards it drove past were not blocked (Replanner::observe_pass), each update
+  // logged. A job the robot did not finish teaches nothing: where it stopped is not sure.
+  void observe_pass(const hal::JobReport& report, const domain::RobotPosition& before,
+                    double direction) {
+    if (!report.ok() || direction == 0) return;
+    const auto from = pipe_offset(before);
+    const auto to = pipe_offset(tracker_.position());
+    if (!from || !to || from->first != to->first) return;
+    Result<std::vector<HazardUpdate>> updates =
+        replanner_.observe_pass(from->first, from->second, to->second);
+    if (!updates.has_value()) return;  // the tracker's places are on the map
+    for (const HazardUpdate& u : *updates) log_hazard(u);
+  }
+
+  void log_hazard(const HazardUpdate& u) {
+    emit(HazardEvent{.pipe = map_.pipe(u.belief.pipe).name,
+                     .offset_m = u.belief.offset_m,
+                     .reason = u.belief.reason,
+                     .observed = u.belief.blocked ? HazardEvent::Observed::kBlocked
+                                                  : HazardEvent::Observed::kPassed,
+                     .probability_before = u.probability_before,
+                     .probability = u.belief.probability,
+                     .passes = u.belief.passes});
   }
 
   // The job observers see `job` with where the robot was before it and where the controller
@@ -662,6 +701,7 @@ class Executor::Run {
       emit(ErrorEvent{
           .kind = own->error->kind, .reason = own->error->reason, .where = tracker_.describe()});
     }
+    observe_pass(rest, before, direction);
     return own;
   }
 

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <optional>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -17,6 +18,9 @@ namespace {
 
 using json = nlohmann::ordered_json;
 using Need = JsonFields::Need;
+
+// Passes beyond this are no robot's (and a double holds every whole number up to it exactly).
+constexpr std::uint64_t kMaxPasses = std::uint64_t{1} << 53;
 
 class LearntReader {
  public:
@@ -34,6 +38,11 @@ class LearntReader {
   std::optional<Blockage> in_pipe(JsonElement element, const std::string& path) {
     JsonFields f(element, path, file_, diagnostics_);
     f.reject_unknown({"pipe", "offset_m"});
+    return in_pipe_fields(f);
+  }
+
+  // "pipe" and "offset_m" of `f`: a known pipe and an offset within it.
+  std::optional<Blockage> in_pipe_fields(JsonFields& f) {
     const auto p = pipe(f);
     if (!p) return std::nullopt;
     const Pipe& pipe = map_.pipe(*p);
@@ -77,6 +86,29 @@ class LearntReader {
     return ClosedPassage{*m, *from, *to};
   }
 
+  std::optional<HazardBelief> hazard(JsonElement element, const std::string& path) {
+    JsonFields f(element, path, file_, diagnostics_);
+    f.reject_unknown({"pipe", "offset_m", "reason", "probability", "passes", "blocked"});
+    const std::optional<Blockage> at = in_pipe_fields(f);
+    const std::optional<std::string> reason = f.string("reason");
+    const std::optional<double> probability = f.number("probability");
+    const std::optional<std::uint64_t> passes = f.count("passes", kMaxPasses);
+    const std::optional<bool> blocked = f.boolean("blocked");
+    if (!at || !reason || !probability || !passes || !blocked) return std::nullopt;
+    if (!(*probability >= 0 && *probability <= 1)) {
+      f.error("probability",
+              "expected a probability from 0 to 1, got " + json(*probability).dump());
+      return std::nullopt;
+    }
+    if (*blocked && *probability != 1) {
+      f.error("probability",
+              "a hazard met as a blockage has probability 1, got " + json(*probability).dump());
+      return std::nullopt;
+    }
+    return HazardBelief{
+        at->pipe, at->offset_m, *reason, *probability, static_cast<std::size_t>(*passes), *blocked};
+  }
+
   template <class T, class Read>
   void each(JsonFields& root, std::string_view key, std::vector<T>& out, Read read) {
     const std::optional<JsonArray> items = root.array(key, Need::kOptional);
@@ -95,7 +127,49 @@ class LearntReader {
 
 }  // namespace
 
+double hazard_probability_after_pass(double probability, std::size_t passes,
+                                     double prior_strength) {
+  if (!std::isfinite(prior_strength)) return probability;                // a prior nothing moves
+  const double strength = prior_strength + static_cast<double>(passes);  // a + b
+  return probability * strength / (strength + 1);
+}
+
+bool same_hazard(const HazardBelief& belief, const Hazard& hazard) {
+  return belief.pipe == hazard.pipe && std::abs(belief.offset_m - hazard.offset_m) <= 1e-6 &&
+         belief.reason == hazard.reason;
+}
+
+Result<void> check_hazard_belief(const HazardBelief& belief, const SewerMap& map) {
+  const auto invalid = [](std::string what) -> Result<void> {
+    return Error{ErrorCode::kInvalidArgument, "invalid learnt hazard: " + std::move(what)};
+  };
+  if (belief.pipe.index() >= map.pipe_count()) {
+    return invalid("unknown pipe #" + std::to_string(belief.pipe.index()));
+  }
+  const Pipe& pipe = map.pipe(belief.pipe);
+  std::ostringstream out;
+  out << "'" << belief.reason << "' in pipe " << pipe.name << " at " << belief.offset_m << " m ";
+  if (!std::isfinite(belief.offset_m) || belief.offset_m < 0 || belief.offset_m > pipe.length_m) {
+    out << "is outside the pipe (0 to " << pipe.length_m << " m)";
+    return invalid(out.str());
+  }
+  if (!(belief.probability >= 0 && belief.probability <= 1)) {
+    out << "has probability " << belief.probability << ", not from 0 to 1";
+    return invalid(out.str());
+  }
+  if (belief.blocked && belief.probability != 1) {
+    out << "was met as a blockage but has probability " << belief.probability << ", not 1";
+    return invalid(out.str());
+  }
+  return {};
+}
+
 Mission with_learnt(Mission mission, const Learnt& learnt) {
+  for (Hazard& h : mission.hazards) {
+    for (const HazardBelief& b : learnt.hazards) {
+      if (same_hazard(b, h)) h.probability = b.probability;
+    }
+  }
   mission.blockages.insert(mission.blockages.end(), learnt.blockages.begin(),
                            learnt.blockages.end());
   mission.blockages.insert(mission.blockages.end(), learnt.danger_spots.begin(),
@@ -112,15 +186,19 @@ Result<Learnt> read_learnt_json(std::string_view text, const std::string& file_n
   if (!doc) return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
   JsonFields root(doc->root(), "$", file_name, diagnostics);
   if (!root.is_object()) return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
-  root.reject_unknown({"format", "version", "blockages", "danger", "closed_passages"});
+  root.reject_unknown({"format", "version", "blockages", "danger", "closed_passages", "hazards"});
   // Absent or another value: one error each (a value of the wrong type is JsonFields' error).
   const std::optional<std::string> format = root.string("format", Need::kOptional);
   if (format ? *format != kLearntJsonFormat : !root.has("format")) {
     root.error("format", "expected \"" + std::string(kLearntJsonFormat) + "\"");
   }
+  // Version 1 had no hazards; a reader of version 2 reads it as it was.
   const std::optional<double> version = root.number("version", Need::kOptional);
-  if (version ? *version != static_cast<double>(kLearntJsonVersion) : !root.has("version")) {
-    root.error("version", "expected " + std::to_string(kLearntJsonVersion));
+  if (version ? *version != 1 && *version != static_cast<double>(kLearntJsonVersion)
+              : !root.has("version")) {
+    root.error("version", "expected 1 or " + std::to_string(kLearntJsonVersion));
+  } else if (version && *version == 1 && root.has("hazards")) {
+    root.error("hazards", "learnt hazards need version " + std::to_string(kLearntJsonVersion));
   }
   LearntReader reader(map, file_name, diagnostics);
   Learnt learnt;
@@ -131,6 +209,8 @@ Result<Learnt> read_learnt_json(std::string_view text, const std::string& file_n
   reader.each(root, "danger", learnt.danger_spots, in_pipe);
   reader.each(root, "closed_passages", learnt.closed_passages,
               [&](JsonElement e, const std::string& path) { return reader.passage(e, path); });
+  reader.each(root, "hazards", learnt.hazards,
+              [&](JsonElement e, const std::string& path) { return reader.hazard(e, path); });
   if (diagnostics.has_errors_since(before))
     return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
   return learnt;
@@ -161,6 +241,15 @@ std::string learnt_json(const Learnt& learnt, const SewerMap& map) {
     j["closed_passages"].push_back({{"manhole", map.manhole(p.manhole).name},
                                     {"from_slot", to_paper_number(p.from)},
                                     {"to_slot", to_paper_number(p.to)}});
+  }
+  j["hazards"] = json::array();
+  for (const HazardBelief& h : learnt.hazards) {
+    j["hazards"].push_back({{"pipe", map.pipe(h.pipe).name},
+                            {"offset_m", h.offset_m},
+                            {"reason", h.reason},
+                            {"probability", h.probability},
+                            {"passes", h.passes},
+                            {"blocked", h.blocked}});
   }
   return j.dump(2) + "\n";
 }

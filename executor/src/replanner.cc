@@ -48,6 +48,11 @@ bool same_place(const domain::RobotPosition& a, const domain::RobotPosition& b) 
   return a == b;
 }
 
+// Beliefs about the same hazard: the same pipe and reason, the offset within a micrometre.
+bool same_belief(const HazardBelief& a, const HazardBelief& b) {
+  return same_hazard(a, Hazard{b.pipe, b.offset_m, b.probability, b.reason});
+}
+
 }  // namespace
 
 std::string_view to_string(Failure::Kind kind) {
@@ -152,6 +157,9 @@ Result<PlanResponse> Replanner::plan_cancellable(const std::optional<Failure>& f
 }
 
 Result<void> Replanner::learn(const Learnt& learnt) {
+  for (const HazardBelief& h : learnt.hazards) {
+    if (auto ok = check_hazard_belief(h, map_); !ok.has_value()) return ok;
+  }
   for (const Blockage& b : learnt.blockages) {
     if (auto ok = check_failure(
             {.kind = Failure::Kind::kBlockage, .pipe = b.pipe, .offset_m = b.offset_m}, map_);
@@ -183,7 +191,79 @@ Result<void> Replanner::learn(const Learnt& learnt) {
   append(learnt_.blockages, learnt.blockages);
   append(learnt_.danger_spots, learnt.danger_spots);
   append(learnt_.closed_passages, learnt.closed_passages);
+  for (const HazardBelief& h : learnt.hazards) {
+    auto same = std::find_if(learnt_.hazards.begin(), learnt_.hazards.end(),
+                             [&](const HazardBelief& b) { return same_belief(b, h); });
+    if (same != learnt_.hazards.end()) {
+      *same = h;
+    } else {
+      learnt_.hazards.push_back(h);
+    }
+  }
   return {};
+}
+
+Result<std::vector<HazardUpdate>> Replanner::observe_pass(PipeId pipe, double from_m, double to_m) {
+  if (pipe.index() >= map_.pipe_count()) {
+    return Error{ErrorCode::kInvalidArgument,
+                 "invalid pass report: unknown pipe #" + std::to_string(pipe.index())};
+  }
+  const Pipe& driven = map_.pipe(pipe);
+  for (double offset : {from_m, to_m}) {
+    if (!std::isfinite(offset) || offset < 0 || offset > driven.length_m) {
+      std::ostringstream out;
+      out << "invalid pass report: offset " << offset << " m is outside pipe " << driven.name
+          << " (0 to " << driven.length_m << " m)";
+      return Error{ErrorCode::kInvalidArgument, out.str()};
+    }
+  }
+  const double lo = std::min(from_m, to_m);
+  const double hi = std::max(from_m, to_m);
+  std::vector<std::size_t> passed;
+  for (std::size_t h = 0; h < mission_.hazards.size(); ++h) {
+    const Hazard& hazard = mission_.hazards[h];
+    if (hazard.pipe == pipe && hazard.offset_m > lo && hazard.offset_m < hi) passed.push_back(h);
+  }
+  // In the order of driving.
+  std::stable_sort(passed.begin(), passed.end(), [&](std::size_t x, std::size_t y) {
+    return from_m <= to_m ? mission_.hazards[x].offset_m < mission_.hazards[y].offset_m
+                          : mission_.hazards[x].offset_m > mission_.hazards[y].offset_m;
+  });
+  std::vector<HazardUpdate> updates;
+  for (std::size_t h : passed) {
+    const auto belief =
+        std::find_if(learnt_.hazards.begin(), learnt_.hazards.end(),
+                     [&](const HazardBelief& b) { return same_hazard(b, mission_.hazards[h]); });
+    // A blockage met there stays certain: the robot passed what a push cleared, or its report
+    // was a place off.
+    if (belief != learnt_.hazards.end() && belief->blocked) continue;
+    updates.push_back(observe_hazard(h, false));
+  }
+  return updates;
+}
+
+HazardUpdate Replanner::observe_hazard(std::size_t h, bool blocked) {
+  Hazard& hazard = mission_.hazards[h];
+  auto belief = std::find_if(learnt_.hazards.begin(), learnt_.hazards.end(),
+                             [&](const HazardBelief& b) { return same_hazard(b, hazard); });
+  if (belief == learnt_.hazards.end()) {
+    // The prior: the risk table's probability, with no pass observed yet.
+    learnt_.hazards.push_back(
+        {hazard.pipe, hazard.offset_m, hazard.reason, hazard.probability, 0, false});
+    belief = std::prev(learnt_.hazards.end());
+  }
+  HazardUpdate update{.probability_before = belief->probability};
+  if (blocked) {
+    belief->blocked = true;
+    belief->probability = 1;
+  } else {
+    belief->probability = hazard_probability_after_pass(belief->probability, belief->passes,
+                                                        options_.hazard_learning.prior_strength);
+    ++belief->passes;
+  }
+  hazard.probability = belief->probability;
+  update.belief = *belief;
+  return update;
 }
 
 Result<void> Replanner::update(const domain::MissionProgress& progress, std::uint8_t heading_end) {
@@ -553,6 +633,20 @@ PlanResponse Replanner::report_failure(const Failure& failure) {
   // Kept as the current plan: the safe answer if the replan runs out of time and it still holds.
   const std::vector<domain::PlanStep> failed_steps = last_steps_;
   std::string reason(to_string(failure.kind));
+  std::vector<HazardUpdate> hazard_updates;
+  if (failure.kind == Failure::Kind::kBlockage) {
+    // The hazard met: the nearest of the pipe's within the match distance, if any.
+    std::optional<std::size_t> met;
+    for (std::size_t h = 0; h < mission_.hazards.size(); ++h) {
+      const Hazard& hazard = mission_.hazards[h];
+      const double distance = std::abs(hazard.offset_m - failure.offset_m);
+      if (hazard.pipe != failure.pipe || !(distance <= options_.hazard_learning.blockage_match_m)) {
+        continue;
+      }
+      if (!met || distance < std::abs(mission_.hazards[*met].offset_m - failure.offset_m)) met = h;
+    }
+    if (met) hazard_updates.push_back(observe_hazard(*met, true));
+  }
   switch (failure.kind) {
     case Failure::Kind::kBlockage:
     case Failure::Kind::kDangerInPipe:
@@ -576,6 +670,7 @@ PlanResponse Replanner::report_failure(const Failure& failure) {
     }
   }
   PlanResponse r = plan(reason);
+  r.hazard_updates = hazard_updates;
   // The plan that just failed, again: the robot would meet the same trouble at the same place
   // (a task a hair beyond where it stops for a danger). Drop the task it was heading for.
   while (!cancelled_ && has_plan(r.decision) && !failed_steps.empty() &&
@@ -592,6 +687,7 @@ PlanResponse Replanner::report_failure(const Failure& failure) {
     std::vector<domain::DroppedTask> dropped_so_far = std::move(r.newly_dropped);
     dropped_so_far.push_back(dropped_[dropped_before]);
     r = plan(reason);
+    r.hazard_updates = hazard_updates;
     dropped_so_far.insert(dropped_so_far.end(), r.newly_dropped.begin(), r.newly_dropped.end());
     r.newly_dropped = std::move(dropped_so_far);
     if (r.decision == PlanResponse::Decision::kFollowPlan) {

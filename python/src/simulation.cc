@@ -356,6 +356,25 @@ void bind_events(py::module_& m) {
             .field("reason", e.reason)
             .str();
       });
+  py::class_<ex::HazardEvent>(m, "HazardEvent",
+                              "A hazard's blockage probability learnt from what the robot met.")
+      .def_readonly("pipe", &ex::HazardEvent::pipe, "The hazard's pipe.")
+      .def_readonly("offset_m", &ex::HazardEvent::offset_m, "Its offset in the pipe (m).")
+      .def_readonly("reason", &ex::HazardEvent::reason, "The finding: 'BBA roots'.")
+      .def_property_readonly(
+          "observed", [](const ex::HazardEvent& e) { return name_of(e.observed); },
+          "'passed' (driven past safely) or 'blocked' (met as a blockage).")
+      .def_readonly("probability_before", &ex::HazardEvent::probability_before,
+                    "The probability before (0 to 1).")
+      .def_readonly("probability", &ex::HazardEvent::probability, "The probability after (0 to 1).")
+      .def_readonly("passes", &ex::HazardEvent::passes, "Safe passes observed so far.")
+      .def("__repr__", [](const ex::HazardEvent& e) {
+        return Repr("HazardEvent")
+            .word(e.pipe)
+            .field("observed", name_of(e.observed))
+            .field("probability", e.probability)
+            .str();
+      });
   py::class_<ex::BeaconEvent>(m, "BeaconEvent",
                               "The beacon switched on: the robot calls for recovery.")
       .def_readonly("reason", &ex::BeaconEvent::reason, "Why the robot calls for recovery.")

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "sewerplan/campaign/campaign.h"
 
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <filesystem>
@@ -518,6 +519,60 @@ TEST(Campaign, APlannerTimeLimitIsPartOfTheCampaignAndNoRunCallsTheBeaconForIt) 
     tasks += r.result->ours.tasks;
   }
   EXPECT_GT(tasks, 0U);
+}
+
+// Which rung of the anytime ladder answered each plan (issue 34) is counted per side, read back
+// from the record and summed in the summary.
+TEST(Campaign, TheRungsThatAnsweredAreCountedPerSideAndSummed) {
+  using Rung = executor::PlanResponse::Rung;
+  const auto ais = testing::load_ais_testbed();
+  const auto total = [](const Execution& e) {
+    std::size_t n = 0;
+    for (std::size_t c : e.rungs) n += c;
+    return n;
+  };
+  // Without a limit, every plan is the search's: one per plan, the first and each replan.
+  const auto unlimited = run_campaign(ais.map, ais.mission, ais_spec(3), {});
+  for (const RunRecord& r : unlimited) {
+    ASSERT_TRUE(r.result.has_value());
+    for (const Execution* e : {&r.result->ours, &r.result->baseline}) {
+      EXPECT_EQ(e->rungs[static_cast<std::size_t>(Rung::kSearch)], e->replans + 1);
+      EXPECT_EQ(total(*e), e->replans + 1);
+    }
+  }
+  // With a limit every search reaches, the rungs below answer; each record reads back its counts.
+  CampaignSpec spec = ais_spec(4);
+  spec.planner_time_limit_s = 1e-6;
+  const auto limited = run_campaign(ais.map, ais.mission, spec, {});
+  std::array<std::size_t, executor::PlanResponse::kRungCount> ours{};
+  for (const RunRecord& r : limited) {
+    ASSERT_TRUE(r.result.has_value());
+    EXPECT_EQ(total(r.result->ours), r.result->ours.replans + 1);
+    for (std::size_t k = 0; k < ours.size(); ++k) ours[k] += r.result->ours.rungs[k];
+    Result<RunRecord> back = parse_run_line(run_json_line(r), "runs.jsonl", r.index + 1);
+    ASSERT_TRUE(back.has_value()) << back.error().message;
+    EXPECT_EQ(back->result->ours.rungs, r.result->ours.rungs);
+    EXPECT_EQ(back->result->baseline.rungs, r.result->baseline.rungs);
+  }
+  EXPECT_LT(ours[static_cast<std::size_t>(Rung::kSearch)],
+            ours[0] + ours[1] + ours[2] + ours[3] + ours[4] + ours[5]);
+  const Summary summary = summarize(spec, limited);
+  EXPECT_EQ(summary.ours.rungs, ours);
+  std::ostringstream json;
+  write_summary_json(summary, json);
+  const nlohmann::json j = nlohmann::json::parse(json.str());
+  for (std::size_t k = 0; k < ours.size(); ++k) {
+    const std::string name(executor::to_string(static_cast<Rung>(k)));
+    EXPECT_EQ(j["ours"]["rungs"][name], ours[k]) << name;
+  }
+  // A record with a rung of another name is an error naming it.
+  std::string line = run_json_line(limited[0]);
+  const std::size_t at = line.find("\"rungs\":{");
+  ASSERT_NE(at, std::string::npos);
+  line.insert(at + 9, "\"guess\":1,");
+  Result<RunRecord> bad = parse_run_line(line, "runs.jsonl", 1);
+  ASSERT_FALSE(bad.has_value());
+  EXPECT_NE(bad.error().message.find("rungs.guess"), std::string::npos) << bad.error().message;
 }
 
 TEST(Campaign, FaultRatesAndShardsParseOrSayWhatIsWrong) {

@@ -261,6 +261,14 @@ expect 0 '"pipe": "P5"' -- cat "$tmp/learnt.json"
 expect 0 ', 0 replans' -- "$sp" simulate --map "$ais" --mission "$mission" --faults "$src/datasets/ais-testbed/faults/blocked-p5.json" --learnt "$tmp/learnt.json" -q
 echo '{"format": "sewerplan-learnt", "version": 1, "blockages": [{"pipe": "PX", "offset_m": 1}]}' > "$tmp/bad-learnt.json"
 expect 1 'bad-learnt.json:\$\.blockages\[0\]\.pipe: error: unknown pipe "PX"' -- "$sp" simulate --map "$ais" --mission "$mission" --learnt "$tmp/bad-learnt.json" -q
+# Hazards passed safely learn (issue 34): each update is a hazard event of the live log, and the
+# learnt file keeps the probabilities; one outside 0..1 is an error naming the entry.
+battery_trap=$src/datasets/condition/battery-trap
+expect 0 'hazard +pipe=[^ ]+ offset_m=[0-9.]+ reason=.* observed=passed probability_before=' -- "$sp" simulate --map "$battery_trap/map.json" --mission "$battery_trap/mission.json" --risk expected --learnt "$tmp/trap-learnt.json"
+expect 0 '"passes": 1' -- cat "$tmp/trap-learnt.json"
+expect 0 'mission ended' -- "$sp" simulate --map "$battery_trap/map.json" --mission "$battery_trap/mission.json" --risk expected --learnt "$tmp/trap-learnt.json" -q
+echo '{"format": "sewerplan-learnt", "version": 2, "hazards": [{"pipe": "P4", "offset_m": 1, "reason": "BBA roots", "probability": 1.5, "passes": 0, "blocked": false}]}' > "$tmp/bad-hazard.json"
+expect 1 'bad-hazard.json:\$\.hazards\[0\]\.probability: error: expected a probability from 0 to 1, got 1.5' -- "$sp" simulate --map "$ais" --mission "$mission" --learnt "$tmp/bad-hazard.json" -q
 
 # PDDL round trip: export, then read back what FF and Fast Downward print for it.
 expect 0 'wrote .*domain.pddl and .*problem.pddl' -- "$sp" export-pddl --map "$ais" --mission "$mission" --out "$tmp/pddl"

@@ -62,7 +62,7 @@ TEST(Learnt, ErrorsNameTheFileAndThePath) {
       {R"({"format": "sewerplan-learnt", "version": 1,
            "closed_passages": [{"manhole": "M8", "from_slot": 1, "to_slot": 9}]})",
        "learnt.json:$.closed_passages[0].to_slot"},
-      {R"({"format": "sewerplan-learnt", "version": 2})", "learnt.json:$.version"},
+      {R"({"format": "sewerplan-learnt", "version": 3})", "learnt.json:$.version"},
       {R"({"format": "sewerplan-learnt", "version": 1, "bogus": []})", "learnt.json:$.bogus"},
       {"{\n  \"format\": ", "learnt.json:2:"},
       // Wrong types name the field and the value found.

@@ -161,6 +161,9 @@ struct Execution {
   // Why the beacon is on ("none" otherwise); "limit" must never happen.
   executor::MissionReport::BeaconCause beacon_cause = executor::MissionReport::BeaconCause::kNone;
   std::vector<double> planning_times_s;  // measured
+  // How many of the mission's plans each rung of the anytime ladder answered, indexed by
+  // executor::PlanResponse::Rung (the first plan and every replan).
+  std::array<std::size_t, executor::PlanResponse::kRungCount> rungs{};
   // Ours only, with world errors (RunSettings::world_errors not "none"): its localisation and
   // measured map scored against the true world (world_score.h).
   std::optional<WorldScore> world;

@@ -53,6 +53,9 @@ struct PolicyFigures {
   std::size_t exits_on_reserve = 0;  // runs the Replanner sent out on the reserve
   double replans_mean = 0;
   std::size_t replans_max = 0;
+  // The plans (first plans and replans) each rung of the anytime ladder answered, summed over the
+  // runs, indexed by executor::PlanResponse::Rung.
+  std::array<std::size_t, executor::PlanResponse::kRungCount> rungs{};
   double planning_p50_ms = 0;  // measured
   double planning_p99_ms = 0;
   // [0,10%), ..., [90%,100%), 100 %, more than the oracle (over the compared runs).

@@ -4,11 +4,11 @@
 // The Executor (executor.h) calls its observers with every event, in order, on run()'s thread:
 // a plan or replan, each action and job, a robot's error, a recovery stage tried, a failure told
 // to the Replanner, a task done or dropped, a way out on the battery reserve, a manhole arrival
-// checked against the plan, the beacon, and the mission's end. Each `Event` is the
-// mission time `t_s` (the robot's clock) and one of these structs; switch on it with std::visit.
-// Names (of tasks, pipes, manholes) are the map's and the mission's, so an event means the same
-// without them: the JSON-lines log (event_json.h) and the readable live log (event_text.h) are
-// consumers, and a JSON-lines log reads back into the same events.
+// checked against the plan, a hazard's probability learnt, the beacon, and the mission's end. Each
+// `Event` is the mission time `t_s` (the robot's clock) and one of these structs; switch on it with
+// std::visit. Names (of tasks, pipes, manholes) are the map's and the mission's, so an event means
+// the same without them: the JSON-lines log (event_json.h) and the readable live log (event_text.h)
+// are consumers, and a JSON-lines log reads back into the same events.
 //
 //   executor.subscribe([&](const Event& e) {
 //     if (const auto* done = std::get_if<TaskDoneEvent>(&e.what)) show(done->task, e.t_s);
@@ -64,6 +64,9 @@ struct PlanEvent {
   std::string end;                   // "exit M4", "pipe P9 (final task 'end')"
   std::size_t steps = 0;
   double cost_s = 0;
+  // Which answer of the anytime ladder it is (PlanResponse::Rung); written when not "search",
+  // so logs of plans the search made read as before.
+  PlanResponse::Rung rung = PlanResponse::Rung::kSearch;
   friend bool operator==(const PlanEvent&, const PlanEvent&) = default;
 };
 
@@ -159,6 +162,28 @@ struct ArrivalEvent {
   friend bool operator==(const ArrivalEvent&, const ArrivalEvent&) = default;
 };
 
+// "hazard": what the robot observed of a hazard of the condition data changed its probability
+// (Replanner::observe_pass, report_failure; docs/executor.md, "Probabilities that learn"). A
+// pass: right after the job that drove past it; a blockage met: before the replan it causes.
+struct HazardEvent {
+  enum class Observed {
+    kPassed,   // "passed": driven past safely, the probability lowered by a Bayesian update
+    kBlocked,  // "blocked": met as a blockage, now certain
+  };
+  std::string pipe;
+  double offset_m = 0;
+  std::string reason;  // the finding: "BBA roots"
+  Observed observed = Observed::kPassed;
+  double probability_before = 0;
+  double probability = 0;  // after
+  std::size_t passes = 0;  // safe passes observed so far
+  friend bool operator==(const HazardEvent&, const HazardEvent&) = default;
+};
+
+// "passed", "blocked", and back (empty for any other text).
+std::string_view to_string(HazardEvent::Observed observed);
+std::optional<HazardEvent::Observed> parse_hazard_observed(std::string_view name);
+
 // "beacon": asked for, and whether the robot confirmed it (hal::BeaconState).
 struct BeaconEvent {
   std::string reason;
@@ -182,14 +207,14 @@ struct MissionEndEvent {
 struct Event {
   double t_s = 0;  // mission time, the robot's clock
   std::variant<PlanEvent, ActionEvent, JobEvent, ErrorEvent, RecoveryEvent, FailureEvent,
-               TaskDoneEvent, TaskDroppedEvent, ReserveEvent, ArrivalEvent, BeaconEvent,
-               MissionEndEvent>
+               TaskDoneEvent, TaskDroppedEvent, ReserveEvent, ArrivalEvent, HazardEvent,
+               BeaconEvent, MissionEndEvent>
       what;
   friend bool operator==(const Event&, const Event&) = default;
 };
 
 // The event's type as the log names it: "plan", "replan", "action", "job", "error", "recovery",
-// "failure", "task_done", "task_dropped", "reserve", "arrival", "beacon", "mission_end".
+// "failure", "task_done", "task_dropped", "reserve", "arrival", "hazard", "beacon", "mission_end".
 std::string_view type_name(const Event& event);
 
 // Called with every event of a run, in order, on run()'s thread.

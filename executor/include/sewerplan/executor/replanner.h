@@ -20,11 +20,16 @@
 // (kExitOnReserve, every task left dropped). The beacon (kCallForRecovery) is only the answer when
 // a search proved that not even that exit can be reached, or the robot cannot move (kStuck); a
 // limit never calls it. Tasks done stay done; tasks dropped stay
-// dropped, each with its reason.
+// dropped, each with its reason. Probabilities learn (issue 34): a hazard of the condition data
+// (Mission::hazards) the robot drives past safely (observe_pass) has its blockage probability
+// lowered by a Bayesian update, one it meets as a blockage (report_failure) becomes certain; the
+// Replanner keeps these in what it learnt (Learnt::hazards), so every replan after weighs them.
 //
 //   Replanner replanner(map, mission);
 //   PlanResponse r = replanner.plan();
 //   // ... execute r.fused; on progress:  replanner.update(progress, heading_end);
+//   // ... after a drive in pipe p from 0 to 12.5 m that was not stopped:
+//   replanner.observe_pass(p, 0.0, 12.5);  // the hazards passed are less likely to block
 //   // ... on a blockage recovery could not clear:
 //   r = replanner.report_failure({.kind = Failure::Kind::kBlockage, .pipe = p5, .offset_m = 4.0});
 //   if (calls_beacon(r.decision)) robot.activate_beacon();
@@ -79,6 +84,13 @@ struct Failure {
 
 std::string_view to_string(Failure::Kind kind);
 
+// A hazard's probability changed by what the robot observed (observe_pass, report_failure).
+struct HazardUpdate {
+  HazardBelief belief;  // after: pipe, offset, reason, probability, passes, blocked
+  double probability_before = 0;
+  friend bool operator==(const HazardUpdate&, const HazardUpdate&) = default;
+};
+
 struct PlanResponse {
   // What the caller does with the answer; switch on it. The names (to_string, parse_decision)
   // are stable: the event log and every CLI --json output carry them.
@@ -113,6 +125,7 @@ struct PlanResponse {
     kGreedy,        // "greedy": the cheapest insertion of the tasks left from the robot's place
     kNearestExit,   // "nearest-exit": every task left dropped, the nearest reachable exit
   };
+  static constexpr std::size_t kRungCount = 6;  // for counts indexed by Rung
   Rung rung = Rung::kSearch;
   domain::Plan plan;
   fusion::FusedPlan fused;
@@ -124,6 +137,9 @@ struct PlanResponse {
   double planning_time_s = 0;
   double cost_s = 0;
   double energy_wh = 0;
+  // What the report this answers taught about the hazards (report_failure: the hazard a blockage
+  // was met at, now certain); empty for plan().
+  std::vector<HazardUpdate> hazard_updates;
 };
 
 // Whether a failure report can be applied to `map`: known pipe, manhole and slots, a finite offset
@@ -179,6 +195,16 @@ struct ReplannerOptions {
   // baseline keeps its reserve as a wall: it never answers kExitOnReserve.
   enum class Goals { kReselect, kPaperBaseline };
   Goals goals = Goals::kReselect;
+  // How hazards learn (HazardBelief, docs/executor.md "Probabilities that learn"):
+  // `prior_strength` k is how many observations the risk table's probability weighs as (a safe
+  // pass takes p to p (k + n) / (k + n + 1) after n passes; 0: one pass proves the place open;
+  // infinity: nothing learns); a blockage reported within `blockage_match_m` of a hazard in the
+  // same pipe (the nearest, if several) is that hazard met: it becomes certain.
+  struct HazardLearning {
+    double prior_strength = kDefaultHazardPriorStrength;
+    double blockage_match_m = 1.0;
+  };
+  HazardLearning hazard_learning{};
 };
 
 class Replanner {
@@ -199,8 +225,16 @@ class Replanner {
   // for first is dropped instead (the robot cannot get there), and the answer is kDegraded.
   PlanResponse report_failure(const Failure& failure);
 
+  // The robot drove pipe `pipe` from offset `from_m` to `to_m` (either way) and was not stopped:
+  // every hazard of the mission strictly between the two (as the planner counts a hazard passed,
+  // domain/route_risk.h) and not met as a blockage is observed open once, and its probability
+  // lowered (HazardBelief). An unknown pipe or an offset outside it is an error, and nothing
+  // changes. Returns the updates, in the order of driving.
+  Result<std::vector<HazardUpdate>> observe_pass(PipeId pipe, double from_m, double to_m);
+
   // Adds what an earlier mission learnt (learnt.h) to the world model, for the next plan; an
-  // entry that check_failure would reject is an error, and nothing is added.
+  // entry that check_failure or check_hazard_belief would reject is an error, and nothing is
+  // added. A belief about a hazard already learnt replaces it.
   Result<void> learn(const Learnt& learnt);
   // What this Replanner has learnt: learn()'s and every failure reported since.
   const Learnt& learnt() const { return learnt_; }
@@ -255,6 +289,9 @@ class Replanner {
   // The first task `plan` does from progress(), if any.
   std::optional<TaskId> first_task_of(const domain::Plan& plan) const;
   PlanResponse respond(search::PlanOutcome outcome, const std::string& reason, double seconds);
+  // Records what was observed of mission_.hazards[h]: a safe pass or (`blocked`) a blockage met
+  // there, in the mission and in what was learnt.
+  HazardUpdate observe_hazard(std::size_t h, bool blocked);
 
   const SewerMap& map_;
   Mission mission_;
