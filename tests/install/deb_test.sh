@@ -25,7 +25,7 @@ version=$3
 work="$build/deb-test"
 rm -rf "$work"
 mkdir -p "$work"
-fail() { echo "FAIL: $*"; exit 1; }
+fail() { echo "FAIL: $*" >&2; exit 1; }
 (cd "$work" && cpack -G DEB --config "$build/CPackConfig.cmake" -B "$work/out" > "$work/cpack.log" 2>&1) || {
   cat "$work/cpack.log"; exit 1; }
 package() {  # package NAME: its file (any Debian revision of VERSION)
