@@ -225,7 +225,8 @@ if [ -f "$root/usr/share/sewerplan/web/index.html" ]; then
     [ -n "$url" ] && break
     sleep 0.1
   done
-  got=$(in_root python3 - "$url" <<'PY' || true
+  # From the host's python3: the root shares its network, and the runtime package brings no python3.
+  got=$(/usr/bin/python3 - "$url" <<'PY' || true
 import json, sys, urllib.request
 base = sys.argv[1].rstrip("/")
 page = urllib.request.urlopen(base + "/", timeout=5).read().decode()
