@@ -1,32 +1,33 @@
 # SPDX-License-Identifier: MIT
 # `cmake --install` puts the libraries, their public headers, the CLI and a CMake package config
 # under the prefix, so that another project can find_package(sewerplan) and link sewerplan::core;
-# and beside it a pkg-config file, sewerplan.pc, for a project built without CMake.
+# and beside it a pkg-config file, sewerplan.pc, for a project built without CMake. The libraries'
+# files are the install component dev (the Debian package sewerplan-dev), the CLI runtime.
 include(CMakePackageConfigHelpers)
 
 get_property(sewerplan_libraries GLOBAL PROPERTY SEWERPLAN_LIBRARIES)
 install(TARGETS ${sewerplan_libraries}
   EXPORT sewerplanTargets
-  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
-  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT dev
+  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT runtime
   INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 foreach(lib IN LISTS sewerplan_libraries)
   get_target_property(lib_dir ${lib} SOURCE_DIR)
-  install(DIRECTORY ${lib_dir}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  install(DIRECTORY ${lib_dir}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT dev)
 endforeach()
 if(TARGET sewerplan_cli)
   install(TARGETS sewerplan_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endif()
 
 set(config_dir ${CMAKE_INSTALL_LIBDIR}/cmake/sewerplan)
-install(EXPORT sewerplanTargets NAMESPACE sewerplan:: DESTINATION ${config_dir})
+install(EXPORT sewerplanTargets NAMESPACE sewerplan:: DESTINATION ${config_dir} COMPONENT dev)
 configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/sewerplanConfig.cmake.in
   ${CMAKE_CURRENT_BINARY_DIR}/sewerplanConfig.cmake INSTALL_DESTINATION ${config_dir})
 write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/sewerplanConfigVersion.cmake
   COMPATIBILITY SameMinorVersion)
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/sewerplanConfig.cmake
               ${CMAKE_CURRENT_BINARY_DIR}/sewerplanConfigVersion.cmake
-        DESTINATION ${config_dir})
+        DESTINATION ${config_dir} COMPONENT dev)
 
 # sewerplan.pc (LIBDIR/pkgconfig): every installed library, dependents first, and what they need,
 # from the same target lists as the CMake package. Static libraries need their private
@@ -98,4 +99,4 @@ string(REGEX REPLACE "/$" "" SEWERPLAN_PC_TO_PREFIX "${SEWERPLAN_PC_TO_PREFIX}")
 configure_file(${CMAKE_CURRENT_LIST_DIR}/sewerplan.pc.in ${CMAKE_CURRENT_BINARY_DIR}/sewerplan.pc
                @ONLY)
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/sewerplan.pc
-        DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+        DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig COMPONENT dev)

@@ -1,17 +1,21 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# Acceptance of issue 18: the Debian package installs and runs on a clean Debian 12 (bookworm) root.
+# Acceptance of issues 18 and 33: the Debian packages install and run on a clean Debian 12
+# (bookworm) root, and the runtime package alone pulls no -dev package and no compiler.
 #
 # mmdebstrap makes a minimal bookworm root (essential packages and apt, nothing of sewerplan's
-# build); the .deb is copied in and installed with `apt-get install ./sewerplan_*.deb` in a chroot,
-# so that apt resolves the package's Depends from Debian's mirror: a missing or wrong dependency
-# fails here, where the unpacking test (tests/install/deb_test.sh) cannot see it. Then, in the
-# chroot, as a user would: `sewerplan --version`, the AIS mission planned from the installed example
-# data and compared with the shipped paper-corrected.plan, the man page (`man -w` where man-db is,
-# else the file), the bash completion, the installed Python example (plan_ais.py), and with GIS:
-# `sewerplan export-geojson`, a GeoPackage written from it by the host's ogr2ogr (gdal-bin) read
-# back by the installed `sewerplan convert` and by the installed Python module; `sewerplan-compare`;
-# and `sewerplan serve` answering with the installed page and its map list.
+# build); the packages are copied in and installed with `apt-get install ./PACKAGE.deb` in a chroot,
+# so that apt resolves their Depends from Debian's mirror: a missing or wrong dependency fails here,
+# where the unpacking test (tests/install/deb_test.sh) cannot see it. First the runtime package,
+# sewerplan, alone: what apt would install for it (apt-get --simulate) must hold no -dev package and
+# no compiler, and is counted. Then, in the chroot, as a user would: `sewerplan --version`, the AIS
+# mission planned from the installed example data and compared with the shipped
+# paper-corrected.plan, the man page (`man -w` where man-db is, else the file), the bash completion,
+# and with GIS: `sewerplan export-geojson` and a GeoPackage written from it by the host's ogr2ogr
+# (gdal-bin) read back by the installed `sewerplan convert`; `sewerplan-compare`; and `sewerplan
+# serve` answering with the installed page and its map list. Then python3-sewerplan: the installed
+# Python example (plan_ais.py) and the GeoPackage read by the Python module. With --consumer,
+# sewerplan-dev and a compiler, and a project built against the CMake package.
 #
 # Not part of the test command: it downloads a few hundred MB the first time (the bookworm base,
 # then the package's dependencies). Caches, under CACHE (default BUILD/deb-clean-root): the base
@@ -21,9 +25,11 @@
 #
 # Usage (as root, on Debian 12; paths relative to the current directory):
 #   scripts/deb-clean-root.sh [--deb FILE] [--cache DIR] [--keep] [--fresh] [--consumer] [--mirror URL] [BUILD]
-# --consumer: also install cmake, g++ and ninja in the root and build tests/consumer against the
-# installed CMake package (find_package(sewerplan): the -dev Depends).
-# BUILD (default: build) is a configured and built tree; without --deb the package is made in it
+# --deb FILE: the runtime package sewerplan_*.deb; python3-sewerplan and sewerplan-dev are taken
+# from the same folder (scripts/build-deb.sh writes all three to build/deb/packages).
+# --consumer: also install sewerplan-dev, cmake, g++ and ninja in the root and build tests/consumer
+# against the installed CMake package (find_package(sewerplan): the -dev Depends).
+# BUILD (default: build) is a configured and built tree; without --deb the packages are made in it
 # with cpack. The mirror defaults to Debian's (http://deb.debian.org/debian).
 set -euo pipefail
 src=$(cd "$(dirname "$0")/.." && pwd)
@@ -52,13 +58,19 @@ if [ -z "$deb" ]; then
   out="$build/deb-clean-root-package"
   rm -rf "$out"
   step "cpack -G DEB in $build"
-  (cd "$build" && cpack -G DEB --config "$build/CPackConfig.cmake" -B "$out" > "$build/deb-clean-root-cpack.log") || {
+  (cd "$build" && cpack -G DEB --config "$build/CPackConfig.cmake" -B "$out" > "$build/deb-clean-root-cpack.log" 2>&1) || {
     cat "$build/deb-clean-root-cpack.log"; exit 1; }
   deb=$(ls "$out"/sewerplan_*_amd64.deb)
 fi
 [ -f "$deb" ] || { echo "deb-clean-root: no package $deb" >&2; exit 2; }
+# The version without its Debian revision, as `sewerplan --version` prints it.
 version=$(dpkg-deb --field "$deb" Version)
-step "package $(basename "$deb") ($(du -k "$deb" | cut -f1) KiB), Depends: $(dpkg-deb --field "$deb" Depends)"
+version=${version%-*}
+py_deb=$(ls "$(dirname "$deb")"/python3-sewerplan_*_amd64.deb 2> /dev/null || true)
+dev_deb=$(ls "$(dirname "$deb")"/sewerplan-dev_*_amd64.deb 2> /dev/null || true)
+for d in "$deb" $py_deb $dev_deb; do
+  step "package $(basename "$d") ($(du -k "$d" | cut -f1) KiB), Depends: $(dpkg-deb --field "$d" Depends)"
+done
 
 cache=${cache:-$build/deb-clean-root}
 mkdir -p "$cache"
@@ -119,20 +131,38 @@ in_root() {
 }
 in_root dpkg-query -W sewerplan > /dev/null 2>&1 && { echo "FAIL: the base root has sewerplan"; exit 1; }
 
-step "apt-get update; apt-get install ./$(basename "$deb") (apt resolves its Depends)"
-cp "$deb" "$root/tmp/"
+fail() { echo "FAIL: $*"; exit 1; }
+# apt_install NAME FILE...: installs the packages (a .deb by its path in the root), without
+# recommends: a package must run with what its Depends bring. Prints what apt installed.
+apt_install() {
+  local name=$1
+  shift
+  if ! in_root apt-get install -y -q --no-install-recommends "$@" > "$cache/apt-install-$name.log" 2>&1; then
+    tail -30 "$cache/apt-install-$name.log"
+    fail "apt-get install $* in a clean bookworm root"
+  fi
+  grep -E '^(Need to get|After this operation)' "$cache/apt-install-$name.log" || true
+}
+for d in "$deb" $py_deb $dev_deb; do cp "$d" "$root/tmp/"; done
+rt=/tmp/$(basename "$deb")
 in_root apt-get update -qq
-# No recommends: the package must run with what its Depends bring.
-if ! in_root apt-get install -y -q --no-install-recommends "/tmp/$(basename "$deb")" > "$cache/apt-install.log" 2>&1; then
-  tail -30 "$cache/apt-install.log"
-  echo "FAIL: apt-get install of the package in a clean bookworm root"
-  exit 1
-fi
-grep -E '^(Need to get|After this operation)' "$cache/apt-install.log" || true
+
+# The runtime package alone: what apt would install (the package itself and its dependencies, on
+# top of the base root) holds no -dev package and no compiler.
+step "apt-get install --simulate $rt: what the runtime package pulls"
+in_root apt-get install --simulate --no-install-recommends "$rt" > "$cache/apt-simulate.log" 2>&1 || {
+  tail -20 "$cache/apt-simulate.log"; fail "apt-get install --simulate $rt"; }
+awk '$1 == "Inst" {print $2}' "$cache/apt-simulate.log" | sort > "$cache/runtime-pulls.txt"
+build_tools='-dev$|^(gcc|g\+\+|cpp|c\+\+|clang|clang\+\+|binutils)(-[0-9.]+)?$|^(clang|llvm)-|^binutils-'
+found=0
+grep -E -e "$build_tools" "$cache/runtime-pulls.txt" > "$cache/runtime-build-tools.txt" || found=$?
+[ "$found" -ne 2 ] || fail "grep of what apt would install"
+[ "$found" -eq 1 ] || fail "the runtime package pulls build tools: $(tr '\n' ' ' < "$cache/runtime-build-tools.txt")"
+echo "ok: the runtime package pulls $(wc -l < "$cache/runtime-pulls.txt") packages (itself included), none -dev, no compiler ($cache/runtime-pulls.txt)"
+step "apt-get install $rt (apt resolves its Depends)"
+apt_install runtime "$rt"
 # shellcheck disable=SC2016 # dpkg-query's own ${...} fields
 step "installed: $(in_root dpkg-query -W -f='${Package} ${Version} ${Status}' sewerplan)"
-
-fail() { echo "FAIL: $*"; exit 1; }
 got=$(in_root sewerplan --version) || fail "sewerplan --version did not run"
 [ "$got" = "sewerplan $version" ] || fail "sewerplan --version said '$got', want 'sewerplan $version'"
 echo "ok: sewerplan --version: $got"
@@ -157,14 +187,6 @@ in_root bash -c 'source /usr/share/bash-completion/completions/sewerplan && comp
   fail "the bash completion does not load"
 echo "ok: bash completion loads"
 
-example=/usr/share/sewerplan/examples/python/plan_ais.py
-[ -f "$root$example" ] || fail "no $example"
-in_root sh -c "cd /tmp && python3 $example" > "$cache/python.out" 2>&1 || {
-  cat "$cache/python.out"; fail "python3 $example"; }
-grep -q '14 steps, 585.4 s, 19.5 Wh' "$cache/python.out" || {
-  cat "$cache/python.out"; fail "the Python example's plan"; }
-echo "ok: python3 $example: $(grep 'steps' "$cache/python.out")"
-
 if in_root sewerplan --help | grep -q export-geojson; then
   in_root sewerplan export-geojson --map "$data/map.json" --assume-crs EPSG:25832 \
     --mission "$data/missions/paper.json" --plan-route --profile makro-plus -o /tmp/ais.geojson > /dev/null ||
@@ -181,10 +203,6 @@ if in_root sewerplan --help | grep -q export-geojson; then
     got=$(in_root sewerplan info --map /tmp/back.json --json | /usr/bin/python3 -c 'import json, sys; j = json.load(sys.stdin); print(j["manholes"], j["pipes"], j["crs"])')
     [ "$got" = "12 14 EPSG:25832" ] || fail "the GeoPackage came back as '$got', want '12 14 EPSG:25832'"
     echo "ok: GeoPackage import (sewerplan convert): 12 manholes, 14 pipes, EPSG:25832"
-    got=$(in_root python3 -c 'import sewerplan; m = sewerplan.read_map("/tmp/ais.gpkg"); print(m.manhole_count, m.pipe_count)') ||
-      fail "the Python module cannot read a GeoPackage"
-    [ "$got" = "12 14" ] || fail "Python read the GeoPackage as '$got'"
-    echo "ok: GeoPackage import (Python sewerplan.read_map): 12 manholes, 14 pipes"
   else
     echo "skipped: GeoPackage import (no ogr2ogr on the host: apt-get install gdal-bin)"
   fi
@@ -207,7 +225,8 @@ if [ -f "$root/usr/share/sewerplan/web/index.html" ]; then
     [ -n "$url" ] && break
     sleep 0.1
   done
-  got=$(in_root python3 - "$url" <<'PY' || true
+  # From the host's python3: the root shares its network, and the runtime package brings no python3.
+  got=$(/usr/bin/python3 - "$url" <<'PY' || true
 import json, sys, urllib.request
 base = sys.argv[1].rstrip("/")
 page = urllib.request.urlopen(base + "/", timeout=5).read().decode()
@@ -220,10 +239,28 @@ PY
   [ "$got" = "True 1" ] || { cat "$cache/serve.log"; fail "sewerplan serve answered '$got', want the page and 1 map"; }
   echo "ok: sewerplan serve: the installed page and /api/maps"
 fi
+if [ -n "$py_deb" ]; then
+  py=/tmp/$(basename "$py_deb")
+  step "apt-get install $py"
+  apt_install python "$py"
+  example=/usr/share/sewerplan/examples/python/plan_ais.py
+  [ -f "$root$example" ] || fail "no $example"
+  in_root sh -c "cd /tmp && python3 $example" > "$cache/python.out" 2>&1 || {
+    cat "$cache/python.out"; fail "python3 $example"; }
+  grep -q '14 steps, 585.4 s, 19.5 Wh' "$cache/python.out" || {
+    cat "$cache/python.out"; fail "the Python example's plan"; }
+  echo "ok: python3 $example: $(grep 'steps' "$cache/python.out")"
+  if [ -f "$root/tmp/ais.gpkg" ]; then
+    got=$(in_root python3 -c 'import sewerplan; m = sewerplan.read_map("/tmp/ais.gpkg"); print(m.manhole_count, m.pipe_count)') ||
+      fail "the Python module cannot read a GeoPackage"
+    [ "$got" = "12 14" ] || fail "Python read the GeoPackage as '$got'"
+    echo "ok: GeoPackage import (Python sewerplan.read_map): 12 manholes, 14 pipes"
+  fi
+fi
 if [ "$consumer" -eq 1 ]; then
-  step "consumer: apt-get install cmake g++ ninja-build, then a project with find_package(sewerplan)"
-  in_root apt-get install -y -q --no-install-recommends cmake g++ ninja-build > "$cache/apt-consumer.log" 2>&1 || {
-    tail -20 "$cache/apt-consumer.log"; fail "apt-get install cmake g++ ninja-build"; }
+  [ -n "$dev_deb" ] || fail "--consumer: no sewerplan-dev package beside $deb"
+  step "consumer: apt-get install $(basename "$dev_deb") cmake g++ ninja-build, then a project with find_package(sewerplan)"
+  apt_install consumer "/tmp/$(basename "$dev_deb")" cmake g++ ninja-build
   cp -r "$src/tests/consumer" "$root/tmp/consumer-src"
   in_root sh -c 'cmake -S /tmp/consumer-src -B /tmp/consumer -G Ninja > /tmp/consumer.log 2>&1 &&
     cmake --build /tmp/consumer >> /tmp/consumer.log 2>&1' || { cat "$root/tmp/consumer.log"; fail "the consumer project"; }
@@ -231,4 +268,4 @@ if [ "$consumer" -eq 1 ]; then
   [ "$got" = "ais-testbed: 12 manholes, 14 pipes" ] || fail "the consumer said '$got'"
   echo "ok: a project built against the installed CMake package: $got"
 fi
-step "deb-clean-root: $(basename "$deb") installs and runs on a clean Debian 12 root: ok"
+step "deb-clean-root: $(basename "$deb")${py_deb:+, $(basename "$py_deb")}$([ "$consumer" -eq 1 ] && echo ", $(basename "$dev_deb")") install and run on a clean Debian 12 root: ok"
