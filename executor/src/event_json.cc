@@ -126,6 +126,7 @@ std::optional<Event> event_of(const std::string& type, FieldReader& r) {
     r.get("end", p.end);
     r.get("steps", p.steps);
     r.get("cost_s", p.cost_s);
+    r.get("strand_probability", p.strand_probability);
     e.what = std::move(p);
   } else if (type == "action") {
     ActionEvent a;

@@ -83,14 +83,17 @@ Fields fields_of(const Event& event) {
   return std::visit(
       Overloaded{
           [](const PlanEvent& e) -> Fields {
-            return {{"reason", e.reason},
-                    {"planning_ms", e.planning_ms},
-                    {"decision", text(to_string(e.decision))},
-                    {"goals", e.goals},
-                    {"dropped", e.dropped},
-                    {"end", e.end},
-                    {"steps", static_cast<I>(e.steps)},
-                    {"cost_s", e.cost_s}};
+            Fields f{{"reason", e.reason},
+                     {"planning_ms", e.planning_ms},
+                     {"decision", text(to_string(e.decision))},
+                     {"goals", e.goals},
+                     {"dropped", e.dropped},
+                     {"end", e.end},
+                     {"steps", static_cast<I>(e.steps)},
+                     {"cost_s", e.cost_s}};
+            if (e.strand_probability > 0)
+              f.emplace_back("strand_probability", e.strand_probability);
+            return f;
           },
           [](const ActionEvent& e) -> Fields {
             return {{"step", e.step},

@@ -252,7 +252,8 @@ class Executor::Run {
                    .dropped = std::move(dropped),
                    .end = r.end,
                    .steps = r.plan.steps.size(),
-                   .cost_s = r.cost_s});
+                   .cost_s = r.cost_s,
+                   .strand_probability = r.strand_probability});
     for (const PlanObserver& observer : plan_observers_) observer(r);
     if (r.decision == PlanResponse::Decision::kExitOnReserve) {
       report_.exit_on_reserve = true;

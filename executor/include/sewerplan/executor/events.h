@@ -64,6 +64,8 @@ struct PlanEvent {
   std::string end;                   // "exit M4", "pipe P9 (final task 'end')"
   std::size_t steps = 0;
   double cost_s = 0;
+  // PlanResponse::strand_probability; logged only when above 0 ("strand_probability").
+  double strand_probability = 0;
   friend bool operator==(const PlanEvent&, const PlanEvent&) = default;
 };
 

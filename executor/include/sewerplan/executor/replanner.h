@@ -124,6 +124,9 @@ struct PlanResponse {
   double planning_time_s = 0;
   double cost_s = 0;
   double energy_wh = 0;
+  // The plan's computed stranding risk (search::PlanOutcome::strand_probability; 0 for an answer
+  // not from the planner: the rest of the current plan, or none).
+  double strand_probability = 0;
 };
 
 // Whether a failure report can be applied to `map`: known pipe, manhole and slots, a finite offset
