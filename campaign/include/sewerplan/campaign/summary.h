@@ -53,6 +53,9 @@ struct PolicyFigures {
   std::size_t exits_on_reserve = 0;  // runs the Replanner sent out on the reserve
   double replans_mean = 0;
   std::size_t replans_max = 0;
+  // The first plans' computed stranding risk (Execution::strand_risk), mean over the runs; beside
+  // it the share of missed exits (of could_reach_exit) with its 95 % Wilson interval.
+  double strand_risk_mean = 0;
   double planning_p50_ms = 0;  // measured
   double planning_p99_ms = 0;
   // [0,10%), ..., [90%,100%), 100 %, more than the oracle (over the compared runs).
