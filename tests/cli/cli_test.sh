@@ -153,7 +153,7 @@ expect 0 'stranding risk 0\.3000 \(1 hazard passed' -- "$sp" plan --map "$isybau
 expect 0 '"strand_probability": 0\.3' -- "$sp" plan --map "$isybau" \
   --mission "$tmp/street-mission.json" --condition "$isy/street-zustand.xml" --risk expected \
   --max-strand-risk 1 --json
-for bad in 1.5 -0.1; do
+for bad in 1.5 2; do
   expect 2 "--max-strand-risk: $bad is not a probability: give a number from 0 to 1" -- \
     "$sp" plan --map "$isybau" --mission "$tmp/street-mission.json" --max-strand-risk "$bad"
   expect 2 "--max-strand-risk: $bad is not a probability" -- \
@@ -164,6 +164,8 @@ for bad in 1.5 -0.1; do
 done
 expect 2 '--max-strand-risk: must be a finite number' -- "$sp" plan --map "$isybau" \
   --mission "$tmp/street-mission.json" --max-strand-risk nan
+expect 2 '--max-strand-risk: must not be negative; got -0\.1' -- "$sp" plan --map "$isybau" \
+  --mission "$tmp/street-mission.json" --max-strand-risk -0.1
 # A risk table from a file: the shipped default gives the same; a bad one names file and path.
 expect 0 'risk: the route passes 1 possible blockages' -- "$sp" plan --map "$isybau" \
   --mission "$tmp/street-mission.json" --condition "$isy/street-zustand.xml" --risk expected \
