@@ -154,6 +154,9 @@ int run(const CampaignCliOptions& o, Context& c) {
         inject.has_value() ? nullptr : &inject.error()}) {
     if (e != nullptr) return usage_error(c, o.json, e->message);
   }
+  if (std::string why = o.risk.strand_risk_error(); !why.empty()) {
+    return usage_error(c, o.json, "campaign: " + why);
+  }
   if (o.runs == 0 || (o.only && *o.only >= o.runs)) {
     return usage_error(c, o.json, "campaign: --runs must be at least 1 and --only below it");
   }
@@ -227,6 +230,7 @@ int run(const CampaignCliOptions& o, Context& c) {
   spec.rates = *rates;
   spec.push_allowed = o.allow_push;
   spec.planner_time_limit_s = o.planner_time_limit_s;
+  spec.max_strand_risk = o.risk.max_strand_risk;
   spec.shard_index = shard->first;
   spec.shard_count = shard->second;
   if (!o.condition.empty()) {

@@ -65,6 +65,12 @@ void print_route_risk(const search::PlanOutcome& o, const SewerMap& map, const M
       << "stops " << std::setprecision(1) << o.risk_cost_s << " s";
   if (!o.risk_note.empty()) err << " (" << o.risk_note << ")";
   err << '\n';
+  // The chance of a blockage at a hazard whose reserve the plan does not keep.
+  err << std::setprecision(4) << "stranding risk " << o.strand_probability << " ("
+      << o.uninsured.size() << (o.uninsured.size() == 1 ? " hazard" : " hazards")
+      << " passed without the battery to back out and reach an exit another way)";
+  if (!o.strand_note.empty()) err << "; " << o.strand_note;
+  err << '\n';
   for (const domain::HazardPassed& h : risk.passed) {
     const Hazard& hazard = m.hazards[h.hazard];
     err << "  step " << h.step + 1 << ": pipe " << map.pipe(hazard.pipe).name << " at "
@@ -93,6 +99,9 @@ int run(const PlanOptions& o, Context& c) {
   options.time_limit_s = o.time_limit_s;
   options.improvement_expansions = o.improvement_expansions;
   options.select_goals = o.select_goals;
+  if (std::string why = o.risk.strand_risk_error(); !why.empty())
+    return usage_error(c, o.json, why);
+  options.max_strand_risk = o.risk.max_strand_risk;
   Diagnostics diagnostics;
   Result<SewerMap> map = read_map_with_condition({o.map, o.gis_fields}, o.condition, diagnostics);
   if (map.has_value()) map = apply_crs_option(std::move(*map), o.crs);

@@ -161,6 +161,8 @@ int run(const SimulateOptions& o, Context& c) {
                        "sewerplan simulate: --world-errors and --world-seed are not for --replay: "
                        "the log holds the recorded run's observations");
   }
+  if (std::string why = o.risk.strand_risk_error(); !why.empty())
+    return usage_error(c, o.json, why);
   const Result<hal::WorldErrorProfile> world_errors = hal::parse_world_errors(o.world_errors);
   if (!world_errors.has_value()) return fail(c, o.json, world_errors.error());
   Diagnostics diagnostics;
@@ -197,6 +199,7 @@ int run(const SimulateOptions& o, Context& c) {
   }
   executor::ReplannerOptions replanner_options;
   replanner_options.planner.risk = o.risk.costs();
+  replanner_options.planner.max_strand_risk = o.risk.max_strand_risk;
   executor::Replanner replanner(map, mission, replanner_options);
   if (!o.learnt.empty() && std::filesystem::exists(o.learnt)) {
     Diagnostics d;

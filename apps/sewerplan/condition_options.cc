@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "condition_options.h"
 
+#include <sstream>
+
 #include <CLI/CLI.hpp>
 
 #include "sewerplan/core/condition.h"
@@ -41,6 +43,20 @@ void add_risk_options(CLI::App& command, RiskOptions& options) {
   command.add_option("--risk-table", options.table,
                      "The risk table (JSON, docs/formats/risk-table.md); default: the built-in "
                      "one (info --risk-table-out writes it)");
+  command
+      .add_option("--max-strand-risk", options.max_strand_risk,
+                  "The most the plan's computed stranding risk may be, 0..1: the chance of "
+                  "meeting a possible blockage whose battery to back out and reach an exit "
+                  "another way is not kept (docs/planning.md). 0: every reserve kept; 1: none")
+      ->capture_default_str();
+}
+
+std::string RiskOptions::strand_risk_error() const {
+  if (max_strand_risk >= 0 && max_strand_risk <= 1) return {};
+  std::ostringstream out;
+  out << "--max-strand-risk: " << max_strand_risk
+      << " is not a probability: give a number from 0 to 1";
+  return out.str();
 }
 
 Result<RiskTable> risk_table(const RiskOptions& options, Diagnostics& diagnostics) {

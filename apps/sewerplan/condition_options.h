@@ -32,12 +32,16 @@ Result<SewerMap> read_map_with_condition(const MapSource& map, const std::string
 struct RiskOptions {
   std::string mode = "impassable";
   std::string table;  // a risk table file; empty: the built-in one
+  // --max-strand-risk (search::PlannerOptions::max_strand_risk).
+  double max_strand_risk = 0;
   RiskMode risk_mode() const;
+  // Why --max-strand-risk is not a probability (outside 0..1, or not a number); empty if it is.
+  std::string strand_risk_error() const;
   // The planner's risk costs: kDefaultRiskCosts for kExpected, none otherwise.
   domain::RiskCosts costs() const;
 };
 
-// --risk and --risk-table on `command`.
+// --risk, --risk-table and --max-strand-risk on `command`.
 void add_risk_options(CLI::App& command, RiskOptions& options);
 
 // The table of --risk-table, or the built-in one; problems go to `diagnostics`.

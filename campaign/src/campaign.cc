@@ -255,6 +255,7 @@ RunSettings run_settings(const CampaignSpec& spec) {
           .campaign_seed = spec.seed,
           .push_allowed = spec.push_allowed,
           .planner_time_limit_s = spec.planner_time_limit_s,
+          .max_strand_risk = spec.max_strand_risk,
           .faults_from_condition = spec.faults_from_condition,
           .risk = spec.risk == "expected" ? domain::kDefaultRiskCosts : domain::RiskCosts{},
           // Checked when the spec was made (the CLI) or read (parse_campaign_json).

@@ -42,6 +42,7 @@ Json execution_json(const Execution& e) {
   // Only when true, so records of runs that never needed it stay as they were.
   if (e.exit_on_reserve) j["exit_on_reserve"] = true;
   j["replans"] = e.replans;
+  if (e.strand_risk > 0) j["strand_risk"] = e.strand_risk;
   j["time_s"] = e.time_s;
   j["energy_wh"] = e.energy_wh;
   j["disabled"] = e.disabled;
@@ -203,6 +204,7 @@ Execution read_execution(JsonFields& run, std::string_view key, std::string_view
   x.reserve_kept = f->boolean("reserve_kept").value_or(false);
   x.exit_on_reserve = f->boolean("exit_on_reserve", kOptional).value_or(false);
   x.replans = f->count("replans", kMaxCount).value_or(0);
+  x.strand_risk = f->number("strand_risk", kOptional).value_or(0);
   x.time_s = f->number("time_s").value_or(0);
   x.energy_wh = f->number("energy_wh").value_or(0);
   x.disabled = f->boolean("disabled").value_or(false);
@@ -419,9 +421,10 @@ Result<RunRecord> parse_run_line(std::string_view line, const std::string& file_
 bool CampaignSpec::same_campaign(const CampaignSpec& o) const {
   return map_fingerprint == o.map_fingerprint && mission_fingerprint == o.mission_fingerprint &&
          seed == o.seed && runs == o.runs && rates == o.rates && push_allowed == o.push_allowed &&
-         planner_time_limit_s == o.planner_time_limit_s && shard_count == o.shard_count &&
-         condition_fingerprint == o.condition_fingerprint && risk == o.risk &&
-         faults_from_condition == o.faults_from_condition && world_errors == o.world_errors;
+         planner_time_limit_s == o.planner_time_limit_s && max_strand_risk == o.max_strand_risk &&
+         shard_count == o.shard_count && condition_fingerprint == o.condition_fingerprint &&
+         risk == o.risk && faults_from_condition == o.faults_from_condition &&
+         world_errors == o.world_errors;
 }
 
 std::string fingerprint(std::string_view bytes) {
@@ -451,6 +454,7 @@ std::string campaign_json(const CampaignSpec& s) {
            {"permanent", s.rates.permanent_share},  {"transient", s.rates.transient_share}};
   j["push_allowed"] = s.push_allowed;
   if (s.planner_time_limit_s > 0) j["planner_time_limit_s"] = s.planner_time_limit_s;
+  if (s.max_strand_risk > 0) j["max_strand_risk"] = s.max_strand_risk;
   if (!s.condition_name.empty()) {
     j["condition"] = s.condition_name;
     j["condition_fingerprint"] = s.condition_fingerprint;
@@ -497,6 +501,10 @@ Result<CampaignSpec> parse_campaign_json(std::string_view text, const std::strin
   }
   s.push_allowed = f.boolean("push_allowed").value_or(false);
   s.planner_time_limit_s = f.number("planner_time_limit_s", kOptional).value_or(0);
+  s.max_strand_risk = f.number("max_strand_risk", kOptional).value_or(0);
+  if (!(s.max_strand_risk >= 0 && s.max_strand_risk <= 1)) {
+    f.error("max_strand_risk", "not a probability: a number from 0 to 1");
+  }
   if (f.has("condition")) {
     s.condition_name = f.string("condition").value_or("");
     s.condition_fingerprint = f.string("condition_fingerprint").value_or("");
@@ -548,6 +556,7 @@ std::string reproduce_command(const CampaignSpec& s, std::size_t run) {
       << s.runs << " --seed " << s.seed << " --fault-rates " << format_fault_rates(s.rates)
       << (s.push_allowed ? " --allow-push" : "");
   if (s.planner_time_limit_s > 0) out << " --planner-time-limit " << s.planner_time_limit_s;
+  if (s.max_strand_risk > 0) out << " --max-strand-risk " << s.max_strand_risk;
   if (!s.condition_name.empty()) out << " --condition " << s.condition_name;
   if (s.risk != "impassable") out << " --risk " << s.risk;
   if (s.faults_from_condition) out << " --faults-from-condition";

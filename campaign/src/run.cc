@@ -136,6 +136,7 @@ Execution execute(const SewerMap& map, const hal::TrueWorld& truth, const Missio
   // The paper-era baseline plans as MAKRO did: no battery kept for a blocked hazard pipe.
   replanner_options.planner.contingency =
       goals != executor::ReplannerOptions::Goals::kPaperBaseline;
+  replanner_options.planner.max_strand_risk = settings.max_strand_risk;
   executor::Replanner replanner(map, mission, replanner_options);
   hal::SimRobot robot(truth.world, mission.profile,
                       hal::world_pose(map, truth, start_pose(replanner.progress().position)),
@@ -146,8 +147,11 @@ Execution execute(const SewerMap& map, const hal::TrueWorld& truth, const Missio
   if (observers.on_event) executor.subscribe(observers.on_event);
   if (observers.on_plan) executor.subscribe_plans(observers.on_plan);
   Execution e;
-  executor.subscribe_plans(
-      [&e](const executor::PlanResponse& r) { ++e.rungs[static_cast<std::size_t>(r.rung)]; });
+  std::optional<double> strand_risk;  // the first plan's
+  executor.subscribe_plans([&](const executor::PlanResponse& r) {
+    ++e.rungs[static_cast<std::size_t>(r.rung)];
+    if (!strand_risk) strand_risk = r.strand_probability;
+  });
   // Watches from outside the robot's loop: it reads the simulated robot's true pose, and nothing of
   // it reaches the executor.
   std::optional<WorldScorer> scorer;
@@ -158,6 +162,7 @@ Execution execute(const SewerMap& map, const hal::TrueWorld& truth, const Missio
   e.reserve_kept = report.battery_reserve_kept;
   e.exit_on_reserve = report.exit_on_reserve;
   e.replans = report.replans;
+  e.strand_risk = strand_risk.value_or(0);
   e.time_s = report.time_s;
   e.energy_wh = report.energy_wh;
   e.disabled = disabled(faults, robot);

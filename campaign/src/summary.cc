@@ -33,6 +33,7 @@ void figures(const std::vector<const RunResult*>& runs, const Execution RunResul
   double tasks = 0;
   double vs = 0;
   double replans = 0;
+  double strand_risk = 0;
   for (const RunResult* r : runs) {
     const Execution& e = r->*policy;
     tasks += static_cast<double>(e.tasks);
@@ -66,6 +67,7 @@ void figures(const std::vector<const RunResult*>& runs, const Execution RunResul
     if (!e.reserve_kept && !e.exit_on_reserve) ++f.reserve_violations;
     for (std::size_t k = 0; k < f.rungs.size(); ++k) f.rungs[k] += e.rungs[k];
     replans += static_cast<double>(e.replans);
+    strand_risk += e.strand_risk;
     f.replans_max = std::max(f.replans_max, e.replans);
     for (double t : e.planning_times_s) planning_ms.push_back(t * 1000);
   }
@@ -73,6 +75,7 @@ void figures(const std::vector<const RunResult*>& runs, const Execution RunResul
   f.tasks_mean = tasks / n;
   f.vs_oracle_mean = f.compared == 0 ? 0 : vs / static_cast<double>(f.compared);
   f.replans_mean = replans / n;
+  f.strand_risk_mean = strand_risk / n;
   std::sort(planning_ms.begin(), planning_ms.end());
   f.planning_p50_ms = percentile(planning_ms, 0.50);
   f.planning_p99_ms = percentile(planning_ms, 0.99);
@@ -123,7 +126,26 @@ Json by_kind_json(const ScoresByKind& by_kind) {
   return j;
 }
 
+// A share k of n with its 95 % Wilson score interval (Wilson 1927): sound near 0, where the
+// normal approximation would give a negative bound.
+struct Interval {
+  double share = 0;
+  double low = 0;
+  double high = 0;
+};
+Interval wilson(std::size_t k, std::size_t n) {
+  if (n == 0) return {};
+  constexpr double z = 1.959964;
+  const double total = static_cast<double>(n);
+  const double p = static_cast<double>(k) / total;
+  const double centre = (p + z * z / (2 * total)) / (1 + z * z / total);
+  const double half =
+      z * std::sqrt(p * (1 - p) / total + z * z / (4 * total * total)) / (1 + z * z / total);
+  return {p, std::max(0.0, centre - half), std::min(1.0, centre + half)};
+}
+
 Json policy_json(const PolicyFigures& f) {
+  const Interval missed = wilson(f.missed_exits, f.could_reach_exit);
   Json outcomes;
   for (std::size_t o = 0; o < f.outcomes.size(); ++o) {
     outcomes[std::string(to_string(static_cast<Outcome>(o)))] = f.outcomes[o];
@@ -151,6 +173,9 @@ Json policy_json(const PolicyFigures& f) {
               {"outcomes", outcomes},
               {"could_reach_exit", f.could_reach_exit},
               {"missed_exits", f.missed_exits},
+              {"missed_exit_share", missed.share},
+              {"missed_exit_share_95", Json::array({missed.low, missed.high})},
+              {"strand_risk_mean", f.strand_risk_mean},
               {"beacons_by_cause", causes},
               {"beacons_ended_otherwise_by_cause", otherwise_causes},
               {"reserve_violations", f.reserve_violations},
@@ -410,6 +435,16 @@ void write_risk_aware_markdown(const Summary& s, std::ostream& out) {
       << " |\n";
   out << "| could reach an exit but did not | " << s.ours.missed_exits << " | " << a.missed_exits
       << " |\n";
+  // The bound's check: the stranding risk the first plans computed beside what was observed.
+  const auto observed = [](const PolicyFigures& f) {
+    const Interval i = wilson(f.missed_exits, f.could_reach_exit);
+    std::ostringstream text;
+    text << std::fixed << std::setprecision(4) << i.share << " [" << i.low << ", " << i.high << "]";
+    return text.str();
+  };
+  out << "| missed exits, share [95 %] | " << observed(s.ours) << " | " << observed(a) << " |\n";
+  out << "| stranding risk the first plans computed, mean | " << num(s.ours.strand_risk_mean, 4)
+      << " | " << num(a.strand_risk_mean, 4) << " |\n";
   out << "| replans per mission, mean | " << num(s.ours.replans_mean) << " | "
       << num(a.replans_mean) << " |\n\n";
   out << "Risk-aware against risk-blind, run by run: " << s.risk_aware_better << " better, "

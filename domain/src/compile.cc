@@ -89,6 +89,9 @@ class SewerTaskCompiler {
                !why.empty()) {
       return Error{ErrorCode::kNoPlan, "the mission cannot be completed:" + why};
     }
+    for (const Hazard& h : mission_.hazards) {
+      result_.hazard_probability_.push_back(std::clamp(h.probability, 0.0, 1.0));
+    }
     contingency_ = options_.contingency && ends_at_exit_ && graph.has_hazards();
     if (contingency_) {
       if (!GraphSearch::grow(contingency_scratch_, graph.size(), &options_.stop))
@@ -441,11 +444,20 @@ class SewerTaskCompiler {
   // (exit_need; `blocked`: a pipe found blocked before, at the second level). 0 when no hazard
   // is on the way, the drive does not start at a pipe end with a manhole, or there is no other
   // way out at all (no battery would help then).
+  // Only the insured hazards (CompileOptions::insured) ask for a reserve. At the first level
+  // (no `blocked`), the hazards the drive passes are noted for the action being built, each
+  // covered when the reserve kept reaches as far as it (SewerTask::strand_risk).
   Cost in_pipe_need(PipeId p, Node entry, double from, double to, Cost prefix, double speed_mps,
                     std::optional<PipeId> blocked = std::nullopt) {
     const PositionGraph& graph = *result_.graph_;
+    const bool top = !blocked;
+    const std::size_t noted = noted_.size();
+    if (top) {
+      graph.hazards_between(p, from, to, noted_);
+      covered_.resize(noted_.size(), false);
+    }
     if (!contingency_) return 0;
-    const std::optional<double> hazard = graph.farthest_hazard(p, from, to);
+    const std::optional<double> hazard = graph.farthest_hazard(p, from, to, &options_.insured);
     if (!hazard) return 0;
     const std::size_t e = entry == graph.pipe_end(p, 0) ? 0 : entry == graph.pipe_end(p, 1) ? 1 : 2;
     if (e == 2 || !map_.pipe(p).ends[e].manhole) return 0;
@@ -454,12 +466,20 @@ class SewerTaskCompiler {
     const Cost out = blocked ? exit_need(back, *blocked, p) : exit_need(back, p, std::nullopt);
     if (out >= kInfiniteCost) return 0;
     const double d = std::abs(*hazard - from);
+    // Backing out from the farthest insured hazard covers every nearer one too.
+    for (std::size_t i = noted; top && i < noted_.size(); ++i) {
+      covered_[i] = noted_[i].second <= d;
+    }
     return prefix + to_cost(d / speed_mps) + graph.drive_cost(d) + out;
   }
   // in_pipe_need over every pipe a route drives.
   Cost route_need(std::span<const Node> route, std::optional<PipeId> blocked = std::nullopt) {
-    if (!contingency_) return 0;
     const PositionGraph& graph = *result_.graph_;
+    if (!contingency_) {
+      // No reserve; the hazards the route passes are still noted, none covered.
+      if (!blocked && graph.has_hazards()) note_route(route);
+      return 0;
+    }
     Cost need = 0;
     Cost prefix = 0;
     for (std::size_t i = 0; i + 1 < route.size(); ++i) {
@@ -483,6 +503,21 @@ class SewerTaskCompiler {
       prefix += step;
     }
     return need;
+  }
+  // The hazards a route's pipe drives pass, noted uncovered (without contingency).
+  void note_route(std::span<const Node> route) {
+    const PositionGraph& graph = *result_.graph_;
+    for (std::size_t i = 0; i + 1 < route.size(); ++i) {
+      const std::optional<PipeId> p = graph.pipe_of(route[i]);
+      if (!p || graph.pipe_of(route[i + 1])) continue;  // only DRIVE_PIPE_TO_MANHOLE
+      const RobotPosition to = graph.position(route[i + 1]);
+      const auto* at = std::get_if<AtSlot>(&to);
+      if (at == nullptr) continue;
+      const Slot& slot = map_.slot(at->manhole, at->slot);
+      graph.hazards_between(*p, graph.offset_of(route[i]),
+                            end_offset_m(map_.pipe(*p), slot.pipe_end), noted_);
+    }
+    covered_.resize(noted_.size(), false);
   }
   // The task's actions from each key, each recorded in task_moves_.
   void add_task_actions(std::size_t index, VarId pos);
@@ -538,6 +573,10 @@ class SewerTaskCompiler {
     return build_stopped_.has_value();
   }
   std::map<std::tuple<Node, std::uint32_t, std::uint32_t>, Cost> exit_need_;
+  // The hazards the action being built passes (index into Mission::hazards, distance from where
+  // its drive in that pipe starts), and whether its reserve covers each; add_action takes them.
+  std::vector<std::pair<std::uint32_t, double>> noted_;
+  std::vector<bool> covered_;
 };
 
 }  // namespace sewerplan::domain
@@ -568,6 +607,13 @@ ActionId SewerTaskCompiler::add_action(std::span<const Fact> pre, std::span<cons
   need = std::max(need, route_need(route));
   if (need > cost) builder_.set_reserve(id, need - cost);
   result_.risk_.push_back(risk);
+  if (result_.pass_begin_.empty()) result_.pass_begin_.push_back(0);
+  for (std::size_t i = 0; i < noted_.size(); ++i) {
+    result_.passes_.push_back({noted_[i].first, covered_[i]});
+  }
+  result_.pass_begin_.push_back(static_cast<std::uint32_t>(result_.passes_.size()));
+  noted_.clear();
+  covered_.clear();
   if (result_.route_begin_.empty()) result_.route_begin_.push_back(0);
   result_.route_nodes_.insert(result_.route_nodes_.end(), route.begin(), route.end());
   result_.route_begin_.push_back(static_cast<std::uint32_t>(result_.route_nodes_.size()));
@@ -742,6 +788,7 @@ void SewerTaskCompiler::build_task() {
   }
   builder_.reserve(actions, 2 * actions);
   result_.risk_.reserve(actions);
+  result_.pass_begin_.reserve(actions + 1);
   result_.task_step_.reserve(actions);
   for (std::uint32_t a = 0; a < k(); ++a) {
     for (std::uint32_t b = 0; b < k(); ++b) {
@@ -805,6 +852,29 @@ Cost SewerTask::risk_cost(std::span<const ActionId> plan) const {
   Cost total = 0;
   for (ActionId a : plan) total += risk_[a.index()];
   return total;
+}
+
+StrandRisk SewerTask::strand_risk(std::span<const ActionId> plan) const {
+  std::vector<HazardPass> seen;  // each hazard once, as its first drive past it leaves it
+  for (ActionId a : plan) {
+    if (pass_begin_.empty()) break;
+    for (std::uint32_t i = pass_begin_[a.index()]; i < pass_begin_[a.index() + 1]; ++i) {
+      const HazardPass& pass = passes_[i];
+      auto it = std::find_if(seen.begin(), seen.end(),
+                             [&](const HazardPass& s) { return s.hazard == pass.hazard; });
+      if (it == seen.end()) seen.push_back(pass);
+    }
+  }
+  StrandRisk risk;
+  double none = 1;
+  for (const HazardPass& pass : seen) {
+    if (pass.covered) continue;
+    risk.uninsured.push_back(pass.hazard);
+    none *= 1 - hazard_probability_[pass.hazard];
+  }
+  std::sort(risk.uninsured.begin(), risk.uninsured.end());
+  risk.probability = 1 - none;
+  return risk;
 }
 
 std::vector<TaskId> SewerTask::forgone(std::span<const ActionId> plan) const {

@@ -105,12 +105,16 @@ PositionGraph::PositionGraph(const SewerMap& map, const Mission& mission,
   for (PipeId p : mission.closed_pipes) drivable_[p.index()] = false;
   for (const ClosedPassage& c : mission.closed_passages) closed_passages_.push_back(normalised(c));
   std::sort(closed_passages_.begin(), closed_passages_.end(), passage_less);
-  for (const Hazard& h : mission.hazards) {
-    if (h.probability > 0) hazards_.push_back(h);
+  std::vector<std::uint32_t> order;
+  for (std::size_t i = 0; i < mission.hazards.size(); ++i) {
+    if (mission.hazards[i].probability > 0) order.push_back(static_cast<std::uint32_t>(i));
   }
-  std::sort(hazards_.begin(), hazards_.end(), [](const Hazard& a, const Hazard& b) {
-    return std::tie(a.pipe, a.offset_m) < std::tie(b.pipe, b.offset_m);
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return std::tie(mission.hazards[a].pipe, mission.hazards[a].offset_m) <
+           std::tie(mission.hazards[b].pipe, mission.hazards[b].offset_m);
   });
+  for (std::uint32_t i : order) hazards_.push_back(mission.hazards[i]);
+  hazard_index_ = std::move(order);
   has_closed_pipes_ = !mission.closed_pipes.empty();
   plain_moves_ = closed_passages_.empty() && !has_blockages_ && hazards_.empty();
 }
@@ -159,7 +163,8 @@ Cost PositionGraph::risk_cost_uncached(PipeId p, double a, double b, double weig
   return unobstructed < 1 ? to_cost((1 - unobstructed) * weight_s) : 0;
 }
 
-std::optional<double> PositionGraph::farthest_hazard(PipeId p, double from, double to) const {
+std::optional<double> PositionGraph::farthest_hazard(PipeId p, double from, double to,
+                                                     const std::vector<bool>* insured) const {
   const double lo = std::min(from, to);
   const double hi = std::max(from, to);
   auto it = std::lower_bound(hazards_.begin(), hazards_.end(), p,
@@ -167,11 +172,28 @@ std::optional<double> PositionGraph::farthest_hazard(PipeId p, double from, doub
   std::optional<double> farthest;
   for (; it != hazards_.end() && it->pipe == p; ++it) {
     if (it->offset_m <= lo || it->offset_m >= hi) continue;
+    if (insured != nullptr && !insured->empty()) {
+      const std::uint32_t index = hazard_index_[static_cast<std::size_t>(it - hazards_.begin())];
+      if (index >= insured->size() || !(*insured)[index]) continue;
+    }
     if (!farthest || std::abs(it->offset_m - from) > std::abs(*farthest - from)) {
       farthest = it->offset_m;
     }
   }
   return farthest;
+}
+
+void PositionGraph::hazards_between(PipeId p, double from, double to,
+                                    std::vector<std::pair<std::uint32_t, double>>& out) const {
+  const double lo = std::min(from, to);
+  const double hi = std::max(from, to);
+  auto it = std::lower_bound(hazards_.begin(), hazards_.end(), p,
+                             [](const Hazard& h, PipeId id) { return h.pipe < id; });
+  for (; it != hazards_.end() && it->pipe == p; ++it) {
+    if (it->offset_m <= lo || it->offset_m >= hi) continue;
+    out.emplace_back(hazard_index_[static_cast<std::size_t>(it - hazards_.begin())],
+                     std::abs(it->offset_m - from));
+  }
 }
 
 Cost PositionGraph::route_risk(std::span<const Node> route, double weight_s) const {

@@ -28,6 +28,7 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "sewerplan/core/mission.h"
@@ -174,8 +175,14 @@ class PositionGraph {
   Cost risk_cost(PipeId p, double a, double b, double weight_s) const {
     return weight_s > 0 && !hazards_.empty() ? risk_cost_uncached(p, a, b, weight_s) : 0;
   }
-  // The farthest hazard from `from` strictly between offsets `from` and `to` of p, if any.
-  std::optional<double> farthest_hazard(PipeId p, double from, double to) const;
+  // The farthest hazard from `from` strictly between offsets `from` and `to` of p, if any; with
+  // `insured` (by index into Mission::hazards; null or empty: all), only those it marks.
+  std::optional<double> farthest_hazard(PipeId p, double from, double to,
+                                        const std::vector<bool>* insured = nullptr) const;
+  // Appends the hazards strictly between offsets `from` and `to` of p to `out`: each as its index
+  // into Mission::hazards and its distance from `from`.
+  void hazards_between(PipeId p, double from, double to,
+                       std::vector<std::pair<std::uint32_t, double>>& out) const;
   bool has_hazards() const { return !hazards_.empty(); }
   // Contingency-aware battery planning (compile.h): while excluded, no move enters `pipe`, as if
   // it were found blocked (none is, by default).
@@ -251,7 +258,8 @@ class PositionGraph {
   std::vector<bool> drivable_;                  // by pipe: fits, and the mission does not close it
   std::vector<ClosedPassage> closed_passages_;  // normalised: from < to, sorted
   std::vector<Spot> spots_;
-  std::vector<Hazard> hazards_;  // the mission's, sorted by pipe and offset
+  std::vector<Hazard> hazards_;              // the mission's, sorted by pipe and offset
+  std::vector<std::uint32_t> hazard_index_;  // each of hazards_' index into Mission::hazards
   double risk_weight_s_ = 0;
   std::vector<bool> excluded_;  // by pipe; empty until one is excluded
   std::size_t excluded_count_ = 0;

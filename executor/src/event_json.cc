@@ -127,6 +127,7 @@ std::optional<Event> event_of(const std::string& type, FieldReader& r) {
     r.get("steps", p.steps);
     r.get("cost_s", p.cost_s);
     r.get<PlanResponse::Rung>("rung", p.rung, parse_rung);
+    r.get("strand_probability", p.strand_probability);
     e.what = std::move(p);
   } else if (type == "action") {
     ActionEvent a;

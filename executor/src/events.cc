@@ -104,6 +104,8 @@ Fields fields_of(const Event& event) {
                      {"cost_s", e.cost_s}};
             if (e.rung != PlanResponse::Rung::kSearch)
               f.emplace_back("rung", text(to_string(e.rung)));
+            if (e.strand_probability > 0)
+              f.emplace_back("strand_probability", e.strand_probability);
             return f;
           },
           [](const ActionEvent& e) -> Fields {

@@ -254,7 +254,8 @@ class Executor::Run {
                    .end = r.end,
                    .steps = r.plan.steps.size(),
                    .cost_s = r.cost_s,
-                   .rung = r.rung});
+                   .rung = r.rung,
+                   .strand_probability = r.strand_probability});
     for (const PlanObserver& observer : plan_observers_) observer(r);
     if (r.decision == PlanResponse::Decision::kExitOnReserve) {
       report_.exit_on_reserve = true;

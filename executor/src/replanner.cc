@@ -594,6 +594,7 @@ PlanResponse Replanner::respond(search::PlanOutcome outcome, const std::string& 
   r.planning_time_s = seconds;
   r.cost_s = outcome.cost_s;
   r.energy_wh = outcome.energy_wh;
+  r.strand_probability = outcome.strand_probability;
   for (auto& d : outcome.dropped) {
     if (!has_task(dropped_, d.task)) dropped_.push_back(d);
   }

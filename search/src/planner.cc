@@ -218,6 +218,9 @@ void complete(const domain::SewerTask& compiled, const Mission& mission, const S
   std::sort(outcome.dropped.begin(), outcome.dropped.end(),
             [](const auto& a, const auto& b) { return a.task < b.task; });
   outcome.energy_wh = mission.profile.energy_wh(outcome.cost_s);
+  domain::StrandRisk strand = compiled.strand_risk(result.plan);
+  outcome.strand_probability = strand.probability;
+  outcome.uninsured = std::move(strand.uninsured);
   outcome.search = result.statistics;
   outcome.compile = compiled.statistics();
 }
@@ -242,6 +245,7 @@ Result<PlanOutcome> plan_once(const SewerMap& map, const Mission& mission,
                                   .stop = stop,
                                   .risk = options.risk,
                                   .contingency = options.contingency,
+                                  .insured = options.insured,
                                   .cache = options.compile_cache});
   if (!compiled.has_value()) return compiled.error();
   const domain::CompiledTask& task = compiled->task();
@@ -401,9 +405,9 @@ Result<PlanOutcome> plan_weighing_risks(const SewerMap& map, const Mission& miss
   return fallback;
 }
 
-}  // namespace
-
-Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
+// plan_weighing_risks with the hazards options.insured names keeping their reserves; where no
+// plan keeps them, without any.
+Result<PlanOutcome> plan_insured(const SewerMap& map, const Mission& mission,
                                  const domain::MissionProgress& progress,
                                  const PlannerOptions& options) {
   const SteadyClock steady;
@@ -430,6 +434,136 @@ Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
   return plain;
 }
 
+// Whether `a` does more tasks than `b`, or as many in less time.
+bool does_better(const PlanOutcome& a, const PlanOutcome& b) {
+  if (a.dropped.size() != b.dropped.size()) return a.dropped.size() < b.dropped.size();
+  return a.cost_s < b.cost_s - 1e-6;
+}
+
+// The probability levels of the mission's hazards (above 0) that the search for
+// max_strand_risk un-insures in turn: the distinct ones ascending, at most
+// kMaxStrandRounds - 2, spread by rank (the highest always among them) when there are more.
+std::vector<double> strand_levels(const Mission& mission) {
+  std::vector<double> levels;
+  for (const Hazard& h : mission.hazards) {
+    if (h.probability > 0) levels.push_back(std::min(h.probability, 1.0));
+  }
+  std::sort(levels.begin(), levels.end());
+  levels.erase(std::unique(levels.begin(), levels.end()), levels.end());
+  constexpr std::size_t kLevels = kMaxStrandRounds - 2;
+  if (levels.size() <= kLevels) return levels;
+  std::vector<double> spread;
+  for (std::size_t i = 0; i < kLevels; ++i) {
+    spread.push_back(levels[(i + 1) * levels.size() / kLevels - 1]);
+  }
+  return spread;
+}
+
+// Chance-constrained contingency (PlannerOptions::max_strand_risk, 0 < bound < 1). Starts from
+// the fully insured plan; then, level by level of probability ascending, lets every hazard at
+// or below the level go without its reserve, and keeps that plan when its computed stranding
+// risk stays within the bound and it does more tasks (or as many sooner). Only the hazards a
+// plan passes count, so a level may un-insure many and cost little. At the first level whose
+// plan goes over the bound, the riskiest hazard it newly passes uninsured is insured again, up
+// to twice, while the plan stays over. The best plan within the bound is the answer; at worst
+// the fully insured one. A time limit bounds all the plans together; when it runs out, the best
+// so far is the answer.
+Result<PlanOutcome> plan_within_strand_risk(const SewerMap& map, const Mission& mission,
+                                            const domain::MissionProgress& progress,
+                                            const PlannerOptions& options) {
+  const SteadyClock steady;
+  const Clock& clock = options.clock != nullptr ? *options.clock : steady;
+  const double started_s = clock.now_s();
+  // Within rounding: 1 - (1 - 0.05) is a hair above 0.05.
+  const double bound = options.max_strand_risk + 1e-9;
+  const std::size_t n = mission.hazards.size();
+  PlannerOptions all = options;
+  all.insured.clear();
+  Result<PlanOutcome> best = plan_insured(map, mission, progress, all);
+  if (!best.has_value() || best->strand_probability > bound) return best;
+  std::vector<bool> best_insured(n, true);
+  std::size_t plans = 0;
+  // One more plan with `insured`, within what is left of the time limit; none when it is out or
+  // the plan fails.
+  const auto attempt = [&](const std::vector<bool>& insured) -> std::optional<PlanOutcome> {
+    PlannerOptions o = options;
+    o.insured = insured;
+    if (o.time_limit_s > 0) {
+      o.time_limit_s -= clock.now_s() - started_s;
+      if (o.time_limit_s <= 0) return std::nullopt;
+    }
+    ++plans;
+    Result<PlanOutcome> r = plan_insured(map, mission, progress, o);
+    if (!r.has_value()) return std::nullopt;
+    return std::move(*r);
+  };
+  const auto keep_if_better = [&](PlanOutcome& r, const std::vector<bool>& insured) {
+    if (!does_better(r, *best)) return;
+    *best = std::move(r);
+    best_insured = insured;
+  };
+  std::optional<PlanOutcome> over;
+  std::vector<bool> over_insured;
+  for (const double level : strand_levels(mission)) {
+    std::vector<bool> insured(n);
+    for (std::size_t h = 0; h < n; ++h) insured[h] = !(mission.hazards[h].probability <= level);
+    std::optional<PlanOutcome> r = attempt(insured);
+    if (!r) break;
+    if (r->strand_probability > bound) {
+      over = std::move(r);
+      over_insured = std::move(insured);
+      break;
+    }
+    keep_if_better(*r, insured);
+  }
+  for (std::size_t round = 0; over && round < 2; ++round) {
+    // The riskiest hazard the plan passes uninsured that the best plan's set insures.
+    std::optional<std::size_t> riskiest;
+    for (std::size_t h : over->uninsured) {
+      if (over_insured[h] || !best_insured[h]) continue;
+      if (!riskiest || mission.hazards[h].probability > mission.hazards[*riskiest].probability) {
+        riskiest = h;
+      }
+    }
+    if (!riskiest) break;
+    over_insured[*riskiest] = true;
+    std::optional<PlanOutcome> r = attempt(over_insured);
+    if (!r) break;
+    if (r->strand_probability <= bound) {
+      keep_if_better(*r, over_insured);
+      break;
+    }
+    over = std::move(r);
+  }
+  best->strand_plans = plans;
+  std::size_t chosen = 0;
+  for (std::size_t h : best->uninsured) chosen += best_insured[h] ? 0U : 1U;
+  std::ostringstream note;
+  note << std::fixed << std::setprecision(4) << "within the bound " << options.max_strand_risk
+       << ": " << chosen
+       << (chosen == 1 ? " hazard the plan passes goes" : " hazards the plan passes go")
+       << " without its reserve (" << plans << (plans == 1 ? " plan" : " plans")
+       << " tried beyond the fully insured one)";
+  best->strand_note = note.str();
+  return best;
+}
+
+}  // namespace
+
+Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
+                                 const domain::MissionProgress& progress,
+                                 const PlannerOptions& options) {
+  if (!options.contingency || mission.hazards.empty() || !(options.max_strand_risk > 0)) {
+    return plan_insured(map, mission, progress, options);
+  }
+  if (options.max_strand_risk >= 1) {
+    PlannerOptions blind = options;
+    blind.contingency = false;
+    return plan_insured(map, mission, progress, blind);
+  }
+  return plan_within_strand_risk(map, mission, progress, options);
+}
+
 namespace {
 
 // plan_greedily and plan_in_order: one compile without a time limit (the cancel is honoured),
@@ -443,13 +577,17 @@ Result<PlanOutcome> plan_quickly(const SewerMap& map, const Mission& mission,
   StopCondition stop;
   if (options.cancel != nullptr) stop.with_cancel(*options.cancel);
   std::optional<Error> failure;
+  // max_strand_risk: 1 keeps no reserve; below, the quick answer keeps every one (or those
+  // options.insured names).
+  const bool reserves = options.contingency && options.max_strand_risk < 1;
   for (const bool contingency : {true, false}) {
-    if (contingency && !options.contingency) continue;
+    if (contingency && !reserves) continue;
     Result<domain::SewerTask> compiled =
         domain::compile_sewer_task(map, mission, progress,
                                    {.select_goals = options.select_goals,
                                     .stop = stop,
                                     .contingency = contingency,
+                                    .insured = options.insured,
                                     .cache = options.compile_cache});
     if (!compiled.has_value()) {
       if (compiled.error().code != ErrorCode::kNoPlan) return compiled.error();
@@ -469,7 +607,7 @@ Result<PlanOutcome> plan_quickly(const SewerMap& map, const Mission& mission,
     PlanOutcome outcome;
     complete(*compiled, mission, *result, outcome);
     outcome.algorithm = std::string(name);
-    if (options.contingency && !contingency && !mission.hazards.empty()) {
+    if (reserves && !contingency && !mission.hazards.empty()) {
       outcome.contingency_note =
           "no plan keeps the battery to back out of a blocked hazard pipe and reach an exit "
           "another way: planned without that reserve";

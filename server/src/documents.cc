@@ -150,6 +150,19 @@ Json plan_json(const search::PlanOutcome& outcome, const domain::ValidationRepor
     // cost of stops the planner chose the plan with, and why it took the risk-blind plan, if so.
     j["risk"]["expected_cost_s"] = outcome.risk_cost_s;
     if (!outcome.risk_note.empty()) j["risk"]["note"] = outcome.risk_note;
+    // The plan's computed stranding risk (docs/planning.md, issue 34): the hazards it passes
+    // without the battery kept to back out and reach an exit another way.
+    j["risk"]["strand_probability"] = outcome.strand_probability;
+    Json uninsured = Json::array();
+    for (std::size_t h : outcome.uninsured) {
+      const Hazard& hazard = m.hazards[h];
+      uninsured.push_back({{"pipe", map.pipe(hazard.pipe).name},
+                           {"offset_m", hazard.offset_m},
+                           {"probability", hazard.probability},
+                           {"reason", hazard.reason}});
+    }
+    j["risk"]["uninsured"] = std::move(uninsured);
+    if (!outcome.strand_note.empty()) j["risk"]["strand_note"] = outcome.strand_note;
   }
   return j;
 }

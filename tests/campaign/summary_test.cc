@@ -142,6 +142,24 @@ TEST(CampaignSummary, ARunTheOracleCannotEndIsNoMissedExit) {
   EXPECT_FALSE(s.clean());
 }
 
+// Issue 34: the stranding risk the first plans computed, beside the missed exits observed with
+// their 95 % Wilson interval (1 of 4: 0.25, [0.0456, 0.6994]).
+TEST(CampaignSummary, TheComputedStrandingRiskStandsBesideTheMissedExitsObserved) {
+  std::vector<RunRecord> runs;
+  for (std::size_t i = 0; i < 4; ++i) {
+    Execution ours = ended_with(2, i == 0 ? Outcome::kBeacon : Outcome::kExit);
+    ours.strand_risk = 0.1 * static_cast<double>(i);
+    runs.push_back(record(i, 2, true, ours, ended_with(2)));
+  }
+  const nlohmann::json j = json(summarize(spec(), runs));
+  EXPECT_NEAR(j["ours"]["strand_risk_mean"].get<double>(), 0.15, 1e-12);
+  EXPECT_NEAR(j["ours"]["missed_exit_share"].get<double>(), 0.25, 1e-12);
+  EXPECT_NEAR(j["ours"]["missed_exit_share_95"][0].get<double>(), 0.0456, 1e-4);
+  EXPECT_NEAR(j["ours"]["missed_exit_share_95"][1].get<double>(), 0.6994, 1e-4);
+  EXPECT_EQ(j["baseline"]["strand_risk_mean"].get<double>(), 0.0);
+  EXPECT_EQ(j["baseline"]["missed_exit_share_95"][0].get<double>(), 0.0);
+}
+
 TEST(CampaignSummary, TheChartShowsTheVerdictMissedExitsRatesAndLimits) {
   const Summary clean = summarize(spec(), {record(0, 2, true, ended_with(2), ended_with(2))});
   const std::string ok = svg(clean);

@@ -143,6 +143,29 @@ expect 0 'risk: the route passes 1 possible blockages; unobstructed run 0\.70' -
   --condition "$isy/street-zustand.xml" --risk expected
 expect 0 '"unobstructed_probability": 0\.7' -- "$sp" plan --map "$isybau" \
   --mission "$tmp/street-mission.json" --condition "$isy/street-zustand.xml" --risk expected --json
+# Issue 34: the plan's computed stranding risk, and --max-strand-risk bounding it: 0 keeps the
+# reserve to back out of S1 past the roots, 1 keeps none (the roots' 0.3 is the risk).
+expect 0 'stranding risk 0\.0000 \(0 hazards passed' -- "$sp" plan --map "$isybau" \
+  --mission "$tmp/street-mission.json" --condition "$isy/street-zustand.xml" --risk expected
+expect 0 'stranding risk 0\.3000 \(1 hazard passed' -- "$sp" plan --map "$isybau" \
+  --mission "$tmp/street-mission.json" --condition "$isy/street-zustand.xml" --risk expected \
+  --max-strand-risk 1
+expect 0 '"strand_probability": 0\.3' -- "$sp" plan --map "$isybau" \
+  --mission "$tmp/street-mission.json" --condition "$isy/street-zustand.xml" --risk expected \
+  --max-strand-risk 1 --json
+for bad in 1.5 2; do
+  expect 2 "--max-strand-risk: $bad is not a probability: give a number from 0 to 1" -- \
+    "$sp" plan --map "$isybau" --mission "$tmp/street-mission.json" --max-strand-risk "$bad"
+  expect 2 "--max-strand-risk: $bad is not a probability" -- \
+    "$sp" simulate --map "$isybau" --mission "$tmp/street-mission.json" --max-strand-risk "$bad"
+  expect 2 "campaign: --max-strand-risk: $bad is not a probability" -- \
+    "$sp" campaign --map "$isybau" --mission "$tmp/street-mission.json" --runs 1 \
+    --max-strand-risk "$bad" --out "$tmp/strand-campaign"
+done
+expect 2 '--max-strand-risk: must be a finite number' -- "$sp" plan --map "$isybau" \
+  --mission "$tmp/street-mission.json" --max-strand-risk nan
+expect 2 '--max-strand-risk: must not be negative; got -0\.1' -- "$sp" plan --map "$isybau" \
+  --mission "$tmp/street-mission.json" --max-strand-risk -0.1
 # A risk table from a file: the shipped default gives the same; a bad one names file and path.
 expect 0 'risk: the route passes 1 possible blockages' -- "$sp" plan --map "$isybau" \
   --mission "$tmp/street-mission.json" --condition "$isy/street-zustand.xml" --risk expected \

@@ -66,6 +66,7 @@ TEST(EventLog, EveryKindOfEventReadsBackEqual) {
       {0, PlanEvent{.reason = "start", .goals = {"a"}, .steps = 3, .cost_s = 1.5}},
       {1.25, PlanEvent{.replan = true, .decision = PlanResponse::Decision::kDegraded}},
       {1.5, PlanEvent{.replan = true, .rung = PlanResponse::Rung::kGreedy}},
+      {1.5, PlanEvent{.replan = true, .cost_s = 2, .strand_probability = 0.0975}},
       {2, ActionEvent{"DRIVE_PIPE_TO_MANHOLE P1 M3", "drive_to_manhole", 9.5, "x"}},
       {3, JobEvent{"DriveForward(0.30 m/s, 2.83 m)", 2.8285, false}},
       {3, ErrorEvent{hal::RobotErrorKind::kDanger, "danger", "in pipe P1 at 2.00 m"}},

@@ -175,5 +175,120 @@ TEST(ContingencyPlanning, TheTourSearchDropsTheGoalsTheReservesLeaveNoRoomFor) {
   EXPECT_EQ(compiled->forgone(tour->plan).size(), fewest);
 }
 
+// Issue 34: a bound on the plan's computed stranding risk (PlannerOptions::max_strand_risk). The
+// trap with two findings: deposits at 5 m in SHORT, the way out (p = 0.05), and roots at 20 m in
+// SX, the task's pipe (p = 0.3). Insuring the deposits costs the task (the battery to back out
+// of SHORT and drive LONG), as in the trap; insuring the roots costs little with the deposits
+// uninsured (back out of SX, out through SHORT), but with them insured asks for LONG too.
+struct TwoFindings : Trap {
+  TwoFindings() {
+    mission.hazards = {
+        {.pipe = *map.find_pipe("SHORT"), .offset_m = 5, .probability = 0.05, .reason = "BBC"},
+        {.pipe = *map.find_pipe("SX"), .offset_m = 20, .probability = 0.3, .reason = "BBA"}};
+    mission.profile.battery_wh = battery_for(*this, 60);
+  }
+  static constexpr std::size_t kDeposits = 0;
+  static constexpr std::size_t kRoots = 1;
+  Result<PlanOutcome> plan(double max_strand_risk, Algorithm algorithm = Algorithm::kAuto) const {
+    return plan_mission(
+        map, mission, initial_progress(mission, map),
+        {.algorithm = algorithm, .select_goals = true, .max_strand_risk = max_strand_risk});
+  }
+};
+
+TEST(StrandRisk, NoRiskKeepsEveryReserve) {
+  const TwoFindings trap;
+  for (Algorithm algorithm : {Algorithm::kAuto, Algorithm::kAstar, Algorithm::kGbfs}) {
+    SCOPED_TRACE(std::string(to_string(algorithm)));
+    auto safe = trap.plan(0, algorithm);
+    ASSERT_TRUE(safe.has_value()) << safe.error();
+    EXPECT_EQ(safe->dropped.size(), 1U);
+    // Out through SHORT past the deposits, with the battery for LONG kept: no risk taken.
+    EXPECT_EQ(safe->strand_probability, 0.0);
+    EXPECT_TRUE(safe->uninsured.empty());
+    // The same plan as contingency alone (max_strand_risk 0 is the default).
+    auto plain = plan_mission(trap.map, trap.mission, initial_progress(trap.mission, trap.map),
+                              {.algorithm = algorithm, .select_goals = true});
+    ASSERT_TRUE(plain.has_value());
+    EXPECT_EQ(safe->plan, plain->plan);
+  }
+}
+
+TEST(StrandRisk, CertainRiskKeepsNoReserve) {
+  const TwoFindings trap;
+  auto blind = trap.plan(1);
+  ASSERT_TRUE(blind.has_value()) << blind.error();
+  EXPECT_TRUE(blind->dropped.empty());
+  // The task past the roots and out past the deposits, neither insured.
+  EXPECT_EQ(blind->uninsured,
+            (std::vector<std::size_t>{TwoFindings::kDeposits, TwoFindings::kRoots}));
+  EXPECT_NEAR(blind->strand_probability, 1 - 0.95 * 0.7, 1e-12);
+  // The plan without contingency.
+  auto plain = plan_mission(trap.map, trap.mission, initial_progress(trap.mission, trap.map),
+                            {.select_goals = true, .contingency = false});
+  ASSERT_TRUE(plain.has_value());
+  EXPECT_EQ(blind->plan, plain->plan);
+  EXPECT_EQ(blind->strand_probability, plain->strand_probability);
+}
+
+TEST(StrandRisk, ABoundBetweenTheLevelsInsuresExactlyTheRiskierFinding) {
+  const TwoFindings trap;
+  for (double bound : {0.05, 0.1, 0.3}) {
+    SCOPED_TRACE(bound);
+    auto plan = trap.plan(bound);
+    ASSERT_TRUE(plan.has_value()) << plan.error();
+    // The deposits go uninsured and buy the task; the roots keep their reserve.
+    EXPECT_TRUE(plan->dropped.empty()) << domain::format_plan(plan->plan, trap.map, trap.mission);
+    EXPECT_EQ(plan->uninsured, std::vector<std::size_t>{TwoFindings::kDeposits});
+    EXPECT_NEAR(plan->strand_probability, 0.05, 1e-12);
+    EXPECT_LE(plan->strand_probability, bound + 1e-9);
+    EXPECT_GE(plan->strand_plans, 2U);
+    EXPECT_NE(plan->strand_note.find("1 hazard the plan passes goes without its reserve"),
+              std::string::npos)
+        << plan->strand_note;
+  }
+}
+
+TEST(StrandRisk, ABoundBelowEveryLevelKeepsTheFullyInsuredPlan) {
+  const TwoFindings trap;
+  auto plan = trap.plan(0.04);
+  ASSERT_TRUE(plan.has_value()) << plan.error();
+  EXPECT_EQ(plan->dropped.size(), 1U);
+  EXPECT_EQ(plan->strand_probability, 0.0);
+  auto safe = trap.plan(0);
+  ASSERT_TRUE(safe.has_value());
+  EXPECT_EQ(plan->plan, safe->plan);
+}
+
+TEST(StrandRisk, AReserveCoversTheNearerFindingsOfItsDrive) {
+  TwoFindings trap;
+  // More deposits at 2 m in SHORT, not insured: backing out from 5 m covers them too.
+  trap.mission.hazards.push_back(
+      {.pipe = *trap.map.find_pipe("SHORT"), .offset_m = 2, .probability = 0.5, .reason = "BBC"});
+  trap.mission.profile.battery_wh = battery_for(trap, 60);
+  auto plan = plan_mission(trap.map, trap.mission, initial_progress(trap.mission, trap.map),
+                           {.select_goals = true, .insured = {true, true, false}});
+  ASSERT_TRUE(plan.has_value()) << plan.error();
+  EXPECT_EQ(plan->dropped.size(), 1U);
+  EXPECT_EQ(plan->strand_probability, 0.0);
+  // Insured alone, the nearer finding leaves the farther one uncovered.
+  plan = plan_mission(trap.map, trap.mission, initial_progress(trap.mission, trap.map),
+                      {.select_goals = true, .insured = {false, true, true}});
+  ASSERT_TRUE(plan.has_value()) << plan.error();
+  EXPECT_EQ(plan->uninsured, std::vector<std::size_t>{TwoFindings::kDeposits});
+}
+
+TEST(StrandRisk, AMissionEndingAtATaskKeepsNoReserveAndCountsEveryFinding) {
+  TwoFindings trap;
+  add_task(trap.mission, trap.map, "end", TaskKind::kGoTo, "SHORT", 8.0);
+  trap.mission.tasks.back().final = true;
+  trap.mission.profile.battery_wh = trap.mission.profile.energy_wh(3600);
+  auto plan = trap.plan(0);
+  ASSERT_TRUE(plan.has_value()) << plan.error();
+  EXPECT_EQ(plan->uninsured,
+            (std::vector<std::size_t>{TwoFindings::kDeposits, TwoFindings::kRoots}));
+  EXPECT_NEAR(plan->strand_probability, 1 - 0.95 * 0.7, 1e-12);
+}
+
 }  // namespace
 }  // namespace sewerplan::search

@@ -64,6 +64,7 @@ struct CampaignSpec {
   FaultRates rates;
   bool push_allowed = false;
   double planner_time_limit_s = 0;  // RunSettings::planner_time_limit_s
+  double max_strand_risk = 0;       // RunSettings::max_strand_risk
   // Condition data (--condition), as given and by fingerprint; what the findings mean (--risk:
   // "impassable", "avoid", "expected", "ignore"); RunSettings::faults_from_condition. Written
   // only when not the defaults, so campaigns without condition data read as before.

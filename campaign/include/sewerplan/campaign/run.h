@@ -113,6 +113,10 @@ struct RunSettings {
   // none); not the oracle's. Measured on the wall clock, so a limit some plans reach makes runs
   // depend on the machine.
   double planner_time_limit_s = 0;
+  // The bound on each plan's computed stranding risk of ours and the risk-aware execution
+  // (search::PlannerOptions::max_strand_risk; 0: every contingency reserve kept); not the
+  // oracle's or the baseline's, which keep none.
+  double max_strand_risk = 0;
   // Hidden obstacles drawn from the inspection findings too (Mission::hazards): each possible
   // blockage becomes a permanent obstacle at its offset with its probability, on top of the
   // random faults of `rates` (docs/campaign.md, "Faults from condition data").
@@ -155,6 +159,9 @@ struct Execution {
   // reserve spent so is not a violation.
   bool exit_on_reserve = false;
   std::size_t replans = 0;
+  // The first plan's computed stranding risk (search::PlanOutcome::strand_probability): the
+  // chance, as planned at the start, of meeting a blockage without the battery kept to get out.
+  double strand_risk = 0;
   double time_s = 0;  // mission time and energy, simulated (deterministic)
   double energy_wh = 0;
   bool disabled = false;  // a permanent malfunction struck

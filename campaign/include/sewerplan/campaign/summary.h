@@ -56,6 +56,9 @@ struct PolicyFigures {
   // The plans (first plans and replans) each rung of the anytime ladder answered, summed over the
   // runs, indexed by executor::PlanResponse::Rung.
   std::array<std::size_t, executor::PlanResponse::kRungCount> rungs{};
+  // The first plans' computed stranding risk (Execution::strand_risk), mean over the runs; beside
+  // it the share of missed exits (of could_reach_exit) with its 95 % Wilson interval.
+  double strand_risk_mean = 0;
   double planning_p50_ms = 0;  // measured
   double planning_p99_ms = 0;
   // [0,10%), ..., [90%,100%), 100 %, more than the oracle (over the compared runs).

@@ -95,6 +95,17 @@ struct CompileStatistics {
   double time_s = 0;
 };
 
+// The chance that a plan meets a blockage it keeps no battery to back out of (issue 34,
+// SewerTask::strand_risk): the hazards (Mission::hazards) its drives pass without a contingency
+// reserve that covers them, and 1 - prod(1 - p) over them. A bound on the chance of being
+// stranded: where a stop at such a hazard still leaves the battery for another way out, the
+// robot is not stranded.
+struct StrandRisk {
+  double probability = 0;
+  std::vector<std::size_t> uninsured;  // indices into Mission::hazards, ascending, each once
+  friend bool operator==(const StrandRisk&, const StrandRisk&) = default;
+};
+
 // A task that goal selection left out, and why.
 struct DroppedTask {
   TaskId task{0};
@@ -145,6 +156,11 @@ struct CompileOptions {
   // reach an exit without that pipe (CompiledTask::reserve). A pipe that is the only way out
   // asks for nothing (no battery would help there). Missions without hazards are unchanged.
   bool contingency = true;
+  // Chance-constrained contingency (issue 34, docs/planning.md): which hazards keep their
+  // reserve, by index into Mission::hazards; empty: every one (a hazard beyond the end of the
+  // vector keeps none). A drive past hazards keeps the battery to back out of the farthest
+  // insured one (which covers every nearer one too); only with `contingency`.
+  std::vector<bool> insured;
   // Keeps the map's indices and the searches' arrays for the next compile (CompileCache); null:
   // none.
   CompileCache* cache = nullptr;
@@ -172,6 +188,14 @@ class SewerTask {
   // With CompileOptions::risk: the expected cost of stops (RiskCosts) that `plan`'s actions
   // carry; the plan's true cost is its cost less this. 0 when risk-blind.
   Cost risk_cost(std::span<const ActionId> plan) const;
+  // The plan's computed stranding risk (StrandRisk): every hazard a drive of `plan` passes
+  // strictly, counted once, uninsured when the first drive past it keeps no reserve that covers
+  // it (no contingency, a hazard not insured, a pipe with no other way out, a drive that does
+  // not start at a pipe end: CompileOptions::contingency). A blockage is met where the plan
+  // first passes it, and a hazard passed safely is open after, so later passes do not count;
+  // nor does a second blockage on the way out after a first (the reserve's second level).
+  // Runtime: O(hazards passed x distinct hazards passed).
+  StrandRisk strand_risk(std::span<const ActionId> plan) const;
 
  private:
   friend class SewerTaskCompiler;
@@ -185,6 +209,15 @@ class SewerTask {
   std::vector<std::uint32_t> route_nodes_;
   std::vector<std::optional<PlanStep>> task_step_;
   std::vector<Cost> risk_;  // per action: its expected cost of stops (RiskCosts)
+  // Per action: the hazards its drives pass (CSR), as index into Mission::hazards and whether a
+  // reserve covers it; and each hazard's probability.
+  struct HazardPass {
+    std::uint32_t hazard = 0;
+    bool covered = false;
+  };
+  std::vector<std::uint32_t> pass_begin_;
+  std::vector<HazardPass> passes_;
+  std::vector<double> hazard_probability_;
   std::vector<DroppedTask> dropped_;
   std::vector<std::pair<ActionId, TaskId>> forgo_actions_;  // sorted by action
   std::vector<TaskId> goal_tasks_;

@@ -67,6 +67,8 @@ struct PlanEvent {
   // Which answer of the anytime ladder it is (PlanResponse::Rung); written when not "search",
   // so logs of plans the search made read as before.
   PlanResponse::Rung rung = PlanResponse::Rung::kSearch;
+  // PlanResponse::strand_probability; logged only when above 0 ("strand_probability").
+  double strand_probability = 0;
   friend bool operator==(const PlanEvent&, const PlanEvent&) = default;
 };
 

@@ -140,6 +140,9 @@ struct PlanResponse {
   // What the report this answers taught about the hazards (report_failure: the hazard a blockage
   // was met at, now certain); empty for plan().
   std::vector<HazardUpdate> hazard_updates;
+  // The plan's computed stranding risk (search::PlanOutcome::strand_probability; 0 for an answer
+  // not from the planner: the rest of the current plan, or none).
+  double strand_probability = 0;
 };
 
 // Whether a failure report can be applied to `map`: known pipe, manhole and slots, a finite offset

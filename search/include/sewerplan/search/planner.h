@@ -23,7 +23,9 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include "sewerplan/core/clock.h"
 #include "sewerplan/core/mission.h"
@@ -89,6 +91,16 @@ struct PlannerOptions {
   // reach an exit another way. Where no plan can keep those reserves, the plan without them is
   // the answer (PlanOutcome::contingency_note), so this never turns a plan into no plan.
   bool contingency = true;
+  // Chance-constrained contingency (issue 34, docs/planning.md, "A bound on the chance of being
+  // stranded"): the most the plan's computed stranding risk (PlanOutcome::strand_probability)
+  // may be, 0..1. 0: every hazard keeps its reserve (as `contingency` alone); 1: none does (as
+  // contingency = false); in between, the planner lets hazards go without their reserve, by
+  // probability levels, where that buys tasks or saves time and the plan's risk stays within
+  // the bound (at most kMaxStrandRounds plans more; deterministic). Only with `contingency`.
+  double max_strand_risk = 0;
+  // Which hazards keep their reserve (domain::CompileOptions::insured; empty: all). Set by the
+  // search for max_strand_risk; a caller may set it to plan with one set.
+  std::vector<bool> insured;
   // Keeps the map's indices and the route searches' arrays from one plan to the next on the same
   // map (domain::CompileCache: a replan need not rebuild them); null: none. The plans are the
   // same with or without it.
@@ -115,11 +127,27 @@ struct PlanOutcome {
   // Set when no plan keeps the contingency reserves (PlannerOptions::contingency) and the plan
   // was made without them.
   std::string contingency_note;
+  // The plan's computed stranding risk (domain::SewerTask::strand_risk): the chance that it meets
+  // a blockage at a hazard none of its reserves covers, 1 - prod(1 - p) over those hazards
+  // (`uninsured`, indices into Mission::hazards). 0 without hazards or where every hazard passed
+  // keeps its reserve.
+  double strand_probability = 0;
+  std::vector<std::size_t> uninsured;
+  // With 0 < max_strand_risk < 1: the plans tried to choose which hazards go uninsured, and
+  // what was chosen, for people ("2 of 31 hazards uninsured (p <= 0.05): 1 more task").
+  std::size_t strand_plans = 0;
+  std::string strand_note;
   // The time limit (or a cancel) stopped the planner after a first plan, before it had done all
   // it meant to (the tour search's local search, the exact search or the improvement): the plan
   // is the best found by then (the Replanner's anytime answer "best-so-far").
   bool best_so_far = false;
 };
+
+// At most this many plans beyond the fully insured one choose which hazards go without their
+// reserve (PlannerOptions::max_strand_risk): one per probability level (at most
+// kMaxStrandRounds - 2 levels, spread over the distinct probabilities when there are more), then
+// up to 2 to insure again the riskiest hazard of the first level that went over the bound.
+inline constexpr std::size_t kMaxStrandRounds = 8;
 
 // kAuto's choice for `task`; any other algorithm is returned as it is.
 Algorithm resolve(Algorithm algorithm, const domain::CompiledTask& task);
