@@ -160,7 +160,7 @@ struct CompileOptions {
   // reserve, by index into Mission::hazards; empty: every one (a hazard beyond the end of the
   // vector keeps none). A drive past hazards keeps the battery to back out of the farthest
   // insured one (which covers every nearer one too); only with `contingency`.
-  std::vector<bool> insured;
+  std::vector<bool> insured{};
   // Keeps the map's indices and the searches' arrays for the next compile (CompileCache); null:
   // none.
   CompileCache* cache = nullptr;

@@ -100,7 +100,7 @@ struct PlannerOptions {
   double max_strand_risk = 0;
   // Which hazards keep their reserve (domain::CompileOptions::insured; empty: all). Set by the
   // search for max_strand_risk; a caller may set it to plan with one set.
-  std::vector<bool> insured;
+  std::vector<bool> insured{};
   // Keeps the map's indices and the route searches' arrays from one plan to the next on the same
   // map (domain::CompileCache: a replan need not rebuild them); null: none. The plans are the
   // same with or without it.
