@@ -65,7 +65,7 @@ expect_completion() {  # expect_completion WANT WORD...
   same_words "$got" "$want" || fail "'sewerplan ${*}' completes to '$got', not '$want'"
 }
 expect_completion plan pl
-expect_completion --map plan --ma
+expect_completion "--map --max-strand-risk" plan --ma
 expect_completion "" plan --ca           # simulate's --can, not plan's
 expect_completion "" sim-node --js       # sim-node prints no JSON
 expect_completion astar plan -a as
