@@ -28,6 +28,20 @@ function(sewerplan_apply_options target)
   endif()
 endfunction()
 
+# sewerplan_precompile(<target> <header>...): the target's files are compiled with these system
+# headers precompiled (SEWERPLAN_PCH). Only headers-only third-party libraries that most of the
+# target's files include, never a sewerplan header: a file must still include what it uses (a
+# build with -DSEWERPLAN_PCH=OFF shows a file that does not).
+function(sewerplan_precompile target)
+  if(SEWERPLAN_PCH)
+    set(headers)
+    foreach(header IN LISTS ARGN)
+      list(APPEND headers "<${header}>")
+    endforeach()
+    target_precompile_headers(${target} PRIVATE ${headers})
+  endif()
+endfunction()
+
 function(sewerplan_library)
   cmake_parse_arguments(ARG "" "NAME" "SOURCES;DEPENDS;PUBLIC_LIBS;PRIVATE_LIBS" ${ARGN})
   set(target sewerplan_${ARG_NAME})
