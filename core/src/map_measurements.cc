@@ -6,6 +6,8 @@
 #include <limits>
 #include <map>
 #include <numbers>
+#include <numeric>
+#include <optional>
 #include <utility>
 
 #include <Eigen/Dense>
@@ -110,11 +112,19 @@ std::vector<int> align(const ManholeSignature& expected, const ManholeSignature&
 }
 
 // What the observations of one manhole show.
+// x[slot] - x[from] = difference (observed minus mapped, degrees), with its standard deviation:
+// x being each slot's deviation from the map.
+struct DirectionEquation {
+  std::size_t slot = 0;
+  std::size_t from = 0;
+  double difference = 0;
+  double sigma = 0;
+};
+
 struct ManholeEvidence {
-  std::vector<bool> seen;                                  // per map slot
-  std::vector<std::pair<std::size_t, std::size_t>> pairs;  // (slot, arrival) with a difference
-  std::vector<double> differences;                         // observed minus mapped, degrees
-  std::vector<double> lateral_azimuths;                    // mouths the map lacks, map frame
+  std::vector<bool> seen;                    // per map slot
+  std::vector<DirectionEquation> equations;  // from sightings and turns
+  std::vector<double> lateral_azimuths;      // mouths the map lacks, map frame
 };
 
 struct DiameterEvidence {
@@ -185,9 +195,27 @@ class Derivation {
         ++d.count;
         add_source(d.sources, o.source);
         if (i == 0) continue;
-        e.pairs.emplace_back(s.index(), o.arrival.index());
-        e.differences.push_back(wrap180(seen.relative_deg - want.slots[i].relative_deg));
+        e.equations.push_back(
+            {.slot = s.index(),
+             .from = o.arrival.index(),
+             .difference = wrap180(seen.relative_deg - want.slots[i].relative_deg),
+             .sigma = t_.noise.direction_deg});
       }
+    }
+    for (const TurnMeasurement& turn : mm.turns) {
+      if (turn.from.index() >= slots || turn.to.index() >= slots || turn.from == turn.to ||
+          !(turn.sigma_deg > 0)) {
+        continue;
+      }
+      const double mapped =
+          wrap360(map_.slot(m, turn.to).azimuth_deg - map_.slot(m, turn.from).azimuth_deg);
+      const double difference = wrap180(turn.relative_deg - mapped);
+      // Farther off than any mouth is paired: not these two mouths (the robot was elsewhere).
+      if (std::abs(difference) > t_.noise.max_direction_deg) continue;
+      e.equations.push_back({.slot = turn.to.index(),
+                             .from = turn.from.index(),
+                             .difference = difference,
+                             .sigma = turn.sigma_deg});
     }
     directions(mm, e);
     laterals(mm, e);
@@ -205,64 +233,144 @@ class Derivation {
     if (t_.report_positions && mm.position) position(mm);
   }
 
-  // Least squares of each slot's deviation from the map, x, from x[slot] - x[arrival] = difference
-  // per paired mouth; the common rotation (unobservable) is removed by taking the minimum-norm
-  // solution (sum of x zero). Covariance: noise² times the pseudo-inverse of the normal matrix.
+  // Which slots are off, from the equations x[slot] - x[from] = difference (x: each slot's
+  // deviation from the map; weight 1 / sigma²). Only differences are observable (no compass), so
+  // a hypothesis is a set F of slots off, the others right up to a common rotation; its score is
+  // the weighted residual sum of squares of the least-squares fit under it plus k_sigma² per slot
+  // in F (a slot is called off only when freeing it explains k_sigma standard deviations). The
+  // best hypothesis is taken, over the slots tied together by equations; a slot of it that
+  // another hypothesis as good leaves right is not observable (two slots alone: a turn off by 15
+  // degrees could be either's) and is not reported. At most three slots off at once are tried.
   void directions(const ManholeMeasurement& mm, const ManholeEvidence& e) {
-    if (e.pairs.empty()) return;
+    if (e.equations.empty()) return;
     const std::size_t n = e.seen.size();
-    Eigen::MatrixXd normal =
-        Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
-    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
-    for (std::size_t k = 0; k < e.pairs.size(); ++k) {
-      const auto s = static_cast<Eigen::Index>(e.pairs[k].first);
-      const auto a = static_cast<Eigen::Index>(e.pairs[k].second);
-      normal(s, s) += 1;
-      normal(a, a) += 1;
-      normal(s, a) -= 1;
-      normal(a, s) -= 1;
-      rhs(s) += e.differences[k];
-      rhs(a) -= e.differences[k];
-    }
-    const Eigen::MatrixXd inverse = normal.completeOrthogonalDecomposition().pseudoInverse();
-    Eigen::VectorXd x = inverse * rhs;
-    std::vector<double> sigma(n, 0);
-    std::vector<bool> involved(n, false);
-    const auto flagged = [&](std::size_t s) {
-      return involved[s] &&
-             beyond(x(static_cast<Eigen::Index>(s)), sigma[s], t_.direction_floor_deg);
+    std::vector<std::size_t> component(n);
+    std::iota(component.begin(), component.end(), std::size_t{0});
+    const auto root = [&](std::size_t s) {
+      while (component[s] != s) s = component[s] = component[component[s]];
+      return s;
     };
-    for (std::size_t s = 0; s < n; ++s) {
-      const auto i = static_cast<Eigen::Index>(s);
-      involved[s] = normal(i, i) > 0 && inverse(i, i) > 0;
-      if (involved[s]) sigma[s] = t_.noise.direction_deg * std::sqrt(inverse(i, i));
+    std::vector<bool> involved(n, false);
+    for (const DirectionEquation& q : e.equations) {
+      component[root(q.slot)] = root(q.from);
+      involved[q.slot] = involved[q.from] = true;
     }
-    // The minimum-norm solution spreads one slot's deviation over all (its mean is zero); any
-    // common rotation fits as well, so take the one that leaves the slots within the thresholds
-    // undeviated on average: one slot off by 25° then reads 25°, not 18.75°.
-    double sum = 0;
-    std::size_t within = 0;
+    std::map<std::size_t, std::vector<std::size_t>> groups;
     for (std::size_t s = 0; s < n; ++s) {
-      if (involved[s] && !flagged(s)) {
-        sum += x(static_cast<Eigen::Index>(s));
-        ++within;
+      if (involved[s]) groups[root(s)].push_back(s);
+    }
+    for (const auto& [group_root, group] : groups) {
+      std::vector<DirectionEquation> equations;
+      for (const DirectionEquation& q : e.equations) {
+        if (root(q.slot) == group_root) equations.push_back(q);
+      }
+      off_slots(mm, group, equations);
+    }
+  }
+
+  // The fit under the hypothesis that the slots `off` are off and the others right: each off
+  // slot's deviation from the right ones, its standard deviation, and the score.
+  struct Fit {
+    std::vector<double> deviation;
+    std::vector<double> sigma;
+    double score = 0;
+  };
+  Fit fit(const std::vector<std::size_t>& off, const std::vector<DirectionEquation>& equations) {
+    const auto at = [](std::size_t i) { return static_cast<Eigen::Index>(i); };
+    const std::size_t k = off.size();
+    const auto index = [&](std::size_t slot) -> std::optional<std::size_t> {
+      const auto it = std::find(off.begin(), off.end(), slot);
+      if (it == off.end()) return std::nullopt;
+      return static_cast<std::size_t>(it - off.begin());
+    };
+    Eigen::MatrixXd normal = Eigen::MatrixXd::Zero(at(k), at(k));
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(at(k));
+    for (const DirectionEquation& q : equations) {
+      const double w = 1 / (q.sigma * q.sigma);
+      const std::optional<std::size_t> s = index(q.slot);
+      const std::optional<std::size_t> a = index(q.from);
+      if (s) {
+        normal(at(*s), at(*s)) += w;
+        rhs(at(*s)) += w * q.difference;
+      }
+      if (a) {
+        normal(at(*a), at(*a)) += w;
+        rhs(at(*a)) -= w * q.difference;
+      }
+      if (s && a) {
+        normal(at(*s), at(*a)) -= w;
+        normal(at(*a), at(*s)) -= w;
       }
     }
-    // Every slot beyond (two slots: a turn off by 20° could be either's): which one is off is
-    // not observable, and none is reported.
-    if (within == 0) return;
-    x.array() -= sum / static_cast<double>(within);
-    for (std::size_t s = 0; s < n; ++s) {
-      if (!flagged(s)) continue;
-      const auto i = static_cast<Eigen::Index>(s);
+    // (Eigen's decomposition of an empty matrix does not return: every slot right needs none.)
+    const Eigen::MatrixXd p =
+        k == 0 ? normal : Eigen::MatrixXd(normal.completeOrthogonalDecomposition().pseudoInverse());
+    const Eigen::VectorXd y = p * rhs;
+    Fit out;
+    for (std::size_t i = 0; i < k; ++i) {
+      out.deviation.push_back(y(at(i)));
+      out.sigma.push_back(std::sqrt(std::max(p(at(i), at(i)), 0.0)));
+    }
+    for (const DirectionEquation& q : equations) {
+      const std::optional<std::size_t> s = index(q.slot);
+      const std::optional<std::size_t> a = index(q.from);
+      const double fitted = (s ? y(at(*s)) : 0.0) - (a ? y(at(*a)) : 0.0);
+      const double r = (q.difference - fitted) / q.sigma;
+      out.score += r * r;
+    }
+    out.score += t_.k_sigma * t_.k_sigma * static_cast<double>(k);
+    return out;
+  }
+
+  void off_slots(const ManholeMeasurement& mm, const std::vector<std::size_t>& group,
+                 const std::vector<DirectionEquation>& equations) {
+    const std::size_t n = group.size();
+    if (n < 2) return;
+    // Every set of up to three slots (one for a group too large to try them all), never all.
+    const std::size_t most = std::min<std::size_t>(n <= 16 ? 3 : 1, n - 1);
+    std::vector<std::vector<std::size_t>> hypotheses{{}};
+    for (std::size_t size = 1; size <= most; ++size) {
+      std::vector<std::size_t> pick(size);
+      std::iota(pick.begin(), pick.end(), std::size_t{0});
+      while (true) {
+        std::vector<std::size_t> off;
+        for (std::size_t i : pick) off.push_back(group[i]);
+        hypotheses.push_back(std::move(off));
+        std::size_t i = size;
+        while (i > 0 && pick[i - 1] == n - size + i - 1) --i;
+        if (i == 0) break;
+        ++pick[i - 1];
+        for (std::size_t j = i; j < size; ++j) pick[j] = pick[j - 1] + 1;
+      }
+    }
+    std::vector<Fit> fits;
+    fits.reserve(hypotheses.size());
+    std::size_t best = 0;
+    for (std::size_t h = 0; h < hypotheses.size(); ++h) {
+      fits.push_back(fit(hypotheses[h], equations));
+      if (fits[h].score < fits[best].score) best = h;
+    }
+    // As good: within one (a likelihood ratio of e^0.5).
+    constexpr double kAsGood = 1.0;
+    for (std::size_t i = 0; i < hypotheses[best].size(); ++i) {
+      const std::size_t s = hypotheses[best][i];
+      bool observable = true;
+      for (std::size_t h = 0; h < hypotheses.size() && observable; ++h) {
+        if (h == best || fits[h].score > fits[best].score + kAsGood) continue;
+        const auto& other = hypotheses[h];
+        observable = std::find(other.begin(), other.end(), s) != other.end();
+      }
+      const double deviation = fits[best].deviation[i];
+      const double sigma = fits[best].sigma[i];
+      if (!observable || !beyond(deviation, sigma, t_.direction_floor_deg)) continue;
       const SlotIndex slot{static_cast<std::uint16_t>(s)};
       const double mapped = map_.slot(mm.manhole, slot).azimuth_deg;
       direction_.push_back({{.kind = Discrepancy::Kind::kDirectionOff,
                              .manhole = mm.manhole,
                              .slot = slot,
                              .map_value = mapped,
-                             .value = wrap360(mapped + x(i)),
-                             .sigma = sigma[s]},
+                             .value = wrap360(mapped + deviation),
+                             .sigma = sigma},
                             mm.sources});
     }
   }
@@ -411,6 +519,12 @@ void add_observation(MapMeasurements& m, ManholeId manhole, SlotIndex arrival,
   add_source(mm.sources, source);
 }
 
+void add_turn(MapMeasurements& m, ManholeId manhole, TurnMeasurement turn) {
+  ManholeMeasurement& mm = entry(m.manholes, manhole, &ManholeMeasurement::manhole);
+  add_source(mm.sources, turn.source);
+  mm.turns.push_back(turn);
+}
+
 void add_position(MapMeasurements& m, ManholeId manhole, double x_m, double y_m, double variance_m2,
                   std::uint32_t source) {
   ManholeMeasurement& mm = entry(m.manholes, manhole, &ManholeMeasurement::manhole);
@@ -442,6 +556,10 @@ Result<MapMeasurements> merge(const MapMeasurements& a, const MapMeasurements& b
     for (SignatureObservation o : m.observations) {
       o.source += offset;
       into.observations.push_back(std::move(o));
+    }
+    for (TurnMeasurement t : m.turns) {
+      t.source += offset;
+      into.turns.push_back(t);
     }
     if (m.position) {
       into.position = into.position ? PositionEstimate{pool(into.position->x_m, m.position->x_m),

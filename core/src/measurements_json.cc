@@ -218,7 +218,7 @@ class Reader {
   }
 
   void manhole(JsonFields& f, MapMeasurements& out) {
-    f.reject_unknown({"manhole", "position", "observations", "sources"});
+    f.reject_unknown({"manhole", "position", "observations", "turns", "sources"});
     const auto m = manhole_of(f);
     SourceList sources = source_list(f);
     if (!m) return;
@@ -242,6 +242,25 @@ class Reader {
       const auto source = source_of(o, "source");
       const auto sig = signature(o, "signature");
       if (arrival && source && sig) mm.observations.push_back({*arrival, *sig, *source});
+    });
+    each(f, "turns", [&](JsonFields& t) {
+      t.reject_unknown({"from_slot", "to_slot", "direction_deg", "sigma_deg", "source"});
+      const auto from = slot_of(t, "from_slot", *m);
+      const auto to = slot_of(t, "to_slot", *m);
+      const auto direction = finite(t, "direction_deg");
+      const auto sigma = positive(t, "sigma_deg");
+      const auto source = source_of(t, "source");
+      if (direction && (*direction < 0 || *direction >= 360)) {
+        t.error("direction_deg", "expected a direction in [0, 360)");
+        return;
+      }
+      if (from && to && *from == *to) {
+        t.error("to_slot", "a turn leaves by another slot than it came from");
+        return;
+      }
+      if (from && to && direction && sigma && source) {
+        mm.turns.push_back({*from, *to, *direction, *sigma, *source});
+      }
     });
     if (!out.manholes.empty() && !(out.manholes.back().manhole < *m)) {
       f.error("manhole", "manholes must be listed once each, in the map's order");
@@ -398,6 +417,17 @@ std::string measurements_json(const MapMeasurements& m, const SewerMap& map) {
       e["observations"].push_back({{"arrival_slot", to_paper_number(o.arrival)},
                                    {"source", o.source},
                                    {"signature", signature_json(o.signature)}});
+    }
+    // Only with turns: files of robots that do not measure them read as before.
+    if (!mm.turns.empty()) {
+      e["turns"] = json::array();
+      for (const TurnMeasurement& t : mm.turns) {
+        e["turns"].push_back({{"from_slot", to_paper_number(t.from)},
+                              {"to_slot", to_paper_number(t.to)},
+                              {"direction_deg", t.relative_deg},
+                              {"sigma_deg", t.sigma_deg},
+                              {"source", t.source}});
+      }
     }
     e["sources"] = mm.sources;
     j["manholes"].push_back(std::move(e));

@@ -53,7 +53,7 @@ bool Measurer::near_an_end(const Pipe& pipe, double offset_m, double sigma_m) {
 void Measurer::observe(const Job& job, const hal::JobReport& report,
                        const domain::RobotPosition& before, const domain::RobotPosition& after,
                        double direction) {
-  (void)before;
+  if (const auto* t = std::get_if<TurnInManhole>(&job)) turn(*t, report, before, after);
   if (std::holds_alternative<TurnInManhole>(job) ||
       std::holds_alternative<EnterPipeFromManhole>(job)) {
     leg_.reset();
@@ -79,6 +79,43 @@ void Measurer::observe(const Job& job, const hal::JobReport& report,
                                      .sigma_m = sigma,
                                      .signature = *report.observation,
                                      .source = 0});
+}
+
+void Measurer::turn(const TurnInManhole& job, const hal::JobReport& report,
+                    const domain::RobotPosition& before, const domain::RobotPosition& after) {
+  // A turn by sighting is through a manhole the map lacks: nothing of the map to measure.
+  if (!report.ok() || !report.turn_measured_deg || job.from_slot == kBySighting) return;
+  // The manhole: where the controller had the robot, at the mouth it turned from, or in the pipe
+  // it turned into, at that pipe's end in the manhole.
+  std::optional<ManholeId> manhole;
+  if (const auto* at = std::get_if<domain::AtSlot>(&before);
+      at != nullptr && at->slot.value() == job.from_slot) {
+    manhole = at->manhole;
+  } else if (const auto* in = std::get_if<domain::InPipe>(&after)) {
+    const Pipe& pipe = map_.pipe(in->pipe);
+    for (std::uint8_t e = 0; e < 2; ++e) {
+      if (pipe.ends[e].manhole && pipe.ends[e].slot.value() == job.to_slot &&
+          std::abs(in->offset_m - domain::end_offset_m(pipe, e)) <= 1e-6) {
+        manhole = pipe.ends[e].manhole;
+      }
+    }
+  }
+  if (!manhole) return;
+  const std::size_t slots = map_.slots(*manhole).size();
+  const double measured = *report.turn_measured_deg;
+  const std::string& name = map_.manhole(*manhole).name;
+  if (job.from_slot >= slots || job.to_slot >= slots || job.from_slot == job.to_slot) return;
+  if (!std::isfinite(measured) || measured < 0 || measured >= 360) {
+    rejected_.push_back(name + ": a turn measured at " + std::to_string(measured) +
+                        " degrees, not in [0, 360)");
+    return;
+  }
+  add_turn(measurements_, *manhole,
+           {.from = SlotIndex{job.from_slot},
+            .to = SlotIndex{job.to_slot},
+            .relative_deg = measured,
+            .sigma_deg = options_.turn_sigma_deg,
+            .source = 0});
 }
 
 void Measurer::start_leg(const domain::RobotPosition& after) {

@@ -16,6 +16,15 @@
 namespace sewerplan::hal {
 namespace {
 
+// Irwin-Hall: twelve uniforms less 6, a normal to within 0.3 % in the body and cut at 6 sigma;
+// plain arithmetic, so the same on every platform.
+double irwin_hall(Rng& rng, double sigma) {
+  if (sigma <= 0) return 0;
+  double sum = 0;
+  for (int i = 0; i < 12; ++i) sum += rng.uniform01();
+  return (sum - 6) * sigma;
+}
+
 // A drive that ends this close to a pipe end has reached it (fusion's distances carry rounding).
 constexpr double kLengthTolerance_m = 1e-6;
 
@@ -109,7 +118,8 @@ SimRobot::SimRobot(const SewerMap& map, RobotProfile profile, SimPose start, Fau
       obstacle_cleared_(faults_.obstacles.size(), false),
       malfunction_struck_(faults_.malfunctions.size(), false),
       options_(std::move(options)),
-      sensing_rng_(options_.sensing.seed) {
+      sensing_rng_(options_.sensing.seed),
+      turn_rng_(options_.sensing.seed ^ 0x243f6a8885a308d3ULL) {
   SEWER_CHECK(validate_profile(profile_).has_value(), "SimRobot: invalid robot profile");
   SEWER_CHECK(validate_faults(faults_, map_).has_value(), "SimRobot: invalid fault scenario");
   std::visit(Overloaded{
@@ -395,14 +405,7 @@ JobReport SimRobot::drive_in_pipe(const InPipe& from, double speed_mps, double d
   return report;
 }
 
-// Irwin-Hall: twelve uniforms less 6, a normal to within 0.3 % in the body and cut at 6 sigma;
-// plain arithmetic, so the same on every platform.
-double SimRobot::normal(double sigma) {
-  if (sigma <= 0) return 0;
-  double sum = 0;
-  for (int i = 0; i < 12; ++i) sum += sensing_rng_.uniform01();
-  return (sum - 6) * sigma;
-}
+double SimRobot::normal(double sigma) { return irwin_hall(sensing_rng_, sigma); }
 
 // Slip: the error's standard deviation is drift x distance, twice that in a wet pipe and twice
 // again in one falling more than 2 % (its ends' inverts); never below 0.
@@ -545,7 +548,15 @@ JobReport SimRobot::turn(const TurnInManhole& job) {
     }
   }
   JobReport report = stand(job.duration_s);
-  if (report.ok()) pose_ = pipe_end_pose(map_, at->manhole, to, true);
+  if (!report.ok()) return report;
+  if (const std::optional<double> noise = options_.sensing.turn_noise_deg) {
+    // The joints measure the heading change between the two mouths (the world's, not the map's).
+    const double truly = std::fmod(map_.slot(at->manhole, to).azimuth_deg -
+                                       map_.slot(at->manhole, at->slot).azimuth_deg + 720.0,
+                                   360.0);
+    report.turn_measured_deg = std::fmod(truly + irwin_hall(turn_rng_, *noise) + 720.0, 360.0);
+  }
+  pose_ = pipe_end_pose(map_, at->manhole, to, true);
   return report;
 }
 

@@ -518,7 +518,11 @@ SensingModel make_sensing(const TrueWorld& truth) {
   s.missed_share = p.missed_share;
   s.false_per_km = p.false_per_km;
   s.observe = !(p == WorldErrorProfile{});
-  if (s.observe) s.signature_noise = SignatureNoise{};
+  if (s.observe) {
+    s.signature_noise = SignatureNoise{};
+    // The joint encoders' error of a turn's angle (docs/simulation.md, "Sensing").
+    s.turn_noise_deg = 1.0;
+  }
   // A stream apart from the world's draws (splitmix64's constant).
   s.seed = Rng(truth.seed ^ 0x9e3779b97f4a7c15ULL).next();
   return s;

@@ -100,13 +100,20 @@ expect 3 'mission ended at pipe P9' -- \
 # Issue 29: a world that is not the map. sim-node builds the true world and sensing that simulate
 # builds in process from the same --world-errors and --world-seed; the job results carry the
 # odometry and each manhole's observed signature, so the run over the bus is the run in process,
-# arrival for arrival.
-"$sp" simulate --map "$ais" --mission "$mission" --world-errors realistic --world-seed 3 \
-  --log "$tmp/world-local.jsonl" -q > "$tmp/world-local.out"
+# arrival for arrival; and each turn's angle as the robot's joints measured it, so the measured
+# map is the same too, turns and all.
+SOURCE_DATE_EPOCH=1796545800 "$sp" simulate --map "$ais" --mission "$mission" \
+  --world-errors realistic --world-seed 3 --log "$tmp/world-local.jsonl" \
+  --corrected-map "$tmp/world-map.json" -q > "$tmp/world-local.out"
+cp "$tmp/world-map.measurements.json" "$tmp/world-local.measurements.json"
 start_node --world-errors realistic --world-seed 3
-"$sp" simulate --map "$ais" --mission "$mission" --can "slcan:$pty" --log "$tmp/world-can.jsonl" \
-  -q > "$tmp/world-can.out" 2> /dev/null
+SOURCE_DATE_EPOCH=1796545800 "$sp" simulate --map "$ais" --mission "$mission" \
+  --can "slcan:$pty" --log "$tmp/world-can.jsonl" --corrected-map "$tmp/world-map.json" -q \
+  > "$tmp/world-can.out" 2> /dev/null
 stop_node
+expect 0 '"turns": \[' -- cat "$tmp/world-map.measurements.json"
+same "measurements in a realistic world in process and over SLCAN" \
+  "$tmp/world-local.measurements.json" "$tmp/world-map.measurements.json"
 expect 0 '"type":"arrival".*"observed":' -- cat "$tmp/world-can.jsonl"
 strip_planning "$tmp/world-local.jsonl" > "$tmp/a"; strip_planning "$tmp/world-can.jsonl" > "$tmp/b"
 same "event logs in a realistic world in process and over SLCAN" "$tmp/a" "$tmp/b"

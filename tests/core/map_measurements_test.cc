@@ -152,6 +152,95 @@ TEST(MapMeasurements, ASlotDirectionOffIsFoundOnItsOwnSlot) {
   EXPECT_DOUBLE_EQ(found[0].discrepancy.map_value, 90);
 }
 
+// Turns from `from` to `to` in M0, `count` of them, the joints measuring `off` degrees more than
+// the map's angle between the two slots, alternately 0.5 degrees either side (noise).
+void turns(MapMeasurements& m, const SewerMap& map, std::uint16_t from, std::uint16_t to,
+           double off, int count) {
+  const ManholeId m0 = id(map, "M0");
+  const double mapped = std::fmod(
+      map.slot(m0, SlotIndex{to}).azimuth_deg - map.slot(m0, SlotIndex{from}).azimuth_deg + 360.0,
+      360.0);
+  for (int i = 0; i < count; ++i) {
+    add_turn(m, m0,
+             {.from = SlotIndex{from},
+              .to = SlotIndex{to},
+              .relative_deg = std::fmod(mapped + off + (i % 2 == 0 ? 0.5 : -0.5) + 360.0, 360.0),
+              .sigma_deg = 1.0,
+              .source = 0});
+  }
+}
+
+// A slot a few degrees off is lost in the sightings' 8 degrees of noise, arrival after arrival;
+// the turns through it, which the joints measure to a degree, find it (issue 29: slot directions
+// 5 to 20 degrees off were found 13 % of the time from sightings alone).
+TEST(MapMeasurements, TurnsFindASlotAFewDegreesOff) {
+  const SewerMap map = cross();
+  // P2 (north, slot 2) really leaves at 97 degrees: every sighting of it 7 degrees further, and
+  // the other mouths seen with 6 degrees of noise.
+  const auto seen_off = [&](SlotIndex a, ManholeSignature& s) {
+    const auto order = signature_slot_order(map, id(map, "M0"), a);
+    for (std::size_t i = 1; i < order.size(); ++i) {
+      s.slots[i].relative_deg += (i + a.value()) % 2 == 0 ? 6 : -6;
+      if (order[i] == SlotIndex{1}) s.slots[i].relative_deg += 7;
+    }
+  };
+  MapMeasurements sighted = measurements_of(map, source("one"));
+  arrivals(sighted, map, seen_off, /*skip=*/1);
+  arrivals(sighted, map, seen_off, /*skip=*/1);
+  EXPECT_TRUE(discrepancies(sighted, map).empty());
+
+  MapMeasurements turned = sighted;
+  turns(turned, map, 0, 1, 7, 2);  // from P1 (east) into P2 (north): 97 degrees, not 90
+  turns(turned, map, 2, 1, 7, 2);  // from P3 (west) into P2: 277, not 270
+  turns(turned, map, 2, 0, 0, 1);  // from P3 into P1: as mapped
+  const auto found = discrepancies(turned, map);
+  ASSERT_EQ(kinds(found), std::vector<Kind>{Kind::kDirectionOff});
+  EXPECT_EQ(found[0].discrepancy.manhole, id(map, "M0"));
+  EXPECT_EQ(found[0].discrepancy.slot, SlotIndex{1});
+  EXPECT_NEAR(found[0].discrepancy.value, 97, 0.5);
+  EXPECT_LT(found[0].discrepancy.sigma, 1.0);
+  EXPECT_EQ(found[0].sources, (SourceList{0}));
+}
+
+// Two slots whose angle differs from the map's: either could be off (the robot has no compass),
+// so neither is reported, however precisely the turns measure it. A turn far off the map's angle
+// (beyond the 30 degrees that pair mouths) is not between these two mouths: the controller had
+// the robot in another manhole; it is left out.
+TEST(MapMeasurements, AnAngleOffBetweenTwoSlotsAloneIsNotReported) {
+  const SewerMap map = SmallMap()
+                           .manhole("M1", 0, 0, true)
+                           .manhole("M0", 10, 0)
+                           .manhole("M3", 20, 0)
+                           .pipe("P1", "M1", "M0")
+                           .pipe("P2", "M0", "M3")
+                           .build();
+  MapMeasurements m = measurements_of(map, source("one"));
+  turns(m, map, 0, 1, 15, 6);
+  turns(m, map, 1, 0, -15, 6);
+  EXPECT_TRUE(discrepancies(m, map).empty());
+
+  const SewerMap four = cross();
+  MapMeasurements elsewhere = measurements_of(four, source("one"));
+  turns(elsewhere, four, 0, 1, 90, 3);  // "97" was 180: another manhole
+  turns(elsewhere, four, 0, 2, 0, 3);
+  EXPECT_TRUE(discrepancies(elsewhere, four).empty());
+}
+
+TEST(MapMeasurements, MergeJoinsTheTurns) {
+  const SewerMap map = cross();
+  MapMeasurements a = measurements_of(map, source("one"));
+  MapMeasurements b = measurements_of(map, source("two"));
+  turns(a, map, 0, 1, 7, 1);
+  turns(b, map, 2, 1, -7, 2);
+  const Result<MapMeasurements> merged = merge(a, b);
+  ASSERT_TRUE(merged.has_value()) << merged.error().message;
+  ASSERT_EQ(merged->manholes.size(), 1u);
+  ASSERT_EQ(merged->manholes[0].turns.size(), 3u);
+  EXPECT_EQ(merged->manholes[0].turns[0].source, 0u);
+  EXPECT_EQ(merged->manholes[0].turns[2].source, 1u);  // b's source 0 is the merged 1
+  EXPECT_EQ(merged->manholes[0].sources, (SourceList{0, 1}));
+}
+
 TEST(MapMeasurements, ASmallerPipeIsFound) {
   const SewerMap map = cross();
   MapMeasurements m = measurements_of(map, source("one"));

@@ -29,6 +29,8 @@ MapMeasurements sample(const SewerMap& map) {
   seen.slots[1].relative_deg = 171.5;
   add_observation(m, *map.find_manhole("M2"), SlotIndex{0}, seen, 0);
   m.junctions.push_back({*map.find_pipe("P2"), 3.5, 0.25, seen, 0});
+  add_turn(m, *map.find_manhole("M2"),
+           {.from = SlotIndex{0}, .to = SlotIndex{1}, .relative_deg = 172.25, .sigma_deg = 1});
   m.discrepancies = discrepancies(m, map);
   return m;
 }
@@ -85,6 +87,11 @@ TEST(MeasurementsJson, EveryProblemNamesFileAndJsonPath) {
        ".arrival_slot"},
       {"\"source\": 0", "\"source\": 3", "bad.json:$.manholes[0].observations[0].source"},
       {"\"offset_m\": 3.5", "\"offset_m\": 30.5", "bad.json:$.junctions[0].offset_m"},
+      {"\"to_slot\": 2", "\"to_slot\": 3", "bad.json:$.manholes[0].turns[0].to_slot"},
+      {"\"to_slot\": 2", "\"to_slot\": 1", "bad.json:$.manholes[0].turns[0].to_slot"},
+      {"\"direction_deg\": 172.25", "\"direction_deg\": 372.25",
+       "bad.json:$.manholes[0].turns[0].direction_deg"},
+      {"\"sigma_deg\": 1", "\"sigma_deg\": 0", "bad.json:$.manholes[0].turns[0].sigma_deg"},
       {"\"kind\": \"", "\"kind\": \"x", "bad.json:$.discrepancies[0].kind"},
       {"\"format\": \"sewerplan-measurements\"", "\"format\": \"sewerplan-learnt\"",
        "bad.json:$.format"},

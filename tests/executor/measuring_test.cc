@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <tuple>
 
 #include <gtest/gtest.h>
 
@@ -201,6 +202,99 @@ TEST_F(MeasurerTest, AManholeSeenNearAnEndOfThePipeIsNoJunction) {
       << measurer_.rejected()[1];
   drive(9.6, 4.6, seen, -1);  // back to 5 m: a junction
   EXPECT_EQ(measurer_.measurements().junctions.size(), 1u);
+}
+
+// A turn the robot measured (JobReport::turn_measured_deg) is a measurement of the angle between
+// the two slots of the manhole the controller had it in; with the turns through a T junction whose
+// lateral leaves 8 degrees off the map, the lateral's direction is reported. Without them (a robot
+// that does not measure its turns) the sightings alone, 8 degrees of noise each, do not show it.
+TEST(Measurer, TurnsTheRobotMeasuredFindASlotAFewDegreesOff) {
+  // M2: P1 from the west, P2 to the east, P3 to the north (truly at 98 degrees).
+  const SewerMap map = SmallMap()
+                           .manhole("M1", 0, 0, true)
+                           .manhole("M2", 10, 0)
+                           .manhole("M3", 20, 0)
+                           .manhole("M4", 10, 10)
+                           .pipe("P1", "M1", "M2")
+                           .pipe("P2", "M2", "M3")
+                           .pipe("P3", "M2", "M4")
+                           .build();
+  const ManholeId m2 = *map.find_manhole("M2");
+  const auto slot_of = [&](const char* pipe) {
+    const auto slots = map.slots(m2);
+    for (std::uint16_t i = 0; i < slots.size(); ++i) {
+      if (slots[i].pipe == *map.find_pipe(pipe)) return i;
+    }
+    return std::uint16_t{0};
+  };
+  const auto run = [&](bool measured) {
+    Measurer measurer(map, {"makro", "test", "2026-12-06T07:00:00Z"});
+    const std::uint16_t west = slot_of("P1");
+    const std::uint16_t east = slot_of("P2");
+    const std::uint16_t north = slot_of("P3");
+    // Three passes: arriving from the west (the north mouth seen 8 degrees off), into the north
+    // lateral, back out of it to the east; the joints measure 278 + 1, 278 - 1, ... for the
+    // 270 degrees mapped from the west, and 262 -+ 1 for 270 from the north to the east.
+    for (int pass = 0; pass < 3; ++pass) {
+      hal::JobReport arrived;
+      arrived.progress_m = 10;
+      arrived.observation = expected_signature(map, m2, SlotIndex{west});
+      for (SlotSighting& seen : arrived.observation->slots) {
+        if (seen.relative_deg == 270) seen.relative_deg = 278;
+      }
+      measurer.observe(DriveForward{0.3, 10, true}, arrived,
+                       domain::InPipe{*map.find_pipe("P1"), 0}, domain::AtSlot{m2, SlotIndex{west}},
+                       1);
+      for (const auto& [from, to, mapped] :
+           {std::tuple{west, north, 270.0}, std::tuple{north, east, 270.0}}) {
+        const double truly = to == north ? mapped + 8 : mapped - 8;
+        hal::JobReport report;
+        if (measured) report.turn_measured_deg = truly + (pass % 2 == 0 ? 1 : -1);
+        const domain::RobotPosition before = domain::AtSlot{m2, SlotIndex{from}};
+        const PipeId into = map.slot(m2, SlotIndex{to}).pipe;
+        const domain::RobotPosition after = domain::InPipe{
+            into, domain::end_offset_m(map.pipe(into), map.slot(m2, SlotIndex{to}).pipe_end)};
+        measurer.observe(TurnInManhole{.from_slot = from, .to_slot = to}, report, before, after, 0);
+      }
+    }
+    MapMeasurements m = measurer.measurements();
+    return discrepancies(m, map);
+  };
+  EXPECT_TRUE(run(false).empty());
+  const std::vector<FoundDiscrepancy> found = run(true);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0].discrepancy.kind, Kind::kDirectionOff);
+  EXPECT_EQ(found[0].discrepancy.manhole, m2);
+  EXPECT_EQ(found[0].discrepancy.slot, SlotIndex{slot_of("P3")});
+  EXPECT_NEAR(found[0].discrepancy.value, 98, 1);
+}
+
+// A turn measured at a manhole the controller does not know (one the map lacks, by sighting), one
+// that failed, and one whose angle is not a direction are not measurements.
+TEST(Measurer, OnlyATurnDoneThroughAMappedManholeIsMeasured) {
+  const SewerMap map = line();
+  const ManholeId m2 = *map.find_manhole("M2");
+  Measurer measurer(map, {"makro", "test", "2026-12-06T07:00:00Z"});
+  const domain::RobotPosition before = domain::AtSlot{m2, SlotIndex{0}};
+  const domain::RobotPosition after = domain::InPipe{*map.find_pipe("P2"), 0};
+  hal::JobReport report;
+  report.turn_measured_deg = 181;
+  measurer.observe(TurnInManhole{.from_slot = kBySighting, .to_slot = 1}, report, before, after, 0);
+  hal::JobReport failed = report;
+  failed.error = hal::RobotError{hal::RobotErrorCause::kDangerousPassage, "dangerous passage"};
+  measurer.observe(TurnInManhole{.from_slot = 0, .to_slot = 1}, failed, before, before, 0);
+  hal::JobReport bad = report;
+  bad.turn_measured_deg = std::numeric_limits<double>::quiet_NaN();
+  measurer.observe(TurnInManhole{.from_slot = 0, .to_slot = 1}, bad, before, after, 0);
+  EXPECT_TRUE(measurer.measurements().manholes.empty());
+  ASSERT_EQ(measurer.rejected().size(), 1u);
+  EXPECT_NE(measurer.rejected()[0].find("M2: a turn measured at nan"), std::string::npos)
+      << measurer.rejected()[0];
+  measurer.observe(TurnInManhole{.from_slot = 0, .to_slot = 1}, report, before, after, 0);
+  ASSERT_EQ(measurer.measurements().manholes.size(), 1u);
+  ASSERT_EQ(measurer.measurements().manholes[0].turns.size(), 1u);
+  EXPECT_EQ(measurer.measurements().manholes[0].turns[0],
+            (TurnMeasurement{SlotIndex{0}, SlotIndex{1}, 181, 1.0, 0}));
 }
 
 // On the exact world of today's simulator, the mission's measurements are the map's: every pipe

@@ -350,9 +350,9 @@ TEST(JobProtocol, AMalformedObservationIsNamed) {
   EXPECT_THAT(with(13, 10), HasSubstr("observation: slot 3: directions must be counter-clockwise"));
   EXPECT_THAT(with(14, std::numeric_limits<double>::infinity()),
               HasSubstr("observation: slot 3: the step is not a number"));
-  std::vector<CanFrame> short_header = good;
-  short_header[0].dlc = 5;
-  EXPECT_THAT(reason_of(short_header), HasSubstr("frame 0 has 5 bytes, expected 4"));
+  std::vector<CanFrame> long_header = good;
+  long_header[0].dlc = 7;
+  EXPECT_THAT(reason_of(long_header), HasSubstr("frame 0 has 7 bytes, expected 4"));
   // An observation's frames lost on the way: the copy sent again fills them, as for any result.
   const std::vector<CanFrame> frames = encode(JobResult{5, r, {}});
   MessageDecoder decoder;
@@ -366,6 +366,47 @@ TEST(JobProtocol, AMalformedObservationIsNamed) {
   const std::optional<Decoded> whole = decoder.push(frames[14]);
   ASSERT_TRUE(whole);
   EXPECT_EQ(std::get<Message>(*whole), (Message{JobResult{5, r, {}}}));
+}
+
+// Issue 29: a turn reports the angle the robot's joints measured (JobReport::turn_measured_deg),
+// bit for bit, in a RESULT whose header has 5 bytes (byte 4: a measured turn), the angle after the
+// reason. A wrong marker, an angle out of [0, 360) and a missing frame are named.
+TEST(JobProtocol, AResultCarriesTheMeasuredTurn) {
+  JobReport turned;
+  turned.duration_s = 20;
+  turned.energy_wh = 0.5;
+  turned.turn_measured_deg = 271.30000000000001;
+  JobReport failed = turned;
+  failed.error = RobotError{RobotErrorCause::kFault, "motor 3 over current"};
+  for (const JobResult& result : {JobResult{6, turned, {}}, JobResult{7, failed, {}}}) {
+    const std::vector<CanFrame> frames = encode(result);
+    const std::size_t reason = result.report.error ? 3 : 0;
+    EXPECT_EQ(frames.size(), 1 + 6 + reason + 1 + 1);
+    EXPECT_EQ(frames[0].dlc, 5);
+    EXPECT_EQ(frames[0].data[4], 1);
+    const Message back = round_trip(result);
+    EXPECT_EQ(back, Message{result});
+    EXPECT_EQ(encode(back), frames);
+  }
+  std::vector<CanFrame> good = encode(JobResult{6, turned, {}});
+  good.pop_back();
+  const auto reason_of = [](const std::vector<CanFrame>& frames) {
+    const Decoded d = decode_message(MessageType::kResult, 6, frames);
+    const auto* bad = std::get_if<Malformed>(&d);
+    return bad != nullptr ? bad->reason : std::string("decoded");
+  };
+  EXPECT_EQ(reason_of(good), "decoded");
+  std::vector<CanFrame> marker = good;
+  marker[0].data[4] = 2;
+  EXPECT_THAT(reason_of(marker), HasSubstr("result 6: frame 0: unknown measurement 2"));
+  for (const double bad : {360.0, -1.0, std::numeric_limits<double>::quiet_NaN()}) {
+    std::vector<CanFrame> f = good;
+    put_f64(f[7], bad);
+    EXPECT_THAT(reason_of(f), HasSubstr("a measured turn of")) << bad;
+  }
+  std::vector<CanFrame> missing = good;
+  missing.pop_back();
+  EXPECT_THAT(reason_of(missing), HasSubstr("frame 7 missing"));
 }
 
 TEST(JobProtocol, Crc32IsTheZlibOne) {

@@ -133,6 +133,61 @@ TEST_F(SensingTest, ANoisyObservationStillMatchesItsManhole) {
       << compare(expected, *report.observation).reason;
 }
 
+// A turn through a manhole reports the angle the joints measured (JobReport::turn_measured_deg):
+// the true direction of the mouth left by, counter-clockwise from the one come from, with the
+// turn noise as its standard deviation; nothing from a robot that does not measure its turns, nor
+// after a turn it could not make. Its draws leave the other sensing draws as they were.
+TEST_F(SensingTest, ATurnReportsTheAngleTheJointsMeasured) {
+  const SlotIndex from = m2_slot("P1");
+  const SlotIndex to = m2_slot("P3");
+  const double truly = std::fmod(
+      map_.slot(manhole("M2"), to).azimuth_deg - map_.slot(manhole("M2"), from).azimuth_deg + 360.0,
+      360.0);
+  const TurnInManhole turn{.from_slot = from.value(), .to_slot = to.value(), .duration_s = 5};
+  const TurnInManhole back{.from_slot = to.value(), .to_slot = from.value(), .duration_s = 5};
+  SimRobot exact = robot(AtSlot{manhole("M2"), from, Facing::kIntoManhole}, {.observe = true});
+  const JobReport unmeasured = exact.execute(turn);
+  ASSERT_TRUE(unmeasured.ok());
+  EXPECT_FALSE(unmeasured.turn_measured_deg.has_value());
+
+  SimRobot r = robot(AtSlot{manhole("M2"), from, Facing::kIntoManhole},
+                     {.observe = true, .turn_noise_deg = 1.0, .seed = 6});
+  constexpr int kTurns = 400;
+  double sum = 0, sum2 = 0;
+  for (int i = 0; i < kTurns; ++i) {
+    const JobReport there = r.execute(turn);
+    ASSERT_TRUE(there.ok());
+    ASSERT_TRUE(there.turn_measured_deg.has_value());
+    EXPECT_GE(*there.turn_measured_deg, 0);
+    EXPECT_LT(*there.turn_measured_deg, 360);
+    const double error = *there.turn_measured_deg - truly;
+    sum += error;
+    sum2 += error * error;
+    // Into P3 and back to its mouth, turn back into P1, and into P1 and back to M2 again.
+    ASSERT_TRUE(r.execute(DriveForward{1, 0.5}).ok());
+    ASSERT_TRUE(r.execute(DriveBackward{1, 0.5, true}).ok());
+    ASSERT_TRUE(r.execute(back).ok());
+    ASSERT_TRUE(r.execute(DriveForward{1, 0.5}).ok());
+    ASSERT_TRUE(r.execute(DriveBackward{1, 0.5, true}).ok());
+  }
+  const double mean = sum / kTurns;
+  EXPECT_NEAR(std::sqrt(sum2 / kTurns - mean * mean), 1.0, 0.1);
+  EXPECT_NEAR(mean, 0, 4 * 1.0 / std::sqrt(kTurns));
+
+  // A turn it cannot make reports no angle.
+  const JobReport refused = r.execute(TurnInManhole{.from_slot = 9, .to_slot = 0});
+  ASSERT_FALSE(refused.ok());
+  EXPECT_FALSE(refused.turn_measured_deg.has_value());
+
+  // Measuring turns changes no other draw: the same drives slip alike.
+  SensingModel slipping{.drift = 0.03, .observe = true, .seed = 8};
+  SimRobot a = robot(AtSlot{manhole("M2"), from, Facing::kIntoManhole}, slipping);
+  slipping.turn_noise_deg = 1.0;
+  SimRobot b = robot(AtSlot{manhole("M2"), from, Facing::kIntoManhole}, slipping);
+  for (SimRobot* x : {&a, &b}) ASSERT_TRUE(x->execute(turn).ok());
+  EXPECT_EQ(a.execute(DriveForward{0.3, 4}).progress_m, b.execute(DriveForward{0.3, 4}).progress_m);
+}
+
 TEST_F(SensingTest, AMissedManholeWithAWayStraightOnIsDrivenThrough) {
   SimRobot r =
       robot(InPipe{pipe("P1"), 0, Heading::kTowardsEnd1}, {.missed_share = 1, .observe = true});

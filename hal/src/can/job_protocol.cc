@@ -3,6 +3,7 @@
 #include "sewerplan/hal/can/job_protocol.h"
 
 #include <array>
+#include <cmath>
 #include <cstring>
 
 #include "sewerplan/core/check.h"
@@ -126,13 +127,20 @@ std::vector<CanFrame> encode_job(const JobCommand& c) {
 
 // A result's header is 4 bytes without an observation (the layout of earlier versions, byte for
 // byte) and 6 with one: bytes 4-5 are the observed slot count, and the observation follows the
-// reason (docs/can-protocol.md).
+// reason; 5 with a measured turn: byte 4 says so, and its angle follows the reason
+// (docs/can-protocol.md).
 std::vector<CanFrame> encode_result(const JobResult& r) {
   const std::string reason = r.report.error ? cut_reason(r.report.error->reason) : std::string();
   const std::optional<ManholeSignature>& seen = r.report.observation;
+  const std::optional<double>& turned = r.report.turn_measured_deg;
   if (seen) {
     SEWER_CHECK(seen->slots.size() <= kMaxObservedSlots && check_signature(*seen).has_value(),
                 "encode: an observation the protocol cannot carry");
+  }
+  SEWER_CHECK(!(seen && turned), "encode: an observation and a measured turn in one result");
+  if (turned) {
+    SEWER_CHECK(std::isfinite(*turned) && *turned >= 0 && *turned < 360,
+                "encode: a measured turn not in [0, 360)");
   }
   if (r.report.error) {
     SEWER_CHECK(kind_of(r.report.error->cause) == r.report.error->kind,
@@ -143,8 +151,11 @@ std::vector<CanFrame> encode_result(const JobResult& r) {
   header[1] = status_flags(r.status);
   put_u16(&header[2], static_cast<std::uint16_t>(reason.size()));
   if (seen) put_u16(&header[4], static_cast<std::uint16_t>(seen->slots.size()));
+  if (turned) header[4] = kTurnMeasured;
   Writer w(MessageType::kResult, r.seq);
-  w.bytes(std::span(header.data(), seen ? kObservationHeaderBytes : kResultHeaderBytes));
+  w.bytes(std::span(header.data(), seen     ? kObservationHeaderBytes
+                                   : turned ? kTurnHeaderBytes
+                                            : kResultHeaderBytes));
   w.number(r.report.progress_m);
   w.number(r.report.duration_s);
   w.number(r.report.energy_wh);
@@ -159,6 +170,7 @@ std::vector<CanFrame> encode_result(const JobResult& r) {
       w.number(seen->slots[i].diameter_m);
     }
   }
+  if (turned) w.number(*turned);
   return w.finish();
 }
 
@@ -309,6 +321,9 @@ std::ostream& operator<<(std::ostream& os, const Message& message) {
                    }
                    if (m.report.observation) {
                      os << ", a manhole of " << m.report.observation->slots.size() << " slots seen";
+                   }
+                   if (m.report.turn_measured_deg) {
+                     os << ", turned to " << *m.report.turn_measured_deg << " deg";
                    }
                  },
                  [&](const StatusReply& m) { os << ' ' << int{m.seq}; },

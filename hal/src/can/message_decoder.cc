@@ -203,7 +203,10 @@ std::optional<ManholeSignature> read_observation(Reader& r, std::size_t first,
 
 Decoded decode_result(Reader& r, std::uint8_t seq) {
   const bool observed = !r.empty() && r.dlc(0) == kObservationHeaderBytes;
-  const CanFrame& h = r.frame(0, observed ? kObservationHeaderBytes : kResultHeaderBytes);
+  const bool turned = !r.empty() && r.dlc(0) == kTurnHeaderBytes;
+  const CanFrame& h = r.frame(0, observed ? kObservationHeaderBytes
+                                 : turned ? kTurnHeaderBytes
+                                          : kResultHeaderBytes);
   if (!r.ok()) return r.malformed();
   JobResult result{seq, {}, {}};
   result.report.progress_m = r.number(1, "progress_m", true);
@@ -217,7 +220,19 @@ Decoded decode_result(Reader& r, std::uint8_t seq) {
   if (observed && r.ok()) {
     result.report.observation = read_observation(r, 1 + kResultNumberFrames + reason_frames, slots);
   }
-  r.expect_frames(1 + kResultNumberFrames + reason_frames + observation_frames(slots));
+  if (turned && r.ok()) {
+    if (h.data[4] != kTurnMeasured) {
+      r.fail("frame 0: unknown measurement " + std::to_string(h.data[4]) + " (1: a measured turn)");
+    } else {
+      const double deg = r.number(1 + kResultNumberFrames + reason_frames, "a turn", false);
+      if (r.ok() && !(std::isfinite(deg) && deg >= 0 && deg < 360)) {
+        r.fail("a measured turn of " + std::to_string(deg) + " degrees is not in [0, 360)");
+      }
+      result.report.turn_measured_deg = deg;
+    }
+  }
+  r.expect_frames(1 + kResultNumberFrames + reason_frames + observation_frames(slots) +
+                  (turned ? 1 : 0));
   const std::uint8_t outcome = h.data[0];
   const std::optional<RobotErrorCause> cause = error_cause(outcome);
   if (outcome != kDoneCode && !cause) {

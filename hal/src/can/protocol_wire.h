@@ -20,6 +20,9 @@ inline constexpr std::size_t kStatusFrames = 3;  // battery, odometry, elapsed
 // A RESULT's header frame: outcome, flags, reason length; and with an observation, its slot count.
 inline constexpr std::size_t kResultHeaderBytes = 4;
 inline constexpr std::size_t kObservationHeaderBytes = 6;
+// ... and with a measured turn: byte 4 is kTurnMeasured, and one number follows the reason.
+inline constexpr std::size_t kTurnHeaderBytes = 5;
+inline constexpr std::uint8_t kTurnMeasured = 0x01;
 // A RESULT's numbers before the reason: progress, duration, energy and the status.
 inline constexpr std::size_t kResultNumberFrames = 3 + kStatusFrames;
 // The frames of an observation of `slots` slots: the shaft, then per slot its direction (not for

@@ -9,8 +9,8 @@
 // tied to one map by its geometry fingerprint (map_fingerprint.h):
 //   - per driven pipe: the inverse-variance mean of its length measurements, their variance and
 //     count;
-//   - per visited manhole: each observed signature with the map slot it was seen from, and a
-//     position estimate (below);
+//   - per visited manhole: each observed signature with the map slot it was seen from, each turn
+//     through it with the angle the robot's joints measured, and a position estimate (below);
 //   - junctions seen inside pipes: a manhole the robot detected where the map has none;
 //   - the discrepancies derived from them (map_discrepancy.h), each with its sigma and sources.
 //
@@ -84,6 +84,17 @@ struct SignatureObservation {
   friend bool operator==(const SignatureObservation&, const SignatureObservation&) = default;
 };
 
+// One turn through a manhole: the angle the robot's joints measured between the mouth it came from
+// and the one it left by (hal::JobReport::turn_measured_deg), with its standard deviation.
+struct TurnMeasurement {
+  SlotIndex from{0};
+  SlotIndex to{0};
+  double relative_deg = 0;  // `to`'s direction counter-clockwise from `from`'s, in [0, 360)
+  double sigma_deg = 0;     // > 0
+  std::uint32_t source = 0;
+  friend bool operator==(const TurnMeasurement&, const TurnMeasurement&) = default;
+};
+
 struct PositionEstimate {
   PooledValue x_m;  // the variance is that of each horizontal coordinate
   PooledValue y_m;
@@ -93,6 +104,7 @@ struct PositionEstimate {
 struct ManholeMeasurement {
   ManholeId manhole{0};
   std::vector<SignatureObservation> observations;
+  std::vector<TurnMeasurement> turns;
   std::optional<PositionEstimate> position;
   SourceList sources;
   friend bool operator==(const ManholeMeasurement&, const ManholeMeasurement&) = default;
@@ -128,19 +140,20 @@ struct MapMeasurements {
 // Empty measurements of `map`, by `source`.
 MapMeasurements measurements_of(const SewerMap& map, MeasurementSource source);
 
-// Adds one length measurement of `pipe` (pooled with those before) / one arrival / one position
-// estimate / one junction sighting, by source `source` (an index into m.sources).
+// Adds one length measurement of `pipe` (pooled with those before) / one arrival / one turn / one
+// position estimate, by source `source` (an index into m.sources).
 void add_length(MapMeasurements& m, PipeId pipe, double length_m, double variance_m2,
                 std::uint32_t source);
 void add_observation(MapMeasurements& m, ManholeId manhole, SlotIndex arrival,
                      ManholeSignature signature, std::uint32_t source);
+void add_turn(MapMeasurements& m, ManholeId manhole, TurnMeasurement turn);
 void add_position(MapMeasurements& m, ManholeId manhole, double x_m, double y_m, double variance_m2,
                   std::uint32_t source);
 
 // The measurements of both: sources appended (b's after a's), lengths and positions pooled by
-// inverse variance, observations and sightings joined. The discrepancies are left empty: derive
-// them again from the pooled measurements. kInvalidArgument, naming both maps and fingerprints,
-// if `a` and `b` were measured on different maps.
+// inverse variance, observations, turns and sightings joined. The discrepancies are left empty:
+// derive them again from the pooled measurements. kInvalidArgument, naming both maps and
+// fingerprints, if `a` and `b` were measured on different maps.
 Result<MapMeasurements> merge(const MapMeasurements& a, const MapMeasurements& b);
 
 // When a measurement counts as a discrepancy. A value is reported only when it is off by more than
@@ -152,7 +165,10 @@ struct DiscrepancyThresholds {
   double k_sigma = 3.0;
   double length_floor_m = 0.3;
   double length_floor_fraction = 0.02;  // of the map length
-  double direction_floor_deg = 10;
+  // A turn's angle measured by the robot's joints is good to about a degree: a slot 4 degrees off
+  // (3.5 cm at the mouth of a 1 m manhole, about a turn's clearance) is worth a report. It was 10
+  // when sightings (8 degrees each) were all there was.
+  double direction_floor_deg = 4;
   double diameter_floor_m = 0.05;
   double position_floor_m = 2.0;
   bool report_positions = false;  // see the header comment
@@ -166,9 +182,12 @@ struct DiscrepancyThresholds {
 
 // What `measurements` (of `map`) show to differ from it, in a fixed order (kind, then object):
 //   length-off       a driven pipe's pooled length, beyond k_sigma and its floors;
-//   direction-off    a slot's direction, from every observation of its manhole (a least-squares
-//                    fit of each slot's deviation with the common rotation removed: the robot sees
-//                    directions only relative to the slot it came from);
+//   direction-off    a slot's direction, from every observation and every turn in its manhole
+//                    (a weighted least-squares fit of each slot's deviation from the map: the
+//                    robot sees directions only relative to the slot it came from, so the common
+//                    rotation is taken as the one that leaves the most slots as mapped; when two
+//                    rotations leave as many, which slots are off is not observable and none is
+//                    reported: two slots 15 degrees apart where the map says 180);
 //   diameter-smaller a pipe seen smaller than mapped, at either end, beyond k_sigma and the floor;
 //   unmapped-lateral a mouth seen in a manhole where the map has none, in lateral_share of
 //   arrivals; missing-lateral  a mapped slot of a visited manhole never seen in any arrival;

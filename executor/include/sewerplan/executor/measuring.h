@@ -15,6 +15,9 @@
 //   - an arrival with an observation (hal::JobReport::observation) is a signature measurement of
 //     that manhole, relative to the slot arrived through; with a measured leg, also a position
 //     estimate (map_measurements.h);
+//   - a turn through a manhole that the robot measured (hal::JobReport::turn_measured_deg) is a
+//     measurement of the angle between its two slots, to turn_sigma_deg (far more precise than a
+//     sighting: it finds the slot directions a few degrees off, map_measurements.h);
 //   - an observation in the middle of a pipe is a junction the map lacks, at the odometry's offset
 //     (MapMeasurements::junctions) unless it is the far manhole seen early: the remaining distance
 //     within early_arrival_fraction of the pipe's length and the signature matching that manhole's
@@ -62,6 +65,9 @@ struct MeasuringOptions {
   double end_margin_sigmas = 3.0;
   double end_margin_m = 0.5;
   SignatureNoise noise;  // for telling the far manhole from a junction
+  // The standard deviation of a turn's angle as the robot's joints measure it
+  // (hal::JobReport::turn_measured_deg; the simulated robot's, docs/simulation.md).
+  double turn_sigma_deg = 1.0;
 };
 
 class Measurer {
@@ -91,6 +97,8 @@ class Measurer {
   };
 
   void start_leg(const domain::RobotPosition& after);
+  void turn(const TurnInManhole& job, const hal::JobReport& report,
+            const domain::RobotPosition& before, const domain::RobotPosition& after);
   void drive(const Job& job, const hal::JobReport& report, const domain::RobotPosition& after,
              double direction);
   void end_leg(ManholeId manhole, SlotIndex slot);

@@ -137,6 +137,14 @@ struct JobReport {
   // missed the manhole, and from a robot that does not observe (the exact simulated world,
   // hal/sim_robot.h SensingModel). Over CAN it crosses in the job's RESULT (docs/can-protocol.md).
   std::optional<ManholeSignature> observation;
+  // What the robot's joint encoders measured of a TurnInManhole it made: the direction of the
+  // mouth it left by, counter-clockwise from the mouth it came from, in [0, 360): a SlotSighting's
+  // relative_deg (core/manhole_signature.h), the heading change through the manhole plus 180
+  // degrees. Far more precise than a sighting of the mouth (about 1 degree against 8). Empty after
+  // every other job, after a turn that failed, and from a robot that does not measure its turns
+  // (the exact simulated world, hal/sim_robot.h SensingModel). Over CAN in the job's RESULT
+  // (docs/can-protocol.md).
+  std::optional<double> turn_measured_deg;
   bool ok() const { return !error.has_value(); }
   friend bool operator==(const JobReport&, const JobReport&) = default;
 };

@@ -96,6 +96,9 @@ struct SensingModel {
   double false_per_km = 0;  // false manhole detections per km of drives to a manhole
   bool observe = false;     // report the manhole's signature at the end of a drive (JobReport)
   std::optional<SignatureNoise> signature_noise;  // empty: exact observations
+  // A turn's angle as the joint encoders measure it (JobReport::turn_measured_deg): the standard
+  // deviation of its error, in degrees. Empty: turns are not measured (nothing reported).
+  std::optional<double> turn_noise_deg;
   std::uint64_t seed = 0;
 };
 
@@ -192,6 +195,9 @@ class SimRobot final : public Robot {
   std::size_t jobs_executed_ = 0;
   std::atomic<bool> stopped_{false};  // the emergency stop, latched until reboot()
   Rng sensing_rng_;
+  // The turns' measurement errors: a stream of their own, so that measuring turns leaves every
+  // other draw (slip, misses, observations) as it was.
+  Rng turn_rng_;
   // The mouths of the last manhole observed, in the order the robot saw them (kBySighting).
   struct Sighting {
     ManholeId manhole;

@@ -132,9 +132,9 @@ Result<TrueWorld> make_true_world(const SewerMap& map, const WorldErrorProfile& 
                                   std::uint64_t seed);
 
 // The simulated robot's sensing in `truth` (hal/sim_robot.h): the profile's drift, wet pipes,
-// missed and false manholes; observations (with SignatureNoise's defaults) whenever the profile has
-// any error at all, none for "none" (the simulator as before, byte for byte). Its own seed, drawn
-// from the world's.
+// missed and false manholes; observations (with SignatureNoise's defaults) and turns measured to 1
+// degree whenever the profile has any error at all, neither for "none" (the simulator as before,
+// byte for byte). Its own seed, drawn from the world's.
 SensingModel make_sensing(const TrueWorld& truth);
 
 // A place on the map as it lies in the world: an offset along map pipe `pipe` (map metres from its
