@@ -130,24 +130,18 @@ bool PositionGraph::build_adjacency(const StopCondition* stop) {
   const PositionGraph graph(map_, plain, core_);
   const Node nodes = manholes_ + slots_ + 2 * pipes_;
   std::vector<std::uint32_t> begin;
-  std::vector<Node> to;
-  std::vector<Cost> cost;
+  std::vector<GraphCore::Move> moves;
   begin.reserve(std::size_t{nodes} + 1);
-  to.reserve(2 * std::size_t{nodes});
-  cost.reserve(2 * std::size_t{nodes});
+  moves.reserve(2 * std::size_t{nodes});
   for (Node n = 0; n < nodes; ++n) {
     if (n % kSlice == 0 && fired(stop)) return false;
-    begin.push_back(static_cast<std::uint32_t>(to.size()));
-    graph.for_each_successor(n, [&](Node next, Cost c) {
-      to.push_back(next);
-      cost.push_back(c);
-    });
+    begin.push_back(static_cast<std::uint32_t>(moves.size()));
+    graph.for_each_successor(n, [&](Node next, Cost c) { moves.push_back({c, next}); });
   }
-  SEWER_CHECK(to.size() < 0xffffffffU, "too many moves for the adjacency");
-  begin.push_back(static_cast<std::uint32_t>(to.size()));
+  SEWER_CHECK(moves.size() < 0xffffffffU, "too many moves for the adjacency");
+  begin.push_back(static_cast<std::uint32_t>(moves.size()));
   core.adjacency_begin = std::move(begin);
-  core.adjacency_to = std::move(to);
-  core.adjacency_cost = std::move(cost);
+  core.adjacency = std::move(moves);
   return true;
 }
 
