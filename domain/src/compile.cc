@@ -68,9 +68,8 @@ class SewerTaskCompiler {
     select_tasks();
     collect_keys(graph);
     if (auto stopped = options_.stop.interrupted()) return stopped_error(*stopped, "the compile");
-    // The arrays over every node, grown before the searches: the search's without a write, the
-    // exit marks with checks between slices (on a large map, one fill was the longest stretch
-    // without a check: issue 14).
+    // The arrays over every node, grown before the searches with checks between slices (on a
+    // large map, one fill was the longest stretch without a check: issue 14).
     if (!GraphSearch::grow(graph.core().scratch, graph.size(), &options_.stop) ||
         !detail::grow_in_slices(graph.core().exit_marks, graph.size(), &options_.stop)) {
       return stop_error();

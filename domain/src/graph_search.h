@@ -6,10 +6,7 @@
 // node costs more than the bound, so on a large map it explores only the region around the
 // mission's keys. The arrays are sized once and reset through the list of touched nodes; they may
 // be a GraphCore's scratch (position_graph.h), kept clean for the next compile on the same map.
-// Ties are broken by node number: nodes are settled in the order of (distance, node), and a
-// node's parent is the first settled node that reaches it at its distance, so the paths are the
-// same on every run (and with any exact priority queue over that order: issue 35's 4-ary heap
-// settles the nodes in the order the binary heap did).
+// Ties are broken by node number, so the paths are the same on every run.
 #pragma once
 
 #include <functional>
@@ -29,9 +26,10 @@ class GraphSearch {
   // `scratch`: arrays to use (clean, see SearchScratch; they are left clean), or null for own.
   // Arrays smaller than the graph are grown here at once: see grow().
   explicit GraphSearch(const PositionGraph& graph, SearchScratch* scratch = nullptr);
-  // Grows clean `scratch` arrays to `nodes` entries, writing nothing (zeroed_array.h: issue 14,
-  // filling them for a 100,000-manhole map took milliseconds without a stop check); false if
-  // `stop` (if not null) has fired (the arrays stay as they were).
+  // Grows clean `scratch` arrays to `nodes` entries: distances and parents at once, as nothing is
+  // written (zeroed_array.h), the bits in slices asking `stop` (if not null) between them (issue
+  // 14: filling the arrays for a 100,000-manhole map took milliseconds without a check); false if
+  // it fired first (the arrays stay clean; the next call goes on).
   static bool grow(SearchScratch& scratch, std::size_t nodes, const StopCondition* stop);
   GraphSearch(const GraphSearch&) = delete;
   GraphSearch& operator=(const GraphSearch&) = delete;
@@ -46,8 +44,8 @@ class GraphSearch {
   // Forward from `source` until the first node with goal[node] is settled; returns it, if any
   // is reached within the bound.
   std::optional<Node> run_to_nearest(Node source, const std::vector<bool>& goal, Cost bound);
-  // kInfiniteCost if not reached (settled) in the last run.
-  Cost distance(Node n) const { return settled(n) ? tentative(n) : kInfiniteCost; }
+  // kInfiniteCost if not reached in the last run.
+  Cost distance(Node n) const { return kInfiniteCost - dist_left_[n]; }
   // Forward: the nodes from the source to n. Backward: from n to its nearest source.
   void path(Node n, std::vector<Node>& out) const;
   // The same, appended to `out` (which keeps what it held).
@@ -62,18 +60,15 @@ class GraphSearch {
   const PositionGraph& graph_;
   SearchScratch own_;
   SearchScratch& scratch_;
-  // The scratch's encodings (SearchEntry): clean is zero.
-  // The distance found so far (final once the node is settled).
-  Cost tentative(Node n) const { return kInfiniteCost - nodes_[n].dist_left; }
-  void set_distance(Node n, Cost d) { nodes_[n].dist_left = kInfiniteCost - d; }
-  Node parent(Node n) const { return nodes_[n].parent_plus_one - 1U; }  // kNoParent: none
-  bool settled(Node n) const { return (nodes_[n].flags & SearchEntry::kSettled) != 0; }
-  bool is_target(Node n) const { return (nodes_[n].flags & SearchEntry::kTarget) != 0; }
-  // The heap (SearchScratch::heap): 4-ary, ordered by (distance, node).
-  void push(Cost d, Node n);
-  std::pair<Cost, Node> pop();
+  // The scratch's encodings (SearchScratch): clean is zero.
+  void set_distance(Node n, Cost d) { dist_left_[n] = kInfiniteCost - d; }
+  Node parent(Node n) const { return parent_plus_one_[n] - 1U; }  // kNoParent: none
+  void set_parent(Node n, Node p) { parent_plus_one_[n] = p + 1U; }
 
-  ZeroedArray<SearchEntry>& nodes_;
+  ZeroedArray<Cost>& dist_left_;
+  ZeroedArray<Node>& parent_plus_one_;
+  std::vector<bool>& settled_;
+  std::vector<bool>& is_target_;
   std::vector<Node>& touched_;
   std::vector<std::pair<Cost, Node>>& heap_;
   Direction direction_ = Direction::kForward;

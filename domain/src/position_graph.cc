@@ -130,18 +130,24 @@ bool PositionGraph::build_adjacency(const StopCondition* stop) {
   const PositionGraph graph(map_, plain, core_);
   const Node nodes = manholes_ + slots_ + 2 * pipes_;
   std::vector<std::uint32_t> begin;
-  std::vector<GraphCore::Move> moves;
+  std::vector<Node> to;
+  std::vector<Cost> cost;
   begin.reserve(std::size_t{nodes} + 1);
-  moves.reserve(2 * std::size_t{nodes});
+  to.reserve(2 * std::size_t{nodes});
+  cost.reserve(2 * std::size_t{nodes});
   for (Node n = 0; n < nodes; ++n) {
     if (n % kSlice == 0 && fired(stop)) return false;
-    begin.push_back(static_cast<std::uint32_t>(moves.size()));
-    graph.for_each_successor(n, [&](Node next, Cost c) { moves.push_back({c, next}); });
+    begin.push_back(static_cast<std::uint32_t>(to.size()));
+    graph.for_each_successor(n, [&](Node next, Cost c) {
+      to.push_back(next);
+      cost.push_back(c);
+    });
   }
-  SEWER_CHECK(moves.size() < 0xffffffffU, "too many moves for the adjacency");
-  begin.push_back(static_cast<std::uint32_t>(moves.size()));
+  SEWER_CHECK(to.size() < 0xffffffffU, "too many moves for the adjacency");
+  begin.push_back(static_cast<std::uint32_t>(to.size()));
   core.adjacency_begin = std::move(begin);
-  core.adjacency = std::move(moves);
+  core.adjacency_to = std::move(to);
+  core.adjacency_cost = std::move(cost);
   return true;
 }
 

@@ -45,25 +45,17 @@ namespace sewerplan::domain::detail {
 
 using Node = std::uint32_t;
 
-// A route search's record of one node (graph_search.h): its distance, parent and marks in one
-// 16-byte entry, so that a move relaxed or a node settled reads one cache line, not one in each
-// of three arrays (issue 35: on a network numbered without spatial order each was a miss).
-// Stored so that clean is zero (zeroed_array.h: a search touches only the pages it reaches,
-// issue 16): kInfiniteCost - distance, parent + 1, and flag bits.
-struct SearchEntry {
-  static constexpr std::uint32_t kSettled = 1;
-  static constexpr std::uint32_t kTarget = 2;
-  Cost dist_left = 0;
-  Node parent_plus_one = 0;
-  std::uint32_t flags = 0;
-};
-
-// A route search's arrays over every node, kept clean between runs: every entry zero (distance
-// infinite, no parent, nothing settled or targeted), so a search can start at once.
+// A route search's arrays over every node (graph_search.h), kept clean between runs: every
+// distance infinite, no parent, nothing settled or targeted, so a search can start at once.
+// Distances and parents are stored so that clean is zero (zeroed_array.h: a search touches only
+// the pages it reaches, issue 16): kInfiniteCost - distance, and parent + 1.
 struct SearchScratch {
-  ZeroedArray<SearchEntry> nodes;
+  ZeroedArray<Cost> dist_left;
+  ZeroedArray<Node> parent_plus_one;
+  std::vector<bool> settled;
+  std::vector<bool> is_target;
   std::vector<Node> touched;
-  std::vector<std::pair<Cost, Node>> heap;  // a 4-ary min-heap by (distance, node)
+  std::vector<std::pair<Cost, Node>> heap;
 };
 
 // The part of a PositionGraph that depends on the map and the robot alone, with the scratch
@@ -100,13 +92,9 @@ struct GraphCore {
   // passages for every node settled, each in its own array: on a network numbered without
   // spatial order, cache misses that made a compile's searches cost 3 times a plain Dijkstra's
   // per node (bench/domain/compile_bound_bench.cc, docs/benchmarks.md).
-  // A move's end and cost side by side: one cache line for a node's moves, not one in each array.
-  struct Move {
-    Cost cost;
-    Node to;
-  };
   std::vector<std::uint32_t> adjacency_begin;
-  std::vector<Move> adjacency;
+  std::vector<Node> adjacency_to;
+  std::vector<Cost> adjacency_cost;
   // Exit marks by node (the last compile's), the nodes marked, and the exits they mark.
   std::vector<bool> exit_marks;
   std::vector<Node> marked_exits;
@@ -298,13 +286,13 @@ void PositionGraph::for_each_successor(Node from, F&& f) const {
     const Node first_end = manholes_ + slots_;
     const bool filter = has_closed_pipes_ || excluded_count_ > 0;
     for (std::uint32_t e = core.adjacency_begin[from]; e < core.adjacency_begin[from + 1]; ++e) {
-      const Node to = core.adjacency[e].to;
+      const Node to = core.adjacency_to[e];
       // Only a move out of a manhole or a slot ends at a pipe's end: it enters that pipe.
       if (filter && to >= first_end) {
         const PipeId p{(to - first_end) / 2};
         if (!drivable_[p.index()] || excluded(p)) continue;
       }
-      f(to, core.adjacency[e].cost);
+      f(to, core.adjacency_cost[e]);
     }
     return;
   }

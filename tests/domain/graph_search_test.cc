@@ -35,7 +35,7 @@ constexpr Node kNone = 0xffffffffU;
 
 Reference reference(const PositionGraph& graph, Node source, GraphSearch::Direction direction) {
   Reference r{std::vector<Cost>(graph.size(), kInfiniteCost),
-              std::vector<Node>(graph.size(), kNone)};
+              std::vector<Node>(graph.size(), kNone), 0};
   std::vector<bool> settled(graph.size(), false);
   using Entry = std::pair<Cost, Node>;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;

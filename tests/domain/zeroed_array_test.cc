@@ -61,9 +61,8 @@ TEST(ZeroedArray, GrowsCleanAndMovesOut) {
   EXPECT_EQ(a[2], 0U);
 }
 
-// A search on a shared scratch leaves it clean (zero: every distance infinite, no parent, no
-// mark), so the next search on it, on a larger graph size too, finds the same distances as on
-// fresh arrays.
+// A search on a shared scratch leaves it clean (zero: every distance infinite, no parent), so the
+// next search on it, on a larger graph size too, finds the same distances as on fresh arrays.
 TEST(ZeroedArray, SearchScratchIsCleanAfterASearch) {
   const testing::AisTestbed bed = testing::load_ais_testbed();
   PositionGraph graph(bed.map, bed.mission);
@@ -78,11 +77,10 @@ TEST(ZeroedArray, SearchScratchIsCleanAfterASearch) {
                GraphSearch::Direction::kForward);
     for (Node t : targets) first.push_back(search.distance(t));
   }
-  ASSERT_GE(scratch.nodes.size(), graph.size());
-  for (std::size_t n = 0; n < scratch.nodes.size(); ++n) {
-    ASSERT_EQ(scratch.nodes[n].dist_left, 0) << n;
-    ASSERT_EQ(scratch.nodes[n].parent_plus_one, 0U) << n;
-    ASSERT_EQ(scratch.nodes[n].flags, 0U) << n;
+  ASSERT_GE(scratch.dist_left.size(), graph.size());
+  for (std::size_t n = 0; n < scratch.dist_left.size(); ++n) {
+    ASSERT_EQ(scratch.dist_left[n], 0) << n;
+    ASSERT_EQ(scratch.parent_plus_one[n], 0U) << n;
   }
   ASSERT_TRUE(GraphSearch::grow(scratch, graph.size() + 100, nullptr));
   GraphSearch again(graph, &scratch);
