@@ -27,6 +27,7 @@
 #include "sewerplan/search/planner.h"
 
 #include "position_graph.h"
+#include "support/dijkstra_bound.h"
 #include "support/instances.h"
 
 namespace sewerplan::search {
@@ -37,66 +38,7 @@ using domain::MissionSpread;
 using domain::detail::Node;
 using domain::detail::PositionGraph;
 
-struct Csr {
-  std::vector<std::uint32_t> begin;
-  std::vector<Node> to;
-  std::vector<Cost> cost;
-};
-
-Csr to_csr(const PositionGraph& graph) {
-  Csr g;
-  g.begin.reserve(graph.size() + 1);
-  for (Node n = 0; n < graph.size(); ++n) {
-    g.begin.push_back(static_cast<std::uint32_t>(g.to.size()));
-    graph.for_each_successor(n, [&](Node to, Cost c) {
-      g.to.push_back(to);
-      g.cost.push_back(c);
-    });
-  }
-  g.begin.push_back(static_cast<std::uint32_t>(g.to.size()));
-  return g;
-}
-
-// Plain Dijkstra from `source`; with `stop_after` > 0 it stops once that many marked nodes (and
-// an exit, with `exits`) are settled. Returns the nodes settled.
-std::size_t dijkstra(const Csr& g, Node source, std::vector<Cost>& dist,
-                     const std::vector<bool>& marked, std::size_t stop_after,
-                     const std::vector<bool>& exits) {
-  std::fill(dist.begin(), dist.end(), domain::kInfiniteCost);
-  using Entry = std::pair<Cost, Node>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
-  dist[source] = 0;
-  open.emplace(0, source);
-  std::size_t settled = 0, found = 0;
-  bool exit_found = false;
-  while (!open.empty()) {
-    const auto [d, n] = open.top();
-    open.pop();
-    if (d != dist[n]) continue;
-    ++settled;
-    if (stop_after > 0) {
-      found += marked[n] ? 1U : 0U;
-      exit_found = exit_found || exits[n];
-      if (found >= stop_after && exit_found) break;
-    }
-    for (std::uint32_t e = g.begin[n]; e < g.begin[n + 1]; ++e) {
-      const Cost nd = d + g.cost[e];
-      if (nd < dist[g.to[e]]) {
-        dist[g.to[e]] = nd;
-        open.emplace(nd, g.to[e]);
-      }
-    }
-  }
-  return settled;
-}
-
-// The thread's CPU time in ms: on a machine shared with other work, wall time counts their time
-// too, and the plan and the baseline, measured one after the other, would be stretched unevenly.
-double cpu_ms() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
-}
+using bench::cpu_ms;
 
 void BM_PlanVsDijkstra(benchmark::State& state) {
   const auto spread = static_cast<MissionSpread>(state.range(2));
@@ -104,7 +46,7 @@ void BM_PlanVsDijkstra(benchmark::State& state) {
       static_cast<std::size_t>(state.range(0)), static_cast<std::size_t>(state.range(1)), spread);
   const auto progress = domain::initial_progress(instance.mission, instance.map);
   PositionGraph graph(instance.map, instance.mission);
-  const Csr csr = to_csr(graph);
+  const bench::Csr csr = bench::to_csr(graph);
   std::vector<Node> sources{graph.in_manhole(std::get<ManholeId>(instance.mission.start))};
   for (const Task& t : instance.mission.tasks) {
     if (const auto* spot = std::get_if<PipeSpot>(&t.place)) {
@@ -133,10 +75,12 @@ void BM_PlanVsDijkstra(benchmark::State& state) {
     }
     last = std::move(*outcome);
     t = cpu_ms();
-    for (Node s : sources) settled += dijkstra(csr, s, dist, marked, sources.size() - 1, exits);
+    for (Node s : sources) {
+      settled += bench::dijkstra(csr, s, dist, &marked, sources.size() - 1, &exits);
+    }
     dijkstra_ms += cpu_ms() - t;
     t = cpu_ms();
-    for (Node s : sources) dijkstra(csr, s, dist, marked, 0, exits);
+    for (Node s : sources) bench::dijkstra(csr, s, dist);
     full_ms += cpu_ms() - t;
   }
   const auto n = static_cast<double>(state.iterations());
