@@ -256,6 +256,22 @@ TEST(StrandRisk, TheBatteryLeftCoversAHazardWithoutItsReserve) {
   EXPECT_EQ(plan->strand_probability, 0.0);
 }
 
+// A hazard passed with the battery for the way out but not for backing out of the hazards on
+// it: stranded only if one of those blocks too. The roots 40 m into SX (p = 0.3), passed first:
+// backing out (80 m) and leaving by SHORT (10 m) fits the battery left, backing out of SHORT's
+// deposits as well and driving LONG (100 m more) does not: 0.3 x 0.05. The deposits, passed last
+// without the battery for LONG: 0.05.
+TEST(StrandRisk, AWayOutPastAnotherHazardCountsBothBlocking) {
+  TwoFindings trap;
+  trap.mission.hazards[TwoFindings::kRoots].offset_m = 40;
+  auto plan = trap.plan(1);
+  ASSERT_TRUE(plan.has_value()) << plan.error();
+  EXPECT_TRUE(plan->dropped.empty());
+  EXPECT_EQ(plan->uninsured,
+            (std::vector<std::size_t>{TwoFindings::kDeposits, TwoFindings::kRoots}));
+  EXPECT_NEAR(plan->strand_probability, 1 - (1 - 0.3 * 0.05) * 0.95, 1e-12);
+}
+
 TEST(StrandRisk, ABoundBetweenTheLevelsInsuresExactlyTheRiskierFinding) {
   const TwoFindings trap;
   for (double bound : {0.05, 0.1, 0.3}) {
