@@ -438,6 +438,72 @@ class SewerTaskCompiler {
     exit_need_.emplace(key, need);
     return need;
   }
+  // For the stranding risk (SewerTask::strand_risk): the cheapest way out from `from` with
+  // `first` found blocked (`plain`, as exit_need without reserves), the battery for it with a
+  // reserve at every hazard it passes, insured or not (`full`: back out of that one too and reach
+  // an exit avoiding both), and the chance that one of those hazards blocks it (`risk`).
+  // kInfiniteCost: no way out within the battery. Kept per place and pipe.
+  struct WayOut {
+    Cost plain = kInfiniteCost;
+    Cost full = kInfiniteCost;
+    double risk = 0;
+  };
+  WayOut way_out(Node from, PipeId first) {
+    const auto key = std::make_pair(from, first.value());
+    if (auto it = way_out_.find(key); it != way_out_.end()) return it->second;
+    PositionGraph& graph = *result_.graph_;
+    const bool first_was = graph.excluded(first);
+    graph.exclude_pipe(first, true);
+    const std::optional<Node> exit = contingency_search_->run_to_nearest(from, exit_node(), bound_);
+    WayOut way;
+    std::vector<Node> route;
+    if (exit) {
+      way.plain = contingency_search_->distance(*exit);
+      contingency_search_->path(*exit, route);
+    }
+    graph.exclude_pipe(first, first_was);
+    way.full = way.plain;
+    double none = 1;
+    Cost prefix = 0;
+    std::vector<std::pair<std::uint32_t, double>> passed;
+    for (std::size_t i = 0; exit && i + 1 < route.size(); ++i) {
+      const Node u = route[i];
+      const Node v = route[i + 1];
+      Cost step = kInfiniteCost;
+      graph.for_each_successor(u, [&](Node to, Cost c) {
+        if (to == v) step = std::min(step, c);
+      });
+      if (step >= kInfiniteCost) break;
+      const std::optional<PipeId> p = graph.pipe_of(u);
+      const RobotPosition at = graph.position(v);
+      const auto* slot = std::get_if<AtSlot>(&at);
+      if (p && !graph.pipe_of(v) && slot != nullptr) {  // DRIVE_PIPE_TO_MANHOLE
+        passed.clear();
+        const double from_m = graph.offset_of(u);
+        graph.hazards_between(
+            *p, from_m, end_offset_m(map_.pipe(*p), map_.slot(slot->manhole, slot->slot).pipe_end),
+            passed);
+        double farthest = -1;
+        for (const auto& [h, d] : passed) {
+          none *= 1 - result_.hazard_probability_[h];
+          farthest = std::max(farthest, d);
+        }
+        const std::size_t e = u == graph.pipe_end(*p, 0) ? 0 : u == graph.pipe_end(*p, 1) ? 1 : 2;
+        if (farthest >= 0 && e != 2 && map_.pipe(*p).ends[e].manhole) {
+          const PipeEnd& end = map_.pipe(*p).ends[e];
+          const Cost out = exit_need(graph.at_slot(*end.manhole, end.slot), first, *p);
+          if (out < kInfiniteCost) {
+            way.full = std::max(way.full, prefix + to_cost(farthest / mission_.profile.speed_mps) +
+                                              graph.drive_cost(farthest) + out);
+          }
+        }
+      }
+      prefix += step;
+    }
+    way.risk = 1 - none;
+    way_out_.emplace(key, way);
+    return way;
+  }
   // The battery needed, `prefix` before the robot drives pipe p from the end node `entry` (offset
   // `from`) towards offset `to` at `speed_mps`, should the farthest hazard on the way stop it:
   // the drive there, back to the entry's manhole, and from there to an exit another way
@@ -455,22 +521,38 @@ class SewerTaskCompiler {
     if (top) {
       graph.hazards_between(p, from, to, noted_);
       covered_.resize(noted_.size(), false);
+      noted_need_.resize(noted_.size());
     }
     if (!contingency_) return 0;
     const std::optional<double> hazard = graph.farthest_hazard(p, from, to, &options_.insured);
-    if (!hazard) return 0;
+    // At the first level every hazard noted gets its own need, insured or not (the battery to
+    // back out from it: SewerTask::strand_risk weighs it against what the plan has left there);
+    // at the second level only the insured ones ask for anything.
+    if (!hazard && (!top || noted == noted_.size())) return 0;
     const std::size_t e = entry == graph.pipe_end(p, 0) ? 0 : entry == graph.pipe_end(p, 1) ? 1 : 2;
     if (e == 2 || !map_.pipe(p).ends[e].manhole) return 0;
     const PipeEnd& end = map_.pipe(p).ends[e];
     const Node back = graph.at_slot(*end.manhole, end.slot);
     const Cost out = blocked ? exit_need(back, *blocked, p) : exit_need(back, p, std::nullopt);
     if (out >= kInfiniteCost) return 0;
+    const auto back_out = [&](double d) {
+      return prefix + to_cost(d / speed_mps) + graph.drive_cost(d) + out;
+    };
+    if (top && noted < noted_.size()) {
+      const WayOut way = way_out(back, p);
+      for (std::size_t i = noted; way.plain < kInfiniteCost && i < noted_.size(); ++i) {
+        const double d = noted_[i].second;
+        const Cost there = prefix + to_cost(d / speed_mps) + graph.drive_cost(d);
+        noted_need_[i] = {there + way.plain, there + way.full, way.risk};
+      }
+    }
+    if (!hazard) return 0;
     const double d = std::abs(*hazard - from);
     // Backing out from the farthest insured hazard covers every nearer one too.
     for (std::size_t i = noted; top && i < noted_.size(); ++i) {
       covered_[i] = noted_[i].second <= d;
     }
-    return prefix + to_cost(d / speed_mps) + graph.drive_cost(d) + out;
+    return back_out(d);
   }
   // in_pipe_need over every pipe a route drives.
   Cost route_need(std::span<const Node> route, std::optional<PipeId> blocked = std::nullopt) {
@@ -518,6 +600,7 @@ class SewerTaskCompiler {
                             end_offset_m(map_.pipe(*p), slot.pipe_end), noted_);
     }
     covered_.resize(noted_.size(), false);
+    noted_need_.resize(noted_.size());
   }
   // The task's actions from each key, each recorded in task_moves_.
   void add_task_actions(std::size_t index, VarId pos);
@@ -577,6 +660,10 @@ class SewerTaskCompiler {
   // its drive in that pipe starts), and whether its reserve covers each; add_action takes them.
   std::vector<std::pair<std::uint32_t, double>> noted_;
   std::vector<bool> covered_;
+  // Per hazard noted: the battery to back out from it and reach an exit another way, from the
+  // start of the action being built (SewerTask::HazardPass).
+  std::vector<SewerTask::WayBack> noted_need_;
+  std::map<std::pair<Node, std::uint32_t>, WayOut> way_out_;
 };
 
 }  // namespace sewerplan::domain
@@ -609,11 +696,14 @@ ActionId SewerTaskCompiler::add_action(std::span<const Fact> pre, std::span<cons
   result_.risk_.push_back(risk);
   if (result_.pass_begin_.empty()) result_.pass_begin_.push_back(0);
   for (std::size_t i = 0; i < noted_.size(); ++i) {
-    result_.passes_.push_back({noted_[i].first, covered_[i]});
+    // A route's own drives were noted from its start; a task action's drive from where the
+    // action starts it too (in_pipe_need's prefix).
+    result_.passes_.push_back({noted_[i].first, covered_[i], noted_need_[i]});
   }
   result_.pass_begin_.push_back(static_cast<std::uint32_t>(result_.passes_.size()));
   noted_.clear();
   covered_.clear();
+  noted_need_.clear();
   if (result_.route_begin_.empty()) result_.route_begin_.push_back(0);
   result_.route_nodes_.insert(result_.route_nodes_.end(), route.begin(), route.end());
   result_.route_begin_.push_back(static_cast<std::uint32_t>(result_.route_nodes_.size()));
@@ -854,23 +944,46 @@ Cost SewerTask::risk_cost(std::span<const ActionId> plan) const {
   return total;
 }
 
-StrandRisk SewerTask::strand_risk(std::span<const ActionId> plan) const {
-  std::vector<HazardPass> seen;  // each hazard once, as its first drive past it leaves it
+StrandRisk SewerTask::strand_risk(std::span<const ActionId> plan,
+                                  std::optional<Cost> budget) const {
+  const Cost bound = budget.value_or(task_.cost_bound());
+  struct Seen {
+    std::uint32_t hazard = 0;
+    double risk = 0;  // of being stranded by it
+  };
+  std::vector<Seen> seen;  // each hazard once, as its first drive past it leaves it
+  Cost spent = 0;          // the plan's true cost before the action
   for (ActionId a : plan) {
     if (pass_begin_.empty()) break;
     for (std::uint32_t i = pass_begin_[a.index()]; i < pass_begin_[a.index() + 1]; ++i) {
       const HazardPass& pass = passes_[i];
       auto it = std::find_if(seen.begin(), seen.end(),
-                             [&](const HazardPass& s) { return s.hazard == pass.hazard; });
-      if (it == seen.end()) seen.push_back(pass);
+                             [&](const Seen& s) { return s.hazard == pass.hazard; });
+      if (it != seen.end()) continue;
+      const double p = hazard_probability_[pass.hazard];
+      const WayBack& way = pass.way_back;
+      // Insured, or the battery left backs out from it and on along a way out whose own hazards
+      // it could back out of too: none; the battery for the way out but not for its hazards:
+      // the chance that one of them blocks it as well; no battery for the way out: p.
+      double risk = p;
+      if (pass.covered || (way.full < kInfiniteCost && spent + way.full <= bound)) {
+        risk = 0;
+      } else if (way.plain < kInfiniteCost && spent + way.plain <= bound) {
+        risk = p * way.risk;
+      }
+      seen.push_back({pass.hazard, risk});
     }
+    const Cost cost = task_.real_cost(task_.cost(a));
+    // A forgo action's cost is its penalty only (real cost 0); the expected cost of stops is
+    // not battery.
+    spent += cost - std::min(cost, risk_[a.index()]);
   }
   StrandRisk risk;
   double none = 1;
-  for (const HazardPass& pass : seen) {
-    if (pass.covered) continue;
-    risk.uninsured.push_back(pass.hazard);
-    none *= 1 - hazard_probability_[pass.hazard];
+  for (const Seen& s : seen) {
+    if (!(s.risk > 0)) continue;
+    risk.uninsured.push_back(s.hazard);
+    none *= 1 - s.risk;
   }
   std::sort(risk.uninsured.begin(), risk.uninsured.end());
   risk.probability = 1 - none;

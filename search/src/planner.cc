@@ -204,8 +204,10 @@ void improve(const domain::CompiledTask& task, const StopCondition& stop, const 
 
 // The outcome of `result`, a plan of `compiled`: its primitive plan, costs, tasks dropped and
 // statistics.
+// `strand_budget`: the battery the plan has (as a cost) for its stranding risk, where the
+// compiled task's bound is not the real battery's (a risk-aware plan on a relaxed battery).
 void complete(const domain::SewerTask& compiled, const Mission& mission, const SearchResult& result,
-              PlanOutcome& outcome) {
+              PlanOutcome& outcome, std::optional<Cost> strand_budget = std::nullopt) {
   const domain::CompiledTask& task = compiled.task();
   outcome.plan = compiled.expand(result.plan);
   const Cost risk = compiled.risk_cost(result.plan);
@@ -218,7 +220,7 @@ void complete(const domain::SewerTask& compiled, const Mission& mission, const S
   std::sort(outcome.dropped.begin(), outcome.dropped.end(),
             [](const auto& a, const auto& b) { return a.task < b.task; });
   outcome.energy_wh = mission.profile.energy_wh(outcome.cost_s);
-  domain::StrandRisk strand = compiled.strand_risk(result.plan);
+  domain::StrandRisk strand = compiled.strand_risk(result.plan, strand_budget);
   outcome.strand_probability = strand.probability;
   outcome.uninsured = std::move(strand.uninsured);
   outcome.search = result.statistics;
@@ -229,9 +231,11 @@ void complete(const domain::SewerTask& compiled, const Mission& mission, const S
 
 namespace {
 
+// `strand_budget`: as complete's.
 Result<PlanOutcome> plan_once(const SewerMap& map, const Mission& mission,
                               const domain::MissionProgress& progress,
-                              const PlannerOptions& options) {
+                              const PlannerOptions& options,
+                              std::optional<Cost> strand_budget = std::nullopt) {
   const SteadyClock steady;
   const Clock& clock = options.clock != nullptr ? *options.clock : steady;
   // The time limit bounds the compile and the search together.
@@ -339,7 +343,7 @@ Result<PlanOutcome> plan_once(const SewerMap& map, const Mission& mission,
   // The deadline (or a cancel) came after a first plan, before the planner had done all it meant
   // to: the plan is the best found by then.
   outcome.best_so_far = stop.interrupted().has_value();
-  complete(*compiled, mission, result, outcome);
+  complete(*compiled, mission, result, outcome, strand_budget);
   outcome.algorithm = exact  ? std::string("exact tour search")
                       : tour ? std::string("tour search")
                              : std::string(engine->name()) + " + " + std::string(heuristic->name());
@@ -380,7 +384,9 @@ Result<PlanOutcome> plan_weighing_risks(const SewerMap& map, const Mission& miss
     if (o.time_limit_s <= 0) return std::nullopt;
     return o;
   };
-  Result<PlanOutcome> aware = plan_once(map, relaxed, progress, options);
+  // The relaxed plan's stranding risk weighs what the real battery leaves at each hazard.
+  const Cost real_budget = domain::to_cost(mission.profile.seconds_for(std::max(0.0, budget_wh)));
+  Result<PlanOutcome> aware = plan_once(map, relaxed, progress, options, real_budget);
   if (aware.has_value() && aware->energy_wh > budget_wh + 1e-9) {
     // Too tight for that: weigh the risks within the real battery (the expected cost then takes
     // battery too, so the plan fits by construction).
@@ -440,34 +446,17 @@ bool does_better(const PlanOutcome& a, const PlanOutcome& b) {
   return a.cost_s < b.cost_s - 1e-6;
 }
 
-// The probability levels of the mission's hazards (above 0) that the search for
-// max_strand_risk un-insures in turn: the distinct ones ascending, at most
-// kMaxStrandRounds - 2, spread by rank (the highest always among them) when there are more.
-std::vector<double> strand_levels(const Mission& mission) {
-  std::vector<double> levels;
-  for (const Hazard& h : mission.hazards) {
-    if (h.probability > 0) levels.push_back(std::min(h.probability, 1.0));
-  }
-  std::sort(levels.begin(), levels.end());
-  levels.erase(std::unique(levels.begin(), levels.end()), levels.end());
-  constexpr std::size_t kLevels = kMaxStrandRounds - 2;
-  if (levels.size() <= kLevels) return levels;
-  std::vector<double> spread;
-  for (std::size_t i = 0; i < kLevels; ++i) {
-    spread.push_back(levels[(i + 1) * levels.size() / kLevels - 1]);
-  }
-  return spread;
-}
-
-// Chance-constrained contingency (PlannerOptions::max_strand_risk, 0 < bound < 1). Starts from
-// the fully insured plan; then, level by level of probability ascending, lets every hazard at
-// or below the level go without its reserve, and keeps that plan when its computed stranding
-// risk stays within the bound and it does more tasks (or as many sooner). Only the hazards a
-// plan passes count, so a level may un-insure many and cost little. At the first level whose
-// plan goes over the bound, the riskiest hazard it newly passes uninsured is insured again, up
-// to twice, while the plan stays over. The best plan within the bound is the answer; at worst
-// the fully insured one. A time limit bounds all the plans together; when it runs out, the best
-// so far is the answer.
+// Chance-constrained contingency (PlannerOptions::max_strand_risk, 0 < bound < 1): a risk
+// budget allocated over the plan, greedily by the tasks each reserve costs per unit of risk it
+// removes. Plans with every hazard insured (the fallback: within the bound unless hazards no
+// reserve covers are passed) and with none; then, while the plan with the current insured set
+// is over the bound, tries insuring each hazard it passes uninsured (by probability, the
+// highest first, at most kStrandCandidates a round) and takes the one that loses the fewest
+// tasks per unit of computed risk it removes (then the most risk removed, then the quickest
+// plan). Every plan tried that is within the bound and does more tasks than the best so far
+// (or as many sooner) becomes the answer. At most kMaxStrandRounds plans beyond the fully
+// insured one, deterministic (counts, not time); a time limit bounds them all together, and
+// when it runs out the best so far is the answer.
 Result<PlanOutcome> plan_within_strand_risk(const SewerMap& map, const Mission& mission,
                                             const domain::MissionProgress& progress,
                                             const PlannerOptions& options) {
@@ -483,9 +472,10 @@ Result<PlanOutcome> plan_within_strand_risk(const SewerMap& map, const Mission& 
   if (!best.has_value() || best->strand_probability > bound) return best;
   std::vector<bool> best_insured(n, true);
   std::size_t plans = 0;
-  // One more plan with `insured`, within what is left of the time limit; none when it is out or
-  // the plan fails.
+  // One more plan with `insured`, within what is left of the time limit; none when it is out, the
+  // plans are spent or the plan fails.
   const auto attempt = [&](const std::vector<bool>& insured) -> std::optional<PlanOutcome> {
+    if (plans >= kMaxStrandRounds) return std::nullopt;
     PlannerOptions o = options;
     o.insured = insured;
     if (o.time_limit_s > 0) {
@@ -497,52 +487,62 @@ Result<PlanOutcome> plan_within_strand_risk(const SewerMap& map, const Mission& 
     if (!r.has_value()) return std::nullopt;
     return std::move(*r);
   };
-  const auto keep_if_better = [&](PlanOutcome& r, const std::vector<bool>& insured) {
-    if (!does_better(r, *best)) return;
-    *best = std::move(r);
+  const auto keep_if_better = [&](const PlanOutcome& r, const std::vector<bool>& insured) {
+    if (r.strand_probability > bound || !does_better(r, *best)) return;
+    *best = r;
     best_insured = insured;
   };
-  std::optional<PlanOutcome> over;
-  std::vector<bool> over_insured;
-  for (const double level : strand_levels(mission)) {
-    std::vector<bool> insured(n);
-    for (std::size_t h = 0; h < n; ++h) insured[h] = !(mission.hazards[h].probability <= level);
-    std::optional<PlanOutcome> r = attempt(insured);
-    if (!r) break;
-    if (r->strand_probability > bound) {
-      over = std::move(r);
-      over_insured = std::move(insured);
-      break;
+  std::vector<bool> insured(n, false);
+  std::optional<PlanOutcome> current = attempt(insured);
+  if (current) keep_if_better(*current, insured);
+  while (current && current->strand_probability > bound) {
+    std::vector<std::size_t> candidates;
+    for (std::size_t h : current->uninsured) {
+      if (!insured[h]) candidates.push_back(h);
     }
-    keep_if_better(*r, insured);
-  }
-  for (std::size_t round = 0; over && round < 2; ++round) {
-    // The riskiest hazard the plan passes uninsured that the best plan's set insures.
-    std::optional<std::size_t> riskiest;
-    for (std::size_t h : over->uninsured) {
-      if (over_insured[h] || !best_insured[h]) continue;
-      if (!riskiest || mission.hazards[h].probability > mission.hazards[*riskiest].probability) {
-        riskiest = h;
-      }
+    std::stable_sort(candidates.begin(), candidates.end(), [&](std::size_t a, std::size_t b) {
+      return mission.hazards[a].probability > mission.hazards[b].probability;
+    });
+    if (candidates.size() > kStrandCandidates) candidates.resize(kStrandCandidates);
+    struct Choice {
+      std::size_t hazard = 0;
+      double lost_per_risk = 0;
+      double removed = 0;
+      PlanOutcome plan;
+    };
+    std::optional<Choice> chosen;
+    for (std::size_t h : candidates) {
+      std::vector<bool> trial = insured;
+      trial[h] = true;
+      std::optional<PlanOutcome> r = attempt(trial);
+      if (!r) break;
+      keep_if_better(*r, trial);
+      const double removed = current->strand_probability - r->strand_probability;
+      if (!(removed > 1e-12)) continue;  // no risk removed (a detour past others, say)
+      const double lost =
+          static_cast<double>(r->dropped.size()) - static_cast<double>(current->dropped.size());
+      const double per = lost / removed;
+      const bool better =
+          !chosen || per < chosen->lost_per_risk - 1e-9 ||
+          (per <= chosen->lost_per_risk + 1e-9 &&
+           (removed > chosen->removed + 1e-12 ||
+            (removed >= chosen->removed - 1e-12 && r->cost_s < chosen->plan.cost_s - 1e-6)));
+      if (better) chosen = Choice{h, per, removed, std::move(*r)};
     }
-    if (!riskiest) break;
-    over_insured[*riskiest] = true;
-    std::optional<PlanOutcome> r = attempt(over_insured);
-    if (!r) break;
-    if (r->strand_probability <= bound) {
-      keep_if_better(*r, over_insured);
-      break;
-    }
-    over = std::move(r);
+    if (!chosen) break;
+    insured[chosen->hazard] = true;
+    current = std::move(chosen->plan);
   }
   best->strand_plans = plans;
-  std::size_t chosen = 0;
-  for (std::size_t h : best->uninsured) chosen += best_insured[h] ? 0U : 1U;
+  std::size_t uninsured = 0;
+  for (std::size_t h = 0; h < n; ++h) uninsured += best_insured[h] ? 0U : 1U;
   std::ostringstream note;
   note << std::fixed << std::setprecision(4) << "within the bound " << options.max_strand_risk
-       << ": " << chosen
-       << (chosen == 1 ? " hazard the plan passes goes" : " hazards the plan passes go")
-       << " without its reserve (" << plans << (plans == 1 ? " plan" : " plans")
+       << ": "
+       << (uninsured == 0 ? "every hazard keeps its reserve"
+                          : std::to_string(n - uninsured) + " of " + std::to_string(n) +
+                                " hazards keep their reserve")
+       << " (" << plans << (plans == 1 ? " plan" : " plans")
        << " tried beyond the fully insured one)";
   best->strand_note = note.str();
   return best;
@@ -557,8 +557,10 @@ Result<PlanOutcome> plan_mission(const SewerMap& map, const Mission& mission,
     return plan_insured(map, mission, progress, options);
   }
   if (options.max_strand_risk >= 1) {
+    // No reserve, but the ways out computed, so that the plan's stranding risk weighs the
+    // battery it has left at each hazard (domain::SewerTask::strand_risk).
     PlannerOptions blind = options;
-    blind.contingency = false;
+    blind.insured.assign(mission.hazards.size(), false);
     return plan_insured(map, mission, progress, blind);
   }
   return plan_within_strand_risk(map, mission, progress, options);

@@ -144,14 +144,22 @@ expect 0 'risk: the route passes 1 possible blockages; unobstructed run 0\.70' -
 expect 0 '"unobstructed_probability": 0\.7' -- "$sp" plan --map "$isybau" \
   --mission "$tmp/street-mission.json" --condition "$isy/street-zustand.xml" --risk expected --json
 # Issue 34: the plan's computed stranding risk, and --max-strand-risk bounding it: 0 keeps the
-# reserve to back out of S1 past the roots, 1 keeps none (the roots' 0.3 is the risk).
+# reserve to back out of S1 past the roots; 1 keeps none, but the robot passes the roots with the
+# battery to back out to the start manhole, an exit: no risk either. A mission that ends inside
+# S1 (a final task) can keep no reserve: the roots' 0.3 is the risk.
 expect 0 'stranding risk 0\.0000 \(0 hazards passed' -- "$sp" plan --map "$isybau" \
   --mission "$tmp/street-mission.json" --condition "$isy/street-zustand.xml" --risk expected
-expect 0 'stranding risk 0\.3000 \(1 hazard passed' -- "$sp" plan --map "$isybau" \
+expect 0 'stranding risk 0\.0000 \(0 hazards passed' -- "$sp" plan --map "$isybau" \
   --mission "$tmp/street-mission.json" --condition "$isy/street-zustand.xml" --risk expected \
   --max-strand-risk 1
+echo '{"format": "sewerplan-mission", "version": 1, "profile": "makro-plus", "start": {"manhole": "S1"},
+  "tasks": [{"name": "roots", "type": "inspect_pipe", "pipe": "S1", "final": true}]}' \
+  > "$tmp/street-final.json"
+expect 0 'stranding risk 0\.3000 \(1 hazard passed' -- "$sp" plan --map "$isybau" \
+  --mission "$tmp/street-final.json" --condition "$isy/street-zustand.xml" --risk expected \
+  --max-strand-risk 1
 expect 0 '"strand_probability": 0\.3' -- "$sp" plan --map "$isybau" \
-  --mission "$tmp/street-mission.json" --condition "$isy/street-zustand.xml" --risk expected \
+  --mission "$tmp/street-final.json" --condition "$isy/street-zustand.xml" --risk expected \
   --max-strand-risk 1 --json
 for bad in 1.5 2; do
   expect 2 "--max-strand-risk: $bad is not a probability: give a number from 0 to 1" -- \

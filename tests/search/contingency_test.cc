@@ -219,16 +219,57 @@ TEST(StrandRisk, CertainRiskKeepsNoReserve) {
   auto blind = trap.plan(1);
   ASSERT_TRUE(blind.has_value()) << blind.error();
   EXPECT_TRUE(blind->dropped.empty());
-  // The task past the roots and out past the deposits, neither insured.
-  EXPECT_EQ(blind->uninsured,
-            (std::vector<std::size_t>{TwoFindings::kDeposits, TwoFindings::kRoots}));
-  EXPECT_NEAR(blind->strand_probability, 1 - 0.95 * 0.7, 1e-12);
-  // The plan without contingency.
+  // The task past the roots and out past the deposits, neither insured. The roots come first,
+  // with the battery to back out of SX and leave through SHORT: not a stranding risk. The
+  // deposits come last, without the battery for LONG.
+  EXPECT_EQ(blind->uninsured, std::vector<std::size_t>{TwoFindings::kDeposits});
+  EXPECT_NEAR(blind->strand_probability, 0.05, 1e-12);
+  // The plan without contingency, which computes no way out: every hazard passed counts.
   auto plain = plan_mission(trap.map, trap.mission, initial_progress(trap.mission, trap.map),
                             {.select_goals = true, .contingency = false});
   ASSERT_TRUE(plain.has_value());
   EXPECT_EQ(blind->plan, plain->plan);
-  EXPECT_EQ(blind->strand_probability, plain->strand_probability);
+  EXPECT_EQ(plain->uninsured,
+            (std::vector<std::size_t>{TwoFindings::kDeposits, TwoFindings::kRoots}));
+  EXPECT_NEAR(plain->strand_probability, 1 - 0.95 * 0.7, 1e-12);
+}
+
+// Issue 34: a hazard passed early, with the battery left to back out and reach an exit another
+// way, is no stranding risk whether or not its reserve was asked for; the same hazard passed
+// late, without that battery, is.
+TEST(StrandRisk, TheBatteryLeftCoversAHazardWithoutItsReserve) {
+  TwoFindings trap;
+  // Without reserves (max_strand_risk 1): the roots, passed first, are covered by the battery
+  // left (CertainRiskKeepsNoReserve); the deposits, passed last, are not with 60 s to spare.
+  auto plan = plan_mission(trap.map, trap.mission, initial_progress(trap.mission, trap.map),
+                           {.select_goals = true, .max_strand_risk = 1});
+  ASSERT_TRUE(plan.has_value()) << plan.error();
+  EXPECT_EQ(plan->uninsured, std::vector<std::size_t>{TwoFindings::kDeposits});
+  // With 400 s to spare (120 m, more than backing out of SHORT and driving LONG costs beyond
+  // SHORT), neither is.
+  trap.mission.profile.battery_wh = battery_for(trap, 400);
+  plan = plan_mission(trap.map, trap.mission, initial_progress(trap.mission, trap.map),
+                      {.select_goals = true, .max_strand_risk = 1});
+  ASSERT_TRUE(plan.has_value()) << plan.error();
+  EXPECT_TRUE(plan->dropped.empty());
+  EXPECT_TRUE(plan->uninsured.empty());
+  EXPECT_EQ(plan->strand_probability, 0.0);
+}
+
+// A hazard passed with the battery for the way out but not for backing out of the hazards on
+// it: stranded only if one of those blocks too. The roots 40 m into SX (p = 0.3), passed first:
+// backing out (80 m) and leaving by SHORT (10 m) fits the battery left, backing out of SHORT's
+// deposits as well and driving LONG (100 m more) does not: 0.3 x 0.05. The deposits, passed last
+// without the battery for LONG: 0.05.
+TEST(StrandRisk, AWayOutPastAnotherHazardCountsBothBlocking) {
+  TwoFindings trap;
+  trap.mission.hazards[TwoFindings::kRoots].offset_m = 40;
+  auto plan = trap.plan(1);
+  ASSERT_TRUE(plan.has_value()) << plan.error();
+  EXPECT_TRUE(plan->dropped.empty());
+  EXPECT_EQ(plan->uninsured,
+            (std::vector<std::size_t>{TwoFindings::kDeposits, TwoFindings::kRoots}));
+  EXPECT_NEAR(plan->strand_probability, 1 - (1 - 0.3 * 0.05) * 0.95, 1e-12);
 }
 
 TEST(StrandRisk, ABoundBetweenTheLevelsInsuresExactlyTheRiskierFinding) {
@@ -242,9 +283,8 @@ TEST(StrandRisk, ABoundBetweenTheLevelsInsuresExactlyTheRiskierFinding) {
     EXPECT_EQ(plan->uninsured, std::vector<std::size_t>{TwoFindings::kDeposits});
     EXPECT_NEAR(plan->strand_probability, 0.05, 1e-12);
     EXPECT_LE(plan->strand_probability, bound + 1e-9);
-    EXPECT_GE(plan->strand_plans, 2U);
-    EXPECT_NE(plan->strand_note.find("1 hazard the plan passes goes without its reserve"),
-              std::string::npos)
+    EXPECT_GE(plan->strand_plans, 1U);
+    EXPECT_NE(plan->strand_note.find("0 of 2 hazards keep their reserve"), std::string::npos)
         << plan->strand_note;
   }
 }
@@ -271,11 +311,13 @@ TEST(StrandRisk, AReserveCoversTheNearerFindingsOfItsDrive) {
   ASSERT_TRUE(plan.has_value()) << plan.error();
   EXPECT_EQ(plan->dropped.size(), 1U);
   EXPECT_EQ(plan->strand_probability, 0.0);
-  // Insured alone, the nearer finding leaves the farther one uncovered.
+  // Insured alone, the nearer finding's reserve (LONG as well) still costs the task, and then
+  // the farther one is passed with the battery to turn back: no risk either.
   plan = plan_mission(trap.map, trap.mission, initial_progress(trap.mission, trap.map),
                       {.select_goals = true, .insured = {false, true, true}});
   ASSERT_TRUE(plan.has_value()) << plan.error();
-  EXPECT_EQ(plan->uninsured, std::vector<std::size_t>{TwoFindings::kDeposits});
+  EXPECT_EQ(plan->dropped.size(), 1U);
+  EXPECT_TRUE(plan->uninsured.empty());
 }
 
 TEST(StrandRisk, AMissionEndingAtATaskKeepsNoReserveAndCountsEveryFinding) {
@@ -288,6 +330,38 @@ TEST(StrandRisk, AMissionEndingAtATaskKeepsNoReserveAndCountsEveryFinding) {
   EXPECT_EQ(plan->uninsured,
             (std::vector<std::size_t>{TwoFindings::kDeposits, TwoFindings::kRoots}));
   EXPECT_NEAR(plan->strand_probability, 1 - 0.95 * 0.7, 1e-12);
+}
+
+TEST(StrandRiskBudget, TasksRiseWithTheBoundAndTheRiskStaysWithinIt) {
+  const TwoFindings trap;
+  std::size_t dropped_before = 2;
+  for (double bound : {0.0, 0.01, 0.04, 0.05, 0.2, 1.0}) {
+    SCOPED_TRACE(bound);
+    auto plan = trap.plan(bound);
+    ASSERT_TRUE(plan.has_value()) << plan.error();
+    EXPECT_LE(plan->strand_probability, bound + 1e-9);
+    EXPECT_LE(plan->dropped.size(), dropped_before);
+    dropped_before = plan->dropped.size();
+    // Below 0.05 no plan doing the task is within the bound; from 0.05 on every one does it.
+    EXPECT_EQ(plan->dropped.size(), bound < 0.05 ? 1U : 0U);
+  }
+}
+
+// The greedy allocation goes on from the risk-blind plan: insuring the deposits (the one hazard
+// at risk) costs the task and removes all the risk, so a bound below 0.05 takes that plan, which
+// is the fully insured one; the plans tried are counted.
+TEST(StrandRiskBudget, OverTheBoundTheHazardAtRiskIsInsured) {
+  const TwoFindings trap;
+  auto plan = trap.plan(0.01);
+  ASSERT_TRUE(plan.has_value()) << plan.error();
+  EXPECT_EQ(plan->dropped.size(), 1U);
+  EXPECT_EQ(plan->strand_probability, 0.0);
+  EXPECT_EQ(plan->strand_plans, 2U);  // none insured, then the deposits
+  auto insured = plan_mission(trap.map, trap.mission, initial_progress(trap.mission, trap.map),
+                              {.select_goals = true, .insured = {true, false}});
+  ASSERT_TRUE(insured.has_value()) << insured.error();
+  EXPECT_EQ(plan->dropped.size(), insured->dropped.size());
+  EXPECT_EQ(insured->strand_probability, 0.0);
 }
 
 }  // namespace

@@ -189,18 +189,37 @@ class SewerTask {
   // carry; the plan's true cost is its cost less this. 0 when risk-blind.
   Cost risk_cost(std::span<const ActionId> plan) const;
   // The plan's computed stranding risk (StrandRisk): every hazard a drive of `plan` passes
-  // strictly, counted once, uninsured when the first drive past it keeps no reserve that covers
-  // it (no contingency, a hazard not insured, a pipe with no other way out, a drive that does
-  // not start at a pipe end: CompileOptions::contingency). A blockage is met where the plan
-  // first passes it, and a hazard passed safely is open after, so later passes do not count;
-  // nor does a second blockage on the way out after a first (the reserve's second level).
-  // Runtime: O(hazards passed x distinct hazards passed).
-  StrandRisk strand_risk(std::span<const ActionId> plan) const;
+  // strictly, counted once, uninsured when at the first drive past it neither a reserve covers
+  // it nor the battery the plan has left there (`budget`, by default task().cost_bound(), less
+  // the plan's true cost before the drive) would back out from it and reach an exit another way,
+  // backing out of any hazard on that way too. Such a hazard adds its probability p, or, where
+  // the battery left covers the way out but not backing out of its hazards, p times the chance
+  // that one of those blocks as well. No battery helps at a pipe with no other way out or a
+  // drive that does not start at a pipe end; without CompileOptions::contingency no way out is
+  // computed, so every hazard passed counts its p. A blockage is met where the plan first passes
+  // it, and a hazard passed safely is open after, so later passes do not count; nor does a second
+  // blockage on the way out after a first (the reserve's second level). Runtime: O(hazards passed x
+  // distinct hazards passed).
+  StrandRisk strand_risk(std::span<const ActionId> plan,
+                         std::optional<Cost> budget = std::nullopt) const;
 
  private:
   friend class SewerTaskCompiler;
   SewerTask();
 
+ public:
+  // The battery to back out from a hazard and reach an exit another way, from the start of the
+  // action that passes it: `plain` without a reserve on the way out, `full` with one at every
+  // hazard the way out passes; `risk` the chance that one of those blocks it too (with `plain`
+  // only, the robot would be stranded then). kInfiniteCost: no way out, or the drive does not
+  // start at a pipe end.
+  struct WayBack {
+    Cost plain = kInfiniteCost;
+    Cost full = kInfiniteCost;
+    double risk = 0;
+  };
+
+ private:
   CompiledTask task_;
   CompileStatistics statistics_;
   std::unique_ptr<detail::PositionGraph> graph_;
@@ -214,6 +233,7 @@ class SewerTask {
   struct HazardPass {
     std::uint32_t hazard = 0;
     bool covered = false;
+    WayBack way_back{};
   };
   std::vector<std::uint32_t> pass_begin_;
   std::vector<HazardPass> passes_;

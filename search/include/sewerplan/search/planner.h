@@ -94,9 +94,9 @@ struct PlannerOptions {
   // Chance-constrained contingency (issue 34, docs/planning.md, "A bound on the chance of being
   // stranded"): the most the plan's computed stranding risk (PlanOutcome::strand_probability)
   // may be, 0..1. 0: every hazard keeps its reserve (as `contingency` alone); 1: none does (as
-  // contingency = false); in between, the planner lets hazards go without their reserve, by
-  // probability levels, where that buys tasks or saves time and the plan's risk stays within
-  // the bound (at most kMaxStrandRounds plans more; deterministic). Only with `contingency`.
+  // contingency = false); in between, the planner insures the hazards whose reserves cost the
+  // fewest tasks per unit of risk they remove, until the plan's risk is within the bound (at
+  // most kMaxStrandRounds plans more; deterministic). Only with `contingency`.
   double max_strand_risk = 0;
   // Which hazards keep their reserve (domain::CompileOptions::insured; empty: all). Set by the
   // search for max_strand_risk; a caller may set it to plan with one set.
@@ -144,10 +144,10 @@ struct PlanOutcome {
 };
 
 // At most this many plans beyond the fully insured one choose which hazards go without their
-// reserve (PlannerOptions::max_strand_risk): one per probability level (at most
-// kMaxStrandRounds - 2 levels, spread over the distinct probabilities when there are more), then
-// up to 2 to insure again the riskiest hazard of the first level that went over the bound.
-inline constexpr std::size_t kMaxStrandRounds = 8;
+// reserve (PlannerOptions::max_strand_risk): the plan with none, then per round one plan for each
+// of at most kStrandCandidates hazards the current plan passes uninsured (docs/planning.md).
+inline constexpr std::size_t kMaxStrandRounds = 12;
+inline constexpr std::size_t kStrandCandidates = 4;
 
 // kAuto's choice for `task`; any other algorithm is returned as it is.
 Algorithm resolve(Algorithm algorithm, const domain::CompiledTask& task);
