@@ -93,10 +93,10 @@ struct RecoveryStage {
 
 // The default table: the stages in the order they are tried for each error.
 inline constexpr std::array<RecoveryStage, 6> kRecoveryTable{{
-    {RecoveryPhase::kReboot, 2},
+    {RecoveryPhase::kReboot, 2, 0},
     {RecoveryPhase::kBackUpAndRetry, 2, 0.05},
-    {RecoveryPhase::kLiftHeadAndRetry, 1},
-    {RecoveryPhase::kPush, 1},
+    {RecoveryPhase::kLiftHeadAndRetry, 1, 0},
+    {RecoveryPhase::kPush, 1, 0},
     {RecoveryPhase::kBackOffToSafety, 1, 0.3},
     {RecoveryPhase::kBackOutOfManhole, 1, 0.3},
 }};
