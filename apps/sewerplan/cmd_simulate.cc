@@ -184,9 +184,9 @@ int run(const SimulateOptions& o, Context& c) {
   executor::ExecutorOptions options;
   if (!o.recovery.empty()) {
     Result<std::string> text = read_text_file(o.recovery);
-    Result<executor::RecoveryConfig> recovery =
+    Result<executor::RecoveryProfile> recovery =
         text.has_value() ? executor::read_recovery_json(*text, o.recovery)
-                         : Result<executor::RecoveryConfig>(text.error());
+                         : Result<executor::RecoveryProfile>(text.error());
     if (!recovery.has_value()) return fail(c, o.json, recovery.error());
     options.recovery = *recovery;
   }
@@ -327,7 +327,8 @@ void add_simulate_command(CLI::App& app, Context& context) {
   auto* random = cmd->add_option("--random-faults", options->random_faults,
                                  "Random faults: SEED[,RATE] (RATE obstacles per km, default 20)");
   random->excludes(faults);
-  cmd->add_option("--recovery", options->recovery, "Recovery settings (JSON, docs/executor.md)");
+  cmd->add_option("--recovery", options->recovery,
+                  "Recovery profile (JSON, docs/formats/recovery-json.md)");
   cmd->add_flag("--allow-push", options->allow_push,
                 "Allow recovery phase 3, pushing an obstacle (off for real sewers)");
   cmd->add_option("--log", options->log, "Write the event log as JSON lines");

@@ -52,8 +52,8 @@ bool disabled(const hal::FaultScenario& faults, const hal::SimRobot& robot) {
 }
 
 // The staged recovery of ours and the baseline.
-executor::RecoveryConfig recovery_of(const RunSettings& settings) {
-  executor::RecoveryConfig recovery;
+executor::RecoveryProfile recovery_of(const RunSettings& settings) {
+  executor::RecoveryProfile recovery;
   recovery.push_allowed = settings.push_allowed;
   return recovery;
 }
@@ -79,7 +79,7 @@ static_assert(cleared_from_both_sides_or_neither(),
 // obstacles those are is the recovery's own answer (executor::recovery_clears, from hal's table),
 // so the oracle and the action controller agree on every obstacle, met either way.
 Mission clairvoyant(const Mission& mission, const hal::FaultScenario& faults,
-                    const executor::RecoveryConfig& recovery) {
+                    const executor::RecoveryProfile& recovery) {
   Mission known = mission;
   for (const hal::Obstacle& o : faults.obstacles) {
     if (!executor::recovery_clears(recovery, o.kind, hal::Approach::kFront)) {
@@ -372,7 +372,7 @@ Result<RunResult> run_one(const SewerMap& map, const Mission& mission, const Run
   // The oracle knows which hazards stop the robot: it keeps no battery for the others.
   executor::ReplannerOptions oracle_options{.clock = &no_time};
   oracle_options.planner.contingency = false;
-  const executor::RecoveryConfig recovery = recovery_of(settings);
+  const executor::RecoveryProfile recovery = recovery_of(settings);
   const Mission bound = clairvoyant(world_mission, *faults, recovery);
   executor::Replanner oracle(world, bound, oracle_options);
   const executor::PlanResponse plan = oracle.plan("oracle");

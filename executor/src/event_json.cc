@@ -43,8 +43,8 @@ std::optional<Failure::Kind> parse_failure_kind(std::string_view name) {
 }
 
 std::optional<RecoveryPhase> parse_phase(std::string_view name) {
-  for (const RecoveryStage& stage : kRecoveryTable) {
-    if (stage.logged == name) return stage.phase;
+  for (const RecoveryManoeuvre& m : kRecoveryManoeuvres) {
+    if (m.logged == name) return m.phase;
   }
   return std::nullopt;
 }

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The stages of kRecoveryTable (recovery.h), carried out for one job (staged_recovery.h).
+// The rows of a RecoveryProfile (recovery.h), carried out for one job (staged_recovery.h).
 #include "staged_recovery.h"
 
 #include <algorithm>
@@ -29,7 +29,8 @@ constexpr double kMoved_m = 0.001;
 class RebootBudget {
  public:
   static constexpr int kRebootsPerJob = 20;
-  explicit RebootBudget(const RecoveryConfig& config) : max_in_a_row_(config.max_reboots) {}
+  explicit RebootBudget(const RecoveryProfile& profile)
+      : max_in_a_row_(profile.tries(RecoveryPhase::kReboot)) {}
 
   // True when `failed`, a malfunction, may be rebooted through; counts the reboot.
   bool take(const hal::JobReport& failed) {
@@ -65,9 +66,19 @@ struct StagedRecovery::Cleared {
   hal::JobReport report;
 };
 
+// What one try of a blockage row came to: the end of recovery (cleared, stuck, another error), on
+// to the next row, or neither (the row is tried again while its bound allows).
+struct StagedRecovery::Try {
+  std::optional<Cleared> cleared;
+  bool next_row = false;
+  static Try ended(Cleared c) { return Try{std::move(c), false}; }
+  static Try next() { return Try{std::nullopt, true}; }
+  static Try again() { return Try{std::nullopt, false}; }
+};
+
 std::optional<Failure> StagedRecovery::run_job(const Job& job, const fusion::RobotAction& action) {
   Job current = job;
-  RebootBudget reboots(config_);
+  RebootBudget reboots(profile_);
   hal::JobReport r = host_.execute_job(current);
   for (;;) {
     if (r.ok()) return std::nullopt;
@@ -131,13 +142,13 @@ std::optional<Failure> StagedRecovery::run_job(const Job& job, const fusion::Rob
   }
 }
 
-// A job of the recovery stages, rebooting through transient malfunctions (at most max_reboots
-// times); its report's progress is the whole distance driven.
+// A job of the recovery stages, rebooting through transient malfunctions (as the reboot row
+// allows); its report's progress is the whole distance driven.
 hal::JobReport StagedRecovery::recovery_job(const Job& job) {
   Job current = job;
   hal::JobReport r = host_.execute_job(current);
   double progress_m = r.progress_m;
-  RebootBudget reboots(config_);
+  RebootBudget reboots(profile_);
   while (!r.ok() && r.error->kind == hal::RobotErrorKind::kMalfunction && reboots.take(r)) {
     const Result<void> rebooted = host_.reboot();
     host_.log_recovery(RecoveryPhase::kReboot, rebooted.has_value());
@@ -163,60 +174,82 @@ bool StagedRecovery::take_recovered(const Job& job, hal::JobReport& r) {
   return true;
 }
 
+// The blockage rows of the profile, in its order, each tried as often as its bound says: one
+// loop over the table.
 StagedRecovery::Cleared StagedRecovery::clear_blockage(Job rest) {
-  const RecoveryConfig& c = config_;
-  // `back_m`: how far the retry drives back to where the robot met the obstacle. Blocked again
-  // further on, it met another obstacle: that one gets recovery of its own.
-  auto retry = [&](const Job& job, RecoveryPhase phase, double back_m) -> std::optional<Cleared> {
-    hal::JobReport r = host_.execute_job(job);
-    host_.log_recovery(phase, r.ok());
-    if (r.ok()) return Cleared{Cleared::How::kDone, job, r};
-    if (r.error->kind != hal::RobotErrorKind::kBlockage || r.progress_m > back_m + 0.01) {
-      return Cleared{Cleared::How::kOtherError, job, std::move(r)};
-    }
-    if (auto left = rest_of(job, r.progress_m)) rest = *left;
-    return std::nullopt;
-  };
-  for (int i = 0; i < stage_tries(c, RecoveryPhase::kBackUpAndRetry); ++i) {
-    const hal::JobReport back = recovery_job(back_off(rest, c.backup_m));
-    if (!back.ok()) {
-      if (back.error->kind == hal::RobotErrorKind::kMalfunction) {
-        return Cleared{Cleared::How::kStuck, rest, back};
-      }
-      break;  // no room to back up: on to the head
-    }
-    if (auto done = retry(lengthened(rest, back.progress_m), RecoveryPhase::kBackUpAndRetry,
-                          back.progress_m)) {
-      return *done;
-    }
-  }
-  for (int i = 0; i < stage_tries(c, RecoveryPhase::kLiftHeadAndRetry); ++i) {
-    for (const Job& head : {Job{LiftHead{}}, Job{LowerHead{}}}) {
-      hal::JobReport moved = recovery_job(head);
-      if (!moved.ok()) return Cleared{Cleared::How::kStuck, head, std::move(moved)};
-    }
-    if (auto done = retry(rest, RecoveryPhase::kLiftHeadAndRetry, 0)) return *done;
-  }
-  for (int i = 0; i < stage_tries(c, RecoveryPhase::kPush); ++i) {
-    // The same way the drive went: backing, with the rear head (hal/obstacle_clearing.h says
-    // from which sides a push works).
-    const std::optional<Job> push_job = push_for(rest);
-    if (!push_job || !hal::works_from(hal::Clearing::kPush, approach_of(*push_job))) break;
-    hal::JobReport push = host_.execute_job(*push_job);
-    host_.log_recovery(RecoveryPhase::kPush, push.ok());
-    if (push.ok()) return Cleared{Cleared::How::kDone};
-    // A push that got on and was stopped again moved the obstacle it met: what stopped it lies
-    // further on (another obstacle, a danger spot). That is the drive's own error, with recovery
-    // of its own and its own words and place, as is a malfunction; the rest of the drive is
-    // driven, not pushed. (A second obstacle was reported with the first one's text, issue 30.)
-    if (push.error->kind != hal::RobotErrorKind::kBlockage || push.progress_m > kMoved_m) {
-      return Cleared{Cleared::How::kOtherError, rest, std::move(push)};
+  for (const RecoveryStage& stage : profile_.stages) {
+    if (manoeuvre(stage.phase).error != hal::RobotErrorKind::kBlockage) continue;
+    for (int i = 0; i < profile_.tries(stage); ++i) {
+      const Try t = try_stage(stage, rest);
+      if (t.cleared) return *t.cleared;
+      if (t.next_row) break;
     }
   }
   return Cleared{Cleared::How::kStays};
 }
 
-// DANGER: back off to the last safe position, and report the spot or the passage.
+// One try of the blockage row `stage` on `rest`, the rest of the drive (shortened when the retry
+// got on before it was blocked again).
+StagedRecovery::Try StagedRecovery::try_stage(const RecoveryStage& stage, Job& rest) {
+  // `back_m`: how far the retry drives back to where the robot met the obstacle. Blocked again
+  // further on, it met another obstacle: that one gets recovery of its own.
+  auto retry = [&](const Job& job, double back_m) -> Try {
+    hal::JobReport r = host_.execute_job(job);
+    host_.log_recovery(stage.phase, r.ok());
+    if (r.ok()) return Try::ended(Cleared{Cleared::How::kDone, job, r});
+    if (r.error->kind != hal::RobotErrorKind::kBlockage || r.progress_m > back_m + 0.01) {
+      return Try::ended(Cleared{Cleared::How::kOtherError, job, std::move(r)});
+    }
+    if (auto left = rest_of(job, r.progress_m)) rest = *left;
+    return Try::again();
+  };
+  switch (stage.phase) {
+    case RecoveryPhase::kBackUpAndRetry: {
+      const hal::JobReport back = recovery_job(back_off(rest, stage.distance_m));
+      if (!back.ok()) {
+        if (back.error->kind == hal::RobotErrorKind::kMalfunction) {
+          return Try::ended(Cleared{Cleared::How::kStuck, rest, back});
+        }
+        return Try::next();  // no room to back up: on to the next row
+      }
+      return retry(lengthened(rest, back.progress_m), back.progress_m);
+    }
+    case RecoveryPhase::kLiftHeadAndRetry:
+      for (const Job& head : {Job{LiftHead{}}, Job{LowerHead{}}}) {
+        hal::JobReport moved = recovery_job(head);
+        if (!moved.ok()) return Try::ended(Cleared{Cleared::How::kStuck, head, std::move(moved)});
+      }
+      return retry(rest, 0);
+    case RecoveryPhase::kPush: {
+      // The same way the drive went: backing, with the rear head (hal/obstacle_clearing.h says
+      // from which sides a push works).
+      const std::optional<Job> push_job = push_for(rest);
+      if (!push_job || !hal::works_from(hal::Clearing::kPush, approach_of(*push_job))) {
+        return Try::next();
+      }
+      hal::JobReport push = host_.execute_job(*push_job);
+      host_.log_recovery(RecoveryPhase::kPush, push.ok());
+      if (push.ok()) return Try::ended(Cleared{Cleared::How::kDone});
+      // A push that got on and was stopped again moved the obstacle it met: what stopped it lies
+      // further on (another obstacle, a danger spot). That is the drive's own error, with
+      // recovery of its own and its own words and place, as is a malfunction; the rest of the
+      // drive is driven, not pushed. (A second obstacle was reported with the first one's text,
+      // issue 30.)
+      if (push.error->kind != hal::RobotErrorKind::kBlockage || push.progress_m > kMoved_m) {
+        return Try::ended(Cleared{Cleared::How::kOtherError, rest, std::move(push)});
+      }
+      return Try::again();
+    }
+    case RecoveryPhase::kReboot:
+    case RecoveryPhase::kBackOffToSafety:
+    case RecoveryPhase::kBackOutOfManhole:
+      break;  // not a blockage's
+  }
+  return Try::next();
+}
+
+// DANGER: back off to the last safe position (the danger rows: which one by where the robot is),
+// and report the spot or the passage.
 std::optional<Failure> StagedRecovery::danger(const Job& job, const fusion::RobotAction& action,
                                               const hal::JobReport& r) {
   if (const auto* pass = std::get_if<fusion::PassManhole>(&action);
@@ -234,8 +267,11 @@ std::optional<Failure> StagedRecovery::danger(const Job& job, const fusion::Robo
         .kind = Failure::Kind::kStuck, .detail = r.error->reason, .cause = r.error->cause};
   }
   std::optional<Failure> failure = blocked_here(Failure::Kind::kDangerInPipe, job, *r.error);
-  const hal::JobReport back = host_.execute_job(back_off(job, config_.danger_backoff_m));
-  host_.log_recovery(RecoveryPhase::kBackOffToSafety, back.ok());
+  const RecoveryStage* stage = profile_.stage(RecoveryPhase::kBackOffToSafety);
+  if (stage != nullptr && profile_.tries(*stage) > 0) {
+    const hal::JobReport back = host_.execute_job(back_off(job, stage->distance_m));
+    host_.log_recovery(RecoveryPhase::kBackOffToSafety, back.ok());
+  }
   return failure;
 }
 
@@ -243,10 +279,11 @@ std::optional<Failure> StagedRecovery::danger(const Job& job, const fusion::Robo
 // model only lets it pass the manhole (and a U-turn exceeds every turn limit), so with the
 // passage closed it could be trapped at the mouth; in the pipe it can drive back the way it came.
 void StagedRecovery::back_out_of_manhole() {
+  const RecoveryStage* stage = profile_.stage(RecoveryPhase::kBackOutOfManhole);
   const auto* at = std::get_if<domain::AtSlot>(&tracker_.position());
-  if (at == nullptr) return;
+  if (stage == nullptr || profile_.tries(*stage) == 0 || at == nullptr) return;
   const Slot& slot = map_.slot(at->manhole, at->slot);
-  const double distance = std::min(config_.danger_backoff_m, map_.pipe(slot.pipe).length_m / 2);
+  const double distance = std::min(stage->distance_m, map_.pipe(slot.pipe).length_m / 2);
   if (distance <= 0) return;
   // Facing the manhole, the pipe is behind the robot; facing the pipe, ahead.
   const Job back_job = tracker_.heading_end() == slot.pipe_end

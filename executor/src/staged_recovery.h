@@ -3,12 +3,12 @@
 //
 // Private to executor. The Executor's run loop hands it each job of an action; it runs the job
 // through its host (which sends it to the robot, logs it and moves the dead reckoning), and when
-// the robot reports an error it works through the table's stages for that error: reboot and
-// resume; back up and retry, lift the head and retry, push; back off from a danger, back out of a
-// manhole. What the stages cannot clear comes back as a Failure for the Replanner, placed where
-// the dead reckoning puts the robot.
+// the robot reports an error it works through the profile's rows for that error: reboot and
+// resume; the blockage rows in their order (back up and retry, lift the head and retry, push);
+// back off from a danger, back out of a manhole. What the stages cannot clear comes back as a
+// Failure for the Replanner, placed where the dead reckoning puts the robot.
 //
-//   StagedRecovery recovery(map, config, speed_mps, tracker, host);
+//   StagedRecovery recovery(map, profile, speed_mps, tracker, host);
 //   if (std::optional<Failure> f = recovery.run_job(job, action)) replan(*f);
 #pragma once
 
@@ -49,10 +49,10 @@ struct RecoveryHost {
 class StagedRecovery {
  public:
   // All must outlive this object.
-  StagedRecovery(const SewerMap& map, const RecoveryConfig& config, double speed_mps,
+  StagedRecovery(const SewerMap& map, const RecoveryProfile& profile, double speed_mps,
                  const DeadReckoning& tracker, RecoveryHost host)
       : map_(map),
-        config_(config),
+        profile_(profile),
         speed_mps_(speed_mps),
         tracker_(tracker),
         host_(std::move(host)) {}
@@ -66,18 +66,20 @@ class StagedRecovery {
 
  private:
   struct Cleared;
+  struct Try;
   hal::JobReport recovery_job(const Job& job);
   // After a reboot for the malfunction `r` of `job`: true when `r` was the link's (the job's
   // result was lost) and is now the robot's own report of the job.
   bool take_recovered(const Job& job, hal::JobReport& r);
   Cleared clear_blockage(Job rest);
+  Try try_stage(const RecoveryStage& stage, Job& rest);
   std::optional<Failure> danger(const Job& job, const fusion::RobotAction& action,
                                 const hal::JobReport& r);
   void back_out_of_manhole();
   Failure blocked_here(Failure::Kind kind, const Job& job, const hal::RobotError& error) const;
 
   const SewerMap& map_;
-  const RecoveryConfig& config_;
+  const RecoveryProfile& profile_;
   double speed_mps_;
   const DeadReckoning& tracker_;
   RecoveryHost host_;

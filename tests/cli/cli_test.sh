@@ -266,8 +266,13 @@ expect 0 'phase=2: lift the head and retry ok=yes' -- "$sp" simulate --map "$ais
 expect 1 'cut.json' -- "$sp" simulate --map "$ais" --mission "$mission" --faults "$tmp/cut.json"
 echo '{"format": "sewerplan-faults", "version": 1, "malfunctions": [{"at_job": 2, "kind": "permanent"}]}' > "$tmp/stuck.json"
 expect 4 'beacon on: the robot cannot move' -- "$sp" simulate --map "$ais" --mission "$mission" --faults "$tmp/stuck.json" -q
-echo '{"max_reboots": -1}' > "$tmp/recovery.json"
-expect 1 'recovery.json:\$\.max_reboots: error: expected a whole number from 0 to 1000, got -1' -- "$sp" simulate --map "$ais" --mission "$mission" --recovery "$tmp/recovery.json" -q
+echo '{"format": "sewerplan-recovery", "version": 1, "malfunction": [{"manoeuvre": "reboot", "tries": -1}]}' > "$tmp/recovery.json"
+expect 1 'recovery.json:\$\.malfunction\[0\]\.tries: error: expected a whole number from 0 to 1000, got -1' -- "$sp" simulate --map "$ais" --mission "$mission" --recovery "$tmp/recovery.json" -q
+# The profile is the policy: without the lift row the demo's lift-only obstacle stays.
+echo '{"format": "sewerplan-recovery", "version": 1, "blockage": [{"manoeuvre": "back-up", "tries": 2, "distance_m": 0.05}]}' > "$tmp/no-lift.json"
+expect 0 '' -- "$sp" simulate --map "$ais" --mission "$mission" --faults "$src/datasets/ais-testbed/faults/demo.json" --recovery "$tmp/no-lift.json" --log "$tmp/no-lift.jsonl" -q
+expect 0 '"type":"replan","reason":"blockage in P1 at' -- cat "$tmp/no-lift.jsonl"
+expect 0 'phase=2: lift the head and retry ok=yes' -- "$sp" simulate --map "$ais" --mission "$mission" --faults "$src/datasets/ais-testbed/faults/demo.json" --recovery "$src/datasets/recovery/default.json"
 expect 2 'random-faults' -- "$sp" simulate --map "$ais" --mission "$mission" --faults "$tmp/stuck.json" --random-faults 3
 # A fault file with a bad value is invalid input (1), as the docs say, not a usage error.
 echo '{"format": "sewerplan-faults", "version": 1, "obstacles": [{"pipe": "P99", "offset_m": 1}]}' > "$tmp/bad-faults.json"

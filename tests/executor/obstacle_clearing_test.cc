@@ -25,7 +25,7 @@ namespace {
 // The robot in P5 (10 m, from M3 to M6) at 5 m, its front towards M6; one job with staged
 // recovery, on the simulated robot.
 struct Bench {
-  explicit Bench(std::vector<hal::Obstacle> obstacles, RecoveryConfig recovery)
+  explicit Bench(std::vector<hal::Obstacle> obstacles, RecoveryProfile recovery)
       : ais(testing::load_ais_testbed()),
         pipe(*ais.map.find_pipe("P5")),
         config(recovery),
@@ -49,7 +49,7 @@ struct Bench {
 
   testing::AisTestbed ais;
   PipeId pipe;
-  RecoveryConfig config;
+  RecoveryProfile config;
   hal::SimRobot robot;
   detail::DeadReckoning tracker;
   fusion::RobotAction action = fusion::DriveToManhole{};
@@ -72,7 +72,7 @@ TEST(ObstacleClearing, WhatRecoveryClearsIsWhatTheOracleAssumesInBothDirections)
         hal::ObstacleKind::kPermanent}) {
     for (const bool push_allowed : {false, true}) {
       for (const bool backward : {false, true}) {
-        RecoveryConfig config;
+        RecoveryProfile config;
         config.push_allowed = push_allowed;
         // 1.5 m ahead of the robot, the way it drives.
         Bench bench({obstacle(ais, backward ? 3.5 : 6.5, kind)}, config);
@@ -99,8 +99,8 @@ TEST(ObstacleClearing, WhatRecoveryClearsIsWhatTheOracleAssumesInBothDirections)
 TEST(ObstacleClearing, WhatRecoveryClearsFollowsTheTableAndTheStagesItTries) {
   using hal::Approach;
   using hal::ObstacleKind;
-  RecoveryConfig no_push;
-  RecoveryConfig push;
+  RecoveryProfile no_push;
+  RecoveryProfile push;
   push.push_allowed = true;
   for (const Approach a : {Approach::kFront, Approach::kRear}) {
     EXPECT_TRUE(recovery_clears(no_push, ObstacleKind::kTransientLift, a));
@@ -110,10 +110,12 @@ TEST(ObstacleClearing, WhatRecoveryClearsFollowsTheTableAndTheStagesItTries) {
   EXPECT_TRUE(recovery_clears(push, ObstacleKind::kTransientPush, Approach::kFront));
   EXPECT_TRUE(recovery_clears(push, ObstacleKind::kTransientPush, Approach::kRear));
   // A stage with no tries clears nothing.
-  RecoveryConfig no_lift;
-  no_lift.lift_retries = 0;
-  EXPECT_FALSE(recovery_clears(no_lift, ObstacleKind::kTransientLift, Approach::kFront));
-  push.push_retries = 0;
+  for (RecoveryStage& stage : push.stages) stage.tries = 0;
+  EXPECT_FALSE(recovery_clears(push, ObstacleKind::kTransientLift, Approach::kFront));
+  EXPECT_FALSE(recovery_clears(push, ObstacleKind::kTransientPush, Approach::kFront));
+  // Nor does one the profile leaves out.
+  push.stages = {{RecoveryPhase::kLiftHeadAndRetry, 1}};
+  EXPECT_TRUE(recovery_clears(push, ObstacleKind::kTransientLift, Approach::kFront));
   EXPECT_FALSE(recovery_clears(push, ObstacleKind::kTransientPush, Approach::kFront));
 }
 
@@ -122,7 +124,7 @@ TEST(ObstacleClearing, WhatRecoveryClearsFollowsTheTableAndTheStagesItTries) {
 // Before, staged recovery tried no push for a backward drive and the obstacle stayed.
 TEST(ObstacleClearing, IssueThirtyAPushOnlyObstacleMetWhileBackingIsPushedBackward) {
   const auto ais = testing::load_ais_testbed();
-  RecoveryConfig config;
+  RecoveryProfile config;
   config.push_allowed = true;
   for (const Job& drive : {Job{DriveBackward{0.1, 3.0}}, Job{Scan{0.1, 3.0, true}}}) {
     Bench bench({obstacle(ais, 3.5, hal::ObstacleKind::kTransientPush)}, config);
@@ -146,7 +148,7 @@ TEST(ObstacleClearing, IssueThirtyAPushOnlyObstacleMetWhileBackingIsPushedBackwa
 // one got no recovery of its own and was reported with the first one's words (4 of 2,000 runs).
 TEST(ObstacleClearing, ASecondObstacleBehindAPushedOneGetsItsOwnRecoveryAndItsOwnWords) {
   const auto ais = testing::load_ais_testbed();
-  RecoveryConfig config;
+  RecoveryProfile config;
   config.push_allowed = true;
   const Job drive = DriveForward{0.1, 4.0};  // from 5 m: a push at 6 m, the second at 7.5 m
   {

@@ -93,7 +93,7 @@ struct JobSeen {
 using JobObserver = std::function<void(const JobSeen&)>;
 
 struct ExecutorOptions {
-  RecoveryConfig recovery;
+  RecoveryProfile recovery;
   std::size_t max_replans = 100;  // a bound against a world that keeps changing
   // The robot's odometry: its standard deviation per metre driven (wheels slip in wet pipes),
   // for manhole verification (docs/localisation.md).
