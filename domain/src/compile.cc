@@ -438,6 +438,24 @@ class SewerTaskCompiler {
     exit_need_.emplace(key, need);
     return need;
   }
+  // Calls f(u, v, prefix) for each step u -> v of `route` in order, `prefix` the cost of the route
+  // before that step (each step costs the cheapest move from u to v); stops at the first step the
+  // graph has no move for.
+  template <typename F>
+  static void for_each_step(const PositionGraph& graph, std::span<const Node> route, F&& f) {
+    Cost prefix = 0;
+    for (std::size_t i = 0; i + 1 < route.size(); ++i) {
+      const Node u = route[i];
+      const Node v = route[i + 1];
+      Cost step = kInfiniteCost;
+      graph.for_each_successor(u, [&](Node to, Cost c) {
+        if (to == v) step = std::min(step, c);
+      });
+      if (step >= kInfiniteCost) return;
+      f(u, v, prefix);
+      prefix += step;
+    }
+  }
   // For the stranding risk (SewerTask::strand_risk): the cheapest way out from `from` with
   // `first` found blocked (`plain`, as exit_need without reserves), the battery for it with a
   // reserve at every hazard it passes, insured or not (`full`: back out of that one too and reach
@@ -464,16 +482,8 @@ class SewerTaskCompiler {
     graph.exclude_pipe(first, first_was);
     way.full = way.plain;
     double none = 1;
-    Cost prefix = 0;
     std::vector<std::pair<std::uint32_t, double>> passed;
-    for (std::size_t i = 0; exit && i + 1 < route.size(); ++i) {
-      const Node u = route[i];
-      const Node v = route[i + 1];
-      Cost step = kInfiniteCost;
-      graph.for_each_successor(u, [&](Node to, Cost c) {
-        if (to == v) step = std::min(step, c);
-      });
-      if (step >= kInfiniteCost) break;
+    for_each_step(graph, route, [&](Node u, Node v, Cost prefix) {
       const std::optional<PipeId> p = graph.pipe_of(u);
       const RobotPosition at = graph.position(v);
       const auto* slot = std::get_if<AtSlot>(&at);
@@ -498,8 +508,7 @@ class SewerTaskCompiler {
           }
         }
       }
-      prefix += step;
-    }
+    });
     way.risk = 1 - none;
     way_out_.emplace(key, way);
     return way;
@@ -563,15 +572,7 @@ class SewerTaskCompiler {
       return 0;
     }
     Cost need = 0;
-    Cost prefix = 0;
-    for (std::size_t i = 0; i + 1 < route.size(); ++i) {
-      const Node u = route[i];
-      const Node v = route[i + 1];
-      Cost step = kInfiniteCost;
-      graph.for_each_successor(u, [&](Node to, Cost c) {
-        if (to == v) step = std::min(step, c);
-      });
-      if (step >= kInfiniteCost) break;
+    for_each_step(graph, route, [&](Node u, Node v, Cost prefix) {
       const std::optional<PipeId> p = graph.pipe_of(u);
       if (p && !graph.pipe_of(v)) {  // DRIVE_PIPE_TO_MANHOLE
         const RobotPosition to = graph.position(v);
@@ -582,8 +583,7 @@ class SewerTaskCompiler {
                                              mission_.profile.speed_mps, blocked));
         }
       }
-      prefix += step;
-    }
+    });
     return need;
   }
   // The hazards a route's pipe drives pass, noted uncovered (without contingency).

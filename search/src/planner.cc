@@ -10,9 +10,8 @@
 
 #include "sewerplan/search/best_first_search.h"
 #include "sewerplan/search/enforced_hill_climbing.h"
+#include "sewerplan/search/portfolio.h"
 #include "sewerplan/search/tour_search.h"
-
-#include "tour_shape.h"
 
 namespace sewerplan::search {
 
@@ -43,12 +42,7 @@ std::optional<Algorithm> algorithm_from_string(std::string_view name) {
 }
 
 Algorithm resolve(Algorithm algorithm, const domain::CompiledTask& task) {
-  if (algorithm != Algorithm::kAuto) return algorithm;
-  double states = 1;
-  for (std::size_t v = 0; v < task.variable_count(); ++v) {
-    states *= task.domain_size(domain::VarId{static_cast<std::uint32_t>(v)});
-  }
-  return states <= static_cast<double>(1 << 12) ? Algorithm::kAstar : Algorithm::kWeightedAstar;
+  return resolve(algorithm, ProblemSize{.states = state_count(task)});
 }
 
 std::unique_ptr<SearchEngine> make_engine(Algorithm algorithm, const domain::CompiledTask& task,
@@ -117,89 +111,6 @@ Error battery_exceeded(const Mission& mission, const domain::CompiledTask& task,
                    ": the cheapest order of them the tour search found needs " + energy(cheapest) +
                    " (not a proof that none fits; with --select-goals the plan does as many "
                    "tasks as fit)"};
-}
-
-// Work units: one Dijkstra node settled, or one fact or action visited by a heuristic evaluation.
-double improvement_work(const domain::CompileStatistics& compile) {
-  return 4.0 * static_cast<double>(compile.settled_nodes) + 200'000.0;
-}
-
-std::uint64_t improvement_budget(const PlannerOptions& options, const domain::CompiledTask& task,
-                                 const domain::CompileStatistics& compile) {
-  if (!options.adaptive_improvement || options.improvement_expansions == 0) {
-    return options.improvement_expansions;
-  }
-  const double per_expansion = (static_cast<double>(compile.keys) + 1.0) *
-                               static_cast<double>(task.action_count() + task.fact_count());
-  const double expansions = std::max(16.0, improvement_work(compile) / per_expansion);
-  return std::min(options.improvement_expansions, static_cast<std::uint64_t>(expansions));
-}
-
-// Whether the exact tour search fits the improvement's work: 2^K subsets x about 3K leave places
-// x K goals x 3 options each.
-bool exact_fits(const domain::CompiledTask& task, const domain::CompileStatistics& compile) {
-  const std::size_t k = task.variable_count() - 1;
-  if (k > kMaxExactGoals) return false;
-  const double work = std::ldexp(1.0, static_cast<int>(k)) * 9.0 * static_cast<double>(k * k);
-  return work <= improvement_work(compile);
-}
-
-// Issue 16: beyond that estimate, the exact tour search still replaces the improvement where its
-// table (which bounds its work: each entry is extended once) is at most kExactBytesPerSettled per
-// node the compile's route searches settled, up to kAutoExactBytes. The estimate above counts
-// every goal at every entry and ignores that a first plan doing every task bounds the search (see
-// exact_tour_search's `upper`); on 10,000 manholes with 15 spread tasks it left the improvement to
-// weighted A*, whose budget found nothing, and plans 6 % above the optimum. The table's size is
-// known before it is allocated, so a table too large costs nothing. Deterministic: sizes, not
-// time. 0: none.
-constexpr std::size_t kExactBytesPerSettled = 512;
-constexpr std::size_t kAutoExactBytes = std::size_t{32} << 20U;
-
-std::size_t exact_bytes(const domain::CompiledTask& task,
-                        const domain::CompileStatistics& compile) {
-  if (exact_fits(task, compile)) return kExactDefaultBytes;
-  const std::size_t k = task.variable_count() - 1;
-  if (k > kMaxExactGoals) return 0;
-  const std::size_t bytes =
-      std::min(kAutoExactBytes, kExactBytesPerSettled * compile.settled_nodes);
-  // At least one leave place per goal, each in half the subsets, 12 bytes an entry: a table
-  // surely too large is not even read.
-  return (std::size_t{1} << k) / 2 * k * 12 <= bytes ? bytes : 0;
-}
-
-// Anytime improvement: each search may only return plans cheaper than the best so far. One that
-// exhausts its bounded space proves no cheaper plan exists.
-void improve(const domain::CompiledTask& task, const StopCondition& stop, const Clock& clock,
-             std::uint64_t budget, SearchResult& best, PlanOutcome& outcome) {
-  // Every plan sets each goal variable by an action of its own, and a best-first search expands
-  // every state on the path it returns: within as many expansions as there are goals, none can
-  // find a plan (issue 16: 16 expansions over 50 tasks, each evaluating the heuristic on a hundred
-  // successors, took 5 times the compile's time on 1,000 manholes and never found one).
-  if (budget < task.variable_count()) return;
-  SearchStatistics total = best.statistics;
-  for (double weight : {3.0, 2.0, 1.5, 1.0}) {
-    if (budget == 0 || best.cost == 0) break;
-    const bool last = weight == 1.0;
-    auto h = make_heuristic(last ? HeuristicKind::kMax : HeuristicKind::kFf, task);
-    BestFirstSearch search(task, *h, BestFirstSearch::weighted_astar(weight), best.cost - 1);
-    StopCondition limited = stop;
-    limited.with_max_expansions(budget);
-    SearchResult r = search.search(limited, clock);
-    accumulate(total, r.statistics);
-    budget -= std::min(budget, r.statistics.expanded);
-    if (r.status == SearchStatus::kSolved) {
-      best.plan = std::move(r.plan);
-      best.cost = r.cost;
-      ++outcome.improvements;
-      outcome.optimal = last;
-    } else if (r.status == SearchStatus::kUnsolvable) {
-      outcome.optimal = true;  // nothing cheaper within the bound
-      break;
-    } else {
-      break;  // a limit, or cancelled: keep the best plan so far
-    }
-  }
-  best.statistics = total;
 }
 
 // The outcome of `result`, a plan of `compiled`: its primitive plan, costs, tasks dropped and
@@ -272,87 +183,25 @@ Result<PlanOutcome> plan_once(const SewerMap& map, const Mission& mission,
     return search_failure(SearchStatus::kUnsolvable, mission, progress, task);
   }
   if (auto stopped = stop.interrupted()) return search_failure(*stopped, mission, progress, task);
-  const Algorithm algorithm = resolve(options.algorithm, task);
-  const bool optimal_search = algorithm == Algorithm::kAstar || algorithm == Algorithm::kExact;
-  const HeuristicKind kind =
-      options.heuristic.value_or(optimal_search ? HeuristicKind::kMax : HeuristicKind::kFf);
-  std::unique_ptr<Heuristic> heuristic = make_heuristic(kind, task);
-  std::unique_ptr<SearchEngine> engine = make_engine(algorithm, task, *heuristic, options.weight);
   if (options.max_expansions > 0) stop.with_max_expansions(options.max_expansions);
-  // kAuto beyond exhaustive A*: the tour search's first plan, where the task has its shape.
-  std::optional<SearchResult> tour;
-  bool exact = false;
-  // The tour search's reading of the task's shape, for the exact searches after it.
-  std::optional<detail::Shape> shape;
-  auto exact_after_tour = [&](std::size_t max_bytes, Cost upper) {
-    return detail::exact_tour_search(task, shape, stop, clock, clock.now_s(), max_bytes, upper);
-  };
-  if (algorithm == Algorithm::kExact) {
-    tour = exact_tour_search(task, stop, &clock);
-    exact = tour.has_value();
-    if (tour && tour->status != SearchStatus::kSolved) {
-      return search_failure(tour->status, mission, progress, task);
-    }
-  } else if (options.algorithm == Algorithm::kAuto && algorithm != Algorithm::kAstar) {
-    TourReport report;
-    const double start_s = clock.now_s();
-    shape = detail::read_shape(task, &stop);
-    tour = detail::tour_search(task, shape, stop, clock, start_s, report);
-    if (report.stopped && !tour) return search_failure(*report.stopped, mission, progress, task);
-    if (!tour && report.has_shape && task.penalty_unit() == 0 &&
-        report.cheapest_order != domain::kInfiniteCost &&
-        report.cheapest_order > task.cost_bound()) {
-      // Issue 14: a mission that does not fit the battery sent the fallback search through the
-      // whole state space until the time limit. Prove it where the exact search can; else say
-      // so at once (not a proof: exit 5, not 4).
-      tour = exact_after_tour(kExactDefaultBytes, domain::kInfiniteCost);
-      exact = tour.has_value();
-      if (!tour) return battery_exceeded(mission, task, report.cheapest_order);
-      if (tour->status != SearchStatus::kSolved) {
-        return search_failure(tour->status, mission, progress, task);
-      }
-    }
-  }
-  SearchResult result = tour ? std::move(*tour) : engine->search(stop, clock);
-  if (result.status != SearchStatus::kSolved) {
-    return search_failure(result.status, mission, progress, task);
-  }
+  // Which searches run, with which budgets: from the problem's size, never from the compile's
+  // work (portfolio.h).
+  const Portfolio portfolio =
+      choose_portfolio(problem_size(map, task, compiled->statistics()), options);
+  Result<PortfolioRun> run = run_portfolio(
+      portfolio, task, stop, clock,
+      {.status = [&](SearchStatus s) { return search_failure(s, mission, progress, task); },
+       .battery_exceeded =
+           [&](Cost cheapest) { return battery_exceeded(mission, task, cheapest); }});
+  if (!run.has_value()) return run.error();
   PlanOutcome outcome;
-  outcome.optimal = exact || (!tour && optimal_search && heuristic->admissible());
-  bool exact_improved = false;
-  const std::size_t exact_table = exact_bytes(task, compiled->statistics());
-  if (!outcome.optimal && tour && options.improvement_expansions > 0 &&
-      options.adaptive_improvement && exact_table > 0) {
-    // A first plan doing every task bounds the optimum, which then does every task too.
-    const bool all_done = task.penalty_unit() == 0 || result.cost < task.penalty_unit();
-    // `tour` is the tour search's (an exact search's plan is optimal): the shape is read.
-    std::optional<SearchResult> best =
-        exact_after_tour(exact_table, all_done ? result.cost : domain::kInfiniteCost);
-    if (best && best->status == SearchStatus::kSolved) {
-      if (best->cost < result.cost) ++outcome.improvements;
-      best->statistics.time_s += result.statistics.time_s;
-      result = std::move(*best);
-      outcome.optimal = true;
-      exact_improved = true;
-    }
-  }
-  if (!outcome.optimal && options.improvement_expansions > 0) {
-    improve(task, stop, clock, improvement_budget(options, task, compiled->statistics()), result,
-            outcome);
-  }
+  outcome.optimal = run->optimal;
+  outcome.improvements = run->improvements;
   // The deadline (or a cancel) came after a first plan, before the planner had done all it meant
   // to: the plan is the best found by then.
   outcome.best_so_far = stop.interrupted().has_value();
-  complete(*compiled, mission, result, outcome, strand_budget);
-  outcome.algorithm = exact  ? std::string("exact tour search")
-                      : tour ? std::string("tour search")
-                             : std::string(engine->name()) + " + " + std::string(heuristic->name());
-  if (outcome.improvements > 0) {
-    outcome.algorithm +=
-        exact_improved ? ", improved by the exact tour search" : ", improved by weighted A*";
-  } else if (exact_improved) {
-    outcome.algorithm += ", proven optimal by the exact tour search";
-  }
+  complete(*compiled, mission, run->result, outcome, strand_budget);
+  outcome.algorithm = std::move(run->algorithm);
   return outcome;
 }
 

@@ -68,12 +68,12 @@ struct PlannerOptions {
   // budget rather than a time budget, so that the plan does not depend on the machine's speed.
   // 0: keep the first plan. With adaptive_improvement, this is a cap.
   std::uint64_t improvement_expansions = 10'000;
-  // Issue 16: the improvement budget follows the problem: about as much work as the compile did
-  // (its Dijkstra nodes settled), counted in heuristic evaluations times the task's size, so a
-  // small network does not pay 10,000 expansions for a plan found in microseconds; and where the
-  // tour search applies and the exact tour search (tour_search.h) fits in that work, or its table
-  // is small beside the compile's work (docs/planning.md), it replaces the improvement and proves
-  // the plan optimal. Deterministic: counts and sizes, not time.
+  // Issue 16: the improvement budget follows the problem's size (portfolio.h, choose_portfolio:
+  // since issue 33 from sizes alone, never from the compile's own work), so a small network does
+  // not pay 10,000 expansions for a plan found in microseconds; where the tour search applies and
+  // the exact tour search (tour_search.h) fits that budget, or its table is small beside the
+  // estimated route work (docs/planning.md, "The portfolio"), it replaces the improvement and
+  // proves the plan optimal. Deterministic: counts and sizes, not time.
   bool adaptive_improvement = true;
   // Goal selection (domain/compile.h, CompileOptions::select_goals): do as many tasks as can be
   // done and still end the mission, rather than fail when not all can. The plan's dropped tasks
