@@ -152,13 +152,15 @@ std::optional<Arrival> Localising::follow_filter(const Job& job, const hal::JobR
       // Out through a mouth the robot saw: its direction relative to the arrival's.
       if (report.ok()) {
         if (last_observation_ && turn->to_slot < last_observation_->slots.size()) {
-          step = filter.turn(last_observation_->slots[turn->to_slot].relative_deg);
+          step = filter.turn(last_observation_->slots[turn->to_slot].relative_deg,
+                             report.turn_measured_deg);
         } else {
           step = Error{ErrorCode::kInvalidArgument, "a turn by a mouth the robot did not see"};
         }
       }
     } else if (report.ok() && at != nullptr) {
-      step = filter.pass(at->manhole, SlotIndex{turn->from_slot}, SlotIndex{turn->to_slot});
+      step = filter.pass(at->manhole, SlotIndex{turn->from_slot}, SlotIndex{turn->to_slot},
+                         report.turn_measured_deg);
     }
     if (!step.has_value()) usable_ = false;
     return std::nullopt;

@@ -80,6 +80,12 @@ Result<void> check_options(const LocalisationOptions& o) {
     return bad("ambiguity_probability", o.ambiguity_probability, "in [0, 1]");
   if (!finite_in(o.verify_probability, 0, 1))
     return bad("verify_probability", o.verify_probability, "in [0, 1]");
+  if (!std::isfinite(o.turn_sd_deg) || o.turn_sd_deg <= 0 || o.turn_sd_deg > 90)
+    return bad("turn_sd_deg", o.turn_sd_deg, "in (0, 90]");
+  if (!finite_in(o.direction_off_share, 0, 1))
+    return bad("direction_off_share", o.direction_off_share, "in [0, 1]");
+  if (!finite_in(o.direction_off_max_deg, 0, 180))
+    return bad("direction_off_max_deg", o.direction_off_max_deg, "in [0, 180]");
   const SignatureNoise& n = o.noise;
   for (auto [name, value] : {std::pair{"noise.direction_deg", n.direction_deg},
                              {"noise.step_m", n.step_m},
@@ -249,14 +255,27 @@ Result<void> TopologicalFilter::no_manhole_within(double distance_m) {
   return {};
 }
 
-Result<void> TopologicalFilter::turn(double relative_deg) {
+namespace {
+
+Result<void> check_measured(std::string_view update, std::optional<double> measured_deg) {
+  if (measured_deg && (!std::isfinite(*measured_deg) || *measured_deg < 0 || *measured_deg >= 360))
+    return invalid(std::string(update) + ": measured turn " + shown(*measured_deg) +
+                   " degrees is not in [0, 360)");
+  return {};
+}
+
+}  // namespace
+
+Result<void> TopologicalFilter::turn(double relative_deg, std::optional<double> measured_deg) {
   if (!std::isfinite(relative_deg) || relative_deg < 0 || relative_deg >= 360)
     return invalid("turn: direction " + shown(relative_deg) + " is not in [0, 360)");
+  if (Result<void> ok = check_measured("turn", measured_deg); !ok.has_value()) return ok;
   if (Result<void> ok = usable(); !ok.has_value()) return ok;
   if (mode_ != Mode::kAtManhole) return invalid("turn: the robot is not at a manhole");
   scratch_.clear();
   for (const Track& t : tracks_) {
-    if (std::optional<Track> next = detail::turned(*this, t, relative_deg, std::nullopt))
+    if (std::optional<Track> next =
+            detail::turned(*this, t, relative_deg, std::nullopt, measured_deg))
       scratch_.push_back(std::move(*next));
   }
   tracks_.swap(scratch_);
@@ -265,7 +284,8 @@ Result<void> TopologicalFilter::turn(double relative_deg) {
   return {};
 }
 
-Result<void> TopologicalFilter::pass(ManholeId manhole, SlotIndex from, SlotIndex to) {
+Result<void> TopologicalFilter::pass(ManholeId manhole, SlotIndex from, SlotIndex to,
+                                     std::optional<double> measured_deg) {
   const SewerMap& map = *map_;
   if (manhole.index() >= map.manhole_count())
     return invalid("pass: no manhole " + shown(manhole.value()) + " in the map");
@@ -275,6 +295,7 @@ Result<void> TopologicalFilter::pass(ManholeId manhole, SlotIndex from, SlotInde
       return invalid("pass: " + m.name + " has no slot " + std::to_string(to_paper_number(s)));
   }
   if (from == to) return invalid("pass: from and to are the same slot of " + m.name);
+  if (Result<void> ok = check_measured("pass", measured_deg); !ok.has_value()) return ok;
   if (Result<void> ok = usable(); !ok.has_value()) return ok;
   if (mode_ != Mode::kAtManhole) return invalid("pass: the robot is not at a manhole");
   const double relative =
@@ -282,7 +303,7 @@ Result<void> TopologicalFilter::pass(ManholeId manhole, SlotIndex from, SlotInde
   const Passage passage{manhole, from, to};
   scratch_.clear();
   for (const Track& t : tracks_) {
-    if (std::optional<Track> next = detail::turned(*this, t, relative, passage))
+    if (std::optional<Track> next = detail::turned(*this, t, relative, passage, measured_deg))
       scratch_.push_back(std::move(*next));
   }
   tracks_.swap(scratch_);

@@ -313,20 +313,31 @@ void explain_no_arrival(const TopologicalFilter& filter, const Track& track, dou
 }
 
 std::optional<Track> turned(const TopologicalFilter& filter, const Track& track,
-                            double relative_deg, const std::optional<Passage>& passage) {
+                            double relative_deg, const std::optional<Passage>& passage,
+                            std::optional<double> measured_deg) {
   const SewerMap& map = filter.map();
   const LocalisationOptions& o = filter.options();
+  // The robot's own turn, where its joints measured one: better than the plan's or the sighting's.
+  const double direction = measured_deg.value_or(relative_deg);
   switch (track.kind) {
     case Track::Kind::kAtMouth: {
       std::optional<SlotIndex> to;
       if (passage && passage->manhole == track.manhole && passage->from == track.slot) {
         to = passage->to;
       } else {
-        to = slot_towards(map, track.manhole, track.slot, relative_deg, o.noise.max_direction_deg);
+        to = slot_towards(map, track.manhole, track.slot, direction, o.noise.max_direction_deg);
       }
       if (!to) return std::nullopt;
       const Slot& slot = map.slot(track.manhole, *to);
       Track c = track;
+      if (measured_deg) {
+        const double mapped =
+            ccw_deg(map.slot(track.manhole, track.slot).azimuth_deg, slot.azimuth_deg);
+        c.log_weight += turn_log_likelihood(*measured_deg, mapped,
+                                            {.sd_deg = o.turn_sd_deg,
+                                             .off_share = o.direction_off_share,
+                                             .off_max_deg = o.direction_off_max_deg});
+      }
       c.kind = Track::Kind::kInPipe;
       c.pipe = slot.pipe;
       c.heading_end = static_cast<std::uint8_t>(1 - slot.pipe_end);
@@ -340,11 +351,16 @@ std::optional<Track> turned(const TopologicalFilter& filter, const Track& track,
     case Track::Kind::kInPipe: {
       // A manhole the map lacks, or no manhole at all: only straight on stays on the map. Through
       // a junction rear first, the robot leaves front first: it faces the end it was backing to.
-      if (std::abs(normalize_deg(relative_deg - 180.0)) > o.straight_through_deg)
-        return std::nullopt;
+      if (std::abs(normalize_deg(direction - 180.0)) > o.straight_through_deg) return std::nullopt;
       const bool rear_first =
           track.kind == Track::Kind::kAtJunction && track.moving_end != track.heading_end;
       Track c = rear_first ? mirrored(map, track) : track;
+      // Its mouth straight on is unknown within the window (no map to weigh the angle by).
+      if (measured_deg) {
+        c.log_weight += std::log((1 - kTurnOutlierShare) /
+                                     (2 * std::max(o.straight_through_deg, o.turn_sd_deg)) +
+                                 kTurnOutlierShare / 360.0);
+      }
       c.kind = Track::Kind::kInPipe;
       c.moving_end = c.heading_end;
       c.cleared_m = c.travelled_m;

@@ -121,6 +121,12 @@ std::optional<SlotIndex> walk_on(const SewerMap& map, ManholeId here, SlotIndex 
   return std::nullopt;
 }
 
+// Counter-clockwise angle from `from_deg` to `to_deg`, in [0, 360).
+double ccw_from(double from_deg, double to_deg) {
+  double a = std::fmod(to_deg - from_deg, 360.0);
+  return a < 0 ? a + 360.0 : a;
+}
+
 const Hypothesis* find_junction(const Estimate& e) {
   for (const Hypothesis& h : e.hypotheses)
     if (h.pose.at_unmapped_junction) return &h;
@@ -238,6 +244,93 @@ TEST(TopologicalFilter, UnmappedJunctionGivesTwoHypothesesAndADistinctiveManhole
   ASSERT_GE(e.best().assumptions.size(), 1u);
   EXPECT_EQ(e.best().assumptions.front().kind, Assumption::Kind::kUnmappedJunction);
   EXPECT_NEAR(e.best().assumptions.front().offset_m, 20, 1.0);
+}
+
+// S -P1 (30 m)- B -P2 (30 m)- C -P3- D along a street; B and C alike (a lateral north each), their
+// laterals 12 degrees apart: 280 and 268 degrees from the west mouth, too close for a sighting
+// (8 degrees) to tell apart.
+SewerMap look_alikes() {
+  const double pi = std::acos(-1.0);
+  auto north = [&](double azimuth_deg, double x) {
+    return std::pair{x + 20 * std::cos(azimuth_deg * pi / 180),
+                     20 * std::sin(azimuth_deg * pi / 180)};
+  };
+  const auto [bx, by] = north(100, 30);
+  const auto [cx, cy] = north(88, 60);
+  return SmallMap()
+      .manhole("S", 0, 0, /*exit=*/true)
+      .manhole("B", 30, 0)
+      .manhole("C", 60, 0)
+      .manhole("D", 90, 0)
+      .manhole("LB", bx, by)
+      .manhole("LC", cx, cy)
+      .pipe("P1", "S", "B")
+      .pipe("P2", "B", "C")
+      .pipe("P3", "C", "D")
+      .pipe("QB", "B", "LB", 0.3)
+      .pipe("QC", "C", "LC", 0.3)
+      .build();
+}
+
+TEST(TopologicalFilter, TheMeasuredTurnTellsApartMouthsTooCloseForASighting) {
+  const SewerMap map = look_alikes();
+  const ManholeId b = *map.find_manhole("B");
+  const ManholeId c = *map.find_manhole("C");
+  auto slot_of = [&](ManholeId m, const std::string& pipe) {
+    const PipeId p = *map.find_pipe(pipe);
+    return map.pipe(p).ends[*end_in_manhole(map, p, m)].slot;
+  };
+  const double b_lateral = ccw_from(map.slot(b, slot_of(b, "P1")).azimuth_deg,
+                                    map.slot(b, slot_of(b, "QB")).azimuth_deg);
+  const double c_lateral = ccw_from(map.slot(c, slot_of(c, "P2")).azimuth_deg,
+                                    map.slot(c, slot_of(c, "QC")).azimuth_deg);
+  ASSERT_NEAR(b_lateral, 280, 0.5);
+  ASSERT_NEAR(c_lateral, 268, 0.5);
+  // The robot drove through B unseen and stopped at C; the odometry (45 m, sigma 8 m) and a
+  // sighting half-way between the two laterals leave B the more likely, C a strong second.
+  auto at_c_unsure = [&](LocalisationOptions options) {
+    Result<TopologicalFilter> made = TopologicalFilter::create(map, options);
+    EXPECT_TRUE(made.has_value());
+    TopologicalFilter f = std::move(made).value();
+    EXPECT_TRUE(f.reset({.position = domain::InManhole{*map.find_manhole("S")}}).has_value());
+    EXPECT_TRUE(f.enter(slot_of(*map.find_manhole("S"), "P1")).has_value());
+    EXPECT_TRUE(f.drive(45, DriveDirection::kForward, 8).has_value());
+    ManholeSignature seen = expected_signature(map, c, slot_of(c, "P2"));
+    for (SlotSighting& sighting : seen.slots)
+      if (std::abs(sighting.relative_deg - c_lateral) < 1) sighting.relative_deg = 274;
+    EXPECT_TRUE(f.arrive(seen).has_value());
+    return f;
+  };
+  LocalisationOptions options;
+  options.miss_probability = 0.3;
+  TopologicalFilter f = at_c_unsure(options);
+  Estimate e = f.estimate();
+  ASSERT_TRUE(e.ambiguous) << dump(e, map);
+  ASSERT_EQ(e.best().pose.position, (domain::RobotPosition{domain::AtSlot{b, slot_of(b, "P1")}}))
+      << dump(e, map);
+  // The plan has the robot at B and turns it into B's lateral; it is at C and turns into C's,
+  // and its joints measure C's angle (268.5 degrees).
+  ASSERT_TRUE(f.pass(b, slot_of(b, "P1"), slot_of(b, "QB"), 268.5).has_value());
+  e = f.estimate();
+  EXPECT_EQ(std::get<domain::InPipe>(e.best().pose.position).pipe, *map.find_pipe("QC"))
+      << dump(e, map);
+  EXPECT_GT(e.best().probability, 0.9) << dump(e, map);
+  // The turn at B measured as B's map has it keeps B.
+  TopologicalFilter g = at_c_unsure(options);
+  ASSERT_TRUE(g.pass(b, slot_of(b, "P1"), slot_of(b, "QB"), 280.2).has_value());
+  EXPECT_EQ(std::get<domain::InPipe>(g.estimate().best().pose.position).pipe, *map.find_pipe("QB"));
+  EXPECT_GT(g.estimate().best().probability, 0.9);
+  // By turn() (a turn by direction), the same.
+  TopologicalFilter h = at_c_unsure(options);
+  ASSERT_TRUE(h.turn(280, 268.5).has_value());
+  EXPECT_EQ(std::get<domain::InPipe>(h.estimate().best().pose.position).pipe, *map.find_pipe("QC"))
+      << dump(h.estimate(), map);
+  // A measured angle outside [0, 360) is an error, naming it.
+  TopologicalFilter bad = at_c_unsure(options);
+  Result<void> refused = bad.pass(b, slot_of(b, "P1"), slot_of(b, "QB"), 360.0);
+  ASSERT_FALSE(refused.has_value());
+  EXPECT_NE(refused.error().message.find("measured turn"), std::string::npos);
+  EXPECT_FALSE(bad.turn(180, std::nan("")).has_value());
 }
 
 TEST(TopologicalFilter, MissedManholeIsRecognisedFromALateArrival) {
@@ -522,6 +615,14 @@ TEST(TopologicalFilter, BadInputIsAnErrorNeverAnAbort) {
   const Result<TopologicalFilter> narrow = TopologicalFilter::create(s.map, narrow_tails);
   ASSERT_FALSE(narrow.has_value());
   EXPECT_NE(narrow.error().message.find("odometry_outlier_scale"), std::string::npos);
+  LocalisationOptions exact_joints;
+  exact_joints.turn_sd_deg = 0;
+  const Result<TopologicalFilter> exact = TopologicalFilter::create(s.map, exact_joints);
+  ASSERT_FALSE(exact.has_value());
+  EXPECT_NE(exact.error().message.find("turn_sd_deg"), std::string::npos);
+  LocalisationOptions too_many_off;
+  too_many_off.direction_off_share = 1.5;
+  EXPECT_FALSE(TopologicalFilter::create(s.map, too_many_off).has_value());
 
   TopologicalFilter f = s.filter();
   // Lost before a reset.

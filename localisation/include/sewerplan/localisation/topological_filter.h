@@ -104,6 +104,13 @@ struct LocalisationOptions {
   double verify_probability = 0.9;
   // The measurement noise of the signatures (what compare() scores with).
   SignatureNoise noise;
+  // A turn's angle as the robot's joints measure it (hal::JobReport::turn_measured_deg): its
+  // standard deviation, and the map's direction error model that the angle is weighed with (this
+  // share of the map's slots leave their manhole up to direction_off_max_deg off their mapped
+  // azimuth: the realistic error profile's 10 % and 20 degrees, docs/simulation.md).
+  double turn_sd_deg = 1.0;
+  double direction_off_share = 0.10;
+  double direction_off_max_deg = 20;
 };
 
 // Every option finite and in range; the error names the option.
@@ -232,14 +239,20 @@ class TopologicalFilter {
   // The robot left the manhole it arrived at through the mouth `relative_deg` counter-clockwise
   // from its arrival mouth (its own view, as in a signature). Hypotheses at a mouth take the slot
   // nearest that direction (none within noise.max_direction_deg: ruled out); at an unmapped
-  // junction or a false detection only straight on continues. Error: not at a manhole, a
-  // direction outside [0, 360), lost. Runtime: O(hypotheses * slots).
-  Result<void> turn(double relative_deg);
+  // junction or a false detection only straight on continues. With `measured_deg`, the angle the
+  // robot's joints measured for the turn (same convention), each hypothesis takes the slot
+  // nearest it and is weighed by how well it fits the angle its map has between the two mouths
+  // (turn_sd_deg, and the map's direction error model): mouths too close for a sighting to tell
+  // apart are told apart by the turn. Error: not at a manhole, a direction outside [0, 360),
+  // lost. Runtime: O(hypotheses * slots).
+  Result<void> turn(double relative_deg, std::optional<double> measured_deg = std::nullopt);
 
   // As turn(), from the plan's passage: hypotheses at `manhole`'s slot `from` take slot `to`,
-  // the others the direction of `to` relative to `from`. Error: an unknown manhole or slot, from
-  // equal to to, not at a manhole.
-  Result<void> pass(ManholeId manhole, SlotIndex from, SlotIndex to);
+  // the others the direction of `to` relative to `from` (the measured angle when given). Error: an
+  // unknown manhole or slot, from equal to to, not at a manhole, a measured angle outside [0,
+  // 360).
+  Result<void> pass(ManholeId manhole, SlotIndex from, SlotIndex to,
+                    std::optional<double> measured_deg = std::nullopt);
 
   // The robot drove its last `distance_m` (> 0) without detecting a manhole: hypotheses that
   // would have passed a mouth there now carry a missed manhole, or stay before their mouth.
