@@ -149,6 +149,38 @@ struct Assumption {
 // "unmapped-junction", "missed-manhole", "false-detection".
 std::string_view to_string(Assumption::Kind kind);
 
+// What the filter learnt of the map's pipes in this mission: the manholes the map lacks that it
+// became confident of (the most likely place at an arrival, with verify_probability, and clear of
+// the pipe's ends by three standard deviations of its mapped length: nearer one, it is not told
+// apart from that end's manhole with a lateral the map lacks), and the stretches it drove without
+// detecting one (each leg to an arrival it was confident of). Distances count from a
+// pipe end (`from_end`, 0 or 1) as the robot drove them; a later arrival in the pipe is weighed
+// by the distance to the known junctions there, and the prior of a junction not yet known is
+// cut to the miss rate in a stretch already driven (docs/localisation.md, "What the filter
+// remembers"). It outlives reset(): a restart in the same mission keeps it.
+struct KnownJunction {
+  PipeId pipe{0};
+  std::uint8_t from_end = 0;
+  double distance_m = 0;  // from the end from_end
+  double var_m2 = 0;      // variance of distance_m
+  int sightings = 1;      // confident arrivals merged into it
+  friend bool operator==(const KnownJunction&, const KnownJunction&) = default;
+};
+
+struct DrivenStretch {
+  PipeId pipe{0};
+  std::uint8_t from_end = 0;
+  double from_m = 0;  // from the end from_end
+  double to_m = 0;
+  friend bool operator==(const DrivenStretch&, const DrivenStretch&) = default;
+};
+
+struct JunctionMemory {
+  std::vector<KnownJunction> junctions;  // by pipe, then distance
+  std::vector<DrivenStretch> driven;     // by pipe, in the order driven
+  friend bool operator==(const JunctionMemory&, const JunctionMemory&) = default;
+};
+
 struct Hypothesis {
   Pose pose;
   double probability = 0;
@@ -277,6 +309,15 @@ class TopologicalFilter {
   const LocalisationOptions& options() const { return options_; }
   const SewerMap& map() const { return *map_; }
 
+  // What the filter learnt of the pipes in this mission (kept across reset()).
+  const JunctionMemory& memory() const { return memory_; }
+
+  // The log-density (per metre) of a manhole the map lacks at `distance_m` (variance `var_m2`)
+  // from end `from_end` of `pipe`: near a known junction its Gaussian, else the per-metre prior,
+  // cut to the miss rate in a stretch already driven. Runtime: O(what is known of the pipe).
+  double junction_log_density(PipeId pipe, std::uint8_t from_end, double distance_m,
+                              double var_m2) const;
+
   // One hypothesis as the filter keeps it (public for the implementation's helpers; use
   // estimate()).
   struct Track {
@@ -291,7 +332,8 @@ class TopologicalFilter {
     // Where the place was last known on the map (a mouth, a reset), in the travelled coordinate:
     // the map's distance from here to a mouth is off by length_sd_fraction of it.
     double anchor_m = 0;
-    double cleared_m = 0;  // no mouth was detected up to here (travelled coordinate)
+    double cleared_m = 0;   // no mouth was detected up to here (travelled coordinate)
+    double leg_from_m = 0;  // where the robot last stopped or entered this pipe (travelled)
     // At a mouth or in a manhole:
     ManholeId manhole{0};
     SlotIndex slot{0};
@@ -308,6 +350,8 @@ class TopologicalFilter {
       : map_(&map), options_(std::move(options)) {}
   Result<void> usable() const;
   void normalise_and_prune();
+  // After an arrival the filter is confident of: the junction it is at, and the stretch driven.
+  void remember_arrival();
 
   const SewerMap* map_;  // never null
   LocalisationOptions options_;
@@ -318,6 +362,7 @@ class TopologicalFilter {
   DriveDirection arrived_by_ = DriveDirection::kForward;
   std::vector<Track> tracks_;
   std::vector<Track> scratch_;  // reused between updates
+  JunctionMemory memory_;
 };
 
 }  // namespace sewerplan::localisation
