@@ -85,6 +85,17 @@ double unmapped_junction_log_likelihood(const ManholeSignature& observed, double
          best_straight + static_cast<double>(n - 2) * unknown_slot() + shaft;
 }
 
+double turn_log_likelihood(double measured_deg, double mapped_deg, const TurnModel& model) {
+  const double off = normalize_deg(measured_deg - mapped_deg);
+  // Either of the two mouths off the map's azimuth.
+  const double either_off = 1 - (1 - model.off_share) * (1 - model.off_share);
+  const double right = (1 - either_off - kTurnOutlierShare) *
+                       std::exp(log_normal(off, 0, model.sd_deg * model.sd_deg));
+  const double half_width = model.off_max_deg + 3 * model.sd_deg;
+  const double wrong = std::abs(off) <= half_width ? either_off / (2 * half_width) : 0.0;
+  return std::log(right + wrong + kTurnOutlierShare / kDirectionRangeDeg);
+}
+
 double false_detection_log_likelihood(const ManholeSignature& observed) {
   const auto n = static_cast<double>(observed.slots.size());
   return unknown(kDiameterRangeM) + (n - 1) * unknown_slot() + unknown(kShaftRangeM);

@@ -50,6 +50,19 @@ double gaussian_term(double difference, double sigma);
 double unmapped_junction_log_likelihood(const ManholeSignature& observed, double pipe_diameter_m,
                                         double min_shaft_m, const SignatureNoise& noise);
 
+// The log-density (per degree) of a turn the robot's joints measured at `measured_deg` where the
+// hypothesis's map has `mapped_deg` between the two mouths: the joints' Gaussian (`sd_deg`); with
+// `off_share` of the map's slots off by up to `off_max_deg`, either of the two mouths off (uniform
+// within that, widened by 3 sd); and a floor for a turn nothing on the map explains
+// (kTurnOutlierShare, uniform over 360 degrees), so that no hypothesis is ruled out by one angle.
+struct TurnModel {
+  double sd_deg = 1;
+  double off_share = 0;
+  double off_max_deg = 0;
+};
+inline constexpr double kTurnOutlierShare = 1e-3;
+double turn_log_likelihood(double measured_deg, double mapped_deg, const TurnModel& model);
+
 // The log-likelihood of `observed` if the detection saw nothing real: every measurement unknown.
 double false_detection_log_likelihood(const ManholeSignature& observed);
 

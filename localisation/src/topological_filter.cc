@@ -42,8 +42,14 @@ Track in_pipe(const Track& from, PipeId pipe, std::uint8_t heading_end, double t
   t.moving_end = heading_end;
   t.travelled_m = travelled_m;
   t.cleared_m = travelled_m;
+  t.leg_from_m = travelled_m;
   t.arrival_misses = 0;
   return t;
+}
+
+// A distance along `pipe` from end `from` as counted from end `to`: the map's length between them.
+double from_end(const Pipe& pipe, std::uint8_t from, std::uint8_t to, double distance_m) {
+  return from == to ? distance_m : pipe.length_m - distance_m;
 }
 
 }  // namespace
@@ -80,6 +86,12 @@ Result<void> check_options(const LocalisationOptions& o) {
     return bad("ambiguity_probability", o.ambiguity_probability, "in [0, 1]");
   if (!finite_in(o.verify_probability, 0, 1))
     return bad("verify_probability", o.verify_probability, "in [0, 1]");
+  if (!std::isfinite(o.turn_sd_deg) || o.turn_sd_deg <= 0 || o.turn_sd_deg > 90)
+    return bad("turn_sd_deg", o.turn_sd_deg, "in (0, 90]");
+  if (!finite_in(o.direction_off_share, 0, 1))
+    return bad("direction_off_share", o.direction_off_share, "in [0, 1]");
+  if (!finite_in(o.direction_off_max_deg, 0, 180))
+    return bad("direction_off_max_deg", o.direction_off_max_deg, "in [0, 180]");
   const SignatureNoise& n = o.noise;
   for (auto [name, value] : {std::pair{"noise.direction_deg", n.direction_deg},
                              {"noise.step_m", n.step_m},
@@ -133,7 +145,7 @@ Result<void> TopologicalFilter::reset(const Pose& pose) {
     t.heading_end = slot.pipe_end;
     t.moving_end = slot.pipe_end;
     t.travelled_m = map.pipe(slot.pipe).length_m;
-    t.cleared_m = t.anchor_m = t.travelled_m;
+    t.cleared_m = t.anchor_m = t.leg_from_m = t.travelled_m;
     mode = Mode::kAtManhole;
   } else {
     const auto& pipe_place = std::get<domain::InPipe>(pose.position);
@@ -152,7 +164,7 @@ Result<void> TopologicalFilter::reset(const Pose& pose) {
     t.moving_end = t.heading_end;
     t.travelled_m = t.heading_end == 1 ? pipe_place.offset_m : pipe.length_m - pipe_place.offset_m;
     t.cleared_m = t.travelled_m;
-    t.anchor_m = t.travelled_m;
+    t.anchor_m = t.leg_from_m = t.travelled_m;
     mode = pose.at_unmapped_junction ? Mode::kAtManhole : Mode::kInPipe;
   }
   tracks_.assign(1, std::move(t));
@@ -204,7 +216,7 @@ Result<void> TopologicalFilter::drive(double odometry_m, DriveDirection directio
       t.kind = Track::Kind::kInPipe;
       t.travelled_m = mouth_ahead ? length : 0.0;
       t.odometry_var_m2 = 0;
-      t.anchor_m = t.travelled_m;
+      t.anchor_m = t.leg_from_m = t.travelled_m;
     }
     t.kind = Track::Kind::kInPipe;
     const bool forward = direction == DriveDirection::kForward;
@@ -234,6 +246,7 @@ Result<void> TopologicalFilter::arrive(const std::optional<ManholeSignature>& ob
   mode_ = Mode::kAtManhole;
   arrived_by_ = last_drive_;
   normalise_and_prune();
+  remember_arrival();
   return {};
 }
 
@@ -249,14 +262,27 @@ Result<void> TopologicalFilter::no_manhole_within(double distance_m) {
   return {};
 }
 
-Result<void> TopologicalFilter::turn(double relative_deg) {
+namespace {
+
+Result<void> check_measured(std::string_view update, std::optional<double> measured_deg) {
+  if (measured_deg && (!std::isfinite(*measured_deg) || *measured_deg < 0 || *measured_deg >= 360))
+    return invalid(std::string(update) + ": measured turn " + shown(*measured_deg) +
+                   " degrees is not in [0, 360)");
+  return {};
+}
+
+}  // namespace
+
+Result<void> TopologicalFilter::turn(double relative_deg, std::optional<double> measured_deg) {
   if (!std::isfinite(relative_deg) || relative_deg < 0 || relative_deg >= 360)
     return invalid("turn: direction " + shown(relative_deg) + " is not in [0, 360)");
+  if (Result<void> ok = check_measured("turn", measured_deg); !ok.has_value()) return ok;
   if (Result<void> ok = usable(); !ok.has_value()) return ok;
   if (mode_ != Mode::kAtManhole) return invalid("turn: the robot is not at a manhole");
   scratch_.clear();
   for (const Track& t : tracks_) {
-    if (std::optional<Track> next = detail::turned(*this, t, relative_deg, std::nullopt))
+    if (std::optional<Track> next =
+            detail::turned(*this, t, relative_deg, std::nullopt, measured_deg))
       scratch_.push_back(std::move(*next));
   }
   tracks_.swap(scratch_);
@@ -265,7 +291,8 @@ Result<void> TopologicalFilter::turn(double relative_deg) {
   return {};
 }
 
-Result<void> TopologicalFilter::pass(ManholeId manhole, SlotIndex from, SlotIndex to) {
+Result<void> TopologicalFilter::pass(ManholeId manhole, SlotIndex from, SlotIndex to,
+                                     std::optional<double> measured_deg) {
   const SewerMap& map = *map_;
   if (manhole.index() >= map.manhole_count())
     return invalid("pass: no manhole " + shown(manhole.value()) + " in the map");
@@ -275,6 +302,7 @@ Result<void> TopologicalFilter::pass(ManholeId manhole, SlotIndex from, SlotInde
       return invalid("pass: " + m.name + " has no slot " + std::to_string(to_paper_number(s)));
   }
   if (from == to) return invalid("pass: from and to are the same slot of " + m.name);
+  if (Result<void> ok = check_measured("pass", measured_deg); !ok.has_value()) return ok;
   if (Result<void> ok = usable(); !ok.has_value()) return ok;
   if (mode_ != Mode::kAtManhole) return invalid("pass: the robot is not at a manhole");
   const double relative =
@@ -282,7 +310,7 @@ Result<void> TopologicalFilter::pass(ManholeId manhole, SlotIndex from, SlotInde
   const Passage passage{manhole, from, to};
   scratch_.clear();
   for (const Track& t : tracks_) {
-    if (std::optional<Track> next = detail::turned(*this, t, relative, passage))
+    if (std::optional<Track> next = detail::turned(*this, t, relative, passage, measured_deg))
       scratch_.push_back(std::move(*next));
   }
   tracks_.swap(scratch_);
@@ -353,6 +381,99 @@ void TopologicalFilter::normalise_and_prune() {
   for (const Track& t : kept) total = detail::log_add(total, t.log_weight);
   for (Track& t : kept) t.log_weight -= total;
   tracks_.swap(kept);
+}
+
+namespace {
+
+bool by_pipe(const KnownJunction& a, const KnownJunction& b) { return a.pipe < b.pipe; }
+bool stretch_by_pipe(const DrivenStretch& a, const DrivenStretch& b) { return a.pipe < b.pipe; }
+
+}  // namespace
+
+double TopologicalFilter::junction_log_density(PipeId pipe_id, std::uint8_t end, double distance_m,
+                                               double var_m2) const {
+  const Pipe& pipe = map_->pipe(pipe_id);
+  const double length_var = std::pow(options_.length_sd_fraction * pipe.length_m, 2);
+  double density = 0;
+  const KnownJunction key{.pipe = pipe_id};
+  const auto [first, last] =
+      std::equal_range(memory_.junctions.begin(), memory_.junctions.end(), key, by_pipe);
+  for (auto k = first; k != last; ++k) {
+    // Counted from the other end, the map's length lies between the two places.
+    const double var = var_m2 + k->var_m2 + (k->from_end == end ? 0.0 : length_var);
+    density += std::exp(
+        detail::log_normal(distance_m, from_end(pipe, k->from_end, end, k->distance_m), var));
+  }
+  double fresh = options_.unmapped_junctions_per_m;
+  const DrivenStretch stretch_key{.pipe = pipe_id};
+  const auto [from, to] =
+      std::equal_range(memory_.driven.begin(), memory_.driven.end(), stretch_key, stretch_by_pipe);
+  for (auto s = from; s != to; ++s) {
+    const double a = from_end(pipe, s->from_end, end, s->from_m);
+    const double b = from_end(pipe, s->from_end, end, s->to_m);
+    // Well inside it (two standard deviations of the place, and of the length between the ends).
+    const double margin = 2 * std::sqrt(var_m2 + (s->from_end == end ? 0.0 : length_var));
+    if (distance_m >= std::min(a, b) + margin && distance_m <= std::max(a, b) - margin) {
+      fresh *= options_.miss_probability;  // driven there before without detecting it
+      break;
+    }
+  }
+  return density + fresh > 0 ? std::log(density + fresh) : kNegativeInfinity;
+}
+
+void TopologicalFilter::remember_arrival() {
+  if (mode_ == Mode::kLost) return;
+  const Track& best = tracks_.front();
+  if (std::exp(best.log_weight) >= options_.verify_probability &&
+      best.kind != Track::Kind::kInManhole) {
+    const Pipe& pipe = map_->pipe(best.pipe);
+    const auto end = static_cast<std::uint8_t>(1 - best.heading_end);
+    // The stretch driven since the last stop in this pipe, without a detection.
+    const double a = std::clamp(best.leg_from_m, 0.0, pipe.length_m);
+    const double b = std::clamp(best.travelled_m, 0.0, pipe.length_m);
+    if (a != b) {
+      DrivenStretch s{
+          .pipe = best.pipe, .from_end = end, .from_m = std::min(a, b), .to_m = std::max(a, b)};
+      memory_.driven.insert(
+          std::upper_bound(memory_.driven.begin(), memory_.driven.end(), s, stretch_by_pipe), s);
+    }
+    // A junction within three standard deviations of the map's length from a mapped end is not
+    // told apart from that end's manhole with a lateral the map lacks: not remembered.
+    const double length_sd = options_.length_sd_fraction * pipe.length_m;
+    const bool clear_of_ends =
+        best.travelled_m >= 3 * length_sd && best.travelled_m <= pipe.length_m - 3 * length_sd;
+    if (best.kind == Track::Kind::kAtJunction && clear_of_ends) {
+      const double var =
+          best.odometry_var_m2 + std::pow(options_.length_sd_fraction * best.anchor_m, 2);
+      const double length_var = std::pow(options_.length_sd_fraction * pipe.length_m, 2);
+      KnownJunction j{.pipe = best.pipe,
+                      .from_end = end,
+                      .distance_m = best.travelled_m,
+                      .var_m2 = std::max(var, detail::kMinVarianceM2)};
+      auto [first, last] =
+          std::equal_range(memory_.junctions.begin(), memory_.junctions.end(), j, by_pipe);
+      // The same junction again (within three standard deviations): the two places combined.
+      auto same = std::find_if(first, last, [&](const KnownJunction& k) {
+        const double here = from_end(pipe, end, k.from_end, j.distance_m);
+        const double v = k.var_m2 + j.var_m2 + (k.from_end == end ? 0.0 : length_var);
+        return std::abs(here - k.distance_m) <= 3 * std::sqrt(v);
+      });
+      if (same != last) {
+        const double here = from_end(pipe, end, same->from_end, j.distance_m);
+        const double v = j.var_m2 + (same->from_end == end ? 0.0 : length_var);
+        const double w = same->var_m2 / (same->var_m2 + v);
+        same->distance_m += w * (here - same->distance_m);
+        same->var_m2 = same->var_m2 * v / (same->var_m2 + v);
+        ++same->sightings;
+      } else {
+        auto at = std::find_if(first, last,
+                               [&](const KnownJunction& k) { return k.distance_m > j.distance_m; });
+        memory_.junctions.insert(at, j);
+      }
+    }
+  }
+  // A new stretch starts at every detection.
+  for (Track& t : tracks_) t.leg_from_m = t.travelled_m;
 }
 
 }  // namespace sewerplan::localisation

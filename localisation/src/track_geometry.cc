@@ -97,6 +97,7 @@ Track placed(const Track& track, const ChainStep& step, double here_m, bool firs
   if (!first) {
     c.odometry_var_m2 = step.position_var;
     c.anchor_m = 0;
+    c.leg_from_m = 0;
   }
   c.arrival_misses = static_cast<std::uint8_t>(step.passed.size());
   assume_missed(c, step.passed);
@@ -148,13 +149,13 @@ namespace {
 
 // The explanations of one hypothesis's arrival, appended to `out`.
 struct ArrivalExplainer {
+  const TopologicalFilter& filter;
   const SewerMap& map;
   const LocalisationOptions& o;
   const Track& track;
   const std::optional<ManholeSignature>& observation;
   std::vector<Track>& out;
   double log_detect = std::log1p(-o.miss_probability);
-  double log_junction = log_or_never(o.unmapped_junctions_per_m);
   double log_false = log_or_never(o.false_detections_per_m);
 
   // How well the observation fits the map's manhole `m` entered through `slot`.
@@ -182,7 +183,16 @@ struct ArrivalExplainer {
     const double offset = offset_from_start(pipe, frame.heading_end, frame.travelled_m);
     const bool room_for_junction =
         offset >= o.min_junction_spacing_m && offset <= pipe.length_m - o.min_junction_spacing_m;
-    if (log_junction != kNegativeInfinity && room_for_junction) {
+    // A junction here: near one the filter already knows in this pipe, or a new one (fewer where
+    // the robot drove before and saw none). The place counts from the end the robot entered by,
+    // uncertain by the odometry and by the map's length back to where it was last known.
+    const double log_junction =
+        room_for_junction
+            ? filter.junction_log_density(
+                  frame.pipe, static_cast<std::uint8_t>(1 - frame.heading_end), frame.travelled_m,
+                  frame.odometry_var_m2 + std::pow(o.length_sd_fraction * frame.anchor_m, 2))
+            : kNegativeInfinity;
+    if (log_junction != kNegativeInfinity) {
       const double fit = observation
                              ? unmapped_junction_log_likelihood(*observation, pipe.diameter_m,
                                                                 o.min_junction_shaft_m, o.noise)
@@ -221,6 +231,7 @@ Track mirrored(const SewerMap& map, const Track& track) {
   m.travelled_m = length - track.travelled_m;
   m.anchor_m = length - track.anchor_m;
   m.cleared_m = length - track.cleared_m;
+  m.leg_from_m = length - track.leg_from_m;
   return m;
 }
 
@@ -228,7 +239,7 @@ Track mirrored(const SewerMap& map, const Track& track) {
 void arrival_ahead(const TopologicalFilter& filter, const Track& track,
                    const std::optional<ManholeSignature>& observation, std::vector<Track>& out) {
   const SewerMap& map = filter.map();
-  ArrivalExplainer explain{map, filter.options(), track, observation, out};
+  ArrivalExplainer explain{filter, map, filter.options(), track, observation, out};
   const OdometryTails odometry = tails(filter.options());
   const double t = track.travelled_m;
   walk_chain(filter, track, track.cleared_m,
@@ -293,6 +304,7 @@ void explain_either_way(const TopologicalFilter& filter, const Track& track,
     c.travelled_m = std::clamp(c.travelled_m, 0.0, length);
     c.anchor_m = std::clamp(c.anchor_m, 0.0, length);
     c.cleared_m = std::clamp(c.cleared_m, 0.0, length);
+    c.leg_from_m = std::clamp(c.leg_from_m, 0.0, length);
   }
 }
 
@@ -313,25 +325,36 @@ void explain_no_arrival(const TopologicalFilter& filter, const Track& track, dou
 }
 
 std::optional<Track> turned(const TopologicalFilter& filter, const Track& track,
-                            double relative_deg, const std::optional<Passage>& passage) {
+                            double relative_deg, const std::optional<Passage>& passage,
+                            std::optional<double> measured_deg) {
   const SewerMap& map = filter.map();
   const LocalisationOptions& o = filter.options();
+  // The robot's own turn, where its joints measured one: better than the plan's or the sighting's.
+  const double direction = measured_deg.value_or(relative_deg);
   switch (track.kind) {
     case Track::Kind::kAtMouth: {
       std::optional<SlotIndex> to;
       if (passage && passage->manhole == track.manhole && passage->from == track.slot) {
         to = passage->to;
       } else {
-        to = slot_towards(map, track.manhole, track.slot, relative_deg, o.noise.max_direction_deg);
+        to = slot_towards(map, track.manhole, track.slot, direction, o.noise.max_direction_deg);
       }
       if (!to) return std::nullopt;
       const Slot& slot = map.slot(track.manhole, *to);
       Track c = track;
+      if (measured_deg) {
+        const double mapped =
+            ccw_deg(map.slot(track.manhole, track.slot).azimuth_deg, slot.azimuth_deg);
+        c.log_weight += turn_log_likelihood(*measured_deg, mapped,
+                                            {.sd_deg = o.turn_sd_deg,
+                                             .off_share = o.direction_off_share,
+                                             .off_max_deg = o.direction_off_max_deg});
+      }
       c.kind = Track::Kind::kInPipe;
       c.pipe = slot.pipe;
       c.heading_end = static_cast<std::uint8_t>(1 - slot.pipe_end);
       c.moving_end = c.heading_end;
-      c.travelled_m = c.cleared_m = 0;
+      c.travelled_m = c.cleared_m = c.leg_from_m = 0;
       c.odometry_var_m2 = 0;
       c.anchor_m = 0;
       return c;
@@ -340,14 +363,19 @@ std::optional<Track> turned(const TopologicalFilter& filter, const Track& track,
     case Track::Kind::kInPipe: {
       // A manhole the map lacks, or no manhole at all: only straight on stays on the map. Through
       // a junction rear first, the robot leaves front first: it faces the end it was backing to.
-      if (std::abs(normalize_deg(relative_deg - 180.0)) > o.straight_through_deg)
-        return std::nullopt;
+      if (std::abs(normalize_deg(direction - 180.0)) > o.straight_through_deg) return std::nullopt;
       const bool rear_first =
           track.kind == Track::Kind::kAtJunction && track.moving_end != track.heading_end;
       Track c = rear_first ? mirrored(map, track) : track;
+      // Its mouth straight on is unknown within the window (no map to weigh the angle by).
+      if (measured_deg) {
+        c.log_weight += std::log((1 - kTurnOutlierShare) /
+                                     (2 * std::max(o.straight_through_deg, o.turn_sd_deg)) +
+                                 kTurnOutlierShare / 360.0);
+      }
       c.kind = Track::Kind::kInPipe;
       c.moving_end = c.heading_end;
-      c.cleared_m = c.travelled_m;
+      c.cleared_m = c.leg_from_m = c.travelled_m;
       return c;
     }
     case Track::Kind::kInManhole:

@@ -47,8 +47,12 @@ void explain_no_arrival(const TopologicalFilter& filter, const Track& track, dou
                         std::vector<Track>& out);
 
 // `track` (at a manhole) after leaving through the mouth `relative_deg` from its arrival mouth, or
-// through `passage` when it is at that passage's manhole and slot; nothing when it cannot.
+// through `passage` when it is at that passage's manhole and slot; nothing when it cannot. With
+// `measured_deg` (the turn the joints measured) the mouth is the one nearest it (or the passage's)
+// and the weight has the measured angle's likelihood given the map's angle between the mouths
+// (straight on, within straight_through_deg, at a manhole the map lacks or at none).
 std::optional<Track> turned(const TopologicalFilter& filter, const Track& track,
-                            double relative_deg, const std::optional<Passage>& passage);
+                            double relative_deg, const std::optional<Passage>& passage,
+                            std::optional<double> measured_deg);
 
 }  // namespace sewerplan::localisation::detail

@@ -121,6 +121,12 @@ std::optional<SlotIndex> walk_on(const SewerMap& map, ManholeId here, SlotIndex 
   return std::nullopt;
 }
 
+// Counter-clockwise angle from `from_deg` to `to_deg`, in [0, 360).
+double ccw_from(double from_deg, double to_deg) {
+  double a = std::fmod(to_deg - from_deg, 360.0);
+  return a < 0 ? a + 360.0 : a;
+}
+
 const Hypothesis* find_junction(const Estimate& e) {
   for (const Hypothesis& h : e.hypotheses)
     if (h.pose.at_unmapped_junction) return &h;
@@ -238,6 +244,202 @@ TEST(TopologicalFilter, UnmappedJunctionGivesTwoHypothesesAndADistinctiveManhole
   ASSERT_GE(e.best().assumptions.size(), 1u);
   EXPECT_EQ(e.best().assumptions.front().kind, Assumption::Kind::kUnmappedJunction);
   EXPECT_NEAR(e.best().assumptions.front().offset_m, 20, 1.0);
+}
+
+// A detection 20 m into P3 (M3 to M4, 40 m) of a three-way manhole, a lateral north (M4, ahead,
+// has one south): a manhole the map lacks.
+ManholeSignature p3_junction(const Street& s) {
+  ManholeSignature seen = s.seen("M3", "P2");
+  seen.slots.push_back({.relative_deg = 270, .step_m = 0, .diameter_m = 0.3});
+  seen.shaft_diameter_m = 1.2;
+  return seen;
+}
+
+// From M3 (arrived by P2) into P3, 20 m along, at the junction: the odds of the junction against
+// every other explanation.
+double odds_of_p3_junction(const Street& s, TopologicalFilter& f) {
+  EXPECT_TRUE(f.reset({.position = s.at("M3", "P2")}).has_value());
+  EXPECT_TRUE(f.pass(s.manhole("M3"), s.slot("M3", "P2"), s.slot("M3", "P3")).has_value());
+  EXPECT_TRUE(f.drive(20, DriveDirection::kForward, 0.6).has_value());
+  EXPECT_TRUE(f.arrive(p3_junction(s)).has_value());
+  const Hypothesis* j = find_junction(f.estimate());
+  const double p = j == nullptr ? 0.0 : j->probability;
+  return p / (1 - p);
+}
+
+TEST(TopologicalFilter, RemembersAJunctionItBecameConfidentOf) {
+  Street s;
+  TopologicalFilter f = s.filter();
+  const double first = odds_of_p3_junction(s, f);
+  EXPECT_GT(first, 100);  // confident
+  ASSERT_EQ(f.memory().junctions.size(), 1u);
+  const KnownJunction known = f.memory().junctions.front();
+  EXPECT_EQ(known.pipe, s.pipe("P3"));
+  EXPECT_EQ(known.from_end, 0);
+  EXPECT_NEAR(known.distance_m, 20, 0.5);
+  EXPECT_EQ(f.memory().driven.size(), 1u);  // P3 from M3 to the junction
+
+  // Second pass: the arrival is weighed by the distance to the junction the robot has been at
+  // (a density of about 0.5 per metre here), not by the fresh prior (0.001 per metre).
+  const double second = odds_of_p3_junction(s, f);
+  EXPECT_GT(second / first, 100) << first << " " << second;
+  ASSERT_EQ(f.memory().junctions.size(), 1u);  // the same junction, its two sightings combined
+  EXPECT_EQ(f.memory().junctions.front().sightings, 2);
+  EXPECT_LT(f.memory().junctions.front().var_m2, known.var_m2);
+
+  // Counted from P3's other end (a robot coming from M4), the same place with the map's length
+  // (10 % uncertain) between the two counts; nothing known in P1: the fresh prior.
+  const double from_m3 = f.junction_log_density(s.pipe("P3"), 0, 20, 0.01);
+  const double from_m4 = f.junction_log_density(s.pipe("P3"), 1, 20, 0.01);
+  EXPECT_GT(from_m3, std::log(0.3));
+  EXPECT_GT(from_m4, std::log(0.05));
+  EXPECT_LT(from_m4, from_m3);
+  EXPECT_NEAR(f.junction_log_density(s.pipe("P1"), 0, 20, 0.01), std::log(0.001), 1e-9);
+
+  // reset() (the controller starting the filter again) keeps what it learnt in this mission.
+  ASSERT_TRUE(f.reset({.position = s.at("M2", "P1")}).has_value());
+  EXPECT_EQ(f.memory().junctions.size(), 1u);
+}
+
+TEST(TopologicalFilter, DoesNotRememberAJunctionItCannotTellFromTheMappedManholeBeside) {
+  // P2 (24 m) with a three-way manhole 20 m along, 4 m short of M3: the map's length is 2.4 m
+  // uncertain, so it might as well be M3 with a lateral the map lacks. On a 1,000-manhole meshed
+  // network such a place, remembered as a junction, made two later arrivals wrong.
+  Street s;
+  TopologicalFilter f = s.filter();
+  ASSERT_TRUE(f.reset({.position = s.at("M2", "P1")}).has_value());
+  ASSERT_TRUE(f.pass(s.manhole("M2"), s.slot("M2", "P1"), s.slot("M2", "P2")).has_value());
+  ASSERT_TRUE(f.drive(20, DriveDirection::kForward, 0.6).has_value());
+  ManholeSignature junction = s.seen("M3", "P2");
+  junction.slots.push_back({.relative_deg = 270, .step_m = 0, .diameter_m = 0.3});
+  junction.shaft_diameter_m = 1.2;
+  ASSERT_TRUE(f.arrive(junction).has_value());
+  EXPECT_TRUE(f.estimate().best().pose.at_unmapped_junction);
+  EXPECT_GT(f.estimate().best().probability, 0.9);
+  EXPECT_TRUE(f.memory().junctions.empty());
+  EXPECT_EQ(f.memory().driven.size(), 1u);
+}
+
+TEST(TopologicalFilter, AStretchDrivenWithoutAJunctionMakesOneThereLessLikely) {
+  Street s;
+  // The robot drives P3 (M3 to M4, 40 m) without a detection, and arrives at M4.
+  auto junction_probability = [&](bool driven_before) {
+    TopologicalFilter f = s.filter();
+    if (driven_before) {
+      EXPECT_TRUE(f.reset({.position = s.at("M3", "P2")}).has_value());
+      EXPECT_TRUE(f.pass(s.manhole("M3"), s.slot("M3", "P2"), s.slot("M3", "P3")).has_value());
+      EXPECT_TRUE(f.drive(40, DriveDirection::kForward, 1.2).has_value());
+      EXPECT_TRUE(f.arrive(s.seen("M4", "P3")).has_value());
+      EXPECT_GT(f.estimate().best().probability, 0.99);
+      EXPECT_EQ(f.memory().driven.size(), 1u);
+    }
+    // Then (again) into P3 and a detection 20 m along: a three-way manhole, a lateral north (M4,
+    // ahead, has one south).
+    EXPECT_TRUE(f.reset({.position = s.at("M3", "P2")}).has_value());
+    EXPECT_TRUE(f.pass(s.manhole("M3"), s.slot("M3", "P2"), s.slot("M3", "P3")).has_value());
+    EXPECT_TRUE(f.drive(20, DriveDirection::kForward, 0.6).has_value());
+    ManholeSignature seen = s.seen("M3", "P2");
+    seen.slots.push_back({.relative_deg = 270, .step_m = 0, .diameter_m = 0.3});
+    seen.shaft_diameter_m = 1.2;
+    EXPECT_TRUE(f.arrive(seen).has_value());
+    const Hypothesis* j = find_junction(f.estimate());
+    return j == nullptr ? 0.0 : j->probability;
+  };
+  const double fresh = junction_probability(false);
+  const double again = junction_probability(true);
+  EXPECT_GT(fresh, 0.5);
+  // Its odds against the other explanation (a detection of nothing) cut to the miss rate: the
+  // robot would have seen a manhole there before.
+  const double odds_fresh = fresh / (1 - fresh);
+  const double odds_again = again / (1 - again);
+  EXPECT_NEAR(odds_again / odds_fresh, 0.05, 0.01) << fresh << " " << again;
+}
+
+// S -P1 (30 m)- B -P2 (30 m)- C -P3- D along a street; B and C alike (a lateral north each), their
+// laterals 12 degrees apart: 280 and 268 degrees from the west mouth, too close for a sighting
+// (8 degrees) to tell apart.
+SewerMap look_alikes() {
+  const double pi = std::acos(-1.0);
+  auto north = [&](double azimuth_deg, double x) {
+    return std::pair{x + 20 * std::cos(azimuth_deg * pi / 180),
+                     20 * std::sin(azimuth_deg * pi / 180)};
+  };
+  const auto [bx, by] = north(100, 30);
+  const auto [cx, cy] = north(88, 60);
+  return SmallMap()
+      .manhole("S", 0, 0, /*exit=*/true)
+      .manhole("B", 30, 0)
+      .manhole("C", 60, 0)
+      .manhole("D", 90, 0)
+      .manhole("LB", bx, by)
+      .manhole("LC", cx, cy)
+      .pipe("P1", "S", "B")
+      .pipe("P2", "B", "C")
+      .pipe("P3", "C", "D")
+      .pipe("QB", "B", "LB", 0.3)
+      .pipe("QC", "C", "LC", 0.3)
+      .build();
+}
+
+TEST(TopologicalFilter, TheMeasuredTurnTellsApartMouthsTooCloseForASighting) {
+  const SewerMap map = look_alikes();
+  const ManholeId b = *map.find_manhole("B");
+  const ManholeId c = *map.find_manhole("C");
+  auto slot_of = [&](ManholeId m, const std::string& pipe) {
+    const PipeId p = *map.find_pipe(pipe);
+    return map.pipe(p).ends[*end_in_manhole(map, p, m)].slot;
+  };
+  const double b_lateral = ccw_from(map.slot(b, slot_of(b, "P1")).azimuth_deg,
+                                    map.slot(b, slot_of(b, "QB")).azimuth_deg);
+  const double c_lateral = ccw_from(map.slot(c, slot_of(c, "P2")).azimuth_deg,
+                                    map.slot(c, slot_of(c, "QC")).azimuth_deg);
+  ASSERT_NEAR(b_lateral, 280, 0.5);
+  ASSERT_NEAR(c_lateral, 268, 0.5);
+  // The robot drove through B unseen and stopped at C; the odometry (45 m, sigma 8 m) and a
+  // sighting half-way between the two laterals leave B the more likely, C a strong second.
+  auto at_c_unsure = [&](LocalisationOptions options) {
+    Result<TopologicalFilter> made = TopologicalFilter::create(map, options);
+    EXPECT_TRUE(made.has_value());
+    TopologicalFilter f = std::move(made).value();
+    EXPECT_TRUE(f.reset({.position = domain::InManhole{*map.find_manhole("S")}}).has_value());
+    EXPECT_TRUE(f.enter(slot_of(*map.find_manhole("S"), "P1")).has_value());
+    EXPECT_TRUE(f.drive(45, DriveDirection::kForward, 8).has_value());
+    ManholeSignature seen = expected_signature(map, c, slot_of(c, "P2"));
+    for (SlotSighting& sighting : seen.slots)
+      if (std::abs(sighting.relative_deg - c_lateral) < 1) sighting.relative_deg = 274;
+    EXPECT_TRUE(f.arrive(seen).has_value());
+    return f;
+  };
+  LocalisationOptions options;
+  options.miss_probability = 0.3;
+  TopologicalFilter f = at_c_unsure(options);
+  Estimate e = f.estimate();
+  ASSERT_TRUE(e.ambiguous) << dump(e, map);
+  ASSERT_EQ(e.best().pose.position, (domain::RobotPosition{domain::AtSlot{b, slot_of(b, "P1")}}))
+      << dump(e, map);
+  // The plan has the robot at B and turns it into B's lateral; it is at C and turns into C's,
+  // and its joints measure C's angle (268.5 degrees).
+  ASSERT_TRUE(f.pass(b, slot_of(b, "P1"), slot_of(b, "QB"), 268.5).has_value());
+  e = f.estimate();
+  EXPECT_EQ(std::get<domain::InPipe>(e.best().pose.position).pipe, *map.find_pipe("QC"))
+      << dump(e, map);
+  EXPECT_GT(e.best().probability, 0.9) << dump(e, map);
+  // The turn at B measured as B's map has it keeps B.
+  TopologicalFilter g = at_c_unsure(options);
+  ASSERT_TRUE(g.pass(b, slot_of(b, "P1"), slot_of(b, "QB"), 280.2).has_value());
+  EXPECT_EQ(std::get<domain::InPipe>(g.estimate().best().pose.position).pipe, *map.find_pipe("QB"));
+  EXPECT_GT(g.estimate().best().probability, 0.9);
+  // By turn() (a turn by direction), the same.
+  TopologicalFilter h = at_c_unsure(options);
+  ASSERT_TRUE(h.turn(280, 268.5).has_value());
+  EXPECT_EQ(std::get<domain::InPipe>(h.estimate().best().pose.position).pipe, *map.find_pipe("QC"))
+      << dump(h.estimate(), map);
+  // A measured angle outside [0, 360) is an error, naming it.
+  TopologicalFilter bad = at_c_unsure(options);
+  Result<void> refused = bad.pass(b, slot_of(b, "P1"), slot_of(b, "QB"), 360.0);
+  ASSERT_FALSE(refused.has_value());
+  EXPECT_NE(refused.error().message.find("measured turn"), std::string::npos);
+  EXPECT_FALSE(bad.turn(180, std::nan("")).has_value());
 }
 
 TEST(TopologicalFilter, MissedManholeIsRecognisedFromALateArrival) {
@@ -522,6 +724,14 @@ TEST(TopologicalFilter, BadInputIsAnErrorNeverAnAbort) {
   const Result<TopologicalFilter> narrow = TopologicalFilter::create(s.map, narrow_tails);
   ASSERT_FALSE(narrow.has_value());
   EXPECT_NE(narrow.error().message.find("odometry_outlier_scale"), std::string::npos);
+  LocalisationOptions exact_joints;
+  exact_joints.turn_sd_deg = 0;
+  const Result<TopologicalFilter> exact = TopologicalFilter::create(s.map, exact_joints);
+  ASSERT_FALSE(exact.has_value());
+  EXPECT_NE(exact.error().message.find("turn_sd_deg"), std::string::npos);
+  LocalisationOptions too_many_off;
+  too_many_off.direction_off_share = 1.5;
+  EXPECT_FALSE(TopologicalFilter::create(s.map, too_many_off).has_value());
 
   TopologicalFilter f = s.filter();
   // Lost before a reset.

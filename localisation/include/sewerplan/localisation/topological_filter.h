@@ -104,6 +104,13 @@ struct LocalisationOptions {
   double verify_probability = 0.9;
   // The measurement noise of the signatures (what compare() scores with).
   SignatureNoise noise;
+  // A turn's angle as the robot's joints measure it (hal::JobReport::turn_measured_deg): its
+  // standard deviation, and the map's direction error model that the angle is weighed with (this
+  // share of the map's slots leave their manhole up to direction_off_max_deg off their mapped
+  // azimuth: the realistic error profile's 10 % and 20 degrees, docs/simulation.md).
+  double turn_sd_deg = 1.0;
+  double direction_off_share = 0.10;
+  double direction_off_max_deg = 20;
 };
 
 // Every option finite and in range; the error names the option.
@@ -141,6 +148,38 @@ struct Assumption {
 
 // "unmapped-junction", "missed-manhole", "false-detection".
 std::string_view to_string(Assumption::Kind kind);
+
+// What the filter learnt of the map's pipes in this mission: the manholes the map lacks that it
+// became confident of (the most likely place at an arrival, with verify_probability, and clear of
+// the pipe's ends by three standard deviations of its mapped length: nearer one, it is not told
+// apart from that end's manhole with a lateral the map lacks), and the stretches it drove without
+// detecting one (each leg to an arrival it was confident of). Distances count from a
+// pipe end (`from_end`, 0 or 1) as the robot drove them; a later arrival in the pipe is weighed
+// by the distance to the known junctions there, and the prior of a junction not yet known is
+// cut to the miss rate in a stretch already driven (docs/localisation.md, "What the filter
+// remembers"). It outlives reset(): a restart in the same mission keeps it.
+struct KnownJunction {
+  PipeId pipe{0};
+  std::uint8_t from_end = 0;
+  double distance_m = 0;  // from the end from_end
+  double var_m2 = 0;      // variance of distance_m
+  int sightings = 1;      // confident arrivals merged into it
+  friend bool operator==(const KnownJunction&, const KnownJunction&) = default;
+};
+
+struct DrivenStretch {
+  PipeId pipe{0};
+  std::uint8_t from_end = 0;
+  double from_m = 0;  // from the end from_end
+  double to_m = 0;
+  friend bool operator==(const DrivenStretch&, const DrivenStretch&) = default;
+};
+
+struct JunctionMemory {
+  std::vector<KnownJunction> junctions;  // by pipe, then distance
+  std::vector<DrivenStretch> driven;     // by pipe, in the order driven
+  friend bool operator==(const JunctionMemory&, const JunctionMemory&) = default;
+};
 
 struct Hypothesis {
   Pose pose;
@@ -232,14 +271,20 @@ class TopologicalFilter {
   // The robot left the manhole it arrived at through the mouth `relative_deg` counter-clockwise
   // from its arrival mouth (its own view, as in a signature). Hypotheses at a mouth take the slot
   // nearest that direction (none within noise.max_direction_deg: ruled out); at an unmapped
-  // junction or a false detection only straight on continues. Error: not at a manhole, a
-  // direction outside [0, 360), lost. Runtime: O(hypotheses * slots).
-  Result<void> turn(double relative_deg);
+  // junction or a false detection only straight on continues. With `measured_deg`, the angle the
+  // robot's joints measured for the turn (same convention), each hypothesis takes the slot
+  // nearest it and is weighed by how well it fits the angle its map has between the two mouths
+  // (turn_sd_deg, and the map's direction error model): mouths too close for a sighting to tell
+  // apart are told apart by the turn. Error: not at a manhole, a direction outside [0, 360),
+  // lost. Runtime: O(hypotheses * slots).
+  Result<void> turn(double relative_deg, std::optional<double> measured_deg = std::nullopt);
 
   // As turn(), from the plan's passage: hypotheses at `manhole`'s slot `from` take slot `to`,
-  // the others the direction of `to` relative to `from`. Error: an unknown manhole or slot, from
-  // equal to to, not at a manhole.
-  Result<void> pass(ManholeId manhole, SlotIndex from, SlotIndex to);
+  // the others the direction of `to` relative to `from` (the measured angle when given). Error: an
+  // unknown manhole or slot, from equal to to, not at a manhole, a measured angle outside [0,
+  // 360).
+  Result<void> pass(ManholeId manhole, SlotIndex from, SlotIndex to,
+                    std::optional<double> measured_deg = std::nullopt);
 
   // The robot drove its last `distance_m` (> 0) without detecting a manhole: hypotheses that
   // would have passed a mouth there now carry a missed manhole, or stay before their mouth.
@@ -264,6 +309,15 @@ class TopologicalFilter {
   const LocalisationOptions& options() const { return options_; }
   const SewerMap& map() const { return *map_; }
 
+  // What the filter learnt of the pipes in this mission (kept across reset()).
+  const JunctionMemory& memory() const { return memory_; }
+
+  // The log-density (per metre) of a manhole the map lacks at `distance_m` (variance `var_m2`)
+  // from end `from_end` of `pipe`: near a known junction its Gaussian, else the per-metre prior,
+  // cut to the miss rate in a stretch already driven. Runtime: O(what is known of the pipe).
+  double junction_log_density(PipeId pipe, std::uint8_t from_end, double distance_m,
+                              double var_m2) const;
+
   // One hypothesis as the filter keeps it (public for the implementation's helpers; use
   // estimate()).
   struct Track {
@@ -278,7 +332,8 @@ class TopologicalFilter {
     // Where the place was last known on the map (a mouth, a reset), in the travelled coordinate:
     // the map's distance from here to a mouth is off by length_sd_fraction of it.
     double anchor_m = 0;
-    double cleared_m = 0;  // no mouth was detected up to here (travelled coordinate)
+    double cleared_m = 0;   // no mouth was detected up to here (travelled coordinate)
+    double leg_from_m = 0;  // where the robot last stopped or entered this pipe (travelled)
     // At a mouth or in a manhole:
     ManholeId manhole{0};
     SlotIndex slot{0};
@@ -295,6 +350,8 @@ class TopologicalFilter {
       : map_(&map), options_(std::move(options)) {}
   Result<void> usable() const;
   void normalise_and_prune();
+  // After an arrival the filter is confident of: the junction it is at, and the stretch driven.
+  void remember_arrival();
 
   const SewerMap* map_;  // never null
   LocalisationOptions options_;
@@ -305,6 +362,7 @@ class TopologicalFilter {
   DriveDirection arrived_by_ = DriveDirection::kForward;
   std::vector<Track> tracks_;
   std::vector<Track> scratch_;  // reused between updates
+  JunctionMemory memory_;
 };
 
 }  // namespace sewerplan::localisation
