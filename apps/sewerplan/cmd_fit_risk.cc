@@ -167,18 +167,20 @@ Result<void> log_observations(const SewerMap& map, const std::string& file,
     }
     const Seen s{*pipe, h->offset_m, h->reason,
                  h->observed == executor::HazardEvent::Observed::kBlocked};
-    Result<Finding> f = finding_of(map, s, where);
-    if (!f.has_value()) return f.error();
+    // Checked at its line, so that a hazard no finding explains is named where it is.
+    if (Result<Finding> f = finding_of(map, s, where); !f.has_value()) return f.error();
     add_seen(mission, s);
   }
   for (const Seen& s : mission) {
     Result<Finding> f = finding_of(map, s, file);
+    if (!f.has_value()) return f.error();
     out.push_back({.finding = std::move(*f), .blocked = s.blocked});
   }
   return {};
 }
 
-std::string percent(double p) {
+// A probability for the summary: two decimals, three below 0.1.
+std::string probability_text(double p) {
   std::ostringstream out;
   out << std::fixed << std::setprecision(p < 0.1 ? 3 : 2) << p;
   return out.str();
@@ -234,7 +236,8 @@ int run(const FitOptions& o, Context& c) {
        << " missions (prior strength " << o.prior_strength << ", " << std::lround(o.level * 100)
        << " % intervals)";
   if (fit->unfitted > 0) {
-    text << "; " << fit->unfitted << " of findings the prior table rates no possible blockage";
+    text << "; " << fit->unfitted
+         << " of findings the prior table does not rate as a possible blockage, not fitted";
   }
   text << "\n";
   Json rules = Json::array();
@@ -244,12 +247,13 @@ int run(const FitOptions& o, Context& c) {
     const std::string name = r.code + (r.characterisation.empty() ? "" : "/" + r.characterisation);
     text << "  " << std::left << std::setw(7) << name << std::setw(28) << r.meaning;
     if (f.observations == 0) {
-      text << "no observations: the prior, probability " << percent(r.probability) << "\n";
+      text << "no observations: the prior, probability " << probability_text(r.probability) << "\n";
     } else {
       text << f.blockages << " blocked of " << f.observations << ": probability "
-           << percent(f.prior_probability) << " -> " << percent(r.probability)
-           << " (the findings seen: " << percent(f.mean_prior) << " -> " << percent(f.mean)
-           << ", interval " << percent(f.mean_low) << " to " << percent(f.mean_high) << ")\n";
+           << probability_text(f.prior_probability) << " -> " << probability_text(r.probability)
+           << " (the findings seen: " << probability_text(f.mean_prior) << " -> "
+           << probability_text(f.mean) << ", interval " << probability_text(f.mean_low) << " to "
+           << probability_text(f.mean_high) << ")\n";
     }
     rules.push_back(Json{{"code", r.code},
                          {"characterisation", r.characterisation},
