@@ -13,12 +13,10 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
-#include <map>
 #include <memory>
 #include <optional>
 #include <sstream>
 #include <string>
-#include <tuple>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -102,7 +100,15 @@ Result<void> campaign_observations(const FitOptions& o, const std::string& dir,
   const std::string map_path = o.map.empty() ? c->spec.map_name : o.map;
   const std::string condition = o.condition.empty() ? c->spec.condition_name : o.condition;
   Result<SewerMap> map = read_map(o, map_path, condition, diagnostics);
-  if (!map.has_value()) return map.error();
+  if (!map.has_value()) {
+    if (map.error().code != ErrorCode::kIo || (!o.map.empty() && !o.condition.empty())) {
+      return map.error();
+    }
+    // campaign.json keeps the files as given, relative to where the campaign ran.
+    return Error{ErrorCode::kIo, dir + "/campaign.json: " + map.error().message +
+                                     " (the files as the campaign was given them; give --map "
+                                     "and --condition)"};
+  }
   std::ostringstream map_json;
   write_map_json(*map, map_json);
   if (campaign::fingerprint(map_json.str()) != c->spec.map_fingerprint) {

@@ -105,6 +105,10 @@ cp -r "$tmp/c" "$tmp/other"
 sed -i 's/"map_fingerprint": *"[0-9a-f]*"/"map_fingerprint": "0123456789abcdef"/' "$tmp/other/campaign.json"
 expect 1 "other/campaign.json: the map .* is not the campaign's" -- "$sp" fit-risk \
   --campaign "$tmp/other" -o "$tmp/x.json"
+cp -r "$tmp/c" "$tmp/rel"
+sed -i 's|"map": "[^"]*"|"map": "nowhere/map.inp"|' "$tmp/rel/campaign.json"
+expect 3 "rel/campaign.json: cannot read nowhere/map.inp.*give --map and --condition" -- "$sp" \
+  fit-risk --campaign "$tmp/rel" -o "$tmp/x.json"
 cp -r "$tmp/c" "$tmp/moved"
 sed -i '2s/"offset_m":\([0-9.]*\),"reason"/"offset_m":0.125,"reason"/' "$tmp/moved/runs.jsonl"
 expect 1 "runs.jsonl:2: the hazard in pipe .* at 0.125 m .* is no finding of the condition data" \
