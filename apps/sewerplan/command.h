@@ -49,6 +49,7 @@ void add_motion_command(CLI::App& app, Context& context);
 void add_export_geojson_command(CLI::App& app, Context& context);  // with SEWERPLAN_WITH_GIS
 void add_serve_command(CLI::App& app, Context& context);
 void add_merge_measurements_command(CLI::App& app, Context& context);
+void add_fit_risk_command(CLI::App& app, Context& context);
 // Needs every other command registered: it prints their options.
 void add_completion_command(CLI::App& app, Context& context);
 

@@ -69,6 +69,7 @@ constexpr CommandEntry kCommands[] = {
 #endif
     {"serve", &sewerplan::cli::add_serve_command},
     {"merge-measurements", &sewerplan::cli::add_merge_measurements_command},
+    {"fit-risk", &sewerplan::cli::add_fit_risk_command},
     {"completion", &sewerplan::cli::add_completion_command},
 };
 

@@ -55,6 +55,20 @@ Json execution_json(const Execution& e) {
         e.rungs[r];
   }
   j["rungs"] = std::move(rungs);
+  // The hazards observed (issue 34), pipes by index as in "world"; only when there were any, so
+  // records of campaigns without condition data stay as they were.
+  if (!e.hazards.empty()) {
+    Json hazards = Json::array();
+    for (const executor::HazardBelief& h : e.hazards) {
+      hazards.push_back(Json{{"pipe", h.pipe.value()},
+                             {"offset_m", h.offset_m},
+                             {"reason", h.reason},
+                             {"passes", h.passes},
+                             {"blocked", h.blocked},
+                             {"probability", h.probability}});
+    }
+    j["hazards"] = std::move(hazards);
+  }
   if (e.world) {
     // The counts are read back; the shares are written for a reader (null: nothing to share).
     const WorldScore& w = *e.world;
@@ -219,6 +233,28 @@ Execution read_execution(JsonFields& run, std::string_view key, std::string_view
     }
     rungs->reject_unknown(
         {"search", "best-so-far", "current-plan", "repaired-plan", "greedy", "nearest-exit"});
+  }
+  // Records written before hazards were recorded, or of campaigns without any, have none.
+  if (const std::optional<JsonArray> list = f->array("hazards", kOptional)) {
+    std::size_t i = 0;
+    for (JsonElement e : *list) {
+      JsonFields h(e, indexed(f->path() + ".hazards", i++), file, f->diagnostics());
+      h.reject_unknown({"pipe", "offset_m", "reason", "passes", "blocked", "probability"});
+      executor::HazardBelief b;
+      b.pipe = PipeId{static_cast<std::uint32_t>(h.count("pipe", 0xffffffffU).value_or(0))};
+      b.offset_m = h.number("offset_m").value_or(0);
+      b.reason = h.string("reason").value_or("");
+      b.passes = h.count("passes", kMaxCount).value_or(0);
+      b.blocked = h.boolean("blocked").value_or(false);
+      b.probability = h.number("probability").value_or(0);
+      if (!(b.offset_m >= 0))
+        h.error("offset_m", "must be 0 or more, got " + format_double(b.offset_m));
+      if (!(b.probability >= 0 && b.probability <= 1)) {
+        h.error("probability",
+                "must be a probability from 0 to 1, got " + format_double(b.probability));
+      }
+      x.hazards.push_back(std::move(b));
+    }
   }
   // Records written before beacons had causes have none.
   if (const std::optional<std::string> name = f->string("beacon_cause", kOptional)) {

@@ -168,6 +168,7 @@ Execution execute(const SewerMap& map, const hal::TrueWorld& truth, const Missio
   e.disabled = disabled(faults, robot);
   e.beacon_cause = report.beacon_cause;
   e.planning_times_s = report.planning_times_s;
+  e.hazards = replanner.learnt().hazards;
   if (scorer) e.world = scorer->score();
   const std::optional<ManholeId> m = manhole_of(robot.pose());
   // A final task that is a place (go to a pipe or a manhole) is done by ending there: the executor

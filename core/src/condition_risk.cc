@@ -11,15 +11,22 @@ namespace sewerplan {
 namespace {
 
 const RiskRule* match(const RiskTable& table, const Finding& f) {
-  for (const RiskRule& r : table.rules) {
-    if (f.code.starts_with(r.code) && f.characterisation.starts_with(r.characterisation)) {
-      return &r;
-    }
-  }
-  return nullptr;
+  const std::optional<std::size_t> i = matching_rule(table, f);
+  return i ? &table.rules[*i] : nullptr;
 }
 
 }  // namespace
+
+std::optional<std::size_t> matching_rule(const RiskTable& table, const Finding& finding) {
+  for (std::size_t i = 0; i < table.rules.size(); ++i) {
+    const RiskRule& r = table.rules[i];
+    if (finding.code.starts_with(r.code) &&
+        finding.characterisation.starts_with(r.characterisation)) {
+      return i;
+    }
+  }
+  return std::nullopt;
+}
 
 std::string_view to_string(RiskEffect effect) {
   switch (effect) {

@@ -1,5 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The risk table as JSON (condition_risk.h, docs/formats/risk-table.md).
+#include <cmath>
+#include <cstdint>
+
 #include <nlohmann/json.hpp>
 
 #include "sewerplan/core/condition_risk.h"
@@ -15,11 +18,53 @@ using Need = JsonFields::Need;
 constexpr RiskEffect kEffects[] = {RiskEffect::kNone, RiskEffect::kDanger, RiskEffect::kBlockage,
                                    RiskEffect::kImpassable};
 
+// A fitted rule's evidence ("fit", risk_fit.h): counts, the prior, and the posterior of the mean
+// probability of the findings observed with its credible interval.
+std::optional<RiskRuleFit> read_fit(JsonFields& rule, const std::string& file, Diagnostics& d) {
+  const std::optional<JsonElement> json = rule.member("fit", Need::kOptional);
+  if (!json) return std::nullopt;
+  JsonFields f(*json, rule.path() + ".fit", file, d);
+  if (!f.is_object()) return std::nullopt;
+  f.warn_unknown({"observations", "blockages", "prior_strength", "prior_probability", "mean_prior",
+                  "mean", "mean_low", "mean_high", "level"});
+  RiskRuleFit fit;
+  constexpr std::uint64_t kMaxCount = std::uint64_t{1} << 53;
+  fit.observations = f.count("observations", kMaxCount).value_or(0);
+  fit.blockages = f.count("blockages", kMaxCount).value_or(0);
+  if (fit.blockages > fit.observations) {
+    f.error("blockages", "more than observations (" + std::to_string(fit.observations) + ")");
+  }
+  fit.prior_strength = f.number("prior_strength").value_or(0);
+  if (!(std::isfinite(fit.prior_strength) && fit.prior_strength > 0)) {
+    f.error("prior_strength",
+            "must be a positive number, got " + format_double(fit.prior_strength));
+  }
+  for (auto [key, field] : {std::pair{"prior_probability", &fit.prior_probability},
+                            {"mean_prior", &fit.mean_prior},
+                            {"mean", &fit.mean},
+                            {"mean_low", &fit.mean_low},
+                            {"mean_high", &fit.mean_high},
+                            {"level", &fit.level}}) {
+    const std::optional<double> v = f.number(key);
+    if (!v) continue;
+    if (!(*v >= 0 && *v <= 1)) {
+      f.error(key, "must be a probability from 0 to 1, got " + format_double(*v));
+    }
+    *field = *v;
+  }
+  if (!(fit.mean_low <= fit.mean && fit.mean <= fit.mean_high)) {
+    f.error("mean", "must lie within mean_low and mean_high (" + format_double(fit.mean_low) +
+                        " to " + format_double(fit.mean_high) + "), got " +
+                        format_double(fit.mean));
+  }
+  return fit;
+}
+
 std::optional<RiskRule> read_rule(JsonElement json, const std::string& path,
                                   const std::string& file, Diagnostics& d) {
   JsonFields f(json, path, file, d);
   f.warn_unknown({"code", "characterisation", "effect", "cross_section_percent", "probability",
-                  "probability_per_percent", "meaning"});
+                  "probability_per_percent", "meaning", "fit"});
   const std::size_t errors_before = d.error_count();
   RiskRule rule;
   rule.code = f.string("code").value_or("");
@@ -51,6 +96,7 @@ std::optional<RiskRule> read_rule(JsonElement json, const std::string& path,
   rule.probability = share("probability");
   rule.probability_per_percent = share("probability_per_percent");
   rule.meaning = f.string("meaning", Need::kOptional).value_or(rule.code);
+  rule.fit = read_fit(f, file, d);
   if (d.error_count() > errors_before) return std::nullopt;
   return rule;
 }
@@ -102,6 +148,19 @@ void write_risk_table_json(const RiskTable& table, std::ostream& out) {
     if (r.probability != 0) j["probability"] = r.probability;
     if (r.probability_per_percent != 0) j["probability_per_percent"] = r.probability_per_percent;
     j["meaning"] = r.meaning;
+    if (const std::optional<RiskRuleFit>& fit = r.fit) {
+      nlohmann::ordered_json e;
+      e["observations"] = fit->observations;
+      e["blockages"] = fit->blockages;
+      e["prior_strength"] = fit->prior_strength;
+      e["prior_probability"] = fit->prior_probability;
+      e["mean_prior"] = fit->mean_prior;
+      e["mean"] = fit->mean;
+      e["mean_low"] = fit->mean_low;
+      e["mean_high"] = fit->mean_high;
+      e["level"] = fit->level;
+      j["fit"] = std::move(e);
+    }
     rules.push_back(std::move(j));
   }
   nlohmann::ordered_json doc;

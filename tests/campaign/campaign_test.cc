@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "sewerplan/campaign/campaign.h"
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <chrono>
@@ -676,13 +677,33 @@ TEST(Campaign, FaultsFromConditionAreSeededAndTheRiskAwareRunIsRecordedAndSummar
   EXPECT_TRUE(run_faults(ais.map, mission, run_settings(plain), 0)->obstacles.empty());
 
   const auto records = run_campaign(ais.map, mission, spec, {.guard = false});
+  std::size_t observed = 0;
   for (const RunRecord& r : records) {
     ASSERT_TRUE(r.result.has_value());
     ASSERT_TRUE(r.result->risk_aware.has_value());
     Result<RunRecord> back = parse_run_line(run_json_line(r), "runs.jsonl", r.index + 1);
     ASSERT_TRUE(back.has_value()) << back.error().message;
     EXPECT_EQ(run_json_line(*back), run_json_line(r));
+    // What each robot observed of the hazards is recorded (issue 34, the observations fit-risk
+    // fits from), reads back, and agrees with the faults drawn: a hazard met as a blockage is
+    // one drawn, one passed is not.
+    const Result<hal::FaultScenario> drawn = run_faults(ais.map, mission, settings, r.index);
+    ASSERT_TRUE(drawn.has_value());
+    const auto is_drawn = [&](const executor::HazardBelief& h) {
+      return std::any_of(
+          drawn->obstacles.begin(), drawn->obstacles.end(),
+          [&](const hal::Obstacle& o) { return o.pipe == h.pipe && o.offset_m == h.offset_m; });
+    };
+    for (const Execution* e : {&r.result->ours, &r.result->baseline, &*r.result->risk_aware}) {
+      for (const executor::HazardBelief& h : e->hazards) {
+        EXPECT_EQ(h.blocked, is_drawn(h)) << "run " << r.index << " pipe " << h.pipe.value();
+        EXPECT_EQ(h.blocked, h.passes == 0);
+        observed += 1;
+      }
+    }
+    EXPECT_EQ(back->result->ours.hazards, r.result->ours.hazards);
   }
+  EXPECT_GT(observed, 0U);
   const Summary s = summarize(spec, records);
   ASSERT_TRUE(s.risk_aware.has_value());
   EXPECT_EQ(s.risk_aware_better + s.risk_aware_equal + s.risk_aware_worse, spec.runs);

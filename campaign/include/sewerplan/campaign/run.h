@@ -171,6 +171,11 @@ struct Execution {
   // How many of the mission's plans each rung of the anytime ladder answered, indexed by
   // executor::PlanResponse::Rung (the first plan and every replan).
   std::array<std::size_t, executor::PlanResponse::kRungCount> rungs{};
+  // What the robot observed of the mission's hazards (Mission::hazards: condition data with
+  // `--risk expected` or `--faults-from-condition`): the Replanner's beliefs at the end
+  // (executor::Learnt::hazards), one per hazard it drove past or was stopped by, in the order first
+  // met; the observations `sewerplan fit-risk` fits the risk table from (core/risk_fit.h).
+  std::vector<executor::HazardBelief> hazards;
   // Ours only, with world errors (RunSettings::world_errors not "none"): its localisation and
   // measured map scored against the true world (world_score.h).
   std::optional<WorldScore> world;

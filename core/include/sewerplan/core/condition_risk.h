@@ -40,6 +40,25 @@ enum class RiskEffect { kNone, kDanger, kBlockage, kImpassable };
 
 std::string_view to_string(RiskEffect effect);
 
+// How a fitted table's rule was estimated from observed outcomes (risk_fit.h, fit_risk_table;
+// docs/formats/risk-table.md, "fit"). A table written by hand has none; planning ignores it.
+struct RiskRuleFit {
+  std::size_t observations = 0;  // findings of this rule robots passed or were stopped by
+  std::size_t blockages = 0;     // of those, the ones that stopped a robot
+  double prior_strength = 0;     // the prior's weight, in pseudo-observations (k)
+  double prior_probability = 0;  // the prior table's `probability` for this rule
+  // The blockage probability of the findings observed (their mean): the prior's (m, from the
+  // prior table at each finding's quantification), the posterior mean, and its equal-tailed
+  // credible interval at `level`. With no observation: the prior rule's `probability`, and the
+  // interval of the prior alone.
+  double mean_prior = 0;
+  double mean = 0;
+  double mean_low = 0;
+  double mean_high = 0;
+  double level = 0.9;
+  friend bool operator==(const RiskRuleFit&, const RiskRuleFit&) = default;
+};
+
 struct RiskRule {
   std::string code;              // a DIN EN 13508-2 main code ("BAC"), or a prefix of one ("BA")
   std::string characterisation;  // a prefix of the finding's characterisation; empty: any
@@ -52,7 +71,8 @@ struct RiskRule {
   // (quantification 1), at most 1.
   double probability = 0;
   double probability_per_percent = 0;
-  std::string meaning;  // "roots", for reasons
+  std::string meaning;             // "roots", for reasons
+  std::optional<RiskRuleFit> fit;  // a fitted table's evidence for this rule; not for planning
   friend bool operator==(const RiskRule&, const RiskRule&) = default;
 };
 
@@ -89,6 +109,10 @@ struct FindingRisk {
 // One FindingRisk per finding of `map`, in the map's order. Runtime: O(findings x rules).
 std::vector<FindingRisk> assess_findings(const SewerMap& map, const RobotProfile& profile,
                                          const RiskTable& table);
+
+// The index of the rule that decides `finding` (the first whose code and characterisation match),
+// or none. Runtime: O(rules).
+std::optional<std::size_t> matching_rule(const RiskTable& table, const Finding& finding);
 
 // The kImpassable findings as mission blockages, in the map's order of findings.
 std::vector<Blockage> impassable_blockages(const SewerMap& map,
