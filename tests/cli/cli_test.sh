@@ -7,26 +7,7 @@ sp=$1
 src=$2
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-failures=0
-passed=0
-
-# expect CODE PATTERN -- COMMAND...: runs COMMAND, checks its exit code and that PATTERN (grep -E)
-# occurs in its stdout+stderr.
-expect() {
-  local code=$1 pattern=$2
-  shift 3
-  local out
-  out=$("$@" 2>&1)
-  local got=$?
-  if [ "$got" -ne "$code" ] || ! grep -qE -- "$pattern" <<<"$out"; then
-    echo "FAIL: $* -> exit $got (want $code), output:"
-    echo "$out" | head -20
-    echo "(wanted /$pattern/)"
-    failures=$((failures + 1))
-  else
-    passed=$((passed + 1))
-  fi
-}
+source "$(dirname "${BASH_SOURCE[0]}")/expect.sh"
 
 ais=$src/datasets/ais-testbed/map.json
 mission=$src/datasets/ais-testbed/missions/paper.json

@@ -11,33 +11,8 @@ sp=$1
 src=$2
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-failures=0
-passed=0
-
-# expect CODE PATTERN -- COMMAND...: runs COMMAND, checks its exit code and that PATTERN (grep -E)
-# occurs in its stdout+stderr.
-expect() {
-  local code=$1 pattern=$2
-  shift 3
-  local out
-  out=$(timeout 60 "$@" 2>&1)
-  local got=$?
-  if [ "$got" -ne "$code" ] || ! grep -qE -- "$pattern" <<<"$out"; then
-    echo "FAIL: $* -> exit $got (want $code), output:"
-    echo "$out" | head -20
-    echo "(wanted /$pattern/)"
-    failures=$((failures + 1))
-  else
-    passed=$((passed + 1))
-  fi
-}
-
-# check DESCRIPTION COMMAND...: the command succeeds.
-check() {
-  local what=$1
-  shift
-  if "$@"; then passed=$((passed + 1)); else echo "FAIL: $what"; failures=$((failures + 1)); fi
-}
+source "$(dirname "${BASH_SOURCE[0]}")/expect.sh"
+expect_timeout=60  # a hang fails
 
 map=$src/datasets/swmm/swmmio-state-plane.inp
 condition=$src/datasets/condition/swmm-state-plane/zustand.xml

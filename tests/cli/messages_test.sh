@@ -9,25 +9,7 @@ set -uo pipefail
 sp=$1
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-failures=0
-passed=0
-
-# expect CODE 'REGEX' -- COMMAND...: COMMAND exits with CODE and its output (both streams) matches.
-expect() {
-  local code=$1 pattern=$2
-  shift 3
-  local out
-  out=$("$@" 2>&1)
-  local got=$?
-  if [ "$got" -ne "$code" ] || ! grep -qE -- "$pattern" <<<"$out"; then
-    echo "FAIL: $* -> exit $got (want $code), output:"
-    echo "$out" | head -20
-    echo "(wanted /$pattern/)"
-    failures=$((failures + 1))
-  else
-    passed=$((passed + 1))
-  fi
-}
+source "$(dirname "${BASH_SOURCE[0]}")/expect.sh"
 
 # refute 'REGEX' -- COMMAND...: the output of COMMAND does not match.
 refute() {
