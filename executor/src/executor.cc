@@ -114,7 +114,7 @@ class Executor::Run {
         logs_(e.logs_),
         halt_(e.halt_),
         tracker_(e.map_, e.replanner_.progress().position, e.replanner_.heading_end()),
-        localising_(e.map_, e.options_.odometry_sd_fraction),
+        localising_(e.map_, e.options_.odometry_sd_fraction, e.replanner_.learnt().junctions),
         recovery_(
             e.map_, e.options_.recovery, e.replanner_.mission().profile.speed_mps, tracker_,
             {.execute_job = [this](const Job& job) { return execute_job(job); },
@@ -716,6 +716,13 @@ class Executor::Run {
     if (outcome == MissionReport::Outcome::kBeacon) {
       report_.beacon = robot_.activate_beacon();
       emit(BeaconEvent{end, report_.beacon});
+    }
+    // What the filter remembered of the pipes joins what the robot learnt, for the next mission
+    // (Learnt::junctions); the filter started from the Replanner's, so it replaces it.
+    if (localisation::JunctionMemory memory = localising_.memory(); !memory.empty()) {
+      Learnt remembered;
+      remembered.junctions = std::move(memory);
+      (void)replanner_.learn(remembered);
     }
     const hal::RobotStatus status = robot_.status();
     const RobotProfile& p = mission().profile;

@@ -21,6 +21,8 @@ using Need = JsonFields::Need;
 
 // Passes beyond this are no robot's (and a double holds every whole number up to it exactly).
 constexpr std::uint64_t kMaxPasses = std::uint64_t{1} << 53;
+// Sightings of one junction beyond this are no robot's (and fit an int).
+constexpr std::uint64_t kMaxSightings = 1'000'000;
 
 class LearntReader {
  public:
@@ -109,14 +111,97 @@ class LearntReader {
         at->pipe, at->offset_m, *reason, *probability, static_cast<std::size_t>(*passes), *blocked};
   }
 
+  // "from_end" of `f`: "from" or "to", the pipe's end (as the map names them) a distance in it
+  // counts from: 0 or 1.
+  std::optional<std::uint8_t> end(JsonFields& f) {
+    const std::optional<std::string> name = f.string("from_end");
+    if (!name) return std::nullopt;
+    if (*name == "from") return std::uint8_t{0};
+    if (*name == "to") return std::uint8_t{1};
+    f.error("from_end", "expected \"from\" or \"to\" (the pipe's end), got \"" + *name + "\"");
+    return std::nullopt;
+  }
+
+  // A distance `key` of `f` in `pipe`: from 0 to its mapped length.
+  std::optional<double> distance(JsonFields& f, std::string_view key, const Pipe& pipe) {
+    const std::optional<double> d = f.number(key);
+    if (!d) return std::nullopt;
+    if (!std::isfinite(*d) || *d < 0 || *d > pipe.length_m) {
+      f.error(key, "expected a distance from 0 to " + json(pipe.length_m).dump() +
+                       " m (the length of pipe " + pipe.name + "), got " + json(*d).dump());
+      return std::nullopt;
+    }
+    return d;
+  }
+
+  std::optional<localisation::KnownJunction> junction(JsonElement element,
+                                                      const std::string& path) {
+    JsonFields f(element, path, file_, diagnostics_);
+    f.reject_unknown({"pipe", "from_end", "distance_m", "sd_m", "sightings"});
+    const auto p = pipe(f);
+    const auto from = end(f);
+    if (!p || !from) return std::nullopt;
+    const std::optional<double> d = distance(f, "distance_m", map_.pipe(*p));
+    const std::optional<double> sd = f.number("sd_m");
+    const std::optional<std::uint64_t> sightings = f.count("sightings", kMaxSightings);
+    if (!d || !sd || !sightings) return std::nullopt;
+    const double var = *sd * *sd;
+    if (!(std::isfinite(var) && var > 0)) {
+      f.error("sd_m", "expected a standard deviation above 0 m, got " + json(*sd).dump());
+      return std::nullopt;
+    }
+    if (*sightings < 1) {
+      f.error("sightings", "expected at least 1 sighting");
+      return std::nullopt;
+    }
+    return localisation::KnownJunction{.pipe = *p,
+                                       .from_end = *from,
+                                       .distance_m = *d,
+                                       .var_m2 = var,
+                                       .sightings = static_cast<int>(*sightings)};
+  }
+
+  std::optional<localisation::DrivenStretch> stretch(JsonElement element, const std::string& path) {
+    JsonFields f(element, path, file_, diagnostics_);
+    f.reject_unknown({"pipe", "from_end", "from_m", "to_m"});
+    const auto p = pipe(f);
+    const auto from = end(f);
+    if (!p || !from) return std::nullopt;
+    const Pipe& pipe = map_.pipe(*p);
+    const std::optional<double> a = distance(f, "from_m", pipe);
+    const std::optional<double> b = distance(f, "to_m", pipe);
+    if (!a || !b) return std::nullopt;
+    if (!(*a < *b)) {
+      f.error("to_m",
+              "expected more than from_m (" + json(*a).dump() + " m), got " + json(*b).dump());
+      return std::nullopt;
+    }
+    return localisation::DrivenStretch{.pipe = *p, .from_end = *from, .from_m = *a, .to_m = *b};
+  }
+
   template <class T, class Read>
-  void each(JsonFields& root, std::string_view key, std::vector<T>& out, Read read) {
-    const std::optional<JsonArray> items = root.array(key, Need::kOptional);
+  void each(JsonFields& parent, std::string_view key, std::vector<T>& out, Read read) {
+    const std::optional<JsonArray> items = parent.array(key, Need::kOptional);
     if (!items) return;
     std::size_t i = 0;
     for (JsonElement item : *items) {
-      if (auto v = read(item, indexed("$." + std::string(key), i++))) out.push_back(*v);
+      if (auto v = read(item, indexed(parent.path() + "." + std::string(key), i++))) {
+        out.push_back(*v);
+      }
     }
+  }
+
+  // "junction_memory" of the root (version 3): {"junctions": [...], "driven": [...]}.
+  void memory(JsonFields& root, localisation::JunctionMemory& out) {
+    const std::optional<JsonElement> element = root.member("junction_memory", Need::kOptional);
+    if (!element) return;
+    JsonFields f(*element, root.path() + ".junction_memory", file_, diagnostics_);
+    if (!f.is_object()) return;  // reported
+    f.reject_unknown({"junctions", "driven"});
+    each(f, "junctions", out.junctions,
+         [&](JsonElement e, const std::string& path) { return junction(e, path); });
+    each(f, "driven", out.driven,
+         [&](JsonElement e, const std::string& path) { return stretch(e, path); });
   }
 
  private:
@@ -186,7 +271,8 @@ Result<Learnt> read_learnt_json(std::string_view text, const std::string& file_n
   if (!doc) return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
   JsonFields root(doc->root(), "$", file_name, diagnostics);
   if (!root.is_object()) return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
-  root.reject_unknown({"format", "version", "blockages", "danger", "closed_passages", "hazards"});
+  root.reject_unknown({"format", "version", "blockages", "danger", "closed_passages", "hazards",
+                       "junction_memory"});
   // Absent or another value: one error each (a value of the wrong type is JsonFields' error).
   const std::optional<std::string> format = root.string("format", Need::kOptional);
   if (format ? *format != kLearntJsonFormat : !root.has("format")) {
@@ -194,11 +280,14 @@ Result<Learnt> read_learnt_json(std::string_view text, const std::string& file_n
   }
   // Version 1 had no hazards; a reader of version 2 reads it as it was.
   const std::optional<double> version = root.number("version", Need::kOptional);
-  if (version ? *version != 1 && *version != static_cast<double>(kLearntJsonVersion)
-              : !root.has("version")) {
-    root.error("version", "expected 1 or " + std::to_string(kLearntJsonVersion));
+  if (version
+          ? *version != 1 && *version != 2 && *version != static_cast<double>(kLearntJsonVersion)
+          : !root.has("version")) {
+    root.error("version", "expected 1 to " + std::to_string(kLearntJsonVersion));
   } else if (version && *version == 1 && root.has("hazards")) {
-    root.error("hazards", "learnt hazards need version " + std::to_string(kLearntJsonVersion));
+    root.error("hazards", "learnt hazards need version 2 or later");
+  } else if (version && *version < 3 && root.has("junction_memory")) {
+    root.error("junction_memory", "a junction memory needs version 3 or later");
   }
   LearntReader reader(map, file_name, diagnostics);
   Learnt learnt;
@@ -211,6 +300,7 @@ Result<Learnt> read_learnt_json(std::string_view text, const std::string& file_n
               [&](JsonElement e, const std::string& path) { return reader.passage(e, path); });
   reader.each(root, "hazards", learnt.hazards,
               [&](JsonElement e, const std::string& path) { return reader.hazard(e, path); });
+  reader.memory(root, learnt.junctions);
   if (diagnostics.has_errors_since(before))
     return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
   return learnt;
@@ -251,6 +341,22 @@ std::string learnt_json(const Learnt& learnt, const SewerMap& map) {
                             {"passes", h.passes},
                             {"blocked", h.blocked}});
   }
+  const auto end_name = [](std::uint8_t end) { return end == 0 ? "from" : "to"; };
+  json memory = {{"junctions", json::array()}, {"driven", json::array()}};
+  for (const localisation::KnownJunction& k : learnt.junctions.junctions) {
+    memory["junctions"].push_back({{"pipe", map.pipe(k.pipe).name},
+                                   {"from_end", end_name(k.from_end)},
+                                   {"distance_m", k.distance_m},
+                                   {"sd_m", std::sqrt(k.var_m2)},
+                                   {"sightings", k.sightings}});
+  }
+  for (const localisation::DrivenStretch& s : learnt.junctions.driven) {
+    memory["driven"].push_back({{"pipe", map.pipe(s.pipe).name},
+                                {"from_end", end_name(s.from_end)},
+                                {"from_m", s.from_m},
+                                {"to_m", s.to_m}});
+  }
+  j["junction_memory"] = std::move(memory);
   return j.dump(2) + "\n";
 }
 

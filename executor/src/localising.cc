@@ -106,11 +106,18 @@ std::string signature_text(const ManholeSignature& signature) {
 }
 
 Localising::Localising(const SewerMap& map, double odometry_sd_fraction,
+                       const localisation::JunctionMemory& memory,
                        localisation::LocalisationOptions options)
     : map_(map), odometry_sd_fraction_(odometry_sd_fraction), options_(std::move(options)) {
   Result<localisation::TopologicalFilter> filter =
       localisation::TopologicalFilter::create(map, options_);
   if (filter.has_value()) filter_.emplace(std::move(*filter));
+  // The Replanner checked the memory when it learnt it (Replanner::learn): it fits the map.
+  if (filter_) (void)filter_->recall(memory);
+}
+
+localisation::JunctionMemory Localising::memory() const {
+  return filter_ ? filter_->memory() : localisation::JunctionMemory{};
 }
 
 void Localising::reset(const domain::RobotPosition& position, std::uint8_t heading_end) {

@@ -41,7 +41,10 @@ class Localising {
  public:
   // `odometry_sd_fraction`: the odometry's standard deviation per metre driven (the robot
   // profile's: ExecutorOptions::odometry_sd_fraction).
+  // `memory`: what earlier missions remembered of the pipes (Learnt::junctions), which the filter
+  // starts from; one the filter refuses (check_memory) is not used.
   Localising(const SewerMap& map, double odometry_sd_fraction,
+             const localisation::JunctionMemory& memory = {},
              localisation::LocalisationOptions options = {});
 
   // The robot is at `position` (facing `heading_end` in a pipe), certainly: the mission's start,
@@ -63,6 +66,10 @@ class Localising {
   localisation::Estimate estimate() const;
 
   const localisation::LocalisationOptions& options() const { return options_; }
+
+  // What the filter remembers of the pipes: what it started from and what it learnt since (kept
+  // across restarts). Empty without a filter.
+  localisation::JunctionMemory memory() const;
 
  private:
   const SewerMap& map_;

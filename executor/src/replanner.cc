@@ -157,6 +157,7 @@ Result<PlanResponse> Replanner::plan_cancellable(const std::optional<Failure>& f
 }
 
 Result<void> Replanner::learn(const Learnt& learnt) {
+  if (auto ok = localisation::check_memory(learnt.junctions, map_); !ok.has_value()) return ok;
   for (const HazardBelief& h : learnt.hazards) {
     if (auto ok = check_hazard_belief(h, map_); !ok.has_value()) return ok;
   }
@@ -200,6 +201,7 @@ Result<void> Replanner::learn(const Learnt& learnt) {
       learnt_.hazards.push_back(h);
     }
   }
+  if (!learnt.junctions.empty()) learnt_.junctions = learnt.junctions;
   return {};
 }
 

@@ -421,6 +421,51 @@ double TopologicalFilter::junction_log_density(PipeId pipe_id, std::uint8_t end,
   return density + fresh > 0 ? std::log(density + fresh) : kNegativeInfinity;
 }
 
+Result<void> check_memory(const JunctionMemory& memory, const SewerMap& map) {
+  const auto within = [&](const Pipe& pipe, double d) {
+    return std::isfinite(d) && d >= 0 && d <= pipe.length_m;
+  };
+  for (std::size_t i = 0; i < memory.junctions.size(); ++i) {
+    const KnownJunction& j = memory.junctions[i];
+    const std::string what = "remembered junction " + std::to_string(i + 1);
+    if (j.pipe.index() >= map.pipe_count())
+      return invalid(what + ": no pipe " + shown(j.pipe.value()) + " in the map");
+    const Pipe& pipe = map.pipe(j.pipe);
+    if (j.from_end > 1) return invalid(what + " in " + pipe.name + ": end must be 0 or 1");
+    if (!within(pipe, j.distance_m)) {
+      return invalid(what + " in " + pipe.name + ": distance " + shown(j.distance_m) +
+                     " m is outside the pipe (0 to " + shown(pipe.length_m) + " m)");
+    }
+    if (!(std::isfinite(j.var_m2) && j.var_m2 > 0))
+      return invalid(what + " in " + pipe.name + ": variance " + shown(j.var_m2) + " is not > 0");
+    if (j.sightings < 1) return invalid(what + " in " + pipe.name + ": no sighting");
+  }
+  for (std::size_t i = 0; i < memory.driven.size(); ++i) {
+    const DrivenStretch& s = memory.driven[i];
+    const std::string what = "driven stretch " + std::to_string(i + 1);
+    if (s.pipe.index() >= map.pipe_count())
+      return invalid(what + ": no pipe " + shown(s.pipe.value()) + " in the map");
+    const Pipe& pipe = map.pipe(s.pipe);
+    if (s.from_end > 1) return invalid(what + " in " + pipe.name + ": end must be 0 or 1");
+    if (!within(pipe, s.from_m) || !within(pipe, s.to_m) || !(s.from_m < s.to_m)) {
+      return invalid(what + " in " + pipe.name + ": " + shown(s.from_m) + " to " + shown(s.to_m) +
+                     " m is not a stretch of the pipe (0 to " + shown(pipe.length_m) + " m)");
+    }
+  }
+  return {};
+}
+
+Result<void> TopologicalFilter::recall(JunctionMemory memory) {
+  if (auto ok = check_memory(memory, *map_); !ok.has_value()) return ok;
+  std::stable_sort(memory.junctions.begin(), memory.junctions.end(),
+                   [](const KnownJunction& a, const KnownJunction& b) {
+                     return a.pipe != b.pipe ? a.pipe < b.pipe : a.distance_m < b.distance_m;
+                   });
+  std::stable_sort(memory.driven.begin(), memory.driven.end(), stretch_by_pipe);
+  memory_ = std::move(memory);
+  return {};
+}
+
 void TopologicalFilter::remember_arrival() {
   if (mode_ == Mode::kLost) return;
   const Track& best = tracks_.front();

@@ -278,6 +278,15 @@ expect 0 '"pipe": "P5"' -- cat "$tmp/learnt.json"
 expect 0 ', 0 replans' -- "$sp" simulate --map "$ais" --mission "$mission" --faults "$src/datasets/ais-testbed/faults/blocked-p5.json" --learnt "$tmp/learnt.json" -q
 echo '{"format": "sewerplan-learnt", "version": 1, "blockages": [{"pipe": "PX", "offset_m": 1}]}' > "$tmp/bad-learnt.json"
 expect 1 'bad-learnt.json:\$\.blockages\[0\]\.pipe: error: unknown pipe "PX"' -- "$sp" simulate --map "$ais" --mission "$mission" --learnt "$tmp/bad-learnt.json" -q
+# The localisation's memory of the pipes (issue 29): the manholes the map lacks that it became
+# confident of are saved with what the robot learnt, and a second mission starts from them (the
+# same three junctions, each now seen twice); a bad entry is an error naming it.
+expect 0 'mission ended' -- "$sp" simulate --map "$ais" --mission "$mission" --world-errors junctions=0.5 --world-seed 3 --learnt "$tmp/junctions.json" -q
+expect 0 '"sightings": 1' -- cat "$tmp/junctions.json"
+expect 0 'mission ended' -- "$sp" simulate --map "$ais" --mission "$mission" --world-errors junctions=0.5 --world-seed 3 --learnt "$tmp/junctions.json" -q
+expect 0 '^3$' -- grep -c '"sightings": 2' "$tmp/junctions.json"
+echo '{"format": "sewerplan-learnt", "version": 3, "junction_memory": {"junctions": [{"pipe": "P4", "from_end": "up", "distance_m": 1, "sd_m": 0.1, "sightings": 1}]}}' > "$tmp/bad-junction.json"
+expect 1 'bad-junction.json:\$\.junction_memory\.junctions\[0\]\.from_end: error: expected "from" or "to"' -- "$sp" simulate --map "$ais" --mission "$mission" --learnt "$tmp/bad-junction.json" -q
 # Hazards passed safely learn (issue 34): each update is a hazard event of the live log, and the
 # learnt file keeps the probabilities; one outside 0..1 is an error naming the entry.
 battery_trap=$src/datasets/condition/battery-trap

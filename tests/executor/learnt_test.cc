@@ -62,7 +62,7 @@ TEST(Learnt, ErrorsNameTheFileAndThePath) {
       {R"({"format": "sewerplan-learnt", "version": 1,
            "closed_passages": [{"manhole": "M8", "from_slot": 1, "to_slot": 9}]})",
        "learnt.json:$.closed_passages[0].to_slot"},
-      {R"({"format": "sewerplan-learnt", "version": 3})", "learnt.json:$.version"},
+      {R"({"format": "sewerplan-learnt", "version": 4})", "learnt.json:$.version"},
       {R"({"format": "sewerplan-learnt", "version": 1, "bogus": []})", "learnt.json:$.bogus"},
       {"{\n  \"format\": ", "learnt.json:2:"},
       // Wrong types name the field and the value found.
@@ -111,6 +111,102 @@ TEST(Learnt, AReplannerRefusesKnowledgeThatDoesNotFitItsMap) {
   EXPECT_FALSE(replanner.learn(bad).has_value());
   EXPECT_TRUE(replanner.learnt().empty());
   EXPECT_TRUE(replanner.mission().blockages.empty());
+}
+
+// The topological filter's memory of the pipes (Learnt::junctions, issue 29): saved with what the
+// robot learnt as "junction_memory" and read back equal.
+localisation::JunctionMemory p4_memory(const SewerMap& map) {
+  const PipeId p4 = *map.find_pipe("P4");
+  const double length = map.pipe(p4).length_m;
+  return {
+      .junctions =
+          {{.pipe = p4, .from_end = 1, .distance_m = length / 2, .var_m2 = 0.25, .sightings = 2}},
+      .driven = {{.pipe = p4, .from_end = 0, .from_m = 0, .to_m = length / 4},
+                 {.pipe = p4, .from_end = 1, .from_m = 0.5, .to_m = length / 2}}};
+}
+
+TEST(Learnt, TheJunctionMemoryIsSavedAndReadBackEqual) {
+  const auto ais = testing::load_ais_testbed();
+  Learnt learnt;
+  learnt.blockages.push_back({*ais.map.find_pipe("P6"), 1.0});
+  learnt.junctions = p4_memory(ais.map);
+  const std::string text = learnt_json(learnt, ais.map);
+  EXPECT_NE(text.find("\"from_end\": \"to\""), std::string::npos) << text;
+  EXPECT_NE(text.find("\"sd_m\": 0.5"), std::string::npos) << text;
+  Diagnostics d;
+  const auto back = read_learnt_json(text, "learnt.json", ais.map, d);
+  ASSERT_TRUE(back.has_value()) << d.error_summary();
+  EXPECT_EQ(*back, learnt);
+  // A Replanner keeps it; a Learnt without one (a failure reported later) leaves it as it was.
+  Replanner replanner(ais.map, ais.mission);
+  ASSERT_TRUE(replanner.learn(learnt).has_value());
+  ASSERT_TRUE(replanner.learn(Learnt{.blockages = {{*ais.map.find_pipe("P4"), 1.0}}}).has_value());
+  EXPECT_EQ(replanner.learnt().junctions, learnt.junctions);
+}
+
+TEST(Learnt, AnOlderFileWithoutAJunctionMemoryStillReads) {
+  const auto ais = testing::load_ais_testbed();
+  for (
+      const char* text :
+      {R"({"format": "sewerplan-learnt", "version": 1, "blockages": [{"pipe": "P4", "offset_m": 1}]})",
+       R"({"format": "sewerplan-learnt", "version": 2, "blockages": [], "hazards": []})",
+       R"({"format": "sewerplan-learnt", "version": 3})"}) {
+    Diagnostics d;
+    const auto learnt = read_learnt_json(text, "learnt.json", ais.map, d);
+    ASSERT_TRUE(learnt.has_value()) << text << ": " << d.error_summary();
+    EXPECT_TRUE(learnt->junctions.empty()) << text;
+  }
+}
+
+TEST(Learnt, ABadJunctionMemoryIsNamedByFileAndPath) {
+  const auto ais = testing::load_ais_testbed();
+  const auto file = [](const std::string& memory) {
+    return R"({"format": "sewerplan-learnt", "version": 3, "junction_memory": )" + memory + "}";
+  };
+  const std::vector<std::pair<std::string, std::string>> bad{
+      {file(R"({"junctions": [{"pipe": "P99", "from_end": "from", "distance_m": 1, "sd_m": 0.5,
+               "sightings": 1}]})"),
+       "learnt.json:$.junction_memory.junctions[0].pipe: error: unknown pipe \"P99\""},
+      {file(R"({"junctions": [{"pipe": "P4", "from_end": "up", "distance_m": 1, "sd_m": 0.5,
+               "sightings": 1}]})"),
+       "learnt.json:$.junction_memory.junctions[0].from_end: error: expected \"from\" or \"to\""},
+      {file(R"({"junctions": [{"pipe": "P4", "from_end": "to", "distance_m": 1e9, "sd_m": 0.5,
+               "sightings": 1}]})"),
+       "learnt.json:$.junction_memory.junctions[0].distance_m: error: expected a distance from 0"},
+      {file(R"({"junctions": [{"pipe": "P4", "from_end": "to", "distance_m": 1, "sd_m": 0,
+               "sightings": 1}]})"),
+       "learnt.json:$.junction_memory.junctions[0].sd_m: error: expected a standard deviation"},
+      {file(R"({"junctions": [{"pipe": "P4", "from_end": "to", "distance_m": 1, "sd_m": 0.5,
+               "sightings": 0}]})"),
+       "learnt.json:$.junction_memory.junctions[0].sightings: error: expected at least 1"},
+      {file(R"({"junctions": [{"pipe": "P4", "from_end": "to", "distance_m": 1, "sd_m": 0.5}]})"),
+       "learnt.json:$.junction_memory.junctions[0]: error: missing required field 'sightings'"},
+      {file(R"({"driven": [{"pipe": "P4", "from_end": "from", "from_m": 2, "to_m": 1}]})"),
+       "learnt.json:$.junction_memory.driven[0].to_m: error: expected more than from_m"},
+      {file(R"({"driven": [{"pipe": "P4", "from_end": "from", "from_m": -1, "to_m": 1}]})"),
+       "learnt.json:$.junction_memory.driven[0].from_m: error: expected a distance from 0"},
+      {file(R"({"driven": [], "known": []})"), "learnt.json:$.junction_memory.known"},
+      {file(R"([])"), "learnt.json:$.junction_memory"},
+      {R"({"format": "sewerplan-learnt", "version": 2, "junction_memory": {}})",
+       "learnt.json:$.junction_memory: error: a junction memory needs version 3"},
+  };
+  for (const auto& [text, where] : bad) {
+    Diagnostics d;
+    const auto learnt = read_learnt_json(text, "learnt.json", ais.map, d);
+    ASSERT_FALSE(learnt.has_value()) << text;
+    EXPECT_NE(learnt.error().message.find(where), std::string::npos) << learnt.error().message;
+  }
+  // The same through the library: learn() refuses it, naming what is wrong, and learns nothing.
+  Replanner replanner(ais.map, ais.mission);
+  Learnt learnt;
+  learnt.junctions = p4_memory(ais.map);
+  learnt.junctions.junctions.front().distance_m = -1;
+  const auto refused = replanner.learn(learnt);
+  ASSERT_FALSE(refused.has_value());
+  EXPECT_NE(refused.error().message.find("remembered junction 1 in P4: distance -1 m"),
+            std::string::npos)
+      << refused.error().message;
+  EXPECT_TRUE(replanner.learnt().empty());
 }
 
 }  // namespace

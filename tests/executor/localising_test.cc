@@ -7,6 +7,7 @@
 
 #include "sewerplan/core/manhole_signature.h"
 #include "sewerplan/core/map_queries.h"
+#include "sewerplan/executor/learnt.h"
 
 #include "support/small_map.h"
 
@@ -88,6 +89,56 @@ TEST(Localising, AnUpdateTheFilterAcceptsNeverRestartsIt) {
   ASSERT_TRUE(at_m3.has_value());
   EXPECT_TRUE(at_m3->verification.matches()) << at_m3->verification.reason;
   EXPECT_EQ(localising.restarts(), 0);
+}
+
+// A drive from M3 20 m into P3 (30 m, towards M4) that ends at a manhole, `seen` as a three-way
+// manhole the map lacks (a lateral north) or detected without its signature: the odds the filter
+// gives a junction there against every other explanation (M4 reached early, a false detection).
+double odds_of_p3_junction(const Street& s, Localising& localising, bool seen) {
+  const domain::InPipe start{s.pipe("P3"), 0};
+  localising.reset(start, 1);
+  std::optional<ManholeSignature> junction;
+  if (seen) {
+    junction = s.seen("M3", "P2");
+    junction->slots.push_back({.relative_deg = 270, .step_m = 0, .diameter_m = 0.3});
+    junction->shaft_diameter_m = 1.2;
+  }
+  const std::optional<Arrival> arrival =
+      localising.follow(DriveForward{.speed_mps = 0.3, .distance_m = 30, .to_manhole = true},
+                        driven(20, junction), start, s.at("M4", "P3"), 1);
+  EXPECT_TRUE(arrival.has_value());
+  double p = 0;
+  double others = 0;
+  for (const localisation::Hypothesis& h : localising.estimate().hypotheses) {
+    (h.pose.at_unmapped_junction ? p : others) += h.probability;
+  }
+  return p / others;
+}
+
+// Issue 29: what the filter remembered of the pipes is saved with what the robot learnt, and the
+// next mission's filter starts from it: an arrival at the junction the first mission found weighs
+// as it would at the first mission's end, not as at a fresh start.
+TEST(Localising, ASecondMissionFromTheSavedBeliefWeighsTheRememberedJunctionAsTheFirstEnded) {
+  Street s;
+  Localising first(s.map, 0.03);
+  EXPECT_GT(odds_of_p3_junction(s, first, true), 100);  // seen, and remembered
+  ASSERT_EQ(first.memory().junctions.size(), 1u);
+  Learnt learnt;
+  learnt.junctions = first.memory();
+  Diagnostics d;
+  const Result<Learnt> saved =
+      read_learnt_json(learnt_json(learnt, s.map), "learnt.json", s.map, d);
+  ASSERT_TRUE(saved.has_value()) << d.error_summary();
+
+  // Then an arrival there whose signature was not observed: only the memory tells the junction.
+  Localising fresh(s.map, 0.03);
+  Localising second(s.map, 0.03, saved->junctions);
+  EXPECT_EQ(second.memory(), saved->junctions);
+  const double from_nothing = odds_of_p3_junction(s, fresh, false);
+  const double remembered = odds_of_p3_junction(s, second, false);
+  const double first_again = odds_of_p3_junction(s, first, false);  // the first mission going on
+  EXPECT_GT(remembered / from_nothing, 100) << from_nothing << " " << remembered;
+  EXPECT_NEAR(remembered / first_again, 1, 1e-6) << first_again << " " << remembered;
 }
 
 }  // namespace

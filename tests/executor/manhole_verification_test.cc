@@ -118,8 +118,13 @@ TEST(ManholeVerification, AManholeTheMapLacksIsPassedStraightOn) {
   const WorldRun exact = run_in_world(ais, "none", 1);
   std::size_t passed = 0;
   std::size_t as_exact = 0;
+  std::size_t remembered = 0;  // runs whose filter remembered a junction for the next mission
+  // What the filter remembered of the pipes joins what the robot learnt (Learnt::junctions).
+  EXPECT_FALSE(exact.learnt.junctions.driven.empty());
+  EXPECT_TRUE(exact.learnt.junctions.junctions.empty());
   for (std::uint64_t seed = 1; seed <= 10; ++seed) {
     const WorldRun r = run_in_world(ais, "junctions=0.5", seed);
+    if (!r.learnt.junctions.junctions.empty()) ++remembered;
     EXPECT_NE(r.report.outcome, MissionReport::Outcome::kHalted) << "seed " << seed;
     if (r.report.outcome == MissionReport::Outcome::kEnded &&
         r.report.tasks_done == exact.report.tasks_done) {
@@ -129,6 +134,7 @@ TEST(ManholeVerification, AManholeTheMapLacksIsPassedStraightOn) {
   }
   EXPECT_GE(as_exact, 8U);
   EXPECT_GE(passed, 3U);
+  EXPECT_GE(remembered, 1U);
 }
 
 // A lateral the world lacks at a manhole the plan turns through: the robot sees a mouth fewer,

@@ -301,6 +301,41 @@ TEST(TopologicalFilter, RemembersAJunctionItBecameConfidentOf) {
   EXPECT_EQ(f.memory().junctions.size(), 1u);
 }
 
+TEST(TopologicalFilter, StartsFromAMemoryItIsGivenAndRefusesOneThatDoesNotFitTheMap) {
+  Street s;
+  TopologicalFilter f = s.filter();
+  // Out of order (P3 before P1, P3's junctions not by distance): kept in the filter's order.
+  const JunctionMemory given{
+      .junctions = {{.pipe = s.pipe("P3"), .from_end = 0, .distance_m = 30, .var_m2 = 0.04},
+                    {.pipe = s.pipe("P3"), .from_end = 0, .distance_m = 20, .var_m2 = 0.04},
+                    {.pipe = s.pipe("P1"), .from_end = 1, .distance_m = 10, .var_m2 = 0.04}},
+      .driven = {{.pipe = s.pipe("P3"), .from_end = 0, .from_m = 0, .to_m = 20},
+                 {.pipe = s.pipe("P1"), .from_end = 0, .from_m = 0, .to_m = 5}}};
+  ASSERT_TRUE(f.recall(given).has_value());
+  ASSERT_EQ(f.memory().junctions.size(), 3u);
+  EXPECT_EQ(f.memory().junctions[0].pipe, s.pipe("P1"));
+  EXPECT_EQ(f.memory().junctions[1].distance_m, 20);
+  EXPECT_EQ(f.memory().driven.front().pipe, s.pipe("P1"));
+  // Each is found where it is: far above the fresh prior (0.001 per metre).
+  EXPECT_GT(f.junction_log_density(s.pipe("P3"), 0, 20, 0.01), std::log(0.3));
+  EXPECT_GT(f.junction_log_density(s.pipe("P3"), 0, 30, 0.01), std::log(0.3));
+  EXPECT_GT(f.junction_log_density(s.pipe("P1"), 1, 10, 0.01), std::log(0.3));
+
+  JunctionMemory bad = given;
+  bad.driven[1].to_m = 1e6;
+  const Result<void> refused = f.recall(bad);
+  ASSERT_FALSE(refused.has_value());
+  EXPECT_NE(refused.error().message.find("driven stretch 2 in P1"), std::string::npos)
+      << refused.error().message;
+  bad = given;
+  bad.junctions[0].var_m2 = 0;
+  EXPECT_FALSE(f.recall(bad).has_value());
+  bad = given;
+  bad.junctions[0].pipe = PipeId{999};
+  EXPECT_FALSE(f.recall(bad).has_value());
+  EXPECT_EQ(f.memory().junctions.size(), 3u);  // what it had, kept
+}
+
 TEST(TopologicalFilter, DoesNotRememberAJunctionItCannotTellFromTheMappedManholeBeside) {
   // P2 (24 m) with a three-way manhole 20 m along, 4 m short of M3: the map's length is 2.4 m
   // uncertain, so it might as well be M3 with a lateral the map lacks. On a 1,000-manhole meshed

@@ -30,12 +30,14 @@
 #include "sewerplan/core/mission.h"
 #include "sewerplan/core/result.h"
 #include "sewerplan/core/sewer_map.h"
+#include "sewerplan/localisation/topological_filter.h"
 
 namespace sewerplan::executor {
 
 inline constexpr std::string_view kLearntJsonFormat = "sewerplan-learnt";
-// Version 2 added "hazards"; version 1 files (without them) are read as before.
-inline constexpr int kLearntJsonVersion = 2;
+// Version 2 added "hazards", version 3 "junction_memory"; files of versions 1 and 2 (without
+// them) are read as before.
+inline constexpr int kLearntJsonVersion = 3;
 
 // The prior strength of a hazard's belief when none is given (ReplannerOptions::hazard_learning):
 // the risk table's probability weighs as much as this many observations.
@@ -62,8 +64,13 @@ struct Learnt {
   std::vector<Blockage> danger_spots;          // spots in pipes the robot must not drive onto
   std::vector<ClosedPassage> closed_passages;  // dangerous passages, closed both ways
   std::vector<HazardBelief> hazards;           // hazards passed or met, with what that taught
+  // What the topological filter remembered of the pipes (localisation::JunctionMemory): the
+  // manholes the map lacks it became confident of, and the stretches driven without one. The
+  // next mission's filter starts from it (TopologicalFilter::recall).
+  localisation::JunctionMemory junctions;
   bool empty() const {
-    return blockages.empty() && danger_spots.empty() && closed_passages.empty() && hazards.empty();
+    return blockages.empty() && danger_spots.empty() && closed_passages.empty() &&
+           hazards.empty() && junctions.empty();
   }
   friend bool operator==(const Learnt&, const Learnt&) = default;
 };
@@ -87,9 +94,9 @@ Mission with_learnt(Mission mission, const Learnt& learnt);
 // from 0 to 1 (not NaN), and 1 if it is blocked. The error names the hazard and what is wrong.
 Result<void> check_hazard_belief(const HazardBelief& belief, const SewerMap& map);
 
-// Reads the JSON format (versions 1 and 2); every problem is a diagnostic at "file:$.path" naming
+// Reads the JSON format (versions 1 to 3); every problem is a diagnostic at "file:$.path" naming
 // the object (an unknown pipe or manhole, an offset outside the pipe, a slot the manhole does not
-// have, a probability outside 0..1).
+// have, a probability outside 0..1, a remembered junction outside its pipe).
 Result<Learnt> read_learnt_json(std::string_view text, const std::string& file_name,
                                 const SewerMap& map, Diagnostics& diagnostics);
 Result<Learnt> read_learnt(const std::filesystem::path& path, const SewerMap& map,

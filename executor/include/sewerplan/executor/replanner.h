@@ -236,8 +236,10 @@ class Replanner {
   Result<std::vector<HazardUpdate>> observe_pass(PipeId pipe, double from_m, double to_m);
 
   // Adds what an earlier mission learnt (learnt.h) to the world model, for the next plan; an
-  // entry that check_failure or check_hazard_belief would reject is an error, and nothing is
-  // added. A belief about a hazard already learnt replaces it.
+  // entry that check_failure, check_hazard_belief or localisation::check_memory would reject is
+  // an error, and nothing is added. A belief about a hazard already learnt replaces it; a junction
+  // memory that is not empty replaces the one kept (the filter's memory at a mission's end holds
+  // what it started from: the Executor hands it over so).
   Result<void> learn(const Learnt& learnt);
   // What this Replanner has learnt: learn()'s and every failure reported since.
   const Learnt& learnt() const { return learnt_; }

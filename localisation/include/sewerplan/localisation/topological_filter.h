@@ -178,8 +178,14 @@ struct DrivenStretch {
 struct JunctionMemory {
   std::vector<KnownJunction> junctions;  // by pipe, then distance
   std::vector<DrivenStretch> driven;     // by pipe, in the order driven
+  bool empty() const { return junctions.empty() && driven.empty(); }
   friend bool operator==(const JunctionMemory&, const JunctionMemory&) = default;
 };
+
+// Whether `memory` fits `map`: known pipes, ends 0 or 1, distances finite and within the pipe's
+// mapped length, a positive finite variance, at least one sighting, and stretches with from_m
+// below to_m. The error names the junction or stretch and what is wrong.
+Result<void> check_memory(const JunctionMemory& memory, const SewerMap& map);
 
 struct Hypothesis {
   Pose pose;
@@ -311,6 +317,10 @@ class TopologicalFilter {
 
   // What the filter learnt of the pipes in this mission (kept across reset()).
   const JunctionMemory& memory() const { return memory_; }
+  // Starts from what an earlier mission remembered (executor::Learnt::junctions): it replaces the
+  // memory, kept in the filter's order (by pipe; junctions by distance). Error: check_memory()'s.
+  // Runtime: O(n log n) in the memory's size.
+  Result<void> recall(JunctionMemory memory);
 
   // The log-density (per metre) of a manhole the map lacks at `distance_m` (variance `var_m2`)
   // from end `from_end` of `pipe`: near a known junction its Gaussian, else the per-metre prior,
