@@ -66,12 +66,34 @@ std::string place_of(std::string_view text, std::string_view file, std::size_t o
   return std::string(file) + ":" + std::to_string(line) + ":" + std::to_string(column);
 }
 
+// The offset of the first '[' or '{' outside a string that opens a level beyond `max_depth`.
+std::optional<std::size_t> find_too_deep(std::string_view text, std::size_t max_depth) {
+  std::size_t depth = 0;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '"') {  // skip the string, escapes included
+      for (++i; i < text.size() && text[i] != '"'; ++i) {
+        if (text[i] == '\\') ++i;
+      }
+    } else if (c == '[' || c == '{') {
+      if (++depth > max_depth) return i;
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+  return std::nullopt;
+}
+
+std::string too_deep(std::size_t max_depth) {
+  return "the JSON nests arrays and objects more than " + std::to_string(max_depth) +
+         " levels deep";
+}
+
 // simdjson's errors for a document nlohmann reads, in our words. None of them names a place.
-std::string describe_simdjson_error(simdjson::error_code error) {
+std::string describe_simdjson_error(simdjson::error_code error, std::size_t max_depth) {
   switch (error) {
     case simdjson::DEPTH_ERROR:
-      return "the JSON nests arrays and objects more than " +
-             std::to_string(simdjson::DEFAULT_MAX_DEPTH) + " levels deep";
+      return too_deep(max_depth);
     case simdjson::NUMBER_ERROR:
       return "a number sewerplan cannot read (beyond the range of a double)";
     case simdjson::CAPACITY:
@@ -97,7 +119,13 @@ std::string abbreviated_number(std::string_view token) {
 
 // simdjson does not say where a syntax error is; nlohmann does. Used only on the error path.
 void report_syntax_error(std::string_view text, std::string_view file, simdjson::error_code error,
-                         Diagnostics& diagnostics) {
+                         std::size_t max_depth, Diagnostics& diagnostics) {
+  // Before nlohmann is asked: a text of a million '[', closed or not, is refused for its depth
+  // here, without building anything.
+  if (const std::optional<std::size_t> offset = find_too_deep(text, max_depth)) {
+    diagnostics.error(place_of(text, file, *offset), too_deep(max_depth));
+    return;
+  }
   if (const std::optional<OutOfRangeNumber> n = find_out_of_range_number(text)) {
     diagnostics.error(place_of(text, file, n->offset),
                       "number " + abbreviated_number(n->token) +
@@ -112,7 +140,7 @@ void report_syntax_error(std::string_view text, std::string_view file, simdjson:
   } catch (const std::exception&) {
     // Refused for a reason other than syntax: simdjson's reason, in our words, below.
   }
-  diagnostics.error(std::string(file), describe_simdjson_error(error));
+  diagnostics.error(std::string(file), describe_simdjson_error(error, max_depth));
 }
 
 // A UTF-8 byte order mark (Windows editors write one) starts no JSON value; simdjson would call it
@@ -125,14 +153,20 @@ std::string_view without_bom(std::string_view text) {
 }  // namespace
 
 std::optional<JsonDocument> JsonDocument::parse(std::string_view text, std::string_view file,
-                                                Diagnostics& diagnostics) {
+                                                Diagnostics& diagnostics, std::size_t max_depth) {
   const std::string_view full = text;
   text = without_bom(text);
   JsonDocument doc;
   doc.parser_ = std::make_unique<simdjson::dom::parser>();
-  const simdjson::error_code error = doc.parser_->parse(text.data(), text.size()).get(doc.root_);
+  // simdjson counts the document as a level of its own: max_depth + 1 lets max_depth levels of
+  // arrays and objects through. Capacity grows as parse() needs it, keeping the depth set here.
+  simdjson::error_code error =
+      doc.parser_->allocate(std::max<std::size_t>(text.size(), 1), max_depth + 1);
+  if (error == simdjson::SUCCESS) {
+    error = doc.parser_->parse(text.data(), text.size()).get(doc.root_);
+  }
   if (error != simdjson::SUCCESS) {
-    report_syntax_error(full, file, error, diagnostics);
+    report_syntax_error(full, file, error, max_depth, diagnostics);
     return std::nullopt;
   }
   return doc;
@@ -158,16 +192,18 @@ JsonFields::JsonFields(JsonElement json, std::string path, std::string_view file
   report_duplicate_keys();
 }
 
-// simdjson finds a key's first occurrence, so a second one would be silently ignored; which of the
-// two the writer meant cannot be known, so it is an error. Most objects have a handful of members,
-// compared pairwise; a large one (a dictionary) is sorted instead.
-void JsonFields::report_duplicate_keys() {
+namespace {
+
+// The members of `object` whose key an earlier member has: position and key, in the object's
+// order. Most objects have a handful of members, compared pairwise; a large one (a dictionary) is
+// sorted instead.
+std::vector<std::pair<std::size_t, std::string_view>> repeated_keys(simdjson::dom::object object) {
   constexpr std::size_t kPairwise = 16;
   std::vector<std::pair<std::size_t, std::string_view>> repeated;  // position, key: the 2nd, 3rd..
   std::array<std::string_view, kPairwise> small;
   std::vector<std::pair<std::string_view, std::size_t>> large;  // key, position
   std::size_t n = 0;
-  for (simdjson::dom::key_value_pair field : object_) {
+  for (simdjson::dom::key_value_pair field : object) {
     if (n < kPairwise) small[n] = field.key;
     if (n == kPairwise) {
       for (std::size_t i = 0; i < kPairwise; ++i) large.emplace_back(small[i], i);
@@ -187,14 +223,75 @@ void JsonFields::report_duplicate_keys() {
       if (large[i].first == large[i - 1].first)
         repeated.emplace_back(large[i].second, large[i].first);
     }
-    std::sort(repeated.begin(), repeated.end());  // reported in the object's order
+    std::sort(repeated.begin(), repeated.end());  // in the object's order
   }
-  for (const auto& [position, key_view] : repeated) {
-    const std::string key(key_view);
-    diagnostics_.error(where(key), "field " + input_quoted(key) +
-                                       " given twice in one object: which value is meant is "
-                                       "unclear");
+  return repeated;
+}
+
+std::string repeated_key_message(std::string_view key) {
+  return "field " + input_quoted(key) +
+         " given twice in one object: which value is meant is unclear";
+}
+
+// report_repeated_keys' walk; `path` is extended and restored in place.
+struct RepeatedKeyWalk {
+  std::string_view file;
+  Diagnostics& diagnostics;
+  std::size_t max_named = 0;
+  std::size_t found = 0;
+
+  void walk(JsonElement json, std::string& path) {
+    const std::size_t length = path.size();
+    simdjson::dom::object object;
+    simdjson::dom::array array;
+    if (json.get_object().get(object) == simdjson::SUCCESS) {
+      const auto repeated = repeated_keys(object);
+      std::size_t position = 0;
+      auto next = repeated.begin();
+      for (simdjson::dom::key_value_pair field : object) {
+        path += '.';
+        path += input_text(field.key);
+        if (next != repeated.end() && next->first == position) {
+          ++next;
+          if (++found <= max_named) {
+            diagnostics.error(std::string(file) + ":" + path, repeated_key_message(field.key));
+          }
+        }
+        walk(field.value, path);
+        path.resize(length);
+        ++position;
+      }
+    } else if (json.get_array().get(array) == simdjson::SUCCESS) {
+      std::size_t i = 0;
+      for (JsonElement element : array) {
+        path += '[' + std::to_string(i++) + ']';
+        walk(element, path);
+        path.resize(length);
+      }
+    }
   }
+};
+
+}  // namespace
+
+// simdjson finds a key's first occurrence, so a second one would be silently ignored; which of the
+// two the writer meant cannot be known, so it is an error.
+void JsonFields::report_duplicate_keys() {
+  for (const auto& [position, key] : repeated_keys(object_)) {
+    diagnostics_.error(where(key), repeated_key_message(key));
+  }
+}
+
+std::size_t report_repeated_keys(JsonElement json, const std::string& path, std::string_view file,
+                                 Diagnostics& diagnostics, std::size_t max_named) {
+  RepeatedKeyWalk walk{file, diagnostics, max_named};
+  std::string where = path;
+  walk.walk(json, where);
+  if (walk.found > max_named) {
+    diagnostics.error(std::string(file),
+                      "(" + std::to_string(walk.found - max_named) + " more fields given twice)");
+  }
+  return walk.found;
 }
 
 std::string JsonFields::where(std::string_view key) const {

@@ -18,8 +18,9 @@ using Need = JsonFields::Need;
 // Resolves names against the map; each failure is reported at the field that named it.
 class MissionReader {
  public:
-  MissionReader(const SewerMap& map, std::string_view file, Diagnostics& d)
-      : map_(map), file_(file), d_(d) {}
+  // `root`: the mission's JSON path ("$" in a mission file).
+  MissionReader(const SewerMap& map, std::string root, std::string_view file, Diagnostics& d)
+      : map_(map), root_(std::move(root)), file_(file), d_(d) {}
 
   std::optional<ManholeId> manhole_named(const std::string& name, const std::string& where) {
     auto id = map_.find_manhole(name);
@@ -81,24 +82,24 @@ class MissionReader {
   void tasks(JsonArray array, std::vector<Task>& out) {
     std::size_t i = 0;
     for (JsonElement t : array) {
-      task(t, indexed("$.tasks", i), i, out);
+      task(t, indexed(root_ + ".tasks", i), i, out);
       ++i;
     }
   }
 
   void closed(JsonElement j, Mission& m) {
-    JsonFields f(j, "$.closed", file_, d_);
+    JsonFields f(j, root_ + ".closed", file_, d_);
     f.warn_unknown({"pipes", "passages", "blockages"});
     if (auto pipes_array = f.array("pipes", Need::kOptional)) {
-      m.closed_pipes = pipes(*pipes_array, "$.closed.pipes");
+      m.closed_pipes = pipes(*pipes_array, root_ + ".closed.pipes");
     }
     if (auto passages = f.array("passages", Need::kOptional)) {
       std::size_t i = 0;
-      for (JsonElement p : *passages) passage(p, indexed("$.closed.passages", i++), m);
+      for (JsonElement p : *passages) passage(p, indexed(root_ + ".closed.passages", i++), m);
     }
     if (auto blockages = f.array("blockages", Need::kOptional)) {
       std::size_t i = 0;
-      for (JsonElement b : *blockages) blockage(b, indexed("$.closed.blockages", i++), m);
+      for (JsonElement b : *blockages) blockage(b, indexed(root_ + ".closed.blockages", i++), m);
     }
   }
 
@@ -130,8 +131,9 @@ class MissionReader {
     if (exits && exits->is_array()) return this->exits(exits->get_array().value_unsafe(), m);
     if (exits && (!exits->is_string() || (exits->get_string().value_unsafe() != "map" &&
                                           exits->get_string().value_unsafe() != "all"))) {
-      d_.error(file_ + ":$.exits", "expected an array of manhole names, \"map\" or \"all\", got " +
-                                       describe_json(*exits));
+      d_.error(
+          file_ + ":" + root_ + ".exits",
+          "expected an array of manhole names, \"map\" or \"all\", got " + describe_json(*exits));
       return;
     }
     if (exits) choice = exits->get_string().value_unsafe();
@@ -144,7 +146,7 @@ class MissionReader {
   void exits(JsonArray array, Mission& m) {
     std::size_t i = 0;
     for (JsonElement e : array) {
-      const std::string where = file_ + ":" + indexed("$.exits", i++);
+      const std::string where = file_ + ":" + indexed(root_ + ".exits", i++);
       auto name = string_element(e, where, d_);
       if (!name) continue;
       if (auto id = manhole_named(*name, where)) m.exits.push_back(*id);
@@ -222,20 +224,23 @@ class MissionReader {
   }
 
   const SewerMap& map_;
+  std::string root_;
   std::string file_;
   Diagnostics& d_;
 };
 
-void check_tasks(const Mission& m, const std::string& file, bool exits_unreadable, Diagnostics& d) {
+// `where`: "file:" and the mission's JSON path.
+void check_tasks(const Mission& m, const std::string& where, bool exits_unreadable,
+                 Diagnostics& d) {
   std::set<std::string> names;
   std::size_t finals = 0;
   for (std::size_t i = 0; i < m.tasks.size(); ++i) {
     if (!names.insert(m.tasks[i].name).second) {
-      d.error(file + ":$.tasks", "duplicate task name " + input_quoted(m.tasks[i].name));
+      d.error(where + ".tasks", "duplicate task name " + input_quoted(m.tasks[i].name));
     }
     finals += m.tasks[i].final ? 1U : 0U;
   }
-  if (finals > 1) d.error(file + ":$.tasks", "more than one task is marked final");
+  if (finals > 1) d.error(where + ".tasks", "more than one task is marked final");
   // One inspection of a pipe covers it; two would be indistinguishable in a plan.
   std::map<PipeId, std::string> inspected;
   for (const Task& t : m.tasks) {
@@ -243,13 +248,13 @@ void check_tasks(const Mission& m, const std::string& file, bool exits_unreadabl
     const PipeId pipe = std::get<PipeSpot>(t.place).pipe;
     auto [it, added] = inspected.emplace(pipe, t.name);
     if (!added) {
-      d.error(file + ":$.tasks",
+      d.error(where + ".tasks",
               "tasks '" + it->second + "' and '" + t.name + "' both inspect the same pipe");
     }
   }
   if (m.exits.empty() && finals == 0 && !exits_unreadable) {
     d.error(
-        file + ":$.exits",
+        where + ".exits",
         "the mission has no exit: name \"exits\", mark exit manholes in the map, or mark a task "
         "final");
   }
@@ -291,7 +296,14 @@ Result<Mission> read_mission_json(std::string_view text, const std::string& file
   const Diagnostics::Mark before = diagnostics.mark();
   auto doc = JsonDocument::parse(text, file_name, diagnostics);
   if (!doc) return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
-  JsonFields root(doc->root(), "$", file_name, diagnostics);
+  return read_mission_value(doc->root(), "$", file_name, map, diagnostics);
+}
+
+Result<Mission> read_mission_value(const JsonElement& value, const std::string& path,
+                                   const std::string& file_name, const SewerMap& map,
+                                   Diagnostics& diagnostics) {
+  const Diagnostics::Mark before = diagnostics.mark();
+  JsonFields root(value, path, file_name, diagnostics);
   root.warn_unknown({"format", "version", "name", "profile", "start", "tasks", "exits",
                      "battery_reserve", "closed"});
   if (auto format = root.string("format"); format && *format != kMissionJsonFormat) {
@@ -301,17 +313,17 @@ Result<Mission> read_mission_json(std::string_view text, const std::string& file
   if (auto version = root.number("version"); version && *version != kMissionJsonVersion) {
     diagnostics.error(root.where("version"), "unsupported version " + format_double(*version));
   }
-  MissionReader reader(map, file_name, diagnostics);
+  MissionReader reader(map, path, file_name, diagnostics);
   Mission m;
   m.name = root.string("name", Need::kOptional).value_or("mission");
   if (auto profile = root.member("profile", Need::kOptional)) {
-    auto p = detail::read_profile_value(*profile, "$.profile", file_name, diagnostics);
+    auto p = detail::read_profile_value(*profile, path + ".profile", file_name, diagnostics);
     if (p) m.profile = *p;
   } else {
     m.profile = *builtin_profile("makro-1.1");
   }
   if (auto start = root.member("start")) {
-    if (auto p = reader.place(*start, "$.start")) m.start = *p;
+    if (auto p = reader.place(*start, path + ".start")) m.start = *p;
   }
   if (auto tasks = root.array("tasks")) reader.tasks(*tasks, m.tasks);
   const std::size_t errors_before_exits = diagnostics.error_count();
@@ -323,7 +335,7 @@ Result<Mission> read_mission_json(std::string_view text, const std::string& file
                                                          format_double(m.battery_reserve_fraction));
   }
   if (auto closed = root.member("closed", Need::kOptional)) reader.closed(*closed, m);
-  check_tasks(m, file_name, exits_unreadable, diagnostics);
+  check_tasks(m, file_name + ":" + path, exits_unreadable, diagnostics);
   if (diagnostics.has_errors_since(before)) {
     return Error{ErrorCode::kInvalidMission, diagnostics.error_summary(before)};
   }

@@ -42,7 +42,7 @@ class FaultReader {
     if (!items) return;
     std::size_t i = 0;
     for (JsonElement item : *items) {
-      JsonFields f(item, indexed("$." + std::string(key), i++), file_, diagnostics_);
+      JsonFields f(item, indexed(root.path() + "." + std::string(key), i++), file_, diagnostics_);
       read(f);
     }
   }
@@ -151,7 +151,14 @@ Result<FaultScenario> read_faults_json(std::string_view text, const std::string&
   const Diagnostics::Mark before = diagnostics.mark();
   const std::optional<JsonDocument> doc = JsonDocument::parse(text, file_name, diagnostics);
   if (!doc) return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
-  JsonFields root(doc->root(), "$", file_name, diagnostics);
+  return read_faults_value(doc->root(), "$", file_name, map, diagnostics);
+}
+
+Result<FaultScenario> read_faults_value(const JsonElement& value, const std::string& path,
+                                        const std::string& file_name, const SewerMap& map,
+                                        Diagnostics& diagnostics) {
+  const Diagnostics::Mark before = diagnostics.mark();
+  JsonFields root(value, path, file_name, diagnostics);
   if (auto format = root.string("format"); format && *format != kFaultsJsonFormat) {
     root.error("format",
                "expected \"" + std::string(kFaultsJsonFormat) + "\", got \"" + *format + "\"");

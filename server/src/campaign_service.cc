@@ -21,10 +21,13 @@
 #include "sewerplan/campaign/run.h"
 #include "sewerplan/campaign/summary.h"
 #include "sewerplan/core/condition_risk.h"
+#include "sewerplan/core/json_fields.h"
+#include "sewerplan/core/message_text.h"
 #include "sewerplan/core/stop_condition.h"
 #include "sewerplan/executor/event_json.h"
 
 #include "http_reply.h"
+#include "json_body.h"
 #include "plan_route.h"
 
 namespace sewerplan::server {
@@ -86,130 +89,141 @@ struct CampaignRequest {
   bool faults_from_condition = false;
 };
 
-Error field_error(const std::string& message) {
-  return Error{ErrorCode::kInvalidArgument, "campaign: " + message};
-}
-
 std::string shortened(std::string_view text) {
   return std::string(text.substr(0, 64)) + (text.size() > 64 ? "..." : "");
 }
 
-// A whole number from `min` to `max`, or nothing.
-std::optional<std::uint64_t> whole(const Json& v, std::uint64_t min, std::uint64_t max) {
+// A whole number from `min` to `max` (or its decimal text, for seeds beyond 2^53), or nothing.
+std::optional<std::uint64_t> whole(JsonElement v, std::uint64_t min, std::uint64_t max) {
   std::uint64_t n = 0;
-  if (v.is_number_unsigned()) {
-    n = v.get<std::uint64_t>();
-  } else if (v.is_string()) {
-    const std::string& text = v.get_ref<const std::string&>();
+  std::string_view text;
+  if (v.get_string().get(text) == simdjson::SUCCESS) {
     const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
     if (ec != std::errc{} || end != text.data() + text.size() || text.empty()) return std::nullopt;
-  } else {
+  } else if (v.get_uint64().get(n) != simdjson::SUCCESS) {
     return std::nullopt;
   }
   if (n < min || n > max) return std::nullopt;
   return n;
 }
 
-// "fault_rates": the CLI's text ("obstacles=20,danger=5") or an object of the same names.
-Result<campaign::FaultRates> read_rates(const Json& v) {
+// Seconds from `min` (over it, unless `min_included`) to kMaxPlannerTimeLimitS, or nothing.
+std::optional<double> seconds(JsonElement v, double min, bool min_included) {
+  double s = 0;
+  if (!v.is_number() || v.get_double().get(s) != simdjson::SUCCESS) return std::nullopt;
+  if (!(min_included ? s >= min : s > min) || !(s <= kMaxPlannerTimeLimitS)) return std::nullopt;
+  return s;
+}
+
+// "fault_rates" (in `f`): the CLI's text ("obstacles=20,danger=5") or an object of the same names.
+std::optional<campaign::FaultRates> read_rates(JsonFields& f) {
+  const JsonElement v = *f.member("fault_rates");
   std::string text;
-  if (v.is_string()) {
-    text = v.get<std::string>();
-  } else if (v.is_object()) {
-    for (const auto& [name, value] : v.items()) {
+  simdjson::dom::object object;
+  std::string_view given;
+  if (v.get_string().get(given) == simdjson::SUCCESS) {
+    text = given;
+  } else if (v.get_object().get(object) == simdjson::SUCCESS) {
+    const Diagnostics::Mark before = f.diagnostics().mark();
+    JsonFields rates(v, f.path() + ".fault_rates", kBodyFile, f.diagnostics());
+    for (const simdjson::dom::key_value_pair rate : object) {
+      const std::string_view name = rate.key;
       if (std::find(kRateNames.begin(), kRateNames.end(), name) == kRateNames.end()) {
-        return field_error("fault_rates." + shortened(name) +
-                           ": unknown rate (expected obstacles, danger, passages, malfunctions, "
-                           "permanent, transient)");
+        rates.error(name, "unknown rate " + input_quoted(name, 64) +
+                              " (expected obstacles, danger, passages, malfunctions, permanent, "
+                              "transient)");
+      } else if (const std::optional<double> value = rates.number(name)) {
+        text += (text.empty() ? "" : ",") + std::string(name) + "=" + format_double(*value);
       }
-      if (!value.is_number()) return field_error("fault_rates." + name + ": expected a number");
-      char buffer[32];
-      const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value.get<double>());
-      text += (text.empty() ? "" : ",") + name + "=" + std::string(buffer, end);
-      (void)ec;
     }
+    if (f.diagnostics().has_errors_since(before)) return std::nullopt;
   } else {
-    return field_error("fault_rates: expected an object {\"obstacles\": 20, ...} or its text");
+    f.error("fault_rates",
+            "expected an object {\"obstacles\": 20, ...} or its text, got " + describe_json(v));
+    return std::nullopt;
   }
   Result<campaign::FaultRates> rates = campaign::parse_fault_rates(text);
   if (!rates.has_value()) {
     std::string message = rates.error().message;
     if (message.starts_with("--fault-rates: ")) message.erase(0, 15);
-    return field_error("fault_rates: " + message);
+    f.error("fault_rates", message);
+    return std::nullopt;
   }
-  return rates;
+  return *rates;
 }
 
-Result<CampaignRequest> read_request(const Json& body, const CampaignLimits& limits) {
+// The request's fields beside its mission, read with the file readers' JsonFields: every field
+// that is wrong is named at its path ("body:$.runs: error: expected a whole number from 1 to
+// 10000 (the station's limit)"), all of them in one 400.
+Result<CampaignRequest> read_request(JsonElement body, const CampaignLimits& limits) {
+  Diagnostics diagnostics;
+  JsonFields f(body, "$", kBodyFile, diagnostics);
   CampaignRequest r;
-  for (const auto& [key, value] : body.items()) {
-    if (std::find(kFields.begin(), kFields.end(), key) == kFields.end()) {
-      return field_error("unknown field '" + shortened(key) +
-                         "' (expected mission, runs, seed, fault_rates, jobs, allow_push, "
-                         "planner_time_limit_s, risk, faults_from_condition)");
+  simdjson::dom::object object;
+  if (body.get_object().get(object) == simdjson::SUCCESS) {
+    for (const simdjson::dom::key_value_pair field : object) {
+      if (std::find(kFields.begin(), kFields.end(), field.key) == kFields.end()) {
+        f.error(field.key, "unknown field " + input_quoted(field.key, 64) +
+                               " (expected mission, runs, seed, fault_rates, jobs, allow_push, "
+                               "planner_time_limit_s, risk, faults_from_condition, timeout_s)");
+      }
     }
   }
-  if (body.contains("runs")) {
-    const auto runs = whole(body["runs"], 1, limits.max_runs);
-    if (!runs) {
-      return field_error("runs: expected a whole number from 1 to " +
-                         std::to_string(limits.max_runs) + " (the station's limit)");
+  using Need = JsonFields::Need;
+  // Each optional field, if given, to `read`, which says what was wrong or nothing.
+  const auto field = [&](std::string_view key, const auto& read) {
+    if (const std::optional<JsonElement> v = f.member(key, Need::kOptional)) {
+      if (const std::optional<std::string> wrong = read(*v)) {
+        f.error(key, *wrong + ", got " + describe_json(*v));
+      }
     }
-    r.runs = *runs;
+  };
+  using Wrong = std::optional<std::string>;
+  field("runs", [&](JsonElement v) -> Wrong {
+    const auto runs = whole(v, 1, limits.max_runs);
+    if (runs) r.runs = *runs;
+    return runs ? Wrong{}
+                : "expected a whole number from 1 to " + std::to_string(limits.max_runs) +
+                      " (the station's limit)";
+  });
+  field("seed", [&](JsonElement v) -> Wrong {
+    const auto seed = whole(v, 0, UINT64_MAX);
+    if (seed) r.seed = *seed;
+    return seed ? Wrong{} : "expected a whole number from 0 (or its decimal text)";
+  });
+  field("jobs", [&](JsonElement v) -> Wrong {
+    const auto jobs = whole(v, 1, limits.max_jobs);
+    if (jobs) r.jobs = *jobs;
+    return jobs ? Wrong{}
+                : "expected 1 to " + std::to_string(limits.max_jobs) + " (the machine's cores)";
+  });
+  if (f.has("fault_rates")) {
+    if (const std::optional<campaign::FaultRates> rates = read_rates(f)) r.rates = *rates;
   }
-  if (body.contains("seed")) {
-    const auto seed = whole(body["seed"], 0, UINT64_MAX);
-    if (!seed) return field_error("seed: expected a whole number from 0 (or its decimal text)");
-    r.seed = *seed;
-  }
-  if (body.contains("jobs")) {
-    const auto jobs = whole(body["jobs"], 1, limits.max_jobs);
-    if (!jobs) {
-      return field_error("jobs: expected 1 to " + std::to_string(limits.max_jobs) +
-                         " (the machine's cores)");
-    }
-    r.jobs = *jobs;
-  }
-  if (body.contains("fault_rates")) {
-    Result<campaign::FaultRates> rates = read_rates(body["fault_rates"]);
-    if (!rates.has_value()) return rates.error();
-    r.rates = *rates;
-  }
-  if (body.contains("allow_push")) {
-    if (!body["allow_push"].is_boolean()) return field_error("allow_push: expected true or false");
-    r.push_allowed = body["allow_push"].get<bool>();
-  }
-  if (body.contains("planner_time_limit_s")) {
-    const Json& v = body["planner_time_limit_s"];
-    const double s = v.is_number() ? v.get<double>() : -1;
-    if (!(s >= 0 && s <= kMaxPlannerTimeLimitS)) {
-      return field_error("planner_time_limit_s: expected seconds from 0 (no limit) to 86400");
-    }
-    r.planner_time_limit_s = s;
-  }
-  if (body.contains("timeout_s")) {
-    const Json& v = body["timeout_s"];
-    const double s = v.is_number() ? v.get<double>() : -1;
-    if (!(s > 0 && s <= kMaxPlannerTimeLimitS)) {
-      return field_error(
-          "timeout_s: expected the seconds before a run counts as hung, over 0 up "
-          "to 86400");
-    }
-    r.timeout_s = s;
-  }
-  if (body.contains("risk")) {
-    const Json& v = body["risk"];
+  r.push_allowed = f.boolean("allow_push", Need::kOptional).value_or(false);
+  field("planner_time_limit_s", [&](JsonElement v) -> Wrong {
+    const std::optional<double> s = seconds(v, 0, true);
+    if (s) r.planner_time_limit_s = *s;
+    return s ? Wrong{} : "expected seconds from 0 (no limit) to 86400";
+  });
+  field("timeout_s", [&](JsonElement v) -> Wrong {
+    const std::optional<double> s = seconds(v, 0, false);
+    if (s) r.timeout_s = *s;
+    return s ? Wrong{} : "expected the seconds before a run counts as hung, over 0 up to 86400";
+  });
+  field("risk", [&](JsonElement v) -> Wrong {
+    std::string_view name;
     const std::optional<RiskMode> mode =
-        v.is_string() ? risk_mode_from_string(v.get_ref<const std::string&>()) : std::nullopt;
-    if (!mode) return field_error("risk: expected ignore, impassable, avoid or expected");
-    r.risk = *mode;
-    r.risk_name = v.get<std::string>();
-  }
-  if (body.contains("faults_from_condition")) {
-    if (!body["faults_from_condition"].is_boolean()) {
-      return field_error("faults_from_condition: expected true or false");
+        v.get_string().get(name) == simdjson::SUCCESS ? risk_mode_from_string(name) : std::nullopt;
+    if (mode) {
+      r.risk = *mode;
+      r.risk_name = name;
     }
-    r.faults_from_condition = body["faults_from_condition"].get<bool>();
+    return mode ? Wrong{} : "expected ignore, impassable, avoid or expected";
+  });
+  r.faults_from_condition = f.boolean("faults_from_condition", Need::kOptional).value_or(false);
+  if (diagnostics.has_errors()) {
+    return Error{ErrorCode::kInvalidArgument, diagnostics.error_summary()};
   }
   return r;
 }
@@ -275,7 +289,7 @@ bool same_but_measured(campaign::Execution a, campaign::Execution b) {
 
 }  // namespace
 
-void CampaignService::start(const Json& body, std::shared_ptr<const SewerMap> map,
+void CampaignService::start(JsonElement body, std::shared_ptr<const SewerMap> map,
                             const std::string& map_id, Mission mission, httplib::Response& res) {
   std::shared_ptr<Running> running = begin(body, std::move(map), map_id, std::move(mission), res);
   if (!running) return;
@@ -292,7 +306,7 @@ void CampaignService::start(const Json& body, std::shared_ptr<const SewerMap> ma
 }
 
 std::shared_ptr<CampaignService::Running> CampaignService::begin(
-    const Json& body, std::shared_ptr<const SewerMap> map, const std::string& map_id,
+    JsonElement body, std::shared_ptr<const SewerMap> map, const std::string& map_id,
     Mission mission, httplib::Response& res) {
   Result<CampaignRequest> request = read_request(body, limits_);
   if (!request.has_value()) {
@@ -327,7 +341,7 @@ std::shared_ptr<CampaignService::Running> CampaignService::begin(
   spec.mission_name = mission.name;
   // Identities for merging shards, which the station does not write: the map's ID and the mission.
   spec.map_fingerprint = campaign::fingerprint(map_id);
-  spec.mission_fingerprint = campaign::fingerprint(dump(body["mission"]));
+  spec.mission_fingerprint = campaign::fingerprint(simdjson::minify(body["mission"]));
   spec.seed = request->seed;
   spec.runs = request->runs;
   spec.rates = request->rates;

@@ -41,6 +41,7 @@
 #include <string>
 #include <string_view>
 
+#include "sewerplan/core/json_fields.h"
 #include "sewerplan/core/mission.h"
 #include "sewerplan/core/result.h"
 #include "sewerplan/core/sewer_map.h"
@@ -61,7 +62,7 @@ class CampaignService {
   explicit CampaignService(CampaignLimits limits) : limits_(limits) {}
 
   // `body` is the request's JSON object; its "mission" is `mission`, already read and checked.
-  void start(const Json& body, std::shared_ptr<const SewerMap> map, const std::string& map_id,
+  void start(JsonElement body, std::shared_ptr<const SewerMap> map, const std::string& map_id,
              Mission mission, httplib::Response& res);
 
   // start() in its three steps, for a writer of the events other than httplib's (the tests' reader
@@ -72,7 +73,7 @@ class CampaignService {
   // stream's hold (it cancels a campaign that never streamed).
   using EventWriter = std::function<bool(std::string_view)>;
   struct Running;
-  std::shared_ptr<Running> begin(const Json& body, std::shared_ptr<const SewerMap> map,
+  std::shared_ptr<Running> begin(JsonElement body, std::shared_ptr<const SewerMap> map,
                                  const std::string& map_id, Mission mission,
                                  httplib::Response& res);
   void stream(const std::shared_ptr<Running>& running, const EventWriter& write);

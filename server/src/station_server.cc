@@ -207,30 +207,39 @@ struct StationServer::Impl {
   }
 
   // A POST body that is a JSON object with "mission", a mission's JSON object, on `map` (`shape`
-  // names the object's keys in the error): the body and its mission, or empty with the 400 or
-  // 422 sent.
+  // names the object's keys in the error): the body (json_body.h) and its mission, read from the
+  // parsed body by the mission file's reader, or empty with the 400 or 422 sent.
   struct MissionBody {
-    Json body;
+    JsonDocument body;
     Mission mission;
+    JsonElement root() const { return body.root(); }
   };
   static std::optional<MissionBody> read_mission_body(std::string_view text, const SewerMap& map,
                                                       std::string_view shape,
                                                       httplib::Response& res) {
-    Result<Json> parsed = parse_json_body(text);
+    Result<JsonDocument> parsed = parse_json_body(text);
     if (!parsed.has_value()) {
       bad_request(res, parsed.error().message);
       return std::nullopt;
     }
-    if (!parsed->is_object()) {
-      bad_request(res, "expected a JSON object " + std::string(shape));
+    JsonElement mission_json;
+    if (!parsed->root().is_object()) {
+      bad_request(res, std::string(kBodyFile) + ":$: expected a JSON object " + std::string(shape) +
+                           ", got " + describe_json(parsed->root()));
       return std::nullopt;
     }
-    if (!parsed->contains("mission") || !(*parsed)["mission"].is_object()) {
-      bad_request(res, "\"mission\": expected the mission's JSON object");
+    if (parsed->root()["mission"].get(mission_json) != simdjson::SUCCESS ||
+        !mission_json.is_object()) {
+      bad_request(res, std::string(kBodyFile) + ":$.mission: expected the mission's JSON object");
       return std::nullopt;
     }
-    std::optional<Mission> mission = read_body_mission(dump((*parsed)["mission"]), map, res);
-    if (!mission) return std::nullopt;
+    Diagnostics diagnostics;
+    Result<Mission> mission =
+        read_mission_value(mission_json, "$.mission", std::string(kBodyFile), map, diagnostics);
+    if (!mission.has_value()) {
+      send_error(res, kUnprocessable, mission.error(), diagnostics);
+      return std::nullopt;
+    }
     return MissionBody{std::move(*parsed), std::move(*mission)};
   }
 
@@ -632,21 +641,22 @@ void StationServer::Impl::simulate(const httplib::Request& req, const std::strin
   std::optional<MissionBody> read =
       read_mission_body(text, *m->map, "{\"mission\", \"faults\" | \"random_faults\"}", res);
   if (!read) return;
-  const Json& body = read->body;
   std::optional<Mission> mission = std::move(read->mission);
   if (!attach_motion(*m, req, *mission, res)) return;
   const std::optional<AppliedRisk> risk = apply_risk(*m, req, *mission, res);
   if (!risk) return;
   Diagnostics diagnostics;
+  JsonFields body(read->root(), "$", kBodyFile, diagnostics);
   Result<hal::FaultScenario> faults = hal::FaultScenario{};
-  if (body.contains("faults")) {
-    faults = hal::read_faults_json(dump(body["faults"]), "faults.json", *m->map, diagnostics);
-  } else if (body.contains("random_faults")) {
-    if (!body["random_faults"].is_string()) {
-      return bad_request(res, "\"random_faults\": expected \"SEED[,RATE]\"");
-    }
+  if (const std::optional<JsonElement> given = body.member("faults", JsonFields::Need::kOptional)) {
     faults =
-        faults_for("", body["random_faults"].get<std::string>(), *m->map, *mission, diagnostics);
+        hal::read_faults_value(*given, "$.faults", std::string(kBodyFile), *m->map, diagnostics);
+  } else if (body.has("random_faults")) {
+    const std::optional<std::string> seed_rate = body.string("random_faults");
+    if (!seed_rate) {
+      return bad_request(res, body.where("random_faults") + ": expected \"SEED[,RATE]\"");
+    }
+    faults = faults_for("", *seed_rate, *m->map, *mission, diagnostics);
   }
   if (!faults.has_value()) {
     const int status =
@@ -721,18 +731,17 @@ void StationServer::Impl::geojson(const httplib::Request& req, const std::string
   const std::optional<MissionBody> read =
       read_mission_body(text, *m->map, "{\"mission\", \"plan\", \"log\"}", res);
   if (!read) return;
-  const Json& body = read->body;
-  for (const char* key : {"plan", "log"}) {
-    if (body.contains(key) && !body[key].is_string()) {
-      return bad_request(res, std::string("\"") + key + "\": expected text");
-    }
+  Diagnostics diagnostics;
+  JsonFields body(read->root(), "$", kBodyFile, diagnostics);
+  const std::optional<std::string> plan = body.string("plan", JsonFields::Need::kOptional);
+  const std::optional<std::string> log = body.string("log", JsonFields::Need::kOptional);
+  if (diagnostics.has_errors()) {
+    return bad_request(res, diagnostics.error_summary());
   }
   const Mission* mission = &read->mission;
-  const std::string plan = body.value("plan", std::string());
-  const std::string log = body.value("log", std::string());
-  Diagnostics diagnostics;
   Result<std::string> geojson =
-      export_geojson(*m->map, *mission, {.plan_text = plan, .log_text = log}, diagnostics);
+      export_geojson(*m->map, *mission,
+                     {.plan_text = plan.value_or(""), .log_text = log.value_or("")}, diagnostics);
   if (!geojson.has_value()) return send_error(res, kUnprocessable, geojson.error(), diagnostics);
   res.set_content(std::move(*geojson), "application/geo+json");
 }
@@ -746,7 +755,7 @@ void StationServer::Impl::campaign(const httplib::Request& req, const std::strin
       read_mission_body(text, *m->map, "{\"mission\", \"runs\", \"seed\", ...}", res);
   if (!read || !attach_motion(*m, req, read->mission, res)) return;
   // The map stays while the campaign runs and while its runs can be replayed.
-  campaigns->start(read->body, m->map, m->id, std::move(read->mission), res);
+  campaigns->start(read->root(), m->map, m->id, std::move(read->mission), res);
 }
 
 void StationServer::Impl::routes() {

@@ -6,6 +6,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "sewerplan/core/json_fields.h"
 #include "sewerplan/core/map_io.h"
 #include "sewerplan/core/text_file.h"
 
@@ -106,6 +107,64 @@ TEST_F(MissionTest, AFieldGivenTwiceIsAnError) {
     "tasks": [{"type": "inspect_pipe", "pipe": "P4"}]})");
   ASSERT_FALSE(m.has_value());
   EXPECT_THAT(m.error().message, HasSubstr("m.json:$.start.pipe: error: field 'pipe' given twice"));
+}
+
+// Issue 33: a mission parsed already, inside a larger document (a request's body), is read by the
+// same reader with the same checks, each problem at its path in that document.
+TEST_F(MissionTest, ReadsAMissionParsedAlreadyAtItsPath) {
+  Diagnostics d;
+  const std::optional<JsonDocument> body = JsonDocument::parse(
+      R"({"runs": 3, "mission": {"format": "sewerplan-mission", "version": 1, "start": {"pipe": "P12"},
+          "tasks": [{"type": 3}, {"type": "inspect_pipe",
+          "pipe": "P99"}], "closed": {"pipes": [7]}}})",
+      "body", d);
+  ASSERT_TRUE(body.has_value()) << d.error_summary();
+  Result<Mission> m =
+      read_mission_value(body->root()["mission"].value(), "$.mission", "body", map_, d);
+  ASSERT_FALSE(m.has_value());
+  EXPECT_EQ(m.error().code, ErrorCode::kInvalidMission);
+  EXPECT_THAT(m.error().message,
+              HasSubstr("body:$.mission.tasks[0].type: error: expected a string, got 3"));
+  EXPECT_THAT(m.error().message,
+              HasSubstr("body:$.mission.tasks[1].pipe: error: unknown pipe 'P99'"));
+  EXPECT_THAT(m.error().message,
+              HasSubstr("body:$.mission.closed.pipes[0]: error: expected a name"));
+  // The same mission read from its own text: the same messages at the file's paths.
+  Result<Mission> whole = read(
+      R"({"format": "sewerplan-mission", "version": 1, "start": {"pipe": "P12"},
+          "tasks": [{"type": 3}]})");
+  ASSERT_FALSE(whole.has_value());
+  EXPECT_THAT(whole.error().message, HasSubstr("m.json:$.tasks[0].type: error: expected a string"));
+}
+
+// Issue 33: a text refused whole for a key given twice anywhere (a request's body), in the text's
+// order, the first ones named and the rest counted; and a parse with a depth of its own, which
+// says where the first level too deep opens.
+TEST(JsonFields, ReportsRepeatedKeysAnywhereAndADepthOfItsOwn) {
+  Diagnostics d;
+  const std::optional<JsonDocument> doc = JsonDocument::parse(
+      R"({"a": [{"b": 1, "b": 2}], "c": {"d": {"e": 1, "e": 2, "e": 3}}, "a": 0})", "t", d);
+  ASSERT_TRUE(doc.has_value());
+  EXPECT_EQ(report_repeated_keys(doc->root(), "$", "t", d, 3), 4u);
+  EXPECT_EQ(d.error_summary(),
+            "t:$.a[0].b: error: field 'b' given twice in one object: which value is meant is "
+            "unclear\n"
+            "t:$.c.d.e: error: field 'e' given twice in one object: which value is meant is "
+            "unclear\n"
+            "t:$.c.d.e: error: field 'e' given twice in one object: which value is meant is "
+            "unclear\n"
+            "t: error: (1 more fields given twice)");
+  Diagnostics none;
+  const std::optional<JsonDocument> fine = JsonDocument::parse(R"({"a": {"a": 1}})", "t", none);
+  ASSERT_TRUE(fine.has_value());
+  EXPECT_EQ(report_repeated_keys(fine->root(), "$", "t", none, 3), 0u);
+  EXPECT_FALSE(none.has_errors());
+  // Four levels pass a limit of four; the fifth is refused where it opens.
+  Diagnostics deep;
+  EXPECT_TRUE(JsonDocument::parse("[[[[1]]]]", "t", deep, 4).has_value()) << deep.error_summary();
+  EXPECT_FALSE(JsonDocument::parse("\n [[[{\"[\": [[]]}]]]", "t", deep, 4).has_value());
+  EXPECT_EQ(deep.error_summary(),
+            "t:2:11: error: the JSON nests arrays and objects more than 4 levels deep");
 }
 
 // Windows editors start a UTF-8 file with a byte order mark; it is no JSON value, but no error.

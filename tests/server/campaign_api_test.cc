@@ -20,6 +20,7 @@
 #include "sewerplan/campaign/summary.h"
 #include "sewerplan/core/condition.h"
 #include "sewerplan/core/condition_risk.h"
+#include "sewerplan/core/json_fields.h"
 #include "sewerplan/core/map_io.h"
 
 #include "campaign_service.h"
@@ -440,7 +441,11 @@ class CampaignStreamTest : public ::testing::Test {
   void begin(json fields) {
     fields["mission"] = json::parse(read(kAis / "missions/paper.json"));
     httplib::Response res;
-    running_ = service_.begin(fields, map_, "map", mission_, res);
+    Diagnostics diagnostics;
+    const std::optional<JsonDocument> body =
+        JsonDocument::parse(fields.dump(), "body", diagnostics);
+    ASSERT_TRUE(body) << diagnostics.error_summary();
+    running_ = service_.begin(body->root(), map_, "map", mission_, res);
     ASSERT_TRUE(running_) << res.body;
     reader_ = std::thread([this] {
       service_.stream(running_, [this](std::string_view text) {

@@ -34,6 +34,8 @@
 namespace sewerplan::server {
 namespace {
 
+using ::testing::HasSubstr;
+
 class StationServerTest : public StationFixture {};
 
 TEST_F(StationServerTest, ListsItsMapsByIdAndTheBuiltInProfiles) {
@@ -614,14 +616,14 @@ TEST_F(StationServerTest, RefusesAKeyGivenTwiceInASimulateOrCampaignBody) {
       "{\"" + first_key + "\": " + parsed.begin().value().dump() + ", " + mission.substr(brace + 1);
   auto [status, j] = post("/api/maps/map/simulate", "{\"mission\": " + twice + "}");
   EXPECT_EQ(status, 400);
-  EXPECT_EQ(j["error"]["message"], "$.mission." + first_key + ": error: field '" + first_key +
+  EXPECT_EQ(j["error"]["message"], "body:$.mission." + first_key + ": error: field '" + first_key +
                                        "' given twice in one object: which value is meant is "
                                        "unclear");
   auto [campaign_status, c] =
       post("/api/maps/map/campaign", R"({"mission": )" + mission + R"(, "runs": 2, "runs": 3})");
   EXPECT_EQ(campaign_status, 400);
   EXPECT_EQ(c["error"]["message"],
-            "$.runs: error: field 'runs' given twice in one object: which value is meant is "
+            "body:$.runs: error: field 'runs' given twice in one object: which value is meant is "
             "unclear");
   // Within an array, by index; every repeat, one a line.
   auto [array_status, a] =
@@ -629,13 +631,13 @@ TEST_F(StationServerTest, RefusesAKeyGivenTwiceInASimulateOrCampaignBody) {
                                          mission + R"(, "faults": []})");
   EXPECT_EQ(array_status, 400);
   EXPECT_EQ(a["error"]["message"],
-            "$.faults[1].at: error: field 'at' given twice in one object: which value is meant is "
-            "unclear\n$.faults: error: field 'faults' given twice in one object: which value is "
-            "meant is unclear");
+            "body:$.faults[1].at: error: field 'at' given twice in one object: which value is "
+            "meant is unclear\nbody:$.faults: error: field 'faults' given twice in one object: "
+            "which value is meant is unclear");
   auto [syntax_status, syntax] = post("/api/maps/map/simulate", "{\"mission\": ");
   EXPECT_EQ(syntax_status, 400);
   EXPECT_EQ(syntax["error"]["message"].get<std::string>().rfind(
-                "the body is not JSON: parse error at line 1, column 13", 0),
+                "body:1:13: error: JSON syntax error: syntax error while parsing value", 0),
             0u)
       << syntax;
 }
@@ -654,7 +656,65 @@ TEST_F(StationServerTest, BoundsWhatItSaysOfAHostileBody) {
   EXPECT_LT(message.size(), 2000u);
   auto [deep_status, deep] = post("/api/maps/map/simulate", std::string(100000, '['));
   EXPECT_EQ(deep_status, 400);
-  EXPECT_EQ(deep["error"]["message"], "the body is nested deeper than 256 levels");
+  EXPECT_EQ(deep["error"]["message"],
+            "body:1:257: error: the JSON nests arrays and objects more than 256 levels deep");
+}
+
+// Issue 33: the station reads its bodies with the file readers' parser and JsonFields (no parse,
+// dump and parse again of its own): what the old body reader refused is refused alike, named at
+// its place in the body, and what the mission's and faults' readers say is said at the body's path.
+TEST_F(StationServerTest, ReadsBodiesWithTheFileReadersNamingTheBodysPath) {
+  const std::string mission = read(kAis / "missions/paper.json");
+  const auto message = [&](const std::string& path, const std::string& body) {
+    auto [status, j] = post(path, body);
+    return std::to_string(status) + " " + j["error"]["message"].get<std::string>();
+  };
+  // Nested deeper than 256 levels inside a well-formed body, in a part no reader looks at: where.
+  const std::string deep = std::string(300, '[') + std::string(300, ']');
+  EXPECT_EQ(message("/api/maps/map/simulate", "{\"mission\": " + mission + ", \"x\": " + deep + "}")
+                .rfind("400 body:", 0),
+            0u);
+  EXPECT_THAT(
+      message("/api/maps/map/simulate", "{\"x\": " + deep + "}"),
+      HasSubstr(":1:262: error: the JSON nests arrays and objects more than 256 levels deep"));
+  // A key given twice in an object no reader reads (an unknown field's value) is still refused.
+  EXPECT_EQ(message("/api/maps/map/campaign",
+                    "{\"mission\": " + mission + ", \"extra\": [{\"a\": 1, \"a\": 2}]}"),
+            "400 body:$.extra[0].a: error: field 'a' given twice in one object: which value is "
+            "meant is unclear");
+  // Text that is not UTF-8, a number beyond a double: at their line and column.
+  EXPECT_THAT(message("/api/maps/map/simulate", "{\"mission\": \"\xff\xfe\"}"),
+              HasSubstr("400 body:1:"));
+  EXPECT_THAT(message("/api/maps/map/simulate", "{\"mission\": " + mission + ",\n \"x\": 1e999}"),
+              HasSubstr("error: number 1e999 is out of range"));
+  EXPECT_THAT(message("/api/maps/map/simulate", "{\"mission\": " + mission + ",\n \"x\": 1e999}"),
+              HasSubstr("400 body:"));
+  // A wrong type in the mission: the mission file's reader's message, at the body's path (422).
+  json typed = json::parse(mission);
+  typed["tasks"][1]["type"] = 3;
+  EXPECT_THAT(message("/api/maps/map/simulate", json{{"mission", typed}}.dump()),
+              HasSubstr("422 body:$.mission.tasks[1].type: error: expected a string, got 3"));
+  // And in the faults: the fault file's reader's message, at the body's path.
+  EXPECT_THAT(
+      message("/api/maps/map/simulate", json{{"mission", json::parse(mission)},
+                                             {"faults",
+                                              {{"format", "sewerplan-faults"},
+                                               {"version", 1},
+                                               {"obstacles", {{{"pipe", 7}, {"offset_m", 1}}}}}}}
+                                            .dump()),
+      HasSubstr("body:$.faults.obstacles[0].pipe: error: expected a string, got 7"));
+  EXPECT_THAT(message("/api/maps/map/simulate",
+                      json{{"mission", json::parse(mission)}, {"random_faults", 7}}.dump()),
+              HasSubstr("400 body:$.random_faults: expected \"SEED[,RATE]\""));
+  EXPECT_THAT(
+      message("/api/maps/map/geojson", json{{"mission", json::parse(mission)}, {"plan", 7}}.dump()),
+      HasSubstr("400 body:$.plan: error: expected a string, got 7"));
+  // Every wrong field of a campaign in one answer, each at its path.
+  const std::string both = message(
+      "/api/maps/map/campaign",
+      json{{"mission", json::parse(mission)}, {"runs", "many"}, {"allow_push", "yes"}}.dump());
+  EXPECT_THAT(both, HasSubstr("400 body:$.runs: error: expected a whole number from 1 to"));
+  EXPECT_THAT(both, HasSubstr("\nbody:$.allow_push: error: expected true or false, got \"yes\""));
 }
 
 TEST_F(StationServerTest, RefusesABodyOverTheSizeLimit) {

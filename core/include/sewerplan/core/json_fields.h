@@ -41,9 +41,13 @@ using JsonArray = simdjson::dom::array;
 class JsonDocument {
  public:
   // A syntax error is reported as "file:line:column: JSON syntax error: ..." and gives nullopt. A
-  // leading UTF-8 byte order mark (Windows editors write one) is skipped.
+  // leading UTF-8 byte order mark (Windows editors write one) is skipped. Arrays and objects nested
+  // more than `max_depth` levels are refused at the first one too deep ("file:1:257: the JSON
+  // nests arrays and objects more than 256 levels deep"): files are read with simdjson's 1024, a
+  // request's body with less (the station).
   static std::optional<JsonDocument> parse(std::string_view text, std::string_view file,
-                                           Diagnostics& diagnostics);
+                                           Diagnostics& diagnostics,
+                                           std::size_t max_depth = simdjson::DEFAULT_MAX_DEPTH);
   JsonElement root() const { return root_; }
 
  private:
@@ -109,6 +113,14 @@ class JsonFields {
   std::string_view file_;
   Diagnostics& diagnostics_;
 };
+
+// Every key given twice in one object anywhere in `json` (at JSON path `path` of `file`), reported
+// as JsonFields reports one ("file:$.a[2].b: field 'b' given twice in one object: ..."), in the
+// text's order: the first `max_named` by name, the rest counted in one more error. For a text
+// refused whole if any key is repeated, before its parts are read (a request's body: a repeat
+// inside a part no reader looks at is still found). The number of repeats.
+std::size_t report_repeated_keys(JsonElement json, const std::string& path, std::string_view file,
+                                 Diagnostics& diagnostics, std::size_t max_named);
 
 // An array element that must be a string (a name), else an error at `where`.
 std::optional<std::string> string_element(JsonElement element, const std::string& where,

@@ -35,6 +35,10 @@
 #include "sewerplan/core/robot_profile.h"
 #include "sewerplan/core/sewer_map.h"
 
+namespace simdjson::dom {
+class element;  // JsonElement (json_fields.h), which this header does not pull in
+}  // namespace simdjson::dom
+
 namespace sewerplan {
 
 // A place in a pipe: the whole pipe, a point offset_m from its ends[0], or a named point.
@@ -126,6 +130,11 @@ inline constexpr int kMissionJsonVersion = 1;
 // naming the JSON path.
 Result<Mission> read_mission_json(std::string_view text, const std::string& file_name,
                                   const SewerMap& map, Diagnostics& diagnostics);
+// The same, of a mission parsed already (json_fields.h) at JSON path `path` of `file_name`: a
+// request's body that holds the mission among other members ("body:$.mission.tasks[2].at: ...").
+Result<Mission> read_mission_value(const simdjson::dom::element& value, const std::string& path,
+                                   const std::string& file_name, const SewerMap& map,
+                                   Diagnostics& diagnostics);
 
 void write_mission_json(const Mission& mission, const SewerMap& map, std::ostream& out);
 

@@ -34,6 +34,10 @@
 #include "sewerplan/core/robot_profile.h"
 #include "sewerplan/core/sewer_map.h"
 
+namespace simdjson::dom {
+class element;  // JsonElement (core/json_fields.h), which this header does not pull in
+}  // namespace simdjson::dom
+
 namespace sewerplan::hal {
 
 inline constexpr std::string_view kFaultsJsonFormat = "sewerplan-faults";
@@ -167,6 +171,11 @@ Result<FaultScenario> random_faults(const SewerMap& map, const RandomFaultOption
 // not the format) or kInvalidArgument (unknown names, bad kinds, offsets outside the pipe, ...).
 Result<FaultScenario> read_faults_json(std::string_view text, const std::string& file_name,
                                        const SewerMap& map, Diagnostics& diagnostics);
+// The same, of faults parsed already (json_fields.h) at JSON path `path` of `file_name`: a
+// request's body that holds them among other members ("body:$.faults.obstacles[0].pipe: ...").
+Result<FaultScenario> read_faults_value(const simdjson::dom::element& value,
+                                        const std::string& path, const std::string& file_name,
+                                        const SewerMap& map, Diagnostics& diagnostics);
 Result<FaultScenario> read_faults(const std::filesystem::path& path, const SewerMap& map,
                                   Diagnostics& diagnostics);
 
