@@ -132,6 +132,8 @@ const Hypothesis* find_junction(const Estimate& e) {
     if (h.pose.at_unmapped_junction) return &h;
   return nullptr;
 }
+// The pointer is into `e`: a temporary estimate would leave it dangling.
+const Hypothesis* find_junction(Estimate&& e) = delete;
 
 TEST(TopologicalFilter, KnownStartAndExactOdometryStayExact) {
   Street s;
@@ -262,7 +264,8 @@ double odds_of_p3_junction(const Street& s, TopologicalFilter& f) {
   EXPECT_TRUE(f.pass(s.manhole("M3"), s.slot("M3", "P2"), s.slot("M3", "P3")).has_value());
   EXPECT_TRUE(f.drive(20, DriveDirection::kForward, 0.6).has_value());
   EXPECT_TRUE(f.arrive(p3_junction(s)).has_value());
-  const Hypothesis* j = find_junction(f.estimate());
+  const Estimate e = f.estimate();
+  const Hypothesis* j = find_junction(e);
   const double p = j == nullptr ? 0.0 : j->probability;
   return p / (1 - p);
 }
@@ -377,7 +380,8 @@ TEST(TopologicalFilter, AStretchDrivenWithoutAJunctionMakesOneThereLessLikely) {
     seen.slots.push_back({.relative_deg = 270, .step_m = 0, .diameter_m = 0.3});
     seen.shaft_diameter_m = 1.2;
     EXPECT_TRUE(f.arrive(seen).has_value());
-    const Hypothesis* j = find_junction(f.estimate());
+    const Estimate e = f.estimate();
+    const Hypothesis* j = find_junction(e);
     return j == nullptr ? 0.0 : j->probability;
   };
   const double fresh = junction_probability(false);

@@ -29,6 +29,8 @@ const Stage* stage_of(const Portfolio& portfolio, Engine engine) {
   }
   return nullptr;
 }
+// The pointer is into `portfolio`: a temporary one would leave it dangling.
+const Stage* stage_of(Portfolio&& portfolio, Engine engine) = delete;
 
 // A problem of the tour's shape, with about the sizes the generator's meshed networks give
 // (positions about 5.3 per manhole, keys about 2.2 per task, actions about 70 per task).
@@ -132,12 +134,13 @@ TEST(ChoosePortfolio, BudgetsFollowTheSizeUpToTheReach) {
   // On a network smaller than the reach, the table's budget follows its positions.
   ProblemSize tiny = tour_problem(100, 15);
   ASSERT_LT(tiny.positions, kReachPositions);
-  const Stage* exact = stage_of(choose_portfolio(tiny, {}), Engine::kExactImprovement);
+  const Portfolio tiny_portfolio = choose_portfolio(tiny, {});
+  const Stage* exact = stage_of(tiny_portfolio, Engine::kExactImprovement);
   ASSERT_NE(exact, nullptr);
   EXPECT_EQ(exact->budget, kExactBytesPerReach * tiny.keys * tiny.positions);
   // Eight tasks: the exact search fits the improvement's work outright (2^K x 9K^2 units).
-  const Stage* ten =
-      stage_of(choose_portfolio(tour_problem(10000, 8), {}), Engine::kExactImprovement);
+  const Portfolio eight = choose_portfolio(tour_problem(10000, 8), {});
+  const Stage* ten = stage_of(eight, Engine::kExactImprovement);
   ASSERT_NE(ten, nullptr);
   EXPECT_EQ(ten->budget, kExactDefaultBytes);
 }
