@@ -13,7 +13,11 @@ include=$(mktemp)
 trap 'rm -f "$include"' EXIT
 {
   echo "[COMMANDS]"
-  commands=$("$sp" --help | awk '/^Subcommands:/ {on = 1; next} on && !NF {exit} on && /^  [a-z]/ {print $1}')
+  # The help is read whole before awk stops at the list's end: an awk that exits while the command
+  # still writes kills it with SIGPIPE, which pipefail made a failed build now and then.
+  main_help=$("$sp" --help)
+  commands=$(awk '/^Subcommands:/ {on = 1; next} on && !NF {exit} on && /^  [a-z]/ {print $1}' \
+    <<<"$main_help")
   for c in $commands; do
     echo ".SS $c"
     echo ".nf"

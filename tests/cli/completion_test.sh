@@ -21,7 +21,7 @@ else
   source <("$sp" completion)
 fi
 subcommands() { awk '/^Subcommands:/ {on = 1; next} on && !NF {exit} on && /^  [a-z]/ {print $1}'; }
-help_commands=$("$sp" --help | subcommands | sort | tr '\n' ' ')
+help_commands=$(subcommands <<<"$("$sp" --help)" | sort | tr '\n' ' ')
 script_commands=$(tr ' ' '\n' <<<"$_sewerplan_commands" | sort | tr '\n' ' ')
 [ "$help_commands" = "$script_commands" ] ||
   fail "the completion's commands differ from sewerplan --help's"$'\n'"  --help:     $help_commands"$'\n'"  completion: $script_commands"
@@ -51,7 +51,7 @@ check_options() {  # check_options HELP WORD...: the command WORD...'s completio
     fail "'sewerplan $* -' completes to"$'\n'"  $got"$'\n'"not to its --help's options"$'\n'"  $want"
   count=$((count + 1))
 }
-for c in $("$sp" --help | subcommands); do
+for c in $(subcommands <<<"$("$sp" --help)"); do
   help=$("$sp" "$c" --help)
   check_options "$help" "$c"
   for s in $(subcommands <<<"$help"); do check_options "$("$sp" "$c" "$s" --help)" "$c" "$s"; done

@@ -43,7 +43,7 @@ if [ -n "$man_page" ]; then
   # One section per command, no more (a wrapped description's word was taken for a command); help2man's
   # own (from "Subcommands:" and "Exit codes:") begin with a capital.
   sections=$(awk '/^\.SS [a-z][-a-z]*$/ {print $2}' "$man_page" | tr '\n' ' ')
-  want=$("$sp" --help | subcommands | tr '\n' ' ')
+  want=$(subcommands <<<"$("$sp" --help)" | tr '\n' ' ')
   [ "$sections" = "$want" ] ||
     fail "the man page's command sections are"$'\n'"  $sections"$'\n'"not --help's commands"$'\n'"  $want"
 fi
