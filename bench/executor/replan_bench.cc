@@ -3,12 +3,15 @@
 // change, goal selection, search, fusion), on the paper's test environment and on generated
 // networks. The robot is put where its first plan has it drive into a pipe after `steps_in` steps,
 // half-way along that pipe, and an obstacle is reported just ahead.
+#include <map>
+
 #include <benchmark/benchmark.h>
 
 #include "sewerplan/domain/validator.h"
 #include "sewerplan/executor/replanner.h"
 
 #include "support/instances.h"
+#include "support/scrambled_network.h"
 
 namespace sewerplan::bench {
 namespace {
@@ -101,6 +104,30 @@ void BM_ReplanAfterBlockageSpread(benchmark::State& state) {
 BENCHMARK(BM_ReplanAfterBlockageSpread)
     ->ArgNames({"manholes", "tasks", "spread", "warm"})
     ->ArgsProduct({{100000}, {20}, {0, 1}, {0, 1}})
+    ->Unit(benchmark::kMillisecond);
+
+// Issue 35: the same on the scrambled generator's networks (bench/support/scrambled_network.h:
+// numbered and named without spatial order, degree 2 to 4), the tasks spread over the whole
+// network and a battery that bounds no search, where every route search settles most of the map.
+// Arguments: manholes, warm (as above). With warm, the replanner takes the rows of its last
+// compile whose routes the blockage does not touch (domain::CompileCache, incremental
+// replanning); cold, it compiles everything again.
+void BM_ReplanAfterBlockageScrambled(benchmark::State& state) {
+  static std::map<std::size_t, Instance> instances;
+  const auto manholes = static_cast<std::size_t>(state.range(0));
+  auto it = instances.find(manholes);
+  if (it == instances.end()) {
+    Instance i;
+    i.map = *generate_scrambled_network({.manholes = manholes, .seed = 1});
+    i.mission = *scrambled_mission(i.map, 20, 1);
+    it = instances.emplace(manholes, std::move(i)).first;
+  }
+  replan_after_blockage(state, it->second, state.range(1) != 0);
+}
+BENCHMARK(BM_ReplanAfterBlockageScrambled)
+    ->ArgNames({"manholes", "warm"})
+    ->ArgsProduct({{10000, 100000}, {0, 1}})
+    ->Iterations(3)
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace

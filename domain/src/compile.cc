@@ -19,6 +19,7 @@
 #include "compile_reasons.h"
 #include "graph_search.h"
 #include "position_graph.h"
+#include "route_memo.h"
 #include "route_store.h"
 
 namespace sewerplan::domain {
@@ -293,9 +294,16 @@ class SewerTaskCompiler {
     // Issue 14: sized once from the start's routes (route_store.h).
     route_store_.reserve_rows(k());
     std::vector<Node> reachable;
+    std::vector<bool> reachable_key(k(), false);
     for (Node n : targets) {
-      if (dist_[key_of_.at(n)] <= bound_) reachable.push_back(n);
+      const std::uint32_t b = key_of_.at(n);
+      if (dist_[b] <= bound_) {
+        reachable.push_back(n);
+        reachable_key[b] = true;
+      }
     }
+    open_memo(reachable, exits != nullptr);
+    std::size_t searches = 1;
     for (std::size_t a = 1; a < k() && !search.interrupted(); ++a) {
       // A task's spot is reached by the task's action, not by a route: always route from it. So
       // is a pipe end a task leaves the robot at: when no route from the start reaches it within
@@ -304,15 +312,103 @@ class SewerTaskCompiler {
       const bool spot =
           landing(a) && (result_.graph_->is_extra_spot(keys_[a]) || dist_[a] > bound_);
       if (!spot && dist_[a] > bound_) continue;
-      found =
-          search.run(std::span<const Node>(&keys_[a], 1), reachable,
-                     spot ? bound_ : bound_ - dist_[a], GraphSearch::Direction::kForward, exits);
-      store_routes(search, a, found);
+      const Cost row_bound = spot ? bound_ : bound_ - dist_[a];
+      // A row from a key the start reaches has the routes to the keys the start reaches within
+      // the key's bound: those are its targets, and every other key lies beyond that bound. Only
+      // its targets are kept, so that the row depends on them alone (RouteMemo).
+      if (!spot && reuse_row(a, row_bound, reachable_key)) {
+        ++result_.statistics_.reused_searches;
+        continue;
+      }
+      found = search.run(std::span<const Node>(&keys_[a], 1), reachable, row_bound,
+                         GraphSearch::Direction::kForward, exits);
+      ++searches;
+      store_routes(search, a, found, spot ? nullptr : &reachable_key);
+      if (!spot) remember_row(a, row_bound, found, reachable_key);
     }
-    result_.statistics_.route_searches = k();
+    result_.statistics_.route_searches = searches;
     result_.graph_->set_risk_weight(options_.risk.return_s);
     if (ends_at_exit_ && !search.interrupted()) route_to_exits(search, targets);
     result_.graph_->set_risk_weight(0);
+    // Kept for the next compile on this core, once every search has run to its end.
+    if (options_.cache != nullptr && !search.interrupted()) {
+      result_.graph_->core().route_memo = memo_;
+    }
+  }
+
+  // The last compile's rows (RouteMemo), when this compile may take from them, and this
+  // compile's context for the next.
+  void open_memo(const std::vector<Node>& reachable, bool exit_goal) {
+    if (options_.cache == nullptr) return;
+    const PositionGraph& graph = *result_.graph_;
+    memo_->context = detail::RouteMemo::context_of(mission_, options_.risk.blockage_s,
+                                                   options_.risk.return_s, exit_goal);
+    memo_->targets = reachable;
+    std::sort(memo_->targets.begin(), memo_->targets.end());
+    old_memo_ = graph.core().route_memo;
+    if (old_memo_ != nullptr) change_ = old_memo_->change_to(memo_->context, graph);
+  }
+
+  // Takes key a's row from the last compile's (RouteMemo), if it is what a search within `bound`
+  // would find.
+  bool reuse_row(std::size_t a, Cost bound, const std::vector<bool>& reachable_key) {
+    if (!change_) return false;
+    const auto it = old_memo_->rows.find(keys_[a]);
+    if (it == old_memo_->rows.end() || bound > it->second.bound) return false;
+    const detail::RouteMemo::Row& row = it->second;
+    const PositionGraph& graph = *result_.graph_;
+    const auto& old_targets = old_memo_->targets;
+    // Per key: what the row found there, if it did.
+    std::vector<const detail::RouteMemo::Found*> found(k(), nullptr);
+    for (const detail::RouteMemo::Found& f : row.found) {
+      if (const auto b = key_of_.find(f.to); b != key_of_.end()) found[b->second] = &f;
+    }
+    for (std::size_t b = 0; b < k(); ++b) {
+      if (b != a && !reachable_key[b]) continue;
+      const detail::RouteMemo::Found* f = found[b];
+      if (f == nullptr) {
+        // Not reached: beyond the row's bound if it was a target, else unknown.
+        if (b == a || !std::binary_search(old_targets.begin(), old_targets.end(), keys_[b]))
+          return false;
+        continue;
+      }
+      if (f->cost <= bound && change_->touches(graph, old_memo_->store.route(f->route)))
+        return false;
+    }
+    if (row.exit && row.exit->cost <= bound &&
+        change_->touches(graph, old_memo_->store.route(row.exit->route))) {
+      return false;
+    }
+    for (std::size_t b = 0; b < k(); ++b) {
+      const detail::RouteMemo::Found* f = found[b];
+      if (f == nullptr || f->cost > bound || (b != a && !reachable_key[b])) continue;
+      dist_[a * k() + b] = f->cost;
+      if (a != b) routes_[a * k() + b] = route_store_.keep(old_memo_->store.route(f->route));
+    }
+    std::optional<Node> exit;
+    if (row.exit && row.exit->cost <= bound) {
+      exit = row.exit->to;
+      exit_dist_[a] = row.exit->cost;
+      exit_routes_[a] = route_store_.keep(old_memo_->store.route(row.exit->route));
+    }
+    remember_row(a, bound, exit, reachable_key);
+    return true;
+  }
+
+  // Keeps key a's row for the next compile (RouteMemo::Row).
+  void remember_row(std::size_t a, Cost bound, std::optional<Node> exit,
+                    const std::vector<bool>& reachable_key) {
+    if (options_.cache == nullptr) return;
+    detail::RouteMemo::Row row{.bound = bound};
+    for (std::size_t b = 0; b < k(); ++b) {
+      if ((b == a || reachable_key[b]) && dist_[a * k() + b] != kInfiniteCost) {
+        row.found.push_back({keys_[b], dist_[a * k() + b], routes_[a * k() + b]});
+      }
+    }
+    if (exit && exit_dist_[a] != kInfiniteCost) {
+      row.exit = detail::RouteMemo::Found{*exit, exit_dist_[a], exit_routes_[a]};
+    }
+    memo_->rows.insert_or_assign(keys_[a], std::move(row));
   }
 
   // Marks the mission's exits in the core's exit marks (unmarking the last compile's, unless they
@@ -356,9 +452,12 @@ class SewerTaskCompiler {
     return false;
   }
 
-  // The routes of the last search, from key a; `exit`: the nearest exit it settled.
-  void store_routes(GraphSearch& search, std::size_t a, std::optional<Node> exit) {
+  // The routes of the last search, from key a; `exit`: the nearest exit it settled. With `only`,
+  // to a itself and the keys it marks.
+  void store_routes(GraphSearch& search, std::size_t a, std::optional<Node> exit,
+                    const std::vector<bool>* only = nullptr) {
     for (std::size_t b = 0; b < k(); ++b) {
+      if (only != nullptr && b != a && !(*only)[b]) continue;
       dist_[a * k() + b] = search.distance(keys_[b]);
       if (a != b && dist_[a * k() + b] != kInfiniteCost)
         keep_path(search, keys_[b], routes_[a * k() + b]);
@@ -382,12 +481,42 @@ class SewerTaskCompiler {
           a == 0 || landing(a) ||
           (std::find(targets.begin(), targets.end(), n) != targets.end() && dist_[a] <= bound_);
       if (!in_reach || exit_dist_[a] != kInfiniteCost) continue;
+      if (reuse_exit_search(a)) continue;
       const std::optional<Node> exit = search.run_to_nearest(n, exit_node(), bound_);
       ++result_.statistics_.route_searches;
-      if (!exit) continue;
-      exit_dist_[a] = search.distance(*exit);
-      keep_path(search, *exit, exit_routes_[a]);
+      if (exit) {
+        exit_dist_[a] = search.distance(*exit);
+        keep_path(search, *exit, exit_routes_[a]);
+      }
+      remember_exit_search(a, exit);
     }
+  }
+
+  // Takes key a's way to its nearest exit from the last compile's (RouteMemo::ExitSearch), if it
+  // is what a search within the bound would find.
+  bool reuse_exit_search(std::size_t a) {
+    if (!change_ || result_.graph_->is_extra_spot(keys_[a])) return false;
+    const auto it = old_memo_->exit_searches.find(keys_[a]);
+    if (it == old_memo_->exit_searches.end() || bound_ > it->second.bound) return false;
+    const std::optional<detail::RouteMemo::Found>& exit = it->second.exit;
+    std::optional<Node> kept;
+    if (exit && exit->cost <= bound_) {
+      const std::span<const Node> route = old_memo_->store.route(exit->route);
+      if (change_->touches(*result_.graph_, route)) return false;
+      kept = exit->to;
+      exit_dist_[a] = exit->cost;
+      exit_routes_[a] = route_store_.keep(route);
+    }
+    ++result_.statistics_.reused_searches;
+    remember_exit_search(a, kept);
+    return true;
+  }
+
+  void remember_exit_search(std::size_t a, std::optional<Node> exit) {
+    if (options_.cache == nullptr || result_.graph_->is_extra_spot(keys_[a])) return;
+    detail::RouteMemo::ExitSearch s{.bound = bound_};
+    if (exit) s.exit = detail::RouteMemo::Found{*exit, exit_dist_[a], exit_routes_[a]};
+    memo_->exit_searches.insert_or_assign(keys_[a], std::move(s));
   }
 
   // What blocks a task in a pipe, for the reason given when it is dropped.
@@ -633,8 +762,13 @@ class SewerTaskCompiler {
   std::vector<bool> landing_;  // per key, see landing(); shorter when the last keys are not
   std::unordered_map<Node, std::uint32_t> key_of_;
   std::vector<Cost> dist_;  // k x k, row = from
-  // The routes of the searches, each a stretch of one store (route_store.h).
-  detail::RouteStore route_store_;
+  // This compile's searches for the next compile on the core (route_memo.h), the last compile's,
+  // and what changed since (null: nothing may be taken from it).
+  std::shared_ptr<detail::RouteMemo> memo_ = std::make_shared<detail::RouteMemo>();
+  std::shared_ptr<const detail::RouteMemo> old_memo_;
+  std::optional<detail::RouteMemo::Change> change_;
+  // The routes of the searches, each a stretch of one store (route_store.h), the memo's.
+  detail::RouteStore& route_store_ = memo_->store;
   std::span<const Node> route(RouteRef r) const { return route_store_.route(r); }
   void keep_path(const GraphSearch& search, Node n, RouteRef& ref) {
     ref = route_store_.keep(search, n);

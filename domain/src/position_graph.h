@@ -58,6 +58,8 @@ struct SearchScratch {
   std::vector<std::pair<Cost, Node>> heap;
 };
 
+struct RouteMemo;
+
 // The part of a PositionGraph that depends on the map and the robot alone, with the scratch
 // arrays of the compile's route searches and its exit marks.
 struct GraphCore {
@@ -99,6 +101,8 @@ struct GraphCore {
   std::vector<bool> exit_marks;
   std::vector<Node> marked_exits;
   std::vector<ManholeId> exits_marked;
+  // The last compile's route searches, for the next compile on this core (route_memo.h).
+  std::shared_ptr<RouteMemo> route_memo;
   bool complete = false;
 
  private:
@@ -148,6 +152,12 @@ class PositionGraph {
   RobotPosition position(Node n) const;
   // The pipe a pipe node is in.
   std::optional<PipeId> pipe_of(Node n) const;
+  // The manhole a manhole or slot node is in.
+  std::optional<ManholeId> manhole_at(Node n) const {
+    if (n < manholes_) return ManholeId{n};
+    if (n >= manholes_ + slots_) return std::nullopt;
+    return ManholeId{core_->manhole_of_slot[n - manholes_]};
+  }
   double offset_of(Node n) const;  // pipe nodes only
   const std::vector<Node>& extra_spots_in(PipeId pipe) const;
 

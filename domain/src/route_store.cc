@@ -16,4 +16,10 @@ RouteRef RouteStore::keep(const GraphSearch& search, Node n) {
   return {begin, nodes_.size() - begin};
 }
 
+RouteRef RouteStore::keep(std::span<const Node> route) {
+  const std::size_t begin = nodes_.size();
+  nodes_.insert(nodes_.end(), route.begin(), route.end());
+  return {begin, route.size()};
+}
+
 }  // namespace sewerplan::domain::detail

@@ -50,6 +50,8 @@ class RouteStore {
 
   // Appends the last run of `search`'s path to `n` (GraphSearch::append_path).
   RouteRef keep(const GraphSearch& search, Node n);
+  // Appends `route` (of another store: a RouteMemo's).
+  RouteRef keep(std::span<const Node> route);
 
   std::span<const Node> route(RouteRef r) const { return {nodes_.data() + r.begin, r.size}; }
 

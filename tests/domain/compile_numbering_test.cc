@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Issue 35: the compile does not depend on how a network is numbered or named, and the moves it
 // reads from the core's adjacency are the moves it generates from the map.
+#include <algorithm>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -142,6 +144,148 @@ TEST(CompileNumberingIssue35, AdjacencyGivesTheMovesTheMapGivesWithClosuresAndEx
   auto expected = moves(fresh);
   expected.resize(read.size());  // the spot is not in the fresh graph
   for (std::size_t n = 0; n + 1 < read.size(); ++n) EXPECT_EQ(read[n], expected[n]) << n;
+}
+
+}  // namespace
+}  // namespace sewerplan::domain
+
+namespace sewerplan::domain {
+namespace {
+
+// Issue 35, incremental replanning: a compile on a CompileCache takes the rows the last compile's
+// searches found (RouteMemo) where nothing that changed since could alter them. The task must be
+// the one compiled afresh, action for action and route for route.
+void expect_identical_task(const SewerTask& cached, const SewerTask& fresh) {
+  expect_same_task(cached, fresh);
+  for (ActionId id : fresh.task().action_ids()) {
+    const ActionId one[] = {id};
+    EXPECT_EQ(cached.expand(one).steps, fresh.expand(one).steps) << fresh.task().action_name(id);
+  }
+}
+
+// The pipes the routes of `task`'s moves drive, in action order, each once.
+std::vector<PipeId> driven_pipes(const SewerTask& task) {
+  std::vector<PipeId> pipes;
+  for (ActionId id : task.task().action_ids()) {
+    const ActionId one[] = {id};
+    for (const PlanStep& s : task.expand(one).steps) {
+      if (const auto* d = std::get_if<DrivePipeToManhole>(&s)) {
+        if (std::find(pipes.begin(), pipes.end(), d->pipe) == pipes.end()) pipes.push_back(d->pipe);
+      }
+    }
+  }
+  return pipes;
+}
+
+// A replan's changes one after the other, each compiled with the cache and afresh: the robot on
+// in a pipe past the start, a task done, energy used, a blockage on a pipe the routes use, a
+// passage closed, a pipe closed, then a closure lifted (which the memo cannot follow: it must not
+// be used) and a closure again.
+void expect_replans_as_afresh(const SewerMap& map, Mission mission, CompileOptions options) {
+  CompileCache cache;
+  CompileOptions cached = options;
+  cached.cache = &cache;
+  MissionProgress progress = initial_progress(mission, map);
+  std::vector<PipeId> used;
+  {
+    // (A task holds the cache's core while it lives: the next compile takes it after.)
+    const auto first = compile_sewer_task(map, mission, progress, cached);
+    ASSERT_TRUE(first.has_value()) << first.error().message;
+    used = driven_pipes(*first);
+  }
+  ASSERT_GE(used.size(), 6U);
+  std::size_t reused = 0;
+  for (int step = 0; step < 8; ++step) {
+    SCOPED_TRACE("step " + std::to_string(step));
+    const PipeId p = used[static_cast<std::size_t>(step) * used.size() / 9];
+    switch (step) {
+      case 0:  // nothing changed: every row from the memo
+        break;
+      case 1:
+        progress.position = InPipe{used[0], map.pipe(used[0]).length_m / 3};
+        progress.done[0] = true;
+        progress.energy_used_wh += 2;
+        break;
+      case 2:
+        mission.blockages.push_back({p, map.pipe(p).length_m / 2});
+        break;
+      case 3: {
+        const PipeEnd& end = map.pipe(p).ends[0];
+        if (end.manhole && map.manhole(*end.manhole).slot_count > 1) {
+          const auto other = static_cast<std::uint16_t>(end.slot.value() == 0 ? 1 : 0);
+          mission.closed_passages.push_back({*end.manhole, end.slot, SlotIndex{other}});
+        }
+        break;
+      }
+      case 4:
+        mission.closed_pipes.push_back(p);
+        break;
+      case 5:
+        mission.blockages.clear();  // lifted
+        break;
+      case 6:
+        mission.closed_pipes.push_back(p);
+        progress.energy_used_wh += 1;
+        break;
+      default:
+        progress.done[1] = true;
+        break;
+    }
+    const auto with = compile_sewer_task(map, mission, progress, cached);
+    const auto without = compile_sewer_task(map, mission, progress, options);
+    ASSERT_EQ(with.has_value(), without.has_value());
+    if (!without.has_value()) {
+      EXPECT_EQ(with.error().message, without.error().message);
+      continue;
+    }
+    expect_identical_task(*with, *without);
+    EXPECT_EQ(without->statistics().reused_searches, 0U);
+    if (step == 5) {
+      EXPECT_EQ(with->statistics().reused_searches, 0U) << "a lifted closure must not reuse";
+    }
+    reused += with->statistics().reused_searches;
+  }
+  // The memo must have been used, or the comparison proves nothing.
+  EXPECT_GT(reused, 0U);
+}
+
+TEST(IncrementalReplanIssue35, ReplansOnAGeneratedNetworkAsAfresh) {
+  const SewerMap map =
+      *generate_network({.manholes = 300, .seed = 3, .topology = Topology::kMeshed});
+  const Mission mission =
+      *generate_mission(map, {.tasks = 8, .seed = 2, .spread = MissionSpread::kUniform});
+  expect_replans_as_afresh(map, mission, {.select_goals = true});
+}
+
+TEST(IncrementalReplanIssue35, ReplansOnAScrambledNetworkAsAfresh) {
+  const SewerMap map = *bench::generate_scrambled_network({.manholes = 400, .seed = 5});
+  const Mission mission = *bench::scrambled_mission(map, 8, 3);
+  expect_replans_as_afresh(map, mission, {.select_goals = true});
+}
+
+// Risk-aware, the hazards weigh the routes: a hazard learnt since changes them, and the memo must
+// not be used then; with the same hazards it may be.
+TEST(IncrementalReplanIssue35, ReplansRiskAwareAsAfreshAndNotAcrossNewHazards) {
+  const SewerMap map =
+      *generate_network({.manholes = 300, .seed = 4, .topology = Topology::kMeshed});
+  Mission mission =
+      *generate_mission(map, {.tasks = 6, .seed = 4, .spread = MissionSpread::kUniform});
+  for (std::uint32_t p = 0; p < map.pipe_count(); p += 7) {
+    mission.hazards.push_back({PipeId{p}, map.pipe(PipeId{p}).length_m / 2, 0.2, "roots"});
+  }
+  const CompileOptions options{.select_goals = true, .risk = kDefaultRiskCosts};
+  expect_replans_as_afresh(map, mission, options);
+  CompileCache cache;
+  CompileOptions cached = options;
+  cached.cache = &cache;
+  const MissionProgress progress = initial_progress(mission, map);
+  ASSERT_TRUE(compile_sewer_task(map, mission, progress, cached).has_value());
+  mission.hazards.push_back({PipeId{3}, map.pipe(PipeId{3}).length_m / 3, 0.5, "obstacle"});
+  const auto with = compile_sewer_task(map, mission, progress, cached);
+  const auto without = compile_sewer_task(map, mission, progress, options);
+  ASSERT_TRUE(with.has_value() && without.has_value());
+  EXPECT_EQ(with->statistics().reused_searches, 0U);
+  expect_identical_task(*with, *without);
 }
 
 }  // namespace

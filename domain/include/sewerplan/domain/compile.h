@@ -63,6 +63,11 @@ class PositionGraph;
 // same map with the same robot profile and motion table (it starts afresh when those change).
 // What a replan changes (blockages, closed pipes and passages, hazards, the robot's position and
 // the tasks done) is applied by each compile on top, so a plan is the same with or without it.
+// It also keeps the last compile's route searches (issue 35, incremental replanning): the next
+// compile takes a key's routes from them instead of searching again when nothing that changed
+// since can alter them (new closures off those routes, a bound no larger, the same risk weights,
+// hazards and exits), and searches only the rest: after a blockage, the keys whose routes pass
+// it (CompileStatistics::reused_searches counts the searches saved).
 //
 //   CompileCache cache;  // e.g. the Replanner's, for the whole mission
 //   auto task = compile_sewer_task(map, mission, progress, {.cache = &cache});
@@ -88,6 +93,9 @@ struct CompileStatistics {
   std::size_t graph_nodes = 0;    // positions of the primitive graph
   std::size_t settled_nodes = 0;  // Dijkstra work over all searches
   std::size_t route_searches = 0;
+  // Searches not run: their routes taken from the last compile on the same cache (issue 35:
+  // CompileCache, incremental replanning).
+  std::size_t reused_searches = 0;
   std::size_t actions = 0;
   // The searches read the moves from the map's adjacency in the compile cache's core, built
   // by this compile or kept from an earlier one (issue 35).

@@ -1,0 +1,91 @@
+// SPDX-License-Identifier: MIT
+// RouteMemo: a compile's route searches, kept for the next compile on the same map (issue 35).
+//
+// Private to domain. A replan compiles the mission again from where the robot is: most of the
+// keys are the same, and what changed since (a pipe found blocked, a passage closed, the battery
+// a little lower) leaves most routes as they were. The memo keeps, for each key whose routes a
+// search of the last compile found within the key's own bound (a "row": the routes to the other
+// keys and to its nearest exit), what that search found; the next compile takes a row from it
+// instead of searching again when the answer is provably the search's own:
+//   - the same searched graph, or one with edges only taken away: the same map and robot (the
+//     memo lives in the GraphCore), the same risk weights, hazards (when they weigh), exits, and
+//     the closed pipes, closed passages and blockages a superset of the memo's;
+//   - a bound no larger than the memo's, and targets it knew: a key the memo's search had as a
+//     target and did not reach lies beyond its bound, so beyond the new one too;
+//   - no route of the row through a pipe or a manhole the new closures touch.
+// A route search breaks ties by (distance, node) and replaces a parent only for a shorter way
+// (graph_search.h), so a route whose nodes keep their distances is the one a new search would
+// find, node for node: taking edges away elsewhere only lengthens other ways. A row that fails any
+// condition is searched again, as before; so are rows from task spots and from keys the start
+// does not reach (their searches stop early, by targets the memo does not describe).
+//
+// Thread-safety: one compile uses a memo at a time (the one holding its GraphCore).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <unordered_map>
+#include <vector>
+
+#include "sewerplan/core/mission.h"
+
+#include "position_graph.h"
+#include "route_store.h"
+
+namespace sewerplan::domain::detail {
+
+struct RouteMemo {
+  // What the searches depended on besides the keys and bounds.
+  struct Context {
+    double blockage_weight_s = 0;  // the risk weights of the rows' and the exits' searches
+    double return_weight_s = 0;
+    bool exit_goal = false;  // the rows searched on to their nearest exit
+    std::vector<ManholeId> exits;
+    std::vector<Hazard> hazards;  // compared only when a weight is set
+    std::vector<PipeId> closed_pipes;
+    std::vector<ClosedPassage> closed_passages;
+    std::vector<Blockage> blockages;
+  };
+  // The context of a compile on `mission` (sorted, so that order does not count).
+  static Context context_of(const Mission& mission, double blockage_weight_s,
+                            double return_weight_s, bool exit_goal);
+
+  // What a compile in `now` may take from this memo: the pipes and manholes whose moves the new
+  // closures change (routes through them are searched again). Null when nothing may be taken:
+  // another context, or one that opened something the memo's had closed.
+  struct Change {
+    std::vector<bool> pipe;     // by pipe index
+    std::vector<bool> manhole;  // by manhole index
+    bool any = false;
+    // Whether `route` passes a changed pipe or manhole.
+    bool touches(const PositionGraph& graph, std::span<const Node> route) const;
+  };
+  std::optional<Change> change_to(const Context& now, const PositionGraph& graph) const;
+
+  struct Found {
+    Node to = 0;
+    Cost cost = 0;
+    RouteRef route;
+  };
+  // One key's search: its bound, the keys it reached (each a target; the source itself at cost
+  // 0), and the nearest exit it settled when it searched for one (Context::exit_goal).
+  struct Row {
+    Cost bound = 0;
+    std::vector<Found> found;
+    std::optional<Found> exit;
+  };
+  // A key's search for its nearest exit alone (route_to_exits), within `bound`.
+  struct ExitSearch {
+    Cost bound = 0;
+    std::optional<Found> exit;
+  };
+
+  Context context;
+  std::vector<Node> targets;  // sorted: the rows' targets (the keys the start reaches)
+  std::unordered_map<Node, Row> rows;
+  std::unordered_map<Node, ExitSearch> exit_searches;
+  RouteStore store;  // the routes of rows and exit_searches
+};
+
+}  // namespace sewerplan::domain::detail
