@@ -415,11 +415,16 @@ void JsonFields::warn_unknown(const std::function<bool(std::string_view)>& is_kn
   }
 }
 
-void JsonFields::reject_unknown(std::initializer_list<std::string_view> known) {
+void JsonFields::reject_unknown(std::span<const std::string_view> known) {
   if (!is_object_) return;
+  std::string expected;
+  for (const std::string_view key : known) {
+    expected += (expected.empty() ? " (expected " : ", ") + std::string(key);
+  }
+  if (!expected.empty()) expected += ")";
   for (simdjson::dom::key_value_pair field : object_) {
     if (std::find(known.begin(), known.end(), field.key) == known.end()) {
-      diagnostics_.error(where(field.key), "unknown field " + input_quoted(field.key));
+      diagnostics_.error(where(field.key), "unknown field " + input_quoted(field.key) + expected);
     }
   }
 }

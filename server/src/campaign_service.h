@@ -33,6 +33,7 @@
 // the running and the last campaign, which are shared with the stream and the campaign's thread.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <functional>
 #include <memory>
@@ -50,6 +51,19 @@
 #include <httplib.h>
 
 namespace sewerplan::server {
+
+// The fields of a request's body (all but the mission optional); any other is refused (a 400
+// naming it and these).
+inline constexpr std::array<std::string_view, 10> kCampaignFields = {"mission",
+                                                                     "runs",
+                                                                     "seed",
+                                                                     "fault_rates",
+                                                                     "jobs",
+                                                                     "allow_push",
+                                                                     "planner_time_limit_s",
+                                                                     "risk",
+                                                                     "faults_from_condition",
+                                                                     "timeout_s"};
 
 struct CampaignLimits {
   std::size_t max_runs = 10000;
