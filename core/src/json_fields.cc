@@ -415,7 +415,10 @@ void JsonFields::warn_unknown(const std::function<bool(std::string_view)>& is_kn
   }
 }
 
-void JsonFields::reject_unknown(std::span<const std::string_view> known) {
+// Names the unknown member and the fields known: "unknown field 'seeed' (expected mission, faults,
+// random_faults)". For files sewerplan writes itself and for input where a misspelt field must not
+// leave its default without a word: a mission, a request's body (the station's).
+void JsonFields::reject_unknown(std::initializer_list<std::string_view> known) {
   if (!is_object_) return;
   std::string expected;
   for (const std::string_view key : known) {

@@ -33,9 +33,9 @@
 // the running and the last campaign, which are shared with the stream and the campaign's thread.
 #pragma once
 
-#include <array>
 #include <cstddef>
 #include <functional>
+#include <initializer_list>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -52,18 +52,9 @@
 
 namespace sewerplan::server {
 
-// The fields of a request's body (all but the mission optional); any other is refused (a 400
-// naming it and these).
-inline constexpr std::array<std::string_view, 10> kCampaignFields = {"mission",
-                                                                     "runs",
-                                                                     "seed",
-                                                                     "fault_rates",
-                                                                     "jobs",
-                                                                     "allow_push",
-                                                                     "planner_time_limit_s",
-                                                                     "risk",
-                                                                     "faults_from_condition",
-                                                                     "timeout_s"};
+// The fields of a request's body (all but the mission optional); any other is refused, a 400 naming
+// it and these (JsonFields::reject_unknown).
+std::initializer_list<std::string_view> campaign_fields();
 
 struct CampaignLimits {
   std::size_t max_runs = 10000;

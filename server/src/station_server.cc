@@ -2,7 +2,6 @@
 #include "sewerplan/server/station_server.h"
 
 #include <algorithm>
-#include <array>
 #include <atomic>
 #include <cctype>
 #include <chrono>
@@ -10,12 +9,12 @@
 #include <csignal>
 #include <cstdint>
 #include <exception>
+#include <initializer_list>
 #include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <set>
-#include <span>
 #include <string_view>
 #include <thread>
 #include <type_traits>
@@ -75,9 +74,10 @@ class HttpServer : public httplib::Server {
 // How long a connection may send nothing: before its request, or between two reads of it.
 constexpr time_t kIdleTimeoutS = 5;
 // The fields of the bodies of /simulate and /geojson (the mission required, the rest optional); any
-// other is refused, as /campaign's (kCampaignFields).
-constexpr std::array<std::string_view, 3> kSimulateFields = {"mission", "faults", "random_faults"};
-constexpr std::array<std::string_view, 3> kGeojsonFields = {"mission", "plan", "log"};
+// other is refused, as /campaign's (campaign_fields()).
+const std::initializer_list<std::string_view> kSimulateFields = {"mission", "faults",
+                                                                 "random_faults"};
+const std::initializer_list<std::string_view> kGeojsonFields = {"mission", "plan", "log"};
 
 // A map's geometry as the page reads it (map_geometry.h), built once from the map as given: every
 // request sends these bytes without a copy, and the map with condition data joined shares them
@@ -222,9 +222,9 @@ struct StationServer::Impl {
     Mission mission;
     JsonElement root() const { return body.root(); }
   };
-  static std::optional<MissionBody> read_mission_body(std::string_view text, const SewerMap& map,
-                                                      std::span<const std::string_view> fields,
-                                                      httplib::Response& res) {
+  static std::optional<MissionBody> read_mission_body(
+      std::string_view text, const SewerMap& map, std::initializer_list<std::string_view> fields,
+      httplib::Response& res) {
     Result<JsonDocument> parsed = parse_json_body(text);
     if (!parsed.has_value()) {
       bad_request(res, parsed.error().message);
@@ -772,7 +772,7 @@ void StationServer::Impl::campaign(const httplib::Request& req, const std::strin
                                    httplib::Response& res) {
   const auto m = find_map(req, res);
   if (!m) return;
-  std::optional<MissionBody> read = read_mission_body(text, *m->map, kCampaignFields, res);
+  std::optional<MissionBody> read = read_mission_body(text, *m->map, campaign_fields(), res);
   if (!read || !attach_motion(*m, req, read->mission, res)) return;
   // The map stays while the campaign runs and while its runs can be replayed.
   campaigns->start(read->root(), m->map, m->id, std::move(read->mission), res);
