@@ -415,11 +415,19 @@ void JsonFields::warn_unknown(const std::function<bool(std::string_view)>& is_kn
   }
 }
 
+// Names the unknown member and the fields known: "unknown field 'seeed' (expected mission, faults,
+// random_faults)". For files sewerplan writes itself and for input where a misspelt field must not
+// leave its default without a word: a mission, a request's body (the station's).
 void JsonFields::reject_unknown(std::initializer_list<std::string_view> known) {
   if (!is_object_) return;
+  std::string expected;
+  for (const std::string_view key : known) {
+    expected += (expected.empty() ? " (expected " : ", ") + std::string(key);
+  }
+  if (!expected.empty()) expected += ")";
   for (simdjson::dom::key_value_pair field : object_) {
     if (std::find(known.begin(), known.end(), field.key) == known.end()) {
-      diagnostics_.error(where(field.key), "unknown field " + input_quoted(field.key));
+      diagnostics_.error(where(field.key), "unknown field " + input_quoted(field.key) + expected);
     }
   }
 }

@@ -59,7 +59,7 @@ class MissionReader {
 
   std::optional<Place> place(JsonElement j, const std::string& path) {
     JsonFields f(j, path, file_, d_);
-    f.warn_unknown({"manhole", "pipe", "point", "offset_m"});
+    f.reject_unknown({"manhole", "pipe", "point", "offset_m"});
     const int given = int{f.has("manhole")} + int{f.has("pipe")} + int{f.has("point")};
     if (given != 1) {
       d_.error(f.where(), "a place names exactly one of \"manhole\", \"pipe\" or \"point\"");
@@ -89,7 +89,7 @@ class MissionReader {
 
   void closed(JsonElement j, Mission& m) {
     JsonFields f(j, root_ + ".closed", file_, d_);
-    f.warn_unknown({"pipes", "passages", "blockages"});
+    f.reject_unknown({"pipes", "passages", "blockages"});
     if (auto pipes_array = f.array("pipes", Need::kOptional)) {
       m.closed_pipes = pipes(*pipes_array, root_ + ".closed.pipes");
     }
@@ -105,7 +105,7 @@ class MissionReader {
 
   void blockage(JsonElement j, const std::string& path, Mission& m) {
     JsonFields f(j, path, file_, d_);
-    f.warn_unknown({"pipe", "offset_m"});
+    f.reject_unknown({"pipe", "offset_m"});
     auto name = f.string("pipe");
     auto offset = f.number("offset_m");
     if (!name || !offset) return;
@@ -168,7 +168,7 @@ class MissionReader {
 
   void task(JsonElement j, const std::string& path, std::size_t index, std::vector<Task>& out) {
     JsonFields f(j, path, file_, d_);
-    f.warn_unknown({"name", "type", "at", "pipe", "pipes", "final"});
+    f.reject_unknown({"name", "type", "at", "pipe", "pipes", "final"});
     const std::string name =
         f.string("name", Need::kOptional).value_or("task-" + std::to_string(index + 1));
     const bool final = f.boolean("final", Need::kOptional).value_or(false);
@@ -206,7 +206,7 @@ class MissionReader {
 
   void passage(JsonElement j, const std::string& path, Mission& m) {
     JsonFields f(j, path, file_, d_);
-    f.warn_unknown({"manhole", "from_slot", "to_slot"});
+    f.reject_unknown({"manhole", "from_slot", "to_slot"});
     auto id = manhole(f, "manhole");
     auto from = f.number("from_slot");
     auto to = f.number("to_slot");
@@ -304,8 +304,8 @@ Result<Mission> read_mission_value(const JsonElement& value, const std::string& 
                                    Diagnostics& diagnostics) {
   const Diagnostics::Mark before = diagnostics.mark();
   JsonFields root(value, path, file_name, diagnostics);
-  root.warn_unknown({"format", "version", "name", "profile", "start", "tasks", "exits",
-                     "battery_reserve", "closed"});
+  root.reject_unknown({"format", "version", "name", "profile", "start", "tasks", "exits",
+                       "battery_reserve", "closed"});
   if (auto format = root.string("format"); format && *format != kMissionJsonFormat) {
     diagnostics.error(root.where("format"), "expected \"" + std::string(kMissionJsonFormat) +
                                                 "\", got " + input_quoted(*format));

@@ -61,16 +61,16 @@ namespace {
 // far, so the newest says all): a stalled browser costs bounded memory, and holds up no run.
 constexpr std::size_t kMaxPending = 256;
 
-constexpr std::array<std::string_view, 10> kFields = {"mission",
-                                                      "runs",
-                                                      "seed",
-                                                      "fault_rates",
-                                                      "jobs",
-                                                      "allow_push",
-                                                      "planner_time_limit_s",
-                                                      "risk",
-                                                      "faults_from_condition",
-                                                      "timeout_s"};
+const std::initializer_list<std::string_view> kFields = {"mission",
+                                                         "runs",
+                                                         "seed",
+                                                         "fault_rates",
+                                                         "jobs",
+                                                         "allow_push",
+                                                         "planner_time_limit_s",
+                                                         "risk",
+                                                         "faults_from_condition",
+                                                         "timeout_s"};
 constexpr double kMaxPlannerTimeLimitS = 86400;  // as the CLI's --planner-time-limit
 constexpr std::array<std::string_view, 6> kRateNames = {"obstacles",    "danger",    "passages",
                                                         "malfunctions", "permanent", "transient"};
@@ -159,16 +159,7 @@ Result<CampaignRequest> read_request(JsonElement body, const CampaignLimits& lim
   Diagnostics diagnostics;
   JsonFields f(body, "$", kBodyFile, diagnostics);
   CampaignRequest r;
-  simdjson::dom::object object;
-  if (body.get_object().get(object) == simdjson::SUCCESS) {
-    for (const simdjson::dom::key_value_pair field : object) {
-      if (std::find(kFields.begin(), kFields.end(), field.key) == kFields.end()) {
-        f.error(field.key, "unknown field " + input_quoted(field.key, 64) +
-                               " (expected mission, runs, seed, fault_rates, jobs, allow_push, "
-                               "planner_time_limit_s, risk, faults_from_condition, timeout_s)");
-      }
-    }
-  }
+  f.reject_unknown(kFields);
   using Need = JsonFields::Need;
   // Each optional field, if given, to `read`, which says what was wrong or nothing.
   const auto field = [&](std::string_view key, const auto& read) {
@@ -288,6 +279,8 @@ bool same_but_measured(campaign::Execution a, campaign::Execution b) {
 }
 
 }  // namespace
+
+std::initializer_list<std::string_view> campaign_fields() { return kFields; }
 
 void CampaignService::start(JsonElement body, std::shared_ptr<const SewerMap> map,
                             const std::string& map_id, Mission mission, httplib::Response& res) {

@@ -35,6 +35,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <initializer_list>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -50,6 +51,10 @@
 #include <httplib.h>
 
 namespace sewerplan::server {
+
+// The fields of a request's body (all but the mission optional); any other is refused, a 400 naming
+// it and these (JsonFields::reject_unknown).
+std::initializer_list<std::string_view> campaign_fields();
 
 struct CampaignLimits {
   std::size_t max_runs = 10000;

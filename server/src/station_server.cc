@@ -9,6 +9,7 @@
 #include <csignal>
 #include <cstdint>
 #include <exception>
+#include <initializer_list>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -72,6 +73,11 @@ class HttpServer : public httplib::Server {
 
 // How long a connection may send nothing: before its request, or between two reads of it.
 constexpr time_t kIdleTimeoutS = 5;
+// The fields of the bodies of /simulate and /geojson (the mission required, the rest optional); any
+// other is refused, as /campaign's (campaign_fields()).
+const std::initializer_list<std::string_view> kSimulateFields = {"mission", "faults",
+                                                                 "random_faults"};
+const std::initializer_list<std::string_view> kGeojsonFields = {"mission", "plan", "log"};
 
 // A map's geometry as the page reads it (map_geometry.h), built once from the map as given: every
 // request sends these bytes without a copy, and the map with condition data joined shares them
@@ -206,17 +212,19 @@ struct StationServer::Impl {
     return std::move(*mission);
   }
 
-  // A POST body that is a JSON object with "mission", a mission's JSON object, on `map` (`shape`
-  // names the object's keys in the error): the body (json_body.h) and its mission, read from the
-  // parsed body by the mission file's reader, or empty with the 400 or 422 sent.
+  // A POST body that is a JSON object with "mission", a mission's JSON object, on `map`, of the
+  // endpoint's `fields` (named in the error if it is no object): the body (json_body.h) and its
+  // mission, read from the parsed body by the mission file's reader, or empty with the 400 or 422
+  // sent. The endpoint reads the other fields, and refuses those not in `fields`
+  // (JsonFields::reject_unknown), all in one 400.
   struct MissionBody {
     JsonDocument body;
     Mission mission;
     JsonElement root() const { return body.root(); }
   };
-  static std::optional<MissionBody> read_mission_body(std::string_view text, const SewerMap& map,
-                                                      std::string_view shape,
-                                                      httplib::Response& res) {
+  static std::optional<MissionBody> read_mission_body(
+      std::string_view text, const SewerMap& map, std::initializer_list<std::string_view> fields,
+      httplib::Response& res) {
     Result<JsonDocument> parsed = parse_json_body(text);
     if (!parsed.has_value()) {
       bad_request(res, parsed.error().message);
@@ -224,8 +232,12 @@ struct StationServer::Impl {
     }
     JsonElement mission_json;
     if (!parsed->root().is_object()) {
-      bad_request(res, std::string(kBodyFile) + ":$: expected a JSON object " + std::string(shape) +
-                           ", got " + describe_json(parsed->root()));
+      std::string shape;
+      for (const std::string_view field : fields) {
+        shape += (shape.empty() ? "{\"" : ", \"") + std::string(field) + "\"";
+      }
+      bad_request(res, std::string(kBodyFile) + ":$: expected a JSON object " + shape + "}, got " +
+                           describe_json(parsed->root()));
       return std::nullopt;
     }
     if (parsed->root()["mission"].get(mission_json) != simdjson::SUCCESS ||
@@ -638,8 +650,7 @@ void StationServer::Impl::simulate(const httplib::Request& req, const std::strin
                                    httplib::Response& res) const {
   const auto m = find_map(req, res);
   if (!m) return;
-  std::optional<MissionBody> read =
-      read_mission_body(text, *m->map, "{\"mission\", \"faults\" | \"random_faults\"}", res);
+  std::optional<MissionBody> read = read_mission_body(text, *m->map, kSimulateFields, res);
   if (!read) return;
   std::optional<Mission> mission = std::move(read->mission);
   if (!attach_motion(*m, req, *mission, res)) return;
@@ -647,15 +658,25 @@ void StationServer::Impl::simulate(const httplib::Request& req, const std::strin
   if (!risk) return;
   Diagnostics diagnostics;
   JsonFields body(read->root(), "$", kBodyFile, diagnostics);
+  body.reject_unknown(kSimulateFields);
+  std::optional<std::string> seed_rate;
+  if (const std::optional<JsonElement> v =
+          body.member("random_faults", JsonFields::Need::kOptional)) {
+    std::string_view given;
+    if (body.has("faults")) {
+      body.error("random_faults", "give faults or random_faults, not both");
+    } else if (v->get_string().get(given) != simdjson::SUCCESS) {
+      body.error("random_faults", "expected \"SEED[,RATE]\", got " + describe_json(*v));
+    } else {
+      seed_rate = std::string(given);
+    }
+  }
+  if (diagnostics.has_errors()) return bad_request(res, diagnostics.error_summary());
   Result<hal::FaultScenario> faults = hal::FaultScenario{};
   if (const std::optional<JsonElement> given = body.member("faults", JsonFields::Need::kOptional)) {
     faults =
         hal::read_faults_value(*given, "$.faults", std::string(kBodyFile), *m->map, diagnostics);
-  } else if (body.has("random_faults")) {
-    const std::optional<std::string> seed_rate = body.string("random_faults");
-    if (!seed_rate) {
-      return bad_request(res, body.where("random_faults") + ": expected \"SEED[,RATE]\"");
-    }
+  } else if (seed_rate) {
     faults = faults_for("", *seed_rate, *m->map, *mission, diagnostics);
   }
   if (!faults.has_value()) {
@@ -728,11 +749,11 @@ void StationServer::Impl::geojson(const httplib::Request& req, const std::string
                                   httplib::Response& res) const {
   const auto m = find_map(req, res);
   if (!m) return;
-  const std::optional<MissionBody> read =
-      read_mission_body(text, *m->map, "{\"mission\", \"plan\", \"log\"}", res);
+  const std::optional<MissionBody> read = read_mission_body(text, *m->map, kGeojsonFields, res);
   if (!read) return;
   Diagnostics diagnostics;
   JsonFields body(read->root(), "$", kBodyFile, diagnostics);
+  body.reject_unknown(kGeojsonFields);
   const std::optional<std::string> plan = body.string("plan", JsonFields::Need::kOptional);
   const std::optional<std::string> log = body.string("log", JsonFields::Need::kOptional);
   if (diagnostics.has_errors()) {
@@ -751,8 +772,7 @@ void StationServer::Impl::campaign(const httplib::Request& req, const std::strin
                                    httplib::Response& res) {
   const auto m = find_map(req, res);
   if (!m) return;
-  std::optional<MissionBody> read =
-      read_mission_body(text, *m->map, "{\"mission\", \"runs\", \"seed\", ...}", res);
+  std::optional<MissionBody> read = read_mission_body(text, *m->map, campaign_fields(), res);
   if (!read || !attach_motion(*m, req, read->mission, res)) return;
   // The map stays while the campaign runs and while its runs can be replayed.
   campaigns->start(read->root(), m->map, m->id, std::move(read->mission), res);

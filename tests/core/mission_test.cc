@@ -92,6 +92,39 @@ TEST_F(MissionTest, NamesEveryUnknownObjectByJsonPath) {
   EXPECT_THAT(e, ::testing::Not(HasSubstr("the mission has no exit")));
 }
 
+// Issue 33: a misspelt field is refused, not warned about and left at its default (a mission with
+// "batery_reserve" ran on the default reserve; in the station, whose /plan shows no warnings,
+// without a word). Every unknown field of every object is named at its path, with the fields known.
+TEST_F(MissionTest, Issue33RefusesEveryUnknownFieldNamingTheFieldsKnown) {
+  Result<Mission> m = read(R"({"format": "sewerplan-mission", "version": 1,
+    "start": {"manhole": "M1", "ofset_m": 2}, "batery_reserve": 0.5,
+    "tasks": [{"type": "go_to", "at": {"manhole": "M6"}, "finall": true}],
+    "closed": {"pipes": ["P2"], "passage": [],
+               "blockages": [{"pipe": "P3", "offset_m": 1, "note": "x"}]},
+    "exits": ["M10"]})");
+  ASSERT_FALSE(m.has_value());
+  EXPECT_EQ(m.error().code, ErrorCode::kInvalidMission);
+  const std::string& e = m.error().message;
+  EXPECT_THAT(e, HasSubstr("m.json:$.batery_reserve: error: unknown field 'batery_reserve' "
+                           "(expected format, version, name, profile, start, tasks, exits, "
+                           "battery_reserve, closed)"));
+  EXPECT_THAT(e, HasSubstr("m.json:$.start.ofset_m: error: unknown field 'ofset_m' (expected "
+                           "manhole, pipe, point, offset_m)"));
+  EXPECT_THAT(e, HasSubstr("m.json:$.tasks[0].finall: error: unknown field 'finall' (expected "
+                           "name, type, at, pipe, pipes, final)"));
+  EXPECT_THAT(e, HasSubstr("m.json:$.closed.passage: error: unknown field 'passage' (expected "
+                           "pipes, passages, blockages)"));
+  EXPECT_THAT(e, HasSubstr("m.json:$.closed.blockages[0].note: error: unknown field 'note' "
+                           "(expected pipe, offset_m)"));
+  Result<Mission> passage = read(R"({"format": "sewerplan-mission", "version": 1,
+    "start": {"manhole": "M1"}, "tasks": [{"type": "go_to", "at": {"manhole": "M6"}}],
+    "closed": {"passages": [{"manhole": "M6", "from_slot": 3, "to_slot": 4, "too": 1}]}})");
+  ASSERT_FALSE(passage.has_value());
+  EXPECT_THAT(passage.error().message,
+              HasSubstr("m.json:$.closed.passages[0].too: error: unknown field 'too' (expected "
+                        "manhole, from_slot, to_slot)"));
+}
+
 // Issue 31: a number beyond a double in a mission is named by file, line and column.
 TEST_F(MissionTest, Issue31NamesTheLineOfANumberBeyondADouble) {
   Result<Mission> m = read(

@@ -705,7 +705,7 @@ TEST_F(StationServerTest, ReadsBodiesWithTheFileReadersNamingTheBodysPath) {
       HasSubstr("body:$.faults.obstacles[0].pipe: error: expected a string, got 7"));
   EXPECT_THAT(message("/api/maps/map/simulate",
                       json{{"mission", json::parse(mission)}, {"random_faults", 7}}.dump()),
-              HasSubstr("400 body:$.random_faults: expected \"SEED[,RATE]\""));
+              HasSubstr("400 body:$.random_faults: error: expected \"SEED[,RATE]\", got 7"));
   EXPECT_THAT(
       message("/api/maps/map/geojson", json{{"mission", json::parse(mission)}, {"plan", 7}}.dump()),
       HasSubstr("400 body:$.plan: error: expected a string, got 7"));
@@ -715,6 +715,66 @@ TEST_F(StationServerTest, ReadsBodiesWithTheFileReadersNamingTheBodysPath) {
       json{{"mission", json::parse(mission)}, {"runs", "many"}, {"allow_push", "yes"}}.dump());
   EXPECT_THAT(both, HasSubstr("400 body:$.runs: error: expected a whole number from 1 to"));
   EXPECT_THAT(both, HasSubstr("\nbody:$.allow_push: error: expected true or false, got \"yes\""));
+}
+
+// Issue 33: every JSON body refuses an unknown field with a 400 naming its path and the fields
+// known, every wrong field in one answer. Before, /simulate and /geojson ignored one without a word
+// (a "seeed" ran with the default seed), and a mission's misspelt field was a warning /plan never
+// showed.
+TEST_F(StationServerTest, Issue33RefusesUnknownFieldsInEveryJsonBody) {
+  const json mission = json::parse(read(kAis / "missions/paper.json"));
+  const auto message = [&](const std::string& path, const json& body) {
+    auto [status, j] = post(path, body.dump());
+    return std::to_string(status) + " " + j["error"]["message"].get<std::string>();
+  };
+  EXPECT_EQ(message("/api/maps/map/simulate", {{"mission", mission}, {"seeed", 4}}),
+            "400 body:$.seeed: error: unknown field 'seeed' (expected mission, faults, "
+            "random_faults)");
+  // Every wrong field at once, a wrong type beside the unknown ones.
+  EXPECT_EQ(message("/api/maps/map/simulate",
+                    {{"mission", mission}, {"a", 1}, {"random_faults", 7}, {"b", 2}}),
+            "400 body:$.a: error: unknown field 'a' (expected mission, faults, random_faults)\n"
+            "body:$.b: error: unknown field 'b' (expected mission, faults, random_faults)\n"
+            "body:$.random_faults: error: expected \"SEED[,RATE]\", got 7");
+  // Both ways of giving faults: which one runs is not guessed.
+  EXPECT_EQ(message("/api/maps/map/simulate",
+                    {{"mission", mission}, {"faults", json::object()}, {"random_faults", "4"}}),
+            "400 body:$.random_faults: error: give faults or random_faults, not both");
+  EXPECT_EQ(message("/api/maps/map/geojson", {{"mission", mission}, {"plann", "x"}}),
+            "400 body:$.plann: error: unknown field 'plann' (expected mission, plan, log)");
+  EXPECT_EQ(message("/api/maps/map/campaign", {{"mission", mission}, {"rnus", 3}}),
+            "400 body:$.rnus: error: unknown field 'rnus' (expected mission, runs, seed, "
+            "fault_rates, jobs, allow_push, planner_time_limit_s, risk, faults_from_condition, "
+            "timeout_s)");
+  // Not an object: the fields it should have, from the same list.
+  EXPECT_EQ(message("/api/maps/map/geojson", json::array({1})),
+            "400 body:$: expected a JSON object {\"mission\", \"plan\", \"log\"}, got an array");
+  // The mission's own fields, by the mission file's reader: in a body at the body's path, in
+  // /plan's and /validate's mission file at the file's.
+  json misspelt = mission;
+  misspelt["batery_reserve"] = 0.5;
+  misspelt["tasks"][0]["finall"] = true;
+  const std::string top =
+      "$.batery_reserve: error: unknown field 'batery_reserve' (expected format, version, name, "
+      "profile, start, tasks, exits, battery_reserve, closed)";
+  const std::string task =
+      "$.tasks[0].finall: error: unknown field 'finall' (expected name, "
+      "type, at, pipe, pipes, final)";
+  for (const char* path :
+       {"/api/maps/map/simulate", "/api/maps/map/geojson", "/api/maps/map/campaign"}) {
+    const std::string m = message(path, {{"mission", misspelt}});
+    EXPECT_THAT(m, HasSubstr("422 body:$.mission" + top.substr(1))) << path;
+    EXPECT_THAT(m, HasSubstr("body:$.mission" + task.substr(1))) << path;
+  }
+  const std::string planned = message("/api/maps/map/plan", misspelt);
+  EXPECT_THAT(planned, HasSubstr("422 mission.json:" + top));
+  EXPECT_THAT(planned, HasSubstr("mission.json:" + task));
+  auto [status, validated] = post("/api/maps/map/validate", misspelt.dump());
+  EXPECT_EQ(status, 200);
+  EXPECT_FALSE(validated["valid"]);
+  ASSERT_EQ(validated["errors"].size(), 2u) << validated;
+  EXPECT_EQ(validated["errors"][0]["where"], "mission.json:$.batery_reserve");
+  EXPECT_EQ(validated["errors"][1]["where"], "mission.json:$.tasks[0].finall");
 }
 
 TEST_F(StationServerTest, RefusesABodyOverTheSizeLimit) {
