@@ -642,17 +642,22 @@ class Executor::Run {
     return std::nullopt;
   }
 
-  // A drive (or push, or scan) the robot finished, from `before` to where it is now in the same
-  // pipe: the hazards it drove past were not blocked (Replanner::observe_pass), each update
-  // logged. A job the robot did not finish teaches nothing: where it stopped is not sure.
+  // A drive (or push, or scan) from `before` to where the robot is now in the same pipe: the
+  // hazards it drove past were not blocked, each update logged. A job the robot finished passed
+  // every hazard on its way (Replanner::observe_pass); one it did not finish (stopped by a
+  // blockage, a danger, a malfunction) passed those behind the stop, but for one within the
+  // blockage match distance of it, which may be what stopped it (Replanner::observe_stop). Only
+  // finished jobs counted once, and a hazard passed before a stop the robot never drove back
+  // over was never counted passed: what it learnt over-counted blockages against passes.
   void observe_pass(const hal::JobReport& report, const domain::RobotPosition& before,
                     double direction) {
-    if (!report.ok() || direction == 0) return;
+    if (direction == 0) return;
     const auto from = pipe_offset(before);
     const auto to = pipe_offset(tracker_.position());
     if (!from || !to || from->first != to->first) return;
     Result<std::vector<HazardUpdate>> updates =
-        replanner_.observe_pass(from->first, from->second, to->second);
+        report.ok() ? replanner_.observe_pass(from->first, from->second, to->second)
+                    : replanner_.observe_stop(from->first, from->second, to->second);
     if (!updates.has_value()) return;  // the tracker's places are on the map
     for (const HazardUpdate& u : *updates) log_hazard(u);
   }

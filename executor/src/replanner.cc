@@ -206,6 +206,16 @@ Result<void> Replanner::learn(const Learnt& learnt) {
 }
 
 Result<std::vector<HazardUpdate>> Replanner::observe_pass(PipeId pipe, double from_m, double to_m) {
+  return observe_driven(pipe, from_m, to_m, 0);
+}
+
+Result<std::vector<HazardUpdate>> Replanner::observe_stop(PipeId pipe, double from_m,
+                                                          double stop_m) {
+  return observe_driven(pipe, from_m, stop_m, options_.hazard_learning.blockage_match_m);
+}
+
+Result<std::vector<HazardUpdate>> Replanner::observe_driven(PipeId pipe, double from_m, double to_m,
+                                                            double margin_m) {
   if (pipe.index() >= map_.pipe_count()) {
     return Error{ErrorCode::kInvalidArgument,
                  "invalid pass report: unknown pipe #" + std::to_string(pipe.index())};
@@ -224,7 +234,10 @@ Result<std::vector<HazardUpdate>> Replanner::observe_pass(PipeId pipe, double fr
   std::vector<std::size_t> passed;
   for (std::size_t h = 0; h < mission_.hazards.size(); ++h) {
     const Hazard& hazard = mission_.hazards[h];
-    if (hazard.pipe == pipe && hazard.offset_m > lo && hazard.offset_m < hi) passed.push_back(h);
+    if (hazard.pipe == pipe && hazard.offset_m > lo && hazard.offset_m < hi &&
+        !(std::abs(hazard.offset_m - to_m) <= margin_m)) {
+      passed.push_back(h);
+    }
   }
   // In the order of driving.
   std::stable_sort(passed.begin(), passed.end(), [&](std::size_t x, std::size_t y) {

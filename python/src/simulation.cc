@@ -607,6 +607,29 @@ void bind_simulate(py::module_& m) {
 }
 
 void bind_campaign(py::module_& m) {
+  py::class_<ex::HazardBelief>(
+      m, "HazardBelief",
+      "What a run observed of one hazard of the condition data (issue 34; the observations "
+      "`sewerplan fit-risk` fits the risk table from).")
+      .def_property_readonly(
+          "pipe", [](const ex::HazardBelief& h) { return h.pipe.value(); },
+          "The hazard's pipe, by its index in the map's pipes (as runs.jsonl has it).")
+      .def_readonly("offset_m", &ex::HazardBelief::offset_m, "Its offset in the pipe (m).")
+      .def_readonly("reason", &ex::HazardBelief::reason, "The finding: 'BBA roots'.")
+      .def_readonly("passes", &ex::HazardBelief::passes, "Safe passes observed.")
+      .def_readonly("blocked", &ex::HazardBelief::blocked, "Whether it stopped the robot.")
+      .def_readonly("probability", &ex::HazardBelief::probability,
+                    "Its blockage probability at the end of the run (0 to 1; 1 if blocked).")
+      .def("__repr__", [](const ex::HazardBelief& h) {
+        return Repr("HazardBelief")
+            .field("pipe", h.pipe.value())
+            .field("offset_m", h.offset_m)
+            .field("reason", h.reason)
+            .field("passes", h.passes)
+            .field("blocked", h.blocked)
+            .field("probability", h.probability)
+            .str();
+      });
   py::class_<campaign::Execution>(m, "Execution", "One policy's run of a campaign run.")
       .def_readonly("tasks", &campaign::Execution::tasks, "Tasks done.")
       .def_property_readonly(
@@ -620,6 +643,9 @@ void bind_campaign(py::module_& m) {
       .def_readonly("replans", &campaign::Execution::replans, "How many replans.")
       .def_readonly("time_s", &campaign::Execution::time_s, "Mission time (s).")
       .def_readonly("energy_wh", &campaign::Execution::energy_wh, "Energy used (Wh).")
+      .def_readonly("hazards", &campaign::Execution::hazards,
+                    "Each HazardBelief: the hazards the robot drove past or was stopped by, in "
+                    "the order first met (empty without condition data).")
       .def("__repr__", [](const campaign::Execution& e) {
         return Repr("Execution")
             .field("outcome", std::string(campaign::to_string(e.outcome)))

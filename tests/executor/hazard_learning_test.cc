@@ -169,6 +169,46 @@ TEST(HazardLearning, ABlockageFarFromTheHazardIsNotIt) {
   EXPECT_TRUE(replanner.learnt().hazards.empty());
 }
 
+// RootsNet with a second hazard in RISKY, a crack at 8 m, behind the roots from S.
+Mission with_crack(const RootsNet& net) {
+  Mission m = net.mission;
+  m.hazards.push_back(
+      {.pipe = net.risky, .offset_m = 8, .probability = 0.1, .reason = "BAB crack"});
+  return m;
+}
+
+TEST(HazardLearning, AStoppedDriveObservesTheHazardsBehindTheStop) {
+  RootsNet net;
+  Replanner replanner(net.map, with_crack(net), net.options());
+  // From S, stopped 5 cm short of the crack: the roots are behind, the crack is what stopped it.
+  const auto stopped = replanner.observe_stop(net.risky, 0, 7.95);
+  ASSERT_TRUE(stopped.has_value()) << stopped.error();
+  ASSERT_EQ(stopped->size(), 1U);
+  EXPECT_EQ((*stopped)[0].belief.reason, "BBA roots");
+  EXPECT_DOUBLE_EQ((*stopped)[0].belief.probability, 0.1 * 2 / 3);
+  EXPECT_EQ((*stopped)[0].belief.passes, 1U);
+  // A hazard within the blockage match distance (1 m) of the stop, behind or ahead, may be what
+  // stopped the robot: not observed. Nor one the drive did not get past.
+  for (const auto& [from, stop] : {std::pair{0.0, 5.5}, {0.0, 4.5}, {10.0, 8.9}, {0.0, 4.0}}) {
+    const auto none = replanner.observe_stop(net.risky, from, stop);
+    ASSERT_TRUE(none.has_value()) << none.error();
+    EXPECT_TRUE(none->empty()) << from << " to " << stop;
+  }
+  // Backing from X, stopped past the crack: the crack was passed, the roots lie ahead.
+  const auto back = replanner.observe_stop(net.risky, 10, 6.5);
+  ASSERT_TRUE(back.has_value()) << back.error();
+  ASSERT_EQ(back->size(), 1U);
+  EXPECT_EQ((*back)[0].belief.reason, "BAB crack");
+  // A finished drive over the same stretch passes both, each once more; a stop off the map is
+  // refused as a pass is.
+  const auto pass = replanner.observe_pass(net.risky, 0, 10);
+  ASSERT_TRUE(pass.has_value());
+  EXPECT_EQ(pass->size(), 2U);
+  const auto bad = replanner.observe_stop(net.risky, 0, 11);
+  ASSERT_FALSE(bad.has_value());
+  EXPECT_NE(bad.error().message.find("invalid pass report"), std::string::npos);
+}
+
 TEST(HazardLearning, TheReplanAfterASafePassTakesTheOnceRiskyPipeBack) {
   RootsNet net;
   Replanner replanner(net.map, net.mission, net.options());
@@ -308,11 +348,17 @@ struct SimRun {
   Learnt learnt;
 };
 
+SimRun simulate(RootsNet& net, const Mission& mission, const std::string& faults_json);
+
 SimRun simulate(RootsNet& net, const std::string& faults_json) {
+  return simulate(net, net.mission, faults_json);
+}
+
+SimRun simulate(RootsNet& net, const Mission& mission, const std::string& faults_json) {
   Diagnostics d;
   auto faults = hal::read_faults_json(faults_json, "faults.json", net.map, d);
   EXPECT_TRUE(faults.has_value()) << d.error_summary();
-  Replanner replanner(net.map, net.mission, net.options());
+  Replanner replanner(net.map, mission, net.options());
   hal::SimRobot robot(net.map, net.mission.profile, hal::InManhole{*net.map.find_manhole("S")},
                       faults.has_value() ? *faults : hal::FaultScenario{});
   Executor executor(net.map, replanner, robot);
@@ -386,6 +432,72 @@ TEST(HazardLearning, TheExecutorLogsABlockageMetBeforeTheReplan) {
   EXPECT_TRUE(run.learnt.hazards[0].blocked);
   EXPECT_DOUBLE_EQ(run.learnt.hazards[0].probability, 1);
   EXPECT_EQ(run.learnt.blockages.size(), 1U);
+}
+
+TEST(HazardLearning, ADriveStoppedFurtherOnRecordsTheHazardsItPassed) {
+  // The robot drives RISKY from S past the roots and is stopped at the crack for good. The roots
+  // were passed: logged right after the job that stopped, before the failure and its replan
+  // (which then weighs them lowered), and the crack met. Only finished jobs counted: the roots'
+  // pass went unrecorded until the robot backed over them, and never when it did not.
+  RootsNet net;
+  const SimRun run = simulate(net, with_crack(net), R"({"format": "sewerplan-faults", "version": 1,
+      "obstacles": [{"pipe": "RISKY", "offset_m": 8.0, "kind": "permanent"}]})");
+  std::vector<const HazardEvent*> hazards;
+  std::size_t first_failure = run.events.size();
+  for (std::size_t i = 0; i < run.events.size(); ++i) {
+    if (type_name(run.events[i]) == "failure" && first_failure == run.events.size()) {
+      first_failure = i;
+    }
+    const auto* h = std::get_if<HazardEvent>(&run.events[i].what);
+    if (h == nullptr) continue;
+    if (hazards.empty()) {
+      EXPECT_LT(i, first_failure) << "the roots passed before the failure is reported";
+      // Right after the job that was stopped (and its error).
+      ASSERT_GE(i, 2U);
+      const auto* job = std::get_if<JobEvent>(&run.events[i - 2].what);
+      ASSERT_NE(job, nullptr);
+      EXPECT_FALSE(job->ok);
+      EXPECT_EQ(type_name(run.events[i - 1]), "error");
+    }
+    hazards.push_back(h);
+  }
+  ASSERT_GE(hazards.size(), 2U);
+  EXPECT_EQ(*hazards[0], (HazardEvent{.pipe = "RISKY",
+                                      .offset_m = 5,
+                                      .reason = "BBA roots",
+                                      .observed = HazardEvent::Observed::kPassed,
+                                      .probability_before = 0.1,
+                                      .probability = 0.1 * 2 / 3,
+                                      .passes = 1}));
+  const auto crack = std::find_if(hazards.begin(), hazards.end(),
+                                  [](const HazardEvent* h) { return h->reason == "BAB crack"; });
+  ASSERT_NE(crack, hazards.end());
+  EXPECT_EQ((*crack)->observed, HazardEvent::Observed::kBlocked);
+  EXPECT_EQ((*crack)->passes, 0U);
+  // What it learnt, as the campaigns record it: the roots passed, the crack blocked, each once.
+  ASSERT_EQ(run.learnt.hazards.size(), 2U);
+  for (const HazardBelief& b : run.learnt.hazards) {
+    if (b.reason == "BBA roots") {
+      EXPECT_FALSE(b.blocked);
+      EXPECT_GE(b.passes, 1U);
+    } else {
+      EXPECT_TRUE(b.blocked);
+      EXPECT_EQ(b.passes, 0U);
+    }
+  }
+}
+
+TEST(HazardLearning, ARobotThatBreaksDownMidDriveRecordsTheHazardsItPassed) {
+  // Broken down for good in RISKY 2 m past the roots (the drive starts at 20 s, at 0.3 m/s): the
+  // robot never drives back over them, and only its stopped drive can tell they did not block.
+  RootsNet net;
+  const SimRun run = simulate(net, R"({"format": "sewerplan-faults", "version": 1,
+      "malfunctions": [{"at_time_s": 43.3, "kind": "permanent"}]})");
+  EXPECT_EQ(run.report.outcome, MissionReport::Outcome::kBeacon);
+  ASSERT_EQ(run.learnt.hazards.size(), 1U);
+  EXPECT_EQ(run.learnt.hazards[0].reason, "BBA roots");
+  EXPECT_FALSE(run.learnt.hazards[0].blocked);
+  EXPECT_EQ(run.learnt.hazards[0].passes, 1U);
 }
 
 }  // namespace

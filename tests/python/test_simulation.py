@@ -152,8 +152,23 @@ def test_a_campaign_with_the_condition_options(ais_map):
     assert all(r.risk_aware is not None for r in campaign.records)
     summary = json.loads(campaign.summary.to_json())
     assert "risk_aware" in summary
+    # What each run observed of the hazards, as its runs.jsonl line records it.
+    observed = [h for r in campaign.records for h in r.risk_aware.hazards]
+    assert observed
+    for r in campaign.records:
+        listed = json.loads(r.to_json())["risk_aware"].get("hazards", [])
+        assert [(h.pipe, h.offset_m, h.reason, h.passes, h.blocked, h.probability)
+                for h in r.risk_aware.hazards] == \
+            [(h["pipe"], h["offset_m"], h["reason"], h["passes"], h["blocked"], h["probability"])
+             for h in listed]
+    for h in observed:
+        assert isinstance(h, sewerplan.HazardBelief)
+        assert ais_map.pipes[h.pipe]["length_m"] / 2 == pytest.approx(h.offset_m)
+        assert h.reason.startswith("BBA")
+        assert h.blocked == (h.probability == 1) and (h.blocked or h.passes >= 1)
     plain = sewerplan.run_campaign(mission, runs=2, seed=4, risk="ignore", guard=False)
     assert all(r.risk_aware is None for r in plain.records)
+    assert all(not r.ours.hazards for r in plain.records)
     with pytest.raises(sewerplan.Error) as error:
         sewerplan.run_campaign(mission, runs=1, risk="sometimes")
     assert error.value.code == "invalid-argument"

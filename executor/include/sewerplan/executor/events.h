@@ -165,8 +165,9 @@ struct ArrivalEvent {
 };
 
 // "hazard": what the robot observed of a hazard of the condition data changed its probability
-// (Replanner::observe_pass, report_failure; docs/executor.md, "Probabilities that learn"). A
-// pass: right after the job that drove past it; a blockage met: before the replan it causes.
+// (Replanner::observe_pass, observe_stop, report_failure; docs/executor.md, "Probabilities that
+// learn"). A pass: right after the job that drove past it (finished, or stopped further on); a
+// blockage met: before the replan it causes.
 struct HazardEvent {
   enum class Observed {
     kPassed,   // "passed": driven past safely, the probability lowered by a Bayesian update

@@ -30,6 +30,8 @@
 //   // ... execute r.fused; on progress:  replanner.update(progress, heading_end);
 //   // ... after a drive in pipe p from 0 to 12.5 m that was not stopped:
 //   replanner.observe_pass(p, 0.0, 12.5);  // the hazards passed are less likely to block
+//   // ... after a drive stopped at 7.5 m: the hazards behind the stop were passed
+//   replanner.observe_stop(p, 0.0, 7.5);
 //   // ... on a blockage recovery could not clear:
 //   r = replanner.report_failure({.kind = Failure::Kind::kBlockage, .pipe = p5, .offset_m = 4.0});
 //   if (calls_beacon(r.decision)) robot.activate_beacon();
@@ -235,6 +237,16 @@ class Replanner {
   // changes. Returns the updates, in the order of driving.
   Result<std::vector<HazardUpdate>> observe_pass(PipeId pipe, double from_m, double to_m);
 
+  // The robot drove pipe `pipe` from offset `from_m` towards `stop_m` and was stopped at `stop_m`
+  // (a blockage, a danger, a malfunction: a job it did not finish): the hazards it went past
+  // before the stop were not blocked. Each hazard strictly between the two, as observe_pass, but
+  // for one within hazard_learning.blockage_match_m of the stop: that may be what stopped the
+  // robot (report_failure matches a blockage to it within that distance), and the dead reckoning
+  // knows the stop no better. Errors and updates as observe_pass. Without it the hazards behind a
+  // stop were never counted passed, and what the robot learnt (and the risk fits made from it)
+  // over-counted blockages against passes.
+  Result<std::vector<HazardUpdate>> observe_stop(PipeId pipe, double from_m, double stop_m);
+
   // Adds what an earlier mission learnt (learnt.h) to the world model, for the next plan; an
   // entry that check_failure, check_hazard_belief or localisation::check_memory would reject is
   // an error, and nothing is added. A belief about a hazard already learnt replaces it; a junction
@@ -297,6 +309,10 @@ class Replanner {
   // Records what was observed of mission_.hazards[h]: a safe pass or (`blocked`) a blockage met
   // there, in the mission and in what was learnt.
   HazardUpdate observe_hazard(std::size_t h, bool blocked);
+  // observe_pass and observe_stop: the hazards between `from_m` and `to_m` farther than
+  // `margin_m` from `to_m` observed open.
+  Result<std::vector<HazardUpdate>> observe_driven(PipeId pipe, double from_m, double to_m,
+                                                   double margin_m);
 
   const SewerMap& map_;
   Mission mission_;
