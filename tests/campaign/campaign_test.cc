@@ -249,8 +249,10 @@ TEST(Campaign, ShardsMergeIntoTheWholeCampaign) {
 TEST(Campaign, ACrashOrAHangIsCaughtCountedAndReproducible) {
   const auto ais = testing::load_ais_testbed();
   const CampaignSpec spec = ais_spec(6);
-  // A limit well above a run's time even in a loaded sanitizer build, so only the hang hits it.
-  CampaignOptions options{.jobs = 2, .timeout_s = 10};
+  // A limit well above a run's time even in a loaded sanitizer build, so only the hang hits it: the
+  // slowest other run there is the crash, whose sanitizer report takes up to 1 s. The hang waits
+  // it out, so the test takes this long.
+  CampaignOptions options{.jobs = 2, .timeout_s = 5};
   options.inject = {{2, InjectedFault::kCrash}, {4, InjectedFault::kHang}};
   const auto records = run_campaign(ais.map, ais.mission, spec, options);
   ASSERT_EQ(records.size(), 6U);

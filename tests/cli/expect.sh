@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: MIT
-# What the CLI tests share: the counters, `expect` and `check`, sourced by each test script:
+# What the CLI tests share: the counters, `expect`, `run_once` with `expect_ran`, and `check`, sourced
+# by each test script:
 #   source "$(dirname "${BASH_SOURCE[0]}")/expect.sh"
 # Set expect_timeout (seconds) before a call to fail a command that hangs instead of waiting.
 failures=0
@@ -11,16 +12,29 @@ expect_timeout=${expect_timeout:-}
 expect() {
   local code=$1 pattern=$2
   shift 3
-  local out
+  run_once "$@"
+  expect_ran "$code" "$pattern"
+}
+
+# run_once COMMAND...: runs COMMAND and keeps its exit code and stdout+stderr, for expect_ran to
+# check more than one thing of one run (each sewerplan start costs 0.1 s and more under ASan).
+run_once() {
   if [ -n "$expect_timeout" ]; then
-    out=$(timeout "$expect_timeout" "$@" 2>&1)
+    ran_out=$(timeout "$expect_timeout" "$@" 2>&1)
   else
-    out=$("$@" 2>&1)
+    ran_out=$("$@" 2>&1)
   fi
-  local got=$?
-  if [ "$got" -ne "$code" ] || ! grep -qE -- "$pattern" <<<"$out"; then
-    echo "FAIL: $* -> exit $got (want $code), output:"
-    echo "$out" | head -20
+  ran_code=$?
+  ran_command="$*"
+}
+
+# expect_ran CODE PATTERN: the command run_once ran last exited with CODE and PATTERN (grep -E)
+# occurs in its stdout+stderr.
+expect_ran() {
+  local code=$1 pattern=$2
+  if [ "$ran_code" -ne "$code" ] || ! grep -qE -- "$pattern" <<<"$ran_out"; then
+    echo "FAIL: $ran_command -> exit $ran_code (want $code), output:"
+    echo "$ran_out" | head -20
     echo "(wanted /$pattern/)"
     failures=$((failures + 1))
   else
