@@ -34,14 +34,6 @@ std::optional<hal::RobotErrorKind> parse_error_kind(std::string_view name) {
   return std::nullopt;
 }
 
-std::optional<Failure::Kind> parse_failure_kind(std::string_view name) {
-  for (auto k : {Failure::Kind::kBlockage, Failure::Kind::kDangerInPipe,
-                 Failure::Kind::kDangerousPassage, Failure::Kind::kStuck}) {
-    if (to_string(k) == name) return k;
-  }
-  return std::nullopt;
-}
-
 std::optional<RecoveryPhase> parse_phase(std::string_view name) {
   for (const RecoveryManoeuvre& m : kRecoveryManoeuvres) {
     if (m.logged == name) return m.phase;

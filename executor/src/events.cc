@@ -7,18 +7,19 @@
 
 #include "sewerplan/core/overloaded.h"
 
+#include "enum_names.h"
 #include "event_fields.h"
 
 namespace sewerplan::executor {
 namespace {
 
-constexpr std::array<std::pair<MissionOutcome, std::string_view>, 3> kOutcomes{{
+constexpr detail::EnumNames<MissionOutcome, 3> kOutcomes{{
     {MissionOutcome::kEnded, "ended"},
     {MissionOutcome::kBeacon, "beacon"},
     {MissionOutcome::kHalted, "halted"},
 }};
 
-constexpr std::array<std::pair<BeaconCause, std::string_view>, 6> kBeaconCauses{{
+constexpr detail::EnumNames<BeaconCause, 6> kBeaconCauses{{
     {BeaconCause::kNone, "none"},
     {BeaconCause::kNoExit, "no-exit"},
     {BeaconCause::kStuck, "stuck"},
@@ -27,45 +28,32 @@ constexpr std::array<std::pair<BeaconCause, std::string_view>, 6> kBeaconCauses{
     {BeaconCause::kLimit, "limit"},
 }};
 
-constexpr std::array<std::pair<HazardEvent::Observed, std::string_view>, 2> kObserved{{
+constexpr detail::EnumNames<HazardEvent::Observed, 2> kObserved{{
     {HazardEvent::Observed::kPassed, "passed"},
     {HazardEvent::Observed::kBlocked, "blocked"},
 }};
 
-template <class Enum, std::size_t N>
-std::string_view name_of(const std::array<std::pair<Enum, std::string_view>, N>& names,
-                         Enum value) {
-  for (const auto& [v, name] : names) {
-    if (v == value) return name;
-  }
-  return names.front().second;
-}
-
-template <class Enum, std::size_t N>
-std::optional<Enum> value_of(const std::array<std::pair<Enum, std::string_view>, N>& names,
-                             std::string_view name) {
-  for (const auto& [v, n] : names) {
-    if (n == name) return v;
-  }
-  return std::nullopt;
-}
+static_assert(detail::distinct(kOutcomes) && detail::distinct(kBeaconCauses) &&
+              detail::distinct(kObserved));
 
 std::string text(std::string_view s) { return std::string(s); }
 
 }  // namespace
 
-std::string_view to_string(MissionOutcome outcome) { return name_of(kOutcomes, outcome); }
+std::string_view to_string(MissionOutcome outcome) { return detail::name_of(kOutcomes, outcome); }
 std::optional<MissionOutcome> parse_mission_outcome(std::string_view name) {
-  return value_of(kOutcomes, name);
+  return detail::value_of(kOutcomes, name);
 }
-std::string_view to_string(BeaconCause cause) { return name_of(kBeaconCauses, cause); }
+std::string_view to_string(BeaconCause cause) { return detail::name_of(kBeaconCauses, cause); }
 std::optional<BeaconCause> parse_beacon_cause(std::string_view name) {
-  return value_of(kBeaconCauses, name);
+  return detail::value_of(kBeaconCauses, name);
 }
 
-std::string_view to_string(HazardEvent::Observed observed) { return name_of(kObserved, observed); }
+std::string_view to_string(HazardEvent::Observed observed) {
+  return detail::name_of(kObserved, observed);
+}
 std::optional<HazardEvent::Observed> parse_hazard_observed(std::string_view name) {
-  return value_of(kObserved, name);
+  return detail::value_of(kObserved, name);
 }
 
 std::string_view type_name(const Event& event) {

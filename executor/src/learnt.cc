@@ -13,8 +13,14 @@
 #include "sewerplan/core/json_fields.h"
 #include "sewerplan/core/text_file.h"
 
+#include "enum_names.h"
+
 namespace sewerplan::executor {
 namespace {
+
+// A pipe's end as "from_end" names it (the map's names): 0 or 1.
+constexpr detail::EnumNames<std::uint8_t, 2> kPipeEnds{{{0, "from"}, {1, "to"}}};
+static_assert(detail::distinct(kPipeEnds));
 
 using json = nlohmann::ordered_json;
 using Need = JsonFields::Need;
@@ -116,8 +122,7 @@ class LearntReader {
   std::optional<std::uint8_t> end(JsonFields& f) {
     const std::optional<std::string> name = f.string("from_end");
     if (!name) return std::nullopt;
-    if (*name == "from") return std::uint8_t{0};
-    if (*name == "to") return std::uint8_t{1};
+    if (std::optional<std::uint8_t> e = detail::value_of(kPipeEnds, *name)) return e;
     f.error("from_end", "expected \"from\" or \"to\" (the pipe's end), got \"" + *name + "\"");
     return std::nullopt;
   }
@@ -341,7 +346,7 @@ std::string learnt_json(const Learnt& learnt, const SewerMap& map) {
                             {"passes", h.passes},
                             {"blocked", h.blocked}});
   }
-  const auto end_name = [](std::uint8_t end) { return end == 0 ? "from" : "to"; };
+  const auto end_name = [](std::uint8_t end) { return detail::name_of(kPipeEnds, end); };
   json memory = {{"junctions", json::array()}, {"driven", json::array()}};
   for (const localisation::KnownJunction& k : learnt.junctions.junctions) {
     memory["junctions"].push_back({{"pipe", map.pipe(k.pipe).name},

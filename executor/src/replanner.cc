@@ -9,8 +9,41 @@
 
 #include "sewerplan/domain/validator.h"
 
+#include "enum_names.h"
+
 namespace sewerplan::executor {
 namespace {
+
+// The stable names of failures, decisions and rungs (replanner.h): the event log and every CLI
+// --json output carry them.
+constexpr detail::EnumNames<Failure::Kind, 4> kFailureKinds{{
+    {Failure::Kind::kBlockage, "blockage"},
+    {Failure::Kind::kDangerInPipe, "danger"},
+    {Failure::Kind::kDangerousPassage, "dangerous passage"},
+    {Failure::Kind::kStuck, "stuck"},
+}};
+
+constexpr detail::EnumNames<PlanResponse::Decision, 6> kDecisions{{
+    {PlanResponse::Decision::kFollowPlan, "follow-plan"},
+    {PlanResponse::Decision::kDegraded, "degraded"},
+    {PlanResponse::Decision::kExitOnReserve, "exit-on-reserve"},
+    {PlanResponse::Decision::kCallForRecovery, "call-for-recovery"},
+    {PlanResponse::Decision::kStuck, "stuck"},
+    {PlanResponse::Decision::kInvalidReport, "invalid-report"},
+}};
+
+constexpr detail::EnumNames<PlanResponse::Rung, 6> kRungs{{
+    {PlanResponse::Rung::kSearch, "search"},
+    {PlanResponse::Rung::kBestSoFar, "best-so-far"},
+    {PlanResponse::Rung::kCurrentPlan, "current-plan"},
+    {PlanResponse::Rung::kRepairedPlan, "repaired-plan"},
+    {PlanResponse::Rung::kGreedy, "greedy"},
+    {PlanResponse::Rung::kNearestExit, "nearest-exit"},
+}};
+
+static_assert(kRungs.size() == PlanResponse::kRungCount);
+static_assert(detail::distinct(kFailureKinds) && detail::distinct(kDecisions) &&
+              detail::distinct(kRungs));
 
 std::string metres(double v) {
   std::ostringstream out;
@@ -55,72 +88,21 @@ bool same_belief(const HazardBelief& a, const HazardBelief& b) {
 
 }  // namespace
 
-std::string_view to_string(Failure::Kind kind) {
-  switch (kind) {
-    case Failure::Kind::kBlockage:
-      return "blockage";
-    case Failure::Kind::kDangerInPipe:
-      return "danger";
-    case Failure::Kind::kDangerousPassage:
-      return "dangerous passage";
-    case Failure::Kind::kStuck:
-      return "stuck";
-  }
-  return "stuck";
+std::string_view to_string(Failure::Kind kind) { return detail::name_of(kFailureKinds, kind); }
+std::optional<Failure::Kind> parse_failure_kind(std::string_view name) {
+  return detail::value_of(kFailureKinds, name);
 }
 
 std::string_view to_string(PlanResponse::Decision decision) {
-  switch (decision) {
-    case PlanResponse::Decision::kFollowPlan:
-      return "follow-plan";
-    case PlanResponse::Decision::kDegraded:
-      return "degraded";
-    case PlanResponse::Decision::kExitOnReserve:
-      return "exit-on-reserve";
-    case PlanResponse::Decision::kCallForRecovery:
-      return "call-for-recovery";
-    case PlanResponse::Decision::kStuck:
-      return "stuck";
-    case PlanResponse::Decision::kInvalidReport:
-      return "invalid-report";
-  }
-  return "invalid-report";
+  return detail::name_of(kDecisions, decision);
 }
-
 std::optional<PlanResponse::Decision> parse_decision(std::string_view name) {
-  for (auto d : {PlanResponse::Decision::kFollowPlan, PlanResponse::Decision::kDegraded,
-                 PlanResponse::Decision::kExitOnReserve, PlanResponse::Decision::kCallForRecovery,
-                 PlanResponse::Decision::kStuck, PlanResponse::Decision::kInvalidReport}) {
-    if (to_string(d) == name) return d;
-  }
-  return std::nullopt;
+  return detail::value_of(kDecisions, name);
 }
 
-std::string_view to_string(PlanResponse::Rung rung) {
-  switch (rung) {
-    case PlanResponse::Rung::kSearch:
-      return "search";
-    case PlanResponse::Rung::kBestSoFar:
-      return "best-so-far";
-    case PlanResponse::Rung::kCurrentPlan:
-      return "current-plan";
-    case PlanResponse::Rung::kRepairedPlan:
-      return "repaired-plan";
-    case PlanResponse::Rung::kGreedy:
-      return "greedy";
-    case PlanResponse::Rung::kNearestExit:
-      return "nearest-exit";
-  }
-  return "search";
-}
-
+std::string_view to_string(PlanResponse::Rung rung) { return detail::name_of(kRungs, rung); }
 std::optional<PlanResponse::Rung> parse_rung(std::string_view name) {
-  for (auto r : {PlanResponse::Rung::kSearch, PlanResponse::Rung::kBestSoFar,
-                 PlanResponse::Rung::kCurrentPlan, PlanResponse::Rung::kRepairedPlan,
-                 PlanResponse::Rung::kGreedy, PlanResponse::Rung::kNearestExit}) {
-    if (to_string(r) == name) return r;
-  }
-  return std::nullopt;
+  return detail::value_of(kRungs, name);
 }
 
 bool has_plan(PlanResponse::Decision decision) {

@@ -5,11 +5,14 @@
 
 #include <algorithm>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include <gtest/gtest.h>
 
 #include "sewerplan/executor/event_text.h"
+#include "sewerplan/executor/events.h"
+#include "sewerplan/executor/replanner.h"
 
 #include "support/paths.h"
 
@@ -21,6 +24,46 @@ std::string file_text(const std::filesystem::path& path) {
   std::stringstream text;
   text << in.rdbuf();
   return text.str();
+}
+
+// Every value of an enum the logs carry has its own name, and its name parses back to it; other
+// text parses to nothing. A value left out of its name table (enum_names.h) fails here.
+template <class Enum, class Parse>
+void expect_round_trip(std::initializer_list<Enum> values, Parse parse) {
+  std::set<std::string_view> names;
+  for (Enum value : values) {
+    const std::string_view name = to_string(value);
+    SCOPED_TRACE(std::string(name));
+    EXPECT_FALSE(name.empty());
+    EXPECT_TRUE(names.insert(name).second) << "two values named '" << name << "'";
+    const std::optional<Enum> back = parse(name);
+    ASSERT_TRUE(back.has_value());
+    EXPECT_EQ(*back, value);
+  }
+  EXPECT_FALSE(parse("").has_value());
+  EXPECT_FALSE(parse("no such name").has_value());
+}
+
+TEST(EnumNames, EveryValueRoundTripsThroughItsNameAndBack) {
+  expect_round_trip({MissionOutcome::kEnded, MissionOutcome::kBeacon, MissionOutcome::kHalted},
+                    parse_mission_outcome);
+  expect_round_trip({BeaconCause::kNone, BeaconCause::kNoExit, BeaconCause::kStuck,
+                     BeaconCause::kMalfunction, BeaconCause::kLink, BeaconCause::kLimit},
+                    parse_beacon_cause);
+  expect_round_trip({HazardEvent::Observed::kPassed, HazardEvent::Observed::kBlocked},
+                    parse_hazard_observed);
+  expect_round_trip({Failure::Kind::kBlockage, Failure::Kind::kDangerInPipe,
+                     Failure::Kind::kDangerousPassage, Failure::Kind::kStuck},
+                    parse_failure_kind);
+  expect_round_trip(
+      {PlanResponse::Decision::kFollowPlan, PlanResponse::Decision::kDegraded,
+       PlanResponse::Decision::kExitOnReserve, PlanResponse::Decision::kCallForRecovery,
+       PlanResponse::Decision::kStuck, PlanResponse::Decision::kInvalidReport},
+      parse_decision);
+  expect_round_trip({PlanResponse::Rung::kSearch, PlanResponse::Rung::kBestSoFar,
+                     PlanResponse::Rung::kCurrentPlan, PlanResponse::Rung::kRepairedPlan,
+                     PlanResponse::Rung::kGreedy, PlanResponse::Rung::kNearestExit},
+                    parse_rung);
 }
 
 class EventLogFile : public ::testing::TestWithParam<const char*> {};

@@ -84,7 +84,10 @@ struct Failure {
   std::optional<hal::RobotErrorCause> cause{};
 };
 
+// The stable name of a failure kind ("blockage", "danger", "dangerous passage", "stuck") and
+// back; parse_failure_kind is empty for any other text.
 std::string_view to_string(Failure::Kind kind);
+std::optional<Failure::Kind> parse_failure_kind(std::string_view name);
 
 // A hazard's probability changed by what the robot observed (observe_pass, report_failure).
 struct HazardUpdate {
