@@ -377,6 +377,18 @@ std::vector<std::string> types(const SimRun& run) {
   return names;
 }
 
+// The event of the first safe pass of the roots in pipe RISKY (p 0.1 at 5 m): the Beta update
+// with a prior of strength 2 takes 0.1 to 0.1 x 2/3.
+HazardEvent first_pass_of_the_roots() {
+  return {.pipe = "RISKY",
+          .offset_m = 5,
+          .reason = "BBA roots",
+          .observed = HazardEvent::Observed::kPassed,
+          .probability_before = 0.1,
+          .probability = 0.1 * 2 / 3,
+          .passes = 1};
+}
+
 TEST(HazardLearning, TheExecutorLogsAPassRightAfterItsJob) {
   RootsNet net;
   const SimRun run = simulate(net, R"({"format": "sewerplan-faults", "version": 1})");
@@ -393,13 +405,7 @@ TEST(HazardLearning, TheExecutorLogsAPassRightAfterItsJob) {
     }
   }
   ASSERT_NE(pass, nullptr);
-  EXPECT_EQ(*pass, (HazardEvent{.pipe = "RISKY",
-                                .offset_m = 5,
-                                .reason = "BBA roots",
-                                .observed = HazardEvent::Observed::kPassed,
-                                .probability_before = 0.1,
-                                .probability = 0.1 * 2 / 3,
-                                .passes = 1}));
+  EXPECT_EQ(*pass, first_pass_of_the_roots());
   ASSERT_EQ(run.learnt.hazards.size(), 1U);
   EXPECT_EQ(run.learnt.hazards[0].passes, 1U);
   // The log line, and the same event read back.
@@ -462,13 +468,7 @@ TEST(HazardLearning, ADriveStoppedFurtherOnRecordsTheHazardsItPassed) {
     hazards.push_back(h);
   }
   ASSERT_GE(hazards.size(), 2U);
-  EXPECT_EQ(*hazards[0], (HazardEvent{.pipe = "RISKY",
-                                      .offset_m = 5,
-                                      .reason = "BBA roots",
-                                      .observed = HazardEvent::Observed::kPassed,
-                                      .probability_before = 0.1,
-                                      .probability = 0.1 * 2 / 3,
-                                      .passes = 1}));
+  EXPECT_EQ(*hazards[0], first_pass_of_the_roots());
   const auto crack = std::find_if(hazards.begin(), hazards.end(),
                                   [](const HazardEvent* h) { return h->reason == "BAB crack"; });
   ASSERT_NE(crack, hazards.end());
