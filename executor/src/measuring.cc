@@ -16,8 +16,9 @@ JobObserver Measurer::observer() {
   };
 }
 
-double Measurer::sigma_m(double distance_m, PipeId pipe) const {
+double Measurer::sigma_m(double distance_m, PipeId pipe, bool in_water) const {
   double fraction = options_.odometry_sigma_fraction;
+  if (in_water) fraction *= options_.water_sigma_factor;
   const Pipe& p = map_.pipe(pipe);
   if (p.ends[0].manhole && p.ends[1].manhole) {
     const double fall_m = map_.slot(*p.ends[0].manhole, p.ends[0].slot).invert_z_m -
@@ -72,7 +73,8 @@ void Measurer::observe(const Job& job, const hal::JobReport& report,
   if (leg_ || in == nullptr) return;
   const Pipe& pipe = map_.pipe(in->pipe);
   if (!valid(*report.observation, pipe.name)) return;
-  const double sigma = sigma_m(std::min(in->offset_m, pipe.length_m - in->offset_m), in->pipe);
+  const double sigma = sigma_m(std::min(in->offset_m, pipe.length_m - in->offset_m), in->pipe,
+                               report.in_water);
   if (near_an_end(pipe, in->offset_m, sigma)) return;
   measurements_.junctions.push_back({.pipe = in->pipe,
                                      .offset_m = in->offset_m,
@@ -144,6 +146,7 @@ void Measurer::drive(const Job& job, const hal::JobReport& report,
     leg_->driven_m += towards_far * report.progress_m;
   }
   if (!report.ok() || std::holds_alternative<Push>(job)) leg_->clean = false;
+  if (report.in_water) leg_->in_water = true;
 
   if (const auto* at = std::get_if<domain::AtSlot>(&after)) {
     const Slot& slot = map_.slot(at->manhole, at->slot);
@@ -172,7 +175,7 @@ void Measurer::drive(const Job& job, const hal::JobReport& report,
     arrival(m, s, *report.observation);
     return;
   }
-  const double sigma = sigma_m(std::abs(leg_->driven_m), leg_->pipe);
+  const double sigma = sigma_m(std::abs(leg_->driven_m), leg_->pipe, leg_->in_water);
   if (near_an_end(pipe, in->offset_m, sigma)) return;
   measurements_.junctions.push_back({.pipe = leg_->pipe,
                                      .offset_m = in->offset_m,
@@ -187,7 +190,7 @@ void Measurer::end_leg(ManholeId manhole, SlotIndex slot) {
   leg_.reset();
   if (!leg.clean || leg.driven_m <= 0) return;
   const Pipe& pipe = map_.pipe(leg.pipe);
-  const double sigma = sigma_m(leg.driven_m, leg.pipe);
+  const double sigma = sigma_m(leg.driven_m, leg.pipe, leg.in_water);
   add_length(measurements_, leg.pipe, leg.driven_m, sigma * sigma, 0);
   // Position: the manhole left's map position plus the pipe's chord, scaled by measured / mapped
   // length (map_measurements.h).

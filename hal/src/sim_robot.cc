@@ -266,11 +266,13 @@ JobReport SimRobot::drive(double speed_mps, double distance_m, int direction, bo
     const InPipe from = pipe_end_pose(map_, at->manhole, at->slot, front_into_pipe);
     JobReport report = drive_in_pipe(from, speed_mps, distance_m, direction, push, to_manhole);
     report.progress_m = odometry(report.progress_m, from.pipe);
+    report.in_water = in_water(report.progress_m, from.pipe);
     return report;
   }
   const InPipe from = std::get<InPipe>(pose_);
   JobReport report = drive_in_pipe(from, speed_mps, distance_m, direction, push, to_manhole);
   report.progress_m = odometry(report.progress_m, from.pipe);
+  report.in_water = in_water(report.progress_m, from.pipe);
   return report;
 }
 
@@ -421,6 +423,11 @@ double SimRobot::odometry(double true_m, PipeId pipe) {
     if (std::abs(fall_m) > 0.02 * p.length_m) slip *= 2;
   }
   return std::max(0.0, true_m + normal(s.drift * slip * true_m));
+}
+
+bool SimRobot::in_water(double driven_m, PipeId pipe) const {
+  const std::vector<bool>& wet = options_.sensing.wet;
+  return driven_m > 0 && pipe.index() < wet.size() && wet[pipe.index()];
 }
 
 ManholeSignature SimRobot::observe(ManholeSignature truth, std::vector<SlotIndex>* order) {

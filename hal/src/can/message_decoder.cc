@@ -212,7 +212,8 @@ Decoded decode_result(Reader& r, std::uint8_t seq) {
   result.report.progress_m = r.number(1, "progress_m", true);
   result.report.duration_s = r.number(2, "duration_s", true);
   result.report.energy_wh = r.number(3, "energy_wh", true);
-  result.status = r.status(4, h.data[1]);
+  result.report.in_water = (h.data[1] & kInWater) != 0;
+  result.status = r.status(4, static_cast<std::uint8_t>(h.data[1] & ~kInWater));
   const std::uint16_t length = u16_of(h, 2);
   const std::string reason = r.text(1 + kResultNumberFrames, length);
   const std::size_t reason_frames = (std::size_t{length} + 7) / 8;

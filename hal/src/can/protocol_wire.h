@@ -16,6 +16,8 @@ namespace sewerplan::hal::wire {
 
 inline constexpr std::uint8_t kHeadLifted = 0x01;
 inline constexpr std::uint8_t kBeaconOn = 0x02;
+// A RESULT's flags byte only (not the status's): the job drove through water (JobReport::in_water).
+inline constexpr std::uint8_t kInWater = 0x04;
 inline constexpr std::size_t kStatusFrames = 3;  // battery, odometry, elapsed
 // A RESULT's header frame: outcome, flags, reason length; and with an observation, its slot count.
 inline constexpr std::size_t kResultHeaderBytes = 4;

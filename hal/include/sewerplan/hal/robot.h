@@ -145,6 +145,12 @@ struct JobReport {
   // (the exact simulated world, hal/sim_robot.h SensingModel). Over CAN in the job's RESULT
   // (docs/can-protocol.md).
   std::optional<double> turn_measured_deg;
+  // The robot drove through water in this job: standing or flowing water in the pipe, as its
+  // camera sees it (EN 13508-2's water level, which every inspection records). Wheels slip more
+  // in water, so its odometry is less certain there (hal/sim_robot.h SensingModel::wet). False:
+  // dry, every job that drives nothing, and a robot that does not tell. Over CAN a flag of the
+  // job's RESULT (docs/can-protocol.md).
+  bool in_water = false;
   bool ok() const { return !error.has_value(); }
   friend bool operator==(const JobReport&, const JobReport&) = default;
 };

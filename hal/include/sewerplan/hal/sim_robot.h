@@ -91,7 +91,9 @@ std::string describe(const SimPose& pose, const SewerMap& map);
 // (hal/world_errors.h) sets it from a world error profile.
 struct SensingModel {
   double drift = 0;         // odometry: standard deviation of a drive's error, share of its length
-  std::vector<bool> wet;    // per pipe of the robot's world: wet (slip x2); empty: none
+  // Per pipe of the robot's world: wet (slip x2; a drive in it reports JobReport::in_water).
+  // Empty: none.
+  std::vector<bool> wet;
   double missed_share = 0;  // of manhole arrivals, not detected
   double false_per_km = 0;  // false manhole detections per km of drives to a manhole
   bool observe = false;     // report the manhole's signature at the end of a drive (JobReport)
@@ -161,6 +163,8 @@ class SimRobot final : public Robot {
   // the robot sees of a manhole, or of a pipe where it takes one for a manhole.
   double normal(double sigma);
   double odometry(double true_m, PipeId pipe);
+  // Whether a drive of driven_m in `pipe` went through water (JobReport::in_water).
+  bool in_water(double driven_m, PipeId pipe) const;
   // `order`, when given, is the map's slot of each of truth's mouths; it is reordered with them
   // (what the robot saw, in the order it saw it).
   ManholeSignature observe(ManholeSignature truth, std::vector<SlotIndex>* order = nullptr);
