@@ -178,6 +178,10 @@ struct DiscrepancyThresholds {
   // An unmapped lateral is reported when seen in at least this share of the arrivals in its
   // manhole (a mouth seen once in five arrivals is more likely noise than a pipe).
   double lateral_share = 0.5;
+  // A mouth seen where the map has none, in an arrival that did not see a mouth the map has
+  // within this many degrees of it, is that mouth, off (its direction weighed by the fit), not a
+  // lateral the map lacks (map_measurements.cc, pair_leftovers).
+  double leftover_direction_deg = 60;
 };
 
 // What `measurements` (of `map`) show to differ from it, in a fixed order (kind, then object):
