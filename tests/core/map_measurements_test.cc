@@ -292,6 +292,58 @@ TEST(MapMeasurements, AMappedSlotNeverSeenIsAMissingLateral) {
   EXPECT_EQ(found[0].discrepancy.slot, SlotIndex{3});
 }
 
+// A slot off by more than the alignment pairs (north seen 40 degrees towards the west from every
+// arrival, beyond its 30) is that slot, off: not a lateral the map lacks beside a mapped mouth never
+// seen (11 of 27 false reports on AIS, 200 runs of the realistic world).
+TEST(MapMeasurements, AMouthSeenFarOffItsMappedDirectionIsThatMouthOff) {
+  const SewerMap map = cross();
+  MapMeasurements m = measurements_of(map, source("one"));
+  const ManholeId m0 = id(map, "M0");
+  arrivals(
+      m, map,
+      [&](SlotIndex a, ManholeSignature& s) {
+        const auto order = signature_slot_order(map, m0, a);
+        std::vector<SlotSighting> sorted(s.slots.begin() + 1, s.slots.end());
+        for (std::size_t i = 1; i < order.size(); ++i) {
+          if (order[i] == SlotIndex{1}) sorted[i - 1].relative_deg += 40;
+        }
+        std::sort(sorted.begin(), sorted.end(),
+                  [](const SlotSighting& x, const SlotSighting& y) {
+                    return x.relative_deg < y.relative_deg;
+                  });
+        std::copy(sorted.begin(), sorted.end(), s.slots.begin() + 1);
+      },
+      /*skip=*/1);
+  const auto found = discrepancies(m, map);
+  ASSERT_EQ(kinds(found), std::vector<Kind>{Kind::kDirectionOff});
+  EXPECT_EQ(found[0].discrepancy.slot, SlotIndex{1});
+  EXPECT_NEAR(found[0].discrepancy.value, 130, 1e-6);
+}
+
+// Farther than that from every mapped mouth not seen, a mouth is a lateral the map lacks, and the
+// mapped one a missing lateral (the south mouth gone, a lateral at 200 degrees: 70 degrees apart).
+TEST(MapMeasurements, AMouthFarFromEveryUnseenOneIsStillALateral) {
+  const SewerMap map = cross();
+  MapMeasurements m = measurements_of(map, source("one"));
+  const ManholeId m0 = id(map, "M0");
+  arrivals(
+      m, map,
+      [&](SlotIndex a, ManholeSignature& s) {
+        const auto order = signature_slot_order(map, m0, a);
+        for (std::size_t i = 0; i < order.size(); ++i) {
+          if (order[i] == SlotIndex{3}) s.slots.erase(s.slots.begin() + static_cast<long>(i));
+        }
+        const double rel = std::fmod(200 - map.slot(m0, a).azimuth_deg + 360, 360);
+        const auto at =
+            std::upper_bound(s.slots.begin() + 1, s.slots.end(), rel,
+                             [](double r, const SlotSighting& x) { return r < x.relative_deg; });
+        s.slots.insert(at, SlotSighting{rel, 0, 0.2});
+      },
+      /*skip=*/3);
+  const auto found = discrepancies(m, map);
+  EXPECT_EQ(kinds(found), (std::vector<Kind>{Kind::kUnmappedLateral, Kind::kMissingLateral}));
+}
+
 TEST(MapMeasurements, AManholeSightedInAPipeIsAnUnmappedJunction) {
   const SewerMap map = cross();
   MapMeasurements m = measurements_of(map, source("one"));

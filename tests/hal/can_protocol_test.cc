@@ -409,6 +409,33 @@ TEST(JobProtocol, AResultCarriesTheMeasuredTurn) {
   EXPECT_THAT(reason_of(missing), HasSubstr("frame 7 missing"));
 }
 
+// A drive through water says so in its RESULT: bit 2 of the header's flags byte, beside the status
+// flags (which the STATUS message carries without it); every other layout is unchanged.
+TEST(JobProtocol, AResultCarriesWaterBesideTheStatusFlags) {
+  JobReport wet;
+  wet.progress_m = 4.5;
+  wet.in_water = true;
+  JobReport seen = wet;
+  seen.observation = ManholeSignature{.slots = {{0, 0, 0.3}, {180, 0, 0.3}}, .shaft_diameter_m = 1};
+  RobotStatus lifted;
+  lifted.head_lifted = true;
+  for (const JobResult& result : {JobResult{8, wet, {}}, JobResult{9, seen, lifted}}) {
+    const std::vector<CanFrame> frames = encode(result);
+    EXPECT_EQ(frames[0].data[1], result.status.head_lifted ? 0x05 : 0x04);
+    EXPECT_EQ(round_trip(result), Message{result});
+    JobResult dry = result;
+    dry.report.in_water = false;
+    const std::vector<CanFrame> dry_frames = encode(dry);
+    EXPECT_EQ(dry_frames[0].data[1], result.status.head_lifted ? 0x01 : 0x00);
+    EXPECT_EQ(round_trip(dry), Message{dry});
+  }
+  std::vector<CanFrame> unknown = encode(JobResult{8, wet, {}});
+  unknown[0].data[1] = 0x08;
+  const Decoded d = decode_message(MessageType::kResult, 8, unknown);
+  ASSERT_TRUE(std::holds_alternative<Malformed>(d));
+  EXPECT_THAT(std::get<Malformed>(d).reason, HasSubstr("unknown status flags"));
+}
+
 TEST(JobProtocol, Crc32IsTheZlibOne) {
   const std::string text = "123456789";
   EXPECT_EQ(crc32(std::vector<std::uint8_t>(text.begin(), text.end())), 0xCBF43926U);

@@ -90,6 +90,20 @@ TEST_F(SensingTest, OdometrySlipsTwiceAsMuchInAWetPipe) {
   EXPECT_NEAR(std::sqrt(sum2 / 2000), 0.6, 0.06);
 }
 
+// The robot sees the water it drives through (JobReport::in_water), so it can tell its odometry
+// is less certain there; in a dry pipe, and for a job that drives nothing, it reports none.
+TEST_F(SensingTest, ADriveInAWetPipeReportsWater) {
+  std::vector<bool> wet(map_.pipe_count(), false);
+  wet[pipe("P1").index()] = true;
+  SimRobot r =
+      robot(InPipe{pipe("P1"), 5, Heading::kTowardsEnd1}, {.drift = 0.03, .wet = wet, .seed = 4});
+  EXPECT_TRUE(r.execute(DriveForward{0.3, 2}).in_water);
+  EXPECT_TRUE(r.execute(DriveBackward{0.3, 2}).in_water);
+  EXPECT_FALSE(r.execute(DriveForward{0.3, 0}).in_water);
+  SimRobot dry = robot(InPipe{pipe("P1"), 5, Heading::kTowardsEnd1}, {.drift = 0.03, .seed = 4});
+  EXPECT_FALSE(dry.execute(DriveForward{0.3, 2}).in_water);
+}
+
 TEST_F(SensingTest, ObservesTheManholeADriveEndsAt) {
   SimRobot r = robot(InPipe{pipe("P1"), 0, Heading::kTowardsEnd1}, {.observe = true});
   const JobReport report = r.execute(DriveForward{0.3, 20, true});
