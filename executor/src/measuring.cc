@@ -51,6 +51,15 @@ bool Measurer::near_an_end(const Pipe& pipe, double offset_m, double sigma_m) {
   return false;
 }
 
+bool Measurer::too_narrow(const Pipe& pipe, double offset_m, const ManholeSignature& seen) {
+  if (seen.shaft_diameter_m >= options_.min_junction_shaft_m) return false;
+  rejected_.push_back(pipe.name + " at " + std::to_string(offset_m) + " m: a manhole seen with a " +
+                      std::to_string(seen.shaft_diameter_m) + " m shaft, narrower than " +
+                      std::to_string(options_.min_junction_shaft_m) +
+                      " m: a false detection, no junction");
+  return true;
+}
+
 void Measurer::observe(const Job& job, const hal::JobReport& report,
                        const domain::RobotPosition& before, const domain::RobotPosition& after,
                        double direction) {
@@ -73,9 +82,10 @@ void Measurer::observe(const Job& job, const hal::JobReport& report,
   if (leg_ || in == nullptr) return;
   const Pipe& pipe = map_.pipe(in->pipe);
   if (!valid(*report.observation, pipe.name)) return;
-  const double sigma = sigma_m(std::min(in->offset_m, pipe.length_m - in->offset_m), in->pipe,
-                               report.in_water);
-  if (near_an_end(pipe, in->offset_m, sigma)) return;
+  const double sigma =
+      sigma_m(std::min(in->offset_m, pipe.length_m - in->offset_m), in->pipe, report.in_water);
+  if (near_an_end(pipe, in->offset_m, sigma) || too_narrow(pipe, in->offset_m, *report.observation))
+    return;
   measurements_.junctions.push_back({.pipe = in->pipe,
                                      .offset_m = in->offset_m,
                                      .sigma_m = sigma,
@@ -176,7 +186,8 @@ void Measurer::drive(const Job& job, const hal::JobReport& report,
     return;
   }
   const double sigma = sigma_m(std::abs(leg_->driven_m), leg_->pipe, leg_->in_water);
-  if (near_an_end(pipe, in->offset_m, sigma)) return;
+  if (near_an_end(pipe, in->offset_m, sigma) || too_narrow(pipe, in->offset_m, *report.observation))
+    return;
   measurements_.junctions.push_back({.pipe = leg_->pipe,
                                      .offset_m = in->offset_m,
                                      .sigma_m = sigma,

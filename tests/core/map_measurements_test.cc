@@ -293,8 +293,8 @@ TEST(MapMeasurements, AMappedSlotNeverSeenIsAMissingLateral) {
 }
 
 // A slot off by more than the alignment pairs (north seen 40 degrees towards the west from every
-// arrival, beyond its 30) is that slot, off: not a lateral the map lacks beside a mapped mouth never
-// seen (11 of 27 false reports on AIS, 200 runs of the realistic world).
+// arrival, beyond its 30) is that slot, off: not a lateral the map lacks beside a mapped mouth
+// never seen (11 of 27 false reports on AIS, 200 runs of the realistic world).
 TEST(MapMeasurements, AMouthSeenFarOffItsMappedDirectionIsThatMouthOff) {
   const SewerMap map = cross();
   MapMeasurements m = measurements_of(map, source("one"));
@@ -307,10 +307,9 @@ TEST(MapMeasurements, AMouthSeenFarOffItsMappedDirectionIsThatMouthOff) {
         for (std::size_t i = 1; i < order.size(); ++i) {
           if (order[i] == SlotIndex{1}) sorted[i - 1].relative_deg += 40;
         }
-        std::sort(sorted.begin(), sorted.end(),
-                  [](const SlotSighting& x, const SlotSighting& y) {
-                    return x.relative_deg < y.relative_deg;
-                  });
+        std::sort(sorted.begin(), sorted.end(), [](const SlotSighting& x, const SlotSighting& y) {
+          return x.relative_deg < y.relative_deg;
+        });
         std::copy(sorted.begin(), sorted.end(), s.slots.begin() + 1);
       },
       /*skip=*/1);

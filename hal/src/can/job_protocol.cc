@@ -148,7 +148,8 @@ std::vector<CanFrame> encode_result(const JobResult& r) {
   }
   std::array<std::uint8_t, 6> header{};
   header[0] = r.report.error ? error_code(r.report.error->cause) : kDoneCode;
-  header[1] = static_cast<std::uint8_t>(status_flags(r.status) | (r.report.in_water ? kInWater : 0));
+  header[1] =
+      static_cast<std::uint8_t>(status_flags(r.status) | (r.report.in_water ? kInWater : 0));
   put_u16(&header[2], static_cast<std::uint16_t>(reason.size()));
   if (seen) put_u16(&header[4], static_cast<std::uint16_t>(seen->slots.size()));
   if (turned) header[4] = kTurnMeasured;

@@ -90,7 +90,7 @@ std::string describe(const SimPose& pose, const SewerMap& map);
 // sensing with no observations: the simulator as it was before issue 29. make_sensing
 // (hal/world_errors.h) sets it from a world error profile.
 struct SensingModel {
-  double drift = 0;         // odometry: standard deviation of a drive's error, share of its length
+  double drift = 0;  // odometry: standard deviation of a drive's error, share of its length
   // Per pipe of the robot's world: wet (slip x2; a drive in it reports JobReport::in_water).
   // Empty: none.
   std::vector<bool> wet;
