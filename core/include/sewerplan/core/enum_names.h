@@ -18,6 +18,9 @@
 //   std::optional<Colour> parse_colour(std::string_view s) { return detail::value_of(kColours, s);
 //   }
 //
+// Inside a library with a detail namespace of its own (domain, search, executor), that namespace
+// hides this one: write sewerplan::detail::name_of there.
+//
 // Runtime: O(N) per lookup, for tables of a few to a few dozen names.
 // Thread safety: constants and pure functions.
 #pragma once
