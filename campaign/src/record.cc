@@ -10,10 +10,19 @@
 
 #include <nlohmann/json.hpp>
 
+#include "sewerplan/core/enum_names.h"
 #include "sewerplan/core/json_fields.h"
 
 namespace sewerplan::campaign {
 namespace {
+
+// A run's "status" in runs.jsonl, written and read here.
+constexpr detail::EnumNames<RunRecord::Status, 3> kStatuses{{
+    {RunRecord::Status::kOk, "ok"},
+    {RunRecord::Status::kCrash, "crash"},
+    {RunRecord::Status::kHang, "hang"},
+}};
+static_assert(detail::distinct(kStatuses));
 
 using Json = nlohmann::ordered_json;
 
@@ -361,17 +370,7 @@ RunResult read_result(const RunRecord& r, JsonFields& f, JsonFields& measured,
 
 }  // namespace
 
-std::string_view to_string(RunRecord::Status status) {
-  switch (status) {
-    case RunRecord::Status::kOk:
-      return "ok";
-    case RunRecord::Status::kCrash:
-      return "crash";
-    case RunRecord::Status::kHang:
-      return "hang";
-  }
-  return "crash";
-}
+std::string_view to_string(RunRecord::Status status) { return detail::name_of(kStatuses, status); }
 
 std::string run_json_line(const RunRecord& record) {
   Json j;
@@ -435,12 +434,8 @@ Result<RunRecord> parse_run_line(std::string_view line, const std::string& file_
   r.index = f.count("run", kMaxCount).value_or(0);
   r.seed = read_seed(f);
   if (const std::optional<std::string> status = f.string("status")) {
-    if (*status == "ok") {
-      r.status = RunRecord::Status::kOk;
-    } else if (*status == "crash") {
-      r.status = RunRecord::Status::kCrash;
-    } else if (*status == "hang") {
-      r.status = RunRecord::Status::kHang;
+    if (const std::optional<RunRecord::Status> s = detail::value_of(kStatuses, *status)) {
+      r.status = *s;
     } else {
       f.error("status", "unknown status '" + *status + "'");
     }

@@ -7,6 +7,7 @@
 #include <chrono>
 
 #include "sewerplan/core/clock.h"
+#include "sewerplan/core/enum_names.h"
 #include "sewerplan/core/rng.h"
 #include "sewerplan/domain/robot_state.h"
 #include "sewerplan/executor/executor.h"
@@ -16,6 +17,22 @@
 
 namespace sewerplan::campaign {
 namespace {
+
+// The names the campaign's files and --json outputs carry (run.h).
+constexpr detail::EnumNames<Outcome, 4> kOutcomes{{
+    {Outcome::kExit, "exit"},
+    {Outcome::kEndPoint, "end_point"},
+    {Outcome::kBeacon, "beacon"},
+    {Outcome::kStranded, "stranded"},
+}};
+
+constexpr detail::EnumNames<Policy, 3> kPolicies{{
+    {Policy::kOurs, "ours"},
+    {Policy::kBaseline, "baseline"},
+    {Policy::kRiskAware, "risk_aware"},
+}};
+
+static_assert(detail::distinct(kOutcomes) && detail::distinct(kPolicies));
 
 std::uint64_t splitmix64(std::uint64_t x) {
   x += 0x9E3779B97F4A7C15ULL;
@@ -291,25 +308,10 @@ std::uint64_t run_seed(std::uint64_t campaign_seed, std::size_t index) {
   return splitmix64(splitmix64(campaign_seed) ^ (0xD1B54A32D192ED03ULL * (index + 1)));
 }
 
-std::string_view to_string(Outcome outcome) {
-  switch (outcome) {
-    case Outcome::kExit:
-      return "exit";
-    case Outcome::kEndPoint:
-      return "end_point";
-    case Outcome::kBeacon:
-      return "beacon";
-    case Outcome::kStranded:
-      return "stranded";
-  }
-  return "stranded";
-}
+std::string_view to_string(Outcome outcome) { return detail::name_of(kOutcomes, outcome); }
 
 std::optional<Outcome> outcome_from_string(std::string_view name) {
-  for (Outcome o : {Outcome::kExit, Outcome::kEndPoint, Outcome::kBeacon, Outcome::kStranded}) {
-    if (to_string(o) == name) return o;
-  }
-  return std::nullopt;
+  return detail::value_of(kOutcomes, name);
 }
 
 Result<hal::FaultScenario> run_faults(const SewerMap& map, const Mission& mission,
@@ -394,23 +396,10 @@ Result<RunResult> run_one(const SewerMap& map, const Mission& mission, const Run
   return r;
 }
 
-std::string_view to_string(Policy policy) {
-  switch (policy) {
-    case Policy::kOurs:
-      return "ours";
-    case Policy::kBaseline:
-      return "baseline";
-    case Policy::kRiskAware:
-      return "risk_aware";
-  }
-  return "ours";
-}
+std::string_view to_string(Policy policy) { return detail::name_of(kPolicies, policy); }
 
 std::optional<Policy> policy_from_string(std::string_view name) {
-  for (Policy p : {Policy::kOurs, Policy::kBaseline, Policy::kRiskAware}) {
-    if (to_string(p) == name) return p;
-  }
-  return std::nullopt;
+  return detail::value_of(kPolicies, name);
 }
 
 Result<Execution> replay_execution(const SewerMap& map, const Mission& mission,

@@ -7,6 +7,8 @@
 
 #include "sewerplan/core/message_text.h"
 
+#include "risk_effect_names.h"
+
 namespace sewerplan {
 namespace {
 
@@ -29,17 +31,7 @@ std::optional<std::size_t> matching_rule(const RiskTable& table, const Finding& 
 }
 
 std::string_view to_string(RiskEffect effect) {
-  switch (effect) {
-    case RiskEffect::kNone:
-      return "none";
-    case RiskEffect::kDanger:
-      return "danger";
-    case RiskEffect::kBlockage:
-      return "blockage";
-    case RiskEffect::kImpassable:
-      return "impassable";
-  }
-  return "none";
+  return detail::name_of(detail::kRiskEffectNames, effect);
 }
 
 RiskTable default_risk_table() {

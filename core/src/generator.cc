@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 
 #include "sewerplan/core/check.h"
+#include "sewerplan/core/enum_names.h"
 #include "sewerplan/core/map_builder.h"
 #include "sewerplan/core/map_queries.h"
 #include "sewerplan/core/rng.h"
@@ -20,6 +21,12 @@
 
 namespace sewerplan {
 namespace {
+
+constexpr detail::EnumNames<Topology, 2> kTopologies{{
+    {Topology::kTree, "tree"},
+    {Topology::kMeshed, "meshed"},
+}};
+static_assert(detail::distinct(kTopologies));
 
 using detail::StreetLayout;
 
@@ -273,21 +280,10 @@ Result<SewerMap> build_map(const Network& net, const GeneratorOptions& options) 
 
 }  // namespace
 
-std::string_view to_string(Topology topology) {
-  switch (topology) {
-    case Topology::kTree:
-      return "tree";
-    case Topology::kMeshed:
-      return "meshed";
-  }
-  return "tree";
-}
+std::string_view to_string(Topology topology) { return detail::name_of(kTopologies, topology); }
 
 std::optional<Topology> topology_from_string(std::string_view name) {
-  for (Topology t : {Topology::kTree, Topology::kMeshed}) {
-    if (to_string(t) == name) return t;
-  }
-  return std::nullopt;
+  return detail::value_of(kTopologies, name);
 }
 
 namespace {

@@ -1,15 +1,15 @@
 // SPDX-License-Identifier: MIT
 #include "sewerplan/core/map_discrepancy.h"
 
-#include <array>
 #include <cmath>
 #include <sstream>
-#include <utility>
+
+#include "sewerplan/core/enum_names.h"
 
 namespace sewerplan {
 namespace {
 
-constexpr std::array<std::pair<Discrepancy::Kind, std::string_view>, 7> kNames{{
+constexpr detail::EnumNames<Discrepancy::Kind, 7> kNames{{
     {Discrepancy::Kind::kLengthOff, "length-off"},
     {Discrepancy::Kind::kDirectionOff, "direction-off"},
     {Discrepancy::Kind::kPositionOff, "position-off"},
@@ -18,6 +18,7 @@ constexpr std::array<std::pair<Discrepancy::Kind, std::string_view>, 7> kNames{{
     {Discrepancy::Kind::kUnmappedLateral, "unmapped-lateral"},
     {Discrepancy::Kind::kMissingLateral, "missing-lateral"},
 }};
+static_assert(detail::distinct(kNames));
 
 std::string fixed(double value, int digits) {
   std::ostringstream os;
@@ -29,18 +30,10 @@ std::string fixed(double value, int digits) {
 
 }  // namespace
 
-std::string_view to_string(Discrepancy::Kind kind) {
-  for (const auto& [k, name] : kNames) {
-    if (k == kind) return name;
-  }
-  return "?";
-}
+std::string_view to_string(Discrepancy::Kind kind) { return detail::name_of(kNames, kind); }
 
 std::optional<Discrepancy::Kind> parse_discrepancy_kind(std::string_view name) {
-  for (const auto& [k, n] : kNames) {
-    if (n == name) return k;
-  }
-  return std::nullopt;
+  return detail::value_of(kNames, name);
 }
 
 std::string describe(const Discrepancy& d, const SewerMap& map) {

@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "sewerplan/core/ascii_case.h"
+#include "sewerplan/core/enum_names.h"
 #include "sewerplan/core/map_ascii.h"
 #include "sewerplan/core/map_isybau.h"
 #include "sewerplan/core/map_json.h"
@@ -21,6 +22,14 @@
 
 namespace sewerplan {
 namespace {
+
+constexpr detail::EnumNames<MapFormat, 4> kMapFormats{{
+    {MapFormat::kJson, "json"},
+    {MapFormat::kAscii, "ascii"},
+    {MapFormat::kSwmm, "swmm"},
+    {MapFormat::kIsybau, "isybau"},
+}};
+static_assert(detail::distinct(kMapFormats));
 
 // A SWMM file opens with a "[SECTION]" line, after ';' comments.
 bool looks_like_swmm(std::string_view text) {
@@ -46,26 +55,10 @@ Error read_only(MapFormat format, const std::filesystem::path& path) {
 
 }  // namespace
 
-std::string_view to_string(MapFormat format) {
-  switch (format) {
-    case MapFormat::kJson:
-      return "json";
-    case MapFormat::kAscii:
-      return "ascii";
-    case MapFormat::kSwmm:
-      return "swmm";
-    case MapFormat::kIsybau:
-      return "isybau";
-  }
-  return "json";
-}
+std::string_view to_string(MapFormat format) { return detail::name_of(kMapFormats, format); }
 
 std::optional<MapFormat> map_format_from_name(std::string_view name) {
-  if (name == "json") return MapFormat::kJson;
-  if (name == "ascii") return MapFormat::kAscii;
-  if (name == "swmm") return MapFormat::kSwmm;
-  if (name == "isybau") return MapFormat::kIsybau;
-  return std::nullopt;
+  return detail::value_of(kMapFormats, name);
 }
 
 std::optional<MapFormat> map_format_from_extension(const std::filesystem::path& path) {

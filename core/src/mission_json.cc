@@ -3,6 +3,7 @@
 #include <map>
 #include <set>
 
+#include "sewerplan/core/enum_names.h"
 #include "sewerplan/core/json_fields.h"
 #include "sewerplan/core/message_text.h"
 #include "sewerplan/core/mission.h"
@@ -12,6 +13,17 @@
 
 namespace sewerplan {
 namespace {
+
+// A task's "type": a TaskKind's name (written by mission_text.cc through to_string), or
+// "inspect_area", which a file may hold and which reads as one kInspectPipe task per pipe.
+constexpr detail::EnumNames<TaskKind, 3> kTaskKinds{{
+    {TaskKind::kGoTo, "go_to"},
+    {TaskKind::kInspectPipe, "inspect_pipe"},
+    {TaskKind::kTakeWaterSample, "take_water_sample"},
+}};
+static_assert(detail::distinct(kTaskKinds));
+constexpr std::string_view kInspectArea = "inspect_area";
+static_assert(!detail::value_of(kTaskKinds, kInspectArea));
 
 using Need = JsonFields::Need;
 
@@ -174,8 +186,8 @@ class MissionReader {
     const bool final = f.boolean("final", Need::kOptional).value_or(false);
     auto type = f.string("type");
     if (!type) return;
-    if (*type == "go_to" || *type == "take_water_sample") {
-      const TaskKind kind = *type == "go_to" ? TaskKind::kGoTo : TaskKind::kTakeWaterSample;
+    const std::optional<TaskKind> kind = detail::value_of(kTaskKinds, *type);
+    if (kind == TaskKind::kGoTo || kind == TaskKind::kTakeWaterSample) {
       auto at = f.member("at");
       if (!at) return;
       auto where = place(*at, path + ".at");
@@ -185,12 +197,12 @@ class MissionReader {
                  "task " + name + ": a water sample is taken in a pipe, not in a manhole");
         return;
       }
-      out.push_back({name, kind, *where, final});
-    } else if (*type == "inspect_pipe") {
+      out.push_back({name, *kind, *where, final});
+    } else if (kind == TaskKind::kInspectPipe) {
       if (auto id = pipe(f, "pipe")) {
         out.push_back({name, TaskKind::kInspectPipe, PipeSpot{*id, {}, {}}, final});
       }
-    } else if (*type == "inspect_area") {
+    } else if (*type == kInspectArea) {
       if (final) d_.error(f.where("final"), "task " + name + ": an area cannot be the final task");
       auto array = f.array("pipes");
       if (!array) return;
@@ -279,17 +291,7 @@ const Task& Mission::task(TaskId id) const {
   return tasks[id.index()];
 }
 
-std::string_view to_string(TaskKind kind) {
-  switch (kind) {
-    case TaskKind::kGoTo:
-      return "go_to";
-    case TaskKind::kInspectPipe:
-      return "inspect_pipe";
-    case TaskKind::kTakeWaterSample:
-      return "take_water_sample";
-  }
-  return "go_to";
-}
+std::string_view to_string(TaskKind kind) { return detail::name_of(kTaskKinds, kind); }
 
 Result<Mission> read_mission_json(std::string_view text, const std::string& file_name,
                                   const SewerMap& map, Diagnostics& diagnostics) {

@@ -10,13 +10,12 @@
 #include "sewerplan/core/message_text.h"
 #include "sewerplan/core/text_file.h"
 
+#include "risk_effect_names.h"
+
 namespace sewerplan {
 namespace {
 
 using Need = JsonFields::Need;
-
-constexpr RiskEffect kEffects[] = {RiskEffect::kNone, RiskEffect::kDanger, RiskEffect::kBlockage,
-                                   RiskEffect::kImpassable};
 
 // A fitted rule's evidence ("fit", risk_fit.h): counts, the prior, and the posterior of the mean
 // probability of the findings observed with its credible interval.
@@ -73,14 +72,9 @@ std::optional<RiskRule> read_rule(JsonElement json, const std::string& path,
   }
   rule.characterisation = f.string("characterisation", Need::kOptional).value_or("");
   if (auto effect = f.string("effect")) {
-    bool known = false;
-    for (RiskEffect e : kEffects) {
-      if (to_string(e) == *effect) {
-        rule.effect = e;
-        known = true;
-      }
-    }
-    if (!known) {
+    if (const std::optional<RiskEffect> e = detail::value_of(detail::kRiskEffectNames, *effect)) {
+      rule.effect = *e;
+    } else {
       d.error(f.where("effect"),
               "unknown effect '" + *effect + "' (none, danger, blockage, impassable)");
     }

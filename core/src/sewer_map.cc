@@ -4,9 +4,18 @@
 #include <algorithm>
 
 #include "sewerplan/core/check.h"
+#include "sewerplan/core/enum_names.h"
 
 namespace sewerplan {
 namespace {
+
+constexpr detail::EnumNames<PipeShape, 4> kPipeShapes{{
+    {PipeShape::kCircular, "circular"},
+    {PipeShape::kRectangular, "rectangular"},
+    {PipeShape::kEgg, "egg"},
+    {PipeShape::kOther, "other"},
+}};
+static_assert(detail::distinct(kPipeShapes));
 
 template <class T>
 std::optional<std::uint32_t> find_by_name(const std::vector<std::uint32_t>& sorted,
@@ -25,26 +34,10 @@ std::size_t heap_bytes(const std::string& s) {
 
 }  // namespace
 
-std::string_view to_string(PipeShape shape) {
-  switch (shape) {
-    case PipeShape::kCircular:
-      return "circular";
-    case PipeShape::kRectangular:
-      return "rectangular";
-    case PipeShape::kEgg:
-      return "egg";
-    case PipeShape::kOther:
-      return "other";
-  }
-  return "other";
-}
+std::string_view to_string(PipeShape shape) { return detail::name_of(kPipeShapes, shape); }
 
 std::optional<PipeShape> pipe_shape_from_string(std::string_view name) {
-  for (PipeShape s :
-       {PipeShape::kCircular, PipeShape::kRectangular, PipeShape::kEgg, PipeShape::kOther}) {
-    if (to_string(s) == name) return s;
-  }
-  return std::nullopt;
+  return detail::value_of(kPipeShapes, name);
 }
 
 const Manhole& SewerMap::manhole(ManholeId id) const {

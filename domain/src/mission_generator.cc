@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "sewerplan/core/enum_names.h"
 #include "sewerplan/core/limits.h"
 #include "sewerplan/core/rng.h"
 
@@ -107,26 +108,22 @@ Task make_task(const SewerMap& map, PipeId pipe, std::size_t index, Rng& rng) {
   return t;
 }
 
+// sewerplan::detail in full: domain::detail (graph_search.h) hides it here.
+constexpr sewerplan::detail::EnumNames<MissionSpread, 3> kSpreads{{
+    {MissionSpread::kUniform, "uniform"},
+    {MissionSpread::kClustered, "clustered"},
+    {MissionSpread::kNearExit, "near-exit"},
+}};
+static_assert(sewerplan::detail::distinct(kSpreads));
+
 }  // namespace
 
 std::string_view to_string(MissionSpread spread) {
-  switch (spread) {
-    case MissionSpread::kUniform:
-      return "uniform";
-    case MissionSpread::kClustered:
-      return "clustered";
-    case MissionSpread::kNearExit:
-      return "near-exit";
-  }
-  return "uniform";
+  return sewerplan::detail::name_of(kSpreads, spread);
 }
 
 std::optional<MissionSpread> mission_spread_from_string(std::string_view name) {
-  for (MissionSpread s :
-       {MissionSpread::kUniform, MissionSpread::kClustered, MissionSpread::kNearExit}) {
-    if (to_string(s) == name) return s;
-  }
-  return std::nullopt;
+  return sewerplan::detail::value_of(kSpreads, name);
 }
 
 Result<Mission> generate_mission(const SewerMap& map, const MissionOptions& options) {

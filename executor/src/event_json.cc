@@ -26,14 +26,6 @@ std::optional<PlanResponse::Decision> parse_logged_decision(std::string_view nam
   return parse_decision(name);
 }
 
-std::optional<hal::RobotErrorKind> parse_error_kind(std::string_view name) {
-  for (auto k : {hal::RobotErrorKind::kBlockage, hal::RobotErrorKind::kDanger,
-                 hal::RobotErrorKind::kMalfunction}) {
-    if (hal::to_string(k) == name) return k;
-  }
-  return std::nullopt;
-}
-
 std::optional<RecoveryPhase> parse_phase(std::string_view name) {
   for (const RecoveryManoeuvre& m : kRecoveryManoeuvres) {
     if (m.logged == name) return m.phase;
@@ -108,114 +100,143 @@ std::optional<Event> event_of(const std::string& type, FieldReader& r) {
     r.error("t_s", "out of range: a mission time within " + format_double(kMaxTime_s) + " s");
   }
   e.t_s = std::round(e.t_s * 1000) / 1000;  // as written: to the millisecond
-  if (type == "plan" || type == "replan") {
-    PlanEvent p{.replan = type == "replan"};
-    r.get("reason", p.reason);
-    r.get("planning_ms", p.planning_ms);
-    r.get<PlanResponse::Decision>("decision", p.decision, parse_logged_decision);
-    r.get("goals", p.goals);
-    r.get("dropped", p.dropped);
-    r.get("end", p.end);
-    r.get("steps", p.steps);
-    r.get("cost_s", p.cost_s);
-    r.get<PlanResponse::Rung>("rung", p.rung, parse_rung);
-    r.get("strand_probability", p.strand_probability);
-    e.what = std::move(p);
-  } else if (type == "action") {
-    ActionEvent a;
-    r.get("step", a.step);
-    r.get("kind", a.kind);
-    r.get("duration_s", a.duration_s);
-    r.get("parameters", a.parameters);
-    e.what = std::move(a);
-  } else if (type == "job") {
-    JobEvent j;
-    r.get("job", j.job);
-    r.get("progress_m", j.progress_m);
-    r.get("ok", j.ok);
-    e.what = std::move(j);
-  } else if (type == "error") {
-    ErrorEvent x;
-    r.get<hal::RobotErrorKind>("kind", x.kind, parse_error_kind);
-    r.get("reason", x.reason);
-    r.get("where", x.where);
-    e.what = std::move(x);
-  } else if (type == "recovery") {
-    RecoveryEvent x;
-    r.get<RecoveryPhase>("phase", x.phase, parse_phase);
-    r.get("ok", x.ok);
-    e.what = x;
-  } else if (type == "failure") {
-    FailureEvent f;
-    r.get<Failure::Kind>("kind", f.kind, parse_failure_kind);
-    if (r.has("pipe")) {
-      FailureEvent::InPipe in;
-      r.get("pipe", in.pipe);
-      r.get("offset_m", in.offset_m);
-      f.where = std::move(in);
-    } else if (r.has("manhole")) {
-      FailureEvent::Passage p;
-      r.get("manhole", p.manhole);
-      r.get("from_slot", p.from_slot);
-      r.get("to_slot", p.to_slot);
-      f.where = std::move(p);
+  const std::optional<detail::EventType> kind = detail::parse_event_type(type);
+  if (!kind) return std::nullopt;
+  using detail::EventType;
+  switch (*kind) {
+    case EventType::kPlan:
+    case EventType::kReplan: {
+      PlanEvent p{.replan = *kind == EventType::kReplan};
+      r.get("reason", p.reason);
+      r.get("planning_ms", p.planning_ms);
+      r.get<PlanResponse::Decision>("decision", p.decision, parse_logged_decision);
+      r.get("goals", p.goals);
+      r.get("dropped", p.dropped);
+      r.get("end", p.end);
+      r.get("steps", p.steps);
+      r.get("cost_s", p.cost_s);
+      r.get<PlanResponse::Rung>("rung", p.rung, parse_rung);
+      r.get("strand_probability", p.strand_probability);
+      e.what = std::move(p);
+      break;
     }
-    r.get("detail", f.detail);
-    e.what = std::move(f);
-  } else if (type == "task_done") {
-    TaskDoneEvent t;
-    r.get("task", t.task);
-    e.what = std::move(t);
-  } else if (type == "task_dropped") {
-    TaskDroppedEvent t;
-    r.get("task", t.task);
-    r.get("reason", t.reason);
-    e.what = std::move(t);
-  } else if (type == "reserve") {
-    ReserveEvent x;
-    r.get("end", x.end);
-    r.get("energy_wh", x.energy_wh);
-    r.get("left_wh", x.left_wh);
-    r.get("reserve_wh", x.reserve_wh);
-    e.what = std::move(x);
-  } else if (type == "arrival") {
-    ArrivalEvent a;
-    r.get("expected", a.expected);
-    r.get("check", a.check);
-    r.get("probability", a.probability);
-    r.get("believed", a.believed);
-    r.get("manhole", a.manhole);
-    r.get("observed", a.observed);
-    r.get("reason", a.reason);
-    e.what = std::move(a);
-  } else if (type == "hazard") {
-    HazardEvent h;
-    r.get("pipe", h.pipe);
-    r.get("offset_m", h.offset_m);
-    r.get("reason", h.reason);
-    r.get<HazardEvent::Observed>("observed", h.observed, parse_hazard_observed);
-    r.get("probability_before", h.probability_before);
-    r.get("probability", h.probability);
-    r.get("passes", h.passes);
-    e.what = std::move(h);
-  } else if (type == "beacon") {
-    BeaconEvent b;
-    r.get("reason", b.reason);
-    r.get<hal::BeaconState>("state", b.state, hal::parse_beacon_state);
-    e.what = std::move(b);
-  } else if (type == "mission_end") {
-    MissionEndEvent m;
-    r.get<MissionOutcome>("outcome", m.outcome, parse_mission_outcome);
-    r.get("end", m.end);
-    r.get("tasks_done", m.tasks_done);
-    r.get("energy_wh", m.energy_wh);
-    r.get("replans", m.replans);
-    r.get<PlanResponse::Decision>("decision", m.decision, parse_logged_decision);
-    r.get<BeaconCause>("beacon_cause", m.beacon_cause, parse_beacon_cause);
-    r.get<hal::BeaconState>("beacon", m.beacon, hal::parse_beacon_state);
-    e.what = std::move(m);
-  } else {
-    return std::nullopt;
+    case EventType::kAction: {
+      ActionEvent a;
+      r.get("step", a.step);
+      r.get("kind", a.kind);
+      r.get("duration_s", a.duration_s);
+      r.get("parameters", a.parameters);
+      e.what = std::move(a);
+      break;
+    }
+    case EventType::kJob: {
+      JobEvent j;
+      r.get("job", j.job);
+      r.get("progress_m", j.progress_m);
+      r.get("ok", j.ok);
+      e.what = std::move(j);
+      break;
+    }
+    case EventType::kError: {
+      ErrorEvent x;
+      r.get<hal::RobotErrorKind>("kind", x.kind, hal::parse_robot_error_kind);
+      r.get("reason", x.reason);
+      r.get("where", x.where);
+      e.what = std::move(x);
+      break;
+    }
+    case EventType::kRecovery: {
+      RecoveryEvent x;
+      r.get<RecoveryPhase>("phase", x.phase, parse_phase);
+      r.get("ok", x.ok);
+      e.what = x;
+      break;
+    }
+    case EventType::kFailure: {
+      FailureEvent f;
+      r.get<Failure::Kind>("kind", f.kind, parse_failure_kind);
+      if (r.has("pipe")) {
+        FailureEvent::InPipe in;
+        r.get("pipe", in.pipe);
+        r.get("offset_m", in.offset_m);
+        f.where = std::move(in);
+      } else if (r.has("manhole")) {
+        FailureEvent::Passage p;
+        r.get("manhole", p.manhole);
+        r.get("from_slot", p.from_slot);
+        r.get("to_slot", p.to_slot);
+        f.where = std::move(p);
+      }
+      r.get("detail", f.detail);
+      e.what = std::move(f);
+      break;
+    }
+    case EventType::kTaskDone: {
+      TaskDoneEvent t;
+      r.get("task", t.task);
+      e.what = std::move(t);
+      break;
+    }
+    case EventType::kTaskDropped: {
+      TaskDroppedEvent t;
+      r.get("task", t.task);
+      r.get("reason", t.reason);
+      e.what = std::move(t);
+      break;
+    }
+    case EventType::kReserve: {
+      ReserveEvent x;
+      r.get("end", x.end);
+      r.get("energy_wh", x.energy_wh);
+      r.get("left_wh", x.left_wh);
+      r.get("reserve_wh", x.reserve_wh);
+      e.what = std::move(x);
+      break;
+    }
+    case EventType::kArrival: {
+      ArrivalEvent a;
+      r.get("expected", a.expected);
+      r.get("check", a.check);
+      r.get("probability", a.probability);
+      r.get("believed", a.believed);
+      r.get("manhole", a.manhole);
+      r.get("observed", a.observed);
+      r.get("reason", a.reason);
+      e.what = std::move(a);
+      break;
+    }
+    case EventType::kHazard: {
+      HazardEvent h;
+      r.get("pipe", h.pipe);
+      r.get("offset_m", h.offset_m);
+      r.get("reason", h.reason);
+      r.get<HazardEvent::Observed>("observed", h.observed, parse_hazard_observed);
+      r.get("probability_before", h.probability_before);
+      r.get("probability", h.probability);
+      r.get("passes", h.passes);
+      e.what = std::move(h);
+      break;
+    }
+    case EventType::kBeacon: {
+      BeaconEvent b;
+      r.get("reason", b.reason);
+      r.get<hal::BeaconState>("state", b.state, hal::parse_beacon_state);
+      e.what = std::move(b);
+      break;
+    }
+    case EventType::kMissionEnd: {
+      MissionEndEvent m;
+      r.get<MissionOutcome>("outcome", m.outcome, parse_mission_outcome);
+      r.get("end", m.end);
+      r.get("tasks_done", m.tasks_done);
+      r.get("energy_wh", m.energy_wh);
+      r.get("replans", m.replans);
+      r.get<PlanResponse::Decision>("decision", m.decision, parse_logged_decision);
+      r.get<BeaconCause>("beacon_cause", m.beacon_cause, parse_beacon_cause);
+      r.get<hal::BeaconState>("beacon", m.beacon, hal::parse_beacon_state);
+      e.what = std::move(m);
+      break;
+    }
   }
   return e;
 }

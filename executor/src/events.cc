@@ -5,21 +5,22 @@
 #include <array>
 #include <utility>
 
+#include "sewerplan/core/enum_names.h"
 #include "sewerplan/core/overloaded.h"
 
-#include "enum_names.h"
 #include "event_fields.h"
 
 namespace sewerplan::executor {
 namespace {
 
-constexpr detail::EnumNames<MissionOutcome, 3> kOutcomes{{
+// sewerplan::detail in full: executor::detail (event_fields.h) hides it here.
+constexpr sewerplan::detail::EnumNames<MissionOutcome, 3> kOutcomes{{
     {MissionOutcome::kEnded, "ended"},
     {MissionOutcome::kBeacon, "beacon"},
     {MissionOutcome::kHalted, "halted"},
 }};
 
-constexpr detail::EnumNames<BeaconCause, 6> kBeaconCauses{{
+constexpr sewerplan::detail::EnumNames<BeaconCause, 6> kBeaconCauses{{
     {BeaconCause::kNone, "none"},
     {BeaconCause::kNoExit, "no-exit"},
     {BeaconCause::kStuck, "stuck"},
@@ -28,54 +29,84 @@ constexpr detail::EnumNames<BeaconCause, 6> kBeaconCauses{{
     {BeaconCause::kLimit, "limit"},
 }};
 
-constexpr detail::EnumNames<HazardEvent::Observed, 2> kObserved{{
+constexpr sewerplan::detail::EnumNames<HazardEvent::Observed, 2> kObserved{{
     {HazardEvent::Observed::kPassed, "passed"},
     {HazardEvent::Observed::kBlocked, "blocked"},
 }};
 
-static_assert(detail::distinct(kOutcomes) && detail::distinct(kBeaconCauses) &&
-              detail::distinct(kObserved));
+// The event log's `type` names (event_fields.h).
+constexpr sewerplan::detail::EnumNames<detail::EventType, 14> kEventTypes{{
+    {detail::EventType::kPlan, "plan"},
+    {detail::EventType::kReplan, "replan"},
+    {detail::EventType::kAction, "action"},
+    {detail::EventType::kJob, "job"},
+    {detail::EventType::kError, "error"},
+    {detail::EventType::kRecovery, "recovery"},
+    {detail::EventType::kFailure, "failure"},
+    {detail::EventType::kTaskDone, "task_done"},
+    {detail::EventType::kTaskDropped, "task_dropped"},
+    {detail::EventType::kReserve, "reserve"},
+    {detail::EventType::kArrival, "arrival"},
+    {detail::EventType::kHazard, "hazard"},
+    {detail::EventType::kBeacon, "beacon"},
+    {detail::EventType::kMissionEnd, "mission_end"},
+}};
+
+static_assert(sewerplan::detail::distinct(kEventTypes) && sewerplan::detail::distinct(kOutcomes) &&
+              sewerplan::detail::distinct(kBeaconCauses) && sewerplan::detail::distinct(kObserved));
 
 std::string text(std::string_view s) { return std::string(s); }
 
 }  // namespace
 
-std::string_view to_string(MissionOutcome outcome) { return detail::name_of(kOutcomes, outcome); }
-std::optional<MissionOutcome> parse_mission_outcome(std::string_view name) {
-  return detail::value_of(kOutcomes, name);
+std::string_view to_string(MissionOutcome outcome) {
+  return sewerplan::detail::name_of(kOutcomes, outcome);
 }
-std::string_view to_string(BeaconCause cause) { return detail::name_of(kBeaconCauses, cause); }
+std::optional<MissionOutcome> parse_mission_outcome(std::string_view name) {
+  return sewerplan::detail::value_of(kOutcomes, name);
+}
+std::string_view to_string(BeaconCause cause) {
+  return sewerplan::detail::name_of(kBeaconCauses, cause);
+}
 std::optional<BeaconCause> parse_beacon_cause(std::string_view name) {
-  return detail::value_of(kBeaconCauses, name);
+  return sewerplan::detail::value_of(kBeaconCauses, name);
 }
 
 std::string_view to_string(HazardEvent::Observed observed) {
-  return detail::name_of(kObserved, observed);
+  return sewerplan::detail::name_of(kObserved, observed);
 }
 std::optional<HazardEvent::Observed> parse_hazard_observed(std::string_view name) {
-  return detail::value_of(kObserved, name);
+  return sewerplan::detail::value_of(kObserved, name);
 }
 
-std::string_view type_name(const Event& event) {
-  return std::visit(
-      Overloaded{
-          [](const PlanEvent& e) -> std::string_view { return e.replan ? "replan" : "plan"; },
-          [](const ActionEvent&) -> std::string_view { return "action"; },
-          [](const JobEvent&) -> std::string_view { return "job"; },
-          [](const ErrorEvent&) -> std::string_view { return "error"; },
-          [](const RecoveryEvent&) -> std::string_view { return "recovery"; },
-          [](const FailureEvent&) -> std::string_view { return "failure"; },
-          [](const TaskDoneEvent&) -> std::string_view { return "task_done"; },
-          [](const TaskDroppedEvent&) -> std::string_view { return "task_dropped"; },
-          [](const ReserveEvent&) -> std::string_view { return "reserve"; },
-          [](const ArrivalEvent&) -> std::string_view { return "arrival"; },
-          [](const HazardEvent&) -> std::string_view { return "hazard"; },
-          [](const BeaconEvent&) -> std::string_view { return "beacon"; },
-          [](const MissionEndEvent&) -> std::string_view { return "mission_end"; }},
-      event.what);
-}
+std::string_view type_name(const Event& event) { return to_string(detail::type_of(event)); }
 
 namespace detail {
+
+EventType type_of(const Event& event) {
+  return std::visit(Overloaded{[](const PlanEvent& e) {
+                                 return e.replan ? EventType::kReplan : EventType::kPlan;
+                               },
+                               [](const ActionEvent&) { return EventType::kAction; },
+                               [](const JobEvent&) { return EventType::kJob; },
+                               [](const ErrorEvent&) { return EventType::kError; },
+                               [](const RecoveryEvent&) { return EventType::kRecovery; },
+                               [](const FailureEvent&) { return EventType::kFailure; },
+                               [](const TaskDoneEvent&) { return EventType::kTaskDone; },
+                               [](const TaskDroppedEvent&) { return EventType::kTaskDropped; },
+                               [](const ReserveEvent&) { return EventType::kReserve; },
+                               [](const ArrivalEvent&) { return EventType::kArrival; },
+                               [](const HazardEvent&) { return EventType::kHazard; },
+                               [](const BeaconEvent&) { return EventType::kBeacon; },
+                               [](const MissionEndEvent&) { return EventType::kMissionEnd; }},
+                    event.what);
+}
+
+std::string_view to_string(EventType type) { return sewerplan::detail::name_of(kEventTypes, type); }
+
+std::optional<EventType> parse_event_type(std::string_view name) {
+  return sewerplan::detail::value_of(kEventTypes, name);
+}
 
 Fields fields_of(const Event& event) {
   using I = std::int64_t;

@@ -10,10 +10,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "sewerplan/core/enum_names.h"
 #include "sewerplan/core/json_fields.h"
 #include "sewerplan/core/text_file.h"
-
-#include "enum_names.h"
 
 namespace sewerplan::executor {
 namespace {

@@ -7,9 +7,8 @@
 #include <limits>
 #include <sstream>
 
+#include "sewerplan/core/enum_names.h"
 #include "sewerplan/domain/validator.h"
-
-#include "enum_names.h"
 
 namespace sewerplan::executor {
 namespace {

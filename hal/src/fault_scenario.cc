@@ -5,10 +5,25 @@
 #include <iomanip>
 #include <sstream>
 
+#include "sewerplan/core/enum_names.h"
 #include "sewerplan/core/rng.h"
 
 namespace sewerplan::hal {
 namespace {
+
+// The kinds as a faults file names them (docs/simulation.md).
+constexpr detail::EnumNames<ObstacleKind, 3> kObstacleKinds{{
+    {ObstacleKind::kTransientLift, "transient_lift"},
+    {ObstacleKind::kTransientPush, "transient_push"},
+    {ObstacleKind::kPermanent, "permanent"},
+}};
+
+constexpr detail::EnumNames<MalfunctionKind, 2> kMalfunctionKinds{{
+    {MalfunctionKind::kTransient, "transient"},
+    {MalfunctionKind::kPermanent, "permanent"},
+}};
+
+static_assert(detail::distinct(kObstacleKinds) && detail::distinct(kMalfunctionKinds));
 
 class StreamFormat {
  public:
@@ -93,41 +108,18 @@ Result<void> check_options(const RandomFaultOptions& o) {
 
 }  // namespace
 
-std::string_view to_string(ObstacleKind kind) {
-  switch (kind) {
-    case ObstacleKind::kTransientLift:
-      return "transient_lift";
-    case ObstacleKind::kTransientPush:
-      return "transient_push";
-    case ObstacleKind::kPermanent:
-      return "permanent";
-  }
-  return "permanent";
-}
+std::string_view to_string(ObstacleKind kind) { return detail::name_of(kObstacleKinds, kind); }
 
 std::optional<ObstacleKind> obstacle_kind_from_string(std::string_view name) {
-  for (ObstacleKind kind :
-       {ObstacleKind::kTransientLift, ObstacleKind::kTransientPush, ObstacleKind::kPermanent}) {
-    if (to_string(kind) == name) return kind;
-  }
-  return std::nullopt;
+  return detail::value_of(kObstacleKinds, name);
 }
 
 std::string_view to_string(MalfunctionKind kind) {
-  switch (kind) {
-    case MalfunctionKind::kTransient:
-      return "transient";
-    case MalfunctionKind::kPermanent:
-      return "permanent";
-  }
-  return "permanent";
+  return detail::name_of(kMalfunctionKinds, kind);
 }
 
 std::optional<MalfunctionKind> malfunction_kind_from_string(std::string_view name) {
-  for (MalfunctionKind kind : {MalfunctionKind::kTransient, MalfunctionKind::kPermanent}) {
-    if (to_string(kind) == name) return kind;
-  }
-  return std::nullopt;
+  return detail::value_of(kMalfunctionKinds, name);
 }
 
 bool FaultScenario::empty() const {

@@ -1,72 +1,73 @@
 // SPDX-License-Identifier: MIT
 #include "sewerplan/hal/robot.h"
 
+#include "sewerplan/core/enum_names.h"
+
 namespace sewerplan::hal {
+namespace {
 
-std::string_view to_string(RobotErrorKind kind) {
-  switch (kind) {
-    case RobotErrorKind::kBlockage:
-      return "blockage";
-    case RobotErrorKind::kDanger:
-      return "danger";
-    case RobotErrorKind::kMalfunction:
-      return "malfunction";
+// The names events, logs and the CAN tools print (robot.h); the bus carries codes, not these
+// (can/wire_codes.h).
+constexpr detail::EnumNames<RobotErrorKind, 3> kErrorKinds{{
+    {RobotErrorKind::kBlockage, "blockage"},
+    {RobotErrorKind::kDanger, "danger"},
+    {RobotErrorKind::kMalfunction, "malfunction"},
+}};
+
+constexpr detail::EnumNames<RobotErrorCause, kRobotErrorCauses> kErrorCauses{{
+    {RobotErrorCause::kObstacle, "obstacle"},
+    {RobotErrorCause::kBlindEnd, "blind-end"},
+    {RobotErrorCause::kNoManholeSeen, "no-manhole-seen"},
+    {RobotErrorCause::kOtherBlockage, "blockage"},
+    {RobotErrorCause::kDangerSpot, "danger-spot"},
+    {RobotErrorCause::kDangerousPassage, "dangerous-passage"},
+    {RobotErrorCause::kOtherDanger, "danger"},
+    {RobotErrorCause::kFault, "fault"},
+    {RobotErrorCause::kBatteryEmpty, "battery-empty"},
+    {RobotErrorCause::kInvalidJob, "invalid-job"},
+    {RobotErrorCause::kEmergencyStop, "emergency-stop"},
+    {RobotErrorCause::kLink, "link"},
+    {RobotErrorCause::kOtherMalfunction, "malfunction"},
+}};
+
+constexpr detail::EnumNames<BeaconState, 4> kBeaconStates{{
+    {BeaconState::kNone, "none"},
+    {BeaconState::kConfirmed, "confirmed"},
+    {BeaconState::kUnconfirmed, "unconfirmed"},
+    {BeaconState::kNotSent, "not-sent"},
+}};
+
+// kRobotErrorCauses distinct rows: every cause has its name.
+static_assert(detail::distinct(kErrorKinds) && detail::distinct(kErrorCauses) &&
+              detail::distinct(kBeaconStates));
+
+// A kOther* cause is named as its kind: an error typed no further reads as the kind alone.
+constexpr bool other_causes_named_as_their_kinds() {
+  for (const auto& [kind, name] : kErrorKinds) {
+    if (detail::name_of(kErrorCauses, other_cause(kind)) != name) return false;
   }
-  return "malfunction";
+  return true;
+}
+static_assert(other_causes_named_as_their_kinds());
+
+}  // namespace
+
+std::string_view to_string(RobotErrorKind kind) { return detail::name_of(kErrorKinds, kind); }
+
+std::optional<RobotErrorKind> parse_robot_error_kind(std::string_view name) {
+  return detail::value_of(kErrorKinds, name);
 }
 
-std::string_view to_string(RobotErrorCause cause) {
-  switch (cause) {
-    case RobotErrorCause::kObstacle:
-      return "obstacle";
-    case RobotErrorCause::kBlindEnd:
-      return "blind-end";
-    case RobotErrorCause::kNoManholeSeen:
-      return "no-manhole-seen";
-    case RobotErrorCause::kOtherBlockage:
-      return "blockage";
-    case RobotErrorCause::kDangerSpot:
-      return "danger-spot";
-    case RobotErrorCause::kDangerousPassage:
-      return "dangerous-passage";
-    case RobotErrorCause::kOtherDanger:
-      return "danger";
-    case RobotErrorCause::kFault:
-      return "fault";
-    case RobotErrorCause::kBatteryEmpty:
-      return "battery-empty";
-    case RobotErrorCause::kInvalidJob:
-      return "invalid-job";
-    case RobotErrorCause::kEmergencyStop:
-      return "emergency-stop";
-    case RobotErrorCause::kLink:
-      return "link";
-    case RobotErrorCause::kOtherMalfunction:
-      return "malfunction";
-  }
-  return "malfunction";
+std::string_view to_string(RobotErrorCause cause) { return detail::name_of(kErrorCauses, cause); }
+
+std::optional<RobotErrorCause> parse_robot_error_cause(std::string_view name) {
+  return detail::value_of(kErrorCauses, name);
 }
 
-std::string_view to_string(BeaconState state) {
-  switch (state) {
-    case BeaconState::kNone:
-      return "none";
-    case BeaconState::kConfirmed:
-      return "confirmed";
-    case BeaconState::kUnconfirmed:
-      return "unconfirmed";
-    case BeaconState::kNotSent:
-      return "not-sent";
-  }
-  return "none";
-}
+std::string_view to_string(BeaconState state) { return detail::name_of(kBeaconStates, state); }
 
 std::optional<BeaconState> parse_beacon_state(std::string_view name) {
-  for (BeaconState s : {BeaconState::kNone, BeaconState::kConfirmed, BeaconState::kUnconfirmed,
-                        BeaconState::kNotSent}) {
-    if (to_string(s) == name) return s;
-  }
-  return std::nullopt;
+  return detail::value_of(kBeaconStates, name);
 }
 
 std::ostream& operator<<(std::ostream& os, const RobotError& error) {

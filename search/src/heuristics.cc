@@ -2,6 +2,7 @@
 // h_max, h_add, FF and blind: the heuristics of heuristic.h.
 #include <algorithm>
 
+#include "sewerplan/core/enum_names.h"
 #include "sewerplan/search/heuristic.h"
 
 #include "relaxed_task.h"
@@ -102,28 +103,23 @@ class FfHeuristic final : public Heuristic {
   std::vector<std::uint32_t> stack_;
 };
 
+// sewerplan::detail in full: search::detail (relaxed_task.h) hides it here.
+constexpr sewerplan::detail::EnumNames<HeuristicKind, 4> kHeuristicKinds{{
+    {HeuristicKind::kFf, "ff"},
+    {HeuristicKind::kAdd, "add"},
+    {HeuristicKind::kMax, "max"},
+    {HeuristicKind::kBlind, "blind"},
+}};
+static_assert(sewerplan::detail::distinct(kHeuristicKinds));
+
 }  // namespace
 
 std::string_view to_string(HeuristicKind kind) {
-  switch (kind) {
-    case HeuristicKind::kFf:
-      return "ff";
-    case HeuristicKind::kAdd:
-      return "add";
-    case HeuristicKind::kMax:
-      return "max";
-    case HeuristicKind::kBlind:
-      return "blind";
-  }
-  return "ff";
+  return sewerplan::detail::name_of(kHeuristicKinds, kind);
 }
 
 std::optional<HeuristicKind> heuristic_from_string(std::string_view name) {
-  for (HeuristicKind k :
-       {HeuristicKind::kFf, HeuristicKind::kAdd, HeuristicKind::kMax, HeuristicKind::kBlind}) {
-    if (to_string(k) == name) return k;
-  }
-  return std::nullopt;
+  return sewerplan::detail::value_of(kHeuristicKinds, name);
 }
 
 std::unique_ptr<Heuristic> make_heuristic(HeuristicKind kind, const domain::CompiledTask& task) {

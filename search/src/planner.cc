@@ -8,6 +8,7 @@
 #include <optional>
 #include <sstream>
 
+#include "sewerplan/core/enum_names.h"
 #include "sewerplan/search/best_first_search.h"
 #include "sewerplan/search/enforced_hill_climbing.h"
 #include "sewerplan/search/portfolio.h"
@@ -15,30 +16,27 @@
 
 namespace sewerplan::search {
 
+namespace {
+
+// sewerplan::detail in full, as everywhere in search, which has a detail namespace of its own.
+constexpr sewerplan::detail::EnumNames<Algorithm, 6> kAlgorithms{{
+    {Algorithm::kAuto, "auto"},
+    {Algorithm::kEhc, "ehc"},
+    {Algorithm::kGbfs, "gbfs"},
+    {Algorithm::kWeightedAstar, "wastar"},
+    {Algorithm::kAstar, "astar"},
+    {Algorithm::kExact, "exact"},
+}};
+static_assert(sewerplan::detail::distinct(kAlgorithms));
+
+}  // namespace
+
 std::string_view to_string(Algorithm algorithm) {
-  switch (algorithm) {
-    case Algorithm::kAuto:
-      return "auto";
-    case Algorithm::kEhc:
-      return "ehc";
-    case Algorithm::kGbfs:
-      return "gbfs";
-    case Algorithm::kWeightedAstar:
-      return "wastar";
-    case Algorithm::kAstar:
-      return "astar";
-    case Algorithm::kExact:
-      return "exact";
-  }
-  return "ehc";
+  return sewerplan::detail::name_of(kAlgorithms, algorithm);
 }
 
 std::optional<Algorithm> algorithm_from_string(std::string_view name) {
-  for (Algorithm a : {Algorithm::kAuto, Algorithm::kEhc, Algorithm::kGbfs,
-                      Algorithm::kWeightedAstar, Algorithm::kAstar, Algorithm::kExact}) {
-    if (to_string(a) == name) return a;
-  }
-  return std::nullopt;
+  return sewerplan::detail::value_of(kAlgorithms, name);
 }
 
 Algorithm resolve(Algorithm algorithm, const domain::CompiledTask& task) {

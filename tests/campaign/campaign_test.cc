@@ -20,6 +20,7 @@
 #include "sewerplan/executor/events.h"
 
 #include "support/ais_testbed.h"
+#include "support/enum_round_trip.h"
 
 namespace sewerplan::campaign {
 namespace {
@@ -53,6 +54,14 @@ fs::path temp_dir(const std::string& name) {
   const fs::path dir = fs::temp_directory_path() / ("sewerplan-campaign-test-" + name);
   fs::remove_all(dir);
   return dir;
+}
+
+TEST(CampaignNames, EveryValueRoundTripsThroughItsNameAndBack) {
+  testing::expect_round_trip(
+      {Outcome::kExit, Outcome::kEndPoint, Outcome::kBeacon, Outcome::kStranded},
+      outcome_from_string);
+  testing::expect_round_trip({Policy::kOurs, Policy::kBaseline, Policy::kRiskAware},
+                             policy_from_string);
 }
 
 TEST(Campaign, TheSameSeedGivesTheSameRunsWithAnyNumberOfJobs) {
@@ -433,7 +442,19 @@ TEST(Campaign, RecordsReadBackAndBadLinesNameFileLineAndField) {
     ASSERT_TRUE(back.has_value()) << back.error().message;
     EXPECT_EQ(run_json_line(*back), run_json_line(r));
   }
-  Result<RunRecord> bad = parse_run_line("{\"run\": 1}", "runs.jsonl", 7);
+  // Every status reads back as itself (an ok run's above); a status not ours is an error.
+  for (RunRecord::Status status : {RunRecord::Status::kCrash, RunRecord::Status::kHang}) {
+    const RunRecord failed{.index = 1, .seed = 7, .status = status, .detail = "x", .wall_s = 1};
+    Result<RunRecord> back = parse_run_line(run_json_line(failed), "runs.jsonl", 2);
+    ASSERT_TRUE(back.has_value()) << back.error().message;
+    EXPECT_EQ(*back, failed) << run_json_line(failed);
+  }
+  Result<RunRecord> bad = parse_run_line(
+      R"({"run": 1, "seed": "1", "status": "lost", "measured": {"wall_s": 1}})", "runs.jsonl", 6);
+  ASSERT_FALSE(bad.has_value());
+  EXPECT_THAT(bad.error().message,
+              ::testing::HasSubstr("runs.jsonl:6:$.status: error: unknown status 'lost'"));
+  bad = parse_run_line("{\"run\": 1}", "runs.jsonl", 7);
   ASSERT_FALSE(bad.has_value());
   EXPECT_EQ(bad.error().message,
             "runs.jsonl:7:$: error: missing required field 'seed'\n"

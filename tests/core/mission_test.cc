@@ -74,6 +74,30 @@ TEST_F(MissionTest, RoundTripsThroughJson) {
   EXPECT_EQ(*again, *m);
 }
 
+// Each task kind is written by its name (to_string) and read back as itself; its name is read
+// exactly.
+TEST_F(MissionTest, EveryTaskKindRoundTripsThroughItsName) {
+  Result<Mission> m = read(R"({"format": "sewerplan-mission", "version": 1,
+    "start": {"manhole": "M1"},
+    "tasks": [{"type": "go_to", "at": {"manhole": "M6"}},
+              {"type": "inspect_pipe", "pipe": "P4"},
+              {"type": "take_water_sample", "at": {"pipe": "P6", "offset_m": 1.5}}]})");
+  ASSERT_TRUE(m.has_value()) << m.error();
+  ASSERT_EQ(m->tasks.size(), 3U);
+  EXPECT_EQ(m->tasks[0].kind, TaskKind::kGoTo);
+  EXPECT_EQ(m->tasks[1].kind, TaskKind::kInspectPipe);
+  EXPECT_EQ(m->tasks[2].kind, TaskKind::kTakeWaterSample);
+  std::ostringstream out;
+  write_mission_json(*m, map_, out);
+  Result<Mission> again = read(out.str());
+  ASSERT_TRUE(again.has_value()) << again.error() << "\n" << out.str();
+  EXPECT_EQ(*again, *m);
+  Result<Mission> bad = read(R"({"format": "sewerplan-mission", "version": 1,
+    "start": {"manhole": "M1"}, "tasks": [{"type": "Go_To", "at": {"manhole": "M6"}}]})");
+  ASSERT_FALSE(bad.has_value());
+  EXPECT_THAT(bad.error().message, HasSubstr("m.json:$.tasks[0].type: error: unknown task type"));
+}
+
 TEST_F(MissionTest, NamesEveryUnknownObjectByJsonPath) {
   Result<Mission> m = read(R"({"format": "sewerplan-mission", "version": 1,
     "start": {"pipe": "P99"},

@@ -9,6 +9,8 @@
 #include "sewerplan/core/generator.h"
 #include "sewerplan/domain/compile.h"
 
+#include "support/enum_round_trip.h"
+
 namespace sewerplan::domain {
 namespace {
 
@@ -41,6 +43,12 @@ TEST(MissionGenerator, EverySpreadGivesDistinctPipesAndTheSameMissionForTheSameS
     EXPECT_EQ(mission_spread_from_string(to_string(spread)), spread);
   }
   EXPECT_FALSE(mission_spread_from_string("everywhere").has_value());
+}
+
+TEST(MissionGenerator, EverySpreadRoundTripsThroughItsNameAndBack) {
+  testing::expect_round_trip(
+      {MissionSpread::kUniform, MissionSpread::kClustered, MissionSpread::kNearExit},
+      mission_spread_from_string);
 }
 
 // Uniform tasks lie all over the robot's range: routing between them covers far more of the

@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <fstream>
-#include <set>
 #include <sstream>
 
 #include <gtest/gtest.h>
@@ -14,6 +13,8 @@
 #include "sewerplan/executor/events.h"
 #include "sewerplan/executor/replanner.h"
 
+#include "event_fields.h"
+#include "support/enum_round_trip.h"
 #include "support/paths.h"
 
 namespace sewerplan::executor {
@@ -26,23 +27,7 @@ std::string file_text(const std::filesystem::path& path) {
   return text.str();
 }
 
-// Every value of an enum the logs carry has its own name, and its name parses back to it; other
-// text parses to nothing. A value left out of its name table (enum_names.h) fails here.
-template <class Enum, class Parse>
-void expect_round_trip(std::initializer_list<Enum> values, Parse parse) {
-  std::set<std::string_view> names;
-  for (Enum value : values) {
-    const std::string_view name = to_string(value);
-    SCOPED_TRACE(std::string(name));
-    EXPECT_FALSE(name.empty());
-    EXPECT_TRUE(names.insert(name).second) << "two values named '" << name << "'";
-    const std::optional<Enum> back = parse(name);
-    ASSERT_TRUE(back.has_value());
-    EXPECT_EQ(*back, value);
-  }
-  EXPECT_FALSE(parse("").has_value());
-  EXPECT_FALSE(parse("no such name").has_value());
-}
+using testing::expect_round_trip;
 
 TEST(EnumNames, EveryValueRoundTripsThroughItsNameAndBack) {
   expect_round_trip({MissionOutcome::kEnded, MissionOutcome::kBeacon, MissionOutcome::kHalted},
@@ -64,6 +49,23 @@ TEST(EnumNames, EveryValueRoundTripsThroughItsNameAndBack) {
                      PlanResponse::Rung::kCurrentPlan, PlanResponse::Rung::kRepairedPlan,
                      PlanResponse::Rung::kGreedy, PlanResponse::Rung::kNearestExit},
                     parse_rung);
+}
+
+TEST(EnumNames, EveryEventTypeRoundTripsThroughItsNameAndBack) {
+  using detail::EventType;
+  expect_round_trip(
+      {EventType::kPlan, EventType::kReplan, EventType::kAction, EventType::kJob, EventType::kError,
+       EventType::kRecovery, EventType::kFailure, EventType::kTaskDone, EventType::kTaskDropped,
+       EventType::kReserve, EventType::kArrival, EventType::kHazard, EventType::kBeacon,
+       EventType::kMissionEnd},
+      detail::parse_event_type);
+}
+
+TEST(EnumNames, AnEventIsNamedByItsType) {
+  EXPECT_EQ(type_name(Event{.what = PlanEvent{.replan = false}}), "plan");
+  EXPECT_EQ(type_name(Event{.what = PlanEvent{.replan = true}}), "replan");
+  EXPECT_EQ(type_name(Event{.what = TaskDoneEvent{}}), "task_done");
+  EXPECT_EQ(type_name(Event{.what = MissionEndEvent{}}), "mission_end");
 }
 
 class EventLogFile : public ::testing::TestWithParam<const char*> {};

@@ -9,6 +9,7 @@
 #include "sewerplan/core/limits.h"
 
 #include "support/ais_testbed.h"
+#include "support/enum_round_trip.h"
 #include "support/paths.h"
 #include "support/small_map.h"
 
@@ -264,6 +265,14 @@ TEST_F(FaultScenarioTest, AMissingFileIsAnIoError) {
   Result<FaultScenario> f = read_faults("/nonexistent/faults.json", map_, d);
   ASSERT_FALSE(f.has_value());
   EXPECT_EQ(f.error().code, ErrorCode::kIo);
+}
+
+TEST(FaultKindNames, EveryValueRoundTripsThroughItsNameAndBack) {
+  testing::expect_round_trip(
+      {ObstacleKind::kTransientLift, ObstacleKind::kTransientPush, ObstacleKind::kPermanent},
+      obstacle_kind_from_string);
+  testing::expect_round_trip({MalfunctionKind::kTransient, MalfunctionKind::kPermanent},
+                             malfunction_kind_from_string);
 }
 
 }  // namespace

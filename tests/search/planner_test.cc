@@ -12,7 +12,9 @@
 #include "sewerplan/core/map_io.h"
 #include "sewerplan/domain/mission_generator.h"
 #include "sewerplan/domain/validator.h"
+#include "sewerplan/search/heuristic.h"
 
+#include "support/enum_round_trip.h"
 #include "support/paths.h"
 #include "support/ticking_clock.h"
 
@@ -25,6 +27,15 @@ using domain::InspectPipe;
 using domain::PlanStep;
 using domain::TakeWaterSample;
 using ::testing::HasSubstr;
+
+TEST(SearchNames, EveryAlgorithmAndHeuristicRoundTripsThroughItsNameAndBack) {
+  testing::expect_round_trip({Algorithm::kAuto, Algorithm::kEhc, Algorithm::kGbfs,
+                              Algorithm::kWeightedAstar, Algorithm::kAstar, Algorithm::kExact},
+                             algorithm_from_string);
+  testing::expect_round_trip(
+      {HeuristicKind::kFf, HeuristicKind::kAdd, HeuristicKind::kMax, HeuristicKind::kBlind},
+      heuristic_from_string);
+}
 
 // Every plan a test gets is replayed by the independent validator.
 Result<PlanOutcome> validated(const SewerMap& map, const Mission& mission,

@@ -33,8 +33,9 @@ namespace sewerplan::hal {
 
 enum class RobotErrorKind { kBlockage, kDanger, kMalfunction };
 
-// "blockage", "danger", "malfunction".
+// "blockage", "danger", "malfunction"; and back (empty for any other text).
 std::string_view to_string(RobotErrorKind kind);
+std::optional<RobotErrorKind> parse_robot_error_kind(std::string_view name);
 
 // What stopped a job, typed by the robot beside the paper's kind: the controller decides by it
 // (the executor's beacon says whether the robot failed itself, or its link did), never by the
@@ -98,8 +99,9 @@ constexpr RobotErrorCause other_cause(RobotErrorKind kind) {
   return RobotErrorCause::kOtherMalfunction;
 }
 
-// The names in the comments above ("obstacle", "link", ...).
+// The names in the comments above ("obstacle", "link", ...); and back (empty for any other text).
 std::string_view to_string(RobotErrorCause cause);
+std::optional<RobotErrorCause> parse_robot_error_cause(std::string_view name);
 
 // An error of the robot: its kind and cause agree by construction (a cause gives its kind; a
 // kind alone, its kOther* cause).

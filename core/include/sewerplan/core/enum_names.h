@@ -2,9 +2,14 @@
 // An enum's names: one constexpr table of {value, name} pairs per enum, read both ways, so that a
 // value's name is written once and writing and parsing cannot drift apart.
 //
-// Private to executor:
+// The names are what files, logs and command lines carry ("blind-end", "length-off", "risk_aware"):
+// an enum's to_string and its parser (parse_*, *_from_string) both read its table, never a switch
+// beside a second list. The CAN codes of hal/can/wire_codes.h follow the same rule for bytes. The
+// table lives in the .cc file beside the two functions; distinct() checks it at compile time, and a
+// round-trip test of each enum (every value to its name and back) catches a value left out, which
+// no compiler warns of for a table as it does for a switch.
 //
-//   constexpr std::array<std::pair<Colour, std::string_view>, 2> kColours{{
+//   constexpr detail::EnumNames<Colour, 2> kColours{{
 //       {Colour::kRed, "red"},
 //       {Colour::kBlue, "blue"},
 //   }};
@@ -12,6 +17,12 @@
 //   std::string_view to_string(Colour c) { return detail::name_of(kColours, c); }
 //   std::optional<Colour> parse_colour(std::string_view s) { return detail::value_of(kColours, s);
 //   }
+//
+// Inside a library with a detail namespace of its own (domain, search, executor), that namespace
+// hides this one: write sewerplan::detail::name_of there.
+//
+// Runtime: O(N) per lookup, for tables of a few to a few dozen names.
+// Thread safety: constants and pure functions.
 #pragma once
 
 #include <array>
@@ -20,12 +31,12 @@
 #include <string_view>
 #include <utility>
 
-namespace sewerplan::executor::detail {
+namespace sewerplan::detail {
 
 template <class Enum, std::size_t N>
 using EnumNames = std::array<std::pair<Enum, std::string_view>, N>;
 
-// No value and no name twice (checked at compile time with static_assert).
+// No value and no name twice, and no empty name (checked at compile time with static_assert).
 template <class Enum, std::size_t N>
 constexpr bool distinct(const EnumNames<Enum, N>& names) {
   for (std::size_t i = 0; i < N; ++i) {
@@ -41,13 +52,14 @@ constexpr bool distinct(const EnumNames<Enum, N>& names) {
 // of the enum passes).
 template <class Enum, std::size_t N>
 constexpr std::string_view name_of(const EnumNames<Enum, N>& names, Enum value) {
+  static_assert(N > 0);
   for (const auto& [v, name] : names) {
     if (v == value) return name;
   }
   return names.front().second;
 }
 
-// The value named `name`, empty for any other text.
+// The value named `name` (exactly: case and spelling), empty for any other text.
 template <class Enum, std::size_t N>
 constexpr std::optional<Enum> value_of(const EnumNames<Enum, N>& names, std::string_view name) {
   for (const auto& [v, n] : names) {
@@ -56,4 +68,4 @@ constexpr std::optional<Enum> value_of(const EnumNames<Enum, N>& names, std::str
   return std::nullopt;
 }
 
-}  // namespace sewerplan::executor::detail
+}  // namespace sewerplan::detail
