@@ -146,6 +146,45 @@ TEST(CompileNumberingIssue35, AdjacencyGivesTheMovesTheMapGivesWithClosuresAndEx
   for (std::size_t n = 0; n + 1 < read.size(); ++n) EXPECT_EQ(read[n], expected[n]) << n;
 }
 
+// Issue 35: a blockage, a closed passage or a hazard changes the moves of a few nodes only; the
+// others are read from the adjacency, and every node's moves are still the map's.
+TEST(CompileNumberingIssue35, AdjacencyGivesTheMovesTheMapGivesWithBlockagesPassagesAndHazards) {
+  const SewerMap map = *bench::generate_scrambled_network({.manholes = 300, .seed = 2});
+  Mission mission = *bench::scrambled_mission(map, 5, 1);
+  mission.closed_pipes = {PipeId{3}};
+  for (std::uint32_t p : {8U, 30U, 55U}) {
+    mission.blockages.push_back({PipeId{p}, map.pipe(PipeId{p}).length_m / 2});
+  }
+  for (std::uint32_t p = 1; p < map.pipe_count(); p += 9) {
+    mission.hazards.push_back({PipeId{p}, map.pipe(PipeId{p}).length_m / 3, 0.3, "roots"});
+  }
+  std::size_t passages = 0;
+  for (ManholeId m : map.manhole_ids()) {
+    if (map.manhole(m).slot_count > 2 && passages < 4) {
+      mission.closed_passages.push_back({m, SlotIndex{2}, SlotIndex{0}});
+      ++passages;
+    }
+  }
+  ASSERT_GT(passages, 0U);
+  detail::PositionGraph graph(map, mission);
+  graph.spot(PipeId{30}, map.pipe(PipeId{30}).length_m / 4);
+  detail::PositionGraph fresh(map, mission);
+  for (const double weight_s : {0.0, 600.0}) {
+    SCOPED_TRACE("risk weight " + std::to_string(weight_s));
+    graph.set_risk_weight(weight_s);
+    fresh.set_risk_weight(weight_s);
+    if (!graph.has_adjacency()) {
+      ASSERT_TRUE(graph.build_adjacency(nullptr));
+    }
+    auto read = moves(graph);
+    auto expected = moves(fresh);
+    ASSERT_FALSE(fresh.has_adjacency());
+    read.pop_back();  // the spot is not in the fresh graph
+    ASSERT_EQ(read.size(), expected.size());
+    for (std::size_t n = 0; n < read.size(); ++n) EXPECT_EQ(read[n], expected[n]) << n;
+  }
+}
+
 }  // namespace
 }  // namespace sewerplan::domain
 
