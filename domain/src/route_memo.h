@@ -16,15 +16,30 @@
 // A route search breaks ties by (distance, node) and replaces a parent only for a shorter way
 // (graph_search.h), so a route whose nodes keep their distances is the one a new search would
 // find, node for node: taking edges away elsewhere only lengthens other ways. A row that fails any
-// condition is searched again, as before; so are rows from task spots and from keys the start
-// does not reach (their searches stop early, by targets the memo does not describe).
+// condition is searched again, as before.
+//
+// Rows from task spots and from landing keys the start does not reach (SpotRow) search within the
+// whole bound and keep every key they settle before they stop, targets or not: what they hold
+// depends on where the search stopped. The argument that lets them be taken: with edges only taken
+// away, a node whose route keeps its edges ("clean") keeps its distance, its parent and its place
+// in the order nodes are settled relative to the other clean nodes, and any other node is settled
+// no earlier relative to them (it is reached later or farther). So when the new targets and the
+// exit the row reaches are clean, the new search stops at the last of them, and it settles the
+// keys the old one settled at a smaller distance than that stop (each must be clean), and no key
+// the old one did not settle. A key at exactly the stop's distance that is not a target could lie
+// on either side of it: the row is searched again. So is a row one of whose new targets the old
+// search, stopped early, did not reach. A spot's node number is the compile's own (extra spots
+// are numbered in the order a compile meets them): spot rows are kept by pipe and offset, their
+// routes renumbered from their first node.
 //
 // Thread-safety: one compile uses a memo at a time (the one holding its GraphCore).
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <span>
+#include <tuple>
 #include <unordered_map>
 #include <vector>
 
@@ -81,11 +96,22 @@ struct RouteMemo {
     std::optional<Found> exit;
   };
 
+  // A search from a task's spot, or from a landing key the start does not reach, within the whole
+  // bound: every key it settled (the source at cost 0, as `source`) and the exit it found.
+  struct SpotRow {
+    Node source = 0;  // the source's node number in the compile that searched
+    Row row;
+  };
+  // An extra spot by (true, pipe, offset), a node of the map by (false, node, 0).
+  using SpotKey = std::tuple<bool, std::uint32_t, double>;
+
   Context context;
   std::vector<Node> targets;  // sorted: the rows' targets (the keys the start reaches)
   std::unordered_map<Node, Row> rows;
+  std::map<SpotKey, SpotRow> spot_rows;
   std::unordered_map<Node, ExitSearch> exit_searches;
-  RouteStore store;  // the routes of rows and exit_searches
+  std::map<SpotKey, ExitSearch> spot_exit_searches;  // from task spots (SpotKey)
+  RouteStore store;                                  // the routes of rows and exit_searches
 };
 
 }  // namespace sewerplan::domain::detail

@@ -279,6 +279,10 @@ void expect_replans_as_afresh(const SewerMap& map, Mission mission, CompileOptio
     }
     expect_identical_task(*with, *without);
     EXPECT_EQ(without->statistics().reused_searches, 0U);
+    if (step == 0) {
+      // Nothing changed: every row from the memo, the spots' too; only the start's is searched.
+      EXPECT_EQ(with->statistics().route_searches, 1U);
+    }
     if (step == 5) {
       EXPECT_EQ(with->statistics().reused_searches, 0U) << "a lifted closure must not reuse";
     }
@@ -300,6 +304,65 @@ TEST(IncrementalReplanIssue35, ReplansOnAScrambledNetworkAsAfresh) {
   const SewerMap map = *bench::generate_scrambled_network({.manholes = 400, .seed = 5});
   const Mission mission = *bench::scrambled_mission(map, 8, 3);
   expect_replans_as_afresh(map, mission, {.select_goals = true});
+}
+
+// The pipes of the mission's tasks at a spot inside the pipe (an extra spot: a key whose row is a
+// spot row, RouteMemo::SpotRow), with the spot's offset.
+std::vector<std::pair<PipeId, double>> task_spots(const Mission& mission) {
+  std::vector<std::pair<PipeId, double>> spots;
+  for (const Task& t : mission.tasks) {
+    const auto* spot = std::get_if<PipeSpot>(&t.place);
+    if (spot != nullptr && spot->offset_m && t.kind != TaskKind::kInspectPipe) {
+      spots.emplace_back(spot->pipe, *spot->offset_m);
+    }
+  }
+  return spots;
+}
+
+// Spot rows keep every key their search settled before it stopped: taken from the memo only when
+// the blockage cannot have moved that stop or the routes. A blockage in a spot's own pipe changes
+// the spot's moves: its row must be searched again. Blockages one after the other on the pipes
+// the routes use, each compiled with the cache and afresh.
+TEST(IncrementalReplanIssue35, TakesSpotRowsOnlyWhereABlockageCannotChangeThem) {
+  const SewerMap map = *bench::generate_scrambled_network({.manholes = 400, .seed = 5});
+  Mission mission = *bench::scrambled_mission(map, 8, 3);
+  const auto spots = task_spots(mission);
+  ASSERT_FALSE(spots.empty());
+  CompileCache cache;
+  const CompileOptions options{.select_goals = true};
+  CompileOptions cached = options;
+  cached.cache = &cache;
+  const MissionProgress progress = initial_progress(mission, map);
+  std::vector<PipeId> used;
+  {
+    const auto first = compile_sewer_task(map, mission, progress, cached);
+    ASSERT_TRUE(first.has_value()) << first.error().message;
+    used = driven_pipes(*first);
+  }
+  ASSERT_GE(used.size(), 12U);
+  std::size_t reused = 0;
+  for (std::size_t step = 0; step <= 12; ++step) {
+    SCOPED_TRACE("step " + std::to_string(step));
+    // The last step blocks the first spot's pipe between the spot and the pipe's first end.
+    const bool own_pipe = step == 12;
+    const PipeId p = own_pipe ? spots[0].first : used[step * used.size() / 12];
+    const double at = own_pipe ? spots[0].second / 2 : map.pipe(p).length_m * 0.37;
+    mission.blockages.push_back({p, at});
+    const auto with = compile_sewer_task(map, mission, progress, cached);
+    const auto without = compile_sewer_task(map, mission, progress, options);
+    ASSERT_EQ(with.has_value(), without.has_value());
+    if (!without.has_value()) {
+      EXPECT_EQ(with.error().message, without.error().message);
+      continue;
+    }
+    expect_identical_task(*with, *without);
+    reused += with->statistics().reused_searches;
+    if (own_pipe) {
+      // The start's search and the blocked spot's at least.
+      EXPECT_GE(with->statistics().route_searches, 2U);
+    }
+  }
+  EXPECT_GT(reused, 0U);
 }
 
 // Risk-aware, the hazards weigh the routes: a hazard learnt since changes them, and the memo must
