@@ -20,17 +20,22 @@
 //
 // Rows from task spots and from landing keys the start does not reach (SpotRow) search within the
 // whole bound and keep every key they settle before they stop, targets or not: what they hold
-// depends on where the search stopped. The argument that lets them be taken: with edges only taken
-// away, a node whose route keeps its edges ("clean") keeps its distance, its parent and its place
-// in the order nodes are settled relative to the other clean nodes, and any other node is settled
-// no earlier relative to them (it is reached later or farther). So when the new targets and the
-// exit the row reaches are clean, the new search stops at the last of them, and it settles the
-// keys the old one settled at a smaller distance than that stop (each must be clean), and no key
-// the old one did not settle. A key at exactly the stop's distance that is not a target could lie
-// on either side of it: the row is searched again. So is a row one of whose new targets the old
-// search, stopped early, did not reach. A spot's node number is the compile's own (extra spots
-// are numbered in the order a compile meets them): spot rows are kept by pipe and offset, their
-// routes renumbered from their first node.
+// depends on where the search stopped. Why they may be taken too: with edges only taken away, a
+// node whose route keeps its edges ("clean") keeps its distance, its parent and its place in the
+// order of settling relative to the other clean nodes (by induction on that order: it is offered
+// its distance by the same parent at the same point, and nothing offers less); any other node is
+// offered its distance by a node settled no earlier, or a larger one, so it is settled no earlier
+// relative to the clean ones. Hence, when the new targets and the exit the row found are within
+// the bound and clean, the new search stops at the last of them and settles exactly the keys the
+// old one settled at a smaller distance than that stop (each must be clean); a key at exactly the
+// stop's distance that is not a target could fall on either side, and sends the row back to a
+// search. When a target or the exit lies beyond the new bound, the new search runs out within it
+// and settles the keys within the bound, all of which the old one settled (it stopped beyond the
+// bound, or ran out within a larger one); a new target the old search did not reach although it
+// stopped early sends the row back to a search. A spot's own moves are its pipe's drives: any
+// change in that pipe does too. A spot's node number is the compile's own (extra spots are
+// numbered in the order a compile meets them): spot rows and the spots' exit searches are kept by
+// pipe and offset, their routes renumbered from their first node.
 //
 // Thread-safety: one compile uses a memo at a time (the one holding its GraphCore).
 #pragma once
