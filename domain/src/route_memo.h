@@ -7,15 +7,20 @@
 // search of the last compile found within the key's own bound (a "row": the routes to the other
 // keys and to its nearest exit), what that search found; the next compile takes a row from it
 // instead of searching again when the answer is provably the search's own:
-//   - the same searched graph, or one with edges only taken away: the same map and robot (the
-//     memo lives in the GraphCore), the same risk weights, hazards (when they weigh), exits, and
-//     the closed pipes, closed passages and blockages a superset of the memo's;
+//   - the same searched graph, or one with edges only taken away or made dearer: the same map
+//     and robot (the memo lives in the GraphCore), the same risk weights and exits, the closed
+//     pipes, closed passages and blockages a superset of the memo's, and (when risks weigh) each
+//     of the memo's hazards still there, as likely or more (a hazard learnt, or met blocked, only
+//     makes the drives past it dearer; one passed, less likely, makes them cheaper: no row is
+//     taken then);
 //   - a bound no larger than the memo's, and targets it knew: a key the memo's search had as a
 //     target and did not reach lies beyond its bound, so beyond the new one too;
-//   - no route of the row through a pipe or a manhole the new closures touch.
+//   - no route of the row through a pipe or a manhole the new closures touch, or a pipe whose
+//     hazards changed.
 // A route search breaks ties by (distance, node) and replaces a parent only for a shorter way
 // (graph_search.h), so a route whose nodes keep their distances is the one a new search would
-// find, node for node: taking edges away elsewhere only lengthens other ways. A row that fails any
+// find, node for node: taking edges away (or making them dearer) elsewhere only lengthens other
+// ways. A row that fails any
 // condition is searched again, as before.
 //
 // Rows from task spots and from landing keys the start does not reach (SpotRow) search within the
@@ -72,8 +77,9 @@ struct RouteMemo {
                             double return_weight_s, bool exit_goal);
 
   // What a compile in `now` may take from this memo: the pipes and manholes whose moves the new
-  // closures change (routes through them are searched again). Null when nothing may be taken:
-  // another context, or one that opened something the memo's had closed.
+  // closures or hazards change (routes through them are searched again). Null when nothing may be
+  // taken: another context, one that opened something the memo's had closed, or one with a
+  // hazard less likely or gone.
   struct Change {
     std::vector<bool> pipe;     // by pipe index
     std::vector<bool> manhole;  // by manhole index

@@ -365,9 +365,11 @@ TEST(IncrementalReplanIssue35, TakesSpotRowsOnlyWhereABlockageCannotChangeThem) 
   EXPECT_GT(reused, 0U);
 }
 
-// Risk-aware, the hazards weigh the routes: a hazard learnt since changes them, and the memo must
-// not be used then; with the same hazards it may be.
-TEST(IncrementalReplanIssue35, ReplansRiskAwareAsAfreshAndNotAcrossNewHazards) {
+// Risk-aware, the hazards weigh the routes. A hazard added or more likely since (a blockage met
+// there) only makes drives dearer, as a closure does: the rows whose routes avoid its pipe may be
+// taken. A hazard less likely (a pass observed) or gone makes some cheaper: the memo must not be
+// used then. With the same hazards it may be.
+TEST(IncrementalReplanIssue35, ReplansRiskAwareAsAfreshAcrossRisenHazardsNotFallenOnes) {
   const SewerMap map =
       *generate_network({.manholes = 300, .seed = 4, .topology = Topology::kMeshed});
   Mission mission =
@@ -381,13 +383,47 @@ TEST(IncrementalReplanIssue35, ReplansRiskAwareAsAfreshAndNotAcrossNewHazards) {
   CompileOptions cached = options;
   cached.cache = &cache;
   const MissionProgress progress = initial_progress(mission, map);
-  ASSERT_TRUE(compile_sewer_task(map, mission, progress, cached).has_value());
-  mission.hazards.push_back({PipeId{3}, map.pipe(PipeId{3}).length_m / 3, 0.5, "obstacle"});
-  const auto with = compile_sewer_task(map, mission, progress, cached);
-  const auto without = compile_sewer_task(map, mission, progress, options);
-  ASSERT_TRUE(with.has_value() && without.has_value());
-  EXPECT_EQ(with->statistics().reused_searches, 0U);
-  expect_identical_task(*with, *without);
+  std::vector<PipeId> used;
+  {
+    const auto first = compile_sewer_task(map, mission, progress, cached);
+    ASSERT_TRUE(first.has_value()) << first.error().message;
+    used = driven_pipes(*first);
+  }
+  ASSERT_GE(used.size(), 2U);
+  // The hazard of a pipe the routes drive, if one has one.
+  std::size_t on_route = 0;
+  for (std::size_t h = 0; h < mission.hazards.size(); ++h) {
+    if (std::find(used.begin(), used.end(), mission.hazards[h].pipe) != used.end()) on_route = h;
+  }
+  std::size_t reused = 0;
+  for (int step = 0; step < 4; ++step) {
+    SCOPED_TRACE("step " + std::to_string(step));
+    const bool fell = step >= 2;
+    switch (step) {
+      case 0:  // learnt on a pipe the routes drive
+        mission.hazards.push_back({used[1], map.pipe(used[1]).length_m / 3, 0.5, "obstacle"});
+        break;
+      case 1:  // a blockage met there: certain
+        mission.hazards[on_route].probability = 1;
+        break;
+      case 2:  // passed: less likely
+        mission.hazards[on_route].probability = 0.05;
+        break;
+      default:  // gone
+        mission.hazards.pop_back();
+        break;
+    }
+    const auto with = compile_sewer_task(map, mission, progress, cached);
+    const auto without = compile_sewer_task(map, mission, progress, options);
+    ASSERT_TRUE(with.has_value() && without.has_value());
+    expect_identical_task(*with, *without);
+    if (fell) {
+      EXPECT_EQ(with->statistics().reused_searches, 0U);
+    } else {
+      reused += with->statistics().reused_searches;
+    }
+  }
+  EXPECT_GT(reused, 0U);
 }
 
 }  // namespace
