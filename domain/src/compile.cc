@@ -320,11 +320,19 @@ class SewerTaskCompiler {
         ++result_.statistics_.reused_searches;
         continue;
       }
+      if (spot && reuse_spot_row(a, reachable, reachable_key, exits != nullptr)) {
+        ++result_.statistics_.reused_searches;
+        continue;
+      }
       found = search.run(std::span<const Node>(&keys_[a], 1), reachable, row_bound,
                          GraphSearch::Direction::kForward, exits);
       ++searches;
       store_routes(search, a, found, spot ? nullptr : &reachable_key);
-      if (!spot) remember_row(a, row_bound, found, reachable_key);
+      if (!spot) {
+        remember_row(a, row_bound, found, reachable_key);
+      } else if (!reachable.empty() || exits != nullptr) {
+        remember_spot_row(a, found);
+      }
     }
     result_.statistics_.route_searches = searches;
     result_.graph_->set_risk_weight(options_.risk.return_s);
@@ -411,6 +419,119 @@ class SewerTaskCompiler {
     memo_->rows.insert_or_assign(keys_[a], std::move(row));
   }
 
+  // A spot row's place in RouteMemo::spot_rows.
+  detail::RouteMemo::SpotKey spot_key(std::size_t a) const {
+    const PositionGraph& graph = *result_.graph_;
+    const Node n = keys_[a];
+    if (graph.is_extra_spot(n)) return {true, graph.pipe_of(n)->value(), graph.offset_of(n)};
+    return {false, n, 0.0};
+  }
+
+  // Takes the row of key a, a spot's (a search within the whole bound keeping every key it
+  // settles), from the last compile's (RouteMemo::SpotRow), if it is what the search would find:
+  // see route_memo.h for the argument.
+  bool reuse_spot_row(std::size_t a, const std::vector<Node>& reachable,
+                      const std::vector<bool>& reachable_key, bool exit_goal) {
+    using Found = detail::RouteMemo::Found;
+    if (!change_ || (reachable.empty() && !exit_goal)) return false;
+    const auto it = old_memo_->spot_rows.find(spot_key(a));
+    if (it == old_memo_->spot_rows.end() || bound_ > it->second.row.bound) return false;
+    const PositionGraph& graph = *result_.graph_;
+    const Node source = it->second.source;
+    const detail::RouteMemo::Row& row = it->second.row;
+    const bool extra = graph.is_extra_spot(keys_[a]);
+    // An extra spot's moves are its pipe's drives: a change there changes them.
+    if (extra && !change_->pipe.empty() && change_->pipe[graph.pipe_of(keys_[a])->index()]) {
+      return false;
+    }
+    if (reachable_key[a]) return false;  // a target itself: not a spot row's shape
+    // The route as this compile numbers it after its first node (an extra spot's number was the
+    // last compile's), and whether a change touches it.
+    const auto rest = [&](const Found& f) {
+      const std::span<const Node> r = old_memo_->store.route(f.route);
+      return extra && !r.empty() ? r.subspan(1) : r;
+    };
+    const auto touched = [&](const Found& f) { return change_->touches(graph, rest(f)); };
+    const std::vector<Node>& old_targets = old_memo_->targets;
+    std::vector<const Found*> found(k(), nullptr);
+    std::size_t old_targets_found = 0;
+    for (const Found& f : row.found) {
+      const bool is_source = f.to == source;
+      if (!extra || !is_source) {
+        old_targets_found += std::binary_search(old_targets.begin(), old_targets.end(), f.to);
+      }
+      if (is_source) continue;
+      if (const auto b = key_of_.find(f.to); b != key_of_.end()) found[b->second] = &f;
+    }
+    // The old search stopped once it had its targets and exit; else it ran out within its bound.
+    const bool stopped_early = old_targets_found == old_targets.size() && (!exit_goal || row.exit);
+    // Where the new search stops: at the last of its targets and its exit, if all are within the
+    // bound (`all`); else it runs out within the bound.
+    bool all = true;
+    Cost stop = 0;
+    for (Node t : reachable) {
+      const Found* f = found[key_of_.at(t)];
+      if (f == nullptr) {
+        if (stopped_early) return false;  // beyond the old stop: settled after it
+        all = false;
+      } else if (f->cost > bound_) {
+        all = false;
+      } else {
+        stop = std::max(stop, f->cost);
+      }
+    }
+    const bool exit = row.exit && row.exit->cost <= bound_;
+    if (exit_goal) {
+      if (exit) {
+        stop = std::max(stop, row.exit->cost);
+      } else {
+        all = false;
+      }
+    }
+    const Cost limit = all ? stop : bound_;
+    for (std::size_t b = 0; b < k(); ++b) {
+      const Found* f = found[b];
+      if (b == a || f == nullptr || f->cost > limit) continue;
+      if (all && f->cost == limit && !reachable_key[b]) return false;  // either side of the stop
+      if (touched(*f)) return false;
+    }
+    if (exit && touched(*row.exit)) return false;
+    dist_[a * k() + a] = 0;
+    const auto keep = [&](const Found& f) {
+      return extra ? route_store_.keep(keys_[a], rest(f))
+                   : route_store_.keep(old_memo_->store.route(f.route));
+    };
+    for (std::size_t b = 0; b < k(); ++b) {
+      const Found* f = found[b];
+      if (b == a || f == nullptr || f->cost > limit) continue;
+      dist_[a * k() + b] = f->cost;
+      routes_[a * k() + b] = keep(*f);
+    }
+    std::optional<Node> exit_node;
+    if (exit) {
+      exit_node = row.exit->to;
+      exit_dist_[a] = row.exit->cost;
+      exit_routes_[a] = keep(*row.exit);
+    }
+    remember_spot_row(a, exit_node);
+    return true;
+  }
+
+  // Keeps key a's spot row for the next compile (RouteMemo::SpotRow): every key it settled.
+  void remember_spot_row(std::size_t a, std::optional<Node> exit) {
+    if (options_.cache == nullptr) return;
+    detail::RouteMemo::SpotRow spot{.source = keys_[a], .row = {.bound = bound_}};
+    for (std::size_t b = 0; b < k(); ++b) {
+      if (dist_[a * k() + b] != kInfiniteCost) {
+        spot.row.found.push_back({keys_[b], dist_[a * k() + b], routes_[a * k() + b]});
+      }
+    }
+    if (exit && exit_dist_[a] != kInfiniteCost) {
+      spot.row.exit = detail::RouteMemo::Found{*exit, exit_dist_[a], exit_routes_[a]};
+    }
+    memo_->spot_rows.insert_or_assign(spot_key(a), std::move(spot));
+  }
+
   // Marks the mission's exits in the core's exit marks (unmarking the last compile's, unless they
   // are the same).
   void mark_exits() {
@@ -493,19 +614,31 @@ class SewerTaskCompiler {
   }
 
   // Takes key a's way to its nearest exit from the last compile's (RouteMemo::ExitSearch), if it
-  // is what a search within the bound would find.
+  // is what a search within the bound would find. A spot's is kept by its pipe and offset, its
+  // route renumbered from its first node (RouteMemo::SpotRow).
   bool reuse_exit_search(std::size_t a) {
-    if (!change_ || result_.graph_->is_extra_spot(keys_[a])) return false;
-    const auto it = old_memo_->exit_searches.find(keys_[a]);
-    if (it == old_memo_->exit_searches.end() || bound_ > it->second.bound) return false;
-    const std::optional<detail::RouteMemo::Found>& exit = it->second.exit;
+    if (!change_) return false;
+    const PositionGraph& graph = *result_.graph_;
+    const bool extra = graph.is_extra_spot(keys_[a]);
+    const detail::RouteMemo::ExitSearch* old = nullptr;
+    if (extra) {
+      if (!change_->pipe.empty() && change_->pipe[graph.pipe_of(keys_[a])->index()]) return false;
+      const auto it = old_memo_->spot_exit_searches.find(spot_key(a));
+      if (it != old_memo_->spot_exit_searches.end()) old = &it->second;
+    } else if (const auto it = old_memo_->exit_searches.find(keys_[a]);
+               it != old_memo_->exit_searches.end()) {
+      old = &it->second;
+    }
+    if (old == nullptr || bound_ > old->bound) return false;
+    const std::optional<detail::RouteMemo::Found>& exit = old->exit;
     std::optional<Node> kept;
     if (exit && exit->cost <= bound_) {
       const std::span<const Node> route = old_memo_->store.route(exit->route);
-      if (change_->touches(*result_.graph_, route)) return false;
+      const std::span<const Node> rest = extra && !route.empty() ? route.subspan(1) : route;
+      if (change_->touches(graph, rest)) return false;
       kept = exit->to;
       exit_dist_[a] = exit->cost;
-      exit_routes_[a] = route_store_.keep(route);
+      exit_routes_[a] = extra ? route_store_.keep(keys_[a], rest) : route_store_.keep(route);
     }
     ++result_.statistics_.reused_searches;
     remember_exit_search(a, kept);
@@ -513,10 +646,14 @@ class SewerTaskCompiler {
   }
 
   void remember_exit_search(std::size_t a, std::optional<Node> exit) {
-    if (options_.cache == nullptr || result_.graph_->is_extra_spot(keys_[a])) return;
+    if (options_.cache == nullptr) return;
     detail::RouteMemo::ExitSearch s{.bound = bound_};
     if (exit) s.exit = detail::RouteMemo::Found{*exit, exit_dist_[a], exit_routes_[a]};
-    memo_->exit_searches.insert_or_assign(keys_[a], std::move(s));
+    if (result_.graph_->is_extra_spot(keys_[a])) {
+      memo_->spot_exit_searches.insert_or_assign(spot_key(a), std::move(s));
+    } else {
+      memo_->exit_searches.insert_or_assign(keys_[a], std::move(s));
+    }
   }
 
   // What blocks a task in a pipe, for the reason given when it is dropped.

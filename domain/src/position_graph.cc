@@ -116,7 +116,22 @@ PositionGraph::PositionGraph(const SewerMap& map, const Mission& mission,
   for (std::uint32_t i : order) hazards_.push_back(mission.hazards[i]);
   hazard_index_ = std::move(order);
   has_closed_pipes_ = !mission.closed_pipes.empty();
-  plain_moves_ = closed_passages_.empty() && !has_blockages_ && hazards_.empty();
+  auto mark = [](std::vector<bool>& bits, Node n) {
+    if (bits.size() <= n) bits.resize(n + 1, false);
+    bits[n] = true;
+  };
+  for (const Blockage& b : mission.blockages) {
+    mark(irregular_, pipe_end(b.pipe, 0));
+    mark(irregular_, pipe_end(b.pipe, 1));
+  }
+  for (const ClosedPassage& c : closed_passages_) {
+    mark(irregular_, at_slot(c.manhole, c.from));
+    mark(irregular_, at_slot(c.manhole, c.to));
+  }
+  for (const Hazard& h : hazards_) {
+    mark(hazard_ends_, pipe_end(h.pipe, 0));
+    mark(hazard_ends_, pipe_end(h.pipe, 1));
+  }
 }
 
 bool PositionGraph::build_adjacency(const StopCondition* stop) {

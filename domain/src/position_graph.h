@@ -128,9 +128,11 @@ class PositionGraph {
 
   // Builds the core's adjacency (GraphCore::adjacency_begin), asking `stop` (if not null) between
   // slices; false if it fired first (the core is left without one). Afterwards, the moves out of
-  // the map's own nodes are read from it whenever the mission has no closed passage, blockage or
-  // hazard (closed and excluded pipes are filtered as the moves are read), with the same moves,
-  // costs and order as generated from the map. Runtime: O(nodes + moves), judging every passage.
+  // the map's own nodes are read from it (closed and excluded pipes are filtered as the moves are
+  // read), with the same moves, costs and order as generated from the map; only the nodes whose
+  // moves the mission changes otherwise are generated still: the ends of a pipe with a blockage,
+  // the slots of a closed passage, and (while a risk weight is set) the ends of a pipe with a
+  // hazard. Runtime: O(nodes + moves), judging every passage.
   bool build_adjacency(const StopCondition* stop);
   bool has_adjacency() const { return !core_->adjacency_begin.empty(); }
 
@@ -257,10 +259,20 @@ class PositionGraph {
   const Mission& mission_;
   const RobotProfile& profile_;
   bool has_blockages_ = false;
-  // The moves out of the map's nodes may be read from the core's adjacency: no closed passage,
-  // blockage or hazard changes them (closed pipes are filtered as they are read).
-  bool plain_moves_ = false;
+  // Issue 35: the map's nodes whose moves the mission's blockages or closed passages change
+  // (irregular_), and those a hazard's risk cost changes while a risk weight is set
+  // (hazard_ends_); by node, as long as the largest such node (empty: none). Their moves are
+  // generated from the map; every other node of the map reads its moves from the core's
+  // adjacency (closed pipes are filtered as they are read). Before, a single blockage sent every
+  // node back to the map: after a blockage on 100,000 scrambled manholes each search of a replan
+  // settled a node in 3 times the time (docs/benchmarks.md, issue 35).
+  std::vector<bool> irregular_;
+  std::vector<bool> hazard_ends_;
   bool has_closed_pipes_ = false;
+  bool generated(Node from) const {
+    return (from < irregular_.size() && irregular_[from]) ||
+           (risk_weight_s_ > 0 && from < hazard_ends_.size() && hazard_ends_[from]);
+  }
   Node manholes_;
   Node slots_;
   Node pipes_;
@@ -292,7 +304,7 @@ void PositionGraph::drive_out_of_pipe(Node, PipeId p, double x, F&& f) const {
 template <class F>
 void PositionGraph::for_each_successor(Node from, F&& f) const {
   const GraphCore& core = *core_;
-  if (plain_moves_ && from < manholes_ + slots_ + 2 * pipes_ && !core.adjacency_begin.empty()) {
+  if (from < manholes_ + slots_ + 2 * pipes_ && !core.adjacency_begin.empty() && !generated(from)) {
     const Node first_end = manholes_ + slots_;
     const bool filter = has_closed_pipes_ || excluded_count_ > 0;
     for (std::uint32_t e = core.adjacency_begin[from]; e < core.adjacency_begin[from + 1]; ++e) {

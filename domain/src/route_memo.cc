@@ -40,6 +40,53 @@ bool added(const std::vector<T>& then, const std::vector<T>& now, Less less, F&&
   return true;
 }
 
+// Whether every drive's risk cost under `now`'s hazards is at least under `then`'s (both sorted
+// by hazard_less): in each pipe, each hazard of `then` that weighs (probability above 0) has one
+// of its own in `now` at the same offset, as likely or more; `now` may have more. f(pipe) for
+// each pipe whose hazards differ. A drive's risk is 1 - prod(1 - p) over the hazards it passes,
+// so it only grows: edges only dearer, as with closures (route_memo.h).
+template <class F>
+bool risen(const std::vector<Hazard>& then, const std::vector<Hazard>& now, F&& f) {
+  auto probability = [](const Hazard& h) { return std::clamp(h.probability, 0.0, 1.0); };
+  auto pipe_end = [](const std::vector<Hazard>& v, std::size_t i) {
+    while (i + 1 < v.size() && v[i + 1].pipe == v[i].pipe) ++i;
+    return i + 1;
+  };
+  std::size_t i = 0;
+  std::size_t j = 0;
+  while (i < then.size() || j < now.size()) {
+    const PipeId pipe = j == now.size() || (i < then.size() && then[i].pipe < now[j].pipe)
+                            ? then[i].pipe
+                            : now[j].pipe;
+    const std::size_t i_end = i < then.size() && then[i].pipe == pipe ? pipe_end(then, i) : i;
+    const std::size_t j_end = j < now.size() && now[j].pipe == pipe ? pipe_end(now, j) : j;
+    if (!std::equal(then.begin() + static_cast<std::ptrdiff_t>(i),
+                    then.begin() + static_cast<std::ptrdiff_t>(i_end),
+                    now.begin() + static_cast<std::ptrdiff_t>(j),
+                    now.begin() + static_cast<std::ptrdiff_t>(j_end))) {
+      // Sorted by offset, then probability: each of then's takes the least likely of now's at
+      // its offset that is at least as likely, and not taken yet.
+      std::vector<bool> taken(j_end - j, false);
+      for (std::size_t a = i; a < i_end; ++a) {
+        if (!(probability(then[a]) > 0)) continue;
+        bool matched = false;
+        for (std::size_t b = j; b < j_end && !matched; ++b) {
+          if (!taken[b - j] && now[b].offset_m == then[a].offset_m &&
+              probability(now[b]) >= probability(then[a])) {
+            taken[b - j] = true;
+            matched = true;
+          }
+        }
+        if (!matched) return false;
+      }
+      f(pipe);
+    }
+    i = i_end;
+    j = j_end;
+  }
+  return true;
+}
+
 }  // namespace
 
 RouteMemo::Context RouteMemo::context_of(const Mission& mission, double blockage_weight_s,
@@ -72,7 +119,7 @@ std::optional<RouteMemo::Change> RouteMemo::change_to(const Context& now,
   const Context& then = context;
   if (then.blockage_weight_s != now.blockage_weight_s ||
       then.return_weight_s != now.return_weight_s || then.exit_goal != now.exit_goal ||
-      then.exits != now.exits || then.hazards != now.hazards) {
+      then.exits != now.exits) {
     return std::nullopt;
   }
   const SewerMap& map = graph.map();
@@ -87,7 +134,8 @@ std::optional<RouteMemo::Change> RouteMemo::change_to(const Context& now,
     change.manhole[m.index()] = true;
     change.any = true;
   };
-  if (!added(then.closed_pipes, now.closed_pipes, std::less<>(), pipe) ||
+  if (!risen(then.hazards, now.hazards, pipe) ||
+      !added(then.closed_pipes, now.closed_pipes, std::less<>(), pipe) ||
       !added(then.closed_passages, now.closed_passages, passage_less,
              [&](const ClosedPassage& c) { manhole(c.manhole); }) ||
       !added(then.blockages, now.blockages, blockage_less,

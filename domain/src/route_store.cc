@@ -22,4 +22,11 @@ RouteRef RouteStore::keep(std::span<const Node> route) {
   return {begin, route.size()};
 }
 
+RouteRef RouteStore::keep(Node first, std::span<const Node> rest) {
+  const std::size_t begin = nodes_.size();
+  nodes_.push_back(first);
+  nodes_.insert(nodes_.end(), rest.begin(), rest.end());
+  return {begin, rest.size() + 1};
+}
+
 }  // namespace sewerplan::domain::detail

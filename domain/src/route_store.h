@@ -52,6 +52,9 @@ class RouteStore {
   RouteRef keep(const GraphSearch& search, Node n);
   // Appends `route` (of another store: a RouteMemo's).
   RouteRef keep(std::span<const Node> route);
+  // Appends `first` and then `rest`: a RouteMemo's route from a task's spot, whose node number
+  // is the compile's own (RouteMemo::SpotRow).
+  RouteRef keep(Node first, std::span<const Node> rest);
 
   std::span<const Node> route(RouteRef r) const { return {nodes_.data() + r.begin, r.size}; }
 

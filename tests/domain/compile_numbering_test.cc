@@ -146,6 +146,45 @@ TEST(CompileNumberingIssue35, AdjacencyGivesTheMovesTheMapGivesWithClosuresAndEx
   for (std::size_t n = 0; n + 1 < read.size(); ++n) EXPECT_EQ(read[n], expected[n]) << n;
 }
 
+// Issue 35: a blockage, a closed passage or a hazard changes the moves of a few nodes only; the
+// others are read from the adjacency, and every node's moves are still the map's.
+TEST(CompileNumberingIssue35, AdjacencyGivesTheMovesTheMapGivesWithBlockagesPassagesAndHazards) {
+  const SewerMap map = *bench::generate_scrambled_network({.manholes = 300, .seed = 2});
+  Mission mission = *bench::scrambled_mission(map, 5, 1);
+  mission.closed_pipes = {PipeId{3}};
+  for (std::uint32_t p : {8U, 30U, 55U}) {
+    mission.blockages.push_back({PipeId{p}, map.pipe(PipeId{p}).length_m / 2});
+  }
+  for (std::uint32_t p = 1; p < map.pipe_count(); p += 9) {
+    mission.hazards.push_back({PipeId{p}, map.pipe(PipeId{p}).length_m / 3, 0.3, "roots"});
+  }
+  std::size_t passages = 0;
+  for (ManholeId m : map.manhole_ids()) {
+    if (map.manhole(m).slot_count > 2 && passages < 4) {
+      mission.closed_passages.push_back({m, SlotIndex{2}, SlotIndex{0}});
+      ++passages;
+    }
+  }
+  ASSERT_GT(passages, 0U);
+  detail::PositionGraph graph(map, mission);
+  graph.spot(PipeId{30}, map.pipe(PipeId{30}).length_m / 4);
+  detail::PositionGraph fresh(map, mission);
+  for (const double weight_s : {0.0, 600.0}) {
+    SCOPED_TRACE("risk weight " + std::to_string(weight_s));
+    graph.set_risk_weight(weight_s);
+    fresh.set_risk_weight(weight_s);
+    if (!graph.has_adjacency()) {
+      ASSERT_TRUE(graph.build_adjacency(nullptr));
+    }
+    auto read = moves(graph);
+    auto expected = moves(fresh);
+    ASSERT_FALSE(fresh.has_adjacency());
+    read.pop_back();  // the spot is not in the fresh graph
+    ASSERT_EQ(read.size(), expected.size());
+    for (std::size_t n = 0; n < read.size(); ++n) EXPECT_EQ(read[n], expected[n]) << n;
+  }
+}
+
 }  // namespace
 }  // namespace sewerplan::domain
 
@@ -240,6 +279,10 @@ void expect_replans_as_afresh(const SewerMap& map, Mission mission, CompileOptio
     }
     expect_identical_task(*with, *without);
     EXPECT_EQ(without->statistics().reused_searches, 0U);
+    if (step == 0) {
+      // Nothing changed: every row from the memo, the spots' too; only the start's is searched.
+      EXPECT_EQ(with->statistics().route_searches, 1U);
+    }
     if (step == 5) {
       EXPECT_EQ(with->statistics().reused_searches, 0U) << "a lifted closure must not reuse";
     }
@@ -263,9 +306,70 @@ TEST(IncrementalReplanIssue35, ReplansOnAScrambledNetworkAsAfresh) {
   expect_replans_as_afresh(map, mission, {.select_goals = true});
 }
 
-// Risk-aware, the hazards weigh the routes: a hazard learnt since changes them, and the memo must
-// not be used then; with the same hazards it may be.
-TEST(IncrementalReplanIssue35, ReplansRiskAwareAsAfreshAndNotAcrossNewHazards) {
+// The pipes of the mission's tasks at a spot inside the pipe (an extra spot: a key whose row is a
+// spot row, RouteMemo::SpotRow), with the spot's offset.
+std::vector<std::pair<PipeId, double>> task_spots(const Mission& mission) {
+  std::vector<std::pair<PipeId, double>> spots;
+  for (const Task& t : mission.tasks) {
+    const auto* spot = std::get_if<PipeSpot>(&t.place);
+    if (spot != nullptr && spot->offset_m && t.kind != TaskKind::kInspectPipe) {
+      spots.emplace_back(spot->pipe, *spot->offset_m);
+    }
+  }
+  return spots;
+}
+
+// Spot rows keep every key their search settled before it stopped: taken from the memo only when
+// the blockage cannot have moved that stop or the routes. A blockage in a spot's own pipe changes
+// the spot's moves: its row must be searched again. Blockages one after the other on the pipes
+// the routes use, each compiled with the cache and afresh.
+TEST(IncrementalReplanIssue35, TakesSpotRowsOnlyWhereABlockageCannotChangeThem) {
+  const SewerMap map = *bench::generate_scrambled_network({.manholes = 400, .seed = 5});
+  Mission mission = *bench::scrambled_mission(map, 8, 3);
+  const auto spots = task_spots(mission);
+  ASSERT_FALSE(spots.empty());
+  CompileCache cache;
+  const CompileOptions options{.select_goals = true};
+  CompileOptions cached = options;
+  cached.cache = &cache;
+  const MissionProgress progress = initial_progress(mission, map);
+  std::vector<PipeId> used;
+  {
+    const auto first = compile_sewer_task(map, mission, progress, cached);
+    ASSERT_TRUE(first.has_value()) << first.error().message;
+    used = driven_pipes(*first);
+  }
+  ASSERT_GE(used.size(), 12U);
+  std::size_t reused = 0;
+  for (std::size_t step = 0; step <= 12; ++step) {
+    SCOPED_TRACE("step " + std::to_string(step));
+    // The last step blocks the first spot's pipe between the spot and the pipe's first end.
+    const bool own_pipe = step == 12;
+    const PipeId p = own_pipe ? spots[0].first : used[step * used.size() / 12];
+    const double at = own_pipe ? spots[0].second / 2 : map.pipe(p).length_m * 0.37;
+    mission.blockages.push_back({p, at});
+    const auto with = compile_sewer_task(map, mission, progress, cached);
+    const auto without = compile_sewer_task(map, mission, progress, options);
+    ASSERT_EQ(with.has_value(), without.has_value());
+    if (!without.has_value()) {
+      EXPECT_EQ(with.error().message, without.error().message);
+      continue;
+    }
+    expect_identical_task(*with, *without);
+    reused += with->statistics().reused_searches;
+    if (own_pipe) {
+      // The start's search and the blocked spot's at least.
+      EXPECT_GE(with->statistics().route_searches, 2U);
+    }
+  }
+  EXPECT_GT(reused, 0U);
+}
+
+// Risk-aware, the hazards weigh the routes. A hazard added or more likely since (a blockage met
+// there) only makes drives dearer, as a closure does: the rows whose routes avoid its pipe may be
+// taken. A hazard less likely (a pass observed) or gone makes some cheaper: the memo must not be
+// used then. With the same hazards it may be.
+TEST(IncrementalReplanIssue35, ReplansRiskAwareAsAfreshAcrossRisenHazardsNotFallenOnes) {
   const SewerMap map =
       *generate_network({.manholes = 300, .seed = 4, .topology = Topology::kMeshed});
   Mission mission =
@@ -279,13 +383,47 @@ TEST(IncrementalReplanIssue35, ReplansRiskAwareAsAfreshAndNotAcrossNewHazards) {
   CompileOptions cached = options;
   cached.cache = &cache;
   const MissionProgress progress = initial_progress(mission, map);
-  ASSERT_TRUE(compile_sewer_task(map, mission, progress, cached).has_value());
-  mission.hazards.push_back({PipeId{3}, map.pipe(PipeId{3}).length_m / 3, 0.5, "obstacle"});
-  const auto with = compile_sewer_task(map, mission, progress, cached);
-  const auto without = compile_sewer_task(map, mission, progress, options);
-  ASSERT_TRUE(with.has_value() && without.has_value());
-  EXPECT_EQ(with->statistics().reused_searches, 0U);
-  expect_identical_task(*with, *without);
+  std::vector<PipeId> used;
+  {
+    const auto first = compile_sewer_task(map, mission, progress, cached);
+    ASSERT_TRUE(first.has_value()) << first.error().message;
+    used = driven_pipes(*first);
+  }
+  ASSERT_GE(used.size(), 2U);
+  // The hazard of a pipe the routes drive, if one has one.
+  std::size_t on_route = 0;
+  for (std::size_t h = 0; h < mission.hazards.size(); ++h) {
+    if (std::find(used.begin(), used.end(), mission.hazards[h].pipe) != used.end()) on_route = h;
+  }
+  std::size_t reused = 0;
+  for (int step = 0; step < 4; ++step) {
+    SCOPED_TRACE("step " + std::to_string(step));
+    const bool fell = step >= 2;
+    switch (step) {
+      case 0:  // learnt on a pipe the routes drive
+        mission.hazards.push_back({used[1], map.pipe(used[1]).length_m / 3, 0.5, "obstacle"});
+        break;
+      case 1:  // a blockage met there: certain
+        mission.hazards[on_route].probability = 1;
+        break;
+      case 2:  // passed: less likely
+        mission.hazards[on_route].probability = 0.05;
+        break;
+      default:  // gone
+        mission.hazards.pop_back();
+        break;
+    }
+    const auto with = compile_sewer_task(map, mission, progress, cached);
+    const auto without = compile_sewer_task(map, mission, progress, options);
+    ASSERT_TRUE(with.has_value() && without.has_value());
+    expect_identical_task(*with, *without);
+    if (fell) {
+      EXPECT_EQ(with->statistics().reused_searches, 0U);
+    } else {
+      reused += with->statistics().reused_searches;
+    }
+  }
+  EXPECT_GT(reused, 0U);
 }
 
 }  // namespace
