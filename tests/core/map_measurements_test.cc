@@ -58,6 +58,23 @@ void arrivals(MapMeasurements& m, const SewerMap& map, Change change, int skip =
   }
 }
 
+// The sighting `s` from arrival `a` in M0 without the mouth of map slot `gone`.
+void without_slot(const SewerMap& map, SlotIndex a, ManholeSignature& s, SlotIndex gone) {
+  const auto order = signature_slot_order(map, id(map, "M0"), a);
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    if (order[i] == gone) s.slots.erase(s.slots.begin() + static_cast<long>(i));
+  }
+}
+
+// The sighting `s` from arrival `a` in M0 with a mouth the map lacks at `azimuth_deg`.
+void with_lateral(const SewerMap& map, SlotIndex a, ManholeSignature& s, double azimuth_deg) {
+  const double rel = std::fmod(azimuth_deg - map.slot(id(map, "M0"), a).azimuth_deg + 360, 360);
+  const auto at =
+      std::upper_bound(s.slots.begin() + 1, s.slots.end(), rel,
+                       [](double r, const SlotSighting& x) { return r < x.relative_deg; });
+  s.slots.insert(at, SlotSighting{rel, 0, 0.2});
+}
+
 TEST(MapMeasurements, MergeOfTwoMissionsHasLessUncertainty) {
   const SewerMap map = cross();
   MapMeasurements a = measurements_of(map, source("one"));
@@ -260,14 +277,7 @@ TEST(MapMeasurements, AMouthTheMapLacksIsAnUnmappedLateral) {
   const SewerMap map = cross();
   MapMeasurements m = measurements_of(map, source("one"));
   // A lateral at 45° (between east and north), seen from every arrival.
-  arrivals(m, map, [&](SlotIndex a, ManholeSignature& s) {
-    const double base = map.slot(id(map, "M0"), a).azimuth_deg;
-    const double rel = std::fmod(45 - base + 360, 360);
-    const auto at =
-        std::upper_bound(s.slots.begin() + 1, s.slots.end(), rel,
-                         [](double r, const SlotSighting& x) { return r < x.relative_deg; });
-    s.slots.insert(at, SlotSighting{rel, 0, 0.2});
-  });
+  arrivals(m, map, [&](SlotIndex a, ManholeSignature& s) { with_lateral(map, a, s, 45); });
   const auto found = discrepancies(m, map);
   ASSERT_EQ(kinds(found), std::vector<Kind>{Kind::kUnmappedLateral});
   EXPECT_EQ(found[0].discrepancy.manhole, id(map, "M0"));
@@ -279,13 +289,7 @@ TEST(MapMeasurements, AMappedSlotNeverSeenIsAMissingLateral) {
   MapMeasurements m = measurements_of(map, source("one"));
   // The south mouth (slot 4) is not there: never seen from the three other arrivals.
   arrivals(
-      m, map,
-      [&](SlotIndex a, ManholeSignature& s) {
-        const auto order = signature_slot_order(map, id(map, "M0"), a);
-        for (std::size_t i = 0; i < order.size(); ++i) {
-          if (order[i] == SlotIndex{3}) s.slots.erase(s.slots.begin() + static_cast<long>(i));
-        }
-      },
+      m, map, [&](SlotIndex a, ManholeSignature& s) { without_slot(map, a, s, SlotIndex{3}); },
       /*skip=*/3);
   const auto found = discrepancies(m, map);
   ASSERT_EQ(kinds(found), std::vector<Kind>{Kind::kMissingLateral});
@@ -324,19 +328,11 @@ TEST(MapMeasurements, AMouthSeenFarOffItsMappedDirectionIsThatMouthOff) {
 TEST(MapMeasurements, AMouthFarFromEveryUnseenOneIsStillALateral) {
   const SewerMap map = cross();
   MapMeasurements m = measurements_of(map, source("one"));
-  const ManholeId m0 = id(map, "M0");
   arrivals(
       m, map,
       [&](SlotIndex a, ManholeSignature& s) {
-        const auto order = signature_slot_order(map, m0, a);
-        for (std::size_t i = 0; i < order.size(); ++i) {
-          if (order[i] == SlotIndex{3}) s.slots.erase(s.slots.begin() + static_cast<long>(i));
-        }
-        const double rel = std::fmod(200 - map.slot(m0, a).azimuth_deg + 360, 360);
-        const auto at =
-            std::upper_bound(s.slots.begin() + 1, s.slots.end(), rel,
-                             [](double r, const SlotSighting& x) { return r < x.relative_deg; });
-        s.slots.insert(at, SlotSighting{rel, 0, 0.2});
+        without_slot(map, a, s, SlotIndex{3});
+        with_lateral(map, a, s, 200);
       },
       /*skip=*/3);
   const auto found = discrepancies(m, map);
