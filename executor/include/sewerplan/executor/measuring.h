@@ -60,7 +60,7 @@ struct MeasuringOptions {
   double steep_sigma_factor = 2.0;
   // ... and in water (a leg with a drive that reported hal::JobReport::in_water) this many times
   // larger again. With the dry sigma for every leg, 18 of the 58 lengths reported off in 200 AIS
-  // runs of the realistic world were right, the legs' wheels having slipped in water.
+  // runs of the realistic world were right, 15 of them legs whose wheels had slipped in water.
   double water_sigma_factor = 2.0;
   double early_arrival_fraction = 0.25;  // see the header comment
   // A manhole seen in a pipe within this many odometry standard deviations of one of its ends
