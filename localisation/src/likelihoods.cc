@@ -96,9 +96,13 @@ double turn_log_likelihood(double measured_deg, double mapped_deg, const TurnMod
   return std::log(right + wrong + kTurnOutlierShare / kDirectionRangeDeg);
 }
 
-double false_detection_log_likelihood(const ManholeSignature& observed) {
+double false_detection_log_likelihood(const ManholeSignature& observed, double min_shaft_m,
+                                      const SignatureNoise& noise) {
   const auto n = static_cast<double>(observed.slots.size());
-  return unknown(kDiameterRangeM) + (n - 1) * unknown_slot() + unknown(kShaftRangeM);
+  const double wider_m = std::max(0.0, observed.shaft_diameter_m - min_shaft_m);
+  const double shaft = unknown(std::max(min_shaft_m, noise.shaft_m)) -
+                       0.5 * (wider_m / noise.shaft_m) * (wider_m / noise.shaft_m);
+  return unknown(kDiameterRangeM) + (n - 1) * unknown_slot() + shaft;
 }
 
 }  // namespace sewerplan::localisation::detail

@@ -205,7 +205,9 @@ struct ArrivalExplainer {
       if (j.log_weight != kNegativeInfinity) out.push_back(std::move(j));
     }
     if (log_false != kNegativeInfinity) {
-      const double fit = observation ? false_detection_log_likelihood(*observation) : 0.0;
+      const double fit = observation ? false_detection_log_likelihood(
+                                           *observation, o.min_junction_shaft_m, o.noise)
+                                     : 0.0;
       Track f = frame;
       f.kind = Track::Kind::kInPipe;
       f.log_weight = track.log_weight + log_here + log_false + fit;
