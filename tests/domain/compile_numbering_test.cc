@@ -2,6 +2,7 @@
 // Issue 35: the compile does not depend on how a network is numbered or named, and the moves it
 // reads from the core's adjacency are the moves it generates from the map.
 #include <algorithm>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -216,22 +217,59 @@ std::vector<PipeId> driven_pipes(const SewerTask& task) {
   return pipes;
 }
 
+// Compiles on a CompileCache and afresh, side by side. The first compile fills the cache (a task
+// holds the cache's core while it lives: the next compile takes it after).
+class CachedAndFresh {
+ public:
+  CachedAndFresh(const SewerMap& map, const CompileOptions& options)
+      : map_(map), fresh_(options), cached_(options) {
+    cached_.cache = &cache_;
+  }
+
+  // The pipes the first compile's routes drive; empty, with a failure, when it fails.
+  std::vector<PipeId> first(const Mission& mission, const MissionProgress& progress) {
+    const auto task = compile_sewer_task(map_, mission, progress, cached_);
+    if (!task.has_value()) {
+      ADD_FAILURE() << task.error().message;
+      return {};
+    }
+    return driven_pipes(*task);
+  }
+
+  // Both compiles of the same inputs, checked identical (or failing alike): the cached one's
+  // statistics and the fresh one's; none when both failed.
+  struct Statistics {
+    CompileStatistics cached;
+    CompileStatistics fresh;
+  };
+  std::optional<Statistics> compare(const Mission& mission, const MissionProgress& progress) {
+    const auto with = compile_sewer_task(map_, mission, progress, cached_);
+    const auto without = compile_sewer_task(map_, mission, progress, fresh_);
+    EXPECT_EQ(with.has_value(), without.has_value());
+    if (with.has_value() != without.has_value()) return std::nullopt;
+    if (!without.has_value()) {
+      EXPECT_EQ(with.error().message, without.error().message);
+      return std::nullopt;
+    }
+    expect_identical_task(*with, *without);
+    return Statistics{with->statistics(), without->statistics()};
+  }
+
+ private:
+  const SewerMap& map_;
+  CompileCache cache_;
+  CompileOptions fresh_;
+  CompileOptions cached_;
+};
+
 // A replan's changes one after the other, each compiled with the cache and afresh: the robot on
 // in a pipe past the start, a task done, energy used, a blockage on a pipe the routes use, a
 // passage closed, a pipe closed, then a closure lifted (which the memo cannot follow: it must not
 // be used) and a closure again.
 void expect_replans_as_afresh(const SewerMap& map, Mission mission, CompileOptions options) {
-  CompileCache cache;
-  CompileOptions cached = options;
-  cached.cache = &cache;
+  CachedAndFresh compiles(map, options);
   MissionProgress progress = initial_progress(mission, map);
-  std::vector<PipeId> used;
-  {
-    // (A task holds the cache's core while it lives: the next compile takes it after.)
-    const auto first = compile_sewer_task(map, mission, progress, cached);
-    ASSERT_TRUE(first.has_value()) << first.error().message;
-    used = driven_pipes(*first);
-  }
+  const std::vector<PipeId> used = compiles.first(mission, progress);
   ASSERT_GE(used.size(), 6U);
   std::size_t reused = 0;
   for (int step = 0; step < 8; ++step) {
@@ -270,23 +308,17 @@ void expect_replans_as_afresh(const SewerMap& map, Mission mission, CompileOptio
         progress.done[1] = true;
         break;
     }
-    const auto with = compile_sewer_task(map, mission, progress, cached);
-    const auto without = compile_sewer_task(map, mission, progress, options);
-    ASSERT_EQ(with.has_value(), without.has_value());
-    if (!without.has_value()) {
-      EXPECT_EQ(with.error().message, without.error().message);
-      continue;
-    }
-    expect_identical_task(*with, *without);
-    EXPECT_EQ(without->statistics().reused_searches, 0U);
+    const auto stats = compiles.compare(mission, progress);
+    if (!stats) continue;
+    EXPECT_EQ(stats->fresh.reused_searches, 0U);
     if (step == 0) {
       // Nothing changed: every row from the memo, the spots' too; only the start's is searched.
-      EXPECT_EQ(with->statistics().route_searches, 1U);
+      EXPECT_EQ(stats->cached.route_searches, 1U);
     }
     if (step == 5) {
-      EXPECT_EQ(with->statistics().reused_searches, 0U) << "a lifted closure must not reuse";
+      EXPECT_EQ(stats->cached.reused_searches, 0U) << "a lifted closure must not reuse";
     }
-    reused += with->statistics().reused_searches;
+    reused += stats->cached.reused_searches;
   }
   // The memo must have been used, or the comparison proves nothing.
   EXPECT_GT(reused, 0U);
@@ -328,17 +360,9 @@ TEST(IncrementalReplanIssue35, TakesSpotRowsOnlyWhereABlockageCannotChangeThem) 
   Mission mission = *bench::scrambled_mission(map, 8, 3);
   const auto spots = task_spots(mission);
   ASSERT_FALSE(spots.empty());
-  CompileCache cache;
-  const CompileOptions options{.select_goals = true};
-  CompileOptions cached = options;
-  cached.cache = &cache;
+  CachedAndFresh compiles(map, {.select_goals = true});
   const MissionProgress progress = initial_progress(mission, map);
-  std::vector<PipeId> used;
-  {
-    const auto first = compile_sewer_task(map, mission, progress, cached);
-    ASSERT_TRUE(first.has_value()) << first.error().message;
-    used = driven_pipes(*first);
-  }
+  const std::vector<PipeId> used = compiles.first(mission, progress);
   ASSERT_GE(used.size(), 12U);
   std::size_t reused = 0;
   for (std::size_t step = 0; step <= 12; ++step) {
@@ -348,18 +372,12 @@ TEST(IncrementalReplanIssue35, TakesSpotRowsOnlyWhereABlockageCannotChangeThem) 
     const PipeId p = own_pipe ? spots[0].first : used[step * used.size() / 12];
     const double at = own_pipe ? spots[0].second / 2 : map.pipe(p).length_m * 0.37;
     mission.blockages.push_back({p, at});
-    const auto with = compile_sewer_task(map, mission, progress, cached);
-    const auto without = compile_sewer_task(map, mission, progress, options);
-    ASSERT_EQ(with.has_value(), without.has_value());
-    if (!without.has_value()) {
-      EXPECT_EQ(with.error().message, without.error().message);
-      continue;
-    }
-    expect_identical_task(*with, *without);
-    reused += with->statistics().reused_searches;
+    const auto stats = compiles.compare(mission, progress);
+    if (!stats) continue;
+    reused += stats->cached.reused_searches;
     if (own_pipe) {
       // The start's search and the blocked spot's at least.
-      EXPECT_GE(with->statistics().route_searches, 2U);
+      EXPECT_GE(stats->cached.route_searches, 2U);
     }
   }
   EXPECT_GT(reused, 0U);
@@ -379,16 +397,9 @@ TEST(IncrementalReplanIssue35, ReplansRiskAwareAsAfreshAcrossRisenHazardsNotFall
   }
   const CompileOptions options{.select_goals = true, .risk = kDefaultRiskCosts};
   expect_replans_as_afresh(map, mission, options);
-  CompileCache cache;
-  CompileOptions cached = options;
-  cached.cache = &cache;
+  CachedAndFresh compiles(map, options);
   const MissionProgress progress = initial_progress(mission, map);
-  std::vector<PipeId> used;
-  {
-    const auto first = compile_sewer_task(map, mission, progress, cached);
-    ASSERT_TRUE(first.has_value()) << first.error().message;
-    used = driven_pipes(*first);
-  }
+  const std::vector<PipeId> used = compiles.first(mission, progress);
   ASSERT_GE(used.size(), 2U);
   // The hazard of a pipe the routes drive, if one has one.
   std::size_t on_route = 0;
@@ -413,14 +424,12 @@ TEST(IncrementalReplanIssue35, ReplansRiskAwareAsAfreshAcrossRisenHazardsNotFall
         mission.hazards.pop_back();
         break;
     }
-    const auto with = compile_sewer_task(map, mission, progress, cached);
-    const auto without = compile_sewer_task(map, mission, progress, options);
-    ASSERT_TRUE(with.has_value() && without.has_value());
-    expect_identical_task(*with, *without);
+    const auto stats = compiles.compare(mission, progress);
+    ASSERT_TRUE(stats.has_value());
     if (fell) {
-      EXPECT_EQ(with->statistics().reused_searches, 0U);
+      EXPECT_EQ(stats->cached.reused_searches, 0U);
     } else {
-      reused += with->statistics().reused_searches;
+      reused += stats->cached.reused_searches;
     }
   }
   EXPECT_GT(reused, 0U);
