@@ -25,6 +25,18 @@ double gaussian_log(double difference, double sigma) {
   return -0.5 * z * z - std::log(sigma);
 }
 
+// log(exp(fits) + share exp(unknown)): a measurement that fits the map's within the noise, or one
+// the map has wrong (SignatureNoise::mouth_off_share). A floor under the Gaussian rather than a
+// mixture, so that a mouth that fits scores as it always did (a mixture's 1 - share took a tenth
+// off every mapped manhole's likelihood against the alternatives, a junction and a detection of
+// nothing, which have no map to be wrong).
+double or_map_wrong(double fits, double unknown, double share) {
+  if (share <= 0) return fits;
+  const double b = std::log(share) + unknown;
+  const double hi = std::max(fits, b);
+  return hi + std::log1p(std::exp(std::min(fits, b) - hi));
+}
+
 std::string number(double value, int digits) {
   std::ostringstream os;
   os.setf(std::ios::fixed);
@@ -115,9 +127,11 @@ namespace {
 
 // The log-likelihood of `seen` as the mouth the map lists as `want`.
 double pair_log(const SlotSighting& want, const SlotSighting& seen, const SignatureNoise& noise) {
-  return gaussian_log(normalize_deg(seen.relative_deg - want.relative_deg), noise.direction_deg) +
-         gaussian_log(seen.step_m - want.step_m, noise.step_m) +
-         gaussian_log(seen.diameter_m - want.diameter_m, noise.diameter_m);
+  return or_map_wrong(
+      gaussian_log(normalize_deg(seen.relative_deg - want.relative_deg), noise.direction_deg) +
+          gaussian_log(seen.step_m - want.step_m, noise.step_m) +
+          gaussian_log(seen.diameter_m - want.diameter_m, noise.diameter_m),
+      unknown_mouth_log_likelihood(), noise.mouth_off_share);
 }
 
 // Why `seen` is not the mouth `want`, or empty when it is within the noise's limits.
@@ -272,8 +286,9 @@ SignatureMatch compare(const ManholeSignature& expected, const ManholeSignature&
       }
     }
   }
-  match.log_likelihood +=
-      gaussian_log(observed.slots[0].diameter_m - expected.slots[0].diameter_m, noise.diameter_m);
+  match.log_likelihood += or_map_wrong(
+      gaussian_log(observed.slots[0].diameter_m - expected.slots[0].diameter_m, noise.diameter_m),
+      unknown_log_likelihood(kUnknownDiameterRangeM), noise.mouth_off_share);
   const double shaft = observed.shaft_diameter_m - expected.shaft_diameter_m;
   match.log_likelihood += gaussian_log(shaft, noise.shaft_m);
   if (std::abs(shaft) > noise.max_shaft_m && match.matches) {

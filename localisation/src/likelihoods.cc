@@ -3,24 +3,22 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "sewerplan/core/map_queries.h"
 
 namespace sewerplan::localisation::detail {
 namespace {
 
-// The ranges of what is unknown: a direction anywhere in 360 degrees, a step within a metre, a
-// pipe of 0.1-1.1 m, a shaft of 0.8-2.8 m (docs/localisation.md).
-constexpr double kDirectionRangeDeg = 360.0;
-constexpr double kStepRangeM = 1.0;
-constexpr double kDiameterRangeM = 1.0;
+// The ranges of what is unknown (core's, and a shaft of 0.8-2.8 m: docs/localisation.md).
+constexpr double kDirectionRangeDeg = kUnknownDirectionRangeDeg;
+constexpr double kStepRangeM = kUnknownStepRangeM;
+constexpr double kDiameterRangeM = kUnknownDiameterRangeM;
 constexpr double kShaftRangeM = 2.0;
 
-double unknown(double range) { return -std::log(range) + kLogSqrtTwoPi; }
+double unknown(double range) { return unknown_log_likelihood(range); }
 
-double unknown_slot() {
-  return unknown(kDirectionRangeDeg) + unknown(kStepRangeM) + unknown(kDiameterRangeM);
-}
+double unknown_slot() { return unknown_mouth_log_likelihood(); }
 
 }  // namespace
 
@@ -36,16 +34,29 @@ double log_phi(double z) {
   return -0.5 * z * z - std::log(-z) - kLogSqrtTwoPi;
 }
 
-double log_normal(double x, double mean, double var, const OdometryTails& tails) {
-  if (tails.share <= 0) return log_normal(x, mean, var);
-  return log_add(std::log1p(-tails.share) + log_normal(x, mean, var),
-                 std::log(tails.share) + log_normal(x, mean, var * tails.scale * tails.scale));
+namespace {
+
+// The two variances of a spread: the usual one, and the outliers'.
+std::pair<double, double> variances(const PlaceSpread& spread) {
+  const double scale2 = spread.tails.scale * spread.tails.scale;
+  return {std::max(spread.odometry_var + spread.map_var, kMinVarianceM2),
+          std::max(scale2 * spread.odometry_var + spread.map_var, kMinVarianceM2)};
 }
 
-double log_phi(double z, const OdometryTails& tails) {
-  if (tails.share <= 0) return log_phi(z);
-  return log_add(std::log1p(-tails.share) + log_phi(z),
-                 std::log(tails.share) + log_phi(z / tails.scale));
+}  // namespace
+
+double log_normal(double x, double mean, const PlaceSpread& spread) {
+  const auto [usual, wide] = variances(spread);
+  if (spread.tails.share <= 0) return log_normal(x, mean, usual);
+  return log_add(std::log1p(-spread.tails.share) + log_normal(x, mean, usual),
+                 std::log(spread.tails.share) + log_normal(x, mean, wide));
+}
+
+double log_phi_within(double distance, const PlaceSpread& spread) {
+  const auto [usual, wide] = variances(spread);
+  if (spread.tails.share <= 0) return log_phi(distance / std::sqrt(usual));
+  return log_add(std::log1p(-spread.tails.share) + log_phi(distance / std::sqrt(usual)),
+                 std::log(spread.tails.share) + log_phi(distance / std::sqrt(wide)));
 }
 
 double log1m_exp(double a) {

@@ -17,7 +17,7 @@
 
 namespace sewerplan::localisation::detail {
 
-inline constexpr double kLogSqrtTwoPi = 0.91893853320467274178;
+using sewerplan::kLogSqrtTwoPi;
 inline constexpr double kNegativeInfinity = -std::numeric_limits<double>::infinity();
 // Variances below this are taken as this (a place known to 1 cm), so that a Gaussian stays finite.
 inline constexpr double kMinVarianceM2 = 1e-4;
@@ -26,14 +26,26 @@ inline constexpr double kMinVarianceM2 = 1e-4;
 double log_normal(double x, double mean, double var);
 // log P(X <= x) for X ~ N(0, 1), finite down to far in the tail.
 double log_phi(double z);
-// The odometry's place along a pipe: a Gaussian, and with `share` of the weight one `scale` times
-// as wide (heavy tails, LocalisationOptions::odometry_outlier_share). Density and lower tail.
+// The robot's place along a pipe against where the map puts a mouth: a Gaussian of the odometry's
+// variance plus the map's (its pipe lengths', LocalisationOptions::length_sd_fraction), and with
+// `share` of the weight the odometry's part `scale` times as wide: a drive may slip far more than
+// its standard deviation (a wet pipe), a map's length is off by a bounded share
+// (LocalisationOptions::odometry_outlier_share). Before, the tails widened the map's part too, and
+// a mapped manhole 25 m beyond where a 15 m drive stopped in a 40 m pipe stayed as likely as a
+// junction there.
 struct OdometryTails {
   double share = 0;
   double scale = 1;
 };
-double log_normal(double x, double mean, double var, const OdometryTails& tails);
-double log_phi(double z, const OdometryTails& tails);
+struct PlaceSpread {
+  double odometry_var = 0;
+  double map_var = 0;
+  OdometryTails tails;
+};
+// The density of the place at `x` about `mean`, and the log-probability that the place lies
+// at most `distance` beyond the mean (the lower tail at -distance: log P(X - mean <= distance)).
+double log_normal(double x, double mean, const PlaceSpread& spread);
+double log_phi_within(double distance, const PlaceSpread& spread);
 // log(1 - exp(a)) for a <= 0.
 double log1m_exp(double a);
 // log(exp(a) + exp(b)).

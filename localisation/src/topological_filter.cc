@@ -103,6 +103,8 @@ Result<void> check_options(const LocalisationOptions& o) {
                              {"noise.max_shaft_m", n.max_shaft_m}}) {
     if (!std::isfinite(value) || value <= 0) return bad(name, value, "finite and > 0");
   }
+  if (!std::isfinite(n.mouth_off_share) || n.mouth_off_share < 0 || n.mouth_off_share >= 1)
+    return bad("noise.mouth_off_share", n.mouth_off_share, "in [0, 1)");
   return {};
 }
 
@@ -202,13 +204,26 @@ Result<void> TopologicalFilter::drive(double odometry_m, DriveDirection directio
   if (Result<void> ok = usable(); !ok.has_value()) return ok;
   if (mode_ == Mode::kInManhole)
     return invalid("drive: in the start manhole: enter() a pipe first");
-  if (mode_ == Mode::kAtManhole && direction == arrived_by_) {
-    return invalid(std::string("drive: ") +
-                   (direction == DriveDirection::kForward ? "forward" : "backward") +
-                   " at a manhole goes into it: turn() or pass() into a pipe first");
-  }
   const SewerMap& map = *map_;
+  bool dropped = false;
   for (Track& t : tracks_) {
+    // On into the manhole it arrived at (the robot took it for a false detection): a hypothesis
+    // at a mouth or a junction is held there by the pipe's end; one in the pipe drives on.
+    const bool at_manhole = t.kind == Track::Kind::kAtMouth || t.kind == Track::Kind::kAtJunction;
+    if (at_manhole && direction == arrived_by_ && (mode_ == Mode::kAtManhole || t.held)) {
+      if (!t.held) t.odometry_var_m2 = 0;
+      t.held = true;
+      t.held_m += odometry_m;
+      t.odometry_var_m2 += sigma_m * sigma_m;
+      // A robot held there does not read metres: this hypothesis cannot explain the drive.
+      if (!detail::held_in_reach(options_, t)) {
+        t.log_weight = kNegativeInfinity;
+        dropped = true;
+      }
+      continue;
+    }
+    t.held = false;
+    t.held_m = 0;
     const double length = map.pipe(t.pipe).length_m;
     if (t.kind == Track::Kind::kAtMouth) {
       // Back out of the mouth into the pipe it arrived by.
@@ -228,6 +243,7 @@ Result<void> TopologicalFilter::drive(double odometry_m, DriveDirection directio
   }
   mode_ = Mode::kInPipe;
   last_drive_ = direction;
+  if (dropped) normalise_and_prune();
   return {};
 }
 
@@ -258,6 +274,16 @@ Result<void> TopologicalFilter::no_manhole_within(double distance_m) {
   scratch_.clear();
   for (const Track& t : tracks_) detail::explain_no_arrival(*this, t, distance_m, scratch_);
   tracks_.swap(scratch_);
+  normalise_and_prune();
+  return {};
+}
+
+Result<void> TopologicalFilter::not_at_manhole() {
+  if (Result<void> ok = usable(); !ok.has_value()) return ok;
+  if (mode_ != Mode::kAtManhole) return invalid("not_at_manhole: the robot has not arrived");
+  for (Track& t : tracks_) {
+    if (t.kind != Track::Kind::kInPipe) t.log_weight = kNegativeInfinity;
+  }
   normalise_and_prune();
   return {};
 }

@@ -35,6 +35,11 @@ OdometryTails tails(const LocalisationOptions& o) {
   return {.share = o.odometry_outlier_share, .scale = o.odometry_outlier_scale};
 }
 
+// The spread of a place whose odometry has variance `odometry_var` and the map's lengths `map_var`.
+PlaceSpread spread(const LocalisationOptions& o, double odometry_var, double map_var) {
+  return {.odometry_var = odometry_var, .map_var = map_var, .tails = tails(o)};
+}
+
 // One pipe of the chain a forward-moving hypothesis may have reached by missing manholes.
 struct ChainStep {
   PipeId pipe{0};
@@ -47,7 +52,8 @@ struct ChainStep {
 };
 
 // Walks `track`'s chain ahead (up to max_misses manholes passed straight on), calling
-// visit(step, mouth_at_m, sd) for each pipe; stops where the robot cannot have gone.
+// visit(step, mouth_at_m, place, log_beyond_lower) for each pipe; stops where the robot cannot have
+// gone.
 template <class Visit>
 void walk_chain(const TopologicalFilter& filter, const Track& track, double lower0_m, Visit visit) {
   const SewerMap& map = filter.map();
@@ -62,18 +68,19 @@ void walk_chain(const TopologicalFilter& filter, const Track& track, double lowe
   for (int k = 0; k <= o.max_misses; ++k) {
     const Pipe& pipe = map.pipe(step.pipe);
     const double mouth = step.base_m + pipe.length_m;
+    const PlaceSpread place = spread(o, step.position_var, step.length_var);
     const double sd = std::sqrt(std::max(step.position_var + step.length_var, kMinVarianceM2));
     const double lower = k == 0 ? lower0_m : step.base_m;
     // Known: the mouth lies beyond `lower` (nothing was detected before it).
-    const double log_beyond_lower = log_phi((mouth - lower) / sd, tails(o));
-    visit(step, mouth, sd, log_beyond_lower);
+    const double log_beyond_lower = log_phi_within(mouth - lower, place);
+    visit(step, mouth, place, log_beyond_lower);
     const PipeEnd& far = pipe.ends[step.heading_end];
     if (!far.manhole || log_miss == kNegativeInfinity) return;
     if (mouth - 4 * sd > t) return;  // the mouth is well ahead: not passed
     const std::optional<SlotIndex> next =
         straight_on(map, *far.manhole, far.slot, o.straight_through_deg);
     if (!next) return;
-    const double log_passed = log1m_exp(log_phi((mouth - t) / sd, tails(o)) - log_beyond_lower);
+    const double log_passed = log1m_exp(log_phi_within(mouth - t, place) - log_beyond_lower);
     step.log_pass += log_miss + log_passed;
     if (step.log_pass == kNegativeInfinity) return;
     step.passed.push_back(*far.manhole);
@@ -242,45 +249,43 @@ void arrival_ahead(const TopologicalFilter& filter, const Track& track,
                    const std::optional<ManholeSignature>& observation, std::vector<Track>& out) {
   const SewerMap& map = filter.map();
   ArrivalExplainer explain{filter, map, filter.options(), track, observation, out};
-  const OdometryTails odometry = tails(filter.options());
   const double t = track.travelled_m;
-  walk_chain(filter, track, track.cleared_m,
-             [&](const ChainStep& step, double mouth, double sd, double log_beyond_lower) {
-               const Pipe& pipe = map.pipe(step.pipe);
-               const bool first = step.passed.empty();
-               const PipeEnd& far = pipe.ends[step.heading_end];
-               if (far.manhole) {
-                 explain.at_mouth(
-                     placed(track, step, pipe.length_m, first), *far.manhole, far.slot,
-                     step.log_pass + log_normal(t, mouth, sd * sd, odometry) - log_beyond_lower);
-               }
-               const double here = t - step.base_m;
-               if (!first && here < 0) return;
-               const double log_here =
-                   step.log_pass + log_phi((mouth - t) / sd, odometry) - log_beyond_lower;
-               explain.alternatives(
-                   placed(track, step, std::clamp(here, 0.0, pipe.length_m), first), log_here);
-             });
+  walk_chain(
+      filter, track, track.cleared_m,
+      [&](const ChainStep& step, double mouth, const PlaceSpread& place, double log_beyond_lower) {
+        const Pipe& pipe = map.pipe(step.pipe);
+        const bool first = step.passed.empty();
+        const PipeEnd& far = pipe.ends[step.heading_end];
+        if (far.manhole) {
+          explain.at_mouth(placed(track, step, pipe.length_m, first), *far.manhole, far.slot,
+                           step.log_pass + log_normal(t, mouth, place) - log_beyond_lower);
+        }
+        const double here = t - step.base_m;
+        if (!first && here < 0) return;
+        const double log_here = step.log_pass + log_phi_within(mouth - t, place) - log_beyond_lower;
+        explain.alternatives(placed(track, step, std::clamp(here, 0.0, pipe.length_m), first),
+                             log_here);
+      });
 }
 
 void no_arrival_ahead(const TopologicalFilter& filter, const Track& track, double distance_m,
                       std::vector<Track>& out) {
   const SewerMap& map = filter.map();
-  const OdometryTails odometry = tails(filter.options());
   const double t = track.travelled_m;
-  walk_chain(filter, track, std::max(track.cleared_m, t - distance_m),
-             [&](const ChainStep& step, double mouth, double sd, double log_beyond_lower) {
-               const Pipe& pipe = map.pipe(step.pipe);
-               const bool first = step.passed.empty();
-               const double here = t - step.base_m;
-               if (!first && here < 0) return;
-               Track c = placed(track, step, std::clamp(here, 0.0, pipe.length_m), first);
-               if (first) c.travelled_m = t;  // beyond the mapped length: the pipe is longer
-               c.cleared_m = c.travelled_m;
-               c.log_weight = track.log_weight + step.log_pass +
-                              log_phi((mouth - t) / sd, odometry) - log_beyond_lower;
-               out.push_back(std::move(c));
-             });
+  walk_chain(
+      filter, track, std::max(track.cleared_m, t - distance_m),
+      [&](const ChainStep& step, double mouth, const PlaceSpread& place, double log_beyond_lower) {
+        const Pipe& pipe = map.pipe(step.pipe);
+        const bool first = step.passed.empty();
+        const double here = t - step.base_m;
+        if (!first && here < 0) return;
+        Track c = placed(track, step, std::clamp(here, 0.0, pipe.length_m), first);
+        if (first) c.travelled_m = t;  // beyond the mapped length: the pipe is longer
+        c.cleared_m = c.travelled_m;
+        c.log_weight =
+            track.log_weight + step.log_pass + log_phi_within(mouth - t, place) - log_beyond_lower;
+        out.push_back(std::move(c));
+      });
 }
 
 // Runs `ahead` on `track`, mirrored when it backs: a robot backing up passes the mouth behind it
@@ -312,8 +317,53 @@ void explain_either_way(const TopologicalFilter& filter, const Track& track,
 
 }  // namespace
 
+// The odometry of a robot held at a mouth: its drive's variance, and at least kHeldSdM (a robot
+// stopping against a manhole's edge may turn its wheels a few centimetres).
+constexpr double kHeldSdM = 0.1;
+PlaceSpread held_spread(const LocalisationOptions& o, const Track& track) {
+  return spread(o, std::max(track.odometry_var_m2, kHeldSdM * kHeldSdM), 0);
+}
+
+// A hypothesis held at its mouth or junction (Track::held): after `log_drive` for the odometry
+// having read what it did while the robot stood still, it stays where it is.
+Track held_there(const Track& track, double log_drive) {
+  Track c = track;
+  c.log_weight += log_drive;
+  c.held = false;
+  c.held_m = 0;
+  c.odometry_var_m2 = 0;
+  c.arrival_misses = 0;
+  return c;
+}
+
+bool held_in_reach(const LocalisationOptions& options, const Track& track) {
+  const PlaceSpread held = held_spread(options, track);
+  const double wide_var = held.tails.scale * held.tails.scale * held.odometry_var + held.map_var;
+  return track.held_m <= 4 * std::sqrt(wide_var);
+}
+
 void explain_arrival(const TopologicalFilter& filter, const Track& track,
                      const std::optional<ManholeSignature>& observation, std::vector<Track>& out) {
+  if (track.held) {
+    // At the mouth it faces again: the odometry's density of the held drive at 0 m, the detection,
+    // and the observation's fit to that mouth or junction.
+    const LocalisationOptions& o = filter.options();
+    double fit = 0;
+    if (observation) {
+      fit = track.kind == Track::Kind::kAtMouth
+                ? compare(expected_signature(filter.map(), track.manhole, track.slot), *observation,
+                          o.noise)
+                      .log_likelihood
+                : unmapped_junction_log_likelihood(*observation,
+                                                   filter.map().pipe(track.pipe).diameter_m,
+                                                   o.min_junction_shaft_m, o.noise);
+    }
+    const double log_drive = std::log1p(-o.miss_probability) +
+                             log_normal(track.held_m, 0.0, held_spread(o, track)) + fit;
+    Track c = held_there(track, log_drive);
+    if (c.log_weight != kNegativeInfinity) out.push_back(std::move(c));
+    return;
+  }
   explain_either_way(filter, track, out, [&](const Track& t, std::vector<Track>& into) {
     arrival_ahead(filter, t, observation, into);
   });
@@ -321,6 +371,16 @@ void explain_arrival(const TopologicalFilter& filter, const Track& track,
 
 void explain_no_arrival(const TopologicalFilter& filter, const Track& track, double distance_m,
                         std::vector<Track>& out) {
+  if (track.held) {
+    // Still facing its mouth, unseen: the odometry read at least `distance_m` while the robot
+    // stood still, and the detection missed.
+    const LocalisationOptions& o = filter.options();
+    Track c = track;
+    c.log_weight +=
+        log_or_never(o.miss_probability) + log_phi_within(-distance_m, held_spread(o, track));
+    if (c.log_weight != kNegativeInfinity) out.push_back(std::move(c));
+    return;
+  }
   explain_either_way(filter, track, out, [&](const Track& t, std::vector<Track>& into) {
     no_arrival_ahead(filter, t, distance_m, into);
   });

@@ -35,6 +35,10 @@ std::optional<SlotIndex> straight_on(const SewerMap& map, ManholeId manhole, Slo
 std::optional<SlotIndex> slot_towards(const SewerMap& map, ManholeId manhole, SlotIndex arrival,
                                       double relative_deg, double tolerance_deg);
 
+// Whether `track`, held at its mouth or junction (Track::held), can have read its held_m: within
+// four standard deviations of the held odometry's wide tail (about 1.6 m by default).
+bool held_in_reach(const LocalisationOptions& options, const Track& track);
+
 // Appends to `out` every explanation of "the drive ended at a detected manhole" from `track` (in
 // a pipe): at the mapped mouth ahead or, through up to max_misses manholes missed straight on, a
 // later one; at an unmapped junction where it is; a false detection. Log-weights not normalised.

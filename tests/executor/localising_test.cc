@@ -55,8 +55,9 @@ TEST(Localising, ARefusedUpdateRestartsTheFilterFromTheTrackingAndLaterArrivalsA
   Localising localising(s.map, 0.03);
   localising.reset(s.at("M2", "P1"), 0);
   // The robot arrived at M2 front first; the tracking then has a forward drive of 10 m into P2
-  // (a controller and a filter that disagree on how the robot faces: the filter refuses to drive
-  // forward into the manhole).
+  // (a controller and a filter that disagree on how the robot faces: to the filter, a forward
+  // drive goes on into the manhole, where the pipe's end holds the robot, and 10 m driven rules
+  // that out: the filter is lost).
   const domain::InPipe in_p2{s.pipe("P2"), 10};
   EXPECT_FALSE(localising
                    .follow(DriveForward{.speed_mps = 0.3, .distance_m = 10}, driven(10),

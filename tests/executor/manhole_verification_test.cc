@@ -83,25 +83,34 @@ TEST(ManholeVerification, LengthsOffAndSlippingWheelsStillEndTheMissionAsInAnExa
 }
 
 // Manholes missed six times as often as the realistic profile's 5 %: the robot drives through
-// them where it can and arrives at a later one; the controller notices from the signature and the
-// odometry. The goal is 99.5 % of arrivals at the true manhole; over these 30 worlds (111
-// arrivals) one is wrong (a manhole with a lateral missing taken for its neighbour).
+// them where it can; the controller notices from the odometry (a drive to a manhole that went
+// past it, the filter placing the robot in the pipe beyond) or at the next manhole from its
+// signature. The goal is 99.5 % of arrivals at the true manhole; over these 30 worlds (142
+// arrivals) none is wrong. (Before the filter held a robot at the manhole it drove on into, one
+// was: in world 26 the robot, put back at M5 after driving through it, oscillated between P4 and
+// P13 and settled on M11.)
 TEST(ManholeVerification, ArrivalsTheControllerSettlesOnAreTheTrueManholes) {
   const testing::AisTestbed ais = testing::load_ais_testbed();
   std::size_t arrivals = 0;
   std::size_t wrong = 0;
+  std::size_t driven_through = 0;
   std::set<std::string> checks;
   for (std::uint64_t seed = 1; seed <= 30; ++seed) {
     const WorldRun r = run_in_world(ais, "realistic,missed=0.3", seed);
     arrivals += r.arrivals;
     wrong += r.wrong;
     checks.insert(r.checks.begin(), r.checks.end());
+    driven_through += static_cast<std::size_t>(
+        std::count_if(r.replans.begin(), r.replans.end(), [](const std::string& why) {
+          return why.rfind("the robot is in pipe", 0) == 0 &&
+                 why.find(", the plan has it at M") != std::string::npos;
+        }));
     EXPECT_NE(r.report.outcome, MissionReport::Outcome::kHalted);
   }
   EXPECT_GT(arrivals, 100U);
   EXPECT_LE(wrong * 100, arrivals) << wrong << " of " << arrivals << " arrivals";
-  // A manhole driven through unseen was noticed at the next one, and a manhole the map lacks.
-  EXPECT_EQ(checks.count("wrong-manhole"), 1U);
+  // A manhole driven through unseen was noticed, and a manhole the map lacks.
+  EXPECT_GT(driven_through, 0U);
   EXPECT_EQ(checks.count("unmapped-junction"), 1U);
 }
 

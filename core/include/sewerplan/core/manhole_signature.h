@@ -22,6 +22,7 @@
 // Thread safety: plain value types and pure functions.
 #pragma once
 
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -71,7 +72,31 @@ struct SignatureNoise {
   double max_step_m = 0.15;
   double max_diameter_m = 0.12;
   double max_shaft_m = 0.5;
+  // The share of the map's mouths unlike the sewer's beyond the noise (a direction, a step or a
+  // pipe size wrong on the map: issue 29's error profile has a tenth of the slots 20 degrees off
+  // and a twentieth of the pipes narrower than mapped). A mouth never scores below this share of
+  // one nothing predicts (unknown_mouth_log_likelihood()), so one wrong mouth does not make a
+  // manhole a stranger; one that fits scores as without it. In [0, 1); 0 (the default): every
+  // difference is noise. It changes compare()'s log_likelihood only, never whether it matches.
+  double mouth_off_share = 0;
 };
+
+// The ranges of a measurement nothing predicts, on compare()'s scale: a direction anywhere in 360
+// degrees, a step within a metre, a pipe of 0.1-1.1 m (docs/localisation.md).
+inline constexpr double kUnknownDirectionRangeDeg = 360.0;
+inline constexpr double kUnknownStepRangeM = 1.0;
+inline constexpr double kUnknownDiameterRangeM = 1.0;
+// log(sqrt(2 pi)): compare()'s Gaussian terms leave it out (-z^2/2 - log sigma), so a uniform
+// density over a range adds it back to be comparable.
+inline constexpr double kLogSqrtTwoPi = 0.91893853320467274178;
+// The log-likelihood of a measurement uniform over `range`, on compare()'s scale.
+inline double unknown_log_likelihood(double range) { return kLogSqrtTwoPi - std::log(range); }
+// ... and of a whole mouth: direction, step and size unknown.
+inline double unknown_mouth_log_likelihood() {
+  return unknown_log_likelihood(kUnknownDirectionRangeDeg) +
+         unknown_log_likelihood(kUnknownStepRangeM) +
+         unknown_log_likelihood(kUnknownDiameterRangeM);
+}
 
 struct SignatureMatch {
   bool matches = false;
