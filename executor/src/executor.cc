@@ -297,7 +297,14 @@ class Executor::Run {
         // A job stopped by a manhole the map lacks goes on beyond it, once the robot has passed.
         for (std::optional<Job> next = job; next;) {
           std::optional<Failure> failure = recovery_.run_job(*next, action);
-          if (failure) place_by_belief(*failure, *next);
+          if (failure) {
+            if (std::optional<std::string> settled = refused_at_no_manhole(*failure, *next)) {
+              mismatch_.reset();
+              sync_progress(replay.progress());
+              return Replan{std::nullopt, *settled};
+            }
+            place_by_belief(*failure, *next);
+          }
           next.reset();
           if (failure || halted()) {
             mismatch_.reset();
@@ -403,6 +410,23 @@ class Executor::Run {
     if (!best) return false;
     (void)settle_on(*best);
     return true;
+  }
+
+  // A turn the robot refused (hal::RobotErrorCause::kInvalidJob) where the tracking has it at a
+  // manhole: it is at none, and the stop the filter weighed was a false detection. The tracking
+  // moves to the filter's most likely place in a pipe and the plan is made again from there; the
+  // reason, or empty when the filter has no such place (the failure stands: the robot is held).
+  // Before, the controller rebooted the robot three times and called it stuck (AIS, world errors:
+  // a false detection 0.6 m short of M2, taken for M2 at p=0.86).
+  std::optional<std::string> refused_at_no_manhole(const Failure& failure, const Job& job) {
+    if (failure.cause != hal::RobotErrorCause::kInvalidJob ||
+        !std::holds_alternative<TurnInManhole>(job) ||
+        !std::holds_alternative<domain::AtSlot>(tracker_.position())) {
+      return std::nullopt;
+    }
+    const std::optional<localisation::Hypothesis> best = localising_.not_at_manhole();
+    if (!best || !best->pose.heading_end) return std::nullopt;
+    return "relocalised: the robot refused a turn (" + failure.detail + "): " + settle_on(*best);
   }
 
   // A blockage or danger met in a pipe other than the one the tracking has the robot in, by the

@@ -128,6 +128,15 @@ void Localising::reset(const domain::RobotPosition& position, std::uint8_t headi
   usable_ = filter_->reset(pose).has_value();
 }
 
+std::optional<localisation::Hypothesis> Localising::not_at_manhole() {
+  if (!filter_ || !usable_) return std::nullopt;
+  if (!filter_->not_at_manhole().has_value() || filter_->estimate().lost()) {
+    usable_ = false;
+    return std::nullopt;
+  }
+  return filter_->estimate().best();
+}
+
 localisation::Estimate Localising::estimate() const {
   if (!filter_ || !usable_) return {};
   return filter_->estimate();

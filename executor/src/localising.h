@@ -59,6 +59,11 @@ class Localising {
                                 const domain::RobotPosition& before,
                                 const domain::RobotPosition& after, std::uint8_t after_heading_end);
 
+  // The robot refused a job that needs it at a manhole (hal::RobotErrorCause::kInvalidJob for a
+  // turn) where the filter had it arrived: the filter's most likely place in a pipe (the stop was
+  // a false detection). Empty when the filter has none: it then starts again at the next reset().
+  std::optional<localisation::Hypothesis> not_at_manhole();
+
   // How often the filter had to start again from the tracking's place.
   int restarts() const { return restarts_; }
 

@@ -83,6 +83,12 @@ std::optional<Failure> StagedRecovery::run_job(const Job& job, const fusion::Rob
   for (;;) {
     if (r.ok()) return std::nullopt;
     const hal::RobotErrorKind kind = r.error->kind;
+    if (r.error->cause == hal::RobotErrorCause::kInvalidJob) {
+      // A job the robot cannot run where it is: a reboot changes neither. The run loop decides
+      // (a turn refused at a manhole the robot is not at: it relocalises).
+      return Failure{
+          .kind = Failure::Kind::kStuck, .detail = r.error->reason, .cause = r.error->cause};
+    }
     if (kind == hal::RobotErrorKind::kMalfunction) {
       if (!reboots.take(r)) {
         return Failure{

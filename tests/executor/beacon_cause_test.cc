@@ -190,8 +190,10 @@ TEST(BeaconCause, EachMalfunctionCauseGivesItsBeaconCause) {
       {hal::RobotErrorCause::kBatteryEmpty, Cause::kMalfunction, Cause::kMalfunction},
       {hal::RobotErrorCause::kOtherMalfunction, Cause::kMalfunction, Cause::kMalfunction},
       {hal::RobotErrorCause::kLink, Cause::kLink, Cause::kLink},
-      // A job the robot cannot run, a stop: the robot is held, not broken; a reboot that fails is.
-      {hal::RobotErrorCause::kInvalidJob, Cause::kStuck, Cause::kMalfunction},
+      // A job the robot cannot run: the robot is held, not broken, and no reboot is tried (one
+      // changes neither where the robot is nor what the job asks).
+      {hal::RobotErrorCause::kInvalidJob, Cause::kStuck, Cause::kStuck},
+      // A stop: held too; a reboot that fails is a malfunction.
       {hal::RobotErrorCause::kEmergencyStop, Cause::kStuck, Cause::kMalfunction},
   };
   for (const Case& c : cases) {
