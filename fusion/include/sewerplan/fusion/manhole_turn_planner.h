@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// ManholeTurnPlanner: a collision-free motion of the whole body through a manhole, with OMPL.
+// ManholeTurnPlanner: a collision-free motion of the whole body through a manhole, its head's path
+// from an injected HeadPathPlanner (OMPL's: head_path_planner.h).
 //
 // Follow-the-leader (docs/motion.md): the head drives a path and every segment follows it, each
 // joint on the path one segment length behind the one before. A path whose curvature radius is at

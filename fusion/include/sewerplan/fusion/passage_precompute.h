@@ -12,9 +12,10 @@
 //
 //   SteadyClock clock;
 //   const motion::OmplHeadPathPlanner ompl;  // head_path_planner.h
-//   Result<PrecomputeResult> r = precompute_passage_motion(map, profile, {.head_paths = &ompl},
-//   clock); write_passage_motion_json(r->table, map, out); std::cout <<
-//   r->statistics.distinct_geometries << " geometries planned\n";
+//   Result<PrecomputeResult> r =
+//       precompute_passage_motion(map, profile, {.head_paths = &ompl}, clock);
+//   write_passage_motion_json(r->table, map, out);
+//   std::cout << r->statistics.distinct_geometries << " geometries planned\n";
 //
 // Thread safety: A PassageMotionCache is not thread-safe: plan() fills it and counts hits, so
 // one thread at a time. precompute_passage_motion and to_manhole_frame share nothing (the former

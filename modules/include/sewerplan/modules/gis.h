@@ -5,8 +5,8 @@
 // and why (both stamps), never a crash.
 //
 //   Result<const GisTable*> gis = gis_module("reading sewers.gpkg");
-//   if (!gis.has_value()) return gis.error();  // "reading sewers.gpkg needs GDAL and PROJ, but
-//   ..." ServerOptions options{.gis = station_gis()};  // the station's, loaded when a page asks
+//   if (!gis.has_value()) return gis.error();  // "reading ... needs GDAL and PROJ, but ..."
+//   server::ServerOptions options{.gis = station_gis()};  // loaded when a page asks
 //
 // Thread safety: load_module's (any thread).
 #pragma once
