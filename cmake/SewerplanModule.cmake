@@ -1,14 +1,14 @@
 # SPDX-License-Identifier: MIT
-# sewerplan's modules (sewerplan/core/module.h): parts built as shared objects of their own that a
-# program loads with dlopen the first time it needs them.
+# sewerplan's modules (sewerplan/modules/module.h, modules/): parts built as shared objects of their
+# own that a program loads with dlopen the first time it needs them.
 #
 # In the build tree every module is lib/sewerplan/sewerplan_NAME.so, one level up from bin/, tests/
-# and bench/. Installed, it is in CMAKE_INSTALL_LIBDIR/sewerplan. The loader (core/src/module.cc)
+# and bench/. Installed, it is in CMAKE_INSTALL_LIBDIR/sewerplan. The loader (modules/src/module_loader.cc)
 # looks from the directory of the binary it is linked into: first where an install puts the
 # modules relative to CMAKE_INSTALL_BINDIR, then where the build tree does, then the install's
 # absolute directory.
 #
-#   sewerplan_module(NAME ompl SOURCES fusion/module/ompl_module.cc LIBS sewerplan::fusion ompl)
+#   sewerplan_module(NAME ompl SOURCES modules/ompl/ompl_module.cc LIBS sewerplan::motion sewerplan::modules)
 #   sewerplan_uses_modules(my_program)   # builds every module before my_program
 
 set(SEWERPLAN_MODULE_BUILD_DIR ${PROJECT_BINARY_DIR}/lib/sewerplan CACHE INTERNAL "")
@@ -41,12 +41,13 @@ endfunction()
 
 # The build id in every module's ABI stamp, the same for a program and the modules of one build: a
 # hash of the libraries' headers, public and private (a table may pass a type from a library's
-# src/, as the OMPL module's does), and of the compiler and flags, regenerated when a header changes
+# src/), and of the compiler and flags, regenerated when a header changes
 # (cmake/module_build_id.cmake), as SEWERPLAN_MODULE_BUILD_ID in sewerplan_module_build_id.h
-# (included by core/src/module.cc only). Call once, before the libraries.
+# (included by modules/src/module_stamp.cc only). Call once, before the libraries.
 function(sewerplan_module_build_id)
   set(headers)
-  foreach(lib IN ITEMS core domain search fusion localisation hal executor campaign render server gis)
+  foreach(lib IN ITEMS core domain search fusion motion localisation hal executor campaign render server gis
+                      modules)
     file(GLOB_RECURSE lib_headers CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/${lib}/*.h)
     list(APPEND headers ${lib_headers})
   endforeach()
@@ -75,7 +76,7 @@ function(sewerplan_module_build_id)
 endfunction()
 
 # sewerplan_module(NAME <name> SOURCES ... [LIBS ...]): the module sewerplan_<name>.so, target
-# sewerplan_<name>_module. Its sources define the two entry symbols (sewerplan/core/module.h); only
+# sewerplan_<name>_module. Its sources define the two entry symbols (sewerplan/modules/module.h); only
 # they are exported: the static libraries inside stay hidden, so they never bind to the program's
 # own copies.
 function(sewerplan_module)

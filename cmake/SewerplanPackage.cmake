@@ -7,8 +7,9 @@
 #                      environment as example data; Depends from dpkg-shlibdeps only: run-time
 #                      libraries, never a -dev package or a compiler.
 #   sewerplan-dev      (component dev) the static libraries, their headers, version.h, the CMake
-#                      package and sewerplan.pc; Depends on sewerplan of the same version (a
-#                      program built against the libraries loads its modules) and on the -dev
+#                      package and sewerplan.pc; Depends on sewerplan of the same version (kept
+#                      from when the libraries loaded its modules; they no longer do,
+#                      docs/modules.md: TODO(#33) reconsider) and on the -dev
 #                      packages find_package(sewerplan) needs (cmake/sewerplanConfig.cmake.in).
 #   python3-sewerplan  (component python, with SEWERPLAN_PYTHON) the module in python3's
 #                      dist-packages and its example; Depends from dpkg-shlibdeps, python3 of the

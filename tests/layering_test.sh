@@ -5,8 +5,10 @@
 #   campaign on all (with executor); render on core, domain, hal and executor (the typed events of
 #   the logs it draws); nothing includes campaign except apps, tests, bench, the Python module
 #   (python/) and the operator station's server (server/, its campaigns) (and campaign itself); the
-#   server also on render (event logs read back) and gis (its headers: the GeoJSON export loads the
-#   GIS module at run time).
+#   server also on render (event logs read back) and gis (its headers: the GeoJSON export's input;
+#   the program gives the functions); motion (OMPL's head path planner) on fusion; modules (the
+#   module loader and the modules, the programs' floor) on all, and nothing below includes it.
+# And no library but modules holds loader code: no dlopen in what an embedder links.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 declare -A allowed=(
@@ -21,6 +23,8 @@ declare -A allowed=(
   [gis]="core domain gis"
   [localisation]="core domain localisation"
   [server]="core domain search fusion localisation hal executor campaign render gis server"
+  [motion]="core domain fusion motion"
+  [modules]="core domain search fusion motion localisation hal executor campaign render gis server modules"
 )
 status=0
 for lib in "${!allowed[@]}"; do
@@ -32,6 +36,13 @@ for lib in "${!allowed[@]}"; do
       status=1
     fi
   done < <(grep -rnE '#include "sewerplan/[a-z]+/' "$lib" --include='*.h' --include='*.cc' || true)
+done
+for lib in "${!allowed[@]}"; do
+  [ "$lib" = modules ] || [ ! -d "$lib" ] && continue
+  if grep -rnE 'dlopen|dlsym|<dlfcn\.h>' "$lib" --include='*.h' --include='*.cc'; then
+    echo "$lib: loader code (dlopen) belongs in modules/, not in a library an embedder links"
+    status=1
+  fi
 done
 [ $status -eq 0 ] && echo "layering: ok"
 exit $status

@@ -15,6 +15,7 @@
 #include "sewerplan/core/text_file.h"
 #include "sewerplan/domain/plan_text.h"
 #include "sewerplan/gis/geojson.h"
+#include "sewerplan/modules/gis.h"
 #include "sewerplan/render/event_trace.h"
 #include "sewerplan/search/planner.h"
 
@@ -22,7 +23,6 @@
 #include "condition_options.h"
 #include "crs_option.h"
 #include "driveability_option.h"
-#include "gis_module.h"
 #include "json_output.h"
 #include "map_input.h"
 #include "output_format.h"
@@ -149,7 +149,7 @@ int run(const ExportOptions& o, Context& c) {
                             "placed on the earth; give it with --crs EPSG:NNNN (e.g. EPSG:25832 "
                             "for ETRS89 / UTM 32N)"});
     }
-    Result<const gis::ModuleTable*> module = gis_module("export-geojson");
+    Result<const modules::GisTable*> module = modules::gis_module("export-geojson");
     if (!module.has_value()) return failed(module.error());
     const gis::GeoJsonInput input{
         .map = &*map,
@@ -173,7 +173,7 @@ int run(const ExportOptions& o, Context& c) {
     const gis::MapXY origin = o.nav2_origin.empty()
                                   ? gis::MapXY{}
                                   : gis::MapXY{.x = o.nav2_origin[0], .y = o.nav2_origin[1]};
-    Result<const gis::ModuleTable*> module = gis_module("export-geojson --nav2");
+    Result<const modules::GisTable*> module = modules::gis_module("export-geojson --nav2");
     if (!module.has_value()) return failed(module.error());
     if (Result<void> w =
             write_text_file(o.nav2, (*module)->to_nav2_route_graph(*map, origin, "map"));

@@ -12,6 +12,7 @@
 #include "sewerplan/core/passage_motion.h"
 #include "sewerplan/core/text_file.h"
 #include "sewerplan/fusion/passage_precompute.h"
+#include "sewerplan/modules/ompl.h"
 
 #include "command.h"
 #include "json_output.h"
@@ -38,8 +39,10 @@ int precompute(const PrecomputeOptions& o, Context& c) {
   const std::optional<std::string> path =
       map_path(o.map, o.map_positional, "motion precompute", c, o.json, exit_code);
   if (!path) return exit_code;
-  if (Result<void> ok = fusion::motion_planning_support(); !ok.has_value()) {
-    return fail(c, o.json, Error{ok.error().code, "motion precompute: " + ok.error().message});
+  // OMPL's planner from the OMPL module: this command is the only one that loads it.
+  const Result<const fusion::HeadPathPlanner*> ompl = modules::ompl_head_path_planner();
+  if (!ompl.has_value()) {
+    return fail(c, o.json, Error{ompl.error().code, "motion precompute: " + ompl.error().message});
   }
   Diagnostics diagnostics;
   Result<SewerMap> map = read_input_map({*path, o.gis_fields}, diagnostics);
@@ -55,7 +58,8 @@ int precompute(const PrecomputeOptions& o, Context& c) {
   }
   SteadyClock clock;
   std::size_t last_tenth = 0;
-  fusion::PrecomputeOptions options{.planner = {.seed = o.seed, .max_iterations = o.iterations}};
+  fusion::PrecomputeOptions options{.head_paths = *ompl,
+                                    .planner = {.seed = o.seed, .max_iterations = o.iterations}};
   // The same stop condition as every planner's (core/stop_condition.h): no table when it fires.
   if (o.time_limit_s > 0) options.stop = StopCondition::after_seconds(clock, o.time_limit_s);
   if (!o.quiet) {

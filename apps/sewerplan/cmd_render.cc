@@ -11,6 +11,7 @@
 #include "sewerplan/core/text_file.h"
 #include "sewerplan/domain/plan_text.h"
 #include "sewerplan/hal/fault_scenario.h"
+#include "sewerplan/modules/png.h"
 #include "sewerplan/render/map_picture.h"
 
 #include "command.h"
@@ -95,7 +96,7 @@ int run(const RenderOptions& o, Context& c) {
                                   .width_px = o.width_px,
                                   .focus = o.focus};
   Result<std::string> picture =
-      png ? render::render_map_png(input) : Result<std::string>(render::render_map_svg(input));
+      png ? modules::render_map_png(input) : Result<std::string>(render::render_map_svg(input));
   if (!picture.has_value()) return failed(picture.error());
   if (Result<void> w = write_text_file(o.out, *picture); !w.has_value()) return failed(w.error());
   if (o.json) {

@@ -2,7 +2,7 @@
 // sewerplan serve [--map FILE ...] [--host 127.0.0.1] [--port 8080] [--token T] [--web DIR]
 //                 [--allow-host NAME ...] [--tiles URL|DIR] [--max-connections 256]
 // The operator station (docs/operator-station.md): the server of server/station_server.h, loaded
-// from the server module (sewerplan/server/module.h), and the page.
+// from the server module (sewerplan/modules/server_table.h), and the page.
 #include <algorithm>
 #include <cstddef>
 #include <filesystem>
@@ -12,8 +12,11 @@
 #include <CLI/CLI.hpp>
 
 #include "sewerplan/core/map_io.h"
-#include "sewerplan/core/module.h"
-#include "sewerplan/server/module.h"
+#include "sewerplan/modules/module.h"
+#include "sewerplan/modules/server_table.h"
+#if SEWERPLAN_WITH_GIS
+#include "sewerplan/modules/gis.h"
+#endif
 
 #include "command.h"
 #include "json_output.h"
@@ -73,11 +76,11 @@ int run(const ServeOptions& o, Context& c) {
                            ": none of the maps is a GIS source (GeoPackage, Shapefile or a "
                            "directory of them)");
   }
-  // The station, with cpp-httplib and OpenSSL, is a module (sewerplan/server/module.h): loaded by
-  // this command only.
-  static const std::string stamp = server::module_stamp();
-  const Result<const server::ModuleTable*> module =
-      load_module_table<server::ModuleTable>(server::kModuleName, stamp);
+  // The station, with cpp-httplib and OpenSSL, is a module (sewerplan/modules/server_table.h):
+  // loaded by this command only.
+  static const std::string stamp = modules::server_stamp();
+  const Result<const modules::ServerTable*> module =
+      modules::load_module_table<modules::ServerTable>(modules::kServerModule, stamp);
   if (!module.has_value()) {
     return fail(c, false,
                 Error{module.error().code,
@@ -98,6 +101,10 @@ int run(const ServeOptions& o, Context& c) {
     if (map.has_value()) print_diagnostics(diagnostics, c.err);
     return map;
   };
+#if SEWERPLAN_WITH_GIS
+  // The basemap and the GeoJSON export through this program's GIS module, loaded when a page asks.
+  options.gis = modules::station_gis();
+#endif
   options.web_root = web_root(o.web);
   if (options.web_root.empty()) {
     c.err << "sewerplan serve: the page is not built (SEWERPLAN_WEB=ON, or --web DIR): API only\n";

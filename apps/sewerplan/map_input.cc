@@ -8,7 +8,7 @@
 
 #include "sewerplan/core/map_io.h"
 #ifdef SEWERPLAN_WITH_GIS
-#include "gis_module.h"
+#include "sewerplan/modules/gis.h"
 #endif
 
 namespace sewerplan::cli {
@@ -32,7 +32,7 @@ Result<SewerMap> read_input_map(const MapSource& source, Diagnostics& diagnostic
   // Only a GIS source (or a field mapping, whose misuse gis::read_map_source explains) loads the
   // GIS module; every other map is core's.
   if (!is_gis_source_path(source.path) && !fields) return read_map(source.path, diagnostics);
-  Result<const gis::ModuleTable*> module = gis_module("reading " + source.path);
+  Result<const modules::GisTable*> module = modules::gis_module("reading " + source.path);
   if (!module.has_value()) return module.error();
   return (*module)->read_map_source(source.path, diagnostics, fields);
 #else

@@ -20,12 +20,19 @@
 #include "sewerplan/core/passage_motion.h"
 #include "sewerplan/fusion/manhole_turn_planner.h"
 #include "sewerplan/fusion/passage_precompute.h"
+#include "sewerplan/modules/ompl.h"
 
 #include "support/check_gap_clock.h"
 #include "support/instances.h"
 
 namespace sewerplan::fusion {
 namespace {
+
+// OMPL's planner as the command gets it: from the OMPL module (sewerplan/modules/ompl.h).
+const HeadPathPlanner* ompl() {
+  const Result<const HeadPathPlanner*>& planner = modules::ompl_head_path_planner();
+  return planner.has_value() ? *planner : nullptr;
+}
 
 const SewerMap& map_for(std::int64_t manholes) {
   return manholes == 0 ? bench::ais_instance().map
@@ -34,7 +41,7 @@ const SewerMap& map_for(std::int64_t manholes) {
 
 // Argument: manholes (0: the AIS test environment).
 void BM_PassagePrecompute(benchmark::State& state) {
-  if (!motion_planning_available()) {
+  if (ompl() == nullptr) {
     state.SkipWithError("no motion planning: built without OMPL, or its module does not load");
     return;
   }
@@ -43,7 +50,8 @@ void BM_PassagePrecompute(benchmark::State& state) {
   SteadyClock clock;
   PrecomputeStatistics stats;
   for (auto _ : state) {
-    Result<PrecomputeResult> r = precompute_passage_motion(map, profile, {}, clock);
+    Result<PrecomputeResult> r =
+        precompute_passage_motion(map, profile, {.head_paths = ompl()}, clock);
     if (!r.has_value()) {
       state.SkipWithError(r.error().message.c_str());
       return;
@@ -65,7 +73,7 @@ void BM_PassagePrecompute(benchmark::State& state) {
 BENCHMARK(BM_PassagePrecompute)->Arg(0)->Arg(1000)->Unit(benchmark::kMillisecond);
 
 void BM_PrecomputeStopCheckGap(benchmark::State& state) {
-  if (!motion_planning_available()) {
+  if (ompl() == nullptr) {
     state.SkipWithError("no motion planning: built without OMPL, or its module does not load");
     return;
   }
@@ -77,7 +85,8 @@ void BM_PrecomputeStopCheckGap(benchmark::State& state) {
     const bench::CheckGapClock clock;
     clock.now_s();
     Result<PrecomputeResult> r = precompute_passage_motion(
-        map, profile, {.stop = StopCondition::at_deadline(clock, 1e12)}, steady);
+        map, profile, {.head_paths = ompl(), .stop = StopCondition::at_deadline(clock, 1e12)},
+        steady);
     clock.now_s();
     if (!r.has_value()) {
       state.SkipWithError(r.error().message.c_str());
@@ -116,12 +125,12 @@ BENCHMARK(BM_PassageRules)->Arg(0)->Arg(1000)->Unit(benchmark::kMillisecond);
 // One feasible right angle in a 1 m manhole between 0.60 m pipes, and one infeasible U-turn (the
 // planner's full iteration budget).
 void BM_ManholeTurnPlan(benchmark::State& state) {
-  if (!motion_planning_available()) {
+  if (ompl() == nullptr) {
     state.SkipWithError("no motion planning: built without OMPL, or its module does not load");
     return;
   }
   const RobotProfile profile = *builtin_profile("makro-1.1");
-  const ManholeTurnPlanner planner(robot_body(profile), profile);
+  const ManholeTurnPlanner planner(ompl(), robot_body(profile), profile);
   const PassageGeometry g{.turn_deg = static_cast<double>(state.range(0))};
   for (auto _ : state) {
     Result<TurnPlan> p = planner.plan(g);

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// ManholeTurnPlanner: the analytic checks, the head path from OMPL (head_path.h), the
+// ManholeTurnPlanner: the analytic checks, the head path from the HeadPathPlanner given (OMPL's:
+// head_path_planner.h), the
 // follow-the-leader check of the whole chain, and the plan's duration and waypoints.
 #include "sewerplan/fusion/manhole_turn_planner.h"
 
@@ -12,14 +13,12 @@
 
 #include "sewerplan/core/message_text.h"
 
-#include "head_path.h"
 #include "plan_numbers.h"
 
 namespace sewerplan::fusion {
 namespace {
 
 using detail::kDegToRad;
-using detail::Pose2;
 using detail::rounded;
 
 // Steps up to this height the wheels drive over without lifting a segment.
@@ -41,7 +40,7 @@ double wrapped(double a) { return std::remainder(a, 2 * std::numbers::pi); }
 
 // A polyline of head poses with its cumulative arc length.
 struct Polyline {
-  std::vector<Pose2> poses;
+  std::vector<HeadPose> poses;
   std::vector<double> arc;
 
   void add_line_to(double x, double y, double heading) {
@@ -50,7 +49,7 @@ struct Polyline {
       arc.push_back(0);
       return;
     }
-    const Pose2 a = poses.back();
+    const HeadPose a = poses.back();
     const double d = std::hypot(x - a.x_m, y - a.y_m);
     const auto n = static_cast<std::size_t>(std::ceil(d / 0.01));
     for (std::size_t i = 1; i <= n; ++i) {
@@ -58,8 +57,8 @@ struct Polyline {
       add({a.x_m + t * (x - a.x_m), a.y_m + t * (y - a.y_m), heading});
     }
   }
-  void add(const Pose2& p) {
-    const Pose2& a = poses.back();
+  void add(const HeadPose& p) {
+    const HeadPose& a = poses.back();
     arc.push_back(arc.back() + std::hypot(p.x_m - a.x_m, p.y_m - a.y_m));
     poses.push_back(p);
   }
@@ -209,8 +208,8 @@ Result<void> check_numbers(const PassageGeometry& g) {
 // The whole path of the head: the body's length behind it in the from-pipe, the straight run
 // before a step, the planned part (`head`, which begins at `start`), the run after a step, and
 // the body's length into the to-pipe at azimuth `alpha`.
-Polyline whole_path(const Pose2& start, const std::vector<Pose2>& head, double r, double run_from,
-                    double run_to, double alpha, double body_length) {
+Polyline whole_path(const HeadPose& start, const std::vector<HeadPose>& head, double r,
+                    double run_from, double run_to, double alpha, double body_length) {
   const double cx = std::cos(alpha);
   const double cy = std::sin(alpha);
   Polyline path;
@@ -223,32 +222,37 @@ Polyline whole_path(const Pose2& start, const std::vector<Pose2>& head, double r
   return path;
 }
 
+// Planning with no HeadPathPlanner given.
+Error no_head_path_planner() {
+  return Error{ErrorCode::kUnsupportedFormat,
+               "a manhole motion needs the OMPL motion planner (a HeadPathPlanner), but none was "
+               "given; the angle and step rules apply"};
+}
+
 }  // namespace
 
-Result<void> motion_planning_support() { return detail::head_path_support(); }
-
-bool motion_planning_available() { return detail::head_path_available(); }
-
-ManholeTurnPlanner::ManholeTurnPlanner(RobotBody body, const RobotProfile& profile,
-                                       TurnPlannerOptions options)
-    : body_(body),
+ManholeTurnPlanner::ManholeTurnPlanner(const HeadPathPlanner* head_paths, RobotBody body,
+                                       const RobotProfile& profile, TurnPlannerOptions options)
+    : head_paths_(head_paths),
+      body_(body),
       speed_mps_(profile.manoeuvre_speed_mps),
       turn_s_per_deg_(profile.turn_s_per_deg),
       step_s_per_m_(profile.step_s_per_m),
       options_(options) {}
 
 Result<void> ManholeTurnPlanner::check_state_space(const PassageGeometry& geometry) const {
-  return detail::head_space_sanity({.geometry = quantised(geometry),
-                                    .turn_radius_m = body_.min_turn_radius_m(),
-                                    .clearance_m = body_.width_m / 2 + body_.bend_margin_m()},
-                                   options_);
+  if (head_paths_ == nullptr) return no_head_path_planner();
+  return head_paths_->check_space({.geometry = quantised(geometry),
+                                   .turn_radius_m = body_.min_turn_radius_m(),
+                                   .clearance_m = body_.width_m / 2 + body_.bend_margin_m()},
+                                  options_);
 }
 
 Result<TurnPlan> ManholeTurnPlanner::plan(const PassageGeometry& geometry,
                                           const StopCondition& stop) const {
   const PassageGeometry g = quantised(geometry);
   if (Result<void> ok = check_numbers(g); !ok.has_value()) return ok.error();
-  if (Result<void> ok = detail::head_path_support(); !ok.has_value()) return ok.error();
+  if (head_paths_ == nullptr) return no_head_path_planner();
   const double w = body_.width_m;
   if (g.from_diameter_m < w || g.to_diameter_m < w) {
     const LimitText t = limit_text_fixed(std::min(g.from_diameter_m, g.to_diameter_m), w);
@@ -278,8 +282,8 @@ Result<TurnPlan> ManholeTurnPlanner::plan(const PassageGeometry& geometry,
   // head may move sideways in the pipe before the mouth (after it).
   const double start_x = run_from > 0 ? -r + run_from : -r - kPipeReach_m;
   const double goal_d = run_to > 0 ? r - run_to : r + kPipeReach_m;
-  const Pose2 start{start_x, 0, 0};
-  const Pose2 goal{goal_d * cx, goal_d * cy, alpha};
+  const HeadPose start{start_x, 0, 0};
+  const HeadPose goal{goal_d * cx, goal_d * cy, alpha};
   // Room to bend in the manhole; in a pipe the head mostly runs straight, and the chain check
   // below verifies the body wherever it does bend.
   const double clearance = w / 2 + body_.bend_margin_m();
@@ -308,15 +312,14 @@ Result<TurnPlan> ManholeTurnPlanner::plan(const PassageGeometry& geometry,
   std::optional<std::string> problem;
   for (double pipe_room : {pipe_clearance, clearance}) {
     if (auto stopped = stop.interrupted()) return stopped_error(*stopped, "the motion planner");
-    Result<detail::HeadPath> head =
-        detail::plan_head_path({.geometry = g,
-                                .start = start,
-                                .goal = goal,
-                                .turn_radius_m = body_.min_turn_radius_m(),
-                                .clearance_m = clearance,
-                                .pipe_clearance_m = pipe_room,
-                                .pipe_reach_m = kPipeReach_m},
-                               options_, stop);
+    Result<HeadPath> head = head_paths_->plan({.geometry = g,
+                                               .start = start,
+                                               .goal = goal,
+                                               .turn_radius_m = body_.min_turn_radius_m(),
+                                               .clearance_m = clearance,
+                                               .pipe_clearance_m = pipe_room,
+                                               .pipe_reach_m = kPipeReach_m},
+                                              options_, stop);
     if (!head.has_value()) return head.error();
     iterations += head->iterations;
     if (!head->found) {

@@ -76,9 +76,14 @@ Result<PrecomputeResult> precompute_passage_motion(const SewerMap& map, const Ro
                                                    const PrecomputeOptions& options,
                                                    const Clock& clock) {
   if (Result<void> valid = validate_profile(profile); !valid.has_value()) return valid.error();
-  if (Result<void> ok = motion_planning_support(); !ok.has_value()) return ok.error();
+  if (options.head_paths == nullptr) {
+    return Error{ErrorCode::kUnsupportedFormat,
+                 "the motion precompute needs the OMPL motion planner (a HeadPathPlanner), but "
+                 "none was given"};
+  }
   const double start_s = clock.now_s();
-  PassageMotionCache cache(ManholeTurnPlanner(robot_body(profile), profile, options.planner));
+  PassageMotionCache cache(
+      ManholeTurnPlanner(options.head_paths, robot_body(profile), profile, options.planner));
   PrecomputeStatistics stats;
   // Sized once (issue 14): a vector doubling copied every entry into fresh memory between two stop
   // checks (up to 1.8 ms on 1,000 manholes); counted with a check per manhole.

@@ -12,10 +12,8 @@
 #include <unordered_set>
 #include <vector>
 
-#include "sewerplan/core/module.h"
 #include "sewerplan/core/overloaded.h"
 #include "sewerplan/domain/route_geometry.h"
-#include "sewerplan/render/png_module.h"
 
 #include "svg_canvas.h"
 
@@ -673,16 +671,6 @@ std::string render_map_svg(const RenderInput& input) {
   SvgCanvas svg;
   // An SVG canvas takes any size.
   return draw_map(input, svg).value();
-}
-
-Result<std::string> render_map_png(const RenderInput& input) {
-  static const std::string stamp = png_module_stamp();
-  Result<const PngModuleTable*> table = load_module_table<PngModuleTable>(kPngModuleName, stamp);
-  if (!table.has_value()) {
-    return Error{table.error().code, "a PNG picture needs cairo, but " + table.error().message};
-  }
-  const std::unique_ptr<Canvas> png = (*table)->make_png_canvas();
-  return draw_map(input, *png);
 }
 
 }  // namespace sewerplan::render

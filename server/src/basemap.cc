@@ -11,11 +11,6 @@
 #include <system_error>
 #include <utility>
 
-#if SEWERPLAN_WITH_GIS
-#include "sewerplan/core/module.h"
-#include "sewerplan/gis/module.h"
-#endif
-
 namespace sewerplan::server {
 namespace {
 
@@ -269,7 +264,8 @@ Result<TileChoice> choose_tiles(const TileSource& source, const BasemapView& vie
 }
 
 Result<TileChoice> basemap_tiles(const SewerMap& map, const TileSource& source,
-                                 const BasemapView& view, std::size_t max_tiles) {
+                                 const BasemapView& view, const StationGis& gis,
+                                 std::size_t max_tiles) {
   if (!map.crs()) {
     return Error{ErrorCode::kInvalidArgument,
                  "map " + map.name() +
@@ -277,28 +273,20 @@ Result<TileChoice> basemap_tiles(const SewerMap& map, const TileSource& source,
                      "placed on a basemap; give its file one (a map JSON's \"crs\", or sewerplan "
                      "convert --crs EPSG:NNNN)"};
   }
+  if (!gis.reproject) {
 #if SEWERPLAN_WITH_GIS
-  static const std::string stamp = gis::module_stamp();
-  Result<const gis::ModuleTable*> module =
-      load_module_table<gis::ModuleTable>(gis::kModuleName, stamp);
-  if (!module.has_value()) {
-    return Error{module.error().code, "the basemap needs PROJ, but " + module.error().message};
+    return Error{ErrorCode::kUnsupportedFormat,
+                 "the basemap needs PROJ, but this station was given no GIS (ServerOptions::gis)"};
+#else
+    return Error{ErrorCode::kUnsupportedFormat,
+                 "this build has no GIS (SEWERPLAN_WITH_GIS=OFF): no basemap"};
+#endif
   }
   const Crs crs = *map.crs();
-  const gis::ModuleTable* table = *module;
   return choose_tiles(
       source, view,
-      [&](bool to_wgs84, std::span<MapXY> points) {
-        return table->reproject(crs, to_wgs84, points);
-      },
+      [&](bool to_wgs84, std::span<MapXY> points) { return gis.reproject(crs, to_wgs84, points); },
       max_tiles);
-#else
-  (void)source;
-  (void)view;
-  (void)max_tiles;
-  return Error{ErrorCode::kUnsupportedFormat,
-               "this build has no GIS (SEWERPLAN_WITH_GIS=OFF): no basemap"};
-#endif
 }
 
 }  // namespace sewerplan::server

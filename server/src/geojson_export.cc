@@ -6,16 +6,14 @@
 #include <utility>
 
 #include "sewerplan/domain/plan_text.h"
+#include "sewerplan/gis/geojson.h"
 #include "sewerplan/render/event_trace.h"
-#if SEWERPLAN_WITH_GIS
-#include "sewerplan/core/module.h"
-#include "sewerplan/gis/module.h"
-#endif
 
 namespace sewerplan::server {
 
 Result<std::string> export_geojson(const SewerMap& map, const Mission& mission,
-                                   const GeoJsonExport& what, Diagnostics& diagnostics) {
+                                   const GeoJsonExport& what, const StationGis& gis,
+                                   Diagnostics& diagnostics) {
   if (!map.crs()) {
     return Error{ErrorCode::kInvalidArgument,
                  "map " + map.name() +
@@ -36,13 +34,15 @@ Result<std::string> export_geojson(const SewerMap& map, const Mission& mission,
     if (!t.has_value()) return t.error();
     trace = std::move(*t);
   }
+  if (!gis.to_geojson) {
 #if SEWERPLAN_WITH_GIS
-  static const std::string stamp = gis::module_stamp();
-  Result<const gis::ModuleTable*> module =
-      load_module_table<gis::ModuleTable>(gis::kModuleName, stamp);
-  if (!module.has_value()) {
-    return Error{module.error().code,
-                 "the GeoJSON export needs GDAL and PROJ, but " + module.error().message};
+    return Error{ErrorCode::kUnsupportedFormat,
+                 "the GeoJSON export needs GDAL and PROJ, but this station was given no GIS "
+                 "(ServerOptions::gis)"};
+#else
+    return Error{ErrorCode::kUnsupportedFormat,
+                 "this build has no GIS (SEWERPLAN_WITH_GIS=OFF): no GeoJSON export"};
+#endif
   }
   const gis::GeoJsonInput input{
       .map = &map,
@@ -50,11 +50,7 @@ Result<std::string> export_geojson(const SewerMap& map, const Mission& mission,
       .plan = plan ? &*plan : nullptr,
       .driven = trace ? &trace->driven : nullptr,
       .blocked = trace ? std::span<const Blockage>(trace->blocked) : std::span<const Blockage>()};
-  return (*module)->to_geojson(input);
-#else
-  return Error{ErrorCode::kUnsupportedFormat,
-               "this build has no GIS (SEWERPLAN_WITH_GIS=OFF): no GeoJSON export"};
-#endif
+  return gis.to_geojson(input);
 }
 
 }  // namespace sewerplan::server

@@ -426,7 +426,7 @@ void StationServer::Impl::basemap(const httplib::Request& req, httplib::Response
       !number("y1", view.rect[3]) || !number("mpp", view.metres_per_pixel)) {
     return;
   }
-  Result<TileChoice> choice = basemap_tiles(*m->map, *tiles, view);
+  Result<TileChoice> choice = basemap_tiles(*m->map, *tiles, view, options.gis);
   if (!choice.has_value()) {
     const bool bad_view = m->map->crs() && choice.error().message.starts_with("the view");
     return bad_view ? bad_request(res, choice.error().message)
@@ -760,9 +760,9 @@ void StationServer::Impl::geojson(const httplib::Request& req, const std::string
     return bad_request(res, diagnostics.error_summary());
   }
   const Mission* mission = &read->mission;
-  Result<std::string> geojson =
-      export_geojson(*m->map, *mission,
-                     {.plan_text = plan.value_or(""), .log_text = log.value_or("")}, diagnostics);
+  Result<std::string> geojson = export_geojson(
+      *m->map, *mission, {.plan_text = plan.value_or(""), .log_text = log.value_or("")},
+      options.gis, diagnostics);
   if (!geojson.has_value()) return send_error(res, kUnprocessable, geojson.error(), diagnostics);
   res.set_content(std::move(*geojson), "application/geo+json");
 }

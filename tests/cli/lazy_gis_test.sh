@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# The GIS module is loaded only by the commands that need it (sewerplan/gis/module.h): `--version`,
+# The GIS module is loaded only by the commands that need it (sewerplan/modules/gis_table.h): `--version`,
 # `plan` and `validate` on a JSON map never load GDAL or PROJ (the dynamic loader's own trace,
 # LD_DEBUG=files), export-geojson does, and writes its file. A sewerplan whose module is missing (the
 # executable copied alone) still plans, and its export-geojson is an error naming the missing module

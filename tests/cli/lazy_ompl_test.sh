@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # OMPL is loaded only by the runs that plan a manhole motion, through the OMPL module
-# (fusion/src/ompl_module.h): `--version`, `validate`, and `plan` with or without a motion table
+# (sewerplan/modules/ompl_table.h): `--version`, `validate`, and `plan` with or without a motion table
 # never load OMPL, Boost.Serialization or ODE (the dynamic loader's own trace, LD_DEBUG=files);
 # `motion precompute` does, and writes its table. A sewerplan whose module is missing (the
 # executable copied alone), or is not a sewerplan module, still plans, and its motion precompute is

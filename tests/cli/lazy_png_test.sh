@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# cairo is loaded only to draw a PNG, through the PNG module (sewerplan/render/png_module.h):
+# cairo is loaded only to draw a PNG, through the PNG module (sewerplan/modules/png_table.h):
 # `--version`, `plan`, `validate` and `render` to SVG never load cairo or the module (the dynamic
 # loader's own trace, LD_DEBUG=files); `render` to PNG does, and writes a PNG. A sewerplan whose
 # module is missing (the executable copied alone), or whose module is not one (a file that is no

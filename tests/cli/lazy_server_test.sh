@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# The server module is loaded only by `serve` (sewerplan/server/module.h): `--version`, `plan` and
+# The server module is loaded only by `serve` (sewerplan/modules/server_table.h): `--version`, `plan` and
 # `validate` never load cpp-httplib, OpenSSL or brotli's encoder (the dynamic loader's own trace,
 # LD_DEBUG=files); `serve` does, answers the API and stops on SIGTERM with exit 0. A sewerplan whose
 # module is missing (the executable copied alone) still plans, and its `serve` is an error naming the

@@ -11,6 +11,7 @@
 #include "sewerplan/core/robot_profile.h"
 #include "sewerplan/fusion/manhole_geometry.h"
 
+#include "ompl_planner.h"
 #include "support/ticking_clock.h"
 
 namespace sewerplan::fusion {
@@ -18,15 +19,13 @@ namespace {
 
 class ManholeTurnPlannerTest : public ::testing::Test {
  protected:
-  // Built with OMPL, its module must load (from the build tree's lib/sewerplan).
+  // Built with OMPL, with the motion library's planner, linked.
   void SetUp() override {
     if (!SEWERPLAN_TEST_WITH_OMPL) GTEST_SKIP() << "built without OMPL";
-    Result<void> ok = motion_planning_support();
-    ASSERT_TRUE(ok.has_value()) << ok.error();
-    ASSERT_TRUE(motion_planning_available());
   }
   TurnPlan plan(const PassageGeometry& g, std::uint32_t seed = 1) const {
-    ManholeTurnPlanner planner(robot_body(profile_), profile_, {.seed = seed});
+    ManholeTurnPlanner planner(testing::ompl_planner(), robot_body(profile_), profile_,
+                               {.seed = seed});
     Result<TurnPlan> p = planner.plan(g);
     EXPECT_TRUE(p.has_value()) << p.error();
     return p.has_value() ? *p : TurnPlan{};
@@ -123,7 +122,7 @@ TEST_F(ManholeTurnPlannerTest, TheSameSeedGivesTheSameResult) {
 // Issue 14: the motion planner honours the stop condition of every algorithm.
 TEST_F(ManholeTurnPlannerTest, ReturnsCancelledWhenTheFlagIsSet) {
   std::atomic<bool> cancel{true};
-  const ManholeTurnPlanner planner(robot_body(profile_), profile_);
+  const ManholeTurnPlanner planner(testing::ompl_planner(), robot_body(profile_), profile_);
   Result<TurnPlan> p = planner.plan(right_angle(), StopCondition().with_cancel(cancel));
   ASSERT_FALSE(p.has_value());
   EXPECT_EQ(p.error().code, ErrorCode::kCancelled);
@@ -133,7 +132,7 @@ TEST_F(ManholeTurnPlannerTest, ReturnsCancelledWhenTheFlagIsSet) {
 // OMPL's termination condition at its first RRT iterations, too few to reach the to-pipe. Without
 // our condition inside OMPL's, the planner would answer the feasible plan.
 TEST_F(ManholeTurnPlannerTest, StopsInsideOmplAtTheDeadlineOfTheInjectedClock) {
-  const ManholeTurnPlanner planner(robot_body(profile_), profile_);
+  const ManholeTurnPlanner planner(testing::ompl_planner(), robot_body(profile_), profile_);
   testing::TickingClock clock(1.0);
   Result<TurnPlan> p = planner.plan(right_angle(), StopCondition::at_deadline(clock, 5));
   ASSERT_FALSE(p.has_value());
@@ -158,25 +157,32 @@ TEST_F(ManholeTurnPlannerTest, AUTurnInAOneMetreManholeIsNot) {
 TEST_F(ManholeTurnPlannerTest, NonPositiveSizesAreAnError) {
   PassageGeometry g = right_angle();
   g.manhole_diameter_m = 0;
-  ManholeTurnPlanner planner(robot_body(profile_), profile_);
+  ManholeTurnPlanner planner(testing::ompl_planner(), robot_body(profile_), profile_);
   Result<TurnPlan> p = planner.plan(g);
   ASSERT_FALSE(p.has_value());
   EXPECT_EQ(p.error().code, ErrorCode::kInvalidArgument);
 }
 
 TEST_F(ManholeTurnPlannerTest, TheHeadSpacePassesOmplsSanityChecks) {
-  ManholeTurnPlanner planner(robot_body(profile_), profile_);
+  ManholeTurnPlanner planner(testing::ompl_planner(), robot_body(profile_), profile_);
   Result<void> ok = planner.check_state_space(right_angle());
   EXPECT_TRUE(ok.has_value()) << ok.error();
 }
 
-TEST(ManholeTurnPlannerWithoutOmpl, SaysThisBuildHasNoOmpl) {
-  if (SEWERPLAN_TEST_WITH_OMPL) GTEST_SKIP() << "built with OMPL";
+// fusion plans no head path itself (head_path_planner.h): without a planner, a clear error, and
+// the analytic checks and sanity checks alike.
+TEST(ManholeTurnPlannerWithoutAHeadPathPlanner, SaysAMotionNeedsTheOmplMotionPlanner) {
   const RobotProfile profile = *builtin_profile("makro-1.1");
-  Result<TurnPlan> p = ManholeTurnPlanner(robot_body(profile), profile).plan(right_angle());
+  const ManholeTurnPlanner planner(nullptr, robot_body(profile), profile);
+  Result<TurnPlan> p = planner.plan(right_angle());
   ASSERT_FALSE(p.has_value());
   EXPECT_EQ(p.error().code, ErrorCode::kUnsupportedFormat);
-  EXPECT_NE(p.error().message.find("no OMPL"), std::string::npos);
+  EXPECT_NE(p.error().message.find("a manhole motion needs the OMPL motion planner"),
+            std::string::npos)
+      << p.error().message;
+  Result<void> space = planner.check_state_space(right_angle());
+  ASSERT_FALSE(space.has_value());
+  EXPECT_EQ(space.error(), p.error());
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "sewerplan/fusion/fuse.h"
 #include "sewerplan/fusion/jobs.h"
 
+#include "ompl_planner.h"
 #include "support/small_map.h"
 #include "support/ticking_clock.h"
 
@@ -21,14 +22,13 @@ namespace {
 
 using testing::SmallMap;
 
+const HeadPathPlanner* ompl() { return testing::ompl_planner(); }
+
 class PassagePrecomputeTest : public ::testing::Test {
  protected:
-  // Built with OMPL, its module must load (from the build tree's lib/sewerplan).
+  // Built with OMPL, with the motion library's planner, linked.
   void SetUp() override {
     if (!SEWERPLAN_TEST_WITH_OMPL) GTEST_SKIP() << "built without OMPL";
-    Result<void> ok = motion_planning_support();
-    ASSERT_TRUE(ok.has_value()) << ok.error();
-    ASSERT_TRUE(motion_planning_available());
   }
   // M2 has a straight way (P1 -> P3), a right angle (P1 -> P2) and, into P4, a 0.40 m step.
   SewerMap map_ = SmallMap()
@@ -50,7 +50,9 @@ class PassagePrecomputeTest : public ::testing::Test {
 TEST_F(PassagePrecomputeTest, PlansEveryPassageOncePerGeometryAndComparesWithTheRules) {
   std::size_t progress_calls = 0;
   Result<PrecomputeResult> r = precompute_passage_motion(
-      map_, profile_, {.progress = [&](std::size_t, std::size_t) { ++progress_calls; }}, clock_);
+      map_, profile_,
+      {.head_paths = ompl(), .progress = [&](std::size_t, std::size_t) { ++progress_calls; }},
+      clock_);
   ASSERT_TRUE(r.has_value()) << r.error();
   const PrecomputeStatistics& s = r->statistics;
   EXPECT_EQ(progress_calls, map_.manhole_count());
@@ -74,12 +76,13 @@ TEST_F(PassagePrecomputeTest, PlansEveryPassageOncePerGeometryAndComparesWithThe
 TEST_F(PassagePrecomputeTest, StopsOnTheCancelFlagAndAtTheDeadline) {
   std::atomic<bool> cancel{true};
   Result<PrecomputeResult> cancelled = precompute_passage_motion(
-      map_, profile_, {.stop = StopCondition().with_cancel(cancel)}, clock_);
+      map_, profile_, {.head_paths = ompl(), .stop = StopCondition().with_cancel(cancel)}, clock_);
   ASSERT_FALSE(cancelled.has_value());
   EXPECT_EQ(cancelled.error().code, ErrorCode::kCancelled);
   testing::TickingClock ticking(1.0);
   Result<PrecomputeResult> late = precompute_passage_motion(
-      map_, profile_, {.stop = StopCondition::at_deadline(ticking, 3)}, clock_);
+      map_, profile_, {.head_paths = ompl(), .stop = StopCondition::at_deadline(ticking, 3)},
+      clock_);
   ASSERT_FALSE(late.has_value());
   EXPECT_EQ(late.error().code, ErrorCode::kSearchLimit);
   EXPECT_EQ(ticking.reads(), 3);
@@ -91,23 +94,39 @@ TEST_F(PassagePrecomputeTest, StopsOnTheCancelFlagAndAtTheDeadline) {
 TEST_F(PassagePrecomputeTest, AsksTheStopWhileAssemblingAndReleasing) {
   testing::TickingClock counting(1.0);
   ASSERT_TRUE(precompute_passage_motion(
-                  map_, profile_, {.stop = StopCondition::at_deadline(counting, 1e12)}, clock_)
+                  map_, profile_,
+                  {.head_paths = ompl(), .stop = StopCondition::at_deadline(counting, 1e12)},
+                  clock_)
                   .has_value());
   const double reads = counting.reads();
   testing::TickingClock at_last(1.0);
   Result<PrecomputeResult> late = precompute_passage_motion(
-      map_, profile_, {.stop = StopCondition::at_deadline(at_last, reads)}, clock_);
+      map_, profile_, {.head_paths = ompl(), .stop = StopCondition::at_deadline(at_last, reads)},
+      clock_);
   ASSERT_FALSE(late.has_value());
   EXPECT_EQ(late.error().code, ErrorCode::kSearchLimit);
   testing::TickingClock after_last(1.0);
   Result<PrecomputeResult> done = precompute_passage_motion(
-      map_, profile_, {.stop = StopCondition::at_deadline(after_last, reads + 1)}, clock_);
+      map_, profile_,
+      {.head_paths = ompl(), .stop = StopCondition::at_deadline(after_last, reads + 1)}, clock_);
   ASSERT_TRUE(done.has_value()) << done.error();
   EXPECT_EQ(done->table.size(), 12U);
 }
 
+// fusion plans no head path itself (head_path_planner.h): without a planner, no table.
+TEST(PassagePrecomputeWithoutAHeadPathPlanner, IsAnErrorSayingItNeedsTheOmplMotionPlanner) {
+  const SewerMap map = SmallMap().manhole("M1", 0, 0, true).build();
+  ManualClock clock;
+  Result<PrecomputeResult> r =
+      precompute_passage_motion(map, *builtin_profile("makro-1.1"), {}, clock);
+  ASSERT_FALSE(r.has_value());
+  EXPECT_EQ(r.error().code, ErrorCode::kUnsupportedFormat);
+  EXPECT_NE(r.error().message.find("needs the OMPL motion planner"), std::string::npos)
+      << r.error().message;
+}
+
 TEST_F(PassagePrecomputeTest, TheCacheReleasesItsPlansInSlices) {
-  PassageMotionCache cache(ManholeTurnPlanner(robot_body(profile_), profile_));
+  PassageMotionCache cache(ManholeTurnPlanner(ompl(), robot_body(profile_), profile_));
   for (double turn : {0.0, 45.0, 90.0}) {
     ASSERT_TRUE(cache.plan(PassageGeometry{.turn_deg = turn}).has_value());
   }
@@ -120,7 +139,8 @@ TEST_F(PassagePrecomputeTest, TheCacheReleasesItsPlansInSlices) {
 }
 
 TEST_F(PassagePrecomputeTest, WaypointsAreInTheManholesFrame) {
-  Result<PrecomputeResult> r = precompute_passage_motion(map_, profile_, {}, clock_);
+  Result<PrecomputeResult> r =
+      precompute_passage_motion(map_, profile_, {.head_paths = ompl()}, clock_);
   ASSERT_TRUE(r.has_value()) << r.error();
   const ManholeId m2 = *map_.find_manhole("M2");
   // P1 arrives from the west (its slot's azimuth is 180), P2 leaves north (90): a left turn.
@@ -141,14 +161,17 @@ TEST_F(PassagePrecomputeTest, WaypointsAreInTheManholesFrame) {
 }
 
 TEST_F(PassagePrecomputeTest, TheSameSeedGivesTheSameTable) {
-  Result<PrecomputeResult> a = precompute_passage_motion(map_, profile_, {}, clock_);
-  Result<PrecomputeResult> b = precompute_passage_motion(map_, profile_, {}, clock_);
+  Result<PrecomputeResult> a =
+      precompute_passage_motion(map_, profile_, {.head_paths = ompl()}, clock_);
+  Result<PrecomputeResult> b =
+      precompute_passage_motion(map_, profile_, {.head_paths = ompl()}, clock_);
   ASSERT_TRUE(a.has_value() && b.has_value());
   EXPECT_EQ(a->table, b->table);
 }
 
 TEST_F(PassagePrecomputeTest, FusionAttachesTheWaypointsToThePassageAndItsJob) {
-  Result<PrecomputeResult> r = precompute_passage_motion(map_, profile_, {}, clock_);
+  Result<PrecomputeResult> r =
+      precompute_passage_motion(map_, profile_, {.head_paths = ompl()}, clock_);
   ASSERT_TRUE(r.has_value()) << r.error();
   Mission mission = testing::small_mission(map_, "M1");
   mission.passage_motion = std::make_shared<const PassageMotionTable>(r->table);

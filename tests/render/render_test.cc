@@ -13,6 +13,7 @@
 #include "sewerplan/domain/driveability.h"
 #include "sewerplan/domain/mission_generator.h"
 #include "sewerplan/domain/plan_text.h"
+#include "sewerplan/modules/png.h"
 #include "sewerplan/render/map_picture.h"
 
 #include "support/ais_testbed.h"
@@ -205,7 +206,7 @@ bool near(std::uint32_t rgb, std::uint32_t want, int tolerance) {
 TEST(Render, APngDecodesWithThePipesWhereTheSvgDrawsThem) {
   const auto ais = testing::load_ais_testbed();
   const RenderInput input{.map = &ais.map, .width_px = 800};
-  Result<std::string> png = render_map_png(input);
+  Result<std::string> png = modules::render_map_png(input);
   ASSERT_TRUE(png.has_value()) << png.error().message;
   ASSERT_GT(png->size(), 8U);
   EXPECT_EQ(png->substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
@@ -240,7 +241,7 @@ TEST(Render, APngDecodesWithThePipesWhereTheSvgDrawsThem) {
 TEST(Render, APngTooLargeIsAnError) {
   const auto ais = testing::load_ais_testbed();
   // A very tall map at the widest width: more pixels than a PNG takes.
-  Result<std::string> png = render_map_png({.map = &ais.map, .width_px = 20000});
+  Result<std::string> png = modules::render_map_png({.map = &ais.map, .width_px = 20000});
   ASSERT_FALSE(png.has_value());
   EXPECT_EQ(png.error().code, ErrorCode::kInvalidArgument);
 }

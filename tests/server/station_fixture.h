@@ -14,6 +14,9 @@
 
 #include "sewerplan/core/text_file.h"
 #include "sewerplan/server/station_server.h"
+#if SEWERPLAN_TEST_WITH_GIS
+#include "sewerplan/modules/gis.h"
+#endif
 
 #include "support/paths.h"
 #include <httplib.h>
@@ -31,6 +34,10 @@ class StationFixture : public ::testing::Test {
  protected:
   void start(ServerOptions options) {
     if (options.maps.empty()) options.maps = {kAis / "map.json"};
+#if SEWERPLAN_TEST_WITH_GIS
+    // GDAL and PROJ as `sewerplan serve` gives them: through the GIS module.
+    if (!options.gis.reproject && !options.gis.to_geojson) options.gis = modules::station_gis();
+#endif
 #ifdef SEWERPLAN_TEST_FORK_UNSAFE_ALLOCATOR
     // The test's own client threads allocate while a campaign forks its guarded children.
     options.campaign_guard = false;

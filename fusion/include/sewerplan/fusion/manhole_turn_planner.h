@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// ManholeTurnPlanner: a collision-free motion of the whole body through a manhole, with OMPL.
+// ManholeTurnPlanner: a collision-free motion of the whole body through a manhole, its head's path
+// from an injected HeadPathPlanner (OMPL's: head_path_planner.h).
 //
 // Follow-the-leader (docs/motion.md): the head drives a path and every segment follows it, each
 // joint on the path one segment length behind the one before. A path whose curvature radius is at
@@ -20,19 +21,20 @@
 // nearest-neighbour structure is linear, the planner stops after a fixed number of iterations (not
 // a time), and the path is shortened greedily rather than by random shortcuts. The same geometry
 // and seed give the same bits. A caller's deadline or cancel (the StopCondition of every
-// sewerplan algorithm) does not change a plan: it ends the planning with an error instead. OMPL
-// stays in a module of its own (sewerplan_ompl.so, loaded the first time a motion is planned, so
-// that a program that plans none never loads OMPL and Boost); a build without OMPL
-// (SEWERPLAN_WITH_OMPL=OFF) has this header, and plan() then fails with kUnsupportedFormat ("this
-// build has no OMPL"), as it does, naming the module and why, when the module does not load.
+// sewerplan algorithm) does not change a plan: it ends the planning with an error instead. The
+// head's path comes from a HeadPathPlanner the caller passes in (head_path_planner.h: OMPL's, in
+// the motion library), so fusion neither links nor loads OMPL; without one, plan() fails with
+// kUnsupportedFormat.
 //
-//   ManholeTurnPlanner planner(robot_body(profile), profile);
+//   const motion::OmplHeadPathPlanner ompl;  // or the OMPL module's (sewerplan/modules/ompl.h)
+//   ManholeTurnPlanner planner(&ompl, robot_body(profile), profile);
 //   Result<TurnPlan> plan = planner.plan(passage_geometry(map, m, from, to));
 //   if (plan.has_value() && plan->feasible) use(plan->waypoints, plan->duration_s);
 //
 // Thread safety: A ManholeTurnPlanner does not change after construction: plan() and
-// check_state_space() may run on several threads at once, each call with OMPL objects of its own.
-// They set OMPL's process-wide log level (OMPL guards it with a mutex).
+// check_state_space() may run on several threads at once, as the HeadPathPlanner's may (OMPL's:
+// each call with OMPL objects of its own; they set OMPL's process-wide log level, which OMPL guards
+// with a mutex).
 #pragma once
 
 #include <cstdint>
@@ -43,21 +45,10 @@
 #include "sewerplan/core/result.h"
 #include "sewerplan/core/robot_profile.h"
 #include "sewerplan/core/stop_condition.h"
+#include "sewerplan/fusion/head_path_planner.h"
 #include "sewerplan/fusion/manhole_geometry.h"
 
 namespace sewerplan::fusion {
-
-// Whether motions can be planned: this build has OMPL and its module loads (on the first call;
-// sewerplan/core/module.h says where from). Otherwise kUnsupportedFormat, the message saying why
-// (no OMPL in this build; the module missing, not loadable or of another build, and the loader's
-// reason) and that the angle and step rules apply.
-Result<void> motion_planning_support();
-bool motion_planning_available();  // motion_planning_support() holds
-
-struct TurnPlannerOptions {
-  std::uint32_t seed = 1;
-  std::uint32_t max_iterations = 2000;  // RRT iterations before giving up
-};
 
 // The result for one passage geometry, in its canonical frame (manhole_geometry.h): the head's
 // path from the from-pipe's mouth until the tail has entered the to-pipe, every 0.1 m; z above
@@ -76,22 +67,28 @@ struct TurnPlan {
 class ManholeTurnPlanner {
  public:
   // Times come from the profile: duration = path / manoeuvre_speed_mps + heading change x
-  // turn_s_per_deg + |step| x step_s_per_m.
-  ManholeTurnPlanner(RobotBody body, const RobotProfile& profile, TurnPlannerOptions options = {});
+  // turn_s_per_deg + |step| x step_s_per_m. `head_paths`: the planner of the head's path, not
+  // owned (it must outlive this); null: plan() and check_state_space() are an error.
+  ManholeTurnPlanner(const HeadPathPlanner* head_paths, RobotBody body, const RobotProfile& profile,
+                     TurnPlannerOptions options = {});
 
   // An infeasible passage is a TurnPlan with a reason, not an error. Errors: kInvalidArgument for
-  // a geometry with non-positive or non-finite sizes; kUnsupportedFormat without OMPL;
-  // kCancelled or kSearchLimit when `stop` (its cancel flag or time limit, core/stop_condition.h)
-  // fires first: OMPL's termination condition asks it at every RRT iteration.
+  // a geometry with non-positive or non-finite sizes; kUnsupportedFormat without a
+  // HeadPathPlanner; kCancelled or kSearchLimit when `stop` (its cancel flag or time limit,
+  // core/stop_condition.h) fires first: OMPL's termination condition asks it at every RRT
+  // iteration.
   Result<TurnPlan> plan(const PassageGeometry& geometry, const StopCondition& stop = {}) const;
 
   const RobotBody& body() const { return body_; }
+  const HeadPathPlanner* head_paths() const { return head_paths_; }
 
   // Runs OMPL's sanityChecks() on the state space plan() would use for `geometry` (the Dubins
-  // space with the seeded sampler): a failed check's message as kInvalidArgument.
+  // space with the seeded sampler): a failed check's message as kInvalidArgument;
+  // kUnsupportedFormat without a HeadPathPlanner.
   Result<void> check_state_space(const PassageGeometry& geometry) const;
 
  private:
+  const HeadPathPlanner* head_paths_;
   RobotBody body_;
   double speed_mps_;
   double turn_s_per_deg_;

@@ -11,7 +11,9 @@
 // writes the table beside the map (docs/motion.md).
 //
 //   SteadyClock clock;
-//   Result<PrecomputeResult> r = precompute_passage_motion(map, profile, {}, clock);
+//   const motion::OmplHeadPathPlanner ompl;  // head_path_planner.h
+//   Result<PrecomputeResult> r =
+//       precompute_passage_motion(map, profile, {.head_paths = &ompl}, clock);
 //   write_passage_motion_json(r->table, map, out);
 //   std::cout << r->statistics.distinct_geometries << " geometries planned\n";
 //
@@ -78,6 +80,8 @@ struct PrecomputeResult {
 };
 
 struct PrecomputeOptions {
+  // The planner of the head's paths (head_path_planner.h), not owned; required.
+  const HeadPathPlanner* head_paths = nullptr;
   TurnPlannerOptions planner;
   // Called after each manhole with (manholes done, manholes in the map).
   std::function<void(std::size_t, std::size_t)> progress;
@@ -92,7 +96,7 @@ struct PrecomputeOptions {
 std::vector<Waypoint> to_manhole_frame(const TurnPlan& plan, const SewerMap& map, ManholeId m,
                                        SlotIndex from, SlotIndex to);
 
-// Errors: kUnsupportedFormat in a build without OMPL; kInvalidProfile for a profile that fails
+// Errors: kUnsupportedFormat without options.head_paths; kInvalidProfile for a profile that fails
 // validate_profile; kInvalidMap for a passage with a non-finite or non-positive size; kCancelled
 // or kSearchLimit when options.stop fires (no table: a part of one would read as complete).
 Result<PrecomputeResult> precompute_passage_motion(const SewerMap& map, const RobotProfile& profile,

@@ -12,9 +12,9 @@
 //   canvas.line({10, 10}, {390, 290}, {.stroke = Colour::rgb(0x6b8fb3), .stroke_width = 2});
 //   Result<std::string> picture = canvas.finish();
 //
-// Two implementations, private to render: src/svg_canvas.h (text) and module/png_canvas.h (cairo,
-// Debian libcairo2, in the PNG module: png_module.h). draw_map (map_picture.h) draws a map on any
-// Canvas.
+// Two implementations: render's src/svg_canvas.h (text) and the PNG module's png_canvas.h (cairo,
+// Debian libcairo2: modules/png/, sewerplan/modules/png_table.h). draw_map (map_picture.h) draws a
+// map on any Canvas.
 //
 // Thread safety: a canvas is used by one thread at a time.
 #pragma once

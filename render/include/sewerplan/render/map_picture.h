@@ -19,7 +19,10 @@
 //
 //   RenderInput in{.map = &map, .mission = &mission, .plan = &plan, .trace = &trace};
 //   std::ofstream("mission.svg") << render_map_svg(in);
-//   Result<std::string> png = render_map_png(in);  // bytes
+//   Result<std::string> png = draw_map(in, canvas);  // any Canvas: cairo's for a PNG
+//
+// The `sewerplan` command draws a PNG on the PNG module's cairo canvas (sewerplan/modules/png.h:
+// render_map_png), which only a PNG picture loads; render itself never loads or links cairo.
 //
 // Thread safety: pure functions of their input: call them from any number of threads.
 #pragma once
@@ -61,9 +64,5 @@ struct RenderInput {
 Result<std::string> draw_map(const RenderInput& input, Canvas& canvas);
 
 std::string render_map_svg(const RenderInput& input);
-// PNG bytes, drawn by cairo in the PNG module (png_module.h), loaded on the first call: an error
-// (kInvalidArgument) for a picture too large for one; kUnsupportedFormat, naming the module and
-// why, when the module is missing or of another build.
-Result<std::string> render_map_png(const RenderInput& input);
 
 }  // namespace sewerplan::render

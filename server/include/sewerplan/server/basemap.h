@@ -8,15 +8,15 @@
 // pixels; the map is drawn in its own metres (its CRS). So the tiles are chosen and placed here,
 // for a view of the map: the view's points to longitude and latitude, the zoom level whose
 // tile pixels are nearest the view's metres per pixel, the tiles that cover the view, and each
-// tile's four corners from longitude and latitude back to the map's metres, through PROJ (the GIS
-// module, gis/module.h: loaded the first time a page asks). The page draws each tile as two
+// tile's four corners from longitude and latitude back to the map's metres, through PROJ (the
+// program's StationGis::reproject, station_gis.h: the command's loads the GIS module the first time
+// a page asks). The page draws each tile as two
 // triangles, each with the affine transform its three corners give (web/src/basemap.js).
 //
 //   Result<TileSource> source = parse_tile_source("tiles/");             // Z/X/Y.png below it
-//   Result<TileChoice> tiles = basemap_tiles(map, *source, {{x0, y0, x1, y1}, 0.25});
+//   Result<TileChoice> tiles = basemap_tiles(map, *source, {{x0, y0, x1, y1}, 0.25}, gis);
 //
-// Thread safety: plain values and functions; basemap_tiles loads the GIS module once
-// (core/module.h).
+// Thread safety: plain values and functions; basemap_tiles calls gis.reproject (station_gis.h).
 #pragma once
 
 #include <array>
@@ -32,6 +32,7 @@
 #include "sewerplan/core/result.h"
 #include "sewerplan/core/sewer_map.h"
 #include "sewerplan/domain/route_geometry.h"
+#include "sewerplan/server/station_gis.h"
 
 namespace sewerplan::server {
 
@@ -89,7 +90,7 @@ struct TileChoice {
 };
 
 // Points between the map's metres and WGS84 longitude, latitude (x, y), in place; a point that
-// cannot be transformed becomes NaN (gis/module.h's reproject for the map's CRS).
+// cannot be transformed becomes NaN (StationGis::reproject for the map's CRS).
 using Reprojection = std::function<Result<void>(bool to_wgs84, std::span<MapXY> points)>;
 
 // The tiles of `source` that cover `view`, at the zoom level whose pixel is nearest the view's
@@ -99,10 +100,11 @@ using Reprojection = std::function<Result<void>(bool to_wgs84, std::span<MapXY> 
 Result<TileChoice> choose_tiles(const TileSource& source, const BasemapView& view,
                                 const Reprojection& reproject, std::size_t max_tiles = 64);
 
-// choose_tiles through PROJ, for `map`'s CRS: an error naming the map when it has none (local
-// coordinates cannot be placed on the earth), when PROJ does not know its CRS, or when this build
-// has no GIS.
+// choose_tiles through gis.reproject (PROJ), for `map`'s CRS: an error naming the map when it has
+// none (local coordinates cannot be placed on the earth), when PROJ does not know its CRS, or when
+// there is no GIS (this build has none, or gis.reproject is empty; else its own error).
 Result<TileChoice> basemap_tiles(const SewerMap& map, const TileSource& source,
-                                 const BasemapView& view, std::size_t max_tiles = 64);
+                                 const BasemapView& view, const StationGis& gis,
+                                 std::size_t max_tiles = 64);
 
 }  // namespace sewerplan::server

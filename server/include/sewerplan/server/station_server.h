@@ -37,8 +37,8 @@
 //   Result<int> port = (*s)->bind();   // port 0: any free port
 //   (*s)->run();                       // until stop(), from another thread or a signal
 //
-// or, as `sewerplan serve` does (through the server module, sewerplan/server/module.h), all of it
-// until SIGINT or SIGTERM: serve_until_signal(options, on_listening).
+// or, as `sewerplan serve` does (through the server module, sewerplan/modules/server_table.h), all
+// of it until SIGINT or SIGTERM: serve_until_signal(options, on_listening).
 //
 // Thread safety: a map is read-only once loaded, and the list of maps is guarded (uploads come
 // while other requests read); each request plans or simulates on its own copies, on the server's
@@ -55,6 +55,7 @@
 #include "sewerplan/core/diagnostics.h"
 #include "sewerplan/core/result.h"
 #include "sewerplan/core/sewer_map.h"
+#include "sewerplan/server/station_gis.h"
 
 namespace sewerplan::server {
 
@@ -74,6 +75,10 @@ struct ServerOptions {
   // The basemap's tile source (`serve --tiles`, basemap.h): an XYZ URL template, or a directory
   // of Z/X/Y.png tiles served at /api/tiles/. Empty: no basemap.
   std::string tiles;
+  // GDAL and PROJ for the basemap and the GeoJSON export (station_gis.h), given by the program:
+  // the command's load the GIS module when first called. Empty: those requests say there is no
+  // GIS.
+  StationGis gis;
   std::size_t max_body_bytes = 16u << 20;  // in any transfer or content encoding
   // Connections served at once, each on a worker thread started when needed; more wait their
   // turn. A connection serves one request; one that sends nothing is closed after 5 s.
