@@ -1,19 +1,21 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # The chance-constraint table of docs/planning.md ("A bound on the chance of being stranded",
-# issue 34): one campaign per bound P on the battery-trap network, obstacles drawn from the
-# condition data only, and per P the tasks done (ours, the risk-aware execution, the oracle), the
+# issue 34): one campaign per bound P on one network with its condition data, obstacles drawn from
+# the condition data only, and per P the tasks done (ours, the risk-aware execution, the oracle), the
 # share of missed exits with its 95 % Wilson interval, and the mean stranding risk the first plans
 # computed (summary.json: ours / risk_aware .tasks_mean, .missed_exit_share,
 # .missed_exit_share_95, .strand_risk_mean).
 #
-#   scripts/strand-risk-table.sh BINARY [RUNS] [P ...]
+#   [NETWORK=battery-trap|swmm-state-plane] scripts/strand-risk-table.sh BINARY [RUNS] [P ...]
 #
-# BINARY: a built sewerplan (build/release/apps/sewerplan/sewerplan); RUNS: runs per P (default
-# 2000, the issue's acceptance); P: the bounds (default 0 0.01 0.05 0.2 1). One run takes about
-# a second on one core (docs/planning.md): 2,000 runs x 5 bounds is hours; use --jobs below.
-# Output: one Markdown row per P on standard output; each campaign's directory under
-# ${OUT:-strand-risk-out}/P.
+# BINARY: a built sewerplan (build/release/bin/sewerplan); RUNS: runs per P (default 2000, the
+# issue's acceptance); P: the bounds (default 0 0.01 0.05 0.2 1). NETWORK: battery-trap (the
+# default: the generated 400-manhole network with findings in its map) or swmm-state-plane (the
+# real SWMM model with its synthetic Zustandsdaten joined by --condition; datasets/condition/
+# README.md). One battery-trap run takes about a second on one core (docs/planning.md): 2,000 runs
+# x 5 bounds is hours; JOBS=N runs N at once. Output: one Markdown row per P on standard output;
+# each campaign's directory under ${OUT:-strand-risk-out}/P.
 set -euo pipefail
 bin=${1:?usage: strand-risk-table.sh BINARY [RUNS] [P ...]}
 runs=${2:-2000}
@@ -21,7 +23,17 @@ shift $(( $# >= 2 ? 2 : 1 ))
 bounds=("$@")
 [ ${#bounds[@]} -gt 0 ] || bounds=(0 0.01 0.05 0.2 1)
 here=$(cd "$(dirname "$0")/.." && pwd)
-data="$here/datasets/condition/battery-trap"
+network=${NETWORK:-battery-trap}
+case $network in
+  battery-trap)
+    world=(--map "$here/datasets/condition/battery-trap/map.json"
+      --mission "$here/datasets/condition/battery-trap/mission.json") ;;
+  swmm-state-plane)
+    world=(--map "$here/datasets/swmm/swmmio-state-plane.inp"
+      --condition "$here/datasets/condition/swmm-state-plane/zustand.xml"
+      --mission "$here/datasets/condition/swmm-state-plane/mission.json") ;;
+  *) echo "unknown NETWORK $network (battery-trap, swmm-state-plane)" >&2; exit 2 ;;
+esac
 out=${OUT:-strand-risk-out}
 jobs=${JOBS:-1}
 mkdir -p "$out"
@@ -30,7 +42,7 @@ echo "|---|---|---|---|---|---|---|---|"
 for p in "${bounds[@]}"; do
   dir="$out/$p"
   rm -rf "$dir"
-  "$bin" campaign --map "$data/map.json" --mission "$data/mission.json" --runs "$runs" --seed 1 \
+  "$bin" campaign "${world[@]}" --runs "$runs" --seed 1 \
     --risk expected --faults-from-condition \
     --fault-rates obstacles=0,danger=0,passages=0,malfunctions=0 \
     --max-strand-risk "$p" --jobs "$jobs" --out "$dir" >/dev/null || {

@@ -300,10 +300,12 @@ bool does_better(const PlanOutcome& a, const PlanOutcome& b) {
 // is over the bound, tries insuring each hazard it passes uninsured (by probability, the
 // highest first, at most kStrandCandidates a round) and takes the one that loses the fewest
 // tasks per unit of computed risk it removes (then the most risk removed, then the quickest
-// plan). Every plan tried that is within the bound and does more tasks than the best so far
-// (or as many sooner) becomes the answer. At most kMaxStrandRounds plans beyond the fully
-// insured one, deterministic (counts, not time); a time limit bounds them all together, and
-// when it runs out the best so far is the answer.
+// plan); where none removes any (each reserve moved the tour past hazards it did not pass
+// before), the one that loses the fewest tasks, and the next round insures what it passes. Every
+// plan tried that is within the bound and does more tasks than the best so far (or as many sooner)
+// becomes the answer. At most kMaxStrandRounds plans beyond the fully insured one, deterministic
+// (counts, not time); a time limit bounds them all together, and when it runs out the best so far
+// is the answer.
 Result<PlanOutcome> plan_within_strand_risk(const SewerMap& map, const Mission& mission,
                                             const domain::MissionProgress& progress,
                                             const PlannerOptions& options) {
@@ -358,6 +360,9 @@ Result<PlanOutcome> plan_within_strand_risk(const SewerMap& map, const Mission& 
       PlanOutcome plan;
     };
     std::optional<Choice> chosen;
+    // Where no candidate removes risk: the one whose plan loses the fewest tasks (then carries
+    // the least risk, then is quickest), to go on from.
+    std::optional<Choice> detour;
     for (std::size_t h : candidates) {
       std::vector<bool> trial = insured;
       trial[h] = true;
@@ -365,7 +370,17 @@ Result<PlanOutcome> plan_within_strand_risk(const SewerMap& map, const Mission& 
       if (!r) break;
       keep_if_better(*r, trial);
       const double removed = current->strand_probability - r->strand_probability;
-      if (!(removed > 1e-12)) continue;  // no risk removed (a detour past others, say)
+      if (!(removed > 1e-12)) {
+        // No risk removed: the reserve moved the tour past hazards it did not pass before (a
+        // task dropped, another order), which a later round can insure in turn.
+        const bool fewer = !detour || r->dropped.size() < detour->plan.dropped.size() ||
+                           (r->dropped.size() == detour->plan.dropped.size() &&
+                            (r->strand_probability < detour->plan.strand_probability - 1e-12 ||
+                             (r->strand_probability <= detour->plan.strand_probability + 1e-12 &&
+                              r->cost_s < detour->plan.cost_s - 1e-6)));
+        if (fewer) detour = Choice{h, 0, removed, std::move(*r)};
+        continue;
+      }
       const double lost =
           static_cast<double>(r->dropped.size()) - static_cast<double>(current->dropped.size());
       const double per = lost / removed;
@@ -376,6 +391,7 @@ Result<PlanOutcome> plan_within_strand_risk(const SewerMap& map, const Mission& 
             (removed >= chosen->removed - 1e-12 && r->cost_s < chosen->plan.cost_s - 1e-6)));
       if (better) chosen = Choice{h, per, removed, std::move(*r)};
     }
+    if (!chosen) chosen = std::move(detour);
     if (!chosen) break;
     insured[chosen->hazard] = true;
     current = std::move(chosen->plan);
