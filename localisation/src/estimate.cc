@@ -45,7 +45,7 @@ Hypothesis hypothesis_of(const SewerMap& map, const Track& t) {
           domain::InPipe{t.pipe, t.heading_end == 1 ? travelled : pipe.length_m - travelled};
       h.pose.heading_end = t.heading_end;
       h.pose.at_unmapped_junction = t.kind == Track::Kind::kAtJunction;
-      h.sd_m = std::sqrt(t.odometry_var_m2);
+      h.sd_m = std::sqrt(t.odometry_var_m2 + t.map_var_m2);
       break;
     }
   }

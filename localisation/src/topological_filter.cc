@@ -189,7 +189,7 @@ Result<void> TopologicalFilter::enter(SlotIndex slot) {
     const Slot& s = map.slot(t.manhole, slot);
     const auto heading = static_cast<std::uint8_t>(1 - s.pipe_end);
     t = in_pipe(t, s.pipe, heading, 0.0);
-    t.odometry_var_m2 = 0;
+    t.odometry_var_m2 = t.map_var_m2 = 0;
     t.anchor_m = 0;
   }
   mode_ = Mode::kInPipe;
@@ -211,7 +211,7 @@ Result<void> TopologicalFilter::drive(double odometry_m, DriveDirection directio
     // at a mouth or a junction is held there by the pipe's end; one in the pipe drives on.
     const bool at_manhole = t.kind == Track::Kind::kAtMouth || t.kind == Track::Kind::kAtJunction;
     if (at_manhole && direction == arrived_by_ && (mode_ == Mode::kAtManhole || t.held)) {
-      if (!t.held) t.odometry_var_m2 = 0;
+      if (!t.held) t.odometry_var_m2 = t.map_var_m2 = 0;
       t.held = true;
       t.held_m += odometry_m;
       t.odometry_var_m2 += sigma_m * sigma_m;
@@ -230,7 +230,7 @@ Result<void> TopologicalFilter::drive(double odometry_m, DriveDirection directio
       const bool mouth_ahead = map.slot(t.manhole, t.slot).pipe_end == t.heading_end;
       t.kind = Track::Kind::kInPipe;
       t.travelled_m = mouth_ahead ? length : 0.0;
-      t.odometry_var_m2 = 0;
+      t.odometry_var_m2 = t.map_var_m2 = 0;
       t.anchor_m = t.leg_from_m = t.travelled_m;
     }
     t.kind = Track::Kind::kInPipe;
@@ -282,7 +282,16 @@ Result<void> TopologicalFilter::not_at_manhole() {
   if (Result<void> ok = usable(); !ok.has_value()) return ok;
   if (mode_ != Mode::kAtManhole) return invalid("not_at_manhole: the robot has not arrived");
   for (Track& t : tracks_) {
-    if (t.kind != Track::Kind::kInPipe) t.log_weight = kNegativeInfinity;
+    if (t.kind == Track::Kind::kAtJunction) {
+      // Where the junction was taken to be, there was nothing: a false detection at that place.
+      t.kind = Track::Kind::kInPipe;
+      if (!t.assumptions.empty() &&
+          t.assumptions.front().kind == Assumption::Kind::kUnmappedJunction) {
+        t.assumptions.front().kind = Assumption::Kind::kFalseDetection;
+      }
+    } else if (t.kind != Track::Kind::kInPipe) {
+      t.log_weight = kNegativeInfinity;
+    }
   }
   normalise_and_prune();
   return {};
@@ -388,7 +397,9 @@ void TopologicalFilter::normalise_and_prune() {
     const double mean = wa * same->travelled_m + wb * t.travelled_m;
     const double spread =
         wa * std::pow(same->travelled_m - mean, 2) + wb * std::pow(t.travelled_m - mean, 2);
-    same->odometry_var_m2 = wa * same->odometry_var_m2 + wb * t.odometry_var_m2 + spread;
+    // The places' spread is no slip of the odometry's: the map's part.
+    same->odometry_var_m2 = wa * same->odometry_var_m2 + wb * t.odometry_var_m2;
+    same->map_var_m2 = wa * same->map_var_m2 + wb * t.map_var_m2 + spread;
     same->travelled_m = mean;
     same->log_weight = total;
   }
@@ -514,8 +525,8 @@ void TopologicalFilter::remember_arrival() {
     const bool clear_of_ends =
         best.travelled_m >= 3 * length_sd && best.travelled_m <= pipe.length_m - 3 * length_sd;
     if (best.kind == Track::Kind::kAtJunction && clear_of_ends) {
-      const double var =
-          best.odometry_var_m2 + std::pow(options_.length_sd_fraction * best.anchor_m, 2);
+      const double var = best.odometry_var_m2 + best.map_var_m2 +
+                         std::pow(options_.length_sd_fraction * best.anchor_m, 2);
       const double length_var = std::pow(options_.length_sd_fraction * pipe.length_m, 2);
       KnownJunction j{.pipe = best.pipe,
                       .from_end = end,

@@ -44,10 +44,13 @@ PlaceSpread spread(const LocalisationOptions& o, double odometry_var, double map
 struct ChainStep {
   PipeId pipe{0};
   std::uint8_t heading_end = 1;
-  double base_m = 0;        // where this pipe starts, in the hypothesis's travelled coordinate
-  double position_var = 0;  // variance of the robot's place relative to base_m
-  double length_var = 0;    // variance of this pipe's length left ahead
-  double log_pass = 0;      // log P(every earlier mouth passed unseen)
+  double base_m = 0;  // where this pipe starts, in the hypothesis's travelled coordinate
+  // Variance of the robot's place relative to base_m: the odometry's, and the map's (the lengths
+  // of the pipes passed unseen).
+  double odometry_var = 0;
+  double map_var = 0;
+  double length_var = 0;  // variance of this pipe's length left ahead
+  double log_pass = 0;    // log P(every earlier mouth passed unseen)
   std::vector<ManholeId> passed;
 };
 
@@ -62,14 +65,16 @@ void walk_chain(const TopologicalFilter& filter, const Track& track, double lowe
   const double t = track.travelled_m;
   ChainStep step{.pipe = track.pipe,
                  .heading_end = track.heading_end,
-                 .position_var = track.odometry_var_m2,
+                 .odometry_var = track.odometry_var_m2,
+                 .map_var = track.map_var_m2,
                  .length_var = std::pow(
                      o.length_sd_fraction * (map.pipe(track.pipe).length_m - track.anchor_m), 2)};
   for (int k = 0; k <= o.max_misses; ++k) {
     const Pipe& pipe = map.pipe(step.pipe);
     const double mouth = step.base_m + pipe.length_m;
-    const PlaceSpread place = spread(o, step.position_var, step.length_var);
-    const double sd = std::sqrt(std::max(step.position_var + step.length_var, kMinVarianceM2));
+    const PlaceSpread place = spread(o, step.odometry_var, step.map_var + step.length_var);
+    const double sd =
+        std::sqrt(std::max(step.odometry_var + step.map_var + step.length_var, kMinVarianceM2));
     const double lower = k == 0 ? lower0_m : step.base_m;
     // Known: the mouth lies beyond `lower` (nothing was detected before it).
     const double log_beyond_lower = log_phi_within(mouth - lower, place);
@@ -88,7 +93,7 @@ void walk_chain(const TopologicalFilter& filter, const Track& track, double lowe
     step.pipe = slot.pipe;
     step.heading_end = static_cast<std::uint8_t>(1 - slot.pipe_end);
     step.base_m = mouth;
-    step.position_var += step.length_var;
+    step.map_var += step.length_var;
     step.length_var = std::pow(o.length_sd_fraction * map.pipe(slot.pipe).length_m, 2);
   }
 }
@@ -102,7 +107,8 @@ Track placed(const Track& track, const ChainStep& step, double here_m, bool firs
   c.travelled_m = here_m;
   c.cleared_m = here_m;
   if (!first) {
-    c.odometry_var_m2 = step.position_var;
+    c.odometry_var_m2 = step.odometry_var;
+    c.map_var_m2 = step.map_var;
     c.anchor_m = 0;
     c.leg_from_m = 0;
   }
@@ -177,7 +183,7 @@ struct ArrivalExplainer {
     c.kind = Track::Kind::kAtMouth;
     c.manhole = m;
     c.slot = slot;
-    c.odometry_var_m2 = 0;
+    c.odometry_var_m2 = c.map_var_m2 = 0;
     c.anchor_m = c.cleared_m = c.travelled_m;
     c.log_weight = track.log_weight + log_detect + log_place + mapped_fit(m, slot);
     out.push_back(std::move(c));
@@ -197,7 +203,8 @@ struct ArrivalExplainer {
         room_for_junction
             ? filter.junction_log_density(
                   frame.pipe, static_cast<std::uint8_t>(1 - frame.heading_end), frame.travelled_m,
-                  frame.odometry_var_m2 + std::pow(o.length_sd_fraction * frame.anchor_m, 2))
+                  frame.odometry_var_m2 + frame.map_var_m2 +
+                      std::pow(o.length_sd_fraction * frame.anchor_m, 2))
             : kNegativeInfinity;
     if (log_junction != kNegativeInfinity) {
       const double fit = observation
@@ -331,7 +338,7 @@ Track held_there(const Track& track, double log_drive) {
   c.log_weight += log_drive;
   c.held = false;
   c.held_m = 0;
-  c.odometry_var_m2 = 0;
+  c.odometry_var_m2 = c.map_var_m2 = 0;
   c.arrival_misses = 0;
   return c;
 }
@@ -417,7 +424,7 @@ std::optional<Track> turned(const TopologicalFilter& filter, const Track& track,
       c.heading_end = static_cast<std::uint8_t>(1 - slot.pipe_end);
       c.moving_end = c.heading_end;
       c.travelled_m = c.cleared_m = c.leg_from_m = 0;
-      c.odometry_var_m2 = 0;
+      c.odometry_var_m2 = c.map_var_m2 = 0;
       c.anchor_m = 0;
       return c;
     }

@@ -694,6 +694,22 @@ TEST(TopologicalFilter, ARefusedTurnLeavesOnlyThePlacesInAPipe) {
   EXPECT_FALSE(e.best().pose.at_unmapped_junction);
   EXPECT_EQ(e.best().pose.position, (domain::RobotPosition{domain::InPipe{s.pipe("P1"), 15}}));
 
+  // A junction the filter was sure of (a man-entry shaft): where it was, a false detection.
+  TopologicalFilter junction = s.in_p1();
+  ASSERT_TRUE(junction.drive(15, DriveDirection::kForward, 0.45).has_value());
+  ManholeSignature wide = ambiguous_sighting();
+  wide.shaft_diameter_m = 1.2;
+  ASSERT_TRUE(junction.arrive(wide).has_value());
+  ASSERT_TRUE(junction.estimate().best().pose.at_unmapped_junction);
+  ASSERT_TRUE(junction.not_at_manhole().has_value());
+  const Estimate nothing_there = junction.estimate();
+  ASSERT_FALSE(nothing_there.lost());
+  EXPECT_FALSE(nothing_there.best().pose.at_unmapped_junction);
+  EXPECT_EQ(nothing_there.best().pose.position,
+            (domain::RobotPosition{domain::InPipe{s.pipe("P1"), 15}}));
+  ASSERT_FALSE(nothing_there.best().assumptions.empty());
+  EXPECT_EQ(nothing_there.best().assumptions.front().kind, Assumption::Kind::kFalseDetection);
+
   // In a pipe the question does not arise: an error.
   ASSERT_TRUE(f.drive(5, DriveDirection::kForward, 0.15).has_value());
   EXPECT_FALSE(f.not_at_manhole().has_value());

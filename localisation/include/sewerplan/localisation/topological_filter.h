@@ -305,9 +305,10 @@ class TopologicalFilter {
   // Error: not in a pipe, a negative or non-finite distance, lost.
   Result<void> no_manhole_within(double distance_m);
 
-  // The robot refused a job that needs it at a manhole (a turn through one): it is at none. Only
-  // the hypotheses in a pipe stay (the detection it stopped at was a false one); none left: lost.
-  // Error: not at a manhole, lost. Runtime: O(hypotheses).
+  // The robot refused a job that needs it at a manhole (a turn through one): it is at none. The
+  // hypotheses in a pipe stay (the detection it stopped at was a false one), and those at a
+  // junction the map lacks become false detections at that place; those at a mapped mouth are
+  // ruled out (none left: lost). Error: not at a manhole, lost. Runtime: O(hypotheses).
   Result<void> not_at_manhole();
 
   // The belief. Runtime: O(hypotheses).
@@ -351,7 +352,10 @@ class TopologicalFilter {
     std::uint8_t heading_end = 1;  // the end the robot faces
     std::uint8_t moving_end = 1;   // the end the last drive went towards
     double travelled_m = 0;        // from the end opposite heading_end
-    double odometry_var_m2 = 0;    // variance of travelled_m
+    double odometry_var_m2 = 0;    // variance of travelled_m from the odometry
+    // ... and from the map's lengths of the pipes it passed unseen or was placed by (a merge):
+    // the odometry's heavy tails widen the first only (LocalisationOptions::odometry_outlier_*).
+    double map_var_m2 = 0;
     // Where the place was last known on the map (a mouth, a reset), in the travelled coordinate:
     // the map's distance from here to a mouth is off by length_sd_fraction of it.
     double anchor_m = 0;
