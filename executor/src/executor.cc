@@ -508,6 +508,15 @@ class Executor::Run {
             go_on.reset();
           return std::nullopt;
         }
+        if (r.error->cause == hal::RobotErrorCause::kInvalidJob) {
+          // Refused: the robot is at no manhole, and what it stopped at was a false detection.
+          if (std::optional<localisation::Hypothesis> best = localising_.not_at_manhole();
+              best && best->pose.heading_end) {
+            sync_progress(replay.progress());
+            return Replan{std::nullopt, "relocalised: the robot refused to pass it (" +
+                                            r.error->reason + "): " + settle_on(*best)};
+          }
+        }
         why += "; passing it failed: " + r.error->reason;
       }
       sync_progress(replay.progress());

@@ -746,9 +746,9 @@ TEST(Campaign, FaultsFromConditionAreSeededAndTheRiskAwareRunIsRecordedAndSummar
 namespace sewerplan::campaign {
 namespace {
 
-// Three runs of the paper's mission in the realistic world that ended with the beacon, the robot
-// "stuck" at a manhole it was not at, and each now ends outside with every arrival at its true
-// manhole but the false detection of run 46 (the arrival is scored when it is made):
+// Four runs of the paper's mission in the realistic world that ended with the beacon on, the
+// robot taken to be at a manhole it was not at, and each now ends outside with every arrival at
+// its true manhole but the false detection of run 46 (an arrival is scored when it is made):
 // - seed 2, run 69: a junction the map lacks taken for a false detection; the robot drove on,
 //   0 m, to the manhole beyond, and the filter, refusing a drive on into a manhole, was restarted
 //   there; the robot refused the turn (now the filter holds the robot at the junction);
@@ -756,7 +756,10 @@ namespace {
 //   manhole at all, and the robot drove on 0 m and arrived there 22 times (now a mouth the map has
 //   wrong scores as a mouth of unknown size and direction, not as a stranger);
 // - seed 3, run 46: a false detection 0.6 m short of M2 taken for M2; the robot refused the turn
-//   there, was rebooted three times and called stuck (now a refused turn puts it in the pipe).
+//   there, was rebooted three times and called stuck (now a refused turn puts it in the pipe);
+// - seed 2, run 45: backing out of P1, a false detection taken for a junction the map lacks; the
+//   robot refused to pass it, the pipe was closed there and the beacon called "no exit" (now the
+//   refused pass makes the junction a false detection, and the robot backs on to M2 and out).
 TEST(CampaignWorld, NoRobotIsLeftStuckAtAManholeItIsNotAt) {
   const auto ais = testing::load_ais_testbed();
   struct Case {
@@ -764,7 +767,7 @@ TEST(CampaignWorld, NoRobotIsLeftStuckAtAManholeItIsNotAt) {
     std::size_t run;
     std::size_t wrong_arrivals;
   };
-  for (const Case c : {Case{2, 69, 0}, Case{2, 196, 0}, Case{3, 46, 1}}) {
+  for (const Case c : {Case{2, 69, 0}, Case{2, 196, 0}, Case{3, 46, 1}, Case{2, 45, 0}}) {
     SCOPED_TRACE("seed " + std::to_string(c.seed) + " run " + std::to_string(c.run));
     CampaignSpec spec = ais_spec(200, c.seed);
     spec.world_errors = "realistic";
@@ -772,6 +775,7 @@ TEST(CampaignWorld, NoRobotIsLeftStuckAtAManholeItIsNotAt) {
     ASSERT_TRUE(r.has_value()) << r.error().message;
     const Execution& ours = r->ours;
     EXPECT_EQ(ours.beacon_cause, executor::MissionReport::BeaconCause::kNone) << ours.end;
+    EXPECT_TRUE(r->could_reach_exit);
     EXPECT_TRUE(ours.outcome == Outcome::kExit || ours.outcome == Outcome::kEndPoint) << ours.end;
     ASSERT_TRUE(ours.world.has_value());
     EXPECT_GT(ours.world->arrivals, 2U);
