@@ -138,6 +138,21 @@ class Executor::Run {
     for (;;) {
       report_.decision = response.decision;
       if (halted()) return finish(MissionReport::Outcome::kHalted, "");
+      if (response.decision == PlanResponse::Decision::kCallForRecovery) {
+        // No exit from where the tracking has the robot; the beacon only when none is reachable
+        // in the belief: where the filter holds another place, the robot first backs up to the
+        // manhole behind, whose arrival tells the places apart.
+        if (std::optional<std::string> why = back_up_to_tell_apart()) {
+          if (halted()) return finish(MissionReport::Outcome::kHalted, "");
+          ++report_.replans;
+          last_failure.reset();
+          std::optional<PlanResponse> next = plan_unless_halted(std::nullopt, *why);
+          if (!next) return finish(MissionReport::Outcome::kHalted, "");
+          response = std::move(*next);
+          log_plan(true, response);
+          continue;
+        }
+      }
       if (!has_plan(response.decision)) {
         report_.beacon_cause = beacon_cause(response.decision, last_failure);
         return finish(MissionReport::Outcome::kBeacon, response.reason);
@@ -410,6 +425,55 @@ class Executor::Run {
     if (!best) return false;
     (void)settle_on(*best);
     return true;
+  }
+
+  // No exit is reachable from where the tracking has the robot (in a pipe), but the filter holds
+  // another place for it, in another pipe, at ambiguity_probability or more (a manhole driven
+  // through unseen, or a pipe longer than mapped: on the meshed network, seed 2, run 20, a robot
+  // past a manhole it missed met an obstacle, the tracked pipe was closed at its end, and the
+  // beacon came on with an exit a few metres behind it). The robot drives back the way it came, to
+  // the manhole behind; the arrival there is checked, and the tracking settles on what the filter
+  // finds. The reason to plan again, or empty: no other place, not in a pipe, tried
+  // kMaxTellApart times already, or the drive back failed.
+  std::optional<std::string> back_up_to_tell_apart() {
+    const auto* in = std::get_if<domain::InPipe>(&tracker_.position());
+    if (in == nullptr || tell_apart_tries_ >= kMaxTellApart) return std::nullopt;
+    const localisation::Estimate belief = localising_.estimate();
+    if (belief.lost()) return std::nullopt;
+    const localisation::Hypothesis* other = nullptr;
+    for (const localisation::Hypothesis& h : belief.hypotheses) {
+      const auto* there = std::get_if<domain::InPipe>(&h.pose.position);
+      if (h.probability < localising_.options().ambiguity_probability) continue;
+      if (there == nullptr || there->pipe != in->pipe) {
+        other = &h;
+        break;
+      }
+    }
+    if (other == nullptr) return std::nullopt;
+    ++tell_apart_tries_;
+    const std::string alternative = localisation::describe(other->pose, map_);
+    const std::string tracked = tracker_.describe();
+    // Back the way the last drive went (else away from the end the robot faces).
+    const double last = tracker_.direction_of(last_job_);
+    const std::uint8_t back_to = last > 0   ? 0
+                                 : last < 0 ? 1
+                                            : static_cast<std::uint8_t>(1 - tracker_.heading_end());
+    const double distance =
+        back_to == 0 ? in->offset_m : map_.pipe(in->pipe).length_m - in->offset_m;
+    const double speed = mission().profile.speed_mps;
+    const Job back =
+        back_to == tracker_.heading_end()
+            ? Job{DriveForward{.speed_mps = speed, .distance_m = distance, .to_manhole = true}}
+            : Job{DriveBackward{.speed_mps = speed, .distance_m = distance, .to_manhole = true}};
+    const hal::JobReport r = execute_job(back);
+    mismatch_.reset();  // settled on by execute_job; planned again from there below
+    if (halted() || !r.ok()) return std::nullopt;
+    sync_progress(replanner_.progress());
+    std::ostringstream why;
+    why << "no exit from " << tracked << ", but the robot may be " << alternative
+        << " (p=" << std::fixed << std::setprecision(2) << other->probability
+        << "): backed up to tell, now " << tracker_.describe();
+    return why.str();
   }
 
   // A turn the robot refused (hal::RobotErrorCause::kInvalidJob) where the tracking has it at a
@@ -819,6 +883,9 @@ class Executor::Run {
   // The last job sent and how far it drove (the rest of a job stopped by a manhole the map lacks).
   Job last_job_ = Stop{};
   double last_progress_m_ = 0;
+  // How often the robot backed up to tell its places apart (back_up_to_tell_apart()).
+  static constexpr int kMaxTellApart = 3;
+  int tell_apart_tries_ = 0;
   detail::StagedRecovery recovery_;
   std::vector<bool> done_;  // per task: done by the robot (or before the start)
   MissionReport report_;

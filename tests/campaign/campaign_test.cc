@@ -17,6 +17,10 @@
 
 #include "sewerplan/campaign/merge.h"
 #include "sewerplan/campaign/summary.h"
+#include "sewerplan/core/generator.h"
+#include "sewerplan/core/map_json.h"
+#include "sewerplan/core/mission.h"
+#include "sewerplan/domain/mission_generator.h"
 #include "sewerplan/executor/events.h"
 
 #include "support/ais_testbed.h"
@@ -781,6 +785,41 @@ TEST(CampaignWorld, NoRobotIsLeftStuckAtAManholeItIsNotAt) {
     EXPECT_GT(ours.world->arrivals, 2U);
     EXPECT_EQ(ours.world->correct_arrivals + c.wrong_arrivals, ours.world->arrivals);
   }
+}
+
+// The meshed network of docs/campaign.md (`generate --manholes 1000 --seed 1 --topology meshed
+// --mission-tasks 10 --mission-spread near-exit`), its map and mission through their JSON files as
+// the command reads them. In the realistic world, seed 2, run 20: a robot that missed M635 met an
+// obstacle in P514 beyond; the filter held it about as likely 4 m past P515's mapped end, P515 was
+// closed there, and the beacon came on with M635, an exit, 4 m behind it. Now, with no exit from
+// the tracked place but another in the belief, the robot backs up to the manhole behind, is found
+// at M635, and leaves there.
+TEST(CampaignWorld, NoBeaconWhileTheBeliefHoldsAPlaceWithAnExit) {
+  const Result<SewerMap> generated =
+      generate_network({.manholes = 1000, .seed = 1, .topology = Topology::kMeshed});
+  ASSERT_TRUE(generated.has_value());
+  const Result<Mission> planned =
+      domain::generate_mission(*generated, {.tasks = 10,
+                                            .seed = 1,
+                                            .profile = "makro-plus",
+                                            .spread = domain::MissionSpread::kNearExit});
+  ASSERT_TRUE(planned.has_value()) << planned.error().message;
+  std::ostringstream map_text, mission_text;
+  write_map_json(*generated, map_text);
+  write_mission_json(*planned, *generated, mission_text);
+  Diagnostics diagnostics;
+  const Result<SewerMap> map = read_map_json(map_text.str(), "m1k.json", diagnostics);
+  ASSERT_TRUE(map.has_value());
+  const Result<Mission> mission =
+      read_mission_json(mission_text.str(), "m1k-mission.json", *map, diagnostics);
+  ASSERT_TRUE(mission.has_value());
+  CampaignSpec spec = ais_spec(40, 2);
+  spec.world_errors = "realistic";
+  const Result<RunResult> r = run_one(*map, *mission, run_settings(spec), 20);
+  ASSERT_TRUE(r.has_value()) << r.error().message;
+  EXPECT_TRUE(r->could_reach_exit);
+  EXPECT_EQ(r->ours.beacon_cause, executor::MissionReport::BeaconCause::kNone) << r->ours.end;
+  EXPECT_EQ(r->ours.outcome, Outcome::kExit) << r->ours.end;
 }
 
 // --world-errors (issue 29): each run's robot drives a true world drawn from the run's seed, the
