@@ -79,6 +79,15 @@ struct Street {
     return f;
   }
   // A filter at M1, having entered P1 towards M2.
+  // From 15 m into P1, at what the filter holds for a manhole the map lacks or a false detection:
+  // on through it (`turn_deg` from the arrival mouth) and the 25 m left to M2, which is then where
+  // the map says.
+  void expect_on_to_m2(TopologicalFilter& f, double turn_deg) const {
+    ASSERT_TRUE(f.turn(turn_deg).has_value());
+    ASSERT_TRUE(f.drive(25, DriveDirection::kForward, 0.75).has_value());
+    ASSERT_TRUE(f.arrive(seen("M2", "P1")).has_value());
+    EXPECT_EQ(f.estimate().best().pose.position, at("M2", "P1"));
+  }
   TopologicalFilter in_p1(LocalisationOptions options = {}) const {
     TopologicalFilter f = filter(options);
     EXPECT_TRUE(f.reset({.position = domain::InManhole{manhole("M1")}}).has_value());
@@ -560,10 +569,7 @@ TEST(TopologicalFilter, AFalseDetectionMidPipeIsExplainedAsOne) {
   ASSERT_TRUE(v.has_value());
   EXPECT_FALSE(v->matches());
   // Straight on is all there is; then M2 is where the map says.
-  ASSERT_TRUE(f.turn(180).has_value());
-  ASSERT_TRUE(f.drive(25, DriveDirection::kForward, 0.75).has_value());
-  ASSERT_TRUE(f.arrive(s.seen("M2", "P1")).has_value());
-  EXPECT_EQ(f.estimate().best().pose.position, s.at("M2", "P1"));
+  s.expect_on_to_m2(f, 180);
 }
 
 // A manhole the map lacks is a shaft between two pipe pieces: never 0.4 m from a mapped manhole.
@@ -654,10 +660,7 @@ TEST(TopologicalFilter, DrivingOnFromAJunctionTakenForAFalseDetectionArrivesTher
     EXPECT_EQ(v->kind, Verification::Kind::kUnmappedJunction) << v->reason;
 
     // And straight on through it, M2 is where the map says.
-    ASSERT_TRUE(f.turn(172).has_value());
-    ASSERT_TRUE(f.drive(25, DriveDirection::kForward, 0.75).has_value());
-    ASSERT_TRUE(f.arrive(s.seen("M2", "P1")).has_value());
-    EXPECT_EQ(f.estimate().best().pose.position, s.at("M2", "P1"));
+    s.expect_on_to_m2(f, 172);
   }
 }
 
