@@ -403,6 +403,31 @@ class Executor::Run {
     return best;
   }
 
+  // The filter's most likely place in a pipe other than `tracked` (not at a junction), when it
+  // holds at least `share`.
+  std::optional<localisation::Hypothesis> likely_elsewhere(PipeId tracked, double share) const {
+    const localisation::Estimate belief = localising_.estimate();
+    for (const localisation::Hypothesis& h : belief.hypotheses) {
+      const auto* in = std::get_if<domain::InPipe>(&h.pose.position);
+      if (in == nullptr || h.pose.at_unmapped_junction || in->pipe == tracked ||
+          !h.pose.heading_end) {
+        continue;
+      }
+      if (h.probability >= share) return h;
+      break;  // most likely first
+    }
+    return std::nullopt;
+  }
+
+  // Whether the tracking has the robot at the end of its pipe that `job` drove towards.
+  bool at_far_end(const Job& job) const {
+    const auto* in = std::get_if<domain::InPipe>(&tracker_.position());
+    const double direction = tracker_.direction_of(job);
+    if (in == nullptr || direction == 0) return false;
+    const double end = direction > 0 ? map_.pipe(in->pipe).length_m : 0.0;
+    return std::abs(in->offset_m - end) <= kAtEndM;
+  }
+
   // Moves the tracking to `believed`; what it was, for the record.
   std::string settle_on(const localisation::Hypothesis& believed) {
     std::string tracked = tracker_.describe();
@@ -497,10 +522,20 @@ class Executor::Run {
   // filter's belief (believed_elsewhere): the controller settles there and closes that pipe, not
   // the tracked one. Closing the tracked pipe cut the robot's own way back and ended missions with
   // the beacon on.
+  //
+  // Where the drive stopped at the far end of the tracked pipe (it went past the map's length
+  // without an arrival), the robot is in that pipe longer than mapped or in the pipe beyond a
+  // manhole it missed, and the filter may hold both alike: then a place beyond, held at
+  // kPastEndShare or more, is taken. Closed at the tracked pipe's end, the blockage shut the way
+  // back through that manhole, the robot's way out if it was beyond (AIS, the realistic world,
+  // seed 3, run 16: P1 at p=0.53 against P12's end at 0.47; P12 was closed at M2, and the beacon
+  // came on); closed beyond, the way back stays open under both, and the next arrival tells them
+  // apart.
   void place_by_belief(Failure& failure, const Job& job) {
     if (failure.kind != Failure::Kind::kBlockage && failure.kind != Failure::Kind::kDangerInPipe)
       return;
-    const std::optional<localisation::Hypothesis> best = believed_elsewhere(failure.pipe);
+    std::optional<localisation::Hypothesis> best = believed_elsewhere(failure.pipe);
+    if (!best && at_far_end(job)) best = likely_elsewhere(failure.pipe, kPastEndShare);
     if (!best) return;
     failure.detail += "; " + settle_on(*best);
     const auto& in = std::get<domain::InPipe>(best->pose.position);
@@ -885,6 +920,10 @@ class Executor::Run {
   double last_progress_m_ = 0;
   // How often the robot backed up to tell its places apart (back_up_to_tell_apart()).
   static constexpr int kMaxTellApart = 3;
+  // place_by_belief(): a place beyond the tracked pipe's end is taken when the filter holds it at
+  // this share or more, the robot being at that end (within kAtEndM).
+  static constexpr double kPastEndShare = 0.25;
+  static constexpr double kAtEndM = 0.1;
   int tell_apart_tries_ = 0;
   detail::StagedRecovery recovery_;
   std::vector<bool> done_;  // per task: done by the robot (or before the start)
