@@ -449,6 +449,14 @@ class Executor::Run {
     const std::optional<localisation::Hypothesis> best = believed_elsewhere(in->pipe);
     if (!best) return false;
     (void)settle_on(*best);
+    // Into this pipe through the mouth behind the robot, the way the drive went: what was learnt
+    // blocked on the way is gone.
+    const auto& here = std::get<domain::InPipe>(tracker_.position());
+    const double direction = tracker_.direction_of(last_job_);
+    if (direction != 0) {
+      const double entered_at = direction > 0 ? 0.0 : map_.pipe(here.pipe).length_m;
+      (void)replanner_.drove_through(here.pipe, entered_at, here.offset_m);
+    }
     return true;
   }
 
@@ -787,6 +795,8 @@ class Executor::Run {
     const auto from = pipe_offset(before);
     const auto to = pipe_offset(tracker_.position());
     if (!from || !to || from->first != to->first) return;
+    // A drive it finished went through every blockage learnt on its way (drove_through).
+    if (report.ok()) (void)replanner_.drove_through(from->first, from->second, to->second);
     Result<std::vector<HazardUpdate>> updates =
         report.ok() ? replanner_.observe_pass(from->first, from->second, to->second)
                     : replanner_.observe_stop(from->first, from->second, to->second);

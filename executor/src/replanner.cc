@@ -195,13 +195,15 @@ Result<std::vector<HazardUpdate>> Replanner::observe_stop(PipeId pipe, double fr
   return observe_driven(pipe, from_m, stop_m, options_.hazard_learning.blockage_match_m);
 }
 
-Result<std::vector<HazardUpdate>> Replanner::observe_driven(PipeId pipe, double from_m, double to_m,
-                                                            double margin_m) {
-  if (pipe.index() >= map_.pipe_count()) {
+namespace {
+
+// A pass report's pipe and offsets on the map, or why not.
+Result<void> check_driven(const SewerMap& map, PipeId pipe, double from_m, double to_m) {
+  if (pipe.index() >= map.pipe_count()) {
     return Error{ErrorCode::kInvalidArgument,
                  "invalid pass report: unknown pipe #" + std::to_string(pipe.index())};
   }
-  const Pipe& driven = map_.pipe(pipe);
+  const Pipe& driven = map.pipe(pipe);
   for (double offset : {from_m, to_m}) {
     if (!std::isfinite(offset) || offset < 0 || offset > driven.length_m) {
       std::ostringstream out;
@@ -210,6 +212,37 @@ Result<std::vector<HazardUpdate>> Replanner::observe_driven(PipeId pipe, double 
       return Error{ErrorCode::kInvalidArgument, out.str()};
     }
   }
+  return {};
+}
+
+}  // namespace
+
+Result<std::vector<Blockage>> Replanner::drove_through(PipeId pipe, double from_m, double to_m) {
+  if (Result<void> ok = check_driven(map_, pipe, from_m, to_m); !ok.has_value()) return ok.error();
+  const double lo = std::min(from_m, to_m) + kDroveThroughMarginM;
+  const double hi = std::max(from_m, to_m) - kDroveThroughMarginM;
+  const auto inside = [&](const Blockage& b) {
+    return b.pipe == pipe && b.offset_m > lo && b.offset_m < hi;
+  };
+  std::vector<Blockage> dropped;
+  std::copy_if(learnt_.blockages.begin(), learnt_.blockages.end(), std::back_inserter(dropped),
+               inside);
+  std::erase_if(learnt_.blockages, inside);
+  for (const Blockage& b : dropped) {
+    // The mission's copy of it (learnt ones are appended after the operator's).
+    const auto same = std::find_if(
+        mission_.blockages.rbegin(), mission_.blockages.rend(),
+        [&](const Blockage& m) { return m.pipe == b.pipe && m.offset_m == b.offset_m; });
+    if (same != mission_.blockages.rend()) mission_.blockages.erase(std::next(same).base());
+    dropped_note_ += "; the blockage in " + map_.pipe(b.pipe).name + " at " + metres(b.offset_m) +
+                     " is gone: the robot drove through it since";
+  }
+  return dropped;
+}
+
+Result<std::vector<HazardUpdate>> Replanner::observe_driven(PipeId pipe, double from_m, double to_m,
+                                                            double margin_m) {
+  if (Result<void> ok = check_driven(map_, pipe, from_m, to_m); !ok.has_value()) return ok.error();
   const double lo = std::min(from_m, to_m);
   const double hi = std::max(from_m, to_m);
   std::vector<std::size_t> passed;
@@ -391,7 +424,9 @@ Result<search::PlanOutcome> Replanner::exit_on_reserve(const std::string& why) {
   return outcome;
 }
 
-PlanResponse Replanner::plan(const std::string& reason) {
+PlanResponse Replanner::plan(const std::string& reason_given) {
+  const std::string reason = reason_given + dropped_note_;
+  dropped_note_.clear();
   const double start_s = clock().now_s();
   const double deadline_s = options_.planner.time_limit_s > 0
                                 ? start_s + options_.planner.time_limit_s

@@ -797,7 +797,9 @@ TEST(CampaignWorld, NoRobotIsLeftStuckAtAManholeItIsNotAt) {
 // obstacle in P514 beyond; the filter held it about as likely 4 m past P515's mapped end, P515 was
 // closed there, and the beacon came on with M635, an exit, 4 m behind it. Now, with no exit from
 // the tracked place but another in the belief, the robot backs up to the manhole behind, is found
-// at M635, and leaves there.
+// at M635, and leaves there. Run 30: a robot that missed M635 backing out of P514 was found in P515
+// beyond the place where it had reported a transient obstacle earlier; that blockage, driven
+// through since, shut it in (now it is dropped: Replanner::drove_through).
 TEST(CampaignWorld, NoBeaconWhileTheBeliefHoldsAPlaceWithAnExit) {
   const Result<SewerMap> generated =
       generate_network({.manholes = 1000, .seed = 1, .topology = Topology::kMeshed});
@@ -819,11 +821,14 @@ TEST(CampaignWorld, NoBeaconWhileTheBeliefHoldsAPlaceWithAnExit) {
   ASSERT_TRUE(mission.has_value());
   CampaignSpec spec = ais_spec(40, 2);
   spec.world_errors = "realistic";
-  const Result<RunResult> r = run_one(*map, *mission, run_settings(spec), 20);
-  ASSERT_TRUE(r.has_value()) << r.error().message;
-  EXPECT_TRUE(r->could_reach_exit);
-  EXPECT_EQ(r->ours.beacon_cause, executor::MissionReport::BeaconCause::kNone) << r->ours.end;
-  EXPECT_EQ(r->ours.outcome, Outcome::kExit) << r->ours.end;
+  for (const std::size_t run : {20U, 30U}) {
+    SCOPED_TRACE("run " + std::to_string(run));
+    const Result<RunResult> r = run_one(*map, *mission, run_settings(spec), run);
+    ASSERT_TRUE(r.has_value()) << r.error().message;
+    EXPECT_TRUE(r->could_reach_exit);
+    EXPECT_EQ(r->ours.beacon_cause, executor::MissionReport::BeaconCause::kNone) << r->ours.end;
+    EXPECT_EQ(r->ours.outcome, Outcome::kExit) << r->ours.end;
+  }
 }
 
 // --world-errors (issue 29): each run's robot drives a true world drawn from the run's seed, the

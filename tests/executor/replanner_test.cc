@@ -86,6 +86,40 @@ TEST(ReplannerDecision, ARobotThatCannotMoveIsStuck) {
   EXPECT_NE(r.reason.find("motor 3 dead"), std::string::npos);
 }
 
+// A blockage learnt where the robot has since driven through is gone (a transient obstacle, or a
+// failure placed where the robot was not): it leaves the world model and the next plan says so;
+// one at the ends of the stretch driven, an operator's closure and a bad report stay as they were.
+TEST(ReplannerDecision, ABlockageTheRobotDroveThroughIsDropped) {
+  const auto ais = testing::load_ais_testbed();
+  Mission mission = ais.mission;
+  const PipeId p4 = pipe_named(ais.map, "P4");
+  const double length = ais.map.pipe(p4).length_m;
+  mission.blockages.push_back({p4, length / 4});  // the operator's
+  Replanner replanner(ais.map, mission);
+  (void)replanner.plan();
+  const PlanResponse blocked = replanner.report_failure(
+      {.kind = Failure::Kind::kBlockage, .pipe = p4, .offset_m = length / 2});
+  ASSERT_EQ(replanner.learnt().blockages.size(), 1U) << blocked.reason;
+
+  EXPECT_FALSE(replanner.drove_through(p4, length, length + 1).has_value());  // off the pipe
+  const auto short_of_it = replanner.drove_through(p4, length, length / 2);   // to it, not through
+  ASSERT_TRUE(short_of_it.has_value());
+  EXPECT_TRUE(short_of_it->empty());
+  ASSERT_EQ(replanner.learnt().blockages.size(), 1U);
+
+  const auto through = replanner.drove_through(p4, length, 0);
+  ASSERT_TRUE(through.has_value());
+  ASSERT_EQ(through->size(), 1U);
+  EXPECT_DOUBLE_EQ(through->front().offset_m, length / 2);
+  EXPECT_TRUE(replanner.learnt().blockages.empty());
+  const std::vector<Blockage>& closures = replanner.mission().blockages;
+  ASSERT_EQ(closures.size(), 1U);  // the operator's stays
+  EXPECT_DOUBLE_EQ(closures.front().offset_m, length / 4);
+  const PlanResponse next = replanner.plan("on");
+  EXPECT_NE(next.reason.find("the blockage in P4 at"), std::string::npos) << next.reason;
+  EXPECT_EQ(replanner.plan("again").reason.find("the blockage in P4"), std::string::npos);
+}
+
 // Issue 14: a failure report with an unknown pipe aborted the whole process, even in a release
 // build. Each bad report is now answered, naming what is wrong, and changes nothing.
 TEST(ReplannerIssue14, BadFailureReportsAreAnsweredAsInvalidAndChangeNothing) {
