@@ -27,6 +27,8 @@ std::optional<HeuristicKind> heuristic_from_string(std::string_view name) {
   return sewerplan::detail::value_of(kHeuristicKinds, name);
 }
 
+std::string heuristic_names() { return sewerplan::detail::names_joined(kHeuristicKinds); }
+
 std::unique_ptr<Heuristic> make_heuristic(HeuristicKind kind, const domain::CompiledTask& task) {
   using detail::RelaxedExploration;
   switch (kind) {
