@@ -7,10 +7,13 @@
 #                      environment as example data; Depends from dpkg-shlibdeps only: run-time
 #                      libraries, never a -dev package or a compiler.
 #   sewerplan-dev      (component dev) the static libraries, their headers, version.h, the CMake
-#                      package and sewerplan.pc; Depends on sewerplan of the same version (kept
-#                      from when the libraries loaded its modules; they no longer do,
-#                      docs/modules.md: TODO(#33) reconsider) and on the -dev
-#                      packages find_package(sewerplan) needs (cmake/sewerplanConfig.cmake.in).
+#                      package and sewerplan.pc; Depends only on the -dev packages
+#                      find_package(sewerplan) and the static libraries' links need
+#                      (cmake/sewerplanConfig.cmake.in), not on sewerplan: no installed library
+#                      loads a module, runs the command or reads the runtime package's files (the
+#                      module loader is the programs', not installed: docs/modules.md), so a
+#                      program built against -dev runs without it (tests/install/deb_test.sh
+#                      builds and runs one against -dev alone).
 #   python3-sewerplan  (component python, with SEWERPLAN_PYTHON) the module in python3's
 #                      dist-packages and its example; Depends from dpkg-shlibdeps, python3 of the
 #                      version it was built for, and sewerplan (its modules and example data).
@@ -123,7 +126,7 @@ example data.")
 
 set(CPACK_DEBIAN_DEV_PACKAGE_NAME sewerplan-dev)
 set(CPACK_DEBIAN_DEV_PACKAGE_SECTION libdevel)
-set(deb_dev_depends "sewerplan (= ${deb_version}), nlohmann-json3-dev (>= 3.10), libeigen3-dev (>= 3.3), libsimdjson-dev, libpugixml-dev")
+set(deb_dev_depends "nlohmann-json3-dev (>= 3.10), libeigen3-dev (>= 3.3), libsimdjson-dev, libpugixml-dev")
 # No libompl-dev, libcairo2-dev or cpp-httplib: OMPL, cairo and the HTTP server are linked by their
 # modules only (docs/modules.md), which are in sewerplan.
 if(SEWERPLAN_WITH_GIS)  # the static gis library links -lproj and -lgdal

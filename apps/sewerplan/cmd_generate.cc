@@ -58,14 +58,14 @@ int write_mission(const SewerMap& map, const GenerateOptions& o, Context& c, Jso
 int run(GenerateOptions& o, Context& c) {
   auto topology = topology_from_string(o.topology);
   if (!topology) {
-    return usage_error(c, o.json,
-                       "--topology: unknown topology '" + o.topology + "' (tree or meshed)");
+    return usage_error(
+        c, o.json, "--topology: unknown topology '" + o.topology + "' (" + topology_names() + ")");
   }
   o.generator.topology = *topology;
   if (!domain::mission_spread_from_string(o.spread)) {
-    return usage_error(
-        c, o.json,
-        "--mission-spread: unknown spread '" + o.spread + "' (uniform, clustered or near-exit)");
+    return usage_error(c, o.json,
+                       "--mission-spread: unknown spread '" + o.spread + "' (" +
+                           domain::mission_spread_names() + ")");
   }
   if ((o.mission_tasks > 0 || !o.mission_out.empty()) &&
       (o.mission_out.empty() || o.mission_tasks == 0)) {

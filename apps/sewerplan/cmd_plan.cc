@@ -85,14 +85,15 @@ int run(const PlanOptions& o, Context& c) {
   if (!algorithm) {
     return usage_error(
         c, o.json,
-        "--algorithm: unknown '" + o.algorithm + "' (auto, ehc, gbfs, wastar, astar, exact)");
+        "--algorithm: unknown '" + o.algorithm + "' (" + search::algorithm_names() + ")");
   }
   options.algorithm = *algorithm;
   if (!o.heuristic.empty()) {
     options.heuristic = search::heuristic_from_string(o.heuristic);
     if (!options.heuristic) {
-      return usage_error(c, o.json,
-                         "--heuristic: unknown '" + o.heuristic + "' (ff, add, max, blind)");
+      return usage_error(
+          c, o.json,
+          "--heuristic: unknown '" + o.heuristic + "' (" + search::heuristic_names() + ")");
     }
   }
   options.weight = o.weight;

@@ -402,6 +402,8 @@ std::optional<Policy> policy_from_string(std::string_view name) {
   return detail::value_of(kPolicies, name);
 }
 
+std::string policy_names() { return detail::names_joined(kPolicies); }
+
 Result<Execution> replay_execution(const SewerMap& map, const Mission& mission,
                                    const RunSettings& settings, std::size_t index, Policy policy,
                                    const ExecutionObservers& observers) {

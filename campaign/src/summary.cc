@@ -211,6 +211,12 @@ std::string xml_escape(std::string_view s) {
   return out;
 }
 
+// The failed runs (FailedRun) with `status`.
+std::size_t count_failed(const Summary& s, RunRecord::Status status) {
+  return static_cast<std::size_t>(std::count_if(
+      s.failed.begin(), s.failed.end(), [&](const FailedRun& f) { return f.status == status; }));
+}
+
 }  // namespace
 
 std::vector<std::string> verdict_faults(const Summary& s) {
@@ -219,8 +225,7 @@ std::vector<std::string> verdict_faults(const Summary& s) {
   const auto add = [&](std::size_t n, const std::string& what) {
     if (n > 0) faults.push_back(std::to_string(n) + " " + what);
   };
-  const auto crashes = static_cast<std::size_t>(std::count_if(
-      s.failed.begin(), s.failed.end(), [](const FailedRun& f) { return f.status == "crash"; }));
+  const std::size_t crashes = count_failed(s, RunRecord::Status::kCrash);
   add(crashes, crashes == 1 ? "crash" : "crashes");
   add(s.failed.size() - crashes, s.failed.size() - crashes == 1 ? "hang" : "hangs");
   add(s.ours.missed_exits, s.ours.missed_exits == 1 ? "missed exit" : "missed exits");
@@ -323,8 +328,7 @@ Summary summarize(const CampaignSpec& spec, const std::vector<RunRecord>& record
   for (const RunRecord& r : records) {
     s.wall_s += r.wall_s;
     if (!r.result) {
-      s.failed.push_back({r.index, r.seed, std::string(to_string(r.status)), r.detail,
-                          reproduce_command(spec, r.index)});
+      s.failed.push_back({r.index, r.seed, r.status, r.detail, reproduce_command(spec, r.index)});
       continue;
     }
     const RunResult& x = *r.result;
@@ -355,7 +359,7 @@ void write_summary_json(const Summary& s, std::ostream& out) {
   for (const FailedRun& f : s.failed) {
     failed.push_back(Json{{"run", f.run},
                           {"seed", std::to_string(f.seed)},
-                          {"status", f.status},
+                          {"status", std::string(to_string(f.status))},
                           {"detail", f.detail},
                           {"command", f.command}});
   }
@@ -365,10 +369,8 @@ void write_summary_json(const Summary& s, std::ostream& out) {
          {"fault_rates", format_fault_rates(s.spec.rates)},
          {"runs", s.runs},
          {"completed", s.completed},
-         {"crashes", std::count_if(s.failed.begin(), s.failed.end(),
-                                   [](const FailedRun& f) { return f.status == "crash"; })},
-         {"hangs", std::count_if(s.failed.begin(), s.failed.end(),
-                                 [](const FailedRun& f) { return f.status == "hang"; })},
+         {"crashes", count_failed(s, RunRecord::Status::kCrash)},
+         {"hangs", count_failed(s, RunRecord::Status::kHang)},
          {"failed_runs", failed},
          {"could_reach_exit", s.could_reach_exit},
          {"oracle_can_end", s.oracle_can_end},
@@ -565,8 +567,8 @@ void write_summary_markdown(const Summary& s, std::ostream& out) {
   if (s.world) write_world_markdown(*s.world, out);
   out << "Crashes and hangs: " << s.failed.size() << (s.failed.empty() ? ".\n" : ":\n");
   for (const FailedRun& f : s.failed) {
-    out << "- run " << f.run << " (seed " << f.seed << "): " << f.status << ", " << f.detail
-        << "; reproduce with `" << f.command << "`\n";
+    out << "- run " << f.run << " (seed " << f.seed << "): " << to_string(f.status) << ", "
+        << f.detail << "; reproduce with `" << f.command << "`\n";
   }
   const std::vector<std::string> faults = verdict_faults(s);
   if (faults.empty()) {

@@ -286,6 +286,8 @@ std::optional<Topology> topology_from_string(std::string_view name) {
   return detail::value_of(kTopologies, name);
 }
 
+std::string topology_names() { return detail::names_joined(kTopologies); }
+
 namespace {
 
 // GeneratorOptions::findings_per_km: random findings, each pipe's number drawn from its length.

@@ -295,7 +295,7 @@ void AsciiReader::read_pipe(std::span<const std::string_view> tokens) {
     if (const std::optional<PipeShape> parsed = pipe_shape_from_string(*shape)) {
       record.shape = *parsed;
     } else {
-      error("unknown shape " + quoted(*shape) + " (expected circular, rectangular, egg or other)");
+      error("unknown shape " + quoted(*shape) + " (expected " + pipe_shape_names() + ")");
     }
   }
   if (fields.value("height")) record.height_m = number_or(fields, "height", 0.0);

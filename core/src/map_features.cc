@@ -516,7 +516,7 @@ class PipeReader {
         link.shape = *known;
       } else {
         d_.warning(where_, "pipe " + link.name + ": field " + shape_->name + ": unknown shape '" +
-                               *s + "' (circular, rectangular, egg, other): read as " +
+                               *s + "' (" + pipe_shape_names() + "): read as " +
                                std::string(to_string(link.shape)));
       }
     }

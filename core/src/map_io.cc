@@ -61,6 +61,8 @@ std::optional<MapFormat> map_format_from_name(std::string_view name) {
   return detail::value_of(kMapFormats, name);
 }
 
+std::string map_format_names() { return detail::names_joined(kMapFormats); }
+
 std::optional<MapFormat> map_format_from_extension(const std::filesystem::path& path) {
   const std::string ext = path.extension().string();
   if (ext == ".json") return MapFormat::kJson;

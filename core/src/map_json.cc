@@ -131,8 +131,7 @@ PipeRecord read_pipe(JsonElement j, std::size_t index, std::string_view file, Di
       p.shape = *s;
     } else {
       d.error(f.where("shape"), "pipe " + input_text(p.name) + ": unknown shape " +
-                                    input_quoted(*shape) +
-                                    " (circular, rectangular, egg or other)");
+                                    input_quoted(*shape) + " (" + pipe_shape_names() + ")");
     }
   }
   p.height_m = f.number("height_m", Need::kOptional);

@@ -211,8 +211,9 @@ class MissionReader {
             {name + "/" + map_.pipe(id).name, TaskKind::kInspectPipe, PipeSpot{id, {}, {}}, false});
       }
     } else {
-      d_.error(f.where("type"), "unknown task type " + input_quoted(*type) +
-                                    " (go_to, inspect_pipe, inspect_area, take_water_sample)");
+      d_.error(f.where("type"), "unknown task type " + input_quoted(*type) + " (" +
+                                    detail::names_joined(kTaskKinds) + ", " +
+                                    std::string(kInspectArea) + ")");
     }
   }
 

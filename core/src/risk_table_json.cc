@@ -75,8 +75,8 @@ std::optional<RiskRule> read_rule(JsonElement json, const std::string& path,
     if (const std::optional<RiskEffect> e = detail::value_of(detail::kRiskEffectNames, *effect)) {
       rule.effect = *e;
     } else {
-      d.error(f.where("effect"),
-              "unknown effect '" + *effect + "' (none, danger, blockage, impassable)");
+      d.error(f.where("effect"), "unknown effect '" + *effect + "' (" +
+                                     detail::names_joined(detail::kRiskEffectNames) + ")");
     }
   }
   rule.cross_section_percent = f.boolean("cross_section_percent", Need::kOptional).value_or(false);

@@ -40,6 +40,8 @@ std::optional<PipeShape> pipe_shape_from_string(std::string_view name) {
   return detail::value_of(kPipeShapes, name);
 }
 
+std::string pipe_shape_names() { return detail::names_joined(kPipeShapes); }
+
 const Manhole& SewerMap::manhole(ManholeId id) const {
   SEWER_CHECK(id.index() < manholes_.size(), "manhole id does not belong to this map");
   return manholes_[id.index()];

@@ -126,6 +126,8 @@ std::optional<MissionSpread> mission_spread_from_string(std::string_view name) {
   return sewerplan::detail::value_of(kSpreads, name);
 }
 
+std::string mission_spread_names() { return sewerplan::detail::names_joined(kSpreads); }
+
 Result<Mission> generate_mission(const SewerMap& map, const MissionOptions& options) {
   Mission mission;
   auto profile = builtin_profile(options.profile);

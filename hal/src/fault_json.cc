@@ -74,8 +74,7 @@ class FaultReader {
     if (auto name = f.string("kind")) {
       kind = obstacle_kind_from_string(*name);
       if (!kind) {
-        f.error("kind", "unknown obstacle kind \"" + *name +
-                            "\" (transient_lift, transient_push or permanent)");
+        f.error("kind", "unknown obstacle kind \"" + *name + "\" (" + obstacle_kind_names() + ")");
       }
     }
     if (spot && kind) out.obstacles.push_back({spot->first, spot->second, *kind});
@@ -121,7 +120,8 @@ class FaultReader {
     if (auto name = f.string("kind")) {
       kind = malfunction_kind_from_string(*name);
       if (!kind)
-        f.error("kind", "unknown malfunction kind \"" + *name + "\" (transient or permanent)");
+        f.error("kind",
+                "unknown malfunction kind \"" + *name + "\" (" + malfunction_kind_names() + ")");
     }
     std::optional<std::variant<AtJob, AtTime>> when;
     if (f.has("at_job") == f.has("at_time_s")) {

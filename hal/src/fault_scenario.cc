@@ -114,6 +114,8 @@ std::optional<ObstacleKind> obstacle_kind_from_string(std::string_view name) {
   return detail::value_of(kObstacleKinds, name);
 }
 
+std::string obstacle_kind_names() { return detail::names_joined(kObstacleKinds); }
+
 std::string_view to_string(MalfunctionKind kind) {
   return detail::name_of(kMalfunctionKinds, kind);
 }
@@ -121,6 +123,8 @@ std::string_view to_string(MalfunctionKind kind) {
 std::optional<MalfunctionKind> malfunction_kind_from_string(std::string_view name) {
   return detail::value_of(kMalfunctionKinds, name);
 }
+
+std::string malfunction_kind_names() { return detail::names_joined(kMalfunctionKinds); }
 
 bool FaultScenario::empty() const {
   return obstacles.empty() && danger_spots.empty() && dangerous_passages.empty() &&

@@ -144,7 +144,7 @@ search::PlannerOptions planner_options(const std::string& algorithm, double time
   const std::optional<search::Algorithm> a = search::algorithm_from_string(algorithm);
   if (!a) {
     raise_error({ErrorCode::kInvalidArgument,
-                 "unknown algorithm '" + algorithm + "' (auto, ehc, gbfs, wastar, astar, exact)"});
+                 "unknown algorithm '" + algorithm + "' (" + search::algorithm_names() + ")"});
   }
   options.algorithm = *a;
   options.time_limit_s = time_limit_s;

@@ -39,6 +39,8 @@ std::optional<Algorithm> algorithm_from_string(std::string_view name) {
   return sewerplan::detail::value_of(kAlgorithms, name);
 }
 
+std::string algorithm_names() { return sewerplan::detail::names_joined(kAlgorithms); }
+
 Algorithm resolve(Algorithm algorithm, const domain::CompiledTask& task) {
   return resolve(algorithm, ProblemSize{.states = state_count(task)});
 }

@@ -490,7 +490,7 @@ void CampaignService::run_events(const httplib::Request& req, httplib::Response&
   const std::string policy_name =
       req.has_param("policy") ? req.get_param_value("policy") : std::string("ours");
   const std::optional<campaign::Policy> policy = campaign::policy_from_string(policy_name);
-  if (!policy) return bad_request(res, "policy: expected ours, baseline or risk_aware");
+  if (!policy) return bad_request(res, "policy: expected one of " + campaign::policy_names());
   std::shared_ptr<const Finished> last;
   {
     const std::lock_guard lock(mutex_);

@@ -472,7 +472,7 @@ void StationServer::Impl::upload_map(const httplib::Request& req, const std::str
   std::optional<MapFormat> format;
   if (req.has_param("format")) {
     format = map_format_from_name(req.get_param_value("format"));
-    if (!format) return bad_request(res, "format: expected json, ascii, swmm or isybau");
+    if (!format) return bad_request(res, "format: expected one of " + map_format_names());
   } else {
     Result<MapFormat> detected = detect_map_format(file, body);
     if (!detected.has_value()) return send_error(res, kUnprocessable, detected.error());

@@ -278,10 +278,10 @@ TEST(Campaign, ACrashOrAHangIsCaughtCountedAndReproducible) {
   EXPECT_FALSE(s.clean());
   ASSERT_EQ(s.failed.size(), 2U);
   EXPECT_EQ(s.failed[0].run, 2U);
-  EXPECT_EQ(s.failed[0].status, "crash");
+  EXPECT_EQ(s.failed[0].status, RunRecord::Status::kCrash);
   EXPECT_NE(s.failed[0].command.find("--seed 1 "), std::string::npos);
   EXPECT_NE(s.failed[0].command.find("--only 2"), std::string::npos);
-  EXPECT_EQ(s.failed[1].status, "hang");
+  EXPECT_EQ(s.failed[1].status, RunRecord::Status::kHang);
   EXPECT_EQ(s.completed, 4U);
   // A failed run's line reads back.
   Result<RunRecord> back = parse_run_line(run_json_line(records[4]), "runs.jsonl", 5);

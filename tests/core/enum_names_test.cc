@@ -48,6 +48,10 @@ TEST(EnumNames, ReadsANameAndAValueBothWays) {
   EXPECT_FALSE(detail::value_of(kColours, "").has_value());
 }
 
+TEST(EnumNames, JoinsEveryNameInTheTablesOrder) {
+  EXPECT_EQ(detail::names_joined(kColours), "red, green, blue");
+}
+
 TEST(EnumNames, AValueTheTableLacksGetsItsFirstName) {
   constexpr detail::EnumNames<Colour, 2> partial{{{Colour::kRed, "red"}, {Colour::kBlue, "blue"}}};
   EXPECT_EQ(detail::name_of(partial, Colour::kGreen), "red");

@@ -146,7 +146,7 @@ TEST(MapJson, Issue31EscapesControlCharactersOfQuotedText) {
   Result<SewerMap> map = read(text, d);
   ASSERT_FALSE(map.has_value());
   const std::string& m = map.error().message;
-  EXPECT_THAT(m, HasSubstr("unknown shape 'e\\x1B[2Jgg'"));
+  EXPECT_THAT(m, HasSubstr("unknown shape 'e\\x1B[2Jgg' (circular, rectangular, egg, other)"));
   EXPECT_EQ(m.find('\x1b'), std::string::npos);
   bool key_escaped = false;
   for (const Diagnostic& x : d.all()) {

@@ -110,7 +110,8 @@ TEST_F(MissionTest, NamesEveryUnknownObjectByJsonPath) {
   const std::string& e = m.error().message;
   EXPECT_THAT(e, HasSubstr("m.json:$.start.pipe: error: unknown pipe 'P99'"));
   EXPECT_THAT(e, HasSubstr("m.json:$.tasks[0].at.point: error: unknown inspection point 'W7'"));
-  EXPECT_THAT(e, HasSubstr("m.json:$.tasks[2].type: error: unknown task type 'fly'"));
+  EXPECT_THAT(e, HasSubstr("m.json:$.tasks[2].type: error: unknown task type 'fly' "
+                           "(go_to, inspect_pipe, take_water_sample, inspect_area)"));
   EXPECT_THAT(e, HasSubstr("m.json:$.exits[0]: error: unknown manhole 'M77'"));
   // A follow-on "no exit" error would only repeat the unknown name.
   EXPECT_THAT(e, ::testing::Not(HasSubstr("the mission has no exit")));

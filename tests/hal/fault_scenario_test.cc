@@ -189,7 +189,8 @@ TEST_F(FaultScenarioTest, ErrorsNameTheFileAndTheJsonPath) {
   EXPECT_EQ(f.error().code, ErrorCode::kInvalidArgument);
   const std::string& m = f.error().message;
   EXPECT_THAT(m, HasSubstr("f.json:$.obstacles[0].pipe: error: unknown pipe \"P99\""));
-  EXPECT_THAT(m, HasSubstr("f.json:$.obstacles[1].kind: error: unknown obstacle kind \"sticky\""));
+  EXPECT_THAT(m, HasSubstr("f.json:$.obstacles[1].kind: error: unknown obstacle kind \"sticky\" "
+                           "(transient_lift, transient_push, permanent)"));
   EXPECT_THAT(m, HasSubstr("f.json:$.obstacles[2].offset_m: error: pipe P5: offset 10.5 m is "
                            "outside the pipe (0 to 10.0 m)"));
   EXPECT_THAT(m, HasSubstr("f.json:$.danger[0].to_slot: error: manhole M6 has 4 slots, not 9"));

@@ -221,6 +221,7 @@ Result<RunResult> run_one(const SewerMap& map, const Mission& mission, const Run
 enum class Policy { kOurs, kBaseline, kRiskAware };
 std::string_view to_string(Policy policy);  // "ours", "baseline", "risk_aware"
 std::optional<Policy> policy_from_string(std::string_view name);
+std::string policy_names();  // "ours, baseline, risk_aware": what policy_from_string reads
 
 // What to see of an execution replayed: its events as the executor sends them (the lines of
 // `simulate --log`), and each plan it follows.

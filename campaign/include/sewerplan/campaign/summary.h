@@ -83,7 +83,7 @@ std::optional<WorldFigures> pool_world_scores(const std::vector<const RunResult*
 struct FailedRun {
   std::size_t run = 0;
   std::uint64_t seed = 0;
-  std::string status;  // "crash", "hang"
+  RunRecord::Status status = RunRecord::Status::kCrash;  // kCrash or kHang
   std::string detail;
   std::string command;  // reproduces it
 };

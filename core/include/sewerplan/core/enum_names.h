@@ -17,6 +17,10 @@
 //   std::string_view to_string(Colour c) { return detail::name_of(kColours, c); }
 //   std::optional<Colour> parse_colour(std::string_view s) { return detail::value_of(kColours, s);
 //   }
+//   std::string colour_names() { return detail::names_joined(kColours); }  // "red, blue"
+//
+// A message or help text that lists what a parser accepts takes the list from the table too
+// (names_joined, through a *_names() function beside the parser), never a literal of its own.
 //
 // Inside a library with a detail namespace of its own (domain, search, executor), that namespace
 // hides this one: write sewerplan::detail::name_of there.
@@ -28,6 +32,7 @@
 #include <array>
 #include <cstddef>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <utility>
 
@@ -66,6 +71,17 @@ constexpr std::optional<Enum> value_of(const EnumNames<Enum, N>& names, std::str
     if (n == name) return v;
   }
   return std::nullopt;
+}
+
+// Every name of the table in its order, separated by ", ": "red, green, blue".
+template <class Enum, std::size_t N>
+std::string names_joined(const EnumNames<Enum, N>& names) {
+  std::string out;
+  for (const auto& [v, name] : names) {
+    if (!out.empty()) out += ", ";
+    out += name;
+  }
+  return out;
 }
 
 }  // namespace sewerplan::detail

@@ -77,6 +77,8 @@ enum class Topology { kTree, kMeshed };
 std::string_view to_string(Topology topology);
 // "tree" or "meshed".
 std::optional<Topology> topology_from_string(std::string_view name);
+// The names topology_from_string reads, "tree, meshed", for messages.
+std::string topology_names();
 
 struct GeneratorOptions {
   static constexpr std::size_t kMinManholes = 10;

@@ -39,6 +39,8 @@ constexpr bool is_writable(MapFormat format) {
 std::string_view to_string(MapFormat format);
 // "json", "ascii", "swmm" or "isybau".
 std::optional<MapFormat> map_format_from_name(std::string_view name);
+// The names map_format_from_name reads, "json, ascii, swmm, isybau", for messages.
+std::string map_format_names();
 // From the extension (".json", ".sewer", ".inp", ".xml"), if it names a format.
 std::optional<MapFormat> map_format_from_extension(const std::filesystem::path& path);
 

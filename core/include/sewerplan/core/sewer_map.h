@@ -88,6 +88,8 @@ enum class PipeShape : std::uint8_t { kCircular, kRectangular, kEgg, kOther };
 
 std::string_view to_string(PipeShape shape);
 std::optional<PipeShape> pipe_shape_from_string(std::string_view name);
+// The names pipe_shape_from_string reads, "circular, rectangular, egg, other", for messages.
+std::string pipe_shape_names();
 
 // One end of a pipe: a slot of a manhole, or nothing (a blind end, such as a stub).
 struct PipeEnd {

@@ -39,6 +39,8 @@ enum class MissionSpread { kUniform, kClustered, kNearExit };
 std::string_view to_string(MissionSpread spread);
 // uniform, clustered, near-exit
 std::optional<MissionSpread> mission_spread_from_string(std::string_view name);
+// The names mission_spread_from_string reads, "uniform, clustered, near-exit", for messages.
+std::string mission_spread_names();
 
 struct MissionOptions {
   std::size_t tasks = 5;

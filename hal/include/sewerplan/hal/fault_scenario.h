@@ -52,6 +52,8 @@ enum class ObstacleKind : std::uint8_t {
 // "transient_lift", "transient_push", "permanent".
 std::string_view to_string(ObstacleKind kind);
 std::optional<ObstacleKind> obstacle_kind_from_string(std::string_view name);
+// The names obstacle_kind_from_string reads, "transient_lift, transient_push, permanent".
+std::string obstacle_kind_names();
 
 // Something in pipe `pipe` at `offset_m` from its ends[0] that the robot cannot drive past, in
 // either direction.
@@ -85,6 +87,8 @@ enum class MalfunctionKind : std::uint8_t {
 // "transient", "permanent".
 std::string_view to_string(MalfunctionKind kind);
 std::optional<MalfunctionKind> malfunction_kind_from_string(std::string_view name);
+// The names malfunction_kind_from_string reads, "transient, permanent".
+std::string malfunction_kind_names();
 
 // The malfunction strikes the job with this index (from 0, counting every job executed) ...
 struct AtJob {

@@ -24,6 +24,7 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -39,6 +40,8 @@ enum class HeuristicKind { kFf, kAdd, kMax, kBlind };
 
 std::string_view to_string(HeuristicKind kind);
 std::optional<HeuristicKind> heuristic_from_string(std::string_view name);  // ff, add, max, blind
+// The names heuristic_from_string reads, "ff, add, max, blind", for messages.
+std::string heuristic_names();
 
 class Heuristic {
  public:

@@ -52,6 +52,8 @@ enum class Algorithm { kAuto, kEhc, kGbfs, kWeightedAstar, kAstar, kExact };
 std::string_view to_string(Algorithm algorithm);
 // auto, ehc, gbfs, wastar, astar, exact
 std::optional<Algorithm> algorithm_from_string(std::string_view name);
+// The names algorithm_from_string reads, "auto, ehc, gbfs, wastar, astar, exact", for messages.
+std::string algorithm_names();
 
 struct PlannerOptions {
   Algorithm algorithm = Algorithm::kAuto;
