@@ -11,6 +11,11 @@
 
 #include <CLI/CLI.hpp>
 
+#include "sewerplan/core/generator.h"
+#include "sewerplan/core/robot_profile.h"
+#include "sewerplan/search/heuristic.h"
+#include "sewerplan/search/planner.h"
+
 #include "command.h"
 
 namespace sewerplan::cli {
@@ -36,6 +41,15 @@ std::string option_words(const CLI::App& command) {
     for (const std::string& name : option->get_lnames()) words += " --" + name;
   }
   return words.empty() ? words : words.substr(1);
+}
+
+// The names of a table as the error messages list them ("a, b, c"), as shell words ("a b c").
+std::string words(std::string listed) {
+  std::string out;
+  for (char c : listed) {
+    if (c != ',') out += c;
+  }
+  return out;
 }
 
 std::string joined_names(const std::vector<const CLI::App*>& commands) {
@@ -69,14 +83,14 @@ _sewerplan() {
     return
   fi
   case $prev in
-    -a|--algorithm) COMPREPLY=($(compgen -W "auto astar wastar gbfs ehc exact" -- "$cur")); return ;;
-    --heuristic) COMPREPLY=($(compgen -W "ff add max blind" -- "$cur")); return ;;
+    -a|--algorithm) COMPREPLY=($(compgen -W "$_sewerplan_algorithms" -- "$cur")); return ;;
+    --heuristic) COMPREPLY=($(compgen -W "$_sewerplan_heuristics" -- "$cur")); return ;;
     --risk) COMPREPLY=($(compgen -W "impassable avoid expected ignore" -- "$cur")); return ;;
     --gis-fields) COMPREPLY=($(compgen -f -X '!*.json' -- "$cur") $(compgen -d -- "$cur")); return ;;
-    --topology|-t) COMPREPLY=($(compgen -W "tree meshed" -- "$cur")); return ;;
+    --topology|-t) COMPREPLY=($(compgen -W "$_sewerplan_topologies" -- "$cur")); return ;;
     --to) COMPREPLY=($(compgen -W "json ascii" -- "$cur")); return ;;
     --format) COMPREPLY=($(compgen -W "ff fd" -- "$cur")); return ;;
-    --profile) COMPREPLY=($(compgen -W "makro-1.1 makro-plus" -- "$cur") $(compgen -f -- "$cur")); return ;;
+    --profile) COMPREPLY=($(compgen -W "$_sewerplan_profiles" -- "$cur") $(compgen -f -- "$cur")); return ;;
   esac
   if [[ $cur == -* ]]; then
     COMPREPLY=($(compgen -W "$(_sewerplan_options "$command${sub:+ $sub}")" -- "$cur"))
@@ -97,7 +111,15 @@ void print_completion(const CLI::App& root, std::ostream& out) {
          "# tables its commands parse with. Installed to\n"
          "# /usr/share/bash-completion/completions/sewerplan.\n\n";
   const std::vector<const CLI::App*> commands = shown_commands(root);
-  out << "_sewerplan_commands=\"" << joined_names(commands) << "\"\n\n";
+  out << "_sewerplan_commands=\"" << joined_names(commands) << "\"\n";
+  // The values of the options whose names come from a table the parser reads too.
+  std::string profiles;
+  for (const std::string& name : builtin_profile_names())
+    profiles += (profiles.empty() ? "" : " ") + name;
+  out << "_sewerplan_algorithms=\"" << words(search::algorithm_names()) << "\"\n"
+      << "_sewerplan_heuristics=\"" << words(search::heuristic_names()) << "\"\n"
+      << "_sewerplan_topologies=\"" << words(topology_names()) << "\"\n"
+      << "_sewerplan_profiles=\"" << profiles << "\"\n\n";
   out << "# The options of the command (\"campaign merge\": of its command), or of none.\n"
          "_sewerplan_options() {\n  case $1 in\n";
   out << "    '') echo \"" << option_words(root) << "\" ;;\n";

@@ -69,6 +69,9 @@ expect_completion "--map --max-strand-risk" plan --ma
 expect_completion "" plan --ca           # simulate's --can, not plan's
 expect_completion "" sim-node --js       # sim-node prints no JSON
 expect_completion astar plan -a as
+# Option values from the tables the parsers read (algorithms, heuristics, topologies).
+expect_completion "max" plan --heuristic ma
+expect_completion "meshed" generate --topology me
 expect_completion --json simulate --js
 expect_completion merge campaign me      # a command's command
 expect_completion precompute motion pre
