@@ -419,13 +419,13 @@ class Executor::Run {
     return std::nullopt;
   }
 
-  // Whether the tracking has the robot at the end of its pipe that `job` drove towards.
-  bool at_far_end(const Job& job) const {
-    const auto* in = std::get_if<domain::InPipe>(&tracker_.position());
+  // Whether `failure` (in a pipe) is placed at the end of its pipe that `job` drove towards: the
+  // place it stopped, not where the robot is now (a danger's recovery backs off first).
+  bool at_far_end(const Failure& failure, const Job& job) const {
     const double direction = tracker_.direction_of(job);
-    if (in == nullptr || direction == 0) return false;
-    const double end = direction > 0 ? map_.pipe(in->pipe).length_m : 0.0;
-    return std::abs(in->offset_m - end) <= kAtEndM;
+    if (direction == 0) return false;
+    const double end = direction > 0 ? map_.pipe(failure.pipe).length_m : 0.0;
+    return std::abs(failure.offset_m - end) <= kAtEndM;
   }
 
   // Moves the tracking to `believed`; what it was, for the record.
@@ -543,7 +543,7 @@ class Executor::Run {
     if (failure.kind != Failure::Kind::kBlockage && failure.kind != Failure::Kind::kDangerInPipe)
       return;
     std::optional<localisation::Hypothesis> best = believed_elsewhere(failure.pipe);
-    if (!best && at_far_end(job)) best = likely_elsewhere(failure.pipe, kPastEndShare);
+    if (!best && at_far_end(failure, job)) best = likely_elsewhere(failure.pipe, kPastEndShare);
     if (!best) return;
     failure.detail += "; " + settle_on(*best);
     const auto& in = std::get<domain::InPipe>(best->pose.position);
