@@ -386,20 +386,14 @@ class Executor::Run {
   // manhole driven through unseen, with no arrival since to settle on): the most likely place holds
   // a majority, and at least twice what every place in the tracked pipe holds together.
   std::optional<localisation::Hypothesis> believed_elsewhere(PipeId tracked) const {
-    const localisation::Estimate belief = localising_.estimate();
-    if (belief.lost()) return std::nullopt;
-    const localisation::Hypothesis& best = belief.best();
-    const auto* in = std::get_if<domain::InPipe>(&best.pose.position);
-    if (in == nullptr || best.pose.at_unmapped_junction || in->pipe == tracked ||
-        !best.pose.heading_end) {
-      return std::nullopt;
-    }
+    std::optional<localisation::Hypothesis> best = likely_elsewhere(tracked, 0.5);
+    if (!best) return std::nullopt;
     double tracked_p = 0;
-    for (const localisation::Hypothesis& h : belief.hypotheses) {
+    for (const localisation::Hypothesis& h : localising_.estimate().hypotheses) {
       const auto* there = std::get_if<domain::InPipe>(&h.pose.position);
       if (there != nullptr && there->pipe == tracked) tracked_p += h.probability;
     }
-    if (best.probability < 0.5 || best.probability < 2 * tracked_p) return std::nullopt;
+    if (best->probability < 2 * tracked_p) return std::nullopt;
     return best;
   }
 
