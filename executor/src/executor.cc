@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The action controller: plans, actions, jobs, recovery and replanning (executor.h).
+// The action controller: plans, actions, jobs, recovery and replanning (executor.h); what it does
+// when the localisation and the tracking disagree is relocalisation.h.
 #include "sewerplan/executor/executor.h"
 
 #include <algorithm>
@@ -19,6 +20,7 @@
 #include "dead_reckoning.h"
 #include "job_arithmetic.h"
 #include "localising.h"
+#include "relocalisation.h"
 #include "staged_recovery.h"
 
 namespace sewerplan::executor {
@@ -115,6 +117,11 @@ class Executor::Run {
         halt_(e.halt_),
         tracker_(e.map_, e.replanner_.progress().position, e.replanner_.heading_end()),
         localising_(e.map_, e.options_.odometry_sd_fraction, e.replanner_.learnt().junctions),
+        relocalisation_(
+            e.map_, e.replanner_, tracker_, localising_, e.halt_,
+            {.execute_job = [this](const Job& job) { return execute_job(job); },
+             .sync_progress =
+                 [this](domain::MissionProgress progress) { sync_progress(std::move(progress)); }}),
         recovery_(
             e.map_, e.options_.recovery, e.replanner_.mission().profile.speed_mps, tracker_,
             {.execute_job = [this](const Job& job) { return execute_job(job); },
@@ -124,7 +131,7 @@ class Executor::Run {
                    return recovered_report(job, heard);
                  },
              .log_recovery = [this](RecoveryPhase phase, bool ok) { log_recovery(phase, ok); },
-             .settle_elsewhere = [this] { return settle_elsewhere(); }}),
+             .settle_elsewhere = [this] { return relocalisation_.settle_elsewhere(); }}),
         done_(e.replanner_.progress().done) {}
 
   MissionReport go() {
@@ -142,7 +149,7 @@ class Executor::Run {
         // No exit from where the tracking has the robot; the beacon only when none is reachable
         // in the belief: where the filter holds another place, the robot first backs up to the
         // manhole behind, whose arrival tells the places apart.
-        if (std::optional<std::string> why = back_up_to_tell_apart()) {
+        if (std::optional<std::string> why = relocalisation_.back_up_to_tell_apart()) {
           if (halted()) return finish(MissionReport::Outcome::kHalted, "");
           ++report_.replans;
           last_failure.reset();
@@ -183,10 +190,7 @@ class Executor::Run {
   }
 
  private:
-  struct Replan {
-    std::optional<Failure> failure;
-    std::string reason;
-  };
+  using Replan = detail::Replan;
 
   double now() const { return robot_.status().elapsed_s; }
 
@@ -313,21 +317,23 @@ class Executor::Run {
         for (std::optional<Job> next = job; next;) {
           std::optional<Failure> failure = recovery_.run_job(*next, action);
           if (failure) {
-            if (std::optional<std::string> settled = refused_at_no_manhole(*failure, *next)) {
-              mismatch_.reset();
+            if (std::optional<std::string> settled =
+                    relocalisation_.refused_at_no_manhole(*failure, *next)) {
+              relocalisation_.clear_mismatch();
               sync_progress(replay.progress());
               return Replan{std::nullopt, *settled};
             }
-            place_by_belief(*failure, *next);
+            relocalisation_.place_by_belief(*failure, *next);
           }
           next.reset();
           if (failure || halted()) {
-            mismatch_.reset();
+            relocalisation_.clear_mismatch();
             sync_progress(replay.progress());
             return Replan{failure, failure ? "" : "halted"};
           }
-          if (mismatch_) {
-            if (std::optional<Replan> replan = relocalise(replay, next)) return replan;
+          if (relocalisation_.has_mismatch()) {
+            if (std::optional<Replan> replan = relocalisation_.relocalise(replay, next))
+              return replan;
           }
         }
       }
@@ -357,288 +363,6 @@ class Executor::Run {
       sync_progress(replay.progress());
     }
     return std::nullopt;
-  }
-
-  // An arrival that does not match the plan's manhole: the controller settles on the filter's
-  // most likely place at once (so that what observes the job sees it there), and the plan is
-  // made again after the job (relocalise()). At the manhole the odometry expected but unlike its
-  // map (signature-differs): a discrepancy of the map, the plan goes on. Lost: the filter starts
-  // again from the tracking's place.
-  void settle(detail::Arrival arrival) {
-    using Kind = localisation::Verification::Kind;
-    const localisation::Verification& v = arrival.verification;
-    if (v.kind == Kind::kSignatureDiffers) {
-      // The manhole the plan expected, with a mouth fewer: its pipe cannot be reached from here.
-      if (detail::missing_mouth(arrival, map_, localising_.options().noise))
-        mismatch_ = std::move(arrival);
-      return;
-    }
-    if (!v.believed) {
-      localising_.reset(tracker_.position(), tracker_.heading_end());
-      return;
-    }
-    tracker_.set_pose(v.believed->position,
-                      v.believed->heading_end.value_or(tracker_.heading_end()));
-    mismatch_ = std::move(arrival);
-  }
-
-  // The filter's place for the robot when it believes it in another pipe than `tracked` (a
-  // manhole driven through unseen, with no arrival since to settle on): the most likely place holds
-  // a majority, and at least twice what every place in the tracked pipe holds together.
-  std::optional<localisation::Hypothesis> believed_elsewhere(PipeId tracked) const {
-    std::optional<localisation::Hypothesis> best = likely_elsewhere(tracked, 0.5);
-    if (!best) return std::nullopt;
-    double tracked_p = 0;
-    for (const localisation::Hypothesis& h : localising_.estimate().hypotheses) {
-      const auto* there = std::get_if<domain::InPipe>(&h.pose.position);
-      if (there != nullptr && there->pipe == tracked) tracked_p += h.probability;
-    }
-    if (best->probability < 2 * tracked_p) return std::nullopt;
-    return best;
-  }
-
-  // The filter's most likely place in a pipe other than `tracked` (not at a junction), when it
-  // holds at least `share`.
-  std::optional<localisation::Hypothesis> likely_elsewhere(PipeId tracked, double share) const {
-    const localisation::Estimate belief = localising_.estimate();
-    for (const localisation::Hypothesis& h : belief.hypotheses) {
-      const auto* in = std::get_if<domain::InPipe>(&h.pose.position);
-      if (in == nullptr || h.pose.at_unmapped_junction || in->pipe == tracked ||
-          !h.pose.heading_end) {
-        continue;
-      }
-      if (h.probability >= share) return h;
-      break;  // most likely first
-    }
-    return std::nullopt;
-  }
-
-  // Whether `failure` (in a pipe) is placed at the end of its pipe that `job` drove towards: the
-  // place it stopped, not where the robot is now (a danger's recovery backs off first).
-  bool at_far_end(const Failure& failure, const Job& job) const {
-    const double direction = tracker_.direction_of(job);
-    if (direction == 0) return false;
-    const double end = direction > 0 ? map_.pipe(failure.pipe).length_m : 0.0;
-    return std::abs(failure.offset_m - end) <= kAtEndM;
-  }
-
-  // Moves the tracking to `believed`; what it was, for the record.
-  std::string settle_on(const localisation::Hypothesis& believed) {
-    std::string tracked = tracker_.describe();
-    tracker_.set_pose(believed.pose.position, *believed.pose.heading_end);
-    std::ostringstream why;
-    why << "the robot is " << localisation::describe(believed.pose, map_) << " (p=" << std::fixed
-        << std::setprecision(2) << believed.probability << "), not " << tracked;
-    return why.str();
-  }
-
-  // A drive to a manhole that saw none within its bound: where the filter believes the robot in
-  // another pipe (it drove through the manhole unseen), the tracking moves there, and the plan is
-  // made again from there (StagedRecovery). Retrying drove the robot on, 2 m at a time, away from
-  // the manhole it missed, and the pipe beyond was then closed as blocked, often the robot's way
-  // home.
-  bool settle_elsewhere() {
-    const auto* in = std::get_if<domain::InPipe>(&tracker_.position());
-    if (in == nullptr) return false;
-    const std::optional<localisation::Hypothesis> best = believed_elsewhere(in->pipe);
-    if (!best) return false;
-    (void)settle_on(*best);
-    // Into this pipe through the mouth behind the robot, the way the drive went: what was learnt
-    // blocked on the way is gone.
-    const auto& here = std::get<domain::InPipe>(tracker_.position());
-    const double direction = tracker_.direction_of(last_job_);
-    if (direction != 0) {
-      const double entered_at = direction > 0 ? 0.0 : map_.pipe(here.pipe).length_m;
-      (void)replanner_.drove_through(here.pipe, entered_at, here.offset_m);
-    }
-    return true;
-  }
-
-  // No exit is reachable from where the tracking has the robot (in a pipe), but the filter holds
-  // another place for it, in another pipe, at ambiguity_probability or more (a manhole driven
-  // through unseen, or a pipe longer than mapped: on the meshed network, seed 2, run 20, a robot
-  // past a manhole it missed met an obstacle, the tracked pipe was closed at its end, and the
-  // beacon came on with an exit a few metres behind it). The robot drives back the way it came, to
-  // the manhole behind; the arrival there is checked, and the tracking settles on what the filter
-  // finds. The reason to plan again, or empty: no other place, not in a pipe, tried
-  // kMaxTellApart times already, or the drive back failed.
-  std::optional<std::string> back_up_to_tell_apart() {
-    const auto* in = std::get_if<domain::InPipe>(&tracker_.position());
-    if (in == nullptr || tell_apart_tries_ >= kMaxTellApart) return std::nullopt;
-    const localisation::Estimate belief = localising_.estimate();
-    if (belief.lost()) return std::nullopt;
-    const localisation::Hypothesis* other = nullptr;
-    for (const localisation::Hypothesis& h : belief.hypotheses) {
-      const auto* there = std::get_if<domain::InPipe>(&h.pose.position);
-      if (h.probability < localising_.options().ambiguity_probability) continue;
-      if (there == nullptr || there->pipe != in->pipe) {
-        other = &h;
-        break;
-      }
-    }
-    if (other == nullptr) return std::nullopt;
-    ++tell_apart_tries_;
-    const std::string alternative = localisation::describe(other->pose, map_);
-    const std::string tracked = tracker_.describe();
-    // Back the way the last drive went (else away from the end the robot faces).
-    const double last = tracker_.direction_of(last_job_);
-    const std::uint8_t back_to = last > 0   ? 0
-                                 : last < 0 ? 1
-                                            : static_cast<std::uint8_t>(1 - tracker_.heading_end());
-    const double distance =
-        back_to == 0 ? in->offset_m : map_.pipe(in->pipe).length_m - in->offset_m;
-    const double speed = mission().profile.speed_mps;
-    const Job back =
-        back_to == tracker_.heading_end()
-            ? Job{DriveForward{.speed_mps = speed, .distance_m = distance, .to_manhole = true}}
-            : Job{DriveBackward{.speed_mps = speed, .distance_m = distance, .to_manhole = true}};
-    const hal::JobReport r = execute_job(back);
-    mismatch_.reset();  // settled on by execute_job; planned again from there below
-    if (halted() || !r.ok()) return std::nullopt;
-    sync_progress(replanner_.progress());
-    std::ostringstream why;
-    why << "no exit from " << tracked << ", but the robot may be " << alternative
-        << " (p=" << std::fixed << std::setprecision(2) << other->probability
-        << "): backed up to tell, now " << tracker_.describe();
-    return why.str();
-  }
-
-  // A turn the robot refused (hal::RobotErrorCause::kInvalidJob) where the tracking has it at a
-  // manhole: it is at none, and the stop the filter weighed was a false detection. The tracking
-  // moves to the filter's most likely place in a pipe and the plan is made again from there; the
-  // reason, or empty when the filter has no such place (the failure stands: the robot is held).
-  // Before, the controller rebooted the robot three times and called it stuck (AIS, world errors:
-  // a false detection 0.6 m short of M2, taken for M2 at p=0.86).
-  std::optional<std::string> refused_at_no_manhole(const Failure& failure, const Job& job) {
-    if (failure.cause != hal::RobotErrorCause::kInvalidJob ||
-        !std::holds_alternative<TurnInManhole>(job) ||
-        !std::holds_alternative<domain::AtSlot>(tracker_.position())) {
-      return std::nullopt;
-    }
-    const std::optional<localisation::Hypothesis> best = localising_.not_at_manhole();
-    if (!best || !best->pose.heading_end) return std::nullopt;
-    return "relocalised: the robot refused a turn (" + failure.detail + "): " + settle_on(*best);
-  }
-
-  // A blockage or danger met in a pipe other than the one the tracking has the robot in, by the
-  // filter's belief (believed_elsewhere): the controller settles there and closes that pipe, not
-  // the tracked one. Closing the tracked pipe cut the robot's own way back and ended missions with
-  // the beacon on.
-  //
-  // Where the drive stopped at the far end of the tracked pipe (it went past the map's length
-  // without an arrival), the robot is in that pipe longer than mapped or in the pipe beyond a
-  // manhole it missed, and the filter may hold both alike: then a place beyond, held at
-  // kPastEndShare or more, is taken. Closed at the tracked pipe's end, the blockage shut the way
-  // back through that manhole, the robot's way out if it was beyond (AIS, the realistic world,
-  // seed 3, run 16: P1 at p=0.53 against P12's end at 0.47; P12 was closed at M2, and the beacon
-  // came on); closed beyond, the way back stays open under both, and the next arrival tells them
-  // apart.
-  void place_by_belief(Failure& failure, const Job& job) {
-    if (failure.kind != Failure::Kind::kBlockage && failure.kind != Failure::Kind::kDangerInPipe)
-      return;
-    std::optional<localisation::Hypothesis> best = believed_elsewhere(failure.pipe);
-    if (!best && at_far_end(failure, job)) best = likely_elsewhere(failure.pipe, kPastEndShare);
-    if (!best) return;
-    failure.detail += "; " + settle_on(*best);
-    const auto& in = std::get<domain::InPipe>(best->pose.position);
-    const double length = map_.pipe(in.pipe).length_m;
-    failure.pipe = in.pipe;
-    failure.offset_m = std::clamp(
-        in.offset_m + tracker_.direction_of(job) * detail::kBlockageAhead_m, 0.0, length);
-  }
-
-  // Every passage of `manhole` into or out of the mouth `mouth` that the robot did not see, closed
-  // as learnt: the blockage inside its pipe leaves the mouth itself a place to turn through, and a
-  // turn into a mouth the sewer lacks is a job the robot cannot run (on the official ISYBAU sample
-  // the plan turned into it, and the robot, refusing the job three times, called for recovery).
-  void close_passages_into(ManholeId manhole, const Slot& mouth) {
-    const Pipe& pipe = map_.pipe(mouth.pipe);
-    const SlotIndex gone = pipe.ends[mouth.pipe_end].slot;
-    Learnt closed;
-    for (std::uint16_t s = 0; s < map_.manhole(manhole).slot_count; ++s) {
-      if (s != gone.value()) closed.closed_passages.push_back({manhole, gone, SlotIndex{s}});
-    }
-    // Each passage names slots the map has: learn() cannot refuse them.
-    (void)replanner_.learn(closed);
-  }
-
-  // The plan again from where the robot was found to be (settle()). A manhole the map lacks, in
-  // the pipe a drive was driving: the robot passes straight through when a mouth goes on,
-  // and `go_on` is the rest of the job it stopped (empty when it was done); else the pipe is closed
-  // there, as a blockage (docs/localisation.md).
-  std::optional<Replan> relocalise(const domain::PlanReplay& replay, std::optional<Job>& go_on) {
-    using Kind = localisation::Verification::Kind;
-    const detail::Arrival arrival = std::move(*mismatch_);
-    mismatch_.reset();
-    const localisation::Verification& v = arrival.verification;
-    if (v.kind == Kind::kSignatureDiffers) {
-      sync_progress(replay.progress());
-      const Slot mouth = *detail::missing_mouth(arrival, map_, localising_.options().noise);
-      close_passages_into(arrival.expected->manhole, mouth);
-      // Just inside the pipe from this manhole: at its very end, the way in would stay open.
-      const double length = map_.pipe(mouth.pipe).length_m;
-      const double inside = std::min(10 * detail::kBlockageAhead_m, length / 2);
-      return Replan{
-          Failure{.kind = Failure::Kind::kBlockage,
-                  .pipe = mouth.pipe,
-                  .offset_m = mouth.pipe_end == 0 ? inside : length - inside,
-                  .detail = "no mouth of " + map_.pipe(mouth.pipe).name + " seen: " + v.reason},
-          ""};
-    }
-    const auto* in = std::get_if<domain::InPipe>(&v.believed->position);
-    if ((v.kind == Kind::kUnmappedJunction || v.believed->at_unmapped_junction) && in != nullptr) {
-      std::string why = "a manhole the map lacks: " + v.reason;
-      const domain::InPipe here = *in;
-      if (std::optional<TurnInManhole> through = detail::straight_through(
-              arrival, map_, here.pipe, localising_.options(), mission().profile)) {
-        const Job stopped = last_job_;
-        const double done_m = last_progress_m_;
-        const hal::JobReport r = execute_job(*through);
-        if (r.ok()) {
-          go_on = detail::rest_of(stopped, done_m);
-          if (!arrival.forward) {
-            // Through rear first: the front now leads into the pipe beyond, the way the robot was
-            // backing, so it goes on forward (a backing robot closed the pipe at a junction it had
-            // passed on the way in, and was shut in between it and the blockage it backed from).
-            tracker_.set_pose(tracker_.position(),
-                              static_cast<std::uint8_t>(1 - tracker_.heading_end()));
-            if (go_on) go_on = detail::reversed(*go_on);
-          }
-          // A drive to a manhole goes on to it whatever the odometry says is left.
-          if (go_on && !detail::ends_at_manhole(*go_on) && detail::distance_left_m(*go_on) <= 0)
-            go_on.reset();
-          return std::nullopt;
-        }
-        if (r.error->cause == hal::RobotErrorCause::kInvalidJob) {
-          // Refused: the robot is at no manhole, and what it stopped at was a false detection.
-          if (std::optional<localisation::Hypothesis> best = localising_.not_at_manhole();
-              best && best->pose.heading_end) {
-            sync_progress(replay.progress());
-            return Replan{std::nullopt, "relocalised: the robot refused to pass it (" +
-                                            r.error->reason + "): " + settle_on(*best)};
-          }
-        }
-        why += "; passing it failed: " + r.error->reason;
-      }
-      sync_progress(replay.progress());
-      // Just beyond the robot, the way it was driving: at the junction itself, the plan took the
-      // robot on through it (a backing robot cannot pass a manhole), and the robot, refusing to
-      // drive into the junction's shaft, called for recovery.
-      double offset_m = here.offset_m;
-      if (const std::optional<std::uint8_t> facing = v.believed->heading_end) {
-        const std::uint8_t towards =
-            arrival.forward ? *facing : static_cast<std::uint8_t>(1 - *facing);
-        offset_m = std::clamp(offset_m + (towards == 1 ? 1 : -1) * detail::kBlockageAhead_m, 0.0,
-                              map_.pipe(here.pipe).length_m);
-      }
-      return Replan{Failure{.kind = Failure::Kind::kBlockage,
-                            .pipe = here.pipe,
-                            .offset_m = offset_m,
-                            .detail = why},
-                    ""};
-    }
-    sync_progress(replay.progress());
-    return Replan{std::nullopt, "relocalised: " + v.reason};
   }
 
   ArrivalEvent arrival_event(const detail::Arrival& a) const {
@@ -743,8 +467,7 @@ class Executor::Run {
     const domain::RobotPosition before = tracker_.position();
     const double direction = tracker_.direction_of(job);
     const hal::JobReport r = robot_.execute(job);
-    last_job_ = job;
-    last_progress_m_ = r.progress_m;
+    relocalisation_.job_sent(job, r.progress_m);
     ++report_.jobs;
     tracker_.advance(job, r);
     emit(JobEvent{.job = detail::job_text(job), .progress_m = r.progress_m, .ok = r.ok()});
@@ -756,7 +479,7 @@ class Executor::Run {
             localising_.follow(job, r, before, tracker_.position(), tracker_.heading_end())) {
       if (a->worth_logging()) emit(arrival_event(*a));
       if (!a->verification.matches()) {
-        settle(std::move(*a));
+        relocalisation_.settle(std::move(*a));
       } else if (a->expected && !std::holds_alternative<domain::AtSlot>(tracker_.position())) {
         tracker_.set_position(*a->expected);  // the far end, sooner than the map says
       }
@@ -917,18 +640,8 @@ class Executor::Run {
   const std::atomic<bool>& halt_;
   detail::DeadReckoning tracker_;
   detail::Localising localising_;
-  // An arrival that did not match the plan's manhole, handled after the job (relocalise()).
-  std::optional<detail::Arrival> mismatch_;
-  // The last job sent and how far it drove (the rest of a job stopped by a manhole the map lacks).
-  Job last_job_ = Stop{};
-  double last_progress_m_ = 0;
-  // How often the robot backed up to tell its places apart (back_up_to_tell_apart()).
-  static constexpr int kMaxTellApart = 3;
-  // place_by_belief(): a place beyond the tracked pipe's end is taken when the filter holds it at
-  // this share or more, the robot being at that end (within kAtEndM).
-  static constexpr double kPastEndShare = 0.25;
-  static constexpr double kAtEndM = 0.1;
-  int tell_apart_tries_ = 0;
+  // Settles the tracking where the filter finds the robot, and plans again from there.
+  detail::Relocalisation relocalisation_;
   detail::StagedRecovery recovery_;
   std::vector<bool> done_;  // per task: done by the robot (or before the start)
   MissionReport report_;

@@ -1,0 +1,243 @@
+// SPDX-License-Identifier: MIT
+// What the action controller does when the filter and the tracking disagree (relocalisation.h).
+#include "relocalisation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <iomanip>
+#include <sstream>
+#include <variant>
+
+#include "job_arithmetic.h"
+
+namespace sewerplan::executor::detail {
+
+void Relocalisation::settle(Arrival arrival) {
+  using Kind = localisation::Verification::Kind;
+  const localisation::Verification& v = arrival.verification;
+  if (v.kind == Kind::kSignatureDiffers) {
+    // The manhole the plan expected, with a mouth fewer: its pipe cannot be reached from here.
+    if (missing_mouth(arrival, map_, localising_.options().noise)) mismatch_ = std::move(arrival);
+    return;
+  }
+  if (!v.believed) {
+    localising_.reset(tracker_.position(), tracker_.heading_end());
+    return;
+  }
+  tracker_.set_pose(v.believed->position, v.believed->heading_end.value_or(tracker_.heading_end()));
+  mismatch_ = std::move(arrival);
+}
+
+std::optional<Replan> Relocalisation::relocalise(const domain::PlanReplay& replay,
+                                                 std::optional<Job>& go_on) {
+  using Kind = localisation::Verification::Kind;
+  const Arrival arrival = std::move(*mismatch_);
+  mismatch_.reset();
+  const localisation::Verification& v = arrival.verification;
+  if (v.kind == Kind::kSignatureDiffers) {
+    sync_progress(replay.progress());
+    const Slot mouth = *missing_mouth(arrival, map_, localising_.options().noise);
+    close_passages_into(arrival.expected->manhole, mouth);
+    // Just inside the pipe from this manhole: at its very end, the way in would stay open.
+    const double length = map_.pipe(mouth.pipe).length_m;
+    const double inside = std::min(10 * kBlockageAhead_m, length / 2);
+    return Replan{
+        Failure{.kind = Failure::Kind::kBlockage,
+                .pipe = mouth.pipe,
+                .offset_m = mouth.pipe_end == 0 ? inside : length - inside,
+                .detail = "no mouth of " + map_.pipe(mouth.pipe).name + " seen: " + v.reason},
+        ""};
+  }
+  const auto* in = std::get_if<domain::InPipe>(&v.believed->position);
+  if ((v.kind == Kind::kUnmappedJunction || v.believed->at_unmapped_junction) && in != nullptr) {
+    std::string why = "a manhole the map lacks: " + v.reason;
+    const domain::InPipe here = *in;
+    if (std::optional<TurnInManhole> through =
+            straight_through(arrival, map_, here.pipe, localising_.options(), mission().profile)) {
+      const Job stopped = last_job_;
+      const double done_m = last_progress_m_;
+      const hal::JobReport r = execute_job(*through);
+      if (r.ok()) {
+        go_on = rest_of(stopped, done_m);
+        if (!arrival.forward) {
+          // Through rear first: the front now leads into the pipe beyond, the way the robot was
+          // backing, so it goes on forward (a backing robot closed the pipe at a junction it had
+          // passed on the way in, and was shut in between it and the blockage it backed from).
+          tracker_.set_pose(tracker_.position(),
+                            static_cast<std::uint8_t>(1 - tracker_.heading_end()));
+          if (go_on) go_on = reversed(*go_on);
+        }
+        // A drive to a manhole goes on to it whatever the odometry says is left.
+        if (go_on && !ends_at_manhole(*go_on) && distance_left_m(*go_on) <= 0) go_on.reset();
+        return std::nullopt;
+      }
+      if (r.error->cause == hal::RobotErrorCause::kInvalidJob) {
+        // Refused: the robot is at no manhole, and what it stopped at was a false detection.
+        if (std::optional<localisation::Hypothesis> best = localising_.not_at_manhole();
+            best && best->pose.heading_end) {
+          sync_progress(replay.progress());
+          return Replan{std::nullopt, "relocalised: the robot refused to pass it (" +
+                                          r.error->reason + "): " + settle_on(*best)};
+        }
+      }
+      why += "; passing it failed: " + r.error->reason;
+    }
+    sync_progress(replay.progress());
+    // Just beyond the robot, the way it was driving: at the junction itself, the plan took the
+    // robot on through it (a backing robot cannot pass a manhole), and the robot, refusing to
+    // drive into the junction's shaft, called for recovery.
+    double offset_m = here.offset_m;
+    if (const std::optional<std::uint8_t> facing = v.believed->heading_end) {
+      const std::uint8_t towards =
+          arrival.forward ? *facing : static_cast<std::uint8_t>(1 - *facing);
+      offset_m = std::clamp(offset_m + (towards == 1 ? 1 : -1) * kBlockageAhead_m, 0.0,
+                            map_.pipe(here.pipe).length_m);
+    }
+    return Replan{Failure{.kind = Failure::Kind::kBlockage,
+                          .pipe = here.pipe,
+                          .offset_m = offset_m,
+                          .detail = why},
+                  ""};
+  }
+  sync_progress(replay.progress());
+  return Replan{std::nullopt, "relocalised: " + v.reason};
+}
+
+bool Relocalisation::settle_elsewhere() {
+  const auto* in = std::get_if<domain::InPipe>(&tracker_.position());
+  if (in == nullptr) return false;
+  const std::optional<localisation::Hypothesis> best = believed_elsewhere(in->pipe);
+  if (!best) return false;
+  (void)settle_on(*best);
+  // Into this pipe through the mouth behind the robot, the way the drive went: what was learnt
+  // blocked on the way is gone.
+  const auto& here = std::get<domain::InPipe>(tracker_.position());
+  const double direction = tracker_.direction_of(last_job_);
+  if (direction != 0) {
+    const double entered_at = direction > 0 ? 0.0 : map_.pipe(here.pipe).length_m;
+    (void)replanner_.drove_through(here.pipe, entered_at, here.offset_m);
+  }
+  return true;
+}
+
+std::optional<std::string> Relocalisation::back_up_to_tell_apart() {
+  const auto* in = std::get_if<domain::InPipe>(&tracker_.position());
+  if (in == nullptr || tell_apart_tries_ >= kMaxTellApart) return std::nullopt;
+  const localisation::Estimate belief = localising_.estimate();
+  if (belief.lost()) return std::nullopt;
+  const localisation::Hypothesis* other = nullptr;
+  for (const localisation::Hypothesis& h : belief.hypotheses) {
+    const auto* there = std::get_if<domain::InPipe>(&h.pose.position);
+    if (h.probability < localising_.options().ambiguity_probability) continue;
+    if (there == nullptr || there->pipe != in->pipe) {
+      other = &h;
+      break;
+    }
+  }
+  if (other == nullptr) return std::nullopt;
+  ++tell_apart_tries_;
+  const std::string alternative = localisation::describe(other->pose, map_);
+  const std::string tracked = tracker_.describe();
+  // Back the way the last drive went (else away from the end the robot faces).
+  const double last = tracker_.direction_of(last_job_);
+  const std::uint8_t back_to = last > 0   ? 0
+                               : last < 0 ? 1
+                                          : static_cast<std::uint8_t>(1 - tracker_.heading_end());
+  const double distance = back_to == 0 ? in->offset_m : map_.pipe(in->pipe).length_m - in->offset_m;
+  const double speed = mission().profile.speed_mps;
+  const Job back =
+      back_to == tracker_.heading_end()
+          ? Job{DriveForward{.speed_mps = speed, .distance_m = distance, .to_manhole = true}}
+          : Job{DriveBackward{.speed_mps = speed, .distance_m = distance, .to_manhole = true}};
+  const hal::JobReport r = execute_job(back);
+  mismatch_.reset();  // settled on by execute_job; planned again from there below
+  if (halted() || !r.ok()) return std::nullopt;
+  sync_progress(replanner_.progress());
+  std::ostringstream why;
+  why << "no exit from " << tracked << ", but the robot may be " << alternative
+      << " (p=" << std::fixed << std::setprecision(2) << other->probability
+      << "): backed up to tell, now " << tracker_.describe();
+  return why.str();
+}
+
+std::optional<std::string> Relocalisation::refused_at_no_manhole(const Failure& failure,
+                                                                 const Job& job) {
+  if (failure.cause != hal::RobotErrorCause::kInvalidJob ||
+      !std::holds_alternative<TurnInManhole>(job) ||
+      !std::holds_alternative<domain::AtSlot>(tracker_.position())) {
+    return std::nullopt;
+  }
+  const std::optional<localisation::Hypothesis> best = localising_.not_at_manhole();
+  if (!best || !best->pose.heading_end) return std::nullopt;
+  return "relocalised: the robot refused a turn (" + failure.detail + "): " + settle_on(*best);
+}
+
+void Relocalisation::place_by_belief(Failure& failure, const Job& job) {
+  if (failure.kind != Failure::Kind::kBlockage && failure.kind != Failure::Kind::kDangerInPipe)
+    return;
+  std::optional<localisation::Hypothesis> best = believed_elsewhere(failure.pipe);
+  if (!best && at_far_end(failure, job)) best = likely_elsewhere(failure.pipe, kPastEndShare);
+  if (!best) return;
+  failure.detail += "; " + settle_on(*best);
+  const auto& in = std::get<domain::InPipe>(best->pose.position);
+  const double length = map_.pipe(in.pipe).length_m;
+  failure.pipe = in.pipe;
+  failure.offset_m =
+      std::clamp(in.offset_m + tracker_.direction_of(job) * kBlockageAhead_m, 0.0, length);
+}
+
+std::optional<localisation::Hypothesis> Relocalisation::believed_elsewhere(PipeId tracked) const {
+  std::optional<localisation::Hypothesis> best = likely_elsewhere(tracked, 0.5);
+  if (!best) return std::nullopt;
+  double tracked_p = 0;
+  for (const localisation::Hypothesis& h : localising_.estimate().hypotheses) {
+    const auto* there = std::get_if<domain::InPipe>(&h.pose.position);
+    if (there != nullptr && there->pipe == tracked) tracked_p += h.probability;
+  }
+  if (best->probability < 2 * tracked_p) return std::nullopt;
+  return best;
+}
+
+std::optional<localisation::Hypothesis> Relocalisation::likely_elsewhere(PipeId tracked,
+                                                                         double share) const {
+  const localisation::Estimate belief = localising_.estimate();
+  for (const localisation::Hypothesis& h : belief.hypotheses) {
+    const auto* in = std::get_if<domain::InPipe>(&h.pose.position);
+    if (in == nullptr || h.pose.at_unmapped_junction || in->pipe == tracked ||
+        !h.pose.heading_end) {
+      continue;
+    }
+    if (h.probability >= share) return h;
+    break;  // most likely first
+  }
+  return std::nullopt;
+}
+
+bool Relocalisation::at_far_end(const Failure& failure, const Job& job) const {
+  const double direction = tracker_.direction_of(job);
+  if (direction == 0) return false;
+  const double end = direction > 0 ? map_.pipe(failure.pipe).length_m : 0.0;
+  return std::abs(failure.offset_m - end) <= kAtEndM;
+}
+
+std::string Relocalisation::settle_on(const localisation::Hypothesis& believed) {
+  std::string tracked = tracker_.describe();
+  tracker_.set_pose(believed.pose.position, *believed.pose.heading_end);
+  std::ostringstream why;
+  why << "the robot is " << localisation::describe(believed.pose, map_) << " (p=" << std::fixed
+      << std::setprecision(2) << believed.probability << "), not " << tracked;
+  return why.str();
+}
+
+void Relocalisation::close_passages_into(ManholeId manhole, const Slot& mouth) {
+  const Pipe& pipe = map_.pipe(mouth.pipe);
+  const SlotIndex gone = pipe.ends[mouth.pipe_end].slot;
+  Learnt closed;
+  for (std::uint16_t s = 0; s < map_.manhole(manhole).slot_count; ++s) {
+    if (s != gone.value()) closed.closed_passages.push_back({manhole, gone, SlotIndex{s}});
+  }
+  // Each passage names slots the map has: learn() cannot refuse them.
+  (void)replanner_.learn(closed);
+}
+}  // namespace sewerplan::executor::detail
