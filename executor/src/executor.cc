@@ -236,6 +236,7 @@ class Executor::Run {
       case hal::RobotErrorCause::kDangerousPassage:
       case hal::RobotErrorCause::kOtherDanger:
       case hal::RobotErrorCause::kInvalidJob:
+      case hal::RobotErrorCause::kNotAtStart:
       case hal::RobotErrorCause::kEmergencyStop:
         break;  // held where it is: a danger, a job it cannot run, a stop
     }

@@ -59,7 +59,7 @@ class Localising {
                                 const domain::RobotPosition& before,
                                 const domain::RobotPosition& after, std::uint8_t after_heading_end);
 
-  // The robot refused a job that needs it at a manhole (hal::RobotErrorCause::kInvalidJob for a
+  // The robot refused a job that needs it at a manhole (hal::RobotErrorCause::kNotAtStart for a
   // turn) where the filter had it arrived: the filter's most likely place in a pipe (the stop was
   // a false detection). Empty when the filter has none: it then starts again at the next reset().
   std::optional<localisation::Hypothesis> not_at_manhole();

@@ -72,7 +72,7 @@ std::optional<Replan> Relocalisation::relocalise(const domain::PlanReplay& repla
         if (go_on && !ends_at_manhole(*go_on) && distance_left_m(*go_on) <= 0) go_on.reset();
         return std::nullopt;
       }
-      if (r.error->cause == hal::RobotErrorCause::kInvalidJob) {
+      if (r.error->cause == hal::RobotErrorCause::kNotAtStart) {
         // Refused: the robot is at no manhole, and what it stopped at was a false detection.
         if (std::optional<localisation::Hypothesis> best = localising_.not_at_manhole();
             best && best->pose.heading_end) {
@@ -163,7 +163,7 @@ std::optional<std::string> Relocalisation::back_up_to_tell_apart() {
 
 std::optional<std::string> Relocalisation::refused_at_no_manhole(const Failure& failure,
                                                                  const Job& job) {
-  if (failure.cause != hal::RobotErrorCause::kInvalidJob ||
+  if (failure.cause != hal::RobotErrorCause::kNotAtStart ||
       !std::holds_alternative<TurnInManhole>(job) ||
       !std::holds_alternative<domain::AtSlot>(tracker_.position())) {
     return std::nullopt;

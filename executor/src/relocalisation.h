@@ -110,12 +110,12 @@ class Relocalisation {
   // kMaxTellApart times already, or the drive back failed.
   std::optional<std::string> back_up_to_tell_apart();
 
-  // A turn the robot refused (hal::RobotErrorCause::kInvalidJob) where the tracking has it at a
-  // manhole: it is at none, and the stop the filter weighed was a false detection. The tracking
-  // moves to the filter's most likely place in a pipe and the plan is made again from there; the
-  // reason, or empty when the filter has no such place (the failure stands: the robot is held).
-  // Before, the controller rebooted the robot three times and called it stuck (AIS, world errors:
-  // a false detection 0.6 m short of M2, taken for M2 at p=0.86).
+  // A turn the robot refused as not at its start (hal::RobotErrorCause::kNotAtStart) where the
+  // tracking has it at a manhole: it is at none, and the stop the filter weighed was a false
+  // detection. The tracking moves to the filter's most likely place in a pipe and the plan is made
+  // again from there; the reason, or empty when the filter has no such place (the failure stands:
+  // the robot is held). Before, the controller rebooted the robot three times and called it stuck
+  // (AIS, world errors: a false detection 0.6 m short of M2, taken for M2 at p=0.86).
   std::optional<std::string> refused_at_no_manhole(const Failure& failure, const Job& job);
 
   // A blockage or danger met in a pipe other than the one the tracking has the robot in, by the

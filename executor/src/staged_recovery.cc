@@ -83,9 +83,11 @@ std::optional<Failure> StagedRecovery::run_job(const Job& job, const fusion::Rob
   for (;;) {
     if (r.ok()) return std::nullopt;
     const hal::RobotErrorKind kind = r.error->kind;
-    if (r.error->cause == hal::RobotErrorCause::kInvalidJob) {
-      // A job the robot cannot run where it is: a reboot changes neither. The run loop decides
-      // (a turn refused at a manhole the robot is not at: it relocalises).
+    if (r.error->cause == hal::RobotErrorCause::kInvalidJob ||
+        r.error->cause == hal::RobotErrorCause::kNotAtStart) {
+      // A job the robot cannot run, or not where it is: a reboot changes neither. The run loop
+      // decides (a turn refused at a manhole the robot is not at: it relocalises; a job no robot
+      // could run, such as a turn with more waypoints than the CAN protocol carries: held).
       return Failure{
           .kind = Failure::Kind::kStuck, .detail = r.error->reason, .cause = r.error->cause};
     }

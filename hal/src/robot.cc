@@ -25,6 +25,7 @@ constexpr detail::EnumNames<RobotErrorCause, kRobotErrorCauses> kErrorCauses{{
     {RobotErrorCause::kFault, "fault"},
     {RobotErrorCause::kBatteryEmpty, "battery-empty"},
     {RobotErrorCause::kInvalidJob, "invalid-job"},
+    {RobotErrorCause::kNotAtStart, "not-at-start"},
     {RobotErrorCause::kEmergencyStop, "emergency-stop"},
     {RobotErrorCause::kLink, "link"},
     {RobotErrorCause::kOtherMalfunction, "malfunction"},

@@ -234,7 +234,7 @@ JobReport SimRobot::drive(double speed_mps, double distance_m, int direction, bo
   // A drive of 0 m does nothing, except in a pipe right at its end, where it is at the mouth.
   if (distance_m == 0 && !std::holds_alternative<InPipe>(pose_)) return JobReport{};
   if (const auto* in = std::get_if<InManhole>(&pose_)) {
-    return failure(RobotErrorCause::kInvalidJob, "cannot drive in manhole " +
+    return failure(RobotErrorCause::kNotAtStart, "cannot drive in manhole " +
                                                      map_.manhole(in->manhole).name +
                                                      " at no pipe mouth: enter a pipe first");
   }
@@ -257,7 +257,7 @@ JobReport SimRobot::drive(double speed_mps, double distance_m, int direction, bo
       return report;
     }
     if (direction != into_pipe) {
-      return failure(RobotErrorCause::kInvalidJob,
+      return failure(RobotErrorCause::kNotAtStart,
                      std::string("cannot drive ") + (direction > 0 ? "forward" : "backward") +
                          " into manhole " + map_.manhole(at->manhole).name + " from the mouth of " +
                          slot_text(at->slot) + ": turn through it");
@@ -496,7 +496,7 @@ JobReport SimRobot::turn_by_sighting(const TurnInManhole& job) {
   }
   const auto* at = std::get_if<AtSlot>(&pose_);
   if (at == nullptr) {
-    return failure(RobotErrorCause::kInvalidJob,
+    return failure(RobotErrorCause::kNotAtStart,
                    "not at a manhole's mouth (" + describe(pose_, map_) + ")");
   }
   const std::vector<SlotIndex> order =
@@ -534,7 +534,7 @@ JobReport SimRobot::turn(const TurnInManhole& job) {
   }
   const auto* at = std::get_if<AtSlot>(&pose_);
   if (at == nullptr || at->slot.value() != job.from_slot) {
-    return failure(RobotErrorCause::kInvalidJob, "not at " + slot_text(SlotIndex{job.from_slot}) +
+    return failure(RobotErrorCause::kNotAtStart, "not at " + slot_text(SlotIndex{job.from_slot}) +
                                                      " of a manhole (" + describe(pose_, map_) +
                                                      ")");
   }
@@ -570,7 +570,7 @@ JobReport SimRobot::turn(const TurnInManhole& job) {
 JobReport SimRobot::enter(const EnterPipeFromManhole& job) {
   const auto* in = std::get_if<InManhole>(&pose_);
   if (in == nullptr) {
-    return failure(RobotErrorCause::kInvalidJob,
+    return failure(RobotErrorCause::kNotAtStart,
                    "not lowered into a manhole (" + describe(pose_, map_) + ")");
   }
   const Manhole& manhole = map_.manhole(in->manhole);

@@ -193,6 +193,7 @@ TEST(BeaconCause, EachMalfunctionCauseGivesItsBeaconCause) {
       // A job the robot cannot run: the robot is held, not broken, and no reboot is tried (one
       // changes neither where the robot is nor what the job asks).
       {hal::RobotErrorCause::kInvalidJob, Cause::kStuck, Cause::kStuck},
+      {hal::RobotErrorCause::kNotAtStart, Cause::kStuck, Cause::kStuck},
       // A stop: held too; a reboot that fails is a malfunction.
       {hal::RobotErrorCause::kEmergencyStop, Cause::kStuck, Cause::kMalfunction},
   };

@@ -164,6 +164,7 @@ const std::vector<GoldenError>& golden_errors() {
       {RobotErrorCause::kInvalidJob, "02221000#33000400", "02221FFF#080052BBC449"},
       {RobotErrorCause::kEmergencyStop, "02221000#34000400", "02221FFF#080077C02F19"},
       {RobotErrorCause::kLink, "02221000#35000400", "02221FFF#0800A0D3BA04"},
+      {RobotErrorCause::kNotAtStart, "02221000#36000400", "02221FFF#0800D9E70522"},
   };
   return kErrors;
 }
@@ -225,7 +226,7 @@ TEST(CanGoldenFrames, AnUnknownCodeIsNamedWithItsFrame) {
   // Errors: codes between and beyond the table's.
   const std::vector<std::pair<int, std::string>> outcomes{
       {4, "4 (0x04)"},     {0x10, "16 (0x10)"}, {0x14, "20 (0x14)"},
-      {0x23, "35 (0x23)"}, {0x36, "54 (0x36)"}, {0xff, "255 (0xFF)"}};
+      {0x23, "35 (0x23)"}, {0x37, "55 (0x37)"}, {0xff, "255 (0xFF)"}};
   for (const auto& [code, named] : outcomes) {
     SCOPED_TRACE(code);
     std::vector<CanFrame> frames =

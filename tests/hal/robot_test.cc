@@ -19,7 +19,7 @@ TEST(RobotNames, EveryValueRoundTripsThroughItsNameAndBack) {
       {RobotErrorCause::kObstacle, RobotErrorCause::kBlindEnd, RobotErrorCause::kNoManholeSeen,
        RobotErrorCause::kOtherBlockage, RobotErrorCause::kDangerSpot,
        RobotErrorCause::kDangerousPassage, RobotErrorCause::kOtherDanger, RobotErrorCause::kFault,
-       RobotErrorCause::kBatteryEmpty, RobotErrorCause::kInvalidJob,
+       RobotErrorCause::kBatteryEmpty, RobotErrorCause::kInvalidJob, RobotErrorCause::kNotAtStart,
        RobotErrorCause::kEmergencyStop, RobotErrorCause::kLink, RobotErrorCause::kOtherMalfunction},
       parse_robot_error_cause);
   expect_round_trip({BeaconState::kNone, BeaconState::kConfirmed, BeaconState::kUnconfirmed,

@@ -55,7 +55,8 @@ enum class RobotErrorCause : std::uint8_t {
   // MALFUNCTION
   kFault,             // "fault": the robot's hardware or software failed (motor, sensor, crash)
   kBatteryEmpty,      // "battery-empty"
-  kInvalidJob,        // "invalid-job": a job it cannot run (bad numbers, not where it starts)
+  kInvalidJob,        // "invalid-job": a job it cannot run anywhere (bad numbers, a limit)
+  kNotAtStart,        // "not-at-start": it is not where the job starts (no mouth, no manhole)
   kEmergencyStop,     // "emergency-stop": stopped (emergency_stop(), a stop latched in a node)
   kLink,              // "link": the link to the robot failed (CAN, can_robot.h): not the robot
   kOtherMalfunction,  // "malfunction" (stays the last)
@@ -78,6 +79,7 @@ constexpr RobotErrorKind kind_of(RobotErrorCause cause) {
     case RobotErrorCause::kFault:
     case RobotErrorCause::kBatteryEmpty:
     case RobotErrorCause::kInvalidJob:
+    case RobotErrorCause::kNotAtStart:
     case RobotErrorCause::kEmergencyStop:
     case RobotErrorCause::kLink:
     case RobotErrorCause::kOtherMalfunction:

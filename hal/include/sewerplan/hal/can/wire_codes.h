@@ -146,6 +146,7 @@ inline constexpr std::array<ErrorCodeRow, kRobotErrorCauses> kErrorCodes{{
     {RobotErrorCause::kInvalidJob, 0x33},
     {RobotErrorCause::kEmergencyStop, 0x34},
     {RobotErrorCause::kLink, 0x35},
+    {RobotErrorCause::kNotAtStart, 0x36},
 }};
 
 // The cause with `code`; empty for kDoneCode and for a code no cause has.
