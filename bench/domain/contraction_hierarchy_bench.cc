@@ -162,7 +162,9 @@ BENCHMARK(BM_ContractionHierarchy)
 // Routes key to key: the route search's (forward from each key, every key a target) against the
 // hierarchy's unpacked path. `routes`: pairs with a way; `cost_differs`: pairs of other costs
 // (must be 0); `path_differs`: equal costs, other nodes; `first_step_differs`: of those, how many
-// leave the key by another move; `mean_hops`: nodes per route (the route search's).
+// leave the key by another move; `routes_with_ties`: routes with another way of the same cost
+// into one of their nodes (where the tie rule chose); `mean_hops`: nodes per route (the route
+// search's).
 void BM_ContractionHierarchyTies(benchmark::State& state) {
   const Instance& instance = bench::bound_instance(static_cast<int>(state.range(0)),
                                                    static_cast<std::size_t>(state.range(1)),
@@ -183,10 +185,10 @@ void BM_ContractionHierarchyTies(benchmark::State& state) {
   ChQuery query(*ch);
   detail::GraphSearch search(graph);
   std::size_t routes = 0, cost_differs = 0, path_differs = 0, first_step_differs = 0;
-  std::size_t hops_search = 0;
+  std::size_t hops_search = 0, routes_with_ties = 0;
   std::vector<Node> want, got;
   for (auto _ : state) {
-    routes = cost_differs = path_differs = first_step_differs = hops_search = 0;
+    routes = cost_differs = path_differs = first_step_differs = hops_search = routes_with_ties = 0;
     for (Node s : keys) {
       search.run(std::span<const Node>(&s, 1), keys, kInfiniteCost,
                  detail::GraphSearch::Direction::kForward);
@@ -196,6 +198,17 @@ void BM_ContractionHierarchyTies(benchmark::State& state) {
         search.path(t, want);
         const Cost d = query.path(s, t, got);
         hops_search += want.size();
+        // Another way of the same cost into a node of the route: a predecessor other than the
+        // route's at the same distance (settled before the node, so its distance is final).
+        bool tied = false;
+        for (std::size_t i = 1; i < want.size() && !tied; ++i) {
+          graph.for_each_predecessor(want[i], [&](Node p, Cost c) {
+            const Cost dp = search.distance(p);
+            tied = tied ||
+                   (p != want[i - 1] && dp != kInfiniteCost && dp + c == search.distance(want[i]));
+          });
+        }
+        routes_with_ties += tied ? 1 : 0;
         if (d != search.distance(t)) {
           ++cost_differs;
         } else if (got != want) {
@@ -209,6 +222,7 @@ void BM_ContractionHierarchyTies(benchmark::State& state) {
   state.counters["routes"] = static_cast<double>(routes);
   state.counters["cost_differs"] = static_cast<double>(cost_differs);
   state.counters["path_differs"] = static_cast<double>(path_differs);
+  state.counters["routes_with_ties"] = static_cast<double>(routes_with_ties);
   state.counters["first_step_differs"] = static_cast<double>(first_step_differs);
   state.counters["mean_hops"] = static_cast<double>(hops_search) / static_cast<double>(routes);
 }
