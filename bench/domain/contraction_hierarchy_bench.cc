@@ -19,7 +19,8 @@
 // hierarchy path is not the route search's (graph_search.h, the compile's tie rule) though both
 // cost the same: what wiring the index into the compile must resolve (docs/benchmarks.md).
 //
-// Arguments: generator (0 ours, 1 scrambled), manholes, tasks.
+// Arguments: generator (0 ours, 1 scrambled), manholes, tasks; of BM_ContractionHierarchy also
+// keep_ties (ChOptions: 1 keeps every shortest way, for the unique flags).
 //
 //   build/release/bench/sewerplan_domain_bench --benchmark_filter=ContractionHierarchy
 //       --benchmark_counters_tabular=true
@@ -101,7 +102,8 @@ void BM_ContractionHierarchy(benchmark::State& state) {
   detail::ChStatistics stats;
   for (auto _ : state) {
     double t = cpu_ms();
-    auto ch = ContractionHierarchy::build(adjacency.begin, adjacency.to, adjacency.cost);
+    auto ch = ContractionHierarchy::build(adjacency.begin, adjacency.to, adjacency.cost,
+                                          {.keep_ties = state.range(3) != 0});
     build_ms += cpu_ms() - t;
     if (!ch.has_value()) {
       state.SkipWithError(ch.error().message.c_str());
@@ -158,8 +160,8 @@ void BM_ContractionHierarchy(benchmark::State& state) {
   state.counters["p2p_us"] = 1e3 * p2p_ms / static_cast<double>(p2p_queries);
 }
 BENCHMARK(BM_ContractionHierarchy)
-    ->ArgNames({"generator", "manholes", "tasks"})
-    ->ArgsProduct({{0, 1}, {1000, 10000, 100000}, {20}})
+    ->ArgNames({"generator", "manholes", "tasks", "keep_ties"})
+    ->ArgsProduct({{0, 1}, {1000, 10000, 100000}, {20}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->Iterations(1);
@@ -169,7 +171,9 @@ BENCHMARK(BM_ContractionHierarchy)
 // (must be 0); `path_differs`: equal costs, other nodes; `first_step_differs`: of those, how many
 // leave the key by another move; `routes_with_ties`: routes with another way of the same cost
 // into one of their nodes (where the tie rule chose); `mean_hops`: nodes per route (the route
-// search's).
+// search's). With a hierarchy built with keep_ties, its table's `unique` flags: `flagged` routes
+// not unique, `flags_wrong` routes flagged otherwise than their ties say (must be 0), and
+// `unique_but_differs` routes flagged unique whose unpacked way is not the search's (must be 0).
 void BM_ContractionHierarchyTies(benchmark::State& state) {
   const Instance& instance = bench::bound_instance(static_cast<int>(state.range(0)),
                                                    static_cast<std::size_t>(state.range(1)),
@@ -188,16 +192,30 @@ void BM_ContractionHierarchyTies(benchmark::State& state) {
     return;
   }
   ChQuery query(*ch);
+  auto tie_aware = ContractionHierarchy::build(adjacency.begin, adjacency.to, adjacency.cost,
+                                               {.keep_ties = true});
+  if (!tie_aware.has_value()) {
+    state.SkipWithError(tie_aware.error().message.c_str());
+    return;
+  }
+  ChQuery tie_query(*tie_aware);
+  std::vector<Cost> table;
+  std::vector<bool> unique;
+  std::size_t flagged = 0, unique_but_differs = 0, flags_wrong = 0;
   detail::GraphSearch search(graph);
   std::size_t routes = 0, cost_differs = 0, path_differs = 0, first_step_differs = 0;
   std::size_t hops_search = 0, routes_with_ties = 0;
   std::vector<Node> want, got;
   for (auto _ : state) {
     routes = cost_differs = path_differs = first_step_differs = hops_search = routes_with_ties = 0;
-    for (Node s : keys) {
+    flagged = unique_but_differs = flags_wrong = 0;
+    tie_query.table(keys, keys, table, &unique);
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      const Node s = keys[i];
       search.run(std::span<const Node>(&s, 1), keys, kInfiniteCost,
                  detail::GraphSearch::Direction::kForward);
-      for (Node t : keys) {
+      for (std::size_t j = 0; j < keys.size(); ++j) {
+        const Node t = keys[j];
         if (t == s || search.distance(t) == kInfiniteCost) continue;
         ++routes;
         search.path(t, want);
@@ -206,14 +224,21 @@ void BM_ContractionHierarchyTies(benchmark::State& state) {
         // Another way of the same cost into a node of the route: a predecessor other than the
         // route's at the same distance (settled before the node, so its distance is final).
         bool tied = false;
-        for (std::size_t i = 1; i < want.size() && !tied; ++i) {
-          graph.for_each_predecessor(want[i], [&](Node p, Cost c) {
+        for (std::size_t h = 1; h < want.size() && !tied; ++h) {
+          graph.for_each_predecessor(want[h], [&](Node p, Cost c) {
             const Cost dp = search.distance(p);
             tied = tied ||
-                   (p != want[i - 1] && dp != kInfiniteCost && dp + c == search.distance(want[i]));
+                   (p != want[h - 1] && dp != kInfiniteCost && dp + c == search.distance(want[h]));
           });
         }
         routes_with_ties += tied ? 1 : 0;
+        const bool is_unique = unique[i * keys.size() + j];
+        flagged += is_unique ? 0 : 1;
+        flags_wrong += is_unique == tied ? 1 : 0;
+        if (is_unique) {
+          tie_query.path(s, t, got);
+          unique_but_differs += got != want ? 1U : 0U;
+        }
         if (d != search.distance(t)) {
           ++cost_differs;
         } else if (got != want) {
@@ -228,6 +253,9 @@ void BM_ContractionHierarchyTies(benchmark::State& state) {
   state.counters["cost_differs"] = static_cast<double>(cost_differs);
   state.counters["path_differs"] = static_cast<double>(path_differs);
   state.counters["routes_with_ties"] = static_cast<double>(routes_with_ties);
+  state.counters["flagged"] = static_cast<double>(flagged);
+  state.counters["flags_wrong"] = static_cast<double>(flags_wrong);
+  state.counters["unique_but_differs"] = static_cast<double>(unique_but_differs);
   state.counters["first_step_differs"] = static_cast<double>(first_step_differs);
   state.counters["mean_hops"] = static_cast<double>(hops_search) / static_cast<double>(routes);
 }

@@ -24,6 +24,7 @@ class ChBuilder {
     std::uint32_t other;
     std::uint32_t middle;  // by node; kNone: a move of the graph
     Cost cost;
+    std::uint32_t ways;  // shortest ways between its ends it stands for: 1, or 2 (more)
   };
 
   ChBuilder(std::span<const std::uint32_t> begin, std::span<const Node> to,
@@ -43,7 +44,7 @@ class ChBuilder {
               "move " + std::to_string(u) + " -> " + std::to_string(to[e]) + " has a negative cost";
           return;
         }
-        if (to[e] != u) add_arc(u, to[e], cost[e], kNone);
+        if (to[e] != u) add_arc(u, to[e], cost[e], kNone, 1);
       }
     }
     for (const auto& arcs : out_) moves_ += arcs.size();
@@ -91,23 +92,27 @@ class ChBuilder {
   }
 
  private:
-  void add_arc(std::uint32_t u, std::uint32_t w, Cost c, std::uint32_t middle) {
+  // A move or shortcut u -> w standing for `ways` ways; merged with one already there (the
+  // cheaper stays; with keep_ties, equal costs add their ways).
+  void add_arc(std::uint32_t u, std::uint32_t w, Cost c, std::uint32_t middle, std::uint32_t ways) {
     for (Arc& a : out_[u]) {
       if (a.other != w) continue;
+      Arc merged = a;
       if (c < a.cost) {
-        a.cost = c;
-        a.middle = middle;
-        for (Arc& b : in_[w]) {
-          if (b.other == u) {
-            b.cost = c;
-            b.middle = middle;
-          }
-        }
+        merged = {w, middle, c, ways};
+      } else if (c == a.cost && options_.keep_ties) {
+        merged.ways = std::min(2U, a.ways + ways);
+      } else {
+        return;
+      }
+      a = merged;
+      for (Arc& b : in_[w]) {
+        if (b.other == u) b = {u, merged.middle, merged.cost, merged.ways};
       }
       return;
     }
-    out_[u].push_back({w, middle, c});
-    in_[w].push_back({u, middle, c});
+    out_[u].push_back({w, middle, c, ways});
+    in_[w].push_back({u, middle, c, ways});
   }
 
   static void remove_arc(std::vector<Arc>& arcs, std::uint32_t other) {
@@ -157,8 +162,8 @@ class ChBuilder {
     heap_.clear();
   }
 
-  // Calls shortcut(u, w, cost) for each shortcut contracting v needs, searching witnesses with
-  // at most `limit` settled nodes each.
+  // Calls shortcut(u, w, cost, ways) for each shortcut contracting v needs, searching witnesses
+  // with at most `limit` settled nodes each. With keep_ties, a witness must be strictly shorter.
   template <class F>
   void for_each_shortcut(std::uint32_t v, std::size_t limit, F&& shortcut) {
     if (in_[v].empty() || out_[v].empty()) return;
@@ -174,7 +179,9 @@ class ChBuilder {
       for (const Arc& b : out_[v]) {
         if (b.other == a.other) continue;
         const Cost via = a.cost + b.cost;
-        if (dist_[b.other] > via) shortcut(a.other, b.other, via);
+        if (dist_[b.other] > via || (options_.keep_ties && dist_[b.other] == via)) {
+          shortcut(a.other, b.other, via, std::min(2U, a.ways * b.ways));
+        }
       }
     }
     for (const Arc& b : out_[v]) target_[b.other] = false;
@@ -187,7 +194,7 @@ class ChBuilder {
   std::int64_t estimate(std::uint32_t v) {
     std::int64_t added = 0;
     for_each_shortcut(v, options_.estimate_settled,
-                      [&](std::uint32_t, std::uint32_t, Cost) { ++added; });
+                      [&](std::uint32_t, std::uint32_t, Cost, std::uint32_t) { ++added; });
     const auto removed = static_cast<std::int64_t>(in_[v].size() + out_[v].size());
     return 4 * (added - removed) + neighbours_contracted_[v] + level_[v];
   }
@@ -198,9 +205,10 @@ class ChBuilder {
     final_up_[v] = out_[v];
     final_down_[v] = in_[v];
     shortcuts_.clear();
-    for_each_shortcut(v, options_.contract_settled, [&](std::uint32_t u, std::uint32_t w, Cost c) {
-      shortcuts_.push_back({u, w, c});
-    });
+    for_each_shortcut(v, options_.contract_settled,
+                      [&](std::uint32_t u, std::uint32_t w, Cost c, std::uint32_t ways) {
+                        shortcuts_.push_back({u, w, c, ways});
+                      });
     touched_neighbours_.clear();
     for (const Arc& a : in_[v]) {
       remove_arc(out_[a.other], v);
@@ -210,12 +218,12 @@ class ChBuilder {
       remove_arc(in_[b.other], v);
       touched_neighbours_.push_back(b.other);
     }
-    for (const auto& [u, w, c] : shortcuts_) {
+    for (const auto& [u, w, c, ways] : shortcuts_) {
       if (c > kMaxEdgeCost) {
         error_ = "a shortcut " + std::to_string(u) + " -> " + std::to_string(w) + " costs " +
                  std::to_string(c) + " ms, more than a 32-bit edge holds";
       }
-      add_arc(u, w, c, v);
+      add_arc(u, w, c, v, ways);
     }
     out_[v].clear();
     out_[v].shrink_to_fit();
@@ -249,7 +257,8 @@ class ChBuilder {
           const std::uint32_t middle =
               a.middle == kNone ? ContractionHierarchy::kNoMiddle : ch.rank_[a.middle];
           if (middle != ContractionHierarchy::kNoMiddle) ++ch.statistics_.shortcuts;
-          edges.push_back({ch.rank_[a.other], static_cast<std::uint32_t>(a.cost), middle});
+          const std::uint32_t tied = a.ways > 1 ? 0x80000000U : 0U;
+          edges.push_back({ch.rank_[a.other], static_cast<std::uint32_t>(a.cost), middle | tied});
         }
       }
       begin.push_back(static_cast<std::uint32_t>(edges.size()));
@@ -272,6 +281,7 @@ class ChBuilder {
     std::uint32_t from;
     std::uint32_t to;
     Cost cost;
+    std::uint32_t ways;
   };
 
   ChOptions options_;
@@ -300,6 +310,9 @@ Result<ContractionHierarchy> ContractionHierarchy::build(std::span<const std::ui
                                                          const ChOptions& options) {
   if (begin.empty() || to.size() != cost.size() || begin.back() != to.size()) {
     return Error{ErrorCode::kInvalidArgument, "the graph's rows do not match its moves"};
+  }
+  if (begin.size() > kNoMiddle) {
+    return Error{ErrorCode::kInvalidArgument, "too many nodes for a contraction hierarchy"};
   }
   return ChBuilder(begin, to, cost, options).run();
 }

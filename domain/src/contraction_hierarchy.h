@@ -26,6 +26,11 @@
 //
 // Not yet what the compile uses: its routes break ties by (distance, node) (graph_search.h), and a
 // hierarchy's path among equal-cost alternatives is another one (docs/benchmarks.md, issue 35).
+// Built with ChOptions::keep_ties, the hierarchy keeps every shortest way (Geisberger et al.
+// drop a shortcut for a witness of equal cost; here it must be shorter), and a query counts the
+// shortest ways (1 or more): each shortest way of the graph has exactly one up-down form (its
+// nodes that are higher than every node between them and the source, or the target), so where
+// the count is 1 the unpacked way is the only shortest one, the route search's.
 // Not customisable: a closure needs a rebuild (TODO(#35): customisable contraction hierarchies).
 //
 //   auto ch = ContractionHierarchy::build(core.adjacency_begin, core.adjacency_to,
@@ -57,6 +62,10 @@ struct ChOptions {
   // tables 50 % slower.
   std::size_t estimate_settled = 5;
   std::size_t contract_settled = 100;
+  // Keep every shortest way (a witness must be strictly shorter, moves of equal cost between the
+  // same nodes are counted), so that a query can tell whether a shortest way is the only one
+  // (ChQuery: `unique`). 3 % more shortcuts on 10k scrambled manholes (docs/benchmarks.md).
+  bool keep_ties = false;
 };
 
 struct ChStatistics {
@@ -71,7 +80,8 @@ struct ChStatistics {
 class ContractionHierarchy {
  public:
   // The graph: the moves out of node n are to[e], cost[e] for e in [begin[n], begin[n + 1]).
-  // Errors: a negative cost, or a move or shortcut of 2^32 - 1 ms or more (kInvalidArgument).
+  // Errors: a negative cost, a move or shortcut of 2^32 - 1 ms or more, 2^31 - 1 nodes or more
+  // (kInvalidArgument).
   // Runtime: about O(nodes x (degree^2 x witness limit)) in practice; no bound in theory.
   static Result<ContractionHierarchy> build(std::span<const std::uint32_t> begin,
                                             std::span<const Node> to, std::span<const Cost> cost,
@@ -83,13 +93,17 @@ class ContractionHierarchy {
  private:
   friend class ChQuery;
   friend class ChBuilder;
+  static constexpr std::uint32_t kNoMiddle = 0x7fffffffU;
   struct Edge {
-    std::uint32_t head;    // by rank
-    std::uint32_t cost;    // ms
-    std::uint32_t middle;  // by rank; kNoMiddle: a move of the graph
+    std::uint32_t head;  // by rank
+    std::uint32_t cost;  // ms
+    // Bits 0-30: the middle node by rank (kNoMiddle: a move of the graph); bit 31: the edge
+    // stands for more than one shortest way between its ends (kept with keep_ties only).
+    std::uint32_t middle_tied;
+    std::uint32_t middle() const { return middle_tied & kNoMiddle; }
+    std::uint32_t ways() const { return (middle_tied >> 31) + 1; }
   };
   static_assert(sizeof(Edge) == 12);
-  static constexpr std::uint32_t kNoMiddle = 0xffffffffU;
 
   // By rank, low below high: the edge of the move low -> high (find_up), high -> low
   // (find_down). Each pair has at most one (parallel moves are merged when built).
@@ -113,14 +127,20 @@ class ChQuery {
  public:
   explicit ChQuery(const ContractionHierarchy& ch);
 
-  // The cost of the cheapest way from s to t; kInfiniteCost if none.
-  Cost distance(Node s, Node t);
+  // The cost of the cheapest way from s to t; kInfiniteCost if none. With `unique` (not null),
+  // also whether that way is the only shortest one (false if there is none), on a hierarchy
+  // built with keep_ties over a graph with no cycle of cost 0. Moves of cost 0 (the position
+  // graph's from a pipe's end to its slot) are fine: the upward searches settle nodes of equal
+  // distance by rank and every edge climbs, so a node's ways are counted before it is expanded.
+  Cost distance(Node s, Node t, bool* unique = nullptr);
   // The same, and the way's nodes in `out` (s first, t last; empty if none): every step a move
   // of the graph, the shortcuts unpacked.
-  Cost path(Node s, Node t, std::vector<Node>& out);
-  // out[i * targets.size() + j] = distance(sources[i], targets[j]).
+  Cost path(Node s, Node t, std::vector<Node>& out, bool* unique = nullptr);
+  // out[i * targets.size() + j] = distance(sources[i], targets[j]); with `unique` (not null),
+  // unique[i * targets.size() + j] as distance() gives it.
   // Runtime: one upward search per source and target, and the buckets of the nodes settled.
-  void table(std::span<const Node> sources, std::span<const Node> targets, std::vector<Cost>& out);
+  void table(std::span<const Node> sources, std::span<const Node> targets, std::vector<Cost>& out,
+             std::vector<bool>* unique = nullptr);
   // Nodes settled over all queries (a measure of work).
   std::size_t settled_total() const { return settled_total_; }
 
@@ -128,6 +148,7 @@ class ChQuery {
   struct Side {
     std::vector<Cost> dist;             // by rank; kInfiniteCost: not reached
     std::vector<std::uint32_t> parent;  // by rank: the node whose edge reached it
+    std::vector<std::uint8_t> ways;     // by rank: upward ways at its distance, 1 or 2 (more)
     std::vector<std::uint32_t> touched;
     std::vector<std::pair<Cost, std::uint32_t>> heap;
   };
@@ -135,6 +156,7 @@ class ChQuery {
     std::uint32_t node;
     std::uint32_t target;
     Cost dist;
+    std::uint32_t ways;
   };
 
   void start(Side& side, std::uint32_t source);
@@ -144,7 +166,8 @@ class ChQuery {
   // node (`*stalled`: reached more cheaply from a higher node) is not expanded.
   template <bool kForward>
   std::uint32_t settle_next(Side& side, Cost* d, bool* stalled);
-  Cost meet(Node s, Node t, std::uint32_t* middle);
+  // The distance, the meeting node in `*middle`, and (with `ways`) the shortest ways, 1 or 2.
+  Cost meet(Node s, Node t, std::uint32_t* middle, std::uint32_t* ways);
   void unpack(std::uint32_t tail, std::uint32_t head, std::uint32_t middle,
               std::vector<Node>& out) const;
 
@@ -154,6 +177,7 @@ class ChQuery {
   std::vector<BucketEntry> buckets_;
   std::vector<std::uint32_t> bucket_begin_;  // by rank, for the nodes with a bucket: index + 1
   std::vector<std::uint32_t> bucket_nodes_;
+  std::vector<std::uint32_t> row_ways_;  // by target: the ways at the row's distance
   std::size_t settled_total_ = 0;
 };
 

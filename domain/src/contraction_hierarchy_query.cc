@@ -37,6 +37,7 @@ ChQuery::ChQuery(const ContractionHierarchy& ch) : ch_(ch) {
   for (Side* side : {&forward_, &backward_}) {
     side->dist.assign(ch.size(), kInfiniteCost);
     side->parent.assign(ch.size(), kNone);
+    side->ways.assign(ch.size(), 0);
   }
   bucket_begin_.assign(ch.size(), 0);
 }
@@ -45,6 +46,7 @@ void ChQuery::clear(Side& side) {
   for (std::uint32_t x : side.touched) {
     side.dist[x] = kInfiniteCost;
     side.parent[x] = kNone;
+    side.ways[x] = 0;
   }
   side.touched.clear();
   side.heap.clear();
@@ -53,6 +55,7 @@ void ChQuery::clear(Side& side) {
 void ChQuery::start(Side& side, std::uint32_t source) {
   clear(side);
   side.dist[source] = 0;
+  side.ways[source] = 1;
   side.touched.push_back(source);
   side.heap.emplace_back(0, source);
 }
@@ -84,12 +87,16 @@ std::uint32_t ChQuery::settle_next(Side& side, Cost* d, bool* stalled) {
       const auto& edge = relax_edges[e];
       const Cost nd = du + edge.cost;
       Cost& old = side.dist[edge.head];
+      const auto ways = static_cast<std::uint8_t>(std::min(2U, side.ways[u] * edge.ways()));
       if (nd < old) {
         if (old == kInfiniteCost) side.touched.push_back(edge.head);
         old = nd;
         side.parent[edge.head] = u;
+        side.ways[edge.head] = ways;
         side.heap.emplace_back(nd, edge.head);
         std::push_heap(side.heap.begin(), side.heap.end(), later);
+      } else if (nd == old) {
+        side.ways[edge.head] = static_cast<std::uint8_t>(std::min(2, side.ways[edge.head] + ways));
       }
     }
     return u;
@@ -97,7 +104,7 @@ std::uint32_t ChQuery::settle_next(Side& side, Cost* d, bool* stalled) {
   return kNone;
 }
 
-Cost ChQuery::meet(Node s, Node t, std::uint32_t* middle) {
+Cost ChQuery::meet(Node s, Node t, std::uint32_t* middle, std::uint32_t* ways) {
   assert(s < ch_.size() && t < ch_.size());
   start(forward_, ch_.rank_[s]);
   start(backward_, ch_.rank_[t]);
@@ -106,8 +113,10 @@ Cost ChQuery::meet(Node s, Node t, std::uint32_t* middle) {
   for (;;) {
     const Cost f = forward_.heap.empty() ? kInfiniteCost : forward_.heap.front().first;
     const Cost b = backward_.heap.empty() ? kInfiniteCost : backward_.heap.front().first;
-    // Neither side can reach a meeting point cheaper than the best found.
-    if (std::min(f, b) >= best) break;
+    // Neither side can reach a meeting point cheaper than the best found (counting ways: as
+    // cheap, so that every node at the best distance or less is settled on both sides).
+    if (forward_.heap.empty() && backward_.heap.empty()) break;
+    if (ways == nullptr ? std::min(f, b) >= best : std::min(f, b) > best) break;
     Cost d = 0;
     bool stalled = false;
     const std::uint32_t u = f <= b ? settle_next<true>(forward_, &d, &stalled)
@@ -121,12 +130,26 @@ Cost ChQuery::meet(Node s, Node t, std::uint32_t* middle) {
       *middle = u;
     }
   }
+  if (ways != nullptr) {
+    // Every shortest way has one up-down form (keep_ties), whose highest node is where the two
+    // sides meet at the best distance.
+    *ways = 0;
+    for (std::uint32_t x : forward_.touched) {
+      if (best != kInfiniteCost && backward_.dist[x] != kInfiniteCost &&
+          forward_.dist[x] + backward_.dist[x] == best) {
+        *ways = std::min(2U, *ways + std::uint32_t{forward_.ways[x]} * backward_.ways[x]);
+      }
+    }
+  }
   return best;
 }
 
-Cost ChQuery::distance(Node s, Node t) {
+Cost ChQuery::distance(Node s, Node t, bool* unique) {
   std::uint32_t middle = kNone;
-  return meet(s, t, &middle);
+  std::uint32_t ways = 0;
+  const Cost d = meet(s, t, &middle, unique != nullptr ? &ways : nullptr);
+  if (unique != nullptr) *unique = ways == 1;
+  return d;
 }
 
 void ChQuery::unpack(std::uint32_t tail, std::uint32_t head, std::uint32_t middle,
@@ -137,14 +160,16 @@ void ChQuery::unpack(std::uint32_t tail, std::uint32_t head, std::uint32_t middl
   }
   // The middle is contracted before both ends: tail -> middle is a down edge at it, middle ->
   // head an up edge.
-  unpack(tail, middle, ch_.find_down(middle, tail).middle, out);
-  unpack(middle, head, ch_.find_up(middle, head).middle, out);
+  unpack(tail, middle, ch_.find_down(middle, tail).middle(), out);
+  unpack(middle, head, ch_.find_up(middle, head).middle(), out);
 }
 
-Cost ChQuery::path(Node s, Node t, std::vector<Node>& out) {
+Cost ChQuery::path(Node s, Node t, std::vector<Node>& out, bool* unique) {
   out.clear();
   std::uint32_t middle = kNone;
-  const Cost best = meet(s, t, &middle);
+  std::uint32_t ways = 0;
+  const Cost best = meet(s, t, &middle, unique != nullptr ? &ways : nullptr);
+  if (unique != nullptr) *unique = ways == 1;
   if (best == kInfiniteCost) return best;
   // The upward way s ... middle, then middle ... t downward.
   std::vector<std::uint32_t> up;
@@ -152,18 +177,19 @@ Cost ChQuery::path(Node s, Node t, std::vector<Node>& out) {
   std::reverse(up.begin(), up.end());
   out.push_back(s);
   for (std::size_t i = 1; i < up.size(); ++i) {
-    unpack(up[i - 1], up[i], ch_.find_up(up[i - 1], up[i]).middle, out);
+    unpack(up[i - 1], up[i], ch_.find_up(up[i - 1], up[i]).middle(), out);
   }
   for (std::uint32_t x = middle; backward_.parent[x] != kNone; x = backward_.parent[x]) {
     const std::uint32_t next = backward_.parent[x];
-    unpack(x, next, ch_.find_down(next, x).middle, out);
+    unpack(x, next, ch_.find_down(next, x).middle(), out);
   }
   return best;
 }
 
 void ChQuery::table(std::span<const Node> sources, std::span<const Node> targets,
-                    std::vector<Cost>& out) {
+                    std::vector<Cost>& out, std::vector<bool>* unique) {
   out.assign(sources.size() * targets.size(), kInfiniteCost);
+  row_ways_.assign(targets.size(), 0);
   buckets_.clear();
   for (std::uint32_t j = 0; j < targets.size(); ++j) {
     assert(targets[j] < ch_.size());
@@ -171,7 +197,7 @@ void ChQuery::table(std::span<const Node> sources, std::span<const Node> targets
     Cost d = 0;
     bool stalled = false;
     for (std::uint32_t u; (u = settle_next<false>(backward_, &d, &stalled)) != kNone;) {
-      if (!stalled) buckets_.push_back({u, j, d});
+      if (!stalled) buckets_.push_back({u, j, d, backward_.ways[u]});
     }
   }
   std::sort(buckets_.begin(), buckets_.end(), [](const BucketEntry& a, const BucketEntry& b) {
@@ -187,13 +213,28 @@ void ChQuery::table(std::span<const Node> sources, std::span<const Node> targets
     assert(sources[i] < ch_.size());
     start(forward_, ch_.rank_[sources[i]]);
     Cost* row = out.data() + i * targets.size();
+    std::fill(row_ways_.begin(), row_ways_.end(), 0);
     Cost d = 0;
     bool stalled = false;
     for (std::uint32_t u; (u = settle_next<true>(forward_, &d, &stalled)) != kNone;) {
       if (stalled || bucket_begin_[u] == 0) continue;
       for (std::uint32_t e = bucket_begin_[u] - 1; e < buckets_.size() && buckets_[e].node == u;
            ++e) {
-        row[buckets_[e].target] = std::min(row[buckets_[e].target], d + buckets_[e].dist);
+        const BucketEntry& entry = buckets_[e];
+        const Cost via = d + entry.dist;
+        const std::uint32_t ways = std::min(2U, forward_.ways[u] * entry.ways);
+        if (via < row[entry.target]) {
+          row[entry.target] = via;
+          row_ways_[entry.target] = ways;
+        } else if (via == row[entry.target]) {
+          row_ways_[entry.target] = std::min(2U, row_ways_[entry.target] + ways);
+        }
+      }
+    }
+    if (unique != nullptr) {
+      unique->resize(out.size());
+      for (std::size_t j = 0; j < targets.size(); ++j) {
+        (*unique)[i * targets.size() + j] = row_ways_[j] == 1;
       }
     }
   }

@@ -212,6 +212,134 @@ TEST(ContractionHierarchy, AnswersRandomPairsAndTablesOnAScrambledNetworkAsDijks
   expect_random_pairs_and_table(csr_of(map, *bench::scrambled_mission(map, 3, 1)), 12);
 }
 
+// The shortest ways to each node counted (1, or 2 for more; moves of equal cost between the same
+// nodes counted apart) over the graph of tight moves, in a memoised walk back from each node:
+// the position graph has moves of cost 0 (from a pipe's end to the slot at that end), so an
+// order by distance alone could count a node before a predecessor at the same distance. No
+// cycle costs 0.
+struct Counted {
+  std::vector<Cost> dist;
+  std::vector<int> ways;     // 0: not yet counted
+  std::vector<Node> parent;  // a shortest way's predecessor (the only one where ways is 1)
+};
+Counted counting_dijkstra(const Csr& g, Node source) {
+  const std::size_t n = g.begin.size() - 1;
+  Counted c{std::vector<Cost>(n, kInfiniteCost), std::vector<int>(n, 0),
+            std::vector<Node>(n, static_cast<Node>(n))};
+  using Entry = std::pair<Cost, Node>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
+  c.dist[source] = 0;
+  open.emplace(0, source);
+  while (!open.empty()) {
+    const auto [d, u] = open.top();
+    open.pop();
+    if (d != c.dist[u]) continue;
+    for (std::uint32_t e = g.begin[u]; e < g.begin[u + 1]; ++e) {
+      if (d + g.cost[e] < c.dist[g.to[e]]) {
+        c.dist[g.to[e]] = d + g.cost[e];
+        c.parent[g.to[e]] = u;
+        open.emplace(c.dist[g.to[e]], g.to[e]);
+      }
+    }
+  }
+  // The tight moves into each node.
+  std::vector<std::vector<Node>> tight(n);
+  for (Node u = 0; u < n; ++u) {
+    if (c.dist[u] == kInfiniteCost) continue;
+    for (std::uint32_t e = g.begin[u]; e < g.begin[u + 1]; ++e) {
+      if (g.to[e] != source && c.dist[u] + g.cost[e] == c.dist[g.to[e]]) {
+        tight[g.to[e]].push_back(u);
+      }
+    }
+  }
+  c.ways[source] = 1;
+  std::function<int(Node)> count = [&](Node v) {
+    if (c.ways[v] == 0) {
+      int ways = 0;
+      for (Node p : tight[v]) ways = std::min(2, ways + count(p));
+      c.ways[v] = ways;
+    }
+    return c.ways[v];
+  };
+  for (Node v = 0; v < n; ++v) {
+    if (c.dist[v] != kInfiniteCost) count(v);
+  }
+  return c;
+}
+
+// Whether each pair's shortest way is unique, by distance(), path() and table(), against the
+// counting Dijkstra; a unique way is the reference's own. Returns the pairs with more than one.
+std::size_t expect_uniqueness(const Csr& g, const std::vector<Node>& sources,
+                              const std::vector<Node>& targets) {
+  auto ch = ContractionHierarchy::build(g.begin, g.to, g.cost, {.keep_ties = true});
+  EXPECT_TRUE(ch.has_value());
+  ChQuery query(*ch);
+  std::vector<Cost> table;
+  std::vector<bool> unique_in_table;
+  query.table(sources, targets, table, &unique_in_table);
+  std::size_t tied = 0;
+  std::vector<Node> path, want;
+  for (std::size_t i = 0; i < sources.size(); ++i) {
+    const Counted ref = counting_dijkstra(g, sources[i]);
+    for (std::size_t j = 0; j < targets.size(); ++j) {
+      const Node s = sources[i], t = targets[j];
+      const bool want_unique = ref.ways[t] == 1;
+      tied += ref.ways[t] > 1 ? 1U : 0U;
+      bool unique = !want_unique;
+      EXPECT_EQ(query.distance(s, t, &unique), ref.dist[t]);
+      EXPECT_EQ(unique, want_unique) << s << " -> " << t;
+      unique = !want_unique;
+      EXPECT_EQ(query.path(s, t, path, &unique), ref.dist[t]);
+      EXPECT_EQ(unique, want_unique) << s << " -> " << t;
+      EXPECT_EQ(unique_in_table[i * targets.size() + j], want_unique) << s << " -> " << t;
+      if (want_unique) {
+        want.clear();
+        for (Node x = t; x != s; x = ref.parent[x]) want.push_back(x);
+        want.push_back(s);
+        std::reverse(want.begin(), want.end());
+        EXPECT_EQ(path, want) << s << " -> " << t;
+      }
+    }
+  }
+  return tied;
+}
+
+TEST(ContractionHierarchy, TellsWhetherTheShortestWayIsUniqueAsACountingDijkstra) {
+  // Hand-made: 0 -> 3 two ways of 4, 0 -> 5 through two parallel moves of 2, 0 -> 6 unique.
+  const Csr hand = csr_of(7, {{0, 1, 1},
+                              {1, 3, 3},
+                              {0, 2, 2},
+                              {2, 3, 2},
+                              {3, 4, 1},
+                              {4, 5, 2},
+                              {4, 5, 2},
+                              {4, 5, 3},
+                              {0, 6, 9},
+                              {6, 0, 1}});
+  std::vector<Node> all(7);
+  for (Node u = 0; u < 7; ++u) all[u] = u;
+  EXPECT_GT(expect_uniqueness(hand, all, all), 3U);
+  // Moves of cost 0 (a pipe's end to its slot, in the position graph) into a node with a tie.
+  const Csr zero = csr_of(6, {{0, 1, 2}, {1, 2, 0}, {0, 3, 1}, {3, 2, 1}, {2, 4, 1}, {5, 2, 0}});
+  all.resize(6);
+  for (Node u = 0; u < 6; ++u) all[u] = u;
+  EXPECT_GT(expect_uniqueness(zero, all, all), 1U);
+
+  const SewerMap small = *bench::generate_scrambled_network({.manholes = 40, .seed = 5});
+  const Csr g = csr_of(small, *bench::scrambled_mission(small, 2, 1));
+  all.resize(g.begin.size() - 1);
+  for (Node u = 0; u < all.size(); ++u) all[u] = u;
+  EXPECT_GT(expect_uniqueness(g, all, all), 10U);
+
+  const SewerMap map = *bench::generate_scrambled_network({.manholes = 1000, .seed = 1});
+  const Csr big = csr_of(map, *bench::scrambled_mission(map, 3, 1));
+  Rng rng(13);
+  std::vector<Node> sources(30), targets(200);
+  for (Node& s : sources) s = static_cast<Node>(rng.below(big.begin.size() - 1));
+  for (Node& t : targets) t = static_cast<Node>(rng.below(big.begin.size() - 1));
+  EXPECT_GT(expect_uniqueness(big, sources, targets), 10U);
+}
+
 TEST(ContractionHierarchy, RefusesNegativeAndOversizedCosts) {
   const Csr negative = csr_of(2, {{0, 1, -1}});
   EXPECT_FALSE(ContractionHierarchy::build(negative.begin, negative.to, negative.cost).has_value());
