@@ -1,0 +1,245 @@
+// SPDX-License-Identifier: MIT
+// Queries on a contraction hierarchy (contraction_hierarchy.h): point to point, many to many
+// (buckets), and unpacking a way into the graph's moves.
+#include <algorithm>
+#include <cassert>
+#include <functional>
+
+#include "sewerplan/core/check.h"
+
+#include "contraction_hierarchy.h"
+
+namespace sewerplan::domain::detail {
+
+namespace {
+constexpr std::uint32_t kNone = 0xffffffffU;
+}
+
+const ContractionHierarchy::Edge& ContractionHierarchy::find_up(std::uint32_t low,
+                                                                std::uint32_t high) const {
+  for (std::uint32_t e = up_begin_[low]; e < up_begin_[low + 1]; ++e) {
+    if (up_[e].head == high) return up_[e];
+  }
+  SEWER_CHECK(false, "a contraction hierarchy's way uses an edge it does not have");
+  return up_.front();
+}
+
+const ContractionHierarchy::Edge& ContractionHierarchy::find_down(std::uint32_t low,
+                                                                  std::uint32_t high) const {
+  for (std::uint32_t e = down_begin_[low]; e < down_begin_[low + 1]; ++e) {
+    if (down_[e].head == high) return down_[e];
+  }
+  SEWER_CHECK(false, "a contraction hierarchy's way uses an edge it does not have");
+  return down_.front();
+}
+
+ChQuery::ChQuery(const ContractionHierarchy& ch) : ch_(ch) {
+  for (Side* side : {&forward_, &backward_}) {
+    side->dist.assign(ch.size(), kInfiniteCost);
+    side->parent.assign(ch.size(), kNone);
+    side->ways.assign(ch.size(), 0);
+  }
+  bucket_begin_.assign(ch.size(), 0);
+}
+
+void ChQuery::clear(Side& side) {
+  for (std::uint32_t x : side.touched) {
+    side.dist[x] = kInfiniteCost;
+    side.parent[x] = kNone;
+    side.ways[x] = 0;
+  }
+  side.touched.clear();
+  side.heap.clear();
+}
+
+void ChQuery::start(Side& side, std::uint32_t source) {
+  clear(side);
+  side.dist[source] = 0;
+  side.ways[source] = 1;
+  side.touched.push_back(source);
+  side.heap.emplace_back(0, source);
+}
+
+template <bool kForward>
+std::uint32_t ChQuery::settle_next(Side& side, Cost* d, bool* stalled) {
+  const auto later = std::greater<std::pair<Cost, std::uint32_t>>();
+  const auto& relax_begin = kForward ? ch_.up_begin_ : ch_.down_begin_;
+  const auto& relax_edges = kForward ? ch_.up_ : ch_.down_;
+  const auto& stall_begin = kForward ? ch_.down_begin_ : ch_.up_begin_;
+  const auto& stall_edges = kForward ? ch_.down_ : ch_.up_;
+  while (!side.heap.empty()) {
+    std::pop_heap(side.heap.begin(), side.heap.end(), later);
+    const auto [du, u] = side.heap.back();
+    side.heap.pop_back();
+    if (du != side.dist[u]) continue;
+    ++settled_total_;
+    *d = du;
+    // Stall on demand: a higher node this side reached already leads to u more cheaply.
+    *stalled = false;
+    for (std::uint32_t e = stall_begin[u]; e < stall_begin[u + 1]; ++e) {
+      const auto& edge = stall_edges[e];
+      if (side.dist[edge.head] + edge.cost < du) {
+        *stalled = true;
+        return u;
+      }
+    }
+    for (std::uint32_t e = relax_begin[u]; e < relax_begin[u + 1]; ++e) {
+      const auto& edge = relax_edges[e];
+      const Cost nd = du + edge.cost;
+      Cost& old = side.dist[edge.head];
+      const auto ways = static_cast<std::uint8_t>(std::min(2U, side.ways[u] * edge.ways()));
+      if (nd < old) {
+        if (old == kInfiniteCost) side.touched.push_back(edge.head);
+        old = nd;
+        side.parent[edge.head] = u;
+        side.ways[edge.head] = ways;
+        side.heap.emplace_back(nd, edge.head);
+        std::push_heap(side.heap.begin(), side.heap.end(), later);
+      } else if (nd == old) {
+        side.ways[edge.head] = static_cast<std::uint8_t>(std::min(2, side.ways[edge.head] + ways));
+      }
+    }
+    return u;
+  }
+  return kNone;
+}
+
+Cost ChQuery::meet(Node s, Node t, std::uint32_t* middle, std::uint32_t* ways) {
+  assert(s < ch_.size() && t < ch_.size());
+  start(forward_, ch_.rank_[s]);
+  start(backward_, ch_.rank_[t]);
+  Cost best = kInfiniteCost;
+  *middle = kNone;
+  for (;;) {
+    const Cost f = forward_.heap.empty() ? kInfiniteCost : forward_.heap.front().first;
+    const Cost b = backward_.heap.empty() ? kInfiniteCost : backward_.heap.front().first;
+    // Neither side can reach a meeting point cheaper than the best found (counting ways: as
+    // cheap, so that every node at the best distance or less is settled on both sides).
+    if (forward_.heap.empty() && backward_.heap.empty()) break;
+    if (ways == nullptr ? std::min(f, b) >= best : std::min(f, b) > best) break;
+    Cost d = 0;
+    bool stalled = false;
+    const std::uint32_t u = f <= b ? settle_next<true>(forward_, &d, &stalled)
+                                   : settle_next<false>(backward_, &d, &stalled);
+    if (u == kNone) continue;
+    const Cost via = forward_.dist[u] == kInfiniteCost || backward_.dist[u] == kInfiniteCost
+                         ? kInfiniteCost
+                         : forward_.dist[u] + backward_.dist[u];
+    if (via < best) {
+      best = via;
+      *middle = u;
+    }
+  }
+  if (ways != nullptr) {
+    // Every shortest way has one up-down form (keep_ties), whose highest node is where the two
+    // sides meet at the best distance.
+    *ways = 0;
+    for (std::uint32_t x : forward_.touched) {
+      if (best != kInfiniteCost && backward_.dist[x] != kInfiniteCost &&
+          forward_.dist[x] + backward_.dist[x] == best) {
+        *ways = std::min(2U, *ways + std::uint32_t{forward_.ways[x]} * backward_.ways[x]);
+      }
+    }
+  }
+  return best;
+}
+
+Cost ChQuery::distance(Node s, Node t, bool* unique) {
+  std::uint32_t middle = kNone;
+  std::uint32_t ways = 0;
+  const Cost d = meet(s, t, &middle, unique != nullptr ? &ways : nullptr);
+  if (unique != nullptr) *unique = ways == 1;
+  return d;
+}
+
+void ChQuery::unpack(std::uint32_t tail, std::uint32_t head, std::uint32_t middle,
+                     std::vector<Node>& out) const {
+  if (middle == ContractionHierarchy::kNoMiddle) {
+    out.push_back(ch_.node_[head]);
+    return;
+  }
+  // The middle is contracted before both ends: tail -> middle is a down edge at it, middle ->
+  // head an up edge.
+  unpack(tail, middle, ch_.find_down(middle, tail).middle(), out);
+  unpack(middle, head, ch_.find_up(middle, head).middle(), out);
+}
+
+Cost ChQuery::path(Node s, Node t, std::vector<Node>& out, bool* unique) {
+  out.clear();
+  std::uint32_t middle = kNone;
+  std::uint32_t ways = 0;
+  const Cost best = meet(s, t, &middle, unique != nullptr ? &ways : nullptr);
+  if (unique != nullptr) *unique = ways == 1;
+  if (best == kInfiniteCost) return best;
+  // The upward way s ... middle, then middle ... t downward.
+  std::vector<std::uint32_t> up;
+  for (std::uint32_t x = middle; x != kNone; x = forward_.parent[x]) up.push_back(x);
+  std::reverse(up.begin(), up.end());
+  out.push_back(s);
+  for (std::size_t i = 1; i < up.size(); ++i) {
+    unpack(up[i - 1], up[i], ch_.find_up(up[i - 1], up[i]).middle(), out);
+  }
+  for (std::uint32_t x = middle; backward_.parent[x] != kNone; x = backward_.parent[x]) {
+    const std::uint32_t next = backward_.parent[x];
+    unpack(x, next, ch_.find_down(next, x).middle(), out);
+  }
+  return best;
+}
+
+void ChQuery::table(std::span<const Node> sources, std::span<const Node> targets,
+                    std::vector<Cost>& out, std::vector<bool>* unique) {
+  out.assign(sources.size() * targets.size(), kInfiniteCost);
+  row_ways_.assign(targets.size(), 0);
+  buckets_.clear();
+  for (std::uint32_t j = 0; j < targets.size(); ++j) {
+    assert(targets[j] < ch_.size());
+    start(backward_, ch_.rank_[targets[j]]);
+    Cost d = 0;
+    bool stalled = false;
+    for (std::uint32_t u; (u = settle_next<false>(backward_, &d, &stalled)) != kNone;) {
+      if (!stalled) buckets_.push_back({u, j, d, backward_.ways[u]});
+    }
+  }
+  std::sort(buckets_.begin(), buckets_.end(), [](const BucketEntry& a, const BucketEntry& b) {
+    return a.node != b.node ? a.node < b.node : a.target < b.target;
+  });
+  for (std::uint32_t i = 0; i < buckets_.size(); ++i) {
+    if (i == 0 || buckets_[i].node != buckets_[i - 1].node) {
+      bucket_begin_[buckets_[i].node] = i + 1;
+      bucket_nodes_.push_back(buckets_[i].node);
+    }
+  }
+  for (std::size_t i = 0; i < sources.size(); ++i) {
+    assert(sources[i] < ch_.size());
+    start(forward_, ch_.rank_[sources[i]]);
+    Cost* row = out.data() + i * targets.size();
+    std::fill(row_ways_.begin(), row_ways_.end(), 0);
+    Cost d = 0;
+    bool stalled = false;
+    for (std::uint32_t u; (u = settle_next<true>(forward_, &d, &stalled)) != kNone;) {
+      if (stalled || bucket_begin_[u] == 0) continue;
+      for (std::uint32_t e = bucket_begin_[u] - 1; e < buckets_.size() && buckets_[e].node == u;
+           ++e) {
+        const BucketEntry& entry = buckets_[e];
+        const Cost via = d + entry.dist;
+        const std::uint32_t ways = std::min(2U, forward_.ways[u] * entry.ways);
+        if (via < row[entry.target]) {
+          row[entry.target] = via;
+          row_ways_[entry.target] = ways;
+        } else if (via == row[entry.target]) {
+          row_ways_[entry.target] = std::min(2U, row_ways_[entry.target] + ways);
+        }
+      }
+    }
+    if (unique != nullptr) {
+      unique->resize(out.size());
+      for (std::size_t j = 0; j < targets.size(); ++j) {
+        (*unique)[i * targets.size() + j] = row_ways_[j] == 1;
+      }
+    }
+  }
+  for (std::uint32_t x : bucket_nodes_) bucket_begin_[x] = 0;
+  bucket_nodes_.clear();
+}
+
+}  // namespace sewerplan::domain::detail
