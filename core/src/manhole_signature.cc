@@ -238,6 +238,7 @@ void compare_unequal(const ManholeSignature& expected, const ManholeSignature& o
       case kObservedAlone:
         reason = "slot " + std::to_string(j + 1) + " at " +
                  number(observed.slots[j].relative_deg, 0) + "° is not on the map";
+        match.unexpected.insert(match.unexpected.begin(), j);
         --j;
         break;
     }

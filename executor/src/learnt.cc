@@ -165,6 +165,44 @@ class LearntReader {
                                        .sightings = static_cast<int>(*sightings)};
   }
 
+  std::optional<localisation::KnownMouth> mouth(JsonElement element, const std::string& path) {
+    JsonFields f(element, path, file_, diagnostics_);
+    f.reject_unknown({"manhole", "azimuth_deg", "invert_z_m", "diameter_m", "sightings"});
+    const std::optional<std::string> name = f.string("manhole");
+    const std::optional<double> azimuth = f.number("azimuth_deg");
+    const std::optional<double> invert = f.number("invert_z_m");
+    const std::optional<double> diameter = f.number("diameter_m");
+    const std::optional<std::uint64_t> sightings = f.count("sightings", kMaxSightings);
+    if (!name || !azimuth || !invert || !diameter || !sightings) return std::nullopt;
+    const auto m = map_.find_manhole(*name);
+    if (!m) {
+      f.error("manhole", "unknown manhole \"" + *name + "\"");
+      return std::nullopt;
+    }
+    if (!(std::isfinite(*azimuth) && *azimuth >= 0 && *azimuth < 360)) {
+      f.error("azimuth_deg",
+              "expected a direction in [0, 360) degrees, got " + json(*azimuth).dump());
+      return std::nullopt;
+    }
+    if (!std::isfinite(*invert)) {
+      f.error("invert_z_m", "expected a height, got " + json(*invert).dump());
+      return std::nullopt;
+    }
+    if (!(std::isfinite(*diameter) && *diameter > 0)) {
+      f.error("diameter_m", "expected a size above 0 m, got " + json(*diameter).dump());
+      return std::nullopt;
+    }
+    if (*sightings < 1) {
+      f.error("sightings", "expected at least 1 sighting");
+      return std::nullopt;
+    }
+    return localisation::KnownMouth{.manhole = *m,
+                                    .azimuth_deg = *azimuth,
+                                    .invert_z_m = *invert,
+                                    .diameter_m = *diameter,
+                                    .sightings = static_cast<int>(*sightings)};
+  }
+
   std::optional<localisation::DrivenStretch> stretch(JsonElement element, const std::string& path) {
     JsonFields f(element, path, file_, diagnostics_);
     f.reject_unknown({"pipe", "from_end", "from_m", "to_m"});
@@ -195,13 +233,20 @@ class LearntReader {
     }
   }
 
-  // "junction_memory" of the root (version 3): {"junctions": [...], "driven": [...]}.
-  void memory(JsonFields& root, localisation::JunctionMemory& out) {
+  // "junction_memory" of the root (version 3): {"junctions": [...], "driven": [...]}, and from
+  // version 4 "mouths": [...].
+  void memory(JsonFields& root, localisation::JunctionMemory& out, std::optional<double> version) {
     const std::optional<JsonElement> element = root.member("junction_memory", Need::kOptional);
     if (!element) return;
     JsonFields f(*element, root.path() + ".junction_memory", file_, diagnostics_);
     if (!f.is_object()) return;  // reported
-    f.reject_unknown({"junctions", "driven"});
+    f.reject_unknown({"junctions", "driven", "mouths"});
+    if (version && *version < 4 && f.has("mouths")) {
+      f.error("mouths", "remembered mouths need version 4 or later");
+      return;
+    }
+    each(f, "mouths", out.mouths,
+         [&](JsonElement e, const std::string& path) { return mouth(e, path); });
     each(f, "junctions", out.junctions,
          [&](JsonElement e, const std::string& path) { return junction(e, path); });
     each(f, "driven", out.driven,
@@ -284,9 +329,9 @@ Result<Learnt> read_learnt_json(std::string_view text, const std::string& file_n
   }
   // Version 1 had no hazards; a reader of version 2 reads it as it was.
   const std::optional<double> version = root.number("version", Need::kOptional);
-  if (version
-          ? *version != 1 && *version != 2 && *version != static_cast<double>(kLearntJsonVersion)
-          : !root.has("version")) {
+  if (version ? *version != 1 && *version != 2 && *version != 3 &&
+                    *version != static_cast<double>(kLearntJsonVersion)
+              : !root.has("version")) {
     root.error("version", "expected 1 to " + std::to_string(kLearntJsonVersion));
   } else if (version && *version == 1 && root.has("hazards")) {
     root.error("hazards", "learnt hazards need version 2 or later");
@@ -304,7 +349,7 @@ Result<Learnt> read_learnt_json(std::string_view text, const std::string& file_n
               [&](JsonElement e, const std::string& path) { return reader.passage(e, path); });
   reader.each(root, "hazards", learnt.hazards,
               [&](JsonElement e, const std::string& path) { return reader.hazard(e, path); });
-  reader.memory(root, learnt.junctions);
+  reader.memory(root, learnt.junctions, version);
   if (diagnostics.has_errors_since(before))
     return Error{ErrorCode::kParse, diagnostics.error_summary(before)};
   return learnt;
@@ -359,6 +404,14 @@ std::string learnt_json(const Learnt& learnt, const SewerMap& map) {
                                 {"from_end", end_name(s.from_end)},
                                 {"from_m", s.from_m},
                                 {"to_m", s.to_m}});
+  }
+  memory["mouths"] = json::array();
+  for (const localisation::KnownMouth& k : learnt.junctions.mouths) {
+    memory["mouths"].push_back({{"manhole", map.manhole(k.manhole).name},
+                                {"azimuth_deg", k.azimuth_deg},
+                                {"invert_z_m", k.invert_z_m},
+                                {"diameter_m", k.diameter_m},
+                                {"sightings", k.sightings}});
   }
   j["junction_memory"] = std::move(memory);
   return j.dump(2) + "\n";

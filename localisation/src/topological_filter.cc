@@ -86,6 +86,8 @@ Result<void> check_options(const LocalisationOptions& o) {
     return bad("ambiguity_probability", o.ambiguity_probability, "in [0, 1]");
   if (!finite_in(o.verify_probability, 0, 1))
     return bad("verify_probability", o.verify_probability, "in [0, 1]");
+  if (!finite_in(o.remember_mouth_probability, 0, 1))
+    return bad("remember_mouth_probability", o.remember_mouth_probability, "in [0, 1]");
   if (!std::isfinite(o.turn_sd_deg) || o.turn_sd_deg <= 0 || o.turn_sd_deg > 90)
     return bad("turn_sd_deg", o.turn_sd_deg, "in (0, 90]");
   if (!finite_in(o.direction_off_share, 0, 1))
@@ -262,7 +264,7 @@ Result<void> TopologicalFilter::arrive(const std::optional<ManholeSignature>& ob
   mode_ = Mode::kAtManhole;
   arrived_by_ = last_drive_;
   normalise_and_prune();
-  remember_arrival();
+  remember_arrival(observation);
   return {};
 }
 
@@ -424,6 +426,48 @@ namespace {
 
 bool by_pipe(const KnownJunction& a, const KnownJunction& b) { return a.pipe < b.pipe; }
 bool stretch_by_pipe(const DrivenStretch& a, const DrivenStretch& b) { return a.pipe < b.pipe; }
+bool mouth_by_manhole(const KnownMouth& a, const KnownMouth& b) { return a.manhole < b.manhole; }
+bool mouth_by_place(const KnownMouth& a, const KnownMouth& b) {
+  return a.manhole != b.manhole ? a.manhole < b.manhole : a.azimuth_deg < b.azimuth_deg;
+}
+
+// log(e^a + e^b), either of them minus infinity.
+double log_sum(double a, double b) {
+  if (a < b) std::swap(a, b);
+  if (b == kNegativeInfinity) return a;
+  return a + std::log1p(std::exp(b - a));
+}
+
+// The map's signature of `manhole` entered through `arrival`, with the known mouths [first, last)
+// there added in order; `origin` gets, per slot of the result, the known mouth it stands for, or
+// last for a mouth of the map.
+template <class It>
+ManholeSignature with_known_mouths(const SewerMap& map, ManholeId manhole, SlotIndex arrival,
+                                   It first, It last, std::vector<It>* origin = nullptr) {
+  ManholeSignature expected = expected_signature(map, manhole, arrival);
+  const Slot& in = map.slot(manhole, arrival);
+  std::vector<std::pair<SlotSighting, It>> slots;
+  slots.reserve(expected.slots.size() + static_cast<std::size_t>(last - first));
+  for (const SlotSighting& s : expected.slots) slots.emplace_back(s, last);
+  for (It k = first; k != last; ++k) {
+    slots.emplace_back(
+        SlotSighting{.relative_deg = std::fmod(k->azimuth_deg - in.azimuth_deg + 720.0, 360.0),
+                     .step_m = k->invert_z_m - in.invert_z_m,
+                     .diameter_m = k->diameter_m},
+        k);
+  }
+  // slots[0] stays the arrival's.
+  std::stable_sort(slots.begin() + 1, slots.end(), [](const auto& a, const auto& b) {
+    return a.first.relative_deg < b.first.relative_deg;
+  });
+  expected.slots.clear();
+  if (origin != nullptr) origin->clear();
+  for (const auto& [s, k] : slots) {
+    expected.slots.push_back(s);
+    if (origin != nullptr) origin->push_back(k);
+  }
+  return expected;
+}
 
 }  // namespace
 
@@ -458,6 +502,59 @@ double TopologicalFilter::junction_log_density(PipeId pipe_id, std::uint8_t end,
   return density + fresh > 0 ? std::log(density + fresh) : kNegativeInfinity;
 }
 
+double TopologicalFilter::mapped_log_likelihood(ManholeId manhole, SlotIndex arrival,
+                                                const ManholeSignature& observed) const {
+  const double mapped =
+      compare(expected_signature(*map_, manhole, arrival), observed, options_.noise).log_likelihood;
+  const auto [first, last] = std::equal_range(memory_.mouths.begin(), memory_.mouths.end(),
+                                              KnownMouth{.manhole = manhole}, mouth_by_manhole);
+  if (first == last) return mapped;
+  int sightings = first->sightings;
+  for (auto k = first; k != last; ++k) sightings = std::min(sightings, k->sightings);
+  const double with =
+      compare(with_known_mouths(*map_, manhole, arrival, first, last), observed, options_.noise)
+          .log_likelihood;
+  const double there = static_cast<double>(sightings) / (sightings + 1.0);
+  return log_sum(std::log(there) + with, std::log1p(-there) + mapped);
+}
+
+void TopologicalFilter::remember_mouths(ManholeId manhole, SlotIndex arrival,
+                                        const ManholeSignature& observed) {
+  auto [first, last] = std::equal_range(memory_.mouths.begin(), memory_.mouths.end(),
+                                        KnownMouth{.manhole = manhole}, mouth_by_manhole);
+  using It = std::vector<KnownMouth>::iterator;
+  std::vector<It> origin;
+  const ManholeSignature expected =
+      with_known_mouths(*map_, manhole, arrival, first, last, &origin);
+  const SignatureMatch match = compare(expected, observed, options_.noise);
+  // The known mouths seen again count once more; one not seen once less, and is forgotten at
+  // none (a mouth seen once by a sensing error is not expected for ever).
+  bool forgot = false;
+  for (std::size_t i = 0; i < origin.size(); ++i) {
+    if (origin[i] == last) continue;
+    const bool unseen =
+        std::find(match.unseen.begin(), match.unseen.end(), i) != match.unseen.end();
+    origin[i]->sightings += unseen ? -1 : 1;
+    forgot = forgot || origin[i]->sightings <= 0;
+  }
+  std::vector<KnownMouth> found;
+  const Slot& in = map_->slot(manhole, arrival);
+  for (const std::size_t j : match.unexpected) {
+    const SlotSighting& s = observed.slots[j];
+    found.push_back({.manhole = manhole,
+                     .azimuth_deg = std::fmod(in.azimuth_deg + s.relative_deg, 360.0),
+                     .invert_z_m = in.invert_z_m + s.step_m,
+                     .diameter_m = s.diameter_m});
+  }
+  if (forgot) {
+    std::erase_if(memory_.mouths, [](const KnownMouth& k) { return k.sightings <= 0; });
+  }
+  for (const KnownMouth& k : found) {
+    memory_.mouths.insert(
+        std::upper_bound(memory_.mouths.begin(), memory_.mouths.end(), k, mouth_by_place), k);
+  }
+}
+
 Result<void> check_memory(const JunctionMemory& memory, const SewerMap& map) {
   const auto within = [&](const Pipe& pipe, double d) {
     return std::isfinite(d) && d >= 0 && d <= pipe.length_m;
@@ -489,6 +586,19 @@ Result<void> check_memory(const JunctionMemory& memory, const SewerMap& map) {
                      " m is not a stretch of the pipe (0 to " + shown(pipe.length_m) + " m)");
     }
   }
+  for (std::size_t i = 0; i < memory.mouths.size(); ++i) {
+    const KnownMouth& k = memory.mouths[i];
+    const std::string what = "remembered mouth " + std::to_string(i + 1);
+    if (k.manhole.index() >= map.manhole_count())
+      return invalid(what + ": no manhole " + shown(k.manhole.value()) + " in the map");
+    const std::string at = what + " in " + map.manhole(k.manhole).name;
+    if (!(std::isfinite(k.azimuth_deg) && k.azimuth_deg >= 0 && k.azimuth_deg < 360))
+      return invalid(at + ": direction " + shown(k.azimuth_deg) + " is not in [0, 360)");
+    if (!std::isfinite(k.invert_z_m)) return invalid(at + ": invert " + shown(k.invert_z_m));
+    if (!(std::isfinite(k.diameter_m) && k.diameter_m > 0))
+      return invalid(at + ": diameter " + shown(k.diameter_m) + " m is not > 0");
+    if (k.sightings < 1) return invalid(at + ": no sighting");
+  }
   return {};
 }
 
@@ -499,13 +609,18 @@ Result<void> TopologicalFilter::recall(JunctionMemory memory) {
                      return a.pipe != b.pipe ? a.pipe < b.pipe : a.distance_m < b.distance_m;
                    });
   std::stable_sort(memory.driven.begin(), memory.driven.end(), stretch_by_pipe);
+  std::stable_sort(memory.mouths.begin(), memory.mouths.end(), mouth_by_place);
   memory_ = std::move(memory);
   return {};
 }
 
-void TopologicalFilter::remember_arrival() {
+void TopologicalFilter::remember_arrival(const std::optional<ManholeSignature>& observation) {
   if (mode_ == Mode::kLost) return;
   const Track& best = tracks_.front();
+  if (best.kind == Track::Kind::kAtMouth && observation &&
+      std::exp(best.log_weight) >= options_.remember_mouth_probability) {
+    remember_mouths(best.manhole, best.slot, *observation);
+  }
   if (std::exp(best.log_weight) >= options_.verify_probability &&
       best.kind != Track::Kind::kInManhole) {
     const Pipe& pipe = map_->pipe(best.pipe);

@@ -171,11 +171,10 @@ struct ArrivalExplainer {
   double log_detect = std::log1p(-o.miss_probability);
   double log_false = log_or_never(o.false_detections_per_m);
 
-  // How well the observation fits the map's manhole `m` entered through `slot`.
+  // How well the observation fits the map's manhole `m` entered through `slot` (with the mouths
+  // the filter learnt there).
   double mapped_fit(ManholeId m, SlotIndex slot) const {
-    return observation
-               ? compare(expected_signature(map, m, slot), *observation, o.noise).log_likelihood
-               : 0.0;
+    return observation ? filter.mapped_log_likelihood(m, slot, *observation) : 0.0;
   }
 
   // At the mouth of `m`'s `slot`, `log_place` the odometry's and the misses' part of the weight.
@@ -358,9 +357,7 @@ void explain_arrival(const TopologicalFilter& filter, const Track& track,
     double fit = 0;
     if (observation) {
       fit = track.kind == Track::Kind::kAtMouth
-                ? compare(expected_signature(filter.map(), track.manhole, track.slot), *observation,
-                          o.noise)
-                      .log_likelihood
+                ? filter.mapped_log_likelihood(track.manhole, track.slot, *observation)
                 : unmapped_junction_log_likelihood(*observation,
                                                    filter.map().pipe(track.pipe).diameter_m,
                                                    o.min_junction_shaft_m, o.noise);

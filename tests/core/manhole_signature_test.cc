@@ -93,7 +93,9 @@ TEST(ManholeSignature, AnExtraOrMissingMouthIsPairedAroundNotShifted) {
   const SignatureMatch gone = compare(want, missing);
   EXPECT_EQ(gone.reason, "2 slots seen, 3 expected: no slot seen at 135°");
   EXPECT_EQ(gone.unseen, std::vector<std::size_t>{1});
+  EXPECT_TRUE(gone.unexpected.empty());
   EXPECT_TRUE(seen.unseen.empty());
+  EXPECT_EQ(seen.unexpected, std::vector<std::size_t>{1});  // the filter remembers it by this
   // One mouth fewer to score, and the penalty: not the 90-degree misses of a shifted pairing.
   EXPECT_GT(gone.log_likelihood, same.log_likelihood + 2 * kSlotCountLogPenalty);
 }
@@ -122,6 +124,7 @@ TEST(ManholeSignature, NeighboursSeenInTheOtherOrderArePairedWithTheirPipes) {
   EXPECT_FALSE(extra.matches);
   EXPECT_EQ(extra.reason, "5 slots seen, 4 expected: slot 5 at 258° is not on the map");
   EXPECT_TRUE(extra.unseen.empty());
+  EXPECT_EQ(extra.unexpected, std::vector<std::size_t>{4});
   EXPECT_NEAR(extra.log_likelihood, seen.log_likelihood + kSlotCountLogPenalty, 1e-9);
 }
 

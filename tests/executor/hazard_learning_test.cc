@@ -237,7 +237,7 @@ TEST(HazardLearning, BeliefsAreSavedAndASecondMissionStartsFromThem) {
   ASSERT_TRUE(first.observe_pass(net.risky, 0, 10).has_value());
   Diagnostics d;
   const std::string text = learnt_json(first.learnt(), net.map);
-  EXPECT_NE(text.find("\"version\": 3"), std::string::npos);
+  EXPECT_NE(text.find("\"version\": 4"), std::string::npos);
   const auto back = read_learnt_json(text, "learnt.json", net.map, d);
   ASSERT_TRUE(back.has_value()) << d.error_summary();
   EXPECT_EQ(*back, first.learnt());

@@ -62,7 +62,7 @@ TEST(Learnt, ErrorsNameTheFileAndThePath) {
       {R"({"format": "sewerplan-learnt", "version": 1,
            "closed_passages": [{"manhole": "M8", "from_slot": 1, "to_slot": 9}]})",
        "learnt.json:$.closed_passages[0].to_slot"},
-      {R"({"format": "sewerplan-learnt", "version": 4})", "learnt.json:$.version"},
+      {R"({"format": "sewerplan-learnt", "version": 5})", "learnt.json:$.version"},
       {R"({"format": "sewerplan-learnt", "version": 1, "bogus": []})", "learnt.json:$.bogus"},
       {"{\n  \"format\": ", "learnt.json:2:"},
       // Wrong types name the field and the value found.
@@ -122,7 +122,12 @@ localisation::JunctionMemory p4_memory(const SewerMap& map) {
       .junctions =
           {{.pipe = p4, .from_end = 1, .distance_m = length / 2, .var_m2 = 0.25, .sightings = 2}},
       .driven = {{.pipe = p4, .from_end = 0, .from_m = 0, .to_m = length / 4},
-                 {.pipe = p4, .from_end = 1, .from_m = 0.5, .to_m = length / 2}}};
+                 {.pipe = p4, .from_end = 1, .from_m = 0.5, .to_m = length / 2}},
+      .mouths = {{.manhole = *map.find_manhole("M2"),
+                  .azimuth_deg = 271.5,
+                  .invert_z_m = -3.25,
+                  .diameter_m = 0.2,
+                  .sightings = 3}}};
 }
 
 TEST(Learnt, TheJunctionMemoryIsSavedAndReadBackEqual) {
@@ -150,7 +155,8 @@ TEST(Learnt, AnOlderFileWithoutAJunctionMemoryStillReads) {
       const char* text :
       {R"({"format": "sewerplan-learnt", "version": 1, "blockages": [{"pipe": "P4", "offset_m": 1}]})",
        R"({"format": "sewerplan-learnt", "version": 2, "blockages": [], "hazards": []})",
-       R"({"format": "sewerplan-learnt", "version": 3})"}) {
+       R"({"format": "sewerplan-learnt", "version": 3})",
+       R"({"format": "sewerplan-learnt", "version": 3, "junction_memory": {"junctions": []}})"}) {
     Diagnostics d;
     const auto learnt = read_learnt_json(text, "learnt.json", ais.map, d);
     ASSERT_TRUE(learnt.has_value()) << text << ": " << d.error_summary();
@@ -161,7 +167,7 @@ TEST(Learnt, AnOlderFileWithoutAJunctionMemoryStillReads) {
 TEST(Learnt, ABadJunctionMemoryIsNamedByFileAndPath) {
   const auto ais = testing::load_ais_testbed();
   const auto file = [](const std::string& memory) {
-    return R"({"format": "sewerplan-learnt", "version": 3, "junction_memory": )" + memory + "}";
+    return R"({"format": "sewerplan-learnt", "version": 4, "junction_memory": )" + memory + "}";
   };
   const std::vector<std::pair<std::string, std::string>> bad{
       {file(R"({"junctions": [{"pipe": "P99", "from_end": "from", "distance_m": 1, "sd_m": 0.5,
@@ -189,6 +195,24 @@ TEST(Learnt, ABadJunctionMemoryIsNamedByFileAndPath) {
       {file(R"([])"), "learnt.json:$.junction_memory"},
       {R"({"format": "sewerplan-learnt", "version": 2, "junction_memory": {}})",
        "learnt.json:$.junction_memory: error: a junction memory needs version 3"},
+      {R"({"format": "sewerplan-learnt", "version": 3, "junction_memory": {"mouths": []}})",
+       "learnt.json:$.junction_memory.mouths: error: remembered mouths need version 4"},
+      {file(R"({"mouths": [{"manhole": "M99", "azimuth_deg": 10, "invert_z_m": 0,
+               "diameter_m": 0.3, "sightings": 1}]})"),
+       "learnt.json:$.junction_memory.mouths[0].manhole: error: unknown manhole \"M99\""},
+      {file(R"({"mouths": [{"manhole": "M2", "azimuth_deg": 360, "invert_z_m": 0,
+               "diameter_m": 0.3, "sightings": 1}]})"),
+       "learnt.json:$.junction_memory.mouths[0].azimuth_deg: error: expected a direction in [0, "
+       "360)"},
+      {file(R"({"mouths": [{"manhole": "M2", "azimuth_deg": 10, "invert_z_m": 0,
+               "diameter_m": -0.3, "sightings": 1}]})"),
+       "learnt.json:$.junction_memory.mouths[0].diameter_m: error: expected a size above 0 m"},
+      {file(R"({"mouths": [{"manhole": "M2", "azimuth_deg": 10, "invert_z_m": null,
+               "diameter_m": 0.3, "sightings": 1}]})"),
+       "learnt.json:$.junction_memory.mouths[0].invert_z_m"},
+      {file(R"({"mouths": [{"manhole": "M2", "azimuth_deg": 10, "invert_z_m": 0,
+               "diameter_m": 0.3, "sightings": 0}]})"),
+       "learnt.json:$.junction_memory.mouths[0].sightings: error: expected at least 1"},
   };
   for (const auto& [text, where] : bad) {
     Diagnostics d;

@@ -106,6 +106,9 @@ struct SignatureMatch {
   // The expected mouths (indices into expected.slots) the pairing left without a sighting: with
   // a differing slot count, mouths the world may lack.
   std::vector<std::size_t> unseen;
+  // The observed mouths (indices into observed.slots) the pairing left without an expected one:
+  // laterals the map may lack.
+  std::vector<std::size_t> unexpected;
   std::string
       reason;  // why not, when !matches: "3 slots seen, 4 expected"; "slot 2 at 75°, 20° expected"
 };
