@@ -12,14 +12,6 @@
 namespace sewerplan {
 namespace {
 
-// Counter-clockwise angle from `from_deg` to `to_deg`, in [0, 360).
-double ccw_deg(double from_deg, double to_deg) {
-  double a = std::fmod(to_deg - from_deg, 360.0);
-  if (a < 0) a += 360.0;
-  if (a >= 360.0) a -= 360.0;
-  return a;
-}
-
 double gaussian_log(double difference, double sigma) {
   const double z = difference / sigma;
   return -0.5 * z * z - std::log(sigma);

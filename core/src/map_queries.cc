@@ -7,6 +7,13 @@
 
 namespace sewerplan {
 
+double ccw_deg(double from_deg, double to_deg) {
+  double a = std::fmod(to_deg - from_deg, 360.0);
+  if (a < 0) a += 360.0;
+  if (a >= 360.0) a -= 360.0;
+  return a;
+}
+
 double normalize_deg(double angle_deg) {
   double a = std::fmod(angle_deg, 360.0);
   if (a <= -180.0) a += 360.0;

@@ -450,11 +450,10 @@ ManholeSignature with_known_mouths(const SewerMap& map, ManholeId manhole, SlotI
   slots.reserve(expected.slots.size() + static_cast<std::size_t>(last - first));
   for (const SlotSighting& s : expected.slots) slots.emplace_back(s, last);
   for (It k = first; k != last; ++k) {
-    slots.emplace_back(
-        SlotSighting{.relative_deg = std::fmod(k->azimuth_deg - in.azimuth_deg + 720.0, 360.0),
-                     .step_m = k->invert_z_m - in.invert_z_m,
-                     .diameter_m = k->diameter_m},
-        k);
+    slots.emplace_back(SlotSighting{.relative_deg = ccw_deg(in.azimuth_deg, k->azimuth_deg),
+                                    .step_m = k->invert_z_m - in.invert_z_m,
+                                    .diameter_m = k->diameter_m},
+                       k);
   }
   // slots[0] stays the arrival's.
   std::stable_sort(slots.begin() + 1, slots.end(), [](const auto& a, const auto& b) {
@@ -520,35 +519,49 @@ double TopologicalFilter::mapped_log_likelihood(ManholeId manhole, SlotIndex arr
 
 void TopologicalFilter::remember_mouths(ManholeId manhole, SlotIndex arrival,
                                         const ManholeSignature& observed) {
-  auto [first, last] = std::equal_range(memory_.mouths.begin(), memory_.mouths.end(),
-                                        KnownMouth{.manhole = manhole}, mouth_by_manhole);
+  const auto [first, last] = std::equal_range(memory_.mouths.begin(), memory_.mouths.end(),
+                                              KnownMouth{.manhole = manhole}, mouth_by_manhole);
   using It = std::vector<KnownMouth>::iterator;
   std::vector<It> origin;
   const ManholeSignature expected =
       with_known_mouths(*map_, manhole, arrival, first, last, &origin);
   const SignatureMatch match = compare(expected, observed, options_.noise);
-  // The known mouths seen again count once more; one not seen once less, and is forgotten at
-  // none (a mouth seen once by a sensing error is not expected for ever).
-  bool forgot = false;
+  // Each known mouth here seen again (+1) or not (-1).
+  std::vector<int> seen(static_cast<std::size_t>(last - first), 0);
   for (std::size_t i = 0; i < origin.size(); ++i) {
     if (origin[i] == last) continue;
     const bool unseen =
         std::find(match.unseen.begin(), match.unseen.end(), i) != match.unseen.end();
-    origin[i]->sightings += unseen ? -1 : 1;
-    forgot = forgot || origin[i]->sightings <= 0;
+    seen[static_cast<std::size_t>(origin[i] - first)] = unseen ? -1 : 1;
   }
+  // The mouths seen that nothing expected: new ones, unless a known one unseen is within the
+  // pairing's reach (one near the arrival's direction sorts first or last as the noise has it):
+  // that one seen, not a second mouth.
   std::vector<KnownMouth> found;
   const Slot& in = map_->slot(manhole, arrival);
   for (const std::size_t j : match.unexpected) {
     const SlotSighting& s = observed.slots[j];
+    const double azimuth = ccw_deg(0.0, in.azimuth_deg + s.relative_deg);
+    const auto near = [&](const KnownMouth& k) {
+      return std::abs(normalize_deg(k.azimuth_deg - azimuth)) <= options_.noise.max_direction_deg;
+    };
+    if (const It same = std::find_if(first, last, near); same != last) {
+      seen[static_cast<std::size_t>(same - first)] = 1;
+      continue;
+    }
     found.push_back({.manhole = manhole,
-                     .azimuth_deg = std::fmod(in.azimuth_deg + s.relative_deg, 360.0),
+                     .azimuth_deg = azimuth,
                      .invert_z_m = in.invert_z_m + s.step_m,
                      .diameter_m = s.diameter_m});
   }
-  if (forgot) {
-    std::erase_if(memory_.mouths, [](const KnownMouth& k) { return k.sightings <= 0; });
+  // A mouth not seen counts one fewer and is forgotten at none (a sensing error seen once is not
+  // expected for ever).
+  bool forgot = false;
+  for (It k = first; k != last; ++k) {
+    k->sightings += seen[static_cast<std::size_t>(k - first)];
+    forgot = forgot || k->sightings <= 0;
   }
+  if (forgot) std::erase_if(memory_.mouths, [](const KnownMouth& k) { return k.sightings <= 0; });
   for (const KnownMouth& k : found) {
     memory_.mouths.insert(
         std::upper_bound(memory_.mouths.begin(), memory_.mouths.end(), k, mouth_by_place), k);
@@ -594,7 +607,8 @@ Result<void> check_memory(const JunctionMemory& memory, const SewerMap& map) {
     const std::string at = what + " in " + map.manhole(k.manhole).name;
     if (!(std::isfinite(k.azimuth_deg) && k.azimuth_deg >= 0 && k.azimuth_deg < 360))
       return invalid(at + ": direction " + shown(k.azimuth_deg) + " is not in [0, 360)");
-    if (!std::isfinite(k.invert_z_m)) return invalid(at + ": invert " + shown(k.invert_z_m));
+    if (!std::isfinite(k.invert_z_m))
+      return invalid(at + ": invert " + shown(k.invert_z_m) + " m is not a number");
     if (!(std::isfinite(k.diameter_m) && k.diameter_m > 0))
       return invalid(at + ": diameter " + shown(k.diameter_m) + " m is not > 0");
     if (k.sightings < 1) return invalid(at + ": no sighting");

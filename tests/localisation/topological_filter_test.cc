@@ -428,6 +428,28 @@ TEST(TopologicalFilter, RemembersAMouthTheMapLacksAndExpectsItAtTheNextArrival) 
   }
   EXPECT_TRUE(f.memory().mouths.empty());
 
+  // A map whose slot directions are in (-180, 180] (an import's atan2: M4's slot to S4 is at -90):
+  // the mouth is remembered in [0, 360), so the memory passes its own check and the learnt file's.
+  TopologicalFilter south = s.filter();
+  ASSERT_TRUE(south.reset({.position = domain::InManhole{s.manhole("S4")}}).has_value());
+  ASSERT_TRUE(south.enter(s.slot("S4", "P6")).has_value());
+  ASSERT_TRUE(south.drive(40, DriveDirection::kForward, 1.2).has_value());
+  ManholeSignature m4 = s.seen("M4", "P6");
+  m4.slots.insert(m4.slots.begin() + 1, {.relative_deg = 45, .step_m = 0, .diameter_m = 0.3});
+  ASSERT_TRUE(south.arrive(m4).has_value());
+  ASSERT_EQ(south.estimate().best().pose.position, s.at("M4", "P6"));
+  ASSERT_EQ(south.memory().mouths.size(), 1u);
+  EXPECT_NEAR(south.memory().mouths[0].azimuth_deg, 315, 1e-9);
+  EXPECT_TRUE(check_memory(south.memory(), s.map).has_value());
+  // Seen again 2 degrees off: the same mouth, seen twice.
+  ASSERT_TRUE(south.reset({.position = domain::InManhole{s.manhole("S4")}}).has_value());
+  ASSERT_TRUE(south.enter(s.slot("S4", "P6")).has_value());
+  ASSERT_TRUE(south.drive(40, DriveDirection::kForward, 1.2).has_value());
+  m4.slots[1].relative_deg = 47;
+  ASSERT_TRUE(south.arrive(m4).has_value());
+  ASSERT_EQ(south.memory().mouths.size(), 1u);
+  EXPECT_EQ(south.memory().mouths[0].sightings, 2);
+
   // A memory that does not fit the map is refused, naming the mouth.
   JunctionMemory bad;
   bad.mouths.push_back({.manhole = s.manhole("M3"), .azimuth_deg = 400, .diameter_m = 0.3});

@@ -25,6 +25,10 @@ namespace sewerplan {
 // An angle folded into (-180, 180]. Runtime: O(1).
 double normalize_deg(double angle_deg);
 
+// The counter-clockwise angle from `from_deg` to `to_deg`, in [0, 360) (a map's slot directions
+// may be in (-180, 180], as an import's atan2 gives them). Runtime: O(1).
+double ccw_deg(double from_deg, double to_deg);
+
 // The deviation from straight through when passing `m` from slot `from` into slot `to`, in
 // [0, 180] degrees. Runtime: O(1).
 double passage_turn_deg(const SewerMap& map, ManholeId m, SlotIndex from, SlotIndex to);

@@ -35,8 +35,8 @@
 namespace sewerplan::executor {
 
 inline constexpr std::string_view kLearntJsonFormat = "sewerplan-learnt";
-// Version 2 added "hazards", version 3 "junction_memory"; files of versions 1 and 2 (without
-// them) are read as before.
+// Version 2 added "hazards", version 3 "junction_memory", version 4 its "mouths"; files of
+// earlier versions (without them) are read as before.
 inline constexpr int kLearntJsonVersion = 4;
 
 // The prior strength of a hazard's belief when none is given (ReplannerOptions::hazard_learning):
