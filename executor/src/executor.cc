@@ -231,6 +231,7 @@ class Executor::Run {
       case hal::RobotErrorCause::kObstacle:
       case hal::RobotErrorCause::kBlindEnd:
       case hal::RobotErrorCause::kNoManholeSeen:
+      case hal::RobotErrorCause::kNoMouth:
       case hal::RobotErrorCause::kOtherBlockage:
       case hal::RobotErrorCause::kDangerSpot:
       case hal::RobotErrorCause::kDangerousPassage:
