@@ -325,6 +325,12 @@ class Executor::Run {
               sync_progress(replay.progress());
               return Replan{std::nullopt, *settled};
             }
+            if (std::optional<Replan> closed =
+                    relocalisation_.refused_into_no_mouth(*failure, action)) {
+              relocalisation_.clear_mismatch();
+              sync_progress(replay.progress());
+              return closed;
+            }
             relocalisation_.place_by_belief(*failure, *next);
           }
           next.reset();
