@@ -231,6 +231,7 @@ class Executor::Run {
       case hal::RobotErrorCause::kObstacle:
       case hal::RobotErrorCause::kBlindEnd:
       case hal::RobotErrorCause::kNoManholeSeen:
+      case hal::RobotErrorCause::kNoMouth:
       case hal::RobotErrorCause::kOtherBlockage:
       case hal::RobotErrorCause::kDangerSpot:
       case hal::RobotErrorCause::kDangerousPassage:
@@ -323,6 +324,12 @@ class Executor::Run {
               relocalisation_.clear_mismatch();
               sync_progress(replay.progress());
               return Replan{std::nullopt, *settled};
+            }
+            if (std::optional<Replan> closed =
+                    relocalisation_.refused_into_no_mouth(*failure, action)) {
+              relocalisation_.clear_mismatch();
+              sync_progress(replay.progress());
+              return closed;
             }
             relocalisation_.place_by_belief(*failure, *next);
           }

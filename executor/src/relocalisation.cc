@@ -38,16 +38,9 @@ std::optional<Replan> Relocalisation::relocalise(const domain::PlanReplay& repla
   if (v.kind == Kind::kSignatureDiffers) {
     sync_progress(replay.progress());
     const Slot mouth = *missing_mouth(arrival, map_, localising_.options().noise);
-    close_passages_into(arrival.expected->manhole, mouth);
-    // Just inside the pipe from this manhole: at its very end, the way in would stay open.
-    const double length = map_.pipe(mouth.pipe).length_m;
-    const double inside = std::min(10 * kBlockageAhead_m, length / 2);
-    return Replan{
-        Failure{.kind = Failure::Kind::kBlockage,
-                .pipe = mouth.pipe,
-                .offset_m = mouth.pipe_end == 0 ? inside : length - inside,
-                .detail = "no mouth of " + map_.pipe(mouth.pipe).name + " seen: " + v.reason},
-        ""};
+    return close_mouth(arrival.expected->manhole, mouth,
+                       "no mouth of " + map_.pipe(mouth.pipe).name + " seen: " + v.reason,
+                       std::nullopt);
   }
   const auto* in = std::get_if<domain::InPipe>(&v.believed->position);
   if ((v.kind == Kind::kUnmappedJunction || v.believed->at_unmapped_junction) && in != nullptr) {
@@ -171,6 +164,35 @@ std::optional<std::string> Relocalisation::refused_at_no_manhole(const Failure& 
   const std::optional<localisation::Hypothesis> best = localising_.not_at_manhole();
   if (!best || !best->pose.heading_end) return std::nullopt;
   return "relocalised: the robot refused a turn (" + failure.detail + "): " + settle_on(*best);
+}
+
+std::optional<Replan> Relocalisation::refused_into_no_mouth(const Failure& failure,
+                                                            const fusion::RobotAction& action) {
+  const auto* pass = std::get_if<fusion::PassManhole>(&action);
+  const auto* at = std::get_if<domain::AtSlot>(&tracker_.position());
+  if (failure.cause != hal::RobotErrorCause::kNoMouth || pass == nullptr || at == nullptr ||
+      at->manhole != pass->manhole || at->slot == pass->to_slot) {
+    return std::nullopt;
+  }
+  const Slot& mouth = map_.slot(pass->manhole, pass->to_slot);
+  return close_mouth(pass->manhole, mouth,
+                     "no mouth of " + map_.pipe(mouth.pipe).name + " in " +
+                         map_.manhole(pass->manhole).name + ": " + failure.detail,
+                     failure.cause);
+}
+
+Replan Relocalisation::close_mouth(ManholeId manhole, const Slot& mouth, std::string detail,
+                                   std::optional<hal::RobotErrorCause> cause) {
+  close_passages_into(manhole, mouth);
+  // Just inside the pipe from this manhole: at its very end, the way in would stay open.
+  const double length = map_.pipe(mouth.pipe).length_m;
+  const double inside = std::min(10 * kBlockageAhead_m, length / 2);
+  return Replan{Failure{.kind = Failure::Kind::kBlockage,
+                        .pipe = mouth.pipe,
+                        .offset_m = mouth.pipe_end == 0 ? inside : length - inside,
+                        .detail = std::move(detail),
+                        .cause = cause},
+                ""};
 }
 
 void Relocalisation::place_by_belief(Failure& failure, const Job& job) {

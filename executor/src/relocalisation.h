@@ -9,7 +9,8 @@
 // makes the run loop plan again from there after the job (relocalise()), passing straight through
 // a manhole the map lacks or closing the mouth a manhole was seen without; a failure the robot
 // met in a pipe the filter believes it is not in is placed where it believes it (place_by_belief(),
-// refused_at_no_manhole()); a robot with no exit from the tracked place but another likely place
+// refused_at_no_manhole()); a turn refused into a mouth the manhole lacks closes that mouth
+// (refused_into_no_mouth()); a robot with no exit from the tracked place but another likely place
 // backs up to the manhole behind to tell them apart (back_up_to_tell_apart()). What it changes it
 // tells the Replanner (drove_through, learn) and, through its host, the run loop (docs/
 // localisation.md, "In the action controller").
@@ -31,6 +32,7 @@
 #include "sewerplan/domain/robot_state.h"
 #include "sewerplan/domain/validator.h"
 #include "sewerplan/executor/replanner.h"
+#include "sewerplan/fusion/robot_action.h"
 #include "sewerplan/hal/robot.h"
 #include "sewerplan/localisation/topological_filter.h"
 
@@ -118,6 +120,19 @@ class Relocalisation {
   // (AIS, world errors: a false detection 0.6 m short of M2, taken for M2 at p=0.86).
   std::optional<std::string> refused_at_no_manhole(const Failure& failure, const Job& job);
 
+  // A turn the robot refused into a mouth the manhole does not have
+  // (hal::RobotErrorCause::kNoMouth, on `action`, a pass of the manhole where the tracking has the
+  // robot at its arrival mouth): the way through that mouth does not exist in the sewer (a lateral
+  // the map has and the sewer lacks, a manhole of another type). Every passage into that mouth is
+  // closed as learnt, and its pipe just inside it, as when an arrival showed the mouth missing
+  // (relocalise()); the plan is made again from where the robot stands, and the failure's detail
+  // begins "no mouth of P in M". Empty for any other failure (it stands). Before, the refusal was a
+  // job no robot could run (invalid-job): the robot was held and the beacon called `stuck` (the
+  // official ISYBAU sample, docs/campaign.md, run 8); earlier still it was relocalised into its
+  // pipe, where it was not.
+  std::optional<Replan> refused_into_no_mouth(const Failure& failure,
+                                              const fusion::RobotAction& action);
+
   // A blockage or danger met in a pipe other than the one the tracking has the robot in, by the
   // filter's belief (believed_elsewhere): the controller settles there and closes that pipe, not
   // the tracked one. Closing the tracked pipe cut the robot's own way back and ended missions with
@@ -151,6 +166,10 @@ class Relocalisation {
   // turn into a mouth the sewer lacks is a job the robot cannot run (on the official ISYBAU sample
   // the plan turned into it, and the robot, refusing the job three times, called for recovery).
   void close_passages_into(ManholeId manhole, const Slot& mouth);
+  // close_passages_into(), and the mouth's pipe closed just inside it: the failure to plan again
+  // with, `detail` its words, `cause` the robot's (empty when the controller found it itself).
+  Replan close_mouth(ManholeId manhole, const Slot& mouth, std::string detail,
+                     std::optional<hal::RobotErrorCause> cause);
 
   const Mission& mission() const { return replanner_.mission(); }
   bool halted() const { return halt_.load(); }

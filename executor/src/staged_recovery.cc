@@ -91,6 +91,14 @@ std::optional<Failure> StagedRecovery::run_job(const Job& job, const fusion::Rob
       return Failure{
           .kind = Failure::Kind::kStuck, .detail = r.error->reason, .cause = r.error->cause};
     }
+    if (r.error->cause == hal::RobotErrorCause::kNoMouth) {
+      // A turn into a mouth the manhole does not have: a blockage of that passage that no row
+      // clears (backing up, lifting the head or pushing make no mouth). The run loop closes the
+      // passages into that mouth and plans again from where the robot stands, at its arrival
+      // (Relocalisation::refused_into_no_mouth); held where it cannot.
+      return Failure{
+          .kind = Failure::Kind::kStuck, .detail = r.error->reason, .cause = r.error->cause};
+    }
     if (kind == hal::RobotErrorKind::kMalfunction) {
       if (!reboots.take(r)) {
         return Failure{

@@ -18,6 +18,7 @@ constexpr detail::EnumNames<RobotErrorCause, kRobotErrorCauses> kErrorCauses{{
     {RobotErrorCause::kObstacle, "obstacle"},
     {RobotErrorCause::kBlindEnd, "blind-end"},
     {RobotErrorCause::kNoManholeSeen, "no-manhole-seen"},
+    {RobotErrorCause::kNoMouth, "no-mouth"},
     {RobotErrorCause::kOtherBlockage, "blockage"},
     {RobotErrorCause::kDangerSpot, "danger-spot"},
     {RobotErrorCause::kDangerousPassage, "dangerous-passage"},

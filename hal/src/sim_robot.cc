@@ -503,10 +503,13 @@ JobReport SimRobot::turn_by_sighting(const TurnInManhole& job) {
       sighting_ && sighting_->manhole == at->manhole && sighting_->arrival == at->slot
           ? sighting_->order
           : signature_slot_order(map_, at->manhole, at->slot);
-  if (job.to_slot == 0 || job.to_slot >= order.size()) {
-    return invalid(map_.manhole(at->manhole).name + " has no mouth " +
-                   std::to_string(job.to_slot + 1) + " seen from its arrival (" +
-                   std::to_string(order.size()) + " seen)");
+  if (job.to_slot == 0) return invalid("a turn from the arrival into the arrival");
+  if (job.to_slot >= order.size()) {
+    // The sewer has no such mouth here: no way through, whatever the job's numbers.
+    return failure(RobotErrorCause::kNoMouth, map_.manhole(at->manhole).name + " has no mouth " +
+                                                  std::to_string(job.to_slot + 1) +
+                                                  " seen from its arrival (" +
+                                                  std::to_string(order.size()) + " seen)");
   }
   TurnInManhole by_number = job;
   by_number.from_slot = at->slot.value();
@@ -539,9 +542,16 @@ JobReport SimRobot::turn(const TurnInManhole& job) {
                                                      ")");
   }
   const Manhole& manhole = map_.manhole(at->manhole);
-  if (job.to_slot >= manhole.slot_count || job.to_slot == job.from_slot) {
-    return invalid(manhole.name + " has no passage from " + slot_text(SlotIndex{job.from_slot}) +
-                   " to " + slot_text(SlotIndex{job.to_slot}));
+  if (job.to_slot >= manhole.slot_count) {
+    // The map has a mouth the sewer lacks (a lateral missing, another type of manhole): the way
+    // through it does not exist, a blockage of that passage, not a job no robot could run.
+    return failure(RobotErrorCause::kNoMouth, manhole.name + " has no passage from " +
+                                                  slot_text(SlotIndex{job.from_slot}) + " to " +
+                                                  slot_text(SlotIndex{job.to_slot}) + ": it has " +
+                                                  std::to_string(manhole.slot_count) + " mouths");
+  }
+  if (job.to_slot == job.from_slot) {
+    return invalid("a turn from " + slot_text(SlotIndex{job.from_slot}) + " into itself");
   }
   if (!valid_number(job.duration_s)) return invalid("the duration must be >= 0");
   const SlotIndex to{job.to_slot};

@@ -33,7 +33,8 @@ struct WorldRun {
 
 // The paper's mission in a world drawn by `spec` and `seed`; every arrival event's manhole is
 // compared with the simulator's truth at that moment.
-WorldRun run_in_world(const testing::AisTestbed& ais, const std::string& spec, std::uint64_t seed) {
+WorldRun run_in_world(const testing::AisTestbed& ais, const std::string& spec, std::uint64_t seed,
+                      bool sensing = true) {
   const Result<hal::WorldErrorProfile> profile = hal::parse_world_errors(spec);
   EXPECT_TRUE(profile.has_value()) << spec;
   const Result<hal::TrueWorld> truth = hal::make_true_world(ais.map, *profile, seed);
@@ -45,7 +46,7 @@ WorldRun run_in_world(const testing::AisTestbed& ais, const std::string& spec, s
       truth->world, ais.mission.profile,
       hal::world_pose(ais.map, *truth,
                       hal::InPipe{in.pipe, in.offset_m, hal::Heading::kTowardsEnd1}),
-      {}, hal::SimOptions{.sensing = hal::make_sensing(*truth)});
+      {}, sensing ? hal::SimOptions{.sensing = hal::make_sensing(*truth)} : hal::SimOptions{});
   Executor executor(ais.map, replanner, robot);
   WorldRun run;
   executor.subscribe([&](const Event& e) {
@@ -204,6 +205,86 @@ TEST(ManholeVerification, AMouthTheWorldLacksClosesEveryPassageThroughIt) {
   EXPECT_EQ(replanner.learnt().closed_passages, expected);
   ASSERT_EQ(replanner.learnt().blockages.size(), 1U);
   EXPECT_EQ(replanner.learnt().blockages.front().pipe, *map.find_pipe("P3"));
+}
+
+// The same map and world, on a robot that observes nothing: its arrival in M2 is not checked, and
+// the plan turns it into P3's mouth, which the sewer lacks. The robot refuses the turn as no-mouth
+// (a blockage of that passage); no recovery row is tried (none makes a mouth), every passage of
+// M2 into P3's mouth is closed as learnt, P3 just inside it, and the plan is made again from M2,
+// where the robot stands: it gives the sample up and leaves by an exit. Until 2026-12-07 the
+// refusal was invalid-job: the robot was held and the beacon called `stuck` (before that, it was
+// relocalised into P1, where it was not).
+TEST(ManholeVerification, IssueNoMouthATurnIntoAMouthTheSewerLacksClosesItAndGoesOn) {
+  const SewerMap map = testing::SmallMap()
+                           .manhole("M1", 0, 0, /*exit=*/true)
+                           .manhole("M2", 30, 0)
+                           .manhole("M3", 60, 0, /*exit=*/true)
+                           .manhole("M4", 30, 30)
+                           .pipe("P1", "M1", "M2")
+                           .pipe("P2", "M2", "M3")
+                           .pipe("P3", "M2", "M4")
+                           .build();
+  Mission mission = testing::small_mission(map, "M1");
+  testing::add_task(mission, map, "sample", TaskKind::kTakeWaterSample, "P3", 10.0);
+  const Result<hal::WorldErrorProfile> profile = hal::parse_world_errors("laterals_missing=1");
+  ASSERT_TRUE(profile.has_value());
+  const Result<hal::TrueWorld> truth = hal::make_true_world(map, *profile, 1);
+  ASSERT_TRUE(truth.has_value());
+  const ManholeId m2 = *map.find_manhole("M2");
+  const PipeId p3 = *map.find_pipe("P3");
+  ASSERT_EQ(truth->world.manhole(m2).slot_count, 2U);  // P3's mouth is gone
+  ManualClock clock;
+  Replanner replanner(map, mission, {.clock = &clock});
+  hal::SimRobot robot(truth->world, mission.profile, hal::InManhole{*map.find_manhole("M1")});
+  Executor executor(map, replanner, robot);
+  std::vector<ErrorEvent> errors;
+  std::vector<FailureEvent> failures;
+  std::size_t recoveries = 0;
+  executor.subscribe([&](const Event& e) {
+    if (const auto* error = std::get_if<ErrorEvent>(&e.what)) errors.push_back(*error);
+    if (const auto* failure = std::get_if<FailureEvent>(&e.what)) failures.push_back(*failure);
+    if (std::holds_alternative<RecoveryEvent>(e.what)) ++recoveries;
+  });
+  const MissionReport report = executor.run();
+  EXPECT_EQ(report.outcome, MissionReport::Outcome::kEnded) << report;
+  ASSERT_EQ(errors.size(), 1U) << report;
+  EXPECT_EQ(errors.front().kind, hal::RobotErrorKind::kBlockage);
+  EXPECT_EQ(recoveries, 0U) << report;
+  ASSERT_EQ(failures.size(), 1U) << report;
+  EXPECT_EQ(failures.front().kind, Failure::Kind::kBlockage);
+  EXPECT_EQ(failures.front().detail.rfind("no mouth of P3 in M2: ", 0), 0U)
+      << failures.front().detail;
+  const SlotIndex p3_mouth = map.pipe(p3).ends[0].slot;
+  std::vector<ClosedPassage> expected;
+  for (std::uint16_t s = 0; s < 3; ++s) {
+    if (s != p3_mouth.value()) expected.push_back({m2, p3_mouth, SlotIndex{s}});
+  }
+  EXPECT_EQ(replanner.learnt().closed_passages, expected);
+  ASSERT_EQ(replanner.learnt().blockages.size(), 1U);
+  EXPECT_EQ(replanner.learnt().blockages.front().pipe, p3);
+  // At an exit, M1 or M3, by the mouths M2 has.
+  const auto* at = std::get_if<hal::AtSlot>(&robot.pose());
+  ASSERT_NE(at, nullptr) << report;
+  EXPECT_TRUE(at->manhole == *map.find_manhole("M1") || at->manhole == *map.find_manhole("M3"))
+      << report;
+}
+
+// Laterals missing at half the manholes that have one to lose, on the paper's mission, with a
+// robot that observes nothing (no arrival shows a mouth missing): in 6 of these 20 worlds the plan
+// turns the robot into M6's mouth of P6, which the sewer lacks. The robot refuses as no-mouth, the
+// controller closes that mouth and plans around it, and every run ends at an exit. Until
+// 2026-12-07 each such refusal held the robot (invalid-job: beacon `stuck`).
+TEST(ManholeVerification, IssueNoMouthUnobservedMissingLateralsNeverHoldTheRobot) {
+  const testing::AisTestbed ais = testing::load_ais_testbed();
+  std::size_t no_mouth = 0;
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    const WorldRun r = run_in_world(ais, "laterals_missing=0.5", seed, /*sensing=*/false);
+    EXPECT_EQ(r.report.outcome, MissionReport::Outcome::kEnded) << "seed " << seed << r.report;
+    no_mouth += static_cast<std::size_t>(std::count_if(
+        r.failures.begin(), r.failures.end(),
+        [](const FailureEvent& f) { return f.detail.rfind("no mouth of P6 in M6: ", 0) == 0; }));
+  }
+  EXPECT_GE(no_mouth, 5U);
 }
 
 // M1 -P1 (40 m)- M2, M1 the only exit, a sample 36 m along P1; in the sewer, P1 has a manhole the

@@ -157,6 +157,7 @@ const std::vector<GoldenError>& golden_errors() {
       {RobotErrorCause::kObstacle, "02221000#11000400", "02221FFF#08009EEAAE76"},
       {RobotErrorCause::kBlindEnd, "02221000#12000400", "02221FFF#0800E7DE1150"},
       {RobotErrorCause::kNoManholeSeen, "02221000#13000400", "02221FFF#080030CD844D"},
+      {RobotErrorCause::kNoMouth, "02221000#14000400", "02221FFF#080015B66F1D"},
       {RobotErrorCause::kDangerSpot, "02221000#21000400", "02221FFF#0800CDA7CE70"},
       {RobotErrorCause::kDangerousPassage, "02221000#22000400", "02221FFF#0800B4937156"},
       {RobotErrorCause::kFault, "02221000#31000400", "02221FFF#0800FC9CEE72"},
@@ -225,7 +226,7 @@ TEST(CanGoldenFrames, AnUnknownCodeIsNamedWithItsFrame) {
   }
   // Errors: codes between and beyond the table's.
   const std::vector<std::pair<int, std::string>> outcomes{
-      {4, "4 (0x04)"},     {0x10, "16 (0x10)"}, {0x14, "20 (0x14)"},
+      {4, "4 (0x04)"},     {0x10, "16 (0x10)"}, {0x15, "21 (0x15)"},
       {0x23, "35 (0x23)"}, {0x37, "55 (0x37)"}, {0xff, "255 (0xFF)"}};
   for (const auto& [code, named] : outcomes) {
     SCOPED_TRACE(code);

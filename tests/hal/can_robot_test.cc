@@ -104,6 +104,26 @@ TEST_P(CanRobotTest, ARobotFailureCrossesTheBusWithItsReason) {
   EXPECT_EQ(reboot.error().message, "reboot failed: permanent malfunction at job 1");
 }
 
+// The node types its errors with the wire codes: a turn into a mouth M2 does not have is
+// no-mouth (0x14) on the controller's side too, the words and numbers as the robot's own.
+TEST_P(CanRobotTest, ATurnIntoAMouthTheManholeLacksCrossesTheBusAsNoMouth) {
+  SimRobot local(map_, profile_, start());
+  auto n = node();
+  CanRobot robot(n->controller_bus(), {.ack_timeout_s = 5, .link_timeout_s = 10});
+  ASSERT_TRUE(robot.connect().has_value());
+  const std::vector<Job> jobs{DriveForward{0.3, 30}, TurnInManhole{0, 2, 90, 0, 1, 12, {}}};
+  JobReport last;
+  for (const Job& job : jobs) {
+    last = robot.execute(job);
+    EXPECT_EQ(last, local.execute(job)) << job;
+  }
+  ASSERT_FALSE(last.ok());
+  EXPECT_EQ(last.error->cause, RobotErrorCause::kNoMouth);
+  EXPECT_EQ(last.error->kind, RobotErrorKind::kBlockage);
+  EXPECT_THAT(last.error->reason, HasSubstr("M2 has no passage from slot 1 to slot 3"));
+  n->stop();
+}
+
 TEST_P(CanRobotTest, NoNodeMeansConnectTimesOut) {
   auto [a, b] = make_memory_can_pair();
   CanRobot robot(*a, fast());

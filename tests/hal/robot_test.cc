@@ -17,7 +17,7 @@ TEST(RobotNames, EveryValueRoundTripsThroughItsNameAndBack) {
       parse_robot_error_kind);
   expect_round_trip(
       {RobotErrorCause::kObstacle, RobotErrorCause::kBlindEnd, RobotErrorCause::kNoManholeSeen,
-       RobotErrorCause::kOtherBlockage, RobotErrorCause::kDangerSpot,
+       RobotErrorCause::kNoMouth, RobotErrorCause::kOtherBlockage, RobotErrorCause::kDangerSpot,
        RobotErrorCause::kDangerousPassage, RobotErrorCause::kOtherDanger, RobotErrorCause::kFault,
        RobotErrorCause::kBatteryEmpty, RobotErrorCause::kInvalidJob, RobotErrorCause::kNotAtStart,
        RobotErrorCause::kEmergencyStop, RobotErrorCause::kLink, RobotErrorCause::kOtherMalfunction},

@@ -290,6 +290,48 @@ TEST_F(SimRobotTest, TurningFromAnotherSlotIsAMalfunctionNotAtItsStart) {
   EXPECT_EQ(enter_in_pipe.error->cause, RobotErrorCause::kNotAtStart);
 }
 
+// A turn into a mouth the manhole does not have (the map has a lateral the sewer lacks) is a
+// blockage of that passage, no-mouth, by slot number as by the mouths seen on arrival: the
+// controller closes the way through it and plans again. Until 2026-12-07 it was invalid-job, a
+// job no robot could run, and the controller held the robot and called the beacon `stuck`.
+TEST_F(SimRobotTest, ATurnIntoAMouthTheManholeLacksIsANoMouthBlockage) {
+  SimRobot r = robot(AtSlot{manhole("M2"), SlotIndex{0}, Facing::kIntoManhole});
+  const JobReport by_slot =
+      r.execute(TurnInManhole{.from_slot = 0, .to_slot = 3, .duration_s = 20});
+  ASSERT_FALSE(by_slot.ok());
+  EXPECT_EQ(by_slot.error->cause, RobotErrorCause::kNoMouth);
+  EXPECT_EQ(by_slot.error->kind, RobotErrorKind::kBlockage);
+  EXPECT_THAT(by_slot.error->reason, HasSubstr("M2 has no passage from slot 1 to slot 4"));
+  EXPECT_DOUBLE_EQ(by_slot.progress_m, 0);
+  EXPECT_EQ(r.pose(), SimPose(AtSlot{manhole("M2"), SlotIndex{0}, Facing::kIntoManhole}));
+  const JobReport by_sighting =
+      r.execute(TurnInManhole{.from_slot = kBySighting, .to_slot = 3, .duration_s = 20});
+  ASSERT_FALSE(by_sighting.ok());
+  EXPECT_EQ(by_sighting.error->cause, RobotErrorCause::kNoMouth);
+  EXPECT_THAT(by_sighting.error->reason, HasSubstr("M2 has no mouth 4 seen from its arrival"));
+  EXPECT_EQ(r.pose(), SimPose(AtSlot{manhole("M2"), SlotIndex{0}, Facing::kIntoManhole}));
+  // The mouths it has are still there to turn into.
+  EXPECT_TRUE(r.execute(TurnInManhole{.from_slot = 0, .to_slot = 2, .duration_s = 20}).ok());
+}
+
+// A turn whose numbers are wrong wherever it is sent stays a job no robot could run: a turn from a
+// mouth into itself, a negative duration.
+TEST_F(SimRobotTest, ATurnWithBadNumbersStaysAnInvalidJob) {
+  const auto cause_of = [&](const TurnInManhole& job) {
+    SimRobot r = robot(AtSlot{manhole("M2"), SlotIndex{0}, Facing::kIntoManhole});
+    const JobReport report = r.execute(job);
+    return report.ok() ? std::optional<RobotErrorCause>() : report.error->cause;
+  };
+  EXPECT_EQ(cause_of(TurnInManhole{.from_slot = 0, .to_slot = 0, .duration_s = 20}),
+            RobotErrorCause::kInvalidJob);
+  EXPECT_EQ(cause_of(TurnInManhole{.from_slot = 0, .to_slot = 1, .duration_s = -1}),
+            RobotErrorCause::kInvalidJob);
+  EXPECT_EQ(cause_of(TurnInManhole{.from_slot = kBySighting, .to_slot = 0, .duration_s = 20}),
+            RobotErrorCause::kInvalidJob);
+  EXPECT_EQ(cause_of(TurnInManhole{.from_slot = kBySighting, .to_slot = 1, .duration_s = -1}),
+            RobotErrorCause::kInvalidJob);
+}
+
 TEST_F(SimRobotTest, TurnsIntoTheOtherPipeAtItsEndInTheManhole) {
   // P1 ends at M2 with its end 1: turning from P2 into P1 heads towards M1 (end 0).
   SimRobot r = robot(AtSlot{manhole("M2"), SlotIndex{1}, Facing::kIntoManhole});
@@ -422,7 +464,9 @@ TEST_F(SimRobotTest, InvalidJobParametersAreMalfunctions) {
   ASSERT_FALSE(report.ok());
   EXPECT_THAT(report.error->reason, HasSubstr("invalid job"));
   EXPECT_EQ(report.error->cause, RobotErrorCause::kInvalidJob);
-  EXPECT_FALSE(r.execute(TakeSample{.duration_s = -1}).ok());
+  const JobReport sample = r.execute(TakeSample{.duration_s = -1});
+  ASSERT_FALSE(sample.ok());
+  EXPECT_EQ(sample.error->cause, RobotErrorCause::kInvalidJob);
 }
 
 TEST_F(SimRobotTest, TheSameScenarioAndJobsGiveTheSameReports) {

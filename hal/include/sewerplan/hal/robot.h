@@ -47,6 +47,7 @@ enum class RobotErrorCause : std::uint8_t {
   kObstacle,       // "obstacle": something in the pipe stops the drive
   kBlindEnd,       // "blind-end": the pipe ends where the map has it go on
   kNoManholeSeen,  // "no-manhole-seen": a drive to a manhole went its bound and saw none
+  kNoMouth,        // "no-mouth": a turn into a mouth the manhole does not have (no way through)
   kOtherBlockage,  // "blockage"
   // DANGER
   kDangerSpot,        // "danger-spot": a spot in the pipe the robot must not drive onto
@@ -70,6 +71,7 @@ constexpr RobotErrorKind kind_of(RobotErrorCause cause) {
     case RobotErrorCause::kObstacle:
     case RobotErrorCause::kBlindEnd:
     case RobotErrorCause::kNoManholeSeen:
+    case RobotErrorCause::kNoMouth:
     case RobotErrorCause::kOtherBlockage:
       return RobotErrorKind::kBlockage;
     case RobotErrorCause::kDangerSpot:

@@ -139,6 +139,7 @@ inline constexpr std::array<ErrorCodeRow, kRobotErrorCauses> kErrorCodes{{
     {RobotErrorCause::kObstacle, 0x11},
     {RobotErrorCause::kBlindEnd, 0x12},
     {RobotErrorCause::kNoManholeSeen, 0x13},
+    {RobotErrorCause::kNoMouth, 0x14},
     {RobotErrorCause::kDangerSpot, 0x21},
     {RobotErrorCause::kDangerousPassage, 0x22},
     {RobotErrorCause::kFault, 0x31},
