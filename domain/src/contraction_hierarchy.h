@@ -33,7 +33,9 @@
 // shortest ways (1 or more): each shortest way of the graph has exactly one up-down form (its
 // nodes that are higher than every node between them and the source, or the target), so where
 // the count is 1 the unpacked way is the only shortest one, the route search's.
-// Not customisable: a closure needs a rebuild (TODO(#35): customisable contraction hierarchies).
+// Not customisable, and it takes no closures: its ways are those of the graph without closures,
+// blockages or hazards, so it must not answer for a mission that has any (nothing does yet; a
+// closure needs a rebuild until TODO(#35): customisable contraction hierarchies).
 //
 //   auto ch = ContractionHierarchy::build(core.adjacency_begin, core.adjacency_to,
 //                                         core.adjacency_cost, {.keep_ties = true});

@@ -13,24 +13,27 @@ namespace sewerplan::domain::detail {
 
 namespace {
 constexpr std::uint32_t kNone = 0xffffffffU;
+
+// The edge to `head` among edges[begin[tail], begin[tail + 1]).
+template <class Edge>
+const Edge& find_edge(const std::vector<std::uint32_t>& begin, const std::vector<Edge>& edges,
+                      std::uint32_t tail, std::uint32_t head) {
+  for (std::uint32_t e = begin[tail]; e < begin[tail + 1]; ++e) {
+    if (edges[e].head == head) return edges[e];
+  }
+  SEWER_CHECK(false, "a contraction hierarchy's way uses an edge it does not have");
+  return edges.front();
 }
+}  // namespace
 
 const ContractionHierarchy::Edge& ContractionHierarchy::find_up(std::uint32_t low,
                                                                 std::uint32_t high) const {
-  for (std::uint32_t e = up_begin_[low]; e < up_begin_[low + 1]; ++e) {
-    if (up_[e].head == high) return up_[e];
-  }
-  SEWER_CHECK(false, "a contraction hierarchy's way uses an edge it does not have");
-  return up_.front();
+  return find_edge(up_begin_, up_, low, high);
 }
 
 const ContractionHierarchy::Edge& ContractionHierarchy::find_down(std::uint32_t low,
                                                                   std::uint32_t high) const {
-  for (std::uint32_t e = down_begin_[low]; e < down_begin_[low + 1]; ++e) {
-    if (down_[e].head == high) return down_[e];
-  }
-  SEWER_CHECK(false, "a contraction hierarchy's way uses an edge it does not have");
-  return down_.front();
+  return find_edge(down_begin_, down_, low, high);
 }
 
 ChQuery::ChQuery(const ContractionHierarchy& ch) : ch_(ch) {

@@ -164,26 +164,53 @@ TEST(ManholeVerification, AMouthTheWorldLacksClosesItsPipeThere) {
 }
 
 // M1 -P1- M2 -P2- M3 along a street, both ends exits, and P3 north from M2 to M4, with a sample in
-// it; in the sewer, M2 has no mouth for P3 (P3 stops blind short of it). Arriving in M2, the
-// robot sees a mouth fewer: P3 is closed just inside it, and every passage of M2 into or out of
-// P3's mouth is closed as learnt, so no plan turns through a mouth that is not there.
+// it; in the sewer, M2 has no mouth for P3 (P3 stops blind short of it).
+struct StreetWithoutP3Mouth {
+  SewerMap map = testing::SmallMap()
+                     .manhole("M1", 0, 0, /*exit=*/true)
+                     .manhole("M2", 30, 0)
+                     .manhole("M3", 60, 0, /*exit=*/true)
+                     .manhole("M4", 30, 30)
+                     .pipe("P1", "M1", "M2")
+                     .pipe("P2", "M2", "M3")
+                     .pipe("P3", "M2", "M4")
+                     .build();
+  Mission mission = sample_in_p3(map);
+  Result<hal::TrueWorld> truth = without_laterals(map);
+  ManholeId m2 = *map.find_manhole("M2");
+  PipeId p3 = *map.find_pipe("P3");
+
+  static Result<hal::TrueWorld> without_laterals(const SewerMap& map) {
+    const Result<hal::WorldErrorProfile> profile = hal::parse_world_errors("laterals_missing=1");
+    if (!profile.has_value()) return profile.error();
+    return hal::make_true_world(map, *profile, 1);
+  }
+  static Mission sample_in_p3(const SewerMap& map) {
+    Mission mission = testing::small_mission(map, "M1");
+    testing::add_task(mission, map, "sample", TaskKind::kTakeWaterSample, "P3", 10.0);
+    return mission;
+  }
+  // Every passage of M2 into or out of P3's mouth, as the Replanner learns them closed.
+  std::vector<ClosedPassage> passages_through_p3() const {
+    const SlotIndex p3_mouth = map.pipe(p3).ends[0].slot;
+    std::vector<ClosedPassage> out;
+    for (std::uint16_t s = 0; s < 3; ++s) {
+      if (s != p3_mouth.value()) out.push_back({m2, p3_mouth, SlotIndex{s}});
+    }
+    return out;
+  }
+};
+
+// StreetWithoutP3Mouth: arriving in M2, the robot sees a mouth fewer: P3 is closed just inside it,
+// and every passage of M2 into or out of P3's mouth is closed as learnt, so no plan turns through a
+// mouth that is not there.
 TEST(ManholeVerification, AMouthTheWorldLacksClosesEveryPassageThroughIt) {
-  const SewerMap map = testing::SmallMap()
-                           .manhole("M1", 0, 0, /*exit=*/true)
-                           .manhole("M2", 30, 0)
-                           .manhole("M3", 60, 0, /*exit=*/true)
-                           .manhole("M4", 30, 30)
-                           .pipe("P1", "M1", "M2")
-                           .pipe("P2", "M2", "M3")
-                           .pipe("P3", "M2", "M4")
-                           .build();
-  Mission mission = testing::small_mission(map, "M1");
-  testing::add_task(mission, map, "sample", TaskKind::kTakeWaterSample, "P3", 10.0);
-  const Result<hal::WorldErrorProfile> profile = hal::parse_world_errors("laterals_missing=1");
-  ASSERT_TRUE(profile.has_value());
-  const Result<hal::TrueWorld> truth = hal::make_true_world(map, *profile, 1);
-  ASSERT_TRUE(truth.has_value());
-  const ManholeId m2 = *map.find_manhole("M2");
+  const StreetWithoutP3Mouth street;
+  ASSERT_TRUE(street.truth.has_value());
+  const SewerMap& map = street.map;
+  const Mission& mission = street.mission;
+  const Result<hal::TrueWorld>& truth = street.truth;
+  const ManholeId m2 = street.m2;
   ASSERT_EQ(truth->world.manhole(m2).slot_count, 2U);  // P3's mouth is gone
   ManualClock clock;
   Replanner replanner(map, mission, {.clock = &clock});
@@ -197,12 +224,7 @@ TEST(ManholeVerification, AMouthTheWorldLacksClosesEveryPassageThroughIt) {
   const MissionReport report = executor.run();
   EXPECT_EQ(report.outcome, MissionReport::Outcome::kEnded) << report;
   EXPECT_EQ(robot_errors, 0U) << report;
-  const SlotIndex p3_mouth = map.pipe(*map.find_pipe("P3")).ends[0].slot;
-  std::vector<ClosedPassage> expected;
-  for (std::uint16_t s = 0; s < 3; ++s) {
-    if (s != p3_mouth.value()) expected.push_back({m2, p3_mouth, SlotIndex{s}});
-  }
-  EXPECT_EQ(replanner.learnt().closed_passages, expected);
+  EXPECT_EQ(replanner.learnt().closed_passages, street.passages_through_p3());
   ASSERT_EQ(replanner.learnt().blockages.size(), 1U);
   EXPECT_EQ(replanner.learnt().blockages.front().pipe, *map.find_pipe("P3"));
 }
@@ -215,23 +237,13 @@ TEST(ManholeVerification, AMouthTheWorldLacksClosesEveryPassageThroughIt) {
 // refusal was invalid-job: the robot was held and the beacon called `stuck` (before that, it was
 // relocalised into P1, where it was not).
 TEST(ManholeVerification, IssueNoMouthATurnIntoAMouthTheSewerLacksClosesItAndGoesOn) {
-  const SewerMap map = testing::SmallMap()
-                           .manhole("M1", 0, 0, /*exit=*/true)
-                           .manhole("M2", 30, 0)
-                           .manhole("M3", 60, 0, /*exit=*/true)
-                           .manhole("M4", 30, 30)
-                           .pipe("P1", "M1", "M2")
-                           .pipe("P2", "M2", "M3")
-                           .pipe("P3", "M2", "M4")
-                           .build();
-  Mission mission = testing::small_mission(map, "M1");
-  testing::add_task(mission, map, "sample", TaskKind::kTakeWaterSample, "P3", 10.0);
-  const Result<hal::WorldErrorProfile> profile = hal::parse_world_errors("laterals_missing=1");
-  ASSERT_TRUE(profile.has_value());
-  const Result<hal::TrueWorld> truth = hal::make_true_world(map, *profile, 1);
-  ASSERT_TRUE(truth.has_value());
-  const ManholeId m2 = *map.find_manhole("M2");
-  const PipeId p3 = *map.find_pipe("P3");
+  const StreetWithoutP3Mouth street;
+  ASSERT_TRUE(street.truth.has_value());
+  const SewerMap& map = street.map;
+  const Mission& mission = street.mission;
+  const Result<hal::TrueWorld>& truth = street.truth;
+  const ManholeId m2 = street.m2;
+  const PipeId p3 = street.p3;
   ASSERT_EQ(truth->world.manhole(m2).slot_count, 2U);  // P3's mouth is gone
   ManualClock clock;
   Replanner replanner(map, mission, {.clock = &clock});
@@ -254,12 +266,7 @@ TEST(ManholeVerification, IssueNoMouthATurnIntoAMouthTheSewerLacksClosesItAndGoe
   EXPECT_EQ(failures.front().kind, Failure::Kind::kBlockage);
   EXPECT_EQ(failures.front().detail.rfind("no mouth of P3 in M2: ", 0), 0U)
       << failures.front().detail;
-  const SlotIndex p3_mouth = map.pipe(p3).ends[0].slot;
-  std::vector<ClosedPassage> expected;
-  for (std::uint16_t s = 0; s < 3; ++s) {
-    if (s != p3_mouth.value()) expected.push_back({m2, p3_mouth, SlotIndex{s}});
-  }
-  EXPECT_EQ(replanner.learnt().closed_passages, expected);
+  EXPECT_EQ(replanner.learnt().closed_passages, street.passages_through_p3());
   ASSERT_EQ(replanner.learnt().blockages.size(), 1U);
   EXPECT_EQ(replanner.learnt().blockages.front().pipe, p3);
   // At an exit, M1 or M3, by the mouths M2 has.
