@@ -79,6 +79,11 @@ class ChBuilder {
       // Not re-estimated here (lazy updates): the neighbours' estimates are renewed as each
       // node is contracted (below), and re-estimating at every pop too cost 10 % more time for
       // the same shortcuts (10k scrambled manholes, 2026-12-07).
+      if (options_.stop != nullptr && order.size() % 1024 == 0 && options_.stop->interrupted()) {
+        return Error{ErrorCode::kCancelled, "the routing index's build was stopped after " +
+                                                std::to_string(order.size()) + " of " +
+                                                std::to_string(n_) + " nodes"};
+      }
       contract(v);
       order.push_back(v);
       for (std::uint32_t x : touched_neighbours_) {

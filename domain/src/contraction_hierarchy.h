@@ -26,17 +26,18 @@
 // About 140-160 bytes per manhole + pipe of the map; a ChQuery's buffers add 30 bytes per node
 // (about 80 per manhole + pipe).
 //
-// Not yet what the compile uses: its routes break ties by (distance, node) (graph_search.h), and a
-// hierarchy's path among equal-cost alternatives is another one (docs/benchmarks.md, issue 35).
-// Built with ChOptions::keep_ties, the hierarchy keeps every shortest way (Geisberger et al.
-// drop a shortcut for a witness of equal cost; here it must be shorter), and a query counts the
-// shortest ways (1 or more): each shortest way of the graph has exactly one up-down form (its
-// nodes that are higher than every node between them and the source, or the target), so where
-// the count is 1 the unpacked way is the only shortest one, the route search's.
-// Not customisable, and it takes no closures: its ways are those of the graph without closures,
-// blockages or hazards, so it must not answer for a mission that has any (nothing does yet; a
-// closure needs a rebuild until TODO(#35): customisable contraction hierarchies).
-//
+// The compile takes its routes from it on a CompileCache that asks for it (compile_index.cc):
+// its routes break ties by (distance, node) (graph_search.h), and a hierarchy's path among
+// equal-cost alternatives is another one (docs/benchmarks.md, issue 35). Built with
+// ChOptions::keep_ties, the hierarchy keeps every shortest way (Geisberger et al. drop a shortcut
+// for a witness of equal cost; here it must be shorter), and a query counts the shortest ways
+// (1 or more): each shortest way of the graph has exactly one up-down form (its nodes that are
+// higher than every node between them and the source, or the target), so where the count is 1
+// the unpacked way is the only shortest one, the route search's.
+// Not customisable: its ways are those of the graph without closures, blockages or hazards. A
+// mission with some takes a way from it only where none of them touches it (compile_index.cc
+// says why that way is then the mission's); the others need a search (TODO(#35): customisable
+// contraction hierarchies, to answer those too).
 //   auto ch = ContractionHierarchy::build(core.adjacency_begin, core.adjacency_to,
 //                                         core.adjacency_cost, {.keep_ties = true});
 //   ChQuery query(*ch);
@@ -52,6 +53,7 @@
 #include <vector>
 
 #include "sewerplan/core/result.h"
+#include "sewerplan/core/stop_condition.h"
 #include "sewerplan/domain/compiled_task.h"
 
 #include "position_graph.h"
@@ -70,6 +72,9 @@ struct ChOptions {
   // same nodes are counted), so that a query can tell whether a shortest way is the only one
   // (ChQuery: `unique`). 3 % more shortcuts on 10k scrambled manholes (docs/benchmarks.md).
   bool keep_ties = false;
+  // Asked between slices of 1,024 contractions (null: never): a build that it stops fails with
+  // kCancelled (the build of 100,000 scrambled manholes takes seconds, a million's a minute).
+  const StopCondition* stop = nullptr;
 };
 
 struct ChStatistics {
@@ -85,7 +90,7 @@ class ContractionHierarchy {
  public:
   // The graph: the moves out of node n are to[e], cost[e] for e in [begin[n], begin[n + 1]).
   // Errors: a negative cost, a move or shortcut of 2^32 - 1 ms or more, 2^31 - 1 nodes or more
-  // (kInvalidArgument).
+  // (kInvalidArgument); stopped by options.stop (kCancelled).
   // Runtime: about O(nodes x (degree^2 x witness limit)) in practice; no bound in theory.
   static Result<ContractionHierarchy> build(std::span<const std::uint32_t> begin,
                                             std::span<const Node> to, std::span<const Cost> cost,
@@ -96,6 +101,7 @@ class ContractionHierarchy {
 
  private:
   friend class ChQuery;
+  friend class ChTable;
   friend class ChBuilder;
   static constexpr std::uint32_t kNoMiddle = 0x7fffffffU;
   struct Edge {
@@ -114,6 +120,11 @@ class ContractionHierarchy {
   const Edge& find_up(std::uint32_t low, std::uint32_t high) const;
   const Edge& find_down(std::uint32_t low, std::uint32_t high) const;
 
+  // Appends the graph's nodes of the edge tail -> head (by rank; `middle` its middle node, or
+  // kNoMiddle) after tail: its shortcuts unpacked, head last.
+  void unpack(std::uint32_t tail, std::uint32_t head, std::uint32_t middle,
+              std::vector<Node>& out) const;
+
   std::vector<std::uint32_t> rank_;  // by node
   std::vector<Node> node_;           // by rank
   // By rank u: [up_begin_[u], up_begin_[u + 1]) the moves u -> head with a higher head;
@@ -123,6 +134,43 @@ class ContractionHierarchy {
   std::vector<std::uint32_t> down_begin_;
   std::vector<Edge> down_;
   ChStatistics statistics_;
+};
+
+// A many-to-many table that keeps what unpacks its ways (ChQuery::table_with_ways): each
+// source's upward search tree, each target's backward one, and each pair's meeting node. A few
+// dozen bytes per node the searches settle (about a thousand per key on 100,000 scrambled
+// manholes), where a way unpacked per pair takes a point-to-point query of its own.
+class ChTable {
+ public:
+  std::size_t sources() const { return tree_begin_.empty() ? 0 : tree_begin_.size() - 1; }
+  std::size_t targets() const { return targets_; }
+  Cost distance(std::size_t i, std::size_t j) const { return dist_[i * targets_ + j]; }
+  // Whether the pair's shortest way is the only one (on a hierarchy built with keep_ties; false
+  // if there is none).
+  bool unique(std::size_t i, std::size_t j) const { return ways_[i * targets_ + j] == 1; }
+  // The pair's way into `out` (source first, target last, every step a move of the graph),
+  // empty if there is none; among several shortest ways, one of them.
+  void way(std::size_t i, std::size_t j, std::vector<Node>& out) const;
+
+ private:
+  friend class ChQuery;
+  struct Parent {
+    std::uint32_t node;    // by rank
+    std::uint32_t target;  // in down_ only: the target's index
+    std::uint32_t parent;  // by rank; none at the search's root
+  };
+  // The parent of `node` in source i's tree (up_) or in target j's (down_).
+  std::uint32_t up_parent(std::size_t i, std::uint32_t node) const;
+  std::uint32_t down_parent(std::size_t j, std::uint32_t node) const;
+
+  const ContractionHierarchy* ch_ = nullptr;
+  std::size_t targets_ = 0;
+  std::vector<Cost> dist_;               // by pair, i * targets + j
+  std::vector<std::uint8_t> ways_;       // by pair: 0 none, 1 one, 2 more
+  std::vector<std::uint32_t> middle_;    // by pair: the meeting node, by rank
+  std::vector<Parent> up_;               // by source, then node
+  std::vector<std::size_t> tree_begin_;  // source i's in up_[tree_begin_[i], tree_begin_[i + 1])
+  std::vector<Parent> down_;             // by node, then target
 };
 
 // Queries on one hierarchy, with their buffers (sized to the hierarchy once, reset through the
@@ -145,6 +193,9 @@ class ChQuery {
   // Runtime: one upward search per source and target, and the buckets of the nodes settled.
   void table(std::span<const Node> sources, std::span<const Node> targets, std::vector<Cost>& out,
              std::vector<bool>* unique = nullptr);
+  // The same, with the ways kept to be unpacked (ChTable::way), and the unique flags.
+  // Runtime: as table(), and the trees' nodes sorted.
+  void table_with_ways(std::span<const Node> sources, std::span<const Node> targets, ChTable& out);
   // Nodes settled over all queries (a measure of work).
   std::size_t settled_total() const { return settled_total_; }
 
@@ -161,7 +212,11 @@ class ChQuery {
     std::uint32_t target;
     Cost dist;
     std::uint32_t ways;
+    std::uint32_t parent;  // in the target's backward search
   };
+  // table() and table_with_ways(): with `kept` (not null), the trees and meeting nodes too.
+  void fill_table(std::span<const Node> sources, std::span<const Node> targets,
+                  std::vector<Cost>& out, std::vector<bool>* unique, ChTable* kept);
 
   void start(Side& side, std::uint32_t source);
   static void clear(Side& side);
@@ -172,8 +227,6 @@ class ChQuery {
   std::uint32_t settle_next(Side& side, Cost* d, bool* stalled);
   // The distance, the meeting node in `*middle`, and (with `ways`) the shortest ways, 1 or 2.
   Cost meet(Node s, Node t, std::uint32_t* middle, std::uint32_t* ways);
-  void unpack(std::uint32_t tail, std::uint32_t head, std::uint32_t middle,
-              std::vector<Node>& out) const;
 
   const ContractionHierarchy& ch_;
   Side forward_;
@@ -181,7 +234,8 @@ class ChQuery {
   std::vector<BucketEntry> buckets_;
   std::vector<std::uint32_t> bucket_begin_;  // by rank, for the nodes with a bucket: index + 1
   std::vector<std::uint32_t> bucket_nodes_;
-  std::vector<std::uint32_t> row_ways_;  // by target: the ways at the row's distance
+  std::vector<std::uint32_t> row_ways_;    // by target: the ways at the row's distance
+  std::vector<std::uint32_t> row_middle_;  // by target: where the row's best way meets it
   std::size_t settled_total_ = 0;
 };
 

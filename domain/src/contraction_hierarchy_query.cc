@@ -155,16 +155,16 @@ Cost ChQuery::distance(Node s, Node t, bool* unique) {
   return d;
 }
 
-void ChQuery::unpack(std::uint32_t tail, std::uint32_t head, std::uint32_t middle,
-                     std::vector<Node>& out) const {
-  if (middle == ContractionHierarchy::kNoMiddle) {
-    out.push_back(ch_.node_[head]);
+void ContractionHierarchy::unpack(std::uint32_t tail, std::uint32_t head, std::uint32_t middle,
+                                  std::vector<Node>& out) const {
+  if (middle == kNoMiddle) {
+    out.push_back(node_[head]);
     return;
   }
   // The middle is contracted before both ends: tail -> middle is a down edge at it, middle ->
   // head an up edge.
-  unpack(tail, middle, ch_.find_down(middle, tail).middle(), out);
-  unpack(middle, head, ch_.find_up(middle, head).middle(), out);
+  unpack(tail, middle, find_down(middle, tail).middle(), out);
+  unpack(middle, head, find_up(middle, head).middle(), out);
 }
 
 Cost ChQuery::path(Node s, Node t, std::vector<Node>& out, bool* unique) {
@@ -180,19 +180,33 @@ Cost ChQuery::path(Node s, Node t, std::vector<Node>& out, bool* unique) {
   std::reverse(up.begin(), up.end());
   out.push_back(s);
   for (std::size_t i = 1; i < up.size(); ++i) {
-    unpack(up[i - 1], up[i], ch_.find_up(up[i - 1], up[i]).middle(), out);
+    ch_.unpack(up[i - 1], up[i], ch_.find_up(up[i - 1], up[i]).middle(), out);
   }
   for (std::uint32_t x = middle; backward_.parent[x] != kNone; x = backward_.parent[x]) {
     const std::uint32_t next = backward_.parent[x];
-    unpack(x, next, ch_.find_down(next, x).middle(), out);
+    ch_.unpack(x, next, ch_.find_down(next, x).middle(), out);
   }
   return best;
 }
 
 void ChQuery::table(std::span<const Node> sources, std::span<const Node> targets,
                     std::vector<Cost>& out, std::vector<bool>* unique) {
+  fill_table(sources, targets, out, unique, nullptr);
+}
+
+void ChQuery::table_with_ways(std::span<const Node> sources, std::span<const Node> targets,
+                              ChTable& out) {
+  out = ChTable{};
+  out.ch_ = &ch_;
+  out.targets_ = targets.size();
+  fill_table(sources, targets, out.dist_, nullptr, &out);
+}
+
+void ChQuery::fill_table(std::span<const Node> sources, std::span<const Node> targets,
+                         std::vector<Cost>& out, std::vector<bool>* unique, ChTable* kept) {
   out.assign(sources.size() * targets.size(), kInfiniteCost);
   row_ways_.assign(targets.size(), 0);
+  row_middle_.assign(targets.size(), kNone);
   buckets_.clear();
   for (std::uint32_t j = 0; j < targets.size(); ++j) {
     assert(targets[j] < ch_.size());
@@ -200,7 +214,7 @@ void ChQuery::table(std::span<const Node> sources, std::span<const Node> targets
     Cost d = 0;
     bool stalled = false;
     for (std::uint32_t u; (u = settle_next<false>(backward_, &d, &stalled)) != kNone;) {
-      if (!stalled) buckets_.push_back({u, j, d, backward_.ways[u]});
+      if (!stalled) buckets_.push_back({u, j, d, backward_.ways[u], backward_.parent[u]});
     }
   }
   std::sort(buckets_.begin(), buckets_.end(), [](const BucketEntry& a, const BucketEntry& b) {
@@ -212,6 +226,13 @@ void ChQuery::table(std::span<const Node> sources, std::span<const Node> targets
       bucket_nodes_.push_back(buckets_[i].node);
     }
   }
+  if (kept != nullptr) {
+    kept->down_.reserve(buckets_.size());
+    for (const BucketEntry& b : buckets_) kept->down_.push_back({b.node, b.target, b.parent});
+    kept->ways_.assign(out.size(), 0);
+    kept->middle_.assign(out.size(), kNone);
+    kept->tree_begin_.push_back(0);
+  }
   for (std::size_t i = 0; i < sources.size(); ++i) {
     assert(sources[i] < ch_.size());
     start(forward_, ch_.rank_[sources[i]]);
@@ -220,7 +241,9 @@ void ChQuery::table(std::span<const Node> sources, std::span<const Node> targets
     Cost d = 0;
     bool stalled = false;
     for (std::uint32_t u; (u = settle_next<true>(forward_, &d, &stalled)) != kNone;) {
-      if (stalled || bucket_begin_[u] == 0) continue;
+      if (stalled) continue;
+      if (kept != nullptr) kept->up_.push_back({u, 0, forward_.parent[u]});
+      if (bucket_begin_[u] == 0) continue;
       for (std::uint32_t e = bucket_begin_[u] - 1; e < buckets_.size() && buckets_[e].node == u;
            ++e) {
         const BucketEntry& entry = buckets_[e];
@@ -229,6 +252,7 @@ void ChQuery::table(std::span<const Node> sources, std::span<const Node> targets
         if (via < row[entry.target]) {
           row[entry.target] = via;
           row_ways_[entry.target] = ways;
+          row_middle_[entry.target] = u;
         } else if (via == row[entry.target]) {
           row_ways_[entry.target] = std::min(2U, row_ways_[entry.target] + ways);
         }
@@ -240,9 +264,55 @@ void ChQuery::table(std::span<const Node> sources, std::span<const Node> targets
         (*unique)[i * targets.size() + j] = row_ways_[j] == 1;
       }
     }
+    if (kept != nullptr) {
+      for (std::size_t j = 0; j < targets.size(); ++j) {
+        kept->ways_[i * targets.size() + j] = static_cast<std::uint8_t>(row_ways_[j]);
+        kept->middle_[i * targets.size() + j] = row_middle_[j];
+      }
+      const auto begin = kept->up_.begin() + static_cast<std::ptrdiff_t>(kept->tree_begin_.back());
+      std::sort(begin, kept->up_.end(),
+                [](const ChTable::Parent& a, const ChTable::Parent& b) { return a.node < b.node; });
+      kept->tree_begin_.push_back(kept->up_.size());
+    }
   }
   for (std::uint32_t x : bucket_nodes_) bucket_begin_[x] = 0;
   bucket_nodes_.clear();
+}
+
+std::uint32_t ChTable::up_parent(std::size_t i, std::uint32_t node) const {
+  const auto begin = up_.begin() + static_cast<std::ptrdiff_t>(tree_begin_[i]);
+  const auto end = up_.begin() + static_cast<std::ptrdiff_t>(tree_begin_[i + 1]);
+  const auto it = std::lower_bound(begin, end, node,
+                                   [](const Parent& p, std::uint32_t n) { return p.node < n; });
+  SEWER_CHECK(it != end && it->node == node, "a table's way leaves its source's search tree");
+  return it->parent;
+}
+
+std::uint32_t ChTable::down_parent(std::size_t j, std::uint32_t node) const {
+  const auto it =
+      std::lower_bound(down_.begin(), down_.end(), std::pair{node, j},
+                       [](const Parent& p, const std::pair<std::uint32_t, std::size_t>& k) {
+                         return p.node != k.first ? p.node < k.first : p.target < k.second;
+                       });
+  SEWER_CHECK(it != down_.end() && it->node == node && it->target == j,
+              "a table's way leaves its target's search tree");
+  return it->parent;
+}
+
+void ChTable::way(std::size_t i, std::size_t j, std::vector<Node>& out) const {
+  out.clear();
+  if (distance(i, j) == kInfiniteCost) return;
+  const std::uint32_t middle = middle_[i * targets_ + j];
+  std::vector<std::uint32_t> up;
+  for (std::uint32_t x = middle; x != kNone; x = up_parent(i, x)) up.push_back(x);
+  std::reverse(up.begin(), up.end());
+  out.push_back(ch_->node_[up.front()]);
+  for (std::size_t k = 1; k < up.size(); ++k) {
+    ch_->unpack(up[k - 1], up[k], ch_->find_up(up[k - 1], up[k]).middle(), out);
+  }
+  for (std::uint32_t x = middle, next; (next = down_parent(j, x)) != kNone; x = next) {
+    ch_->unpack(x, next, ch_->find_down(next, x).middle(), out);
+  }
 }
 
 }  // namespace sewerplan::domain::detail

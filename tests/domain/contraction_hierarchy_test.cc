@@ -7,9 +7,11 @@
 #include "contraction_hierarchy.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <queue>
+#include <string>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -277,6 +279,8 @@ std::size_t expect_uniqueness(const Csr& g, const std::vector<Node>& sources,
   std::vector<Cost> table;
   std::vector<bool> unique_in_table;
   query.table(sources, targets, table, &unique_in_table);
+  ChTable with_ways;
+  query.table_with_ways(sources, targets, with_ways);
   std::size_t tied = 0;
   std::vector<Node> path, want;
   for (std::size_t i = 0; i < sources.size(); ++i) {
@@ -292,12 +296,21 @@ std::size_t expect_uniqueness(const Csr& g, const std::vector<Node>& sources,
       EXPECT_EQ(query.path(s, t, path, &unique), ref.dist[t]);
       EXPECT_EQ(unique, want_unique) << s << " -> " << t;
       EXPECT_EQ(unique_in_table[i * targets.size() + j], want_unique) << s << " -> " << t;
+      EXPECT_EQ(with_ways.distance(i, j), ref.dist[t]) << s << " -> " << t;
+      EXPECT_EQ(with_ways.unique(i, j), want_unique) << s << " -> " << t;
+      std::vector<Node> table_way;
+      with_ways.way(i, j, table_way);
       if (want_unique) {
         want.clear();
         for (Node x = t; x != s; x = ref.parent[x]) want.push_back(x);
         want.push_back(s);
         std::reverse(want.begin(), want.end());
         EXPECT_EQ(path, want) << s << " -> " << t;
+        EXPECT_EQ(table_way, want) << s << " -> " << t;
+      } else if (ref.dist[t] != kInfiniteCost) {
+        expect_way(g, s, t, table_way, ref.dist[t]);  // one of the shortest
+      } else {
+        EXPECT_TRUE(table_way.empty());
       }
     }
   }
@@ -367,6 +380,24 @@ TEST(ContractionHierarchy, RefusesNegativeAndOversizedCosts) {
   EXPECT_GT(ok->statistics().shortcuts, 0U);
   ChQuery query(*ok);
   EXPECT_EQ(query.distance(3, 8), 4'000'000'002);
+}
+
+// A build stopped by its stop condition fails as cancelled, naming how far it got, and one that
+// is not stopped is built whole.
+TEST(ContractionHierarchy, StopsItsBuildWhenAskedAndSaysHowFarItGot) {
+  const SewerMap map = *bench::generate_scrambled_network({.manholes = 400, .seed = 5});
+  const Csr g = csr_of(map, *bench::scrambled_mission(map, 2, 1));
+  std::atomic<bool> cancel{true};
+  const StopCondition stop = StopCondition().with_cancel(cancel);
+  const auto stopped = ContractionHierarchy::build(g.begin, g.to, g.cost, {.stop = &stop});
+  ASSERT_FALSE(stopped.has_value());
+  EXPECT_EQ(stopped.error().code, ErrorCode::kCancelled);
+  EXPECT_NE(stopped.error().message.find("after 0 of"), std::string::npos)
+      << stopped.error().message;
+  cancel = false;
+  const auto built = ContractionHierarchy::build(g.begin, g.to, g.cost, {.stop = &stop});
+  ASSERT_TRUE(built.has_value());
+  EXPECT_EQ(built->size(), g.begin.size() - 1);
 }
 
 }  // namespace
