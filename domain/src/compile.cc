@@ -28,10 +28,14 @@ namespace sewerplan::domain {
 struct CompileCache::State {
   std::mutex mutex;
   std::shared_ptr<detail::GraphCore> core;
+  RoutingIndex index = RoutingIndex::kAuto;
 };
 
-CompileCache::CompileCache() : state_(std::make_unique<State>()) {}
+CompileCache::CompileCache(RoutingIndex index) : state_(std::make_unique<State>()) {
+  state_->index = index;
+}
 CompileCache::~CompileCache() = default;
+CompileCache::RoutingIndex CompileCache::routing_index() const { return state_->index; }
 
 SewerTask::SewerTask() = default;
 SewerTask::SewerTask(SewerTask&&) noexcept = default;

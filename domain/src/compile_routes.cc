@@ -78,10 +78,21 @@ void SewerTaskCompiler::route(GraphSearch& search) {
     if (!options_.risk.active()) exits = &exit_node();
   }
   result_.graph_->set_risk_weight(options_.risk.blockage_s);
-  // From the start first: only the keys it reaches within the bound take part after.
-  auto found = search.run(std::span<const Node>(keys_.data(), 1), targets, bound_,
-                          GraphSearch::Direction::kForward, exits);
-  store_routes(search, 0, found);
+  // From the start first: only the keys it reaches within the bound take part after. From the
+  // routing index when one is kept: the keys that are not targets are never entered by a move
+  // (can_be_entered), so the search leaves them unreached too.
+  detail::ChQuery* index = routing_index(false, 0);
+  index_table_targets_ = targets;
+  std::sort(index_table_targets_.begin(), index_table_targets_.end());
+  std::optional<Node> found;
+  if (index != nullptr) {
+    index_row(*index, search, 0, targets, bound_, exits != nullptr, &found);
+  } else {
+    found = search.run(std::span<const Node>(keys_.data(), 1), targets, bound_,
+                       GraphSearch::Direction::kForward, exits);
+    store_routes(search, 0, found);
+    ++result_.statistics_.route_searches;
+  }
   if (needs_unbounded_diagnosis()) {
     // Some task is out of reach within the battery: find out whether it is out of reach at all,
     // so that the reason given is the right one.
@@ -94,10 +105,11 @@ void SewerTaskCompiler::route(GraphSearch& search) {
   // building it (one pass over the map): on 100,000 manholes numbered without spatial order a
   // search settles a node in about a third of the time (docs/benchmarks.md). A stop condition
   // that fires meanwhile leaves the core without it, and the next search stops at its check.
-  if (!result_.graph_->has_adjacency() &&
-      (search.settled_total() + 1) * (k() - 1) > result_.graph_->size()) {
+  const std::size_t settled_estimate = (search.settled_total() + 1) * (k() - 1);
+  if (!result_.graph_->has_adjacency() && settled_estimate > result_.graph_->size()) {
     (void)result_.graph_->build_adjacency(&options_.stop);
   }
+  if (index == nullptr) index = routing_index(!search.interrupted(), settled_estimate);
   // Issue 14: sized once from the start's routes (route_store.h).
   route_store_.reserve_rows(k());
   std::vector<Node> reachable;
@@ -110,7 +122,6 @@ void SewerTaskCompiler::route(GraphSearch& search) {
     }
   }
   open_memo(reachable, exits != nullptr);
-  std::size_t searches = 1;
   for (std::size_t a = 1; a < k() && !search.interrupted(); ++a) {
     // A task's spot is reached by the task's action, not by a route: always route from it. So
     // is a pipe end a task leaves the robot at: when no route from the start reaches it within
@@ -130,9 +141,20 @@ void SewerTaskCompiler::route(GraphSearch& search) {
       ++result_.statistics_.reused_searches;
       continue;
     }
+    // From the index where it gives the search's row. A spot's search keeps every key it
+    // settled: the index gives the same only when every key a move enters is a target.
+    if (index != nullptr && (!spot || reachable.size() == targets.size())) {
+      index_row(*index, search, a, reachable, row_bound, exits != nullptr, &found);
+      if (!spot) {
+        remember_row(a, row_bound, found, reachable_key);
+      } else if (!reachable.empty() || exits != nullptr) {
+        remember_spot_row(a, found);
+      }
+      continue;
+    }
     found = search.run(std::span<const Node>(&keys_[a], 1), reachable, row_bound,
                        GraphSearch::Direction::kForward, exits);
-    ++searches;
+    ++result_.statistics_.route_searches;
     store_routes(search, a, found, spot ? nullptr : &reachable_key);
     if (!spot) {
       remember_row(a, row_bound, found, reachable_key);
@@ -140,9 +162,8 @@ void SewerTaskCompiler::route(GraphSearch& search) {
       remember_spot_row(a, found);
     }
   }
-  result_.statistics_.route_searches = searches;
   result_.graph_->set_risk_weight(options_.risk.return_s);
-  if (ends_at_exit_ && !search.interrupted()) route_to_exits(search, targets);
+  if (ends_at_exit_ && !search.interrupted()) route_to_exits(search, targets, index);
   result_.graph_->set_risk_weight(0);
   // Kept for the next compile on this core, once every search has run to its end.
   if (options_.cache != nullptr && !search.interrupted()) {
@@ -372,7 +393,8 @@ void SewerTaskCompiler::store_routes(GraphSearch& search, std::size_t a, std::op
   }
 }
 
-void SewerTaskCompiler::route_to_exits(GraphSearch& search, const std::vector<Node>& targets) {
+void SewerTaskCompiler::route_to_exits(GraphSearch& search, const std::vector<Node>& targets,
+                                       detail::ChQuery* index) {
   for (std::size_t a = 0; a < k(); ++a) {
     const Node n = keys_[a];
     const bool in_reach =
@@ -380,6 +402,11 @@ void SewerTaskCompiler::route_to_exits(GraphSearch& search, const std::vector<No
         (std::find(targets.begin(), targets.end(), n) != targets.end() && dist_[a] <= bound_);
     if (!in_reach || exit_dist_[a] != kInfiniteCost) continue;
     if (reuse_exit_search(a)) continue;
+    if (std::optional<Node> exit; index != nullptr && index_exit(*index, a, bound_, &exit)) {
+      ++result_.statistics_.index_rows;
+      remember_exit_search(a, exit);
+      continue;
+    }
     const std::optional<Node> exit = search.run_to_nearest(n, exit_node(), bound_);
     ++result_.statistics_.route_searches;
     if (exit) {

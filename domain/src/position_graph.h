@@ -59,6 +59,8 @@ struct SearchScratch {
 };
 
 struct RouteMemo;
+class ContractionHierarchy;
+class ChQuery;
 
 // The part of a PositionGraph that depends on the map and the robot alone, with the scratch
 // arrays of the compile's route searches and its exit marks.
@@ -103,6 +105,13 @@ struct GraphCore {
   std::vector<ManholeId> exits_marked;
   // The last compile's route searches, for the next compile on this core (route_memo.h).
   std::shared_ptr<RouteMemo> route_memo;
+  // Issue 35: the routing index over the adjacency (contraction_hierarchy.h, built with
+  // keep_ties) and a query's buffers, built by the first compile on a CompileCache that asks for
+  // it (compile_index.cc); null until then. `hierarchy_failed`: a build failed (a cost too large
+  // for its edges), not to be tried again on this core.
+  std::shared_ptr<const ContractionHierarchy> hierarchy;
+  std::shared_ptr<ChQuery> hierarchy_query;
+  bool hierarchy_failed = false;
   bool complete = false;
 
  private:
@@ -219,6 +228,24 @@ class PositionGraph {
   // f(to, cost) for each move out of `from`.
   template <class F>
   void for_each_successor(Node from, F&& f) const;
+  // Whether each step of `route` (nodes of the map, not extra spots) that the core's adjacency
+  // has is a move of this graph with the adjacency's cost: no step leaves a node whose moves the
+  // mission's blockages, closed passages or (with a risk weight set) hazards change, and none
+  // enters a closed or excluded pipe. This graph's moves are the adjacency's less those, and
+  // those costing more (issue 35: a route of the routing index that passes this check is one
+  // of this graph's, at the index's cost).
+  bool reads_adjacency(std::span<const Node> route) const {
+    const Node first_end = manholes_ + slots_;
+    for (std::size_t i = 0; i + 1 < route.size(); ++i) {
+      if (route[i] >= first_end + 2 * pipes_ || generated(route[i])) return false;
+      const Node to = route[i + 1];
+      if (to >= first_end) {
+        const PipeId p{(to - first_end) / 2};
+        if (!drivable_[p.index()] || excluded(p)) return false;
+      }
+    }
+    return true;
+  }
   // f(from, cost) for each move into `to`.
   template <class F>
   void for_each_predecessor(Node to, F&& f) const;

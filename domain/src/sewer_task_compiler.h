@@ -4,6 +4,8 @@
 //   compile.cc             the compile's course (run), the goals, the task's actions;
 //   compile_routes.cc      the keys and the route searches between them, with the route memo's
 //                          rows taken from and kept for the next compile (route_memo.h, issue 35);
+//   compile_index.cc       the routes taken from the routing index where it gives the search's
+//                          (CompileCache::RoutingIndex, issue 35);
 //   compile_contingency.cc the contingency reserves: the battery to back out of a hazard and reach
 //                          an exit another way (CompileOptions::contingency, issue 34).
 // Thread safety: one compile per object, on one thread.
@@ -22,6 +24,7 @@
 #include "sewerplan/domain/compile.h"
 
 #include "compile_reasons.h"
+#include "contraction_hierarchy.h"
 #include "graph_search.h"
 #include "position_graph.h"
 #include "route_memo.h"
@@ -135,13 +138,48 @@ class SewerTaskCompiler {
   void store_routes(GraphSearch& search, std::size_t a, std::optional<Node> exit,
                     const std::vector<bool>* only = nullptr);
 
+  // Issue 35: the routing index (contraction_hierarchy.h) of the cache's core, built here if the
+  // cache's policy asks for it (CompileCache::RoutingIndex; `settled_estimate`: the nodes the
+  // searches from the other keys would settle, for kAuto; `may_build`: false before any search);
+  // null: every route comes from a search.
+  detail::ChQuery* routing_index(bool may_build, std::size_t settled_estimate);
+  // Where a route from key a starts in the index: the key itself, or (an extra spot, not in the
+  // index) the slots its drives out of its pipe reach, with their cost in this graph.
+  struct IndexStart {
+    Node node;
+    Cost cost;
+  };
+  std::vector<IndexStart> index_starts(std::size_t a) const;
+  // The nodes the index's routes from the keys start at (index_starts, of every key), sorted.
+  std::vector<Node> index_sources() const;
+  // The route from key a (starting at `starts`) to t (one of index_table_targets_), as a search
+  // from a finds it: its cost in `*cost` (kInfiniteCost: none), within `bound` the route in
+  // index_path_. False where it lies within the bound but is not the only shortest way or not
+  // one of this graph's.
+  bool index_route(detail::ChQuery& index, std::size_t a, std::span<const IndexStart> starts,
+                   Node t, Cost bound, Cost* cost);
+  // Key a's row, as a search from it within `bound` to `targets` (and to its nearest exit, with
+  // `exit_goal`) would give it: the routes to the targets (and to a itself) within the bound, the
+  // others left unreached, and the exit in `*exit`. From the index where its route is the only
+  // shortest way and one of this mission's graph (PositionGraph::reads_adjacency); the others
+  // from one search (`search`) to those targets alone.
+  void index_row(detail::ChQuery& index, GraphSearch& search, std::size_t a,
+                 std::span<const Node> targets, Cost bound, bool exit_goal,
+                 std::optional<Node>* exit);
+  // Key a's nearest exit within `bound` from the index, as a search would settle it first (least
+  // distance, then node), with its route stored in exit_dist_ and exit_routes_; false, with
+  // nothing stored, where a search must find it. `*exit`: none when no exit is within the bound.
+  bool index_exit(detail::ChQuery& index, std::size_t a, Cost bound, std::optional<Node>* exit);
+
   // Each key's cheapest way to its nearest exit, where the key's own search (bounded by what is
   // left of the battery after reaching the key) did not settle one: a forward search that stops
   // at the first exit it settles, within the whole battery, so that the reasons given for an
   // impossible mission name the right energy. (One backward search from all exits would grow a
   // ball around every exit of the city; with exits every few manholes the forward balls are
   // small.)
-  void route_to_exits(GraphSearch& search, const std::vector<Node>& targets);
+  // Where the routing index (`index`, if not null) gives a key's way, it is taken from it.
+  void route_to_exits(GraphSearch& search, const std::vector<Node>& targets,
+                      detail::ChQuery* index);
 
   // Takes key a's way to its nearest exit from the last compile's (RouteMemo::ExitSearch), if it
   // is what a search within the bound would find. A spot's is kept by its pipe and offset, its
@@ -258,6 +296,15 @@ class SewerTaskCompiler {
   std::vector<RouteRef> routes_;
   std::vector<Cost> exit_dist_;
   std::vector<RouteRef> exit_routes_;
+  // The routing index's table between index_sources() and the route targets (sorted), built
+  // on the first index_route; its distances from them to each exit node (GraphCore::
+  // marked_exits), on the first index_exit; and a route's buffer.
+  std::vector<Node> index_table_sources_;
+  std::vector<Node> index_table_targets_;
+  detail::ChTable index_table_;
+  std::vector<Node> index_exit_sources_;
+  std::vector<Cost> index_exit_table_;
+  std::vector<Node> index_path_;
   bool contingency_ = false;
   detail::SearchScratch contingency_scratch_;  // declared first: outlives its search
   std::unique_ptr<GraphSearch> contingency_search_;

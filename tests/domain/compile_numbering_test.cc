@@ -221,8 +221,9 @@ std::vector<PipeId> driven_pipes(const SewerTask& task) {
 // holds the cache's core while it lives: the next compile takes it after).
 class CachedAndFresh {
  public:
-  CachedAndFresh(const SewerMap& map, const CompileOptions& options)
-      : map_(map), fresh_(options), cached_(options) {
+  CachedAndFresh(const SewerMap& map, const CompileOptions& options,
+                 CompileCache::RoutingIndex index = CompileCache::RoutingIndex::kNever)
+      : map_(map), cache_(index), fresh_(options), cached_(options) {
     cached_.cache = &cache_;
   }
 
@@ -266,12 +267,18 @@ class CachedAndFresh {
 // in a pipe past the start, a task done, energy used, a blockage on a pipe the routes use, a
 // passage closed, a pipe closed, then a closure lifted (which the memo cannot follow: it must not
 // be used) and a closure again.
-void expect_replans_as_afresh(const SewerMap& map, Mission mission, CompileOptions options) {
-  CachedAndFresh compiles(map, options);
+// `index`: the cache's routing index (by default none: the rows come from the memo or searches).
+// Returns the rows and exit ways the cached compiles took from the index.
+std::size_t expect_replans_as_afresh(
+    const SewerMap& map, Mission mission, CompileOptions options,
+    CompileCache::RoutingIndex index = CompileCache::RoutingIndex::kNever) {
+  CachedAndFresh compiles(map, options, index);
   MissionProgress progress = initial_progress(mission, map);
   const std::vector<PipeId> used = compiles.first(mission, progress);
-  ASSERT_GE(used.size(), 6U);
+  EXPECT_GE(used.size(), 6U);
+  if (used.size() < 6) return 0;
   std::size_t reused = 0;
+  std::size_t index_rows = 0;
   for (int step = 0; step < 8; ++step) {
     SCOPED_TRACE("step " + std::to_string(step));
     const PipeId p = used[static_cast<std::size_t>(step) * used.size() / 9];
@@ -312,16 +319,23 @@ void expect_replans_as_afresh(const SewerMap& map, Mission mission, CompileOptio
     if (!stats) continue;
     EXPECT_EQ(stats->fresh.reused_searches, 0U);
     if (step == 0) {
-      // Nothing changed: every row from the memo, the spots' too; only the start's is searched.
-      EXPECT_EQ(stats->cached.route_searches, 1U);
+      // Nothing changed: every row from the memo, the spots' too; only the start's is searched
+      // (or taken from the index).
+      EXPECT_LE(stats->cached.route_searches, 1U);
+      if (index == CompileCache::RoutingIndex::kNever) {
+        EXPECT_EQ(stats->cached.route_searches, 1U);
+      }
     }
     if (step == 5) {
       EXPECT_EQ(stats->cached.reused_searches, 0U) << "a lifted closure must not reuse";
     }
     reused += stats->cached.reused_searches;
+    index_rows += stats->cached.index_rows;
+    EXPECT_EQ(stats->fresh.index_rows, 0U);
   }
   // The memo must have been used, or the comparison proves nothing.
   EXPECT_GT(reused, 0U);
+  return index_rows;
 }
 
 TEST(IncrementalReplanIssue35, ReplansOnAGeneratedNetworkAsAfresh) {
@@ -433,6 +447,65 @@ TEST(IncrementalReplanIssue35, ReplansRiskAwareAsAfreshAcrossRisenHazardsNotFall
     }
   }
   EXPECT_GT(reused, 0U);
+}
+
+// Issue 35, the routing index (CompileCache::RoutingIndex::kAlways): a route is taken from the
+// index only where it is the only shortest way and no closure, blockage, closed passage or hazard
+// touches it; every other row is searched. The tasks must be the ones compiled afresh, route for
+// route, through the replan steps above: on our network (no ties), a scrambled one (ties: the
+// index's way among equal ones is not always the search's), and risk-aware with hazards.
+TEST(IncrementalReplanIssue35, ReplansFromTheRoutingIndexAsAfresh) {
+  constexpr auto kAlways = CompileCache::RoutingIndex::kAlways;
+  const SewerMap ours =
+      *generate_network({.manholes = 300, .seed = 3, .topology = Topology::kMeshed});
+  const Mission uniform =
+      *generate_mission(ours, {.tasks = 8, .seed = 2, .spread = MissionSpread::kUniform});
+  EXPECT_GT(expect_replans_as_afresh(ours, uniform, {.select_goals = true}, kAlways), 0U);
+  const SewerMap scrambled = *bench::generate_scrambled_network({.manholes = 400, .seed = 5});
+  const Mission spread = *bench::scrambled_mission(scrambled, 8, 3);
+  EXPECT_GT(expect_replans_as_afresh(scrambled, spread, {.select_goals = true}, kAlways), 0U);
+  Mission hazards = uniform;
+  for (std::uint32_t p = 0; p < ours.pipe_count(); p += 7) {
+    hazards.hazards.push_back({PipeId{p}, ours.pipe(PipeId{p}).length_m / 2, 0.2, "roots"});
+  }
+  EXPECT_GT(expect_replans_as_afresh(ours, hazards,
+                                     {.select_goals = true, .risk = kDefaultRiskCosts}, kAlways),
+            0U);
+}
+
+// A replan's course on a scrambled network, compiled from the index and afresh: the robot in a
+// pipe (its routes start with a drive to either end: not a node of the index), at a slot, then a
+// blockage on a pipe the routes use, in turn. The rows whose index routes pass a blockage are
+// searched, the others (the robot's new place, the ways to the exits) taken from the index, and
+// the tasks are the same.
+TEST(IncrementalReplanIssue35, SearchesTheRowsWhoseIndexRoutesABlockageTouches) {
+  const SewerMap map = *bench::generate_scrambled_network({.manholes = 400, .seed = 5});
+  Mission mission = *bench::scrambled_mission(map, 8, 3);
+  CachedAndFresh compiles(map, {.select_goals = true}, CompileCache::RoutingIndex::kAlways);
+  MissionProgress progress = initial_progress(mission, map);
+  const std::vector<PipeId> used = compiles.first(mission, progress);
+  ASSERT_GE(used.size(), 12U);
+  std::size_t from_index = 0;
+  std::size_t searched = 0;
+  for (std::size_t step = 0; step < 12; ++step) {
+    SCOPED_TRACE("step " + std::to_string(step));
+    const PipeId p = used[step * used.size() / 12];
+    const Pipe& pipe = map.pipe(p);
+    if (step % 3 == 0) {
+      progress.position = InPipe{p, pipe.length_m / 3};
+    } else if (step % 3 == 1 && pipe.ends[1].manhole) {
+      progress.position = AtSlot{*pipe.ends[1].manhole, pipe.ends[1].slot};
+    } else {
+      mission.blockages.push_back({p, pipe.length_m * 0.37});
+    }
+    const auto stats = compiles.compare(mission, progress);
+    if (!stats) continue;
+    from_index += stats->cached.index_rows;
+    searched += stats->cached.route_searches;
+  }
+  // Both ways were taken, or the comparison proves little.
+  EXPECT_GT(from_index, 0U);
+  EXPECT_GT(searched, 0U);
 }
 
 }  // namespace

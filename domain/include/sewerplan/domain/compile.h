@@ -77,7 +77,17 @@ class PositionGraph;
 // the cache lives (it is recognised by its address and sizes).
 class CompileCache {
  public:
-  CompileCache();
+  // Issue 35: whether the compiles on this cache take their routes from a routing index of the
+  // map (a contraction hierarchy over the robot's moves, docs/benchmarks.md), built by the first
+  // compile that wants it and kept with the map's indices. kAuto builds it when the searches
+  // from the keys would settle more than 16 times the graph's positions (tasks spread over a
+  // network the battery does not bound); kAlways on the first compile; kNever not at all. Routes,
+  // tasks and plans are the same either way: a route is taken from the index only where it is
+  // the only shortest way and no closure, blockage or hazard of the mission touches it, else a
+  // search finds it as without one.
+  enum class RoutingIndex { kAuto, kAlways, kNever };
+  explicit CompileCache(RoutingIndex index = RoutingIndex::kAuto);
+  RoutingIndex routing_index() const;
   CompileCache(const CompileCache&) = delete;
   CompileCache& operator=(const CompileCache&) = delete;
   ~CompileCache();
@@ -96,6 +106,9 @@ struct CompileStatistics {
   // Searches not run: their routes taken from the last compile on the same cache (issue 35:
   // CompileCache, incremental replanning).
   std::size_t reused_searches = 0;
+  // Searches not run: a key's routes, or its way to its nearest exit, taken from the routing
+  // index (CompileCache::RoutingIndex).
+  std::size_t index_rows = 0;
   std::size_t actions = 0;
   // The searches read the moves from the map's adjacency in the compile cache's core, built
   // by this compile or kept from an earlier one (issue 35).

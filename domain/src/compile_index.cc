@@ -1,0 +1,228 @@
+// SPDX-License-Identifier: MIT
+// The sewer compiler's routes from the routing index (issue 35, CompileCache::RoutingIndex): a
+// key's row taken from the contraction hierarchy of the cache's core where it is exactly what the
+// route search would give (sewer_task_compiler.h).
+//
+// Why the index's route is the search's, where it is taken: the index is built over the core's
+// adjacency, the moves of a graph without closures, blockages or hazards (G). The mission's graph
+// (G') has those moves less the ones its closures, blockages and closed passages remove, some
+// dearer by a hazard's risk, and none cheaper or new among the map's nodes (extra spots are never
+// entered by a move). A route that is the only shortest way in G (ChQuery's `unique`, from a
+// hierarchy built with keep_ties) and whose every move G' has at the same cost
+// (PositionGraph::reads_adjacency) is then the only shortest way in G' too: any other way of G' of
+// no greater cost would be a way of G of no greater cost. Each of its prefixes is the only
+// shortest way to its node, so the route search, which keeps a node's first shortest parent
+// (graph_search.h), finds that route. A key beyond the bound in G is beyond it in G'. The nearest
+// exit is the exit node of least (distance, node), which a search settles first; an exit reached
+// in G' at its G distance stays the least in G'.
+#include <algorithm>
+#include <optional>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "contraction_hierarchy.h"
+#include "sewer_task_compiler.h"
+
+namespace sewerplan::domain {
+
+namespace {
+// kAuto builds the index when the searches from the other keys would settle this many times the
+// graph's positions: the build takes 60 to 150 Dijkstras over the map, and a search from a key
+// the battery does not bound settles most of it (docs/benchmarks.md). TODO(#35): measured on
+// the scrambled and our networks only; a cached index (beside the map) would make it moot.
+constexpr std::size_t kIndexFactor = 16;
+// The nearest exits come from the index when the exit nodes are at most this many per key
+// (index_exit).
+constexpr std::size_t kIndexExitsPerKey = 4;
+}  // namespace
+
+detail::ChQuery* SewerTaskCompiler::routing_index(bool may_build, std::size_t settled_estimate) {
+  if (options_.cache == nullptr) return nullptr;
+  PositionGraph& graph = *result_.graph_;
+  detail::GraphCore& core = graph.core();
+  if (core.hierarchy_query != nullptr) return core.hierarchy_query.get();
+  const CompileCache::RoutingIndex policy = options_.cache->routing_index();
+  if (!may_build || core.hierarchy_failed || policy == CompileCache::RoutingIndex::kNever) {
+    return nullptr;
+  }
+  if (policy == CompileCache::RoutingIndex::kAuto &&
+      settled_estimate <= kIndexFactor * graph.size()) {
+    return nullptr;
+  }
+  if (!graph.has_adjacency() && !graph.build_adjacency(&options_.stop)) return nullptr;
+  auto built = detail::ContractionHierarchy::build(
+      core.adjacency_begin, core.adjacency_to, core.adjacency_cost,
+      {.keep_ties = true, .stop = options_.stop.can_interrupt() ? &options_.stop : nullptr});
+  if (!built.has_value()) {
+    // Stopped: the next search stops at its check. A cost too large for the index's edges: the
+    // searches serve this map.
+    core.hierarchy_failed = built.error().code != ErrorCode::kCancelled;
+    return nullptr;
+  }
+  core.hierarchy = std::make_shared<const detail::ContractionHierarchy>(std::move(*built));
+  core.hierarchy_query = std::make_shared<detail::ChQuery>(*core.hierarchy);
+  return core.hierarchy_query.get();
+}
+
+std::vector<SewerTaskCompiler::IndexStart> SewerTaskCompiler::index_starts(std::size_t a) const {
+  const PositionGraph& graph = *result_.graph_;
+  const Node n = keys_[a];
+  if (!graph.is_extra_spot(n)) return {{n, 0}};
+  std::vector<IndexStart> starts;
+  graph.for_each_successor(n, [&](Node to, Cost c) { starts.push_back({to, c}); });
+  return starts;
+}
+
+std::vector<Node> SewerTaskCompiler::index_sources() const {
+  // Every key that is a node of the map, and the slots at the ends of the others' pipes (where
+  // their drives out end).
+  const PositionGraph& graph = *result_.graph_;
+  std::vector<Node> sources;
+  for (Node n : keys_) {
+    if (!graph.is_extra_spot(n)) {
+      sources.push_back(n);
+      continue;
+    }
+    for (const PipeEnd& end : map_.pipe(*graph.pipe_of(n)).ends) {
+      if (end.manhole) sources.push_back(graph.at_slot(*end.manhole, end.slot));
+    }
+  }
+  std::sort(sources.begin(), sources.end());
+  sources.erase(std::unique(sources.begin(), sources.end()), sources.end());
+  return sources;
+}
+
+bool SewerTaskCompiler::index_route(detail::ChQuery& index, std::size_t a,
+                                    std::span<const IndexStart> starts, Node t, Cost bound,
+                                    Cost* cost) {
+  if (index_table_.sources() == 0) {
+    // The routes between every key and every target at once (ChQuery::table_with_ways): one
+    // upward search per source and per target, where a query per pair took two each.
+    index_table_sources_ = index_sources();
+    index.table_with_ways(index_table_sources_, index_table_targets_, index_table_);
+  }
+  const auto column = std::lower_bound(index_table_targets_.begin(), index_table_targets_.end(), t);
+  const std::size_t j = static_cast<std::size_t>(column - index_table_targets_.begin());
+  Cost best = kInfiniteCost;
+  std::size_t best_row = 0;
+  bool unique = false;
+  bool tied = false;
+  for (const IndexStart& start : starts) {
+    const auto row =
+        std::lower_bound(index_table_sources_.begin(), index_table_sources_.end(), start.node);
+    const std::size_t i = static_cast<std::size_t>(row - index_table_sources_.begin());
+    const Cost d = index_table_.distance(i, j);
+    if (d == kInfiniteCost) continue;
+    const Cost total = start.cost + d;
+    if (total < best) {
+      best = total;
+      best_row = i;
+      unique = index_table_.unique(i, j);
+      tied = false;
+    } else if (total == best) {
+      tied = true;
+    }
+  }
+  *cost = best;
+  if (best > bound) return true;
+  if (tied || !unique) return false;
+  index_table_.way(best_row, j, index_path_);
+  const PositionGraph& graph = *result_.graph_;
+  if (!graph.reads_adjacency(index_path_)) return false;
+  if (graph.is_extra_spot(keys_[a])) index_path_.insert(index_path_.begin(), keys_[a]);
+  return true;
+}
+
+void SewerTaskCompiler::index_row(detail::ChQuery& index, GraphSearch& search, std::size_t a,
+                                  std::span<const Node> targets, Cost bound, bool exit_goal,
+                                  std::optional<Node>* exit) {
+  const std::vector<IndexStart> starts = index_starts(a);
+  // The targets whose route the index does not give: a search finds those, and only those (its
+  // route to a node does not depend on its other targets or where it stops: the nodes settle in
+  // (distance, node) order and a settled node's parent is final).
+  std::vector<Node> missed;
+  for (Node t : targets) {
+    const std::uint32_t b = key_of_.at(t);
+    if (b == a) continue;
+    Cost d = kInfiniteCost;
+    if (!index_route(index, a, starts, t, bound, &d)) {
+      missed.push_back(t);
+    } else if (d <= bound) {
+      dist_[a * k() + b] = d;
+      routes_[a * k() + b] = route_store_.keep(index_path_);
+    }
+  }
+  dist_[a * k() + a] = 0;
+  *exit = std::nullopt;
+  const bool exit_missed = exit_goal && !index_exit(index, a, bound, exit);
+  ++result_.statistics_.index_rows;
+  if (missed.empty() && !exit_missed) return;
+  const std::optional<Node> nearest =
+      search.run(std::span<const Node>(&keys_[a], 1), missed, bound,
+                 GraphSearch::Direction::kForward, exit_missed ? &exit_node() : nullptr);
+  ++result_.statistics_.route_searches;
+  for (Node t : missed) {
+    const std::uint32_t b = key_of_.at(t);
+    dist_[a * k() + b] = search.distance(t);
+    if (dist_[a * k() + b] != kInfiniteCost) keep_path(search, t, routes_[a * k() + b]);
+  }
+  if (exit_missed && nearest) {
+    *exit = nearest;
+    exit_dist_[a] = search.distance(*nearest);
+    keep_path(search, *nearest, exit_routes_[a]);
+  }
+}
+
+bool SewerTaskCompiler::index_exit(detail::ChQuery& index, std::size_t a, Cost bound,
+                                   std::optional<Node>* exit) {
+  const PositionGraph& graph = *result_.graph_;
+  const std::vector<Node>& exits = graph.core().marked_exits;
+  // The index's table costs an upward search per exit node; a search from the key stops at the
+  // first exit it settles, which is near where exits are many (2 % of the manholes on the
+  // scrambled networks: 8,000 exit nodes at 100,000 manholes, and a table of 0.3 s).
+  if (exits.size() > kIndexExitsPerKey * k()) return false;
+  if (index_exit_sources_.empty()) {
+    // Every key's (or its starts') distances to every exit node at once.
+    index_exit_sources_ = index_sources();
+    index.table(index_exit_sources_, exits, index_exit_table_);
+  }
+  // The exit a search settles first: the least distance, then the least node; from the start
+  // that gives it (two starts giving it alike: tied, for a search).
+  const std::vector<IndexStart> starts = index_starts(a);
+  Cost best = kInfiniteCost;
+  std::optional<std::size_t> best_exit;
+  std::size_t best_start = 0;
+  bool tied = false;
+  for (std::size_t i = 0; i < starts.size(); ++i) {
+    const auto source =
+        std::lower_bound(index_exit_sources_.begin(), index_exit_sources_.end(), starts[i].node);
+    const Cost* row = index_exit_table_.data() +
+                      static_cast<std::size_t>(source - index_exit_sources_.begin()) * exits.size();
+    for (std::size_t j = 0; j < exits.size(); ++j) {
+      if (row[j] == kInfiniteCost) continue;
+      const Cost d = starts[i].cost + row[j];
+      if (best_exit && d == best && j == *best_exit) tied = true;
+      if (!best_exit || d < best || (d == best && exits[j] < exits[*best_exit])) {
+        best = d;
+        best_exit = j;
+        best_start = i;
+        tied = false;
+      }
+    }
+  }
+  if (!best_exit || best > bound) {
+    *exit = std::nullopt;
+    return true;
+  }
+  bool unique = false;
+  (void)index.path(starts[best_start].node, exits[*best_exit], index_path_, &unique);
+  if (tied || !unique || !graph.reads_adjacency(index_path_)) return false;
+  if (graph.is_extra_spot(keys_[a])) index_path_.insert(index_path_.begin(), keys_[a]);
+  exit_dist_[a] = best;
+  exit_routes_[a] = route_store_.keep(index_path_);
+  *exit = exits[*best_exit];
+  return true;
+}
+
+}  // namespace sewerplan::domain
