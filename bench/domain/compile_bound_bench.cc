@@ -9,6 +9,10 @@
 // the compiler searches, built outside the timing), from the start and from one end of each
 // task's pipe. The figure is `ratio` = compile_ms / dijkstra_ms; `ratio_cached` is the same with
 // the compile's per-map core kept between compiles (CompileCache, as the Replanner keeps it).
+// With the routing index (CompileCache::RoutingIndex::kAlways): `first_with_index_ms`, a first
+// compile that builds it, and `indexed_ms` (`ratio_indexed`), the mission compiled on it with no
+// row from the memo (issue 35's "first plan after the index is built"), with the rows it took
+// from the index (`indexed_rows`) and the searches it still ran (`indexed_searches`).
 // Times are the thread's CPU time (spread_bench.cc says why).
 //
 // Missions: on ours, generate_mission's uniform spread (MAKRO PLUS, whose battery bounds the
@@ -51,9 +55,10 @@ void measure(benchmark::State& state, const Instance& instance) {
   const bench::Csr csr = bench::to_csr(graph);
   std::vector<Cost> dist(graph.size());
   CompileCache cache;
-  double compile_ms = 0, cached_ms = 0, dijkstra_ms = 0;
+  double compile_ms = 0, cached_ms = 0, dijkstra_ms = 0, built_ms = 0, indexed_ms = 0;
   std::size_t settled = 0;
   CompileStatistics stats;
+  CompileStatistics indexed_stats;
   for (auto _ : state) {
     double t = cpu_ms();
     auto task =
@@ -71,6 +76,23 @@ void measure(benchmark::State& state, const Instance& instance) {
                                     {.select_goals = true, .cache = &cache});
     cached_ms += cpu_ms() - t;
     benchmark::DoNotOptimize(again);
+    // Issue 35, the routing index: a cache that builds it on its first compile (of the mission
+    // with 1 Wh more used: its memo has rows for smaller bounds only, so that the compile
+    // measured takes nothing from it), then the mission compiled on it.
+    {
+      CompileCache indexed(CompileCache::RoutingIndex::kAlways);
+      MissionProgress before = progress;
+      before.energy_used_wh += 1;
+      t = cpu_ms();
+      (void)compile_sewer_task(instance.map, instance.mission, before,
+                               {.select_goals = true, .cache = &indexed});
+      built_ms += cpu_ms() - t;
+      t = cpu_ms();
+      auto from_index = compile_sewer_task(instance.map, instance.mission, progress,
+                                           {.select_goals = true, .cache = &indexed});
+      indexed_ms += cpu_ms() - t;
+      if (from_index.has_value()) indexed_stats = from_index->statistics();
+    }
     t = cpu_ms();
     settled = 0;
     for (Node s : sources) settled += bench::dijkstra(csr, s, dist);
@@ -84,6 +106,12 @@ void measure(benchmark::State& state, const Instance& instance) {
   state.counters["dijkstra_ms"] = dijkstra_ms / n;
   state.counters["ratio"] = compile_ms / dijkstra_ms;
   state.counters["ratio_cached"] = cached_ms / dijkstra_ms;
+  state.counters["first_with_index_ms"] = built_ms / n;
+  state.counters["indexed_ms"] = indexed_ms / n;
+  state.counters["ratio_indexed"] = indexed_ms / dijkstra_ms;
+  state.counters["indexed_rows"] = static_cast<double>(indexed_stats.index_rows);
+  state.counters["indexed_searches"] = static_cast<double>(indexed_stats.route_searches);
+  state.counters["indexed_settled"] = static_cast<double>(indexed_stats.settled_nodes);
   state.counters["graph_nodes"] = static_cast<double>(graph.size());
   state.counters["keys"] = static_cast<double>(stats.keys);
   state.counters["searches"] = static_cast<double>(stats.route_searches);

@@ -28,10 +28,14 @@ namespace sewerplan::domain {
 
 namespace {
 // kAuto builds the index when the searches from the other keys would settle this many times the
-// graph's positions: the build takes 60 to 150 Dijkstras over the map, and a search from a key
-// the battery does not bound settles most of it (docs/benchmarks.md). TODO(#35): measured on
-// the scrambled and our networks only; a cached index (beside the map) would make it moot.
-constexpr std::size_t kIndexFactor = 16;
+// graph's positions: its build takes 60 to 150 plain Dijkstras over the map, and the compile's
+// searches cost 1.2 to 1.6 times a plain Dijkstra per node settled (docs/benchmarks.md), so that
+// below this one compile pays more for the build than it saves. Measured 2026-12-07 on 100,000
+// scrambled manholes, 20 tasks over the whole network (31 times): a compile of 4.7 s searching,
+// 4.4 s building the index and 0.04 s taking the routes from it; on 10,000, 0.14 s against 0.34 s.
+// The Replanner's later compiles take most rows from the last one's (route_memo.h), so they
+// seldom repay it either; an index built once beside the map is the way to have it.
+constexpr std::size_t kIndexFactor = 100;
 // The nearest exits come from the index when the exit nodes are at most this many per key
 // (index_exit).
 constexpr std::size_t kIndexExitsPerKey = 4;

@@ -80,8 +80,9 @@ class CompileCache {
   // Issue 35: whether the compiles on this cache take their routes from a routing index of the
   // map (a contraction hierarchy over the robot's moves, docs/benchmarks.md), built by the first
   // compile that wants it and kept with the map's indices. kAuto builds it when the searches
-  // from the keys would settle more than 16 times the graph's positions (tasks spread over a
-  // network the battery does not bound); kAlways on the first compile; kNever not at all. Routes,
+  // from the keys would settle more than 100 times the graph's positions (so many tasks spread
+  // over a network the battery does not bound that the build, 60 to 150 Dijkstras over the map,
+  // costs less than those searches); kAlways on the first compile; kNever not at all. Routes,
   // tasks and plans are the same either way: a route is taken from the index only where it is
   // the only shortest way and no closure, blockage or hazard of the mission touches it, else a
   // search finds it as without one.
