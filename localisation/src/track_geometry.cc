@@ -56,46 +56,53 @@ struct ChainStep {
 
 // Walks `track`'s chain ahead (up to max_misses manholes passed straight on), calling
 // visit(step, mouth_at_m, place, log_beyond_lower) for each pipe; stops where the robot cannot have
-// gone.
+// gone. A manhole passed unseen goes on into each mouth that may be its straight on (see
+// chain_onward): the chain branches there.
+template <class Visit>
+void walk_chain_from(const TopologicalFilter& filter, ChainStep step, int k, double lower0_m,
+                     double t, Visit& visit) {
+  const SewerMap& map = filter.map();
+  const LocalisationOptions& o = filter.options();
+  const double log_miss = log_or_never(o.miss_probability);
+  const Pipe& pipe = map.pipe(step.pipe);
+  const double mouth = step.base_m + pipe.length_m;
+  const PlaceSpread place = spread(o, step.odometry_var, step.map_var + step.length_var);
+  const double sd =
+      std::sqrt(std::max(step.odometry_var + step.map_var + step.length_var, kMinVarianceM2));
+  const double lower = k == 0 ? lower0_m : step.base_m;
+  // Known: the mouth lies beyond `lower` (nothing was detected before it).
+  const double log_beyond_lower = log_phi_within(mouth - lower, place);
+  visit(step, mouth, place, log_beyond_lower);
+  const PipeEnd& far = pipe.ends[step.heading_end];
+  if (k == o.max_misses || !far.manhole || log_miss == kNegativeInfinity) return;
+  if (mouth - 4 * sd > t) return;  // the mouth is well ahead: not passed
+  const double log_passed = log1m_exp(log_phi_within(mouth - t, place) - log_beyond_lower);
+  for (const auto& [next, log_map_off] : chain_onward(map, o, *far.manhole, far.slot)) {
+    ChainStep on = step;
+    on.log_pass += log_miss + log_passed + log_map_off;
+    if (on.log_pass == kNegativeInfinity) continue;
+    on.passed.push_back(*far.manhole);
+    const Slot& slot = map.slot(*far.manhole, next);
+    on.pipe = slot.pipe;
+    on.heading_end = static_cast<std::uint8_t>(1 - slot.pipe_end);
+    on.base_m = mouth;
+    on.map_var += on.length_var;
+    on.length_var = std::pow(o.length_sd_fraction * map.pipe(slot.pipe).length_m, 2);
+    walk_chain_from(filter, std::move(on), k + 1, lower0_m, t, visit);
+  }
+}
+
 template <class Visit>
 void walk_chain(const TopologicalFilter& filter, const Track& track, double lower0_m, Visit visit) {
   const SewerMap& map = filter.map();
   const LocalisationOptions& o = filter.options();
-  const double log_miss = log_or_never(o.miss_probability);
-  const double t = track.travelled_m;
   ChainStep step{.pipe = track.pipe,
                  .heading_end = track.heading_end,
                  .odometry_var = track.odometry_var_m2,
                  .map_var = track.map_var_m2,
                  .length_var = std::pow(
                      o.length_sd_fraction * (map.pipe(track.pipe).length_m - track.anchor_m), 2)};
-  for (int k = 0; k <= o.max_misses; ++k) {
-    const Pipe& pipe = map.pipe(step.pipe);
-    const double mouth = step.base_m + pipe.length_m;
-    const PlaceSpread place = spread(o, step.odometry_var, step.map_var + step.length_var);
-    const double sd =
-        std::sqrt(std::max(step.odometry_var + step.map_var + step.length_var, kMinVarianceM2));
-    const double lower = k == 0 ? lower0_m : step.base_m;
-    // Known: the mouth lies beyond `lower` (nothing was detected before it).
-    const double log_beyond_lower = log_phi_within(mouth - lower, place);
-    visit(step, mouth, place, log_beyond_lower);
-    const PipeEnd& far = pipe.ends[step.heading_end];
-    if (!far.manhole || log_miss == kNegativeInfinity) return;
-    if (mouth - 4 * sd > t) return;  // the mouth is well ahead: not passed
-    const std::optional<SlotIndex> next =
-        straight_on(map, *far.manhole, far.slot, o.straight_through_deg);
-    if (!next) return;
-    const double log_passed = log1m_exp(log_phi_within(mouth - t, place) - log_beyond_lower);
-    step.log_pass += log_miss + log_passed;
-    if (step.log_pass == kNegativeInfinity) return;
-    step.passed.push_back(*far.manhole);
-    const Slot& slot = map.slot(*far.manhole, *next);
-    step.pipe = slot.pipe;
-    step.heading_end = static_cast<std::uint8_t>(1 - slot.pipe_end);
-    step.base_m = mouth;
-    step.map_var += step.length_var;
-    step.length_var = std::pow(o.length_sd_fraction * map.pipe(slot.pipe).length_m, 2);
-  }
+  walk_chain_from(filter, std::move(step), 0, lower0_m, track.travelled_m, visit);
 }
 
 // `track` moved into the chain step's pipe at `here_m` from its start.
@@ -153,9 +160,29 @@ std::optional<SlotIndex> slot_towards(const SewerMap& map, ManholeId manhole, Sl
   return best;
 }
 
-std::optional<SlotIndex> straight_on(const SewerMap& map, ManholeId manhole, SlotIndex arrival,
-                                     double tolerance_deg) {
-  return slot_towards(map, manhole, arrival, 180.0, tolerance_deg);
+std::vector<std::pair<SlotIndex, double>> chain_onward(const SewerMap& map,
+                                                       const LocalisationOptions& o,
+                                                       ManholeId manhole, SlotIndex arrival) {
+  std::vector<std::pair<SlotIndex, double>> onward;
+  const std::uint16_t n = map.manhole(manhole).slot_count;
+  for (std::uint16_t s = 0; s < n; ++s) {
+    if (s == arrival.value()) continue;
+    const double excess =
+        turn_off_straight_deg(map, manhole, arrival, SlotIndex{s}) - o.straight_through_deg;
+    if (excess <= 0) {
+      onward.emplace_back(SlotIndex{s}, 0.0);
+    } else if (excess < o.direction_off_max_deg) {
+      onward.emplace_back(
+          SlotIndex{s}, std::log(o.direction_off_share * (1.0 - excess / o.direction_off_max_deg)));
+    }
+  }
+  return onward;
+}
+
+double turn_off_straight_deg(const SewerMap& map, ManholeId manhole, SlotIndex arrival,
+                             SlotIndex to) {
+  return std::abs(normalize_deg(
+      ccw_deg(map.slot(manhole, arrival).azimuth_deg, map.slot(manhole, to).azimuth_deg) - 180.0));
 }
 
 namespace {

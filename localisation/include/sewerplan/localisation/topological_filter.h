@@ -91,7 +91,8 @@ struct LocalisationOptions {
   // Consecutive missed manholes an arrival may explain (0: none).
   int max_misses = 2;
   // A manhole can be driven through unseen, or a false detection or an unmapped junction passed,
-  // only straight on: a mouth within this many degrees of straight ahead.
+  // only straight on: a mouth within this many degrees of straight ahead (a manhole's mouth up
+  // to direction_off_max_deg beyond, at the share of the map's slots that are off that much).
   double straight_through_deg = 30;
   // Hypotheses below this fraction of the most likely are dropped, and at most max_hypotheses
   // kept.
