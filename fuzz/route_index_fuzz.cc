@@ -23,7 +23,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       hash ^= static_cast<unsigned char>(bytes[i]);
       hash *= 1099511628211ULL;
     }
-    for (int i = 0; i < 8; ++i) bytes[56 + i] = static_cast<char>((hash >> (8 * i)) & 0xffU);
+    for (std::size_t i = 0; i < 8; ++i)
+      bytes[56 + i] = static_cast<char>((hash >> (8 * i)) & 0xffU);
   }
   const auto index = sewerplan::domain::RouteIndex::read(bytes, "fuzz.bin");
   if (!index.has_value()) return 0;

@@ -169,7 +169,8 @@ TEST(RouteIndexIssue35, RefusesAStaleIndex) {
 
 std::uint32_t u32(const std::string& b, std::size_t at) {
   std::uint32_t v = 0;
-  for (std::size_t i = 0; i < 4; ++i) v |= std::uint32_t{static_cast<unsigned char>(b[at + i])} << (8 * i);
+  for (std::size_t i = 0; i < 4; ++i)
+    v |= std::uint32_t{static_cast<unsigned char>(b[at + i])} << (8 * i);
   return v;
 }
 void set_u32(std::string& b, std::size_t at, std::uint64_t v) {
