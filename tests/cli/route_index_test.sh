@@ -75,6 +75,18 @@ expect 1 "$tmp/map.json: not a sewerplan routing index" -- \
   "$sp" plan --map "$tmp/map.json" --mission "$mission" --route-index "$tmp/map.json"
 expect 3 "cannot read $tmp/missing.bin" -- \
   "$sp" plan --map "$tmp/map.json" --mission "$mission" --route-index "$tmp/missing.bin"
+# The index is of the moves with the motion table beside the map (where this build can plan
+# one): an index built before the table is stale with it, fine again with --no-motion, and one
+# built with the table is used with it.
+if "$sp" motion precompute --map "$tmp/map.json" -q >/dev/null 2>&1; then
+  expect 1 "is stale" -- "$sp" plan --map "$tmp/map.json" --mission "$mission" -q
+  expect 0 "" -- "$sp" plan --map "$tmp/map.json" --mission "$mission" -q --no-motion
+  "$sp" index build --map "$tmp/map.json" -q >/dev/null
+  expect 0 "index: using the routing index" -- "$sp" plan --map "$tmp/map.json" --mission "$mission" \
+    -q -o "$tmp/motion-plan.txt"
+  rm -f "$tmp/map.motion.json"
+fi
+
 # Usage errors and a missing map.
 expect 2 "time-limit" -- "$sp" index build --map "$tmp/map.json" --time-limit -1
 expect 2 "map" -- "$sp" index build
