@@ -94,8 +94,8 @@ class CompileCache {
   // missions' Mission::passage_motion, the same pointer): they take their routes from it,
   // whatever the policy, and build none. Checked here, where the cache builds the map's indices
   // and moves as the first compile would (so that it need not): an index whose fingerprint is
-  // not theirs is refused (kInvalidArgument, naming its file), and the cache is left without
-  // one. Compiles on another map or robot do without it. Plans are the same as without it.
+  // not theirs is refused (kInvalidArgument, naming its file), and the cache is left as it
+  // was. Compiles on another map or robot do without it. Plans are the same as without it.
   // Runtime: O(positions + moves), judging every passage (tens of ms at 100,000 manholes).
   Result<void> use_route_index(RouteIndex index, const SewerMap& map, const RobotProfile& profile,
                                std::shared_ptr<const PassageMotionTable> motion,
