@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "sewerplan/domain/route_index.h"
@@ -18,11 +19,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   std::string bytes(sewerplan::fuzz::as_text(data, size));
   if (bytes.size() >= 64) {
-    std::uint64_t hash = 14695981039346656037ULL;
-    for (std::size_t i = 64; i < bytes.size(); ++i) {
-      hash ^= static_cast<unsigned char>(bytes[i]);
-      hash *= 1099511628211ULL;
-    }
+    const std::uint64_t hash =
+        sewerplan::domain::detail::file_checksum(std::string_view(bytes).substr(64));
     for (std::size_t i = 0; i < 8; ++i)
       bytes[56 + i] = static_cast<char>((hash >> (8 * i)) & 0xffU);
   }

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <string_view>
 
 #include "sewerplan/domain/route_index.h"
 
@@ -26,6 +27,11 @@ namespace detail {
 // little-endian bytes (docs/formats/route-index.md, "Fingerprint"). Precondition: the core has
 // its adjacency (PositionGraph::build_adjacency). Runtime: O(nodes + moves).
 std::uint64_t adjacency_fingerprint(const GraphCore& core);
+
+// The file's checksum (offset 56) over the bytes after its header: eight FNV-1a 64 hashes, lane
+// k over the bytes k, k + 8, k + 16, ..., then FNV-1a 64 over the eight lanes' values (8 bytes
+// each, little-endian). Runtime: O(bytes).
+std::uint64_t file_checksum(std::string_view bytes);
 
 }  // namespace detail
 }  // namespace sewerplan::domain

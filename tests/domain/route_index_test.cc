@@ -179,15 +179,9 @@ void set_u32(std::string& b, std::size_t at, std::uint64_t v) {
 void set_u64(std::string& b, std::size_t at, std::uint64_t v) {
   for (std::size_t i = 0; i < 8; ++i) b[at + i] = static_cast<char>((v >> (8 * i)) & 0xffU);
 }
-// The checksum (FNV-1a 64 over the bytes after the header) made right again, so that the
-// structural checks behind it are reached.
+// The checksum made right again, so that the structural checks behind it are reached.
 void reseal(std::string& b) {
-  std::uint64_t hash = 14695981039346656037ULL;
-  for (std::size_t i = 64; i < b.size(); ++i) {
-    hash ^= static_cast<unsigned char>(b[i]);
-    hash *= 1099511628211ULL;
-  }
-  set_u64(b, 56, hash);
+  set_u64(b, 56, detail::file_checksum(std::string_view(b).substr(64)));
 }
 
 // Where the arrays of a file lie (docs/formats/route-index.md).
