@@ -87,6 +87,11 @@ if "$sp" motion precompute --map "$tmp/map.json" -q >/dev/null 2>&1; then
   rm -f "$tmp/map.motion.json"
 fi
 
+# A time limit stops the build without an index (exit 5).
+expect 5 "the routing index's build reached its time limit" -- \
+  "$sp" index build --map "$tmp/map.json" --time-limit 1e-9 -o "$tmp/limited.bin"
+check "a stopped build writes no index" test ! -e "$tmp/limited.bin"
+
 # Usage errors and a missing map.
 expect 2 "time-limit" -- "$sp" index build --map "$tmp/map.json" --time-limit -1
 expect 2 "map" -- "$sp" index build
