@@ -22,6 +22,7 @@
 #include "json_output.h"
 #include "map_input.h"
 #include "motion_options.h"
+#include "route_index_options.h"
 #include "text_format.h"
 
 namespace sewerplan::cli {
@@ -41,6 +42,7 @@ struct PlanOptions {
   bool json = false;
   bool quiet = false;
   MotionOptions motion;
+  RouteIndexOptions route_index;
   std::string condition;
   RiskOptions risk;
   std::string crs;
@@ -124,6 +126,16 @@ int run(const PlanOptions& o, Context& c) {
     return fail(c, o.json, motion.error());
   }
   const Mission& m = **mission;
+  // The routes from the map's routing index, when one is kept beside it (issue 35).
+  domain::CompileCache compile_cache;
+  const auto use_index = [&](const domain::RouteIndex& index) {
+    Result<void> used = compile_cache.use_route_index(index, *map, m.profile, m.passage_motion);
+    if (used.has_value()) options.compile_cache = &compile_cache;
+    return used;
+  };
+  if (auto index = attach_route_index(o.route_index, o.map, c.err, use_index); !index.has_value()) {
+    return fail(c, o.json, index.error());
+  }
   domain::MissionProgress start = domain::initial_progress(m, *map);
   const SteadyClock clock;
   const double started_s = clock.now_s();
@@ -190,6 +202,7 @@ void add_plan_command(CLI::App& app, Context& context) {
                 "Do as many tasks as can be done and still end the mission, rather than fail");
   cmd->add_flag("--quiet,-q", o->quiet, "No summary on standard error");
   add_motion_options(*cmd, o->motion);
+  add_route_index_options(*cmd, o->route_index);
   add_condition_option(*cmd, o->condition);
   add_risk_options(*cmd, o->risk);
   add_crs_option(*cmd, o->crs);

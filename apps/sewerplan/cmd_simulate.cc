@@ -35,6 +35,7 @@
 #include "json_output.h"
 #include "map_input.h"
 #include "motion_options.h"
+#include "route_index_options.h"
 #include "sim_setup.h"
 #include <poll.h>
 #include <unistd.h>
@@ -55,6 +56,7 @@ struct SimulateOptions {
   bool quiet = false;
   CanLinkOptions can;  // the robot over a CAN bus (docs/can.md)
   MotionOptions motion;
+  RouteIndexOptions route_index;
   std::string condition;
   RiskOptions risk;
   bool json = false;
@@ -201,6 +203,13 @@ int run(const SimulateOptions& o, Context& c) {
   replanner_options.planner.risk = o.risk.costs();
   replanner_options.planner.max_strand_risk = o.risk.max_strand_risk;
   executor::Replanner replanner(map, mission, replanner_options);
+  // The routes from the map's routing index, when one is kept beside it (issue 35).
+  if (auto index = attach_route_index(
+          o.route_index, o.map, c.err,
+          [&](const domain::RouteIndex& i) { return replanner.use_route_index(i); });
+      !index.has_value()) {
+    return fail(c, o.json, index.error());
+  }
   if (!o.learnt.empty() && std::filesystem::exists(o.learnt)) {
     Diagnostics d;
     Result<executor::Learnt> learnt = executor::read_learnt(o.learnt, map, d);
@@ -358,6 +367,7 @@ void add_simulate_command(CLI::App& app, Context& context) {
       cmd->add_option("--world-seed", options->world_seed, "Seed of the true world and the sensing")
           ->capture_default_str();
   add_motion_options(*cmd, options->motion);
+  add_route_index_options(*cmd, options->route_index);
   add_condition_option(*cmd, options->condition);
   add_risk_options(*cmd, options->risk);
   cmd->callback([options, world, world_seed, &context] {

@@ -46,6 +46,7 @@ void add_sim_node_command(CLI::App& app, Context& context);
 void add_campaign_command(CLI::App& app, Context& context);
 void add_render_command(CLI::App& app, Context& context);
 void add_motion_command(CLI::App& app, Context& context);
+void add_index_command(CLI::App& app, Context& context);
 void add_export_geojson_command(CLI::App& app, Context& context);  // with SEWERPLAN_WITH_GIS
 void add_serve_command(CLI::App& app, Context& context);
 void add_merge_measurements_command(CLI::App& app, Context& context);

@@ -64,6 +64,7 @@ constexpr CommandEntry kCommands[] = {
     {"campaign", &sewerplan::cli::add_campaign_command},
     {"render", &sewerplan::cli::add_render_command},
     {"motion", &sewerplan::cli::add_motion_command},
+    {"index", &sewerplan::cli::add_index_command},
 #ifdef SEWERPLAN_WITH_GIS
     {"export-geojson", &sewerplan::cli::add_export_geojson_command},
 #endif

@@ -15,10 +15,10 @@
 #include "sewerplan/core/map_isybau.h"
 #include "sewerplan/core/map_json.h"
 #include "sewerplan/core/map_swmm.h"
+#include "sewerplan/core/mapped_file.h"
 #include "sewerplan/core/text_file.h"
 
 #include "map_json_fast.h"
-#include "mapped_file.h"
 
 namespace sewerplan {
 namespace {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "mapped_file.h"
+#include "sewerplan/core/mapped_file.h"
 
 #include <utility>
 

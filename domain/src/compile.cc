@@ -19,6 +19,7 @@
 #include "compile_reasons.h"
 #include "graph_search.h"
 #include "position_graph.h"
+#include "route_index_internal.h"
 #include "route_memo.h"
 #include "route_store.h"
 #include "sewer_task_compiler.h"
@@ -36,6 +37,44 @@ CompileCache::CompileCache(RoutingIndex index) : state_(std::make_unique<State>(
 }
 CompileCache::~CompileCache() = default;
 CompileCache::RoutingIndex CompileCache::routing_index() const { return state_->index; }
+Result<void> CompileCache::use_route_index(RouteIndex index, const SewerMap& map,
+                                           const RobotProfile& profile,
+                                           std::shared_ptr<const PassageMotionTable> motion,
+                                           const StopCondition& stop) {
+  const auto stopped = [&] {
+    return stopped_error(stop.interrupted().value_or(SearchStatus::kCancelled),
+                         "loading the routing index");
+  };
+  const std::lock_guard lock(state_->mutex);
+  std::shared_ptr<detail::GraphCore> core = state_->core;
+  // The cache's core if it serves this map and robot and no compile holds it; else a new one, as
+  // the next compile would build.
+  if (core == nullptr || !core->serves(map, profile, motion.get()) || core.use_count() > 2) {
+    core = std::make_shared<detail::GraphCore>(map, profile, motion, &stop);
+    if (!core->complete) return stopped();
+  }
+  Mission plain;
+  plain.profile = profile;
+  plain.passage_motion = core->motion;
+  detail::PositionGraph graph(map, plain, core);
+  if (!graph.build_adjacency(&stop)) return stopped();
+  const std::uint64_t fingerprint = detail::adjacency_fingerprint(*core);
+  if (fingerprint != index.fingerprint() ||
+      index.statistics().nodes + 1 != core->adjacency_begin.size()) {
+    return Error{
+        ErrorCode::kInvalidArgument,
+        "the routing index " + (index.source().empty() ? std::string("given") : index.source()) +
+            " is stale: it was built for another map, robot profile or motion table "
+            "(its fingerprint " +
+            fingerprint_hex(index.fingerprint()) + ", this one's " + fingerprint_hex(fingerprint) +
+            "); remake it with 'sewerplan index build' for this map and profile"};
+  }
+  core->hierarchy = index.impl().hierarchy;
+  core->hierarchy_query = std::make_shared<detail::ChQuery>(*core->hierarchy);
+  core->hierarchy_failed = false;
+  state_->core = std::move(core);
+  return Result<void>{};
+}
 
 SewerTask::SewerTask() = default;
 SewerTask::SewerTask(SewerTask&&) noexcept = default;

@@ -103,6 +103,7 @@ class ContractionHierarchy {
   friend class ChQuery;
   friend class ChTable;
   friend class ChBuilder;
+  friend struct ChFile;  // route_index.cc: the file format (docs/formats/route-index.md)
   static constexpr std::uint32_t kNoMiddle = 0x7fffffffU;
   struct Edge {
     std::uint32_t head;  // by rank

@@ -137,6 +137,11 @@ Result<PlanResponse> Replanner::plan_cancellable(const std::optional<Failure>& f
   return r;
 }
 
+Result<void> Replanner::use_route_index(domain::RouteIndex index) {
+  return compile_cache_->use_route_index(std::move(index), map_, mission_.profile,
+                                         mission_.passage_motion);
+}
+
 Result<void> Replanner::learn(const Learnt& learnt) {
   if (auto ok = localisation::check_memory(learnt.junctions, map_); !ok.has_value()) return ok;
   for (const HazardBelief& h : learnt.hazards) {

@@ -146,6 +146,13 @@ else
   json 1 "$(err unsupported-format 1)" -- "$sp" motion precompute --map "$tmp/motion/map.json" --json
 fi
 
+# index build (docs/formats/route-index.md): the summary; a stale index is invalid input.
+json 0 "j['wrote'].endswith('map.route-index.bin') and j['nodes'] > 0 and j['bytes'] > 64 and len(j['fingerprint']) == 16 and j['profile'] == 'makro-1.1'" -- \
+  "$sp" index build --map "$tmp/motion/map.json" --no-motion --json
+"$sp" index build --map "$tmp/motion/map.json" --no-motion --profile makro-plus -o "$tmp/plus.bin" >/dev/null
+json 1 "$(err invalid-map 1) and 'is stale' in j['error']['message']" -- "$sp" plan --map "$tmp/motion/map.json" \
+  --mission "$mission" --no-motion --route-index "$tmp/plus.bin" --json
+
 # The map's coordinate reference system (--crs), and export-geojson (docs/cli.md)
 json 0 "j['crs'] is None" -- "$sp" info --map "$ais" --json
 json 2 "$(err usage 2) and j['error']['message'].startswith('--crs')" -- \

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-// The map reader's mapped file (core/src/mapped_file.h): what is mapped reads back byte for byte,
+// The map reader's mapped file (core/mapped_file.h): what is mapped reads back byte for byte,
 // and what is not mapped is left to read_text_file.
-#include "mapped_file.h"
+#include "sewerplan/core/mapped_file.h"
 
 #include <filesystem>
 #include <fstream>

@@ -386,5 +386,47 @@ TEST(ReplannerIssue14, OnlyAProofThatNoExitCanBeReachedCallsTheBeacon) {
       {.kind = Failure::Kind::kBlockage, .pipe = p12, .offset_m = x - 0.5});
   EXPECT_EQ(r.decision, Decision::kCallForRecovery) << r.reason;
 }
+
+// Issue 35: a Replanner given the map's routing index made beforehand (domain/route_index.h)
+// plans and replans as one without it, and refuses an index of another robot.
+TEST(ReplannerRouteIndex, PlansAndReplansAsWithoutOneAndRefusesAStaleOne) {
+  const SewerMap map =
+      *generate_network({.manholes = 1500, .seed = 4, .topology = Topology::kMeshed});
+  const Mission mission = *domain::generate_mission(
+      map, {.tasks = 10, .seed = 3, .spread = domain::MissionSpread::kUniform});
+  const Result<domain::RouteIndex> index =
+      domain::RouteIndex::build(map, mission.profile, mission.passage_motion);
+  ASSERT_TRUE(index.has_value()) << index.error().message;
+  Replanner with(map, mission);
+  ASSERT_TRUE(with.use_route_index(*index).has_value());
+  Replanner without(map, mission);
+  const PlanResponse a = with.plan();
+  const PlanResponse b = without.plan();
+  ASSERT_EQ(a.decision, b.decision) << a.reason;
+  EXPECT_EQ(a.plan.steps, b.plan.steps);
+  // A blockage half-way along the first pipe the plan drives after its fifth step.
+  std::optional<PipeId> blocked;
+  for (std::size_t i = 5; i < a.plan.steps.size() && !blocked; ++i) {
+    if (const auto* d = std::get_if<domain::DrivePipeToManhole>(&a.plan.steps[i]))
+      blocked = d->pipe;
+  }
+  ASSERT_TRUE(blocked.has_value());
+  const Failure failure{.kind = Failure::Kind::kBlockage,
+                        .pipe = *blocked,
+                        .offset_m = map.pipe(*blocked).length_m / 2};
+  const PlanResponse c = with.report_failure(failure);
+  const PlanResponse d = without.report_failure(failure);
+  EXPECT_EQ(c.decision, d.decision) << c.reason;
+  EXPECT_EQ(c.plan.steps, d.plan.steps);
+  // An index of another robot's moves.
+  Mission plus = mission;
+  plus.profile =
+      *builtin_profile(mission.profile.name == "makro-plus" ? "makro-1.1" : "makro-plus");
+  Replanner other(map, plus);
+  const Result<void> stale = other.use_route_index(*index);
+  ASSERT_FALSE(stale.has_value());
+  EXPECT_NE(stale.error().message.find("is stale"), std::string::npos) << stale.error().message;
+}
+
 }  // namespace
 }  // namespace sewerplan::executor

@@ -47,6 +47,7 @@
 #include "sewerplan/domain/compiled_task.h"
 #include "sewerplan/domain/plan.h"
 #include "sewerplan/domain/robot_state.h"
+#include "sewerplan/domain/route_index.h"
 
 namespace sewerplan::domain {
 
@@ -89,6 +90,17 @@ class CompileCache {
   enum class RoutingIndex { kAuto, kAlways, kNever };
   explicit CompileCache(RoutingIndex index = RoutingIndex::kAuto);
   RoutingIndex routing_index() const;
+  // A routing index made beforehand (route_index.h: built by `sewerplan index build`, loaded from
+  // beside the map) for the compiles on `map` with this robot and motion table (`motion`, as the
+  // missions' Mission::passage_motion, the same pointer): they take their routes from it,
+  // whatever the policy, and build none. Checked here, where the cache builds the map's indices
+  // and moves as the first compile would (so that it need not): an index whose fingerprint is
+  // not theirs is refused (kInvalidArgument, naming its file), and the cache is left as it
+  // was. Compiles on another map or robot do without it. Plans are the same as without it.
+  // Runtime: O(positions + moves), judging every passage (tens of ms at 100,000 manholes).
+  Result<void> use_route_index(RouteIndex index, const SewerMap& map, const RobotProfile& profile,
+                               std::shared_ptr<const PassageMotionTable> motion,
+                               const StopCondition& stop = {});
   CompileCache(const CompileCache&) = delete;
   CompileCache& operator=(const CompileCache&) = delete;
   ~CompileCache();

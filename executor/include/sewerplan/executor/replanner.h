@@ -267,6 +267,11 @@ class Replanner {
   // memory that is not empty replaces the one kept (the filter's memory at a mission's end holds
   // what it started from: the Executor hands it over so).
   Result<void> learn(const Learnt& learnt);
+
+  // Issue 35: plans and replans take their routes from `index`, the map's routing index for the
+  // mission's robot and motion table made beforehand (domain/route_index.h), instead of building
+  // one; a stale index is refused (kInvalidArgument: domain::CompileCache::use_route_index).
+  Result<void> use_route_index(domain::RouteIndex index);
   // What this Replanner has learnt: learn()'s and every failure reported since.
   const Learnt& learnt() const { return learnt_; }
 

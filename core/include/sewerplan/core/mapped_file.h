@@ -1,14 +1,16 @@
 // SPDX-License-Identifier: MIT
-// A regular file mapped read-only into memory, for the map reader (map_io.cc).
+// A regular file mapped read-only into memory, for the readers of large files: the map reader
+// (map_io.cc) and the routing index's (domain/route_index.h: 270 MB at a million manholes).
 //
-// Private to core. A 1,000,000-manhole map is 430 MB of JSON: read into a string, it was zeroed,
-// then copied from the page cache, and every page of it faulted in on the way (a quarter of the
-// whole plan's time, issue 16). Mapped, the reader reads the page cache's own pages, populated in
-// one call. Only regular files of at least kMinMappedBytes are mapped (below that, mapping saves
-// nothing measurable); everything else (a smaller file, a pipe, a system without mmap) is read as
-// before by read_text_file. A mapped file truncated by another process while it is read would
-// fault the reader (SIGBUS), the same caveat as every mmap-based reader's: map files that are not
-// being written (sewerplan's own writers replace a file by renaming, which is safe).
+// Internal to sewerplan's libraries (namespace detail). A 1,000,000-manhole map is 430 MB of JSON:
+// read into a string, it was zeroed, then copied from the page cache, and every page of it faulted
+// in on the way (a quarter of the whole plan's time, issue 16). Mapped, the reader reads the page
+// cache's own pages, populated in one call. Only regular files of at least kMinMappedBytes are
+// mapped (below that, mapping saves nothing measurable); everything else (a smaller file, a pipe, a
+// system without mmap) is read as before by read_text_file. A mapped file truncated by another
+// process while it is read would fault the reader (SIGBUS), the same caveat as every mmap-based
+// reader's: map files that are not being written (sewerplan's own writers replace a file by
+// renaming, which is safe).
 //
 //   if (std::optional<MappedFile> file = MappedFile::open(path)) parse(file->text());
 //
