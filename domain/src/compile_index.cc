@@ -12,9 +12,11 @@
 // (PositionGraph::reads_adjacency) is then the only shortest way in G' too: any other way of G' of
 // no greater cost would be a way of G of no greater cost. Each of its prefixes is the only
 // shortest way to its node, so the route search, which keeps a node's first shortest parent
-// (graph_search.h), finds that route. A key beyond the bound in G is beyond it in G'. The nearest
-// exit is the exit node of least (distance, node), which a search settles first; an exit reached
-// in G' at its G distance stays the least in G'.
+// (graph_search.h), finds that route, whatever order it settles nodes of equal distance in. A
+// key beyond the bound in G is beyond it in G'. The nearest exit is taken only where one exit
+// node is strictly nearest (an exit reached in G' at its G distance stays the nearest in G');
+// which of several at one distance a search settles first depends on its order, not only on
+// the nodes' numbers, where moves cost 0 (a pipe's end to its slot, a free passage).
 #include <algorithm>
 #include <optional>
 #include <span>
@@ -47,11 +49,14 @@ detail::ChQuery* SewerTaskCompiler::routing_index(bool may_build, std::size_t se
   detail::GraphCore& core = graph.core();
   if (core.hierarchy_query != nullptr) return core.hierarchy_query.get();
   const CompileCache::RoutingIndex policy = options_.cache->routing_index();
-  if (!may_build || core.hierarchy_failed || policy == CompileCache::RoutingIndex::kNever) {
+  if (!may_build || !core_is_cached_ || core.hierarchy_failed ||
+      policy == CompileCache::RoutingIndex::kNever) {
     return nullptr;
   }
+  // kAuto: not where the build costs more than the searches, nor under a deadline or a cancel (a
+  // build stopped half-way serves nothing, and the searches it held up may have finished).
   if (policy == CompileCache::RoutingIndex::kAuto &&
-      settled_estimate <= kIndexFactor * graph.size()) {
+      (settled_estimate <= kIndexFactor * graph.size() || options_.stop.can_interrupt())) {
     return nullptr;
   }
   if (!graph.has_adjacency() && !graph.build_adjacency(&options_.stop)) return nullptr;
@@ -78,23 +83,47 @@ std::vector<SewerTaskCompiler::IndexStart> SewerTaskCompiler::index_starts(std::
   return starts;
 }
 
-std::vector<Node> SewerTaskCompiler::index_sources() const {
+const std::vector<Node>& SewerTaskCompiler::index_sources() {
+  if (!index_sources_.empty()) return index_sources_;
   // Every key that is a node of the map, and the slots at the ends of the others' pipes (where
   // their drives out end).
   const PositionGraph& graph = *result_.graph_;
-  std::vector<Node> sources;
   for (Node n : keys_) {
     if (!graph.is_extra_spot(n)) {
-      sources.push_back(n);
+      index_sources_.push_back(n);
       continue;
     }
     for (const PipeEnd& end : map_.pipe(*graph.pipe_of(n)).ends) {
-      if (end.manhole) sources.push_back(graph.at_slot(*end.manhole, end.slot));
+      if (end.manhole) index_sources_.push_back(graph.at_slot(*end.manhole, end.slot));
     }
   }
-  std::sort(sources.begin(), sources.end());
-  sources.erase(std::unique(sources.begin(), sources.end()), sources.end());
-  return sources;
+  std::sort(index_sources_.begin(), index_sources_.end());
+  index_sources_.erase(std::unique(index_sources_.begin(), index_sources_.end()),
+                       index_sources_.end());
+  return index_sources_;
+}
+
+template <class Distance>
+std::optional<std::size_t> SewerTaskCompiler::best_start(std::span<const IndexStart> starts,
+                                                         Distance distance, Cost* cost) {
+  *cost = kInfiniteCost;
+  std::optional<std::size_t> best;
+  bool tied = false;
+  for (const IndexStart& start : starts) {
+    const auto at = std::lower_bound(index_sources_.begin(), index_sources_.end(), start.node);
+    const auto i = static_cast<std::size_t>(at - index_sources_.begin());
+    const Cost d = distance(i);
+    if (d == kInfiniteCost) continue;
+    if (start.cost + d < *cost) {
+      *cost = start.cost + d;
+      best = i;
+      tied = false;
+    } else if (start.cost + d == *cost) {
+      tied = true;
+    }
+  }
+  if (tied) return std::nullopt;
+  return best;
 }
 
 bool SewerTaskCompiler::index_route(detail::ChQuery& index, std::size_t a,
@@ -103,35 +132,19 @@ bool SewerTaskCompiler::index_route(detail::ChQuery& index, std::size_t a,
   if (index_table_.sources() == 0) {
     // The routes between every key and every target at once (ChQuery::table_with_ways): one
     // upward search per source and per target, where a query per pair took two each.
-    index_table_sources_ = index_sources();
-    index.table_with_ways(index_table_sources_, index_table_targets_, index_table_);
+    index.table_with_ways(index_sources(), index_table_targets_, index_table_);
   }
   const auto column = std::lower_bound(index_table_targets_.begin(), index_table_targets_.end(), t);
-  const std::size_t j = static_cast<std::size_t>(column - index_table_targets_.begin());
-  Cost best = kInfiniteCost;
-  std::size_t best_row = 0;
-  bool unique = false;
-  bool tied = false;
-  for (const IndexStart& start : starts) {
-    const auto row =
-        std::lower_bound(index_table_sources_.begin(), index_table_sources_.end(), start.node);
-    const std::size_t i = static_cast<std::size_t>(row - index_table_sources_.begin());
-    const Cost d = index_table_.distance(i, j);
-    if (d == kInfiniteCost) continue;
-    const Cost total = start.cost + d;
-    if (total < best) {
-      best = total;
-      best_row = i;
-      unique = index_table_.unique(i, j);
-      tied = false;
-    } else if (total == best) {
-      tied = true;
-    }
-  }
-  *cost = best;
-  if (best > bound) return true;
-  if (tied || !unique) return false;
-  index_table_.way(best_row, j, index_path_);
+  const auto j = static_cast<std::size_t>(column - index_table_targets_.begin());
+  const std::optional<std::size_t> row = best_start(
+      starts, [&](std::size_t i) { return index_table_.distance(i, j); }, cost);
+  if (*cost > bound) return true;
+  if (!row || !index_table_.unique(*row, j)) return false;
+  index_table_.way(*row, j, index_path_);
+  return takes_index_path(a);
+}
+
+bool SewerTaskCompiler::takes_index_path(std::size_t a) {
   const PositionGraph& graph = *result_.graph_;
   if (!graph.reads_adjacency(index_path_)) return false;
   if (graph.is_extra_spot(keys_[a])) index_path_.insert(index_path_.begin(), keys_[a]);
@@ -160,8 +173,10 @@ void SewerTaskCompiler::index_row(detail::ChQuery& index, GraphSearch& search, s
   dist_[a * k() + a] = 0;
   *exit = std::nullopt;
   const bool exit_missed = exit_goal && !index_exit(index, a, bound, exit);
-  ++result_.statistics_.index_rows;
-  if (missed.empty() && !exit_missed) return;
+  if (missed.empty() && !exit_missed) {
+    ++result_.statistics_.index_rows;
+    return;
+  }
   const std::optional<Node> nearest =
       search.run(std::span<const Node>(&keys_[a], 1), missed, bound,
                  GraphSearch::Direction::kForward, exit_missed ? &exit_node() : nullptr);
@@ -186,43 +201,41 @@ bool SewerTaskCompiler::index_exit(detail::ChQuery& index, std::size_t a, Cost b
   // first exit it settles, which is near where exits are many (2 % of the manholes on the
   // scrambled networks: 8,000 exit nodes at 100,000 manholes, and a table of 0.3 s).
   if (exits.size() > kIndexExitsPerKey * k()) return false;
-  if (index_exit_sources_.empty()) {
+  if (index_exit_table_.empty() && !exits.empty()) {
     // Every key's (or its starts') distances to every exit node at once.
-    index_exit_sources_ = index_sources();
-    index.table(index_exit_sources_, exits, index_exit_table_);
+    index.table(index_sources(), exits, index_exit_table_);
   }
-  // The exit a search settles first: the least distance, then the least node; from the start
-  // that gives it (two starts giving it alike: tied, for a search).
-  const std::vector<IndexStart> starts = index_starts(a);
+  // The exit a search settles first: the one nearest, when no other exit node lies as near. (With
+  // moves of cost 0, a pipe's end to its slot or a free passage, the search does not settle the
+  // nodes at one distance by number: a slot reached at no cost from one settled after another
+  // exit at that distance is settled after it. Exits tied in distance go to the search.)
   Cost best = kInfiniteCost;
   std::optional<std::size_t> best_exit;
-  std::size_t best_start = 0;
+  std::optional<std::size_t> best_row;
   bool tied = false;
-  for (std::size_t i = 0; i < starts.size(); ++i) {
-    const auto source =
-        std::lower_bound(index_exit_sources_.begin(), index_exit_sources_.end(), starts[i].node);
-    const Cost* row = index_exit_table_.data() +
-                      static_cast<std::size_t>(source - index_exit_sources_.begin()) * exits.size();
-    for (std::size_t j = 0; j < exits.size(); ++j) {
-      if (row[j] == kInfiniteCost) continue;
-      const Cost d = starts[i].cost + row[j];
-      if (best_exit && d == best && j == *best_exit) tied = true;
-      if (!best_exit || d < best || (d == best && exits[j] < exits[*best_exit])) {
-        best = d;
-        best_exit = j;
-        best_start = i;
-        tied = false;
-      }
+  const std::vector<IndexStart> starts = index_starts(a);
+  for (std::size_t j = 0; j < exits.size(); ++j) {
+    Cost d = kInfiniteCost;
+    const std::optional<std::size_t> row = best_start(
+        starts, [&](std::size_t i) { return index_exit_table_[i * exits.size() + j]; }, &d);
+    if (d == kInfiniteCost) continue;
+    if (d < best) {
+      best = d;
+      best_exit = j;
+      best_row = row;
+      tied = false;
+    } else if (d == best) {
+      tied = true;
     }
   }
   if (!best_exit || best > bound) {
     *exit = std::nullopt;
     return true;
   }
+  if (tied || !best_row) return false;
   bool unique = false;
-  (void)index.path(starts[best_start].node, exits[*best_exit], index_path_, &unique);
-  if (tied || !unique || !graph.reads_adjacency(index_path_)) return false;
-  if (graph.is_extra_spot(keys_[a])) index_path_.insert(index_path_.begin(), keys_[a]);
+  (void)index.path(index_sources_[*best_row], exits[*best_exit], index_path_, &unique);
+  if (!unique || !takes_index_path(a)) return false;
   exit_dist_[a] = best;
   exit_routes_[a] = route_store_.keep(index_path_);
   *exit = exits[*best_exit];

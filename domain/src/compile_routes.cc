@@ -142,8 +142,12 @@ void SewerTaskCompiler::route(GraphSearch& search) {
       continue;
     }
     // From the index where it gives the search's row. A spot's search keeps every key it
-    // settled: the index gives the same only when every key a move enters is a target.
-    if (index != nullptr && (!spot || reachable.size() == targets.size())) {
+    // settled: the index gives the same only when every key a move enters is a target and the
+    // spot's pipe is one the robot may enter (out of a closed pipe, its search settles the slots
+    // at the pipe's ends, which no target list has).
+    if (index != nullptr &&
+        (!spot || (reachable.size() == targets.size() &&
+                   result_.graph_->pipe_drivable(*result_.graph_->pipe_of(keys_[a]))))) {
       index_row(*index, search, a, reachable, row_bound, exits != nullptr, &found);
       if (!spot) {
         remember_row(a, row_bound, found, reachable_key);

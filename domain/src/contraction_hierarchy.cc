@@ -62,6 +62,10 @@ class ChBuilder {
     std::vector<Entry> heap;
     heap.reserve(n_);
     for (std::uint32_t v = 0; v < n_; ++v) {
+      if (options_.stop != nullptr && v % 1024 == 0 && options_.stop->interrupted()) {
+        return Error{ErrorCode::kCancelled, "the routing index's build was stopped while its " +
+                                                std::string("nodes were ordered")};
+      }
       priority_[v] = estimate(v);
       heap.emplace_back(priority_[v], v);
     }

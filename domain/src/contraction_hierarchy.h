@@ -26,9 +26,10 @@
 // About 140-160 bytes per manhole + pipe of the map; a ChQuery's buffers add 30 bytes per node
 // (about 80 per manhole + pipe).
 //
-// The compile takes its routes from it on a CompileCache that asks for it (compile_index.cc):
-// its routes break ties by (distance, node) (graph_search.h), and a hierarchy's path among
-// equal-cost alternatives is another one (docs/benchmarks.md, issue 35). Built with
+// The compile takes its routes from it on a CompileCache that asks for it (compile_index.cc),
+// where a route is the only shortest way: among equal-cost alternatives the route search keeps
+// a node's first shortest parent (graph_search.h) and a hierarchy's path may be another one
+// (docs/benchmarks.md, issue 35). Built with
 // ChOptions::keep_ties, the hierarchy keeps every shortest way (Geisberger et al. drop a shortcut
 // for a witness of equal cost; here it must be shorter), and a query counts the shortest ways
 // (1 or more): each shortest way of the graph has exactly one up-down form (its nodes that are

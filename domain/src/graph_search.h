@@ -6,7 +6,9 @@
 // node costs more than the bound, so on a large map it explores only the region around the
 // mission's keys. The arrays are sized once and reset through the list of touched nodes; they may
 // be a GraphCore's scratch (position_graph.h), kept clean for the next compile on the same map.
-// Ties are broken by node number, so the paths are the same on every run.
+// Ties are broken by node number (among the nodes in the heap at once: a node reached at no cost
+// from one settled at the same distance is settled after it), so the paths are the same on every
+// run.
 #pragma once
 
 #include <functional>

@@ -107,8 +107,9 @@ struct GraphCore {
   std::shared_ptr<RouteMemo> route_memo;
   // Issue 35: the routing index over the adjacency (contraction_hierarchy.h, built with
   // keep_ties) and a query's buffers, built by the first compile on a CompileCache that asks for
-  // it (compile_index.cc); null until then. `hierarchy_failed`: a build failed (a cost too large
-  // for its edges), not to be tried again on this core.
+  // it (compile_index.cc) or handed a loaded one (CompileCache::use_route_index); null until
+  // then. Shared, as a loaded index may serve several caches' cores. `hierarchy_failed`: a build
+  // failed (a cost too large for its edges), not to be tried again on this core.
   std::shared_ptr<const ContractionHierarchy> hierarchy;
   std::shared_ptr<ChQuery> hierarchy_query;
   bool hierarchy_failed = false;

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The sewer compiler's working state (private to domain): one compile of a map, a mission and its
-// progress into a SewerTask (compile.h). Its parts live in three files:
+// progress into a SewerTask (compile.h). Its parts live in four files:
 //   compile.cc             the compile's course (run), the goals, the task's actions;
 //   compile_routes.cc      the keys and the route searches between them, with the route memo's
 //                          rows taken from and kept for the next compile (route_memo.h, issue 35);
@@ -42,7 +42,9 @@ class SewerTaskCompiler {
   SewerTaskCompiler(const SewerMap& map, const Mission& mission, const MissionProgress& progress,
                     const CompileOptions& options)
       : map_(map), mission_(mission), progress_(progress), options_(options) {
-    result_.graph_ = std::make_unique<PositionGraph>(map, mission, cached_core(), &options_.stop);
+    std::shared_ptr<detail::GraphCore> core = cached_core();
+    core_is_cached_ = core != nullptr;
+    result_.graph_ = std::make_unique<PositionGraph>(map, mission, std::move(core), &options_.stop);
   }
 
   Result<SewerTask> run();
@@ -150,14 +152,24 @@ class SewerTaskCompiler {
     Cost cost;
   };
   std::vector<IndexStart> index_starts(std::size_t a) const;
-  // The nodes the index's routes from the keys start at (index_starts, of every key), sorted.
-  std::vector<Node> index_sources() const;
+  // The nodes the index's routes from the keys start at (index_starts, of every key), sorted;
+  // computed once into index_sources_.
+  const std::vector<Node>& index_sources();
+  // Of `starts` (of key a), the one whose way to column j of `distance` (by source row) is
+  // shortest, as a search from a settles it: its row and the way's cost in `*cost`
+  // (kInfiniteCost: none), or nothing where two starts tie.
+  template <class Distance>
+  std::optional<std::size_t> best_start(std::span<const IndexStart> starts, Distance distance,
+                                        Cost* cost);
   // The route from key a (starting at `starts`) to t (one of index_table_targets_), as a search
   // from a finds it: its cost in `*cost` (kInfiniteCost: none), within `bound` the route in
   // index_path_. False where it lies within the bound but is not the only shortest way or not
   // one of this graph's.
   bool index_route(detail::ChQuery& index, std::size_t a, std::span<const IndexStart> starts,
                    Node t, Cost bound, Cost* cost);
+  // Whether index_path_ (from one of key a's starts) is a route of this mission's graph
+  // (PositionGraph::reads_adjacency); if so it becomes key a's, from a itself.
+  bool takes_index_path(std::size_t a);
   // Key a's row, as a search from it within `bound` to `targets` (and to its nearest exit, with
   // `exit_goal`) would give it: the routes to the targets (and to a itself) within the bound, the
   // others left unreached, and the exit in `*exit`. From the index where its route is the only
@@ -299,11 +311,13 @@ class SewerTaskCompiler {
   // The routing index's table between index_sources() and the route targets (sorted), built
   // on the first index_route; its distances from them to each exit node (GraphCore::
   // marked_exits), on the first index_exit; and a route's buffer.
-  std::vector<Node> index_table_sources_;
+  std::vector<Node> index_sources_;  // index_sources(), on the first use
   std::vector<Node> index_table_targets_;
   detail::ChTable index_table_;
-  std::vector<Node> index_exit_sources_;
   std::vector<Cost> index_exit_table_;
+  // The graph's core is the cache's (not a throwaway one made while another compile held it):
+  // only then is an index built on it kept.
+  bool core_is_cached_ = false;
   std::vector<Node> index_path_;
   bool contingency_ = false;
   detail::SearchScratch contingency_scratch_;  // declared first: outlives its search

@@ -120,7 +120,8 @@ struct CompileStatistics {
   // CompileCache, incremental replanning).
   std::size_t reused_searches = 0;
   // Searches not run: a key's routes, or its way to its nearest exit, taken from the routing
-  // index (CompileCache::RoutingIndex).
+  // index (CompileCache::RoutingIndex) whole. A row the index gave in part (a route tied or
+  // touched by a closure, an exit among many) counts a route search, for the rest.
   std::size_t index_rows = 0;
   std::size_t actions = 0;
   // The searches read the moves from the map's adjacency in the compile cache's core, built
