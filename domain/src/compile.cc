@@ -49,15 +49,9 @@ Result<void> CompileCache::use_route_index(RouteIndex index, const SewerMap& map
   std::shared_ptr<detail::GraphCore> core = state_->core;
   // The cache's core if it serves this map and robot and no compile holds it; else a new one, as
   // the next compile would build.
-  if (core == nullptr || !core->serves(map, profile, motion.get()) || core.use_count() > 2) {
-    core = std::make_shared<detail::GraphCore>(map, profile, motion, &stop);
-    if (!core->complete) return stopped();
-  }
-  Mission plain;
-  plain.profile = profile;
-  plain.passage_motion = core->motion;
-  detail::PositionGraph graph(map, plain, core);
-  if (!graph.build_adjacency(&stop)) return stopped();
+  if (core != nullptr && core.use_count() > 2) core = nullptr;
+  core = detail::core_with_adjacency(std::move(core), map, profile, std::move(motion), stop);
+  if (core == nullptr) return stopped();
   const std::uint64_t fingerprint = detail::adjacency_fingerprint(*core);
   if (fingerprint != index.fingerprint() ||
       index.statistics().nodes + 1 != core->adjacency_begin.size()) {

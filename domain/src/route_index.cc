@@ -332,6 +332,31 @@ struct ChFile {
 
 }  // namespace detail
 
+void RouteIndex::Impl::hold(detail::ContractionHierarchy ch) {
+  hierarchy = std::make_shared<const detail::ContractionHierarchy>(std::move(ch));
+  const detail::ChStatistics& s = hierarchy->statistics();
+  statistics.nodes = s.nodes;
+  statistics.moves = s.moves;
+  statistics.shortcuts = s.shortcuts;
+  statistics.edges = s.up_edges + s.down_edges;
+  statistics.bytes = s.bytes;
+}
+
+std::shared_ptr<detail::GraphCore> detail::core_with_adjacency(
+    std::shared_ptr<GraphCore> core, const SewerMap& map, const RobotProfile& profile,
+    std::shared_ptr<const PassageMotionTable> motion, const StopCondition& stop) {
+  if (core == nullptr || !core->serves(map, profile, motion.get())) {
+    core = std::make_shared<GraphCore>(map, profile, std::move(motion), &stop);
+    if (!core->complete) return nullptr;
+  }
+  Mission plain;
+  plain.profile = profile;
+  plain.passage_motion = core->motion;
+  PositionGraph graph(map, plain, core);
+  if (!graph.build_adjacency(&stop)) return nullptr;
+  return core;
+}
+
 Result<RouteIndex> RouteIndex::build(const SewerMap& map, const RobotProfile& profile,
                                      std::shared_ptr<const PassageMotionTable> motion,
                                      const StopCondition& stop) {
@@ -339,13 +364,8 @@ Result<RouteIndex> RouteIndex::build(const SewerMap& map, const RobotProfile& pr
     return stopped_error(stop.interrupted().value_or(SearchStatus::kCancelled),
                          "the routing index's build");
   };
-  auto core = std::make_shared<detail::GraphCore>(map, profile, std::move(motion), &stop);
-  if (!core->complete) return stopped();
-  Mission plain;
-  plain.profile = profile;
-  plain.passage_motion = core->motion;
-  detail::PositionGraph graph(map, plain, core);
-  if (!graph.build_adjacency(&stop)) return stopped();
+  const auto core = detail::core_with_adjacency(nullptr, map, profile, std::move(motion), stop);
+  if (core == nullptr) return stopped();
   auto built = detail::ContractionHierarchy::build(
       core->adjacency_begin, core->adjacency_to, core->adjacency_cost,
       {.keep_ties = true, .stop = stop.can_interrupt() ? &stop : nullptr});
@@ -355,13 +375,7 @@ Result<RouteIndex> RouteIndex::build(const SewerMap& map, const RobotProfile& pr
   }
   auto impl = std::make_shared<Impl>();
   impl->statistics.fingerprint = detail::adjacency_fingerprint(*core);
-  impl->hierarchy = std::make_shared<const detail::ContractionHierarchy>(std::move(*built));
-  const detail::ChStatistics& s = impl->hierarchy->statistics();
-  impl->statistics.nodes = s.nodes;
-  impl->statistics.moves = s.moves;
-  impl->statistics.shortcuts = s.shortcuts;
-  impl->statistics.edges = s.up_edges + s.down_edges;
-  impl->statistics.bytes = s.bytes;
+  impl->hold(std::move(*built));
   return RouteIndex(std::move(impl));
 }
 
@@ -373,13 +387,7 @@ Result<RouteIndex> RouteIndex::read(std::string_view bytes, const std::string& f
     return Error{ch.error().code, file_name + ": " + ch.error().message +
                                       " (remake it with 'sewerplan index build')"};
   }
-  impl->hierarchy = std::make_shared<const detail::ContractionHierarchy>(std::move(*ch));
-  const detail::ChStatistics& s = impl->hierarchy->statistics();
-  impl->statistics.nodes = s.nodes;
-  impl->statistics.moves = s.moves;
-  impl->statistics.shortcuts = s.shortcuts;
-  impl->statistics.edges = s.up_edges + s.down_edges;
-  impl->statistics.bytes = s.bytes;
+  impl->hold(std::move(*ch));
   impl->source = file_name;
   return RouteIndex(std::move(impl));
 }

@@ -19,9 +19,20 @@ struct RouteIndex::Impl {
   std::shared_ptr<const detail::ContractionHierarchy> hierarchy;
   RouteIndexStatistics statistics;
   std::string source;
+
+  // Takes `ch` as the hierarchy, with its counts in `statistics` (the fingerprint aside).
+  void hold(detail::ContractionHierarchy ch);
 };
 
 namespace detail {
+
+// The moves of `map` for this robot and motion table as a compile's searches read them: a core
+// with its adjacency built (PositionGraph::build_adjacency) from `core` if it serves them (else a
+// new one), or null if `stop` fired first.
+std::shared_ptr<GraphCore> core_with_adjacency(std::shared_ptr<GraphCore> core, const SewerMap& map,
+                                               const RobotProfile& profile,
+                                               std::shared_ptr<const PassageMotionTable> motion,
+                                               const StopCondition& stop);
 
 // FNV-1a 64 over the core's adjacency (GraphCore::adjacency_begin, _to, _cost), each value as its
 // little-endian bytes (docs/formats/route-index.md, "Fingerprint"). Precondition: the core has
