@@ -5,6 +5,8 @@
 #include <cmath>
 #include <utility>
 
+#include "job_arithmetic.h"
+
 namespace sewerplan::executor {
 
 Measurer::Measurer(const SewerMap& map, MeasurementSource source, MeasuringOptions options)
@@ -160,11 +162,14 @@ void Measurer::drive(const Job& job, const hal::JobReport& report,
 
   if (const auto* at = std::get_if<domain::AtSlot>(&after)) {
     const Slot& slot = map_.slot(at->manhole, at->slot);
-    if (slot.pipe == leg_->pipe && slot.pipe_end != leg_->from_end) {
-      end_leg(at->manhole, at->slot);
-    } else {
+    if (slot.pipe != leg_->pipe || slot.pipe_end == leg_->from_end) {
       leg_.reset();  // back where it started, or somewhere the leg does not lead
+    } else if (report.observation || (detail::ends_at_manhole(job) && report.ok())) {
+      end_leg(at->manhole, at->slot);
     }
+    // Otherwise the controller has the robot at the far mouth by the map's distance alone (a scan
+    // or a drive of a distance that saw no manhole): in a pipe longer than mapped it stopped short
+    // of it, and the drive to the manhole that follows ends the leg.
     return;
   }
   const auto* in = std::get_if<domain::InPipe>(&after);

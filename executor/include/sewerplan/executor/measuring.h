@@ -6,7 +6,11 @@
 // the controller had the robot before and after it (the Executor's dead reckoning, so no position
 // of its own):
 //   - a leg starts when the robot leaves a manhole into a pipe (a turn through the manhole, or
-//     leaving the manhole it was lowered into) and ends when it reaches the pipe's other end; the
+//     leaving the manhole it was lowered into) and ends when it arrives at the pipe's other end by
+//     its own report: a sighting of the manhole, or a drive to the manhole (to_manhole) it
+//     finished, as the localisation's arrivals (not a scan or drive of the map's distance that
+//     the controller tracks to the mouth and that saw none: in a pipe longer than mapped it
+//     stopped short, and the drive to the manhole that follows drives the rest); the
 //     signed sum of the drives' odometry between (towards the far end positive: a scan driven
 //     backward counts back) is one length measurement, with sigma = sqrt((fraction x length)^2 +
 //     floor^2) (MeasuringOptions). A leg in which a job failed, a push was made, or a report's
