@@ -144,6 +144,20 @@ void Measurer::start_leg(const domain::RobotPosition& after) {
   }
 }
 
+namespace {
+
+// Whether a job's report spoils the leg it is part of: a push (its wheels turn against the
+// obstacle, and a real robot's odometry counts the slip), or a report the link lost part of
+// (what the robot drove is not all known). A drive that stopped short (an obstacle or a danger
+// ahead, a fault, its bound without a manhole) counts what it drove, and recovery's manoeuvres
+// (backing up, driving on) are drives the robot reports: the leg goes on.
+bool spoils_leg(const Job& job, const hal::JobReport& report) {
+  return std::holds_alternative<Push>(job) ||
+         (report.error && report.error->cause == hal::RobotErrorCause::kLink);
+}
+
+}  // namespace
+
 void Measurer::drive(const Job& job, const hal::JobReport& report,
                      const domain::RobotPosition& after, double direction) {
   if (!leg_) return;
@@ -157,7 +171,7 @@ void Measurer::drive(const Job& job, const hal::JobReport& report,
     const double towards_far = leg_->from_end == 0 ? direction : -direction;
     leg_->driven_m += towards_far * report.progress_m;
   }
-  if (!report.ok() || std::holds_alternative<Push>(job)) leg_->clean = false;
+  if (spoils_leg(job, report)) leg_->clean = false;
   if (report.in_water) leg_->in_water = true;
 
   if (const auto* at = std::get_if<domain::AtSlot>(&after)) {

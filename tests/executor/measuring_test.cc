@@ -213,9 +213,33 @@ TEST_F(MeasurerTest, ALateralTheMapLacksIsAnUnmappedLateral) {
   EXPECT_NEAR(found[0].discrepancy.value, 270, 1e-9);
 }
 
-TEST_F(MeasurerTest, ALegWithAFailedJobOrABadReportIsNotMeasured) {
+// A drive stopped short by an obstacle (or a danger, a fault, its bound) counted what it drove, and
+// recovery backs up and drives on by drives the robot reports: the leg is their sum. Such legs were
+// not measured: on the 1,000-manhole meshed network (40 runs of the realistic world, seed 3) 45 of
+// the 485 whole passes of a pipe were lost so (measured, the length RMS of seeds 1-3 went 2.92 ->
+// 2.68 %; on AIS, seeds 1-4, 2.20 -> 2.20 %).
+TEST_F(MeasurerTest, ADriveStoppedShortAndDrivenOnIsOneLeg) {
+  enter();
+  drive(0, 4.0,
+        {.error = hal::RobotError{hal::RobotErrorCause::kObstacle, "obstacle in P1 at 4.2 m"}});
+  drive(4.0, 0.1, {}, -1);  // backing up, and on when the obstacle is gone
+  hal::JobReport arrived;
+  arrived.observation = m2_seen();
+  drive(3.9, 6.4, arrived);
+  ASSERT_EQ(measurer_.measurements().pipes.size(), 1U);
+  EXPECT_DOUBLE_EQ(measurer_.measurements().pipes[0].length_m.mean, 10.3);
+}
+
+TEST_F(MeasurerTest, ALegWithAPushALostReportOrABadOdometryIsNotMeasured) {
   enter();
   drive(0, 4.0, {.error = hal::RobotError{hal::RobotErrorKind::kBlockage, "obstacle"}});
+  hal::JobReport pushed;
+  pushed.progress_m = 0.5;
+  measurer_.observe(Push{0.1, 6.0}, pushed, domain::InPipe{p1_, 4.0}, domain::InPipe{p1_, 4.5}, 1);
+  drive(4.5, 5.5);
+  EXPECT_TRUE(measurer_.measurements().pipes.empty());
+  enter();
+  drive(0, 4.0, {.error = hal::RobotError{hal::RobotErrorCause::kLink, "no answer"}});
   drive(4.0, 6.0);
   EXPECT_TRUE(measurer_.measurements().pipes.empty());
   enter();

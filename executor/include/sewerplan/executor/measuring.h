@@ -13,9 +13,11 @@
 //     stopped short, and the drive to the manhole that follows drives the rest); the
 //     signed sum of the drives' odometry between (towards the far end positive: a scan driven
 //     backward counts back) is one length measurement, with sigma = sqrt((fraction x length)^2 +
-//     floor^2) (MeasuringOptions). A leg in which a job failed, a push was made, or a report's
-//     progress was not a number is not measured (recovery moves the robot in ways odometry
-//     does not tell), nor one that came back to the end it started from;
+//     floor^2) (MeasuringOptions). A leg with a push (the wheels turn against the obstacle), a
+//     report the link lost part of, or a report whose progress is not a number is not measured,
+//     nor one that came back to the end it started from; one with a drive that failed short of
+//     its goal (an obstacle, a danger, a fault, its bound without a manhole) is: the robot's
+//     odometry counts what it drove, and recovery backs up and drives on by drives it reports;
 //   - an arrival with an observation (hal::JobReport::observation) is a signature measurement of
 //     that manhole, relative to the slot arrived through; with a measured leg, also a position
 //     estimate (map_measurements.h);
