@@ -220,7 +220,10 @@ void Measurer::end_leg(ManholeId manhole, SlotIndex slot) {
   leg_.reset();
   if (!leg.clean || leg.driven_m <= 0) return;
   const Pipe& pipe = map_.pipe(leg.pipe);
-  const double sigma = sigma_m(leg.driven_m, leg.pipe, leg.in_water);
+  // Of the pipe's mapped length, not of what the leg read: every pass of a pipe drives the same
+  // length, and a sigma of the reading made a leg that slipped short look more precise, pulling
+  // the pooled mean down (and the corrected length away from the map's).
+  const double sigma = sigma_m(pipe.length_m, leg.pipe, leg.in_water);
   add_length(measurements_, leg.pipe, leg.driven_m, sigma * sigma, 0);
   // Position: the manhole left's map position plus the pipe's chord, scaled by measured / mapped
   // length (map_measurements.h).

@@ -87,7 +87,7 @@ TEST_F(MeasurerTest, AWholePipeDrivenIsALengthMeasurement) {
   ASSERT_EQ(m.pipes.size(), 1u);
   EXPECT_EQ(m.pipes[0].pipe, p1_);
   EXPECT_DOUBLE_EQ(m.pipes[0].length_m.mean, 12.0);
-  EXPECT_NEAR(m.pipes[0].length_m.variance, 0.36 * 0.36 + 0.05 * 0.05, 1e-12);
+  EXPECT_NEAR(m.pipes[0].length_m.variance, 0.30 * 0.30 + 0.05 * 0.05, 1e-12);  // 3 % of 10 m
   ASSERT_EQ(m.manholes.size(), 1u);
   EXPECT_EQ(m.manholes[0].manhole, m2_);
   ASSERT_EQ(m.manholes[0].observations.size(), 1u);
@@ -123,8 +123,8 @@ TEST(Measurer, ALegInASteepPipeIsTwiceAsUncertain) {
                    domain::AtSlot{m2, SlotIndex{0}}, 1);
   const MapMeasurements& m = measurer.measurements();
   ASSERT_EQ(m.pipes.size(), 1U);
-  EXPECT_NEAR(m.pipes[0].length_m.variance, 0.672 * 0.672 + 0.05 * 0.05, 1e-12);
-  // 1.2 m off is 1.8 sigma here (3.6 sigma in a flat pipe): not reported.
+  EXPECT_NEAR(m.pipes[0].length_m.variance, 0.6 * 0.6 + 0.05 * 0.05, 1e-12);
+  // 1.2 m off is 2 sigma here (3.9 sigma in a flat pipe): not reported.
   for (const FoundDiscrepancy& f : discrepancies(m, map)) {
     EXPECT_NE(f.discrepancy.kind, Kind::kLengthOff) << describe(f.discrepancy, map);
   }
@@ -143,8 +143,8 @@ TEST_F(MeasurerTest, ALegDrivenInWaterIsTwiceAsUncertain) {
   drive(6.0, 5.0, arrived);  // dry from here, but the leg had water: 11 m where the map says 10
   const MapMeasurements& m = measurer_.measurements();
   ASSERT_EQ(m.pipes.size(), 1U);
-  EXPECT_NEAR(m.pipes[0].length_m.variance, 0.66 * 0.66 + 0.05 * 0.05, 1e-12);
-  // 1 m off is 1.5 sigma here (3 sigma dry, beyond 3 and the floor): not reported.
+  EXPECT_NEAR(m.pipes[0].length_m.variance, 0.6 * 0.6 + 0.05 * 0.05, 1e-12);
+  // 1 m off is 1.7 sigma here (3.3 sigma dry, beyond 3 and the floor): not reported.
   for (const FoundDiscrepancy& f : discrepancies(m, map_)) {
     EXPECT_NE(f.discrepancy.kind, Kind::kLengthOff) << describe(f.discrepancy, map_);
   }
@@ -158,6 +158,25 @@ TEST_F(MeasurerTest, ADryLegOffAsMuchIsALengthOff) {
   const auto found = discrepancies(measurer_.measurements(), map_);
   ASSERT_EQ(found.size(), 1U);
   EXPECT_EQ(found[0].discrepancy.kind, Kind::kLengthOff);
+}
+
+// Every pass of a pipe drives the same length: its sigma is of the pipe's mapped length, not of
+// what the pass read, so two passes weigh alike. With the reading's sigma a pass that slipped short
+// weighed more and pulled the pooled mean down (on the meshed 1,000-manhole network, seed 1, run
+// 12: passes of 11.2 and 14.7 m of a 16.6 m pipe pooled to 12.5 m; with the three seeds' other
+// such pipes the length RMS of seeds 1-3 went 2.68 -> 2.28 %).
+TEST_F(MeasurerTest, PassesOfAPipeWeighAlikeWhateverTheyRead) {
+  hal::JobReport arrived;
+  arrived.observation = m2_seen();
+  enter();
+  drive(0, 8.0, arrived);
+  enter();
+  drive(0, 12.0, arrived);
+  const MapMeasurements& m = measurer_.measurements();
+  ASSERT_EQ(m.pipes.size(), 1U);
+  EXPECT_EQ(m.pipes[0].length_m.count, 2U);
+  EXPECT_NEAR(m.pipes[0].length_m.mean, 10.0, 1e-12);
+  EXPECT_NEAR(m.pipes[0].length_m.variance, (0.30 * 0.30 + 0.05 * 0.05) / 2, 1e-12);
 }
 
 TEST_F(MeasurerTest, DrivesBackAndForthAreSummedWithTheirSign) {

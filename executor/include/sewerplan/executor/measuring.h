@@ -13,11 +13,13 @@
 //     stopped short, and the drive to the manhole that follows drives the rest); the
 //     signed sum of the drives' odometry between (towards the far end positive: a scan driven
 //     backward counts back) is one length measurement, with sigma = sqrt((fraction x length)^2 +
-//     floor^2) (MeasuringOptions). A leg with a push (the wheels turn against the obstacle), a
-//     report the link lost part of, or a report whose progress is not a number is not measured,
-//     nor one that came back to the end it started from; one with a drive that failed short of
-//     its goal (an obstacle, a danger, a fault, its bound without a manhole) is: the robot's
-//     odometry counts what it drove, and recovery backs up and drives on by drives it reports;
+//     floor^2), length the pipe's on the map (MeasuringOptions; not the leg's reading, which
+//     made a pass that slipped short weigh more). A leg with a push (the wheels turn against the
+//     obstacle), a report the link lost part of, or a report whose progress is not a number is not
+//     measured, nor one that came back to the end it started from; one with a drive that failed
+//     short of its goal (an obstacle, a danger, a fault, its bound without a manhole) is: the
+//     robot's odometry counts what it drove, and recovery backs up and drives on by drives it
+//     reports;
 //   - an arrival with an observation (hal::JobReport::observation) is a signature measurement of
 //     that manhole, relative to the slot arrived through; with a measured leg, also a position
 //     estimate (map_measurements.h);
@@ -57,7 +59,7 @@
 namespace sewerplan::executor {
 
 struct MeasuringOptions {
-  double odometry_sigma_fraction = 0.03;  // of the distance driven (the drift)
+  double odometry_sigma_fraction = 0.03;  // of the pipe's length (the drift)
   double odometry_sigma_floor_m = 0.05;   // the wheels' resolution and the manhole's mouth
   // Wheels slip more where the pipe falls steeply (its ends' inverts, from the map): there the
   // fraction is this many times larger (docs/simulation.md has the robot's slip model). With one
