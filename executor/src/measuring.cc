@@ -178,12 +178,14 @@ void Measurer::drive(const Job& job, const hal::JobReport& report,
     const Slot& slot = map_.slot(at->manhole, at->slot);
     if (slot.pipe != leg_->pipe || slot.pipe_end == leg_->from_end) {
       leg_.reset();  // back where it started, or somewhere the leg does not lead
-    } else if (report.observation || (detail::ends_at_manhole(job) && report.ok())) {
+    } else if (report.observation ||
+               (detail::ends_at_manhole(job) && report.ok() && !leg_->refused_at_end)) {
       end_leg(at->manhole, at->slot);
     }
     // Otherwise the controller has the robot at the far mouth by the map's distance alone (a scan
     // or a drive of a distance that saw no manhole): in a pipe longer than mapped it stopped short
-    // of it, and the drive to the manhole that follows ends the leg.
+    // of it, and the drive to the manhole that follows ends the leg. Or by its word alone, against
+    // the robot's sighting there (refused_at_end): only an arrival the robot sees ends the leg.
     return;
   }
   const auto* in = std::get_if<domain::InPipe>(&after);
@@ -203,6 +205,11 @@ void Measurer::drive(const Job& job, const hal::JobReport& report,
     end_leg(m, s);
     arrival(m, s, *report.observation);
     return;
+  }
+  // Seen where the controller has the robot at the far end, and not taken for the far manhole
+  // (unlike it, the controller took it for a false detection).
+  if (far_end.manhole && std::abs(in->offset_m - domain::end_offset_m(pipe, far)) <= 1e-6) {
+    leg_->refused_at_end = true;
   }
   const double sigma = sigma_m(std::abs(leg_->driven_m), leg_->pipe, leg_->in_water);
   if (near_an_end(pipe, in->offset_m, sigma) || too_narrow(pipe, in->offset_m, *report.observation))

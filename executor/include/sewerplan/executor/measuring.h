@@ -10,7 +10,9 @@
 //     its own report: a sighting of the manhole, or a drive to the manhole (to_manhole) it
 //     finished, as the localisation's arrivals (not a scan or drive of the map's distance that
 //     the controller tracks to the mouth and that saw none: in a pipe longer than mapped it
-//     stopped short, and the drive to the manhole that follows drives the rest); the
+//     stopped short, and the drive to the manhole that follows drives the rest; nor, once the
+//     robot saw a manhole where the controller has it at the far end and took it for none, an
+//     arrival the robot did not see: the controller's word against its sighting); the
 //     signed sum of the drives' odometry between (towards the far end positive: a scan driven
 //     backward counts back) is one length measurement, with sigma = sqrt((fraction x length)^2 +
 //     floor^2), length the pipe's on the map (MeasuringOptions; not the leg's reading, which
@@ -113,6 +115,9 @@ class Measurer {
     double driven_m = 0;  // towards the far end
     bool clean = true;
     bool in_water = false;  // a drive of it reported water
+    // The robot saw a manhole where the controller has it at the far end, and the controller
+    // took it for none (unlike the far manhole): only an arrival the robot sees ends the leg.
+    bool refused_at_end = false;
   };
 
   void start_leg(const domain::RobotPosition& after);
