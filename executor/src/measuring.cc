@@ -5,6 +5,8 @@
 #include <cmath>
 #include <utility>
 
+#include "job_arithmetic.h"
+
 namespace sewerplan::executor {
 
 Measurer::Measurer(const SewerMap& map, MeasurementSource source, MeasuringOptions options)
@@ -142,6 +144,20 @@ void Measurer::start_leg(const domain::RobotPosition& after) {
   }
 }
 
+namespace {
+
+// Whether a job's report spoils the leg it is part of: a push (its wheels turn against the
+// obstacle, and a real robot's odometry counts the slip), or a report the link lost part of
+// (what the robot drove is not all known). A drive that stopped short (an obstacle or a danger
+// ahead, a fault, its bound without a manhole) counts what it drove, and recovery's manoeuvres
+// (backing up, driving on) are drives the robot reports: the leg goes on.
+bool spoils_leg(const Job& job, const hal::JobReport& report) {
+  return std::holds_alternative<Push>(job) ||
+         (report.error && report.error->cause == hal::RobotErrorCause::kLink);
+}
+
+}  // namespace
+
 void Measurer::drive(const Job& job, const hal::JobReport& report,
                      const domain::RobotPosition& after, double direction) {
   if (!leg_) return;
@@ -155,16 +171,21 @@ void Measurer::drive(const Job& job, const hal::JobReport& report,
     const double towards_far = leg_->from_end == 0 ? direction : -direction;
     leg_->driven_m += towards_far * report.progress_m;
   }
-  if (!report.ok() || std::holds_alternative<Push>(job)) leg_->clean = false;
+  if (spoils_leg(job, report)) leg_->clean = false;
   if (report.in_water) leg_->in_water = true;
 
   if (const auto* at = std::get_if<domain::AtSlot>(&after)) {
     const Slot& slot = map_.slot(at->manhole, at->slot);
-    if (slot.pipe == leg_->pipe && slot.pipe_end != leg_->from_end) {
-      end_leg(at->manhole, at->slot);
-    } else {
+    if (slot.pipe != leg_->pipe || slot.pipe_end == leg_->from_end) {
       leg_.reset();  // back where it started, or somewhere the leg does not lead
+    } else if (report.observation ||
+               (detail::ends_at_manhole(job) && report.ok() && !leg_->refused_at_end)) {
+      end_leg(at->manhole, at->slot);
     }
+    // Otherwise the controller has the robot at the far mouth by the map's distance alone (a scan
+    // or a drive of a distance that saw no manhole): in a pipe longer than mapped it stopped short
+    // of it, and the drive to the manhole that follows ends the leg. Or by its word alone, against
+    // the robot's sighting there (refused_at_end): only an arrival the robot sees ends the leg.
     return;
   }
   const auto* in = std::get_if<domain::InPipe>(&after);
@@ -185,6 +206,11 @@ void Measurer::drive(const Job& job, const hal::JobReport& report,
     arrival(m, s, *report.observation);
     return;
   }
+  // Seen where the controller has the robot at the far end, and not taken for the far manhole
+  // (unlike it, the controller took it for a false detection).
+  if (far_end.manhole && std::abs(in->offset_m - domain::end_offset_m(pipe, far)) <= 1e-6) {
+    leg_->refused_at_end = true;
+  }
   const double sigma = sigma_m(std::abs(leg_->driven_m), leg_->pipe, leg_->in_water);
   if (near_an_end(pipe, in->offset_m, sigma) || too_narrow(pipe, in->offset_m, *report.observation))
     return;
@@ -201,7 +227,10 @@ void Measurer::end_leg(ManholeId manhole, SlotIndex slot) {
   leg_.reset();
   if (!leg.clean || leg.driven_m <= 0) return;
   const Pipe& pipe = map_.pipe(leg.pipe);
-  const double sigma = sigma_m(leg.driven_m, leg.pipe, leg.in_water);
+  // Of the pipe's mapped length, not of what the leg read: every pass of a pipe drives the same
+  // length, and a sigma of the reading made a leg that slipped short look more precise, pulling
+  // the pooled mean down (and the corrected length away from the map's).
+  const double sigma = sigma_m(pipe.length_m, leg.pipe, leg.in_water);
   add_length(measurements_, leg.pipe, leg.driven_m, sigma * sigma, 0);
   // Position: the manhole left's map position plus the pipe's chord, scaled by measured / mapped
   // length (map_measurements.h).

@@ -49,8 +49,8 @@ class MeasurerTest : public ::testing::Test {
     measurer_.observe(EnterPipeFromManhole{0, 5}, hal::JobReport{}, before, after, 0);
   }
 
-  // A drive of `odometry` metres along P1 from `from_m`, which the controller tracks onto the map
-  // (clamped at its length: at M2's mouth).
+  // A drive to M2 (to_manhole) of `odometry` metres along P1 from `from_m`, which the controller
+  // tracks onto the map (clamped at its length: at M2's mouth).
   void drive(double from_m, double odometry, hal::JobReport report = {}, double direction = 1) {
     report.progress_m = odometry;
     const double to = std::clamp(from_m + direction * odometry, 0.0, 10.0);
@@ -58,7 +58,15 @@ class MeasurerTest : public ::testing::Test {
     const domain::RobotPosition after =
         to >= 10.0 && report.ok() ? domain::RobotPosition{domain::AtSlot{m2_, SlotIndex{0}}}
                                   : domain::RobotPosition{domain::InPipe{p1_, to}};
-    measurer_.observe(DriveForward{0.3, odometry}, report, before, after, direction);
+    measurer_.observe(DriveForward{0.3, odometry, true}, report, before, after, direction);
+  }
+
+  // A scan of the whole of P1 (a drive of the map's distance, not to a manhole) whose odometry
+  // read `odometry` metres: the controller tracks it to M2's mouth.
+  void scan(double odometry, hal::JobReport report = {}) {
+    report.progress_m = odometry;
+    measurer_.observe(Scan{0.1, 10.0}, report, domain::InPipe{p1_, 0},
+                      domain::AtSlot{m2_, SlotIndex{0}}, 1);
   }
 
   ManholeSignature m2_seen() const { return expected_signature(map_, m2_, SlotIndex{0}); }
@@ -79,7 +87,7 @@ TEST_F(MeasurerTest, AWholePipeDrivenIsALengthMeasurement) {
   ASSERT_EQ(m.pipes.size(), 1u);
   EXPECT_EQ(m.pipes[0].pipe, p1_);
   EXPECT_DOUBLE_EQ(m.pipes[0].length_m.mean, 12.0);
-  EXPECT_NEAR(m.pipes[0].length_m.variance, 0.36 * 0.36 + 0.05 * 0.05, 1e-12);
+  EXPECT_NEAR(m.pipes[0].length_m.variance, 0.30 * 0.30 + 0.05 * 0.05, 1e-12);  // 3 % of 10 m
   ASSERT_EQ(m.manholes.size(), 1u);
   EXPECT_EQ(m.manholes[0].manhole, m2_);
   ASSERT_EQ(m.manholes[0].observations.size(), 1u);
@@ -115,8 +123,8 @@ TEST(Measurer, ALegInASteepPipeIsTwiceAsUncertain) {
                    domain::AtSlot{m2, SlotIndex{0}}, 1);
   const MapMeasurements& m = measurer.measurements();
   ASSERT_EQ(m.pipes.size(), 1U);
-  EXPECT_NEAR(m.pipes[0].length_m.variance, 0.672 * 0.672 + 0.05 * 0.05, 1e-12);
-  // 1.2 m off is 1.8 sigma here (3.6 sigma in a flat pipe): not reported.
+  EXPECT_NEAR(m.pipes[0].length_m.variance, 0.6 * 0.6 + 0.05 * 0.05, 1e-12);
+  // 1.2 m off is 2 sigma here (3.9 sigma in a flat pipe): not reported.
   for (const FoundDiscrepancy& f : discrepancies(m, map)) {
     EXPECT_NE(f.discrepancy.kind, Kind::kLengthOff) << describe(f.discrepancy, map);
   }
@@ -135,8 +143,8 @@ TEST_F(MeasurerTest, ALegDrivenInWaterIsTwiceAsUncertain) {
   drive(6.0, 5.0, arrived);  // dry from here, but the leg had water: 11 m where the map says 10
   const MapMeasurements& m = measurer_.measurements();
   ASSERT_EQ(m.pipes.size(), 1U);
-  EXPECT_NEAR(m.pipes[0].length_m.variance, 0.66 * 0.66 + 0.05 * 0.05, 1e-12);
-  // 1 m off is 1.5 sigma here (3 sigma dry, beyond 3 and the floor): not reported.
+  EXPECT_NEAR(m.pipes[0].length_m.variance, 0.6 * 0.6 + 0.05 * 0.05, 1e-12);
+  // 1 m off is 1.7 sigma here (3.3 sigma dry, beyond 3 and the floor): not reported.
   for (const FoundDiscrepancy& f : discrepancies(m, map_)) {
     EXPECT_NE(f.discrepancy.kind, Kind::kLengthOff) << describe(f.discrepancy, map_);
   }
@@ -152,6 +160,25 @@ TEST_F(MeasurerTest, ADryLegOffAsMuchIsALengthOff) {
   EXPECT_EQ(found[0].discrepancy.kind, Kind::kLengthOff);
 }
 
+// Every pass of a pipe drives the same length: its sigma is of the pipe's mapped length, not of
+// what the pass read, so two passes weigh alike. With the reading's sigma a pass that slipped short
+// weighed more and pulled the pooled mean down (on the meshed 1,000-manhole network, seed 1, run
+// 12: passes of 11.2 and 14.7 m of a 16.6 m pipe pooled to 12.5 m; with the three seeds' other
+// such pipes the length RMS of seeds 1-3 went 2.68 -> 2.28 %).
+TEST_F(MeasurerTest, PassesOfAPipeWeighAlikeWhateverTheyRead) {
+  hal::JobReport arrived;
+  arrived.observation = m2_seen();
+  enter();
+  drive(0, 8.0, arrived);
+  enter();
+  drive(0, 12.0, arrived);
+  const MapMeasurements& m = measurer_.measurements();
+  ASSERT_EQ(m.pipes.size(), 1U);
+  EXPECT_EQ(m.pipes[0].length_m.count, 2U);
+  EXPECT_NEAR(m.pipes[0].length_m.mean, 10.0, 1e-12);
+  EXPECT_NEAR(m.pipes[0].length_m.variance, (0.30 * 0.30 + 0.05 * 0.05) / 2, 1e-12);
+}
+
 TEST_F(MeasurerTest, DrivesBackAndForthAreSummedWithTheirSign) {
   enter();
   drive(0, 6.0);
@@ -159,6 +186,35 @@ TEST_F(MeasurerTest, DrivesBackAndForthAreSummedWithTheirSign) {
   drive(5.0, 5.5);
   ASSERT_EQ(measurer_.measurements().pipes.size(), 1u);
   EXPECT_DOUBLE_EQ(measurer_.measurements().pipes[0].length_m.mean, 10.5);
+}
+
+// A scan of the map's distance that saw no manhole is at the far mouth only by the map's length:
+// in a pipe longer than mapped it stopped short of it, and the drive to the manhole that follows
+// drives the rest. The leg ends where the robot arrives by its own report (a sighting, or a drive
+// to the manhole it finished), as the localisation's arrivals do. Ended at the scan, the leg
+// measured the map's length: on AIS (200 runs of the realistic world, seed 4) three legs of P4,
+// a pipe 8 m on the map and 9.4 to 9.8 m truly, were 8.1 to 8.4 m.
+TEST_F(MeasurerTest, ALegEndsWhereTheRobotArrivesNotWhereTheMapsLengthPutsIt) {
+  enter();
+  scan(10.1);  // the map's 10 m, and no manhole seen
+  EXPECT_TRUE(measurer_.measurements().pipes.empty());
+  hal::JobReport arrived;
+  arrived.observation = m2_seen();
+  drive(10.0, 1.5, arrived);  // the controller planned the rest from the end: 0 m by the map
+  ASSERT_EQ(measurer_.measurements().pipes.size(), 1U);
+  EXPECT_DOUBLE_EQ(measurer_.measurements().pipes[0].length_m.mean, 11.6);
+  EXPECT_EQ(measurer_.measurements().manholes.at(0).observations.size(), 1U);
+
+  // A scan that stopped at the manhole and saw it (a pipe shorter than mapped) ends its leg.
+  enter();
+  scan(9.2, arrived);
+  ASSERT_EQ(measurer_.measurements().pipes.size(), 1U);
+  EXPECT_EQ(measurer_.measurements().pipes[0].length_m.count, 2U);
+  // And a drive to the manhole that the robot finished ends it, seen or not (a manhole missed at
+  // a pipe's end stops the robot all the same; a robot without a manhole sensor sees none).
+  enter();
+  drive(0, 10.3);
+  EXPECT_EQ(measurer_.measurements().pipes[0].length_m.count, 3U);
 }
 
 TEST_F(MeasurerTest, ALateralTheMapLacksIsAnUnmappedLateral) {
@@ -176,9 +232,58 @@ TEST_F(MeasurerTest, ALateralTheMapLacksIsAnUnmappedLateral) {
   EXPECT_NEAR(found[0].discrepancy.value, 270, 1e-9);
 }
 
-TEST_F(MeasurerTest, ALegWithAFailedJobOrABadReportIsNotMeasured) {
+// A drive stopped short by an obstacle (or a danger, a fault, its bound) counted what it drove, and
+// recovery backs up and drives on by drives the robot reports: the leg is their sum. Such legs were
+// not measured: on the 1,000-manhole meshed network (40 runs of the realistic world, seed 3) 45 of
+// the 485 whole passes of a pipe were lost so (measured, the length RMS of seeds 1-3 went 2.92 ->
+// 2.68 %; on AIS, seeds 1-4, 2.20 -> 2.20 %).
+// A manhole seen where the controller has the robot at the far end of the pipe, unlike the far
+// manhole (the controller took it for a false detection): an arrival there that the robot does not
+// see rests on the controller's word against its own sighting, and does not end the leg. On AIS
+// (200 runs of the realistic world, seed 4, run 83) the robot passed M9 unseen into P14 and saw
+// M12; the controller held it in P8 at 10 m, a drive of 0 m "arrived" at M9 unseen, and P8's 10 m
+// measured 13.8 m: 39 % of the campaign's sum of squares (length RMS 2.60 -> 2.03 % without it).
+TEST_F(MeasurerTest, AnArrivalUnseenWhereTheRobotSawAnotherManholeEndsNoLeg) {
+  enter();
+  hal::JobReport other;
+  other.progress_m = 13.8;
+  other.observation = ManholeSignature{.slots = {{0, 0, 0.3}}, .shaft_diameter_m = 1.0};
+  measurer_.observe(DriveForward{0.3, 10.0, true}, other, domain::InPipe{p1_, 0},
+                    domain::InPipe{p1_, 10.0}, 1);
+  drive(10.0, 0.0);  // the controller's drive to M2 from there: 0 m, and nothing seen
+  EXPECT_TRUE(measurer_.measurements().pipes.empty());
+  hal::JobReport arrived;
+  arrived.observation = m2_seen();
+  enter();
+  measurer_.observe(DriveForward{0.3, 10.0, true}, other, domain::InPipe{p1_, 0},
+                    domain::InPipe{p1_, 10.0}, 1);
+  drive(10.0, 0.4, arrived);  // it was a false detection after all: M2 seen 0.4 m on
+  ASSERT_EQ(measurer_.measurements().pipes.size(), 1U);
+  EXPECT_DOUBLE_EQ(measurer_.measurements().pipes[0].length_m.mean, 14.2);
+}
+
+TEST_F(MeasurerTest, ADriveStoppedShortAndDrivenOnIsOneLeg) {
+  enter();
+  drive(0, 4.0,
+        {.error = hal::RobotError{hal::RobotErrorCause::kObstacle, "obstacle in P1 at 4.2 m"}});
+  drive(4.0, 0.1, {}, -1);  // backing up, and on when the obstacle is gone
+  hal::JobReport arrived;
+  arrived.observation = m2_seen();
+  drive(3.9, 6.4, arrived);
+  ASSERT_EQ(measurer_.measurements().pipes.size(), 1U);
+  EXPECT_DOUBLE_EQ(measurer_.measurements().pipes[0].length_m.mean, 10.3);
+}
+
+TEST_F(MeasurerTest, ALegWithAPushALostReportOrABadOdometryIsNotMeasured) {
   enter();
   drive(0, 4.0, {.error = hal::RobotError{hal::RobotErrorKind::kBlockage, "obstacle"}});
+  hal::JobReport pushed;
+  pushed.progress_m = 0.5;
+  measurer_.observe(Push{0.1, 6.0}, pushed, domain::InPipe{p1_, 4.0}, domain::InPipe{p1_, 4.5}, 1);
+  drive(4.5, 5.5);
+  EXPECT_TRUE(measurer_.measurements().pipes.empty());
+  enter();
+  drive(0, 4.0, {.error = hal::RobotError{hal::RobotErrorCause::kLink, "no answer"}});
   drive(4.0, 6.0);
   EXPECT_TRUE(measurer_.measurements().pipes.empty());
   enter();

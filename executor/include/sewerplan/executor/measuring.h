@@ -6,12 +6,22 @@
 // the controller had the robot before and after it (the Executor's dead reckoning, so no position
 // of its own):
 //   - a leg starts when the robot leaves a manhole into a pipe (a turn through the manhole, or
-//     leaving the manhole it was lowered into) and ends when it reaches the pipe's other end; the
+//     leaving the manhole it was lowered into) and ends when it arrives at the pipe's other end by
+//     its own report: a sighting of the manhole, or a drive to the manhole (to_manhole) it
+//     finished, as the localisation's arrivals (not a scan or drive of the map's distance that
+//     the controller tracks to the mouth and that saw none: in a pipe longer than mapped it
+//     stopped short, and the drive to the manhole that follows drives the rest; nor, once the
+//     robot saw a manhole where the controller has it at the far end and took it for none, an
+//     arrival the robot did not see: the controller's word against its sighting); the
 //     signed sum of the drives' odometry between (towards the far end positive: a scan driven
 //     backward counts back) is one length measurement, with sigma = sqrt((fraction x length)^2 +
-//     floor^2) (MeasuringOptions). A leg in which a job failed, a push was made, or a report's
-//     progress was not a number is not measured (recovery moves the robot in ways odometry
-//     does not tell), nor one that came back to the end it started from;
+//     floor^2), length the pipe's on the map (MeasuringOptions; not the leg's reading, which
+//     made a pass that slipped short weigh more). A leg with a push (the wheels turn against the
+//     obstacle), a report the link lost part of, or a report whose progress is not a number is not
+//     measured, nor one that came back to the end it started from; one with a drive that failed
+//     short of its goal (an obstacle, a danger, a fault, its bound without a manhole) is: the
+//     robot's odometry counts what it drove, and recovery backs up and drives on by drives it
+//     reports;
 //   - an arrival with an observation (hal::JobReport::observation) is a signature measurement of
 //     that manhole, relative to the slot arrived through; with a measured leg, also a position
 //     estimate (map_measurements.h);
@@ -51,7 +61,7 @@
 namespace sewerplan::executor {
 
 struct MeasuringOptions {
-  double odometry_sigma_fraction = 0.03;  // of the distance driven (the drift)
+  double odometry_sigma_fraction = 0.03;  // of the pipe's length (the drift)
   double odometry_sigma_floor_m = 0.05;   // the wheels' resolution and the manhole's mouth
   // Wheels slip more where the pipe falls steeply (its ends' inverts, from the map): there the
   // fraction is this many times larger (docs/simulation.md has the robot's slip model). With one
@@ -105,6 +115,9 @@ class Measurer {
     double driven_m = 0;  // towards the far end
     bool clean = true;
     bool in_water = false;  // a drive of it reported water
+    // The robot saw a manhole where the controller has it at the far end, and the controller
+    // took it for none (unlike the far manhole): only an arrival the robot sees ends the leg.
+    bool refused_at_end = false;
   };
 
   void start_leg(const domain::RobotPosition& after);
