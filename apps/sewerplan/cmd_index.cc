@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// sewerplan index build --map MAP [--profile P] [--motion FILE | --no-motion]
+// sewerplan index build --map MAP [--profile P | --mission M] [--motion FILE | --no-motion]
 //                       [--time-limit SECONDS] [-o FILE] [-q] [--json]
 // The map's routing index for a robot (domain/route_index.h, issue 35), kept beside the map as
 // MAP.route-index.bin, where `plan` and `simulate` find it (route_index_options.h).
@@ -27,6 +27,7 @@ struct BuildOptions {
   std::string map;
   std::string gis_fields;
   std::string profile = "makro-1.1";
+  std::string mission;  // the profile from this mission's, as plan and simulate take it
   MotionOptions motion;
   double time_limit_s = 0;  // 0: none
   std::string out;
@@ -39,7 +40,16 @@ int build(const BuildOptions& o, Context& c) {
   Result<SewerMap> map = read_input_map({o.map, o.gis_fields}, diagnostics);
   if (!map.has_value()) return fail(c, o.json, map.error(), diagnostics);
   print_diagnostics(diagnostics, c.err);
-  Result<RobotProfile> profile = load_profile(o.profile);
+  Result<RobotProfile> profile = Error{ErrorCode::kInvalidProfile, "no profile"};
+  if (!o.mission.empty()) {
+    Diagnostics read;
+    Result<Mission> mission = read_mission(o.mission, *map, read);
+    if (!mission.has_value()) return fail(c, o.json, mission.error(), read);
+    print_diagnostics(read, c.err);
+    profile = mission->profile;
+  } else {
+    profile = load_profile(o.profile);
+  }
   if (!profile.has_value()) {
     const Error& e = profile.error();
     return fail(
@@ -99,8 +109,12 @@ void add_index_command(CLI::App& app, Context& context) {
       "build", "Build the map's routing index and write MAP.route-index.bin beside it");
   cmd->add_option("--map", o->map, "Map file")->required();
   add_gis_fields_option(*cmd, o->gis_fields);
-  cmd->add_option("--profile", o->profile, "Robot profile: makro-1.1, makro-plus or a JSON file")
-      ->capture_default_str();
+  CLI::Option* profile = cmd->add_option("--profile", o->profile,
+                                         "Robot profile: makro-1.1, makro-plus or a JSON file")
+                             ->capture_default_str();
+  cmd->add_option("--mission", o->mission,
+                  "Take the robot profile from this mission (the one plan and simulate will use)")
+      ->excludes(profile);
   add_motion_options(*cmd, o->motion);
   cmd->add_option("--time-limit", o->time_limit_s,
                   "Seconds before the build stops without an index (exit 5; 0: none)")

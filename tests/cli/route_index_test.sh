@@ -67,6 +67,14 @@ expect_ran 1 "remake it with 'sewerplan index build'"
 expect_ran 1 "use --no-route-index to plan without it"
 expect 1 "is stale" -- "$sp" simulate --map "$tmp/map.json" --mission "$mission" \
   --route-index "$tmp/plus.bin"
+# --mission takes the profile from the mission, as plan does: its index is not stale for it.
+"$sp" index build --map "$tmp/map.json" --mission "$mission" -o "$tmp/from-mission.bin" >/dev/null
+check "an index built from the mission's profile serves its plan" \
+  "$sp" plan --map "$tmp/map.json" --mission "$mission" --route-index "$tmp/from-mission.bin" -q
+expect 2 "excludes" -- "$sp" index build --map "$tmp/map.json" --mission "$mission" \
+  --profile makro-plus
+expect 3 "$tmp/no-such-mission.json" -- "$sp" index build --map "$tmp/map.json" \
+  --mission "$tmp/no-such-mission.json"
 # A broken file: truncated, not an index, missing.
 head -c 100 "$tmp/map.route-index.bin" >"$tmp/cut.bin"
 expect 1 "$tmp/cut.bin: truncated or corrupt: its counts" -- \
