@@ -2,9 +2,11 @@
 // The routing-index options of `plan` and `simulate`: --route-index FILE and --no-route-index.
 //
 // By default a command uses the index kept beside the map (MAP.route-index.bin, written by
-// `sewerplan index build`) when there is one, and says so on standard error; a stale or broken
-// index is an error rather than silently ignored, as a stale motion table is (docs/motion.md,
-// docs/formats/route-index.md). The plans are the same with or without it.
+// `sewerplan index build`) when there is one, and says so on standard error. The plans are the
+// same with or without it, so one beside the map that is stale (of another map, robot, motion
+// table or --condition) is said so on standard error, with the command that remakes it, and
+// the command plans without it; a broken file, or a stale one named by --route-index, is an
+// error (docs/formats/route-index.md). A stale motion table is always an error: it changes plans.
 #pragma once
 
 #include <optional>
@@ -47,6 +49,10 @@ Result<void> attach_route_index(const RouteIndexOptions& options, const std::str
   if (!*index) return Result<void>{};
   if (Result<void> used = use(**index); !used.has_value()) {
     Error error = used.error();
+    if (error.code == ErrorCode::kInvalidArgument && options.path.empty()) {
+      err << "index: " << error.message << "; planning without it\n";
+      return Result<void>{};
+    }
     // An index of another map or profile is invalid input (exit code 1), not a usage error.
     if (error.code == ErrorCode::kInvalidArgument) error.code = ErrorCode::kInvalidMap;
     error.message += "\n(use --no-route-index to plan without it)";

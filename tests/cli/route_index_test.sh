@@ -67,6 +67,15 @@ expect_ran 1 "remake it with 'sewerplan index build'"
 expect_ran 1 "use --no-route-index to plan without it"
 expect 1 "is stale" -- "$sp" simulate --map "$tmp/map.json" --mission "$mission" \
   --route-index "$tmp/plus.bin"
+# The same index kept beside a map: said so, with how to remake it, and the plan (the same plan)
+# made without it; simulate alike.
+cp "$tmp/map.json" "$tmp/other.json"
+cp "$tmp/plus.bin" "$tmp/other.route-index.bin"
+expect 0 "index: the routing index $tmp/other.route-index.bin is stale.*planning without it" -- \
+  "$sp" plan --map "$tmp/other.json" --mission "$mission" -o "$tmp/stale-plan.txt"
+check "the plan beside a stale index is the plan" cmp -s "$tmp/stale-plan.txt" "$tmp/without.txt"
+expect 0 "index: the routing index $tmp/other.route-index.bin is stale" -- \
+  "$sp" simulate --map "$tmp/other.json" --mission "$mission"
 # --mission takes the profile from the mission, as plan does: its index is not stale for it.
 "$sp" index build --map "$tmp/map.json" --mission "$mission" -o "$tmp/from-mission.bin" >/dev/null
 check "an index built from the mission's profile serves its plan" \
@@ -87,7 +96,13 @@ expect 3 "cannot read $tmp/missing.bin" -- \
 # one): an index built before the table is stale with it, fine again with --no-motion, and one
 # built with the table is used with it.
 if "$sp" motion precompute --map "$tmp/map.json" -q >/dev/null 2>&1; then
-  expect 1 "is stale" -- "$sp" plan --map "$tmp/map.json" --mission "$mission" -q
+  # Beside the map, a stale index is said so, and the plan made without it (the same plan).
+  expect 0 "index: the routing index $tmp/map.route-index.bin is stale" -- \
+    "$sp" plan --map "$tmp/map.json" --mission "$mission" -q
+  expect 0 "remake it with 'sewerplan index build'" -- \
+    "$sp" plan --map "$tmp/map.json" --mission "$mission" -q
+  expect 1 "is stale" -- "$sp" plan --map "$tmp/map.json" --mission "$mission" -q \
+    --route-index "$tmp/map.route-index.bin"
   expect 0 "" -- "$sp" plan --map "$tmp/map.json" --mission "$mission" -q --no-motion
   "$sp" index build --map "$tmp/map.json" -q >/dev/null
   expect 0 "index: using the routing index" -- "$sp" plan --map "$tmp/map.json" --mission "$mission" \
