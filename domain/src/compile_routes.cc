@@ -122,56 +122,54 @@ void SewerTaskCompiler::route(GraphSearch& search) {
     }
   }
   open_memo(reachable, exits != nullptr);
-  for (std::size_t a = 1; a < k() && !search.interrupted(); ++a) {
-    // A task's spot is reached by the task's action, not by a route: always route from it. So
-    // is a pipe end a task leaves the robot at: when no route from the start reaches it within
-    // the bound (a go-to at the far end of a pipe entered from its other end), route from it
-    // within the whole bound (issue 14: it was a dead end, and a feasible go-to "no plan").
-    const bool spot = landing(a) && (result_.graph_->is_extra_spot(keys_[a]) || dist_[a] > bound_);
-    if (!spot && dist_[a] > bound_) continue;
-    const Cost row_bound = spot ? bound_ : bound_ - dist_[a];
-    // A row from a key the start reaches has the routes to the keys the start reaches within
-    // the key's bound: those are its targets, and every other key lies beyond that bound. Only
-    // its targets are kept, so that the row depends on them alone (RouteMemo).
-    if (!spot && reuse_row(a, row_bound, reachable_key)) {
-      ++result_.statistics_.reused_searches;
-      continue;
-    }
-    if (spot && reuse_spot_row(a, reachable, reachable_key, exits != nullptr)) {
-      ++result_.statistics_.reused_searches;
-      continue;
-    }
-    // From the index where it gives the search's row. A spot's search keeps every key it
-    // settled: the index gives the same only when every key a move enters is a target and the
-    // spot's pipe is one the robot may enter (out of a closed pipe, its search settles the slots
-    // at the pipe's ends, which no target list has).
-    if (index != nullptr &&
-        (!spot || (reachable.size() == targets.size() &&
-                   result_.graph_->pipe_drivable(*result_.graph_->pipe_of(keys_[a]))))) {
-      index_row(*index, search, a, reachable, row_bound, exits != nullptr, &found);
-      if (!spot) {
-        remember_row(a, row_bound, found, reachable_key);
-      } else if (!reachable.empty() || exits != nullptr) {
-        remember_spot_row(a, found);
-      }
-      continue;
-    }
-    found = search.run(std::span<const Node>(&keys_[a], 1), reachable, row_bound,
-                       GraphSearch::Direction::kForward, exits);
-    ++result_.statistics_.route_searches;
-    store_routes(search, a, found, spot ? nullptr : &reachable_key);
-    if (!spot) {
-      remember_row(a, row_bound, found, reachable_key);
-    } else if (!reachable.empty() || exits != nullptr) {
-      remember_spot_row(a, found);
-    }
-  }
+  const RowTargets rows{targets, reachable, reachable_key, exits};
+  for (std::size_t a = 1; a < k() && !search.interrupted(); ++a) route_row(search, index, a, rows);
   result_.graph_->set_risk_weight(options_.risk.return_s);
   if (ends_at_exit_ && !search.interrupted()) route_to_exits(search, targets, index);
   result_.graph_->set_risk_weight(0);
   // Kept for the next compile on this core, once every search has run to its end.
   if (options_.cache != nullptr && !search.interrupted()) {
     result_.graph_->core().route_memo = memo_;
+  }
+}
+
+void SewerTaskCompiler::route_row(GraphSearch& search, detail::ChQuery* index, std::size_t a,
+                                  const RowTargets& rows) {
+  // A task's spot is reached by the task's action, not by a route: always route from it. So is a
+  // pipe end a task leaves the robot at: when no route from the start reaches it within the bound
+  // (a go-to at the far end of a pipe entered from its other end), route from it within the whole
+  // bound (issue 14: it was a dead end, and a feasible go-to "no plan").
+  const bool spot = landing(a) && (result_.graph_->is_extra_spot(keys_[a]) || dist_[a] > bound_);
+  if (!spot && dist_[a] > bound_) return;
+  const Cost row_bound = spot ? bound_ : bound_ - dist_[a];
+  const bool exit_goal = rows.exits != nullptr;
+  // A row from a key the start reaches has the routes to the keys the start reaches within the
+  // key's bound: those are its targets, and every other key lies beyond that bound. Only its
+  // targets are kept, so that the row depends on them alone (RouteMemo).
+  if (spot ? reuse_spot_row(a, rows.reachable, rows.reachable_key, exit_goal)
+           : reuse_row(a, row_bound, rows.reachable_key)) {
+    ++result_.statistics_.reused_searches;
+    return;
+  }
+  std::optional<Node> found;
+  // From the index where it gives the search's row. A spot's search keeps every key it settled:
+  // the index gives the same only when every key a move enters is a target and the spot's pipe
+  // is one the robot may enter (out of a closed pipe, its search settles the slots at the pipe's
+  // ends, which no target list has).
+  if (index != nullptr &&
+      (!spot || (rows.reachable.size() == rows.all.size() &&
+                 result_.graph_->pipe_drivable(*result_.graph_->pipe_of(keys_[a]))))) {
+    index_row(*index, search, a, rows.reachable, row_bound, exit_goal, &found);
+  } else {
+    found = search.run(std::span<const Node>(&keys_[a], 1), rows.reachable, row_bound,
+                       GraphSearch::Direction::kForward, rows.exits);
+    ++result_.statistics_.route_searches;
+    store_routes(search, a, found, spot ? nullptr : &rows.reachable_key);
+  }
+  if (!spot) {
+    remember_row(a, row_bound, found, rows.reachable_key);
+  } else if (!rows.reachable.empty() || exit_goal) {
+    remember_spot_row(a, found);
   }
 }
 

@@ -98,6 +98,20 @@ class SewerTaskCompiler {
 
   void route(GraphSearch& search);
 
+  // What every row after the start's routes to (route()): the route targets, those the start
+  // reaches within the bound (and by key), and the exit marks a row's search also goes to (null:
+  // none).
+  struct RowTargets {
+    const std::vector<Node>& all;
+    const std::vector<Node>& reachable;
+    const std::vector<bool>& reachable_key;
+    const std::vector<bool>* exits;
+  };
+  // Key a's row: from the last compile's memo, the routing index (`index`, if not null) or a
+  // search, and kept in the memo for the next compile.
+  void route_row(GraphSearch& search, detail::ChQuery* index, std::size_t a,
+                 const RowTargets& rows);
+
   // The last compile's rows (RouteMemo), when this compile may take from them, and this
   // compile's context for the next.
   void open_memo(const std::vector<Node>& reachable, bool exit_goal);

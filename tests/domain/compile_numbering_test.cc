@@ -16,6 +16,7 @@
 #include "position_graph.h"
 #include "support/paths.h"
 #include "support/scrambled_network.h"
+#include "support/task_compare.h"
 
 namespace sewerplan::domain {
 namespace {
@@ -38,26 +39,8 @@ Mission renamed(const Mission& mission, const bench::ShuffledMap& shuffled) {
   return out;
 }
 
-// The two tasks are the same up to the renaming: the same variables, the same actions with the
-// same preconditions, effects, costs, reserves and names, each expanding to as many steps.
-void expect_same_task(const SewerTask& a, const SewerTask& b) {
-  const CompiledTask& x = a.task();
-  const CompiledTask& y = b.task();
-  ASSERT_EQ(x.variable_count(), y.variable_count());
-  ASSERT_EQ(x.action_count(), y.action_count());
-  EXPECT_EQ(x.cost_bound(), y.cost_bound());
-  for (ActionId id : x.action_ids()) {
-    ASSERT_EQ(x.action_name(id), y.action_name(id));
-    EXPECT_EQ(x.cost(id), y.cost(id)) << x.action_name(id);
-    EXPECT_EQ(x.reserve(id), y.reserve(id)) << x.action_name(id);
-    const auto pre_x = x.preconditions(id), pre_y = y.preconditions(id);
-    const auto eff_x = x.effects(id), eff_y = y.effects(id);
-    EXPECT_TRUE(std::equal(pre_x.begin(), pre_x.end(), pre_y.begin(), pre_y.end()));
-    EXPECT_TRUE(std::equal(eff_x.begin(), eff_x.end(), eff_y.begin(), eff_y.end()));
-    const ActionId one[] = {id};
-    EXPECT_EQ(a.expand(one).steps.size(), b.expand(one).steps.size()) << x.action_name(id);
-  }
-}
+using testing::expect_identical_task;
+using testing::expect_same_task;
 
 void expect_same_on_shuffled_copy(const SewerMap& map, const Mission& mission) {
   const bench::ShuffledMap shuffled = bench::shuffle_ids(map, 7);
@@ -194,14 +177,7 @@ namespace {
 
 // Issue 35, incremental replanning: a compile on a CompileCache takes the rows the last compile's
 // searches found (RouteMemo) where nothing that changed since could alter them. The task must be
-// the one compiled afresh, action for action and route for route.
-void expect_identical_task(const SewerTask& cached, const SewerTask& fresh) {
-  expect_same_task(cached, fresh);
-  for (ActionId id : fresh.task().action_ids()) {
-    const ActionId one[] = {id};
-    EXPECT_EQ(cached.expand(one).steps, fresh.expand(one).steps) << fresh.task().action_name(id);
-  }
-}
+// the one compiled afresh, action for action and route for route (expect_identical_task).
 
 // The pipes the routes of `task`'s moves drive, in action order, each once.
 std::vector<PipeId> driven_pipes(const SewerTask& task) {

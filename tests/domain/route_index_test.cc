@@ -18,6 +18,7 @@
 
 #include "route_index_internal.h"
 #include "support/scrambled_network.h"
+#include "support/task_compare.h"
 
 namespace sewerplan::domain {
 namespace {
@@ -74,19 +75,7 @@ TEST(RouteIndexIssue35, ReadsBackTheIndexItWroteWithTheSameDistancesAndWays) {
 }
 
 // The tasks are the same, action for action and route for route.
-void expect_identical_task(const SewerTask& a, const SewerTask& b) {
-  const CompiledTask& x = a.task();
-  const CompiledTask& y = b.task();
-  ASSERT_EQ(x.action_count(), y.action_count());
-  EXPECT_EQ(x.cost_bound(), y.cost_bound());
-  for (ActionId id : x.action_ids()) {
-    ASSERT_EQ(x.action_name(id), y.action_name(id));
-    EXPECT_EQ(x.cost(id), y.cost(id)) << x.action_name(id);
-    EXPECT_EQ(x.reserve(id), y.reserve(id)) << x.action_name(id);
-    const ActionId one[] = {id};
-    EXPECT_EQ(a.expand(one).steps, b.expand(one).steps) << x.action_name(id);
-  }
-}
+using testing::expect_identical_task;
 
 // A compile on a cache given the index saved and loaded takes its routes from it from the first
 // compile on (no build, whatever the policy), and gives the task compiled without one; so do
