@@ -7,6 +7,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "sewerplan/domain/route_index.h"
 #include "sewerplan/domain/validator.h"
 #include "sewerplan/executor/replanner.h"
 
@@ -49,7 +50,10 @@ std::optional<Blocked> blockage_on_route(const Instance& instance,
 
 // `warm`: the replanner has made the first plan itself, as on a mission (its compile cache holds
 // the map's indices, domain::CompileCache); else a fresh replanner replans.
-void replan_after_blockage(benchmark::State& state, const Instance& instance, bool warm = true) {
+// `index`: the replanner is given the map's routing index first (as `plan` and `simulate` load
+// it from beside the map, domain/route_index.h).
+void replan_after_blockage(benchmark::State& state, const Instance& instance, bool warm = true,
+                           const domain::RouteIndex* index = nullptr) {
   executor::Replanner first(instance.map, instance.mission);
   const executor::PlanResponse plan = first.plan();
   const auto blocked = blockage_on_route(instance, plan, plan.plan.steps.size() / 3);
@@ -61,6 +65,10 @@ void replan_after_blockage(benchmark::State& state, const Instance& instance, bo
   for (auto _ : state) {
     state.PauseTiming();
     executor::Replanner replanner(instance.map, instance.mission);
+    if (index != nullptr && !replanner.use_route_index(*index).has_value()) {
+      state.SkipWithError("the routing index is not the map's");
+      return;
+    }
     if (warm) (void)replanner.plan();
     (void)replanner.update(blocked->progress, blocked->heading_end);
     state.ResumeTiming();
@@ -109,11 +117,15 @@ BENCHMARK(BM_ReplanAfterBlockageSpread)
 // Issue 35: the same on the scrambled generator's networks (bench/support/scrambled_network.h:
 // numbered and named without spatial order, degree 2 to 4), the tasks spread over the whole
 // network and a battery that bounds no search, where every route search settles most of the map.
-// Arguments: manholes, warm (as above). With warm, the replanner takes the rows of its last
-// compile whose routes the blockage does not touch (domain::CompileCache, incremental
-// replanning); cold, it compiles everything again.
+// Arguments: manholes, warm (as above), index (1: the replanner has the map's routing index,
+// built beforehand and not timed, as `sewerplan index build` keeps it beside the map). With
+// warm, the replanner takes the rows of its last compile whose routes the blockage does not
+// touch (domain::CompileCache, incremental replanning); cold, it compiles everything again. With
+// the index, the rows' routes the blockage touches are searched toward each target, guided by
+// the index (GraphSearch::run_toward), rather than by a search of the whole network.
 void BM_ReplanAfterBlockageScrambled(benchmark::State& state) {
   static std::map<std::size_t, Instance> instances;
+  static std::map<std::size_t, domain::RouteIndex> indices;
   const auto manholes = static_cast<std::size_t>(state.range(0));
   auto it = instances.find(manholes);
   if (it == instances.end()) {
@@ -122,11 +134,25 @@ void BM_ReplanAfterBlockageScrambled(benchmark::State& state) {
     i.mission = *scrambled_mission(i.map, 20, 1);
     it = instances.emplace(manholes, std::move(i)).first;
   }
-  replan_after_blockage(state, it->second, state.range(1) != 0);
+  const domain::RouteIndex* index = nullptr;
+  if (state.range(2) != 0) {
+    auto at = indices.find(manholes);
+    if (at == indices.end()) {
+      auto built = domain::RouteIndex::build(it->second.map, it->second.mission.profile,
+                                             it->second.mission.passage_motion);
+      if (!built.has_value()) {
+        state.SkipWithError(built.error().message.c_str());
+        return;
+      }
+      at = indices.emplace(manholes, std::move(*built)).first;
+    }
+    index = &at->second;
+  }
+  replan_after_blockage(state, it->second, state.range(1) != 0, index);
 }
 BENCHMARK(BM_ReplanAfterBlockageScrambled)
-    ->ArgNames({"manholes", "warm"})
-    ->ArgsProduct({{10000, 100000}, {0, 1}})
+    ->ArgNames({"manholes", "warm", "index"})
+    ->ArgsProduct({{10000, 100000}, {0, 1}, {0, 1}})
     ->Iterations(3)
     ->Unit(benchmark::kMillisecond);
 

@@ -41,6 +41,11 @@ constexpr std::size_t kIndexFactor = 100;
 // The nearest exits come from the index when the exit nodes are at most this many per key
 // (index_exit).
 constexpr std::size_t kIndexExitsPerKey = 4;
+// The searches toward single targets of a row (guided_routes) settle at most this share of the
+// graph's nodes (1 / kGuidedShare) before the rest go to one search of the row: each settles the
+// nodes near a way not much dearer than its target's, hundreds where the search settles the
+// network, but a target cut off settles all that could reach it without the closure.
+constexpr std::size_t kGuidedShare = 16;
 }  // namespace
 
 detail::ChQuery* SewerTaskCompiler::routing_index(bool may_build, std::size_t settled_estimate) {
@@ -126,9 +131,9 @@ std::optional<std::size_t> SewerTaskCompiler::best_start(std::span<const IndexSt
   return best;
 }
 
-bool SewerTaskCompiler::index_route(detail::ChQuery& index, std::size_t a,
-                                    std::span<const IndexStart> starts, Node t, Cost bound,
-                                    Cost* cost) {
+SewerTaskCompiler::IndexAnswer SewerTaskCompiler::index_route(detail::ChQuery& index, std::size_t a,
+                                                              std::span<const IndexStart> starts,
+                                                              Node t, Cost bound, Cost* cost) {
   if (index_table_.sources() == 0) {
     // The routes between every key and every target at once (ChQuery::table_with_ways): one
     // upward search per source and per target, where a query per pair took two each.
@@ -138,10 +143,10 @@ bool SewerTaskCompiler::index_route(detail::ChQuery& index, std::size_t a,
   const auto j = static_cast<std::size_t>(column - index_table_targets_.begin());
   const std::optional<std::size_t> row = best_start(
       starts, [&](std::size_t i) { return index_table_.distance(i, j); }, cost);
-  if (*cost > bound) return true;
-  if (!row || !index_table_.unique(*row, j)) return false;
+  if (*cost > bound) return IndexAnswer::kTaken;
+  if (!row || !index_table_.unique(*row, j)) return IndexAnswer::kTied;
   index_table_.way(*row, j, index_path_);
-  return takes_index_path(a);
+  return takes_index_path(a) ? IndexAnswer::kTaken : IndexAnswer::kTouched;
 }
 
 bool SewerTaskCompiler::takes_index_path(std::size_t a) {
@@ -157,22 +162,38 @@ void SewerTaskCompiler::index_row(detail::ChQuery& index, GraphSearch& search, s
   const std::vector<IndexStart> starts = index_starts(a);
   // The targets whose route the index does not give: a search finds those, and only those (its
   // route to a node does not depend on its other targets or where it stops: the nodes settle in
-  // (distance, node) order and a settled node's parent is final).
+  // (distance, node) order and a settled node's parent is final). Those whose route is the only
+  // shortest way without closures but touched by one are first searched toward alone
+  // (guided_routes), which settles far fewer nodes where the closure's detour is short.
   std::vector<Node> missed;
+  std::vector<Node> touched;
   for (Node t : targets) {
     const std::uint32_t b = key_of_.at(t);
     if (b == a) continue;
     Cost d = kInfiniteCost;
-    if (!index_route(index, a, starts, t, bound, &d)) {
-      missed.push_back(t);
-    } else if (d <= bound) {
-      dist_[a * k() + b] = d;
-      routes_[a * k() + b] = route_store_.keep(index_path_);
+    switch (index_route(index, a, starts, t, bound, &d)) {
+      case IndexAnswer::kTied:
+        missed.push_back(t);
+        break;
+      case IndexAnswer::kTouched:
+        touched.push_back(t);
+        break;
+      case IndexAnswer::kTaken:
+        if (d <= bound) {
+          dist_[a * k() + b] = d;
+          routes_[a * k() + b] = route_store_.keep(index_path_);
+        }
+        break;
     }
   }
   dist_[a * k() + a] = 0;
   *exit = std::nullopt;
   const bool exit_missed = exit_goal && !index_exit(index, a, bound, exit);
+  if (!touched.empty()) {
+    guided_routes(index, search, a, bound, touched);
+    missed.insert(missed.end(), touched.begin(), touched.end());
+    std::sort(missed.begin(), missed.end());
+  }
   if (missed.empty() && !exit_missed) {
     ++result_.statistics_.index_rows;
     return;
@@ -191,6 +212,44 @@ void SewerTaskCompiler::index_row(detail::ChQuery& index, GraphSearch& search, s
     exit_dist_[a] = search.distance(*nearest);
     keep_path(search, *nearest, exit_routes_[a]);
   }
+}
+
+void SewerTaskCompiler::guided_routes(detail::ChQuery& index, GraphSearch& search, std::size_t a,
+                                      Cost bound, std::vector<Node>& touched) {
+  const PositionGraph& graph = *result_.graph_;
+  const Node source = keys_[a];
+  std::size_t budget = graph.size() / kGuidedShare;
+  std::vector<Node> left;
+  for (Node t : touched) {
+    if (budget == 0) {
+      left.push_back(t);
+      continue;
+    }
+    index.aim_at(t);
+    const std::size_t before = search.settled_total();
+    // An extra spot (the source, never entered by a move) is no node of the index: 0 bounds it.
+    const GraphSearch::Toward toward = search.run_toward(source, t, bound, budget, [&](Node n) {
+      return graph.is_extra_spot(n) ? 0 : index.distance_to_aim(n);
+    });
+    budget -= std::min(budget, search.settled_total() - before);
+    const std::uint32_t b = key_of_.at(t);
+    switch (toward) {
+      case GraphSearch::Toward::kUnique:
+        dist_[a * k() + b] = search.distance(t);
+        keep_path(search, t, routes_[a * k() + b]);
+        ++result_.statistics_.guided_searches;
+        break;
+      case GraphSearch::Toward::kUnreached:
+        dist_[a * k() + b] = kInfiniteCost;
+        ++result_.statistics_.guided_searches;
+        break;
+      case GraphSearch::Toward::kTied:
+      case GraphSearch::Toward::kGaveUp:
+        left.push_back(t);
+        break;
+    }
+  }
+  touched = std::move(left);
 }
 
 bool SewerTaskCompiler::index_exit(detail::ChQuery& index, std::size_t a, Cost bound,

@@ -37,8 +37,11 @@
 // the unpacked way is the only shortest one, the route search's.
 // Not customisable: its ways are those of the graph without closures, blockages or hazards. A
 // mission with some takes a way from it only where none of them touches it (compile_index.cc
-// says why that way is then the mission's); the others need a search (TODO(#35): customisable
-// contraction hierarchies, to answer those too).
+// says why that way is then the mission's); the others are searched on the mission's graph
+// toward their target, with the hierarchy's distances as the guide (ChQuery::aim_at,
+// GraphSearch::run_toward): a few hundred nodes where a closure's detour is short. A
+// customisable hierarchy (Dibbelt, Strasser and Wagner, 2014) would answer those too, from
+// the index alone; not built (docs/benchmarks.md).
 //   auto ch = ContractionHierarchy::build(core.adjacency_begin, core.adjacency_to,
 //                                         core.adjacency_cost, {.keep_ties = true});
 //   ChQuery query(*ch);
@@ -198,6 +201,18 @@ class ChQuery {
   // The same, with the ways kept to be unpacked (ChTable::way), and the unique flags.
   // Runtime: as table(), and the trees' nodes sorted.
   void table_with_ways(std::span<const Node> sources, std::span<const Node> targets, ChTable& out);
+  // A guide for a search on a graph with fewer or dearer moves (GraphSearch::run_toward, the
+  // mission's graph with its closures and blockages): the cost of the cheapest way from any node
+  // to `target` in the hierarchy's graph, a lower bound of the way there in such a graph that
+  // no move breaks. aim_at() runs the upward backward search from the target whole;
+  // distance_to_aim(n) then takes the best of n's upward search space, each node's value kept
+  // for the next call (Strasser and Zeitz, "Using Incremental Many-to-One Queries to Build a
+  // Fast and Tight Heuristic for A* in Road Networks", 2021: CH-Potentials). Any other query
+  // ends the aim (a call then is a defect: checked). kInfiniteCost: no way to the target.
+  // Runtime: aim_at, the target's backward search space (hundreds of nodes on 100,000
+  // scrambled manholes); distance_to_aim, the nodes of n's upward space not seen before.
+  void aim_at(Node target);
+  Cost distance_to_aim(Node n);
   // Nodes settled over all queries (a measure of work).
   std::size_t settled_total() const { return settled_total_; }
 
@@ -238,6 +253,10 @@ class ChQuery {
   std::vector<std::uint32_t> bucket_nodes_;
   std::vector<std::uint32_t> row_ways_;    // by target: the ways at the row's distance
   std::vector<std::uint32_t> row_middle_;  // by target: where the row's best way meets it
+  // aim_at(): the target's backward search in backward_, the distances found so far in forward_
+  // (ways 1: known), `aim_stack_` the nodes whose distance waits for their upward neighbours'.
+  bool aimed_ = false;
+  std::vector<std::uint32_t> aim_stack_;
   std::size_t settled_total_ = 0;
 };
 

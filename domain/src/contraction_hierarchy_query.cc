@@ -56,6 +56,7 @@ void ChQuery::clear(Side& side) {
 }
 
 void ChQuery::start(Side& side, std::uint32_t source) {
+  aimed_ = false;
   clear(side);
   side.dist[source] = 0;
   side.ways[source] = 1;
@@ -313,6 +314,69 @@ void ChTable::way(std::size_t i, std::size_t j, std::vector<Node>& out) const {
   for (std::uint32_t x = middle, next; (next = down_parent(j, x)) != kNone; x = next) {
     ch_->unpack(x, next, ch_->find_down(next, x).middle(), out);
   }
+}
+
+void ChQuery::aim_at(Node target) {
+  assert(target < ch_.size());
+  start(backward_, ch_.rank_[target]);
+  clear(forward_);
+  // The whole backward search space, unstalled: every node's distance down to the target.
+  const auto later = std::greater<std::pair<Cost, std::uint32_t>>();
+  while (!backward_.heap.empty()) {
+    std::pop_heap(backward_.heap.begin(), backward_.heap.end(), later);
+    const auto [du, u] = backward_.heap.back();
+    backward_.heap.pop_back();
+    if (du != backward_.dist[u]) continue;
+    ++settled_total_;
+    for (std::uint32_t e = ch_.down_begin_[u]; e < ch_.down_begin_[u + 1]; ++e) {
+      const auto& edge = ch_.down_[e];
+      Cost& old = backward_.dist[edge.head];
+      if (du + edge.cost < old) {
+        if (old == kInfiniteCost) backward_.touched.push_back(edge.head);
+        old = du + edge.cost;
+        backward_.heap.emplace_back(old, edge.head);
+        std::push_heap(backward_.heap.begin(), backward_.heap.end(), later);
+      }
+    }
+  }
+  aimed_ = true;
+}
+
+Cost ChQuery::distance_to_aim(Node n) {
+  SEWER_CHECK(aimed_, "a contraction hierarchy's guide asked without a target");
+  assert(n < ch_.size());
+  const std::uint32_t r = ch_.rank_[n];
+  if (forward_.ways[r] != 0) return forward_.dist[r];
+  // Depth first up the hierarchy: a node's distance is the best of its own down to the target
+  // and, over its upward edges, the edge and the head's (every head is higher: no cycle).
+  aim_stack_.assign(1, r);
+  while (!aim_stack_.empty()) {
+    const std::uint32_t x = aim_stack_.back();
+    if (forward_.ways[x] != 0) {
+      aim_stack_.pop_back();
+      continue;
+    }
+    bool ready = true;
+    for (std::uint32_t e = ch_.up_begin_[x]; e < ch_.up_begin_[x + 1]; ++e) {
+      if (forward_.ways[ch_.up_[e].head] == 0) {
+        aim_stack_.push_back(ch_.up_[e].head);
+        ready = false;
+      }
+    }
+    if (!ready) continue;
+    Cost best = backward_.dist[x];
+    for (std::uint32_t e = ch_.up_begin_[x]; e < ch_.up_begin_[x + 1]; ++e) {
+      const auto& edge = ch_.up_[e];
+      const Cost above = forward_.dist[edge.head];
+      if (above != kInfiniteCost) best = std::min(best, above + edge.cost);
+    }
+    forward_.dist[x] = best;
+    forward_.ways[x] = 1;
+    forward_.touched.push_back(x);
+    aim_stack_.pop_back();
+    ++settled_total_;
+  }
+  return forward_.dist[r];
 }
 
 }  // namespace sewerplan::domain::detail

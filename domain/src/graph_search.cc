@@ -94,11 +94,83 @@ std::optional<Node> GraphSearch::settle(Cost bound, Direction direction, Done&& 
       graph_.for_each_predecessor(n, [&](Node from, Cost c) { relax(n, from, c); });
     }
   }
+  forget_unsettled();
+  return stopped_at;
+}
+
+void GraphSearch::forget_unsettled() {
   // Nodes reached but not settled may have a distance that is not yet the shortest.
   for (Node n : touched_) {
     if (!settled_[n]) set_distance(n, kInfiniteCost);
   }
-  return stopped_at;
+}
+
+GraphSearch::Toward GraphSearch::run_toward(Node source, Node target, Cost bound,
+                                            std::size_t settle_limit,
+                                            const std::function<Cost(Node)>& to_target) {
+  reset();
+  direction_ = Direction::kForward;
+  const Cost guide = to_target(source);
+  if (guide == kInfiniteCost || guide > bound) return Toward::kUnreached;
+  set_distance(source, 0);
+  touched_.push_back(source);
+  // Ordered by distance plus guide; a node's guide does not change, so the first entry of a node
+  // that leaves the heap is its best.
+  const auto later = std::greater<std::pair<Cost, Node>>();
+  heap_.emplace_back(guide, source);
+  Cost found = kInfiniteCost;
+  std::size_t settled = 0;
+  while (!heap_.empty() && !interrupted_) {
+    std::pop_heap(heap_.begin(), heap_.end(), later);
+    const Cost f = heap_.back().first;
+    const Node n = heap_.back().second;
+    heap_.pop_back();
+    // Every node that could lie on a shortest way to the target has an estimate no greater than
+    // its distance (the guide is a lower bound): all are settled once the estimates pass it.
+    if (f > found) break;
+    if (settled_[n]) continue;
+    settled_[n] = true;
+    ++settled_total_;
+    if ((settled_total_ & 255U) == 0 && interrupt_ && interrupt_()) {
+      interrupted_ = true;
+      break;
+    }
+    if (++settled > settle_limit) {
+      heap_.clear();
+      for (Node t : touched_) set_distance(t, kInfiniteCost);
+      return Toward::kGaveUp;
+    }
+    if (n == target) found = distance(n);
+    graph_.for_each_successor(n, [&](Node to, Cost c) {
+      const Cost d = distance(n) + c;
+      if (d >= distance(to) || d > bound) return;
+      const Cost rest = to_target(to);
+      if (rest == kInfiniteCost || d + rest > bound) return;
+      if (distance(to) == kInfiniteCost) touched_.push_back(to);
+      set_distance(to, d);
+      set_parent(to, n);
+      heap_.emplace_back(d + rest, to);
+      std::push_heap(heap_.begin(), heap_.end(), later);
+    });
+  }
+  heap_.clear();
+  forget_unsettled();
+  if (interrupted_) return Toward::kGaveUp;
+  if (found == kInfiniteCost) return Toward::kUnreached;
+  return only_shortest_way(target) ? Toward::kUnique : Toward::kTied;
+}
+
+bool GraphSearch::only_shortest_way(Node target) const {
+  for (Node v = target; parent(v) != kNoParent; v = parent(v)) {
+    std::size_t parents = 0;
+    graph_.for_each_predecessor(v, [&](Node u, Cost c) {
+      if (settled_[u] && distance(u) != kInfiniteCost && distance(u) + c == distance(v)) {
+        ++parents;
+      }
+    });
+    if (parents != 1) return false;
+  }
+  return true;
 }
 
 std::optional<Node> GraphSearch::run(std::span<const Node> sources, std::span<const Node> targets,

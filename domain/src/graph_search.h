@@ -46,6 +46,21 @@ class GraphSearch {
   // Forward from `source` until the first node with goal[node] is settled; returns it, if any
   // is reached within the bound.
   std::optional<Node> run_to_nearest(Node source, const std::vector<bool>& goal, Cost bound);
+  // Issue 35: forward from `source` to `target` alone, toward it: A* (Hart, Nilsson and Raphael,
+  // 1968), the nodes settled by their distance plus `to_target(node)`, a lower bound of the cost
+  // from the node to the target that no move breaks (to_target(u) <= cost(u -> v) +
+  // to_target(v); kInfiniteCost where the target cannot be reached at all). With the routing
+  // index's distances on the graph without closures (ChQuery::distance_to_aim) it settles only
+  // the nodes near some way not much dearer than the target's, where run() settles every node
+  // nearer than the target. It goes on until every node that could lie on a shortest way is
+  // settled, so that it can tell whether the way it found is the only shortest one: kUnique
+  // then (and only then is it the way run() finds: a node keeps its first shortest parent there,
+  // and here each node of the way has exactly one), kTied if another is as short, kUnreached
+  // if the target lies beyond the bound (as run() leaves it), kGaveUp after `settle_limit`
+  // settled nodes (the distances are then left unreached). path() and distance() give the way.
+  enum class Toward { kUnique, kTied, kUnreached, kGaveUp };
+  Toward run_toward(Node source, Node target, Cost bound, std::size_t settle_limit,
+                    const std::function<Cost(Node)>& to_target);
   // kInfiniteCost if not reached in the last run.
   Cost distance(Node n) const { return kInfiniteCost - dist_left_[n]; }
   // Forward: the nodes from the source to n. Backward: from n to its nearest source.
@@ -83,6 +98,11 @@ class GraphSearch {
   // that stopped it.
   template <class Done>
   std::optional<Node> settle(Cost bound, Direction direction, Done&& done);
+  // Whether every node of the way to `target` (but the source) has exactly one settled
+  // predecessor that reaches it at its distance.
+  bool only_shortest_way(Node target) const;
+  // Leaves the nodes reached but not settled unreached.
+  void forget_unsettled();
 };
 
 }  // namespace sewerplan::domain::detail

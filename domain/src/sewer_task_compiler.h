@@ -176,11 +176,19 @@ class SewerTaskCompiler {
   std::optional<std::size_t> best_start(std::span<const IndexStart> starts, Distance distance,
                                         Cost* cost);
   // The route from key a (starting at `starts`) to t (one of index_table_targets_), as a search
-  // from a finds it: its cost in `*cost` (kInfiniteCost: none), within `bound` the route in
-  // index_path_. False where it lies within the bound but is not the only shortest way or not
-  // one of this graph's.
-  bool index_route(detail::ChQuery& index, std::size_t a, std::span<const IndexStart> starts,
-                   Node t, Cost bound, Cost* cost);
+  // from a finds it: kTaken with its cost in `*cost` (kInfiniteCost: none), within `bound` the
+  // route in index_path_. kTied where it lies within the bound but is not the only shortest way
+  // (or two starts tie); kTouched where it is, but not one of this graph's (a closure, blockage
+  // or hazard touches it).
+  enum class IndexAnswer { kTaken, kTied, kTouched };
+  IndexAnswer index_route(detail::ChQuery& index, std::size_t a, std::span<const IndexStart> starts,
+                          Node t, Cost bound, Cost* cost);
+  // Key a's routes to `touched` (targets whose index route a closure touches), each from a
+  // search toward it guided by the index (GraphSearch::run_toward) where that finds the only
+  // shortest way; the others are left in `touched` for a search from a. Stops guiding once the
+  // guided searches have settled a sixteenth of the graph: beyond that one search costs less.
+  void guided_routes(detail::ChQuery& index, GraphSearch& search, std::size_t a, Cost bound,
+                     std::vector<Node>& touched);
   // Whether index_path_ (from one of key a's starts) is a route of this mission's graph
   // (PositionGraph::reads_adjacency); if so it becomes key a's, from a itself.
   bool takes_index_path(std::size_t a);

@@ -18,8 +18,10 @@
 #include <gtest/gtest.h>
 
 #include "sewerplan/core/generator.h"
+#include "sewerplan/core/rng.h"
 #include "sewerplan/domain/mission_generator.h"
 
+#include "contraction_hierarchy.h"
 #include "position_graph.h"
 #include "support/scrambled_network.h"
 
@@ -123,6 +125,116 @@ TEST(GraphSearch, SettlesAndBreaksTiesAsTheReferenceOnAScrambledNetwork) {
   const SewerMap map = *bench::generate_scrambled_network({.manholes = 400, .seed = 4});
   const Mission mission = *bench::scrambled_mission(map, 3, 1);
   expect_same_as_reference(map, mission, 100);
+}
+
+// The shortest ways from the reference's source to n: 1, or 2 for more (memoised over the moves
+// into n at its distance; no cycle costs 0).
+int ways_to(const PositionGraph& graph, const Reference& ref, Node source, Node n,
+            std::vector<int>& memo) {
+  if (n == source) return 1;
+  if (memo[n] != 0) return memo[n];
+  int ways = 0;
+  graph.for_each_predecessor(n, [&](Node u, Cost c) {
+    if (ref.dist[u] != kInfiniteCost && ref.dist[u] + c == ref.dist[n]) {
+      ways = std::min(2, ways + ways_to(graph, ref, source, u, memo));
+    }
+  });
+  memo[n] = ways;
+  return ways;
+}
+
+// run_toward (issue 35) on a mission's graph with blockages and closed pipes, guided by the
+// routing index of the map's graph without them: for pairs from manholes, slots and spots inside
+// pipes, the target's distance and, where the shortest way is the only one, the reference's way;
+// kTied exactly where the reference counts more than one; kUnreached where none is within the
+// bound; kGaveUp when the settle limit is too small.
+// `every`: one pipe in so many blocked (and one in 2.5 times as many closed).
+void expect_toward_as_reference(const SewerMap& map, Mission mission, std::uint32_t every,
+                                std::size_t min_tied) {
+  Rng rng(5);
+  for (std::uint32_t p = 3; p < map.pipe_count(); p += every) {
+    mission.blockages.push_back({PipeId{p}, map.pipe(PipeId{p}).length_m * rng.uniform(0.1, 0.9)});
+  }
+  for (std::uint32_t p = 11; p < map.pipe_count(); p += every * 5 / 2) {
+    mission.closed_pipes.push_back(PipeId{p});
+  }
+  PositionGraph graph(map, mission);
+  ASSERT_TRUE(graph.build_adjacency(nullptr));
+  const GraphCore& core = graph.core();
+  auto ch =
+      ContractionHierarchy::build(core.adjacency_begin, core.adjacency_to, core.adjacency_cost);
+  ASSERT_TRUE(ch.has_value());
+  ChQuery index(*ch);
+  std::vector<Node> sources;
+  for (std::uint32_t m = 0; m < map.manhole_count(); m += 29) {
+    sources.push_back(graph.in_manhole(ManholeId{m}));
+    sources.push_back(graph.at_slot(ManholeId{m}, SlotIndex{0}));
+  }
+  for (std::uint32_t p = 5; p < map.pipe_count(); p += 37) {
+    sources.push_back(graph.spot(PipeId{p}, map.pipe(PipeId{p}).length_m * 0.4));
+  }
+  SearchScratch scratch;
+  GraphSearch search(graph, &scratch);
+  std::size_t unique = 0, tied = 0, unreached = 0, gave_up = 0;
+  for (Node source : sources) {
+    const Reference want = reference(graph, source, GraphSearch::Direction::kForward);
+    std::vector<int> memo(graph.size(), 0);
+    for (int i = 0; i < 12; ++i) {
+      const auto t =
+          static_cast<Node>(map.manhole_count() + rng.below(graph.size() - map.manhole_count()));
+      if (t == source || graph.is_extra_spot(t)) continue;
+      SCOPED_TRACE(std::to_string(source) + " -> " + std::to_string(t));
+      index.aim_at(t);
+      const auto guide = [&](Node n) {
+        return graph.is_extra_spot(n) ? 0 : index.distance_to_aim(n);
+      };
+      // Half the pairs within a bound short of the way's cost.
+      const Cost bound =
+          want.dist[t] != kInfiniteCost && i % 4 == 3 ? want.dist[t] - 1 : kInfiniteCost;
+      const GraphSearch::Toward got = search.run_toward(source, t, bound, graph.size(), guide);
+      if (want.dist[t] == kInfiniteCost || bound < want.dist[t]) {
+        EXPECT_EQ(got, GraphSearch::Toward::kUnreached);
+        ++unreached;
+        continue;
+      }
+      if (ways_to(graph, want, source, t, memo) > 1) {
+        EXPECT_EQ(got, GraphSearch::Toward::kTied);
+        ++tied;
+        continue;
+      }
+      ASSERT_EQ(got, GraphSearch::Toward::kUnique);
+      ++unique;
+      EXPECT_EQ(search.distance(t), want.dist[t]);
+      std::vector<Node> path, expected;
+      for (Node at = t; at != kNone; at = want.parent[at]) expected.push_back(at);
+      std::reverse(expected.begin(), expected.end());
+      search.path(t, path);
+      EXPECT_EQ(path, expected);
+      // Too small a limit gives up rather than answer wrong.
+      if (path.size() > 3) {
+        index.aim_at(t);
+        if (search.run_toward(source, t, kInfiniteCost, 1, guide) == GraphSearch::Toward::kGaveUp) {
+          ++gave_up;
+        }
+      }
+    }
+  }
+  EXPECT_GT(unique, 100U);
+  EXPECT_GE(tied, min_tied);
+  EXPECT_GT(unreached, 20U);
+  EXPECT_GT(gave_up, 50U);
+}
+
+TEST(GraphSearch, FindsTheWayTowardATargetAroundClosuresAsTheReferenceOnALattice) {
+  const SewerMap map =
+      *generate_network({.manholes = 400, .seed = 3, .topology = Topology::kMeshed});
+  // A tree with a few loops: fewer blockages, or most pairs are cut off.
+  expect_toward_as_reference(map, *generate_mission(map, {.tasks = 3, .seed = 1}), 97, 0);
+}
+
+TEST(GraphSearch, FindsTheWayTowardATargetAroundClosuresAsTheReferenceOnAScrambledNetwork) {
+  const SewerMap map = *bench::generate_scrambled_network({.manholes = 400, .seed = 4});
+  expect_toward_as_reference(map, *bench::scrambled_mission(map, 3, 1), 17, 3);
 }
 
 }  // namespace

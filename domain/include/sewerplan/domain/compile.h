@@ -123,6 +123,10 @@ struct CompileStatistics {
   // index (CompileCache::RoutingIndex) whole. A row the index gave in part (a route tied or
   // touched by a closure, an exit among many) counts a route search, for the rest.
   std::size_t index_rows = 0;
+  // Routes found by a search toward the one target, guided by the routing index's distances
+  // (issue 35: a route the index has but a closure, blockage or hazard touches; after a blockage
+  // the robot's row has several).
+  std::size_t guided_searches = 0;
   std::size_t actions = 0;
   // The searches read the moves from the map's adjacency in the compile cache's core, built
   // by this compile or kept from an earlier one (issue 35).
