@@ -110,13 +110,14 @@ const std::vector<Node>& SewerTaskCompiler::index_sources() {
 
 template <class Distance>
 std::optional<std::size_t> SewerTaskCompiler::best_start(std::span<const IndexStart> starts,
+                                                         std::span<const Node> sources,
                                                          Distance distance, Cost* cost) {
   *cost = kInfiniteCost;
   std::optional<std::size_t> best;
   bool tied = false;
   for (const IndexStart& start : starts) {
-    const auto at = std::lower_bound(index_sources_.begin(), index_sources_.end(), start.node);
-    const auto i = static_cast<std::size_t>(at - index_sources_.begin());
+    const auto at = std::lower_bound(sources.begin(), sources.end(), start.node);
+    const auto i = static_cast<std::size_t>(at - sources.begin());
     const Cost d = distance(i);
     if (d == kInfiniteCost) continue;
     if (start.cost + d < *cost) {
@@ -131,21 +132,40 @@ std::optional<std::size_t> SewerTaskCompiler::best_start(std::span<const IndexSt
   return best;
 }
 
+SewerTaskCompiler::IndexTable& SewerTaskCompiler::index_table(detail::ChQuery& index,
+                                                              std::size_t a) {
+  // A replan (the last compile's rows kept on the core, route_memo.h) takes most rows from
+  // them: the start's row has a table of its own then, and the others one only if some row
+  // needs it. A first compile needs every row's: one table for all.
+  const bool own = a == 0 && result_.graph_->core().route_memo != nullptr;
+  IndexTable& table = own ? start_table_ : keys_table_;
+  if (table.built) return table;
+  table.built = true;
+  if (own) {
+    for (const IndexStart& start : index_starts(0)) table.sources.push_back(start.node);
+    std::sort(table.sources.begin(), table.sources.end());
+    table.sources.erase(std::unique(table.sources.begin(), table.sources.end()),
+                        table.sources.end());
+  } else {
+    table.sources = index_sources();
+  }
+  // The routes between the sources and every target at once (ChQuery::table_with_ways): one
+  // upward search per source and per target, where a query per pair took two each.
+  index.table_with_ways(table.sources, index_table_targets_, table.table);
+  return table;
+}
+
 SewerTaskCompiler::IndexAnswer SewerTaskCompiler::index_route(detail::ChQuery& index, std::size_t a,
                                                               std::span<const IndexStart> starts,
                                                               Node t, Cost bound, Cost* cost) {
-  if (index_table_.sources() == 0) {
-    // The routes between every key and every target at once (ChQuery::table_with_ways): one
-    // upward search per source and per target, where a query per pair took two each.
-    index.table_with_ways(index_sources(), index_table_targets_, index_table_);
-  }
+  const IndexTable& table = index_table(index, a);
   const auto column = std::lower_bound(index_table_targets_.begin(), index_table_targets_.end(), t);
   const auto j = static_cast<std::size_t>(column - index_table_targets_.begin());
   const std::optional<std::size_t> row = best_start(
-      starts, [&](std::size_t i) { return index_table_.distance(i, j); }, cost);
+      starts, table.sources, [&](std::size_t i) { return table.table.distance(i, j); }, cost);
   if (*cost > bound) return IndexAnswer::kTaken;
-  if (!row || !index_table_.unique(*row, j)) return IndexAnswer::kTied;
-  index_table_.way(*row, j, index_path_);
+  if (!row || !table.table.unique(*row, j)) return IndexAnswer::kTied;
+  table.table.way(*row, j, index_path_);
   return takes_index_path(a) ? IndexAnswer::kTaken : IndexAnswer::kTouched;
 }
 
@@ -276,7 +296,8 @@ bool SewerTaskCompiler::index_exit(detail::ChQuery& index, std::size_t a, Cost b
   for (std::size_t j = 0; j < exits.size(); ++j) {
     Cost d = kInfiniteCost;
     const std::optional<std::size_t> row = best_start(
-        starts, [&](std::size_t i) { return index_exit_table_[i * exits.size() + j]; }, &d);
+        starts, index_sources_,
+        [&](std::size_t i) { return index_exit_table_[i * exits.size() + j]; }, &d);
     if (d == kInfiniteCost) continue;
     if (d < best) {
       best = d;

@@ -253,8 +253,9 @@ class ChQuery {
   std::vector<std::uint32_t> bucket_nodes_;
   std::vector<std::uint32_t> row_ways_;    // by target: the ways at the row's distance
   std::vector<std::uint32_t> row_middle_;  // by target: where the row's best way meets it
-  // aim_at(): the target's backward search in backward_, the distances found so far in forward_
-  // (ways 1: known), `aim_stack_` the nodes whose distance waits for their upward neighbours'.
+  // aim_at(): the target's backward search in backward_, the distances found so far in
+  // forward_.dist (distance_to_aim says how), `aim_stack_` the nodes whose distance waits for
+  // their upward neighbours'.
   bool aimed_ = false;
   std::vector<std::uint32_t> aim_stack_;
   std::size_t settled_total_ = 0;

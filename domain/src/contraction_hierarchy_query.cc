@@ -345,38 +345,49 @@ void ChQuery::aim_at(Node target) {
 Cost ChQuery::distance_to_aim(Node n) {
   SEWER_CHECK(aimed_, "a contraction hierarchy's guide asked without a target");
   assert(n < ch_.size());
+  // forward_.dist by rank, one read per node (the nodes lie all over the map: each read is a
+  // cache miss): kInfiniteCost not seen, kOpen waiting for its upward neighbours, kNoWay known
+  // to have none, else known. No way costs that much (a cost is at most 2^32 ms per edge).
+  constexpr Cost kOpen = kInfiniteCost - 1;
+  constexpr Cost kNoWay = kInfiniteCost - 2;
+  const auto known = [&](std::uint32_t x) { return forward_.dist[x] < kOpen; };
   const std::uint32_t r = ch_.rank_[n];
-  if (forward_.ways[r] != 0) return forward_.dist[r];
-  // Depth first up the hierarchy: a node's distance is the best of its own down to the target
-  // and, over its upward edges, the edge and the head's (every head is higher: no cycle).
-  aim_stack_.assign(1, r);
-  while (!aim_stack_.empty()) {
-    const std::uint32_t x = aim_stack_.back();
-    if (forward_.ways[x] != 0) {
-      aim_stack_.pop_back();
-      continue;
-    }
-    bool ready = true;
-    for (std::uint32_t e = ch_.up_begin_[x]; e < ch_.up_begin_[x + 1]; ++e) {
-      if (forward_.ways[ch_.up_[e].head] == 0) {
-        aim_stack_.push_back(ch_.up_[e].head);
-        ready = false;
+  if (!known(r)) {
+    // Depth first up the hierarchy: a node's distance is the best of its own down to the target
+    // and, over its upward edges, the edge and the head's (every head is higher: no cycle, and no
+    // head is open while a node above it on the stack is).
+    aim_stack_.assign(1, r);
+    while (!aim_stack_.empty()) {
+      const std::uint32_t x = aim_stack_.back();
+      Cost& d = forward_.dist[x];
+      if (d < kOpen) {
+        aim_stack_.pop_back();
+        continue;
       }
+      if (d == kInfiniteCost) {
+        d = kOpen;
+        forward_.touched.push_back(x);
+        bool waits = false;
+        for (std::uint32_t e = ch_.up_begin_[x]; e < ch_.up_begin_[x + 1]; ++e) {
+          if (forward_.dist[ch_.up_[e].head] == kInfiniteCost) {
+            aim_stack_.push_back(ch_.up_[e].head);
+            waits = true;
+          }
+        }
+        if (waits) continue;
+      }
+      Cost best = backward_.dist[x];
+      for (std::uint32_t e = ch_.up_begin_[x]; e < ch_.up_begin_[x + 1]; ++e) {
+        const auto& edge = ch_.up_[e];
+        const Cost above = forward_.dist[edge.head];
+        if (above != kNoWay) best = std::min(best, above + edge.cost);
+      }
+      d = best == kInfiniteCost ? kNoWay : best;
+      aim_stack_.pop_back();
+      ++settled_total_;
     }
-    if (!ready) continue;
-    Cost best = backward_.dist[x];
-    for (std::uint32_t e = ch_.up_begin_[x]; e < ch_.up_begin_[x + 1]; ++e) {
-      const auto& edge = ch_.up_[e];
-      const Cost above = forward_.dist[edge.head];
-      if (above != kInfiniteCost) best = std::min(best, above + edge.cost);
-    }
-    forward_.dist[x] = best;
-    forward_.ways[x] = 1;
-    forward_.touched.push_back(x);
-    aim_stack_.pop_back();
-    ++settled_total_;
   }
-  return forward_.dist[r];
+  return forward_.dist[r] == kNoWay ? kInfiniteCost : forward_.dist[r];
 }
 
 }  // namespace sewerplan::domain::detail

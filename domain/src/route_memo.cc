@@ -127,11 +127,17 @@ std::optional<RouteMemo::Change> RouteMemo::change_to(const Context& now,
   auto pipe = [&](PipeId p) {
     if (change.pipe.empty()) change.pipe.assign(map.pipe_count(), false);
     change.pipe[p.index()] = true;
+    change.nodes.push_back(graph.pipe_end(p, 0));
+    change.nodes.push_back(graph.pipe_end(p, 1));
     change.any = true;
   };
   auto manhole = [&](ManholeId m) {
     if (change.manhole.empty()) change.manhole.assign(map.manhole_count(), false);
     change.manhole[m.index()] = true;
+    change.nodes.push_back(graph.in_manhole(m));
+    for (std::uint16_t s = 0; s < map.manhole(m).slot_count; ++s) {
+      change.nodes.push_back(graph.at_slot(m, SlotIndex{s}));
+    }
     change.any = true;
   };
   if (!risen(then.hazards, now.hazards, pipe) ||
@@ -142,16 +148,20 @@ std::optional<RouteMemo::Change> RouteMemo::change_to(const Context& now,
              [&](const Blockage& b) { pipe(b.pipe); })) {
     return std::nullopt;
   }
+  std::sort(change.nodes.begin(), change.nodes.end());
+  change.nodes.erase(std::unique(change.nodes.begin(), change.nodes.end()), change.nodes.end());
   return change;
 }
 
 bool RouteMemo::Change::touches(const PositionGraph& graph, std::span<const Node> route) const {
   if (!any) return false;
+  // A search in a short sorted list per node: a slot's manhole would be a lookup in a table as
+  // large as the map, a cache miss per node (a replan checks hundreds of thousands).
   for (Node n : route) {
-    if (const std::optional<PipeId> p = graph.pipe_of(n)) {
-      if (!pipe.empty() && pipe[p->index()]) return true;
-    } else if (const std::optional<ManholeId> m = graph.manhole_at(n)) {
-      if (!manhole.empty() && manhole[m->index()]) return true;
+    if (graph.is_extra_spot(n)) {
+      if (!pipe.empty() && pipe[graph.pipe_of(n)->index()]) return true;
+    } else if (std::binary_search(nodes.begin(), nodes.end(), n)) {
+      return true;
     }
   }
   return false;

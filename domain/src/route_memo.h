@@ -83,6 +83,10 @@ struct RouteMemo {
   struct Change {
     std::vector<bool> pipe;     // by pipe index
     std::vector<bool> manhole;  // by manhole index
+    // The nodes of the changed pipes' ends and of the changed manholes (in the manhole, at its
+    // slots), sorted: a route passes a pipe at one of its ends, or starts inside it at an extra
+    // spot, and passes a manhole at its slots.
+    std::vector<Node> nodes;
     bool any = false;
     // Whether `route` passes a changed pipe or manhole.
     bool touches(const PositionGraph& graph, std::span<const Node> route) const;

@@ -169,11 +169,12 @@ class SewerTaskCompiler {
   // The nodes the index's routes from the keys start at (index_starts, of every key), sorted;
   // computed once into index_sources_.
   const std::vector<Node>& index_sources();
-  // Of `starts` (of key a), the one whose way to column j of `distance` (by source row) is
-  // shortest, as a search from a settles it: its row and the way's cost in `*cost`
-  // (kInfiniteCost: none), or nothing where two starts tie.
+  // Of `starts` (of key a), the one whose way to column j of `distance` (by row: the position
+  // in `sources`, sorted) is shortest, as a search from a settles it: its row and the way's cost
+  // in `*cost` (kInfiniteCost: none), or nothing where two starts tie.
   template <class Distance>
-  std::optional<std::size_t> best_start(std::span<const IndexStart> starts, Distance distance,
+  std::optional<std::size_t> best_start(std::span<const IndexStart> starts,
+                                        std::span<const Node> sources, Distance distance,
                                         Cost* cost);
   // The route from key a (starting at `starts`) to t (one of index_table_targets_), as a search
   // from a finds it: kTaken with its cost in `*cost` (kInfiniteCost: none), within `bound` the
@@ -330,12 +331,21 @@ class SewerTaskCompiler {
   std::vector<RouteRef> routes_;
   std::vector<Cost> exit_dist_;
   std::vector<RouteRef> exit_routes_;
-  // The routing index's table between index_sources() and the route targets (sorted), built
-  // on the first index_route; its distances from them to each exit node (GraphCore::
+  // The routing index's tables between sources and the route targets (sorted), each built on
+  // its first index_route: the start's from its own starts, the other keys' from
+  // index_sources() (a replan takes most of those rows from the last compile, and needs no
+  // table for them); its distances from index_sources() to each exit node (GraphCore::
   // marked_exits), on the first index_exit; and a route's buffer.
+  struct IndexTable {
+    bool built = false;
+    std::vector<Node> sources;  // sorted
+    detail::ChTable table;
+  };
+  IndexTable& index_table(detail::ChQuery& index, std::size_t a);
   std::vector<Node> index_sources_;  // index_sources(), on the first use
   std::vector<Node> index_table_targets_;
-  detail::ChTable index_table_;
+  IndexTable start_table_;
+  IndexTable keys_table_;
   std::vector<Cost> index_exit_table_;
   // The graph's core is the cache's (not a throwaway one made while another compile held it):
   // only then is an index built on it kept.
