@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // sewerplan index build --map MAP [--profile P | --mission M] [--motion FILE | --no-motion]
-//                       [--time-limit SECONDS] [-o FILE] [-q] [--json]
+//                       [--condition FILE] [--time-limit SECONDS] [-o FILE] [-q] [--json]
 // The map's routing index for a robot (domain/route_index.h, issue 35), kept beside the map as
 // MAP.route-index.bin, where `plan` and `simulate` find it (route_index_options.h).
 #include <iomanip>
@@ -16,9 +16,11 @@
 #include "sewerplan/domain/route_index.h"
 
 #include "command.h"
+#include "condition_options.h"
 #include "json_output.h"
 #include "map_input.h"
 #include "motion_options.h"
+#include "profile_option.h"
 
 namespace sewerplan::cli {
 namespace {
@@ -28,6 +30,7 @@ struct BuildOptions {
   std::string gis_fields;
   std::string profile = "makro-1.1";
   std::string mission;  // the profile from this mission's, as plan and simulate take it
+  std::string condition;
   MotionOptions motion;
   double time_limit_s = 0;  // 0: none
   std::string out;
@@ -37,7 +40,7 @@ struct BuildOptions {
 
 int build(const BuildOptions& o, Context& c) {
   Diagnostics diagnostics;
-  Result<SewerMap> map = read_input_map({o.map, o.gis_fields}, diagnostics);
+  Result<SewerMap> map = read_map_with_condition({o.map, o.gis_fields}, o.condition, diagnostics);
   if (!map.has_value()) return fail(c, o.json, map.error(), diagnostics);
   print_diagnostics(diagnostics, c.err);
   Result<RobotProfile> profile = Error{ErrorCode::kInvalidProfile, "no profile"};
@@ -48,14 +51,9 @@ int build(const BuildOptions& o, Context& c) {
     print_diagnostics(read, c.err);
     profile = mission->profile;
   } else {
-    profile = load_profile(o.profile);
+    profile = load_profile_option(o.profile);
   }
-  if (!profile.has_value()) {
-    const Error& e = profile.error();
-    return fail(
-        c, o.json,
-        Error{e.code == ErrorCode::kIo ? ErrorCode::kIo : ErrorCode::kInvalidProfile, e.message});
-  }
+  if (!profile.has_value()) return fail(c, o.json, profile.error());
   // The index is of the moves the compile has: with the motion table plan would use.
   Mission robot;
   robot.profile = *profile;
@@ -116,6 +114,7 @@ void add_index_command(CLI::App& app, Context& context) {
                   "Take the robot profile from this mission (the one plan and simulate will use)")
       ->excludes(profile);
   add_motion_options(*cmd, o->motion);
+  add_condition_option(*cmd, o->condition);
   cmd->add_option("--time-limit", o->time_limit_s,
                   "Seconds before the build stops without an index (exit 5; 0: none)")
       ->check(CLI::Range(0.0, 86400.0))

@@ -17,6 +17,7 @@
 #include "command.h"
 #include "json_output.h"
 #include "map_input.h"
+#include "profile_option.h"
 
 namespace sewerplan::cli {
 namespace {
@@ -48,14 +49,8 @@ int precompute(const PrecomputeOptions& o, Context& c) {
   Result<SewerMap> map = read_input_map({*path, o.gis_fields}, diagnostics);
   if (!map.has_value()) return fail(c, o.json, map.error(), diagnostics);
   print_diagnostics(diagnostics, c.err);
-  Result<RobotProfile> profile = load_profile(o.profile);
-  if (!profile.has_value()) {
-    const Error& e = profile.error();
-    // A profile that does not load is invalid input (1), whatever the reason.
-    return fail(
-        c, o.json,
-        Error{e.code == ErrorCode::kIo ? ErrorCode::kIo : ErrorCode::kInvalidProfile, e.message});
-  }
+  Result<RobotProfile> profile = load_profile_option(o.profile);
+  if (!profile.has_value()) return fail(c, o.json, profile.error());
   SteadyClock clock;
   std::size_t last_tenth = 0;
   fusion::PrecomputeOptions options{.head_paths = *ompl,

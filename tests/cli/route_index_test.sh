@@ -115,6 +115,35 @@ expect 5 "the routing index's build reached its time limit" -- \
   "$sp" index build --map "$tmp/map.json" --time-limit 1e-9 -o "$tmp/limited.bin"
 check "a stopped build writes no index" test ! -e "$tmp/limited.bin"
 
+# Inspection findings (--condition) close pipes for the plan: the index's routes through them are
+# searched on the plan's own graph (guided by the index), and the plan is the plan without it.
+# An index built with the same --condition is not stale for those plans; a findings file that
+# names pipes the map has not is an error that says so.
+cp "$src/datasets/swmm/swmmio-state-plane.inp" "$tmp/sp.inp"
+"$sp" convert "$tmp/sp.inp" -o "$tmp/sp.json" >/dev/null 2>&1
+spm=$src/datasets/condition/swmm-state-plane/mission.json
+findings=$src/datasets/condition/swmm-state-plane/zustand.xml
+run_once "$sp" index build --map "$tmp/sp.json" --mission "$spm" --condition "$findings"
+expect_ran 0 "wrote $tmp/sp.route-index.bin"
+for risk in impassable expected; do
+  expect 0 "index: using the routing index $tmp/sp.route-index.bin" -- \
+    "$sp" plan --map "$tmp/sp.json" --mission "$spm" --condition "$findings" --risk "$risk" \
+    --select-goals -o "$tmp/sp-with-$risk.txt"
+  "$sp" plan --map "$tmp/sp.json" --mission "$spm" --condition "$findings" --risk "$risk" \
+    --select-goals --no-route-index -o "$tmp/sp-without-$risk.txt" 2>/dev/null
+  check "with findings (--risk $risk), the plan with the index is the plan without" \
+    cmp -s "$tmp/sp-with-$risk.txt" "$tmp/sp-without-$risk.txt"
+done
+"$sp" plan --map "$tmp/sp.json" --mission "$spm" --condition "$findings" --select-goals --json \
+  2>/dev/null >"$tmp/sp-with.json"
+check "routes the findings touch were searched toward their targets" python3 -c "
+import json
+s = json.load(open('$tmp/sp-with.json'))['statistics']['compile']
+assert s['guided_searches'] > 0 and s['index_rows'] > 0, s
+"
+expect 3 "cannot read $tmp/no-such-findings.xml" -- "$sp" index build --map "$tmp/sp.json" \
+  --mission "$spm" --condition "$tmp/no-such-findings.xml"
+
 # Usage errors and a missing map.
 expect 2 "time-limit" -- "$sp" index build --map "$tmp/map.json" --time-limit -1
 expect 2 "map" -- "$sp" index build
