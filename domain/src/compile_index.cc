@@ -46,6 +46,9 @@ constexpr std::size_t kIndexExitsPerKey = 4;
 // nodes near a way not much dearer than its target's, hundreds where the search settles the
 // network, but a target cut off settles all that could reach it without the closure.
 constexpr std::size_t kGuidedShare = 16;
+// After this many guided searches that found a tie, and more of them than ways found, a compile
+// guides no more (guided_routes).
+constexpr std::size_t kGuidedTiesTried = 4;
 }  // namespace
 
 detail::ChQuery* SewerTaskCompiler::routing_index(bool may_build, std::size_t settled_estimate) {
@@ -241,7 +244,11 @@ void SewerTaskCompiler::guided_routes(detail::ChQuery& index, GraphSearch& searc
   std::size_t budget = graph.size() / kGuidedShare;
   std::vector<Node> left;
   for (Node t : touched) {
-    if (budget == 0) {
+    // Where the guided searches mostly find ties (a profile with free passages: every way
+    // through a manhole then has a cycle of cost 0, and none is the only shortest), the row's
+    // search finds them anyway: this compile guides no more.
+    const bool tie_bound = guided_tied_ > kGuidedTiesTried && guided_tied_ > guided_unique_;
+    if (budget == 0 || tie_bound || search.interrupted()) {
       left.push_back(t);
       continue;
     }
@@ -258,12 +265,16 @@ void SewerTaskCompiler::guided_routes(detail::ChQuery& index, GraphSearch& searc
         dist_[a * k() + b] = search.distance(t);
         keep_path(search, t, routes_[a * k() + b]);
         ++result_.statistics_.guided_searches;
+        ++guided_unique_;
         break;
       case GraphSearch::Toward::kUnreached:
         dist_[a * k() + b] = kInfiniteCost;
         ++result_.statistics_.guided_searches;
         break;
       case GraphSearch::Toward::kTied:
+        ++guided_tied_;
+        left.push_back(t);
+        break;
       case GraphSearch::Toward::kGaveUp:
         left.push_back(t);
         break;
@@ -280,9 +291,11 @@ bool SewerTaskCompiler::index_exit(detail::ChQuery& index, std::size_t a, Cost b
   // first exit it settles, which is near where exits are many (2 % of the manholes on the
   // scrambled networks: 8,000 exit nodes at 100,000 manholes, and a table of 0.3 s).
   if (exits.size() > kIndexExitsPerKey * k()) return false;
-  if (index_exit_table_.empty() && !exits.empty()) {
-    // Every key's (or its starts') distances to every exit node at once.
-    index.table(index_sources(), exits, index_exit_table_);
+  IndexTable& table = index_table(index, a);
+  if (!table.exits_built) {
+    // The table's sources' distances to every exit node at once.
+    table.exits_built = true;
+    if (!exits.empty()) index.table(table.sources, exits, table.exits);
   }
   // The exit a search settles first: the one nearest, when no other exit node lies as near. (With
   // moves of cost 0, a pipe's end to its slot or a free passage, the search does not settle the
@@ -296,8 +309,8 @@ bool SewerTaskCompiler::index_exit(detail::ChQuery& index, std::size_t a, Cost b
   for (std::size_t j = 0; j < exits.size(); ++j) {
     Cost d = kInfiniteCost;
     const std::optional<std::size_t> row = best_start(
-        starts, index_sources_,
-        [&](std::size_t i) { return index_exit_table_[i * exits.size() + j]; }, &d);
+        starts, table.sources, [&](std::size_t i) { return table.exits[i * exits.size() + j]; },
+        &d);
     if (d == kInfiniteCost) continue;
     if (d < best) {
       best = d;
@@ -314,7 +327,7 @@ bool SewerTaskCompiler::index_exit(detail::ChQuery& index, std::size_t a, Cost b
   }
   if (tied || !best_row) return false;
   bool unique = false;
-  (void)index.path(index_sources_[*best_row], exits[*best_exit], index_path_, &unique);
+  (void)index.path(table.sources[*best_row], exits[*best_exit], index_path_, &unique);
   if (!unique || !takes_index_path(a)) return false;
   exit_dist_[a] = best;
   exit_routes_[a] = route_store_.keep(index_path_);

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// GraphSearch: Dijkstra's algorithm over a PositionGraph, reused for every key of a compile.
+// GraphSearch: Dijkstra's algorithm over a PositionGraph, reused for every key of a compile (and
+// A* toward one target, guided by the routing index: run_toward).
 //
 // Private to domain. Forward from one source, or backward from many (every exit at once, giving
 // each node's distance to its nearest exit). A run stops when every target is settled or the next
@@ -54,8 +55,9 @@ class GraphSearch {
   // the nodes near some way not much dearer than the target's, where run() settles every node
   // nearer than the target. It goes on until every node that could lie on a shortest way is
   // settled, so that it can tell whether the way it found is the only shortest one: kUnique
-  // then (and only then is it the way run() finds: a node keeps its first shortest parent there,
-  // and here each node of the way has exactly one), kTied if another is as short, kUnreached
+  // then (and then it is the way run() finds: a node keeps its first shortest parent there, and
+  // here each node of the way has exactly one), kTied if another is as short (either may be
+  // run()'s), kUnreached
   // if the target lies beyond the bound (as run() leaves it), kGaveUp after `settle_limit`
   // settled nodes (the distances are then left unreached). path() and distance() give the way.
   enum class Toward { kUnique, kTied, kUnreached, kGaveUp };

@@ -132,8 +132,6 @@ std::optional<RouteMemo::Change> RouteMemo::change_to(const Context& now,
     change.any = true;
   };
   auto manhole = [&](ManholeId m) {
-    if (change.manhole.empty()) change.manhole.assign(map.manhole_count(), false);
-    change.manhole[m.index()] = true;
     change.nodes.push_back(graph.in_manhole(m));
     for (std::uint16_t s = 0; s < map.manhole(m).slot_count; ++s) {
       change.nodes.push_back(graph.at_slot(m, SlotIndex{s}));

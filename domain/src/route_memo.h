@@ -81,8 +81,7 @@ struct RouteMemo {
   // taken: another context, one that opened something the memo's had closed, or one with a
   // hazard less likely or gone.
   struct Change {
-    std::vector<bool> pipe;     // by pipe index
-    std::vector<bool> manhole;  // by manhole index
+    std::vector<bool> pipe;  // by pipe index
     // The nodes of the changed pipes' ends and of the changed manholes (in the manhole, at its
     // slots), sorted: a route passes a pipe at one of its ends, or starts inside it at an extra
     // spot, and passes a manhole at its slots.

@@ -334,23 +334,27 @@ class SewerTaskCompiler {
   // The routing index's tables between sources and the route targets (sorted), each built on
   // its first index_route: the start's from its own starts, the other keys' from
   // index_sources() (a replan takes most of those rows from the last compile, and needs no
-  // table for them); its distances from index_sources() to each exit node (GraphCore::
-  // marked_exits), on the first index_exit; and a route's buffer.
+  // table for them); and the same sources' distances to each exit node, on the first
+  // index_exit.
   struct IndexTable {
     bool built = false;
     std::vector<Node> sources;  // sorted
     detail::ChTable table;
+    bool exits_built = false;
+    std::vector<Cost> exits;  // by source, then exit node (GraphCore::marked_exits)
   };
   IndexTable& index_table(detail::ChQuery& index, std::size_t a);
   std::vector<Node> index_sources_;  // index_sources(), on the first use
   std::vector<Node> index_table_targets_;
   IndexTable start_table_;
   IndexTable keys_table_;
-  std::vector<Cost> index_exit_table_;
   // The graph's core is the cache's (not a throwaway one made while another compile held it):
   // only then is an index built on it kept.
   bool core_is_cached_ = false;
-  std::vector<Node> index_path_;
+  std::vector<Node> index_path_;  // a route's buffer
+  // Guided searches of this compile that found the only shortest way, and that found a tie.
+  std::size_t guided_unique_ = 0;
+  std::size_t guided_tied_ = 0;
   bool contingency_ = false;
   detail::SearchScratch contingency_scratch_;  // declared first: outlives its search
   std::unique_ptr<GraphSearch> contingency_search_;

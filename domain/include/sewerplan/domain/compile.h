@@ -120,8 +120,9 @@ struct CompileStatistics {
   // CompileCache, incremental replanning).
   std::size_t reused_searches = 0;
   // Searches not run: a key's routes, or its way to its nearest exit, taken from the routing
-  // index (CompileCache::RoutingIndex) whole. A row the index gave in part (a route tied or
-  // touched by a closure, an exit among many) counts a route search, for the rest.
+  // index (CompileCache::RoutingIndex) whole, or with the routes a closure touches found by
+  // guided searches (guided_searches). A row the index gave in part (a route tied, an exit
+  // among many, a guided search that found a tie) counts a route search, for the rest.
   std::size_t index_rows = 0;
   // Routes found by a search toward the one target, guided by the routing index's distances
   // (issue 35: a route the index has but a closure, blockage or hazard touches; after a blockage
