@@ -159,9 +159,9 @@ double swapped_log(const SlotSighting& want_a, const SlotSighting& want_b,
 // Pairs the mouths of two signatures with different slot counts: both lists run
 // counter-clockwise from the arrival mouth (paired with each other), so the pairing keeps their
 // order but for swapped neighbours (swapped_log), and each mouth left unpaired (one the map lacks,
-// or one the world lacks) costs kSlotCountLogPenalty. The pairing of most likelihood (an
-// alignment, O(expected x observed)). Adds its log-likelihood to `match` and names the first
-// difference.
+// or one the world lacks) costs unexpected_mouth_log_likelihood() or kSlotCountLogPenalty. The
+// pairing of most likelihood (an alignment, O(expected x observed)). Adds its log-likelihood to
+// `match` and names the first difference.
 void compare_unequal(const ManholeSignature& expected, const ManholeSignature& observed,
                      const SignatureNoise& noise, SignatureMatch& match) {
   const std::size_t e = expected.slots.size();
@@ -171,6 +171,8 @@ void compare_unequal(const ManholeSignature& expected, const ManholeSignature& o
   std::vector<double> best(e * o, 0.0);
   enum Step : unsigned char { kPair, kSwap, kExpectedAlone, kObservedAlone };
   std::vector<Step> how(e * o, kPair);
+  const double unseen = kSlotCountLogPenalty;
+  const double unexpected = unexpected_mouth_log_likelihood(noise);
   for (std::size_t i = 0; i < e; ++i) {
     for (std::size_t j = 0; j < o; ++j) {
       if (i == 0 && j == 0) continue;
@@ -189,12 +191,12 @@ void compare_unequal(const ManholeSignature& expected, const ManholeSignature& o
           step = kSwap;
         }
       }
-      if (i > 0 && best[(i - 1) * width + j] + kSlotCountLogPenalty > value) {
-        value = best[(i - 1) * width + j] + kSlotCountLogPenalty;
+      if (i > 0 && best[(i - 1) * width + j] + unseen > value) {
+        value = best[(i - 1) * width + j] + unseen;
         step = kExpectedAlone;
       }
-      if (j > 0 && best[i * width + j - 1] + kSlotCountLogPenalty > value) {
-        value = best[i * width + j - 1] + kSlotCountLogPenalty;
+      if (j > 0 && best[i * width + j - 1] + unexpected > value) {
+        value = best[i * width + j - 1] + unexpected;
         step = kObservedAlone;
       }
       best[i * width + j] = value;
@@ -241,6 +243,11 @@ void compare_unequal(const ManholeSignature& expected, const ManholeSignature& o
 }
 
 }  // namespace
+
+double unexpected_mouth_log_likelihood(const SignatureNoise& noise) {
+  if (noise.unmapped_mouth_share <= 0) return kSlotCountLogPenalty;
+  return std::log(noise.unmapped_mouth_share) + unknown_mouth_log_likelihood();
+}
 
 SignatureMatch compare(const ManholeSignature& expected, const ManholeSignature& observed,
                        const SignatureNoise& noise) {

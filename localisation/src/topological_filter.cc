@@ -105,8 +105,11 @@ Result<void> check_options(const LocalisationOptions& o) {
                              {"noise.max_shaft_m", n.max_shaft_m}}) {
     if (!std::isfinite(value) || value <= 0) return bad(name, value, "finite and > 0");
   }
-  if (!std::isfinite(n.mouth_off_share) || n.mouth_off_share < 0 || n.mouth_off_share >= 1)
-    return bad("noise.mouth_off_share", n.mouth_off_share, "in [0, 1)");
+  for (const auto& [name, value] :
+       {std::pair<std::string_view, double>{"noise.mouth_off_share", n.mouth_off_share},
+        {"noise.unmapped_mouth_share", n.unmapped_mouth_share}}) {
+    if (!std::isfinite(value) || value < 0 || value >= 1) return bad(name, value, "in [0, 1)");
+  }
   return {};
 }
 

@@ -100,6 +100,34 @@ TEST(ManholeSignature, AnExtraOrMissingMouthIsPairedAroundNotShifted) {
   EXPECT_GT(gone.log_likelihood, same.log_likelihood + 2 * kSlotCountLogPenalty);
 }
 
+// With the share of manholes that have a mouth the map lacks (SignatureNoise::unmapped_mouth_share,
+// as the localisation sets it), a mouth seen and left unpaired costs that share of a mouth nothing
+// predicts, not kSlotCountLogPenalty: the scale of a manhole the map lacks, whose mouths beyond
+// the pipe's are unknown. A mouth expected and not seen still costs the penalty; whether the
+// manhole matches does not change.
+TEST(ManholeSignature, AMouthTheMapLacksCostsTheShareOfManholesWithOne) {
+  const ManholeSignature want{.slots = {{0, 0, 0.3}, {180, 0, 0.3}}, .shaft_diameter_m = 1.0};
+  ManholeSignature extra = want;
+  extra.slots.push_back(SlotSighting{255, 0.1, 0.2});
+  const SignatureNoise noise{.unmapped_mouth_share = 0.01};
+  const SignatureMatch same = compare(want, want, noise);
+  const SignatureMatch seen = compare(want, extra, noise);
+  EXPECT_FALSE(seen.matches);
+  EXPECT_EQ(seen.reason, "3 slots seen, 2 expected: slot 3 at 255° is not on the map");
+  EXPECT_EQ(seen.unexpected, std::vector<std::size_t>{2});
+  EXPECT_NEAR(unexpected_mouth_log_likelihood(noise),
+              std::log(0.01) + unknown_mouth_log_likelihood(), 1e-12);
+  EXPECT_NEAR(seen.log_likelihood,
+              same.log_likelihood + std::log(0.01) + unknown_mouth_log_likelihood(), 1e-9);
+  // About e^-7.7 against e^-12: 70 times likelier than with the flat penalty.
+  EXPECT_GT(seen.log_likelihood - compare(want, extra).log_likelihood, 4.0);
+  EXPECT_EQ(unexpected_mouth_log_likelihood(SignatureNoise{}), kSlotCountLogPenalty);
+
+  const SignatureMatch gone = compare(extra, want, noise);  // the map's third mouth not seen
+  EXPECT_EQ(gone.unseen, std::vector<std::size_t>{2});
+  EXPECT_NEAR(gone.log_likelihood, same.log_likelihood + kSlotCountLogPenalty, 1e-9);
+}
+
 // Two pipes entering side by side (6 degrees apart on the official ISYBAU sample): with the
 // direction noise, or a map direction off, they are seen in the other order counter-clockwise. The
 // pairing follows the pipes (told apart by their sizes), with or without a mouth the map lacks;

@@ -79,6 +79,14 @@ struct SignatureNoise {
   // manhole a stranger; one that fits scores as without it. In [0, 1); 0 (the default): every
   // difference is noise. It changes compare()'s log_likelihood only, never whether it matches.
   double mouth_off_share = 0;
+  // The share of the map's manholes with a mouth the map lacks (a lateral added since the map was
+  // drawn; issue 29's error profile has 3 %). When > 0, a mouth seen that the pairing leaves
+  // unpaired scores log(unmapped_mouth_share) plus a mouth nothing predicts
+  // (unknown_mouth_log_likelihood(): its direction, step and size unknown), the scale on which
+  // the localisation scores a manhole the map lacks; 0 (the default): kSlotCountLogPenalty. In
+  // [0, 1); like mouth_off_share, it changes compare()'s log_likelihood (and which pairing is the
+  // most likely) only, never whether it matches.
+  double unmapped_mouth_share = 0;
 };
 
 // The ranges of a measurement nothing predicts, on compare()'s scale: a direction anywhere in 360
@@ -101,7 +109,8 @@ inline double unknown_mouth_log_likelihood() {
 struct SignatureMatch {
   bool matches = false;
   // The log-likelihood of `observed` given `expected` under the noise (Gaussian per measurement;
-  // a different slot count costs kSlotCountLogPenalty per slot). Comparable across manholes.
+  // a mouth seen and left unpaired costs unexpected_mouth_log_likelihood(), one expected and not
+  // seen kSlotCountLogPenalty). Comparable across manholes.
   double log_likelihood = 0;
   // The expected mouths (indices into expected.slots) the pairing left without a sighting: with
   // a differing slot count, mouths the world may lack.
@@ -114,12 +123,15 @@ struct SignatureMatch {
 };
 
 inline constexpr double kSlotCountLogPenalty = -12.0;
+// What compare() charges for a mouth seen that the map lacks: kSlotCountLogPenalty, or by
+// SignatureNoise::unmapped_mouth_share. A mouth of the map's not seen costs kSlotCountLogPenalty.
+double unexpected_mouth_log_likelihood(const SignatureNoise& noise);
 
 // How well `observed` fits `expected`. Slots are paired in order; with a differing slot count
 // (never a match) the pairing that keeps both orders and is most likely, each mouth left unpaired
-// (a lateral the map lacks, or one the world lacks) costing kSlotCountLogPenalty, and the reason
-// names it ("4 slots seen, 3 expected: slot 2 at 27° is not on the map"). Runtime: O(slots) with
-// equal counts, O(expected x observed) otherwise.
+// (a lateral the map lacks: unexpected_mouth_log_likelihood(); one the world lacks:
+// kSlotCountLogPenalty), and the reason names it ("4 slots seen, 3 expected: slot 2 at 27° is not
+// on the map"). Runtime: O(slots) with equal counts, O(expected x observed) otherwise.
 SignatureMatch compare(const ManholeSignature& expected, const ManholeSignature& observed,
                        const SignatureNoise& noise = {});
 

@@ -115,8 +115,14 @@ struct LocalisationOptions {
   // map's mouths that are wrong beyond it: a manhole seen with one mouth unlike the map's is still
   // that manhole. (On AIS, 200 runs of the realistic world, a mapped manhole 0.2 m ahead, with a
   // lateral the map has at 225 degrees seen at 262 and narrower, read as no manhole at all; the
-  // robot drove on 0 m and arrived there again 22 times.)
-  SignatureNoise noise{.mouth_off_share = 0.1};
+  // robot drove on 0 m and arrived there again 22 times.) And the share of mapped manholes with a
+  // mouth the map lacks (unmapped_mouth_share): such a mouth scores as that share of one nothing
+  // predicts, on the scale of a manhole the map lacks (docs/localisation.md, "Explaining an
+  // arrival"). A third of the realistic profile's 3 %: at 3 % a junction the map lacks 3 standard
+  // deviations short of the mapped manhole ahead read as that manhole (meshed 1,000 manholes,
+  // seed 1, run 24). Before (kSlotCountLogPenalty, e^-12), a mapped manhole with a lateral the map
+  // lacks, reached by a pipe a tenth shorter than mapped, read as a junction (seed 1, runs 11, 21).
+  SignatureNoise noise{.mouth_off_share = 0.1, .unmapped_mouth_share = 0.01};
   // A turn's angle as the robot's joints measure it (hal::JobReport::turn_measured_deg): its
   // standard deviation, and the map's direction error model that the angle is weighed with (this
   // share of the map's slots leave their manhole up to direction_off_max_deg off their mapped
