@@ -49,6 +49,12 @@ constexpr std::size_t kGuidedShare = 16;
 // After this many guided searches that found a tie, and more of them than ways found, a compile
 // guides no more (guided_routes).
 constexpr std::size_t kGuidedTiesTried = 4;
+
+// A table's sources: sorted, each once (rows are found by binary search: best_start).
+void sort_unique(std::vector<Node>& nodes) {
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+}
 }  // namespace
 
 detail::ChQuery* SewerTaskCompiler::routing_index(bool may_build, std::size_t settled_estimate) {
@@ -105,9 +111,7 @@ const std::vector<Node>& SewerTaskCompiler::index_sources() {
       if (end.manhole) index_sources_.push_back(graph.at_slot(*end.manhole, end.slot));
     }
   }
-  std::sort(index_sources_.begin(), index_sources_.end());
-  index_sources_.erase(std::unique(index_sources_.begin(), index_sources_.end()),
-                       index_sources_.end());
+  sort_unique(index_sources_);
   return index_sources_;
 }
 
@@ -146,9 +150,7 @@ SewerTaskCompiler::IndexTable& SewerTaskCompiler::index_table(detail::ChQuery& i
   table.built = true;
   if (own) {
     for (const IndexStart& start : index_starts(0)) table.sources.push_back(start.node);
-    std::sort(table.sources.begin(), table.sources.end());
-    table.sources.erase(std::unique(table.sources.begin(), table.sources.end()),
-                        table.sources.end());
+    sort_unique(table.sources);
   } else {
     table.sources = index_sources();
   }

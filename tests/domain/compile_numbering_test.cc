@@ -39,6 +39,7 @@ Mission renamed(const Mission& mission, const bench::ShuffledMap& shuffled) {
   return out;
 }
 
+using testing::driven_pipes;
 using testing::expect_identical_task;
 using testing::expect_same_task;
 
@@ -178,20 +179,6 @@ namespace {
 // Issue 35, incremental replanning: a compile on a CompileCache takes the rows the last compile's
 // searches found (RouteMemo) where nothing that changed since could alter them. The task must be
 // the one compiled afresh, action for action and route for route (expect_identical_task).
-
-// The pipes the routes of `task`'s moves drive, in action order, each once.
-std::vector<PipeId> driven_pipes(const SewerTask& task) {
-  std::vector<PipeId> pipes;
-  for (ActionId id : task.task().action_ids()) {
-    const ActionId one[] = {id};
-    for (const PlanStep& s : task.expand(one).steps) {
-      if (const auto* d = std::get_if<DrivePipeToManhole>(&s)) {
-        if (std::find(pipes.begin(), pipes.end(), d->pipe) == pipes.end()) pipes.push_back(d->pipe);
-      }
-    }
-  }
-  return pipes;
-}
 
 // Compiles on a CompileCache and afresh, side by side. The first compile fills the cache (a task
 // holds the cache's core while it lives: the next compile takes it after).

@@ -33,6 +33,7 @@ using detail::GraphSearch;
 using detail::Node;
 using detail::PositionGraph;
 using detail::SearchScratch;
+using testing::driven_pipes;
 
 struct Counts {
   std::size_t unique = 0, tied = 0, unreached = 0, gave_up = 0, differ = 0;
@@ -151,18 +152,6 @@ TEST(GuidedRouteIssue35, TowardAgreesWithRunWithFreeMovesRiskAndExclusions) {
 
 // Whole compiles: a kAlways cache through replans (blockages, closed passages, closed pipes on
 // the routes; the robot in pipes and at slots) against afresh, with free moves and risk.
-std::vector<PipeId> driven_pipes(const SewerTask& task) {
-  std::vector<PipeId> pipes;
-  for (ActionId id : task.task().action_ids()) {
-    const ActionId one[] = {id};
-    for (const PlanStep& s : task.expand(one).steps) {
-      if (const auto* d = std::get_if<DrivePipeToManhole>(&s)) {
-        if (std::find(pipes.begin(), pipes.end(), d->pipe) == pipes.end()) pipes.push_back(d->pipe);
-      }
-    }
-  }
-  return pipes;
-}
 
 struct Totals {
   std::size_t guided = 0, index_rows = 0, compared = 0, failed = 0;

@@ -2,6 +2,7 @@
 #include "support/task_compare.h"
 
 #include <algorithm>
+#include <variant>
 
 #include <gtest/gtest.h>
 
@@ -9,6 +10,8 @@ namespace sewerplan::testing {
 
 using domain::ActionId;
 using domain::CompiledTask;
+using domain::DrivePipeToManhole;
+using domain::PlanStep;
 
 void expect_same_task(const domain::SewerTask& a, const domain::SewerTask& b) {
   const CompiledTask& x = a.task();
@@ -35,6 +38,19 @@ void expect_identical_task(const domain::SewerTask& a, const domain::SewerTask& 
     const ActionId one[] = {id};
     EXPECT_EQ(a.expand(one).steps, b.expand(one).steps) << b.task().action_name(id);
   }
+}
+
+std::vector<PipeId> driven_pipes(const domain::SewerTask& task) {
+  std::vector<PipeId> pipes;
+  for (ActionId id : task.task().action_ids()) {
+    const ActionId one[] = {id};
+    for (const PlanStep& s : task.expand(one).steps) {
+      if (const auto* d = std::get_if<DrivePipeToManhole>(&s)) {
+        if (std::find(pipes.begin(), pipes.end(), d->pipe) == pipes.end()) pipes.push_back(d->pipe);
+      }
+    }
+  }
+  return pipes;
 }
 
 }  // namespace sewerplan::testing
