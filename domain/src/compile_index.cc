@@ -18,6 +18,7 @@
 // which of several at one distance a search settles first depends on its order, not only on
 // the nodes' numbers, where moves cost 0 (a pipe's end to its slot, a free passage).
 #include <algorithm>
+#include <functional>
 #include <optional>
 #include <span>
 #include <utility>
@@ -170,7 +171,11 @@ SewerTaskCompiler::IndexAnswer SewerTaskCompiler::index_route(detail::ChQuery& i
       starts, table.sources, [&](std::size_t i) { return table.table.distance(i, j); }, cost);
   if (*cost > bound) return IndexAnswer::kTaken;
   if (!row || !table.table.unique(*row, j)) return IndexAnswer::kTied;
-  table.table.way(*row, j, index_path_);
+  const PositionGraph& graph = *result_.graph_;
+  const std::function<bool(Node, Node)> reads = [&](Node from, Node to) {
+    return graph.reads_move(from, to);
+  };
+  if (!table.table.way(*row, j, index_path_, &reads)) return IndexAnswer::kTouched;
   return takes_index_path(a) ? IndexAnswer::kTaken : IndexAnswer::kTouched;
 }
 
@@ -244,6 +249,9 @@ void SewerTaskCompiler::guided_routes(detail::ChQuery& index, GraphSearch& searc
   const PositionGraph& graph = *result_.graph_;
   const Node source = keys_[a];
   std::size_t budget = graph.size() / kGuidedShare;
+  const std::function<bool(Node, Node)> reads = [&](Node from, Node to) {
+    return graph.reads_move(from, to);
+  };
   std::vector<Node> left;
   for (Node t : touched) {
     // Where the guided searches mostly find ties (a profile with free passages: every way
@@ -257,15 +265,27 @@ void SewerTaskCompiler::guided_routes(detail::ChQuery& index, GraphSearch& searc
     index.aim_at(t);
     const std::size_t before = search.settled_total();
     // An extra spot (the source, never entered by a move) is no node of the index: 0 bounds it.
-    const GraphSearch::Toward toward = search.run_toward(source, t, bound, budget, [&](Node n) {
-      return graph.is_extra_spot(n) ? 0 : index.distance_to_aim(n);
-    });
+    // The search stops where the rest of the way is the index's own (way_to_aim).
+    Cost rest_cost = 0;
+    const std::function<bool(Node)> rest_known = [&](Node n) {
+      return !graph.is_extra_spot(n) && index.way_to_aim(n, rest_, &reads, &rest_cost);
+    };
+    const GraphSearch::Toward toward = search.run_toward(
+        source, t, bound, budget,
+        [&](Node n) { return graph.is_extra_spot(n) ? 0 : index.distance_to_aim(n); }, &rest_known);
     budget -= std::min(budget, search.settled_total() - before);
     const std::uint32_t b = key_of_.at(t);
     switch (toward) {
       case GraphSearch::Toward::kUnique:
-        dist_[a * k() + b] = search.distance(t);
-        keep_path(search, t, routes_[a * k() + b]);
+        if (const std::optional<Node> joined = search.joined()) {
+          dist_[a * k() + b] = search.distance(*joined) + rest_cost;
+          search.path(*joined, index_path_);
+          index_path_.insert(index_path_.end(), rest_.begin() + 1, rest_.end());
+          routes_[a * k() + b] = route_store_.keep(index_path_);
+        } else {
+          dist_[a * k() + b] = search.distance(t);
+          keep_path(search, t, routes_[a * k() + b]);
+        }
         ++result_.statistics_.guided_searches;
         ++guided_unique_;
         break;

@@ -52,6 +52,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <utility>
 #include <vector>
@@ -126,9 +127,11 @@ class ContractionHierarchy {
   const Edge& find_down(std::uint32_t low, std::uint32_t high) const;
 
   // Appends the graph's nodes of the edge tail -> head (by rank; `middle` its middle node, or
-  // kNoMiddle) after tail: its shortcuts unpacked, head last.
-  void unpack(std::uint32_t tail, std::uint32_t head, std::uint32_t middle,
-              std::vector<Node>& out) const;
+  // kNoMiddle) after tail: its shortcuts unpacked, head last. With `check` (not null), each move
+  // is asked before its node is appended; false at the first it refuses (`out` then ends at
+  // the move's tail).
+  bool unpack(std::uint32_t tail, std::uint32_t head, std::uint32_t middle, std::vector<Node>& out,
+              const std::function<bool(Node from, Node to)>* check = nullptr) const;
 
   std::vector<std::uint32_t> rank_;  // by node
   std::vector<Node> node_;           // by rank
@@ -154,8 +157,12 @@ class ChTable {
   // if there is none).
   bool unique(std::size_t i, std::size_t j) const { return ways_[i * targets_ + j] == 1; }
   // The pair's way into `out` (source first, target last, every step a move of the graph),
-  // empty if there is none; among several shortest ways, one of them.
-  void way(std::size_t i, std::size_t j, std::vector<Node>& out) const;
+  // empty if there is none; among several shortest ways, one of them. With `check` (not null),
+  // each move is asked in order, source first, as it is unpacked: false at the first it refuses,
+  // with the way unpacked no further (issue 35: a replan's start row has its routes past the
+  // blockage refused at their first moves, not unpacked whole and then refused).
+  bool way(std::size_t i, std::size_t j, std::vector<Node>& out,
+           const std::function<bool(Node from, Node to)>* check = nullptr) const;
 
  private:
   friend class ChQuery;
@@ -213,6 +220,13 @@ class ChQuery {
   // scrambled manholes); distance_to_aim, the nodes of n's upward space not seen before.
   void aim_at(Node target);
   Cost distance_to_aim(Node n);
+  // The way from n to the aim that distance_to_aim(n) stands for, into `out` (n first, the
+  // target last), if it is the only shortest one (on a hierarchy built with keep_ties) and every
+  // move passes `check` (if not null; asked in order, as in ChTable::way); false otherwise (`out`
+  // then holds a part of it), `*cost` its cost. Runtime: the way's length and the upward edges of
+  // the nodes it climbs through; no search.
+  bool way_to_aim(Node n, std::vector<Node>& out,
+                  const std::function<bool(Node from, Node to)>* check, Cost* cost);
   // Nodes settled over all queries (a measure of work).
   std::size_t settled_total() const { return settled_total_; }
 

@@ -13,6 +13,10 @@ namespace sewerplan::domain::detail {
 
 namespace {
 constexpr std::uint32_t kNone = 0xffffffffU;
+// distance_to_aim()'s marks in forward_.dist (no way costs that much: a cost is at most 2^32 ms
+// per edge): waiting for its upward neighbours, known to have no way.
+constexpr Cost kAimOpen = kInfiniteCost - 1;
+constexpr Cost kAimNoWay = kInfiniteCost - 2;
 
 // The edge to `head` among edges[begin[tail], begin[tail + 1]).
 template <class Edge>
@@ -156,16 +160,18 @@ Cost ChQuery::distance(Node s, Node t, bool* unique) {
   return d;
 }
 
-void ContractionHierarchy::unpack(std::uint32_t tail, std::uint32_t head, std::uint32_t middle,
-                                  std::vector<Node>& out) const {
+bool ContractionHierarchy::unpack(std::uint32_t tail, std::uint32_t head, std::uint32_t middle,
+                                  std::vector<Node>& out,
+                                  const std::function<bool(Node from, Node to)>* check) const {
   if (middle == kNoMiddle) {
+    if (check != nullptr && !(*check)(node_[tail], node_[head])) return false;
     out.push_back(node_[head]);
-    return;
+    return true;
   }
   // The middle is contracted before both ends: tail -> middle is a down edge at it, middle ->
   // head an up edge.
-  unpack(tail, middle, find_down(middle, tail).middle(), out);
-  unpack(middle, head, find_up(middle, head).middle(), out);
+  return unpack(tail, middle, find_down(middle, tail).middle(), out, check) &&
+         unpack(middle, head, find_up(middle, head).middle(), out, check);
 }
 
 Cost ChQuery::path(Node s, Node t, std::vector<Node>& out, bool* unique) {
@@ -300,20 +306,24 @@ std::uint32_t ChTable::down_parent(std::size_t j, std::uint32_t node) const {
   return it->parent;
 }
 
-void ChTable::way(std::size_t i, std::size_t j, std::vector<Node>& out) const {
+bool ChTable::way(std::size_t i, std::size_t j, std::vector<Node>& out,
+                  const std::function<bool(Node from, Node to)>* check) const {
   out.clear();
-  if (distance(i, j) == kInfiniteCost) return;
+  if (distance(i, j) == kInfiniteCost) return true;
   const std::uint32_t middle = middle_[i * targets_ + j];
   std::vector<std::uint32_t> up;
   for (std::uint32_t x = middle; x != kNone; x = up_parent(i, x)) up.push_back(x);
   std::reverse(up.begin(), up.end());
   out.push_back(ch_->node_[up.front()]);
   for (std::size_t k = 1; k < up.size(); ++k) {
-    ch_->unpack(up[k - 1], up[k], ch_->find_up(up[k - 1], up[k]).middle(), out);
+    if (!ch_->unpack(up[k - 1], up[k], ch_->find_up(up[k - 1], up[k]).middle(), out, check)) {
+      return false;
+    }
   }
   for (std::uint32_t x = middle, next; (next = down_parent(j, x)) != kNone; x = next) {
-    ch_->unpack(x, next, ch_->find_down(next, x).middle(), out);
+    if (!ch_->unpack(x, next, ch_->find_down(next, x).middle(), out, check)) return false;
   }
+  return true;
 }
 
 void ChQuery::aim_at(Node target) {
@@ -328,14 +338,23 @@ void ChQuery::aim_at(Node target) {
     backward_.heap.pop_back();
     if (du != backward_.dist[u]) continue;
     ++settled_total_;
+    // Parents and ways as settle_next() keeps them, for way_to_aim(): at one distance the nodes
+    // settle by rank and every edge climbs, so a node's ways are all counted before it is
+    // expanded.
     for (std::uint32_t e = ch_.down_begin_[u]; e < ch_.down_begin_[u + 1]; ++e) {
       const auto& edge = ch_.down_[e];
       Cost& old = backward_.dist[edge.head];
+      const auto ways = static_cast<std::uint8_t>(std::min(2U, backward_.ways[u] * edge.ways()));
       if (du + edge.cost < old) {
         if (old == kInfiniteCost) backward_.touched.push_back(edge.head);
         old = du + edge.cost;
+        backward_.parent[edge.head] = u;
+        backward_.ways[edge.head] = ways;
         backward_.heap.emplace_back(old, edge.head);
         std::push_heap(backward_.heap.begin(), backward_.heap.end(), later);
+      } else if (du + edge.cost == old) {
+        backward_.ways[edge.head] =
+            static_cast<std::uint8_t>(std::min(2, backward_.ways[edge.head] + ways));
       }
     }
   }
@@ -346,10 +365,9 @@ Cost ChQuery::distance_to_aim(Node n) {
   SEWER_CHECK(aimed_, "a contraction hierarchy's guide asked without a target");
   assert(n < ch_.size());
   // forward_.dist by rank, one read per node (the nodes lie all over the map: each read is a
-  // cache miss): kInfiniteCost not seen, kOpen waiting for its upward neighbours, kNoWay known
-  // to have none, else known. No way costs that much (a cost is at most 2^32 ms per edge).
-  constexpr Cost kOpen = kInfiniteCost - 1;
-  constexpr Cost kNoWay = kInfiniteCost - 2;
+  // cache miss): kInfiniteCost not seen, kAimOpen, kAimNoWay, else known.
+  constexpr Cost kOpen = kAimOpen;
+  constexpr Cost kNoWay = kAimNoWay;
   const auto known = [&](std::uint32_t x) { return forward_.dist[x] < kOpen; };
   const std::uint32_t r = ch_.rank_[n];
   if (!known(r)) {
@@ -388,6 +406,47 @@ Cost ChQuery::distance_to_aim(Node n) {
     }
   }
   return forward_.dist[r] == kNoWay ? kInfiniteCost : forward_.dist[r];
+}
+
+bool ChQuery::way_to_aim(Node n, std::vector<Node>& out,
+                         const std::function<bool(Node from, Node to)>* check, Cost* cost) {
+  SEWER_CHECK(aimed_, "a contraction hierarchy's way asked without a target");
+  const Cost total = distance_to_aim(n);
+  out.assign(1, n);
+  if (total == kInfiniteCost) return false;
+  *cost = total;
+  // distance_to_aim(x) is the best over x's upward space of the way up to a node and down from
+  // it to the target; every upward neighbour's is known once x's is. Up from n, at each node
+  // exactly one choice must give its distance: to turn down here (the backward search's tree),
+  // or one upward edge. Two would be two shortest ways (each has one up-down form, keep_ties).
+  std::uint32_t r = ch_.rank_[n];
+  for (;;) {
+    const Cost here = forward_.dist[r];
+    const bool down = backward_.dist[r] == here;
+    std::size_t choices = down ? 1 : 0;
+    std::uint32_t chosen = kNone;
+    for (std::uint32_t e = ch_.up_begin_[r]; e < ch_.up_begin_[r + 1]; ++e) {
+      const auto& edge = ch_.up_[e];
+      const Cost above = forward_.dist[edge.head];
+      if (above < kAimNoWay && above + edge.cost == here) {
+        ++choices;
+        chosen = e;
+      }
+    }
+    if (choices != 1) return false;
+    if (down) {
+      if (backward_.ways[r] != 1) return false;
+      break;
+    }
+    const auto& edge = ch_.up_[chosen];
+    if (edge.ways() != 1 || !ch_.unpack(r, edge.head, edge.middle(), out, check)) return false;
+    r = edge.head;
+  }
+  for (std::uint32_t x = r; backward_.parent[x] != kNone; x = backward_.parent[x]) {
+    const std::uint32_t next = backward_.parent[x];
+    if (!ch_.unpack(x, next, ch_.find_down(next, x).middle(), out, check)) return false;
+  }
+  return true;
 }
 
 }  // namespace sewerplan::domain::detail

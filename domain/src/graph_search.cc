@@ -21,6 +21,7 @@ bool GraphSearch::grow(SearchScratch& scratch, std::size_t nodes, const StopCond
     const std::size_t size = std::min(nodes, scratch.settled.size() + kSlice);
     scratch.settled.resize(size, false);
     scratch.is_target.resize(size, false);
+    scratch.tied.resize(size, false);
   }
   return true;
 }
@@ -32,6 +33,7 @@ GraphSearch::GraphSearch(const PositionGraph& graph, SearchScratch* scratch)
       parent_plus_one_(scratch_.parent_plus_one),
       settled_(scratch_.settled),
       is_target_(scratch_.is_target),
+      tied_(scratch_.tied),
       touched_(scratch_.touched),
       heap_(scratch_.heap) {
   if (settled_.size() < graph.size()) {
@@ -39,6 +41,7 @@ GraphSearch::GraphSearch(const PositionGraph& graph, SearchScratch* scratch)
     parent_plus_one_.grow_clean(graph.size());
     settled_.resize(graph.size(), false);
     is_target_.resize(graph.size(), false);
+    tied_.resize(graph.size(), false);
   }
 }
 
@@ -107,8 +110,10 @@ void GraphSearch::forget_unsettled() {
 
 GraphSearch::Toward GraphSearch::run_toward(Node source, Node target, Cost bound,
                                             std::size_t settle_limit,
-                                            const std::function<Cost(Node)>& to_target) {
+                                            const std::function<Cost(Node)>& to_target,
+                                            const std::function<bool(Node)>* rest_known) {
   reset();
+  joined_ = std::nullopt;
   direction_ = Direction::kForward;
   const Cost guide = to_target(source);
   if (guide == kInfiniteCost || guide > bound) return Toward::kUnreached;
@@ -120,6 +125,7 @@ GraphSearch::Toward GraphSearch::run_toward(Node source, Node target, Cost bound
   heap_.emplace_back(guide, source);
   Cost found = kInfiniteCost;
   std::size_t settled = 0;
+  std::size_t next_ask = 1;
   while (!heap_.empty() && !interrupted_) {
     std::pop_heap(heap_.begin(), heap_.end(), later);
     const Cost f = heap_.back().first;
@@ -137,38 +143,57 @@ GraphSearch::Toward GraphSearch::run_toward(Node source, Node target, Cost bound
     }
     if (++settled > settle_limit) {
       heap_.clear();
-      for (Node t : touched_) set_distance(t, kInfiniteCost);
+      for (Node t : touched_) {
+        set_distance(t, kInfiniteCost);
+        tied_[t] = false;
+      }
       return Toward::kGaveUp;
     }
     if (n == target) found = distance(n);
+    // The rest known: every way not through n costs more than f (it leaves the settled nodes at
+    // a node in the heap, whose estimate is a lower bound of it), the way here is the only
+    // shortest one (no later node can tie a settled node of it: it would have an estimate of at
+    // most f), and the rest is the only shortest way from n in the graph without closures and
+    // a way of this one, at the guide's cost: the way through n is the only shortest.
+    if (rest_known != nullptr && n != target && settled == next_ask) {
+      next_ask *= 2;  // a refusal costs up to the rest's length: asked at 1, 2, 4, ... settled
+      if ((heap_.empty() || heap_.front().first > f) && only_shortest_way(n) && (*rest_known)(n)) {
+        joined_ = n;
+        heap_.clear();
+        forget_unsettled();
+        for (Node t : touched_) tied_[t] = false;
+        return Toward::kUnique;
+      }
+    }
     graph_.for_each_successor(n, [&](Node to, Cost c) {
       const Cost d = distance(n) + c;
-      if (d >= distance(to) || d > bound) return;
+      if (d > bound || d > distance(to)) return;
+      if (d == distance(to)) {
+        tied_[to] = true;  // a second settled node reaches it at its distance
+        return;
+      }
       const Cost rest = to_target(to);
       if (rest == kInfiniteCost || d + rest > bound) return;
       if (distance(to) == kInfiniteCost) touched_.push_back(to);
       set_distance(to, d);
       set_parent(to, n);
+      tied_[to] = false;
       heap_.emplace_back(d + rest, to);
       std::push_heap(heap_.begin(), heap_.end(), later);
     });
   }
   heap_.clear();
   forget_unsettled();
+  const bool unique = found != kInfiniteCost && only_shortest_way(target);
+  for (Node t : touched_) tied_[t] = false;
   if (interrupted_) return Toward::kGaveUp;
   if (found == kInfiniteCost) return Toward::kUnreached;
-  return only_shortest_way(target) ? Toward::kUnique : Toward::kTied;
+  return unique ? Toward::kUnique : Toward::kTied;
 }
 
 bool GraphSearch::only_shortest_way(Node target) const {
   for (Node v = target; parent(v) != kNoParent; v = parent(v)) {
-    std::size_t parents = 0;
-    graph_.for_each_predecessor(v, [&](Node u, Cost c) {
-      if (settled_[u] && distance(u) != kInfiniteCost && distance(u) + c == distance(v)) {
-        ++parents;
-      }
-    });
-    if (parents != 1) return false;
+    if (tied_[v]) return false;
   }
   return true;
 }

@@ -302,10 +302,11 @@ Result<const Task*> PlanReplay::pending_task(TaskId id, TaskKind kind, bool at_p
 std::optional<std::string> PlanReplay::passage_problem(ManholeId m, SlotIndex from,
                                                        SlotIndex to) const {
   if (auto problem = undrivable(map_->slot(m, to).pipe)) return problem;
-  const std::string passage = passage_text(*map_, m, from, to);
+  // Named only for a problem: a plan's replay passes thousands of passages.
+  const auto passage = [&] { return passage_text(*map_, m, from, to); };
   for (const ClosedPassage& c : mission_->closed_passages) {
     if (c.manhole == m && ((c.from == from && c.to == to) || (c.from == to && c.to == from))) {
-      return passage + " is closed";
+      return passage() + " is closed";
     }
   }
   const RobotProfile& profile = mission_->profile;
@@ -313,18 +314,18 @@ std::optional<std::string> PlanReplay::passage_problem(ManholeId m, SlotIndex fr
       judge_passage(*map_, profile, mission_->passage_motion.get(), m, from, to);
   if (verdict.by_motion) {
     if (verdict.allowed) return std::nullopt;
-    return passage + ": the motion planner found no motion for " + robot_name(*mission_) + " (" +
+    return passage() + ": the motion planner found no motion for " + robot_name(*mission_) + " (" +
            verdict.motion->reason + ")";
   }
   const double turn = verdict.turn_deg;
   if (!(turn <= profile.max_turn_deg + kLimitTolerance)) {
-    return passage + ": turn of " + fixed(turn, 1) + " deg exceeds " + robot_name(*mission_) +
+    return passage() + ": turn of " + fixed(turn, 1) + " deg exceeds " + robot_name(*mission_) +
            "'s " + shortest(profile.max_turn_deg) + " deg";
   }
   const double step = verdict.step_m;
   if (!(std::abs(step) <= profile.max_step_m + kLimitTolerance)) {
-    return passage + ": step of " + fixed(step, 2) + " m exceeds " + robot_name(*mission_) + "'s " +
-           fixed(profile.max_step_m, 2) + " m";
+    return passage() + ": step of " + fixed(step, 2) + " m exceeds " + robot_name(*mission_) +
+           "'s " + fixed(profile.max_step_m, 2) + " m";
   }
   return std::nullopt;
 }

@@ -54,6 +54,7 @@ struct SearchScratch {
   ZeroedArray<Node> parent_plus_one;
   std::vector<bool> settled;
   std::vector<bool> is_target;
+  std::vector<bool> tied;  // GraphSearch::run_toward: reached at its distance by two settled nodes
   std::vector<Node> touched;
   std::vector<std::pair<Cost, Node>> heap;
 };
@@ -236,14 +237,18 @@ class PositionGraph {
   // those costing more (issue 35: a route of the routing index that passes this check is one
   // of this graph's, at the index's cost).
   bool reads_adjacency(std::span<const Node> route) const {
-    const Node first_end = manholes_ + slots_;
     for (std::size_t i = 0; i + 1 < route.size(); ++i) {
-      if (route[i] >= first_end + 2 * pipes_ || generated(route[i])) return false;
-      const Node to = route[i + 1];
-      if (to >= first_end) {
-        const PipeId p{(to - first_end) / 2};
-        if (!drivable_[p.index()] || excluded(p)) return false;
-      }
+      if (!reads_move(route[i], route[i + 1])) return false;
+    }
+    return true;
+  }
+  // The same for one step of such a route.
+  bool reads_move(Node from, Node to) const {
+    const Node first_end = manholes_ + slots_;
+    if (from >= first_end + 2 * pipes_ || generated(from)) return false;
+    if (to >= first_end) {
+      const PipeId p{(to - first_end) / 2};
+      if (!drivable_[p.index()] || excluded(p)) return false;
     }
     return true;
   }

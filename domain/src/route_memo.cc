@@ -148,6 +148,7 @@ std::optional<RouteMemo::Change> RouteMemo::change_to(const Context& now,
   }
   std::sort(change.nodes.begin(), change.nodes.end());
   change.nodes.erase(std::unique(change.nodes.begin(), change.nodes.end()), change.nodes.end());
+  for (Node n : change.nodes) change.maybe[(n >> 6) & 63] |= std::uint64_t{1} << (n & 63);
   return change;
 }
 
@@ -158,7 +159,8 @@ bool RouteMemo::Change::touches(const PositionGraph& graph, std::span<const Node
   for (Node n : route) {
     if (graph.is_extra_spot(n)) {
       if (!pipe.empty() && pipe[graph.pipe_of(n)->index()]) return true;
-    } else if (std::binary_search(nodes.begin(), nodes.end(), n)) {
+    } else if (((maybe[(n >> 6) & 63] >> (n & 63)) & 1) != 0 &&
+               std::binary_search(nodes.begin(), nodes.end(), n)) {
       return true;
     }
   }

@@ -328,6 +328,7 @@ class SewerTaskCompiler {
   void keep_path(const GraphSearch& search, Node n, RouteRef& ref) {
     ref = route_store_.keep(search, n);
   }
+  std::vector<Node> rest_;  // guided_routes: the index's rest of a way (ChQuery::way_to_aim)
   std::vector<RouteRef> routes_;
   std::vector<Cost> exit_dist_;
   std::vector<RouteRef> exit_routes_;

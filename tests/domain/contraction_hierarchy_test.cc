@@ -283,8 +283,9 @@ std::size_t expect_uniqueness(const Csr& g, const std::vector<Node>& sources,
   query.table_with_ways(sources, targets, with_ways);
   std::size_t tied = 0;
   std::vector<Node> path, want;
+  std::vector<Counted> refs;
   for (std::size_t i = 0; i < sources.size(); ++i) {
-    const Counted ref = counting_dijkstra(g, sources[i]);
+    const Counted& ref = refs.emplace_back(counting_dijkstra(g, sources[i]));
     for (std::size_t j = 0; j < targets.size(); ++j) {
       const Node s = sources[i], t = targets[j];
       const bool want_unique = ref.ways[t] == 1;
@@ -312,6 +313,26 @@ std::size_t expect_uniqueness(const Csr& g, const std::vector<Node>& sources,
       } else {
         EXPECT_TRUE(table_way.empty());
       }
+    }
+  }
+  // The guide's own way (ChQuery::way_to_aim, issue 35): given exactly where it is the only one.
+  ChQuery aim(*ch);
+  for (std::size_t j = 0; j < targets.size(); ++j) {
+    const Node t = targets[j];
+    aim.aim_at(t);
+    for (std::size_t i = 0; i < sources.size(); ++i) {
+      const Node s = sources[i];
+      const Counted& ref = refs[i];
+      const bool want_unique = ref.ways[t] == 1 && ref.dist[t] != kInfiniteCost;
+      Cost cost = kInfiniteCost;
+      EXPECT_EQ(aim.way_to_aim(s, path, nullptr, &cost), want_unique) << s << " -> " << t;
+      if (!want_unique) continue;
+      want.clear();
+      for (Node x = t; x != s; x = ref.parent[x]) want.push_back(x);
+      want.push_back(s);
+      std::reverse(want.begin(), want.end());
+      EXPECT_EQ(path, want) << s << " -> " << t;
+      EXPECT_EQ(cost, ref.dist[t]) << s << " -> " << t;
     }
   }
   return tied;

@@ -161,10 +161,20 @@ void expect_toward_as_reference(const SewerMap& map, Mission mission, std::uint3
   PositionGraph graph(map, mission);
   ASSERT_TRUE(graph.build_adjacency(nullptr));
   const GraphCore& core = graph.core();
-  auto ch =
-      ContractionHierarchy::build(core.adjacency_begin, core.adjacency_to, core.adjacency_cost);
+  auto ch = ContractionHierarchy::build(core.adjacency_begin, core.adjacency_to,
+                                        core.adjacency_cost, {.keep_ties = true});
   ASSERT_TRUE(ch.has_value());
   ChQuery index(*ch);
+  // The search ended where the index's own way is the rest (as the compile does it).
+  std::vector<Node> rest;
+  Cost rest_cost = 0;
+  const std::function<bool(Node, Node)> reads = [&](Node from, Node to) {
+    return graph.reads_move(from, to);
+  };
+  const std::function<bool(Node)> rest_known = [&](Node n) {
+    return !graph.is_extra_spot(n) && index.way_to_aim(n, rest, &reads, &rest_cost);
+  };
+  std::size_t joined = 0;
   std::vector<Node> sources;
   for (std::uint32_t m = 0; m < map.manhole_count(); m += 29) {
     sources.push_back(graph.in_manhole(ManholeId{m}));
@@ -192,13 +202,31 @@ void expect_toward_as_reference(const SewerMap& map, Mission mission, std::uint3
       const Cost bound =
           want.dist[t] != kInfiniteCost && i % 4 == 3 ? want.dist[t] - 1 : kInfiniteCost;
       const GraphSearch::Toward got = search.run_toward(source, t, bound, graph.size(), guide);
+      index.aim_at(t);
+      const GraphSearch::Toward got_joined =
+          search.run_toward(source, t, bound, graph.size(), guide, &rest_known);
+      std::vector<Node> joined_path;
+      Cost joined_cost = kInfiniteCost;
+      if (const std::optional<Node> at = search.joined()) {
+        ++joined;
+        search.path(*at, joined_path);
+        joined_path.insert(joined_path.end(), rest.begin() + 1, rest.end());
+        joined_cost = search.distance(*at) + rest_cost;
+      } else if (got_joined == GraphSearch::Toward::kUnique) {
+        search.path(t, joined_path);
+        joined_cost = search.distance(t);
+      }
+      index.aim_at(t);
+      (void)search.run_toward(source, t, bound, graph.size(), guide);  // path() below: this run's
       if (want.dist[t] == kInfiniteCost || bound < want.dist[t]) {
         EXPECT_EQ(got, GraphSearch::Toward::kUnreached);
+        EXPECT_EQ(got_joined, GraphSearch::Toward::kUnreached);
         ++unreached;
         continue;
       }
       if (ways_to(graph, want, source, t, memo) > 1) {
         EXPECT_EQ(got, GraphSearch::Toward::kTied);
+        EXPECT_EQ(got_joined, GraphSearch::Toward::kTied);
         ++tied;
         continue;
       }
@@ -210,6 +238,9 @@ void expect_toward_as_reference(const SewerMap& map, Mission mission, std::uint3
       std::reverse(expected.begin(), expected.end());
       search.path(t, path);
       EXPECT_EQ(path, expected);
+      ASSERT_EQ(got_joined, GraphSearch::Toward::kUnique);
+      EXPECT_EQ(joined_cost, want.dist[t]);
+      EXPECT_EQ(joined_path, expected);
       // Too small a limit gives up rather than answer wrong.
       if (path.size() > 3) {
         index.aim_at(t);
@@ -223,6 +254,7 @@ void expect_toward_as_reference(const SewerMap& map, Mission mission, std::uint3
   EXPECT_GE(tied, min_tied);
   EXPECT_GT(unreached, 20U);
   EXPECT_GT(gave_up, 50U);
+  EXPECT_GT(joined, unique / 4);  // many unique ways end where the index knows the rest
 }
 
 TEST(GraphSearch, FindsTheWayTowardATargetAroundClosuresAsTheReferenceOnALattice) {
