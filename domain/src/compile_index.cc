@@ -272,7 +272,8 @@ void SewerTaskCompiler::guided_routes(detail::ChQuery& index, GraphSearch& searc
     };
     const GraphSearch::Toward toward = search.run_toward(
         source, t, bound, budget,
-        [&](Node n) { return graph.is_extra_spot(n) ? 0 : index.distance_to_aim(n); }, &rest_known);
+        [&](Node n) { return graph.is_extra_spot(n) ? 0 : index.distance_to_aim(n); },
+        graph.core().free_passages ? nullptr : &rest_known);
     budget -= std::min(budget, search.settled_total() - before);
     const std::uint32_t b = key_of_.at(t);
     switch (toward) {

@@ -48,6 +48,7 @@ GraphSearch::GraphSearch(const PositionGraph& graph, SearchScratch* scratch)
 GraphSearch::~GraphSearch() { reset(); }
 
 void GraphSearch::reset() {
+  joined_ = std::nullopt;
   for (Node n : touched_) {
     set_distance(n, kInfiniteCost);
     set_parent(n, kNoParent);
@@ -113,7 +114,6 @@ GraphSearch::Toward GraphSearch::run_toward(Node source, Node target, Cost bound
                                             const std::function<Cost(Node)>& to_target,
                                             const std::function<bool(Node)>* rest_known) {
   reset();
-  joined_ = std::nullopt;
   direction_ = Direction::kForward;
   const Cost guide = to_target(source);
   if (guide == kInfiniteCost || guide > bound) return Toward::kUnreached;
@@ -150,12 +150,15 @@ GraphSearch::Toward GraphSearch::run_toward(Node source, Node target, Cost bound
       return Toward::kGaveUp;
     }
     if (n == target) found = distance(n);
-    // The rest known: every way not through n costs more than f (it leaves the settled nodes at
-    // a node in the heap, whose estimate is a lower bound of it), the way here is the only
-    // shortest one (no later node can tie a settled node of it: it would have an estimate of at
-    // most f), and the rest is the only shortest way from n in the graph without closures and
-    // a way of this one, at the guide's cost: the way through n is the only shortest.
-    if (rest_known != nullptr && n != target && settled == next_ask) {
+    // The rest known: while the target is not settled, every way to it not through n leaves the
+    // settled nodes at a node in the heap, whose estimate is a lower bound of it, so costs more
+    // than f; the way here is the only shortest one (no later node can tie a settled node of it:
+    // it would have an estimate of at most f); and the rest is the only shortest way from n in
+    // the graph without closures and a way of this one, at the guide's cost: the way through n
+    // is the only shortest. (Once the target is settled, its own way lies among the settled
+    // nodes, and a node at its estimate may tie it: a review found a slot reached at once from a
+    // passage and, at no cost, from its pipe's end.)
+    if (rest_known != nullptr && found == kInfiniteCost && n != target && settled == next_ask) {
       next_ask *= 2;  // a refusal costs up to the rest's length: asked at 1, 2, 4, ... settled
       if ((heap_.empty() || heap_.front().first > f) && only_shortest_way(n) && (*rest_known)(n)) {
         joined_ = n;

@@ -150,12 +150,15 @@ bool PositionGraph::build_adjacency(const StopCondition* stop) {
   begin.reserve(std::size_t{nodes} + 1);
   to.reserve(2 * std::size_t{nodes});
   cost.reserve(2 * std::size_t{nodes});
+  bool free_passages = false;
   for (Node n = 0; n < nodes; ++n) {
     if (n % kSlice == 0 && fired(stop)) return false;
     begin.push_back(static_cast<std::uint32_t>(to.size()));
+    const bool slot = n >= manholes_ && n < manholes_ + slots_;
     graph.for_each_successor(n, [&](Node next, Cost c) {
       to.push_back(next);
       cost.push_back(c);
+      free_passages = free_passages || (slot && c == 0);
     });
   }
   SEWER_CHECK(to.size() < 0xffffffffU, "too many moves for the adjacency");
@@ -163,6 +166,7 @@ bool PositionGraph::build_adjacency(const StopCondition* stop) {
   core.adjacency_begin = std::move(begin);
   core.adjacency_to = std::move(to);
   core.adjacency_cost = std::move(cost);
+  core.free_passages = free_passages;
   return true;
 }
 

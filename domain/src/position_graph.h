@@ -100,6 +100,11 @@ struct GraphCore {
   std::vector<std::uint32_t> adjacency_begin;
   std::vector<Node> adjacency_to;
   std::vector<Cost> adjacency_cost;
+  // Whether a move out of a slot costs nothing (a profile with no pass, turn or step cost): only
+  // then has the graph cycles of cost 0 (every cycle leaves a slot; a pipe's end to its slot is
+  // the other move of cost 0, and the robot lowered in a manhole is never entered again). Set
+  // with the adjacency.
+  bool free_passages = false;
   // Exit marks by node (the last compile's), the nodes marked, and the exits they mark.
   std::vector<bool> exit_marks;
   std::vector<Node> marked_exits;

@@ -203,8 +203,8 @@ void expect_toward_as_reference(const SewerMap& map, Mission mission, std::uint3
           want.dist[t] != kInfiniteCost && i % 4 == 3 ? want.dist[t] - 1 : kInfiniteCost;
       const GraphSearch::Toward got = search.run_toward(source, t, bound, graph.size(), guide);
       index.aim_at(t);
-      const GraphSearch::Toward got_joined =
-          search.run_toward(source, t, bound, graph.size(), guide, &rest_known);
+      const GraphSearch::Toward got_joined = search.run_toward(
+          source, t, bound, graph.size(), guide, core.free_passages ? nullptr : &rest_known);
       std::vector<Node> joined_path;
       Cost joined_cost = kInfiniteCost;
       if (const std::optional<Node> at = search.joined()) {
