@@ -269,6 +269,9 @@ class ChBuilder {
           const std::uint32_t tied = a.ways > 1 ? 0x80000000U : 0U;
           edges.push_back({ch.rank_[a.other], static_cast<std::uint32_t>(a.cost), middle | tied});
         }
+        // By head, so that unpacking finds a shortcut's halves by binary search (find_up).
+        std::sort(edges.begin() + begin.back(), edges.end(),
+                  [](const auto& x, const auto& y) { return x.head < y.head; });
       }
       begin.push_back(static_cast<std::uint32_t>(edges.size()));
       return Result<void>{};

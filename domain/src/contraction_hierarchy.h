@@ -171,9 +171,19 @@ class ChTable {
     std::uint32_t target;  // in down_ only: the target's index
     std::uint32_t parent;  // by rank; none at the search's root
   };
-  // The parent of `node` in source i's tree (up_) or in target j's (down_).
+  // The parent of `node` in source i's tree (up_) or in target j's (down_), and its entry there.
   std::uint32_t up_parent(std::size_t i, std::uint32_t node) const;
   std::uint32_t down_parent(std::size_t j, std::uint32_t node) const;
+  std::size_t up_entry(std::size_t i, std::uint32_t node) const;
+  std::size_t down_entry(std::size_t j, std::uint32_t node) const;
+  // The graph's nodes of a tree edge (up: the entry's parent -> its node; down: its node -> its
+  // parent), its tail left out: unpacked on first use, then kept.
+  std::span<const Node> segment(bool up, std::size_t entry) const;
+  struct Segment {
+    static constexpr std::uint32_t kUnknown = 0xffffffffU;
+    std::size_t begin = 0;
+    std::uint32_t size = kUnknown;
+  };
 
   const ContractionHierarchy* ch_ = nullptr;
   std::size_t targets_ = 0;
@@ -183,6 +193,11 @@ class ChTable {
   std::vector<Parent> up_;               // by source, then node
   std::vector<std::size_t> tree_begin_;  // source i's in up_[tree_begin_[i], tree_begin_[i + 1])
   std::vector<Parent> down_;             // by node, then target
+  // way()'s unpacked tree edges (segment()), by entry of up_ and down_, and its buffer.
+  mutable std::vector<Segment> up_segments_;
+  mutable std::vector<Segment> down_segments_;
+  mutable std::vector<Node> segment_nodes_;
+  mutable std::vector<std::size_t> way_entries_;
 };
 
 // Queries on one hierarchy, with their buffers (sized to the hierarchy once, reset through the

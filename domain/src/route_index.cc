@@ -27,7 +27,7 @@ namespace detail {
 namespace {
 
 constexpr std::array<char, 8> kMagic = {'S', 'P', 'R', 'I', 'D', 'X', '\r', '\n'};
-constexpr std::uint32_t kVersion = 1;
+constexpr std::uint32_t kVersion = 2;   // 2: each node's edges sorted by head
 constexpr std::uint32_t kKeepTies = 1;  // flags bit 0: built with ChOptions::keep_ties
 constexpr std::size_t kHeaderBytes = 64;
 constexpr std::size_t kEdgeBytes = 12;
@@ -145,7 +145,8 @@ struct ChFile {
     if (version != kVersion) {
       return Error{ErrorCode::kUnsupportedFormat, "version " + std::to_string(version) +
                                                       " of the routing index; this sewerplan " +
-                                                      "reads version " + std::to_string(kVersion)};
+                                                      "reads version " + std::to_string(kVersion) +
+                                                      ": remake it with 'sewerplan index build'"};
     }
     if (get(bytes, 12, 4) != kKeepTies) {
       return parse_error("flags " + std::to_string(get(bytes, 12, 4)) + ": a version 1 index has " +
@@ -248,6 +249,12 @@ struct ChFile {
         return Error{ErrorCode::kParse, where() + ": head rank " + std::to_string(edge.head) +
                                             " is not above its own and below " + std::to_string(n)};
       }
+      if (e > begin[u] && edge.head <= edges[e - 1].head) {
+        return Error{ErrorCode::kParse, where() + ": head rank " + std::to_string(edge.head) +
+                                            " is not above the previous edge's (" +
+                                            std::to_string(edges[e - 1].head) +
+                                            "): a node's edges are sorted by head, each once"};
+      }
       if (cost == 0xffffffffU) {
         return Error{ErrorCode::kParse, where() + ": cost 2^32 - 1 ms, more than any edge has"};
       }
@@ -262,13 +269,13 @@ struct ChFile {
   // The edge to `head` among the side's edges at `tail`; null if none.
   static const Edge* find(const std::vector<std::uint32_t>& begin, const std::vector<Edge>& edges,
                           std::uint32_t tail, std::uint32_t head, std::size_t* index) {
-    for (std::uint32_t e = begin[tail]; e < begin[tail + 1]; ++e) {
-      if (edges[e].head == head) {
-        *index = e;
-        return &edges[e];
-      }
-    }
-    return nullptr;
+    const auto first = edges.begin() + begin[tail];
+    const auto last = edges.begin() + begin[tail + 1];
+    const auto it = std::lower_bound(first, last, head,
+                                     [](const Edge& x, std::uint32_t h) { return x.head < h; });
+    if (it == last || it->head != head) return nullptr;
+    *index = static_cast<std::size_t>(it - edges.begin());
+    return &*it;
   }
 
   // Every shortcut's two halves exist (ContractionHierarchy::unpack), cost as much as it together,

@@ -221,8 +221,9 @@ TEST(RouteIndexIssue35, RefusesEveryKindOfBrokenFileSayingWhatIsWrong) {
       {"half a header", [](std::string& b) { b.resize(30); }, ErrorCode::kParse, "truncated: 30"},
       {"another format", [](std::string& b) { b[0] = '{'; }, ErrorCode::kParse,
        "not a sewerplan routing index"},
-      {"another version", [](std::string& b) { set_u32(b, 8, 2); }, ErrorCode::kUnsupportedFormat,
-       "version 2 of the routing index; this sewerplan reads version 1"},
+      {"another version", [](std::string& b) { set_u32(b, 8, 1); }, ErrorCode::kUnsupportedFormat,
+       "version 1 of the routing index; this sewerplan reads version 2: remake it with "
+       "'sewerplan index build'"},
       {"other flags", [](std::string& b) { set_u32(b, 12, 0); }, ErrorCode::kParse, "flags 0"},
       {"a count larger than the file",
        [](std::string& b) { set_u64(b, 24, std::uint64_t{1} << 40); }, ErrorCode::kParse,
@@ -265,6 +266,18 @@ TEST(RouteIndexIssue35, RefusesEveryKindOfBrokenFileSayingWhatIsWrong) {
          reseal(b);
        },
        ErrorCode::kParse, "is not above its own"},
+      {"two edges of a node out of order",
+       [&](std::string& b) {
+         // The first node with two up edges: its second edge's head set to its first's.
+         for (std::uint32_t u = 0; u < at.n; ++u) {
+           const std::uint32_t first = u32(b, at.up_begin + 4 * u);
+           if (u32(b, at.up_begin + 4 * (u + 1)) < first + 2) continue;
+           set_u32(b, at.up_edges + 12 * (first + 1), u32(b, at.up_edges + 12 * first));
+           break;
+         }
+         reseal(b);
+       },
+       ErrorCode::kParse, "a node's edges are sorted by head, each once"},
       {"a middle above the edge",
        [&](std::string& b) {
          const auto [e, u] = shortcut(b);
