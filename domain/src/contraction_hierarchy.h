@@ -158,9 +158,11 @@ class ChTable {
   bool unique(std::size_t i, std::size_t j) const { return ways_[i * targets_ + j] == 1; }
   // The pair's way into `out` (source first, target last, every step a move of the graph),
   // empty if there is none; among several shortest ways, one of them. With `check` (not null),
-  // each move is asked in order, source first, as it is unpacked: false at the first it refuses,
-  // with the way unpacked no further (issue 35: a replan's start row has its routes past the
-  // blockage refused at their first moves, not unpacked whole and then refused).
+  // each move is asked in order, source first, as the way is assembled: false at the first it
+  // refuses, with the way assembled no further (`out` ends at the move's tail; issue 35: a
+  // replan's start row has its routes past the blockage refused at their first moves). Each
+  // tree edge is unpacked whole on first use and kept for the table's other ways (segment()).
+  // Not for use from two threads at once: the kept edges are the table's own.
   bool way(std::size_t i, std::size_t j, std::vector<Node>& out,
            const std::function<bool(Node from, Node to)>* check = nullptr) const;
 

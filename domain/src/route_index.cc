@@ -149,8 +149,9 @@ struct ChFile {
                                                       ": remake it with 'sewerplan index build'"};
     }
     if (get(bytes, 12, 4) != kKeepTies) {
-      return parse_error("flags " + std::to_string(get(bytes, 12, 4)) + ": a version 1 index has " +
-                         "flags 1 (built keeping every shortest way)");
+      return parse_error("flags " + std::to_string(get(bytes, 12, 4)) + ": a version " +
+                         std::to_string(kVersion) + " index has flags 1 (built keeping every " +
+                         "shortest way)");
     }
     *fingerprint = get(bytes, 16, 8);
     const std::uint64_t n = get(bytes, 24, 8);
