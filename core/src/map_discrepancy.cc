@@ -44,9 +44,18 @@ std::string describe(const Discrepancy& d, const SewerMap& map) {
     case Discrepancy::Kind::kLengthOff:
       return pipe + ": length " + fixed(d.value, 2) + " m, the map says " + fixed(d.map_value, 2) +
              " m";
-    case Discrepancy::Kind::kDirectionOff:
-      return manhole + slot + ": leaves at " + fixed(d.value, 0) + "°, the map says " +
-             fixed(d.map_value, 0) + "°";
+    case Discrepancy::Kind::kDirectionOff: {
+      std::string text = manhole + slot + ": leaves at " + fixed(d.value, 0) +
+                         "°, the map says " + fixed(d.map_value, 0) + "°";
+      if (d.or_slot && d.manhole && d.or_slot->index() < map.manhole(*d.manhole).slot_count) {
+        const double mapped = map.slot(*d.manhole, *d.or_slot).azimuth_deg;
+        const double other = std::fmod(mapped - (d.value - d.map_value) + 720.0, 360.0);
+        text += "; or slot " + std::to_string(to_paper_number(*d.or_slot)) + " leaves at " +
+                fixed(other, 0) + "°, the map says " + fixed(mapped, 0) +
+                "° (the angle between the two was measured, not which is off)";
+      }
+      return text;
+    }
     case Discrepancy::Kind::kPositionOff:
       return manhole + ": " + fixed(d.value, 2) + " m from where the map puts it";
     case Discrepancy::Kind::kDiameterSmaller:
@@ -74,7 +83,13 @@ bool same_difference(const Discrepancy& a, const Discrepancy& b, double offset_t
     case Discrepancy::Kind::kPositionOff:
     case Discrepancy::Kind::kUnmappedLateral:
       return a.manhole == b.manhole;
-    case Discrepancy::Kind::kDirectionOff:
+    case Discrepancy::Kind::kDirectionOff: {
+      if (a.manhole != b.manhole) return false;
+      const auto has = [](const Discrepancy& d, const std::optional<SlotIndex>& s) {
+        return s && (d.slot == s || d.or_slot == s);
+      };
+      return has(a, b.slot) || has(a, b.or_slot);
+    }
     case Discrepancy::Kind::kMissingLateral:
       return a.manhole == b.manhole && a.slot == b.slot;
   }

@@ -275,7 +275,9 @@ class Derivation {
   // in F (a slot is called off only when freeing it explains k_sigma standard deviations). The
   // best hypothesis is taken, over the slots tied together by equations; a slot of it that
   // another hypothesis as good leaves right is not observable (two slots alone: a turn off by 15
-  // degrees could be either's) and is not reported. At most three slots off at once are tried.
+  // degrees could be either's). It is reported with the one slot the other hypothesis blames
+  // instead (`or_slot`), when there is just one such; otherwise not. At most three slots off at
+  // once are tried.
   void directions(const ManholeMeasurement& mm, const ManholeEvidence& e) {
     if (e.equations.empty()) return;
     const std::size_t n = e.seen.size();
@@ -387,27 +389,50 @@ class Derivation {
     }
     // As good: within one (a likelihood ratio of e^0.5).
     constexpr double kAsGood = 1.0;
-    for (std::size_t i = 0; i < hypotheses[best].size(); ++i) {
-      const std::size_t s = hypotheses[best][i];
-      bool observable = true;
-      for (std::size_t h = 0; h < hypotheses.size() && observable; ++h) {
+    const std::vector<std::size_t>& chosen = hypotheses[best];
+    for (std::size_t i = 0; i < chosen.size(); ++i) {
+      const std::size_t s = chosen[i];
+      // The hypotheses as good as the best that leave s right: none, s is observable; one that
+      // blames another slot t instead of s (the rest alike), the robot measured that s or t is
+      // off, not which (every manhole of two mouths); more, nothing can be said of s.
+      std::optional<std::size_t> instead;
+      bool said = true;
+      for (std::size_t h = 0; h < hypotheses.size() && said; ++h) {
         if (h == best || fits[h].score > fits[best].score + kAsGood) continue;
         const auto& other = hypotheses[h];
-        observable = std::find(other.begin(), other.end(), s) != other.end();
+        if (std::find(other.begin(), other.end(), s) != other.end()) continue;
+        const std::optional<std::size_t> t = swapped_for(chosen, other);
+        said = t && !instead;
+        instead = t;
       }
       const double deviation = fits[best].deviation[i];
       const double sigma = fits[best].sigma[i];
-      if (!observable || !beyond(deviation, sigma, t_.direction_floor_deg)) continue;
+      if (!said || !beyond(deviation, sigma, t_.direction_floor_deg)) continue;
       const SlotIndex slot{static_cast<std::uint16_t>(s)};
       const double mapped = map_.slot(mm.manhole, slot).azimuth_deg;
-      direction_.push_back({{.kind = Discrepancy::Kind::kDirectionOff,
-                             .manhole = mm.manhole,
-                             .slot = slot,
-                             .map_value = mapped,
-                             .value = wrap360(mapped + deviation),
-                             .sigma = sigma},
-                            mm.sources});
+      Discrepancy d{.kind = Discrepancy::Kind::kDirectionOff,
+                    .manhole = mm.manhole,
+                    .slot = slot,
+                    .map_value = mapped,
+                    .value = wrap360(mapped + deviation),
+                    .sigma = sigma};
+      if (instead) d.or_slot = SlotIndex{static_cast<std::uint16_t>(*instead)};
+      direction_.push_back({d, mm.sources});
     }
+  }
+
+  // The slot `other` blames in place of one of `chosen`'s, when it is `chosen` with one slot
+  // replaced (the caller knows which: the one `other` lacks).
+  static std::optional<std::size_t> swapped_for(const std::vector<std::size_t>& chosen,
+                                                const std::vector<std::size_t>& other) {
+    if (other.size() != chosen.size()) return std::nullopt;
+    std::optional<std::size_t> t;
+    for (std::size_t slot : other) {
+      if (std::find(chosen.begin(), chosen.end(), slot) != chosen.end()) continue;
+      if (t) return std::nullopt;
+      t = slot;
+    }
+    return t;
   }
 
   // Mouths the map lacks, grouped by direction (within max_direction_deg of a group's first).
@@ -669,7 +694,7 @@ Result<CorrectedMap> corrected_map(const SewerMap& map, const MapMeasurements& m
         applied = d.pipe.has_value();  // the corrected length, applied above
         break;
       case Discrepancy::Kind::kDirectionOff:
-        if (d.manhole && d.slot) {
+        if (d.manhole && d.slot && !d.or_slot) {  // which of two slots is off: not known
           azimuth[{d.manhole->index(), d.slot->index()}] = d.value;
           applied = true;
         }

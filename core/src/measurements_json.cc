@@ -270,8 +270,8 @@ class Reader {
   }
 
   void discrepancy(JsonFields& f, MapMeasurements& out) {
-    f.reject_unknown({"kind", "pipe", "manhole", "slot", "offset_m", "value", "map_value", "sigma",
-                      "sources", "description"});
+    f.reject_unknown({"kind", "pipe", "manhole", "slot", "or_slot", "offset_m", "value",
+                      "map_value", "sigma", "sources", "description"});
     const std::optional<std::string> kind_name = f.string("kind");
     std::optional<Discrepancy::Kind> kind;
     if (kind_name) {
@@ -290,8 +290,17 @@ class Reader {
       else
         f.error("slot", "a slot needs its manhole");
     }
+    if (f.has("or_slot")) {
+      if (!d.manhole || !d.slot || d.kind != Discrepancy::Kind::kDirectionOff) {
+        f.error("or_slot", "only a direction-off with its manhole and slot has an or_slot");
+      } else {
+        d.or_slot = slot_of(f, "or_slot", *d.manhole);
+        if (d.or_slot == d.slot) f.error("or_slot", "is the slot itself");
+      }
+    }
     ok = ok && f.has("pipe") == d.pipe.has_value() && f.has("manhole") == d.manhole.has_value() &&
-         f.has("slot") == d.slot.has_value();
+         f.has("slot") == d.slot.has_value() && f.has("or_slot") == d.or_slot.has_value() &&
+         (!d.or_slot || d.or_slot != d.slot);
     if (f.has("offset_m")) {
       if (auto v = finite(f, "offset_m"))
         d.offset_m = *v;
@@ -338,6 +347,7 @@ json discrepancy_json(const FoundDiscrepancy& f, const SewerMap& map) {
   if (d.pipe) j["pipe"] = map.pipe(*d.pipe).name;
   if (d.manhole) j["manhole"] = map.manhole(*d.manhole).name;
   if (d.slot) j["slot"] = to_paper_number(*d.slot);
+  if (d.or_slot) j["or_slot"] = to_paper_number(*d.or_slot);
   if (d.kind == Discrepancy::Kind::kUnmappedJunction || d.offset_m != 0) j["offset_m"] = d.offset_m;
   j["value"] = d.value;
   j["map_value"] = d.map_value;

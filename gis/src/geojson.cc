@@ -188,7 +188,8 @@ void discrepancy_feature(const SewerMap& map, const Discrepancy& d, Writer& w) {
                 {"sigma", d.sigma},
                 {"pipe", d.pipe ? Json(map.pipe(*d.pipe).name) : Json()},
                 {"manhole", d.manhole ? Json(map.manhole(*d.manhole).name) : Json()},
-                {"slot", d.slot ? Json(to_paper_number(*d.slot)) : Json()}});
+                {"slot", d.slot ? Json(to_paper_number(*d.slot)) : Json()},
+                {"or_slot", d.or_slot ? Json(to_paper_number(*d.or_slot)) : Json()}});
 }
 
 }  // namespace

@@ -46,6 +46,7 @@ Json learnt_json_document(const executor::Learnt& learnt, const MapMeasurements&
     if (x.pipe) j["pipe"] = map.pipe(*x.pipe).name;
     if (x.manhole) j["manhole"] = map.manhole(*x.manhole).name;
     if (x.slot) j["slot"] = to_paper_number(*x.slot);  // from 1, as in missions and plans
+    if (x.or_slot) j["or_slot"] = to_paper_number(*x.or_slot);
     j["offset_m"] = x.offset_m;
     j["map_value"] = x.map_value;
     j["value"] = x.value;

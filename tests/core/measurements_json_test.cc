@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "sewerplan/core/measurements_json.h"
 
+#include <algorithm>
+
 #include <gtest/gtest.h>
 
 #include "support/small_map.h"
@@ -39,6 +41,9 @@ TEST(MeasurementsJson, RoundTripsEveryMeasurement) {
   const SewerMap map = line();
   const MapMeasurements m = sample(map);
   ASSERT_FALSE(m.discrepancies.empty());
+  // M2's two mouths turned 7.75 degrees off the map: one of the two is off (map_measurements.h).
+  ASSERT_TRUE(std::any_of(m.discrepancies.begin(), m.discrepancies.end(),
+                          [](const FoundDiscrepancy& f) { return f.discrepancy.or_slot; }));
   const std::string text = measurements_json(m, map);
   Diagnostics d;
   const Result<MapMeasurements> back = read_measurements_json(text, "m.json", map, d);
@@ -93,6 +98,10 @@ TEST(MeasurementsJson, EveryProblemNamesFileAndJsonPath) {
        "bad.json:$.manholes[0].turns[0].direction_deg"},
       {"\"sigma_deg\": 1", "\"sigma_deg\": 0", "bad.json:$.manholes[0].turns[0].sigma_deg"},
       {"\"kind\": \"", "\"kind\": \"x", "bad.json:$.discrepancies[0].kind"},
+      {"\"or_slot\": 2", "\"or_slot\": 1", "bad.json:$.discrepancies[1].or_slot"},
+      {"\"or_slot\": 2", "\"or_slot\": 3", "bad.json:$.discrepancies[1].or_slot"},
+      {"\"kind\": \"length-off\",", "\"kind\": \"length-off\", \"or_slot\": 1,",
+       "bad.json:$.discrepancies[0].or_slot"},
       {"\"format\": \"sewerplan-measurements\"", "\"format\": \"sewerplan-learnt\"",
        "bad.json:$.format"},
       {"\"version\": 1", "\"version\": 2", "bad.json:$.version"},

@@ -28,7 +28,8 @@ namespace sewerplan {
 struct Discrepancy {
   enum class Kind {
     kLengthOff,         // pipe `pipe` is `value` m long, the map says `map_value`
-    kDirectionOff,      // slot `slot` of `manhole` leaves at `value`°, the map says `map_value`
+    kDirectionOff,      // slot `slot` of `manhole` leaves at `value`°, the map says `map_value`;
+                        // with `or_slot`: that, or `or_slot` is off by as much the other way
     kPositionOff,       // `manhole` lies `value` m from where the map puts it
     kDiameterSmaller,   // pipe `pipe`'s clear size is `value` m, the map says `map_value`
     kUnmappedJunction,  // a manhole in pipe `pipe` at `offset_m` from its ends[0] that the map
@@ -40,6 +41,12 @@ struct Discrepancy {
   std::optional<PipeId> pipe;
   std::optional<ManholeId> manhole;
   std::optional<SlotIndex> slot;
+  // A direction-off the robot could not pin on one slot: it measured the angle between `slot` and
+  // `or_slot` (a turn from one into the other), not which of them is off, as at every manhole of
+  // two mouths (a robot without a compass sees only angles between a manhole's mouths). Then
+  // `value` - `map_value` is `slot`'s deviation if `slot` is the one off; otherwise `or_slot` is
+  // off by its negative. A corrected map does not apply it (which slot to turn is not known).
+  std::optional<SlotIndex> or_slot;
   double offset_m = 0;
   double map_value = 0;
   double value = 0;
@@ -59,7 +66,9 @@ std::optional<Discrepancy::Kind> parse_discrepancy_kind(std::string_view name);
 std::string describe(const Discrepancy& discrepancy, const SewerMap& map);
 
 // Whether two discrepancies report the same difference: the same kind on the same object (for an
-// unmapped junction: the same pipe, offsets within `offset_tolerance_m`). Values are not compared.
+// unmapped junction: the same pipe, offsets within `offset_tolerance_m`; for a direction-off,
+// the same manhole and a slot in common, `or_slot` counted as one of its slots). Values are not
+// compared.
 bool same_difference(const Discrepancy& a, const Discrepancy& b, double offset_tolerance_m = 5.0);
 
 }  // namespace sewerplan

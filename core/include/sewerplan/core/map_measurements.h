@@ -190,8 +190,10 @@ struct DiscrepancyThresholds {
 //                    (a weighted least-squares fit of each slot's deviation from the map: the
 //                    robot sees directions only relative to the slot it came from, so the common
 //                    rotation is taken as the one that leaves the most slots as mapped; when two
-//                    rotations leave as many, which slots are off is not observable and none is
-//                    reported: two slots 15 degrees apart where the map says 180);
+//                    rotations leave as many, which slots are off is not observable: when the
+//                    one other rotation blames one other slot instead, the report names both,
+//                    `slot` and `or_slot`, as at a manhole of two mouths where the turn between
+//                    them is 15 degrees off; with more alternatives, none is reported);
 //   diameter-smaller a pipe seen smaller than mapped, at either end, beyond k_sigma and the floor;
 //   unmapped-lateral a mouth seen in a manhole where the map has none, in lateral_share of
 //   arrivals; missing-lateral  a mapped slot of a visited manhole never seen in any arrival;
