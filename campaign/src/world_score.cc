@@ -19,6 +19,11 @@ bool contains(const std::vector<Id>& ids, const std::optional<Id>& id) {
   return id && std::find(ids.begin(), ids.end(), *id) != ids.end();
 }
 
+bool drove_through(const std::vector<MouthOf>& mouths, const Discrepancy& d) {
+  return d.manhole && d.slot &&
+         std::find(mouths.begin(), mouths.end(), MouthOf{*d.manhole, *d.slot}) != mouths.end();
+}
+
 }  // namespace
 
 std::optional<double> percent(std::size_t part, std::size_t whole) {
@@ -66,6 +71,7 @@ bool within_reach(const Discrepancy& seeded, const Reach& reach) {
     case Kind::kUnmappedJunction:
       return contains(reach.junctions_arrived, seeded.pipe);
     case Kind::kDirectionOff:
+      return drove_through(reach.mouths_driven, seeded);
     case Kind::kUnmappedLateral:
     case Kind::kMissingLateral:
       return contains(reach.manholes_arrived, seeded.manhole);
@@ -139,7 +145,13 @@ void WorldScorer::on_job(const executor::JobSeen& seen) {
     const Mouth here{slot.pipe, slot.pipe_end};
     const bool moved =
         !last_mouth_ || last_mouth_->pipe != here.pipe || last_mouth_->end != here.end;
+    // Out of the pipe into the manhole through this mouth (from anywhere in the pipe).
+    const bool out_of_pipe = in_pipe_ == here.pipe;
+    in_pipe_.reset();
     if (!moved) return;  // still at the mouth it entered by or arrived at
+    if (out_of_pipe && at->manhole.index() < map_.manhole_count()) {
+      add_once(reach_.mouths_driven, MouthOf{at->manhole, at->slot});
+    }
     if (at->manhole.index() < map_.manhole_count()) {
       add_once(reach_.manholes_arrived, at->manhole);
     } else {
@@ -156,17 +168,22 @@ void WorldScorer::on_job(const executor::JobSeen& seen) {
     return;
   }
   if (const auto* in = std::get_if<hal::InPipe>(&pose)) {
+    in_pipe_ = in->pipe;
     const Pipe& pipe = world.pipe(in->pipe);
     for (std::uint8_t e = 0; e < 2; ++e) {
       const double end_m = e == 0 ? 0.0 : pipe.length_m;
       if (pipe.ends[e].manhole && std::abs(in->offset_m - end_m) <= 1e-9) {
         last_mouth_ = Mouth{in->pipe, e};  // entered the pipe at this mouth
+        if (pipe.ends[e].manhole->index() < map_.manhole_count()) {
+          add_once(reach_.mouths_driven, MouthOf{*pipe.ends[e].manhole, pipe.ends[e].slot});
+        }
         return;
       }
     }
     if (last_mouth_ && last_mouth_->pipe != in->pipe) last_mouth_.reset();
     return;
   }
+  in_pipe_.reset();
   last_mouth_.reset();  // in a manhole, at none of its mouths
 }
 

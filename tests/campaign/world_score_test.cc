@@ -5,8 +5,10 @@
 // is computed on hand-made inputs whose answer is known.
 #include "sewerplan/campaign/world_score.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <variant>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -14,6 +16,8 @@
 #include "sewerplan/campaign/campaign.h"
 #include "sewerplan/campaign/record.h"
 #include "sewerplan/campaign/summary.h"
+#include "sewerplan/core/clock.h"
+#include "sewerplan/executor/replanner.h"
 
 #include "support/ais_testbed.h"
 
@@ -91,21 +95,25 @@ TEST(WorldScore, SeededDiscrepanciesCountWithinReachAndMatchBySameDifference) {
   using Kind = Discrepancy::Kind;
   const std::vector<Discrepancy> seeded{
       length_off(0),                                                                 // driven whole
-      {.kind = Kind::kDirectionOff, .manhole = ManholeId{1}, .slot = SlotIndex{0}},  // arrived
+      {.kind = Kind::kDirectionOff, .manhole = ManholeId{1}, .slot = SlotIndex{0}},  // driven
       {.kind = Kind::kUnmappedJunction, .pipe = PipeId{2}, .offset_m = 10},          // arrived
       {.kind = Kind::kPositionOff, .manhole = ManholeId{1}},  // never within reach
       length_off(5),                                          // not driven whole
       {.kind = Kind::kMissingLateral, .manhole = ManholeId{4}, .slot = SlotIndex{2}},  // not there
+      // In a manhole arrived in, but only seen: not on a driven pipe.
+      {.kind = Kind::kDirectionOff, .manhole = ManholeId{1}, .slot = SlotIndex{2}},
   };
   const Reach reach{.pipes_driven_whole = {PipeId{0}, PipeId{7}},
                     .manholes_arrived = {ManholeId{1}},
-                    .junctions_arrived = {PipeId{2}}};
+                    .junctions_arrived = {PipeId{2}},
+                    .mouths_driven = {{ManholeId{1}, SlotIndex{0}}, {ManholeId{1}, SlotIndex{1}}}};
   EXPECT_TRUE(within_reach(seeded[0], reach));
   EXPECT_TRUE(within_reach(seeded[1], reach));
   EXPECT_TRUE(within_reach(seeded[2], reach));
   EXPECT_FALSE(within_reach(seeded[3], reach));
   EXPECT_FALSE(within_reach(seeded[4], reach));
   EXPECT_FALSE(within_reach(seeded[5], reach));
+  EXPECT_FALSE(within_reach(seeded[6], reach));
   const auto found = [](Discrepancy d) { return FoundDiscrepancy{.discrepancy = d}; };
   const std::vector<FoundDiscrepancy> reported{
       found(length_off(0)),                                                         // found
@@ -133,6 +141,29 @@ TEST(WorldScore, SeededDiscrepanciesCountWithinReachAndMatchBySameDifference) {
   EXPECT_EQ(far.false_reports, 1U);
   EXPECT_EQ(far.by_kind[static_cast<std::size_t>(Kind::kUnmappedJunction)],
             (KindScore{.in_reach = 1, .found = 0, .reported = 1, .false_reports = 1}));
+}
+
+// A direction-off the robot could not pin on one slot (`or_slot`) finds a seeded one at either
+// slot, and is false only when neither is seeded off.
+TEST(WorldScore, ADirectionOffOnOneOfTwoSlotsFindsEither) {
+  using Kind = Discrepancy::Kind;
+  const auto direction = [](std::uint16_t slot) {
+    return Discrepancy{
+        .kind = Kind::kDirectionOff, .manhole = ManholeId{1}, .slot = SlotIndex{slot}};
+  };
+  Discrepancy either = direction(0);
+  either.or_slot = SlotIndex{1};
+  const Reach reach{.manholes_arrived = {ManholeId{1}},
+                    .mouths_driven = {{ManholeId{1}, SlotIndex{0}}, {ManholeId{1}, SlotIndex{1}}}};
+  for (const std::uint16_t seeded_slot : {std::uint16_t{0}, std::uint16_t{1}}) {
+    const DiscrepancyScore s = score_discrepancies(
+        {direction(seeded_slot)}, {FoundDiscrepancy{.discrepancy = either}}, reach);
+    EXPECT_EQ(s.found, 1U) << seeded_slot;
+    EXPECT_EQ(s.false_reports, 0U) << seeded_slot;
+  }
+  const DiscrepancyScore neither =
+      score_discrepancies({direction(2)}, {FoundDiscrepancy{.discrepancy = either}}, reach);
+  EXPECT_EQ(neither.false_reports, 1U);
 }
 
 ScoresByKind kinds(std::initializer_list<std::pair<Discrepancy::Kind, KindScore>> scores) {
@@ -267,6 +298,51 @@ TEST(WorldScore, ARunInATrueWorldIsScoredAgainstIt) {
   spec.world_errors = "none";
   EXPECT_FALSE(
       run_one(ais_testbed.map, ais_testbed.mission, run_settings(spec), 1)->ours.world.has_value());
+}
+
+// What the scorer counts as reached, on the paper mission in an exact world: both mouths of every
+// pipe driven whole were driven through, every mouth driven through is of a manhole arrived in
+// or of the pipe the robot started in, and a mouth only seen (the robot arrived in its manhole
+// and left by another) is not driven through.
+TEST(WorldScore, TheMouthsDrivenThroughAreThoseOfTheRobotsWay) {
+  const auto ais_testbed = testing::load_ais_testbed();
+  const SewerMap& map = ais_testbed.map;
+  const Result<hal::TrueWorld> truth = hal::make_true_world(map, hal::WorldErrorProfile{}, 1);
+  ASSERT_TRUE(truth.has_value()) << truth.error().message;
+  ManualClock clock;
+  executor::Replanner replanner(map, ais_testbed.mission, {.clock = &clock});
+  const auto& start = std::get<domain::InPipe>(replanner.progress().position);
+  hal::SimRobot robot(truth->world, ais_testbed.mission.profile,
+                      hal::InPipe{start.pipe, start.offset_m, hal::Heading::kTowardsEnd1}, {});
+  executor::Executor executor(map, replanner, robot);
+  WorldScorer scorer(map, *truth, robot);
+  scorer.watch(executor);
+  executor.run();
+  const Reach& reach = scorer.reach();
+  ASSERT_GE(reach.pipes_driven_whole.size(), 3U);
+  const auto driven = [&](ManholeId m, SlotIndex s) {
+    return std::find(reach.mouths_driven.begin(), reach.mouths_driven.end(), MouthOf{m, s}) !=
+           reach.mouths_driven.end();
+  };
+  for (PipeId p : reach.pipes_driven_whole) {
+    for (const PipeEnd& end : map.pipe(p).ends) {
+      ASSERT_TRUE(end.manhole.has_value());
+      EXPECT_TRUE(driven(*end.manhole, end.slot)) << map.pipe(p).name;
+    }
+  }
+  std::size_t seen_only = 0;
+  for (ManholeId m : reach.manholes_arrived) {
+    for (std::size_t s = 0; s < map.slots(m).size(); ++s) {
+      if (!driven(m, SlotIndex{static_cast<std::uint16_t>(s)})) ++seen_only;
+    }
+  }
+  EXPECT_GT(seen_only, 0U);
+  for (const MouthOf& mouth : reach.mouths_driven) {
+    const PipeId pipe = map.slot(mouth.manhole, mouth.slot).pipe;
+    const bool arrived = std::find(reach.manholes_arrived.begin(), reach.manholes_arrived.end(),
+                                   mouth.manhole) != reach.manholes_arrived.end();
+    EXPECT_TRUE(arrived || pipe == start.pipe) << map.manhole(mouth.manhole).name;
+  }
 }
 
 }  // namespace

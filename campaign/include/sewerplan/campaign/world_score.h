@@ -19,8 +19,11 @@
 //     world's, both pieces of a pipe an unmapped junction splits (hal::world_length_m);
 //   - a seeded discrepancy is within reach when the robot truly passed it: length-off and
 //     diameter-smaller on a map pipe it drove whole (into it at one mouth, out at the other),
-//     unmapped-junction when it truly arrived at that junction, direction-off, unmapped-lateral
-//     and missing-lateral at a manhole it truly arrived in; position-off never (a robot without
+//     unmapped-junction when it truly arrived at that junction, direction-off when it truly
+//     drove through that slot's mouth (into its pipe, or out of it into the manhole: the issue's
+//     "discrepancies on driven pipes"; a mouth only seen from another is seen to 8 degrees, as
+//     far off as the realistic world's slots), unmapped-lateral and missing-lateral at a manhole
+//     it truly arrived in; position-off never (a robot without
 //     absolute positioning cannot tell a displaced manhole from a pipe longer than its chord, so
 //     the measuring reports none: DiscrepancyThresholds::report_positions);
 //   - it is found when a reported discrepancy is the same difference (same_difference(): the same
@@ -92,12 +95,20 @@ std::vector<double> length_errors(const SewerMap& map, const hal::TrueWorld& tru
 // The root mean square of `values` (0 for none).
 double rms(const std::vector<double>& values);
 
-// What the robot truly passed (above): map pipes driven whole, map manholes arrived in, and the
-// map pipes whose unmapped junction it arrived at.
+// A map manhole's slot.
+struct MouthOf {
+  ManholeId manhole;
+  SlotIndex slot;
+  friend bool operator==(const MouthOf&, const MouthOf&) = default;
+};
+
+// What the robot truly passed (above): map pipes driven whole, map manholes arrived in, the map
+// pipes whose unmapped junction it arrived at, and the mouths of map manholes it drove through.
 struct Reach {
   std::vector<PipeId> pipes_driven_whole;
   std::vector<ManholeId> manholes_arrived;
   std::vector<PipeId> junctions_arrived;  // by the map pipe the junction splits
+  std::vector<MouthOf> mouths_driven;
 };
 bool within_reach(const Discrepancy& seeded, const Reach& reach);
 
@@ -142,6 +153,7 @@ class WorldScorer {
   std::size_t arrivals_ = 0;
   std::size_t correct_ = 0;
   Reach reach_;
+  std::optional<PipeId> in_pipe_;  // the world pipe the robot was truly in after the last job
   // The world pipe and end the robot last truly entered or arrived at.
   struct Mouth {
     PipeId pipe{0};
