@@ -120,6 +120,10 @@ class Executor::Run {
         relocalisation_(
             e.map_, e.replanner_, tracker_, localising_, e.halt_,
             {.execute_job = [this](const Job& job) { return execute_job(job); },
+             .run_job =
+                 [this](const Job& job, const fusion::RobotAction& action) {
+                   return recovery_.run_job(job, action);
+                 },
              .sync_progress =
                  [this](domain::MissionProgress progress) { sync_progress(std::move(progress)); }}),
         recovery_(
@@ -340,7 +344,7 @@ class Executor::Run {
             return Replan{failure, failure ? "" : "halted"};
           }
           if (relocalisation_.has_mismatch()) {
-            if (std::optional<Replan> replan = relocalisation_.relocalise(replay, next))
+            if (std::optional<Replan> replan = relocalisation_.relocalise(replay, next, action))
               return replan;
           }
         }

@@ -69,18 +69,24 @@ std::optional<TurnInManhole> straight_through(const Arrival& arrival, const Sewe
                                               PipeId pipe,
                                               const localisation::LocalisationOptions& options,
                                               const RobotProfile& profile) {
-  if (!arrival.observation) return std::nullopt;
+  if (!arrival.observation || arrival.observation->slots.empty()) return std::nullopt;
   const ManholeSignature& seen = *arrival.observation;
+  const SignatureNoise& noise = options.noise;
+  // The pipe goes on at the pipe's size: the map's, or the size the robot sees of the mouth it
+  // came out of (a pipe narrower than mapped, which the robot has just driven, goes on narrower).
+  const auto pipe_size = [&](const SlotSighting& s) {
+    return std::abs(s.diameter_m - map.pipe(pipe).diameter_m) <= noise.max_diameter_m ||
+           std::abs(s.diameter_m - seen.slots[0].diameter_m) <= noise.max_diameter_m;
+  };
+  // Straight on within straight_through_deg, as the filter passes it; seen up to two sightings'
+  // noise further (the arrival mouth's and this one's). The robot's joints measure the turn it
+  // then makes, and the filter weighs that, not the sighting.
   std::optional<std::size_t> best;
-  double best_turn = options.straight_through_deg;
+  double best_turn = options.straight_through_deg + 2 * noise.direction_deg;
   for (std::size_t i = 1; i < seen.slots.size(); ++i) {
     const SlotSighting& s = seen.slots[i];
     const double turn = std::abs(s.relative_deg - 180.0);  // relative_deg is in [0, 360)
-    if (turn > best_turn ||
-        std::abs(s.diameter_m - map.pipe(pipe).diameter_m) > options.noise.max_diameter_m ||
-        std::abs(s.step_m) > profile.max_step_m) {
-      continue;
-    }
+    if (turn > best_turn || !pipe_size(s) || std::abs(s.step_m) > profile.max_step_m) continue;
     best = i;
     best_turn = turn;
   }

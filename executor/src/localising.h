@@ -98,9 +98,13 @@ std::optional<Slot> missing_mouth(const Arrival& arrival, const SewerMap& map,
 
 // The pass straight on through a manhole the map lacks that a drive in `pipe` arrived at (a robot
 // that arrived rear first leaves it front first, facing the way it was backing): into the
-// mouth the robot saw most nearly straight ahead, when one is within
-// `options.straight_through_deg`, of the pipe's size, with a step the robot can climb, addressed by
-// sighting (kBySighting); else empty.
+// mouth the robot saw most nearly straight ahead, when one is seen within
+// `options.straight_through_deg` plus two sightings' noise (noise.direction_deg each), of the
+// pipe's size (the map's, or the size seen of the mouth the robot came out of), with a step the
+// robot can climb, addressed by sighting (kBySighting); else empty. With the map's size and 30
+// degrees alone, a robot backing out through a junction it had passed was shut in behind it where
+// the pipe was narrower than mapped, or the way on was seen 32 degrees off (AIS, realistic world,
+// seeds 33, 36, 38, 42 and 58).
 std::optional<TurnInManhole> straight_through(const Arrival& arrival, const SewerMap& map,
                                               PipeId pipe,
                                               const localisation::LocalisationOptions& options,

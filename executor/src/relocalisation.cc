@@ -30,7 +30,8 @@ void Relocalisation::settle(Arrival arrival) {
 }
 
 std::optional<Replan> Relocalisation::relocalise(const domain::PlanReplay& replay,
-                                                 std::optional<Job>& go_on) {
+                                                 std::optional<Job>& go_on,
+                                                 const fusion::RobotAction& action) {
   using Kind = localisation::Verification::Kind;
   const Arrival arrival = std::move(*mismatch_);
   mismatch_.reset();
@@ -50,8 +51,8 @@ std::optional<Replan> Relocalisation::relocalise(const domain::PlanReplay& repla
             straight_through(arrival, map_, here.pipe, localising_.options(), mission().profile)) {
       const Job stopped = last_job_;
       const double done_m = last_progress_m_;
-      const hal::JobReport r = execute_job(*through);
-      if (r.ok()) {
+      const std::optional<Failure> failed = host_.run_job(*through, action);
+      if (!failed) {
         go_on = rest_of(stopped, done_m);
         if (!arrival.forward) {
           // Through rear first: the front now leads into the pipe beyond, the way the robot was
@@ -65,16 +66,27 @@ std::optional<Replan> Relocalisation::relocalise(const domain::PlanReplay& repla
         if (go_on && !ends_at_manhole(*go_on) && distance_left_m(*go_on) <= 0) go_on.reset();
         return std::nullopt;
       }
-      if (r.error->cause == hal::RobotErrorCause::kNotAtStart) {
+      if (failed->cause == hal::RobotErrorCause::kNotAtStart) {
         // Refused: the robot is at no manhole, and what it stopped at was a false detection.
         if (std::optional<localisation::Hypothesis> best = localising_.not_at_manhole();
             best && best->pose.heading_end) {
           sync_progress(replay.progress());
           return Replan{std::nullopt, "relocalised: the robot refused to pass it (" +
-                                          r.error->reason + "): " + settle_on(*best)};
+                                          failed->detail + "): " + settle_on(*best)};
         }
       }
-      why += "; passing it failed: " + r.error->reason;
+      const auto cannot_move = [&] {
+        using Cause = hal::RobotErrorCause;
+        const std::optional<Cause> c = failed->cause;
+        return c == Cause::kFault || c == Cause::kBatteryEmpty || c == Cause::kEmergencyStop ||
+               c == Cause::kLink || c == Cause::kOtherMalfunction;
+      };
+      if (failed->kind == Failure::Kind::kStuck && cannot_move()) {
+        // The robot cannot move (recovery could not reboot it through): no closure explains that.
+        sync_progress(replay.progress());
+        return Replan{failed, ""};
+      }
+      why += "; passing it failed: " + failed->detail;
     }
     sync_progress(replay.progress());
     // Just beyond the robot, the way it was driving: at the junction itself, the plan took the
@@ -103,15 +115,19 @@ bool Relocalisation::settle_elsewhere() {
   const std::optional<localisation::Hypothesis> best = believed_elsewhere(in->pipe);
   if (!best) return false;
   (void)settle_on(*best);
+  drove_in_behind(last_job_);
+  return true;
+}
+
+void Relocalisation::drove_in_behind(const Job& job) {
   // Into this pipe through the mouth behind the robot, the way the drive went: what was learnt
   // blocked on the way is gone.
   const auto& here = std::get<domain::InPipe>(tracker_.position());
-  const double direction = tracker_.direction_of(last_job_);
+  const double direction = tracker_.direction_of(job);
   if (direction != 0) {
     const double entered_at = direction > 0 ? 0.0 : map_.pipe(here.pipe).length_m;
     (void)replanner_.drove_through(here.pipe, entered_at, here.offset_m);
   }
-  return true;
 }
 
 std::optional<std::string> Relocalisation::back_up_to_tell_apart() {
@@ -202,6 +218,10 @@ void Relocalisation::place_by_belief(Failure& failure, const Job& job) {
   if (!best && at_far_end(failure, job)) best = likely_elsewhere(failure.pipe, kPastEndShare);
   if (!best) return;
   failure.detail += "; " + settle_on(*best);
+  // A blockage learnt on the way in under the belief before was placed where the robot was not
+  // (ISYBAU sample, realistic world, run 83: one obstacle closed 1.13 m into a pipe, then met
+  // again, rear first, at 1.20 m by the relocalised robot, which was shut in between the two).
+  drove_in_behind(job);
   const auto& in = std::get<domain::InPipe>(best->pose.position);
   const double length = map_.pipe(in.pipe).length_m;
   failure.pipe = in.pipe;

@@ -18,7 +18,7 @@
 //   Relocalisation relocalisation(map, replanner, tracker, localising, halt, host);
 //   relocalisation.job_sent(job, report.progress_m);   // every job the robot ran
 //   if (!arrival.verification.matches()) relocalisation.settle(std::move(arrival));
-//   if (relocalisation.has_mismatch()) replan = relocalisation.relocalise(replay, go_on);
+//   if (relocalisation.has_mismatch()) replan = relocalisation.relocalise(replay, go_on, action);
 #pragma once
 
 #include <atomic>
@@ -49,10 +49,12 @@ struct Replan {
 };
 
 // What relocalisation needs from the run loop: a job sent, logged and tracked (its arrival checked
-// and settled on: Relocalisation::settle()); the Replanner told the progress from where the
-// tracking has the robot.
+// and settled on: Relocalisation::settle()); the same with the recovery table's stages, as a job of
+// `action` (StagedRecovery::run_job: a malfunction rebooted through), empty when it was done; the
+// Replanner told the progress from where the tracking has the robot.
 struct RelocalisationHost {
   std::function<hal::JobReport(const Job&)> execute_job;
+  std::function<std::optional<Failure>(const Job&, const fusion::RobotAction& action)> run_job;
   std::function<void(domain::MissionProgress)> sync_progress;
 };
 
@@ -92,8 +94,13 @@ class Relocalisation {
   // The plan again from where the robot was found to be (settle()). A manhole the map lacks, in
   // the pipe a drive was driving: the robot passes straight through when a mouth goes on,
   // and `go_on` is the rest of the job it stopped (empty when it was done); else the pipe is closed
-  // there, as a blockage (docs/localisation.md). Precondition: has_mismatch().
-  std::optional<Replan> relocalise(const domain::PlanReplay& replay, std::optional<Job>& go_on);
+  // there, as a blockage (docs/localisation.md). The pass is a job of `action` (the one the
+  // stopped job was of), with its recovery: a malfunction during it is rebooted through, and one
+  // recovery cannot clear ends the mission as it would in any job, not as a closed pipe (AIS,
+  // realistic world, seed 42, run 118: a transient malfunction while backing out through a
+  // junction closed the robot's way home). Precondition: has_mismatch().
+  std::optional<Replan> relocalise(const domain::PlanReplay& replay, std::optional<Job>& go_on,
+                                   const fusion::RobotAction& action);
 
   // A drive to a manhole that saw none within its bound: where the filter believes the robot in
   // another pipe (it drove through the manhole unseen), the tracking moves there, and the plan is
@@ -149,6 +156,9 @@ class Relocalisation {
   void place_by_belief(Failure& failure, const Job& job);
 
  private:
+  // The robot, settled in its pipe, drove in through the mouth behind it during `job`: the
+  // blockages learnt on that stretch are gone (Replanner::drove_through).
+  void drove_in_behind(const Job& job);
   // The filter's place for the robot when it believes it in another pipe than `tracked` (a
   // manhole driven through unseen, with no arrival since to settle on): the most likely place holds
   // a majority, and at least twice what every place in the tracked pipe holds together.
