@@ -185,6 +185,7 @@ class Executor::Run {
       }
       ++report_.replans;
       last_failure = replan->failure;
+      relocalisation_.failure_reported(replan->failure);
       if (replan->failure) log_failure(*replan->failure);
       std::optional<PlanResponse> next = plan_unless_halted(replan->failure, replan->reason);
       if (!next) return finish(MissionReport::Outcome::kHalted, "");

@@ -105,8 +105,51 @@ std::optional<Replan> Relocalisation::relocalise(const domain::PlanReplay& repla
                           .detail = why},
                   ""};
   }
+  move_refuted_failure(v.believed->position);
   sync_progress(replay.progress());
   return Replan{std::nullopt, "relocalised: " + v.reason};
+}
+
+void Relocalisation::failure_reported(const std::optional<Failure>& failure) {
+  placed_.reset();
+  if (failure && (failure->kind == Failure::Kind::kBlockage ||
+                  failure->kind == Failure::Kind::kDangerInPipe)) {
+    placed_ = Placed{.at = {failure->pipe, failure->offset_m}};
+  }
+}
+
+void Relocalisation::drove_since_failure(const Job& job, double progress_m) {
+  if (!placed_) return;
+  std::visit(
+      [&](const auto& j) {
+        using J = std::decay_t<decltype(j)>;
+        if constexpr (std::is_same_v<J, DriveForward>) {
+          placed_->driven_m += progress_m;
+        } else if constexpr (std::is_same_v<J, DriveBackward>) {
+          placed_->driven_m -= progress_m;
+        } else if constexpr (std::is_same_v<J, Scan> || std::is_same_v<J, Push>) {
+          placed_->driven_m += j.backward ? -progress_m : progress_m;
+        } else if constexpr (std::is_same_v<J, TurnInManhole> ||
+                             std::is_same_v<J, EnterPipeFromManhole>) {
+          placed_.reset();  // through a manhole: no longer one stretch of pipe
+        }
+      },
+      job);
+}
+
+void Relocalisation::move_refuted_failure(const domain::RobotPosition& believed) {
+  const auto* at = std::get_if<domain::AtSlot>(&believed);
+  if (!placed_ || at == nullptr) return;
+  const Slot& mouth = map_.slot(at->manhole, at->slot);
+  const double length = map_.pipe(mouth.pipe).length_m;
+  const double from_mouth = std::abs(placed_->driven_m);
+  // In the pipe it was placed in, the tracking had the pipe right; beyond the mouth's pipe's
+  // length, the robot drove through a manhole on the way (the filter's affair, not this).
+  if (mouth.pipe == placed_->at.pipe || from_mouth > length) return;
+  const Blockage truly{mouth.pipe, mouth.pipe_end == 0 ? from_mouth : length - from_mouth};
+  const std::string why = "the robot, driving on from it, arrived at " +
+                          map_.manhole(at->manhole).name + " out of " + map_.pipe(mouth.pipe).name;
+  if (replanner_.move_learnt(placed_->at, truly, why)) placed_ = Placed{.at = truly};
 }
 
 bool Relocalisation::settle_elsewhere() {

@@ -75,7 +75,15 @@ class Relocalisation {
   void job_sent(const Job& job, double progress_m) {
     last_job_ = job;
     last_progress_m_ = progress_m;
+    drove_since_failure(job, progress_m);
   }
+
+  // The run loop reports `failure` to the Replanner (or, empty, plans again for another reason):
+  // a blockage or danger in a pipe is remembered with where it was placed, and the robot's drives
+  // from there are counted, until it passes or turns through a manhole. When the next arrival
+  // relocalises the robot to a mouth of another pipe, the failure was in that pipe, as far from
+  // the mouth as the robot drove (Replanner::move_learnt).
+  void failure_reported(const std::optional<Failure>& failure);
 
   // An arrival that does not match the plan's manhole: the controller settles on the filter's
   // most likely place at once (so that what observes the job sees it there), and the plan is
@@ -197,6 +205,17 @@ class Relocalisation {
   // The last job sent and how far it drove (the rest of a job stopped by a manhole the map lacks).
   Job last_job_ = Stop{};
   double last_progress_m_ = 0;
+  // failure_reported(): the last failure placed in a pipe, and the robot's drives since (front
+  // first positive), while it stays in one pipe by its own account.
+  struct Placed {
+    Blockage at;
+    double driven_m = 0;
+  };
+  std::optional<Placed> placed_;
+  void drove_since_failure(const Job& job, double progress_m);
+  // The arrival `believed` (a mouth) refutes where the remembered failure was placed: it moves
+  // into the mouth's pipe; the words for the plan's reason, or empty.
+  void move_refuted_failure(const domain::RobotPosition& believed);
   // How often the robot backed up to tell its places apart (back_up_to_tell_apart()).
   static constexpr int kMaxTellApart = 3;
   // place_by_belief(): a place beyond the tracked pipe's end is taken when the filter holds it at

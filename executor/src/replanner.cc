@@ -245,6 +245,31 @@ Result<std::vector<Blockage>> Replanner::drove_through(PipeId pipe, double from_
   return dropped;
 }
 
+bool Replanner::move_learnt(const Blockage& from, const Blockage& to, const std::string& why) {
+  if (to.pipe.index() >= map_.pipe_count() || !(to.offset_m >= 0) ||
+      !(to.offset_m <= map_.pipe(to.pipe).length_m)) {
+    return false;
+  }
+  const auto at_from = [&](const Blockage& b) {
+    return b.pipe == from.pipe && b.offset_m == from.offset_m;
+  };
+  bool danger = false;
+  auto learnt = std::find_if(learnt_.blockages.begin(), learnt_.blockages.end(), at_from);
+  if (learnt == learnt_.blockages.end()) {
+    learnt = std::find_if(learnt_.danger_spots.begin(), learnt_.danger_spots.end(), at_from);
+    if (learnt == learnt_.danger_spots.end()) return false;
+    danger = true;
+  }
+  *learnt = to;
+  // The mission's copy of it (learnt ones are appended after the operator's).
+  const auto copy = std::find_if(mission_.blockages.rbegin(), mission_.blockages.rend(), at_from);
+  if (copy != mission_.blockages.rend()) *copy = to;
+  dropped_note_ += std::string("; the ") + (danger ? "danger" : "blockage") + " in " +
+                   map_.pipe(from.pipe).name + " at " + metres(from.offset_m) + " is in " +
+                   map_.pipe(to.pipe).name + " at " + metres(to.offset_m) + ": " + why;
+  return true;
+}
+
 Result<std::vector<HazardUpdate>> Replanner::observe_driven(PipeId pipe, double from_m, double to_m,
                                                             double margin_m) {
   if (Result<void> ok = check_driven(map_, pipe, from_m, to_m); !ok.has_value()) return ok.error();

@@ -120,6 +120,45 @@ TEST(ReplannerDecision, ABlockageTheRobotDroveThroughIsDropped) {
   EXPECT_EQ(replanner.plan("again").reason.find("the blockage in P4"), std::string::npos);
 }
 
+// A blockage or danger learnt at one place that an arrival showed was elsewhere moves there, in
+// the world model and in what was learnt, and the next plan says so; an operator's closure, a
+// place nothing was learnt at and a place off the map are left alone.
+TEST(ReplannerDecision, ALearntClosureMovesWhereTheRobotFoundItWas) {
+  const auto ais = testing::load_ais_testbed();
+  Mission mission = ais.mission;
+  const PipeId p4 = pipe_named(ais.map, "P4");
+  const PipeId p6 = pipe_named(ais.map, "P6");
+  mission.blockages.push_back({p4, 1.0});  // the operator's
+  Replanner replanner(ais.map, mission);
+  (void)replanner.plan();
+  (void)replanner.report_failure({.kind = Failure::Kind::kBlockage, .pipe = p4, .offset_m = 7.9});
+  (void)replanner.report_failure(
+      {.kind = Failure::Kind::kDangerInPipe, .pipe = p4, .offset_m = 0.1});
+  ASSERT_EQ(replanner.learnt().blockages.size(), 1U);
+  ASSERT_EQ(replanner.learnt().danger_spots.size(), 1U);
+
+  EXPECT_FALSE(replanner.move_learnt({p4, 1.0}, {p6, 2.0}, "why"));   // the operator's
+  EXPECT_FALSE(replanner.move_learnt({p4, 5.0}, {p6, 2.0}, "why"));   // nothing learnt there
+  EXPECT_FALSE(replanner.move_learnt({p4, 7.9}, {p6, 60.0}, "why"));  // beyond P6's end
+  EXPECT_EQ(replanner.learnt().blockages.front(), (Blockage{p4, 7.9}));
+
+  ASSERT_TRUE(replanner.move_learnt({p4, 7.9}, {p6, 2.0}, "arrived at M6 out of P6"));
+  ASSERT_TRUE(replanner.move_learnt({p4, 0.1}, {p6, 5.0}, "arrived at M7 out of P6"));
+  EXPECT_EQ(replanner.learnt().blockages.front(), (Blockage{p6, 2.0}));
+  EXPECT_EQ(replanner.learnt().danger_spots.front(), (Blockage{p6, 5.0}));
+  const std::vector<Blockage>& closures = replanner.mission().blockages;
+  ASSERT_EQ(closures.size(), 3U);
+  EXPECT_EQ(closures[0], (Blockage{p4, 1.0}));  // the operator's stays
+  EXPECT_EQ(closures[1], (Blockage{p6, 2.0}));
+  EXPECT_EQ(closures[2], (Blockage{p6, 5.0}));
+  const PlanResponse next = replanner.plan("on");
+  EXPECT_NE(next.reason.find("the blockage in P4 at 7.90 m is in P6 at 2.00 m: arrived at M6"),
+            std::string::npos)
+      << next.reason;
+  EXPECT_NE(next.reason.find("the danger in P4 at 0.10 m is in P6 at 5.00 m"), std::string::npos)
+      << next.reason;
+}
+
 // Issue 14: a failure report with an unknown pipe aborted the whole process, even in a release
 // build. Each bad report is now answered, naming what is wrong, and changes nothing.
 TEST(ReplannerIssue14, BadFailureReportsAreAnsweredAsInvalidAndChangeNothing) {
