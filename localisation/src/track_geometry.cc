@@ -310,8 +310,9 @@ void no_arrival_ahead(const TopologicalFilter& filter, const Track& track, doubl
       [&](const ChainStep& step, double mouth, const PlaceSpread& place, double log_beyond_lower) {
         const Pipe& pipe = map.pipe(step.pipe);
         const bool first = step.passed.empty();
+        // Past a manhole missed short of its mapped place (the pipe shorter than mapped, the
+        // odometry short of the mouth): just beyond it, weighed by the chance the mouth was passed.
         const double here = t - step.base_m;
-        if (!first && here < 0) return;
         Track c = placed(track, step, std::clamp(here, 0.0, pipe.length_m), first);
         if (first) c.travelled_m = t;  // beyond the mapped length: the pipe is longer
         c.cleared_m = c.travelled_m;
