@@ -474,6 +474,10 @@ std::optional<SlotIndex> SimRobot::straight_on(ManholeId manhole, SlotIndex arri
   const auto slots = map_.slots(manhole);
   for (std::size_t i = 0; i < slots.size(); ++i) {
     if (i == arrival.index()) continue;
+    // A pipe the robot's body does not fit stops it at its mouth: it cannot drive on into a
+    // 0.10 m house connection, or brace itself in a pipe wider than its profile's.
+    const double size_m = map_.pipe(slots[i].pipe).diameter_m;
+    if (size_m < profile_.min_pipe_diameter_m || size_m > profile_.max_pipe_diameter_m) continue;
     const double turn = std::abs(std::fmod(slots[i].azimuth_deg - in_deg + 720.0, 360.0) - 180);
     if (turn <= 15) return SlotIndex{static_cast<std::uint16_t>(i)};
   }

@@ -225,6 +225,27 @@ TEST_F(SensingTest, AMissedManholeWithNoWayStraightOnStopsTheRobotUnobserved) {
   EXPECT_EQ(r.pose(), (SimPose{AtSlot{manhole("M2"), m2_slot("P3"), Facing::kIntoManhole}}));
 }
 
+// The way straight on through a missed manhole is a pipe the robot's body must fit: into a pipe
+// narrower than its profile's smallest (a 0.10 m house connection the official ISYBAU sample has)
+// it cannot drive on, and the pipe's end stops it, as where there is no way straight on.
+TEST_F(SensingTest, AMissedManholeIsDrivenThroughOnlyIntoAPipeTheRobotFits) {
+  const SewerMap narrow = testing::SmallMap()
+                              .manhole("M1", 0, 0, /*exit=*/true)
+                              .manhole("M2", 20, 0)
+                              .manhole("M3", 30, 0)
+                              .pipe("P1", "M1", "M2")
+                              .pipe("P2", "M2", "M3", 0.10)
+                              .build();
+  SimRobot r(narrow, profile_, InPipe{*narrow.find_pipe("P1"), 0, Heading::kTowardsEnd1}, {},
+             SimOptions{.sensing = {.missed_share = 1, .observe = true}});
+  const JobReport report = r.execute(DriveForward{0.3, 20, true});
+  EXPECT_TRUE(report.ok());
+  EXPECT_FALSE(report.observation.has_value());
+  EXPECT_NEAR(report.progress_m, 20, 1e-9);
+  EXPECT_EQ(r.pose(),
+            (SimPose{AtSlot{*narrow.find_manhole("M2"), SlotIndex{0}, Facing::kIntoManhole}}));
+}
+
 TEST_F(SensingTest, AFalseManholeStopsADriveToAManholeEarly) {
   SimRobot r = robot(InPipe{pipe("P1"), 0, Heading::kTowardsEnd1},
                      {.false_per_km = 500, .observe = true, .seed = 7});

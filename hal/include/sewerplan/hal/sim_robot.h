@@ -169,7 +169,8 @@ class SimRobot final : public Robot {
   // (what the robot saw, in the order it saw it).
   ManholeSignature observe(ManholeSignature truth, std::vector<SlotIndex>* order = nullptr);
   ManholeSignature false_manhole(PipeId pipe);
-  // A drive through a missed manhole: the slot straight on from `arrival`, if it has one.
+  // A drive through a missed manhole: the slot straight on from `arrival`, if it has one whose
+  // pipe the robot fits (its profile's sizes).
   std::optional<SlotIndex> straight_on(ManholeId manhole, SlotIndex arrival) const;
   JobReport turn(const TurnInManhole& job);
   // A turn addressed by the mouths seen on arrival (kBySighting), as one by slot numbers.
