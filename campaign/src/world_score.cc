@@ -115,7 +115,10 @@ WorldScorer::WorldScorer(const SewerMap& map, const hal::TrueWorld& truth,
     : map_(map),
       truth_(truth),
       robot_(robot),
-      measurer_(map, MeasurementSource{.robot = "campaign", .mission = "", .date = ""}) {}
+      measurer_(map, MeasurementSource{.robot = "campaign", .mission = "", .date = ""}) {
+  // A robot that starts in a pipe comes out of it at its first arrival.
+  if (const auto* in = std::get_if<hal::InPipe>(&robot.pose())) in_pipe_ = in->pipe;
+}
 
 void WorldScorer::watch(executor::Executor& executor) {
   executor.subscribe([this](const executor::Event& event) {
@@ -126,6 +129,20 @@ void WorldScorer::watch(executor::Executor& executor) {
   });
   executor.subscribe_jobs(measurer_.observer());
   executor.subscribe_jobs([this](const executor::JobSeen& seen) { on_job(seen); });
+}
+
+void WorldScorer::through_unseen(PipeId from, PipeId to) {
+  const SewerMap& world = truth_.world;
+  for (const PipeEnd& a : world.pipe(from).ends) {
+    for (const PipeEnd& b : world.pipe(to).ends) {
+      if (!a.manhole || a.manhole != b.manhole || a.manhole->index() >= map_.manhole_count()) {
+        continue;
+      }
+      add_once(reach_.mouths_driven, MouthOf{*a.manhole, a.slot});
+      add_once(reach_.mouths_driven, MouthOf{*b.manhole, b.slot});
+      return;
+    }
+  }
 }
 
 std::optional<PipeId> WorldScorer::map_pipe(PipeId world_pipe) const {
@@ -145,8 +162,10 @@ void WorldScorer::on_job(const executor::JobSeen& seen) {
     const Mouth here{slot.pipe, slot.pipe_end};
     const bool moved =
         !last_mouth_ || last_mouth_->pipe != here.pipe || last_mouth_->end != here.end;
-    // Out of the pipe into the manhole through this mouth (from anywhere in the pipe).
-    const bool out_of_pipe = in_pipe_ == here.pipe;
+    // Out of the pipe into the manhole through this mouth: from anywhere in the pipe, or driven
+    // mouth to mouth in one job.
+    const bool out_of_pipe =
+        in_pipe_ == here.pipe || (last_mouth_ && last_mouth_->pipe == here.pipe);
     in_pipe_.reset();
     if (!moved) return;  // still at the mouth it entered by or arrived at
     if (out_of_pipe && at->manhole.index() < map_.manhole_count()) {
@@ -168,8 +187,10 @@ void WorldScorer::on_job(const executor::JobSeen& seen) {
     return;
   }
   if (const auto* in = std::get_if<hal::InPipe>(&pose)) {
-    in_pipe_ = in->pipe;
     const Pipe& pipe = world.pipe(in->pipe);
+    // From one pipe into another in one job: through the manhole they share, unseen.
+    if (in_pipe_ && *in_pipe_ != in->pipe) through_unseen(*in_pipe_, in->pipe);
+    in_pipe_ = in->pipe;
     for (std::uint8_t e = 0; e < 2; ++e) {
       const double end_m = e == 0 ? 0.0 : pipe.length_m;
       if (pipe.ends[e].manhole && std::abs(in->offset_m - end_m) <= 1e-9) {

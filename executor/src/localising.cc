@@ -78,9 +78,8 @@ std::optional<TurnInManhole> straight_through(const Arrival& arrival, const Sewe
     return std::abs(s.diameter_m - map.pipe(pipe).diameter_m) <= noise.max_diameter_m ||
            std::abs(s.diameter_m - seen.slots[0].diameter_m) <= noise.max_diameter_m;
   };
-  // Straight on within straight_through_deg, as the filter passes it; seen up to two sightings'
-  // noise further (the arrival mouth's and this one's). The robot's joints measure the turn it
-  // then makes, and the filter weighs that, not the sighting.
+  // Straight on within straight_through_deg, seen up to two sightings' noise further (the arrival
+  // mouth's and this one's): the window the filter's turn() gives a direction only seen.
   std::optional<std::size_t> best;
   double best_turn = options.straight_through_deg + 2 * noise.direction_deg;
   for (std::size_t i = 1; i < seen.slots.size(); ++i) {

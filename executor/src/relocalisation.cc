@@ -114,7 +114,7 @@ void Relocalisation::failure_reported(const std::optional<Failure>& failure) {
   placed_.reset();
   if (failure && (failure->kind == Failure::Kind::kBlockage ||
                   failure->kind == Failure::Kind::kDangerInPipe)) {
-    placed_ = Placed{.at = {failure->pipe, failure->offset_m}};
+    placed_ = Placed{.kind = failure->kind, .at = {failure->pipe, failure->offset_m}};
   }
 }
 
@@ -129,6 +129,10 @@ void Relocalisation::drove_since_failure(const Job& job, double progress_m) {
           placed_->driven_m -= progress_m;
         } else if constexpr (std::is_same_v<J, Scan> || std::is_same_v<J, Push>) {
           placed_->driven_m += j.backward ? -progress_m : progress_m;
+        }
+        if constexpr (std::is_same_v<J, DriveForward> || std::is_same_v<J, DriveBackward> ||
+                      std::is_same_v<J, Scan> || std::is_same_v<J, Push>) {
+          placed_->travelled_m += std::abs(progress_m);
         } else if constexpr (std::is_same_v<J, TurnInManhole> ||
                              std::is_same_v<J, EnterPipeFromManhole>) {
           placed_.reset();  // through a manhole: no longer one stretch of pipe
@@ -144,12 +148,21 @@ void Relocalisation::move_refuted_failure(const domain::RobotPosition& believed)
   const double length = map_.pipe(mouth.pipe).length_m;
   const double from_mouth = std::abs(placed_->driven_m);
   // In the pipe it was placed in, the tracking had the pipe right; beyond the mouth's pipe's
-  // length, the robot drove through a manhole on the way (the filter's affair, not this).
-  if (mouth.pipe == placed_->at.pipe || from_mouth > length) return;
-  const Blockage truly{mouth.pipe, mouth.pipe_end == 0 ? from_mouth : length - from_mouth};
+  // length, the robot drove through a manhole on the way (the filter's affair, not this); and
+  // only one way from the failure (recovery's few centimetres aside): a robot that went back and
+  // forth may have passed a manhole unseen, and its net distance says nothing of one pipe.
+  if (mouth.pipe == placed_->at.pipe || from_mouth > length ||
+      placed_->travelled_m > from_mouth + kOneWaySlackM) {
+    return;
+  }
+  // Inside the pipe: a closure at its very mouth leaves the way in open (close_mouth()).
+  const double margin = std::min(10 * kBlockageAhead_m, length / 2);
+  const double inside = std::clamp(from_mouth, margin, length - margin);
+  const Blockage truly{mouth.pipe, mouth.pipe_end == 0 ? inside : length - inside};
   const std::string why = "the robot, driving on from it, arrived at " +
                           map_.manhole(at->manhole).name + " out of " + map_.pipe(mouth.pipe).name;
-  if (replanner_.move_learnt(placed_->at, truly, why)) placed_ = Placed{.at = truly};
+  (void)replanner_.move_learnt(placed_->kind, placed_->at, truly, why);
+  placed_.reset();  // planned again from here without a failure: failure_reported() clears it
 }
 
 bool Relocalisation::settle_elsewhere() {
@@ -203,7 +216,12 @@ std::optional<std::string> Relocalisation::back_up_to_tell_apart() {
           ? Job{DriveForward{.speed_mps = speed, .distance_m = distance, .to_manhole = true}}
           : Job{DriveBackward{.speed_mps = speed, .distance_m = distance, .to_manhole = true}};
   const hal::JobReport r = execute_job(back);
-  mismatch_.reset();  // settled on by execute_job; planned again from there below
+  // Settled on by execute_job; planned again from there below, with a closure the arrival shows
+  // was placed in the wrong pipe moved into the right one.
+  if (mismatch_ && mismatch_->verification.believed) {
+    move_refuted_failure(mismatch_->verification.believed->position);
+  }
+  mismatch_.reset();
   if (halted() || !r.ok()) return std::nullopt;
   sync_progress(replanner_.progress());
   std::ostringstream why;

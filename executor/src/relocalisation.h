@@ -208,9 +208,13 @@ class Relocalisation {
   // failure_reported(): the last failure placed in a pipe, and the robot's drives since (front
   // first positive), while it stays in one pipe by its own account.
   struct Placed {
+    Failure::Kind kind = Failure::Kind::kBlockage;  // or kDangerInPipe
     Blockage at;
-    double driven_m = 0;
+    double driven_m = 0;     // net, front first positive
+    double travelled_m = 0;  // every metre, either way
   };
+  // move_refuted_failure(): the drives since the failure went one way, but for this much.
+  static constexpr double kOneWaySlackM = 0.5;
   std::optional<Placed> placed_;
   void drove_since_failure(const Job& job, double progress_m);
   // The arrival `believed` (a mouth) refutes where the remembered failure was placed: it moves

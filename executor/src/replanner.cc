@@ -245,21 +245,20 @@ Result<std::vector<Blockage>> Replanner::drove_through(PipeId pipe, double from_
   return dropped;
 }
 
-bool Replanner::move_learnt(const Blockage& from, const Blockage& to, const std::string& why) {
-  if (to.pipe.index() >= map_.pipe_count() || !(to.offset_m >= 0) ||
+bool Replanner::move_learnt(Failure::Kind kind, const Blockage& from, const Blockage& to,
+                            const std::string& why) {
+  if ((kind != Failure::Kind::kBlockage && kind != Failure::Kind::kDangerInPipe) ||
+      to.pipe.index() >= map_.pipe_count() || !(to.offset_m >= 0) ||
       !(to.offset_m <= map_.pipe(to.pipe).length_m)) {
     return false;
   }
   const auto at_from = [&](const Blockage& b) {
     return b.pipe == from.pipe && b.offset_m == from.offset_m;
   };
-  bool danger = false;
-  auto learnt = std::find_if(learnt_.blockages.begin(), learnt_.blockages.end(), at_from);
-  if (learnt == learnt_.blockages.end()) {
-    learnt = std::find_if(learnt_.danger_spots.begin(), learnt_.danger_spots.end(), at_from);
-    if (learnt == learnt_.danger_spots.end()) return false;
-    danger = true;
-  }
+  const bool danger = kind == Failure::Kind::kDangerInPipe;
+  std::vector<Blockage>& list = danger ? learnt_.danger_spots : learnt_.blockages;
+  const auto learnt = std::find_if(list.begin(), list.end(), at_from);
+  if (learnt == list.end()) return false;
   *learnt = to;
   // The mission's copy of it (learnt ones are appended after the operator's).
   const auto copy = std::find_if(mission_.blockages.rbegin(), mission_.blockages.rend(), at_from);

@@ -457,7 +457,13 @@ std::optional<Track> turned(const TopologicalFilter& filter, const Track& track,
     case Track::Kind::kInPipe: {
       // A manhole the map lacks, or no manhole at all: only straight on stays on the map. Through
       // a junction rear first, the robot leaves front first: it faces the end it was backing to.
-      if (std::abs(normalize_deg(direction - 180.0)) > o.straight_through_deg) return std::nullopt;
+      // A direction the robot only saw (not measured by its joints) is straight on as far off as
+      // two sightings' noise beyond (the mouth it left by and the one it came out of), as the
+      // controller passes it (executor's straight_through): beyond 30 degrees alone, a pass the
+      // controller made took the filter off the junction it had acted on.
+      const double window = measured_deg ? o.straight_through_deg
+                                         : o.straight_through_deg + 2 * o.noise.direction_deg;
+      if (std::abs(normalize_deg(direction - 180.0)) > window) return std::nullopt;
       const bool rear_first =
           track.kind == Track::Kind::kAtJunction && track.moving_end != track.heading_end;
       Track c = rear_first ? mirrored(map, track) : track;

@@ -137,13 +137,17 @@ TEST(ReplannerDecision, ALearntClosureMovesWhereTheRobotFoundItWas) {
   ASSERT_EQ(replanner.learnt().blockages.size(), 1U);
   ASSERT_EQ(replanner.learnt().danger_spots.size(), 1U);
 
-  EXPECT_FALSE(replanner.move_learnt({p4, 1.0}, {p6, 2.0}, "why"));   // the operator's
-  EXPECT_FALSE(replanner.move_learnt({p4, 5.0}, {p6, 2.0}, "why"));   // nothing learnt there
-  EXPECT_FALSE(replanner.move_learnt({p4, 7.9}, {p6, 60.0}, "why"));  // beyond P6's end
+  constexpr Failure::Kind kBlockage = Failure::Kind::kBlockage;
+  constexpr Failure::Kind kDanger = Failure::Kind::kDangerInPipe;
+  EXPECT_FALSE(replanner.move_learnt(kBlockage, {p4, 1.0}, {p6, 2.0}, "why"));   // the operator's
+  EXPECT_FALSE(replanner.move_learnt(kBlockage, {p4, 5.0}, {p6, 2.0}, "why"));   // nothing there
+  EXPECT_FALSE(replanner.move_learnt(kBlockage, {p4, 7.9}, {p6, 60.0}, "why"));  // beyond P6
+  EXPECT_FALSE(replanner.move_learnt(kDanger, {p4, 7.9}, {p6, 2.0}, "why"));     // a blockage
+  EXPECT_FALSE(replanner.move_learnt(kBlockage, {p4, 0.1}, {p6, 2.0}, "why"));   // a danger
   EXPECT_EQ(replanner.learnt().blockages.front(), (Blockage{p4, 7.9}));
 
-  ASSERT_TRUE(replanner.move_learnt({p4, 7.9}, {p6, 2.0}, "arrived at M6 out of P6"));
-  ASSERT_TRUE(replanner.move_learnt({p4, 0.1}, {p6, 5.0}, "arrived at M7 out of P6"));
+  ASSERT_TRUE(replanner.move_learnt(kBlockage, {p4, 7.9}, {p6, 2.0}, "arrived at M6 out of P6"));
+  ASSERT_TRUE(replanner.move_learnt(kDanger, {p4, 0.1}, {p6, 5.0}, "arrived at M7 out of P6"));
   EXPECT_EQ(replanner.learnt().blockages.front(), (Blockage{p6, 2.0}));
   EXPECT_EQ(replanner.learnt().danger_spots.front(), (Blockage{p6, 5.0}));
   const std::vector<Blockage>& closures = replanner.mission().blockages;

@@ -145,6 +145,9 @@ class WorldScorer {
  private:
   void on_job(const executor::JobSeen& seen);
   std::optional<PipeId> map_pipe(PipeId world_pipe) const;
+  // The robot went from world pipe `from` into `to` in one job: through the manhole they share,
+  // by both its mouths (a manhole missed), which count as driven through.
+  void through_unseen(PipeId from, PipeId to);
 
   const SewerMap& map_;
   const hal::TrueWorld& truth_;

@@ -261,14 +261,16 @@ class Replanner {
   Result<std::vector<Blockage>> drove_through(PipeId pipe, double from_m, double to_m);
   static constexpr double kDroveThroughMarginM = 0.05;
 
-  // A blockage or danger spot learnt at `from` (a failure reported there) was truly at `to`: it
+  // A blockage (`kind` kBlockage) or danger spot (kDangerInPipe) learnt at `from` (a failure
+  // reported there) was truly at `to`: it
   // was placed under a belief a later arrival refuted (a robot that drove through a manhole unseen
   // met an obstacle in the pipe beyond, and it was closed in the pipe before; the robot, backing
   // out, arrived at that manhole from the pipe it was really in). It moves, in the world model
   // and in learnt(); the next plan's reason says so, `why` its words. False (nothing changes)
   // when nothing was learnt at `from`, or `to` is not a place on the map. Without it, the
   // closure shut the robot's way on (the meshed network, realistic world, seed 26, run 5).
-  bool move_learnt(const Blockage& from, const Blockage& to, const std::string& why);
+  bool move_learnt(Failure::Kind kind, const Blockage& from, const Blockage& to,
+                   const std::string& why);
 
   // Adds what an earlier mission learnt (learnt.h) to the world model, for the next plan; an
   // entry that check_failure, check_hazard_belief or localisation::check_memory would reject is
