@@ -45,8 +45,8 @@ std::string describe(const Discrepancy& d, const SewerMap& map) {
       return pipe + ": length " + fixed(d.value, 2) + " m, the map says " + fixed(d.map_value, 2) +
              " m";
     case Discrepancy::Kind::kDirectionOff: {
-      std::string text = manhole + slot + ": leaves at " + fixed(d.value, 0) +
-                         "°, the map says " + fixed(d.map_value, 0) + "°";
+      std::string text = manhole + slot + ": leaves at " + fixed(d.value, 0) + "°, the map says " +
+                         fixed(d.map_value, 0) + "°";
       if (d.or_slot && d.manhole && d.or_slot->index() < map.manhole(*d.manhole).slot_count) {
         const double mapped = map.slot(*d.manhole, *d.or_slot).azimuth_deg;
         const double other = std::fmod(mapped - (d.value - d.map_value) + 720.0, 360.0);
