@@ -278,8 +278,7 @@ TEST(MapMeasurements, AnAngleOffBetweenTwoSlotsAloneIsReportedOnBoth) {
 }
 
 // Of four slots, the turns tie two of them only to each other (from P1 into P2, both ways), and
-// sightings alone place the others: the angle between the two is measured, which one is off is
-// not. Three or more hypotheses as good say nothing at all.
+// nothing places the others: the angle between the two is measured, which one is off is not.
 TEST(MapMeasurements, TwoSlotsTheTurnsCannotTellApartAreReportedTogether) {
   const SewerMap map = cross();
   MapMeasurements m = measurements_of(map, source("one"));
