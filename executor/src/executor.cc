@@ -151,9 +151,12 @@ class Executor::Run {
       if (halted()) return finish(MissionReport::Outcome::kHalted, "");
       if (response.decision == PlanResponse::Decision::kCallForRecovery) {
         // No exit from where the tracking has the robot; the beacon only when none is reachable
-        // in the belief: where the filter holds another place, the robot first backs up to the
+        // in the belief: at a manhole's mouth with no way on through it, the robot backs into the
+        // pipe it came out of; where the filter holds another place, it first backs up to the
         // manhole behind, whose arrival tells the places apart.
-        if (std::optional<std::string> why = relocalisation_.back_up_to_tell_apart()) {
+        std::optional<std::string> why = back_into_pipe();
+        if (!why) why = relocalisation_.back_up_to_tell_apart();
+        if (why) {
           if (halted()) return finish(MissionReport::Outcome::kHalted, "");
           ++report_.replans;
           last_failure.reset();
@@ -461,6 +464,25 @@ class Executor::Run {
   }
 
   // The replay counts dropped tasks as done; the Replanner hears what the robot has really done.
+  // At a mouth of a manhole the plan cannot go on through (every passage from it beyond the
+  // robot's limits or closed: a dead end it was driven into unawares, AIS in the realistic world,
+  // seeds 24, 26, 38, 44, 61, 71: M7 from P6, whose way on turns 127 degrees), the robot is still
+  // at the end of the pipe it came out of, and drives both ways: the plan starts there, backing
+  // into that pipe. The reason to plan again, or empty (not at a mouth).
+  std::optional<std::string> back_into_pipe() {
+    const auto* at = std::get_if<domain::AtSlot>(&tracker_.position());
+    if (at == nullptr) return std::nullopt;
+    const domain::AtSlot mouth = *at;  // the tracking's place changes below
+    const Slot& slot = map_.slot(mouth.manhole, mouth.slot);
+    tracker_.set_pose(
+        domain::InPipe{slot.pipe, domain::end_offset_m(map_.pipe(slot.pipe), slot.pipe_end)},
+        slot.pipe_end);
+    sync_progress(replanner_.progress());
+    return "no way on through " + map_.manhole(mouth.manhole).name + " from slot " +
+           std::to_string(to_paper_number(mouth.slot)) + ": the robot backs into " +
+           map_.pipe(slot.pipe).name;
+  }
+
   void sync_progress(domain::MissionProgress progress) {
     progress.done = done_;
     progress.position = tracker_.position();

@@ -824,6 +824,29 @@ TEST(CampaignWorld, NoRobotIsShutInByItsOwnClosures) {
   }
 }
 
+// AIS, realistic world: a robot backing out of P4 drove through M6 unseen, on through a junction
+// the map lacks in P6, and arrived at M7, whose only way on from P6 (into P7) turns 127 degrees,
+// beyond makro-1.1's 90. The planner knows no way back from a mouth into its own pipe, and the
+// beacon came on with exits in reach (seeds 24, 26, 38, 44, 61 and 71). Now the robot, at the end
+// of the pipe it came out of, backs into it, and leaves by an exit with every arrival right.
+TEST(CampaignWorld, ARobotAtAMouthWithNoWayOnBacksIntoItsPipe) {
+  const auto ais = testing::load_ais_testbed();
+  struct Case {
+    std::uint64_t seed;
+    std::size_t run;
+  };
+  for (const Case c : {Case{24, 158}, Case{38, 6}, Case{71, 34}}) {
+    SCOPED_TRACE("seed " + std::to_string(c.seed) + " run " + std::to_string(c.run));
+    CampaignSpec spec = ais_spec(200, c.seed);
+    spec.world_errors = "realistic";
+    const Result<RunResult> r = run_one(ais.map, ais.mission, run_settings(spec), c.run);
+    ASSERT_TRUE(r.has_value()) << r.error().message;
+    EXPECT_EQ(r->ours.outcome, Outcome::kExit) << r->ours.end;
+    ASSERT_TRUE(r->ours.world.has_value());
+    EXPECT_EQ(r->ours.world->correct_arrivals, r->ours.world->arrivals);
+  }
+}
+
 // AIS, realistic world, seed 50, run 167: the robot drove through M6 unseen, 9.68 m into P5
 // (10 m mapped, shorter in the sewer), and met an obstacle just inside P10 beyond. The filter did
 // not follow the place past M6, the odometry being short of its mapped mouth: backing out, the

@@ -15,6 +15,7 @@
 
 #include "support/ais_testbed.h"
 #include "support/paths.h"
+#include "support/small_map.h"
 
 namespace sewerplan::executor {
 namespace {
@@ -337,6 +338,39 @@ TEST(Executor, RandomFaultsNeverCrashHangOrBreakTheReserve) {
     EXPECT_EQ(run.report.end.find("not valid"), std::string::npos) << seed << ": " << run.report;
     EXPECT_TRUE(run.report.battery_reserve_kept) << seed << ": " << run.report;
   }
+}
+
+// A robot at a mouth of a manhole with no way on through it for its limits (here a 122 degree
+// turn, beyond makro-1.1's 90) is still at the end of the pipe it came out of, and drives both
+// ways: it backs into that pipe and leaves by the exit behind it, rather than calling for
+// recovery (the planner has no move from a mouth back into its own pipe).
+TEST(Executor, ARobotAtAMouthWithNoWayOnBacksIntoThePipeItCameFrom) {
+  const SewerMap map = testing::SmallMap()
+                           .manhole("M1", 0, 0, /*exit=*/true)
+                           .manhole("M2", 10, 0)
+                           .manhole("M3", 5, 8)
+                           .pipe("P1", "M1", "M2")
+                           .pipe("P2", "M2", "M3")
+                           .build();
+  const ManholeId m2 = *map.find_manhole("M2");
+  ManualClock clock;
+  Replanner replanner(map, testing::small_mission(map, "P1"), {.clock = &clock});
+  domain::MissionProgress at_mouth = replanner.progress();
+  at_mouth.position = domain::AtSlot{m2, SlotIndex{0}};  // out of P1 into M2
+  ASSERT_TRUE(replanner.update(at_mouth, 1).has_value());
+  hal::SimRobot robot(map, replanner.mission().profile,
+                      hal::AtSlot{m2, SlotIndex{0}, hal::Facing::kIntoManhole}, {});
+  Executor executor(map, replanner, robot);
+  std::vector<std::string> replans;
+  executor.subscribe([&](const Event& e) {
+    if (const auto* plan = std::get_if<PlanEvent>(&e.what); plan != nullptr && plan->replan)
+      replans.push_back(plan->reason);
+  });
+  const MissionReport report = executor.run();
+  EXPECT_EQ(report.outcome, MissionOutcome::kEnded) << report.end;
+  EXPECT_EQ(report.end, "exit M1");
+  ASSERT_EQ(replans.size(), 1U);
+  EXPECT_EQ(replans.front(), "no way on through M2 from slot 1: the robot backs into P1");
 }
 
 }  // namespace
