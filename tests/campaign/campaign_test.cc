@@ -42,6 +42,15 @@ CampaignSpec ais_spec(std::size_t runs, std::uint64_t seed = 1) {
   return spec;
 }
 
+// Run `run` of a campaign of `runs` runs in the realistic world (issue 29), seed `seed`: what a
+// scan found a run to do, replayed.
+Result<RunResult> realistic_run(const SewerMap& map, const Mission& mission, std::size_t runs,
+                                std::uint64_t seed, std::size_t run) {
+  CampaignSpec spec = ais_spec(runs, seed);
+  spec.world_errors = "realistic";
+  return run_one(map, mission, run_settings(spec), run);
+}
+
 // The deterministic part of a record's line: all but the trailing "measured" object.
 std::string fixed_part(const RunRecord& r) {
   const std::string line = run_json_line(r);
@@ -777,9 +786,7 @@ TEST(CampaignWorld, NoRobotIsLeftStuckAtAManholeItIsNotAt) {
   for (const Case c :
        {Case{2, 69, 0}, Case{2, 196, 0}, Case{3, 46, 1}, Case{2, 45, 0}, Case{3, 16, 0}}) {
     SCOPED_TRACE("seed " + std::to_string(c.seed) + " run " + std::to_string(c.run));
-    CampaignSpec spec = ais_spec(200, c.seed);
-    spec.world_errors = "realistic";
-    const Result<RunResult> r = run_one(ais.map, ais.mission, run_settings(spec), c.run);
+    const Result<RunResult> r = realistic_run(ais.map, ais.mission, 200, c.seed, c.run);
     ASSERT_TRUE(r.has_value()) << r.error().message;
     const Execution& ours = r->ours;
     EXPECT_EQ(ours.beacon_cause, executor::MissionReport::BeaconCause::kNone) << ours.end;
@@ -813,9 +820,7 @@ TEST(CampaignWorld, NoRobotIsShutInByItsOwnClosures) {
   for (const Case c : {Case{33, 182}, Case{36, 168}, Case{38, 29}, Case{58, 137}, Case{42, 118},
                        Case{109, 91}, Case{153, 134}}) {
     SCOPED_TRACE("seed " + std::to_string(c.seed) + " run " + std::to_string(c.run));
-    CampaignSpec spec = ais_spec(200, c.seed);
-    spec.world_errors = "realistic";
-    const Result<RunResult> r = run_one(ais.map, ais.mission, run_settings(spec), c.run);
+    const Result<RunResult> r = realistic_run(ais.map, ais.mission, 200, c.seed, c.run);
     ASSERT_TRUE(r.has_value()) << r.error().message;
     EXPECT_TRUE(r->could_reach_exit);
     EXPECT_EQ(r->ours.beacon_cause, executor::MissionReport::BeaconCause::kNone) << r->ours.end;
@@ -837,9 +842,7 @@ TEST(CampaignWorld, ARobotAtAMouthWithNoWayOnBacksIntoItsPipe) {
   };
   for (const Case c : {Case{24, 158}, Case{38, 6}, Case{71, 34}}) {
     SCOPED_TRACE("seed " + std::to_string(c.seed) + " run " + std::to_string(c.run));
-    CampaignSpec spec = ais_spec(200, c.seed);
-    spec.world_errors = "realistic";
-    const Result<RunResult> r = run_one(ais.map, ais.mission, run_settings(spec), c.run);
+    const Result<RunResult> r = realistic_run(ais.map, ais.mission, 200, c.seed, c.run);
     ASSERT_TRUE(r.has_value()) << r.error().message;
     EXPECT_EQ(r->ours.outcome, Outcome::kExit) << r->ours.end;
     ASSERT_TRUE(r->ours.world.has_value());
@@ -856,9 +859,7 @@ TEST(CampaignWorld, ARobotAtAMouthWithNoWayOnBacksIntoItsPipe) {
 // robot ends at M4.
 TEST(CampaignWorld, AManholeMissedShortOfItsMappedPlaceIsFollowed) {
   const auto ais = testing::load_ais_testbed();
-  CampaignSpec spec = ais_spec(200, 50);
-  spec.world_errors = "realistic";
-  const Result<RunResult> r = run_one(ais.map, ais.mission, run_settings(spec), 167);
+  const Result<RunResult> r = realistic_run(ais.map, ais.mission, 200, 50, 167);
   ASSERT_TRUE(r.has_value()) << r.error().message;
   EXPECT_EQ(r->ours.outcome, Outcome::kExit) << r->ours.end;
   ASSERT_TRUE(r->ours.world.has_value());
@@ -946,9 +947,7 @@ TEST(CampaignWorld, AClosurePlacedUnderARefutedBeliefMoves) {
   };
   for (const Case c : {Case{26, 5}, Case{8, 26}, Case{10, 38}, Case{27, 13}}) {
     SCOPED_TRACE("seed " + std::to_string(c.seed) + " run " + std::to_string(c.run));
-    CampaignSpec spec = ais_spec(40, c.seed);
-    spec.world_errors = "realistic";
-    const Result<RunResult> r = run_one(net->map, net->mission, run_settings(spec), c.run);
+    const Result<RunResult> r = realistic_run(net->map, net->mission, 40, c.seed, c.run);
     ASSERT_TRUE(r.has_value()) << r.error().message;
     EXPECT_TRUE(r->could_reach_exit);
     EXPECT_EQ(r->ours.beacon_cause, executor::MissionReport::BeaconCause::kNone) << r->ours.end;
@@ -963,17 +962,13 @@ TEST(CampaignWorld, AClosurePlacedUnderARefutedBeliefMoves) {
 // `stuck` the same way. Both now end outside.
 TEST(CampaignWorld, TheSimulatedRobotDrivesOnlyIntoPipesItFits) {
   const auto ais = testing::load_ais_testbed();
-  CampaignSpec spec = ais_spec(200, 49);
-  spec.world_errors = "realistic";
-  const Result<RunResult> a = run_one(ais.map, ais.mission, run_settings(spec), 113);
+  const Result<RunResult> a = realistic_run(ais.map, ais.mission, 200, 49, 113);
   ASSERT_TRUE(a.has_value()) << a.error().message;
   EXPECT_TRUE(a->ours.outcome == Outcome::kExit || a->ours.outcome == Outcome::kEndPoint)
       << a->ours.end;
   const std::optional<MeshedNetwork> net = meshed_1000();
   ASSERT_TRUE(net.has_value());
-  spec = ais_spec(40, 28);
-  spec.world_errors = "realistic";
-  const Result<RunResult> m = run_one(net->map, net->mission, run_settings(spec), 16);
+  const Result<RunResult> m = realistic_run(net->map, net->mission, 40, 28, 16);
   ASSERT_TRUE(m.has_value()) << m.error().message;
   EXPECT_EQ(m->ours.outcome, Outcome::kExit) << m->ours.end;
 }

@@ -22,6 +22,7 @@
 #include "sewerplan/domain/mission_generator.h"
 
 #include "contraction_hierarchy.h"
+#include "joined_search.h"
 #include "position_graph.h"
 #include "support/scrambled_network.h"
 
@@ -166,14 +167,7 @@ void expect_toward_as_reference(const SewerMap& map, Mission mission, std::uint3
   ASSERT_TRUE(ch.has_value());
   ChQuery index(*ch);
   // The search ended where the index's own way is the rest (as the compile does it).
-  std::vector<Node> rest;
-  Cost rest_cost = 0;
-  const std::function<bool(Node, Node)> reads = [&](Node from, Node to) {
-    return graph.reads_move(from, to);
-  };
-  const std::function<bool(Node)> rest_known = [&](Node n) {
-    return !graph.is_extra_spot(n) && index.way_to_aim(n, rest, &reads, &rest_cost);
-  };
+  JoinedSearch joined_search(graph, index);
   std::size_t joined = 0;
   std::vector<Node> sources;
   for (std::uint32_t m = 0; m < map.manhole_count(); m += 29) {
@@ -203,19 +197,9 @@ void expect_toward_as_reference(const SewerMap& map, Mission mission, std::uint3
           want.dist[t] != kInfiniteCost && i % 4 == 3 ? want.dist[t] - 1 : kInfiniteCost;
       const GraphSearch::Toward got = search.run_toward(source, t, bound, graph.size(), guide);
       index.aim_at(t);
-      const GraphSearch::Toward got_joined = search.run_toward(
-          source, t, bound, graph.size(), guide, core.free_passages ? nullptr : &rest_known);
-      std::vector<Node> joined_path;
-      Cost joined_cost = kInfiniteCost;
-      if (const std::optional<Node> at = search.joined()) {
-        ++joined;
-        search.path(*at, joined_path);
-        joined_path.insert(joined_path.end(), rest.begin() + 1, rest.end());
-        joined_cost = search.distance(*at) + rest_cost;
-      } else if (got_joined == GraphSearch::Toward::kUnique) {
-        search.path(t, joined_path);
-        joined_cost = search.distance(t);
-      }
+      const JoinedSearch::Way way = joined_search.run(search, source, t, bound, guide);
+      const GraphSearch::Toward got_joined = way.result;
+      if (way.joined) ++joined;
       index.aim_at(t);
       (void)search.run_toward(source, t, bound, graph.size(), guide);  // path() below: this run's
       if (want.dist[t] == kInfiniteCost || bound < want.dist[t]) {
@@ -239,8 +223,8 @@ void expect_toward_as_reference(const SewerMap& map, Mission mission, std::uint3
       search.path(t, path);
       EXPECT_EQ(path, expected);
       ASSERT_EQ(got_joined, GraphSearch::Toward::kUnique);
-      EXPECT_EQ(joined_cost, want.dist[t]);
-      EXPECT_EQ(joined_path, expected);
+      EXPECT_EQ(way.cost, want.dist[t]);
+      EXPECT_EQ(way.path, expected);
       // Too small a limit gives up rather than answer wrong.
       if (path.size() > 3) {
         index.aim_at(t);

@@ -21,6 +21,7 @@
 
 #include "contraction_hierarchy.h"
 #include "graph_search.h"
+#include "joined_search.h"
 #include "position_graph.h"
 #include "support/scrambled_network.h"
 #include "support/task_compare.h"
@@ -31,6 +32,7 @@ namespace {
 using detail::ChQuery;
 using detail::ContractionHierarchy;
 using detail::GraphSearch;
+using detail::JoinedSearch;
 using detail::Node;
 using detail::PositionGraph;
 using detail::SearchScratch;
@@ -86,14 +88,7 @@ Counts toward_vs_run(const SewerMap& map, Mission mission, std::uint32_t every, 
   }
   SearchScratch scratch;
   GraphSearch search(graph, &scratch);
-  std::vector<Node> rest;
-  Cost rest_cost = 0;
-  const std::function<bool(Node, Node)> reads = [&](Node from, Node to) {
-    return graph.reads_move(from, to);
-  };
-  const std::function<bool(Node)> rest_known = [&](Node n) {
-    return !graph.is_extra_spot(n) && index.way_to_aim(n, rest, &reads, &rest_cost);
-  };
+  JoinedSearch joined_search(graph, index);
   Counts c;
   const Node first = static_cast<Node>(map.manhole_count());
   const auto ch_nodes = static_cast<Node>(core.adjacency_begin.size() - 1);
@@ -113,28 +108,17 @@ Counts toward_vs_run(const SewerMap& map, Mission mission, std::uint32_t every, 
       // With the rest taken from the index where it is known (as the compile runs it): the same
       // answer, way and cost as without.
       index.aim_at(t);
-      const auto joined = search.run_toward(source, t, bound, graph.size(), guide,
-                                            core.free_passages ? nullptr : &rest_known);
-      std::vector<Node> joined_path;
-      Cost joined_cost = kInfiniteCost;
-      if (const std::optional<Node> at = search.joined()) {
-        ++c.joined;
-        search.path(*at, joined_path);
-        joined_path.insert(joined_path.end(), rest.begin() + 1, rest.end());
-        joined_cost = search.distance(*at) + rest_cost;
-      } else if (joined == GraphSearch::Toward::kUnique) {
-        search.path(t, joined_path);
-        joined_cost = search.distance(t);
-      }
+      const JoinedSearch::Way joined = joined_search.run(search, source, t, bound, guide);
+      if (joined.joined) ++c.joined;
       index.aim_at(t);
       const auto got = search.run_toward(source, t, bound, graph.size(), guide);
       SCOPED_TRACE(std::to_string(source) + " -> " + std::to_string(t));
       if (got != GraphSearch::Toward::kGaveUp) {
-        EXPECT_EQ(joined, got);
+        EXPECT_EQ(joined.result, got);
       }
       if (got == GraphSearch::Toward::kUnique) {
-        EXPECT_EQ(joined_cost, want);
-        EXPECT_EQ(joined_path, want_path);
+        EXPECT_EQ(joined.cost, want);
+        EXPECT_EQ(joined.path, want_path);
       }
       switch (got) {
         case GraphSearch::Toward::kUnreached:
