@@ -117,13 +117,8 @@ Result<void> check_signature(const ManholeSignature& signature) {
 
 namespace {
 
-// The log-likelihood of `seen` as the mouth the map lists as `want`.
 double pair_log(const SlotSighting& want, const SlotSighting& seen, const SignatureNoise& noise) {
-  return or_map_wrong(
-      gaussian_log(normalize_deg(seen.relative_deg - want.relative_deg), noise.direction_deg) +
-          gaussian_log(seen.step_m - want.step_m, noise.step_m) +
-          gaussian_log(seen.diameter_m - want.diameter_m, noise.diameter_m),
-      unknown_mouth_log_likelihood(), noise.mouth_off_share);
+  return mouth_log_likelihood(want, seen, noise);
 }
 
 // Why `seen` is not the mouth `want`, or empty when it is within the noise's limits.
@@ -243,6 +238,15 @@ void compare_unequal(const ManholeSignature& expected, const ManholeSignature& o
 }
 
 }  // namespace
+
+double mouth_log_likelihood(const SlotSighting& want, const SlotSighting& seen,
+                            const SignatureNoise& noise) {
+  return or_map_wrong(
+      gaussian_log(normalize_deg(seen.relative_deg - want.relative_deg), noise.direction_deg) +
+          gaussian_log(seen.step_m - want.step_m, noise.step_m) +
+          gaussian_log(seen.diameter_m - want.diameter_m, noise.diameter_m),
+      unknown_mouth_log_likelihood(), noise.mouth_off_share);
+}
 
 double unexpected_mouth_log_likelihood(const SignatureNoise& noise) {
   if (noise.unmapped_mouth_share <= 0) return kSlotCountLogPenalty;

@@ -328,6 +328,48 @@ TEST(MapMeasurements, ASmallerPipeIsFound) {
   EXPECT_NEAR(found[0].discrepancy.value, 0.35, 1e-12);
 }
 
+// A 0.10 m house connection 6 degrees beside a 0.40 m sewer (as in the official ISYBAU sample):
+// seen in either order, depending on the noise. Seen swapped, each mouth is paired with its own
+// sighting by size, so neither pipe is reported smaller and no direction is off.
+TEST(MapMeasurements, TwoMouthsSideBySideSeenSwappedArePairedBySize) {
+  const SewerMap map = SmallMap()
+                           .manhole("M0", 0, 0, true)
+                           .manhole("E", 20, 0)
+                           .manhole("H", 20, 2.1)
+                           .manhole("W", -20, 0)
+                           .pipe("SEWER", "M0", "E", 0.40)
+                           .pipe("HOUSE", "H", "M0", 0.10)
+                           .pipe("IN", "W", "M0", 0.40)
+                           .build();
+  const ManholeId m0 = id(map, "M0");
+  MapMeasurements m = measurements_of(map, source("one"));
+  const SlotIndex in = map.pipe(pipe(map, "IN")).ends[1].slot;
+  for (int pass = 0; pass < 3; ++pass) {
+    ManholeSignature seen = expected_signature(map, m0, in);
+    ASSERT_EQ(seen.slots.size(), 3U);
+    // The two mouths east, 6 degrees apart, seen the other way round: their sizes trade places.
+    std::swap(seen.slots[1].diameter_m, seen.slots[2].diameter_m);
+    add_observation(m, m0, in, seen, 0);
+  }
+  EXPECT_TRUE(discrepancies(m, map).empty());
+
+  // A sewer truly smaller beside the connection is still found.
+  MapMeasurements smaller = measurements_of(map, source("two"));
+  const auto order = signature_slot_order(map, m0, in);
+  for (int pass = 0; pass < 3; ++pass) {
+    ManholeSignature seen = expected_signature(map, m0, in);
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      if (map.slot(m0, order[i]).pipe == pipe(map, "SEWER")) seen.slots[i].diameter_m = 0.30;
+    }
+    std::swap(seen.slots[1], seen.slots[2]);
+    std::swap(seen.slots[1].relative_deg, seen.slots[2].relative_deg);
+    add_observation(smaller, m0, in, seen, 0);
+  }
+  const auto found = discrepancies(smaller, map);
+  ASSERT_EQ(kinds(found), std::vector<Kind>{Kind::kDiameterSmaller});
+  EXPECT_EQ(found[0].discrepancy.pipe, pipe(map, "SEWER"));
+}
+
 TEST(MapMeasurements, AMouthTheMapLacksIsAnUnmappedLateral) {
   const SewerMap map = cross();
   MapMeasurements m = measurements_of(map, source("one"));

@@ -127,6 +127,12 @@ inline constexpr double kSlotCountLogPenalty = -12.0;
 // SignatureNoise::unmapped_mouth_share. A mouth of the map's not seen costs kSlotCountLogPenalty.
 double unexpected_mouth_log_likelihood(const SignatureNoise& noise);
 
+// The log-likelihood of `seen` as the mouth the map lists as `want` (direction, step and size,
+// each Gaussian, or the mouth off the map's by SignatureNoise::mouth_off_share), on compare()'s
+// scale.
+double mouth_log_likelihood(const SlotSighting& want, const SlotSighting& seen,
+                            const SignatureNoise& noise);
+
 // How well `observed` fits `expected`. Slots are paired in order; with a differing slot count
 // (never a match) the pairing that keeps both orders and is most likely, each mouth left unpaired
 // (a lateral the map lacks: unexpected_mouth_log_likelihood(); one the world lacks:
