@@ -502,7 +502,7 @@ class Executor::Run {
     const domain::RobotPosition before = tracker_.position();
     const double direction = tracker_.direction_of(job);
     const hal::JobReport r = robot_.execute(job);
-    relocalisation_.job_sent(job, r.progress_m);
+    relocalisation_.job_sent(job, r.progress_m, r.ok());
     ++report_.jobs;
     tracker_.advance(job, r);
     emit(JobEvent{.job = detail::job_text(job), .progress_m = r.progress_m, .ok = r.ok()});

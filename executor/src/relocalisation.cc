@@ -194,7 +194,7 @@ std::optional<std::string> Relocalisation::back_up_to_tell_apart() {
   const localisation::Hypothesis* other = nullptr;
   for (const localisation::Hypothesis& h : belief.hypotheses) {
     const auto* there = std::get_if<domain::InPipe>(&h.pose.position);
-    if (h.probability < localising_.options().ambiguity_probability) continue;
+    if (h.probability < kTellApartFloor) continue;
     if (there == nullptr || there->pipe != in->pipe) {
       other = &h;
       break;
@@ -204,8 +204,10 @@ std::optional<std::string> Relocalisation::back_up_to_tell_apart() {
   ++tell_apart_tries_;
   const std::string alternative = localisation::describe(other->pose, map_);
   const std::string tracked = tracker_.describe();
-  // Back the way the last drive went (else away from the end the robot faces).
-  const double last = tracker_.direction_of(last_job_);
+  // Back the way the last drive went (else away from the end the robot faces); not the way of a
+  // step back off a danger (the meshed 1,000-manhole network, seed 6, run 16: the robot drove
+  // back into the danger it had just backed off).
+  const double last = tracker_.direction_of(way_job_);
   const std::uint8_t back_to = last > 0   ? 0
                                : last < 0 ? 1
                                           : static_cast<std::uint8_t>(1 - tracker_.heading_end());
@@ -285,9 +287,35 @@ void Relocalisation::place_by_belief(Failure& failure, const Job& job) {
   drove_in_behind(job);
   const auto& in = std::get<domain::InPipe>(best->pose.position);
   const double length = map_.pipe(in.pipe).length_m;
+  const double direction = tracker_.direction_of(job);
   failure.pipe = in.pipe;
-  failure.offset_m =
-      std::clamp(in.offset_m + tracker_.direction_of(job) * kBlockageAhead_m, 0.0, length);
+  failure.offset_m = std::clamp(in.offset_m + direction * kBlockageAhead_m, 0.0, length);
+  if (const std::optional<double> met = learnt_behind(in.pipe, in.offset_m, direction)) {
+    // The robot drove into this pipe unseen this job, through its whole length behind the place
+    // settled on: a blockage or danger learnt there stopped it, whatever the odometry says.
+    const double at = std::clamp(*met - direction * kBlockageAhead_m, 0.0, length);
+    tracker_.set_pose(domain::InPipe{in.pipe, at}, *best->pose.heading_end);
+    failure.offset_m = *met;
+    std::ostringstream why;
+    why << "; it met what was learnt at " << std::fixed << std::setprecision(2) << *met << " m in "
+        << map_.pipe(in.pipe).name << " again, from the other side";
+    failure.detail += why.str();
+  }
+}
+
+std::optional<double> Relocalisation::learnt_behind(PipeId pipe, double offset_m,
+                                                    double direction) const {
+  if (direction == 0) return std::nullopt;
+  std::optional<double> first;
+  const auto consider = [&](const Blockage& b) {
+    if (b.pipe != pipe || (b.offset_m - offset_m) * direction >= 0) return;
+    // Of those behind, the one nearest the end the robot came in by is the one it met.
+    if (!first || (b.offset_m - *first) * direction < 0) first = b.offset_m;
+  };
+  const Learnt& learnt = replanner_.learnt();
+  for (const Blockage& b : learnt.blockages) consider(b);
+  for (const Blockage& b : learnt.danger_spots) consider(b);
+  return first;
 }
 
 std::optional<localisation::Hypothesis> Relocalisation::believed_elsewhere(PipeId tracked) const {

@@ -72,7 +72,13 @@ class Relocalisation {
 
   // The robot ran `job` and drove `progress_m` of it: the rest of a job stopped by a manhole the
   // map lacks goes on from there (relocalise()); a drive back goes the way it came.
-  void job_sent(const Job& job, double progress_m) {
+  void job_sent(const Job& job, double progress_m, bool ok) {
+    // A job straight after a failed one, the other way, is recovery's step back (backing off a
+    // danger, backing up to retry), not the way the robot came.
+    const bool steps_back =
+        !last_ok_ && tracker_.direction_of(job) * tracker_.direction_of(last_job_) < 0;
+    if (!steps_back) way_job_ = job;
+    last_ok_ = ok;
     last_job_ = job;
     last_progress_m_ = progress_m;
     drove_since_failure(job, progress_m);
@@ -118,7 +124,7 @@ class Relocalisation {
   bool settle_elsewhere();
 
   // No exit is reachable from where the tracking has the robot (in a pipe), but the filter holds
-  // another place for it, in another pipe, at ambiguity_probability or more (a manhole driven
+  // another place for it, in another pipe, at kTellApartFloor or more (a manhole driven
   // through unseen, or a pipe longer than mapped: on the meshed network, seed 2, run 20, a robot
   // past a manhole it missed met an obstacle, the tracked pipe was closed at its end, and the
   // beacon came on with an exit a few metres behind it). The robot drives back the way it came, to
@@ -179,6 +185,12 @@ class Relocalisation {
   bool at_far_end(const Failure& failure, const Job& job) const;
   // Moves the tracking to `believed`; what it was, for the record.
   std::string settle_on(const localisation::Hypothesis& believed);
+  // A blockage or danger spot learnt in `pipe` behind `offset_m` for a robot driving `direction`
+  // (+1: towards the pipe's ends[1]): the first a robot that came in at the end behind it met.
+  // The belief can settle a robot that drove through a manhole unseen beyond what it met before
+  // (the meshed 1,000-manhole network, seed 4, run 19: a danger learnt at 14.59 m, met again from
+  // the other end, the odometry short by 1.3 m: shut in between the two, the beacon came on).
+  std::optional<double> learnt_behind(PipeId pipe, double offset_m, double direction) const;
   // Every passage of `manhole` into or out of the mouth `mouth` that the robot did not see, closed
   // as learnt: the blockage inside its pipe leaves the mouth itself a place to turn through, and a
   // turn into a mouth the sewer lacks is a job the robot cannot run (on the official ISYBAU sample
@@ -204,6 +216,10 @@ class Relocalisation {
   std::optional<Arrival> mismatch_;
   // The last job sent and how far it drove (the rest of a job stopped by a manhole the map lacks).
   Job last_job_ = Stop{};
+  bool last_ok_ = true;
+  // The last job that was not recovery's step back (job_sent()): its direction is the way the
+  // robot came, for back_up_to_tell_apart().
+  Job way_job_ = Stop{};
   double last_progress_m_ = 0;
   // failure_reported(): the last failure placed in a pipe, and the robot's drives since (front
   // first positive), while it stays in one pipe by its own account.
@@ -222,6 +238,12 @@ class Relocalisation {
   void move_refuted_failure(const domain::RobotPosition& believed);
   // How often the robot backed up to tell its places apart (back_up_to_tell_apart()).
   static constexpr int kMaxTellApart = 3;
+  // The least probability of another place that back_up_to_tell_apart() goes to look at. Not the
+  // filter's ambiguity_probability (0.05): the other choice is the beacon, with the robot left in
+  // the sewer, so a place held at 1 % is worth a drive back (the meshed 1,000-manhole network, seed
+  // 6, run 16: a danger met 1.8 m past a manhole driven through unseen, the filter holding that
+  // place at p=0.011 and the robot's, short of the manhole, shut in by a blockage behind it).
+  static constexpr double kTellApartFloor = 0.001;
   // place_by_belief(): a place beyond the tracked pipe's end is taken when the filter holds it at
   // this share or more, the robot being at that end (within kAtEndM).
   static constexpr double kPastEndShare = 0.25;

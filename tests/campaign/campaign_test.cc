@@ -955,6 +955,45 @@ TEST(CampaignWorld, AClosurePlacedUnderARefutedBeliefMoves) {
   }
 }
 
+// The meshed network, realistic world: a robot that drove through a manhole unseen met a danger
+// in the pipe beyond, short of where it had met the same danger from the other end before. Seed
+// 4, run 19: the filter placed it past the danger learnt there (the odometry 1.3 m short), shut
+// in between the two; now the danger learnt stops it where it was learnt. Seed 6, run 16: the
+// tracking kept it short of the manhole, a blockage behind; the filter held the pipe beyond at
+// p=0.011, under the ambiguity the robot went back to look at, and the drive back went the way
+// of the step back off the danger, into the danger again. Both beacons came on with an exit a
+// few manholes away; both robots now end there.
+TEST(CampaignWorld, ADangerMetAgainPastAMissedManholeDoesNotShutTheRobotIn) {
+  const std::optional<MeshedNetwork> net = meshed_1000();
+  ASSERT_TRUE(net.has_value());
+  struct Case {
+    std::uint64_t seed;
+    std::size_t run;
+  };
+  for (const Case c : {Case{4, 19}, Case{6, 16}}) {
+    SCOPED_TRACE("seed " + std::to_string(c.seed) + " run " + std::to_string(c.run));
+    const Result<RunResult> r = realistic_run(net->map, net->mission, 40, c.seed, c.run);
+    ASSERT_TRUE(r.has_value()) << r.error().message;
+    EXPECT_TRUE(r->could_reach_exit);
+    EXPECT_EQ(r->ours.outcome, Outcome::kExit) << r->ours.end;
+  }
+  // Seed 4, run 19: the danger met again is placed where it was learnt, not 1.3 m beyond.
+  CampaignSpec spec = ais_spec(40, 4);
+  spec.world_errors = "realistic";
+  std::vector<double> dangers;
+  ExecutionObservers observers{.on_event = [&](const executor::Event& e) {
+    const auto* failure = std::get_if<executor::FailureEvent>(&e.what);
+    if (failure == nullptr || failure->kind != executor::Failure::Kind::kDangerInPipe) return;
+    const auto* in = std::get_if<executor::FailureEvent::InPipe>(&failure->where);
+    if (in != nullptr && in->pipe == "P1073") dangers.push_back(in->offset_m);
+  }};
+  ASSERT_TRUE(
+      replay_execution(net->map, net->mission, run_settings(spec), 19, Policy::kOurs, observers)
+          .has_value());
+  ASSERT_EQ(dangers.size(), 2U);
+  EXPECT_NEAR(dangers[1], dangers[0], 1e-9);
+}
+
 // A robot that drives through a manhole unseen goes on into the pipe straight on only where its
 // body fits that pipe: the simulated robot drove on into pipes narrower than its profile (a
 // 0.25 m pipe for makro-plus's 0.30 m on the meshed network, seed 28, run 16), where the filter
