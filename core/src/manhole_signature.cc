@@ -117,10 +117,6 @@ Result<void> check_signature(const ManholeSignature& signature) {
 
 namespace {
 
-double pair_log(const SlotSighting& want, const SlotSighting& seen, const SignatureNoise& noise) {
-  return mouth_log_likelihood(want, seen, noise);
-}
-
 // Why `seen` is not the mouth `want`, or empty when it is within the noise's limits.
 std::string pair_problem(std::size_t seen_index, const SlotSighting& want, const SlotSighting& seen,
                          const SignatureNoise& noise) {
@@ -148,7 +144,7 @@ std::string pair_problem(std::size_t seen_index, const SlotSighting& want, const
 double swapped_log(const SlotSighting& want_a, const SlotSighting& want_b,
                    const SlotSighting& seen_a, const SlotSighting& seen_b,
                    const SignatureNoise& noise) {
-  return pair_log(want_a, seen_b, noise) + pair_log(want_b, seen_a, noise);
+  return mouth_log_likelihood(want_a, seen_b, noise) + mouth_log_likelihood(want_b, seen_a, noise);
 }
 
 // Pairs the mouths of two signatures with different slot counts: both lists run
@@ -174,8 +170,8 @@ void compare_unequal(const ManholeSignature& expected, const ManholeSignature& o
       double value = -std::numeric_limits<double>::infinity();
       Step step = kPair;
       if (i > 0 && j > 0) {
-        value =
-            best[(i - 1) * width + j - 1] + pair_log(expected.slots[i], observed.slots[j], noise);
+        value = best[(i - 1) * width + j - 1] +
+                mouth_log_likelihood(expected.slots[i], observed.slots[j], noise);
       }
       if (i > 1 && j > 1) {
         const double swap = best[(i - 2) * width + j - 2] +
@@ -275,14 +271,15 @@ SignatureMatch compare(const ManholeSignature& expected, const ManholeSignature&
       const SlotSighting& a = expected.slots[i];
       const SlotSighting& b = expected.slots[i + 1];
       if (swapped_log(a, b, observed.slots[i], observed.slots[i + 1], noise) >
-          pair_log(a, observed.slots[i], noise) + pair_log(b, observed.slots[i + 1], noise)) {
+          mouth_log_likelihood(a, observed.slots[i], noise) +
+              mouth_log_likelihood(b, observed.slots[i + 1], noise)) {
         std::swap(seen_as[i], seen_as[i + 1]);
         ++i;
       }
     }
     for (std::size_t i = 1; i < n; ++i) {
       const SlotSighting& seen = observed.slots[seen_as[i]];
-      match.log_likelihood += pair_log(expected.slots[i], seen, noise);
+      match.log_likelihood += mouth_log_likelihood(expected.slots[i], seen, noise);
       std::string problem = pair_problem(seen_as[i], expected.slots[i], seen, noise);
       if (match.matches && !problem.empty()) {
         match.matches = false;

@@ -148,7 +148,7 @@ void pair_leftovers(const ManholeSignature& expected, const ManholeSignature& ob
 // align() keeps both orders, but two mouths a few degrees apart are seen in either order (the
 // official ISYBAU sample has a 0.10 m house connection 6 degrees beside a 0.40 m sewer): paired in
 // the map's order, each took the other's size, and the sewer was reported smaller in most runs
-// that passed it (52 of the 76 false reports of 800 runs). So two neighbours seen are swapped
+// that passed it (52 of the 71 false reports of 800 runs). So two neighbours seen are swapped
 // where that pairing is the more likely with their sizes and steps as well (compare()'s rule).
 void swap_neighbours_seen_swapped(const ManholeSignature& expected,
                                   const ManholeSignature& observed, std::vector<int>& pairing,
@@ -159,6 +159,10 @@ void swap_neighbours_seen_swapped(const ManholeSignature& expected,
     if (a <= 0 || b <= 0) continue;
     const SlotSighting& want_a = expected.slots[static_cast<std::size_t>(a)];
     const SlotSighting& want_b = expected.slots[static_cast<std::size_t>(b)];
+    // Only mouths the noise can show in either order: within two sightings' sigma of each other.
+    if (std::abs(wrap180(want_a.relative_deg - want_b.relative_deg)) > 2 * noise.direction_deg) {
+      continue;
+    }
     const SlotSighting& seen_a = observed.slots[j];
     const SlotSighting& seen_b = observed.slots[j + 1];
     if (mouth_log_likelihood(want_a, seen_b, noise) + mouth_log_likelihood(want_b, seen_a, noise) >

@@ -204,14 +204,19 @@ std::optional<std::string> Relocalisation::back_up_to_tell_apart() {
   ++tell_apart_tries_;
   const std::string alternative = localisation::describe(other->pose, map_);
   const std::string tracked = tracker_.describe();
-  // Back the way the last drive went (else away from the end the robot faces); not the way of a
-  // step back off a danger (the meshed 1,000-manhole network, seed 6, run 16: the robot drove
-  // back into the danger it had just backed off).
+  // Away from the failure placed in this pipe, else back the way the last drive went (else away
+  // from the end the robot faces); not the way of a step back off a danger (the meshed
+  // 1,000-manhole network, seed 6, run 16: the robot drove back into the danger it had just
+  // backed off).
   const double last = tracker_.direction_of(way_job_);
-  const std::uint8_t back_to = last > 0   ? 0
-                               : last < 0 ? 1
-                                          : static_cast<std::uint8_t>(1 - tracker_.heading_end());
-  const double distance = back_to == 0 ? in->offset_m : map_.pipe(in->pipe).length_m - in->offset_m;
+  std::uint8_t back_to = last > 0   ? 0
+                         : last < 0 ? 1
+                                    : static_cast<std::uint8_t>(1 - tracker_.heading_end());
+  if (placed_ && placed_->at.pipe == in->pipe && placed_->at.offset_m != in->offset_m) {
+    back_to = placed_->at.offset_m > in->offset_m ? 0 : 1;
+  }
+  const double end_m = back_to == 0 ? 0.0 : map_.pipe(in->pipe).length_m;
+  const double distance = std::abs(end_m - in->offset_m);
   const double speed = mission().profile.speed_mps;
   const Job back =
       back_to == tracker_.heading_end()
@@ -281,10 +286,6 @@ void Relocalisation::place_by_belief(Failure& failure, const Job& job) {
   if (!best && at_far_end(failure, job)) best = likely_elsewhere(failure.pipe, kPastEndShare);
   if (!best) return;
   failure.detail += "; " + settle_on(*best);
-  // A blockage learnt on the way in under the belief before was placed where the robot was not
-  // (ISYBAU sample, realistic world, run 83: one obstacle closed 1.13 m into a pipe, then met
-  // again, rear first, at 1.20 m by the relocalised robot, which was shut in between the two).
-  drove_in_behind(job);
   const auto& in = std::get<domain::InPipe>(best->pose.position);
   const double length = map_.pipe(in.pipe).length_m;
   const double direction = tracker_.direction_of(job);
@@ -292,7 +293,8 @@ void Relocalisation::place_by_belief(Failure& failure, const Job& job) {
   failure.offset_m = std::clamp(in.offset_m + direction * kBlockageAhead_m, 0.0, length);
   if (const std::optional<double> met = learnt_behind(in.pipe, in.offset_m, direction)) {
     // The robot drove into this pipe unseen this job, through its whole length behind the place
-    // settled on: a blockage or danger learnt there stopped it, whatever the odometry says.
+    // settled on: a blockage or danger learnt there, just behind, stopped it, whatever the
+    // odometry says.
     const double at = std::clamp(*met - direction * kBlockageAhead_m, 0.0, length);
     tracker_.set_pose(domain::InPipe{in.pipe, at}, *best->pose.heading_end);
     failure.offset_m = *met;
@@ -301,14 +303,24 @@ void Relocalisation::place_by_belief(Failure& failure, const Job& job) {
         << map_.pipe(in.pipe).name << " again, from the other side";
     failure.detail += why.str();
   }
+  // A blockage learnt on the way in under the belief before was placed where the robot was not
+  // (ISYBAU sample, realistic world, run 83: one obstacle closed 1.13 m into a pipe, then met
+  // again, rear first, at 1.20 m by the relocalised robot, which was shut in between the two).
+  // After the place is settled (above), so that a fault met again stays.
+  drove_in_behind(job);
 }
 
 std::optional<double> Relocalisation::learnt_behind(PipeId pipe, double offset_m,
                                                     double direction) const {
   if (direction == 0) return std::nullopt;
+  const double entered_at = direction > 0 ? 0.0 : map_.pipe(pipe).length_m;
   std::optional<double> first;
   const auto consider = [&](const Blockage& b) {
     if (b.pipe != pipe || (b.offset_m - offset_m) * direction >= 0) return;
+    // Within the odometry's reach of the place (not a fault far back it may never have passed),
+    // and not a closure at the mouth it came in by (a mouth the world lacks, closed).
+    if (std::abs(b.offset_m - offset_m) > kMetAgainM || std::abs(b.offset_m - entered_at) < kAtEndM)
+      return;
     // Of those behind, the one nearest the end the robot came in by is the one it met.
     if (!first || (b.offset_m - *first) * direction < 0) first = b.offset_m;
   };

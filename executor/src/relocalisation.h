@@ -190,7 +190,10 @@ class Relocalisation {
   // The belief can settle a robot that drove through a manhole unseen beyond what it met before
   // (the meshed 1,000-manhole network, seed 4, run 19: a danger learnt at 14.59 m, met again from
   // the other end, the odometry short by 1.3 m: shut in between the two, the beacon came on).
+  // Only within kMetAgainM of the place (the odometry's error over a few pipes), and not at the
+  // pipe's end it came in by.
   std::optional<double> learnt_behind(PipeId pipe, double offset_m, double direction) const;
+  static constexpr double kMetAgainM = 2.0;
   // Every passage of `manhole` into or out of the mouth `mouth` that the robot did not see, closed
   // as learnt: the blockage inside its pipe leaves the mouth itself a place to turn through, and a
   // turn into a mouth the sewer lacks is a job the robot cannot run (on the official ISYBAU sample
@@ -240,9 +243,9 @@ class Relocalisation {
   static constexpr int kMaxTellApart = 3;
   // The least probability of another place that back_up_to_tell_apart() goes to look at. Not the
   // filter's ambiguity_probability (0.05): the other choice is the beacon, with the robot left in
-  // the sewer, so a place held at 1 % is worth a drive back (the meshed 1,000-manhole network, seed
-  // 6, run 16: a danger met 1.8 m past a manhole driven through unseen, the filter holding that
-  // place at p=0.011 and the robot's, short of the manhole, shut in by a blockage behind it).
+  // the sewer, so even an unlikely place is worth a drive back (the meshed 1,000-manhole network,
+  // seed 6, run 16: a danger met 1.8 m past a manhole driven through unseen, the filter holding
+  // that place at p=0.011 and the robot's, short of the manhole, shut in by a blockage behind it).
   static constexpr double kTellApartFloor = 0.001;
   // place_by_belief(): a place beyond the tracked pipe's end is taken when the filter holds it at
   // this share or more, the robot being at that end (within kAtEndM).

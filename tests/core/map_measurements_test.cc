@@ -368,6 +368,7 @@ TEST(MapMeasurements, TwoMouthsSideBySideSeenSwappedArePairedBySize) {
   const auto found = discrepancies(smaller, map);
   ASSERT_EQ(kinds(found), std::vector<Kind>{Kind::kDiameterSmaller});
   EXPECT_EQ(found[0].discrepancy.pipe, pipe(map, "SEWER"));
+  EXPECT_NEAR(found[0].discrepancy.value, 0.30, 1e-9);
 }
 
 TEST(MapMeasurements, AMouthTheMapLacksIsAnUnmappedLateral) {

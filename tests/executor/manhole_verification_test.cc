@@ -411,5 +411,49 @@ TEST(ManholeVerification, ADriveThatMissedItsManholeIsPlannedOnFromBeyondIt) {
   EXPECT_EQ(failures_before, 0U) << replans.front();
 }
 
+// M1 (an exit) -P1 (20 m)- M2 -P2 (20 m)- M3, and P3 from M2 north to M4; a task in P3. A danger
+// in P2 was learnt at 3.0 m (from M3's side, before). The robot starts in the middle of P1 facing
+// M2 and sees no manhole: it drives through M2 straight on into P2 and meets a danger at 4.0 m,
+// the one learnt, from this side. The filter settles it 0.95 m beyond the learnt danger (the
+// learning was 1 m off), but it cannot have passed that: it is there, and it backs out to M1.
+// Closed where the filter put it, the robot sat between two dangers: the beacon (the meshed
+// 1,000-manhole network, realistic world, seed 4, run 19).
+TEST(ManholeVerification, ADangerMetAgainPastAMissedManholeIsWhereItWasLearnt) {
+  const SewerMap map = testing::SmallMap()
+                           .manhole("M1", 0, 0, /*exit=*/true)
+                           .manhole("M2", 20, 0)
+                           .manhole("M3", 40, 0)
+                           .manhole("M4", 20, 20)
+                           .pipe("P1", "M1", "M2")
+                           .pipe("P2", "M2", "M3")
+                           .pipe("P3", "M2", "M4")
+                           .build();
+  Mission mission = testing::small_mission(map, "P1");
+  testing::add_task(mission, map, "inspect-P3", TaskKind::kInspectPipe, "P3");
+  ManualClock clock;
+  Replanner replanner{map, mission, {.clock = &clock}};
+  const PipeId p2 = *map.find_pipe("P2");
+  ASSERT_TRUE(replanner.learn(Learnt{.danger_spots = {{p2, 3.0}}}).has_value());
+  hal::FaultScenario faults;
+  faults.danger_spots.push_back({.pipe = p2, .offset_m = 4.0});
+  const auto& in = std::get<domain::InPipe>(replanner.progress().position);
+  hal::SimRobot robot(map, mission.profile,
+                      hal::InPipe{in.pipe, in.offset_m, hal::Heading::kTowardsEnd1}, faults,
+                      hal::SimOptions{.sensing = {.missed_share = 1.0, .observe = true}});
+  Executor executor(map, replanner, robot);
+  std::vector<FailureEvent> failures;
+  executor.subscribe([&](const Event& e) {
+    if (const auto* f = std::get_if<FailureEvent>(&e.what)) failures.push_back(*f);
+  });
+  const MissionReport report = executor.run();
+  EXPECT_EQ(report.outcome, MissionReport::Outcome::kEnded) << report;
+  EXPECT_EQ(report.end, "exit M1") << report;
+  ASSERT_FALSE(failures.empty());
+  const auto* where = std::get_if<FailureEvent::InPipe>(&failures.front().where);
+  ASSERT_NE(where, nullptr);
+  EXPECT_EQ(where->pipe, "P2") << failures.front().detail;
+  EXPECT_DOUBLE_EQ(where->offset_m, 3.0) << failures.front().detail;
+}
+
 }  // namespace
 }  // namespace sewerplan::executor
